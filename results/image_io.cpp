@@ -1,0 +1,380 @@
+// The only door to OpenImageIO: a thin extern "C" shim. See image_io.h.
+//
+// No C++ exception crosses into C: every entry point catches everything and turns
+// it into false with a message (or a neutral value where the function cannot fail).
+#include "results/image_io.h"
+
+#include <OpenImageIO/imageio.h>
+
+#include <cerrno>
+#include <cmath>
+#include <cstdint>
+#include <cstdio>
+#include <cstdlib>
+#include <cstring>
+#include <exception>
+#include <limits>
+#include <memory>
+#include <string>
+
+#include <unistd.h>
+
+using OIIO::ImageInput;
+using OIIO::ImageOutput;
+using OIIO::ImageSpec;
+using OIIO::TypeDesc;
+
+namespace {
+
+void set_err(char *err, size_t errlen, const std::string &msg)
+{
+    if (err != nullptr && errlen > 0)
+        std::snprintf(err, errlen, "%s", msg.c_str());
+}
+
+// OIIO error strings may span lines; one line reads better in our logs.
+std::string one_line(std::string s)
+{
+    while (!s.empty() && (s.back() == '\n' || s.back() == ' '))
+        s.pop_back();
+    for (char &c : s)
+        if (c == '\n')
+            c = ' ';
+    return s.empty() ? std::string("unknown error") : s;
+}
+
+size_t type_size(image_type t)
+{
+    return t == IMAGE_F32 ? sizeof(float) : sizeof(uint8_t);
+}
+
+TypeDesc type_desc(image_type t)
+{
+    return t == IMAGE_F32 ? TypeDesc(TypeDesc::FLOAT) : TypeDesc(TypeDesc::UINT8);
+}
+
+// Number of channel values, or false when the dimensions are not a sane image.
+bool value_count(int w, int h, int c, size_t *out)
+{
+    if (w <= 0 || h <= 0 || c <= 0)
+        return false;
+    size_t n = (size_t)w;
+    if (n > std::numeric_limits<size_t>::max() / (size_t)h)
+        return false;
+    n *= (size_t)h;
+    if (n > std::numeric_limits<size_t>::max() / (size_t)c / sizeof(float))
+        return false;
+    *out = n * (size_t)c;
+    return true;
+}
+
+bool valid_image(const image *img, const char *what, char *err, size_t errlen)
+{
+    size_t n;
+    if (img == nullptr || img->pixels == nullptr ||
+        (img->type != IMAGE_U8 && img->type != IMAGE_F32) ||
+        !value_count(img->width, img->height, img->channels, &n)) {
+        set_err(err, errlen, std::string(what) + ": not a valid image (no pixels or bad size)");
+        return false;
+    }
+    return true;
+}
+
+// Lower-case extension without the dot ("" when there is none).
+std::string extension_of(const std::string &path)
+{
+    size_t slash = path.find_last_of('/');
+    size_t base = slash == std::string::npos ? 0 : slash + 1;
+    size_t dot = path.find_last_of('.');
+    if (dot == std::string::npos || dot <= base)
+        return std::string();
+    std::string ext = path.substr(dot + 1);
+    for (char &c : ext)
+        if (c >= 'A' && c <= 'Z')
+            c = (char)(c - 'A' + 'a');
+    return ext;
+}
+
+// Formats that store floats as they are; everything else gets 8-bit pixels.
+bool stores_float(const std::string &ext)
+{
+    return ext == "exr" || ext == "sxr" || ext == "mxr" || ext == "tif" || ext == "tiff" ||
+           ext == "pfm" || ext == "hdr";
+}
+
+// "<dir>/.<base>.tmp.<pid>.<ext>" for "<dir>/<base>.<ext>": same directory (rename
+// stays on one file system), same extension (OIIO picks the writer by it).
+std::string temp_name(const std::string &path)
+{
+    size_t slash = path.find_last_of('/');
+    std::string dir = slash == std::string::npos ? std::string() : path.substr(0, slash + 1);
+    std::string file = slash == std::string::npos ? path : path.substr(slash + 1);
+    size_t dot = file.find_last_of('.');
+    std::string base = dot == std::string::npos || dot == 0 ? file : file.substr(0, dot);
+    std::string ext = dot == std::string::npos || dot == 0 ? std::string() : file.substr(dot);
+    return dir + "." + base + ".tmp." + std::to_string((long)getpid()) + ext;
+}
+
+bool write_impl(const char *path, const image *img, char *err, size_t errlen)
+{
+    if (path == nullptr || path[0] == '\0') {
+        set_err(err, errlen, "image write: empty path");
+        return false;
+    }
+    if (!valid_image(img, path, err, errlen))
+        return false;
+    const std::string final_path(path);
+    const std::string ext = extension_of(final_path);
+    if (ext.empty()) {
+        set_err(err, errlen, final_path + ": no extension to choose an image format by");
+        return false;
+    }
+    const std::string tmp = temp_name(final_path);
+    // Removes the temporary file on every way out (an exception included) but success.
+    struct remove_guard {
+        const std::string &name;
+        bool keep = false;
+        ~remove_guard()
+        {
+            if (!keep)
+                std::remove(name.c_str()); // ENOENT is fine
+        }
+    } guard{tmp};
+
+    auto out = ImageOutput::create(tmp);
+    if (!out) {
+        set_err(err, errlen,
+                final_path + ": cannot write ." + ext + " images: " + one_line(OIIO::geterror()));
+        return false;
+    }
+    TypeDesc file_type = type_desc(img->type);
+    if (img->type == IMAGE_F32 && !stores_float(ext))
+        file_type = TypeDesc::UINT8; // OIIO converts: clamp to [0,1], scale, round
+    ImageSpec spec(img->width, img->height, img->channels, file_type);
+    // Pixels are written as they are: an alpha channel is never (un)premultiplied.
+    spec.attribute("oiio:UnassociatedAlpha", 1);
+
+    errno = 0;
+    bool ok = out->open(tmp, spec);
+    std::string why;
+    if (!ok) {
+        // Some writers do not say why the file could not be created; errno does.
+        int e = errno;
+        why = one_line(out->geterror());
+        if (e != 0 && why.find(std::strerror(e)) == std::string::npos)
+            why += std::string(" (") + std::strerror(e) + ")";
+    } else {
+        ok = out->write_image(type_desc(img->type), img->pixels);
+        if (!ok)
+            why = one_line(out->geterror());
+        // close() writes the rest of the file; it must succeed too.
+        if (!out->close() && ok) {
+            ok = false;
+            why = one_line(out->geterror());
+        }
+    }
+    out.reset();
+    if (ok && std::rename(tmp.c_str(), final_path.c_str()) != 0) {
+        why = "cannot rename " + tmp + ": " + std::strerror(errno);
+        ok = false;
+    }
+    guard.keep = ok;
+    if (!ok) {
+        set_err(err, errlen, final_path + ": cannot write image: " + why);
+    }
+    return ok;
+}
+
+bool read_impl(const char *path, image_type want, image *out, char *err, size_t errlen)
+{
+    if (out == nullptr) {
+        set_err(err, errlen, "image read: bug: no output image");
+        return false;
+    }
+    *out = image{}; // safe to image_free() on failure
+    if (path == nullptr || path[0] == '\0') {
+        set_err(err, errlen, "image read: empty path");
+        return false;
+    }
+    if (want != IMAGE_U8 && want != IMAGE_F32) {
+        set_err(err, errlen, std::string(path) + ": bug: unknown image type requested");
+        return false;
+    }
+    // As written: PNG color is not premultiplied by its alpha on the way in.
+    ImageSpec config;
+    config.attribute("oiio:UnassociatedAlpha", 1);
+    errno = 0;
+    auto in = ImageInput::open(path, &config);
+    if (!in) {
+        int e = errno;
+        std::string why = one_line(OIIO::geterror());
+        if (e != 0 && why.find(std::strerror(e)) == std::string::npos)
+            why += std::string(" (") + std::strerror(e) + ")";
+        set_err(err, errlen, std::string(path) + ": cannot read image: " + why);
+        return false;
+    }
+    const ImageSpec &spec = in->spec();
+    size_t n;
+    if (spec.deep || spec.depth > 1 || !value_count(spec.width, spec.height, spec.nchannels, &n)) {
+        set_err(err, errlen, std::string(path) + ": unsupported image (deep, volume or empty)");
+        return false;
+    }
+    std::unique_ptr<void, void (*)(void *)> pixels(std::malloc(n * type_size(want)), std::free);
+    if (!pixels) {
+        set_err(err, errlen, std::string(path) + ": out of memory");
+        return false;
+    }
+    if (!in->read_image(0, 0, 0, spec.nchannels, type_desc(want), pixels.get())) {
+        set_err(err, errlen, std::string(path) + ": cannot read image: " +
+                                 one_line(in->geterror()));
+        return false;
+    }
+    in->close();
+    out->width = spec.width;
+    out->height = spec.height;
+    out->channels = spec.nchannels;
+    out->type = want;
+    out->pixels = pixels.release();
+    return true;
+}
+
+// Channel value i of img as a number in the [0,1] scale (U8 as v/255).
+inline double value_at(const image *img, size_t i)
+{
+    if (img->type == IMAGE_U8)
+        return (double)static_cast<const uint8_t *>(img->pixels)[i] / 255.0;
+    return (double)static_cast<const float *>(img->pixels)[i];
+}
+
+size_t count_nonfinite(const image *img)
+{
+    size_t n;
+    if (img == nullptr || img->type != IMAGE_F32 || img->pixels == nullptr ||
+        !value_count(img->width, img->height, img->channels, &n))
+        return 0;
+    const float *p = static_cast<const float *>(img->pixels);
+    size_t bad = 0;
+    for (size_t i = 0; i < n; i++)
+        bad += std::isfinite(p[i]) ? 0 : 1;
+    return bad;
+}
+
+// Computed here in double precision rather than through ImageBufAlgo::compare,
+// which works in float: U8 differences come out exact (3/255 is 3/255).
+// Channel values where either image is non-finite are left out of rmse and
+// max_abs (they are counted in nonfinite) and make their pixel count as differing.
+bool compare_impl(const image *a, const image *b, image_error *out, char *err, size_t errlen)
+{
+    if (!valid_image(a, "image compare (first image)", err, errlen) ||
+        !valid_image(b, "image compare (second image)", err, errlen))
+        return false;
+    if (a->width != b->width || a->height != b->height || a->channels != b->channels) {
+        char m[200];
+        std::snprintf(m, sizeof m,
+                      "image compare: sizes differ: %dx%d with %d channels vs %dx%d with %d "
+                      "channels",
+                      a->width, a->height, a->channels, b->width, b->height, b->channels);
+        set_err(err, errlen, m);
+        return false;
+    }
+    const size_t pixels = (size_t)a->width * (size_t)a->height;
+    const size_t ch = (size_t)a->channels;
+    const bool both_u8 = a->type == IMAGE_U8 && b->type == IMAGE_U8;
+    const uint8_t *a8 = static_cast<const uint8_t *>(a->pixels);
+    const uint8_t *b8 = static_cast<const uint8_t *>(b->pixels);
+
+    double sum_sq = 0.0, max_abs = 0.0;
+    size_t finite_values = 0, over = 0;
+    for (size_t p = 0; p < pixels; p++) {
+        bool differs = false;
+        for (size_t c = 0; c < ch; c++) {
+            size_t i = p * ch + c;
+            double d;
+            if (both_u8) {
+                int di = (int)a8[i] - (int)b8[i];
+                differs = differs || di > 1 || di < -1;
+                d = (double)di / 255.0;
+            } else {
+                double va = value_at(a, i), vb = value_at(b, i);
+                if (!std::isfinite(va) || !std::isfinite(vb)) {
+                    differs = true;
+                    continue;
+                }
+                d = va - vb;
+                differs = differs || std::fabs(d) > 1.0 / 255.0;
+            }
+            double ad = std::fabs(d);
+            sum_sq += d * d;
+            max_abs = ad > max_abs ? ad : max_abs;
+            finite_values++;
+        }
+        over += differs ? 1 : 0;
+    }
+    out->rmse = finite_values > 0 ? std::sqrt(sum_sq / (double)finite_values)
+                                  : std::numeric_limits<double>::quiet_NaN();
+    out->psnr_db = out->rmse == 0.0 ? INFINITY : 20.0 * std::log10(1.0 / out->rmse);
+    out->max_abs = finite_values > 0 ? max_abs : std::numeric_limits<double>::quiet_NaN();
+    out->frac_over_1_255 = (double)over / (double)pixels;
+    out->nonfinite = count_nonfinite(a) + count_nonfinite(b);
+    return true;
+}
+
+} // namespace
+
+extern "C" {
+
+bool image_write(const char *path, const image *img, char *err, size_t errlen)
+{
+    try {
+        return write_impl(path, img, err, errlen);
+    } catch (const std::exception &e) {
+        set_err(err, errlen, std::string(path ? path : "image") + ": cannot write image: " +
+                                 e.what());
+    } catch (...) {
+        set_err(err, errlen, std::string(path ? path : "image") +
+                                 ": cannot write image: unknown exception");
+    }
+    return false;
+}
+
+bool image_read(const char *path, image_type want, image *out, char *err, size_t errlen)
+{
+    try {
+        return read_impl(path, want, out, err, errlen);
+    } catch (const std::exception &e) {
+        set_err(err, errlen, std::string(path ? path : "image") + ": cannot read image: " +
+                                 e.what());
+    } catch (...) {
+        set_err(err, errlen, std::string(path ? path : "image") +
+                                 ": cannot read image: unknown exception");
+    }
+    return false;
+}
+
+void image_free(image *img)
+{
+    if (img == nullptr)
+        return;
+    std::free(img->pixels);
+    img->pixels = nullptr;
+    img->width = img->height = img->channels = 0;
+}
+
+size_t image_count_nonfinite(const image *img)
+{
+    return count_nonfinite(img); // no allocation, cannot throw
+}
+
+bool image_compare(const image *a, const image *b, image_error *out, char *err, size_t errlen)
+{
+    try {
+        return compare_impl(a, b, out, err, errlen);
+    } catch (const std::exception &e) {
+        set_err(err, errlen, std::string("image compare: ") + e.what());
+    } catch (...) {
+        set_err(err, errlen, "image compare: unknown exception");
+    }
+    return false;
+}
+
+} // extern "C"

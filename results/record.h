@@ -1,0 +1,16 @@
+#pragma once
+/* One measured frame, as the run loop hands it to the result sinks.
+ * Plain data, no GL: results/ never includes GL headers. */
+#include <stdint.h>
+
+typedef struct frame_record {
+    uint32_t frame;        /* index among measured frames (warm-up excluded), from 0 */
+    double t_wall_s;       /* end of this frame, seconds since measurement start (CLOCK_MONOTONIC) */
+    double t_scene_s;      /* schedule time the scene was drawn at */
+    uint32_t lights;       /* lights active in the scene this frame */
+    double frametime_us;   /* CPU wall time from frame start to its sync point */
+    double gpu_us;         /* GL_TIME_ELAPSED sum over passes; NAN when unavailable */
+    uint64_t draw_calls;
+    uint64_t state_changes;
+    double fragments;      /* fragment shader invocations; NAN when unavailable */
+} frame_record;
