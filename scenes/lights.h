@@ -1,0 +1,29 @@
+#pragma once
+/* How a run's lights are placed and how many are active over schedule time. */
+#include <stdbool.h>
+#include <stdint.h>
+#include "scenes/rng.h"
+
+typedef enum light_placement { PLACEMENT_RANDOM = 0, PLACEMENT_NONE } light_placement;
+
+/* count: a fixed number (growth = false, start = max = n) or a growth schedule:
+ * active(t) = min(max, start + step * floor(t / every)). */
+typedef struct light_count {
+    bool growth;
+    uint32_t start, step, max;
+    double every;              /* seconds of schedule time */
+} light_count;
+
+typedef struct light_params {
+    light_placement placement;
+    uint32_t seed;             /* default 1337, as seed 003 */
+    rng_kind rng;
+    light_count count;
+    float radius;              /* range of each point light, world units */
+    float color_max;           /* each channel uniform in [0, color_max]; seed 003 used 0.3 */
+} light_params;
+
+/* Lights active at schedule time t (t < 0 counts as 0). */
+uint32_t light_count_at(const light_count *c, double t);
+/* The most lights the schedule ever has. */
+uint32_t light_count_max(const light_count *c);

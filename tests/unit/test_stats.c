@@ -1,0 +1,331 @@
+/* Statistics on frame times: summaries, Student's t, batch-means CI, per-second bins.
+ * Every expected value below is worked out by hand in the comment next to it. */
+#include <stdarg.h>
+#include <stddef.h>
+#include <setjmp.h>
+#include <stdint.h>
+#include <cmocka.h>
+
+#include <math.h>
+#include <stdlib.h>
+#include <string.h>
+
+#include "results/stats.h"
+
+#define EPS 1e-9
+
+/* cmocka 1.1 compares only floats; doubles need their own check. Equal values
+ * (infinities included) always pass. */
+static void check_near(double a, double b, double eps, const char *file, int line)
+{
+    if (a == b || fabs(a - b) <= eps)
+        return;
+    print_error("%.17g != %.17g (tolerance %g)\n", a, b, eps);
+    _fail(file, line);
+}
+#define assert_near(a, b, eps) check_near((a), (b), (eps), __FILE__, __LINE__)
+
+/* >>summaries */
+
+static void test_summary_known(void **state)
+{
+    (void)state;
+    const double x[] = {4, 1, 3, 2, 5};
+    double copy[5];
+    memcpy(copy, x, sizeof x);
+    sample_summary s;
+    stats_summarize(copy, 5, &s);
+    assert_memory_equal(copy, x, sizeof x); /* input untouched */
+    assert_int_equal(s.n, 5);
+    assert_near(s.mean, 3.0, EPS);
+    /* squared deviations 1+4+0+1+4 = 10, / (5-1) */
+    assert_near(s.sd, sqrt(10.0 / 4.0), EPS);
+    /* nearest rank: p50 -> ceil(2.5) = 3rd = 3; p99 -> ceil(4.95) = 5th = 5 */
+    assert_near(s.p50, 3.0, 0);
+    assert_near(s.p99, 5.0, 0);
+    assert_near(s.min, 1.0, 0);
+    assert_near(s.max, 5.0, 0);
+}
+
+static void test_summary_1_to_100(void **state)
+{
+    (void)state;
+    double x[100];
+    for (int i = 0; i < 100; i++)
+        x[i] = (double)(100 - i); /* descending: sorting matters */
+    sample_summary s;
+    stats_summarize(x, 100, &s);
+    assert_near(s.mean, 50.5, EPS);
+    /* variance of 1..n with n-1: n(n+1)/12 */
+    assert_near(s.sd, sqrt(100.0 * 101.0 / 12.0), 1e-12);
+    assert_near(s.p50, 50.0, 0); /* rank ceil(50) = 50 */
+    assert_near(s.p99, 99.0, 0); /* rank ceil(99) = 99 */
+    assert_near(s.min, 1.0, 0);
+    assert_near(s.max, 100.0, 0);
+
+    /* ten values: p99 -> rank ceil(9.9) = 10 */
+    double y[10];
+    for (int i = 0; i < 10; i++)
+        y[i] = 10.0 * (i + 1);
+    stats_summarize(y, 10, &s);
+    assert_near(s.p50, 50.0, 0);
+    assert_near(s.p99, 100.0, 0);
+}
+
+static void test_summary_empty_and_single(void **state)
+{
+    (void)state;
+    sample_summary s;
+    stats_summarize(NULL, 0, &s);
+    assert_int_equal(s.n, 0);
+    assert_true(isnan(s.mean) && isnan(s.sd) && isnan(s.p50) && isnan(s.p99));
+    assert_true(isnan(s.min) && isnan(s.max));
+
+    const double one = 16.7;
+    stats_summarize(&one, 1, &s);
+    assert_int_equal(s.n, 1);
+    assert_near(s.mean, 16.7, 0);
+    assert_true(isnan(s.sd));
+    assert_near(s.p50, 16.7, 0);
+    assert_near(s.p99, 16.7, 0);
+    assert_near(s.min, 16.7, 0);
+    assert_near(s.max, 16.7, 0);
+}
+
+static void test_percentile_edges(void **state)
+{
+    (void)state;
+    const double x[] = {1, 2, 3, 4};
+    assert_near(stats_percentile_sorted(x, 4, 25.0), 1.0, 0);  /* rank 1 exactly */
+    assert_near(stats_percentile_sorted(x, 4, 25.1), 2.0, 0);  /* rank ceil(1.004) */
+    assert_near(stats_percentile_sorted(x, 4, 100.0), 4.0, 0);
+    assert_near(stats_percentile_sorted(x, 4, 0.001), 1.0, 0);
+    assert_true(isnan(stats_percentile_sorted(x, 0, 50.0)));
+    assert_true(isnan(stats_percentile_sorted(x, 4, 0.0)));
+}
+
+/* >>t */
+
+static void test_t975(void **state)
+{
+    (void)state;
+    static const struct {
+        size_t dof;
+        double t;
+    } table[] = {
+        {1, 12.706},  {2, 4.303},    {3, 3.182},    {5, 2.571},  {10, 2.228},
+        {20, 2.086},  {29, 2.045},   {30, 2.042},   {31, 2.040}, {40, 2.021},
+        {60, 2.000},  {120, 1.980},  {1000, 1.962}, {1000000, 1.960},
+        {0, 0},
+    };
+    for (size_t i = 0; table[i].dof != 0; i++)
+        assert_near(stats_t975(table[i].dof), table[i].t, 1e-3);
+    assert_near(stats_t975(100000000), 1.959964, 1e-6);
+    assert_true(isnan(stats_t975(0)));
+    /* decreasing everywhere, the 30 -> 31 seam included */
+    for (size_t d = 1; d < 2000; d++)
+        assert_true(stats_t975(d + 1) < stats_t975(d));
+}
+
+/* >>ci */
+
+static void test_ci_constant_is_zero(void **state)
+{
+    (void)state;
+    double x[1000];
+    for (int i = 0; i < 1000; i++)
+        x[i] = 16.0;
+    assert_near(stats_ci95_batch_means(x, 1000), 0.0, 0);
+    assert_near(stats_ci95_batch_means(x, 5), 0.0, 0); /* fallback path */
+}
+
+/* Batches alternate between mean 1 and mean 3: batch means 1,3,1,3,... have mean 2,
+ * sd sqrt(10 * 1 / 9), so CI = t(9) * sqrt(10/9) / sqrt(10) = t(9) / 3. The noise
+ * inside each batch (+-d around its mean) must not matter. */
+static void test_ci_alternating_batches(void **state)
+{
+    (void)state;
+    const double want = 2.2621572 / 3.0;
+    double x[23];
+    /* n = 20: ten batches of two values m-0.5, m+0.5 */
+    for (int b = 0; b < 10; b++) {
+        double m = (b % 2 == 0) ? 1.0 : 3.0;
+        x[2 * b] = m - 0.5;
+        x[2 * b + 1] = m + 0.5;
+    }
+    assert_near(stats_ci95_batch_means(x, 20), want, 1e-6);
+
+    /* n = 23: batches of 2, the last takes the remainder (5 values, mean 3) */
+    for (int i = 18; i < 23; i++)
+        x[i] = 3.0 + (i % 2 == 0 ? 0.25 : -0.25) + (i == 22 ? -0.25 : 0.0);
+    /* values 3.25, 2.75, 3.25, 2.75, 3.0: mean 3 */
+    assert_near(stats_ci95_batch_means(x, 23), want, 1e-6);
+}
+
+static void test_ci_fallback_small(void **state)
+{
+    (void)state;
+    /* fewer than 20 frames: t(n-1) * sd / sqrt(n) over frames.
+     * {1,2,3,4}: sd = sqrt(5/3), t(3) = 3.1824463 */
+    const double x[] = {1, 2, 3, 4};
+    assert_near(stats_ci95_batch_means(x, 4), 3.1824463 * sqrt(5.0 / 3.0) / 2.0, 1e-6);
+    assert_true(isnan(stats_ci95_batch_means(x, 1)));
+    assert_true(isnan(stats_ci95_batch_means(x, 0)));
+}
+
+/* >>bins */
+
+static frame_record rec(double t, double ft, unsigned lights, uint64_t dc)
+{
+    frame_record r;
+    memset(&r, 0, sizeof r);
+    r.t_wall_s = t;
+    r.t_scene_s = t;
+    r.frametime_us = ft;
+    r.lights = lights;
+    r.draw_calls = dc;
+    r.gpu_us = NAN;
+    r.fragments = NAN;
+    return r;
+}
+
+static void assert_empty_bin(const second_bin *b, unsigned second)
+{
+    assert_int_equal(b->second, second);
+    assert_int_equal(b->frames, 0);
+    assert_int_equal(b->lights_min, 0);
+    assert_int_equal(b->lights_max, 0);
+    assert_true(isnan(b->frametime_mean_us) && isnan(b->frametime_sd_us));
+    assert_true(isnan(b->frametime_p50_us) && isnan(b->frametime_p99_us));
+    assert_true(isnan(b->draw_calls_mean));
+}
+
+static void check_long_frame_bins(const second_bin *b, size_t nb)
+{
+    assert_int_equal(nb, 4);
+    /* second 0: frames at 0.1 and 0.5 */
+    assert_int_equal(b[0].second, 0);
+    assert_int_equal(b[0].frames, 2);
+    assert_true(b[0].complete);
+    assert_int_equal(b[0].lights_min, 1);
+    assert_int_equal(b[0].lights_max, 3);
+    assert_near(b[0].frametime_mean_us, 150.0, EPS);
+    assert_near(b[0].frametime_sd_us, sqrt(2 * 50.0 * 50.0), EPS);
+    assert_near(b[0].frametime_p50_us, 100.0, 0);
+    assert_near(b[0].frametime_p99_us, 200.0, 0);
+    assert_near(b[0].draw_calls_mean, 15.0, EPS);
+    /* second 1: the frame ending exactly at 1.0 belongs here */
+    assert_int_equal(b[1].frames, 1);
+    assert_true(b[1].complete);
+    assert_int_equal(b[1].lights_min, 5);
+    assert_int_equal(b[1].lights_max, 5);
+    assert_near(b[1].frametime_mean_us, 300.0, 0);
+    assert_true(isnan(b[1].frametime_sd_us));
+    assert_near(b[1].frametime_p50_us, 300.0, 0);
+    assert_near(b[1].frametime_p99_us, 300.0, 0);
+    assert_near(b[1].draw_calls_mean, 30.0, 0);
+    /* second 2: nothing ended in it (a 2.5 s frame was running), still present */
+    assert_empty_bin(&b[2], 2);
+    assert_true(b[2].complete);
+    /* second 3: the long frame (ended at 3.5) and one more */
+    assert_int_equal(b[3].frames, 2);
+    assert_true(b[3].complete); /* 3 + 1 <= t_end = 4.0 */
+    assert_int_equal(b[3].lights_min, 6);
+    assert_int_equal(b[3].lights_max, 7);
+    assert_near(b[3].frametime_mean_us, (2.5e6 + 400.0) / 2.0, EPS);
+    assert_near(b[3].frametime_p50_us, 400.0, 0);
+    assert_near(b[3].frametime_p99_us, 2.5e6, 0);
+    assert_near(b[3].draw_calls_mean, 45.0, EPS);
+}
+
+static void test_bins_long_frame(void **state)
+{
+    (void)state;
+    frame_record f[5] = {
+        rec(0.1, 100.0, 1, 10),  rec(0.5, 200.0, 3, 20), rec(1.0, 300.0, 5, 30),
+        rec(3.5, 2.5e6, 7, 40),  rec(3.9, 400.0, 6, 50),
+    };
+    second_bin *b = NULL;
+    size_t nb = 0;
+    assert_true(stats_bin_seconds(f, 5, 4.0, &b, &nb));
+    check_long_frame_bins(b, nb);
+    free(b);
+
+    /* the same frames in another order give the same bins */
+    frame_record r[5] = {f[4], f[2], f[0], f[3], f[1]};
+    assert_true(stats_bin_seconds(r, 5, 4.0, &b, &nb));
+    check_long_frame_bins(b, nb);
+    free(b);
+}
+
+static void test_bins_complete_flag(void **state)
+{
+    (void)state;
+    frame_record f[3] = {rec(0.5, 1, 1, 1), rec(1.5, 1, 1, 1), rec(2.5, 1, 1, 1)};
+    second_bin *b = NULL;
+    size_t nb = 0;
+
+    /* t_end = 3.0: seconds 0..2, all complete (2 + 1 <= 3) */
+    assert_true(stats_bin_seconds(f, 3, 3.0, &b, &nb));
+    assert_int_equal(nb, 3);
+    for (size_t i = 0; i < nb; i++) {
+        assert_int_equal(b[i].second, i);
+        assert_int_equal(b[i].frames, 1);
+        assert_true(b[i].complete);
+    }
+    free(b);
+
+    /* t_end = 3.4: seconds 0..3; second 3 was measured for 0.4 s, had no frame */
+    assert_true(stats_bin_seconds(f, 3, 3.4, &b, &nb));
+    assert_int_equal(nb, 4);
+    for (size_t i = 0; i < 3; i++)
+        assert_true(b[i].complete);
+    assert_false(b[3].complete);
+    assert_empty_bin(&b[3], 3);
+    free(b);
+
+    /* t_end = 2.7: the last second is partial and has a frame */
+    assert_true(stats_bin_seconds(f, 3, 2.7, &b, &nb));
+    assert_int_equal(nb, 3);
+    assert_true(b[1].complete);
+    assert_false(b[2].complete);
+    assert_int_equal(b[2].frames, 1);
+    free(b);
+}
+
+static void test_bins_zero_frames(void **state)
+{
+    (void)state;
+    second_bin *b = (second_bin *)&b; /* must be reset */
+    size_t nb = 99;
+    assert_true(stats_bin_seconds(NULL, 0, 0.0, &b, &nb));
+    assert_int_equal(nb, 0);
+    assert_null(b);
+
+    assert_true(stats_bin_seconds(NULL, 0, 2.5, &b, &nb));
+    assert_int_equal(nb, 3);
+    for (unsigned i = 0; i < 3; i++)
+        assert_empty_bin(&b[i], i);
+    assert_true(b[0].complete);
+    assert_true(b[1].complete);
+    assert_false(b[2].complete);
+    free(b);
+}
+
+int main(void)
+{
+    const struct CMUnitTest tests[] = {
+        cmocka_unit_test(test_summary_known),
+        cmocka_unit_test(test_summary_1_to_100),
+        cmocka_unit_test(test_summary_empty_and_single),
+        cmocka_unit_test(test_percentile_edges),
+        cmocka_unit_test(test_t975),
+        cmocka_unit_test(test_ci_constant_is_zero),
+        cmocka_unit_test(test_ci_alternating_batches),
+        cmocka_unit_test(test_ci_fallback_small),
+        cmocka_unit_test(test_bins_long_frame),
+        cmocka_unit_test(test_bins_complete_flag),
+        cmocka_unit_test(test_bins_zero_frames),
+    };
+    return cmocka_run_group_tests(tests, NULL, NULL);
+}
