@@ -1,0 +1,104 @@
+/* The renderer registry and the thin dispatch over renderer_impl. */
+#include "renderers/renderer.h"
+
+#include <math.h>
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+
+extern const renderer_impl renderer_null_impl;
+
+/* Every renderer the program knows, in the order `info` and errors list them. */
+static const renderer_impl *const registry[] = {
+    &renderer_null_impl,
+};
+
+struct renderer {
+    const renderer_impl *impl;
+    void *self;
+};
+
+size_t renderer_kind_count(void) { return sizeof registry / sizeof registry[0]; }
+
+const renderer_impl *renderer_kind_at(size_t i)
+{
+    return i < renderer_kind_count() ? registry[i] : NULL;
+}
+
+const renderer_impl *renderer_kind_find(const char *name)
+{
+    for (size_t i = 0; i < renderer_kind_count(); i++)
+        if (strcmp(registry[i]->name, name) == 0)
+            return registry[i];
+    return NULL;
+}
+
+renderer *renderer_create(const char *kind, const renderer_options *opts, char *err, size_t errlen)
+{
+    const renderer_impl *impl = renderer_kind_find(kind);
+    if (!impl) {
+        snprintf(err, errlen, "unknown renderer '%s'", kind);
+        return NULL;
+    }
+    if (!impl->create || !impl->prepare || !impl->draw || !impl->collect || !impl->describe ||
+        !impl->destroy) {
+        snprintf(err, errlen, "bug: renderer '%s' lacks an entry point", kind);
+        return NULL;
+    }
+    renderer *r = calloc(1, sizeof *r);
+    if (!r) {
+        snprintf(err, errlen, "out of memory");
+        return NULL;
+    }
+    r->impl = impl;
+    r->self = impl->create(opts, err, errlen);
+    if (!r->self) {
+        free(r);
+        return NULL;
+    }
+    return r;
+}
+
+bool renderer_prepare(renderer *r, const struct scene *s, char *err, size_t errlen)
+{
+    return r->impl->prepare(r->self, s, err, errlen);
+}
+
+void renderer_draw(renderer *r, const struct scene *s, frame_stats *out)
+{
+    memset(out, 0, sizeof *out);
+    r->impl->draw(r->self, s, out);
+}
+
+/* NAN in any pass makes the total NAN: a partial sum would pass for a measurement. */
+void renderer_collect(renderer *r, frame_stats *out)
+{
+    r->impl->collect(r->self, out);
+    pass_stats t = {.name = "total"};
+    for (size_t i = 0; i < out->npasses; i++) {
+        const pass_stats *p = &out->pass[i];
+        t.gpu_us += p->gpu_us;
+        t.cpu_us += p->cpu_us;
+        t.draw_calls += p->draw_calls;
+        t.state_changes += p->state_changes;
+        t.fragments += p->fragments;
+        t.primitives += p->primitives;
+    }
+    if (out->npasses == 0)
+        t.gpu_us = t.fragments = t.primitives = NAN;
+    out->total = t;
+}
+
+void renderer_describe(const renderer *r, pass_plan *out)
+{
+    memset(out, 0, sizeof *out);
+    r->impl->describe(r->self, out);
+}
+
+void renderer_destroy(renderer *r)
+{
+    if (!r)
+        return;
+    r->impl->destroy(r->self);
+    free(r);
+}

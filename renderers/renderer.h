@@ -1,0 +1,86 @@
+#pragma once
+/* The renderer interface (DESIGN.md): a static registry from name to
+ * implementation, one opaque object per run. Renderers draw into the context's
+ * off-screen framebuffer. */
+#include <stdbool.h>
+#include <stddef.h>
+#include <stdint.h>
+
+struct scene;
+
+#define RENDERER_MAX_PASSES 32
+
+/* Work and time of one pass in one frame. NAN where a measurement is unavailable. */
+typedef struct pass_stats {
+    const char *name;          /* static string */
+    double gpu_us;             /* GL_TIME_ELAPSED */
+    double cpu_us;             /* CPU time spent submitting the pass */
+    uint64_t draw_calls;
+    uint64_t state_changes;
+    double fragments;          /* GL_FRAGMENT_SHADER_INVOCATIONS */
+    double primitives;         /* GL_PRIMITIVES_SUBMITTED */
+} pass_stats;
+
+typedef struct frame_stats {
+    size_t npasses;
+    pass_stats pass[RENDERER_MAX_PASSES];
+    pass_stats total;          /* sums over passes (NAN if any pass's value is NAN) */
+    uint32_t lights_drawn;
+} frame_stats;
+
+/* What renderer_prepare() decided: passes run and skipped (with why), programs
+ * compiled, targets allocated. Recorded in meta.yaml. */
+typedef struct pass_plan_entry {
+    char name[32];
+    bool run;
+    char reason[96];           /* why it runs or why it was skipped */
+} pass_plan_entry;
+
+typedef struct target_plan_entry {
+    char name[32];
+    char format[24];
+    int width, height;
+    uint64_t bytes;
+} target_plan_entry;
+
+typedef struct pass_plan {
+    size_t npasses;
+    pass_plan_entry pass[RENDERER_MAX_PASSES];
+    size_t nprograms;
+    char program[RENDERER_MAX_PASSES][64];
+    size_t ntargets;
+    target_plan_entry target[16];
+    uint64_t gbuffer_bytes;    /* bytes of G-buffer targets (0 for forward / null) */
+    uint64_t target_bytes;     /* all targets the renderer allocated */
+} pass_plan;
+
+typedef struct renderer_options {
+    int width, height;
+    bool queries;              /* use timer / pipeline-statistics queries where the context has them */
+    bool timer_query, pipeline_statistics;  /* what the context offers (from gl_info) */
+} renderer_options;
+
+typedef struct renderer_impl {
+    const char *name;
+    const char *description;
+    void *(*create)(const renderer_options *opts, char *err, size_t errlen);
+    bool (*prepare)(void *self, const struct scene *s, char *err, size_t errlen);
+    void (*draw)(void *self, const struct scene *s, frame_stats *out);
+    /* After the frame's sync point: fills GPU times and query counts of that frame. */
+    void (*collect)(void *self, frame_stats *out);
+    void (*describe)(const void *self, pass_plan *out);
+    void (*destroy)(void *self);
+} renderer_impl;
+
+typedef struct renderer renderer;
+
+size_t renderer_kind_count(void);
+const renderer_impl *renderer_kind_at(size_t i);
+const renderer_impl *renderer_kind_find(const char *name);   /* NULL if unknown */
+
+renderer *renderer_create(const char *kind, const renderer_options *opts, char *err, size_t errlen);
+bool renderer_prepare(renderer *r, const struct scene *s, char *err, size_t errlen);
+void renderer_draw(renderer *r, const struct scene *s, frame_stats *out);
+void renderer_collect(renderer *r, frame_stats *out);   /* also computes out->total */
+void renderer_describe(const renderer *r, pass_plan *out);
+void renderer_destroy(renderer *r);                     /* NULL is fine */
