@@ -1,0 +1,92 @@
+#pragma once
+/* Experiment manifests, schema 1 (DESIGN.md), parsed with libyaml.
+ *
+ * One parameter table (manifest.c) drives validation, sweep expansion, run ids,
+ * plan.csv columns and `shadesweep list`: every key is checked for type and range,
+ * unknown and duplicate keys are errors, and all errors are reported (diag.h). */
+#include <stdbool.h>
+#include <stddef.h>
+#include <stdint.h>
+#include <stdio.h>
+#include "runner/diag.h"
+#include "scenes/lights.h"
+
+typedef enum span_kind { SPAN_SECONDS = 0, SPAN_FRAMES } span_kind;
+typedef struct span {          /* {seconds: x} or {frames: n} */
+    span_kind kind;
+    double seconds;
+    uint32_t frames;
+} span;
+
+typedef enum run_clock { RUN_CLOCK_WALL = 0, RUN_CLOCK_FIXED } run_clock;
+typedef enum run_sync { RUN_SYNC_FINISH = 0, RUN_SYNC_FENCE } run_sync;
+
+#define MAX_SCREENSHOTS 16
+
+/* Everything that defines one run (one point of the sweep grid x renderer). */
+typedef struct run_params {
+    char scene[32];
+    char renderer[32];
+    int width, height;
+    uint32_t trials;
+    span warmup, duration;
+    run_clock clock;
+    double step;               /* seconds of scene time per frame with clock: fixed */
+    run_sync sync;
+    light_params lights;
+    bool out_frames, out_seconds;
+    size_t nscreenshots;
+    double screenshots[MAX_SCREENSHOTS];   /* schedule times, seconds */
+} run_params;
+
+typedef struct experiment {
+    char *path;                /* as given */
+    char name[64];             /* [a-z0-9-]+ */
+    char *description;         /* "" if absent */
+    char hash[17];             /* FNV-1a 64 of the manifest's bytes, hex */
+    run_params base;           /* the manifest's values with defaults, renderer = "" */
+    size_t nrenderers;
+    char (*renderers)[32];
+    size_t naxes;              /* sweep axes in manifest order */
+    struct sweep_axis *axes;   /* opaque: manifest.c */
+} experiment;
+
+typedef struct run_spec {
+    size_t index;              /* position in the plan, from 0 */
+    char id[13];               /* 12 hex digits: stable hash of the resolved parameters */
+    unsigned shard;            /* 1..N for the --shard N given to plan_expand (1 without) */
+    run_params p;
+} run_spec;
+
+typedef struct plan {
+    const experiment *exp;
+    size_t nruns;
+    run_spec *runs;
+} plan;
+
+/* Parses and validates; on any error returns false with every problem in diags
+ * (and *out = NULL). Nothing is written anywhere. */
+bool manifest_load(const char *path, experiment **out, diag_list *diags);
+void experiment_free(experiment *e);   /* NULL is fine */
+
+/* The cartesian product of the sweep axes (first axis varies slowest) times the
+ * renderers (fastest), in that order. nshards >= 1 assigns run k to shard
+ * (k mod nshards) + 1. Duplicate points are an error in diags. */
+bool plan_expand(const experiment *e, unsigned nshards, plan *out, diag_list *diags);
+void plan_free(plan *p);
+
+/* The resolved parameters as (column, canonical text) pairs, in table order; the
+ * run id hashes exactly these. Returns the number of pairs (<= max). */
+typedef struct param_kv {
+    const char *key;           /* dotted path, static */
+    char value[96];
+} param_kv;
+size_t run_params_kv(const run_params *p, param_kv *out, size_t max);
+#define PARAM_KV_MAX 48
+
+/* "--shard I/N" parser: 1 <= I <= N. */
+bool parse_shard(const char *s, unsigned *i, unsigned *n, char *err, size_t errlen);
+
+/* `shadesweep list`: one line per run: id, then key=value for the renderer and each
+ * swept parameter. Only runs of shard i (0 = all). */
+void plan_print(const plan *p, unsigned shard, FILE *out);

@@ -1,0 +1,249 @@
+/* From an experiment to its runs (manifest.h): the cartesian product of the sweep
+ * axes times the renderers, run ids, shards, and the plan as `shadesweep list`
+ * prints it. */
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+
+#include "runner/hash.h"
+#include "runner/manifest.h"
+#include "runner/sweep_axis.h"
+
+#define PLAN_MAX_RUNS 100000u
+#define SHARD_MAX 100000u
+
+/* The id: the first 12 hex digits of FNV-1a 64 over "key=value\n" per pair. */
+static void run_id(const run_params *p, char id[13])
+{
+    param_kv kv[PARAM_KV_MAX];
+    size_t n = run_params_kv(p, kv, PARAM_KV_MAX);
+    uint64_t h = FNV1A64_OFFSET_BASIS;
+    for (size_t i = 0; i < n; i++) {
+        h = fnv1a64_update(h, kv[i].key, strlen(kv[i].key));
+        h = fnv1a64_update(h, "=", 1);
+        h = fnv1a64_update(h, kv[i].value, strlen(kv[i].value));
+        h = fnv1a64_update(h, "\n", 1);
+    }
+    hash_hex(h, 12, id);
+}
+
+/* The value index of run k on axis a (renderers vary fastest, then the last axis). */
+static size_t axis_value_of(const experiment *e, size_t k, size_t a)
+{
+    size_t q = k / e->nrenderers;
+    for (size_t b = e->naxes; b-- > a + 1;)
+        q /= e->axes[b].nvalues;
+    return q % e->axes[a].nvalues;
+}
+
+typedef struct id_ref {
+    const char *id;
+    size_t index;
+} id_ref;
+
+static int id_ref_cmp(const void *x, const void *y)
+{
+    const id_ref *a = x, *b = y;
+    int c = strcmp(a->id, b->id);
+    if (c != 0)
+        return c;
+    return a->index < b->index ? -1 : a->index > b->index;
+}
+
+static int id_ref_cmp_index(const void *x, const void *y)
+{
+    const id_ref *a = x, *b = y;
+    return a->index < b->index ? -1 : a->index > b->index;
+}
+
+/* Two runs with one id are one point of the grid twice (a value repeated in an
+ * axis, or two values with one canonical text, like 0.5 and 0.50): reported once
+ * per repeated value, at that value, naming the first pair of runs it makes. */
+static bool check_duplicates(const experiment *e, const plan *p, diag_list *diags)
+{
+    if (p->nruns < 2)
+        return true;
+    size_t nvals = 0, ndup = 0;
+    for (size_t a = 0; a < e->naxes; a++)
+        nvals += e->axes[a].nvalues;
+    id_ref *refs = malloc(p->nruns * sizeof *refs);
+    id_ref *dups = malloc(p->nruns * sizeof *dups);   /* .index: the repeat; .id: unused */
+    size_t *firsts = malloc(p->nruns * sizeof *firsts);
+    bool *reported = calloc(nvals ? nvals : 1, sizeof *reported);
+    bool ok = refs && dups && firsts && reported;
+    if (!ok) {
+        diag_add(diags, e->path, 0, 0, "", "expected a plan that fits in memory, found no memory left");
+        goto done;
+    }
+    for (size_t i = 0; i < p->nruns; i++)
+        refs[i] = (id_ref){p->runs[i].id, i};
+    qsort(refs, p->nruns, sizeof *refs, id_ref_cmp);
+    /* in each group of one id, the first run (lowest index) is the original */
+    for (size_t i = 1, g = 0; i < p->nruns; i++) {
+        if (strcmp(refs[i].id, refs[g].id) != 0) {
+            g = i;
+            continue;
+        }
+        firsts[refs[i].index] = refs[g].index;
+        dups[ndup++] = (id_ref){refs[i].id, refs[i].index};
+    }
+    qsort(dups, ndup, sizeof *dups, id_ref_cmp_index);
+    for (size_t i = 0; i < ndup; i++) {
+        ok = false;
+        size_t again = dups[i].index, first = firsts[again];
+        /* the axis where the two runs take different values; the later value repeats */
+        size_t a = 0, base = 0, v = 0;
+        for (; a < e->naxes; base += e->axes[a].nvalues, a++) {
+            size_t va = axis_value_of(e, first, a), vb = axis_value_of(e, again, a);
+            if (va != vb) {
+                v = va > vb ? va : vb;
+                break;
+            }
+        }
+        if (a == e->naxes) {   /* not a repeated value: two different points, one id */
+            diag_add(diags, e->path, 0, 0, "sweep",
+                     "expected a distinct id per run, found run %zu with the id of run %zu (%s)",
+                     again, first, dups[i].id);
+        } else if (!reported[base + v]) {
+            reported[base + v] = true;
+            const struct sweep_axis *ax = &e->axes[a];
+            char key[160];
+            snprintf(key, sizeof key, "sweep.%s[%zu]", ax->path, v);
+            diag_add(diags, e->path, ax->line[v], ax->col[v], key,
+                     "expected a distinct sweep point, found run %zu the same as run %zu (id %s)",
+                     again, first, dups[i].id);
+        }
+    }
+done:
+    free(refs);
+    free(dups);
+    free(firsts);
+    free(reported);
+    return ok;
+}
+
+bool plan_expand(const experiment *e, unsigned nshards, plan *out, diag_list *diags)
+{
+    *out = (plan){.exp = e};
+    if (nshards < 1) {
+        diag_add(diags, e->path, 0, 0, "", "expected at least 1 shard, found %u", nshards);
+        return false;
+    }
+    if (e->nrenderers == 0) {
+        diag_add(diags, e->path, 0, 0, "renderers", "expected at least one renderer, found none");
+        return false;
+    }
+    size_t total = e->nrenderers;
+    for (size_t a = 0; a < e->naxes; a++) {
+        if (e->axes[a].nvalues == 0 || total > PLAN_MAX_RUNS / e->axes[a].nvalues) {
+            diag_add(diags, e->path, e->axes[a].line ? e->axes[a].line[0] : 0,
+                     e->axes[a].col ? e->axes[a].col[0] : 0, "sweep",
+                     "expected at most %u runs, found more at axis %s", PLAN_MAX_RUNS,
+                     e->axes[a].path);
+            return false;
+        }
+        total *= e->axes[a].nvalues;
+    }
+    if (total > PLAN_MAX_RUNS) {
+        diag_add(diags, e->path, 0, 0, "sweep", "expected at most %u runs, found %zu",
+                 PLAN_MAX_RUNS, total);
+        return false;
+    }
+
+    run_spec *runs = calloc(total, sizeof *runs);
+    if (!runs) {
+        diag_add(diags, e->path, 0, 0, "", "expected a plan that fits in memory, found no memory left");
+        return false;
+    }
+    for (size_t k = 0; k < total; k++) {
+        run_spec *r = &runs[k];
+        r->index = k;
+        r->shard = (unsigned)(k % nshards) + 1;
+        r->p = e->base;
+        for (size_t a = 0; a < e->naxes; a++) {
+            const struct sweep_axis *ax = &e->axes[a];
+            size_t v = axis_value_of(e, k, a);
+            memcpy((char *)&r->p + ax->off, (const char *)&ax->values[v] + ax->off, ax->size);
+        }
+        snprintf(r->p.renderer, sizeof r->p.renderer, "%s", e->renderers[k % e->nrenderers]);
+        run_id(&r->p, r->id);
+    }
+    out->nruns = total;
+    out->runs = runs;
+    if (!check_duplicates(e, out, diags)) {
+        plan_free(out);
+        return false;
+    }
+    return true;
+}
+
+void plan_free(plan *p)
+{
+    if (!p)
+        return;
+    free(p->runs);
+    p->runs = NULL;
+    p->nruns = 0;
+}
+
+/* Digits only, no sign, no spaces, at most 6 of them (100000 has 6). */
+static bool parse_count_part(const char *s, size_t len, unsigned *out)
+{
+    if (len == 0 || len > 6)
+        return false;
+    unsigned v = 0;
+    for (size_t i = 0; i < len; i++) {
+        if (s[i] < '0' || s[i] > '9')
+            return false;
+        v = v * 10 + (unsigned)(s[i] - '0');
+    }
+    *out = v;
+    return true;
+}
+
+bool parse_shard(const char *s, unsigned *i, unsigned *n, char *err, size_t errlen)
+{
+    const char *slash = s ? strchr(s, '/') : NULL;
+    unsigned a, b;
+    if (slash && parse_count_part(s, (size_t)(slash - s), &a) &&
+        parse_count_part(slash + 1, strlen(slash + 1), &b) && a >= 1 && a <= b &&
+        b <= SHARD_MAX) {
+        *i = a;
+        *n = b;
+        return true;
+    }
+    if (err && errlen) {
+        /* the value as given, escaped and cut to keep the message one short line */
+        char shown[64];
+        size_t k = 0;
+        for (const char *q = s ? s : ""; *q && k + 5 < sizeof shown; q++) {
+            unsigned char ch = (unsigned char)*q;
+            if (ch < 0x20 || ch == 0x7f || ch == '\'' || ch == '\\')
+                k += (size_t)snprintf(shown + k, sizeof shown - k, "\\x%02x", ch);
+            else
+                shown[k++] = (char)ch;
+        }
+        shown[k] = '\0';
+        snprintf(err, errlen, "--shard: expected I/N with 1 <= I <= N <= %u, found '%s'",
+                 SHARD_MAX, shown);
+    }
+    return false;
+}
+
+void plan_print(const plan *p, unsigned shard, FILE *out)
+{
+    const experiment *e = p->exp;
+    for (size_t k = 0; k < p->nruns; k++) {
+        const run_spec *r = &p->runs[k];
+        if (shard != 0 && r->shard != shard)
+            continue;
+        param_kv kv[PARAM_KV_MAX];
+        size_t n = run_params_kv(&r->p, kv, PARAM_KV_MAX);
+        fprintf(out, "%s  renderer=%s", r->id, r->p.renderer);
+        for (size_t a = 0; e && a < e->naxes; a++)
+            for (size_t i = 0; i < n; i++)
+                if (strcmp(kv[i].key, e->axes[a].path) == 0)
+                    fprintf(out, " %s=%s", kv[i].key, kv[i].value);
+        fputc('\n', out);
+    }
+}

@@ -1,0 +1,452 @@
+/* Plans (runner/sweep.c): expansion order, run ids, shards, --shard parsing,
+ * `shadesweep list` output, duplicate points. */
+#include <stdarg.h>
+#include <stddef.h>
+#include <setjmp.h>
+#include <stdint.h>
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+#include <cmocka.h>
+
+#include "runner/diag.h"
+#include "runner/manifest.h"
+
+static void data_path(char *out, size_t len, const char *rel)
+{
+    const char *d = getenv("TEST_DATA");
+    if (!d)
+        fail_msg("TEST_DATA is not set (meson test sets it to tests/data)");
+    snprintf(out, len, "%s/%s", d, rel);
+}
+
+static experiment *load(const char *rel)
+{
+    char path[1024];
+    data_path(path, sizeof path, rel);
+    experiment *e = NULL;
+    diag_list d = {0};
+    if (!manifest_load(path, &e, &d)) {
+        diag_print(&d, stderr);
+        fail_msg("%s does not load", rel);
+    }
+    diag_free(&d);
+    return e;
+}
+
+/* Only "null" exists yet; plan_expand takes the names as validated, so a second
+ * name stands for the renderers to come. */
+static void set_renderers(experiment *e, const char *const *names)
+{
+    size_t n = 0;
+    while (names[n])
+        n++;
+    free(e->renderers);
+    e->renderers = calloc(n, sizeof *e->renderers);
+    assert_non_null(e->renderers);
+    for (size_t i = 0; i < n; i++)
+        snprintf(e->renderers[i], sizeof e->renderers[i], "%s", names[i]);
+    e->nrenderers = n;
+}
+
+static char *print_plan(const plan *p, unsigned shard)
+{
+    char *buf = NULL;
+    size_t len = 0;
+    FILE *f = open_memstream(&buf, &len);
+    assert_non_null(f);
+    plan_print(p, shard, f);
+    fclose(f);
+    return buf;
+}
+
+static bool expand(const experiment *e, unsigned nshards, plan *p)
+{
+    diag_list d = {0};
+    bool ok = plan_expand(e, nshards, p, &d);
+    if (!ok)
+        diag_print(&d, stderr);
+    diag_free(&d);
+    return ok;
+}
+
+/* FNV-1a 64 written out here, independent of runner/hash.c. */
+static uint64_t fnv(const char *s)
+{
+    uint64_t h = 14695981039346656037u;
+    for (; *s; s++) {
+        h ^= (unsigned char)*s;
+        h *= 1099511628211u;
+    }
+    return h;
+}
+
+/* good/sweep.yaml: resolution [800x600, 1024x768, 1600x1200] x lights.count [0, 100]
+ * x renderers [null, deferred]: first axis slowest, renderers fastest. The ids are
+ * recorded: a change to the canonical text or the hash changes them, and then
+ * every results folder ever written changes name, so it must be deliberate. */
+static void test_order_and_ids(void **state)
+{
+    (void)state;
+    static const struct {
+        const char *id, *renderer;
+        int w, h;
+        uint32_t lights;
+    } want[] = {
+        {"ea5298e090c2", "null", 800, 600, 0},
+        {"984c97dc1887", "deferred", 800, 600, 0},
+        {"a47631ae6851", "null", 800, 600, 100},
+        {"d3327a281004", "deferred", 800, 600, 100},
+        {"633cf7a93594", "null", 1024, 768, 0},
+        {"7e162e2690b6", "deferred", 1024, 768, 0},
+        {"2f5a21349cfa", "null", 1024, 768, 100},
+        {"334ec538c7d6", "deferred", 1024, 768, 100},
+        {"41df2106a5a6", "null", 1600, 1200, 0},
+        {"6868d42b6f67", "deferred", 1600, 1200, 0},
+        {"6d929a58a611", "null", 1600, 1200, 100},
+        {"5463a9469b9e", "deferred", 1600, 1200, 100},
+        {NULL, NULL, 0, 0, 0},
+    };
+    experiment *e = load("good/sweep.yaml");
+    set_renderers(e, (const char *const[]){"null", "deferred", NULL});
+    plan p;
+    assert_true(expand(e, 1, &p));
+    assert_ptr_equal(p.exp, e);
+    assert_int_equal(p.nruns, 12);
+    for (size_t k = 0; want[k].id; k++) {
+        const run_spec *r = &p.runs[k];
+        assert_int_equal(r->index, k);
+        assert_int_equal(r->shard, 1);
+        assert_string_equal(r->id, want[k].id);
+        assert_string_equal(r->p.renderer, want[k].renderer);
+        assert_int_equal(r->p.width, want[k].w);
+        assert_int_equal(r->p.height, want[k].h);
+        assert_false(r->p.lights.count.growth);
+        assert_int_equal(r->p.lights.count.start, want[k].lights);
+        assert_int_equal(r->p.lights.count.max, want[k].lights);
+        /* what is not swept is the base */
+        assert_string_equal(r->p.scene, "empty");
+        assert_int_equal(r->p.duration.frames, 100);
+        assert_int_equal(r->p.lights.placement, PLACEMENT_RANDOM);
+    }
+
+    /* the id is the first 12 hex digits of FNV-1a 64 over "key=value\n" in table order */
+    const char *canonical = "scene=empty\nrenderer=null\nresolution=800x600\ntrials=1\n"
+                            "warmup=frames:0\nduration=frames:100\nclock=wall\n"
+                            "step=0.016666666666666666\nsync=finish\nlights.placement=random\n"
+                            "lights.seed=1337\nlights.rng=msvc\nlights.count=0\n"
+                            "lights.radius=10\nlights.color_max=0.3\noutputs.frames=true\n"
+                            "outputs.seconds=true\noutputs.screenshots=\n";
+    char id[17];
+    snprintf(id, sizeof id, "%016llx", (unsigned long long)fnv(canonical));
+    id[12] = '\0';
+    assert_string_equal(p.runs[0].id, id);
+
+    plan_free(&p);
+    assert_null(p.runs);
+    plan_free(&p);
+    experiment_free(e);
+}
+
+/* Changing any one parameter of a run changes its id. */
+static void test_ids_differ(void **state)
+{
+    (void)state;
+    experiment *e = load("good/minimal.yaml");
+    const run_params base = e->base;
+    enum { NMUT = 27 };
+    char ids[NMUT + 1][13];
+    plan p;
+    assert_true(expand(e, 1, &p));
+    memcpy(ids[0], p.runs[0].id, 13);
+    plan_free(&p);
+
+    for (int m = 1; m <= NMUT; m++) {
+        run_params *q = &e->base;
+        *q = base;
+        snprintf(e->renderers[0], sizeof e->renderers[0], "null");
+        switch (m) {
+        case 1: snprintf(q->scene, sizeof q->scene, "other"); break;
+        case 2: snprintf(e->renderers[0], sizeof e->renderers[0], "other"); break;
+        case 3: q->width = 641; break;
+        case 4: q->height = 361; break;
+        case 5: q->trials = 2; break;
+        case 6: q->warmup.frames = 1; break;
+        case 7: q->warmup = (span){.kind = SPAN_SECONDS, .seconds = 0}; break;
+        case 8: q->duration.frames = 11; break;
+        case 9: q->duration = (span){.kind = SPAN_SECONDS, .seconds = 10}; break;
+        case 10: q->clock = RUN_CLOCK_FIXED; break;
+        case 11: q->step = 0.5; break;
+        case 12: q->sync = RUN_SYNC_FENCE; break;
+        case 13: q->lights.placement = PLACEMENT_RANDOM; break;
+        case 14: q->lights.seed = 1338; break;
+        case 15: q->lights.rng = RNG_PCG32; break;
+        case 16: q->lights.rng = RNG_MT19937; break;
+        case 17: q->lights.count.start = q->lights.count.max = 1; break;
+        case 18: q->lights.count = (light_count){.growth = true, .every = 1}; break;
+        case 19: q->lights.count = (light_count){.growth = true, .step = 1, .every = 1}; break;
+        case 20: q->lights.count = (light_count){.growth = true, .every = 2}; break;
+        case 21: q->lights.count = (light_count){.growth = true, .every = 1, .max = 1}; break;
+        case 22: q->lights.radius = 10.5f; break;
+        case 23: q->lights.color_max = 0.31f; break;
+        case 24: q->out_frames = false; break;
+        case 25: q->out_seconds = false; break;
+        case 26: q->nscreenshots = 1; break;
+        case 27: q->nscreenshots = 1, q->screenshots[0] = 1; break;
+        }
+        assert_true(expand(e, 1, &p));
+        memcpy(ids[m], p.runs[0].id, 13);
+        plan_free(&p);
+    }
+    for (int a = 0; a <= NMUT; a++)
+        for (int b = a + 1; b <= NMUT; b++)
+            if (strcmp(ids[a], ids[b]) == 0)
+                fail_msg("mutations %d and %d share id %s", a, b, ids[a]);
+    experiment_free(e);
+}
+
+static int cmp_str(const void *a, const void *b)
+{
+    return strcmp(*(char *const *)a, *(char *const *)b);
+}
+
+/* The ids of plan_print's lines, sorted; *n of them. */
+static char **printed_ids(const plan *p, unsigned shard, size_t *n)
+{
+    char *out = print_plan(p, shard);
+    size_t cap = p->nruns + 1;
+    char **ids = calloc(cap, sizeof *ids);
+    assert_non_null(ids);
+    *n = 0;
+    for (char *line = out; *line;) {
+        char *nl = strchr(line, '\n');
+        assert_non_null(nl);
+        assert_true(*n < cap);
+        assert_true(nl - line > 14);
+        assert_memory_equal(line + 12, "  ", 2);
+        ids[*n] = strndup(line, 12);
+        (*n)++;
+        line = nl + 1;
+    }
+    free(out);
+    qsort(ids, *n, sizeof *ids, cmp_str);
+    return ids;
+}
+
+static void free_ids(char **ids, size_t n)
+{
+    for (size_t i = 0; i < n; i++)
+        free(ids[i]);
+    free(ids);
+}
+
+/* For N in 1..7, the N shards are disjoint, balanced and together the plan. */
+static void test_shards_partition(void **state)
+{
+    (void)state;
+    static const char *const files[] = {"good/sweep.yaml", "good/sweep_many.yaml", NULL};
+    for (size_t f = 0; files[f]; f++) {
+        experiment *e = load(files[f]);
+        for (unsigned n = 1; n <= 7; n++) {
+            plan p;
+            assert_true(expand(e, n, &p));
+            size_t nall;
+            char **all = printed_ids(&p, 0, &nall);
+            assert_int_equal(nall, p.nruns);
+            for (size_t k = 1; k < nall; k++)
+                assert_true(strcmp(all[k - 1], all[k]) < 0);   /* distinct */
+
+            char **merged = calloc(nall, sizeof *merged);
+            assert_non_null(merged);
+            size_t nmerged = 0;
+            for (unsigned i = 1; i <= n; i++) {
+                size_t ns;
+                char **ids = printed_ids(&p, i, &ns);
+                size_t expect = p.nruns / n + (i <= p.nruns % n ? 1 : 0);
+                assert_int_equal(ns, expect);
+                for (size_t k = 0; k < ns; k++) {
+                    assert_true(nmerged < nall);
+                    merged[nmerged++] = ids[k];
+                }
+                free(ids);   /* the strings moved to merged */
+            }
+            for (size_t k = 0; k < p.nruns; k++)
+                assert_int_equal(p.runs[k].shard, k % n + 1);
+            /* union = plan, and no id twice (which pairwise disjoint means) */
+            assert_int_equal(nmerged, nall);
+            qsort(merged, nmerged, sizeof *merged, cmp_str);
+            for (size_t k = 0; k < nall; k++)
+                assert_string_equal(merged[k], all[k]);
+            free_ids(merged, nmerged);
+            free_ids(all, nall);
+            plan_free(&p);
+        }
+        experiment_free(e);
+    }
+}
+
+static void test_parse_shard(void **state)
+{
+    (void)state;
+    static const struct {
+        const char *in;
+        unsigned i, n;   /* 0, 0: rejected */
+    } cases[] = {
+        {"1/1", 1, 1},
+        {"3/4", 3, 4},
+        {"4/4", 4, 4},
+        {"1/100000", 1, 100000},
+        {"100000/100000", 100000, 100000},
+        {"07/10", 7, 10},
+        {"0/4", 0, 0},
+        {"5/4", 0, 0},
+        {"1/0", 0, 0},
+        {"0/0", 0, 0},
+        {"1/100001", 0, 0},
+        {"", 0, 0},
+        {"/", 0, 0},
+        {"1/", 0, 0},
+        {"/4", 0, 0},
+        {"1", 0, 0},
+        {"1/4x", 0, 0},
+        {" 1/4", 0, 0},
+        {"1/ 4", 0, 0},
+        {"1/4\n", 0, 0},
+        {"-1/4", 0, 0},
+        {"+1/4", 0, 0},
+        {"1/+4", 0, 0},
+        {"1/4/5", 0, 0},
+        {"a/b", 0, 0},
+        {"1.0/4", 0, 0},
+        {"99999999999999999999/1", 0, 0},
+        {"4294967297/4294967297", 0, 0},
+        {NULL, 0, 0},
+    };
+    for (size_t k = 0; cases[k].in; k++) {
+        unsigned i = 77, n = 77;
+        char err[200] = "untouched";
+        bool ok = parse_shard(cases[k].in, &i, &n, err, sizeof err);
+        if (ok != (cases[k].i != 0))
+            fail_msg("parse_shard(\"%s\") returned %d", cases[k].in, ok);
+        if (ok) {
+            assert_int_equal(i, cases[k].i);
+            assert_int_equal(n, cases[k].n);
+            assert_string_equal(err, "untouched");
+        } else {
+            assert_int_equal(i, 77);
+            assert_int_equal(n, 77);
+            assert_non_null(strstr(err, "--shard: expected I/N with 1 <= I <= N <= 100000, found '"));
+        }
+    }
+    char err[200];
+    unsigned i, n;
+    assert_false(parse_shard("0/4", &i, &n, err, sizeof err));
+    assert_string_equal(err, "--shard: expected I/N with 1 <= I <= N <= 100000, found '0/4'");
+    assert_false(parse_shard("1/4\n'", &i, &n, err, sizeof err));
+    assert_string_equal(err,
+                        "--shard: expected I/N with 1 <= I <= N <= 100000, found '1/4\\x0a\\x27'");
+    /* a small buffer truncates, a NULL one is allowed */
+    assert_false(parse_shard("9/4", &i, &n, err, 10));
+    assert_string_equal(err, "--shard: ");
+    assert_false(parse_shard("9/4", &i, &n, NULL, 0));
+}
+
+static void test_plan_print(void **state)
+{
+    (void)state;
+    experiment *e = load("good/sweep.yaml");
+    plan p;
+    assert_true(expand(e, 4, &p));
+    char *all = print_plan(&p, 0);
+    assert_string_equal(all,
+                        "ea5298e090c2  renderer=null resolution=800x600 lights.count=0\n"
+                        "a47631ae6851  renderer=null resolution=800x600 lights.count=100\n"
+                        "633cf7a93594  renderer=null resolution=1024x768 lights.count=0\n"
+                        "2f5a21349cfa  renderer=null resolution=1024x768 lights.count=100\n"
+                        "41df2106a5a6  renderer=null resolution=1600x1200 lights.count=0\n"
+                        "6d929a58a611  renderer=null resolution=1600x1200 lights.count=100\n");
+    free(all);
+    char *two = print_plan(&p, 2);
+    assert_string_equal(two, "a47631ae6851  renderer=null resolution=800x600 lights.count=100\n"
+                             "6d929a58a611  renderer=null resolution=1600x1200 lights.count=100\n");
+    free(two);
+    char *none = print_plan(&p, 5);
+    assert_string_equal(none, "");
+    free(none);
+    plan_free(&p);
+    experiment_free(e);
+
+    /* without a sweep: the id and the renderer */
+    e = load("good/minimal.yaml");
+    assert_true(expand(e, 1, &p));
+    char *one = print_plan(&p, 0);
+    assert_string_equal(one, "27b8847e044b  renderer=null\n");
+    free(one);
+    plan_free(&p);
+    experiment_free(e);
+}
+
+static void test_duplicate_points(void **state)
+{
+    (void)state;
+    static const struct {
+        const char *file, *line;
+    } cases[] = {
+        {"sweep/duplicate_value.yaml",
+         "8:18: sweep.trials[2]: expected a distinct sweep point, found run 2 the same as run 0 "
+         "(id 27b8847e044b)"},
+        /* 0.50 repeats 0.5 at both resolutions: reported once, at its first pair */
+        {"sweep/duplicate_canonical.yaml",
+         "10:24: sweep.lights.radius[1]: expected a distinct sweep point, found run 1 the same "
+         "as run 0 (id a69aa5804807)"},
+        {NULL, NULL},
+    };
+    for (size_t k = 0; cases[k].file; k++) {
+        experiment *e = load(cases[k].file);
+        plan p;
+        diag_list d = {0};
+        assert_false(plan_expand(e, 1, &p, &d));
+        assert_int_equal(p.nruns, 0);
+        assert_null(p.runs);
+        char *got = NULL;
+        size_t len = 0;
+        FILE *f = open_memstream(&got, &len);
+        assert_non_null(f);
+        diag_print(&d, f);
+        fclose(f);
+        char want[1024];
+        snprintf(want, sizeof want, "%s:%s\n", e->path, cases[k].line);
+        assert_string_equal(got, want);
+        free(got);
+        diag_free(&d);
+        experiment_free(e);
+    }
+}
+
+static void test_zero_shards(void **state)
+{
+    (void)state;
+    experiment *e = load("good/minimal.yaml");
+    plan p;
+    diag_list d = {0};
+    assert_false(plan_expand(e, 0, &p, &d));
+    assert_int_equal(d.n, 1);
+    assert_string_equal(d.v[0].msg, "expected at least 1 shard, found 0");
+    assert_int_equal(p.nruns, 0);
+    diag_free(&d);
+    experiment_free(e);
+}
+
+int main(void)
+{
+    const struct CMUnitTest tests[] = {
+        cmocka_unit_test(test_order_and_ids),
+        cmocka_unit_test(test_ids_differ),
+        cmocka_unit_test(test_shards_partition),
+        cmocka_unit_test(test_parse_shard),
+        cmocka_unit_test(test_plan_print),
+        cmocka_unit_test(test_duplicate_points),
+        cmocka_unit_test(test_zero_shards),
+    };
+    return cmocka_run_group_tests(tests, NULL, NULL);
+}
