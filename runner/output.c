@@ -1,0 +1,306 @@
+#include "runner/output.h"
+
+#include <errno.h>
+#include <math.h>
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+
+#include "results/fsutil.h"
+
+const char *const summary_columns[] = {
+    "experiment", "run_id", "renderer", "scene", "width", "height", "gbuffer",
+    "lights_placement", "lights_rng", "lights_seed", "lights_count", "lights_radius",
+    "trial", "frames", "measured_s", "fps_mean", "frametime_mean_us", "frametime_sd_us",
+    "frametime_ci95_us", "frametime_p50_us", "frametime_p99_us", "gpu_mean_us",
+    "draw_calls_mean", "state_changes_mean", "fragments_mean", "gbuffer_bytes",
+    "image_rmse", "image_psnr_db", "image_max_abs", "nonfinite_pixels", "harness_us_mean",
+    "status",
+};
+const size_t summary_ncolumns = sizeof summary_columns / sizeof summary_columns[0];
+
+static const char *const frames_columns[] = {
+    "run_id", "trial", "frame", "t_wall_s", "t_scene_s", "lights", "frametime_us", "gpu_us",
+    "draw_calls", "state_changes", "fragments",
+};
+static const char *const seconds_columns[] = {
+    "run_id", "trial", "second", "complete", "lights_min", "lights_max", "frames", "fps",
+    "frametime_mean_us", "frametime_sd_us", "frametime_p50_us", "frametime_p99_us",
+    "draw_calls_mean",
+};
+static const char *const passes_columns[] = {
+    "run_id", "trial", "frame", "pass", "gpu_us", "cpu_us", "draw_calls", "state_changes",
+    "fragments", "primitives",
+};
+#define NCOLS(a) (sizeof(a) / sizeof((a)[0]))
+
+static void join(char *dst, size_t len, const char *dir, const char *name)
+{
+    snprintf(dst, len, "%s/%s", dir, name);
+}
+
+bool output_write_plan(const char *out_dir, const plan *p, char *err, size_t errlen)
+{
+    char path[4096];
+    join(path, sizeof path, out_dir, "plan.csv");
+    param_kv kv[PARAM_KV_MAX];
+    size_t nkv = p->nruns ? run_params_kv(&p->runs[0].p, kv, PARAM_KV_MAX) : 0;
+    const char *cols[3 + PARAM_KV_MAX];
+    cols[0] = "index";
+    cols[1] = "run_id";
+    cols[2] = "shard";
+    for (size_t i = 0; i < nkv; i++)
+        cols[3 + i] = kv[i].key;
+    csv_writer *w = csv_open(path, cols, 3 + nkv, err, errlen);
+    if (!w)
+        return false;
+    for (size_t r = 0; r < p->nruns; r++) {
+        const run_spec *s = &p->runs[r];
+        run_params_kv(&s->p, kv, PARAM_KV_MAX);
+        csv_u64(w, s->index);
+        csv_str(w, s->id);
+        csv_u64(w, s->shard);
+        for (size_t i = 0; i < nkv; i++)
+            csv_str(w, kv[i].value);
+        csv_end_row(w);
+    }
+    return csv_commit(w, err, errlen);
+}
+
+bool run_files_open(run_files *f, const char *run_dir, const run_params *p, char *err,
+                    size_t errlen)
+{
+    char path[4096];
+    memset(f, 0, sizeof *f);
+    if (p->out_frames) {
+        join(path, sizeof path, run_dir, "frames.csv");
+        if (!(f->frames = csv_open(path, frames_columns, NCOLS(frames_columns), err, errlen)))
+            goto fail;
+        join(path, sizeof path, run_dir, "passes.csv");
+        if (!(f->passes = csv_open(path, passes_columns, NCOLS(passes_columns), err, errlen)))
+            goto fail;
+    }
+    if (p->out_seconds) {
+        join(path, sizeof path, run_dir, "seconds.csv");
+        if (!(f->seconds = csv_open(path, seconds_columns, NCOLS(seconds_columns), err, errlen)))
+            goto fail;
+    }
+    return true;
+fail:
+    run_files_abort(f);
+    return false;
+}
+
+void run_files_frame(run_files *f, const char *run_id, uint32_t trial, const frame_record *r,
+                     const frame_stats *fs)
+{
+    if (!f->frames)
+        return;
+    csv_writer *w = f->frames;
+    csv_str(w, run_id);
+    csv_u64(w, trial);
+    csv_u64(w, r->frame);
+    csv_f64(w, r->t_wall_s, 6);
+    csv_f64(w, r->t_scene_s, 6);
+    csv_u64(w, r->lights);
+    csv_f64(w, r->frametime_us, 3);
+    csv_f64(w, r->gpu_us, 3);
+    csv_u64(w, r->draw_calls);
+    csv_u64(w, r->state_changes);
+    csv_f64(w, r->fragments, 0);
+    csv_end_row(w);
+
+    for (size_t i = 0; i < fs->npasses; i++) {
+        const pass_stats *ps = &fs->pass[i];
+        w = f->passes;
+        csv_str(w, run_id);
+        csv_u64(w, trial);
+        csv_u64(w, r->frame);
+        csv_str(w, ps->name);
+        csv_f64(w, ps->gpu_us, 3);
+        csv_f64(w, ps->cpu_us, 3);
+        csv_u64(w, ps->draw_calls);
+        csv_u64(w, ps->state_changes);
+        csv_f64(w, ps->fragments, 0);
+        csv_f64(w, ps->primitives, 0);
+        csv_end_row(w);
+    }
+}
+
+void run_files_seconds(run_files *f, const char *run_id, uint32_t trial,
+                       const second_bin *bins, size_t nbins)
+{
+    if (!f->seconds)
+        return;
+    csv_writer *w = f->seconds;
+    for (size_t i = 0; i < nbins; i++) {
+        const second_bin *b = &bins[i];
+        csv_str(w, run_id);
+        csv_u64(w, trial);
+        csv_u64(w, b->second);
+        csv_u64(w, b->complete ? 1 : 0);
+        if (b->frames) {
+            csv_u64(w, b->lights_min);
+            csv_u64(w, b->lights_max);
+        } else {
+            csv_empty(w);
+            csv_empty(w);
+        }
+        csv_u64(w, b->frames);
+        csv_u64(w, b->frames);  /* FPS of a second is the number of frames that ended in it */
+        csv_f64(w, b->frametime_mean_us, 3);
+        csv_f64(w, b->frametime_sd_us, 3);
+        csv_f64(w, b->frametime_p50_us, 3);
+        csv_f64(w, b->frametime_p99_us, 3);
+        csv_f64(w, b->draw_calls_mean, 3);
+        csv_end_row(w);
+    }
+}
+
+bool run_files_commit(run_files *f, char *err, size_t errlen)
+{
+    csv_writer **all[] = {&f->frames, &f->passes, &f->seconds};
+    bool ok = true;
+    for (size_t i = 0; i < NCOLS(all); i++) {
+        if (!*all[i])
+            continue;
+        if (ok)
+            ok = csv_commit(*all[i], err, errlen);
+        else
+            csv_abort(*all[i]);
+        *all[i] = NULL;
+    }
+    return ok;
+}
+
+void run_files_abort(run_files *f)
+{
+    csv_abort(f->frames);
+    csv_abort(f->passes);
+    csv_abort(f->seconds);
+    memset(f, 0, sizeof *f);
+}
+
+static const char *placement_name(light_placement p)
+{
+    return p == PLACEMENT_RANDOM ? "random" : "none";
+}
+
+bool output_write_run_summary(const char *run_dir, const experiment *e, const run_spec *s,
+                              const pass_plan *pp, const trial_result *t, size_t ntrials,
+                              char *err, size_t errlen)
+{
+    char path[4096];
+    join(path, sizeof path, run_dir, "summary.csv");
+    csv_writer *w = csv_open(path, summary_columns, summary_ncolumns, err, errlen);
+    if (!w)
+        return false;
+    const run_params *p = &s->p;
+    for (size_t i = 0; i < ntrials; i++) {
+        const trial_result *r = &t[i];
+        csv_str(w, e->name);
+        csv_str(w, s->id);
+        csv_str(w, p->renderer);
+        csv_str(w, p->scene);
+        csv_i64(w, p->width);
+        csv_i64(w, p->height);
+        csv_empty(w);                       /* gbuffer: none for these renderers */
+        csv_str(w, placement_name(p->lights.placement));
+        csv_str(w, rng_kind_name(p->lights.rng));
+        csv_u64(w, p->lights.seed);
+        csv_u64(w, r->lights_max);
+        csv_g(w, p->lights.radius);
+        csv_u64(w, r->trial);
+        csv_u64(w, r->frames);
+        csv_f64(w, r->measured_s, 6);
+        csv_f64(w, r->fps_mean, 3);
+        csv_f64(w, r->ft.mean, 3);
+        csv_f64(w, r->ft.sd, 3);
+        csv_f64(w, r->ft_ci95, 3);
+        csv_f64(w, r->ft.p50, 3);
+        csv_f64(w, r->ft.p99, 3);
+        csv_f64(w, r->gpu_mean_us, 3);
+        csv_f64(w, r->draw_calls_mean, 3);
+        csv_f64(w, r->state_changes_mean, 3);
+        csv_f64(w, r->fragments_mean, 1);
+        csv_u64(w, pp->gbuffer_bytes);
+        /* Image error columns are filled when the manifest names a reference. */
+        csv_empty(w);
+        csv_empty(w);
+        csv_empty(w);
+        csv_empty(w);
+        csv_f64(w, r->harness_us_mean, 3);
+        csv_str(w, r->status);
+        csv_end_row(w);
+    }
+    return csv_commit(w, err, errlen);
+}
+
+/* Appends the data rows of one run's summary.csv (its header must equal ours). */
+static bool append_rows(FILE *out, const char *path, const char *header, bool *missing,
+                        char *err, size_t errlen)
+{
+    FILE *in = fopen(path, "rb");
+    if (!in) {
+        if (errno == ENOENT) {
+            *missing = true;
+            return true;
+        }
+        snprintf(err, errlen, "%s: %s", path, strerror(errno));
+        return false;
+    }
+    char *line = NULL;
+    size_t cap = 0;
+    ssize_t len;
+    bool ok = true, first = true;
+    while ((len = getline(&line, &cap, in)) > 0) {
+        if (first) {
+            first = false;
+            if (strcmp(line, header) != 0) {
+                snprintf(err, errlen, "%s: header differs from this version's summary columns",
+                         path);
+                ok = false;
+                break;
+            }
+            continue;
+        }
+        if (fwrite(line, 1, (size_t)len, out) != (size_t)len) {
+            snprintf(err, errlen, "writing summary.csv: %s", strerror(errno));
+            ok = false;
+            break;
+        }
+    }
+    free(line);
+    fclose(in);
+    return ok;
+}
+
+bool output_merge_summary(const char *out_dir, const plan *p, unsigned shard, char *err,
+                          size_t errlen)
+{
+    char path[4096], header[2048];
+    size_t off = 0;
+    for (size_t i = 0; i < summary_ncolumns; i++)
+        off += (size_t)snprintf(header + off, sizeof header - off, "%s%s", i ? "," : "",
+                                summary_columns[i]);
+    snprintf(header + off, sizeof header - off, "\n");
+
+    join(path, sizeof path, out_dir, "summary.csv");
+    afile f;
+    if (!afile_open(&f, path, err, errlen))
+        return false;
+    fputs(header, f.fp);
+    for (size_t r = 0; r < p->nruns; r++) {
+        const run_spec *s = &p->runs[r];
+        if (shard && s->shard != shard)
+            continue;
+        char run_summary[4096];
+        snprintf(run_summary, sizeof run_summary, "%s/runs/%s/summary.csv", out_dir, s->id);
+        bool missing = false;
+        if (!append_rows(f.fp, run_summary, header, &missing, err, errlen)) {
+            afile_abort(&f);
+            return false;
+        }
+    }
+    return afile_commit(&f, err, errlen);
+}

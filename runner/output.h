@@ -1,0 +1,59 @@
+#pragma once
+/* The experiment's files (DESIGN.md "Output files"):
+ *   OUT/plan.csv                 every run of the manifest, in plan order
+ *   OUT/summary.csv              one row per run x trial (merged from the runs)
+ *   OUT/runs/<id>/frames.csv     one row per measured frame
+ *   OUT/runs/<id>/seconds.csv    one row per second bin
+ *   OUT/runs/<id>/passes.csv     one row per frame x pass
+ *   OUT/runs/<id>/summary.csv    this run's rows of OUT/summary.csv
+ *   OUT/runs/<id>/meta.yaml      provenance and the pass plan
+ * Each file is written under a temporary name and renamed when complete. */
+#include <stdbool.h>
+#include <stddef.h>
+#include "results/csv.h"
+#include "results/record.h"
+#include "results/stats.h"
+#include "renderers/renderer.h"
+#include "runner/manifest.h"
+
+extern const char *const summary_columns[];
+extern const size_t summary_ncolumns;
+
+bool output_write_plan(const char *out_dir, const plan *p, char *err, size_t errlen);
+
+/* The per-run CSV streams, open across the run's trials. */
+typedef struct run_files {
+    csv_writer *frames, *seconds, *passes;
+} run_files;
+
+bool run_files_open(run_files *f, const char *run_dir, const run_params *p, char *err,
+                    size_t errlen);
+void run_files_frame(run_files *f, const char *run_id, uint32_t trial, const frame_record *r,
+                     const frame_stats *fs);
+void run_files_seconds(run_files *f, const char *run_id, uint32_t trial,
+                       const second_bin *bins, size_t nbins);
+bool run_files_commit(run_files *f, char *err, size_t errlen);
+void run_files_abort(run_files *f);
+
+/* What one trial measured, as summary.csv states it. */
+typedef struct trial_result {
+    uint32_t trial;
+    size_t frames;
+    double measured_s;         /* end of the last frame since measurement start */
+    double fps_mean;           /* frames / measured_s */
+    sample_summary ft;         /* frame time, us */
+    double ft_ci95;            /* half-width, us (batch means) */
+    double gpu_mean_us, draw_calls_mean, state_changes_mean, fragments_mean;
+    double harness_us_mean;    /* runner bookkeeping between frames, us */
+    unsigned lights_max;
+    char status[96];           /* "ok" or "failed:<reason>" */
+} trial_result;
+
+bool output_write_run_summary(const char *run_dir, const experiment *e, const run_spec *s,
+                              const pass_plan *pp, const trial_result *t, size_t ntrials,
+                              char *err, size_t errlen);
+
+/* OUT/summary.csv from the runs' own summary.csv files, in plan order; runs of
+ * other shards, and runs without a summary, are left out. */
+bool output_merge_summary(const char *out_dir, const plan *p, unsigned shard, char *err,
+                          size_t errlen);

@@ -1,0 +1,98 @@
+#include "runner/progress.h"
+
+#include <string.h>
+#include <time.h>
+#include <unistd.h>
+
+double progress_now(void)
+{
+    struct timespec ts;
+    clock_gettime(CLOCK_MONOTONIC, &ts);
+    return (double)ts.tv_sec + (double)ts.tv_nsec * 1e-9;
+}
+
+static void fmt_duration(char *buf, size_t len, double s)
+{
+    if (!(s >= 0)) {
+        snprintf(buf, len, "?");
+        return;
+    }
+    unsigned long t = (unsigned long)(s + 0.5);
+    if (t >= 3600)
+        snprintf(buf, len, "%luh%02lum%02lus", t / 3600, t / 60 % 60, t % 60);
+    else if (t >= 60)
+        snprintf(buf, len, "%lum%02lus", t / 60, t % 60);
+    else
+        snprintf(buf, len, "%lus", t);
+}
+
+/* ETA from the mean duration of completed runs; unknown before the first. */
+static void eta(const progress *pg, double now, char *buf, size_t len)
+{
+    if (pg->done == 0) {
+        snprintf(buf, len, "?");
+        return;
+    }
+    double per_run = (pg->run_t0 - pg->t0) / (double)pg->done;
+    double left = per_run * (double)(pg->total - pg->done) - (now - pg->run_t0);
+    fmt_duration(buf, len, left > 0 ? left : 0);
+}
+
+void progress_init(progress *pg, size_t total, FILE *out)
+{
+    memset(pg, 0, sizeof *pg);
+    pg->out = out;
+    pg->tty = isatty(fileno(out)) == 1;
+    pg->total = total;
+    pg->t0 = pg->run_t0 = progress_now();
+}
+
+void progress_run_begin(progress *pg, size_t k, const char *id, const char *renderer,
+                        int width, int height)
+{
+    pg->run_t0 = progress_now();
+    snprintf(pg->label, sizeof pg->label, "run %zu of %zu %s %s %dx%d", k, pg->total, id,
+             renderer, width, height);
+    pg->last_draw = 0;
+    progress_tick(pg, 0, 0, 0);
+}
+
+void progress_tick(progress *pg, unsigned trial, unsigned lights, double fps)
+{
+    if (!pg->tty)
+        return;
+    double now = progress_now();
+    if (now - pg->last_draw < 0.25)
+        return;
+    pg->last_draw = now;
+    char el[32], et[32];
+    fmt_duration(el, sizeof el, now - pg->t0);
+    eta(pg, now, et, sizeof et);
+    fprintf(pg->out, "\r\033[K%s trial %u lights %u %.1f fps | elapsed %s eta %s", pg->label,
+            trial, lights, fps, el, et);
+    fflush(pg->out);
+}
+
+void progress_run_end(progress *pg, const char *status, double fps)
+{
+    pg->done++;
+    if (strcmp(status, "ok") != 0)
+        pg->failed++;
+    double now = progress_now();
+    pg->run_t0 = now;
+    char el[32], et[32];
+    fmt_duration(el, sizeof el, now - pg->t0);
+    eta(pg, now, et, sizeof et);
+    if (pg->tty)
+        fprintf(pg->out, "\r\033[K");
+    fprintf(pg->out, "%s: %s, %.1f fps | elapsed %s eta %s\n", pg->label, status, fps, el, et);
+    fflush(pg->out);
+}
+
+void progress_finish(progress *pg)
+{
+    char el[32];
+    fmt_duration(el, sizeof el, progress_now() - pg->t0);
+    fprintf(pg->out, "%zu run%s, %zu failed, in %s\n", pg->done, pg->done == 1 ? "" : "s",
+            pg->failed, el);
+}

@@ -1,0 +1,23 @@
+#pragma once
+/* Progress on stderr: a line redrawn in place when stderr is a terminal, one plain
+ * line per finished run otherwise (CI logs stay readable). */
+#include <stdbool.h>
+#include <stddef.h>
+#include <stdio.h>
+
+typedef struct progress {
+    FILE *out;
+    bool tty;
+    size_t total, done, failed;
+    double t0, run_t0, last_draw;
+    char label[160];           /* the current run: "k/n id renderer=... " */
+} progress;
+
+double progress_now(void);     /* CLOCK_MONOTONIC seconds */
+void progress_init(progress *pg, size_t total, FILE *out);
+void progress_run_begin(progress *pg, size_t k, const char *id, const char *renderer,
+                        int width, int height);
+/* During a run: at most a few redraws a second, terminal only. */
+void progress_tick(progress *pg, unsigned trial, unsigned lights, double fps);
+void progress_run_end(progress *pg, const char *status, double fps);
+void progress_finish(progress *pg);

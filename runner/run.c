@@ -1,0 +1,536 @@
+#include "runner/run.h"
+
+#include <math.h>
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+#include <time.h>
+#include <unistd.h>
+
+#include "config.h"
+#include "version.h"
+#include "renderers/gl/loader.h"
+#include "renderers/renderer.h"
+#include "results/fsutil.h"
+#include "results/image_io.h"
+#include "results/stats.h"
+#include "results/yamlout.h"
+#include "runner/output.h"
+#include "runner/progress.h"
+#include "scenes/scene.h"
+
+/* A fence wait longer than this is a hung GPU: the run fails rather than waits forever. */
+#define SYNC_TIMEOUT_S 60.0
+
+typedef struct frame_log {
+    frame_record *v;
+    size_t n, cap;
+} frame_log;
+
+static bool frame_log_push(frame_log *l, const frame_record *r)
+{
+    if (l->n == l->cap) {
+        size_t cap = l->cap ? l->cap * 2 : 4096;
+        frame_record *v = realloc(l->v, cap * sizeof *v);
+        if (!v)
+            return false;
+        l->v = v;
+        l->cap = cap;
+    }
+    l->v[l->n++] = *r;
+    return true;
+}
+
+/* Everything one run holds while it executes. */
+typedef struct run_state {
+    const experiment *e;
+    const run_spec *s;
+    const run_options *o;
+    progress *pg;
+    char dir[4096];
+    gl_context *ctx;
+    scene *sc;
+    renderer *r;
+    pass_plan plan;
+    run_files files;
+    frame_log log;
+    trial_result *trials;
+    char started[32], finished[32];
+    char status[96];
+    char err[512];
+} run_state;
+
+static void utc_now(char *buf, size_t len)
+{
+    time_t t = time(NULL);
+    struct tm tm;
+    gmtime_r(&t, &tm);
+    strftime(buf, len, "%Y-%m-%dT%H:%M:%SZ", &tm);
+}
+
+/* Waits until the GPU (or llvmpipe) has finished every command issued so far. */
+static bool frame_sync(run_sync how, char *err, size_t errlen)
+{
+    if (how == RUN_SYNC_FINISH) {
+        gl.Finish();
+        return true;
+    }
+    GLsync f = gl.FenceSync(GL_SYNC_GPU_COMMANDS_COMPLETE, 0);
+    if (!f) {
+        snprintf(err, errlen, "glFenceSync failed");
+        return false;
+    }
+    double t0 = progress_now();
+    GLenum res;
+    do {
+        res = gl.ClientWaitSync(f, GL_SYNC_FLUSH_COMMANDS_BIT, 100000000u /* 0.1 s */);
+    } while (res == GL_TIMEOUT_EXPIRED && progress_now() - t0 < SYNC_TIMEOUT_S);
+    gl.DeleteSync(f);
+    if (res == GL_TIMEOUT_EXPIRED) {
+        snprintf(err, errlen, "frame not finished after %.0f s", SYNC_TIMEOUT_S);
+        return false;
+    }
+    if (res == GL_WAIT_FAILED) {
+        snprintf(err, errlen, "glClientWaitSync failed");
+        return false;
+    }
+    return true;
+}
+
+static bool span_done(const span *sp, size_t frames, double elapsed)
+{
+    return sp->kind == SPAN_FRAMES ? frames >= sp->frames : elapsed >= sp->seconds;
+}
+
+static double schedule_time(const run_params *p, size_t frame, double elapsed)
+{
+    return p->clock == RUN_CLOCK_FIXED ? (double)frame * p->step : elapsed;
+}
+
+static bool screenshot(run_state *st, uint32_t trial, double at, char *err, size_t errlen)
+{
+    const run_params *p = &st->s->p;
+    image img = {.width = p->width, .height = p->height, .channels = 4, .type = IMAGE_U8};
+    img.pixels = malloc((size_t)p->width * (size_t)p->height * 4u);
+    if (!img.pixels) {
+        snprintf(err, errlen, "out of memory for a %dx%d screenshot", p->width, p->height);
+        return false;
+    }
+    char path[4200];
+    snprintf(path, sizeof path, "%s/screenshot-trial%u-t%g.png", st->dir, trial, at);
+    bool ok = gl_context_read_rgba8(st->ctx, img.pixels, err, errlen) &&
+              image_write(path, &img, err, errlen);
+    free(img.pixels);
+    return ok;
+}
+
+/* Draws one frame at schedule time t and waits for its end. */
+static bool draw_frame(run_state *st, double t, frame_stats *fs)
+{
+    scene_update(st->sc, t);
+    renderer_draw(st->r, st->sc, fs);
+    return frame_sync(st->s->p.sync, st->err, sizeof st->err);
+}
+
+static bool gl_clean(run_state *st, const char *where)
+{
+    unsigned n = gl_context_poll_errors(st->ctx, where);
+    return n == 0 && gl_context_error_count(st->ctx) == 0;
+}
+
+static void set_status(run_state *st, const char *reason)
+{
+    if (strcmp(st->status, "ok") == 0)
+        snprintf(st->status, sizeof st->status, "failed:%s", reason);
+}
+
+/* One trial: warm-up (not recorded), then the measured frames. */
+static void run_trial(run_state *st, uint32_t trial, trial_result *tr)
+{
+    const run_params *p = &st->s->p;
+    frame_stats fs;
+    memset(tr, 0, sizeof *tr);
+    tr->trial = trial;
+    snprintf(tr->status, sizeof tr->status, "ok");
+    st->log.n = 0;
+
+    double w0 = progress_now();
+    for (size_t k = 0; !span_done(&p->warmup, k, progress_now() - w0); k++) {
+        if (!draw_frame(st, schedule_time(p, k, progress_now() - w0), &fs)) {
+            snprintf(tr->status, sizeof tr->status, "failed:sync");
+            return;
+        }
+        renderer_collect(st->r, &fs);
+    }
+    if (!gl_clean(st, "warm-up")) {
+        snprintf(tr->status, sizeof tr->status, "failed:gl-error");
+        return;
+    }
+
+    bool shot_done[MAX_SCREENSHOTS] = {false};
+    double harness_s = 0, t_end = 0;
+    double t0 = progress_now();
+    for (size_t k = 0;; k++) {
+        double start = progress_now();
+        double t = schedule_time(p, k, start - t0);
+        bool ok = draw_frame(st, t, &fs);
+        double end = progress_now();
+        if (!ok) {
+            snprintf(tr->status, sizeof tr->status, "failed:sync");
+            fprintf(stderr, "run %s: %s\n", st->s->id, st->err);
+            break;
+        }
+        renderer_collect(st->r, &fs);
+        frame_record rec = {
+            .frame = (uint32_t)k,
+            .t_wall_s = end - t0,
+            .t_scene_s = t,
+            .lights = st->sc->nlights_active,
+            .frametime_us = (end - start) * 1e6,
+            .gpu_us = fs.total.gpu_us,
+            .draw_calls = fs.total.draw_calls,
+            .state_changes = fs.total.state_changes,
+            .fragments = fs.total.fragments,
+        };
+        t_end = rec.t_wall_s;
+        if (!frame_log_push(&st->log, &rec)) {
+            snprintf(tr->status, sizeof tr->status, "failed:oom");
+            break;
+        }
+        run_files_frame(&st->files, st->s->id, trial, &rec, &fs);
+        bool clean = gl_clean(st, "frame");
+        harness_s += progress_now() - end;
+        if (!clean) {
+            snprintf(tr->status, sizeof tr->status, "failed:gl-error");
+            break;
+        }
+        for (size_t i = 0; i < p->nscreenshots; i++) {
+            if (shot_done[i] || t < p->screenshots[i])
+                continue;
+            shot_done[i] = true;
+            char err[512];
+            if (!screenshot(st, trial, p->screenshots[i], err, sizeof err)) {
+                fprintf(stderr, "run %s: screenshot: %s\n", st->s->id, err);
+                snprintf(tr->status, sizeof tr->status, "failed:screenshot");
+            }
+        }
+        progress_tick(st->pg, trial, rec.lights, (double)(k + 1) / (end - t0));
+        if (span_done(&p->duration, k + 1, end - t0))
+            break;
+    }
+
+    /* Post-trial arithmetic counts as bookkeeping too, spread over the frames. */
+    double post0 = progress_now();
+    size_t n = st->log.n;
+    double *ft = malloc((n ? n : 1) * sizeof *ft);
+    second_bin *bins = NULL;
+    size_t nbins = 0;
+    if (!ft || !stats_bin_seconds(st->log.v, n, t_end, &bins, &nbins)) {
+        snprintf(tr->status, sizeof tr->status, "failed:oom");
+        free(ft);
+        return;
+    }
+    double gpu = 0, dc = 0, sc = 0, frag = 0;
+    unsigned lmax = 0;
+    for (size_t i = 0; i < n; i++) {
+        const frame_record *f = &st->log.v[i];
+        ft[i] = f->frametime_us;
+        gpu += f->gpu_us;
+        dc += (double)f->draw_calls;
+        sc += (double)f->state_changes;
+        frag += f->fragments;
+        if (f->lights > lmax)
+            lmax = f->lights;
+    }
+    stats_summarize(ft, n, &tr->ft);
+    tr->ft_ci95 = stats_ci95_batch_means(ft, n);
+    tr->frames = n;
+    tr->measured_s = t_end;
+    tr->fps_mean = t_end > 0 ? (double)n / t_end : NAN;
+    tr->gpu_mean_us = n ? gpu / (double)n : NAN;
+    tr->draw_calls_mean = n ? dc / (double)n : NAN;
+    tr->state_changes_mean = n ? sc / (double)n : NAN;
+    tr->fragments_mean = n ? frag / (double)n : NAN;
+    tr->lights_max = lmax;
+    run_files_seconds(&st->files, st->s->id, trial, bins, nbins);
+    free(bins);
+    free(ft);
+    harness_s += progress_now() - post0;
+    tr->harness_us_mean = n ? harness_s * 1e6 / (double)n : NAN;
+}
+
+static void cpu_model(char *buf, size_t len)
+{
+    snprintf(buf, len, "unknown");
+    FILE *f = fopen("/proc/cpuinfo", "r");
+    if (!f)
+        return;
+    char line[512];
+    while (fgets(line, sizeof line, f)) {
+        if (strncmp(line, "model name", 10) == 0) {
+            char *colon = strchr(line, ':');
+            if (colon) {
+                colon++;
+                while (*colon == ' ' || *colon == '\t')
+                    colon++;
+                colon[strcspn(colon, "\n")] = 0;
+                snprintf(buf, len, "%s", colon);
+            }
+            break;
+        }
+    }
+    fclose(f);
+}
+
+static bool write_meta(run_state *st, char *err, size_t errlen)
+{
+    char path[4200];
+    snprintf(path, sizeof path, "%s/meta.yaml", st->dir);
+    yaml_out *y = yo_open(path, err, errlen);
+    if (!y)
+        return false;
+    const experiment *e = st->e;
+    yo_map_begin(y);
+    yo_key(y, "run_id"); yo_str(y, st->s->id);
+    yo_key(y, "experiment"); yo_str(y, e->name);
+    yo_key(y, "status"); yo_str(y, st->status);
+    yo_key(y, "manifest");
+    yo_map_begin(y);
+    yo_key(y, "path"); yo_str(y, e->path);
+    yo_key(y, "hash"); yo_str(y, e->hash);
+    yo_map_end(y);
+    yo_key(y, "shadesweep");
+    yo_map_begin(y);
+    yo_key(y, "version"); yo_str(y, SHADESWEEP_VERSION);
+    yo_key(y, "commit"); yo_str(y, SHADESWEEP_COMMIT);
+    yo_map_end(y);
+
+    yo_key(y, "parameters");
+    yo_map_begin(y);
+    param_kv kv[PARAM_KV_MAX];
+    size_t nkv = run_params_kv(&st->s->p, kv, PARAM_KV_MAX);
+    for (size_t i = 0; i < nkv; i++) {
+        yo_key(y, kv[i].key);
+        yo_str(y, kv[i].value);
+    }
+    yo_map_end(y);
+
+    yo_key(y, "gl");
+    yo_map_begin(y);
+    const gl_info *gi = st->ctx ? gl_context_info(st->ctx) : NULL;
+    yo_key(y, "backend"); yo_str(y, gi ? gi->backend : NULL);
+    yo_key(y, "device"); yo_str(y, gi ? gi->device : NULL);
+    yo_key(y, "vendor"); yo_str(y, gi ? gi->vendor : NULL);
+    yo_key(y, "renderer"); yo_str(y, gi ? gi->renderer : NULL);
+    yo_key(y, "version"); yo_str(y, gi ? gi->version : NULL);
+    yo_key(y, "glsl"); yo_str(y, gi ? gi->glsl_version : NULL);
+    yo_key(y, "debug_context"); yo_bool(y, gi && gi->debug_context);
+    yo_key(y, "timer_query"); yo_bool(y, gi && gi->timer_query);
+    yo_key(y, "pipeline_statistics"); yo_bool(y, gi && gi->pipeline_statistics);
+    yo_map_end(y);
+
+    char cpu[256], host[256] = "unknown";
+    cpu_model(cpu, sizeof cpu);
+    gethostname(host, sizeof host - 1);
+    yo_key(y, "host");
+    yo_map_begin(y);
+    yo_key(y, "cpu"); yo_str(y, cpu);
+    yo_key(y, "threads"); yo_i64(y, sysconf(_SC_NPROCESSORS_ONLN));
+    yo_key(y, "hostname"); yo_str(y, host);
+    yo_map_end(y);
+    yo_key(y, "started"); yo_str(y, st->started);
+    yo_key(y, "finished"); yo_str(y, st->finished);
+
+    yo_key(y, "timing");
+    yo_map_begin(y);
+    yo_key(y, "clock_source"); yo_str(y, "CLOCK_MONOTONIC");
+    yo_key(y, "frame_end"); yo_str(y, st->s->p.sync == RUN_SYNC_FINISH ? "glFinish" : "fence");
+    yo_key(y, "ci95_method"); yo_str(y, "batch means, 10 batches, Student t");
+    yo_map_end(y);
+
+    yo_key(y, "pass_plan");
+    yo_map_begin(y);
+    yo_key(y, "passes");
+    yo_seq_begin(y);
+    for (size_t i = 0; i < st->plan.npasses; i++) {
+        yo_map_begin(y);
+        yo_key(y, "name"); yo_str(y, st->plan.pass[i].name);
+        yo_key(y, "run"); yo_bool(y, st->plan.pass[i].run);
+        yo_key(y, "reason"); yo_str(y, st->plan.pass[i].reason);
+        yo_map_end(y);
+    }
+    yo_seq_end(y);
+    yo_key(y, "programs");
+    yo_seq_begin(y);
+    for (size_t i = 0; i < st->plan.nprograms; i++)
+        yo_str(y, st->plan.program[i]);
+    yo_seq_end(y);
+    yo_key(y, "targets");
+    yo_seq_begin(y);
+    for (size_t i = 0; i < st->plan.ntargets; i++) {
+        const target_plan_entry *t = &st->plan.target[i];
+        yo_map_begin(y);
+        yo_key(y, "name"); yo_str(y, t->name);
+        yo_key(y, "format"); yo_str(y, t->format);
+        yo_key(y, "width"); yo_i64(y, t->width);
+        yo_key(y, "height"); yo_i64(y, t->height);
+        yo_key(y, "bytes"); yo_i64(y, (int64_t)t->bytes);
+        yo_map_end(y);
+    }
+    yo_seq_end(y);
+    yo_key(y, "gbuffer_bytes"); yo_i64(y, (int64_t)st->plan.gbuffer_bytes);
+    yo_key(y, "target_bytes"); yo_i64(y, (int64_t)st->plan.target_bytes);
+    yo_map_end(y);
+    yo_map_end(y);
+    return yo_commit(y, err, errlen);
+}
+
+/* Sets up one run; on failure st->status says why and st->err holds the message. */
+static bool run_setup(run_state *st)
+{
+    const run_params *p = &st->s->p;
+    gl_context_desc cd = {
+        .backend = st->o->backend,
+        .device = st->o->device,
+        .debug = st->o->debug_gl,
+        .width = p->width,
+        .height = p->height,
+    };
+    if (!fs_mkdirs(st->dir, st->err, sizeof st->err)) {
+        set_status(st, "output");
+        return false;
+    }
+    if (!(st->ctx = gl_context_create(&cd, st->err, sizeof st->err))) {
+        set_status(st, "context");
+        return false;
+    }
+    if (!(st->sc = scene_build(p->scene, &p->lights, p->width, p->height, st->err,
+                               sizeof st->err))) {
+        set_status(st, "scene");
+        return false;
+    }
+    const gl_info *gi = gl_context_info(st->ctx);
+    renderer_options ro = {
+        .width = p->width,
+        .height = p->height,
+        .queries = true,
+        .timer_query = gi->timer_query,
+        .pipeline_statistics = gi->pipeline_statistics,
+    };
+    if (!(st->r = renderer_create(p->renderer, &ro, st->err, sizeof st->err)) ||
+        !renderer_prepare(st->r, st->sc, st->err, sizeof st->err)) {
+        set_status(st, "renderer");
+        return false;
+    }
+    renderer_describe(st->r, &st->plan);
+    if (!gl_clean(st, "prepare")) {
+        snprintf(st->err, sizeof st->err, "GL error while preparing the renderer");
+        set_status(st, "gl-error");
+        return false;
+    }
+    if (!run_files_open(&st->files, st->dir, p, st->err, sizeof st->err)) {
+        set_status(st, "output");
+        return false;
+    }
+    return true;
+}
+
+static void run_teardown(run_state *st)
+{
+    run_files_abort(&st->files);
+    renderer_destroy(st->r);
+    scene_destroy(st->sc);
+    gl_context_destroy(st->ctx);
+    free(st->log.v);
+    free(st->trials);
+}
+
+/* Runs one run_spec; returns its status in st->status. */
+static void run_one(run_state *st)
+{
+    const run_params *p = &st->s->p;
+    snprintf(st->status, sizeof st->status, "ok");
+    utc_now(st->started, sizeof st->started);
+    snprintf(st->dir, sizeof st->dir, "%s/runs/%s", st->o->out_dir, st->s->id);
+    st->trials = calloc(p->trials, sizeof *st->trials);
+    if (!st->trials) {
+        snprintf(st->err, sizeof st->err, "out of memory");
+        set_status(st, "oom");
+    }
+
+    if (st->trials && run_setup(st)) {
+        for (uint32_t t = 1; t <= p->trials; t++) {
+            trial_result *tr = &st->trials[t - 1];
+            run_trial(st, t, tr);
+            if (strcmp(tr->status, "ok") != 0) {
+                snprintf(st->status, sizeof st->status, "%s", tr->status);
+                break;
+            }
+        }
+        if (!run_files_commit(&st->files, st->err, sizeof st->err)) {
+            fprintf(stderr, "run %s: %s\n", st->s->id, st->err);
+            set_status(st, "output");
+        }
+    } else if (st->trials) {
+        fprintf(stderr, "run %s: %s\n", st->s->id, st->err);
+    }
+
+    /* A run that failed before measuring still gets its rows, saying why. */
+    if (st->trials) {
+        for (uint32_t t = 0; t < p->trials; t++) {
+            trial_result *tr = &st->trials[t];
+            if (tr->trial == 0) {
+                tr->trial = t + 1;
+                tr->ft.mean = tr->ft.sd = tr->ft.p50 = tr->ft.p99 = NAN;
+                tr->ft_ci95 = tr->fps_mean = tr->measured_s = NAN;
+                tr->gpu_mean_us = tr->draw_calls_mean = tr->state_changes_mean = NAN;
+                tr->fragments_mean = tr->harness_us_mean = NAN;
+                snprintf(tr->status, sizeof tr->status, "%s",
+                         strcmp(st->status, "ok") ? st->status : "failed:not-run");
+            }
+        }
+    }
+    utc_now(st->finished, sizeof st->finished);
+    char err[512];
+    if (fs_mkdirs(st->dir, err, sizeof err) &&
+        (!st->trials || !write_meta(st, err, sizeof err) ||
+         !output_write_run_summary(st->dir, st->e, st->s, &st->plan, st->trials, p->trials,
+                                   err, sizeof err))) {
+        fprintf(stderr, "run %s: %s\n", st->s->id, err);
+        set_status(st, "output");
+    }
+}
+
+int run_plan(const experiment *e, const plan *p, const run_options *o)
+{
+    char err[512];
+    if (!output_write_plan(o->out_dir, p, err, sizeof err)) {
+        fprintf(stderr, "shadesweep: %s\n", err);
+        return 2;
+    }
+    size_t selected = 0;
+    for (size_t i = 0; i < p->nruns; i++)
+        selected += !o->shard || p->runs[i].shard == o->shard;
+
+    progress pg;
+    progress_init(&pg, selected, stderr);
+    size_t k = 0, failed = 0;
+    for (size_t i = 0; i < p->nruns; i++) {
+        const run_spec *s = &p->runs[i];
+        if (o->shard && s->shard != o->shard)
+            continue;
+        progress_run_begin(&pg, ++k, s->id, s->p.renderer, s->p.width, s->p.height);
+        run_state st = {.e = e, .s = s, .o = o, .pg = &pg};
+        run_one(&st);
+        double fps = st.trials && st.trials[0].frames ? st.trials[0].fps_mean : 0;
+        progress_run_end(&pg, st.status, fps);
+        failed += strcmp(st.status, "ok") != 0;
+        run_teardown(&st);
+    }
+    progress_finish(&pg);
+    if (!output_merge_summary(o->out_dir, p, o->shard, err, sizeof err)) {
+        fprintf(stderr, "shadesweep: %s\n", err);
+        return 2;
+    }
+    return failed ? 1 : 0;
+}

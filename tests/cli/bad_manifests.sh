@@ -1,0 +1,47 @@
+#!/usr/bin/env bash
+# A manifest with errors: non-zero exit, every error with line and column, nothing on disk.
+. "$(dirname "$0")/lib.sh"
+cd "$T"
+cat > bad.yaml <<'YAML'
+shadesweep: 1
+name: bad-one
+scene: nowhere
+renderers: [null, warp-drive]
+resolution: 0x0
+trials: -2
+duration: {seconds: .nan}
+colour: red
+YAML
+set +e
+"$SHADESWEEP" run bad.yaml >stdout.txt 2>stderr.txt; rc=$?
+set -e
+[ $rc -eq 2 ] || fail "run of a bad manifest exited $rc, want 2"
+[ ! -e out ] || fail "an output folder was created for a bad manifest"
+[ -z "$(ls -A . | grep -v -e bad.yaml -e stdout.txt -e stderr.txt)" ] || fail "files appeared: $(ls -A)"
+# every problem is listed, each as FILE:LINE:COL: KEY: expected ..., found ...
+for want in "bad.yaml:3:8: scene:" "bad.yaml:4:19: renderers" "bad.yaml:5:13: resolution:" \
+            "bad.yaml:6:9: trials:" "bad.yaml:7:21: duration.seconds:" "bad.yaml:8:1: colour:"; do
+  grep -qF "$want" stderr.txt || fail "missing '$want' in: $(cat stderr.txt)"
+done
+n=$(grep -c '^bad.yaml:[0-9]*:[0-9]*: .*expected .*, found ' stderr.txt)
+[ "$n" -eq 6 ] || fail "want 6 error lines, got $n: $(cat stderr.txt)"
+
+set +e
+"$SHADESWEEP" validate bad.yaml "$SOURCE_ROOT/experiments/smoke.yaml" >stdout.txt 2>stderr.txt; rc=$?
+set -e
+[ $rc -eq 2 ] || fail "validate exited $rc"
+grep -q "smoke.yaml: ok, 4 runs" stdout.txt || fail "validate of the good manifest: $(cat stdout.txt)"
+[ "$(grep -c '^bad.yaml:' stderr.txt)" -eq 6 ] || fail "validate lists every error"
+
+"$SHADESWEEP" validate "$SOURCE_ROOT"/experiments/*.yaml >/dev/null || fail "experiments/ must validate"
+# usage errors are clear too
+set +e
+"$SHADESWEEP" run --shard 5/4 "$SOURCE_ROOT/experiments/smoke.yaml" 2>stderr.txt; rc=$?
+set -e
+[ $rc -eq 2 ] && grep -q "shard" stderr.txt || fail "bad --shard: rc $rc: $(cat stderr.txt)"
+set +e
+"$SHADESWEEP" frobnicate 2>stderr.txt; rc=$?
+set -e
+[ $rc -eq 2 ] && grep -q "unknown command 'frobnicate'" stderr.txt || fail "unknown command"
+[ ! -e out ] || fail "output created"
+echo ok

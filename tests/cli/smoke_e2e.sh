@@ -1,0 +1,121 @@
+#!/usr/bin/env bash
+# End to end: `shadesweep run experiments/smoke.yaml` and every file and column it leaves.
+. "$(dirname "$0")/lib.sh"
+need_gl
+cd "$T"
+"$SHADESWEEP" run --debug-gl "$SOURCE_ROOT/experiments/smoke.yaml" >run.out 2>run.err \
+  || { cat run.err >&2; fail "smoke run exited $?"; }
+grep -q "run 4 of 4" run.err || fail "progress lines missing: $(cat run.err)"
+"$PYTHON" - out/smoke <<'PY'
+import csv, glob, math, os, struct, sys
+import yaml
+out = sys.argv[1]
+def fail(msg):
+    print("FAIL:", msg, file=sys.stderr); sys.exit(1)
+def rows(path, want_cols):
+    with open(path, newline="") as f:
+        r = list(csv.reader(f))
+    if r[0] != want_cols:
+        fail(f"{path}: columns {r[0]} != {want_cols}")
+    return [dict(zip(r[0], x)) for x in r[1:]]
+
+summary_cols = ["experiment","run_id","renderer","scene","width","height","gbuffer",
+  "lights_placement","lights_rng","lights_seed","lights_count","lights_radius","trial",
+  "frames","measured_s","fps_mean","frametime_mean_us","frametime_sd_us","frametime_ci95_us",
+  "frametime_p50_us","frametime_p99_us","gpu_mean_us","draw_calls_mean","state_changes_mean",
+  "fragments_mean","gbuffer_bytes","image_rmse","image_psnr_db","image_max_abs",
+  "nonfinite_pixels","harness_us_mean","status"]
+frames_cols = ["run_id","trial","frame","t_wall_s","t_scene_s","lights","frametime_us",
+  "gpu_us","draw_calls","state_changes","fragments"]
+seconds_cols = ["run_id","trial","second","complete","lights_min","lights_max","frames","fps",
+  "frametime_mean_us","frametime_sd_us","frametime_p50_us","frametime_p99_us","draw_calls_mean"]
+passes_cols = ["run_id","trial","frame","pass","gpu_us","cpu_us","draw_calls","state_changes",
+  "fragments","primitives"]
+
+with open(os.path.join(out, "plan.csv"), newline="") as f:
+    plan = list(csv.DictReader(f))
+if len(plan) != 4:
+    fail(f"plan has {len(plan)} runs, want 4 (2 resolutions x 2 sync modes x 1 renderer)")
+# sweep order: first axis slowest, renderers fastest
+order = [(p["resolution"], p["sync"]) for p in plan]
+if order != [("64x64","finish"),("64x64","fence"),("160x120","finish"),("160x120","fence")]:
+    fail(f"plan order {order}")
+ids = [p["run_id"] for p in plan]
+if len(set(ids)) != 4 or not all(len(i) == 12 and all(c in "0123456789abcdef" for c in i) for i in ids):
+    fail(f"run ids {ids}")
+
+summary = rows(os.path.join(out, "summary.csv"), summary_cols)
+if len(summary) != 8:
+    fail(f"summary has {len(summary)} rows, want 4 runs x 2 trials")
+for s, want_id in zip(summary, [i for i in ids for _ in (1, 2)]):
+    if s["run_id"] != want_id: fail(f"summary order: {s['run_id']} != {want_id}")
+    if s["status"] != "ok": fail(f"status {s['status']}")
+    if s["frames"] != "30": fail(f"frames {s['frames']}")
+    if s["experiment"] != "smoke" or s["renderer"] != "null" or s["scene"] != "empty":
+        fail(f"labels {s}")
+    if s["draw_calls_mean"] != "0.000" or s["state_changes_mean"] != "0.000":
+        fail(f"null renderer draws nothing: {s}")
+    if s["lights_count"] != "8":   # 30 frames at 0.1 s: t < 3, so 4 * 2 lights at most
+        fail(f"lights_count {s['lights_count']}")
+    for k in ("fps_mean","frametime_mean_us","frametime_p50_us","frametime_p99_us","measured_s"):
+        v = float(s[k])
+        if not (math.isfinite(v) and v > 0): fail(f"{k} = {s[k]}")
+    mean, p50, p99 = (float(s[k]) for k in ("frametime_mean_us","frametime_p50_us","frametime_p99_us"))
+    if not p50 <= p99: fail("p50 > p99")
+    if not math.isfinite(float(s["frametime_ci95_us"])): fail("ci95")
+    if s["gbuffer_bytes"] != "0": fail("gbuffer_bytes")
+    # 30 frames in measured_s seconds
+    if abs(float(s["fps_mean"]) - 30 / float(s["measured_s"])) > 0.01 * float(s["fps_mean"]) + 0.002:
+        fail("fps_mean != frames / measured_s")
+
+for p in plan:
+    d = os.path.join(out, "runs", p["run_id"])
+    w, h = (int(x) for x in p["resolution"].split("x"))
+    fr = rows(os.path.join(d, "frames.csv"), frames_cols)
+    if len(fr) != 60: fail(f"{d}: {len(fr)} frame rows, want 60")
+    for i, r in enumerate(fr):
+        trial, k = 1 + i // 30, i % 30
+        if (r["trial"], r["frame"]) != (str(trial), str(k)): fail(f"frame numbering {r}")
+        if abs(float(r["t_scene_s"]) - 0.1 * k) > 1e-6: fail(f"fixed clock t_scene {r}")
+        if int(r["lights"]) != 4 * (k // 10): fail(f"light growth at frame {k}: {r['lights']}")
+        if r["draw_calls"] != "0" or r["state_changes"] != "0": fail("work counts")
+        if r["fragments"] not in ("0", ""): fail(f"fragments of a clear: {r['fragments']}")
+        if float(r["frametime_us"]) <= 0: fail("frame time")
+    tw = [float(r["t_wall_s"]) for r in fr[:30]]
+    if tw != sorted(tw): fail("t_wall_s not increasing")
+    sec = rows(os.path.join(d, "seconds.csv"), seconds_cols)
+    for trial in ("1", "2"):
+        bins = [b for b in sec if b["trial"] == trial]
+        if sum(int(b["frames"]) for b in bins) != 30: fail("bins do not hold every frame")
+        if [int(b["second"]) for b in bins] != list(range(len(bins))): fail("bins not contiguous")
+        for b in bins:
+            if b["fps"] != b["frames"]: fail("fps of a second is its frame count")
+    pa = rows(os.path.join(d, "passes.csv"), passes_cols)
+    if len(pa) != 60 or any(r["pass"] != "clear" for r in pa): fail("passes.csv")
+    rs = rows(os.path.join(d, "summary.csv"), summary_cols)
+    if len(rs) != 2: fail("per-run summary")
+    meta = yaml.safe_load(open(os.path.join(d, "meta.yaml")))
+    if meta["run_id"] != p["run_id"] or meta["status"] != "ok": fail(f"meta.yaml {meta}")
+    if len(meta["manifest"]["hash"]) != 16: fail("manifest hash")
+    if meta["gl"]["backend"] != "egl-surfaceless" or not meta["gl"]["renderer"]: fail("meta gl")
+    if not meta["gl"]["debug_context"]: fail("tests run in a debug context")
+    if not meta["host"]["cpu"] or meta["host"]["threads"] < 1: fail("meta host")
+    if meta["parameters"]["resolution"] != p["resolution"]: fail("meta parameters")
+    if meta["parameters"] != {k: v for k, v in p.items() if k not in ("index", "run_id", "shard")}:
+        fail(f"meta parameters differ from plan.csv: {meta['parameters']}")
+    for k in ("started", "finished"):
+        if not str(meta[k]).endswith("Z"): fail(f"meta {k}")
+    pp = meta["pass_plan"]
+    if pp["passes"] != [{"name": "clear", "run": True, "reason": "clears the output framebuffer"}]:
+        fail(f"pass plan {pp}")
+    if pp["programs"] != [] or pp["targets"] != [] or pp["gbuffer_bytes"] != 0: fail("pass plan")
+    for trial in (1, 2):
+        png = os.path.join(d, f"screenshot-trial{trial}-t1.5.png")
+        with open(png, "rb") as f:
+            head = f.read(24)
+        if head[:8] != b"\x89PNG\r\n\x1a\n": fail(f"{png} is not a PNG")
+        if struct.unpack(">II", head[16:24]) != (w, h): fail(f"{png} size")
+left = [p for p in glob.glob(out + "/**", recursive=True) if ".tmp." in p]
+if left: fail(f"temporary files left: {left}")
+PY
+echo "ok"
