@@ -1,0 +1,30 @@
+#!/usr/bin/env bash
+# Installs the Debian packages shadesweep needs to build, run and test, when any is
+# missing. Quiet when nothing needs installing. Safe to run any number of times.
+set -euo pipefail
+
+packages=(
+  meson ninja-build pkg-config gcc g++
+  libegl-dev libegl-mesa0 libgl-dev libgl1-mesa-dri   # EGL, GL headers, Mesa llvmpipe
+  libosmesa6-dev                                      # the second backend
+  libyaml-dev libopenimageio-dev
+  libcmocka-dev libcglm-dev                           # tests; cglm is the math oracle
+  python3 python3-yaml                                # end-to-end test checks
+)
+
+missing=()
+for p in "${packages[@]}"; do
+  status=$(dpkg-query -W -f='${db:Status-Status}' "$p" 2>/dev/null || true)
+  [ "$status" = installed ] || missing+=("$p")
+done
+[ ${#missing[@]} -eq 0 ] && exit 0
+
+echo "setup: installing ${missing[*]}" >&2
+sudo=()
+if [ "$(id -u)" -ne 0 ]; then
+  command -v sudo >/dev/null || { echo "setup: need root (or sudo) to install: ${missing[*]}" >&2; exit 1; }
+  sudo=(sudo)
+fi
+export DEBIAN_FRONTEND=noninteractive
+"${sudo[@]}" apt-get update -qq >&2
+"${sudo[@]}" apt-get install -y -qq --no-install-recommends "${missing[@]}" >&2
