@@ -11,7 +11,7 @@
  * >>values    one parser per parameter type
  * >>checks    what needs the whole manifest: required keys, swept-and-set,
  *             lights placement against count
- * >>load      manifest_load, experiment_free
+ * >>load      manifest_load (a file), manifest_load_mem (bytes), experiment_free
  * >>kv        run_params_kv */
 #include "runner/manifest.h"
 
@@ -66,6 +66,7 @@ enum {
     PF_SWEEP = 1u << 1,        /* may be a key of `sweep` */
     PF_MIN_OPEN = 1u << 2,     /* PT_NUMBER, PT_SPAN seconds: value > min rather than >= */
     PF_FLOAT = 1u << 3,        /* PT_NUMBER stored as float */
+    PF_NOT_IN_ID = 1u << 4,    /* recorded, but changes no result: not part of the run id */
 };
 
 typedef struct param {
@@ -124,6 +125,10 @@ static const param table[] = {
                     "accepted and recorded with clock: wall, where it has no effect"},
     {.path = "sync", .type = PT_ENUM, .flags = PF_SWEEP, .def = "finish", .values = sync_names,
      RP(sync), .description = "how a frame's end is measured: glFinish or a fence wait"},
+    {.path = "timeout", .type = PT_NUMBER, .flags = PF_SWEEP | PF_NOT_IN_ID, .def = "0",
+     .min = 0, .max = 2592000, RP(timeout_s),
+     .description = "seconds a run (all its trials) may take before it is stopped and recorded "
+                    "as failed:timeout; 0: 600 + 3 x trials x (warm-up + duration) seconds"},
     {.path = "lights", .type = PT_GROUP,
      .description = "light placement; without it (and without a swept lights.* key) "
                     "a run has no lights: placement none, count 0"},
@@ -1157,28 +1162,32 @@ static void sort_diags(diag_list *d, size_t from)
     free(t);
 }
 
-bool manifest_load(const char *path, experiment **out, diag_list *diags)
+bool manifest_load_mem(const char *name, const char *data, size_t len, experiment **out,
+                       diag_list *diags)
 {
     *out = NULL;
     size_t from = diags->n;
-    unsigned char *buf = NULL;
-    size_t len = 0;
     ydoc *doc = NULL;
     bool ok = false;
-    vctx c = {.file = path, .d = diags};
+    vctx c = {.file = name, .d = diags};
 
     experiment *e = calloc(1, sizeof *e);
-    if (!e || !(e->path = strdup(path)) || !(e->description = strdup(""))) {
-        diag_add(diags, path, 0, 0, "", "expected to load the manifest, found no memory left");
+    if (!e || !(e->path = strdup(name)) || !(e->description = strdup(""))) {
+        diag_add(diags, name, 0, 0, "", "expected to load the manifest, found no memory left");
         goto done;
     }
     c.e = e;
-    if (!read_file(path, &buf, &len, diags))
+    if (len > MANIFEST_MAX_BYTES) {
+        diag_add(diags, name, 0, 0, "", "expected a manifest of at most %u bytes, found %zu bytes",
+                 MANIFEST_MAX_BYTES, len);
         goto done;
-    hash_hex(fnv1a64(buf, len), 16, e->hash);
+    }
+    if (!data)
+        data = "";   /* libyaml wants a buffer even for no bytes */
+    hash_hex(fnv1a64(data, len), 16, e->hash);
     if (!apply_defaults(&c, &e->base))
         goto done;
-    if (!ydoc_load(path, buf, len, &doc, diags))
+    if (!ydoc_load(name, data, len, &doc, diags))
         goto done;
 
     c.root = doc->root;
@@ -1197,11 +1206,22 @@ bool manifest_load(const char *path, experiment **out, diag_list *diags)
 done:
     sort_diags(diags, from);
     ydoc_free(doc);
-    free(buf);
     if (ok)
         *out = e;
     else
         experiment_free(e);
+    return ok;
+}
+
+bool manifest_load(const char *path, experiment **out, diag_list *diags)
+{
+    *out = NULL;
+    unsigned char *buf = NULL;
+    size_t len = 0;
+    if (!read_file(path, &buf, &len, diags))
+        return false;
+    bool ok = manifest_load_mem(path, (const char *)buf, len, out, diags);
+    free(buf);
     return ok;
 }
 
@@ -1314,6 +1334,7 @@ size_t run_params_kv(const run_params *p, param_kv *out, size_t max)
         if (pd->size == 0)
             continue;
         out[k].key = pd->column ? pd->column : pd->path;
+        out[k].in_id = !(pd->flags & PF_NOT_IN_ID);
         format_value(pd, p, out[k].value, sizeof out[k].value);
         k++;
     }

@@ -33,6 +33,7 @@ typedef struct run_params {
     run_clock clock;
     double step;               /* seconds of scene time per frame with clock: fixed */
     run_sync sync;
+    double timeout_s;          /* a run still going after this long is stopped; 0: automatic */
     light_params lights;
     bool out_frames, out_seconds;
     size_t nscreenshots;
@@ -67,6 +68,11 @@ typedef struct plan {
 /* Parses and validates; on any error returns false with every problem in diags
  * (and *out = NULL). Nothing is written anywhere. */
 bool manifest_load(const char *path, experiment **out, diag_list *diags);
+/* The same for a manifest already in memory: data[0..len) are the file's bytes
+ * (NULs included; data may be NULL when len is 0) and `name` stands for the path
+ * in messages and in experiment.path. manifest_load reads the file and calls it. */
+bool manifest_load_mem(const char *name, const char *data, size_t len, experiment **out,
+                       diag_list *diags);
 void experiment_free(experiment *e);   /* NULL is fine */
 
 /* The cartesian product of the sweep axes (first axis varies slowest) times the
@@ -76,10 +82,11 @@ bool plan_expand(const experiment *e, unsigned nshards, plan *out, diag_list *di
 void plan_free(plan *p);
 
 /* The resolved parameters as (column, canonical text) pairs, in table order; the
- * run id hashes exactly these. Returns the number of pairs (<= max). */
+ * run id hashes exactly those with in_id. Returns the number of pairs (<= max). */
 typedef struct param_kv {
     const char *key;           /* dotted path, static */
     char value[96];
+    bool in_id;                /* part of the run id (timeout is not: it changes no result) */
 } param_kv;
 size_t run_params_kv(const run_params *p, param_kv *out, size_t max);
 #define PARAM_KV_MAX 48

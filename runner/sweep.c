@@ -19,6 +19,8 @@ static void run_id(const run_params *p, char id[13])
     size_t n = run_params_kv(p, kv, PARAM_KV_MAX);
     uint64_t h = FNV1A64_OFFSET_BASIS;
     for (size_t i = 0; i < n; i++) {
+        if (!kv[i].in_id)
+            continue;
         h = fnv1a64_update(h, kv[i].key, strlen(kv[i].key));
         h = fnv1a64_update(h, "=", 1);
         h = fnv1a64_update(h, kv[i].value, strlen(kv[i].value));

@@ -369,6 +369,7 @@ static void test_kv_canonical(void **state)
         {"clock", "wall"},
         {"step", "0.016666666666666666"},
         {"sync", "finish"},
+        {"timeout", "0"},
         {"lights.placement", "none"},
         {"lights.seed", "1337"},
         {"lights.rng", "msvc"},
@@ -390,6 +391,7 @@ static void test_kv_canonical(void **state)
         {"clock", "fixed"},
         {"step", "0.1"},
         {"sync", "fence"},
+        {"timeout", "7200"},
         {"lights.placement", "random"},
         {"lights.seed", "4294967295"},
         {"lights.rng", "pcg32"},
@@ -417,6 +419,8 @@ static void test_kv_canonical(void **state)
         for (size_t i = 0; i < n; i++) {
             assert_string_equal(kv[i].key, cases[c].kv[i][0]);
             assert_string_equal(kv[i].value, cases[c].kv[i][1]);
+            /* a timeout changes no result, so it is not part of the run id */
+            assert_int_equal(kv[i].in_id, strcmp(kv[i].key, "timeout") != 0);
         }
         /* max bounds the pairs written */
         assert_int_equal(run_params_kv(&e->base, kv, 3), 3);
@@ -473,7 +477,7 @@ static const bad_case bad_cases[] = {
     {"unknown_top_key.yaml",
      {"1:1: duration: expected {seconds: S} or {frames: N}, found nothing",
       "5:1: durtion: expected one of shadesweep, name, description, scene, renderers, "
-      "resolution, trials, warmup, duration, clock, step, sync, lights, outputs, sweep, "
+      "resolution, trials, warmup, duration, clock, step, sync, timeout, lights, outputs, sweep, "
       "found 'durtion'"}},
     {"unknown_nested_key.yaml",
      {"8:3: lights.cnt: expected one of placement, seed, rng, count, radius, color_max, "
@@ -557,7 +561,7 @@ static const bad_case bad_cases[] = {
       "found 17 times"}},
     {"sweep_unknown_path.yaml",
      {"7:3: sweep.lights.cnt: expected a sweepable parameter (one of scene, resolution, "
-      "trials, warmup, duration, clock, step, sync, lights.placement, lights.seed, lights.rng, "
+      "trials, warmup, duration, clock, step, sync, timeout, lights.placement, lights.seed, lights.rng, "
       "lights.count, lights.radius, lights.color_max), found 'lights.cnt'"}},
     {"sweep_empty_list.yaml",
      {"7:11: sweep.trials: expected a non-empty sequence of values, found an empty sequence"}},
@@ -575,7 +579,7 @@ static const bad_case bad_cases[] = {
       "5:13: resolution: expected WxH with each side 1..32768, found '640x'",
       "6:9: trials: expected an integer 1..1000, found '0'",
       "7:1: durtion: expected one of shadesweep, name, description, scene, renderers, "
-      "resolution, trials, warmup, duration, clock, step, sync, lights, outputs, sweep, "
+      "resolution, trials, warmup, duration, clock, step, sync, timeout, lights, outputs, sweep, "
       "found 'durtion'",
       "8:19: warmup.seconds: expected a number >= 0 and <= 3600, found '-1'",
       "10:9: lights.seed: expected an integer 0..4294967295, found '-1'",
