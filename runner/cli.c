@@ -12,6 +12,7 @@
 #include "renderers/renderer.h"
 #include "results/fsutil.h"
 #include "runner/manifest.h"
+#include "runner/merge.h"
 #include "runner/run.h"
 #include "scenes/scene.h"
 
@@ -22,6 +23,8 @@ static const char usage_text[] =
     "  run [OPTIONS] MANIFEST     render every run of the manifest and write the results\n"
     "      -o, --out DIR          output folder (default: out/<name>)\n"
     "      --force                replace an existing output folder made by shadesweep\n"
+    "      --resume               keep the complete runs of an existing output folder and\n"
+    "                             run the others (a killed sweep goes on where it stopped)\n"
     "      --backend egl|osmesa   GL backend (default: egl)\n"
     "      --device N             EGL device N instead of Mesa's surfaceless platform\n"
     "      --shard I/N            only the runs of shard I of N (1 <= I <= N)\n"
@@ -30,6 +33,7 @@ static const char usage_text[] =
     "  validate MANIFEST...       check manifests; print every error\n"
     "  list [--shard I/N] MANIFEST  the expanded runs, one per line\n"
     "  info [--backend B] [--device N]  the GL context's vendor, renderer and limits\n"
+    "  merge -o OUT [--force] DIR...  combine the output folders of a sweep's shards\n"
     "  --version, --help\n"
     "\n"
     "exit status: 0 all runs succeeded; 1 some run failed (summary.csv says which);\n"
@@ -37,13 +41,13 @@ static const char usage_text[] =
 
 typedef struct cli_opts {
     const char *out;
-    bool force, debug_gl;
+    bool force, resume, debug_gl;
     gl_backend backend;
     int device;
     unsigned shard, nshards;
 } cli_opts;
 
-enum { OPT_FORCE = 1000, OPT_BACKEND, OPT_DEVICE, OPT_SHARD, OPT_DEBUG_GL };
+enum { OPT_FORCE = 1000, OPT_BACKEND, OPT_DEVICE, OPT_SHARD, OPT_DEBUG_GL, OPT_RESUME };
 
 /* Parses the options a command accepts; `allowed` lists their long names. Returns
  * the index of the first operand, or -1 after printing the problem. */
@@ -56,6 +60,7 @@ static int parse_opts(int argc, char **argv, const char *allowed, cli_opts *o)
         {"device", required_argument, NULL, OPT_DEVICE},
         {"shard", required_argument, NULL, OPT_SHARD},
         {"debug-gl", no_argument, NULL, OPT_DEBUG_GL},
+        {"resume", no_argument, NULL, OPT_RESUME},
         {NULL, 0, NULL, 0},
     };
     memset(o, 0, sizeof *o);
@@ -83,6 +88,7 @@ static int parse_opts(int argc, char **argv, const char *allowed, cli_opts *o)
         case 'o': o->out = optarg; break;
         case OPT_FORCE: o->force = true; break;
         case OPT_DEBUG_GL: o->debug_gl = true; break;
+        case OPT_RESUME: o->resume = true; break;
         case OPT_BACKEND:
             if (strcmp(optarg, "egl") == 0)
                 o->backend = GL_BACKEND_EGL;
@@ -221,11 +227,15 @@ static int cmd_info(int argc, char **argv)
 static int cmd_run(int argc, char **argv)
 {
     cli_opts o;
-    int first = parse_opts(argc, argv, "out force backend device shard debug-gl", &o);
+    int first = parse_opts(argc, argv, "out force resume backend device shard debug-gl", &o);
     if (first < 0)
         return 2;
     if (argc - first != 1) {
         fprintf(stderr, "shadesweep run: expected one manifest\n");
+        return 2;
+    }
+    if (o.force && o.resume) {
+        fprintf(stderr, "shadesweep run: --force and --resume exclude each other\n");
         return 2;
     }
     experiment *e;
@@ -242,9 +252,11 @@ static int cmd_run(int argc, char **argv)
     if (fs_exists(dir)) {
         char marker[4200];
         snprintf(marker, sizeof marker, "%s/plan.csv", dir);
-        if (!o.force) {
+        if (!o.force && !o.resume) {
             fprintf(stderr,
-                    "shadesweep run: %s exists; use --force to replace it, or --out DIR\n", dir);
+                    "shadesweep run: %s exists; use --resume to finish it, --force to replace "
+                    "it, or --out DIR\n",
+                    dir);
             goto done;
         }
         if (!fs_exists(marker)) {
@@ -254,7 +266,7 @@ static int cmd_run(int argc, char **argv)
                     dir);
             goto done;
         }
-        if (!fs_remove_tree(dir, err, sizeof err)) {
+        if (o.force && !fs_remove_tree(dir, err, sizeof err)) {
             fprintf(stderr, "shadesweep run: %s\n", err);
             goto done;
         }
@@ -271,6 +283,8 @@ static int cmd_run(int argc, char **argv)
         .device = o.device,
         .debug_gl = o.debug_gl,
         .shard = o.nshards > 1 ? o.shard : 0,
+        .nshards = o.nshards,
+        .resume = o.resume,
     };
     rc = run_plan(e, &p, &ro);
     if (rc != 2)
@@ -279,6 +293,19 @@ done:
     plan_free(&p);
     experiment_free(e);
     return rc;
+}
+
+static int cmd_merge(int argc, char **argv)
+{
+    cli_opts o;
+    int first = parse_opts(argc, argv, "out force", &o);
+    if (first < 0)
+        return 2;
+    if (!o.out || first >= argc) {
+        fprintf(stderr, "shadesweep merge: expected -o OUT and one or more shard folders\n");
+        return 2;
+    }
+    return merge_main(o.out, o.force, argc - first, argv + first);
 }
 
 int cli_main(int argc, char **argv)
@@ -305,6 +332,8 @@ int cli_main(int argc, char **argv)
         return cmd_list(argc - 1, argv + 1);
     if (strcmp(cmd, "info") == 0)
         return cmd_info(argc - 1, argv + 1);
+    if (strcmp(cmd, "merge") == 0)
+        return cmd_merge(argc - 1, argv + 1);
     fprintf(stderr, "shadesweep: unknown command '%s'\n\n%s", cmd, usage_text);
     return 2;
 }

@@ -7,6 +7,8 @@
 #include <string.h>
 
 #include "results/fsutil.h"
+#include "results/yamlout.h"
+#include "runner/yamldoc.h"
 
 const char *const summary_columns[] = {
     "experiment", "run_id", "renderer", "scene", "width", "height", "gbuffer",
@@ -15,7 +17,7 @@ const char *const summary_columns[] = {
     "frametime_ci95_us", "frametime_p50_us", "frametime_p99_us", "gpu_mean_us",
     "draw_calls_mean", "state_changes_mean", "fragments_mean", "gbuffer_bytes",
     "image_rmse", "image_psnr_db", "image_max_abs", "nonfinite_pixels", "harness_us_mean",
-    "status",
+    "status", "message",
 };
 const size_t summary_ncolumns = sizeof summary_columns / sizeof summary_columns[0];
 
@@ -188,7 +190,7 @@ static const char *placement_name(light_placement p)
 
 bool output_write_run_summary(const char *run_dir, const experiment *e, const run_spec *s,
                               const pass_plan *pp, const trial_result *t, size_t ntrials,
-                              char *err, size_t errlen)
+                              const char *message, char *err, size_t errlen)
 {
     char path[4096];
     join(path, sizeof path, run_dir, "summary.csv");
@@ -231,6 +233,7 @@ bool output_write_run_summary(const char *run_dir, const experiment *e, const ru
         csv_empty(w);
         csv_f64(w, r->harness_us_mean, 3);
         csv_str(w, r->status);
+        csv_str(w, strcmp(r->status, "ok") == 0 ? "" : message);
         csv_end_row(w);
     }
     return csv_commit(w, err, errlen);
@@ -275,8 +278,8 @@ static bool append_rows(FILE *out, const char *path, const char *header, bool *m
     return ok;
 }
 
-bool output_merge_summary(const char *out_dir, const plan *p, unsigned shard, char *err,
-                          size_t errlen)
+bool output_merge_summary_ids(const char *out_dir, char (*const ids)[13], size_t nids,
+                              size_t *nmissing, char *err, size_t errlen)
 {
     char path[4096], header[2048];
     size_t off = 0;
@@ -290,17 +293,94 @@ bool output_merge_summary(const char *out_dir, const plan *p, unsigned shard, ch
     if (!afile_open(&f, path, err, errlen))
         return false;
     fputs(header, f.fp);
-    for (size_t r = 0; r < p->nruns; r++) {
-        const run_spec *s = &p->runs[r];
-        if (shard && s->shard != shard)
-            continue;
+    *nmissing = 0;
+    for (size_t r = 0; r < nids; r++) {
         char run_summary[4096];
-        snprintf(run_summary, sizeof run_summary, "%s/runs/%s/summary.csv", out_dir, s->id);
+        snprintf(run_summary, sizeof run_summary, "%s/runs/%s/summary.csv", out_dir, ids[r]);
         bool missing = false;
         if (!append_rows(f.fp, run_summary, header, &missing, err, errlen)) {
             afile_abort(&f);
             return false;
         }
+        *nmissing += missing;
     }
     return afile_commit(&f, err, errlen);
+}
+
+bool output_merge_summary(const char *out_dir, const plan *p, unsigned shard, char *err,
+                          size_t errlen)
+{
+    char(*ids)[13] = calloc(p->nruns ? p->nruns : 1, sizeof *ids);
+    if (!ids) {
+        snprintf(err, errlen, "out of memory");
+        return false;
+    }
+    size_t n = 0, missing;
+    for (size_t r = 0; r < p->nruns; r++)
+        if (!shard || p->runs[r].shard == shard)
+            memcpy(ids[n++], p->runs[r].id, 13);
+    bool ok = output_merge_summary_ids(out_dir, ids, n, &missing, err, errlen);
+    free(ids);
+    return ok;
+}
+
+bool output_write_sweep_meta(const char *out_dir, const sweep_meta *m, char *err, size_t errlen)
+{
+    char path[4096];
+    join(path, sizeof path, out_dir, "sweep.yaml");
+    yaml_out *y = yo_open(path, err, errlen);
+    if (!y)
+        return false;
+    yo_map_begin(y);
+    yo_key(y, "experiment"); yo_str(y, m->experiment);
+    yo_key(y, "manifest_path"); yo_str(y, m->manifest_path);
+    yo_key(y, "manifest_hash"); yo_str(y, m->manifest_hash);
+    yo_key(y, "runs"); yo_i64(y, (int64_t)m->runs);
+    yo_key(y, "shard"); yo_str(y, m->shard);
+    yo_map_end(y);
+    return yo_commit(y, err, errlen);
+}
+
+bool output_read_sweep_meta(const char *out_dir, sweep_meta *m, char *err, size_t errlen)
+{
+    char path[4096];
+    join(path, sizeof path, out_dir, "sweep.yaml");
+    memset(m, 0, sizeof *m);
+    FILE *f = fopen(path, "rb");
+    char buf[16384];
+    size_t n = f ? fread(buf, 1, sizeof buf - 1, f) : 0;
+    if (f)
+        fclose(f);
+    if (!f || n == 0) {
+        snprintf(err, errlen, "%s: not a shadesweep output folder (no readable sweep.yaml)",
+                 out_dir);
+        return false;
+    }
+    buf[n] = 0;
+    diag_list d = {0};
+    ydoc *doc = NULL;
+    bool ok = ydoc_load(path, buf, n, &doc, &d) && doc->root->kind == YNODE_MAPPING;
+    for (size_t i = 0; ok && i < doc->root->n; i++) {
+        const ypair *pr = &doc->root->pairs[i];
+        if (pr->key->kind != YNODE_SCALAR || pr->value->kind != YNODE_SCALAR)
+            continue;
+        const char *k = pr->key->text, *v = pr->value->text;
+        if (strcmp(k, "experiment") == 0)
+            snprintf(m->experiment, sizeof m->experiment, "%s", v);
+        else if (strcmp(k, "manifest_path") == 0)
+            snprintf(m->manifest_path, sizeof m->manifest_path, "%s", v);
+        else if (strcmp(k, "manifest_hash") == 0 && pr->value->len == 16)
+            memcpy(m->manifest_hash, v, 17);
+        else if (strcmp(k, "runs") == 0)
+            m->runs = (size_t)strtoull(v, NULL, 10);
+        else if (strcmp(k, "shard") == 0)
+            snprintf(m->shard, sizeof m->shard, "%s", v);
+    }
+    ydoc_free(doc);
+    diag_free(&d);
+    if (!ok || !m->manifest_hash[0]) {
+        snprintf(err, errlen, "%s: no manifest_hash", path);
+        return false;
+    }
+    return true;
 }

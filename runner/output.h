@@ -21,6 +21,19 @@ extern const size_t summary_ncolumns;
 
 bool output_write_plan(const char *out_dir, const plan *p, char *err, size_t errlen);
 
+/* OUT/sweep.yaml: which manifest (path and hash) the folder's runs come from, how
+ * many runs the plan has and which shard this folder holds ("2/4", "all", or
+ * "merged from N folders"). merge refuses folders whose hashes differ. */
+typedef struct sweep_meta {
+    char experiment[64];
+    char manifest_path[4096];
+    char manifest_hash[17];
+    size_t runs;
+    char shard[64];
+} sweep_meta;
+bool output_write_sweep_meta(const char *out_dir, const sweep_meta *m, char *err, size_t errlen);
+bool output_read_sweep_meta(const char *out_dir, sweep_meta *m, char *err, size_t errlen);
+
 /* The per-run CSV streams, open across the run's trials. */
 typedef struct run_files {
     csv_writer *frames, *seconds, *passes;
@@ -49,11 +62,16 @@ typedef struct trial_result {
     char status[96];           /* "ok" or "failed:<reason>" */
 } trial_result;
 
+/* message: why the run failed ("" when it did not), into the `message` column. */
 bool output_write_run_summary(const char *run_dir, const experiment *e, const run_spec *s,
                               const pass_plan *pp, const trial_result *t, size_t ntrials,
-                              char *err, size_t errlen);
+                              const char *message, char *err, size_t errlen);
 
 /* OUT/summary.csv from the runs' own summary.csv files, in plan order; runs of
  * other shards, and runs without a summary, are left out. */
 bool output_merge_summary(const char *out_dir, const plan *p, unsigned shard, char *err,
                           size_t errlen);
+/* The same from a list of run ids (plan order); *nmissing counts ids without a
+ * complete run. */
+bool output_merge_summary_ids(const char *out_dir, char (*const ids)[13], size_t nids,
+                              size_t *nmissing, char *err, size_t errlen);

@@ -1,9 +1,14 @@
+/* MAP_ANONYMOUS: the child's report to the parent lives in an anonymous shared map. */
+#define _DEFAULT_SOURCE
 #include "runner/run.h"
 
+#include <dirent.h>
 #include <math.h>
+#include <signal.h>
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
+#include <sys/mman.h>
 #include <time.h>
 #include <unistd.h>
 
@@ -15,6 +20,7 @@
 #include "results/image_io.h"
 #include "results/stats.h"
 #include "results/yamlout.h"
+#include "runner/isolate.h"
 #include "runner/output.h"
 #include "runner/progress.h"
 #include "scenes/scene.h"
@@ -57,6 +63,7 @@ typedef struct run_state {
     trial_result *trials;
     char started[32], finished[32];
     char status[96];
+    char message[1024];        /* why it failed, for summary.csv */
     char err[512];
 } run_state;
 
@@ -435,6 +442,7 @@ static bool run_setup(run_state *st)
     return true;
 }
 
+/* Releases what run_setup and the trials made (not st->trials: the parent's). */
 static void run_teardown(run_state *st)
 {
     run_files_abort(&st->files);
@@ -442,23 +450,45 @@ static void run_teardown(run_state *st)
     scene_destroy(st->sc);
     gl_context_destroy(st->ctx);
     free(st->log.v);
-    free(st->trials);
 }
 
-/* Runs one run_spec; returns its status in st->status. */
+/* Rows for trials that never ran, so that every run has one row per trial. */
+static void fill_missing_trials(run_state *st)
+{
+    for (uint32_t t = 0; t < st->s->p.trials; t++) {
+        trial_result *tr = &st->trials[t];
+        if (tr->trial != 0)
+            continue;
+        tr->trial = t + 1;
+        tr->ft.mean = tr->ft.sd = tr->ft.p50 = tr->ft.p99 = NAN;
+        tr->ft_ci95 = tr->fps_mean = tr->measured_s = NAN;
+        tr->gpu_mean_us = tr->draw_calls_mean = tr->state_changes_mean = NAN;
+        tr->fragments_mean = tr->harness_us_mean = NAN;
+        snprintf(tr->status, sizeof tr->status, "%s",
+                 strcmp(st->status, "ok") ? st->status : "failed:not-run");
+    }
+}
+
+/* meta.yaml, then the run's summary.csv: the summary is written last, so its
+ * presence means the run is complete (what --resume looks for). */
+static void write_run_result(run_state *st)
+{
+    fill_missing_trials(st);
+    utc_now(st->finished, sizeof st->finished);
+    char err[512];
+    if (!fs_mkdirs(st->dir, err, sizeof err) || !write_meta(st, err, sizeof err) ||
+        !output_write_run_summary(st->dir, st->e, st->s, &st->plan, st->trials,
+                                  st->s->p.trials, st->message, err, sizeof err)) {
+        fprintf(stderr, "run %s: %s\n", st->s->id, err);
+        set_status(st, "output");
+    }
+}
+
+/* Runs one run_spec in this process; its status ends in st->status. */
 static void run_one(run_state *st)
 {
     const run_params *p = &st->s->p;
-    snprintf(st->status, sizeof st->status, "ok");
-    utc_now(st->started, sizeof st->started);
-    snprintf(st->dir, sizeof st->dir, "%s/runs/%s", st->o->out_dir, st->s->id);
-    st->trials = calloc(p->trials, sizeof *st->trials);
-    if (!st->trials) {
-        snprintf(st->err, sizeof st->err, "out of memory");
-        set_status(st, "oom");
-    }
-
-    if (st->trials && run_setup(st)) {
+    if (run_setup(st)) {
         for (uint32_t t = 1; t <= p->trials; t++) {
             trial_result *tr = &st->trials[t - 1];
             run_trial(st, t, tr);
@@ -471,34 +501,73 @@ static void run_one(run_state *st)
             fprintf(stderr, "run %s: %s\n", st->s->id, st->err);
             set_status(st, "output");
         }
-    } else if (st->trials) {
+    } else {
         fprintf(stderr, "run %s: %s\n", st->s->id, st->err);
     }
+    if (strcmp(st->status, "ok") != 0 && st->err[0])
+        snprintf(st->message, sizeof st->message, "%s", st->err);
+    write_run_result(st);
+}
 
-    /* A run that failed before measuring still gets its rows, saying why. */
-    if (st->trials) {
-        for (uint32_t t = 0; t < p->trials; t++) {
-            trial_result *tr = &st->trials[t];
-            if (tr->trial == 0) {
-                tr->trial = t + 1;
-                tr->ft.mean = tr->ft.sd = tr->ft.p50 = tr->ft.p99 = NAN;
-                tr->ft_ci95 = tr->fps_mean = tr->measured_s = NAN;
-                tr->gpu_mean_us = tr->draw_calls_mean = tr->state_changes_mean = NAN;
-                tr->fragments_mean = tr->harness_us_mean = NAN;
-                snprintf(tr->status, sizeof tr->status, "%s",
-                         strcmp(st->status, "ok") ? st->status : "failed:not-run");
-            }
+/* What a run's child tells the parent, through memory shared across the fork. */
+typedef struct run_report {
+    int done;                  /* set last: the fields below are complete */
+    char status[96];
+    char message[512];
+    double fps;
+} run_report;
+
+typedef struct child_args {
+    run_state *st;
+    run_report *report;
+} child_args;
+
+static int child_main(void *arg)
+{
+    child_args *a = arg;
+    run_one(a->st);
+    snprintf(a->report->status, sizeof a->report->status, "%s", a->st->status);
+    snprintf(a->report->message, sizeof a->report->message, "%.500s", a->st->message);
+    a->report->fps = a->st->trials[0].frames ? a->st->trials[0].fps_mean : 0;
+    a->report->done = 1;
+    run_teardown(a->st);
+    return strcmp(a->st->status, "ok") == 0 ? 0 : 1;
+}
+
+static double seconds_of(const span *sp) { return sp->kind == SPAN_SECONDS ? sp->seconds : 0; }
+
+double run_timeout_s(const run_params *p)
+{
+    if (p->timeout_s > 0)
+        return p->timeout_s;
+    return 600.0 + 3.0 * p->trials * (seconds_of(&p->warmup) + seconds_of(&p->duration));
+}
+
+/* Removes what a child that did not finish left behind: temporary files. */
+static void remove_temp_files(const char *dir)
+{
+    DIR *d = opendir(dir);
+    if (!d)
+        return;
+    struct dirent *ent;
+    char path[4400];
+    while ((ent = readdir(d)))
+        if (strstr(ent->d_name, ".tmp.")) {
+            snprintf(path, sizeof path, "%s/%s", dir, ent->d_name);
+            unlink(path);
         }
-    }
-    utc_now(st->finished, sizeof st->finished);
-    char err[512];
-    if (fs_mkdirs(st->dir, err, sizeof err) &&
-        (!st->trials || !write_meta(st, err, sizeof err) ||
-         !output_write_run_summary(st->dir, st->e, st->s, &st->plan, st->trials, p->trials,
-                                   err, sizeof err))) {
-        fprintf(stderr, "run %s: %s\n", st->s->id, err);
-        set_status(st, "output");
-    }
+    closedir(d);
+}
+
+static volatile sig_atomic_t stop_signal;
+
+static void on_stop_signal(int sig) { stop_signal = sig; }
+
+bool run_is_complete(const char *out_dir, const char *id)
+{
+    char path[4200];
+    snprintf(path, sizeof path, "%s/runs/%s/summary.csv", out_dir, id);
+    return fs_exists(path);
 }
 
 int run_plan(const experiment *e, const plan *p, const run_options *o)
@@ -508,29 +577,127 @@ int run_plan(const experiment *e, const plan *p, const run_options *o)
         fprintf(stderr, "shadesweep: %s\n", err);
         return 2;
     }
-    size_t selected = 0;
-    for (size_t i = 0; i < p->nruns; i++)
-        selected += !o->shard || p->runs[i].shard == o->shard;
-
-    progress pg;
-    progress_init(&pg, selected, stderr);
-    size_t k = 0, failed = 0;
+    remove_temp_files(o->out_dir);
+    sweep_meta sm = {.runs = p->nruns};
+    snprintf(sm.experiment, sizeof sm.experiment, "%s", e->name);
+    snprintf(sm.manifest_path, sizeof sm.manifest_path, "%s", e->path);
+    memcpy(sm.manifest_hash, e->hash, sizeof sm.manifest_hash);
+    if (o->shard)
+        snprintf(sm.shard, sizeof sm.shard, "%u/%u", o->shard, o->nshards);
+    else
+        snprintf(sm.shard, sizeof sm.shard, "all");
+    if (!output_write_sweep_meta(o->out_dir, &sm, err, sizeof err)) {
+        fprintf(stderr, "shadesweep: %s\n", err);
+        return 2;
+    }
+    size_t selected = 0, skipped = 0;
     for (size_t i = 0; i < p->nruns; i++) {
         const run_spec *s = &p->runs[i];
         if (o->shard && s->shard != o->shard)
             continue;
+        selected++;
+        skipped += o->resume && run_is_complete(o->out_dir, s->id);
+    }
+    if (o->resume)
+        fprintf(stderr, "resuming: %zu of %zu runs already complete\n", skipped, selected);
+
+    /* Progress goes to the terminal (or log) the user sees; each child's own
+     * stderr goes to its run's log.txt. */
+    int fd = dup(STDERR_FILENO);
+    FILE *progress_out = fd >= 0 ? fdopen(fd, "w") : NULL;
+    if (!progress_out) {
+        fprintf(stderr, "shadesweep: cannot duplicate stderr\n");
+        return 2;
+    }
+    setvbuf(progress_out, NULL, _IOLBF, 0);
+    struct sigaction sa = {.sa_handler = on_stop_signal}, old_int, old_term;
+    sigemptyset(&sa.sa_mask);
+    sigaction(SIGINT, &sa, &old_int);
+    sigaction(SIGTERM, &sa, &old_term);
+    stop_signal = 0;
+
+    progress pg;
+    progress_init(&pg, selected - skipped, progress_out);
+    size_t k = 0, failed = 0, done = 0;
+    int rc = 0;
+    for (size_t i = 0; i < p->nruns && !stop_signal; i++) {
+        const run_spec *s = &p->runs[i];
+        if (o->shard && s->shard != o->shard)
+            continue;
+        if (o->resume && run_is_complete(o->out_dir, s->id)) {
+            done++;
+            continue;
+        }
         progress_run_begin(&pg, ++k, s->id, s->p.renderer, s->p.width, s->p.height);
         run_state st = {.e = e, .s = s, .o = o, .pg = &pg};
-        run_one(&st);
-        double fps = st.trials && st.trials[0].frames ? st.trials[0].fps_mean : 0;
+        snprintf(st.status, sizeof st.status, "ok");
+        utc_now(st.started, sizeof st.started);
+        snprintf(st.dir, sizeof st.dir, "%s/runs/%s", o->out_dir, s->id);
+        char log_path[4300];
+        snprintf(log_path, sizeof log_path, "%s/log.txt", st.dir);
+        run_report *report = mmap(NULL, sizeof *report, PROT_READ | PROT_WRITE,
+                                  MAP_SHARED | MAP_ANONYMOUS, -1, 0);
+        st.trials = calloc(s->p.trials, sizeof *st.trials);
+        if (report == MAP_FAILED || !st.trials || !fs_remove_tree(st.dir, err, sizeof err) ||
+            !fs_mkdirs(st.dir, err, sizeof err)) {
+            fprintf(stderr, "shadesweep: run %s: %s\n", s->id,
+                    st.trials && report != MAP_FAILED ? err : "out of memory");
+            if (report != MAP_FAILED)
+                munmap(report, sizeof *report);
+            free(st.trials);
+            rc = 2;
+            break;
+        }
+        child_args args = {.st = &st, .report = report};
+        isolate_result ir;
+        isolate_run(child_main, &args, run_timeout_s(&s->p), log_path, &stop_signal, &ir);
+        double fps = 0;
+        if (ir.outcome == ISOLATE_INTERRUPTED) {
+            /* Discard the run: resume reruns it. */
+            fs_remove_tree(st.dir, err, sizeof err);
+            snprintf(st.status, sizeof st.status, "interrupted, discarded");
+        } else if (ir.outcome == ISOLATE_EXITED && report->done) {
+            snprintf(st.status, sizeof st.status, "%s", report->status);
+            fps = report->fps;
+            if (report->message[0])
+                fprintf(stderr, "run %s: %s\n", s->id, report->message);
+        } else {
+            /* The child died or hung: the parent writes the run's rows. */
+            isolate_status(&ir, st.status, sizeof st.status);
+            char tail[200];
+            isolate_log_tail(log_path, 3, tail, sizeof tail);
+            snprintf(st.message, sizeof st.message, "%.80s after %.1f s%s%.200s", st.status + 7,
+                     ir.seconds, tail[0] ? ": " : "", tail);
+            fprintf(stderr, "run %s: %s\n", s->id, st.message);
+            remove_temp_files(st.dir);
+            write_run_result(&st);
+        }
+        munmap(report, sizeof *report);
+        free(st.trials);
         progress_run_end(&pg, st.status, fps);
-        failed += strcmp(st.status, "ok") != 0;
-        run_teardown(&st);
+        if (ir.outcome != ISOLATE_INTERRUPTED) {
+            failed += strcmp(st.status, "ok") != 0;
+            done++;
+        }
     }
     progress_finish(&pg);
+    sigaction(SIGINT, &old_int, NULL);
+    sigaction(SIGTERM, &old_term, NULL);
+    fclose(progress_out);
+
     if (!output_merge_summary(o->out_dir, p, o->shard, err, sizeof err)) {
         fprintf(stderr, "shadesweep: %s\n", err);
         return 2;
     }
+    if (stop_signal) {
+        fprintf(stderr,
+                "interrupted by %s: %zu of %zu runs complete; to finish the others:\n"
+                "  shadesweep run --resume -o %s %s\n",
+                stop_signal == SIGINT ? "SIGINT" : "SIGTERM", done, selected, o->out_dir,
+                e->path);
+        return 128 + stop_signal;
+    }
+    if (rc)
+        return rc;
     return failed ? 1 : 0;
 }

@@ -13,9 +13,21 @@ typedef struct run_options {
     gl_backend backend;
     int device;                /* -1: EGL surfaceless; N: EGL device N */
     bool debug_gl;             /* debug context: any GL error fails the run */
-    unsigned shard;            /* only runs of this shard (0 = all) */
+    unsigned shard, nshards;   /* only runs of shard `shard` of `nshards` (0 = all) */
+    bool resume;               /* skip runs whose files are complete */
 } run_options;
 
-/* 0: every run succeeded; 1: some run failed (its rows say why); 2: the sweep
+/* Each run executes in a child process (isolate.h) with the run's time limit; a
+ * crash, hang or OOM kill fails that run and the sweep goes on. SIGINT/SIGTERM
+ * discard the current run, write the summary of the complete ones and return
+ * 128 + the signal, after printing how to resume.
+ * 0: every run succeeded; 1: some run failed (its rows say why); 2: the sweep
  * could not go on (message printed). */
 int run_plan(const experiment *e, const plan *p, const run_options *o);
+
+/* The run's time limit: its `timeout`, or 600 + 3 x trials x (warm-up + duration)
+ * seconds (spans in frames count 0). */
+double run_timeout_s(const run_params *p);
+
+/* A run is complete when its summary.csv (written last) exists. */
+bool run_is_complete(const char *out_dir, const char *id);

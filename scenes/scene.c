@@ -3,9 +3,11 @@
 #include "scenes/scene.h"
 
 #include <math.h>
+#include <signal.h>
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
+#include <time.h>
 
 /* Random placement: for each light in order, x, y, z uniform in the scene's light
  * bounds, then r, g, b uniform in [0, color_max]. Lights are generated up to the
@@ -63,8 +65,11 @@ scene *scene_build(const char *name, const light_params *lp, int width, int heig
     snprintf(s->name, sizeof s->name, "%s", name);
     s->width = width;
     s->height = height;
-    if (strcmp(name, "empty") == 0)
-        build_empty(s);
+    build_empty(s);   /* every scene of the catalog is the empty one so far */
+    static const char *const faults[] = {"test-abort", "test-segv", "test-sigkill", "test-hang"};
+    for (int i = 0; i < 4; i++)
+        if (strcmp(name, faults[i]) == 0)
+            s->fault = i + 1;
 
     s->count = lp->count;
     s->nlights_total = lp->placement == PLACEMENT_NONE ? 0 : light_count_max(&lp->count);
@@ -83,9 +88,28 @@ oom:
     return NULL;
 }
 
+/* The test scenes' faults (catalog.c): each says what it does, then does it. */
+static void inject_fault(const scene *s)
+{
+    fprintf(stderr, "%s: failing at t = %.3f s, as this test scene does\n", s->name, s->t);
+    fflush(stderr);
+    switch (s->fault) {
+    case 1: abort();
+    case 2: raise(SIGSEGV); break;
+    case 3: raise(SIGKILL); break;
+    case 4:
+        for (;;) {
+            struct timespec ts = {1, 0};
+            nanosleep(&ts, NULL);
+        }
+    }
+}
+
 void scene_update(scene *s, double t)
 {
     s->t = t;
+    if (s->fault && t >= 0.2)
+        inject_fault(s);
     uint32_t n = s->nlights_total ? light_count_at(&s->count, t) : 0;
     s->nlights_active = n < s->nlights_total ? n : s->nlights_total;
 

@@ -39,6 +39,8 @@ typedef struct scene {
     float orbit_radius, orbit_height, orbit_period;   /* period in seconds of schedule time */
     float fovy, znear, zfar;
 
+    int fault;                 /* test scenes: what scene_update does at t >= 0.2 (scene.c) */
+
     /* posed by scene_update() */
     double t;
     uint32_t nlights_active;   /* lights[0 .. nlights_active) are on */

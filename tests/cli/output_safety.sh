@@ -25,14 +25,17 @@ rows = list(csv.DictReader(open("out/tiny/summary.csv")))
 st = [(r["width"], r["status"]) for r in rows]
 if st != [("8", "ok"), ("32768", "failed:context"), ("1", "ok")]:
     print("FAIL: statuses", st, file=sys.stderr); sys.exit(1)
+if "32768x32768 exceeds" not in rows[1]["message"] or rows[0]["message"] != "":
+    print("FAIL: message column", [r["message"] for r in rows], file=sys.stderr); sys.exit(1)
 PY
 
-# An existing folder is an error without --force, and is left as it was.
+# An existing folder is an error without --force or --resume, and is left as it was.
 echo keep > out/tiny/note.txt
 set +e
 "$SHADESWEEP" run tiny.yaml 2>err.txt; rc=$?
 set -e
-[ $rc -eq 2 ] && grep -q "exists; use --force" err.txt || fail "existing folder: rc $rc $(cat err.txt)"
+[ $rc -eq 2 ] && grep -q "exists; use --resume to finish it, --force to replace it" err.txt \
+  || fail "existing folder: rc $rc $(cat err.txt)"
 [ -f out/tiny/note.txt ] || fail "existing folder was touched"
 # --force replaces a shadesweep folder ...
 set +e

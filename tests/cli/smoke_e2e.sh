@@ -24,7 +24,7 @@ summary_cols = ["experiment","run_id","renderer","scene","width","height","gbuff
   "frames","measured_s","fps_mean","frametime_mean_us","frametime_sd_us","frametime_ci95_us",
   "frametime_p50_us","frametime_p99_us","gpu_mean_us","draw_calls_mean","state_changes_mean",
   "fragments_mean","gbuffer_bytes","image_rmse","image_psnr_db","image_max_abs",
-  "nonfinite_pixels","harness_us_mean","status"]
+  "nonfinite_pixels","harness_us_mean","status","message"]
 frames_cols = ["run_id","trial","frame","t_wall_s","t_scene_s","lights","frametime_us",
   "gpu_us","draw_calls","state_changes","fragments"]
 seconds_cols = ["run_id","trial","second","complete","lights_min","lights_max","frames","fps",
@@ -49,7 +49,7 @@ if len(summary) != 8:
     fail(f"summary has {len(summary)} rows, want 4 runs x 2 trials")
 for s, want_id in zip(summary, [i for i in ids for _ in (1, 2)]):
     if s["run_id"] != want_id: fail(f"summary order: {s['run_id']} != {want_id}")
-    if s["status"] != "ok": fail(f"status {s['status']}")
+    if s["status"] != "ok" or s["message"] != "": fail(f"status {s['status']} {s['message']}")
     if s["frames"] != "30": fail(f"frames {s['frames']}")
     if s["experiment"] != "smoke" or s["renderer"] != "null" or s["scene"] != "empty":
         fail(f"labels {s}")

@@ -1,0 +1,183 @@
+#include "runner/isolate.h"
+
+#include <errno.h>
+#include <fcntl.h>
+#include <signal.h>
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+#include <sys/prctl.h>
+#include <sys/wait.h>
+#include <time.h>
+#include <unistd.h>
+
+static double now_s(void)
+{
+    struct timespec ts;
+    clock_gettime(CLOCK_MONOTONIC, &ts);
+    return (double)ts.tv_sec + (double)ts.tv_nsec * 1e-9;
+}
+
+static void nap(double s)
+{
+    struct timespec ts = {.tv_sec = (time_t)s, .tv_nsec = (long)((s - (double)(time_t)s) * 1e9)};
+    while (nanosleep(&ts, &ts) == -1 && errno == EINTR)
+        ;
+}
+
+/* SIGTERM, then SIGKILL if it has not ended after a second; returns its wait status. */
+static int kill_and_reap(pid_t pid)
+{
+    int st = 0;
+    kill(pid, SIGTERM);
+    for (int i = 0; i < 100; i++) {
+        pid_t r = waitpid(pid, &st, WNOHANG);
+        if (r == pid)
+            return st;
+        nap(0.01);
+    }
+    kill(pid, SIGKILL);
+    while (waitpid(pid, &st, 0) == -1 && errno == EINTR)
+        ;
+    return st;
+}
+
+bool isolate_run(int (*fn)(void *), void *arg, double timeout_s, const char *log_path,
+                 volatile const int *stop, isolate_result *out)
+{
+    memset(out, 0, sizeof *out);
+    fflush(NULL);   /* or the child would write the parent's buffered output again */
+    double t0 = now_s();
+    pid_t parent = getpid();
+    pid_t pid = fork();
+    if (pid < 0) {
+        out->outcome = ISOLATE_FORK_FAILED;
+        return false;
+    }
+    if (pid == 0) {
+        /* The child: dies with the parent (a sweep killed with SIGKILL must not leave
+         * a run writing on behind the one that resumes it), its own default signal
+         * dispositions, stderr into the log. */
+        prctl(PR_SET_PDEATHSIG, SIGKILL);
+        if (getppid() != parent)
+            _exit(125);   /* the parent died before prctl: nobody waits for this run */
+        signal(SIGINT, SIG_DFL);
+        signal(SIGTERM, SIG_DFL);
+        int fd = open(log_path, O_WRONLY | O_CREAT | O_APPEND | O_CLOEXEC, 0644);
+        if (fd >= 0) {
+            dup2(fd, STDERR_FILENO);
+            close(fd);
+        }
+        int rc = fn(arg);
+        fflush(NULL);
+        _exit(rc & 0xff);
+    }
+
+    int st = 0;
+    for (;;) {
+        pid_t r = waitpid(pid, &st, WNOHANG);
+        if (r == pid)
+            break;
+        if (r < 0 && errno != EINTR) {
+            st = kill_and_reap(pid);
+            break;
+        }
+        if (stop && *stop) {
+            kill_and_reap(pid);
+            out->outcome = ISOLATE_INTERRUPTED;
+            out->seconds = now_s() - t0;
+            return true;
+        }
+        if (timeout_s > 0 && now_s() - t0 > timeout_s) {
+            kill_and_reap(pid);
+            out->outcome = ISOLATE_TIMEOUT;
+            out->seconds = now_s() - t0;
+            return true;
+        }
+        nap(0.005);
+    }
+    out->seconds = now_s() - t0;
+    if (WIFEXITED(st)) {
+        out->outcome = ISOLATE_EXITED;
+        out->exit_code = WEXITSTATUS(st);
+    } else {
+        out->outcome = ISOLATE_SIGNALED;
+        out->signal = WIFSIGNALED(st) ? WTERMSIG(st) : 0;
+    }
+    return true;
+}
+
+static const char *signal_name(int sig)
+{
+    switch (sig) {
+    case SIGSEGV: return "SIGSEGV";
+    case SIGABRT: return "SIGABRT";
+    case SIGBUS: return "SIGBUS";
+    case SIGFPE: return "SIGFPE";
+    case SIGILL: return "SIGILL";
+    case SIGTERM: return "SIGTERM";
+    case SIGINT: return "SIGINT";
+    case SIGPIPE: return "SIGPIPE";
+    case SIGTRAP: return "SIGTRAP";
+    default: return NULL;
+    }
+}
+
+void isolate_status(const isolate_result *r, char *buf, size_t len)
+{
+    switch (r->outcome) {
+    case ISOLATE_EXITED:
+        snprintf(buf, len, r->exit_code == 0 ? "ok" : "failed:exit-%d", r->exit_code);
+        break;
+    case ISOLATE_SIGNALED: {
+        const char *name = signal_name(r->signal);
+        if (r->signal == SIGKILL)
+            snprintf(buf, len, "failed:oom");   /* not ours: the kernel's OOM killer */
+        else if (name)
+            snprintf(buf, len, "failed:%s", name);
+        else
+            snprintf(buf, len, "failed:signal-%d", r->signal);
+        break;
+    }
+    case ISOLATE_TIMEOUT: snprintf(buf, len, "failed:timeout"); break;
+    case ISOLATE_INTERRUPTED: snprintf(buf, len, "failed:interrupted"); break;
+    case ISOLATE_FORK_FAILED: snprintf(buf, len, "failed:fork"); break;
+    }
+}
+
+void isolate_log_tail(const char *log_path, int lines, char *buf, size_t len)
+{
+    buf[0] = 0;
+    FILE *f = fopen(log_path, "rb");
+    if (!f)
+        return;
+    char tail[4096];
+    long size = 0;
+    if (fseek(f, 0, SEEK_END) == 0)
+        size = ftell(f);
+    long from = size > (long)sizeof tail - 1 ? size - (long)sizeof tail + 1 : 0;
+    fseek(f, from, SEEK_SET);
+    size_t n = fread(tail, 1, sizeof tail - 1, f);
+    fclose(f);
+    tail[n] = 0;
+    while (n > 0 && (tail[n - 1] == '\n' || tail[n - 1] == '\r'))
+        tail[--n] = 0;
+    /* the start of the last `lines` lines */
+    char *start = tail;
+    int seen = 0;
+    for (char *p = tail + n; p > tail; p--) {
+        if (p[-1] == '\n' && ++seen == lines) {
+            start = p;
+            break;
+        }
+    }
+    size_t o = 0;
+    for (char *p = start; *p && o + 4 < len; p++) {
+        if (*p == '\n') {
+            o += (size_t)snprintf(buf + o, len - o, " | ");
+        } else if (*p != '\r') {
+            buf[o++] = *p;
+            buf[o] = 0;
+        }
+    }
+}

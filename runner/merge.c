@@ -1,0 +1,262 @@
+#include "runner/merge.h"
+
+#include <dirent.h>
+#include <errno.h>
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+#include <sys/stat.h>
+#include <unistd.h>
+
+#include "results/fsutil.h"
+#include "runner/output.h"
+#include "runner/run.h"
+
+/* The whole file into a NUL-terminated buffer (caller frees); NULL with a message. */
+static char *slurp(const char *path, size_t *len, char *err, size_t errlen)
+{
+    FILE *f = fopen(path, "rb");
+    if (!f) {
+        snprintf(err, errlen, "%s: %s", path, strerror(errno));
+        return NULL;
+    }
+    size_t cap = 4096, n = 0;
+    char *buf = malloc(cap);
+    size_t got;
+    while (buf && (got = fread(buf + n, 1, cap - n - 1, f)) > 0) {
+        n += got;
+        if (cap - n - 1 == 0) {
+            char *nb = realloc(buf, cap * 2);
+            if (!nb) {
+                free(buf);
+                buf = NULL;
+                break;
+            }
+            buf = nb;
+            cap *= 2;
+        }
+    }
+    bool bad = ferror(f);
+    fclose(f);
+    if (!buf || bad) {
+        free(buf);
+        snprintf(err, errlen, "%s: %s", path, bad ? "read error" : "out of memory");
+        return NULL;
+    }
+    buf[n] = 0;
+    *len = n;
+    return buf;
+}
+
+/* Run ids in plan order: the second field of each data row (ids are hex: no quoting). */
+static bool plan_ids(const char *plan_text, char (**ids)[13], size_t *n, char *err, size_t errlen)
+{
+    size_t cap = 64;
+    *n = 0;
+    *ids = malloc(cap * sizeof **ids);
+    const char *line = strchr(plan_text, '\n');
+    while (*ids && line && line[1]) {
+        line++;
+        const char *c1 = strchr(line, ',');
+        const char *c2 = c1 ? strchr(c1 + 1, ',') : NULL;
+        if (!c2 || c2 - c1 - 1 != 12) {
+            snprintf(err, errlen, "plan.csv: a row without a run id");
+            free(*ids);
+            *ids = NULL;
+            return false;
+        }
+        if (*n == cap) {
+            char(*nv)[13] = realloc(*ids, 2 * cap * sizeof **ids);
+            if (!nv)
+                break;
+            *ids = nv;
+            cap *= 2;
+        }
+        memcpy((*ids)[*n], c1 + 1, 12);
+        (*ids)[(*n)++][12] = 0;
+        line = strchr(line, '\n');
+    }
+    if (!*ids) {
+        snprintf(err, errlen, "out of memory");
+        return false;
+    }
+    return true;
+}
+
+static bool copy_file(const char *from, const char *to, char *err, size_t errlen)
+{
+    if (link(from, to) == 0)
+        return true;
+    size_t len;
+    char *data = slurp(from, &len, err, errlen);
+    if (!data)
+        return false;
+    afile f;
+    bool ok = afile_open(&f, to, err, errlen);
+    if (ok) {
+        if (fwrite(data, 1, len, f.fp) != len) {
+            afile_abort(&f);
+            snprintf(err, errlen, "%s: %s", to, strerror(errno));
+            ok = false;
+        } else {
+            ok = afile_commit(&f, err, errlen);
+        }
+    }
+    free(data);
+    return ok;
+}
+
+/* Copies the regular files of one run folder. */
+static bool copy_run(const char *from, const char *to, char *err, size_t errlen)
+{
+    if (!fs_mkdirs(to, err, errlen))
+        return false;
+    DIR *d = opendir(from);
+    if (!d) {
+        snprintf(err, errlen, "%s: %s", from, strerror(errno));
+        return false;
+    }
+    bool ok = true;
+    struct dirent *ent;
+    while (ok && (ent = readdir(d))) {
+        char src[4608], dst[4608];
+        snprintf(src, sizeof src, "%s/%s", from, ent->d_name);
+        snprintf(dst, sizeof dst, "%s/%s", to, ent->d_name);
+        struct stat stt;
+        if (strstr(ent->d_name, ".tmp.") || stat(src, &stt) != 0 || !S_ISREG(stt.st_mode))
+            continue;
+        ok = copy_file(src, dst, err, errlen);
+    }
+    closedir(d);
+    return ok;
+}
+
+int merge_main(const char *out, bool force, int ndirs, char **dirs)
+{
+    char err[8192];
+    sweep_meta meta0 = {0};
+    char *plan0 = NULL;
+    size_t plan0_len = 0;
+    char(*ids)[13] = NULL;
+    size_t nids = 0;
+    int rc = 2;
+
+    for (int i = 0; i < ndirs; i++) {
+        char path[4200];
+        sweep_meta meta;
+        if (!output_read_sweep_meta(dirs[i], &meta, err, sizeof err)) {
+            fprintf(stderr, "shadesweep merge: %s\n", err);
+            goto done;
+        }
+        snprintf(path, sizeof path, "%s/plan.csv", dirs[i]);
+        size_t len;
+        char *text = slurp(path, &len, err, sizeof err);
+        if (!text) {
+            fprintf(stderr, "shadesweep merge: %s\n", err);
+            goto done;
+        }
+        if (i == 0) {
+            meta0 = meta;
+            plan0 = text;
+            plan0_len = len;
+            continue;
+        }
+        bool same_plan = len == plan0_len && memcmp(text, plan0, len) == 0;
+        free(text);
+        if (strcmp(meta.manifest_hash, meta0.manifest_hash) != 0) {
+            fprintf(stderr,
+                    "shadesweep merge: %s was made from manifest %s (hash %s), %s from %s "
+                    "(hash %s): shards of different manifests cannot be merged\n",
+                    dirs[i], meta.manifest_path, meta.manifest_hash, dirs[0],
+                    meta0.manifest_path, meta0.manifest_hash);
+            goto done;
+        }
+        if (!same_plan) {
+            fprintf(stderr,
+                    "shadesweep merge: %s/plan.csv differs from %s/plan.csv (another shard "
+                    "count?): not shards of one sweep\n",
+                    dirs[i], dirs[0]);
+            goto done;
+        }
+    }
+    if (!plan_ids(plan0, &ids, &nids, err, sizeof err)) {
+        fprintf(stderr, "shadesweep merge: %s/%s\n", dirs[0], err);
+        goto done;
+    }
+
+    if (fs_exists(out)) {
+        char marker[4200];
+        snprintf(marker, sizeof marker, "%s/plan.csv", out);
+        if (!force || !fs_exists(marker)) {
+            fprintf(stderr, "shadesweep merge: %s exists%s\n", out,
+                    force ? " and is not a shadesweep output folder" : "; use --force to replace it");
+            goto done;
+        }
+        if (!fs_remove_tree(out, err, sizeof err)) {
+            fprintf(stderr, "shadesweep merge: %s\n", err);
+            goto done;
+        }
+    }
+    char runs[4200];
+    snprintf(runs, sizeof runs, "%s/runs", out);
+    if (!fs_mkdirs(runs, err, sizeof err)) {
+        fprintf(stderr, "shadesweep merge: %s\n", err);
+        goto done;
+    }
+    size_t copied = 0;
+    for (size_t r = 0; r < nids; r++) {
+        int from = -1;
+        for (int i = 0; i < ndirs; i++) {
+            if (!run_is_complete(dirs[i], ids[r]))
+                continue;
+            if (from < 0)
+                from = i;
+            else
+                fprintf(stderr, "shadesweep merge: run %s is in %s and %s; taking %s's\n",
+                        ids[r], dirs[from], dirs[i], dirs[from]);
+        }
+        if (from < 0)
+            continue;
+        char src[4200], dst[4200];
+        snprintf(src, sizeof src, "%s/runs/%s", dirs[from], ids[r]);
+        snprintf(dst, sizeof dst, "%s/runs/%s", out, ids[r]);
+        if (!copy_run(src, dst, err, sizeof err)) {
+            fprintf(stderr, "shadesweep merge: %s\n", err);
+            goto done;
+        }
+        copied++;
+    }
+    char path[4200];
+    snprintf(path, sizeof path, "%s/plan.csv", out);
+    afile f;
+    if (!afile_open(&f, path, err, sizeof err) ||
+        (fwrite(plan0, 1, plan0_len, f.fp), !afile_commit(&f, err, sizeof err))) {
+        fprintf(stderr, "shadesweep merge: %s\n", err);
+        goto done;
+    }
+    size_t missing = 0;
+    snprintf(meta0.shard, sizeof meta0.shard, "merged from %d folder%s", ndirs,
+             ndirs == 1 ? "" : "s");
+    if (!output_write_sweep_meta(out, &meta0, err, sizeof err) ||
+        !output_merge_summary_ids(out, ids, nids, &missing, err, sizeof err)) {
+        fprintf(stderr, "shadesweep merge: %s\n", err);
+        goto done;
+    }
+    fprintf(stderr, "merged %zu of %zu runs from %d folder%s into %s\n", copied, nids, ndirs,
+            ndirs == 1 ? "" : "s", out);
+    if (missing) {
+        fprintf(stderr, "missing runs (no folder has them complete):");
+        size_t shown = 0;
+        for (size_t r = 0; r < nids && shown < 20; r++)
+            if (!run_is_complete(out, ids[r])) {
+                fprintf(stderr, " %s", ids[r]);
+                shown++;
+            }
+        fprintf(stderr, "%s\n", missing > shown ? " ..." : "");
+    }
+    rc = missing ? 1 : 0;
+done:
+    free(plan0);
+    free(ids);
+    return rc;
+}
