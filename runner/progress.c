@@ -4,6 +4,8 @@
 #include <time.h>
 #include <unistd.h>
 
+#define PROGRESS_BAR 20   /* characters of the bar of completed runs */
+
 double progress_now(void)
 {
     struct timespec ts;
@@ -65,11 +67,15 @@ void progress_tick(progress *pg, unsigned trial, unsigned lights, double fps)
     if (now - pg->last_draw < 0.25)
         return;
     pg->last_draw = now;
-    char el[32], et[32];
+    char el[32], et[32], bar[PROGRESS_BAR + 1];
     fmt_duration(el, sizeof el, now - pg->t0);
     eta(pg, now, et, sizeof et);
-    fprintf(pg->out, "\r\033[K%s trial %u lights %u %.1f fps | elapsed %s eta %s", pg->label,
-            trial, lights, fps, el, et);
+    size_t filled = pg->total ? pg->done * PROGRESS_BAR / pg->total : 0;
+    for (size_t i = 0; i < PROGRESS_BAR; i++)
+        bar[i] = i < filled ? '#' : '.';
+    bar[PROGRESS_BAR] = 0;
+    fprintf(pg->out, "\r\033[K[%s] %s trial %u, %u lights, %.1f fps | elapsed %s eta %s", bar,
+            pg->label, trial, lights, fps, el, et);
     fflush(pg->out);
 }
 
