@@ -157,6 +157,22 @@ GL_FUNC(void, ClearBufferuiv, (GLenum buffer, GLint drawbuffer, const GLuint *va
 GL_FUNC(void, ClearBufferfi, (GLenum buffer, GLint drawbuffer, GLfloat depth, GLint stencil))
 GL_FUNC(void, InvalidateFramebuffer, (GLenum target, GLsizei numAttachments, const GLenum *attachments))
 
+/* >>Direct state access (core since 4.5): textures, framebuffers and vertex arrays
+ * created and set up without binding them, so that creation never disturbs the
+ * bindings the state cache (state.h) keeps */
+GL_FUNC(void, CreateTextures, (GLenum target, GLsizei n, GLuint *textures))
+GL_FUNC(void, TextureStorage2D, (GLuint texture, GLsizei levels, GLenum internalformat, GLsizei width, GLsizei height))
+GL_FUNC(void, TextureParameteri, (GLuint texture, GLenum pname, GLint param))
+GL_FUNC(void, GetTextureLevelParameteriv, (GLuint texture, GLint level, GLenum pname, GLint *params))
+GL_FUNC(void, GetTextureImage, (GLuint texture, GLint level, GLenum format, GLenum type, GLsizei bufSize, void *pixels))
+GL_FUNC(void, BindTextureUnit, (GLuint unit, GLuint texture))
+GL_FUNC(void, CreateFramebuffers, (GLsizei n, GLuint *framebuffers))
+GL_FUNC(void, NamedFramebufferTexture, (GLuint framebuffer, GLenum attachment, GLuint texture, GLint level))
+GL_FUNC(void, NamedFramebufferDrawBuffers, (GLuint framebuffer, GLsizei n, const GLenum *bufs))
+GL_FUNC(void, NamedFramebufferReadBuffer, (GLuint framebuffer, GLenum src))
+GL_FUNC(GLenum, CheckNamedFramebufferStatus, (GLuint framebuffer, GLenum target))
+GL_FUNC(void, CreateVertexArrays, (GLsizei n, GLuint *arrays))
+
 /* >>Draws */
 GL_FUNC(void, DrawArrays, (GLenum mode, GLint first, GLsizei count))
 GL_FUNC(void, DrawElements, (GLenum mode, GLsizei count, GLenum type, const void *indices))

@@ -1,0 +1,268 @@
+/* Pixel formats, render targets and framebuffers (target.h). */
+#include "renderers/gl/target.h"
+
+#include <stdio.h>
+#include <string.h>
+
+// >>formats
+
+static const gl_format_info formats[GLT_FORMAT_COUNT] = {
+#define GLT_FORMAT_ROW(id_, name_, ifmt, fmt, type_, bpp, color_, depth_, stencil_)               \
+    [id_] = {.id = id_, .name = name_, .internal_format = ifmt, .format = fmt, .type = type_,      \
+             .bytes_per_pixel = bpp, .color = color_, .depth = depth_, .stencil = stencil_},
+    GLT_FORMATS(GLT_FORMAT_ROW)
+#undef GLT_FORMAT_ROW
+};
+
+const gl_format_info *gl_format_get(gl_format f)
+{
+    if (f <= GLT_FORMAT_NONE || f >= GLT_FORMAT_COUNT)
+        return NULL;
+    return &formats[f];
+}
+
+gl_format gl_format_find(const char *name)
+{
+    if (!name)
+        return GLT_FORMAT_NONE;
+    for (int f = GLT_FORMAT_NONE + 1; f < GLT_FORMAT_COUNT; f++)
+        if (strcmp(formats[f].name, name) == 0)
+            return (gl_format)f;
+    return GLT_FORMAT_NONE;
+}
+
+const char *gl_format_name(gl_format f)
+{
+    const gl_format_info *i = gl_format_get(f);
+    return i ? i->name : "none";
+}
+
+uint64_t gl_format_bytes(gl_format f, int width, int height)
+{
+    const gl_format_info *i = gl_format_get(f);
+    if (!i || width <= 0 || height <= 0)
+        return 0;
+    return (uint64_t)width * (uint64_t)height * i->bytes_per_pixel;
+}
+
+// >>targets
+
+static void set_name(char *dst, size_t size, const char *name, const char *fallback)
+{
+    snprintf(dst, size, "%s", name ? name : fallback);
+}
+
+bool gl_target_create(gl_target *t, const gl_target_desc *desc, char *err, size_t errlen)
+{
+    memset(t, 0, sizeof *t);
+    const char *name = desc->name ? desc->name : "target";
+    const gl_format_info *fi = gl_format_get(desc->format);
+    if (!fi) {
+        snprintf(err, errlen, "target %s: no pixel format given", name);
+        return false;
+    }
+    GLint max_size = 0;
+    gl.GetIntegerv(GL_MAX_TEXTURE_SIZE, &max_size);
+    if (desc->width <= 0 || desc->height <= 0 || desc->width > max_size ||
+        desc->height > max_size) {
+        snprintf(err, errlen, "target %s (%s): size %dx%d is not within 1x1 .. %dx%d "
+                 "(GL_MAX_TEXTURE_SIZE)", name, fi->name, desc->width, desc->height,
+                 (int)max_size, (int)max_size);
+        return false;
+    }
+    GLuint tex = 0;
+    gl.CreateTextures(GL_TEXTURE_2D, 1, &tex);
+    gl.TextureStorage2D(tex, 1, fi->internal_format, desc->width, desc->height);
+    GLint filter = desc->linear ? GL_LINEAR : GL_NEAREST;
+    gl.TextureParameteri(tex, GL_TEXTURE_MIN_FILTER, filter);
+    gl.TextureParameteri(tex, GL_TEXTURE_MAG_FILTER, filter);
+    gl.TextureParameteri(tex, GL_TEXTURE_WRAP_S, GL_CLAMP_TO_EDGE);
+    gl.TextureParameteri(tex, GL_TEXTURE_WRAP_T, GL_CLAMP_TO_EDGE);
+    set_name(t->name, sizeof t->name, desc->name, "target");
+    gl.ObjectLabel(GL_TEXTURE, tex, -1, t->name);
+    t->format = desc->format;
+    t->width = desc->width;
+    t->height = desc->height;
+    t->bytes = gl_format_bytes(desc->format, desc->width, desc->height);
+    t->texture = tex;
+    return true;
+}
+
+void gl_target_destroy(gl_target *t)
+{
+    if (!t)
+        return;
+    if (t->texture && gl.DeleteTextures)
+        gl.DeleteTextures(1, &t->texture);
+    memset(t, 0, sizeof *t);
+}
+
+void gl_target_describe(const gl_target *t, target_plan_entry *out)
+{
+    memset(out, 0, sizeof *out);
+    snprintf(out->name, sizeof out->name, "%s", t->name);
+    snprintf(out->format, sizeof out->format, "%s", gl_format_name(t->format));
+    out->width = t->width;
+    out->height = t->height;
+    out->bytes = t->bytes;
+}
+
+// >>framebuffers
+
+static const char *status_name(GLenum s)
+{
+    switch (s) {
+    case GL_FRAMEBUFFER_COMPLETE: return "GL_FRAMEBUFFER_COMPLETE";
+    case GL_FRAMEBUFFER_UNDEFINED: return "GL_FRAMEBUFFER_UNDEFINED";
+    case GL_FRAMEBUFFER_INCOMPLETE_ATTACHMENT: return "GL_FRAMEBUFFER_INCOMPLETE_ATTACHMENT";
+    case GL_FRAMEBUFFER_INCOMPLETE_MISSING_ATTACHMENT:
+        return "GL_FRAMEBUFFER_INCOMPLETE_MISSING_ATTACHMENT";
+    case GL_FRAMEBUFFER_INCOMPLETE_DRAW_BUFFER: return "GL_FRAMEBUFFER_INCOMPLETE_DRAW_BUFFER";
+    case GL_FRAMEBUFFER_INCOMPLETE_READ_BUFFER: return "GL_FRAMEBUFFER_INCOMPLETE_READ_BUFFER";
+    case GL_FRAMEBUFFER_UNSUPPORTED: return "GL_FRAMEBUFFER_UNSUPPORTED";
+    case GL_FRAMEBUFFER_INCOMPLETE_MULTISAMPLE: return "GL_FRAMEBUFFER_INCOMPLETE_MULTISAMPLE";
+    case GL_FRAMEBUFFER_INCOMPLETE_LAYER_TARGETS:
+        return "GL_FRAMEBUFFER_INCOMPLETE_LAYER_TARGETS";
+    case 0: return "an error while checking";
+    default: return "an unknown status";
+    }
+}
+
+/* "colour 0 albedo rgba8 64x48, depth-stencil depth depth24-stencil8 64x48" */
+static void list_attachments(char *buf, size_t size, const gl_target *const *color, int ncolor,
+                             const gl_target *ds)
+{
+    size_t used = 0;
+    buf[0] = '\0';
+    for (int i = 0; i <= ncolor; i++) {
+        const gl_target *t = i < ncolor ? color[i] : ds;
+        if (!t)
+            continue;
+        char what[24];
+        if (i < ncolor)
+            snprintf(what, sizeof what, "colour %d", i);
+        else
+            snprintf(what, sizeof what, "depth-stencil");
+        int n = snprintf(buf + used, size - used, "%s%s %s %s %dx%d", used ? ", " : "", what,
+                         t->name[0] ? t->name : "(unnamed)", gl_format_name(t->format), t->width,
+                         t->height);
+        if (n < 0 || (size_t)n >= size - used)
+            return;
+        used += (size_t)n;
+    }
+    if (!used)
+        snprintf(buf, size, "no attachments");
+}
+
+bool gl_framebuffer_create(gl_framebuffer *fb, const gl_framebuffer_desc *desc, char *err,
+                           size_t errlen)
+{
+    memset(fb, 0, sizeof *fb);
+    const char *name = desc->name ? desc->name : "framebuffer";
+    int ncolor = 0;
+    while (ncolor < GLT_MAX_COLOR && desc->color[ncolor])
+        ncolor++;
+    for (int i = ncolor; i < GLT_MAX_COLOR; i++)
+        if (desc->color[i]) {
+            snprintf(err, errlen, "framebuffer %s: colour target %d follows an empty slot %d",
+                     name, i, ncolor);
+            return false;
+        }
+    const gl_target *ds = desc->depth_stencil;
+    char list[512];
+    list_attachments(list, sizeof list, desc->color, ncolor, ds);
+
+    if (ncolor == 0 && !ds) {
+        snprintf(err, errlen, "framebuffer %s: no attachments", name);
+        return false;
+    }
+    int w = 0, h = 0;
+    for (int i = 0; i <= ncolor; i++) {
+        const gl_target *t = i < ncolor ? desc->color[i] : ds;
+        if (!t)
+            continue;
+        const gl_format_info *fi = gl_format_get(t->format);
+        if (!t->texture || !fi) {
+            char what[24];
+            if (i < ncolor)
+                snprintf(what, sizeof what, "colour %d", i);
+            else
+                snprintf(what, sizeof what, "depth-stencil");
+            snprintf(err, errlen, "framebuffer %s: %s is a target that was not created (%s)", name,
+                     what, list);
+            return false;
+        }
+        if (i < ncolor && !fi->color) {
+            snprintf(err, errlen, "framebuffer %s: colour %d has the depth format %s (%s)", name,
+                     i, fi->name, list);
+            return false;
+        }
+        if (i == ncolor && fi->color) {
+            snprintf(err, errlen, "framebuffer %s: the depth-stencil attachment has the colour "
+                     "format %s (%s)", name, fi->name, list);
+            return false;
+        }
+        if (w == 0) {
+            w = t->width;
+            h = t->height;
+        } else if (t->width != w || t->height != h) {
+            snprintf(err, errlen, "framebuffer %s: attachments differ in size (%s)", name, list);
+            return false;
+        }
+    }
+    GLint max_attach = 0, max_draw = 0;
+    gl.GetIntegerv(GL_MAX_COLOR_ATTACHMENTS, &max_attach);
+    gl.GetIntegerv(GL_MAX_DRAW_BUFFERS, &max_draw);
+    if (ncolor > max_attach || ncolor > max_draw) {
+        snprintf(err, errlen, "framebuffer %s: %d colour targets, the context has %d colour "
+                 "attachments and %d draw buffers (%s)", name, ncolor, (int)max_attach,
+                 (int)max_draw, list);
+        return false;
+    }
+
+    GLuint fbo = 0;
+    gl.CreateFramebuffers(1, &fbo);
+    GLenum bufs[GLT_MAX_COLOR];
+    for (int i = 0; i < ncolor; i++) {
+        bufs[i] = GL_COLOR_ATTACHMENT0 + (GLenum)i;
+        gl.NamedFramebufferTexture(fbo, bufs[i], desc->color[i]->texture, 0);
+    }
+    if (ds) {
+        const gl_format_info *fi = gl_format_get(ds->format);
+        GLenum at = fi->depth && fi->stencil ? GL_DEPTH_STENCIL_ATTACHMENT
+                    : fi->depth              ? GL_DEPTH_ATTACHMENT
+                                             : GL_STENCIL_ATTACHMENT;
+        gl.NamedFramebufferTexture(fbo, at, ds->texture, 0);
+    }
+    if (ncolor) {
+        gl.NamedFramebufferDrawBuffers(fbo, ncolor, bufs);
+        gl.NamedFramebufferReadBuffer(fbo, GL_COLOR_ATTACHMENT0);
+    } else {
+        GLenum none = GL_NONE;
+        gl.NamedFramebufferDrawBuffers(fbo, 1, &none);
+        gl.NamedFramebufferReadBuffer(fbo, GL_NONE);
+    }
+    GLenum status = gl.CheckNamedFramebufferStatus(fbo, GL_FRAMEBUFFER);
+    if (status != GL_FRAMEBUFFER_COMPLETE) {
+        snprintf(err, errlen, "framebuffer %s is not complete: %s (%s)", name,
+                 status_name(status), list);
+        gl.DeleteFramebuffers(1, &fbo);
+        return false;
+    }
+    set_name(fb->name, sizeof fb->name, desc->name, "framebuffer");
+    gl.ObjectLabel(GL_FRAMEBUFFER, fbo, -1, fb->name);
+    fb->fbo = fbo;
+    fb->ncolor = ncolor;
+    fb->width = w;
+    fb->height = h;
+    return true;
+}
+
+void gl_framebuffer_destroy(gl_framebuffer *fb)
+{
+    if (!fb)
+        return;
+    if (fb->fbo && gl.DeleteFramebuffers)
+        gl.DeleteFramebuffers(1, &fb->fbo);
+    memset(fb, 0, sizeof *fb);
+}
