@@ -54,10 +54,62 @@ typedef struct pass_plan {
     uint64_t target_bytes;     /* all targets the renderer allocated */
 } pass_plan;
 
+/* G-buffer layouts (the deferred renderer; renderers/deferred.c documents each):
+ *   fat        seed 000: three RGBA16F, view-space position, normal + emissive, diffuse + gloss
+ *   curtis     seed 003: four RGBA16F, normal + depth, diffuse + specular, specular colour,
+ *              one unused; position rebuilt from depth
+ *   compact    seed 002's 96-bit layout
+ *   spheremap  seed 004: view-space normal in two 8-bit channels (Lambert azimuthal),
+ *              position from linear depth and frustum-corner rays
+ *   reference  RGBA32F, position stored: the G-buffer that loses (almost) nothing */
+typedef enum gbuffer_preset {
+    GBUFFER_CURTIS = 0,
+    GBUFFER_FAT,
+    GBUFFER_COMPACT,
+    GBUFFER_SPHEREMAP,
+    GBUFFER_REFERENCE,
+} gbuffer_preset;
+
+/* Field by field over the preset (0: as the preset has it). */
+typedef enum gbuffer_position {
+    GBUFFER_POSITION_PRESET = 0,
+    GBUFFER_POSITION_STORED16,     /* view-space xyz in RGBA16F */
+    GBUFFER_POSITION_STORED32,     /* view-space xyz in RGBA32F */
+    GBUFFER_POSITION_DEPTH,        /* rebuilt from the depth buffer */
+} gbuffer_position;
+
+typedef enum gbuffer_normal {
+    GBUFFER_NORMAL_PRESET = 0,
+    GBUFFER_NORMAL_FLOAT16,        /* xyz in 16-bit floats */
+    GBUFFER_NORMAL_FLOAT32,
+    GBUFFER_NORMAL_UNORM10,        /* xyz * 0.5 + 0.5 in RGB10A2 */
+    GBUFFER_NORMAL_SPHEREMAP8,     /* Lambert azimuthal in RG8 */
+    GBUFFER_NORMAL_SPHEREMAP16,    /* Lambert azimuthal in RG16F */
+} gbuffer_normal;
+
+/* How deferred light passes find their pixels. */
+typedef enum light_volume_mode {
+    LIGHT_VOLUMES_STENCIL = 0,     /* seed 003: one two-sided stencil pass (inc/dec on depth
+                                      fail), then the light on non-zero, and reset */
+    LIGHT_VOLUMES_FULLSCREEN,      /* a full-screen pass per light */
+    LIGHT_VOLUMES_VOLUME,          /* back faces, depth test GREATER, no stencil */
+    LIGHT_VOLUMES_STENCIL_TWO_PASS,/* seed 000: clear to 1, front faces inc on depth fail,
+                                      back faces dec, shade where 0 */
+} light_volume_mode;
+
 typedef struct renderer_options {
     int width, height;
     bool queries;              /* use timer / pipeline-statistics queries where the context has them */
     bool timer_query, pipeline_statistics;  /* what the context offers (from gl_info) */
+    int max_uniform_block_size;   /* the context's limit, for forward-spml's light buffer */
+    /* deferred */
+    gbuffer_preset gbuffer;
+    gbuffer_position gbuffer_position;
+    gbuffer_normal gbuffer_normal;
+    light_volume_mode light_volumes;
+    bool separate_specular;    /* seed 001: diffuse and specular in separate targets */
+    /* forward-mpml */
+    bool no_illumination_sets; /* draw every visible object for every light (seed 000 5.6) */
 } renderer_options;
 
 typedef struct renderer_impl {

@@ -40,6 +40,11 @@ _Static_assert(sizeof(run_clock) == sizeof(int), "enum size");
 _Static_assert(sizeof(run_sync) == sizeof(int), "enum size");
 _Static_assert(sizeof(light_placement) == sizeof(int), "enum size");
 _Static_assert(sizeof(rng_kind) == sizeof(int), "enum size");
+_Static_assert(sizeof(attenuation_kind) == sizeof(int), "enum size");
+_Static_assert(sizeof(gbuffer_preset) == sizeof(int), "enum size");
+_Static_assert(sizeof(gbuffer_position) == sizeof(int), "enum size");
+_Static_assert(sizeof(gbuffer_normal) == sizeof(int), "enum size");
+_Static_assert(sizeof(light_volume_mode) == sizeof(int), "enum size");
 
 /* >>table */
 
@@ -79,6 +84,7 @@ typedef struct param {
     const char *const *values; /* PT_ENUM, NULL-terminated; the index is the stored value */
     size_t off, size;          /* where it lives in run_params; size 0: not a run parameter */
     const char *column;        /* its run_params_kv key if not its path */
+    const char *shorthand;     /* PT_GROUP: the member a plain scalar sets (`gbuffer: fat`) */
     const char *description;
 } param;
 
@@ -91,6 +97,17 @@ static const char *const clock_names[] = {"wall", "fixed", NULL};
 static const char *const sync_names[] = {"finish", "fence", NULL};
 static const char *const placement_names[] = {"random", "none", NULL};
 static const char *const rng_names[] = {"msvc", "pcg32", "mt19937", NULL};
+static const char *const attenuation_names[] = {"inverse-square", "linear-range", "quadratic",
+                                                NULL};
+/* In the order of the enums of renderers/renderer.h. */
+static const char *const gbuffer_names[] = {"curtis", "fat", "compact", "spheremap", "reference",
+                                            NULL};
+static const char *const gbuffer_position_names[] = {"preset", "stored16", "stored32", "depth",
+                                                     NULL};
+static const char *const gbuffer_normal_names[] = {"preset", "float16", "float32", "unorm10",
+                                                   "spheremap8", "spheremap16", NULL};
+static const char *const light_volume_names[] = {"stencil", "fullscreen", "volume",
+                                                 "stencil-two-pass", NULL};
 
 static const param table[] = {
     {.path = "shadesweep", .type = PT_SCHEMA, .flags = PF_REQUIRED,
@@ -129,6 +146,34 @@ static const param table[] = {
      .min = 0, .max = 2592000, RP(timeout_s),
      .description = "seconds a run (all its trials) may take before it is stopped and recorded "
                     "as failed:timeout; 0: 600 + 3 x trials x (warm-up + duration) seconds"},
+    {.path = "gbuffer", .type = PT_GROUP, .shorthand = "gbuffer.preset",
+     .description = "the deferred renderer's G-buffer: a preset name, or {preset, position, "
+                    "normal} to change fields of it"},
+    {.path = "gbuffer.preset", .type = PT_ENUM, .flags = PF_SWEEP, .def = "curtis",
+     .values = gbuffer_names, RP(gbuffer),
+     .description = "curtis (seed 003), fat (seed 000), compact (seed 002), spheremap "
+                    "(seed 004), reference (RGBA32F, position stored)"},
+    {.path = "gbuffer.position", .type = PT_ENUM, .flags = PF_SWEEP, .def = "preset",
+     .values = gbuffer_position_names, RP(gbuffer_position),
+     .description = "how the light passes get a pixel's position: as the preset does, "
+                    "stored in 16 or 32-bit floats, or rebuilt from depth"},
+    {.path = "gbuffer.normal", .type = PT_ENUM, .flags = PF_SWEEP, .def = "preset",
+     .values = gbuffer_normal_names, RP(gbuffer_normal),
+     .description = "how normals are stored: as the preset does, float16, float32, unorm10, "
+                    "or Lambert azimuthal (spheremap) in 8 or 16 bits"},
+    {.path = "deferred", .type = PT_GROUP, .description = "options of the deferred renderer"},
+    {.path = "deferred.light_volumes", .type = PT_ENUM, .flags = PF_SWEEP, .def = "stencil",
+     .values = light_volume_names, RP(light_volumes),
+     .description = "stencil (seed 003, one two-sided pass), fullscreen, volume (back faces, "
+                    "depth GREATER), stencil-two-pass (seed 000)"},
+    {.path = "deferred.separate_specular", .type = PT_BOOL, .flags = PF_SWEEP, .def = "false",
+     RP(separate_specular),
+     .description = "diffuse and specular light in separate targets (seed 001)"},
+    {.path = "forward", .type = PT_GROUP, .description = "options of the forward renderers"},
+    {.path = "forward.illumination_sets", .type = PT_BOOL, .flags = PF_SWEEP, .def = "true",
+     RP(illumination_sets),
+     .description = "forward-mpml draws, per light, only the visible objects its volume "
+                    "reaches (false: every visible object, seed 000 5.6)"},
     {.path = "lights", .type = PT_GROUP,
      .description = "light placement; without it (and without a swept lights.* key) "
                     "a run has no lights: placement none, count 0"},
@@ -150,6 +195,18 @@ static const param table[] = {
     {.path = "lights.color_max", .type = PT_NUMBER, .flags = PF_SWEEP | PF_FLOAT, .def = "0.3",
      .min = 0, .max = 1e6, RP(lights.color_max),
      .description = "each colour channel uniform in [0, color_max]"},
+    {.path = "lights.attenuation", .type = PT_ENUM, .flags = PF_SWEEP, .def = "inverse-square",
+     .values = attenuation_names, RP(lights.attenuation),
+     .description = "inverse-square (1/d^2, as seed 003), linear-range (1 - d/radius), "
+                    "quadratic (1/(a d^2 + b d + c), lights.quadratic); none reaches past radius"},
+    {.path = "lights.quadratic", .type = PT_GROUP,
+     .description = "coefficients of the quadratic attenuation"},
+    {.path = "lights.quadratic.a", .type = PT_NUMBER, .flags = PF_SWEEP | PF_FLOAT, .def = "1",
+     .min = 0, .max = 1e9, RP(lights.quadratic[0]), .description = "d^2 coefficient"},
+    {.path = "lights.quadratic.b", .type = PT_NUMBER, .flags = PF_SWEEP | PF_FLOAT, .def = "0",
+     .min = 0, .max = 1e9, RP(lights.quadratic[1]), .description = "d coefficient"},
+    {.path = "lights.quadratic.c", .type = PT_NUMBER, .flags = PF_SWEEP | PF_FLOAT, .def = "1",
+     .min = 0, .max = 1e9, RP(lights.quadratic[2]), .description = "constant term"},
     {.path = "outputs", .type = PT_GROUP, .description = "what each run writes"},
     {.path = "outputs.frames", .type = PT_BOOL, .def = "true", RP(out_frames),
      .description = "write frames.csv"},
@@ -353,7 +410,14 @@ static const char *expect(const param *pd, char *buf, size_t len)
     case PT_SPAN: sb_add(&b, "{seconds: S} or {frames: N}"); break;
     case PT_COUNT: sb_add(&b, "an integer 0..%u or {start, step, every, max}", MAX_LIGHTS); break;
     case PT_TIMES: sb_add(&b, "a sequence of at most %d times in seconds", MAX_SCREENSHOTS); break;
-    case PT_GROUP: sb_add(&b, "a mapping"); break;
+    case PT_GROUP:
+        if (pd->shorthand) {
+            list_enum(&b, param_find(pd->shorthand)->values);
+            sb_add(&b, " or a mapping");
+        } else {
+            sb_add(&b, "a mapping");
+        }
+        break;
     case PT_SWEEP: sb_add(&b, "a mapping from parameters to sequences of values"); break;
     }
     return buf;
@@ -871,6 +935,10 @@ static bool parse_value(vctx *c, const param *pd, const ynode *n, const char *ke
     case PT_TIMES:
         return parse_times(c, pd, n, key, dst);
     case PT_GROUP:
+        if (n->kind == YNODE_SCALAR && pd->shorthand) {
+            const param *member = param_find(pd->shorthand);
+            return parse_value(c, member, n, key, dst);
+        }
         if (n->kind != YNODE_MAPPING)
             return bad(c, pd, n, key);
         parse_group(c, pd->path, n, dst);

@@ -8,6 +8,7 @@
 #include <stddef.h>
 #include <stdint.h>
 #include <stdio.h>
+#include "renderers/renderer.h"
 #include "runner/diag.h"
 #include "scenes/lights.h"
 
@@ -34,6 +35,12 @@ typedef struct run_params {
     double step;               /* seconds of scene time per frame with clock: fixed */
     run_sync sync;
     double timeout_s;          /* a run still going after this long is stopped; 0: automatic */
+    gbuffer_preset gbuffer;    /* deferred */
+    gbuffer_position gbuffer_position;
+    gbuffer_normal gbuffer_normal;
+    light_volume_mode light_volumes;
+    bool separate_specular;
+    bool illumination_sets;    /* forward-mpml */
     light_params lights;
     bool out_frames, out_seconds;
     size_t nscreenshots;

@@ -198,6 +198,22 @@ bool output_write_run_summary(const char *run_dir, const experiment *e, const ru
     if (!w)
         return false;
     const run_params *p = &s->p;
+    /* The G-buffer describes deferred runs only: "preset[/position][/normal]". */
+    char gbuffer[96] = "";
+    if (strcmp(p->renderer, "deferred") == 0) {
+        param_kv kv[PARAM_KV_MAX];
+        size_t n = run_params_kv(p, kv, PARAM_KV_MAX);
+        for (size_t k = 0; k < n; k++) {
+            bool preset = strcmp(kv[k].key, "gbuffer.preset") == 0;
+            bool field = strcmp(kv[k].key, "gbuffer.position") == 0 ||
+                         strcmp(kv[k].key, "gbuffer.normal") == 0;
+            if (preset || (field && strcmp(kv[k].value, "preset") != 0)) {
+                size_t len = strlen(gbuffer);
+                snprintf(gbuffer + len, sizeof gbuffer - len, "%s%.30s", len ? "/" : "",
+                         kv[k].value);
+            }
+        }
+    }
     for (size_t i = 0; i < ntrials; i++) {
         const trial_result *r = &t[i];
         csv_str(w, e->name);
@@ -206,7 +222,7 @@ bool output_write_run_summary(const char *run_dir, const experiment *e, const ru
         csv_str(w, p->scene);
         csv_i64(w, p->width);
         csv_i64(w, p->height);
-        csv_empty(w);                       /* gbuffer: none for these renderers */
+        csv_str(w, gbuffer);
         csv_str(w, placement_name(p->lights.placement));
         csv_str(w, rng_kind_name(p->lights.rng));
         csv_u64(w, p->lights.seed);

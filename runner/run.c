@@ -423,6 +423,13 @@ static bool run_setup(run_state *st)
         .queries = true,
         .timer_query = gi->timer_query,
         .pipeline_statistics = gi->pipeline_statistics,
+        .max_uniform_block_size = gi->max_uniform_block_size,
+        .gbuffer = p->gbuffer,
+        .gbuffer_position = p->gbuffer_position,
+        .gbuffer_normal = p->gbuffer_normal,
+        .light_volumes = p->light_volumes,
+        .separate_specular = p->separate_specular,
+        .no_illumination_sets = !p->illumination_sets,
     };
     if (!(st->r = renderer_create(p->renderer, &ro, st->err, sizeof st->err)) ||
         !renderer_prepare(st->r, st->sc, st->err, sizeof st->err)) {

@@ -6,6 +6,8 @@
 
 static const scene_catalog_entry catalog[] = {
     {"empty", "no geometry: an orbiting camera and the run's lights; measures the harness"},
+    {"shapes", "a floor and a 3 x 3 grid of textured, glossy, normal-mapped and emissive "
+               "objects, two of them rotating, under an orbiting camera"},
 };
 
 /* Scenes that fail on purpose at schedule time 0.2 s, for the tests of run

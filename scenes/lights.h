@@ -21,6 +21,8 @@ typedef struct light_params {
     light_count count;
     float radius;              /* range of each point light, world units */
     float color_max;           /* each channel uniform in [0, color_max]; seed 003 used 0.3 */
+    int attenuation;           /* attenuation_kind (scenes/scene.h) */
+    float quadratic[3];        /* a, b, c of 1 / (a d^2 + b d + c) */
 } light_params;
 
 /* Lights active at schedule time t (t < 0 counts as 0). */

@@ -59,5 +59,5 @@ unset SHADESWEEP_TEST_SCENES
 set +e
 "$SHADESWEEP" validate faults.yaml 2>err.txt; rc=$?
 set -e
-[ $rc -eq 2 ] && grep -q "expected one of empty, found 'test-abort'" err.txt || fail "test scenes leak"
+[ $rc -eq 2 ] && grep -q "expected one of empty, shapes, found 'test-abort'" err.txt || fail "test scenes leak"
 echo ok

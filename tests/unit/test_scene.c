@@ -174,6 +174,58 @@ static void test_orbit_camera(void **state)
     scene_destroy(s);
 }
 
+/* "shapes": its objects, materials and maps as scenes/scene.c builds them, posed
+ * with finite world bounds that contain each mesh, the rotating ones moving. */
+static void test_shapes_scene(void **state)
+{
+    (void)state;
+    char err[256];
+    light_params lp = lights(RNG_MSVC, 16);
+    scene *s = scene_build("shapes", &lp, 160, 120, err, sizeof err);
+    assert_non_null(s);
+    assert_int_equal(s->nobjects, 10);
+    assert_int_equal(s->nmeshes, 7);
+    assert_int_equal(s->nmaterials, 4);
+    assert_int_equal(s->ntextures, 6);
+    assert_true(s->sky);
+    unsigned with_normal_map = 0, with_emissive = 0, without_maps = 0;
+    for (uint32_t i = 0; i < s->nmaterials; i++) {
+        const scene_material *m = &s->materials[i];
+        with_normal_map += m->normal_map >= 0;
+        with_emissive += m->emissive_map >= 0;
+        without_maps += m->diffuse_map < 0 && m->gloss_map < 0 && m->normal_map < 0;
+        const int maps[4] = {m->diffuse_map, m->gloss_map, m->normal_map, m->emissive_map};
+        for (int t = 0; t < 4; t++)
+            assert_true(maps[t] >= -1 && maps[t] < (int)s->ntextures);
+    }
+    assert_int_equal(with_normal_map, 1);
+    assert_int_equal(with_emissive, 1);
+    assert_int_equal(without_maps, 1);
+    sm_vec4 before[10];
+    scene_update(s, 0.0);
+    for (uint32_t i = 0; i < s->nobjects; i++) {
+        const scene_object *o = &s->objects[i];
+        assert_true(o->mesh < s->nmeshes && o->material < s->nmaterials);
+        for (int k = 0; k < 4; k++)
+            assert_true(isfinite(o->bsphere[k]));
+        /* the world sphere holds every vertex of the posed mesh */
+        const mesh *m = &s->meshes[o->mesh];
+        for (uint32_t v = 0; v < m->nvertices; v += 7) {
+            sm_vec3 w;
+            sm_mat4_mulv3(o->model, m->vertices[v].position, 1.0f, w);
+            sm_vec3 c = {o->bsphere[0], o->bsphere[1], o->bsphere[2]};
+            assert_true(sm_vec3_distance(w, c) <= o->bsphere[3] * 1.0001f + 1e-4f);
+        }
+        memcpy(before[i], o->model[0], sizeof before[i]);
+    }
+    scene_update(s, 1.0);
+    unsigned moved = 0;
+    for (uint32_t i = 0; i < s->nobjects; i++)
+        moved += memcmp(before[i], s->objects[i].model[0], sizeof before[i]) != 0;
+    assert_int_equal(moved, 4);   /* the two torus knots and the two boxes spin */
+    scene_destroy(s);
+}
+
 int main(void)
 {
     const struct CMUnitTest tests[] = {
@@ -183,6 +235,7 @@ int main(void)
         cmocka_unit_test(test_growth_keeps_earlier_lights),
         cmocka_unit_test(test_no_lights_and_unknown_scene),
         cmocka_unit_test(test_orbit_camera),
+        cmocka_unit_test(test_shapes_scene),
     };
     return cmocka_run_group_tests(tests, NULL, NULL);
 }

@@ -93,18 +93,18 @@ static void test_order_and_ids(void **state)
         int w, h;
         uint32_t lights;
     } want[] = {
-        {"ea5298e090c2", "null", 800, 600, 0},
-        {"984c97dc1887", "deferred", 800, 600, 0},
-        {"a47631ae6851", "null", 800, 600, 100},
-        {"d3327a281004", "deferred", 800, 600, 100},
-        {"633cf7a93594", "null", 1024, 768, 0},
-        {"7e162e2690b6", "deferred", 1024, 768, 0},
-        {"2f5a21349cfa", "null", 1024, 768, 100},
-        {"334ec538c7d6", "deferred", 1024, 768, 100},
-        {"41df2106a5a6", "null", 1600, 1200, 0},
-        {"6868d42b6f67", "deferred", 1600, 1200, 0},
-        {"6d929a58a611", "null", 1600, 1200, 100},
-        {"5463a9469b9e", "deferred", 1600, 1200, 100},
+        {"2b1eee5b9847", "null", 800, 600, 0},
+        {"e6a2b30c8576", "deferred", 800, 600, 0},
+        {"c8a5b7855978", "null", 800, 600, 100},
+        {"07b2c72eddee", "deferred", 800, 600, 100},
+        {"a1de6a798c33", "null", 1024, 768, 0},
+        {"6f9a3b5a9400", "deferred", 1024, 768, 0},
+        {"0ee7f657f8e2", "null", 1024, 768, 100},
+        {"fe4cb2d7d4ee", "deferred", 1024, 768, 100},
+        {"55147d4c42f5", "null", 1600, 1200, 0},
+        {"eeb21733d349", "deferred", 1600, 1200, 0},
+        {"ae5ef778d50d", "null", 1600, 1200, 100},
+        {"d0c78256dc37", "deferred", 1600, 1200, 100},
         {NULL, NULL, 0, 0, 0},
     };
     experiment *e = load("good/sweep.yaml");
@@ -133,9 +133,15 @@ static void test_order_and_ids(void **state)
     /* the id is the first 12 hex digits of FNV-1a 64 over "key=value\n" in table order */
     const char *canonical = "scene=empty\nrenderer=null\nresolution=800x600\ntrials=1\n"
                             "warmup=frames:0\nduration=frames:100\nclock=wall\n"
-                            "step=0.016666666666666666\nsync=finish\nlights.placement=random\n"
+                            "step=0.016666666666666666\nsync=finish\n"
+                            "gbuffer.preset=curtis\ngbuffer.position=preset\n"
+                            "gbuffer.normal=preset\ndeferred.light_volumes=stencil\n"
+                            "deferred.separate_specular=false\nforward.illumination_sets=true\n"
+                            "lights.placement=random\n"
                             "lights.seed=1337\nlights.rng=msvc\nlights.count=0\n"
-                            "lights.radius=10\nlights.color_max=0.3\noutputs.frames=true\n"
+                            "lights.radius=10\nlights.color_max=0.3\n"
+                            "lights.attenuation=inverse-square\nlights.quadratic.a=1\n"
+                            "lights.quadratic.b=0\nlights.quadratic.c=1\noutputs.frames=true\n"
                             "outputs.seconds=true\noutputs.screenshots=\n";
     char id[17];
     snprintf(id, sizeof id, "%016llx", (unsigned long long)fnv(canonical));
@@ -359,16 +365,16 @@ static void test_plan_print(void **state)
     assert_true(expand(e, 4, &p));
     char *all = print_plan(&p, 0);
     assert_string_equal(all,
-                        "ea5298e090c2  renderer=null resolution=800x600 lights.count=0\n"
-                        "a47631ae6851  renderer=null resolution=800x600 lights.count=100\n"
-                        "633cf7a93594  renderer=null resolution=1024x768 lights.count=0\n"
-                        "2f5a21349cfa  renderer=null resolution=1024x768 lights.count=100\n"
-                        "41df2106a5a6  renderer=null resolution=1600x1200 lights.count=0\n"
-                        "6d929a58a611  renderer=null resolution=1600x1200 lights.count=100\n");
+                        "2b1eee5b9847  renderer=null resolution=800x600 lights.count=0\n"
+                        "c8a5b7855978  renderer=null resolution=800x600 lights.count=100\n"
+                        "a1de6a798c33  renderer=null resolution=1024x768 lights.count=0\n"
+                        "0ee7f657f8e2  renderer=null resolution=1024x768 lights.count=100\n"
+                        "55147d4c42f5  renderer=null resolution=1600x1200 lights.count=0\n"
+                        "ae5ef778d50d  renderer=null resolution=1600x1200 lights.count=100\n");
     free(all);
     char *two = print_plan(&p, 2);
-    assert_string_equal(two, "a47631ae6851  renderer=null resolution=800x600 lights.count=100\n"
-                             "6d929a58a611  renderer=null resolution=1600x1200 lights.count=100\n");
+    assert_string_equal(two, "c8a5b7855978  renderer=null resolution=800x600 lights.count=100\n"
+                             "ae5ef778d50d  renderer=null resolution=1600x1200 lights.count=100\n");
     free(two);
     char *none = print_plan(&p, 5);
     assert_string_equal(none, "");
@@ -380,7 +386,7 @@ static void test_plan_print(void **state)
     e = load("good/minimal.yaml");
     assert_true(expand(e, 1, &p));
     char *one = print_plan(&p, 0);
-    assert_string_equal(one, "27b8847e044b  renderer=null\n");
+    assert_string_equal(one, "cbcf460ac525  renderer=null\n");
     free(one);
     plan_free(&p);
     experiment_free(e);
@@ -394,11 +400,11 @@ static void test_duplicate_points(void **state)
     } cases[] = {
         {"sweep/duplicate_value.yaml",
          "8:18: sweep.trials[2]: expected a distinct sweep point, found run 2 the same as run 0 "
-         "(id 27b8847e044b)"},
+         "(id cbcf460ac525)"},
         /* 0.50 repeats 0.5 at both resolutions: reported once, at its first pair */
         {"sweep/duplicate_canonical.yaml",
          "10:24: sweep.lights.radius[1]: expected a distinct sweep point, found run 1 the same "
-         "as run 0 (id a69aa5804807)"},
+         "as run 0 (id 8cbaa3514d97)"},
         {NULL, NULL},
     };
     for (size_t k = 0; cases[k].file; k++) {
