@@ -10,6 +10,8 @@ packages=(
   libyaml-dev libopenimageio-dev
   libcmocka-dev libcglm-dev                           # tests; cglm is the math oracle
   python3 python3-yaml                                # end-to-end test checks
+  clang libclang-rt-14-dev                            # the manifest fuzzer (libFuzzer)
+  valgrind                                            # meson test --setup=valgrind
 )
 
 missing=()

@@ -36,6 +36,18 @@ logs+=("build/meson-logs/testlog.json")
 ) || status=1
 logs+=("build-asan/meson-logs/testlog.json")
 
+# The manifest parser under libFuzzer for a bounded time (scripts/fuzz.sh; the
+# README's reliability section has the long run). Counted as one test.
+mkdir -p build-fuzz
+fuzz_log=build-fuzz/ci-result.json
+if scripts/fuzz.sh "${SHADESWEEP_FUZZ_SECONDS:-30}" >&2; then
+  echo '{"name": "fuzz-manifest", "result": "OK"}' > "$fuzz_log"
+else
+  echo '{"name": "fuzz-manifest", "result": "FAIL"}' > "$fuzz_log"
+  status=1
+fi
+logs+=("$fuzz_log")
+
 /usr/bin/python3 - "${logs[@]}" <<'PY'
 import json, sys, os
 passed = failed = skipped = 0
