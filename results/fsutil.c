@@ -113,7 +113,8 @@ bool afile_commit(afile *f, char *err, size_t errlen)
         return false;
     }
     if (!ok) {
-        snprintf(err, errlen, "%s: %s failed: %s", f->tmp_path, what, strerror(e));
+        /* Name the file the user knows; the temporary one is gone. */
+        snprintf(err, errlen, "%s: %s failed: %s", f->final_path, what, strerror(e));
         unlink(f->tmp_path);
     }
     afile_clear(f);
