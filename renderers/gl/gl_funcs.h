@@ -172,6 +172,16 @@ GL_FUNC(void, NamedFramebufferDrawBuffers, (GLuint framebuffer, GLsizei n, const
 GL_FUNC(void, NamedFramebufferReadBuffer, (GLuint framebuffer, GLenum src))
 GL_FUNC(GLenum, CheckNamedFramebufferStatus, (GLuint framebuffer, GLenum target))
 GL_FUNC(void, CreateVertexArrays, (GLsizei n, GLuint *arrays))
+GL_FUNC(void, TextureSubImage2D, (GLuint texture, GLint level, GLint xoffset, GLint yoffset, GLsizei width, GLsizei height, GLenum format, GLenum type, const void *pixels))
+GL_FUNC(void, GenerateTextureMipmap, (GLuint texture))
+GL_FUNC(void, CreateBuffers, (GLsizei n, GLuint *buffers))
+GL_FUNC(void, NamedBufferStorage, (GLuint buffer, GLsizeiptr size, const void *data, GLbitfield flags))
+GL_FUNC(void, NamedBufferSubData, (GLuint buffer, GLintptr offset, GLsizeiptr size, const void *data))
+GL_FUNC(void, VertexArrayVertexBuffer, (GLuint vaobj, GLuint bindingindex, GLuint buffer, GLintptr offset, GLsizei stride))
+GL_FUNC(void, VertexArrayElementBuffer, (GLuint vaobj, GLuint buffer))
+GL_FUNC(void, EnableVertexArrayAttrib, (GLuint vaobj, GLuint index))
+GL_FUNC(void, VertexArrayAttribFormat, (GLuint vaobj, GLuint attribindex, GLint size, GLenum type, GLboolean normalized, GLuint relativeoffset))
+GL_FUNC(void, VertexArrayAttribBinding, (GLuint vaobj, GLuint attribindex, GLuint bindingindex))
 
 /* >>Draws */
 GL_FUNC(void, DrawArrays, (GLenum mode, GLint first, GLsizei count))

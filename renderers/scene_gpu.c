@@ -1,0 +1,372 @@
+/* A scene's meshes and textures on the GPU and the draws every renderer makes of
+ * them (scene_gpu.h). Everything is made with direct state access, so creation
+ * binds nothing the state cache keeps. */
+#include "renderers/scene_gpu.h"
+
+#include "renderers/frontend.h"
+#include "renderers/gl/loader.h"
+#include "renderers/gl/program.h"
+#include "renderers/shading.h"
+
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+
+typedef struct gpu_mesh {
+    GLuint vao, vbo, ibo;
+    GLsizei count;             /* indices */
+} gpu_mesh;
+
+struct scene_gpu {
+    gpu_mesh *meshes;
+    uint32_t nmeshes;
+    GLuint *textures;
+    uint32_t ntextures;
+    gpu_mesh sphere, cone;     /* the light volumes (frontend.h) */
+    GLuint frame_ubo;
+    gl_program_cache *programs;
+    GLuint sky_program, resolve_program;
+    bool unclipped;            /* the programs are FULLSCREEN_UNCLIPPED variants */
+    int width, height;         /* the scene's size (the sky's target) */
+    uint64_t bytes;
+};
+
+// >>meshes
+
+static bool mesh_upload(gpu_mesh *out, const mesh *m, const char *what, uint64_t *bytes,
+                        char *err, size_t errlen)
+{
+    memset(out, 0, sizeof *out);
+    if (!m->nvertices || !m->nindices || m->nindices > (uint32_t)INT32_MAX) {
+        snprintf(err, errlen, "scene_gpu: %s has %u vertices and %u indices: nothing to draw",
+                 what, m->nvertices, m->nindices);
+        return false;
+    }
+    GLsizeiptr vbytes = (GLsizeiptr)((size_t)m->nvertices * sizeof *m->vertices);
+    GLsizeiptr ibytes = (GLsizeiptr)((size_t)m->nindices * sizeof *m->indices);
+    gl.CreateVertexArrays(1, &out->vao);
+    gl.CreateBuffers(1, &out->vbo);
+    gl.CreateBuffers(1, &out->ibo);
+    gl.NamedBufferStorage(out->vbo, vbytes, m->vertices, 0);
+    gl.NamedBufferStorage(out->ibo, ibytes, m->indices, 0);
+    gl.VertexArrayVertexBuffer(out->vao, 0, out->vbo, 0, (GLsizei)sizeof(mesh_vertex));
+    gl.VertexArrayElementBuffer(out->vao, out->ibo);
+    static const struct {
+        GLint size;
+        GLuint offset;
+    } attrs[4] = {
+        {3, (GLuint)offsetof(mesh_vertex, position)},
+        {3, (GLuint)offsetof(mesh_vertex, normal)},
+        {4, (GLuint)offsetof(mesh_vertex, tangent)},
+        {2, (GLuint)offsetof(mesh_vertex, uv)},
+    };
+    for (GLuint i = 0; i < 4; i++) {
+        gl.EnableVertexArrayAttrib(out->vao, i);
+        gl.VertexArrayAttribFormat(out->vao, i, attrs[i].size, GL_FLOAT, GL_FALSE, attrs[i].offset);
+        gl.VertexArrayAttribBinding(out->vao, i, 0);
+    }
+    out->count = (GLsizei)m->nindices;
+    *bytes += (uint64_t)vbytes + (uint64_t)ibytes;
+    return true;
+}
+
+static void mesh_release(gpu_mesh *m)
+{
+    if (m->vao)
+        gl.DeleteVertexArrays(1, &m->vao);
+    if (m->vbo)
+        gl.DeleteBuffers(1, &m->vbo);
+    if (m->ibo)
+        gl.DeleteBuffers(1, &m->ibo);
+    memset(m, 0, sizeof *m);
+}
+
+// >>textures
+
+static GLuint texture_upload(const texture_image *img, uint32_t index, uint64_t *bytes,
+                             char *err, size_t errlen)
+{
+    GLenum ifmt, fmt;
+    if (img->channels == 4) {
+        ifmt = GL_RGBA8;
+        fmt = GL_RGBA;
+    } else if (img->channels == 1) {
+        ifmt = GL_R8;
+        fmt = GL_RED;
+    } else {
+        snprintf(err, errlen, "scene_gpu: texture %u has %u channels (1 or 4 expected)", index,
+                 img->channels);
+        return 0;
+    }
+    GLint max_size = 0;
+    gl.GetIntegerv(GL_MAX_TEXTURE_SIZE, &max_size);
+    if (!img->data || img->width == 0 || img->height == 0 ||
+        img->width > (uint32_t)max_size || img->height > (uint32_t)max_size) {
+        snprintf(err, errlen, "scene_gpu: texture %u is %ux%u (1..%d per side expected)", index,
+                 img->width, img->height, (int)max_size);
+        return 0;
+    }
+    GLsizei levels = 1;
+    for (uint32_t m = img->width > img->height ? img->width : img->height; m > 1; m >>= 1)
+        levels++;
+    GLuint t = 0;
+    GLint align = 4;
+    gl.CreateTextures(GL_TEXTURE_2D, 1, &t);
+    gl.TextureStorage2D(t, levels, ifmt, (GLsizei)img->width, (GLsizei)img->height);
+    gl.GetIntegerv(GL_UNPACK_ALIGNMENT, &align);
+    gl.PixelStorei(GL_UNPACK_ALIGNMENT, 1);   /* rows are tightly packed */
+    gl.TextureSubImage2D(t, 0, 0, 0, (GLsizei)img->width, (GLsizei)img->height, fmt,
+                         GL_UNSIGNED_BYTE, img->data);
+    gl.PixelStorei(GL_UNPACK_ALIGNMENT, align);
+    gl.GenerateTextureMipmap(t);
+    gl.TextureParameteri(t, GL_TEXTURE_MIN_FILTER, GL_LINEAR_MIPMAP_LINEAR);
+    gl.TextureParameteri(t, GL_TEXTURE_MAG_FILTER, GL_LINEAR);
+    gl.TextureParameteri(t, GL_TEXTURE_WRAP_S, GL_REPEAT);
+    gl.TextureParameteri(t, GL_TEXTURE_WRAP_T, GL_REPEAT);
+    for (uint32_t w = img->width, h = img->height;; w = w > 1 ? w / 2 : 1, h = h > 1 ? h / 2 : 1) {
+        *bytes += (uint64_t)w * h * img->channels;
+        if (w == 1 && h == 1)
+            break;
+    }
+    return t;
+}
+
+// >>create and destroy
+
+static bool build_program(scene_gpu *g, const char *fragment, GLuint *out, char *err,
+                          size_t errlen)
+{
+    gl_program_desc d = {.vertex = "fullscreen.vert", .fragment = fragment};
+    if (g->unclipped)
+        d.defines[0] = "FULLSCREEN_UNCLIPPED";
+    char why[2048];
+    if (gl_program_get(g->programs, &d, out, why, sizeof why) != GLP_OK) {
+        snprintf(err, errlen, "scene_gpu: %s", why);
+        return false;
+    }
+    return true;
+}
+
+scene_gpu *scene_gpu_create(const scene *s, char *err, size_t errlen)
+{
+    scene_gpu *g = calloc(1, sizeof *g);
+    if (!g)
+        goto oom;
+    g->width = s->width;
+    g->height = s->height;
+    g->meshes = calloc(s->nmeshes ? s->nmeshes : 1, sizeof *g->meshes);
+    g->textures = calloc(s->ntextures ? s->ntextures : 1, sizeof *g->textures);
+    g->programs = gl_program_cache_create();
+    if (!g->meshes || !g->textures || !g->programs)
+        goto oom;
+
+    for (uint32_t i = 0; i < s->nmeshes; i++) {
+        char what[32];
+        snprintf(what, sizeof what, "mesh %u", i);
+        if (!mesh_upload(&g->meshes[i], &s->meshes[i], what, &g->bytes, err, errlen))
+            goto fail;
+        g->nmeshes = i + 1;
+    }
+    for (uint32_t i = 0; i < s->ntextures; i++) {
+        g->textures[i] = texture_upload(&s->textures[i], i, &g->bytes, err, errlen);
+        if (!g->textures[i])
+            goto fail;
+        g->ntextures = i + 1;
+    }
+
+    mesh sphere, cone;
+    if (!frontend_volume_meshes(&sphere, &cone, err, errlen))
+        goto fail;
+    bool ok = mesh_upload(&g->sphere, &sphere, "the light sphere", &g->bytes, err, errlen) &&
+              mesh_upload(&g->cone, &cone, "the light cone", &g->bytes, err, errlen);
+    mesh_free(&sphere);
+    mesh_free(&cone);
+    if (!ok)
+        goto fail;
+
+    gl.CreateBuffers(1, &g->frame_ubo);
+    gl.NamedBufferStorage(g->frame_ubo, (GLsizeiptr)sizeof(gpu_frame), NULL,
+                          GL_DYNAMIC_STORAGE_BIT);
+    gl.BindBufferBase(GL_UNIFORM_BUFFER, 0, g->frame_ubo);
+    g->bytes += sizeof(gpu_frame);
+
+    GLint dims[2] = {0, 0};
+    gl.GetIntegerv(GL_MAX_VIEWPORT_DIMS, dims);
+    g->unclipped = (int64_t)2 * s->width <= dims[0] && (int64_t)2 * s->height <= dims[1];
+    if (s->sky && !build_program(g, "sky.frag", &g->sky_program, err, errlen))
+        goto fail;
+    if (!build_program(g, "resolve.frag", &g->resolve_program, err, errlen))
+        goto fail;
+    return g;
+
+oom:
+    snprintf(err, errlen, "scene_gpu: out of memory for scene '%s'", s->name);
+fail:
+    scene_gpu_destroy(g);
+    return NULL;
+}
+
+void scene_gpu_destroy(scene_gpu *g)
+{
+    if (!g)
+        return;
+    for (uint32_t i = 0; i < g->nmeshes; i++)
+        mesh_release(&g->meshes[i]);
+    if (g->ntextures)
+        gl.DeleteTextures((GLsizei)g->ntextures, g->textures);
+    mesh_release(&g->sphere);
+    mesh_release(&g->cone);
+    if (g->frame_ubo)
+        gl.DeleteBuffers(1, &g->frame_ubo);
+    gl_program_cache_destroy(g->programs);
+    free(g->meshes);
+    free(g->textures);
+    free(g);
+}
+
+// >>per frame
+
+void scene_gpu_frame(scene_gpu *g, const scene *s)
+{
+    gpu_frame f;
+    shading_pack_frame(s, &f);
+    gl.NamedBufferSubData(g->frame_ubo, 0, (GLsizeiptr)sizeof f, &f);
+    gl.BindBufferBase(GL_UNIFORM_BUFFER, 0, g->frame_ubo);
+}
+
+/* The object's mesh, or NULL (with a message) for a bad object. */
+static const gpu_mesh *object_mesh(const scene_gpu *g, const scene *s, uint32_t object,
+                                   const char *fn)
+{
+    if (object >= s->nobjects) {
+        fprintf(stderr, "bug: %s: object %u of %u\n", fn, object, s->nobjects);
+        return NULL;
+    }
+    const scene_object *o = &s->objects[object];
+    if (o->mesh >= g->nmeshes || o->material >= s->nmaterials) {
+        fprintf(stderr, "bug: %s: object %u has mesh %u of %u, material %u of %u\n", fn,
+                object, o->mesh, g->nmeshes, o->material, s->nmaterials);
+        return NULL;
+    }
+    return &g->meshes[o->mesh];
+}
+
+/* Locations 0, 1, 2 of mesh.vert for object o. */
+static void set_transform(const scene *s, const scene_object *o)
+{
+    sm_mat4 mv;
+    sm_mat3 nm;
+    sm_mat4_mul(s->view, o->model, mv);
+    sm_mat4_normal(mv, nm);
+    gl.UniformMatrix4fv(0, 1, GL_FALSE, &mv[0][0]);
+    gl.UniformMatrix4fv(1, 1, GL_FALSE, &s->proj[0][0]);
+    gl.UniformMatrix3fv(2, 1, GL_FALSE, &nm[0][0]);
+}
+
+void scene_gpu_draw_object(scene_gpu *g, gl_state *st, const scene *s, uint32_t object)
+{
+    const gpu_mesh *gm = object_mesh(g, s, object, "scene_gpu_draw_object");
+    if (!gm)
+        return;
+    const scene_object *o = &s->objects[object];
+    const scene_material *m = &s->materials[o->material];
+    const int maps[4] = {m->diffuse_map, m->gloss_map, m->normal_map, m->emissive_map};
+    for (unsigned unit = 0; unit < 4; unit++)
+        if (maps[unit] >= 0 && (uint32_t)maps[unit] >= g->ntextures) {
+            fprintf(stderr, "bug: scene_gpu_draw_object: material %u has texture %d of %u\n",
+                    o->material, maps[unit], g->ntextures);
+            return;
+        }
+    for (unsigned unit = 0; unit < 4; unit++)
+        if (maps[unit] >= 0)
+            gl_state_texture(st, unit, g->textures[maps[unit]]);
+
+    set_transform(s, o);
+    gl.Uniform3fv(8, 1, m->diffuse);
+    gl.Uniform1f(9, m->specular);
+    gl.Uniform1f(10, m->shininess);
+    gl.Uniform3fv(11, 1, m->emissive);
+
+    gl_state_vertex_array(st, gm->vao);
+    gl_state_draw_elements(st, GL_TRIANGLES, gm->count, GL_UNSIGNED_INT, 0);
+}
+
+void scene_gpu_draw_object_geometry(scene_gpu *g, gl_state *st, const scene *s,
+                                    uint32_t object)
+{
+    const gpu_mesh *gm = object_mesh(g, s, object, "scene_gpu_draw_object_geometry");
+    if (!gm)
+        return;
+    set_transform(s, &s->objects[object]);
+    gl_state_vertex_array(st, gm->vao);
+    gl_state_draw_elements(st, GL_TRIANGLES, gm->count, GL_UNSIGNED_INT, 0);
+}
+
+void scene_gpu_draw_light_volume(scene_gpu *g, gl_state *st, const scene *s, uint32_t light)
+{
+    if (light >= s->nlights_total) {
+        fprintf(stderr, "bug: scene_gpu_draw_light_volume: light %u of %u\n", light,
+                s->nlights_total);
+        return;
+    }
+    const scene_light *l = &s->lights[light];
+    const gpu_mesh *gm;
+    if (l->type == LIGHT_POINT)
+        gm = &g->sphere;
+    else if (l->type == LIGHT_SPOT)
+        gm = &g->cone;
+    else {
+        fprintf(stderr, "bug: scene_gpu_draw_light_volume: light %u is directional: it has "
+                "no volume\n", light);
+        return;
+    }
+    sm_mat4 model, mv;
+    frontend_light_volume_model(l, model);
+    sm_mat4_mul(s->view, model, mv);
+    gl.UniformMatrix4fv(0, 1, GL_FALSE, &mv[0][0]);
+    gl.UniformMatrix4fv(1, 1, GL_FALSE, &s->proj[0][0]);
+    gl_state_vertex_array(st, gm->vao);
+    gl_state_draw_elements(st, GL_TRIANGLES, gm->count, GL_UNSIGNED_INT, 0);
+}
+
+/* What the fullscreen passes set besides their program. */
+static void fullscreen_state(gl_state *st, const gls_depth *depth)
+{
+    gl_state_depth(st, depth);
+    gl_state_blend(st, NULL);
+    gl_state_stencil(st, NULL);
+    gl_state_cull(st, GLS_CULL_NONE);
+    gl_state_color_mask(st, GLS_COLOR_MASK_RGBA);
+}
+
+void scene_gpu_draw_sky(scene_gpu *g, gl_state *st)
+{
+    if (!g->sky_program) {
+        fprintf(stderr, "bug: scene_gpu_draw_sky: the scene has no sky\n");
+        return;
+    }
+    gl_state_program(st, g->sky_program);
+    fullscreen_state(st, &(gls_depth){.compare = GLS_COMPARE_LEQUAL, .write = false});
+    gl_state_draw_fullscreen(st, g->width, g->height, g->unclipped);
+}
+
+void scene_gpu_resolve(scene_gpu *g, gl_state *st, unsigned hdr_texture, unsigned output_fbo,
+                       int width, int height)
+{
+    gl_state_framebuffer(st, output_fbo);
+    gl_state_program(st, g->resolve_program);
+    gl_state_texture(st, 0, hdr_texture);
+    fullscreen_state(st, NULL);
+    gl_state_draw_fullscreen(st, width, height, g->unclipped);
+}
+
+uint64_t scene_gpu_bytes(const scene_gpu *g)
+{
+    return g ? g->bytes : 0;
+}
+
+void scene_gpu_describe(const scene_gpu *g, pass_plan *out)
+{
+    if (g)
+        gl_program_cache_describe(g->programs, out);
+}

@@ -1,0 +1,84 @@
+// Phong lighting as seed 000 appendix D gives it, shared by every renderer so that
+// their images differ only by what a G-buffer loses:
+//   I = A + att * spot * (D + g * S)
+//   D = light * diffuse * max(N.L, 0)
+//   S = light * max(R.V, 0)^n           (g: specular intensity x gloss map)
+//   att: 1/d^2 | max(0, 1 - d/range) | 1/(a d^2 + b d + c), and 0 beyond range
+//   spot = (-L.A)^f inside the cone (-L.A > cos c), else 0
+// Everything is in view space: the eye is at the origin.
+//
+// A light is 5 vec4s (the layout of forward-spml's buffer and of the per-light
+// uniform u_light[5] of the other passes; renderers/shading.h fills it):
+//   [0] xyz position, w range           [1] rgb colour, w type (0 point, 1 spot, 2 dir.)
+//   [2] xyz direction (unit, the way the light travels), w cos(spot angle)
+//   [3] x spot exponent, y attenuation (0 inverse-square, 1 linear-range, 2 quadratic)
+//   [4] xyz quadratic a, b, c
+
+#define LIGHT_POINT 0
+#define LIGHT_SPOT 1
+#define LIGHT_DIRECTIONAL 2
+
+// 1/d^2 at d = 0 (a light on the surface) is infinite: d^2 is clamped here, so the
+// light is as bright as at 1 cm and never Inf.
+const float ATTENUATION_MIN_D2 = 1e-4;
+
+struct Light {
+    vec4 position_range;
+    vec4 color_type;
+    vec4 direction_cos;
+    vec4 params;
+    vec4 quadratic;
+};
+
+// Light arriving at view-space point P (attenuation and spot cone applied), and the
+// unit vector L towards it; zero beyond the light's range or outside its cone.
+vec3 light_incoming(Light l, vec3 P, vec3 N, out vec3 L)
+{
+    int type = int(l.color_type.w);
+    if (type == LIGHT_DIRECTIONAL) {
+        L = -l.direction_cos.xyz;
+        return l.color_type.rgb;
+    }
+    vec3 d = l.position_range.xyz - P;
+    float d2 = dot(d, d);
+    float range = l.position_range.w;
+    if (d2 > range * range) {
+        L = N;
+        return vec3(0.0);
+    }
+    float dist = sqrt(d2);
+    // A light exactly on the surface lights it head-on rather than from nowhere.
+    L = dist > 0.0 ? d / dist : N;
+    int kind = int(l.params.y);
+    float att;
+    if (kind == 0)
+        att = 1.0 / max(d2, ATTENUATION_MIN_D2);
+    else if (kind == 1)
+        att = max(0.0, 1.0 - dist / range);
+    else
+        att = 1.0 / max(l.quadratic.x * d2 + l.quadratic.y * dist + l.quadratic.z, 1e-6);
+    if (type == LIGHT_SPOT) {
+        float c = dot(-L, l.direction_cos.xyz);
+        att *= c > l.direction_cos.w ? pow(c, l.params.x) : 0.0;
+    }
+    return l.color_type.rgb * att;
+}
+
+// The light's contribution at a surface point: att * spot * (D + g * S).
+vec3 shade_light(Light l, vec3 P, vec3 N, vec3 diffuse, float gloss, float shininess)
+{
+    vec3 L;
+    vec3 incoming = light_incoming(l, P, N, L);
+    float ndl = max(dot(N, L), 0.0);
+    vec3 V = normalize(-P);
+    vec3 R = reflect(-L, N);
+    float rv = max(dot(R, V), 0.0);
+    // pow(0, 0) is undefined in GLSL: an exponent of 0 means a constant highlight.
+    float spec = ndl > 0.0 ? (shininess > 0.0 ? pow(rv, shininess) : 1.0) : 0.0;
+    return incoming * (diffuse * ndl + gloss * spec);
+}
+
+Light light_from(vec4 v[5])
+{
+    return Light(v[0], v[1], v[2], v[3], v[4]);
+}

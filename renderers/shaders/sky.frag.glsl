@@ -1,0 +1,22 @@
+// The sky (scene_gpu_draw_sky), drawn with fullscreen.vert after the scene: a
+// vertical gradient of the scene's sky colour along each pixel's view ray, from the
+// colour itself at and below the horizon to SKY_ZENITH x the colour straight up
+// (view space: "up" is the camera's +Y). Written at depth 1.0, the far plane (what
+// z = w would give), so that with the depth test LEQUAL against a depth buffer
+// cleared to 1 it lands only where no geometry is.
+#include "frame.inc"
+
+const float SKY_ZENITH = 0.6;
+
+layout(location = 0) out vec4 o_color;
+
+void main()
+{
+    // The pixel centre on the near plane (z_ndc = -1: finite for an infinite far plane).
+    vec2 ndc = gl_FragCoord.xy * f_viewport.zw * 2.0 - 1.0;
+    vec4 p = f_inv_proj * vec4(ndc, -1.0, 1.0);
+    vec3 dir = normalize(p.xyz / p.w);
+    float up = clamp(dir.y, 0.0, 1.0);
+    o_color = vec4(f_sky.rgb * mix(1.0, SKY_ZENITH, up), 1.0);
+    gl_FragDepth = 1.0;
+}

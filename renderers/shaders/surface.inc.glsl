@@ -1,0 +1,70 @@
+// The surface a fragment of a scene mesh shows, from the material and its maps:
+// shared by the forward passes and the G-buffer pass, so both see the same inputs.
+// Defines: DIFFUSE_MAP, GLOSS_MAP, NORMAL_MAP, EMISSIVE_MAP (only the maps the
+// material has are sampled: renderers compile only the variants a scene uses).
+layout(location = 0) in vec3 v_position;
+layout(location = 1) in vec3 v_normal;
+layout(location = 2) in vec4 v_tangent;
+layout(location = 3) in vec2 v_uv;
+
+layout(location = 8) uniform vec3 u_diffuse;
+layout(location = 9) uniform float u_specular;
+layout(location = 10) uniform float u_shininess;
+layout(location = 11) uniform vec3 u_emissive;
+
+layout(binding = 0) uniform sampler2D t_diffuse;
+layout(binding = 1) uniform sampler2D t_gloss;
+layout(binding = 2) uniform sampler2D t_normal;
+layout(binding = 3) uniform sampler2D t_emissive;
+
+struct Surface {
+    vec3 position;   // view space
+    vec3 normal;     // view space, unit
+    vec3 diffuse;
+    float gloss;     // specular intensity x gloss map
+    float shininess;
+    vec3 emissive;
+};
+
+// A unit vector from n, or `fallback` where n has no length (degenerate normals
+// and tangents in meshes must not become NaN).
+vec3 safe_normalize(vec3 n, vec3 fallback)
+{
+    float len2 = dot(n, n);
+    return len2 > 1e-20 ? n * inversesqrt(len2) : fallback;
+}
+
+Surface surface_get()
+{
+    Surface s;
+    s.position = v_position;
+    vec3 n = safe_normalize(v_normal, safe_normalize(-v_position, vec3(0.0, 0.0, 1.0)));
+    if (!gl_FrontFacing)
+        n = -n;   // two-sided: shells are seen from inside
+#ifdef NORMAL_MAP
+    vec3 t = v_tangent.xyz - n * dot(n, v_tangent.xyz);
+    float tl2 = dot(t, t);
+    if (tl2 > 1e-20) {
+        t *= inversesqrt(tl2);
+        vec3 b = cross(n, t) * v_tangent.w;
+        vec3 m = texture(t_normal, v_uv).xyz * 2.0 - 1.0;
+        n = safe_normalize(t * m.x + b * m.y + n * m.z, n);
+    }
+#endif
+    s.normal = n;
+    s.diffuse = u_diffuse;
+#ifdef DIFFUSE_MAP
+    s.diffuse *= texture(t_diffuse, v_uv).rgb;
+#endif
+    s.gloss = u_specular;
+#ifdef GLOSS_MAP
+    s.gloss *= texture(t_gloss, v_uv).r;
+#endif
+    s.shininess = u_shininess;
+    s.emissive = u_emissive;
+#ifdef EMISSIVE_MAP
+    vec4 e = texture(t_emissive, v_uv);   // rgb: colour, a: mask
+    s.emissive *= e.rgb * e.a;
+#endif
+    return s;
+}

@@ -1,0 +1,36 @@
+#pragma once
+/* CPU side of the shared shading code (renderers/shaders/lighting.inc.glsl and
+ * frame.inc.glsl): lights and per-frame values packed as the shaders read them.
+ * All shading is in view space. */
+#include <stdint.h>
+#include "scenes/scene.h"
+
+/* One light: 5 vec4s, the layout of lighting.inc.glsl's Light. */
+typedef struct gpu_light {
+    float v[5][4];
+} gpu_light;
+
+/* The Frame uniform block (std140). */
+typedef struct gpu_frame {
+    float proj[16];
+    float inv_proj[16];
+    float ambient[4];
+    float viewport[4];
+    float sky[4];
+    float clip[4];
+} gpu_frame;
+
+/* Light l in the view space of `view`: [0] position transformed as a point, w range;
+ * [1] colour, w type (light_type as a float); [2] direction transformed as a vector and
+ * normalized, w cos(spot_angle) for a spot (-1 for the others: no cone); [3] x spot
+ * exponent (0 unless a spot), y attenuation kind (attenuation_kind as a float);
+ * [4] att_a, att_b, att_c, 0. */
+void shading_pack_light(const scene_light *l, const sm_mat4 view, gpu_light *out);
+/* proj = s->proj, inv_proj = its inverse (sm_mat4_inv), ambient = (s->ambient, 0),
+ * viewport = (width, height, 1/width, 1/height) of s, sky = (s->sky_color, 1 when
+ * s->sky else 0), clip = (s->cam.znear, s->cam.zfar, 0, 0). */
+void shading_pack_frame(const scene *s, gpu_frame *out);
+
+/* The shader defines a material needs ("DIFFUSE_MAP", "GLOSS_MAP", "NORMAL_MAP",
+ * "EMISSIVE_MAP"), in that order; returns how many (<= 4). */
+unsigned shading_material_defines(const scene_material *m, const char *defines[4]);
