@@ -7,10 +7,16 @@
 #include <string.h>
 
 extern const renderer_impl renderer_null_impl;
+extern const renderer_impl renderer_deferred_impl;
+extern const renderer_impl renderer_forward_mpml_impl;
+extern const renderer_impl renderer_forward_spml_impl;
 
 /* Every renderer the program knows, in the order `info` and errors list them. */
 static const renderer_impl *const registry[] = {
     &renderer_null_impl,
+    &renderer_deferred_impl,
+    &renderer_forward_mpml_impl,
+    &renderer_forward_spml_impl,
 };
 
 struct renderer {

@@ -8,6 +8,7 @@
 
 #include "config.h"
 #include "version.h"
+#include "renderers/forward_common.h"
 #include "renderers/gl/context.h"
 #include "renderers/renderer.h"
 #include "results/fsutil.h"
@@ -213,6 +214,8 @@ static int cmd_info(int argc, char **argv)
         return 2;
     }
     gl_context_print_info(ctx, stdout);
+    printf("forward_spml_max_lights: %u\n",
+           (unsigned)forward_spml_max_lights(gl_context_info(ctx)->max_uniform_block_size));
     gl_context_destroy(ctx);
     printf("renderers:");
     for (size_t i = 0; i < renderer_kind_count(); i++)

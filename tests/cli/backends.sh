@@ -31,7 +31,7 @@ id=$(sed -n 2p egl/plan.csv | cut -d, -f2)
 for f in frames.csv seconds.csv passes.csv; do
   [ "$(head -1 egl/runs/$id/$f)" = "$(head -1 osm/runs/$id/$f)" ] || fail "$f columns differ"
 done
-[ "$(wc -l <osm/summary.csv)" -eq 9 ] || fail "osmesa summary rows"
+[ "$(wc -l <osm/summary.csv)" -eq 33 ] || fail "osmesa summary rows"
 grep -q "backend: osmesa" osm/runs/$id/meta.yaml || fail "meta.yaml backend"
 ! grep -v ',ok,$' osm/summary.csv | tail -n +2 | grep -q . || fail "osmesa runs failed: $(cat osm/summary.csv)"
 echo ok

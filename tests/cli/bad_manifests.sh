@@ -30,7 +30,7 @@ set +e
 "$SHADESWEEP" validate bad.yaml "$SOURCE_ROOT/experiments/smoke.yaml" >stdout.txt 2>stderr.txt; rc=$?
 set -e
 [ $rc -eq 2 ] || fail "validate exited $rc"
-grep -q "smoke.yaml: ok, 4 runs" stdout.txt || fail "validate of the good manifest: $(cat stdout.txt)"
+grep -q "smoke.yaml: ok, 16 runs" stdout.txt || fail "validate of the good manifest: $(cat stdout.txt)"
 [ "$(grep -c '^bad.yaml:' stderr.txt)" -eq 6 ] || fail "validate lists every error"
 
 "$SHADESWEEP" validate "$SOURCE_ROOT"/experiments/*.yaml >/dev/null || fail "experiments/ must validate"

@@ -5,7 +5,7 @@ need_gl
 cd "$T"
 "$SHADESWEEP" run --debug-gl "$SOURCE_ROOT/experiments/smoke.yaml" >run.out 2>run.err \
   || { cat run.err >&2; fail "smoke run exited $?"; }
-grep -q "run 4 of 4" run.err || fail "progress lines missing: $(cat run.err)"
+grep -q "run 16 of 16" run.err || fail "progress lines missing: $(cat run.err)"
 "$PYTHON" - out/smoke <<'PY'
 import csv, glob, math, os, struct, sys
 import yaml
@@ -34,27 +34,34 @@ passes_cols = ["run_id","trial","frame","pass","gpu_us","cpu_us","draw_calls","s
 
 with open(os.path.join(out, "plan.csv"), newline="") as f:
     plan = list(csv.DictReader(f))
-if len(plan) != 4:
-    fail(f"plan has {len(plan)} runs, want 4 (2 resolutions x 2 sync modes x 1 renderer)")
+RENDERERS = ["null", "deferred", "forward-mpml", "forward-spml"]
+if len(plan) != 16:
+    fail(f"plan has {len(plan)} runs, want 16 (2 resolutions x 2 sync modes x 4 renderers)")
 # sweep order: first axis slowest, renderers fastest
-order = [(p["resolution"], p["sync"]) for p in plan]
-if order != [("64x64","finish"),("64x64","fence"),("160x120","finish"),("160x120","fence")]:
+order = [(p["resolution"], p["sync"], p["renderer"]) for p in plan]
+if order != [(r, s, k) for r in ("64x64", "160x120") for s in ("finish", "fence") for k in RENDERERS]:
     fail(f"plan order {order}")
 ids = [p["run_id"] for p in plan]
-if len(set(ids)) != 4 or not all(len(i) == 12 and all(c in "0123456789abcdef" for c in i) for i in ids):
+if len(set(ids)) != 16 or not all(len(i) == 12 and all(c in "0123456789abcdef" for c in i) for i in ids):
     fail(f"run ids {ids}")
 
 summary = rows(os.path.join(out, "summary.csv"), summary_cols)
-if len(summary) != 8:
-    fail(f"summary has {len(summary)} rows, want 4 runs x 2 trials")
+if len(summary) != 32:
+    fail(f"summary has {len(summary)} rows, want 16 runs x 2 trials")
 for s, want_id in zip(summary, [i for i in ids for _ in (1, 2)]):
     if s["run_id"] != want_id: fail(f"summary order: {s['run_id']} != {want_id}")
     if s["status"] != "ok" or s["message"] != "": fail(f"status {s['status']} {s['message']}")
     if s["frames"] != "30": fail(f"frames {s['frames']}")
-    if s["experiment"] != "smoke" or s["renderer"] != "null" or s["scene"] != "empty":
+    if s["experiment"] != "smoke" or s["renderer"] not in RENDERERS or s["scene"] != "shapes":
         fail(f"labels {s}")
-    if s["draw_calls_mean"] != "0.000" or s["state_changes_mean"] != "0.000":
-        fail(f"null renderer draws nothing: {s}")
+    if s["renderer"] == "null":
+        if s["draw_calls_mean"] != "0.000" or s["state_changes_mean"] != "0.000":
+            fail(f"null renderer draws nothing: {s}")
+    elif not (float(s["draw_calls_mean"]) > 0 and float(s["fragments_mean"]) > 0):
+        fail(f"{s['renderer']} drew nothing: {s}")
+    # the G-buffer belongs to deferred runs alone
+    if (s["gbuffer"] == "curtis") != (s["renderer"] == "deferred"): fail(f"gbuffer {s}")
+    if (int(s["gbuffer_bytes"]) > 0) != (s["renderer"] == "deferred"): fail(f"gbuffer_bytes {s}")
     if s["lights_count"] != "8":   # 30 frames at 0.1 s: t < 3, so 4 * 2 lights at most
         fail(f"lights_count {s['lights_count']}")
     for k in ("fps_mean","frametime_mean_us","frametime_p50_us","frametime_p99_us","measured_s"):
@@ -63,14 +70,15 @@ for s, want_id in zip(summary, [i for i in ids for _ in (1, 2)]):
     mean, p50, p99 = (float(s[k]) for k in ("frametime_mean_us","frametime_p50_us","frametime_p99_us"))
     if not p50 <= p99: fail("p50 > p99")
     if not math.isfinite(float(s["frametime_ci95_us"])): fail("ci95")
-    if s["gbuffer_bytes"] != "0": fail("gbuffer_bytes")
     # 30 frames in measured_s seconds
     if abs(float(s["fps_mean"]) - 30 / float(s["measured_s"])) > 0.01 * float(s["fps_mean"]) + 0.002:
         fail("fps_mean != frames / measured_s")
 
+work = {}   # (renderer, resolution) -> per-frame work counts, the same in every run
 for p in plan:
     d = os.path.join(out, "runs", p["run_id"])
     w, h = (int(x) for x in p["resolution"].split("x"))
+    null = p["renderer"] == "null"
     fr = rows(os.path.join(d, "frames.csv"), frames_cols)
     if len(fr) != 60: fail(f"{d}: {len(fr)} frame rows, want 60")
     for i, r in enumerate(fr):
@@ -78,9 +86,15 @@ for p in plan:
         if (r["trial"], r["frame"]) != (str(trial), str(k)): fail(f"frame numbering {r}")
         if abs(float(r["t_scene_s"]) - 0.1 * k) > 1e-6: fail(f"fixed clock t_scene {r}")
         if int(r["lights"]) != 4 * (k // 10): fail(f"light growth at frame {k}: {r['lights']}")
-        if r["draw_calls"] != "0" or r["state_changes"] != "0": fail("work counts")
-        if r["fragments"] not in ("0", ""): fail(f"fragments of a clear: {r['fragments']}")
+        if null and (r["draw_calls"] != "0" or r["state_changes"] != "0"): fail("work counts")
+        if null and r["fragments"] not in ("0", ""): fail(f"fragments of a clear: {r['fragments']}")
+        if not null and int(r["draw_calls"]) <= 0: fail(f"no draws: {r}")
         if float(r["frametime_us"]) <= 0: fail("frame time")
+    # clock: fixed makes the work of frame k the same in both trials and both sync modes
+    counts = [(r["lights"], r["draw_calls"], r["state_changes"], r["fragments"]) for r in fr]
+    if counts[:30] != counts[30:]: fail(f"{p['renderer']}: work counts differ between trials")
+    k = (p["renderer"], p["resolution"])
+    if work.setdefault(k, counts) != counts: fail(f"{k}: work counts differ between sync modes")
     tw = [float(r["t_wall_s"]) for r in fr[:30]]
     if tw != sorted(tw): fail("t_wall_s not increasing")
     sec = rows(os.path.join(d, "seconds.csv"), seconds_cols)
@@ -91,7 +105,14 @@ for p in plan:
         for b in bins:
             if b["fps"] != b["frames"]: fail("fps of a second is its frame count")
     pa = rows(os.path.join(d, "passes.csv"), passes_cols)
-    if len(pa) != 60 or any(r["pass"] != "clear" for r in pa): fail("passes.csv")
+    if null and (len(pa) != 60 or any(r["pass"] != "clear" for r in pa)): fail("passes.csv")
+    if not null:
+        if len({(r["trial"], r["frame"]) for r in pa}) != 60: fail("passes.csv frames")
+        # the passes' draws add up to the frame's
+        for f in fr:
+            mine = [r for r in pa if (r["trial"], r["frame"]) == (f["trial"], f["frame"])]
+            if sum(int(r["draw_calls"]) for r in mine) != int(f["draw_calls"]): fail("pass sums")
+        if not {r["pass"] for r in pa} >= {"sky", "resolve"}: fail(f"passes {sorted({r['pass'] for r in pa})}")
     rs = rows(os.path.join(d, "summary.csv"), summary_cols)
     if len(rs) != 2: fail("per-run summary")
     meta = yaml.safe_load(open(os.path.join(d, "meta.yaml")))
@@ -106,9 +127,18 @@ for p in plan:
     for k in ("started", "finished"):
         if not str(meta[k]).endswith("Z"): fail(f"meta {k}")
     pp = meta["pass_plan"]
-    if pp["passes"] != [{"name": "clear", "run": True, "reason": "clears the output framebuffer"}]:
-        fail(f"pass plan {pp}")
-    if pp["programs"] != [] or pp["targets"] != [] or pp["gbuffer_bytes"] != 0: fail("pass plan")
+    if null:
+        if pp["passes"] != [{"name": "clear", "run": True, "reason": "clears the output framebuffer"}]:
+            fail(f"pass plan {pp}")
+        if pp["programs"] != [] or pp["targets"] != [] or pp["gbuffer_bytes"] != 0: fail("pass plan")
+    else:
+        if not pp["programs"] or not pp["targets"]: fail(f"{p['renderer']} pass plan {pp}")
+        if not all(x["reason"] for x in pp["passes"]): fail("every planned pass says why")
+        # the scene has point lights only: no spot or directional work is planned
+        ran = {x["name"] for x in pp["passes"] if x["run"]}
+        if ran & {"spot", "directional"}: fail(f"{p['renderer']} runs passes for absent lights: {ran}")
+        if any("spot" in prog or "directional" in prog for prog in pp["programs"]):
+            fail(f"{p['renderer']} compiled programs for absent lights: {pp['programs']}")
     for trial in (1, 2):
         png = os.path.join(d, f"screenshot-trial{trial}-t1.5.png")
         with open(png, "rb") as f:

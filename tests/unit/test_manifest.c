@@ -526,7 +526,8 @@ static const bad_case bad_cases[] = {
      {"6:13: resolution: expected WxH with each side 1..32768, found '640 x 480'"}},
     {"unknown_scene.yaml", {"3:8: scene: expected one of empty, shapes, found 'canyon'"}},
     {"unknown_renderer.yaml",
-     {"4:19: renderers[1]: expected one of null, found 'deferred'",
+     {"4:19: renderers[1]: expected one of null, deferred, forward-mpml, forward-spml, "
+      "found 'raytrace'",
       "4:29: renderers[2]: expected a renderer listed once, found a second 'null' (first at 4:13)"}},
     {"empty_renderers.yaml",
      {"4:12: renderers: expected a non-empty sequence of renderer names, found an empty sequence"}},
@@ -549,6 +550,10 @@ static const bad_case bad_cases[] = {
      {"5:11: expected an alias to an earlier anchor, found an undefined alias '*frames'"}},
     {"deep_nesting.yaml", {"2:262: expected nesting at most 256 deep, found deeper"}},
     {"two_documents.yaml", {"6:1: expected one YAML document, found a second document"}},
+    {"placement_none_swept_count.yaml",
+     {"8:21: sweep.lights.count[1]: expected 0 lights with lights.placement none, found 5 lights",
+      "8:24: sweep.lights.count[2]: expected 0 lights with lights.placement none, found up to 9 "
+      "lights"}},
     {"not_mapping.yaml", {"1:1: expected a mapping, found a sequence"}},
     {"missing_required.yaml", {"1:1: scene: expected one of empty, shapes, found nothing"}},
     {"missing_all.yaml",

@@ -1,0 +1,1348 @@
+/* The deferred renderer (seed 000 section 4.5; seeds 001-004 for the G-buffer
+ * layouts and the light volumes).
+ *
+ * Every frame, in passes named as passes.csv names them (a pass the plan skips is
+ * not run, and renderer_describe says why):
+ *
+ *   gbuffer      the G-buffer framebuffer (the layout's attachments + the shared
+ *                depth-stencil target) cleared (colour 0, depth 1, stencil 0 or, for
+ *                stencil-two-pass, 1), then one draw per visible object (frontend order:
+ *                state buckets), mesh.vert + gbuffer.frag in the material's map variant,
+ *                depth LESS with writes, back faces culled (as the forward renderers)
+ *   ambient      full screen: ambient x diffuse + emissive written over the light target
+ *                (no blend; it starts the accumulation)
+ *   directional  full screen per visible directional light, blend ONE + ONE
+ *   point, spot  per visible light of that type, by renderer_options.light_volumes:
+ *     fullscreen        a full-screen pass (the light's range and cone do the culling)
+ *     volume            the volume's back faces (cull FRONT), depth test GREATER, no
+ *                       writes: the pixels whose surface is in front of the volume's back
+ *     stencil           (seed 003) mark: one draw, both faces (cull NONE), colour writes
+ *                       off, depth LEQUAL without writes, two-sided stencil: back faces
+ *                       increment (wrap) and front faces decrement on depth fail; shade:
+ *                       back faces, depth test off, stencil NOTEQUAL 0, ZERO on pass (which
+ *                       resets the stencil for the next light)
+ *     stencil-two-pass  (seed 000) the stencil cleared to 1 with the G-buffer; mark front
+ *                       faces (increment on depth fail), then back faces (decrement on
+ *                       depth fail); shade back faces where the stencil is 0, INCR on pass
+ *                       (which resets it to 1)
+ *   compose      (separate_specular only, seed 001) the specular target added into the
+ *                diffuse one, full screen
+ *   sky          (the scene has a sky) scene_gpu_draw_sky into the light target's
+ *                untouched depth (z = w, depth LEQUAL): last, as seed 000 4.5.11
+ *   resolve      scene_gpu_resolve: the light target clamped into the output
+ *
+ * Draw calls per frame (V visible objects, D / P / S visible directional / point / spot
+ * lights this frame, frontend_build; [x] = 1 when the pass runs, else 0):
+ *
+ *   fullscreen:        V + 1 + D + P + S                 + [compose] + [sky] + 1
+ *   volume:            V + 1 + D + P + S                 + [compose] + [sky] + 1
+ *   stencil:           V + 1 + D + 2 (P + S)             + [compose] + [sky] + 1
+ *   stencil-two-pass:  V + 1 + D + 3 (P + S)             + [compose] + [sky] + 1
+ *
+ * (gbuffer V, ambient 1, directional D, point/spot 1 per light (shade), 2 (mark +
+ * shade) or 3 (front mark + back mark + shade), compose 1, sky 1, resolve 1; clears are
+ * not draws.) They do not depend on where the camera is.
+ *
+ * Camera inside a volume, near and far planes. The volume passes run with GL_DEPTH_CLAMP
+ * on (and it is switched off again after them; it is not state the cache keeps): the
+ * near and far planes then clip nothing, and a volume's faces beyond the far plane are
+ * drawn at depth 1. Every mode decides on depth FAIL only (the volume's face behind the
+ * surface), which makes it exact whatever cuts the volume in front: a front face lost
+ * behind the eye, or between the eye and the near plane (there at depth 0), would have
+ * passed the test and counted nothing. So the same passes are correct with the camera
+ * inside a point or spot volume, with the near plane cutting it (the frontend's
+ * eye_inside is not needed: no per-light switch, and draw counts stay as above) and with
+ * the far plane cutting it (depth clamp). Pixels that no surface covers keep depth 1,
+ * where a clamped back face passes LEQUAL (fails GREATER): they are never lit, and the
+ * shaders light nothing where the G-buffer holds no surface anyway (zero normal).
+ *
+ * G-buffer presets (deferred.h has the slots; an attachment no needed slot uses is not
+ * allocated; gloss and shininess are needed when some object's material has specular >
+ * 0, emissive when some object's material has an emissive colour > 0):
+ *
+ *   fat        (seed 000) RGBA16F position.xyz + shininess | RGBA16F normal.xyz +
+ *              emissive intensity e (emissive = e x diffuse, as seed 000 modulates the
+ *              diffuse colour) | RGBA16F diffuse + gloss
+ *   curtis     (seed 003) RGBA16F normal.xyz + linear depth | RGBA16F diffuse + gloss
+ *              ("specular") | RGBA16F shininess (the "specular colour" target: specular
+ *              here is colourless, its exponent takes the place) | RGBA16F emissive (the
+ *              unused fourth, written only by emissive scenes); position = view ray x
+ *              depth
+ *   compact    (seed 002's 96 bits) RG16F position.xy | R16F position.z | RGBA8 diffuse
+ *              + normal.z | RG8 normal.xy (unorm), and beyond seed 002 (which stores no
+ *              specular or emissive), when the scene needs them: RG8 gloss + shininess/255,
+ *              RGBA8 emissive
+ *   spheremap  (seed 004) RG8 normal (Lambert azimuthal) | RGBA16F linear depth + gloss +
+ *              shininess | RGBA8 diffuse | RGBA8 emissive (when needed); position = the
+ *              pixel's frustum-corner ray x depth
+ *   reference  RGBA32F position.xyz + shininess | RGBA32F normal.xyz + gloss | RGBA32F
+ *              diffuse | RGBA32F emissive
+ *
+ * Targets: the G-buffer attachments ("gbuffer.<slots>"), "light" (RGBA16F; with
+ * separate_specular "light.diffuse" + "light.specular") and "depth" (depth24-stencil8,
+ * shared by the G-buffer and light framebuffers so that volumes test against the scene's
+ * depth). gbuffer_bytes counts the G-buffer's colour attachments. */
+#include "renderers/deferred.h"
+
+#include "renderers/frontend.h"
+#include "renderers/gl/loader.h"
+#include "renderers/gl/program.h"
+#include "renderers/gl/query.h"
+#include "renderers/gl/state.h"
+#include "renderers/gl/target.h"
+#include "renderers/renderer.h"
+#include "renderers/scene_gpu.h"
+#include "renderers/shading.h"
+#include "scenes/scene.h"
+
+#include <math.h>
+#include <stdarg.h>
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+
+_Static_assert(sizeof(gpu_light) == 80, "gpu_light is 5 vec4s, as lighting.inc's Light");
+
+enum {
+    DEFERRED_MAX_PASSES = 8,          /* gbuffer ambient directional point spot compose sky resolve */
+    DEFERRED_VARIANTS = 16,           /* material map bits */
+    DEFERRED_MAX_LAYOUT_DEFINES = 12,
+    DEFERRED_LIGHT_TYPES = 3,
+};
+
+// >>layout
+
+static const char *const slot_names[DEFERRED_SLOT_COUNT] = {
+    [DEFERRED_SLOT_POSITION_XY] = "position.xy", [DEFERRED_SLOT_POSITION_Z] = "position.z",
+    [DEFERRED_SLOT_DEPTH] = "depth",             [DEFERRED_SLOT_NORMAL_XY] = "normal.xy",
+    [DEFERRED_SLOT_NORMAL_Z] = "normal.z",       [DEFERRED_SLOT_DIFFUSE] = "diffuse",
+    [DEFERRED_SLOT_GLOSS] = "gloss",             [DEFERRED_SLOT_SHININESS] = "shininess",
+    [DEFERRED_SLOT_EMISSIVE] = "emissive",
+};
+
+const char *deferred_slot_name(deferred_slot_kind k)
+{
+    return (unsigned)k < DEFERRED_SLOT_COUNT ? slot_names[k] : "unknown";
+}
+
+const char *deferred_preset_name(gbuffer_preset p)
+{
+    switch (p) {
+    case GBUFFER_CURTIS: return "curtis";
+    case GBUFFER_FAT: return "fat";
+    case GBUFFER_COMPACT: return "compact";
+    case GBUFFER_SPHEREMAP: return "spheremap";
+    case GBUFFER_REFERENCE: return "reference";
+    }
+    return "unknown";
+}
+
+deferred_needs deferred_needs_of(const scene *s)
+{
+    deferred_needs n = {false, false};
+    if (!s)
+        return n;
+    for (uint32_t i = 0; i < s->nobjects; i++) {
+        uint32_t mi = s->objects[i].material;
+        if (mi >= s->nmaterials)
+            continue;
+        const scene_material *m = &s->materials[mi];
+        if (m->specular > 0.0f)
+            n.gloss = true;
+        if (m->emissive[0] > 0.0f || m->emissive[1] > 0.0f || m->emissive[2] > 0.0f)
+            n.emissive = true;
+    }
+    return n;
+}
+
+/* A draft attachment: its slots in channel order, and whether an override took a
+ * slot from it (then it is packed again and narrowed). */
+enum { DRAFT_MAX_ATTACHMENTS = DEFERRED_MAX_ATTACHMENTS + 2 };   /* + the two overrides */
+
+typedef struct draft {
+    int nattachments;
+    deferred_attachment att[DRAFT_MAX_ATTACHMENTS];
+    bool touched[DRAFT_MAX_ATTACHMENTS];
+    bool emissive_intensity;
+} draft;
+
+static int draft_att(draft *d, deferred_channel_type ch, gl_format fmt, bool touched)
+{
+    int a = d->nattachments++;
+    deferred_attachment *at = &d->att[a];
+    memset(at, 0, sizeof *at);
+    at->channels = ch;
+    at->format = fmt;
+    d->touched[a] = touched;
+    return a;
+}
+
+static void draft_slot(draft *d, int a, deferred_slot_kind k, uint8_t count)
+{
+    deferred_attachment *at = &d->att[a];
+    uint8_t first = 0;
+    for (int i = 0; i < at->nslots; i++)
+        first = (uint8_t)(first + at->slot[i].count);
+    at->slot[at->nslots++] = (deferred_slot){.kind = k, .first = first, .count = count};
+}
+
+/* Removes every slot of kind k; marks the attachments it was in as touched if `touch`. */
+static void draft_remove(draft *d, deferred_slot_kind k, bool touch)
+{
+    for (int a = 0; a < d->nattachments; a++) {
+        deferred_attachment *at = &d->att[a];
+        int n = 0;
+        for (int i = 0; i < at->nslots; i++) {
+            if (at->slot[i].kind == k) {
+                if (touch)
+                    d->touched[a] = true;
+                continue;
+            }
+            at->slot[n++] = at->slot[i];
+        }
+        at->nslots = n;
+    }
+}
+
+static gl_format narrowest(deferred_channel_type ch, unsigned channels)
+{
+    switch (ch) {
+    case DEFERRED_CHANNELS_FLOAT16:
+        return channels <= 1 ? GLT_FORMAT_R16F
+                             : channels == 2 ? GLT_FORMAT_RG16F : GLT_FORMAT_RGBA16F;
+    case DEFERRED_CHANNELS_FLOAT32:
+        return channels <= 1 ? GLT_FORMAT_R32F : GLT_FORMAT_RGBA32F;
+    case DEFERRED_CHANNELS_UNORM8:
+        return channels <= 2 ? GLT_FORMAT_RG8 : GLT_FORMAT_RGBA8;
+    case DEFERRED_CHANNELS_UNORM10:
+        return GLT_FORMAT_RGB10A2;
+    }
+    return GLT_FORMAT_NONE;
+}
+
+/* "gbuffer." + the slots' field names joined by '+' (position.xy + position.z is
+ * "position", and so the normal). The longest a layout makes is 29 characters. */
+static void name_attachment(deferred_attachment *at, bool spheremap)
+{
+    char *out = at->name;
+    const size_t cap = sizeof at->name;
+    size_t len = (size_t)snprintf(out, cap, "gbuffer.");
+    for (int i = 0; i < at->nslots && len < cap; i++) {
+        deferred_slot_kind k = at->slot[i].kind;
+        const char *nm = deferred_slot_name(k);
+        if (k == DEFERRED_SLOT_POSITION_XY && i + 1 < at->nslots &&
+            at->slot[i + 1].kind == DEFERRED_SLOT_POSITION_Z) {
+            nm = "position";
+            i++;
+        } else if (k == DEFERRED_SLOT_NORMAL_XY &&
+                   ((i + 1 < at->nslots && at->slot[i + 1].kind == DEFERRED_SLOT_NORMAL_Z) ||
+                    spheremap)) {
+            nm = "normal";
+            if (!spheremap)
+                i++;
+        }
+        int n = snprintf(out + len, cap - len, "%s%s", len > strlen("gbuffer.") ? "+" : "", nm);
+        if (n < 0)
+            break;
+        len += (size_t)n;
+    }
+}
+
+bool deferred_layout_build(const renderer_options *o, deferred_needs needs,
+                           deferred_layout *out, char *err, size_t errlen)
+{
+    draft d;
+    memset(&d, 0, sizeof d);
+    const deferred_channel_type F16 = DEFERRED_CHANNELS_FLOAT16, F32 = DEFERRED_CHANNELS_FLOAT32,
+                                U8 = DEFERRED_CHANNELS_UNORM8;
+    /* What the preset itself stores, in the override enums' terms (PRESET: none of them). */
+    gbuffer_position own_position = GBUFFER_POSITION_PRESET;
+    gbuffer_normal own_normal = GBUFFER_NORMAL_PRESET;
+    bool spheremap = false;
+    int a;
+
+    switch (o->gbuffer) {
+    case GBUFFER_FAT:
+        a = draft_att(&d, F16, GLT_FORMAT_RGBA16F, false);
+        draft_slot(&d, a, DEFERRED_SLOT_POSITION_XY, 2);
+        draft_slot(&d, a, DEFERRED_SLOT_POSITION_Z, 1);
+        draft_slot(&d, a, DEFERRED_SLOT_SHININESS, 1);
+        a = draft_att(&d, F16, GLT_FORMAT_RGBA16F, false);
+        draft_slot(&d, a, DEFERRED_SLOT_NORMAL_XY, 2);
+        draft_slot(&d, a, DEFERRED_SLOT_NORMAL_Z, 1);
+        draft_slot(&d, a, DEFERRED_SLOT_EMISSIVE, 1);
+        d.emissive_intensity = true;
+        a = draft_att(&d, F16, GLT_FORMAT_RGBA16F, false);
+        draft_slot(&d, a, DEFERRED_SLOT_DIFFUSE, 3);
+        draft_slot(&d, a, DEFERRED_SLOT_GLOSS, 1);
+        own_position = GBUFFER_POSITION_STORED16;
+        own_normal = GBUFFER_NORMAL_FLOAT16;
+        break;
+    case GBUFFER_CURTIS:
+        a = draft_att(&d, F16, GLT_FORMAT_RGBA16F, false);
+        draft_slot(&d, a, DEFERRED_SLOT_NORMAL_XY, 2);
+        draft_slot(&d, a, DEFERRED_SLOT_NORMAL_Z, 1);
+        draft_slot(&d, a, DEFERRED_SLOT_DEPTH, 1);
+        a = draft_att(&d, F16, GLT_FORMAT_RGBA16F, false);
+        draft_slot(&d, a, DEFERRED_SLOT_DIFFUSE, 3);
+        draft_slot(&d, a, DEFERRED_SLOT_GLOSS, 1);
+        a = draft_att(&d, F16, GLT_FORMAT_RGBA16F, false);
+        draft_slot(&d, a, DEFERRED_SLOT_SHININESS, 1);
+        a = draft_att(&d, F16, GLT_FORMAT_RGBA16F, false);
+        draft_slot(&d, a, DEFERRED_SLOT_EMISSIVE, 3);
+        own_normal = GBUFFER_NORMAL_FLOAT16;
+        break;
+    case GBUFFER_COMPACT:
+        a = draft_att(&d, F16, GLT_FORMAT_RG16F, false);
+        draft_slot(&d, a, DEFERRED_SLOT_POSITION_XY, 2);
+        a = draft_att(&d, F16, GLT_FORMAT_R16F, false);
+        draft_slot(&d, a, DEFERRED_SLOT_POSITION_Z, 1);
+        a = draft_att(&d, U8, GLT_FORMAT_RGBA8, false);
+        draft_slot(&d, a, DEFERRED_SLOT_DIFFUSE, 3);
+        draft_slot(&d, a, DEFERRED_SLOT_NORMAL_Z, 1);
+        a = draft_att(&d, U8, GLT_FORMAT_RG8, false);
+        draft_slot(&d, a, DEFERRED_SLOT_NORMAL_XY, 2);
+        a = draft_att(&d, U8, GLT_FORMAT_RG8, false);
+        draft_slot(&d, a, DEFERRED_SLOT_GLOSS, 1);
+        draft_slot(&d, a, DEFERRED_SLOT_SHININESS, 1);
+        a = draft_att(&d, U8, GLT_FORMAT_RGBA8, false);
+        draft_slot(&d, a, DEFERRED_SLOT_EMISSIVE, 3);
+        own_position = GBUFFER_POSITION_STORED16;
+        break;
+    case GBUFFER_SPHEREMAP:
+        a = draft_att(&d, U8, GLT_FORMAT_RG8, false);
+        draft_slot(&d, a, DEFERRED_SLOT_NORMAL_XY, 2);
+        a = draft_att(&d, F16, GLT_FORMAT_RGBA16F, false);
+        draft_slot(&d, a, DEFERRED_SLOT_DEPTH, 1);
+        draft_slot(&d, a, DEFERRED_SLOT_GLOSS, 1);
+        draft_slot(&d, a, DEFERRED_SLOT_SHININESS, 1);
+        a = draft_att(&d, U8, GLT_FORMAT_RGBA8, false);
+        draft_slot(&d, a, DEFERRED_SLOT_DIFFUSE, 3);
+        a = draft_att(&d, U8, GLT_FORMAT_RGBA8, false);
+        draft_slot(&d, a, DEFERRED_SLOT_EMISSIVE, 3);
+        own_normal = GBUFFER_NORMAL_SPHEREMAP8;
+        spheremap = true;
+        break;
+    case GBUFFER_REFERENCE:
+        a = draft_att(&d, F32, GLT_FORMAT_RGBA32F, false);
+        draft_slot(&d, a, DEFERRED_SLOT_POSITION_XY, 2);
+        draft_slot(&d, a, DEFERRED_SLOT_POSITION_Z, 1);
+        draft_slot(&d, a, DEFERRED_SLOT_SHININESS, 1);
+        a = draft_att(&d, F32, GLT_FORMAT_RGBA32F, false);
+        draft_slot(&d, a, DEFERRED_SLOT_NORMAL_XY, 2);
+        draft_slot(&d, a, DEFERRED_SLOT_NORMAL_Z, 1);
+        draft_slot(&d, a, DEFERRED_SLOT_GLOSS, 1);
+        a = draft_att(&d, F32, GLT_FORMAT_RGBA32F, false);
+        draft_slot(&d, a, DEFERRED_SLOT_DIFFUSE, 3);
+        a = draft_att(&d, F32, GLT_FORMAT_RGBA32F, false);
+        draft_slot(&d, a, DEFERRED_SLOT_EMISSIVE, 3);
+        own_position = GBUFFER_POSITION_STORED32;
+        own_normal = GBUFFER_NORMAL_FLOAT32;
+        break;
+    default:
+        snprintf(err, errlen, "deferred: unknown G-buffer preset %d", (int)o->gbuffer);
+        return false;
+    }
+
+    /* >>overrides: the field gets an attachment of its own */
+    gbuffer_position pos = o->gbuffer_position;
+    bool depth_buffer = false;
+    if (pos != GBUFFER_POSITION_PRESET && pos != own_position) {
+        draft_remove(&d, DEFERRED_SLOT_POSITION_XY, true);
+        draft_remove(&d, DEFERRED_SLOT_POSITION_Z, true);
+        draft_remove(&d, DEFERRED_SLOT_DEPTH, true);
+        switch (pos) {
+        case GBUFFER_POSITION_STORED16:
+        case GBUFFER_POSITION_STORED32:
+            a = draft_att(&d, pos == GBUFFER_POSITION_STORED16 ? F16 : F32, GLT_FORMAT_NONE,
+                          true);
+            draft_slot(&d, a, DEFERRED_SLOT_POSITION_XY, 2);
+            draft_slot(&d, a, DEFERRED_SLOT_POSITION_Z, 1);
+            break;
+        case GBUFFER_POSITION_DEPTH:
+            depth_buffer = true;
+            break;
+        default:
+            snprintf(err, errlen, "deferred: unknown G-buffer position %d", (int)pos);
+            return false;
+        }
+    }
+    gbuffer_normal nrm = o->gbuffer_normal;
+    if (nrm != GBUFFER_NORMAL_PRESET && nrm != own_normal) {
+        draft_remove(&d, DEFERRED_SLOT_NORMAL_XY, true);
+        draft_remove(&d, DEFERRED_SLOT_NORMAL_Z, true);
+        spheremap = false;
+        switch (nrm) {
+        case GBUFFER_NORMAL_FLOAT16:
+        case GBUFFER_NORMAL_FLOAT32:
+        case GBUFFER_NORMAL_UNORM10:
+            a = draft_att(&d,
+                          nrm == GBUFFER_NORMAL_FLOAT16   ? F16
+                          : nrm == GBUFFER_NORMAL_FLOAT32 ? F32
+                                                          : DEFERRED_CHANNELS_UNORM10,
+                          GLT_FORMAT_NONE, true);
+            draft_slot(&d, a, DEFERRED_SLOT_NORMAL_XY, 2);
+            draft_slot(&d, a, DEFERRED_SLOT_NORMAL_Z, 1);
+            break;
+        case GBUFFER_NORMAL_SPHEREMAP8:
+        case GBUFFER_NORMAL_SPHEREMAP16:
+            a = draft_att(&d, nrm == GBUFFER_NORMAL_SPHEREMAP8 ? U8 : F16, GLT_FORMAT_NONE, true);
+            draft_slot(&d, a, DEFERRED_SLOT_NORMAL_XY, 2);
+            spheremap = true;
+            break;
+        default:
+            snprintf(err, errlen, "deferred: unknown G-buffer normal %d", (int)nrm);
+            return false;
+        }
+    }
+
+    /* >>what the scene does not need: the slot goes, its channels stay where they were */
+    if (!needs.gloss) {
+        draft_remove(&d, DEFERRED_SLOT_GLOSS, false);
+        draft_remove(&d, DEFERRED_SLOT_SHININESS, false);
+    }
+    if (!needs.emissive)
+        draft_remove(&d, DEFERRED_SLOT_EMISSIVE, false);
+
+    /* >>the attachments that remain, packed again where an override took a slot */
+    memset(out, 0, sizeof *out);
+    for (int i = 0; i < d.nattachments; i++) {
+        deferred_attachment at = d.att[i];
+        if (at.nslots == 0)
+            continue;
+        if (out->nattachments >= DEFERRED_MAX_ATTACHMENTS) {
+            snprintf(err, errlen, "bug: deferred: more than %d G-buffer attachments",
+                     DEFERRED_MAX_ATTACHMENTS);
+            return false;
+        }
+        if (d.touched[i]) {
+            uint8_t first = 0;
+            for (int k = 0; k < at.nslots; k++) {
+                at.slot[k].first = first;
+                first = (uint8_t)(first + at.slot[k].count);
+            }
+            at.format = narrowest(at.channels, first);
+        }
+        name_attachment(&at, spheremap);
+        for (int k = 0; k < at.nslots; k++)
+            out->has[at.slot[k].kind] = true;
+        out->att[out->nattachments++] = at;
+    }
+    out->emissive_intensity = d.emissive_intensity && out->has[DEFERRED_SLOT_EMISSIVE];
+    out->position = out->has[DEFERRED_SLOT_POSITION_XY]  ? DEFERRED_POSITION_STORED
+                    : out->has[DEFERRED_SLOT_DEPTH] && !depth_buffer ? DEFERRED_POSITION_LINEAR_DEPTH
+                                                                     : DEFERRED_POSITION_DEPTH_BUFFER;
+    out->normal = DEFERRED_NORMAL_XYZ_FLOAT;
+    if (spheremap) {
+        out->normal = DEFERRED_NORMAL_SPHEREMAP;
+    } else {
+        for (int i = 0; i < out->nattachments; i++)
+            for (int k = 0; k < out->att[i].nslots; k++)
+                if (out->att[i].slot[k].kind == DEFERRED_SLOT_NORMAL_XY &&
+                    (out->att[i].channels == DEFERRED_CHANNELS_UNORM8 ||
+                     out->att[i].channels == DEFERRED_CHANNELS_UNORM10))
+                    out->normal = DEFERRED_NORMAL_XYZ_UNORM;
+    }
+    return true;
+}
+
+unsigned deferred_layout_bytes_per_pixel(const deferred_layout *l)
+{
+    unsigned b = 0;
+    for (int i = 0; i < l->nattachments; i++) {
+        const gl_format_info *fi = gl_format_get(l->att[i].format);
+        b += fi ? fi->bytes_per_pixel : 0;
+    }
+    return b;
+}
+
+/* The layout as shader defines (gbuffer.inc.glsl): "GB_DIFFUSE gb2.xyz", ... */
+typedef struct layout_defines {
+    int n;
+    char text[DEFERRED_MAX_LAYOUT_DEFINES][40];
+} layout_defines;
+
+static bool slot_where(const deferred_layout *l, deferred_slot_kind k, char *buf, size_t len,
+                       deferred_channel_type *ch)
+{
+    static const char swz[] = "xyzw";
+    for (int i = 0; i < l->nattachments; i++)
+        for (int s = 0; s < l->att[i].nslots; s++) {
+            const deferred_slot *sl = &l->att[i].slot[s];
+            if (sl->kind != k)
+                continue;
+            char sw[5] = "";
+            for (int c = 0; c < sl->count && sl->first + c < 4; c++)
+                sw[c] = swz[sl->first + c];
+            snprintf(buf, len, "gb%d.%s", i, sw);
+            if (ch)
+                *ch = l->att[i].channels;
+            return true;
+        }
+    return false;
+}
+
+static void add_define(layout_defines *d, const char *name, deferred_slot_kind k,
+                       const deferred_layout *l)
+{
+    char where[16];
+    if (d->n < DEFERRED_MAX_LAYOUT_DEFINES && slot_where(l, k, where, sizeof where, NULL))
+        snprintf(d->text[d->n++], sizeof d->text[0], "%s %s", name, where);
+}
+
+static void layout_to_defines(const deferred_layout *l, layout_defines *d)
+{
+    memset(d, 0, sizeof *d);
+    if (l->position == DEFERRED_POSITION_STORED) {
+        add_define(d, "GB_POSITION_XY", DEFERRED_SLOT_POSITION_XY, l);
+        add_define(d, "GB_POSITION_Z", DEFERRED_SLOT_POSITION_Z, l);
+    } else if (l->position == DEFERRED_POSITION_LINEAR_DEPTH) {
+        add_define(d, "GB_DEPTH", DEFERRED_SLOT_DEPTH, l);
+    }
+    snprintf(d->text[d->n++], sizeof d->text[0], "GB_NORMAL_ENC %d",
+             l->normal == DEFERRED_NORMAL_SPHEREMAP   ? 2
+             : l->normal == DEFERRED_NORMAL_XYZ_UNORM ? 1
+                                                      : 0);
+    add_define(d, "GB_NORMAL_XY", DEFERRED_SLOT_NORMAL_XY, l);
+    if (l->normal != DEFERRED_NORMAL_SPHEREMAP)
+        add_define(d, "GB_NORMAL_Z", DEFERRED_SLOT_NORMAL_Z, l);
+    add_define(d, "GB_DIFFUSE", DEFERRED_SLOT_DIFFUSE, l);
+    add_define(d, "GB_GLOSS", DEFERRED_SLOT_GLOSS, l);
+    add_define(d, "GB_SHININESS", DEFERRED_SLOT_SHININESS, l);
+    char where[16];
+    deferred_channel_type ch;
+    if (slot_where(l, DEFERRED_SLOT_SHININESS, where, sizeof where, &ch) &&
+        (ch == DEFERRED_CHANNELS_UNORM8 || ch == DEFERRED_CHANNELS_UNORM10))
+        snprintf(d->text[d->n++], sizeof d->text[0], "GB_SHININESS_UNORM");
+    add_define(d, l->emissive_intensity ? "GB_EMISSIVE_INTENSITY" : "GB_EMISSIVE",
+               DEFERRED_SLOT_EMISSIVE, l);
+}
+
+// >>the renderer
+
+typedef enum pass_id {
+    PASS_SHADOWS,                    /* never runs yet: in the plan to say so */
+    PASS_GBUFFER,
+    PASS_AMBIENT,
+    PASS_DIRECTIONAL,
+    PASS_POINT,
+    PASS_SPOT,
+    PASS_COMPOSE,
+    PASS_SKY,
+    PASS_RESOLVE,
+    PASS_COUNT
+} pass_id;
+
+static const char *const pass_names[PASS_COUNT] = {
+    "shadows", "gbuffer", "ambient", "directional", "point", "spot", "compose", "sky", "resolve",
+};
+
+typedef struct deferred_renderer {
+    renderer_options opts;
+    int width, height;
+    GLuint output_fbo;               /* the draw framebuffer bound at creation */
+    gl_state *st;
+    gl_program_cache *programs;
+    gl_pass_queries *queries;        /* NULL without opts.queries */
+
+    /* >>made by prepare */
+    bool prepared;
+    scene_gpu *gpu;
+    frontend fe;
+    deferred_needs needs;
+    deferred_layout layout;
+    gl_target gbuf[DEFERRED_MAX_ATTACHMENTS];
+    gl_target light, specular, depth;
+    gl_framebuffer fb_gbuffer, fb_light, fb_compose;
+    bool unclipped;                  /* full-screen passes draw the unclipped triangle */
+    unsigned variants;               /* bit v: some object's material is of map variant v */
+    unsigned light_types;            /* bit t: some light of the scene is of type t */
+    uint32_t nobjects;
+    bool run[PASS_COUNT];
+    char reason[PASS_COUNT][96];
+    GLuint gbuffer_program[DEFERRED_VARIANTS];
+    GLuint ambient_program, compose_program, mark_program;
+    GLuint light_program[DEFERRED_LIGHT_TYPES];
+
+    /* >>the last frame, for tests */
+    uint64_t mark_draws[DEFERRED_LIGHT_TYPES], shade_draws[DEFERRED_LIGHT_TYPES];
+    bool count_shaded;               /* deferred_count_shaded: a GL_SAMPLES_PASSED query per
+                                        shade draw */
+    GLuint *shade_query;
+    int *shade_query_type;
+    size_t nshade_queries, cap_shade_queries;
+} deferred_renderer;
+
+static unsigned material_variant(const scene_material *m)
+{
+    return (m->diffuse_map >= 0 ? 1u : 0u) | (m->gloss_map >= 0 ? 2u : 0u) |
+           (m->normal_map >= 0 ? 4u : 0u) | (m->emissive_map >= 0 ? 8u : 0u);
+}
+
+static void *deferred_create(const renderer_options *opts, char *err, size_t errlen)
+{
+    deferred_renderer *r = calloc(1, sizeof *r);
+    if (!r) {
+        snprintf(err, errlen, "deferred: out of memory");
+        return NULL;
+    }
+    r->opts = *opts;
+    GLint fb = 0;
+    gl.GetIntegerv(GL_DRAW_FRAMEBUFFER_BINDING, &fb);
+    r->output_fbo = (GLuint)fb;
+    /* Options are checked here, before any scene: a bad value never becomes a default. */
+    deferred_layout probe;
+    if (!deferred_layout_build(opts, (deferred_needs){true, true}, &probe, err, errlen)) {
+        free(r);
+        return NULL;
+    }
+    if ((unsigned)opts->light_volumes > (unsigned)LIGHT_VOLUMES_STENCIL_TWO_PASS) {
+        snprintf(err, errlen, "deferred: unknown light volume mode %d", (int)opts->light_volumes);
+        free(r);
+        return NULL;
+    }
+    r->st = gl_state_create();
+    r->programs = gl_program_cache_create();
+    if (!r->st || !r->programs)
+        goto oom;
+    if (opts->queries) {
+        r->queries = gl_pass_queries_create(DEFERRED_MAX_PASSES, opts->timer_query,
+                                            opts->pipeline_statistics);
+        if (!r->queries)
+            goto oom;
+    }
+    return r;
+oom:
+    gl_program_cache_destroy(r->programs);
+    gl_state_destroy(r->st);
+    free(r);
+    snprintf(err, errlen, "deferred: out of memory");
+    return NULL;
+}
+
+static void release_prepared(deferred_renderer *r)
+{
+    gl_framebuffer_destroy(&r->fb_gbuffer);
+    gl_framebuffer_destroy(&r->fb_light);
+    gl_framebuffer_destroy(&r->fb_compose);
+    for (int i = 0; i < DEFERRED_MAX_ATTACHMENTS; i++)
+        gl_target_destroy(&r->gbuf[i]);
+    gl_target_destroy(&r->light);
+    gl_target_destroy(&r->specular);
+    gl_target_destroy(&r->depth);
+    scene_gpu_destroy(r->gpu);
+    r->gpu = NULL;
+    frontend_free(&r->fe);
+    memset(&r->fe, 0, sizeof r->fe);
+    r->prepared = false;
+}
+
+static const char *light_type_name(int t)
+{
+    return t == LIGHT_POINT ? "point" : t == LIGHT_SPOT ? "spot" : "directional";
+}
+
+static const char *mode_name(light_volume_mode m)
+{
+    switch (m) {
+    case LIGHT_VOLUMES_STENCIL: return "stencil";
+    case LIGHT_VOLUMES_FULLSCREEN: return "fullscreen";
+    case LIGHT_VOLUMES_VOLUME: return "volume";
+    case LIGHT_VOLUMES_STENCIL_TWO_PASS: return "stencil-two-pass";
+    }
+    return "unknown";
+}
+
+/* Builds one program; the defines are the layout's plus `extra` (NULL-terminated). */
+static bool build_program(deferred_renderer *r, const char *display, const char *vertex,
+                          const char *fragment, const layout_defines *ld,
+                          const char *const *extra, GLuint *program, char *err, size_t errlen)
+{
+    gl_program_desc d = {.name = display, .vertex = vertex, .fragment = fragment};
+    unsigned n = 0;
+    for (unsigned i = 0; extra && extra[i]; i++)
+        d.defines[n++] = extra[i];
+    for (int i = 0; ld && i < ld->n; i++) {
+        if (n >= GLP_MAX_DEFINES) {
+            snprintf(err, errlen, "bug: deferred: too many defines for %s", display);
+            return false;
+        }
+        d.defines[n++] = ld->text[i];
+    }
+    char why[4096] = "";
+    if (gl_program_get(r->programs, &d, program, why, sizeof why) != GLP_OK) {
+        snprintf(err, errlen, "deferred: %s", why);
+        return false;
+    }
+    return true;
+}
+
+static void plan(deferred_renderer *r, pass_id p, bool run, const char *fmt, ...)
+    __attribute__((format(printf, 4, 5)));
+static void plan(deferred_renderer *r, pass_id p, bool run, const char *fmt, ...)
+{
+    r->run[p] = run;
+    va_list ap;
+    va_start(ap, fmt);
+    vsnprintf(r->reason[p], sizeof r->reason[p], fmt, ap);
+    va_end(ap);
+}
+
+static bool make_targets(deferred_renderer *r, char *err, size_t errlen)
+{
+    char why[512] = "";
+    const int w = r->width, h = r->height;
+    gl_framebuffer_desc gdesc = {.name = "gbuffer", .depth_stencil = &r->depth};
+    if (!gl_target_create(&r->depth, &(gl_target_desc){.name = "depth",
+                                                       .format = GLT_FORMAT_DEPTH24_STENCIL8,
+                                                       .width = w, .height = h},
+                          why, sizeof why))
+        goto fail;
+    for (int i = 0; i < r->layout.nattachments; i++) {
+        if (!gl_target_create(&r->gbuf[i], &(gl_target_desc){.name = r->layout.att[i].name,
+                                                             .format = r->layout.att[i].format,
+                                                             .width = w, .height = h},
+                              why, sizeof why))
+            goto fail;
+        gdesc.color[i] = &r->gbuf[i];
+    }
+    bool sep = r->opts.separate_specular;
+    if (!gl_target_create(&r->light, &(gl_target_desc){.name = sep ? "light.diffuse" : "light",
+                                                       .format = GLT_FORMAT_RGBA16F,
+                                                       .width = w, .height = h},
+                          why, sizeof why))
+        goto fail;
+    if (sep && !gl_target_create(&r->specular,
+                                 &(gl_target_desc){.name = "light.specular",
+                                                   .format = GLT_FORMAT_RGBA16F,
+                                                   .width = w, .height = h},
+                                 why, sizeof why))
+        goto fail;
+    if (!gl_framebuffer_create(&r->fb_gbuffer, &gdesc, why, sizeof why))
+        goto fail;
+    if (!gl_framebuffer_create(&r->fb_light,
+                               &(gl_framebuffer_desc){.name = "light",
+                                                      .color = {&r->light,
+                                                                sep ? &r->specular : NULL},
+                                                      .depth_stencil = &r->depth},
+                               why, sizeof why))
+        goto fail;
+    if (sep && !gl_framebuffer_create(&r->fb_compose,
+                                      &(gl_framebuffer_desc){.name = "compose",
+                                                             .color = {&r->light},
+                                                             .depth_stencil = &r->depth},
+                                      why, sizeof why))
+        goto fail;
+    return true;
+fail:
+    snprintf(err, errlen, "deferred: %s", why);
+    return false;
+}
+
+static bool compile_programs(deferred_renderer *r, char *err, size_t errlen)
+{
+    layout_defines ld;
+    layout_to_defines(&r->layout, &ld);
+    const char *fs_vert = "fullscreen.vert";
+    const char *unclipped = r->unclipped ? "FULLSCREEN_UNCLIPPED" : NULL;
+    const char *sep = r->opts.separate_specular ? "SEPARATE_SPECULAR" : NULL;
+
+    for (unsigned v = 0; v < DEFERRED_VARIANTS; v++) {
+        if (!(r->variants & (1u << v)))
+            continue;
+        scene_material m = {.diffuse_map = (v & 1u) ? 0 : -1, .gloss_map = (v & 2u) ? 0 : -1,
+                            .normal_map = (v & 4u) ? 0 : -1, .emissive_map = (v & 8u) ? 0 : -1};
+        const char *defs[5] = {NULL, NULL, NULL, NULL, NULL};
+        shading_material_defines(&m, defs);
+        if (!build_program(r, "deferred_gbuffer", "mesh.vert", "gbuffer.frag", &ld, defs,
+                           &r->gbuffer_program[v], err, errlen))
+            return false;
+    }
+    {
+        const char *extra[3] = {NULL, NULL, NULL};
+        int n = 0;
+        if (unclipped)
+            extra[n++] = unclipped;
+        if (sep)
+            extra[n++] = sep;
+        if (!build_program(r, "deferred_ambient", fs_vert, "deferred_ambient.frag", &ld, extra,
+                           &r->ambient_program, err, errlen))
+            return false;
+    }
+    static const pass_id light_pass[DEFERRED_LIGHT_TYPES] = {
+        [LIGHT_POINT] = PASS_POINT, [LIGHT_SPOT] = PASS_SPOT,
+        [LIGHT_DIRECTIONAL] = PASS_DIRECTIONAL};
+    static const char *const type_define[DEFERRED_LIGHT_TYPES] = {
+        [LIGHT_POINT] = "DEFERRED_LIGHT_TYPE 0", [LIGHT_SPOT] = "DEFERRED_LIGHT_TYPE 1",
+        [LIGHT_DIRECTIONAL] = "DEFERRED_LIGHT_TYPE 2"};
+    static const char *const display[DEFERRED_LIGHT_TYPES] = {
+        [LIGHT_POINT] = "deferred_point", [LIGHT_SPOT] = "deferred_spot",
+        [LIGHT_DIRECTIONAL] = "deferred_directional"};
+    bool volumes = false;
+    for (int t = 0; t < DEFERRED_LIGHT_TYPES; t++) {
+        if (!r->run[light_pass[t]])
+            continue;
+        bool full = t == LIGHT_DIRECTIONAL || r->opts.light_volumes == LIGHT_VOLUMES_FULLSCREEN;
+        const char *extra[4] = {type_define[t], NULL, NULL, NULL};
+        int n = 1;
+        if (full && unclipped)
+            extra[n++] = unclipped;
+        if (sep)
+            extra[n++] = sep;
+        if (!build_program(r, display[t], full ? fs_vert : "light_volume.vert",
+                           "deferred_light.frag", &ld, extra, &r->light_program[t], err, errlen))
+            return false;
+        if (!full)
+            volumes = true;
+    }
+    if (volumes && (r->opts.light_volumes == LIGHT_VOLUMES_STENCIL ||
+                    r->opts.light_volumes == LIGHT_VOLUMES_STENCIL_TWO_PASS) &&
+        !build_program(r, "deferred_stencil_mark", "light_volume.vert", "stencil_mark.frag", NULL,
+                       NULL, &r->mark_program, err, errlen))
+        return false;
+    if (r->run[PASS_COMPOSE]) {
+        const char *extra[2] = {unclipped, NULL};
+        if (!build_program(r, "deferred_compose", fs_vert, "deferred_compose.frag", NULL, extra,
+                           &r->compose_program, err, errlen))
+            return false;
+    }
+    return true;
+}
+
+static bool deferred_prepare(void *self, const scene *s, char *err, size_t errlen)
+{
+    deferred_renderer *r = self;
+    char why[512] = "";
+    release_prepared(r);
+    if (!s) {
+        snprintf(err, errlen, "deferred: no scene to prepare for");
+        return false;
+    }
+    /* Programs of an earlier scene are not this scene's: start a fresh cache. */
+    gl_program_cache_destroy(r->programs);
+    r->programs = gl_program_cache_create();
+    if (!r->programs) {
+        snprintf(err, errlen, "deferred: out of memory");
+        return false;
+    }
+    memset(r->gbuffer_program, 0, sizeof r->gbuffer_program);
+    memset(r->light_program, 0, sizeof r->light_program);
+    r->ambient_program = r->compose_program = r->mark_program = 0;
+
+    r->width = r->opts.width > 0 ? r->opts.width : s->width;
+    r->height = r->opts.height > 0 ? r->opts.height : s->height;
+    r->unclipped = gl_state_fullscreen_unclipped_fits(r->st, r->width, r->height);
+
+    r->variants = 0;
+    r->nobjects = s->nobjects;
+    for (uint32_t i = 0; i < s->nobjects; i++) {
+        uint32_t m = s->objects[i].material;
+        if (m >= s->nmaterials) {
+            snprintf(err, errlen, "deferred: object %u has material %u, the scene has %u", i, m,
+                     s->nmaterials);
+            return false;
+        }
+        r->variants |= 1u << material_variant(&s->materials[m]);
+    }
+    r->light_types = 0;
+    uint32_t count[DEFERRED_LIGHT_TYPES] = {0, 0, 0}, casters = 0;
+    for (uint32_t i = 0; i < s->nlights_total; i++) {
+        unsigned t = (unsigned)s->lights[i].type;
+        if (t >= DEFERRED_LIGHT_TYPES) {
+            snprintf(err, errlen, "deferred: light %u has an unknown type %u", i, t);
+            return false;
+        }
+        r->light_types |= 1u << t;
+        count[t]++;
+        if (s->lights[i].shadows)
+            casters++;
+    }
+    r->needs = deferred_needs_of(s);
+    if (!deferred_layout_build(&r->opts, r->needs, &r->layout, err, errlen))
+        return false;
+
+    /* >>the pass plan */
+    if (casters)
+        plan(r, PASS_SHADOWS, false, "%u lights ask for shadows: shadow maps are not drawn yet",
+             casters);
+    else
+        plan(r, PASS_SHADOWS, false, "no light casts shadows");
+    plan(r, PASS_GBUFFER, true, "%u objects into %d attachments (%s preset, %u bytes/pixel)",
+         s->nobjects, r->layout.nattachments, deferred_preset_name(r->opts.gbuffer),
+         deferred_layout_bytes_per_pixel(&r->layout));
+    plan(r, PASS_AMBIENT, true, "%s",
+         r->needs.emissive ? "ambient x diffuse + emissive, full screen"
+                           : "ambient x diffuse, full screen (no material is emissive)");
+    if (count[LIGHT_DIRECTIONAL])
+        plan(r, PASS_DIRECTIONAL, true, "%u directional lights, full screen each",
+             count[LIGHT_DIRECTIONAL]);
+    else
+        plan(r, PASS_DIRECTIONAL, false, "no directional light in the scene");
+    for (int t = LIGHT_POINT; t <= LIGHT_SPOT; t++) {
+        pass_id p = t == LIGHT_POINT ? PASS_POINT : PASS_SPOT;
+        if (count[t])
+            plan(r, p, true, "%u %s lights, light volumes: %s", count[t], light_type_name(t),
+                 mode_name(r->opts.light_volumes));
+        else
+            plan(r, p, false, "no %s light in the scene", light_type_name(t));
+    }
+    plan(r, PASS_COMPOSE, r->opts.separate_specular, "%s",
+         r->opts.separate_specular ? "specular light added into the diffuse light"
+                                   : "diffuse and specular light share one target");
+    plan(r, PASS_SKY, s->sky, "%s",
+         s->sky ? "into untouched depth, last" : "the scene has no sky");
+    plan(r, PASS_RESOLVE, true, "light clamped into the output framebuffer");
+
+    if (!frontend_init(&r->fe, s, why, sizeof why)) {
+        snprintf(err, errlen, "deferred: %s", why);
+        goto fail;
+    }
+    r->gpu = scene_gpu_create(s, why, sizeof why);
+    if (!r->gpu) {
+        snprintf(err, errlen, "deferred: %s", why);
+        goto fail;
+    }
+    if (!make_targets(r, err, errlen) || !compile_programs(r, err, errlen))
+        goto fail;
+    r->prepared = true;
+    return true;
+fail:
+    release_prepared(r);
+    return false;
+}
+
+// >>per frame
+
+static void pass_begin(deferred_renderer *r, frame_stats *out, pass_id p)
+{
+    gl_state_begin_pass(r->st, pass_names[p]);
+    if (r->queries)
+        gl_pass_queries_begin(r->queries, out->npasses);
+}
+
+static void pass_end(deferred_renderer *r, frame_stats *out)
+{
+    size_t i = out->npasses;
+    if (r->queries)
+        gl_pass_queries_end(r->queries);
+    pass_stats *ps = &out->pass[i];
+    gl_state_end_pass(r->st, ps);
+    ps->gpu_us = ps->fragments = ps->primitives = NAN;   /* collect() fills them */
+    out->npasses = i + 1;
+}
+
+static const gls_blend BLEND_ADD = {.enabled = true, .src = GLS_BLEND_ONE, .dst = GLS_BLEND_ONE};
+
+static void bind_gbuffer_textures(deferred_renderer *r)
+{
+    for (int i = 0; i < r->layout.nattachments; i++)
+        gl_state_texture(r->st, DEFERRED_FIRST_GBUFFER_UNIT + (unsigned)i, r->gbuf[i].texture);
+    if (r->layout.position == DEFERRED_POSITION_DEPTH_BUFFER)
+        gl_state_texture(r->st, DEFERRED_DEPTH_UNIT, r->depth.texture);
+}
+
+/* The test hook around one shade draw of light type t (deferred_count_shaded). */
+static void shade_begin(deferred_renderer *r, int t)
+{
+    if (!r->count_shaded)
+        return;
+    if (r->nshade_queries == r->cap_shade_queries) {
+        size_t cap = r->cap_shade_queries ? 2 * r->cap_shade_queries : 16;
+        GLuint *q = realloc(r->shade_query, cap * sizeof *q);
+        if (q)
+            r->shade_query = q;
+        int *ty = q ? realloc(r->shade_query_type, cap * sizeof *ty) : NULL;
+        if (!q || !ty) {
+            fprintf(stderr, "deferred: out of memory counting shaded samples\n");
+            r->count_shaded = false;
+            return;
+        }
+        r->shade_query_type = ty;
+        gl.GenQueries((GLsizei)(cap - r->cap_shade_queries), q + r->cap_shade_queries);
+        r->cap_shade_queries = cap;
+    }
+    r->shade_query_type[r->nshade_queries] = t;
+    gl.BeginQuery(GL_SAMPLES_PASSED, r->shade_query[r->nshade_queries]);
+}
+
+static void shade_end(deferred_renderer *r)
+{
+    if (!r->count_shaded)
+        return;
+    gl.EndQuery(GL_SAMPLES_PASSED);
+    r->nshade_queries++;
+}
+
+static void set_light_uniform(const scene *s, uint32_t li)
+{
+    gpu_light pl;
+    shading_pack_light(&s->lights[li], s->view, &pl);
+    gl.Uniform4fv(DEFERRED_UNIFORM_LIGHT, 5, &pl.v[0][0]);
+}
+
+static void fullscreen(deferred_renderer *r)
+{
+    gl_state_draw_fullscreen(r->st, r->width, r->height, r->unclipped);
+}
+
+/* Point and spot lights of type t by the light-volume mode (the file's header). */
+static void draw_volume_light(deferred_renderer *r, const scene *s, int t, uint32_t li)
+{
+    gl_state *st = r->st;
+    GLuint prog = r->light_program[t];
+    switch (r->opts.light_volumes) {
+    case LIGHT_VOLUMES_FULLSCREEN:
+        gl_state_program(st, prog);
+        set_light_uniform(s, li);
+        shade_begin(r, t);
+        fullscreen(r);
+        shade_end(r);
+        r->shade_draws[t]++;
+        return;
+    case LIGHT_VOLUMES_VOLUME:
+        gl_state_viewport(st, 0, 0, r->width, r->height);
+        gl_state_program(st, prog);
+        set_light_uniform(s, li);
+        gl_state_cull(st, GLS_CULL_FRONT);
+        gl_state_stencil(st, NULL);
+        gl_state_depth(st, &(gls_depth){.compare = GLS_COMPARE_GREATER, .write = false});
+        shade_begin(r, t);
+        scene_gpu_draw_light_volume(r->gpu, st, s, li);
+        shade_end(r);
+        r->shade_draws[t]++;
+        return;
+    case LIGHT_VOLUMES_STENCIL:
+        gl_state_viewport(st, 0, 0, r->width, r->height);
+        gl_state_program(st, r->mark_program);
+        gl_state_color_mask(st, GLS_COLOR_MASK_NONE);
+        gl_state_cull(st, GLS_CULL_NONE);
+        gl_state_depth(st, &(gls_depth){.compare = GLS_COMPARE_LEQUAL, .write = false});
+        gl_state_stencil(st, &(gls_stencil){
+                                 .enabled = true,
+                                 .two_sided = true,
+                                 .front = {.compare = GLS_COMPARE_ALWAYS,
+                                           .depth_fail = GLS_STENCIL_OP_DECR_WRAP},
+                                 .back = {.compare = GLS_COMPARE_ALWAYS,
+                                          .depth_fail = GLS_STENCIL_OP_INCR_WRAP},
+                             });
+        scene_gpu_draw_light_volume(r->gpu, st, s, li);
+        r->mark_draws[t]++;
+        gl_state_program(st, prog);
+        set_light_uniform(s, li);
+        gl_state_color_mask(st, GLS_COLOR_MASK_RGBA);
+        gl_state_cull(st, GLS_CULL_FRONT);
+        gl_state_depth(st, NULL);
+        gl_state_stencil(st, &(gls_stencil){
+                                 .enabled = true,
+                                 .front = {.compare = GLS_COMPARE_NOTEQUAL,
+                                           .pass = GLS_STENCIL_OP_ZERO},
+                                 .ref = 0,
+                             });
+        shade_begin(r, t);
+        scene_gpu_draw_light_volume(r->gpu, st, s, li);
+        shade_end(r);
+        r->shade_draws[t]++;
+        return;
+    case LIGHT_VOLUMES_STENCIL_TWO_PASS:
+        gl_state_viewport(st, 0, 0, r->width, r->height);
+        gl_state_program(st, r->mark_program);
+        gl_state_color_mask(st, GLS_COLOR_MASK_NONE);
+        gl_state_depth(st, &(gls_depth){.compare = GLS_COMPARE_LEQUAL, .write = false});
+        gl_state_cull(st, GLS_CULL_BACK);
+        gl_state_stencil(st, &(gls_stencil){
+                                 .enabled = true,
+                                 .front = {.compare = GLS_COMPARE_ALWAYS,
+                                           .depth_fail = GLS_STENCIL_OP_INCR_WRAP},
+                             });
+        scene_gpu_draw_light_volume(r->gpu, st, s, li);
+        gl_state_cull(st, GLS_CULL_FRONT);
+        gl_state_stencil(st, &(gls_stencil){
+                                 .enabled = true,
+                                 .front = {.compare = GLS_COMPARE_ALWAYS,
+                                           .depth_fail = GLS_STENCIL_OP_DECR_WRAP},
+                             });
+        scene_gpu_draw_light_volume(r->gpu, st, s, li);
+        r->mark_draws[t] += 2;
+        gl_state_program(st, prog);
+        set_light_uniform(s, li);
+        gl_state_color_mask(st, GLS_COLOR_MASK_RGBA);
+        gl_state_depth(st, NULL);
+        gl_state_stencil(st, &(gls_stencil){
+                                 .enabled = true,
+                                 .front = {.compare = GLS_COMPARE_EQUAL,
+                                           .pass = GLS_STENCIL_OP_INCR_WRAP},
+                                 .ref = 0,
+                             });
+        shade_begin(r, t);
+        scene_gpu_draw_light_volume(r->gpu, st, s, li);
+        shade_end(r);
+        r->shade_draws[t]++;
+        return;
+    }
+}
+
+static void light_pass(deferred_renderer *r, const scene *s, frame_stats *out, pass_id p,
+                       int type)
+{
+    gl_state *st = r->st;
+    pass_begin(r, out, p);
+    gl_state_framebuffer(st, r->fb_light.fbo);
+    gl_state_color_mask(st, GLS_COLOR_MASK_RGBA);
+    gl_state_blend(st, &BLEND_ADD);
+    bool volumes = type != LIGHT_DIRECTIONAL && r->opts.light_volumes != LIGHT_VOLUMES_FULLSCREEN;
+    if (!volumes) {
+        gl_state_depth(st, NULL);
+        gl_state_stencil(st, NULL);
+        gl_state_cull(st, GLS_CULL_NONE);
+        gl_state_program(st, r->light_program[type]);
+    } else {
+        gl.Enable(GL_DEPTH_CLAMP);
+    }
+    for (uint32_t k = 0; k < r->fe.nlights; k++) {
+        uint32_t li = r->fe.lights[k];
+        if ((int)s->lights[li].type != type)
+            continue;
+        if (type == LIGHT_DIRECTIONAL) {
+            gl_state_program(st, r->light_program[type]);
+            set_light_uniform(s, li);
+            shade_begin(r, type);
+            fullscreen(r);
+            shade_end(r);
+            r->shade_draws[type]++;
+        } else {
+            draw_volume_light(r, s, type, li);
+        }
+        out->lights_drawn++;
+    }
+    if (volumes) {
+        gl.Disable(GL_DEPTH_CLAMP);
+        gl_state_color_mask(st, GLS_COLOR_MASK_RGBA);
+    }
+    pass_end(r, out);
+}
+
+static void deferred_draw(void *self, const scene *s, frame_stats *out)
+{
+    deferred_renderer *r = self;
+    gl_state *st = r->st;
+    out->npasses = 0;
+    out->lights_drawn = 0;
+    memset(r->mark_draws, 0, sizeof r->mark_draws);
+    memset(r->shade_draws, 0, sizeof r->shade_draws);
+    r->nshade_queries = 0;
+    if (!r->prepared || !s)
+        return;
+    /* Every frame starts from unknown state, so every frame counts alike. */
+    gl_state_invalidate(st);
+    frontend_build(&r->fe, s);
+    scene_gpu_frame(r->gpu, s);
+
+    /* >>gbuffer */
+    pass_begin(r, out, PASS_GBUFFER);
+    gl_state_framebuffer(st, r->fb_gbuffer.fbo);
+    gl_state_viewport(st, 0, 0, r->width, r->height);
+    gl_state_clear(st, GL_COLOR_BUFFER_BIT | GL_DEPTH_BUFFER_BIT | GL_STENCIL_BUFFER_BIT, NULL,
+                   1.0, r->opts.light_volumes == LIGHT_VOLUMES_STENCIL_TWO_PASS ? 1 : 0);
+    gl_state_color_mask(st, GLS_COLOR_MASK_RGBA);
+    gl_state_blend(st, NULL);
+    gl_state_stencil(st, NULL);
+    gl_state_depth(st, &(gls_depth){.compare = GLS_COMPARE_LESS, .write = true});
+    gl_state_cull(st, GLS_CULL_BACK);
+    for (uint32_t k = 0; k < r->fe.nvisible; k++) {
+        uint32_t o = r->fe.visible[k];
+        unsigned v = material_variant(&s->materials[s->objects[o].material]);
+        gl_state_program(st, r->gbuffer_program[v]);
+        scene_gpu_draw_object(r->gpu, st, s, o);
+    }
+    pass_end(r, out);
+
+    /* >>ambient + emissive */
+    pass_begin(r, out, PASS_AMBIENT);
+    gl_state_framebuffer(st, r->fb_light.fbo);
+    gl_state_blend(st, NULL);
+    gl_state_depth(st, NULL);
+    gl_state_stencil(st, NULL);
+    gl_state_cull(st, GLS_CULL_NONE);
+    bind_gbuffer_textures(r);
+    gl_state_program(st, r->ambient_program);
+    fullscreen(r);
+    pass_end(r, out);
+
+    /* >>lights */
+    if (r->run[PASS_DIRECTIONAL])
+        light_pass(r, s, out, PASS_DIRECTIONAL, LIGHT_DIRECTIONAL);
+    if (r->run[PASS_POINT])
+        light_pass(r, s, out, PASS_POINT, LIGHT_POINT);
+    if (r->run[PASS_SPOT])
+        light_pass(r, s, out, PASS_SPOT, LIGHT_SPOT);
+
+    GLuint hdr_fbo = r->fb_light.fbo;
+    if (r->run[PASS_COMPOSE]) {
+        pass_begin(r, out, PASS_COMPOSE);
+        gl_state_framebuffer(st, r->fb_compose.fbo);
+        gl_state_blend(st, &BLEND_ADD);
+        gl_state_depth(st, NULL);
+        gl_state_stencil(st, NULL);
+        gl_state_cull(st, GLS_CULL_NONE);
+        gl_state_texture(st, DEFERRED_SPECULAR_UNIT, r->specular.texture);
+        gl_state_program(st, r->compose_program);
+        fullscreen(r);
+        pass_end(r, out);
+        hdr_fbo = r->fb_compose.fbo;
+    }
+
+    /* >>sky: last, into untouched depth */
+    if (r->run[PASS_SKY]) {
+        pass_begin(r, out, PASS_SKY);
+        gl_state_framebuffer(st, hdr_fbo);
+        gl_state_viewport(st, 0, 0, r->width, r->height);
+        gl_state_blend(st, NULL);
+        gl_state_stencil(st, NULL);
+        gl_state_cull(st, GLS_CULL_NONE);
+        gl_state_depth(st, &(gls_depth){.compare = GLS_COMPARE_LEQUAL, .write = false});
+        scene_gpu_draw_sky(r->gpu, st);
+        pass_end(r, out);
+    }
+
+    /* >>resolve */
+    pass_begin(r, out, PASS_RESOLVE);
+    gl_state_blend(st, NULL);
+    gl_state_stencil(st, NULL);
+    gl_state_depth(st, NULL);
+    gl_state_cull(st, GLS_CULL_NONE);
+    scene_gpu_resolve(r->gpu, st, r->light.texture, r->output_fbo, r->width, r->height);
+    pass_end(r, out);
+}
+
+static void deferred_collect(void *self, frame_stats *out)
+{
+    deferred_renderer *r = self;
+    if (r->queries) {
+        gl_pass_queries_collect(r->queries, out);
+        return;
+    }
+    for (size_t i = 0; i < out->npasses; i++)
+        out->pass[i].gpu_us = out->pass[i].fragments = out->pass[i].primitives = NAN;
+}
+
+static void describe_target(const gl_target *t, pass_plan *out)
+{
+    if (!t->texture || out->ntargets >= sizeof out->target / sizeof out->target[0])
+        return;
+    gl_target_describe(t, &out->target[out->ntargets++]);
+    out->target_bytes += t->bytes;
+}
+
+static void deferred_describe(const void *self, pass_plan *out)
+{
+    const deferred_renderer *r = self;
+    memset(out, 0, sizeof *out);
+    if (!r->prepared)
+        return;
+    for (int p = 0; p < PASS_COUNT && out->npasses < RENDERER_MAX_PASSES; p++) {
+        pass_plan_entry *e = &out->pass[out->npasses++];
+        snprintf(e->name, sizeof e->name, "%s", pass_names[p]);
+        e->run = r->run[p];
+        snprintf(e->reason, sizeof e->reason, "%s", r->reason[p]);
+    }
+    gl_program_cache_describe(r->programs, out);
+    scene_gpu_describe(r->gpu, out);
+    for (int i = 0; i < r->layout.nattachments; i++) {
+        describe_target(&r->gbuf[i], out);
+        out->gbuffer_bytes += r->gbuf[i].bytes;
+    }
+    describe_target(&r->light, out);
+    describe_target(&r->specular, out);
+    describe_target(&r->depth, out);
+}
+
+static void deferred_destroy(void *self)
+{
+    deferred_renderer *r = self;
+    if (!r)
+        return;
+    release_prepared(r);
+    if (r->cap_shade_queries)
+        gl.DeleteQueries((GLsizei)r->cap_shade_queries, r->shade_query);
+    free(r->shade_query);
+    free(r->shade_query_type);
+    gl_pass_queries_destroy(r->queries);
+    gl_program_cache_destroy(r->programs);
+    gl_state_destroy(r->st);
+    free(r);
+}
+
+// >>for tests
+
+const deferred_layout *deferred_gbuffer_layout(const void *self)
+{
+    const deferred_renderer *r = self;
+    return r && r->prepared ? &r->layout : NULL;
+}
+
+const gl_target *deferred_hdr_target(const void *self)
+{
+    const deferred_renderer *r = self;
+    return r && r->prepared ? &r->light : NULL;
+}
+
+const gl_target *deferred_gbuffer_target(const void *self, int k)
+{
+    const deferred_renderer *r = self;
+    if (!r || !r->prepared || k < 0 || k >= r->layout.nattachments)
+        return NULL;
+    return &r->gbuf[k];
+}
+
+uint64_t deferred_last_mark_draws(const void *self, int type)
+{
+    const deferred_renderer *r = self;
+    return r && type >= 0 && type < DEFERRED_LIGHT_TYPES ? r->mark_draws[type]
+                                                                     : 0;
+}
+
+uint64_t deferred_last_shade_draws(const void *self, int type)
+{
+    const deferred_renderer *r = self;
+    return r && type >= 0 && type < DEFERRED_LIGHT_TYPES ? r->shade_draws[type]
+                                                                     : 0;
+}
+
+gl_state *deferred_state_cache(void *self)
+{
+    deferred_renderer *r = self;
+    return r ? r->st : NULL;
+}
+
+void deferred_count_shaded(void *self, bool on)
+{
+    deferred_renderer *r = self;
+    r->count_shaded = on;
+    r->nshade_queries = 0;
+}
+
+uint64_t deferred_shaded_samples(const void *self, int type)
+{
+    const deferred_renderer *r = self;
+    uint64_t sum = 0;
+    for (size_t i = 0; i < r->nshade_queries; i++) {
+        if (r->shade_query_type[i] != type)
+            continue;
+        GLuint64 v = 0;
+        gl.GetQueryObjectui64v(r->shade_query[i], GL_QUERY_RESULT, &v);
+        sum += v;
+    }
+    return sum;
+}
+
+const renderer_impl renderer_deferred_impl = {
+    .name = "deferred",
+    .description = "G-buffer pass, then ambient, directional and light-volume passes "
+                   "(fullscreen | volume | stencil | stencil-two-pass), sky last",
+    .create = deferred_create,
+    .prepare = deferred_prepare,
+    .draw = deferred_draw,
+    .collect = deferred_collect,
+    .describe = deferred_describe,
+    .destroy = deferred_destroy,
+};

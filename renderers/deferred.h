@@ -1,0 +1,148 @@
+#pragma once
+/* The deferred renderer's internals that tests look at (renderers/deferred.c has the
+ * design): the G-buffer layout, built from the options and from what the scene's
+ * materials write, without GL, and a few read-only views of a renderer object.
+ *
+ * A G-buffer layout is a list of attachments (colour targets of the G-buffer pass),
+ * each holding slots: a slot is one field of the surface (or a part of one) in one or
+ * more consecutive channels of its attachment. Fields, with their channels:
+ *
+ *   position.xy / position.z   view-space position (stored presets)
+ *   depth                      linear view depth -z (curtis, spheremap: the position is
+ *                              rebuilt as the pixel's view ray x depth)
+ *   normal.xy / normal.z       view-space normal: xyz (float, or unorm x 0.5 + 0.5), or
+ *                              normal.xy alone holding the spheremap code (seed 004)
+ *   diffuse                    rgb
+ *   gloss                      specular intensity x gloss map
+ *   shininess                  the specular exponent (unorm attachments store n / 255)
+ *   emissive                   rgb, or (fat, seed 000) one intensity e: emissive = e x diffuse
+ *
+ * Attachment names are made from their slots ("gbuffer.position+shininess"), so a
+ * name says what an attachment holds. With no slot at all (the position rebuilt from
+ * the depth buffer) the position comes from the shared depth-stencil target. */
+#include <stdbool.h>
+#include <stddef.h>
+#include <stdint.h>
+
+#include "renderers/gl/target.h"
+#include "renderers/renderer.h"
+
+struct scene;
+
+enum {
+    DEFERRED_MAX_ATTACHMENTS = 6,
+    DEFERRED_MAX_SLOTS = 4,         /* per attachment: one per channel at most */
+    DEFERRED_FIRST_GBUFFER_UNIT = 4,   /* attachment k is sampled at unit 4 + k */
+    DEFERRED_DEPTH_UNIT = 10,          /* the depth-stencil target (position from depth) */
+    DEFERRED_SPECULAR_UNIT = 11,       /* the specular light target (compose) */
+    DEFERRED_UNIFORM_LIGHT = 16,       /* vec4 u_light[5] of deferred_light.frag */
+};
+
+typedef enum deferred_slot_kind {
+    DEFERRED_SLOT_POSITION_XY,
+    DEFERRED_SLOT_POSITION_Z,
+    DEFERRED_SLOT_DEPTH,
+    DEFERRED_SLOT_NORMAL_XY,
+    DEFERRED_SLOT_NORMAL_Z,
+    DEFERRED_SLOT_DIFFUSE,
+    DEFERRED_SLOT_GLOSS,
+    DEFERRED_SLOT_SHININESS,
+    DEFERRED_SLOT_EMISSIVE,            /* rgb, or 1 channel when emissive_intensity */
+    DEFERRED_SLOT_COUNT
+} deferred_slot_kind;
+
+/* Where the light passes get the position from. */
+typedef enum deferred_position_source {
+    DEFERRED_POSITION_STORED,          /* position.xy + position.z slots */
+    DEFERRED_POSITION_LINEAR_DEPTH,    /* depth slot x the pixel's view ray (seed 004) */
+    DEFERRED_POSITION_DEPTH_BUFFER,    /* unprojected from the depth-stencil target */
+} deferred_position_source;
+
+typedef enum deferred_normal_encoding {
+    DEFERRED_NORMAL_XYZ_FLOAT,         /* as it is */
+    DEFERRED_NORMAL_XYZ_UNORM,         /* n x 0.5 + 0.5 (RGB10A2, RGBA8 / RG8 splits) */
+    DEFERRED_NORMAL_SPHEREMAP,         /* Lambert azimuthal, two channels (seed 004) */
+} deferred_normal_encoding;
+
+typedef enum deferred_channel_type {
+    DEFERRED_CHANNELS_FLOAT16,
+    DEFERRED_CHANNELS_FLOAT32,
+    DEFERRED_CHANNELS_UNORM8,
+    DEFERRED_CHANNELS_UNORM10,
+} deferred_channel_type;
+
+typedef struct deferred_slot {
+    deferred_slot_kind kind;
+    uint8_t first, count;              /* channels first .. first + count - 1 */
+} deferred_slot;
+
+typedef struct deferred_attachment {
+    char name[32];                     /* "gbuffer.diffuse+gloss" */
+    gl_format format;
+    deferred_channel_type channels;
+    int nslots;
+    deferred_slot slot[DEFERRED_MAX_SLOTS];
+} deferred_attachment;
+
+/* What the scene's materials write (deferred_needs_of). */
+typedef struct deferred_needs {
+    bool gloss;                        /* some object's material has specular > 0: gloss and
+                                          shininess (a gloss map only scales it) */
+    bool emissive;                     /* some object's material has an emissive colour > 0 */
+} deferred_needs;
+
+typedef struct deferred_layout {
+    int nattachments;
+    deferred_attachment att[DEFERRED_MAX_ATTACHMENTS];
+    deferred_position_source position;
+    deferred_normal_encoding normal;
+    bool emissive_intensity;           /* fat: emissive = e x diffuse */
+    bool has[DEFERRED_SLOT_COUNT];     /* a slot of that kind is in some attachment */
+} deferred_layout;
+
+/* The slot kind's field name as attachment names use it: "position.xy", ... */
+const char *deferred_slot_name(deferred_slot_kind k);
+/* "fat", "curtis", "compact", "spheremap", "reference"; "unknown" out of range. */
+const char *deferred_preset_name(gbuffer_preset p);
+
+/* What objects' materials of s write. */
+deferred_needs deferred_needs_of(const struct scene *s);
+
+/* The layout of preset (with the field-by-field overrides of o) for a scene that needs
+ * `needs`: the preset's attachments as seed 000/002/003/004 give them, each allocated
+ * only when one of its slots is needed; an override (position, normal) that differs
+ * from what the preset stores removes the preset's slots for that field and adds an
+ * attachment of its own; an attachment that lost a slot to an override is packed
+ * again into the narrowest format of its channel type. False with a message on a bad
+ * option value. */
+bool deferred_layout_build(const renderer_options *o, deferred_needs needs,
+                           deferred_layout *out, char *err, size_t errlen);
+
+/* Bytes per pixel of the layout's attachments. */
+unsigned deferred_layout_bytes_per_pixel(const deferred_layout *l);
+
+// >>for tests: self is what renderer_deferred_impl.create returned
+
+/* The layout renderer_prepare chose (NULL before a successful prepare). */
+const deferred_layout *deferred_gbuffer_layout(const void *self);
+/* The RGBA16F target the frame's light is accumulated in (the one resolved), and the
+ * G-buffer attachment k (NULL past the layout's attachments). */
+const gl_target *deferred_hdr_target(const void *self);
+const gl_target *deferred_gbuffer_target(const void *self, int k);
+/* The renderer's state cache (gl/state.h), e.g. to switch on gl_state_set_force. */
+struct gl_state *deferred_state_cache(void *self);
+/* Draw calls of the light-volume draws of the last frame that marked the stencil
+ * (stencil modes), and that shaded (every mode), per light type (LIGHT_POINT,
+ * LIGHT_SPOT, LIGHT_DIRECTIONAL). */
+uint64_t deferred_last_mark_draws(const void *self, int type);
+uint64_t deferred_last_shade_draws(const void *self, int type);
+/* Test hook: with `on`, every shade draw of the light passes is wrapped in a
+ * GL_SAMPLES_PASSED query (off: no query, as in runs). deferred_shaded_samples then
+ * gives, for the last frame drawn, the samples of light type `type` that passed the
+ * depth and stencil tests in the shade draws: the pixels each light really lit
+ * (waits for the results). This is what the stencil modes save; llvmpipe's
+ * GL_FRAGMENT_SHADER_INVOCATIONS counts every 4x4 block a triangle covers, the
+ * depth- and stencil-rejected ones included, so pass_stats.fragments cannot show it
+ * there. */
+void deferred_count_shaded(void *self, bool on);
+uint64_t deferred_shaded_samples(const void *self, int type);

@@ -1,0 +1,347 @@
+/* What the forward renderers share (forward_common.h). */
+#include "renderers/forward_common.h"
+
+#include "renderers/shading.h"
+
+#include <math.h>
+#include <stdarg.h>
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+
+_Static_assert(sizeof(gpu_light) == 80, "gpu_light is 5 vec4s, as lighting.inc's Light");
+
+/* Every scene mesh is closed or a shell seen from inside (mesh.h): back faces never
+ * show, so they are culled. */
+#define FORWARD_CULL GLS_CULL_BACK
+
+unsigned forward_material_variant(const scene_material *m)
+{
+    return (m->diffuse_map >= 0 ? FORWARD_VARIANT_DIFFUSE : 0u) |
+           (m->gloss_map >= 0 ? FORWARD_VARIANT_GLOSS : 0u) |
+           (m->normal_map >= 0 ? FORWARD_VARIANT_NORMAL : 0u) |
+           (m->emissive_map >= 0 ? FORWARD_VARIANT_EMISSIVE : 0u);
+}
+
+// >>creation and preparation
+
+bool forward_common_init(forward_common *fc, const char *name, const renderer_options *opts,
+                         char *err, size_t errlen)
+{
+    memset(fc, 0, sizeof *fc);
+    fc->name = name;
+    fc->opts = *opts;
+    GLint fb = 0;
+    gl.GetIntegerv(GL_DRAW_FRAMEBUFFER_BINDING, &fb);
+    fc->output_fbo = (GLuint)fb;
+    if (fc->opts.max_uniform_block_size <= 0) {
+        GLint v = 0;
+        gl.GetIntegerv(GL_MAX_UNIFORM_BLOCK_SIZE, &v);
+        fc->opts.max_uniform_block_size = v;
+    }
+    fc->st = gl_state_create();
+    fc->programs = gl_program_cache_create();
+    if (!fc->st || !fc->programs)
+        goto oom;
+    if (opts->queries) {
+        fc->queries = gl_pass_queries_create(FORWARD_MAX_PASSES, opts->timer_query,
+                                             opts->pipeline_statistics);
+        if (!fc->queries)
+            goto oom;
+    }
+    return true;
+oom:
+    snprintf(err, errlen, "%s: out of memory", name);
+    return false;
+}
+
+static void release_prepared(forward_common *fc)
+{
+    gl_framebuffer_destroy(&fc->fb);
+    gl_target_destroy(&fc->hdr);
+    gl_target_destroy(&fc->depth);
+    scene_gpu_destroy(fc->gpu);
+    fc->gpu = NULL;
+    frontend_free(&fc->fe);
+    memset(&fc->fe, 0, sizeof fc->fe);
+    fc->prepared = false;
+}
+
+void forward_common_destroy(forward_common *fc)
+{
+    release_prepared(fc);
+    gl_pass_queries_destroy(fc->queries);
+    gl_program_cache_destroy(fc->programs);
+    gl_state_destroy(fc->st);
+    fc->queries = NULL;
+    fc->programs = NULL;
+    fc->st = NULL;
+}
+
+bool forward_common_prepare(forward_common *fc, const scene *s, char *err, size_t errlen)
+{
+    char why[512] = "";
+    release_prepared(fc);
+    if (!s) {
+        snprintf(err, errlen, "%s: no scene to prepare for", fc->name);
+        return false;
+    }
+    fc->width = fc->opts.width > 0 ? fc->opts.width : s->width;
+    fc->height = fc->opts.height > 0 ? fc->opts.height : s->height;
+    if (fc->width != s->width || fc->height != s->height) {
+        /* the projection's aspect and the sky's viewport are the scene's */
+        snprintf(err, errlen, "%s: the scene is posed for %dx%d, the output is %dx%d",
+                 fc->name, s->width, s->height, fc->width, fc->height);
+        return false;
+    }
+    fc->sky = s->sky;
+
+    fc->variants = 0;
+    for (unsigned v = 0; v < FORWARD_VARIANTS; v++) {
+        fc->nobjects_variant[v] = 0;
+        fc->base_program[v] = 0;
+    }
+    for (uint32_t i = 0; i < s->nobjects; i++) {
+        uint32_t m = s->objects[i].material;
+        if (m >= s->nmaterials) {
+            snprintf(err, errlen, "%s: object %u has material %u, the scene has %u", fc->name,
+                     i, m, s->nmaterials);
+            return false;
+        }
+        unsigned v = forward_material_variant(&s->materials[m]);
+        fc->variants |= 1u << v;
+        fc->nobjects_variant[v]++;
+    }
+    fc->light_types = 0;
+    for (uint32_t i = 0; i < s->nlights_total; i++) {
+        unsigned t = (unsigned)s->lights[i].type;
+        if (t >= FORWARD_LIGHT_TYPES) {
+            snprintf(err, errlen, "%s: light %u has an unknown type %u", fc->name, i, t);
+            return false;
+        }
+        fc->light_types |= 1u << t;
+    }
+
+    if (!frontend_init(&fc->fe, s, why, sizeof why)) {
+        snprintf(err, errlen, "%s: %s", fc->name, why);
+        goto fail;
+    }
+    fc->gpu = scene_gpu_create(s, why, sizeof why);
+    if (!fc->gpu) {
+        snprintf(err, errlen, "%s: %s", fc->name, why);
+        goto fail;
+    }
+    if (!gl_target_create(&fc->hdr, &(gl_target_desc){.name = "hdr",
+                                                      .format = GLT_FORMAT_RGBA16F,
+                                                      .width = fc->width, .height = fc->height},
+                          why, sizeof why) ||
+        !gl_target_create(&fc->depth, &(gl_target_desc){.name = "depth",
+                                                        .format = GLT_FORMAT_DEPTH24_STENCIL8,
+                                                        .width = fc->width,
+                                                        .height = fc->height},
+                          why, sizeof why) ||
+        !gl_framebuffer_create(&fc->fb, &(gl_framebuffer_desc){.name = "forward",
+                                                               .color = {&fc->hdr},
+                                                               .depth_stencil = &fc->depth},
+                               why, sizeof why)) {
+        snprintf(err, errlen, "%s: %s", fc->name, why);
+        goto fail;
+    }
+    fc->prepared = true;
+    return true;
+fail:
+    release_prepared(fc);
+    return false;
+}
+
+bool forward_program(forward_common *fc, const char *display, const char *fragment,
+                     unsigned variant, const char *const *extra, GLuint *program, char *err,
+                     size_t errlen)
+{
+    gl_program_desc d = {.name = display, .vertex = "mesh.vert", .fragment = fragment};
+    unsigned n = 0;
+    /* The map defines of shading_material_defines (those of the deferred G-buffer
+     * pass too, so both see the same surface), from a material with just the maps
+     * of the variant. */
+    scene_material mat = {.diffuse_map = -1, .gloss_map = -1, .normal_map = -1,
+                          .emissive_map = -1};
+    if (variant & FORWARD_VARIANT_DIFFUSE)
+        mat.diffuse_map = 0;
+    if (variant & FORWARD_VARIANT_GLOSS)
+        mat.gloss_map = 0;
+    if (variant & FORWARD_VARIANT_NORMAL)
+        mat.normal_map = 0;
+    if (variant & FORWARD_VARIANT_EMISSIVE)
+        mat.emissive_map = 0;
+    const char *defs[4] = {NULL, NULL, NULL, NULL};
+    unsigned k = shading_material_defines(&mat, defs);
+    for (unsigned i = 0; i < k && i < 4; i++)
+        d.defines[n++] = defs[i];
+    for (unsigned i = 0; extra && extra[i]; i++) {
+        if (n + 1 >= GLP_MAX_DEFINES) {
+            snprintf(err, errlen, "bug: %s: too many defines for %s", fc->name, display);
+            return false;
+        }
+        d.defines[n++] = extra[i];
+    }
+    char why[4096] = "";
+    if (gl_program_get(fc->programs, &d, program, why, sizeof why) != GLP_OK) {
+        snprintf(err, errlen, "%s: %s", fc->name, why);
+        return false;
+    }
+    return true;
+}
+
+bool forward_compile_base(forward_common *fc, char *err, size_t errlen)
+{
+    for (unsigned v = 0; v < FORWARD_VARIANTS; v++)
+        if ((fc->variants & (1u << v)) &&
+            !forward_program(fc, "forward_base", "forward_base.frag", v, NULL,
+                             &fc->base_program[v], err, errlen))
+            return false;
+    return true;
+}
+
+// >>per frame
+
+void forward_begin_frame(forward_common *fc, const scene *s, frame_stats *out)
+{
+    out->npasses = 0;
+    fc->npasses = 0;
+    /* Every frame starts from unknown state, so every frame counts alike: the first
+     * set of each part of the state in a frame is a change. */
+    gl_state_invalidate(fc->st);
+    frontend_build(&fc->fe, s);
+    scene_gpu_frame(fc->gpu, s);
+}
+
+void forward_pass_begin(forward_common *fc, frame_stats *out, const char *name)
+{
+    size_t i = out->npasses;
+    gl_state_begin_pass(fc->st, name);
+    if (fc->queries)
+        gl_pass_queries_begin(fc->queries, i);
+}
+
+void forward_pass_end(forward_common *fc, frame_stats *out)
+{
+    size_t i = out->npasses;
+    if (fc->queries)
+        gl_pass_queries_end(fc->queries);
+    pass_stats *p = &out->pass[i];
+    gl_state_end_pass(fc->st, p);
+    p->gpu_us = p->fragments = p->primitives = NAN;   /* collect() fills them */
+    if (i < FORWARD_MAX_PASSES)
+        fc->pass_counts[i] = *gl_state_pass_counts(fc->st);
+    out->npasses = i + 1;
+    fc->npasses = i + 1;
+}
+
+void forward_bind_target(forward_common *fc)
+{
+    gl_state_framebuffer(fc->st, fc->fb.fbo);
+    gl_state_viewport(fc->st, 0, 0, fc->width, fc->height);
+}
+
+void forward_clear_target(forward_common *fc)
+{
+    static const float black[4] = {0.0f, 0.0f, 0.0f, 1.0f};
+    gl_state_clear(fc->st, GL_COLOR_BUFFER_BIT | GL_DEPTH_BUFFER_BIT | GL_STENCIL_BUFFER_BIT,
+                   black, 1.0, 0);
+}
+
+void forward_draw_objects(forward_common *fc, const scene *s, const uint32_t *objects,
+                          uint32_t n, const GLuint programs[FORWARD_VARIANTS],
+                          forward_program_fn on_program, void *user)
+{
+    gl_state_cull(fc->st, FORWARD_CULL);
+    for (uint32_t k = 0; k < n; k++) {
+        uint32_t o = objects[k];
+        unsigned v = forward_material_variant(&s->materials[s->objects[o].material]);
+        gl_state_program(fc->st, programs[v]);
+        if (on_program)
+            on_program(user, v, programs[v]);
+        scene_gpu_draw_object(fc->gpu, fc->st, s, o);
+    }
+}
+
+void forward_sky_pass(forward_common *fc, frame_stats *out)
+{
+    forward_pass_begin(fc, out, "sky");
+    forward_bind_target(fc);
+    scene_gpu_draw_sky(fc->gpu, fc->st);   /* depth LEQUAL, no writes: where depth is 1 */
+    forward_pass_end(fc, out);
+}
+
+void forward_resolve_pass(forward_common *fc, frame_stats *out)
+{
+    forward_pass_begin(fc, out, "resolve");
+    scene_gpu_resolve(fc->gpu, fc->st, fc->hdr.texture, fc->output_fbo, fc->width, fc->height);
+    forward_pass_end(fc, out);
+}
+
+void forward_collect(forward_common *fc, frame_stats *out)
+{
+    if (fc->queries) {
+        gl_pass_queries_collect(fc->queries, out);
+        return;
+    }
+    for (size_t i = 0; i < out->npasses; i++)
+        out->pass[i].gpu_us = out->pass[i].fragments = out->pass[i].primitives = NAN;
+}
+
+// >>describe
+
+void forward_describe_pass(pass_plan *out, const char *name, bool run, const char *fmt, ...)
+{
+    if (out->npasses >= RENDERER_MAX_PASSES)
+        return;
+    pass_plan_entry *e = &out->pass[out->npasses++];
+    snprintf(e->name, sizeof e->name, "%s", name);
+    e->run = run;
+    va_list ap;
+    va_start(ap, fmt);
+    vsnprintf(e->reason, sizeof e->reason, fmt, ap);
+    va_end(ap);
+}
+
+void forward_describe_resources(const forward_common *fc, pass_plan *out)
+{
+    gl_program_cache_describe(fc->programs, out);
+    scene_gpu_describe(fc->gpu, out);   /* sky and resolve */
+    out->ntargets = 0;
+    out->target_bytes = 0;
+    const gl_target *targets[] = {&fc->hdr, &fc->depth};
+    for (size_t i = 0; i < sizeof targets / sizeof targets[0]; i++) {
+        if (!targets[i]->texture)
+            continue;
+        gl_target_describe(targets[i], &out->target[out->ntargets++]);
+        out->target_bytes += targets[i]->bytes;
+    }
+    out->gbuffer_bytes = 0;
+}
+
+// >>forward-spml's light limit
+
+uint32_t forward_spml_max_lights(int max_uniform_block_size)
+{
+    if (max_uniform_block_size <= 0)
+        return 0;
+    return (uint32_t)((size_t)max_uniform_block_size / sizeof(gpu_light));
+}
+
+// >>for tests
+
+const gls_counts *forward_last_pass_counts(const void *self, size_t pass)
+{
+    const forward_common *fc = self;
+    if (!fc || pass >= fc->npasses || pass >= FORWARD_MAX_PASSES)
+        return NULL;
+    return &fc->pass_counts[pass];
+}
+
+const gl_target *forward_hdr_target(const void *self)
+{
+    const forward_common *fc = self;
+    return fc ? &fc->hdr : NULL;
+}

@@ -1,0 +1,158 @@
+#pragma once
+/* What the two forward renderers share (forward_mpml.c, seed 000 4.6; forward_spml.c,
+ * seed 003 4.1): the HDR target and its depth, the material variants, the pass that
+ * draws the visible objects in state-bucket order, the sky and resolve passes, the
+ * per-pass queries and the describe helpers.
+ *
+ * Every frame of both renderers:
+ *
+ *     forward_begin_frame     cache invalidated (every frame counted alike),
+ *                             frontend_build, scene_gpu_frame (the Frame block)
+ *     ... the renderer's own passes into fc->fb (RGBA16F "hdr" + "depth") ...
+ *     forward_sky_pass        when the scene has a sky: one draw into untouched depth
+ *     forward_resolve_pass    hdr clamped into the output framebuffer: one draw
+ *
+ * Objects are drawn back faces culled (every scene mesh is closed or a shell seen
+ * from its inside, mesh.h), in the frontend's `visible` order: state buckets by
+ * diffuse map, then material, then mesh (seed 000 4.4.3), so that texture and
+ * program changes happen only at bucket boundaries.
+ *
+ * Material variants: bit 0 diffuse map, 1 gloss map, 2 normal map, 3 emissive map
+ * (the defines of shading_material_defines); only the variants some object's
+ * material has are compiled.
+ *
+ * Programs bound here carry, beside mesh.vert's and surface.inc's uniforms (0..11),
+ * FORWARD_UNIFORM_LIGHT (16): forward_light.frag's vec4 u_light[5] (one light),
+ * forward_spml.frag's int u_light_count. forward-spml's light buffer is uniform
+ * block binding FORWARD_LIGHTS_BINDING (1); binding 0 is the Frame block. */
+#include <stdbool.h>
+#include <stddef.h>
+#include <stdint.h>
+
+#include "renderers/frontend.h"
+#include "renderers/gl/loader.h"
+#include "renderers/gl/program.h"
+#include "renderers/gl/query.h"
+#include "renderers/gl/state.h"
+#include "renderers/gl/target.h"
+#include "renderers/renderer.h"
+#include "renderers/scene_gpu.h"
+#include "scenes/scene.h"
+
+enum {
+    FORWARD_VARIANTS = 16,           /* 4 map bits */
+    FORWARD_LIGHT_TYPES = 3,         /* LIGHT_POINT, LIGHT_SPOT, LIGHT_DIRECTIONAL */
+    FORWARD_MAX_PASSES = 4,
+    FORWARD_UNIFORM_LIGHT = 16,      /* uniform location, see above */
+    FORWARD_LIGHTS_BINDING = 1,      /* uniform block binding of forward-spml's lights */
+};
+
+enum {
+    FORWARD_VARIANT_DIFFUSE = 1,
+    FORWARD_VARIANT_GLOSS = 2,
+    FORWARD_VARIANT_NORMAL = 4,
+    FORWARD_VARIANT_EMISSIVE = 8,
+};
+
+typedef struct forward_common {
+    const char *name;                /* "forward-mpml": prefixes messages */
+    renderer_options opts;
+    int width, height;               /* the output's size (opts, or the scene's) */
+    GLuint output_fbo;               /* the draw framebuffer bound at creation */
+    gl_state *st;
+    gl_program_cache *programs;
+    gl_pass_queries *queries;        /* NULL without opts.queries */
+
+    /* >>made by forward_common_prepare */
+    bool prepared;
+    scene_gpu *gpu;
+    frontend fe;
+    gl_target hdr, depth;
+    gl_framebuffer fb;
+    bool sky;                        /* the scene has a sky: the sky pass runs */
+    unsigned variants;               /* bit v: some object's material is of variant v */
+    unsigned light_types;            /* bit t: some light of the scene is of type t */
+    uint32_t nobjects_variant[FORWARD_VARIANTS];   /* objects of each variant */
+    GLuint base_program[FORWARD_VARIANTS];    /* forward-mpml's base pass */
+
+    /* >>the last frame, for tests */
+    size_t npasses;
+    gls_counts pass_counts[FORWARD_MAX_PASSES];
+} forward_common;
+
+/* The variant of a material (FORWARD_VARIANT_* bits). */
+unsigned forward_material_variant(const scene_material *m);
+
+/* Creation: records the output framebuffer (the draw framebuffer bound now), makes
+ * the state cache, the program cache and (opts->queries) FORWARD_MAX_PASSES pass
+ * queries. False with a message; forward_common_destroy is then still right. */
+bool forward_common_init(forward_common *fc, const char *name, const renderer_options *opts,
+                         char *err, size_t errlen);
+/* Everything init and prepare made; a zeroed or destroyed fc is fine. */
+void forward_common_destroy(forward_common *fc);
+
+/* What both renderers need of a scene: the frontend, the scene on the GPU, the HDR
+ * target and depth, the variants and light types present. Compiles nothing. A
+ * second call releases what the first made first. */
+bool forward_common_prepare(forward_common *fc, const scene *s, char *err, size_t errlen);
+
+/* The program of fragment shader `fragment` (with mesh.vert) for material variant
+ * v, with extra defines (NULL-terminated list, or NULL), named `display`. */
+bool forward_program(forward_common *fc, const char *display, const char *fragment,
+                     unsigned variant, const char *const *extra, GLuint *program, char *err,
+                     size_t errlen);
+
+/* forward_base.frag for every variant present, into fc->base_program. */
+bool forward_compile_base(forward_common *fc, char *err, size_t errlen);
+
+// >>per frame
+
+void forward_begin_frame(forward_common *fc, const scene *s, frame_stats *out);
+
+/* Pass bracketing: the pass gets the next index of out->pass, its queries and the
+ * state cache's counts. */
+void forward_pass_begin(forward_common *fc, frame_stats *out, const char *name);
+void forward_pass_end(forward_common *fc, frame_stats *out);
+
+/* Binds the HDR framebuffer and its viewport. */
+void forward_bind_target(forward_common *fc);
+
+/* Clears hdr to (0, 0, 0, 1) and depth to 1 (stencil 0). */
+void forward_clear_target(forward_common *fc);
+
+/* Draws objects[0..n) with programs[variant of each object's material], one draw
+ * each. on_program (may be NULL) runs after each program is bound, before the
+ * object is drawn, for uniforms of the renderer's own. */
+typedef void (*forward_program_fn)(void *user, unsigned variant, GLuint program);
+void forward_draw_objects(forward_common *fc, const scene *s, const uint32_t *objects,
+                          uint32_t n, const GLuint programs[FORWARD_VARIANTS],
+                          forward_program_fn on_program, void *user);
+
+/* The sky pass (one draw; only call it when fc->sky) and the resolve pass (one draw). */
+void forward_sky_pass(forward_common *fc, frame_stats *out);
+void forward_resolve_pass(forward_common *fc, frame_stats *out);
+
+/* Fills GPU times and fragment counts after the frame's sync point (NAN without queries). */
+void forward_collect(forward_common *fc, frame_stats *out);
+
+// >>describe
+
+/* Appends a pass row: name, whether it runs, and why (printf format). */
+void forward_describe_pass(pass_plan *out, const char *name, bool run, const char *fmt, ...)
+    __attribute__((format(printf, 4, 5)));
+/* The targets (hdr, depth), their bytes, the programs compiled; gbuffer_bytes 0. */
+void forward_describe_resources(const forward_common *fc, pass_plan *out);
+
+// >>forward-spml's light limit
+
+/* The most lights forward-spml can hold in one uniform block of the context:
+ * max_uniform_block_size / sizeof(gpu_light) (80 bytes: 5 vec4s, std140), 0 for a
+ * size <= 0. `shadesweep info` reports it. */
+uint32_t forward_spml_max_lights(int max_uniform_block_size);
+
+// >>for tests: self is what the renderer_impl's create returned
+
+/* The state cache's counts of pass i of the last frame drawn, or NULL past its passes. */
+const gls_counts *forward_last_pass_counts(const void *self, size_t pass);
+/* The HDR colour target (RGBA16F) the frame was lit in. */
+const gl_target *forward_hdr_target(const void *self);

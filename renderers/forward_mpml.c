@@ -1,0 +1,226 @@
+/* forward-mpml: multi-pass multi-light forward shading (seed 000 4.6).
+ *
+ *   base     depth, ambient and emissive of every visible object in one pass
+ *            (4.6.2): depth LESS with writes, no blending; forward_base.frag
+ *   lights   for each visible light (frontend order) an additive pass (blend ONE,
+ *            ONE) with depth test EQUAL and no depth writes over the objects of its
+ *            illumination set (4.6.1: visible objects whose bounds intersect the
+ *            light's volume; every visible object for a directional light, 4.6.5),
+ *            in `visible` order, so the state buckets hold within each light's set;
+ *            forward_light.frag compiled per (light type x material variant) pair
+ *            the scene has. With forward.illumination_sets false
+ *            (renderer_options.no_illumination_sets) every light draws every visible
+ *            object (the brute force of seed 000 5.6). Runs when the scene has lights.
+ *   sky      the sky into untouched depth, when the scene has one
+ *   resolve  the HDR target clamped into the output framebuffer
+ *
+ * Draw calls per frame, with V visible objects, the visible lights l and I(l) the
+ * illumination set of l:
+ *
+ *     draws = V + sum over l of |I(l)|  (V per light without illumination sets)
+ *             + (1 if the scene has a sky) + 1
+ *
+ * A light whose set is empty draws nothing and is not counted in lights_drawn. */
+#include "renderers/forward_common.h"
+#include "renderers/shading.h"
+
+#include <assert.h>
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+
+typedef struct forward_mpml {
+    forward_common c;        /* first: forward_last_pass_counts() reads self as this */
+    bool lights_pass;        /* the scene has lights */
+    GLuint light_program[FORWARD_LIGHT_TYPES][FORWARD_VARIANTS];
+    /* The light each program's u_light holds: a serial per light drawn, never reused,
+     * so u_light is uploaded once per (light, program) and never stale. */
+    uint64_t serial;
+    uint64_t program_serial[FORWARD_LIGHT_TYPES][FORWARD_VARIANTS];
+    unsigned cur_type;
+    gpu_light cur;           /* the light being drawn, packed in view space */
+} forward_mpml;
+
+static const char *const light_type_define[FORWARD_LIGHT_TYPES] = {
+    [LIGHT_POINT] = "LIGHT_TYPE LIGHT_POINT",
+    [LIGHT_SPOT] = "LIGHT_TYPE LIGHT_SPOT",
+    [LIGHT_DIRECTIONAL] = "LIGHT_TYPE LIGHT_DIRECTIONAL",
+};
+
+static const char *const light_program_name[FORWARD_LIGHT_TYPES] = {
+    [LIGHT_POINT] = "forward_point",
+    [LIGHT_SPOT] = "forward_spot",
+    [LIGHT_DIRECTIONAL] = "forward_directional",
+};
+
+static void *mpml_create(const renderer_options *opts, char *err, size_t errlen)
+{
+    forward_mpml *r = calloc(1, sizeof *r);
+    if (!r) {
+        snprintf(err, errlen, "forward-mpml: out of memory");
+        return NULL;
+    }
+    if (!forward_common_init(&r->c, "forward-mpml", opts, err, errlen)) {
+        forward_common_destroy(&r->c);
+        free(r);
+        return NULL;
+    }
+    return r;
+}
+
+static bool mpml_prepare(void *self, const struct scene *s, char *err, size_t errlen)
+{
+    forward_mpml *r = self;
+    memset(r->light_program, 0, sizeof r->light_program);
+    memset(r->program_serial, 0, sizeof r->program_serial);
+    if (!forward_common_prepare(&r->c, s, err, errlen))
+        return false;
+    r->lights_pass = s->nlights_total > 0;
+    if (!forward_compile_base(&r->c, err, errlen))
+        goto fail;
+    for (unsigned t = 0; t < FORWARD_LIGHT_TYPES; t++) {
+        if (!(r->c.light_types & (1u << t)))
+            continue;
+        const char *extra[] = {light_type_define[t], NULL};
+        for (unsigned v = 0; v < FORWARD_VARIANTS; v++)
+            if ((r->c.variants & (1u << v)) &&
+                !forward_program(&r->c, light_program_name[t], "forward_light.frag", v, extra,
+                                 &r->light_program[t][v], err, errlen))
+                goto fail;
+    }
+    return true;
+fail:
+    r->c.prepared = false;
+    return false;
+}
+
+/* forward_draw_objects' hook: the current light into the program's u_light, once
+ * per (light, program). */
+static void mpml_on_program(void *user, unsigned variant, GLuint program)
+{
+    forward_mpml *r = user;
+    (void)program;
+    uint64_t *held = &r->program_serial[r->cur_type][variant];
+    if (*held != r->serial) {
+        gl.Uniform4fv(FORWARD_UNIFORM_LIGHT, 5, &r->cur.v[0][0]);
+        *held = r->serial;
+    }
+}
+
+static void mpml_draw(void *self, const struct scene *s, frame_stats *out)
+{
+    forward_mpml *r = self;
+    forward_common *c = &r->c;
+    if (!c->prepared) {
+        fprintf(stderr, "bug: forward-mpml: draw before a successful prepare\n");
+        out->npasses = 0;
+        return;
+    }
+    forward_begin_frame(c, s, out);
+    const frontend *fe = &c->fe;
+    const bool sets = !c->opts.no_illumination_sets;
+
+    forward_pass_begin(c, out, "base");
+    forward_bind_target(c);
+    gl_state_blend(c->st, NULL);
+    gl_state_stencil(c->st, NULL);
+    forward_clear_target(c);
+    gl_state_depth(c->st, &(gls_depth){.compare = GLS_COMPARE_LESS, .write = true});
+    forward_draw_objects(c, s, fe->visible, fe->nvisible, c->base_program, NULL, NULL);
+    forward_pass_end(c, out);
+
+    uint64_t light_draws = 0;
+    uint32_t lights_drawn = 0;
+    if (r->lights_pass) {
+        forward_pass_begin(c, out, "lights");
+        forward_bind_target(c);
+        gl_state_blend(c->st, &(gls_blend){.enabled = true, .src = GLS_BLEND_ONE,
+                                           .dst = GLS_BLEND_ONE, .op = GLS_BLEND_OP_ADD});
+        gl_state_depth(c->st, &(gls_depth){.compare = GLS_COMPARE_EQUAL, .write = false});
+        for (uint32_t k = 0; k < fe->nlights; k++) {
+            const uint32_t *objects = fe->visible;
+            uint32_t n = fe->nvisible;
+            if (sets) {
+                objects = fe->illum + fe->illum_start[k];
+                n = fe->illum_start[k + 1] - fe->illum_start[k];
+            }
+            if (n == 0)
+                continue;
+            const scene_light *l = &s->lights[fe->lights[k]];
+            r->serial++;
+            r->cur_type = (unsigned)l->type;
+            shading_pack_light(l, s->view, &r->cur);
+            forward_draw_objects(c, s, objects, n, r->light_program[r->cur_type],
+                                 mpml_on_program, r);
+            light_draws += n;
+            lights_drawn++;
+        }
+        forward_pass_end(c, out);
+    }
+    if (c->sky)
+        forward_sky_pass(c, out);
+    forward_resolve_pass(c, out);
+    out->lights_drawn = lights_drawn;
+
+    /* The formula of the header. */
+    uint64_t expected = (uint64_t)fe->nvisible + light_draws + (c->sky ? 1u : 0u) + 1u;
+    uint64_t draws = 0;
+    for (size_t i = 0; i < out->npasses; i++)
+        draws += out->pass[i].draw_calls;
+    assert(draws == expected);
+    (void)draws;
+    (void)expected;
+}
+
+static void mpml_collect(void *self, frame_stats *out)
+{
+    forward_mpml *r = self;
+    forward_collect(&r->c, out);
+}
+
+static void mpml_describe(const void *self, pass_plan *out)
+{
+    const forward_mpml *r = self;
+    const forward_common *c = &r->c;
+    out->npasses = 0;
+    forward_describe_pass(out, "base", true,
+                          "depth, ambient and emissive of the visible objects (seed 000 4.6.2)");
+    if (!c->prepared || r->lights_pass)
+        forward_describe_pass(out, "lights", true, "%s",
+                              c->opts.no_illumination_sets
+                                  ? "per visible light, every visible object, depth EQUAL, "
+                                    "additive (illumination sets off)"
+                                  : "per visible light, its illumination set, depth EQUAL, "
+                                    "additive (seed 000 4.6.3)");
+    else
+        forward_describe_pass(out, "lights", false, "skipped, the scene has no lights");
+    if (!c->prepared || c->sky)
+        forward_describe_pass(out, "sky", true, "the sky, last, into untouched depth");
+    else
+        forward_describe_pass(out, "sky", false, "skipped, the scene has no sky");
+    forward_describe_pass(out, "resolve", true,
+                          "the HDR target clamped into the output framebuffer");
+    forward_describe_resources(c, out);
+}
+
+static void mpml_destroy(void *self)
+{
+    forward_mpml *r = self;
+    if (!r)
+        return;
+    forward_common_destroy(&r->c);
+    free(r);
+}
+
+const renderer_impl renderer_forward_mpml_impl = {
+    .name = "forward-mpml",
+    .description = "multi-pass multi-light forward (seed 000 4.6): a depth, ambient and "
+                   "emissive pass, then an additive depth-EQUAL pass per visible light "
+                   "over its illumination set",
+    .create = mpml_create,
+    .prepare = mpml_prepare,
+    .draw = mpml_draw,
+    .collect = mpml_collect,
+    .describe = mpml_describe,
+    .destroy = mpml_destroy,
+};

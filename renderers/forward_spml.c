@@ -1,0 +1,226 @@
+/* forward-spml: single-pass multi-light forward shading (seed 003 4.1).
+ *
+ *   shade    one pass: each visible object once, forward_spml.frag adds ambient,
+ *            emissive and every visible light of the frame, looped from a uniform
+ *            buffer (the seed's constant buffer) with a squared-range rejection;
+ *            depth LESS with writes
+ *   sky      the sky into untouched depth, when the scene has one
+ *   resolve  the HDR target clamped into the output framebuffer
+ *
+ * Draw calls per frame, with V visible objects:
+ *
+ *     draws = V + (1 if the scene has a sky) + 1
+ *
+ * The light buffer: uniform block binding 1, std140, a Light being 5 vec4s (80
+ * bytes), so a context holds forward_spml_max_lights(GL_MAX_UNIFORM_BLOCK_SIZE)
+ * lights: 65536 / 80 = 819 on Mesa. The shader's array size, MAX_LIGHTS, is fixed at
+ * prepare from the run's largest light count (scene.nlights_total), rounded up to a
+ * power of two (at least 16) and capped at that capacity, so each variant is
+ * compiled once per run. A run asking for more lights than the capacity fails in
+ * prepare, before anything is drawn. Each frame uploads the frontend's visible
+ * lights only; their number goes to u_light_count. lights_drawn is that number. */
+#include "renderers/forward_common.h"
+#include "renderers/shading.h"
+
+#include <assert.h>
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+
+typedef struct forward_spml {
+    forward_common c;        /* first: forward_last_pass_counts() reads self as this */
+    uint32_t capacity;       /* lights one uniform block of the context holds */
+    uint32_t max_lights;     /* MAX_LIGHTS of the programs */
+    char max_lights_define[32];
+    GLuint program[FORWARD_VARIANTS];
+    GLuint ubo;
+    gpu_light *staging;      /* max_lights */
+    /* u_light_count is set once per (frame, program): a serial per frame. */
+    uint64_t frame;
+    uint64_t program_frame[FORWARD_VARIANTS];
+    int count;               /* lights uploaded this frame */
+} forward_spml;
+
+static void *spml_create(const renderer_options *opts, char *err, size_t errlen)
+{
+    forward_spml *r = calloc(1, sizeof *r);
+    if (!r) {
+        snprintf(err, errlen, "forward-spml: out of memory");
+        return NULL;
+    }
+    if (!forward_common_init(&r->c, "forward-spml", opts, err, errlen)) {
+        forward_common_destroy(&r->c);
+        free(r);
+        return NULL;
+    }
+    r->capacity = forward_spml_max_lights(r->c.opts.max_uniform_block_size);
+    return r;
+}
+
+static void release_lights(forward_spml *r)
+{
+    if (r->ubo)
+        gl.DeleteBuffers(1, &r->ubo);
+    r->ubo = 0;
+    free(r->staging);
+    r->staging = NULL;
+}
+
+/* The array size for n lights: a power of two >= n (at least 16), at most the capacity. */
+static uint32_t array_size(uint32_t n, uint32_t capacity)
+{
+    uint32_t a = 16;
+    while (a < n && a < capacity)
+        a *= 2;
+    return a < capacity ? a : capacity;
+}
+
+static bool spml_prepare(void *self, const struct scene *s, char *err, size_t errlen)
+{
+    forward_spml *r = self;
+    release_lights(r);
+    memset(r->program, 0, sizeof r->program);
+    memset(r->program_frame, 0, sizeof r->program_frame);
+    r->c.prepared = false;
+    if (!s) {
+        snprintf(err, errlen, "forward-spml: no scene to prepare for");
+        return false;
+    }
+    uint32_t n = s->nlights_total;
+    if (n > r->capacity || r->capacity == 0) {
+        snprintf(err, errlen,
+                 "forward-spml: %u lights requested, this context allows at most %u "
+                 "(GL_MAX_UNIFORM_BLOCK_SIZE %d / %zu bytes)",
+                 n, r->capacity, r->c.opts.max_uniform_block_size, sizeof(gpu_light));
+        return false;
+    }
+    if (!forward_common_prepare(&r->c, s, err, errlen))
+        return false;
+    r->max_lights = array_size(n, r->capacity);
+    snprintf(r->max_lights_define, sizeof r->max_lights_define, "MAX_LIGHTS %u", r->max_lights);
+    const char *extra[] = {r->max_lights_define, NULL};
+    for (unsigned v = 0; v < FORWARD_VARIANTS; v++)
+        if ((r->c.variants & (1u << v)) &&
+            !forward_program(&r->c, "forward_spml", "forward_spml.frag", v, extra,
+                             &r->program[v], err, errlen))
+            goto fail;
+
+    r->staging = calloc(r->max_lights, sizeof *r->staging);
+    if (!r->staging) {
+        snprintf(err, errlen, "forward-spml: out of memory for %u lights", r->max_lights);
+        goto fail;
+    }
+    gl.CreateBuffers(1, &r->ubo);
+    gl.NamedBufferStorage(r->ubo, (GLsizeiptr)(r->max_lights * sizeof(gpu_light)), NULL,
+                          GL_DYNAMIC_STORAGE_BIT);
+    return true;
+fail:
+    release_lights(r);
+    r->c.prepared = false;
+    return false;
+}
+
+/* forward_draw_objects' hook: this frame's light count into the program, once per
+ * (frame, program). */
+static void spml_on_program(void *user, unsigned variant, GLuint program)
+{
+    forward_spml *r = user;
+    (void)program;
+    if (r->program_frame[variant] != r->frame) {
+        gl.Uniform1i(FORWARD_UNIFORM_LIGHT, r->count);
+        r->program_frame[variant] = r->frame;
+    }
+}
+
+static void spml_draw(void *self, const struct scene *s, frame_stats *out)
+{
+    forward_spml *r = self;
+    forward_common *c = &r->c;
+    if (!c->prepared) {
+        fprintf(stderr, "bug: forward-spml: draw before a successful prepare\n");
+        out->npasses = 0;
+        return;
+    }
+    forward_begin_frame(c, s, out);
+    const frontend *fe = &c->fe;
+
+    forward_pass_begin(c, out, "shade");
+    /* The frame's visible lights, packed in view space. The frontend's lights are
+     * at most the run's lights, which prepare made sure fit. */
+    uint32_t n = fe->nlights < r->max_lights ? fe->nlights : r->max_lights;
+    for (uint32_t k = 0; k < n; k++)
+        shading_pack_light(&s->lights[fe->lights[k]], s->view, &r->staging[k]);
+    r->count = (int)n;
+    r->frame++;
+    if (n)   /* only what is used */
+        gl.NamedBufferSubData(r->ubo, 0, (GLsizeiptr)(n * sizeof(gpu_light)), r->staging);
+    gl.BindBufferBase(GL_UNIFORM_BUFFER, FORWARD_LIGHTS_BINDING, r->ubo);
+
+    forward_bind_target(c);
+    gl_state_blend(c->st, NULL);
+    gl_state_stencil(c->st, NULL);
+    forward_clear_target(c);
+    gl_state_depth(c->st, &(gls_depth){.compare = GLS_COMPARE_LESS, .write = true});
+    forward_draw_objects(c, s, fe->visible, fe->nvisible, r->program, spml_on_program, r);
+    forward_pass_end(c, out);
+
+    if (c->sky)
+        forward_sky_pass(c, out);
+    forward_resolve_pass(c, out);
+    out->lights_drawn = n;
+
+    /* The formula of the header. */
+    uint64_t expected = (uint64_t)fe->nvisible + (c->sky ? 1u : 0u) + 1u;
+    uint64_t draws = 0;
+    for (size_t i = 0; i < out->npasses; i++)
+        draws += out->pass[i].draw_calls;
+    assert(draws == expected);
+    (void)draws;
+    (void)expected;
+}
+
+static void spml_collect(void *self, frame_stats *out)
+{
+    forward_spml *r = self;
+    forward_collect(&r->c, out);
+}
+
+static void spml_describe(const void *self, pass_plan *out)
+{
+    const forward_spml *r = self;
+    const forward_common *c = &r->c;
+    out->npasses = 0;
+    forward_describe_pass(out, "shade", true,
+                          "every visible object once, up to %u lights of %u from a uniform "
+                          "buffer (seed 003 4.1)",
+                          r->max_lights, r->capacity);
+    if (!c->prepared || c->sky)
+        forward_describe_pass(out, "sky", true, "the sky, last, into untouched depth");
+    else
+        forward_describe_pass(out, "sky", false, "skipped, the scene has no sky");
+    forward_describe_pass(out, "resolve", true,
+                          "the HDR target clamped into the output framebuffer");
+    forward_describe_resources(c, out);
+}
+
+static void spml_destroy(void *self)
+{
+    forward_spml *r = self;
+    if (!r)
+        return;
+    release_lights(r);
+    forward_common_destroy(&r->c);
+    free(r);
+}
+
+const renderer_impl renderer_forward_spml_impl = {
+    .name = "forward-spml",
+    .description = "single-pass multi-light forward (seed 003 4.1): every visible light "
+                   "from a uniform buffer, looped in the fragment shader",
+    .create = spml_create,
+    .prepare = spml_prepare,
+    .draw = spml_draw,
+    .collect = spml_collect,
+    .describe = spml_describe,
+    .destroy = spml_destroy,
+};

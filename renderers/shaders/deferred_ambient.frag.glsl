@@ -1,0 +1,21 @@
+// Ambient and emissive (seed 000 4.5.5): one full-screen pass (fullscreen.vert) that
+// starts the light accumulation: ambient x diffuse + emissive, written (not blended)
+// over every pixel, alpha 1. Pixels that no surface covers get black, as a forward
+// renderer's cleared target has them. With SEPARATE_SPECULAR the specular target is
+// started at zero by the same pass.
+#include "frame.inc"
+#include "gbuffer.inc"
+
+layout(location = 0) out vec4 o_light;
+#ifdef SEPARATE_SPECULAR
+layout(location = 1) out vec4 o_specular;
+#endif
+
+void main()
+{
+    GSurface g = gbuffer_load();
+    o_light = vec4(f_ambient.rgb * g.diffuse + g.emissive, 1.0);
+#ifdef SEPARATE_SPECULAR
+    o_specular = vec4(0.0);
+#endif
+}

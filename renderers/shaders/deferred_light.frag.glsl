@@ -1,0 +1,40 @@
+// One light over the G-buffer, added into the light accumulation (blend ONE, ONE):
+// full-screen for directional lights (and for every light with light_volumes
+// fullscreen), else over the pixels of the light's volume (light_volume.vert). The
+// light is shaded by lighting.inc's shade_light(), the same function the forward
+// renderers call, so that the two differ only by what the G-buffer loses.
+//
+// DEFERRED_LIGHT_TYPE: 0 point, 1 spot, 2 directional (only documents the variant:
+// the light's own type field drives shade_light). SEPARATE_SPECULAR (seed 001):
+// diffuse and specular go to two targets, shade_light evaluated once with gloss 0 and
+// once with a black diffuse (it is linear in both).
+#include "frame.inc"
+#include "lighting.inc"
+#include "gbuffer.inc"
+
+layout(location = 16) uniform vec4 u_light[5];
+
+layout(location = 0) out vec4 o_light;
+#ifdef SEPARATE_SPECULAR
+layout(location = 1) out vec4 o_specular;
+#endif
+
+void main()
+{
+    GSurface g = gbuffer_load();
+    Light l = light_from(u_light);
+#ifdef SEPARATE_SPECULAR
+    vec3 d = vec3(0.0), s = vec3(0.0);
+    if (g.present) {
+        d = shade_light(l, g.position, g.normal, g.diffuse, 0.0, g.shininess);
+        s = shade_light(l, g.position, g.normal, vec3(0.0), g.gloss, g.shininess);
+    }
+    o_light = vec4(d, 0.0);
+    o_specular = vec4(s, 0.0);
+#else
+    vec3 c = vec3(0.0);
+    if (g.present)
+        c = shade_light(l, g.position, g.normal, g.diffuse, g.gloss, g.shininess);
+    o_light = vec4(c, 0.0);
+#endif
+}

@@ -1,0 +1,38 @@
+// forward-spml (seed 003 4.1): one pass; ambient + emissive as forward_base.frag, and
+// every visible light of the frame from a uniform buffer (the seed's constant buffer),
+// looped here. A point or spot light whose squared distance exceeds its squared range
+// is skipped before any other work (shade_light would give exactly zero there too).
+// Defines: the material's maps (surface.inc); MAX_LIGHTS, the array size, chosen once
+// per run from the run's largest light count (forward_spml.c).
+#include "frame.inc"
+#include "surface.inc"
+#include "lighting.inc"
+
+#ifndef MAX_LIGHTS
+#error "forward_spml.frag needs MAX_LIGHTS"
+#endif
+
+layout(std140, binding = 1) uniform Lights {
+    Light u_lights[MAX_LIGHTS];
+};
+layout(location = 16) uniform int u_light_count;   // lights in u_lights this frame
+
+layout(location = 0) out vec4 o_color;
+
+void main()
+{
+    Surface s = surface_get();
+    vec3 c = f_ambient.rgb * s.diffuse + s.emissive;
+    int n = min(u_light_count, MAX_LIGHTS);
+    for (int i = 0; i < n; i++) {
+        Light l = u_lights[i];
+        if (int(l.color_type.w) != LIGHT_DIRECTIONAL) {
+            vec3 d = l.position_range.xyz - s.position;
+            float r = l.position_range.w;
+            if (dot(d, d) > r * r)
+                continue;
+        }
+        c += shade_light(l, s.position, s.normal, s.diffuse, s.gloss, s.shininess);
+    }
+    o_color = vec4(c, 1.0);
+}

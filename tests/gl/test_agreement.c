@@ -1,0 +1,313 @@
+/* Image agreement across renderers (issue 3's acceptance): on the "shapes" scene
+ * with hand-placed lights and cameras, deferred with the `reference` G-buffer (in
+ * each of the four light-volume modes) agrees with forward-mpml and forward-spml
+ * within RMSE 1/255 and max error 4/255 on the 8-bit output; the four light-volume
+ * modes give the same image. Cases: one light of each type, 16 lights, the camera
+ * inside a point volume and inside a spot volume, a volume cut by the near plane
+ * and one cut by the far plane. Every frame runs in a debug context; any GL error
+ * fails the test. */
+#include <setjmp.h>
+#include <stdarg.h>
+#include <stddef.h>
+#include <stdint.h>
+#include <cmocka.h>
+
+#include <math.h>
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+
+#include "renderers/gl/context.h"
+#include "renderers/gl/loader.h"
+#include "renderers/renderer.h"
+#include "results/image_io.h"
+#include "scenes/scene.h"
+#include "tests/gl/egl_probe.h"
+
+enum { W = 160, H = 120 };
+#define RMSE_MAX (1.0 / 255.0)
+#define MAX_ABS_MAX (4.0 / 255.0)
+
+static gl_context *ctx;
+
+typedef struct light_case {
+    const char *name;
+    sm_vec3 eye, target;
+    float zfar;                /* 0: the scene's */
+    uint32_t nlights;
+    scene_light lights[16];
+} light_case;
+
+static scene_light point(float x, float y, float z, float radius, float r, float g, float b)
+{
+    scene_light l = {.type = LIGHT_POINT, .position = {x, y, z}, .color = {r, g, b},
+                     .radius = radius, .attenuation = ATTENUATION_LINEAR_RANGE};
+    return l;
+}
+
+static scene_light spot(float x, float y, float z, float dx, float dy, float dz, float radius,
+                        float angle_deg)
+{
+    scene_light l = {.type = LIGHT_SPOT, .position = {x, y, z}, .direction = {dx, dy, dz},
+                     .color = {1.0f, 0.9f, 0.7f}, .radius = radius,
+                     .spot_angle = sm_deg2rad(angle_deg), .spot_exponent = 4.0f,
+                     .attenuation = ATTENUATION_LINEAR_RANGE};
+    sm_vec3_normalize(l.direction);
+    return l;
+}
+
+/* The shapes scene posed at t = 0 with the case's lights and camera. */
+static scene *build(const light_case *c)
+{
+    char err[256];
+    light_params lp = {.placement = PLACEMENT_NONE, .radius = 1.0f};
+    scene *s = scene_build("shapes", &lp, W, H, err, sizeof err);
+    if (!s) {
+        print_error("scene: %s\n", err);
+        return NULL;
+    }
+    s->lights = calloc(c->nlights ? c->nlights : 1, sizeof *s->lights);
+    memcpy(s->lights, c->lights, c->nlights * sizeof *s->lights);
+    s->nlights_total = c->nlights;
+    s->count = (light_count){.start = c->nlights, .max = c->nlights};
+    if (c->zfar > 0)
+        s->zfar = c->zfar;
+    scene_update(s, 0.0);
+    sm_vec3 up = {0.0f, 1.0f, 0.0f};
+    sm_vec3_copy(c->eye, s->cam.eye);
+    sm_vec3_copy(c->target, s->cam.target);
+    s->cam.zfar = s->zfar;
+    sm_lookat(s->cam.eye, s->cam.target, up, s->view);
+    sm_perspective(s->fovy, (float)W / (float)H, s->znear, s->zfar, s->proj);
+    sm_mat4_mul(s->proj, s->view, s->viewproj);
+    return s;
+}
+
+/* Renders one frame of s with `kind` and reads the output back. */
+static bool render(const char *kind, light_volume_mode mode, scene *s, image *out)
+{
+    char err[512];
+    const gl_info *gi = gl_context_info(ctx);
+    renderer_options o = {
+        .width = W, .height = H, .queries = true,
+        .timer_query = gi->timer_query, .pipeline_statistics = gi->pipeline_statistics,
+        .max_uniform_block_size = gi->max_uniform_block_size,
+        .gbuffer = GBUFFER_REFERENCE, .light_volumes = mode,
+    };
+    renderer *r = renderer_create(kind, &o, err, sizeof err);
+    if (!r || !renderer_prepare(r, s, err, sizeof err)) {
+        print_error("%s: %s\n", kind, err);
+        renderer_destroy(r);
+        return false;
+    }
+    frame_stats fs;
+    renderer_draw(r, s, &fs);
+    gl.Finish();
+    renderer_collect(r, &fs);
+    out->width = W;
+    out->height = H;
+    out->channels = 4;
+    out->type = IMAGE_U8;
+    out->pixels = malloc((size_t)W * H * 4);
+    bool ok = gl_context_read_rgba8(ctx, out->pixels, err, sizeof err);
+    renderer_destroy(r);
+    gl_context_poll_errors(ctx, kind);
+    return ok && gl_context_error_count(ctx) == 0;
+}
+
+static void expect_agree(const char *what, const image *a, const image *b)
+{
+    image_error e;
+    char err[256];
+    assert_true(image_compare(a, b, &e, err, sizeof err));
+    if (e.rmse >= RMSE_MAX || e.max_abs > MAX_ABS_MAX)
+        print_error("%s: rmse %.3f/255, max %.1f/255, %.4f of pixels off by > 1/255\n", what,
+                    e.rmse * 255, e.max_abs * 255, e.frac_over_1_255);
+    assert_true(e.rmse < RMSE_MAX);
+    assert_true(e.max_abs <= MAX_ABS_MAX);
+    assert_int_equal(e.nonfinite, 0);
+}
+
+/* The image must show something: lights that light nothing would agree trivially. */
+static void expect_lit(const image *with, const image *without, const char *what)
+{
+    image_error e;
+    char err[256];
+    assert_true(image_compare(with, without, &e, err, sizeof err));
+    if (e.frac_over_1_255 < 0.01)
+        print_error("%s: the lights change only %.4f of the pixels\n", what, e.frac_over_1_255);
+    assert_true(e.frac_over_1_255 >= 0.01);
+}
+
+static void run_case(const light_case *c)
+{
+    scene *s = build(c);
+    assert_non_null(s);
+    image ref = {0}, img = {0}, dark = {0};
+    char what[160];
+    assert_true(render("forward-spml", LIGHT_VOLUMES_STENCIL, s, &ref));
+
+    /* the same view without its lights: the case really lights the scene */
+    uint32_t n = s->nlights_active;
+    s->nlights_active = 0;
+    s->count.start = s->count.max = 0;
+    assert_true(render("forward-spml", LIGHT_VOLUMES_STENCIL, s, &dark));
+    s->nlights_active = n;
+    s->count.start = s->count.max = n;
+    expect_lit(&ref, &dark, c->name);
+    image_free(&dark);
+
+    assert_true(render("forward-mpml", LIGHT_VOLUMES_STENCIL, s, &img));
+    snprintf(what, sizeof what, "%s: forward-mpml vs forward-spml", c->name);
+    expect_agree(what, &img, &ref);
+    image_free(&img);
+
+    static const struct {
+        light_volume_mode mode;
+        const char *name;
+    } modes[] = {{LIGHT_VOLUMES_STENCIL, "stencil"},
+                 {LIGHT_VOLUMES_FULLSCREEN, "fullscreen"},
+                 {LIGHT_VOLUMES_VOLUME, "volume"},
+                 {LIGHT_VOLUMES_STENCIL_TWO_PASS, "stencil-two-pass"}};
+    image first = {0};
+    for (size_t m = 0; m < sizeof modes / sizeof modes[0]; m++) {
+        assert_true(render("deferred", modes[m].mode, s, &img));
+        snprintf(what, sizeof what, "%s: deferred (reference, %s) vs forward-spml", c->name,
+                 modes[m].name);
+        expect_agree(what, &img, &ref);
+        if (m == 0) {
+            first = img;
+            img = (image){0};
+            continue;
+        }
+        /* the light-volume modes differ in which pixels they visit, not in the image */
+        image_error e;
+        char err[256];
+        assert_true(image_compare(&first, &img, &e, err, sizeof err));
+        if (e.max_abs > 1.0 / 255.0)
+            print_error("%s: deferred %s vs stencil: max %.1f/255\n", c->name, modes[m].name,
+                        e.max_abs * 255);
+        assert_true(e.max_abs <= 1.0 / 255.0);
+        image_free(&img);
+    }
+    image_free(&first);
+    image_free(&ref);
+    scene_destroy(s);
+}
+
+/* The camera looks at the grid of objects from the side and above. */
+#define EYE {0.0f, 12.0f, 28.0f}
+#define TARGET {0.0f, 1.0f, 0.0f}
+
+static void test_point(void **state)
+{
+    (void)state;
+    light_case c = {"one point light", EYE, TARGET, 0, 1, {point(0, 6, 4, 14, 1.0f, 0.9f, 0.8f)}};
+    run_case(&c);
+}
+
+static void test_spot(void **state)
+{
+    (void)state;
+    light_case c = {"one spot light", EYE, TARGET, 0, 1, {spot(0, 10, 0, 0.2f, -1, 0.1f, 20, 30)}};
+    run_case(&c);
+}
+
+static void test_directional(void **state)
+{
+    (void)state;
+    light_case c = {"one directional light", EYE, TARGET, 0, 1, {{0}}};
+    c.lights[0] = (scene_light){.type = LIGHT_DIRECTIONAL, .direction = {-0.4f, -1.0f, -0.3f},
+                                .color = {0.8f, 0.8f, 0.7f}};
+    sm_vec3_normalize(c.lights[0].direction);
+    run_case(&c);
+}
+
+static void test_sixteen_lights(void **state)
+{
+    (void)state;
+    light_case c = {"16 point lights", EYE, TARGET, 0, 16, {{0}}};
+    for (int i = 0; i < 16; i++) {
+        float x = (float)(i % 4) * 8.0f - 12.0f, z = (float)(i / 4) * 8.0f - 12.0f;
+        c.lights[i] = point(x, 3.0f + (float)(i % 3), z, 7.0f, 0.2f + 0.05f * (float)(i % 5),
+                            0.3f, 0.5f - 0.02f * (float)i);
+    }
+    run_case(&c);
+}
+
+static void test_camera_inside_point_volume(void **state)
+{
+    (void)state;
+    light_case c = {"camera inside a point volume", EYE, TARGET, 0, 1,
+                    {point(0, 11, 25, 30, 1.0f, 1.0f, 1.0f)}};
+    run_case(&c);
+}
+
+static void test_camera_inside_spot_volume(void **state)
+{
+    (void)state;
+    light_case c = {"camera inside a spot volume", EYE, TARGET, 0, 1,
+                    {spot(0, 14, 32, 0, -0.5f, -1, 60, 35)}};
+    run_case(&c);
+}
+
+/* The eye is outside the light's sphere but inside the volume drawn for it (the
+ * sphere scaled by 1.1), so the near plane cuts the volume; the light reaches the
+ * floor in front of the camera. */
+static void test_volume_cut_by_near_plane(void **state)
+{
+    (void)state;
+    light_case c = {"volume cut by the near plane", {0.0f, 3.0f, 12.0f}, {0.0f, 0.0f, 0.0f}, 0,
+                    1, {point(0, 1.0f, 9.6f, 3.0f, 1.0f, 0.8f, 0.6f)}};
+    /* eye to light: sqrt(2^2 + 2.4^2) = 3.12, between the radius 3 and 3.3; the
+     * floor (y = 0) is lit from z = 6.8 to 12.4 and seen up to z = 8.9 */
+    run_case(&c);
+}
+
+/* A far plane at 30: the light's volume reaches beyond it, objects near it are lit. */
+static void test_volume_cut_by_far_plane(void **state)
+{
+    (void)state;
+    light_case c = {"volume cut by the far plane", EYE, TARGET, 30.0f, 1,
+                    {point(0, 4, -6, 16, 1.0f, 1.0f, 0.9f)}};
+    run_case(&c);
+}
+
+static int setup(void **state)
+{
+    (void)state;
+    char err[512];
+    gl_context_desc d = {.backend = GL_BACKEND_EGL, .device = -1, .debug = true,
+                         .width = W, .height = H};
+    ctx = gl_context_create(&d, err, sizeof err);
+    if (!ctx)
+        print_error("context: %s\n", err);
+    return ctx ? 0 : -1;
+}
+
+static int teardown(void **state)
+{
+    (void)state;
+    gl_context_destroy(ctx);
+    return 0;
+}
+
+int main(void)
+{
+    char why[256];
+    if (!egl_display_available(why, sizeof why)) {
+        fprintf(stderr, "SKIP: %s\n", why);
+        return 77;
+    }
+    const struct CMUnitTest tests[] = {
+        cmocka_unit_test(test_point),
+        cmocka_unit_test(test_spot),
+        cmocka_unit_test(test_directional),
+        cmocka_unit_test(test_sixteen_lights),
+        cmocka_unit_test(test_camera_inside_point_volume),
+        cmocka_unit_test(test_camera_inside_spot_volume),
+        cmocka_unit_test(test_volume_cut_by_near_plane),
+        cmocka_unit_test(test_volume_cut_by_far_plane),
+    };
+    return cmocka_run_group_tests(tests, setup, teardown);
+}
