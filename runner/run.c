@@ -659,6 +659,11 @@ int run_plan(const experiment *e, const plan *p, const run_options *o)
         isolate_result ir;
         isolate_run(child_main, &args, run_timeout_s(&s->p), log_path, &stop_signal, &ir);
         double fps = 0;
+        if (ir.outcome == ISOLATE_INTERRUPTED && report->done) {
+            /* Interrupted after its files were complete (while tearing down): keep it. */
+            ir.outcome = ISOLATE_EXITED;
+            ir.exit_code = strcmp(report->status, "ok") == 0 ? 0 : 1;
+        }
         if (ir.outcome == ISOLATE_INTERRUPTED) {
             /* Discard the run: resume reruns it. */
             fs_remove_tree(st.dir, err, sizeof err);

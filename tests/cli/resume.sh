@@ -17,7 +17,7 @@ lights: {count: 8}
 sweep:
   lights.seed: [1, 2, 3, 4, 5, 6]
 YAML
-complete() { ls out/long/runs/*/summary.csv 2>/dev/null | wc -l; }
+complete() { { ls out/long/runs/*/summary.csv 2>/dev/null || true; } | wc -l; }
 wait_complete() {   # n: wait (10 s at most) until n runs are complete
   for _ in $(seq 1 200); do [ "$(complete)" -ge "$1" ] && return 0; sleep 0.05; done
   fail "runs did not complete in time"
