@@ -137,8 +137,11 @@ static bool build_program(scene_gpu *g, const char *fragment, GLuint *out, char 
                           size_t errlen)
 {
     gl_program_desc d = {.vertex = "fullscreen.vert", .fragment = fragment};
+    int n = 0;
     if (g->unclipped)
-        d.defines[0] = "FULLSCREEN_UNCLIPPED";
+        d.defines[n++] = "FULLSCREEN_UNCLIPPED";
+    if (strcmp(fragment, "sky.frag") == 0)
+        d.defines[n++] = "FULLSCREEN_FAR";   /* z = w: the sky lies on the far plane */
     char why[2048];
     if (gl_program_get(g->programs, &d, out, why, sizeof why) != GLP_OK) {
         snprintf(err, errlen, "scene_gpu: %s", why);

@@ -15,15 +15,23 @@
 //   (-1,1): inside the clip volume, so nothing is clipped or split, and
 //   GL_FRAGMENT_SHADER_INVOCATIONS is exactly W*H on llvmpipe too. Needs a
 //   viewport of 2W x 2H within GL_MAX_VIEWPORT_DIMS.
+// - FULLSCREEN_FAR: z = w, so the triangle lies on the far plane (depth 1): drawn with
+//   depth test LEQUAL against a depth buffer cleared to 1 it covers only the pixels no
+//   geometry wrote, and early depth testing skips the others (the sky).
 layout(location = 0) out vec2 v_uv;   // fragment shaders: layout(location = 0) in vec2 v_uv;
 
 void main()
 {
     vec2 p = vec2(float((gl_VertexID << 1) & 2), float(gl_VertexID & 2));   // (0,0) (2,0) (0,2)
     v_uv = p;
-#ifdef FULLSCREEN_UNCLIPPED
-    gl_Position = vec4(p - 1.0, 0.0, 1.0);
+#ifdef FULLSCREEN_FAR
+    const float z = 1.0;
 #else
-    gl_Position = vec4(p * 2.0 - 1.0, 0.0, 1.0);
+    const float z = 0.0;
+#endif
+#ifdef FULLSCREEN_UNCLIPPED
+    gl_Position = vec4(p - 1.0, z, 1.0);
+#else
+    gl_Position = vec4(p * 2.0 - 1.0, z, 1.0);
 #endif
 }

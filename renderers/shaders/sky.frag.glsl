@@ -1,9 +1,9 @@
 // The sky (scene_gpu_draw_sky), drawn with fullscreen.vert after the scene: a
 // vertical gradient of the scene's sky colour along each pixel's view ray, from the
 // colour itself at and below the horizon to SKY_ZENITH x the colour straight up
-// (view space: "up" is the camera's +Y). Written at depth 1.0, the far plane (what
-// z = w would give), so that with the depth test LEQUAL against a depth buffer
-// cleared to 1 it lands only where no geometry is.
+// (view space: "up" is the camera's +Y). fullscreen.vert puts it at z = w (depth 1,
+// the far plane; compiled with FULLSCREEN_FAR), so that with the depth test LEQUAL
+// against a depth buffer cleared to 1 it lands only where no geometry is.
 #include "frame.inc"
 
 const float SKY_ZENITH = 0.6;
@@ -18,5 +18,4 @@ void main()
     vec3 dir = normalize(p.xyz / p.w);
     float up = clamp(dir.y, 0.0, 1.0);
     o_color = vec4(f_sky.rgb * mix(1.0, SKY_ZENITH, up), 1.0);
-    gl_FragDepth = 1.0;
 }

@@ -1051,7 +1051,7 @@ static void test_bytes_and_describe(void **state)
     memset(&plan, 0, sizeof plan);
     scene_gpu_describe(f->g, &plan);
     assert_int_equal(plan.nprograms, 2);
-    assert_string_equal(plan.program[0], "sky+FULLSCREEN_UNCLIPPED");
+    assert_string_equal(plan.program[0], "sky+FULLSCREEN_FAR+FULLSCREEN_UNCLIPPED");
     assert_string_equal(plan.program[1], "resolve+FULLSCREEN_UNCLIPPED");
 
     /* a scene without a sky builds no sky program, and drawing it draws nothing */
