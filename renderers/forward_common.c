@@ -1,6 +1,8 @@
 /* What the forward renderers share (forward_common.h). */
 #include "renderers/forward_common.h"
 
+#include <assert.h>
+
 #include "renderers/shading.h"
 
 #include <math.h>
@@ -344,4 +346,29 @@ const gl_target *forward_hdr_target(const void *self)
 {
     const forward_common *fc = self;
     return fc ? &fc->hdr : NULL;
+}
+
+void forward_end_frame(forward_common *fc, frame_stats *out, uint64_t light_draws)
+{
+    if (fc->sky)
+        forward_sky_pass(fc, out);
+    forward_resolve_pass(fc, out);
+    uint64_t expected = (uint64_t)fc->fe.nvisible + light_draws + (fc->sky ? 1u : 0u) + 1u;
+    uint64_t draws = 0;
+    for (size_t i = 0; i < out->npasses; i++)
+        draws += out->pass[i].draw_calls;
+    assert(draws == expected);
+    (void)draws;
+    (void)expected;
+}
+
+void forward_describe_tail(const forward_common *fc, pass_plan *out)
+{
+    if (!fc->prepared || fc->sky)
+        forward_describe_pass(out, "sky", true, "the sky, last, into untouched depth");
+    else
+        forward_describe_pass(out, "sky", false, "skipped, the scene has no sky");
+    forward_describe_pass(out, "resolve", true,
+                          "the HDR target clamped into the output framebuffer");
+    forward_describe_resources(fc, out);
 }

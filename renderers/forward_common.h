@@ -131,6 +131,10 @@ void forward_draw_objects(forward_common *fc, const scene *s, const uint32_t *ob
 /* The sky pass (one draw; only call it when fc->sky) and the resolve pass (one draw). */
 void forward_sky_pass(forward_common *fc, frame_stats *out);
 void forward_resolve_pass(forward_common *fc, frame_stats *out);
+/* The end of every forward frame: the sky (when the scene has one) and the resolve;
+ * then the frame's draws must equal the formula: one per visible object in the first
+ * pass, `light_draws` more, the sky and the resolve (asserted in debug builds). */
+void forward_end_frame(forward_common *fc, frame_stats *out, uint64_t light_draws);
 
 /* Fills GPU times and fragment counts after the frame's sync point (NAN without queries). */
 void forward_collect(forward_common *fc, frame_stats *out);
@@ -142,6 +146,8 @@ void forward_describe_pass(pass_plan *out, const char *name, bool run, const cha
     __attribute__((format(printf, 4, 5)));
 /* The targets (hdr, depth), their bytes, the programs compiled; gbuffer_bytes 0. */
 void forward_describe_resources(const forward_common *fc, pass_plan *out);
+/* The sky and resolve entries, then the resources: how every describe ends. */
+void forward_describe_tail(const forward_common *fc, pass_plan *out);
 
 // >>forward-spml's light limit
 

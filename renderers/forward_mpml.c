@@ -157,19 +157,8 @@ static void mpml_draw(void *self, const struct scene *s, frame_stats *out)
         }
         forward_pass_end(c, out);
     }
-    if (c->sky)
-        forward_sky_pass(c, out);
-    forward_resolve_pass(c, out);
     out->lights_drawn = lights_drawn;
-
-    /* The formula of the header. */
-    uint64_t expected = (uint64_t)fe->nvisible + light_draws + (c->sky ? 1u : 0u) + 1u;
-    uint64_t draws = 0;
-    for (size_t i = 0; i < out->npasses; i++)
-        draws += out->pass[i].draw_calls;
-    assert(draws == expected);
-    (void)draws;
-    (void)expected;
+    forward_end_frame(c, out, light_draws);
 }
 
 static void mpml_collect(void *self, frame_stats *out)
@@ -194,13 +183,7 @@ static void mpml_describe(const void *self, pass_plan *out)
                                     "additive (seed 000 4.6.3)");
     else
         forward_describe_pass(out, "lights", false, "skipped, the scene has no lights");
-    if (!c->prepared || c->sky)
-        forward_describe_pass(out, "sky", true, "the sky, last, into untouched depth");
-    else
-        forward_describe_pass(out, "sky", false, "skipped, the scene has no sky");
-    forward_describe_pass(out, "resolve", true,
-                          "the HDR target clamped into the output framebuffer");
-    forward_describe_resources(c, out);
+    forward_describe_tail(c, out);
 }
 
 static void mpml_destroy(void *self)

@@ -164,19 +164,8 @@ static void spml_draw(void *self, const struct scene *s, frame_stats *out)
     forward_draw_objects(c, s, fe->visible, fe->nvisible, r->program, spml_on_program, r);
     forward_pass_end(c, out);
 
-    if (c->sky)
-        forward_sky_pass(c, out);
-    forward_resolve_pass(c, out);
     out->lights_drawn = n;
-
-    /* The formula of the header. */
-    uint64_t expected = (uint64_t)fe->nvisible + (c->sky ? 1u : 0u) + 1u;
-    uint64_t draws = 0;
-    for (size_t i = 0; i < out->npasses; i++)
-        draws += out->pass[i].draw_calls;
-    assert(draws == expected);
-    (void)draws;
-    (void)expected;
+    forward_end_frame(c, out, 0);
 }
 
 static void spml_collect(void *self, frame_stats *out)
@@ -194,13 +183,7 @@ static void spml_describe(const void *self, pass_plan *out)
                           "every visible object once, up to %u lights of %u from a uniform "
                           "buffer (seed 003 4.1)",
                           r->max_lights, r->capacity);
-    if (!c->prepared || c->sky)
-        forward_describe_pass(out, "sky", true, "the sky, last, into untouched depth");
-    else
-        forward_describe_pass(out, "sky", false, "skipped, the scene has no sky");
-    forward_describe_pass(out, "resolve", true,
-                          "the HDR target clamped into the output framebuffer");
-    forward_describe_resources(c, out);
+    forward_describe_tail(c, out);
 }
 
 static void spml_destroy(void *self)
