@@ -217,3 +217,79 @@ bool stats_bin_seconds(const frame_record *frames, size_t n, double t_end,
     *nbins = nb;
     return true;
 }
+
+/* The batch-means half-width over x[0..m) from prefix sums P (P[i] = x[0] + ... + x[i-1]),
+ * the same estimator as stats_ci95_batch_means; under 2 * STATS_BATCHES frames, the
+ * per-frame interval computed directly. */
+static double ci95_prefix(const double *x, const double *P, size_t m)
+{
+    if (m < 2)
+        return NAN;
+    if (m < 2 * (size_t)STATS_BATCHES)
+        return stats_ci95_batch_means(x, m);
+    double bm[STATS_BATCHES];
+    size_t size = m / STATS_BATCHES;
+    for (size_t b = 0; b < STATS_BATCHES; b++) {
+        size_t lo = b * size;
+        size_t hi = b + 1 == STATS_BATCHES ? m : lo + size;
+        bm[b] = (P[hi] - P[lo]) / (double)(hi - lo);
+    }
+    double mb = mean_of(bm, STATS_BATCHES);
+    return stats_t975(STATS_BATCHES - 1) * sd_of(bm, STATS_BATCHES, mb) /
+           sqrt((double)STATS_BATCHES);
+}
+
+bool stats_convergence(const frame_record *frames, size_t n, double t_end,
+                       convergence_point **out, size_t *npoints)
+{
+    *out = NULL;
+    *npoints = 0;
+    if (n == 0)
+        return true;
+    double *x = malloc(n * sizeof *x);
+    double *P = malloc((n + 1) * sizeof *P);
+    size_t seconds = t_end > 0 && t_end < 1e7 ? (size_t)floor(t_end) : 0;
+    convergence_point *pts = calloc(seconds + 1, sizeof *pts);
+    if (!x || !P || !pts) {
+        free(x);
+        free(P);
+        free(pts);
+        return false;
+    }
+    P[0] = 0;
+    for (size_t i = 0; i < n; i++) {
+        x[i] = frames[i].frametime_us;
+        P[i + 1] = P[i] + x[i];
+    }
+    size_t np = 0, m = 0;
+    for (size_t s = 1; s <= seconds + 1; s++) {
+        double at = s <= seconds ? (double)s : t_end;
+        if (s > seconds && seconds > 0 && at == (double)seconds)
+            break;   /* t_end on a whole second: that point is already there */
+        while (m < n && frames[m].t_wall_s <= at)
+            m++;
+        pts[np].elapsed_s = at;
+        pts[np].frames = m;
+        pts[np].mean_us = m ? P[m] / (double)m : NAN;
+        pts[np].ci95_us = ci95_prefix(x, P, m);
+        np++;
+    }
+    free(x);
+    free(P);
+    *out = pts;
+    *npoints = np;
+    return true;
+}
+
+double stats_converged_after(const convergence_point *p, size_t n, double rel)
+{
+    double since = NAN;
+    for (size_t i = 0; i < n; i++) {
+        bool within = p[i].mean_us > 0 && p[i].ci95_us <= rel * p[i].mean_us;
+        if (!within)
+            since = NAN;
+        else if (isnan(since))
+            since = p[i].elapsed_s;
+    }
+    return since;
+}

@@ -46,3 +46,22 @@ typedef struct second_bin {
  * *out is malloc'ed (caller frees; NULL when *nbins == 0). False only when out of memory. */
 bool stats_bin_seconds(const frame_record *frames, size_t n, double t_end,
                        second_bin **out, size_t *nbins);
+
+/* How the uncertainty of the mean frame time shrinks as a trial runs: one point at
+ * the end of every whole second of measurement (the frames that ended by then) and
+ * one at t_end, each with the mean frame time and the half-width of its 95%
+ * confidence interval by the same estimator as stats_ci95_batch_means (computed
+ * from prefix sums: O(n + points x STATS_BATCHES)). */
+typedef struct convergence_point {
+    double elapsed_s;
+    size_t frames;
+    double mean_us;
+    double ci95_us;            /* NAN with fewer than 2 frames */
+} convergence_point;
+
+bool stats_convergence(const frame_record *frames, size_t n, double t_end,
+                       convergence_point **out, size_t *npoints);
+
+/* The elapsed time from which ci95 / mean stayed within `rel` (e.g. 0.01) at every
+ * later point to the end; NAN when the last point is not within it (it never did). */
+double stats_converged_after(const convergence_point *p, size_t n, double rel);

@@ -17,6 +17,7 @@ const char *const summary_columns[] = {
     "frametime_ci95_us", "frametime_p50_us", "frametime_p99_us", "gpu_mean_us",
     "draw_calls_mean", "state_changes_mean", "fragments_mean", "gbuffer_bytes",
     "image_rmse", "image_psnr_db", "image_max_abs", "nonfinite_pixels", "harness_us_mean",
+    "ci1pct_after_s",
     "status", "message",
 };
 const size_t summary_ncolumns = sizeof summary_columns / sizeof summary_columns[0];
@@ -29,6 +30,10 @@ static const char *const seconds_columns[] = {
     "run_id", "trial", "second", "complete", "lights_min", "lights_max", "frames", "fps",
     "frametime_mean_us", "frametime_sd_us", "frametime_p50_us", "frametime_p99_us",
     "draw_calls_mean",
+};
+static const char *const convergence_columns[] = {
+    "run_id", "trial", "elapsed_s", "frames", "frametime_mean_us", "frametime_ci95_us",
+    "ci95_rel",
 };
 static const char *const passes_columns[] = {
     "run_id", "trial", "frame", "pass", "gpu_us", "cpu_us", "draw_calls", "state_changes",
@@ -85,6 +90,10 @@ bool run_files_open(run_files *f, const char *run_dir, const run_params *p, char
     if (p->out_seconds) {
         join(path, sizeof path, run_dir, "seconds.csv");
         if (!(f->seconds = csv_open(path, seconds_columns, NCOLS(seconds_columns), err, errlen)))
+            goto fail;
+        join(path, sizeof path, run_dir, "convergence.csv");
+        if (!(f->convergence = csv_open(path, convergence_columns, NCOLS(convergence_columns),
+                                        err, errlen)))
             goto fail;
     }
     return true;
@@ -159,9 +168,27 @@ void run_files_seconds(run_files *f, const char *run_id, uint32_t trial,
     }
 }
 
+void run_files_convergence(run_files *f, const char *run_id, uint32_t trial,
+                           const convergence_point *p, size_t np)
+{
+    if (!f->convergence)
+        return;
+    csv_writer *w = f->convergence;
+    for (size_t i = 0; i < np; i++) {
+        csv_str(w, run_id);
+        csv_u64(w, trial);
+        csv_f64(w, p[i].elapsed_s, 6);
+        csv_u64(w, p[i].frames);
+        csv_f64(w, p[i].mean_us, 3);
+        csv_f64(w, p[i].ci95_us, 3);
+        csv_f64(w, p[i].mean_us > 0 ? p[i].ci95_us / p[i].mean_us : NAN, 6);
+        csv_end_row(w);
+    }
+}
+
 bool run_files_commit(run_files *f, char *err, size_t errlen)
 {
-    csv_writer **all[] = {&f->frames, &f->passes, &f->seconds};
+    csv_writer **all[] = {&f->frames, &f->passes, &f->seconds, &f->convergence};
     bool ok = true;
     for (size_t i = 0; i < NCOLS(all); i++) {
         if (!*all[i])
@@ -180,6 +207,7 @@ void run_files_abort(run_files *f)
     csv_abort(f->frames);
     csv_abort(f->passes);
     csv_abort(f->seconds);
+    csv_abort(f->convergence);
     memset(f, 0, sizeof *f);
 }
 
@@ -248,6 +276,12 @@ bool output_write_run_summary(const char *run_dir, const experiment *e, const ru
         csv_empty(w);
         csv_empty(w);
         csv_f64(w, r->harness_us_mean, 3);
+        if (r->frames == 0)
+            csv_empty(w);
+        else if (isnan(r->ci1pct_after_s))
+            csv_str(w, "never");
+        else
+            csv_f64(w, r->ci1pct_after_s, 3);
         csv_str(w, r->status);
         csv_str(w, strcmp(r->status, "ok") == 0 ? "" : message);
         csv_end_row(w);

@@ -36,7 +36,7 @@ bool output_read_sweep_meta(const char *out_dir, sweep_meta *m, char *err, size_
 
 /* The per-run CSV streams, open across the run's trials. */
 typedef struct run_files {
-    csv_writer *frames, *seconds, *passes;
+    csv_writer *frames, *seconds, *passes, *convergence;
 } run_files;
 
 bool run_files_open(run_files *f, const char *run_dir, const run_params *p, char *err,
@@ -45,6 +45,8 @@ void run_files_frame(run_files *f, const char *run_id, uint32_t trial, const fra
                      const frame_stats *fs);
 void run_files_seconds(run_files *f, const char *run_id, uint32_t trial,
                        const second_bin *bins, size_t nbins);
+void run_files_convergence(run_files *f, const char *run_id, uint32_t trial,
+                           const convergence_point *p, size_t np);
 bool run_files_commit(run_files *f, char *err, size_t errlen);
 void run_files_abort(run_files *f);
 
@@ -58,6 +60,7 @@ typedef struct trial_result {
     double ft_ci95;            /* half-width, us (batch means) */
     double gpu_mean_us, draw_calls_mean, state_changes_mean, fragments_mean;
     double harness_us_mean;    /* runner bookkeeping between frames, us */
+    double ci1pct_after_s;     /* the CI stayed within 1% of the mean from then on; NAN: never */
     unsigned lights_max;
     char status[96];           /* "ok" or "failed:<reason>" */
 } trial_result;

@@ -261,6 +261,16 @@ static void run_trial(run_state *st, uint32_t trial, trial_result *tr)
     tr->lights_max = lmax;
     run_files_seconds(&st->files, st->s->id, trial, bins, nbins);
     free(bins);
+    convergence_point *conv = NULL;
+    size_t nconv = 0;
+    if (!stats_convergence(st->log.v, n, t_end, &conv, &nconv)) {
+        snprintf(tr->status, sizeof tr->status, "failed:oom");
+        free(ft);
+        return;
+    }
+    tr->ci1pct_after_s = stats_converged_after(conv, nconv, 0.01);
+    run_files_convergence(&st->files, st->s->id, trial, conv, nconv);
+    free(conv);
     free(ft);
     harness_s += progress_now() - post0;
     tr->harness_us_mean = n ? harness_s * 1e6 / (double)n : NAN;
@@ -470,7 +480,7 @@ static void fill_missing_trials(run_state *st)
         tr->ft.mean = tr->ft.sd = tr->ft.p50 = tr->ft.p99 = NAN;
         tr->ft_ci95 = tr->fps_mean = tr->measured_s = NAN;
         tr->gpu_mean_us = tr->draw_calls_mean = tr->state_changes_mean = NAN;
-        tr->fragments_mean = tr->harness_us_mean = NAN;
+        tr->fragments_mean = tr->harness_us_mean = tr->ci1pct_after_s = NAN;
         snprintf(tr->status, sizeof tr->status, "%s",
                  strcmp(st->status, "ok") ? st->status : "failed:not-run");
     }

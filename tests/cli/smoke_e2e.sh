@@ -24,13 +24,15 @@ summary_cols = ["experiment","run_id","renderer","scene","width","height","gbuff
   "frames","measured_s","fps_mean","frametime_mean_us","frametime_sd_us","frametime_ci95_us",
   "frametime_p50_us","frametime_p99_us","gpu_mean_us","draw_calls_mean","state_changes_mean",
   "fragments_mean","gbuffer_bytes","image_rmse","image_psnr_db","image_max_abs",
-  "nonfinite_pixels","harness_us_mean","status","message"]
+  "nonfinite_pixels","harness_us_mean","ci1pct_after_s","status","message"]
 frames_cols = ["run_id","trial","frame","t_wall_s","t_scene_s","lights","frametime_us",
   "gpu_us","draw_calls","state_changes","fragments"]
 seconds_cols = ["run_id","trial","second","complete","lights_min","lights_max","frames","fps",
   "frametime_mean_us","frametime_sd_us","frametime_p50_us","frametime_p99_us","draw_calls_mean"]
 passes_cols = ["run_id","trial","frame","pass","gpu_us","cpu_us","draw_calls","state_changes",
   "fragments","primitives"]
+convergence_cols = ["run_id","trial","elapsed_s","frames","frametime_mean_us","frametime_ci95_us",
+  "ci95_rel"]
 
 with open(os.path.join(out, "plan.csv"), newline="") as f:
     plan = list(csv.DictReader(f))
@@ -113,6 +115,21 @@ for p in plan:
             mine = [r for r in pa if (r["trial"], r["frame"]) == (f["trial"], f["frame"])]
             if sum(int(r["draw_calls"]) for r in mine) != int(f["draw_calls"]): fail("pass sums")
         if not {r["pass"] for r in pa} >= {"sky", "resolve"}: fail(f"passes {sorted({r['pass'] for r in pa})}")
+    # convergence.csv: the last point of each trial holds all its frames, and its
+    # mean and CI are the summary's
+    conv = rows(os.path.join(d, "convergence.csv"), convergence_cols)
+    for t in ("1", "2"):
+        pts = [c for c in conv if c["trial"] == t]
+        if not pts or pts[-1]["frames"] != "30": fail(f"convergence of trial {t}: {pts}")
+        if [int(c["frames"]) for c in pts] != sorted(int(c["frames"]) for c in pts):
+            fail("convergence frames must grow")
+        srow = [r for r in rows(os.path.join(d, "summary.csv"), summary_cols) if r["trial"] == t][0]
+        if pts[-1]["frametime_mean_us"] != srow["frametime_mean_us"] or \
+           pts[-1]["frametime_ci95_us"] != srow["frametime_ci95_us"]:
+            fail(f"convergence end {pts[-1]} vs summary {srow}")
+        after = srow["ci1pct_after_s"]
+        if after != "never" and not (0 < float(after) <= float(pts[-1]["elapsed_s"])):
+            fail(f"ci1pct_after_s {after}")
     rs = rows(os.path.join(d, "summary.csv"), summary_cols)
     if len(rs) != 2: fail("per-run summary")
     meta = yaml.safe_load(open(os.path.join(d, "meta.yaml")))

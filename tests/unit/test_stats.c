@@ -312,9 +312,153 @@ static void test_bins_zero_frames(void **state)
     free(b);
 }
 
+/* >>convergence */
+
+static uint64_t conv_state;
+static double conv_uniform(void)   /* splitmix64 -> [0, 1) */
+{
+    uint64_t z = (conv_state += 0x9e3779b97f4a7c15u);
+    z = (z ^ (z >> 30)) * 0xbf58476d1ce4e5b9u;
+    z = (z ^ (z >> 27)) * 0x94d049bb133111ebu;
+    z ^= z >> 31;
+    return (double)(z >> 11) / 9007199254740992.0;
+}
+
+/* n frames of 1000 +- 100 us (uniform: sd 200/sqrt(12)), one ending every 1 ms. */
+static frame_record *uniform_stream(size_t n, uint64_t seed)
+{
+    frame_record *f = calloc(n, sizeof *f);
+    conv_state = seed;
+    for (size_t i = 0; i < n; i++) {
+        f[i].frame = (uint32_t)i;
+        f[i].t_wall_s = (double)(i + 1) * 0.001;
+        f[i].frametime_us = 900.0 + 200.0 * conv_uniform();
+    }
+    return f;
+}
+
+/* The points: one per whole second and the end; each equals the direct estimator
+ * on the frames that ended by then. */
+static void test_convergence_points_match_direct(void **state)
+{
+    (void)state;
+    size_t n = 3400;
+    frame_record *f = uniform_stream(n, 7);
+    convergence_point *p;
+    size_t np;
+    assert_true(stats_convergence(f, n, 3.4, &p, &np));
+    assert_int_equal(np, 4);
+    double want_at[4] = {1.0, 2.0, 3.0, 3.4};
+    size_t want_frames[4] = {1000, 2000, 3000, 3400};
+    double *x = malloc(n * sizeof *x);
+    for (size_t i = 0; i < n; i++)
+        x[i] = f[i].frametime_us;
+    for (size_t i = 0; i < np; i++) {
+        assert_true(p[i].elapsed_s == want_at[i]);
+        assert_int_equal(p[i].frames, want_frames[i]);
+        double direct = stats_ci95_batch_means(x, p[i].frames);
+        assert_true(fabs(p[i].ci95_us - direct) <= 1e-9 * direct);
+        sample_summary sm;
+        stats_summarize(x, p[i].frames, &sm);
+        assert_true(fabs(p[i].mean_us - sm.mean) <= 1e-9 * sm.mean);
+    }
+    free(p);
+    /* a measurement ending on a whole second has no extra point */
+    assert_true(stats_convergence(f, 3000, 3.0, &p, &np));
+    assert_int_equal(np, 3);
+    free(p);
+    /* under one second: one point, at the end */
+    assert_true(stats_convergence(f, 500, 0.5, &p, &np));
+    assert_int_equal(np, 1);
+    assert_int_equal(p[0].frames, 500);
+    free(p);
+    assert_true(stats_convergence(f, 0, 0.0, &p, &np));
+    assert_int_equal(np, 0);
+    assert_null(p);
+    free(x);
+    free(f);
+}
+
+/* Known variance: for independent frames of sd sigma, the batch-means half-width
+ * at n frames is t(0.975, 9) x s_b / sqrt(10) with s_b the sd of 10 batch means of
+ * sd sigma / sqrt(n / 10): on average t x c4(10) x sigma / sqrt(n), c4(10) = 0.9727
+ * (exact for normal batch means, which means of 100+ uniform frames are to within
+ * the tolerance). Averaged over 200 streams (sd of the average ~0.035) it must be
+ * within 0.15 of t x c4 = 2.2003 at every point, i.e. shrink as 1 / sqrt(n). */
+static void test_convergence_known_variance(void **state)
+{
+    (void)state;
+    const double sigma = 200.0 / sqrt(12.0);
+    const size_t n = 10000;   /* 10 s at 1000 frames a second */
+    double sum[10] = {0};
+    const int streams = 200;
+    for (int k = 0; k < streams; k++) {
+        frame_record *f = uniform_stream(n, 1000 + (uint64_t)k);
+        convergence_point *p;
+        size_t np;
+        assert_true(stats_convergence(f, n, 10.0, &p, &np));
+        assert_int_equal(np, 10);
+        for (size_t i = 0; i < np; i++)
+            sum[i] += p[i].ci95_us * sqrt((double)p[i].frames) / sigma;
+        free(p);
+        free(f);
+    }
+    const double expected = 2.262157 * 0.972659;
+    for (int i = 0; i < 10; i++) {
+        double avg = sum[i] / streams;
+        if (fabs(avg - expected) >= 0.15)
+            print_error("point %d: ci95 x sqrt(n) / sigma = %.4f, expected %.4f\n", i, avg,
+                        expected);
+        assert_true(fabs(avg - expected) < 0.15);
+    }
+}
+
+/* "Stayed within 1%": the first point from which every later point is within it,
+ * checked against a brute-force scan; a constant stream converges at once; a stream
+ * whose frame time keeps doubling never does. */
+static void test_converged_after(void **state)
+{
+    (void)state;
+    size_t n = 10000;
+    frame_record *f = uniform_stream(n, 99);
+    convergence_point *p;
+    size_t np;
+    assert_true(stats_convergence(f, n, 10.0, &p, &np));
+    for (double rel = 0.0005; rel < 0.01; rel += 0.0005) {
+        double want = NAN;
+        for (size_t i = np; i-- > 0;) {
+            if (p[i].ci95_us > rel * p[i].mean_us)
+                break;
+            want = p[i].elapsed_s;
+        }
+        double got = stats_converged_after(p, np, rel);
+        assert_true((isnan(want) && isnan(got)) || want == got);
+    }
+    /* the uniform stream's CI is ~0.13% of the mean after 10 s: within 1% from 1 s */
+    assert_true(stats_converged_after(p, np, 0.01) == 1.0);
+    free(p);
+
+    for (size_t i = 0; i < n; i++)
+        f[i].frametime_us = 1000.0;
+    assert_true(stats_convergence(f, n, 10.0, &p, &np));
+    assert_true(stats_converged_after(p, np, 0.01) == 1.0);
+    assert_true(p[np - 1].ci95_us == 0.0);
+    free(p);
+
+    for (size_t i = 0; i < n; i++)
+        f[i].frametime_us = 1000.0 * pow(2.0, (double)(i / 1000));   /* doubles each second */
+    assert_true(stats_convergence(f, n, 10.0, &p, &np));
+    assert_true(isnan(stats_converged_after(p, np, 0.01)));
+    free(p);
+    free(f);
+}
+
 int main(void)
 {
     const struct CMUnitTest tests[] = {
+        cmocka_unit_test(test_convergence_points_match_direct),
+        cmocka_unit_test(test_convergence_known_variance),
+        cmocka_unit_test(test_converged_after),
         cmocka_unit_test(test_summary_known),
         cmocka_unit_test(test_summary_1_to_100),
         cmocka_unit_test(test_summary_empty_and_single),
