@@ -162,3 +162,8 @@ uint32_t forward_spml_max_lights(int max_uniform_block_size);
 const gls_counts *forward_last_pass_counts(const void *self, size_t pass);
 /* The HDR colour target (RGBA16F) the frame was lit in. */
 const gl_target *forward_hdr_target(const void *self);
+
+/* Both renderers' renderer_impl.read_hdr: the "hdr" target (RGBA16F) of the last frame
+ * as RGBA floats, row 0 at the bottom (renderer_read_hdr). False when not prepared or
+ * width x height is not the target's. Direct state access: the cache is not disturbed. */
+bool forward_read_hdr(void *self, float *rgba, int width, int height);

@@ -206,4 +206,5 @@ const renderer_impl renderer_forward_mpml_impl = {
     .collect = mpml_collect,
     .describe = mpml_describe,
     .destroy = mpml_destroy,
+    .read_hdr = forward_read_hdr,
 };

@@ -206,4 +206,5 @@ const renderer_impl renderer_forward_spml_impl = {
     .collect = spml_collect,
     .describe = spml_describe,
     .destroy = spml_destroy,
+    .read_hdr = forward_read_hdr,
 };

@@ -135,4 +135,5 @@ const renderer_impl renderer_null_impl = {
     .collect = null_collect,
     .describe = null_describe,
     .destroy = null_destroy,
+    .read_hdr = NULL,         /* no float target: renderer_read_hdr says false */
 };

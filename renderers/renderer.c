@@ -108,3 +108,19 @@ void renderer_destroy(renderer *r)
     r->impl->destroy(r->self);
     free(r);
 }
+
+bool renderer_read_hdr(renderer *r, float *rgba, int w, int h, size_t *nonfinite)
+{
+    if (nonfinite)
+        *nonfinite = 0;
+    if (!r || !rgba || !r->impl->read_hdr || w <= 0 || h <= 0 ||
+        !r->impl->read_hdr(r->self, rgba, w, h))
+        return false;
+    if (nonfinite) {
+        size_t n = (size_t)w * (size_t)h * 4, bad = 0;
+        for (size_t i = 0; i < n; i++)
+            bad += !isfinite(rgba[i]);
+        *nonfinite = bad;
+    }
+    return true;
+}

@@ -122,6 +122,10 @@ typedef struct renderer_impl {
     void (*collect)(void *self, frame_stats *out);
     void (*describe)(const void *self, pass_plan *out);
     void (*destroy)(void *self);
+    /* Optional (NULL: the renderer has no float target, as null): the RGBA16F light
+     * accumulation of the last frame drawn, as floats, see renderer_read_hdr. False,
+     * with nothing written, when not prepared or width x height is not the target's. */
+    bool (*read_hdr)(void *self, float *rgba, int width, int height);
 } renderer_impl;
 
 typedef struct renderer renderer;
@@ -136,3 +140,16 @@ void renderer_draw(renderer *r, const struct scene *s, frame_stats *out);
 void renderer_collect(renderer *r, frame_stats *out);   /* also computes out->total */
 void renderer_describe(const renderer *r, pass_plan *out);
 void renderer_destroy(renderer *r);                     /* NULL is fine */
+
+/* The renderer's float light accumulation of the last frame drawn (what its resolve
+ * pass clamps into the output; deferred with separate_specular: the diffuse target
+ * after the compose pass added the specular one into it, i.e. the sum of both) into
+ * rgba: width x height pixels of 4 floats (RGBA), tightly packed, row 0 at the BOTTOM
+ * as GL stores it (gl_context_read_rgba8's row 0 is the top one). Alpha is whatever
+ * the accumulation holds (the resolve writes 1 whatever it is). *nonfinite (may be
+ * NULL) gets the number of values that are Inf or NaN: an RGBA16F target overflows to
+ * Inf beyond 65504. False, nothing read and *nonfinite = 0, when the renderer has no
+ * float target (null), is not prepared, or w x h is not its target's size. Reads
+ * with direct state access: no binding the renderer's state cache keeps is touched
+ * (pixel-pack state is restored). Before the first frame the contents are undefined. */
+bool renderer_read_hdr(renderer *r, float *rgba, int w, int h, size_t *nonfinite);

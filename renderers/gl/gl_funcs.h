@@ -165,6 +165,7 @@ GL_FUNC(void, TextureStorage2D, (GLuint texture, GLsizei levels, GLenum internal
 GL_FUNC(void, TextureParameteri, (GLuint texture, GLenum pname, GLint param))
 GL_FUNC(void, GetTextureLevelParameteriv, (GLuint texture, GLint level, GLenum pname, GLint *params))
 GL_FUNC(void, GetTextureImage, (GLuint texture, GLint level, GLenum format, GLenum type, GLsizei bufSize, void *pixels))
+GL_FUNC(void, GetTextureSubImage, (GLuint texture, GLint level, GLint xoffset, GLint yoffset, GLint zoffset, GLsizei width, GLsizei height, GLsizei depth, GLenum format, GLenum type, GLsizei bufSize, void *pixels))
 GL_FUNC(void, BindTextureUnit, (GLuint unit, GLuint texture))
 GL_FUNC(void, CreateFramebuffers, (GLsizei n, GLuint *framebuffers))
 GL_FUNC(void, NamedFramebufferTexture, (GLuint framebuffer, GLenum attachment, GLuint texture, GLint level))
