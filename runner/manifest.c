@@ -62,6 +62,7 @@ typedef enum ptype {
     PT_SPAN,         /* {seconds: min..max} | {frames: fmin..fmax} -> span */
     PT_COUNT,        /* integer 0..MAX_LIGHTS | {start, step, every, max} -> light_count */
     PT_TIMES,        /* sequence of numbers >= 0, at most MAX_SCREENSHOTS -> size_t n, double[] */
+    PT_RENDERER,     /* one renderer name -> char[32] */
     PT_GROUP,        /* a mapping of the parameters whose path continues this one */
     PT_SWEEP,        /* parameter path -> non-empty sequence of its values */
 } ptype;
@@ -174,6 +175,27 @@ static const param table[] = {
      RP(illumination_sets),
      .description = "forward-mpml draws, per light, only the visible objects its volume "
                     "reaches (false: every visible object, seed 000 5.6)"},
+    {.path = "error", .type = PT_GROUP,
+     .description = "image error against a reference configuration rendering the same "
+                    "frame: RMSE, PSNR, max error, pixels off by > 1/255, non-finite values"},
+    {.path = "error.reference", .type = PT_GROUP,
+     .description = "the reference: {renderer, gbuffer, light_volumes}"},
+    {.path = "error.reference.renderer", .type = PT_RENDERER, RP(error_renderer),
+     .description = "the renderer that draws the reference image"},
+    {.path = "error.reference.gbuffer", .type = PT_ENUM, .def = "reference",
+     .values = gbuffer_names, RP(error_gbuffer),
+     .description = "the reference's G-buffer preset, when it is deferred"},
+    {.path = "error.reference.light_volumes", .type = PT_ENUM, .def = "stencil",
+     .values = light_volume_names, RP(error_light_volumes),
+     .description = "the reference's light-volume mode, when it is deferred"},
+    {.path = "error.at", .type = PT_TIMES, .def = "[]", .min = 0, .max = INFINITY,
+     RP_SPAN(nerror_at, error_at),
+     .description = "schedule times (seconds) at which both render the same frame, at most 16"},
+    {.path = "error.max_rmse", .type = PT_NUMBER, .def = "0", .min = 0, .max = 1,
+     RP(error_max_rmse),
+     .description = "a run whose RMSE exceeds this fails as failed:error (0: no limit)"},
+    {.path = "error.save_images", .type = PT_BOOL, .def = "false", RP(error_save_images),
+     .description = "save both images (PNG) and the error heat map (PNG and EXR)"},
     {.path = "lights", .type = PT_GROUP,
      .description = "light placement; without it (and without a swept lights.* key) "
                     "a run has no lights: placement none, count 0"},
@@ -402,6 +424,7 @@ static const char *expect(const param *pd, char *buf, size_t len)
     case PT_TEXT: sb_add(&b, "a string"); break;
     case PT_SCENE: list_scenes(&b); break;
     case PT_RENDERERS: sb_add(&b, "a non-empty sequence of renderer names"); break;
+    case PT_RENDERER: list_renderers(&b); break;
     case PT_RESOLUTION: sb_add(&b, "WxH with each side 1..%d", MAX_SIDE); break;
     case PT_UINT: sb_add(&b, "an integer %.0f..%.0f", pd->min, pd->max); break;
     case PT_NUMBER: range_number(&b, pd->min, pd->max, pd->flags & PF_MIN_OPEN); break;
@@ -754,15 +777,18 @@ static bool parse_times(vctx *c, const param *pd, const ynode *n, const char *ke
         err(c, n, key, "expected %s, found %zu times", expect(pd, e, sizeof e), n->n);
         return false;
     }
+    /* a size_t count followed by MAX_SCREENSHOTS doubles at pd->off (RP_SPAN) */
+    size_t *count = (size_t *)((char *)dst + pd->off);
+    double *times = (double *)((char *)dst + pd->off + sizeof(size_t));
     bool ok = true;
     for (size_t i = 0; i < n->n; i++) {
         char sub[160];
         snprintf(sub, sizeof sub, "%s[%zu]", key, i);
-        if (!parse_number_in(c, n->items[i], sub, pd->min, pd->max, 0, &dst->screenshots[i]))
+        if (!parse_number_in(c, n->items[i], sub, pd->min, pd->max, 0, &times[i]))
             ok = false;
     }
     if (ok)
-        dst->nscreenshots = n->n;
+        *count = n->n;
     return ok;
 }
 
@@ -880,6 +906,11 @@ static bool parse_value(vctx *c, const param *pd, const ynode *n, const char *ke
         return true;
     case PT_RENDERERS:
         return parse_renderers(c, pd, n, key);
+    case PT_RENDERER:
+        if (!stringish(n) || !renderer_kind_find(n->text) || n->len >= 32)
+            return bad(c, pd, n, key);
+        memcpy(at, n->text, n->len + 1);
+        return true;
     case PT_RESOLUTION:
         return parse_resolution(c, pd, n, key, dst);
     case PT_UINT: {
@@ -1064,6 +1095,32 @@ static bool lights_swept(const vctx *c)
 }
 
 /* Placement none means no lights: every count it can meet must be 0. */
+/* An error block names a reference renderer and at least one time, or neither. */
+static void check_error(vctx *c)
+{
+    const run_params *b = &c->e->base;
+    size_t ir = (size_t)(param_find("error.reference.renderer") - table);
+    size_t ia = (size_t)(param_find("error.at") - table);
+    bool named = b->error_renderer[0] || c->set_key[ir];   /* set, even if invalid */
+    if (b->error_renderer[0] && b->nerror_at == 0)
+        err(c, c->set_key[ir], "error.at",
+            "expected at least one time to compare at, found none");
+    for (size_t i = 0; i < NPARAMS; i++) {
+        if (named || !c->set_key[i] || i == ia ||
+            strncmp(table[i].path, "error.", 6) != 0 || table[i].type == PT_GROUP)
+            continue;
+        char e[512];
+        err(c, c->set_key[i], "error.reference.renderer", "expected %s, found nothing",
+            expect(&table[ir], e, sizeof e));
+        break;
+    }
+    if (c->set_key[ia] && b->nerror_at > 0 && !named) {
+        char e[512];
+        err(c, c->set_key[ia], "error.reference.renderer", "expected %s, found nothing",
+            expect(&table[ir], e, sizeof e));
+    }
+}
+
 static void check_lights(vctx *c)
 {
     const experiment *e = c->e;
@@ -1269,6 +1326,7 @@ bool manifest_load_mem(const char *name, const char *data, size_t len, experimen
     if (!c.set_key[(size_t)(param_find("lights") - table)] && !lights_swept(&c))
         e->base.lights.placement = PLACEMENT_NONE;
     check_lights(&c);
+    check_error(&c);
     ok = c.nerr == 0;
 
 done:
@@ -1306,6 +1364,9 @@ static void format_value(const param *pd, const run_params *p, char *out, size_t
         break;
     case PT_RENDERERS:
         snprintf(out, len, "%s", p->renderer);
+        break;
+    case PT_RENDERER:
+        snprintf(out, len, "%.31s", at);
         break;
     case PT_RESOLUTION:
         snprintf(out, len, "%dx%d", p->width, p->height);
@@ -1371,9 +1432,12 @@ static void format_value(const param *pd, const run_params *p, char *out, size_t
         char all[MAX_SCREENSHOTS * 32 + 1];
         sbuf b = {all, sizeof all, 0};
         all[0] = '\0';
-        size_t n = p->nscreenshots < MAX_SCREENSHOTS ? p->nscreenshots : MAX_SCREENSHOTS;
+        size_t count;
+        memcpy(&count, at, sizeof count);
+        const double *times = (const double *)(at + sizeof(size_t));
+        size_t n = count < MAX_SCREENSHOTS ? count : MAX_SCREENSHOTS;
         for (size_t i = 0; i < n; i++) {
-            fmt_double(p->screenshots[i], a, sizeof a);
+            fmt_double(times[i], a, sizeof a);
             sb_add(&b, "%s%s", i ? "," : "", a);
         }
         if (b.len < len) {

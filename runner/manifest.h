@@ -45,6 +45,14 @@ typedef struct run_params {
     bool out_frames, out_seconds;
     size_t nscreenshots;
     double screenshots[MAX_SCREENSHOTS];   /* schedule times, seconds */
+    /* image error against a reference configuration (error_renderer "" : none) */
+    char error_renderer[32];
+    gbuffer_preset error_gbuffer;
+    light_volume_mode error_light_volumes;
+    size_t nerror_at;
+    double error_at[MAX_SCREENSHOTS];      /* schedule times, seconds */
+    double error_max_rmse;                 /* 0: no limit */
+    bool error_save_images;
 } run_params;
 
 typedef struct experiment {

@@ -35,6 +35,10 @@ static const char *const convergence_columns[] = {
     "run_id", "trial", "elapsed_s", "frames", "frametime_mean_us", "frametime_ci95_us",
     "ci95_rel",
 };
+static const char *const errors_columns[] = {
+    "run_id", "trial", "frame", "t_scene_s", "rmse", "psnr_db", "max_abs", "frac_over_1_255",
+    "nonfinite",
+};
 static const char *const passes_columns[] = {
     "run_id", "trial", "frame", "pass", "gpu_us", "cpu_us", "draw_calls", "state_changes",
     "fragments", "primitives",
@@ -186,9 +190,35 @@ void run_files_convergence(run_files *f, const char *run_id, uint32_t trial,
     }
 }
 
+bool run_files_open_errors(run_files *f, const char *run_dir, char *err, size_t errlen)
+{
+    char path[4096];
+    join(path, sizeof path, run_dir, "errors.csv");
+    f->errors = csv_open(path, errors_columns, NCOLS(errors_columns), err, errlen);
+    return f->errors != NULL;
+}
+
+void run_files_error(run_files *f, const char *run_id, uint32_t trial, uint32_t frame,
+                     double t_scene, const image_error *e)
+{
+    csv_writer *w = f->errors;
+    if (!w)
+        return;
+    csv_str(w, run_id);
+    csv_u64(w, trial);
+    csv_u64(w, frame);
+    csv_f64(w, t_scene, 6);
+    csv_g(w, e->rmse);
+    csv_g(w, e->psnr_db);
+    csv_g(w, e->max_abs);
+    csv_g(w, e->frac_over_1_255);
+    csv_u64(w, e->nonfinite);
+    csv_end_row(w);
+}
+
 bool run_files_commit(run_files *f, char *err, size_t errlen)
 {
-    csv_writer **all[] = {&f->frames, &f->passes, &f->seconds, &f->convergence};
+    csv_writer **all[] = {&f->frames, &f->passes, &f->seconds, &f->convergence, &f->errors};
     bool ok = true;
     for (size_t i = 0; i < NCOLS(all); i++) {
         if (!*all[i])
@@ -208,6 +238,7 @@ void run_files_abort(run_files *f)
     csv_abort(f->passes);
     csv_abort(f->seconds);
     csv_abort(f->convergence);
+    csv_abort(f->errors);
     memset(f, 0, sizeof *f);
 }
 
@@ -270,11 +301,11 @@ bool output_write_run_summary(const char *run_dir, const experiment *e, const ru
         csv_f64(w, r->state_changes_mean, 3);
         csv_f64(w, r->fragments_mean, 1);
         csv_u64(w, pp->gbuffer_bytes);
-        /* Image error columns are filled when the manifest names a reference. */
-        csv_empty(w);
-        csv_empty(w);
-        csv_empty(w);
-        csv_empty(w);
+        /* Image error: empty unless the manifest names a reference (error:). */
+        csv_g(w, r->image_rmse);
+        csv_g(w, r->image_psnr_db);
+        csv_g(w, r->image_max_abs);
+        csv_f64(w, r->nonfinite, 0);
         csv_f64(w, r->harness_us_mean, 3);
         if (r->frames == 0)
             csv_empty(w);

@@ -11,6 +11,7 @@
 #include <stdbool.h>
 #include <stddef.h>
 #include "results/csv.h"
+#include "results/image_io.h"
 #include "results/record.h"
 #include "results/stats.h"
 #include "renderers/renderer.h"
@@ -36,7 +37,7 @@ bool output_read_sweep_meta(const char *out_dir, sweep_meta *m, char *err, size_
 
 /* The per-run CSV streams, open across the run's trials. */
 typedef struct run_files {
-    csv_writer *frames, *seconds, *passes, *convergence;
+    csv_writer *frames, *seconds, *passes, *convergence, *errors;
 } run_files;
 
 bool run_files_open(run_files *f, const char *run_dir, const run_params *p, char *err,
@@ -47,6 +48,11 @@ void run_files_seconds(run_files *f, const char *run_id, uint32_t trial,
                        const second_bin *bins, size_t nbins);
 void run_files_convergence(run_files *f, const char *run_id, uint32_t trial,
                            const convergence_point *p, size_t np);
+
+/* One comparison with the reference: errors.csv, opened when the run has one. */
+bool run_files_open_errors(run_files *f, const char *run_dir, char *err, size_t errlen);
+void run_files_error(run_files *f, const char *run_id, uint32_t trial, uint32_t frame,
+                     double t_scene, const image_error *e);
 bool run_files_commit(run_files *f, char *err, size_t errlen);
 void run_files_abort(run_files *f);
 
@@ -61,6 +67,10 @@ typedef struct trial_result {
     double gpu_mean_us, draw_calls_mean, state_changes_mean, fragments_mean;
     double harness_us_mean;    /* runner bookkeeping between frames, us */
     double ci1pct_after_s;     /* the CI stayed within 1% of the mean from then on; NAN: never */
+    /* the worst comparison with the reference (NAN: none made): largest RMSE and max
+     * error, smallest PSNR; non-finite values summed over the comparisons */
+    double image_rmse, image_psnr_db, image_max_abs;
+    double nonfinite;
     unsigned lights_max;
     char status[96];           /* "ok" or "failed:<reason>" */
 } trial_result;

@@ -57,6 +57,7 @@ typedef struct run_state {
     gl_context *ctx;
     scene *sc;
     renderer *r;
+    renderer *ref;             /* error: the reference configuration; NULL without one */
     pass_plan plan;
     run_files files;
     frame_log log;
@@ -151,6 +152,105 @@ static void set_status(run_state *st, const char *reason)
         snprintf(st->status, sizeof st->status, "failed:%s", reason);
 }
 
+/* The output framebuffer as an 8-bit image (pixels malloc'ed). */
+static bool read_output(run_state *st, image *img, char *err, size_t errlen)
+{
+    const run_params *p = &st->s->p;
+    *img = (image){.width = p->width, .height = p->height, .channels = 4, .type = IMAGE_U8};
+    img->pixels = malloc((size_t)p->width * (size_t)p->height * 4u);
+    if (!img->pixels) {
+        snprintf(err, errlen, "out of memory for a %dx%d image", p->width, p->height);
+        return false;
+    }
+    return gl_context_read_rgba8(st->ctx, img->pixels, err, errlen);
+}
+
+/* The per-pixel largest channel error: EXR with the exact values, PNG at x16 gain
+ * (1/255 off shows as 16/255; 1/16 and more is white). */
+static bool save_heat_map(const image *a, const image *b, const char *base, char *err,
+                          size_t errlen)
+{
+    size_t n = (size_t)a->width * (size_t)a->height;
+    image f = {.width = a->width, .height = a->height, .channels = 1, .type = IMAGE_F32};
+    image g = {.width = a->width, .height = a->height, .channels = 1, .type = IMAGE_U8};
+    f.pixels = malloc(n * sizeof(float));
+    g.pixels = malloc(n);
+    bool ok = f.pixels && g.pixels;
+    for (size_t i = 0; ok && i < n; i++) {
+        int worst = 0;
+        for (int c = 0; c < 3; c++) {
+            int d = abs((int)((uint8_t *)a->pixels)[4 * i + c] - (int)((uint8_t *)b->pixels)[4 * i + c]);
+            worst = d > worst ? d : worst;
+        }
+        ((float *)f.pixels)[i] = (float)worst / 255.0f;
+        ((uint8_t *)g.pixels)[i] = (uint8_t)(worst * 16 > 255 ? 255 : worst * 16);
+    }
+    char path[4400];
+    if (ok) {
+        snprintf(path, sizeof path, "%s-error.exr", base);
+        ok = image_write(path, &f, err, errlen);
+    } else {
+        snprintf(err, errlen, "out of memory for a heat map");
+    }
+    if (ok) {
+        snprintf(path, sizeof path, "%s-error.png", base);
+        ok = image_write(path, &g, err, errlen);
+    }
+    free(f.pixels);
+    free(g.pixels);
+    return ok;
+}
+
+/* error: the frame just drawn against the reference configuration drawing the same
+ * scene state (same time, lights and camera): its row in errors.csv, the worst values
+ * in *tr, images on request. Runs between measured frames, after the bookkeeping. */
+static bool measure_error(run_state *st, uint32_t trial, uint32_t frame, double at,
+                          trial_result *tr, char *err, size_t errlen)
+{
+    const run_params *p = &st->s->p;
+    image run = {0}, ref = {0};
+    image_error e = {0};
+    size_t nonfinite = 0;
+    bool ok = read_output(st, &run, err, errlen);
+    if (ok) {
+        /* the run's own float accumulation, where it has one */
+        size_t n = (size_t)p->width * (size_t)p->height * 4u;
+        float *hdr = malloc(n * sizeof *hdr);
+        if (hdr && !renderer_read_hdr(st->r, hdr, p->width, p->height, &nonfinite))
+            nonfinite = 0;
+        free(hdr);
+        frame_stats fs;
+        renderer_draw(st->ref, st->sc, &fs);
+        gl.Finish();
+        renderer_collect(st->ref, &fs);
+        ok = read_output(st, &ref, err, errlen) && image_compare(&run, &ref, &e, err, errlen);
+    }
+    if (ok) {
+        e.nonfinite += nonfinite;
+        run_files_error(&st->files, st->s->id, trial, frame, st->sc->t, &e);
+        if (isnan(tr->image_rmse) || e.rmse > tr->image_rmse)
+            tr->image_rmse = e.rmse;
+        if (isnan(tr->image_psnr_db) || e.psnr_db < tr->image_psnr_db)
+            tr->image_psnr_db = e.psnr_db;
+        if (isnan(tr->image_max_abs) || e.max_abs > tr->image_max_abs)
+            tr->image_max_abs = e.max_abs;
+        tr->nonfinite = (isnan(tr->nonfinite) ? 0 : tr->nonfinite) + (double)e.nonfinite;
+    }
+    if (ok && p->error_save_images) {
+        char base[4300];
+        snprintf(base, sizeof base, "%s/error-trial%u-t%g", st->dir, trial, at);
+        char path[4400];
+        snprintf(path, sizeof path, "%s-run.png", base);
+        ok = image_write(path, &run, err, errlen);
+        snprintf(path, sizeof path, "%s-reference.png", base);
+        ok = ok && image_write(path, &ref, err, errlen);
+        ok = ok && save_heat_map(&run, &ref, base, err, errlen);
+    }
+    image_free(&run);
+    image_free(&ref);
+    return ok;
+}
+
 /* One trial: warm-up (not recorded), then the measured frames. */
 static void run_trial(run_state *st, uint32_t trial, trial_result *tr)
 {
@@ -158,6 +258,7 @@ static void run_trial(run_state *st, uint32_t trial, trial_result *tr)
     frame_stats fs;
     memset(tr, 0, sizeof *tr);
     tr->trial = trial;
+    tr->image_rmse = tr->image_psnr_db = tr->image_max_abs = tr->nonfinite = NAN;
     snprintf(tr->status, sizeof tr->status, "ok");
     st->log.n = 0;
 
@@ -174,7 +275,7 @@ static void run_trial(run_state *st, uint32_t trial, trial_result *tr)
         return;
     }
 
-    bool shot_done[MAX_SCREENSHOTS] = {false};
+    bool shot_done[MAX_SCREENSHOTS] = {false}, error_done[MAX_SCREENSHOTS] = {false};
     double harness_s = 0, t_end = 0;
     double t0 = progress_now();
     for (size_t k = 0;; k++) {
@@ -221,9 +322,31 @@ static void run_trial(run_state *st, uint32_t trial, trial_result *tr)
                 snprintf(tr->status, sizeof tr->status, "failed:screenshot");
             }
         }
+        for (size_t i = 0; i < p->nerror_at; i++) {
+            if (error_done[i] || t < p->error_at[i])
+                continue;
+            error_done[i] = true;
+            char err[512];
+            if (!measure_error(st, trial, rec.frame, p->error_at[i], tr, err, sizeof err)) {
+                fprintf(stderr, "run %s: error against the reference: %s\n", st->s->id, err);
+                snprintf(tr->status, sizeof tr->status, "failed:error");
+            }
+        }
         progress_tick(st->pg, trial, rec.lights, (double)(k + 1) / (end - t0));
         if (span_done(&p->duration, k + 1, end - t0))
             break;
+    }
+
+    /* A comparison that exceeded the manifest's limit, or non-finite light, fails it. */
+    if (strcmp(tr->status, "ok") == 0 && p->error_max_rmse > 0 && tr->image_rmse > p->error_max_rmse) {
+        snprintf(tr->status, sizeof tr->status, "failed:error");
+        snprintf(st->err, sizeof st->err, "image RMSE %g against %s exceeds error.max_rmse %g",
+                 tr->image_rmse, p->error_renderer, p->error_max_rmse);
+    }
+    if (strcmp(tr->status, "ok") == 0 && tr->nonfinite > 0) {
+        snprintf(tr->status, sizeof tr->status, "failed:nonfinite");
+        snprintf(st->err, sizeof st->err, "%.0f non-finite values in the light accumulation",
+                 tr->nonfinite);
     }
 
     /* Post-trial arithmetic counts as bookkeeping too, spread over the frames. */
@@ -456,6 +579,27 @@ static bool run_setup(run_state *st)
         set_status(st, "output");
         return false;
     }
+    if (p->error_renderer[0]) {
+        renderer_options rr = ro;
+        rr.queries = false;
+        rr.gbuffer = p->error_gbuffer;
+        rr.gbuffer_position = GBUFFER_POSITION_PRESET;
+        rr.gbuffer_normal = GBUFFER_NORMAL_PRESET;
+        rr.light_volumes = p->error_light_volumes;
+        rr.separate_specular = false;
+        rr.no_illumination_sets = false;
+        char why[512];
+        if (!(st->ref = renderer_create(p->error_renderer, &rr, why, sizeof why)) ||
+            !renderer_prepare(st->ref, st->sc, why, sizeof why)) {
+            snprintf(st->err, sizeof st->err, "reference %.31s: %.400s", p->error_renderer, why);
+            set_status(st, "reference");
+            return false;
+        }
+        if (!run_files_open_errors(&st->files, st->dir, st->err, sizeof st->err)) {
+            set_status(st, "output");
+            return false;
+        }
+    }
     return true;
 }
 
@@ -463,6 +607,7 @@ static bool run_setup(run_state *st)
 static void run_teardown(run_state *st)
 {
     run_files_abort(&st->files);
+    renderer_destroy(st->ref);
     renderer_destroy(st->r);
     scene_destroy(st->sc);
     gl_context_destroy(st->ctx);
@@ -481,6 +626,7 @@ static void fill_missing_trials(run_state *st)
         tr->ft_ci95 = tr->fps_mean = tr->measured_s = NAN;
         tr->gpu_mean_us = tr->draw_calls_mean = tr->state_changes_mean = NAN;
         tr->fragments_mean = tr->harness_us_mean = tr->ci1pct_after_s = NAN;
+        tr->image_rmse = tr->image_psnr_db = tr->image_max_abs = tr->nonfinite = NAN;
         snprintf(tr->status, sizeof tr->status, "%s",
                  strcmp(st->status, "ok") ? st->status : "failed:not-run");
     }
@@ -511,7 +657,11 @@ static void run_one(run_state *st)
             run_trial(st, t, tr);
             if (strcmp(tr->status, "ok") != 0) {
                 snprintf(st->status, sizeof st->status, "%s", tr->status);
-                break;
+                /* Image error and non-finite light are verdicts on what was measured:
+                 * the other trials still measure. Anything else ends the run. */
+                if (strcmp(tr->status, "failed:error") != 0 &&
+                    strcmp(tr->status, "failed:nonfinite") != 0)
+                    break;
             }
         }
         if (!run_files_commit(&st->files, st->err, sizeof st->err)) {

@@ -376,6 +376,12 @@ static void test_kv_canonical(void **state)
         {"deferred.light_volumes", "stencil"},
         {"deferred.separate_specular", "false"},
         {"forward.illumination_sets", "true"},
+        {"error.reference.renderer", ""},
+        {"error.reference.gbuffer", "reference"},
+        {"error.reference.light_volumes", "stencil"},
+        {"error.at", ""},
+        {"error.max_rmse", "0"},
+        {"error.save_images", "false"},
         {"lights.placement", "none"},
         {"lights.seed", "1337"},
         {"lights.rng", "msvc"},
@@ -408,6 +414,12 @@ static void test_kv_canonical(void **state)
         {"deferred.light_volumes", "stencil"},
         {"deferred.separate_specular", "false"},
         {"forward.illumination_sets", "true"},
+        {"error.reference.renderer", ""},
+        {"error.reference.gbuffer", "reference"},
+        {"error.reference.light_volumes", "stencil"},
+        {"error.at", ""},
+        {"error.max_rmse", "0"},
+        {"error.save_images", "false"},
         {"lights.placement", "random"},
         {"lights.seed", "4294967295"},
         {"lights.rng", "pcg32"},
@@ -497,7 +509,7 @@ static const bad_case bad_cases[] = {
     {"unknown_top_key.yaml",
      {"1:1: duration: expected {seconds: S} or {frames: N}, found nothing",
       "5:1: durtion: expected one of shadesweep, name, description, scene, renderers, "
-      "resolution, trials, warmup, duration, clock, step, sync, timeout, gbuffer, deferred, forward, lights, outputs, sweep, "
+      "resolution, trials, warmup, duration, clock, step, sync, timeout, gbuffer, deferred, forward, error, lights, outputs, sweep, "
       "found 'durtion'"}},
     {"unknown_nested_key.yaml",
      {"8:3: lights.cnt: expected one of placement, seed, rng, count, radius, color_max, "
@@ -607,7 +619,7 @@ static const bad_case bad_cases[] = {
       "5:13: resolution: expected WxH with each side 1..32768, found '640x'",
       "6:9: trials: expected an integer 1..1000, found '0'",
       "7:1: durtion: expected one of shadesweep, name, description, scene, renderers, "
-      "resolution, trials, warmup, duration, clock, step, sync, timeout, gbuffer, deferred, forward, lights, outputs, sweep, "
+      "resolution, trials, warmup, duration, clock, step, sync, timeout, gbuffer, deferred, forward, error, lights, outputs, sweep, "
       "found 'durtion'",
       "8:19: warmup.seconds: expected a number >= 0 and <= 3600, found '-1'",
       "10:9: lights.seed: expected an integer 0..4294967295, found '-1'",

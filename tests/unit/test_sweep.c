@@ -93,18 +93,18 @@ static void test_order_and_ids(void **state)
         int w, h;
         uint32_t lights;
     } want[] = {
-        {"2b1eee5b9847", "null", 800, 600, 0},
-        {"e6a2b30c8576", "deferred", 800, 600, 0},
-        {"c8a5b7855978", "null", 800, 600, 100},
-        {"07b2c72eddee", "deferred", 800, 600, 100},
-        {"a1de6a798c33", "null", 1024, 768, 0},
-        {"6f9a3b5a9400", "deferred", 1024, 768, 0},
-        {"0ee7f657f8e2", "null", 1024, 768, 100},
-        {"fe4cb2d7d4ee", "deferred", 1024, 768, 100},
-        {"55147d4c42f5", "null", 1600, 1200, 0},
-        {"eeb21733d349", "deferred", 1600, 1200, 0},
-        {"ae5ef778d50d", "null", 1600, 1200, 100},
-        {"d0c78256dc37", "deferred", 1600, 1200, 100},
+        {"e3806b5667e4", "null", 800, 600, 0},
+        {"912131b33ff5", "deferred", 800, 600, 0},
+        {"cc4bc435b031", "null", 800, 600, 100},
+        {"87fe8bacf3d9", "deferred", 800, 600, 100},
+        {"35da643ad594", "null", 1024, 768, 0},
+        {"d51007bd1555", "deferred", 1024, 768, 0},
+        {"872b27632a1f", "null", 1024, 768, 100},
+        {"97019850abee", "deferred", 1024, 768, 100},
+        {"beb128d0e10f", "null", 1600, 1200, 0},
+        {"42d63342407d", "deferred", 1600, 1200, 0},
+        {"ee67b7f127bc", "null", 1600, 1200, 100},
+        {"3b691f00dbdf", "deferred", 1600, 1200, 100},
         {NULL, NULL, 0, 0, 0},
     };
     experiment *e = load("good/sweep.yaml");
@@ -137,6 +137,9 @@ static void test_order_and_ids(void **state)
                             "gbuffer.preset=curtis\ngbuffer.position=preset\n"
                             "gbuffer.normal=preset\ndeferred.light_volumes=stencil\n"
                             "deferred.separate_specular=false\nforward.illumination_sets=true\n"
+                            "error.reference.renderer=\nerror.reference.gbuffer=reference\n"
+                            "error.reference.light_volumes=stencil\nerror.at=\n"
+                            "error.max_rmse=0\nerror.save_images=false\n"
                             "lights.placement=random\n"
                             "lights.seed=1337\nlights.rng=msvc\nlights.count=0\n"
                             "lights.radius=10\nlights.color_max=0.3\n"
@@ -365,16 +368,16 @@ static void test_plan_print(void **state)
     assert_true(expand(e, 4, &p));
     char *all = print_plan(&p, 0);
     assert_string_equal(all,
-                        "2b1eee5b9847  renderer=null resolution=800x600 lights.count=0\n"
-                        "c8a5b7855978  renderer=null resolution=800x600 lights.count=100\n"
-                        "a1de6a798c33  renderer=null resolution=1024x768 lights.count=0\n"
-                        "0ee7f657f8e2  renderer=null resolution=1024x768 lights.count=100\n"
-                        "55147d4c42f5  renderer=null resolution=1600x1200 lights.count=0\n"
-                        "ae5ef778d50d  renderer=null resolution=1600x1200 lights.count=100\n");
+                        "e3806b5667e4  renderer=null resolution=800x600 lights.count=0\n"
+                        "cc4bc435b031  renderer=null resolution=800x600 lights.count=100\n"
+                        "35da643ad594  renderer=null resolution=1024x768 lights.count=0\n"
+                        "872b27632a1f  renderer=null resolution=1024x768 lights.count=100\n"
+                        "beb128d0e10f  renderer=null resolution=1600x1200 lights.count=0\n"
+                        "ee67b7f127bc  renderer=null resolution=1600x1200 lights.count=100\n");
     free(all);
     char *two = print_plan(&p, 2);
-    assert_string_equal(two, "c8a5b7855978  renderer=null resolution=800x600 lights.count=100\n"
-                             "ae5ef778d50d  renderer=null resolution=1600x1200 lights.count=100\n");
+    assert_string_equal(two, "cc4bc435b031  renderer=null resolution=800x600 lights.count=100\n"
+                             "ee67b7f127bc  renderer=null resolution=1600x1200 lights.count=100\n");
     free(two);
     char *none = print_plan(&p, 5);
     assert_string_equal(none, "");
@@ -386,7 +389,7 @@ static void test_plan_print(void **state)
     e = load("good/minimal.yaml");
     assert_true(expand(e, 1, &p));
     char *one = print_plan(&p, 0);
-    assert_string_equal(one, "cbcf460ac525  renderer=null\n");
+    assert_string_equal(one, "fb996885426a  renderer=null\n");
     free(one);
     plan_free(&p);
     experiment_free(e);
@@ -400,11 +403,11 @@ static void test_duplicate_points(void **state)
     } cases[] = {
         {"sweep/duplicate_value.yaml",
          "8:18: sweep.trials[2]: expected a distinct sweep point, found run 2 the same as run 0 "
-         "(id cbcf460ac525)"},
+         "(id fb996885426a)"},
         /* 0.50 repeats 0.5 at both resolutions: reported once, at its first pair */
         {"sweep/duplicate_canonical.yaml",
          "10:24: sweep.lights.radius[1]: expected a distinct sweep point, found run 1 the same "
-         "as run 0 (id 8cbaa3514d97)"},
+         "as run 0 (id 75bbeeb5d4e5)"},
         {NULL, NULL},
     };
     for (size_t k = 0; cases[k].file; k++) {
