@@ -34,6 +34,14 @@ grep -q "smoke.yaml: ok, 16 runs" stdout.txt || fail "validate of the good manif
 [ "$(grep -c '^bad.yaml:' stderr.txt)" -eq 6 ] || fail "validate lists every error"
 
 "$SHADESWEEP" validate "$SOURCE_ROOT"/experiments/*.yaml >/dev/null || fail "experiments/ must validate"
+# so must the README's manifest example
+"$PYTHON" - "$SOURCE_ROOT/README.md" > readme.yaml <<'PY'
+import sys
+s = open(sys.argv[1]).read()
+a = s.index("```yaml\n") + 8
+print(s[a:s.index("```", a)], end="")
+PY
+"$SHADESWEEP" validate readme.yaml >/dev/null || fail "the README's manifest example is invalid"
 # usage errors are clear too
 set +e
 "$SHADESWEEP" run --shard 5/4 "$SOURCE_ROOT/experiments/smoke.yaml" 2>stderr.txt; rc=$?
