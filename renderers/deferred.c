@@ -95,7 +95,6 @@
 #include "renderers/shading.h"
 #include "scenes/scene.h"
 
-#include <limits.h>
 #include <math.h>
 #include <stdarg.h>
 #include <stdio.h>
@@ -1338,36 +1337,6 @@ uint64_t deferred_shaded_samples(const void *self, int type)
 
 // >>read_hdr
 
-/* Reads an RGBA16F texture of w x h as RGBA floats, row 0 at the bottom, tightly
- * packed: direct state access (no texture or framebuffer binding changes), the
- * pixel-pack state set for the read and put back. In bands of rows so that no
- * call's byte count exceeds a GLsizei. */
-static void read_float_texture(GLuint texture, int w, int h, float *rgba)
-{
-    GLint pack_buffer = 0, alignment = 4, row_length = 0, skip_rows = 0, skip_pixels = 0;
-    gl.GetIntegerv(GL_PIXEL_PACK_BUFFER_BINDING, &pack_buffer);
-    gl.GetIntegerv(GL_PACK_ALIGNMENT, &alignment);
-    gl.GetIntegerv(GL_PACK_ROW_LENGTH, &row_length);
-    gl.GetIntegerv(GL_PACK_SKIP_ROWS, &skip_rows);
-    gl.GetIntegerv(GL_PACK_SKIP_PIXELS, &skip_pixels);
-    gl.BindBuffer(GL_PIXEL_PACK_BUFFER, 0);
-    gl.PixelStorei(GL_PACK_ALIGNMENT, 4);
-    gl.PixelStorei(GL_PACK_ROW_LENGTH, 0);
-    gl.PixelStorei(GL_PACK_SKIP_ROWS, 0);
-    gl.PixelStorei(GL_PACK_SKIP_PIXELS, 0);
-    const size_t row = (size_t)w * 4;                 /* floats */
-    const int band = (int)((size_t)INT_MAX / (row * sizeof *rgba));   /* >= 1 */
-    for (int y = 0; y < h; y += band) {
-        int n = h - y < band ? h - y : band;
-        gl.GetTextureSubImage(texture, 0, 0, y, 0, w, n, 1, GL_RGBA, GL_FLOAT,
-                              (GLsizei)((size_t)n * row * sizeof *rgba), rgba + (size_t)y * row);
-    }
-    gl.BindBuffer(GL_PIXEL_PACK_BUFFER, (GLuint)pack_buffer);
-    gl.PixelStorei(GL_PACK_ALIGNMENT, alignment);
-    gl.PixelStorei(GL_PACK_ROW_LENGTH, row_length);
-    gl.PixelStorei(GL_PACK_SKIP_ROWS, skip_rows);
-    gl.PixelStorei(GL_PACK_SKIP_PIXELS, skip_pixels);
-}
 
 /* The "light" target (with separate_specular "light.diffuse", which the compose pass
  * has added "light.specular" into: the sum of both, what resolve clamps). */
@@ -1377,7 +1346,7 @@ static bool deferred_read_hdr(void *self, float *rgba, int width, int height)
     if (!r || !r->prepared || !r->light.texture || width != r->light.width ||
         height != r->light.height)
         return false;
-    read_float_texture(r->light.texture, width, height, rgba);
+    gl_texture_read_float(r->light.texture, width, height, rgba);
     return true;
 }
 

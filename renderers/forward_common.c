@@ -5,7 +5,6 @@
 
 #include "renderers/shading.h"
 
-#include <limits.h>
 #include <math.h>
 #include <stdarg.h>
 #include <stdio.h>
@@ -349,36 +348,6 @@ const gl_target *forward_hdr_target(const void *self)
     return fc ? &fc->hdr : NULL;
 }
 
-/* Reads an RGBA16F texture of w x h as RGBA floats, row 0 at the bottom, tightly
- * packed: direct state access (no texture or framebuffer binding changes), the
- * pixel-pack state set for the read and put back. In bands of rows so that no
- * call's byte count exceeds a GLsizei. */
-static void read_float_texture(GLuint texture, int w, int h, float *rgba)
-{
-    GLint pack_buffer = 0, alignment = 4, row_length = 0, skip_rows = 0, skip_pixels = 0;
-    gl.GetIntegerv(GL_PIXEL_PACK_BUFFER_BINDING, &pack_buffer);
-    gl.GetIntegerv(GL_PACK_ALIGNMENT, &alignment);
-    gl.GetIntegerv(GL_PACK_ROW_LENGTH, &row_length);
-    gl.GetIntegerv(GL_PACK_SKIP_ROWS, &skip_rows);
-    gl.GetIntegerv(GL_PACK_SKIP_PIXELS, &skip_pixels);
-    gl.BindBuffer(GL_PIXEL_PACK_BUFFER, 0);
-    gl.PixelStorei(GL_PACK_ALIGNMENT, 4);
-    gl.PixelStorei(GL_PACK_ROW_LENGTH, 0);
-    gl.PixelStorei(GL_PACK_SKIP_ROWS, 0);
-    gl.PixelStorei(GL_PACK_SKIP_PIXELS, 0);
-    const size_t row = (size_t)w * 4;                 /* floats */
-    const int band = (int)((size_t)INT_MAX / (row * sizeof *rgba));   /* >= 1 */
-    for (int y = 0; y < h; y += band) {
-        int n = h - y < band ? h - y : band;
-        gl.GetTextureSubImage(texture, 0, 0, y, 0, w, n, 1, GL_RGBA, GL_FLOAT,
-                              (GLsizei)((size_t)n * row * sizeof *rgba), rgba + (size_t)y * row);
-    }
-    gl.BindBuffer(GL_PIXEL_PACK_BUFFER, (GLuint)pack_buffer);
-    gl.PixelStorei(GL_PACK_ALIGNMENT, alignment);
-    gl.PixelStorei(GL_PACK_ROW_LENGTH, row_length);
-    gl.PixelStorei(GL_PACK_SKIP_ROWS, skip_rows);
-    gl.PixelStorei(GL_PACK_SKIP_PIXELS, skip_pixels);
-}
 
 bool forward_read_hdr(void *self, float *rgba, int width, int height)
 {
@@ -386,7 +355,7 @@ bool forward_read_hdr(void *self, float *rgba, int width, int height)
     if (!fc || !fc->prepared || !fc->hdr.texture || width != fc->hdr.width ||
         height != fc->hdr.height)
         return false;
-    read_float_texture(fc->hdr.texture, width, height, rgba);
+    gl_texture_read_float(fc->hdr.texture, width, height, rgba);
     return true;
 }
 

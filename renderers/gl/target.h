@@ -133,3 +133,9 @@ typedef struct gl_framebuffer {
 bool gl_framebuffer_create(gl_framebuffer *fb, const gl_framebuffer_desc *desc, char *err,
                            size_t errlen);
 void gl_framebuffer_destroy(gl_framebuffer *fb);
+
+/* Reads level 0 of a colour texture of w x h as RGBA floats, row 0 at the bottom,
+ * tightly packed, without changing any binding the state cache knows (direct state
+ * access; the pixel-pack state is put back), in bands of rows so that no call's byte
+ * count exceeds a GLsizei. For the renderers' float light accumulation. */
+void gl_texture_read_float(GLuint texture, int w, int h, float *rgba);
