@@ -38,3 +38,13 @@ void num_shortest(double v, char *s, size_t cap)
     }
     num_c_decimal_point(s);
 }
+
+void num_shortest_float(float v, char *s, size_t cap)
+{
+    for (int prec = 1; prec <= 9; prec++) {
+        snprintf(s, cap, "%.*g", prec, (double)v);
+        if (strtof(s, NULL) == v)
+            break;
+    }
+    num_c_decimal_point(s);
+}

@@ -8,5 +8,9 @@
  * ("100"). The decimal separator is always '.'. cap >= 32. */
 void num_shortest(double v, char *s, size_t cap);
 
+/* The same for a float: the shortest text that reads back (strtof) as v, so that
+ * 1e-4f prints as "0.0001", not as the double it widens to. */
+void num_shortest_float(float v, char *s, size_t cap);
+
 /* Replaces a locale decimal separator other than '.' in s by '.'. */
 void num_c_decimal_point(char *s);

@@ -7,6 +7,7 @@
 #include <string.h>
 
 #include "results/fsutil.h"
+#include "results/numfmt.h"
 #include "results/yamlout.h"
 #include "runner/yamldoc.h"
 
@@ -285,8 +286,11 @@ bool output_write_run_summary(const char *run_dir, const experiment *e, const ru
         csv_str(w, placement_name(p->lights.placement));
         csv_str(w, rng_kind_name(p->lights.rng));
         csv_u64(w, p->lights.seed);
-        csv_u64(w, r->lights_max);
-        csv_g(w, p->lights.radius);
+        /* the most lights measured; the planned most when nothing was measured */
+        csv_u64(w, r->frames ? r->lights_max : light_count_max(&p->lights.count));
+        char radius[32];
+        num_shortest_float(p->lights.radius, radius, sizeof radius);
+        csv_str(w, radius);
         csv_u64(w, r->trial);
         csv_u64(w, r->frames);
         csv_f64(w, r->measured_s, 6);
