@@ -22,7 +22,7 @@
 #include "renderers/renderer.h"
 #include "results/image_io.h"
 #include "scenes/scene.h"
-#include "tests/gl/egl_probe.h"
+#include "tests/gl/gl_test.h"
 
 enum { W = 160, H = 120 };
 #define RMSE_MAX (1.0 / 255.0)
@@ -276,12 +276,7 @@ static void test_volume_cut_by_far_plane(void **state)
 static int setup(void **state)
 {
     (void)state;
-    char err[512];
-    gl_context_desc d = {.backend = GL_BACKEND_EGL, .device = -1, .debug = true,
-                         .width = W, .height = H};
-    ctx = gl_context_create(&d, err, sizeof err);
-    if (!ctx)
-        print_error("context: %s\n", err);
+    ctx = gl_test_context(W, H);
     return ctx ? 0 : -1;
 }
 

@@ -10,7 +10,7 @@
 
 #include "config.h"
 #include "renderers/gl/context.h"
-#include "tests/gl/egl_probe.h"
+#include "tests/gl/gl_test.h"
 #include "renderers/gl/loader.h"
 
 #include <EGL/egl.h>

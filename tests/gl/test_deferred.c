@@ -32,7 +32,7 @@
 #include "renderers/gl/state.h"
 #include "renderers/renderer.h"
 #include "scenes/scene.h"
-#include "tests/gl/egl_probe.h"
+#include "tests/gl/gl_test.h"
 
 #include <math.h>
 #include <stdio.h>

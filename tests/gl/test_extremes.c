@@ -28,7 +28,7 @@
 #include "renderers/renderer.h"
 #include "renderers/shading.h"
 #include "scenes/scene.h"
-#include "tests/gl/egl_probe.h"
+#include "tests/gl/gl_test.h"
 
 #include <math.h>
 #include <stdio.h>

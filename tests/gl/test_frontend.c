@@ -21,7 +21,7 @@
 #include "renderers/scene_gpu.h"
 #include "renderers/shading.h"
 #include "scenes/scene.h"
-#include "tests/gl/egl_probe.h"
+#include "tests/gl/gl_test.h"
 
 #include <math.h>
 #include <stdio.h>

@@ -17,7 +17,7 @@
 #include "renderers/gl/shaders.h"
 #include "renderers/gl/state.h"
 #include "renderers/gl/target.h"
-#include "tests/gl/egl_probe.h"
+#include "tests/gl/gl_test.h"
 
 #include <math.h>
 #include <stdio.h>

@@ -19,7 +19,7 @@
 #include "renderers/gl/loader.h"
 #include "renderers/renderer.h"
 #include "scenes/scene.h"
-#include "tests/gl/egl_probe.h"
+#include "tests/gl/gl_test.h"
 
 #include <math.h>
 #include <stdio.h>
@@ -317,12 +317,7 @@ static void test_overflow(void **state)
 static int setup(void **state)
 {
     (void)state;
-    char err[512];
-    gl_context_desc d = {.backend = GL_BACKEND_EGL, .device = -1, .debug = true,
-                         .width = W, .height = H};
-    ctx = gl_context_create(&d, err, sizeof err);
-    if (!ctx)
-        print_error("context: %s\n", err);
+    ctx = gl_test_context(W, H);
     return ctx ? 0 : -1;
 }
 

@@ -9,7 +9,7 @@
 #include <cmocka.h>
 
 #include "renderers/gl/context.h"
-#include "tests/gl/egl_probe.h"
+#include "tests/gl/gl_test.h"
 #include "renderers/gl/loader.h"
 #include "renderers/gl/query.h"
 #include "renderers/renderer.h"

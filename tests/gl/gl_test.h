@@ -1,0 +1,53 @@
+#pragma once
+/* Shared by the GL tests.
+ *   egl_display_available()  whether Mesa's surfaceless EGL platform gives a display
+ *                            here at all, and if not why (for the skip message);
+ *                            independent of the code under test. Like the contexts, it
+ *                            never terminates the display: eglTerminate would unload
+ *                            Mesa's driver mid-process (see context_egl.c).
+ *   gl_test_context()        the debug context (every GL error counted) with its
+ *                            off-screen framebuffer at w x h that most tests draw in. */
+#include <EGL/egl.h>
+#include <EGL/eglext.h>
+#include <stdbool.h>
+#include <stdio.h>
+#include <string.h>
+
+#include <setjmp.h>
+#include <stdarg.h>
+#include <stddef.h>
+#include <stdint.h>
+#include <cmocka.h>
+
+#include "renderers/gl/context.h"
+
+static inline bool egl_display_available(char *why, size_t len)
+{
+    const char *ext = eglQueryString(EGL_NO_DISPLAY, EGL_EXTENSIONS);
+    if (!ext || !strstr(ext, "EGL_MESA_platform_surfaceless")) {
+        snprintf(why, len, "no EGL_MESA_platform_surfaceless among the EGL client extensions");
+        return false;
+    }
+    PFNEGLGETPLATFORMDISPLAYEXTPROC get =
+        (PFNEGLGETPLATFORMDISPLAYEXTPROC)eglGetProcAddress("eglGetPlatformDisplayEXT");
+    EGLDisplay d = get ? get(EGL_PLATFORM_SURFACELESS_MESA, EGL_DEFAULT_DISPLAY, NULL)
+                       : EGL_NO_DISPLAY;
+    if (d == EGL_NO_DISPLAY || !eglInitialize(d, NULL, NULL)) {
+        snprintf(why, len, "no surfaceless EGL display can be initialized (EGL error 0x%x)",
+                 (unsigned)eglGetError());
+        return false;
+    }
+    return true;
+}
+
+/* A surfaceless EGL debug context at w x h, or NULL with the reason printed. */
+static inline gl_context *gl_test_context(int w, int h)
+{
+    char err[512];
+    gl_context_desc d = {.backend = GL_BACKEND_EGL, .device = -1, .debug = true,
+                         .width = w, .height = h};
+    gl_context *ctx = gl_context_create(&d, err, sizeof err);
+    if (!ctx)
+        print_error("context: %s\n", err);
+    return ctx;
+}
