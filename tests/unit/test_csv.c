@@ -20,6 +20,7 @@
 
 #include "results/csv.h"
 #include "results/fsutil.h"
+#include "tests/unit/tempdir.h"
 
 typedef struct fixture {
     char dir[64];
@@ -31,8 +32,7 @@ static int setup(void **state)
     fixture *f = calloc(1, sizeof *f);
     if (f == NULL)
         return -1;
-    snprintf(f->dir, sizeof f->dir, "/tmp/test_csv.XXXXXX");
-    if (mkdtemp(f->dir) == NULL) {
+    if (temp_dir_make(f->dir, sizeof f->dir, "test_csv") != 0) {
         free(f);
         return -1;
     }
@@ -80,21 +80,6 @@ static char *slurp(const char *path, size_t *len)
     return buf;
 }
 
-/* Entries in dir other than . and .. */
-static int count_entries(const char *dir)
-{
-    DIR *d = opendir(dir);
-    if (d == NULL)
-        return -1;
-    int n = 0;
-    struct dirent *e;
-    while ((e = readdir(d)) != NULL) {
-        if (strcmp(e->d_name, ".") != 0 && strcmp(e->d_name, "..") != 0)
-            n++;
-    }
-    closedir(d);
-    return n;
-}
 
 /* >>quoting */
 

@@ -14,6 +14,7 @@
 
 #include "results/fsutil.h"
 #include "results/image_io.h"
+#include "tests/unit/tempdir.h"
 
 typedef struct fixture {
     char dir[64];
@@ -24,8 +25,7 @@ static int setup(void **state)
     fixture *f = calloc(1, sizeof *f);
     if (f == NULL)
         return -1;
-    snprintf(f->dir, sizeof f->dir, "/tmp/test_image_io.XXXXXX");
-    if (mkdtemp(f->dir) == NULL) {
+    if (temp_dir_make(f->dir, sizeof f->dir, "test_image_io") != 0) {
         free(f);
         return -1;
     }
@@ -51,20 +51,6 @@ static void check_near(double a, double b, double eps, const char *file, int lin
 }
 #define assert_near(a, b, eps) check_near((a), (b), (eps), __FILE__, __LINE__)
 
-static int count_entries(const char *dir)
-{
-    DIR *d = opendir(dir);
-    if (d == NULL)
-        return -1;
-    int n = 0;
-    struct dirent *e;
-    while ((e = readdir(d)) != NULL) {
-        if (strcmp(e->d_name, ".") != 0 && strcmp(e->d_name, "..") != 0)
-            n++;
-    }
-    closedir(d);
-    return n;
-}
 
 static image make(int w, int h, int c, image_type t)
 {

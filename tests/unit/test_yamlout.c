@@ -16,6 +16,7 @@
 
 #include "results/fsutil.h"
 #include "results/yamlout.h"
+#include "tests/unit/tempdir.h"
 
 typedef struct fixture {
     char dir[64];
@@ -29,8 +30,7 @@ static int setup(void **state)
     fixture *f = calloc(1, sizeof *f);
     if (f == NULL)
         return -1;
-    snprintf(f->dir, sizeof f->dir, "/tmp/test_yamlout.XXXXXX");
-    if (mkdtemp(f->dir) == NULL) {
+    if (temp_dir_make(f->dir, sizeof f->dir, "test_yamlout") != 0) {
         free(f);
         return -1;
     }
@@ -50,20 +50,6 @@ static int teardown(void **state)
     return ok ? 0 : -1;
 }
 
-static int count_entries(const char *dir)
-{
-    DIR *d = opendir(dir);
-    if (d == NULL)
-        return -1;
-    int n = 0;
-    struct dirent *e;
-    while ((e = readdir(d)) != NULL) {
-        if (strcmp(e->d_name, ".") != 0 && strcmp(e->d_name, "..") != 0)
-            n++;
-    }
-    closedir(d);
-    return n;
-}
 
 /* Loads f->path into f->doc with libyaml's parser; returns the root node. */
 static yaml_node_t *load(fixture *f)
