@@ -115,20 +115,26 @@ static double schedule_time(const run_params *p, size_t frame, double elapsed)
     return p->clock == RUN_CLOCK_FIXED ? (double)frame * p->step : elapsed;
 }
 
-static bool screenshot(run_state *st, uint32_t trial, double at, char *err, size_t errlen)
+/* The output framebuffer as an 8-bit image (pixels malloc'ed). */
+static bool read_output(run_state *st, image *img, char *err, size_t errlen)
 {
     const run_params *p = &st->s->p;
-    image img = {.width = p->width, .height = p->height, .channels = 4, .type = IMAGE_U8};
-    img.pixels = malloc((size_t)p->width * (size_t)p->height * 4u);
-    if (!img.pixels) {
-        snprintf(err, errlen, "out of memory for a %dx%d screenshot", p->width, p->height);
+    *img = (image){.width = p->width, .height = p->height, .channels = 4, .type = IMAGE_U8};
+    img->pixels = malloc((size_t)p->width * (size_t)p->height * 4u);
+    if (!img->pixels) {
+        snprintf(err, errlen, "out of memory for a %dx%d image", p->width, p->height);
         return false;
     }
+    return gl_context_read_rgba8(st->ctx, img->pixels, err, errlen);
+}
+
+static bool screenshot(run_state *st, uint32_t trial, double at, char *err, size_t errlen)
+{
+    image img;
     char path[4200];
     snprintf(path, sizeof path, "%s/screenshot-trial%u-t%g.png", st->dir, trial, at);
-    bool ok = gl_context_read_rgba8(st->ctx, img.pixels, err, errlen) &&
-              image_write(path, &img, err, errlen);
-    free(img.pixels);
+    bool ok = read_output(st, &img, err, errlen) && image_write(path, &img, err, errlen);
+    image_free(&img);
     return ok;
 }
 
@@ -152,18 +158,6 @@ static void set_status(run_state *st, const char *reason)
         snprintf(st->status, sizeof st->status, "failed:%s", reason);
 }
 
-/* The output framebuffer as an 8-bit image (pixels malloc'ed). */
-static bool read_output(run_state *st, image *img, char *err, size_t errlen)
-{
-    const run_params *p = &st->s->p;
-    *img = (image){.width = p->width, .height = p->height, .channels = 4, .type = IMAGE_U8};
-    img->pixels = malloc((size_t)p->width * (size_t)p->height * 4u);
-    if (!img->pixels) {
-        snprintf(err, errlen, "out of memory for a %dx%d image", p->width, p->height);
-        return false;
-    }
-    return gl_context_read_rgba8(st->ctx, img->pixels, err, errlen);
-}
 
 /* The per-pixel largest channel error: EXR with the exact values, PNG at x16 gain
  * (1/255 off shows as 16/255; 1/16 and more is white). */
