@@ -82,10 +82,18 @@ typedef struct scene {
     uint32_t nlights_total;
     light_count count;         /* how many of them are active over time */
 
-    /* camera path: orbit about `orbit_target` */
+    /* camera path: orbit about `orbit_target`, or the scene's scripted key poses */
+    camera_path path;
     sm_vec3 orbit_target;
     float orbit_radius, orbit_height, orbit_period;   /* period in seconds of schedule time */
+    float hold;                /* NAN, or the fixed path fraction (camera_params.hold) */
+    uint32_t nkeys;            /* CAMERA_SCRIPTED: key poses, evenly spaced in time */
+    sm_vec3 key_eye[8], key_target[8];
     float fovy, znear, zfar;
+
+    /* Lights whose screen coverage the run records per frame (coverage.csv): the
+     * coverage scenes set this to their authored lights; 0 elsewhere. */
+    uint32_t ncoverage_lights;
 
     int fault;                 /* test scenes: what scene_update does at t >= 0.2 (scene.c) */
 
@@ -95,6 +103,26 @@ typedef struct scene {
     scene_camera cam;
     sm_mat4 view, proj, viewproj;
 } scene;
+
+/* Camera overrides from a manifest's `camera:` block; NAN (or target[0] NAN) keeps the
+ * scene's own value. camera_params_init() sets them all to NAN. */
+typedef enum camera_path {
+    CAMERA_ORBIT = 0,          /* circle of orbit_radius at orbit_height about orbit_target,
+                                * one turn per orbit_period */
+    CAMERA_SCRIPTED,           /* the scene's scripted path (the coverage scenes): a
+                                * sequence of key poses, linearly interpolated, taking
+                                * orbit_period seconds, then held at the last pose */
+} camera_path;
+
+typedef struct camera_params {
+    float radius, height, period;   /* orbit (period also times a scripted path) */
+    sm_vec3 target;
+    float znear, zfar;
+    float hold;                /* 0..1: stop the camera at this fraction of its path (orbit:
+                                * of a turn) for the whole run; NAN: move along it */
+} camera_params;
+
+void camera_params_init(camera_params *cp);
 
 typedef struct scene_catalog_entry {
     const char *name;
@@ -109,4 +137,18 @@ const scene_catalog_entry *scene_catalog_find(const char *name);   /* NULL if un
 scene *scene_build(const char *name, const light_params *lp, int width, int height,
                    char *err, size_t errlen);
 void scene_update(scene *s, double t);
+
+/* Applies a manifest's camera overrides (call after scene_build, before the run; it
+ * re-poses at the scene's current t). False with a message for values that cannot make
+ * a camera: znear <= 0, zfar <= znear, non-positive radius or period, hold outside
+ * [0, 1], a target or an eye that makes the view degenerate. */
+bool scene_set_camera(scene *s, const camera_params *cp, char *err, size_t errlen);
+
+/* Fraction of the screen's pixels (0..1) whose view ray, through the pixel's centre,
+ * passes through light i's volume (point: its sphere of `radius`; spot: its cone of
+ * spot_angle and range `radius`; directional: 1), at the current pose. Geometry only:
+ * what occludes the volume does not matter. Sampled on a grid of at most 128 x 128
+ * pixel centres spread over the screen (exact for the screen at or below that size).
+ * Deterministic. */
+double scene_light_coverage(const scene *s, uint32_t i);
 void scene_destroy(scene *s);   /* NULL is fine */
