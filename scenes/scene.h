@@ -61,6 +61,26 @@ typedef struct scene_camera {
     float znear, zfar;
 } scene_camera;
 
+/* Camera overrides from a manifest's `camera:` block; NAN (or target[0] NAN) keeps the
+ * scene's own value. camera_params_init() sets them all to NAN. */
+typedef enum camera_path {
+    CAMERA_ORBIT = 0,          /* circle of orbit_radius at orbit_height about orbit_target,
+                                * one turn per orbit_period */
+    CAMERA_SCRIPTED,           /* the scene's scripted path (the coverage scenes): a
+                                * sequence of key poses, linearly interpolated, taking
+                                * orbit_period seconds, then held at the last pose */
+} camera_path;
+
+typedef struct camera_params {
+    float radius, height, period;   /* orbit (period also times a scripted path) */
+    sm_vec3 target;
+    float znear, zfar;
+    float hold;                /* 0..1: stop the camera at this fraction of its path (orbit:
+                                * of a turn) for the whole run; NAN: move along it */
+} camera_params;
+
+void camera_params_init(camera_params *cp);
+
 typedef struct scene {
     char name[32];
     int width, height;         /* the run's resolution (aspect of the projection) */
@@ -103,26 +123,6 @@ typedef struct scene {
     scene_camera cam;
     sm_mat4 view, proj, viewproj;
 } scene;
-
-/* Camera overrides from a manifest's `camera:` block; NAN (or target[0] NAN) keeps the
- * scene's own value. camera_params_init() sets them all to NAN. */
-typedef enum camera_path {
-    CAMERA_ORBIT = 0,          /* circle of orbit_radius at orbit_height about orbit_target,
-                                * one turn per orbit_period */
-    CAMERA_SCRIPTED,           /* the scene's scripted path (the coverage scenes): a
-                                * sequence of key poses, linearly interpolated, taking
-                                * orbit_period seconds, then held at the last pose */
-} camera_path;
-
-typedef struct camera_params {
-    float radius, height, period;   /* orbit (period also times a scripted path) */
-    sm_vec3 target;
-    float znear, zfar;
-    float hold;                /* 0..1: stop the camera at this fraction of its path (orbit:
-                                * of a turn) for the whole run; NAN: move along it */
-} camera_params;
-
-void camera_params_init(camera_params *cp);
 
 typedef struct scene_catalog_entry {
     const char *name;
