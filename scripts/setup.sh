@@ -9,7 +9,7 @@ packages=(
   libosmesa6-dev                                      # the second backend
   libyaml-dev libopenimageio-dev
   libcmocka-dev libcglm-dev                           # tests; cglm is the math oracle
-  python3 python3-yaml                                # end-to-end test checks
+  python3 python3-yaml python3-matplotlib             # end-to-end test checks; scripts/report
   clang libclang-rt-14-dev                            # the manifest fuzzer (libFuzzer)
   valgrind                                            # meson test --setup=valgrind
 )

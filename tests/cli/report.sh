@@ -1,0 +1,244 @@
+#!/usr/bin/env bash
+# scripts/report on hand-made output folders with known numbers: the papers' numbers and
+# ours side by side, the verdicts (one claim reproduced, one not, one partly), failed
+# trials left out, experiments not run listed, valid PNG plots, and a bad OUTDIR refused
+# with one line. No GL: the folders are written here in shadesweep's formats.
+. "$(dirname "$0")/lib.sh"
+REPORT="$SOURCE_ROOT/scripts/report"
+if ! "$PYTHON" -c 'import matplotlib' 2>/dev/null; then
+  echo "SKIP: $PYTHON has no matplotlib (scripts/setup.sh installs python3-matplotlib)" >&2
+  exit 77
+fi
+cd "$T"
+
+"$PYTHON" - <<'PY'
+import csv, os
+SUMMARY = ("experiment,run_id,renderer,scene,width,height,gbuffer,lights_placement,lights_rng,"
+           "lights_seed,lights_count,lights_radius,trial,frames,measured_s,fps_mean,"
+           "frametime_mean_us,frametime_sd_us,frametime_ci95_us,frametime_p50_us,frametime_p99_us,"
+           "gpu_mean_us,draw_calls_mean,state_changes_mean,fragments_mean,gbuffer_bytes,image_rmse,"
+           "image_psnr_db,image_max_abs,nonfinite_pixels,harness_us_mean,ci1pct_after_s,status,"
+           "message").split(",")
+SECONDS = ("run_id,trial,second,complete,lights_min,lights_max,frames,fps,frametime_mean_us,"
+           "frametime_sd_us,frametime_p50_us,frametime_p99_us,draw_calls_mean").split(",")
+PASSES = ("run_id,trial,frame,pass,gpu_us,cpu_us,draw_calls,state_changes,fragments,"
+          "primitives").split(",")
+PARAMS = ["scene", "renderer", "resolution", "trials", "warmup", "duration", "clock", "shadows",
+          "gbuffer.preset", "deferred.light_volumes", "lights.count"]
+
+def write(path, cols, rows):
+    os.makedirs(os.path.dirname(path), exist_ok=True)
+    with open(path, "w", newline="") as f:
+        w = csv.writer(f, lineterminator="\n")
+        w.writerow(cols)
+        for r in rows:
+            w.writerow([r.get(c, "") for c in cols])
+
+def experiment(folder, name, runs):
+    """runs: [(params, [summary overrides per trial], seconds {trial: rows}, passes rows)]"""
+    plan, summary = [], []
+    for i, (p, trials, secs, passes) in enumerate(runs):
+        rid = f"{i:012x}"
+        w, h = p["resolution"].split("x")
+        plan.append(dict(p, index=i, run_id=rid, shard=1))
+        d = f"{folder}/runs/{rid}"
+        rows = []
+        for t, over in enumerate(trials, 1):
+            row = dict(experiment=name, run_id=rid, renderer=p["renderer"], scene=p["scene"],
+                       width=w, height=h, gbuffer=p.get("gbuffer.preset", "") if p["renderer"] == "deferred" else "",
+                       lights_placement="random", lights_rng="msvc", lights_seed=1337,
+                       lights_count=160, lights_radius=10, trial=t, frames=100, measured_s=10,
+                       frametime_ci95_us=100.0, status="ok")
+            row.update(over)
+            rows.append(row)
+        write(f"{d}/summary.csv", SUMMARY, rows)
+        summary += rows
+        if secs is not None:
+            write(f"{d}/seconds.csv", SECONDS,
+                  [dict(r, run_id=rid, trial=t) for t, rr in secs.items() for r in rr])
+        if passes is not None:
+            write(f"{d}/passes.csv", PASSES, [dict(r, run_id=rid) for r in passes])
+        with open(f"{d}/meta.yaml", "w") as f:
+            f.write(f'run_id: "{rid}"\nexperiment: {name}\nstatus: ok\nshadesweep:\n'
+                    '  version: "0.1.0"\n  commit: "abc1234"\nparameters:\n'
+                    + "".join(f'  {k}: "{v}"\n' for k, v in p.items())
+                    + 'gl:\n  backend: egl-surfaceless\n  vendor: Mesa/X.org\n'
+                    '  renderer: "llvmpipe (LLVM 15.0.6, 256 bits)"\n'
+                    '  version: "4.5 (Core Profile) Mesa 22.3.6"\n'
+                    'host:\n  cpu: Test CPU 9000\n  threads: 4\n  hostname: vm\n'
+                    'started: "2026-01-02T03:04:05Z"\nfinished: "2026-01-02T03:05:05Z"\n')
+    write(f"{folder}/plan.csv", ["index", "run_id", "shard"] + PARAMS, plan)
+    write(f"{folder}/summary.csv", SUMMARY, summary)
+    with open(f"{folder}/sweep.yaml", "w") as f:
+        f.write(f'experiment: {name}\nmanifest_path: experiments/{name}.yaml\n'
+                f'manifest_hash: "0123456789abcdef"\nruns: {len(runs)}\nshard: all\n')
+
+def seconds_alt(n, fps, ft, lights=160):
+    """n complete seconds alternating between two FPS and two frame times, then a partial one
+    that must be ignored."""
+    rows = [dict(second=s, complete=1, lights_min=lights, lights_max=lights, frames=fps[s % 2],
+                 fps=fps[s % 2], frametime_mean_us=ft[s % 2]) for s in range(n)]
+    rows.append(dict(second=n, complete=0, lights_min=lights, lights_max=lights, frames=1, fps=1,
+                     frametime_mean_us=999999))
+    return rows
+
+base = dict(resolution="320x240", trials=3, warmup="seconds:1", duration="seconds:10",
+            clock="wall", shadows="auto", **{"gbuffer.preset": "curtis",
+            "deferred.light_volumes": "stencil", "lights.count": 160})
+
+# s003-exp1: scene 1 forward faster (reproduced), scene 2 deferred slightly faster within one
+# SD (reproduced), scene 3 forward faster (not reproduced: the paper has deferred faster).
+exp1 = {("curtis-scene1", "deferred"): ((40, 44), (23800, 24000)),
+        ("curtis-scene1", "forward-spml"): ((50, 60), (18000, 18400)),
+        ("curtis-scene2", "deferred"): ((20, 40), (30000, 40000)),
+        ("curtis-scene2", "forward-spml"): ((19, 39), (31000, 41000)),
+        ("curtis-scene3", "deferred"): ((29, 31), (33000, 34000)),
+        ("curtis-scene3", "forward-spml"): ((34, 36), (28000, 29000))}
+runs = []
+for (scene, ren), (fps, ft) in exp1.items():
+    trials = [dict(fps_mean=sum(fps) / 2, frametime_mean_us=sum(ft) / 2) for _ in range(3)]
+    secs = {t: seconds_alt(10, fps, ft) for t in (1, 2, 3)}
+    if scene == "curtis-scene2" and ren == "forward-spml":   # a failed trial is left out
+        trials.append(dict(status="failed:timeout", message="killed after 60 s", frames=0))
+    runs.append((dict(base, scene=scene, renderer=ren), trials, secs, None))
+experiment("out/exp1", "s003-exp1", runs)
+
+# s000-drawcalls (named with -smoke): canyon forward fewer (yes), interior with shadows x1.5
+# (yes), without shadows x1.2, not wider (partly).
+def passes(shadows, rest, frames=4):
+    rows = []
+    for t in (1, 2):
+        for fr in range(frames):
+            if shadows:
+                rows.append(dict(trial=t, frame=fr, **{"pass": "shadows"}, gpu_us=50, draw_calls=shadows))
+            rows.append(dict(trial=t, frame=fr, **{"pass": "main"}, gpu_us=80, draw_calls=rest))
+    return rows
+dc = {("canyon", "auto", "deferred"): (0, 17), ("canyon", "auto", "forward-mpml"): (0, 15),
+      ("canyon", "off", "deferred"): (0, 17), ("canyon", "off", "forward-mpml"): (0, 15),
+      ("interior", "auto", "deferred"): (200, 100), ("interior", "auto", "forward-mpml"): (330, 120),
+      ("interior", "off", "deferred"): (0, 100), ("interior", "off", "forward-mpml"): (0, 120)}
+runs = []
+for (scene, sh, ren), (s, r) in dc.items():
+    trials = [dict(draw_calls_mean=s + r, fps_mean=60, frametime_mean_us=16000) for _ in range(2)]
+    runs.append((dict(base, scene=scene, renderer=ren, shadows=sh, trials=2), trials, None, passes(s, r)))
+experiment("out/dc", "s000-drawcalls-smoke", runs)
+
+# s003-exp2: lights grow 10 a second for 20 s; forward x2.5 at 0 lights, deferred ahead from
+# second 3 (30 lights), forward's frame time steepens at second 15 (150 lights, 79%).
+runs = []
+for ren in ("deferred", "forward-spml"):
+    secs = {}
+    for t in (1, 2, 3):
+        rows = []
+        for s in range(20):
+            if ren == "deferred":
+                ft = 4000 + 1000 * s + 50 * t
+            else:
+                ft = 1600 + 2000 * s + 50 * t + (6000 * (s - 15) if s > 15 else 0)
+            rows.append(dict(second=s, complete=1, lights_min=10 * s, lights_max=10 * s, frames=round(1e6 / ft),
+                             fps=round(1e6 / ft), frametime_mean_us=ft))
+        secs[t] = rows
+    trials = [dict(fps_mean=50, frametime_mean_us=20000) for _ in range(3)]
+    runs.append((dict(base, scene="curtis-scene3", renderer=ren, duration="seconds:20",
+                      **{"lights.count": "start:0,step:10,every:1,max:590"}), trials, secs, None))
+experiment("out/exp2", "s003-exp2", runs)
+
+# gbuffer-error: four configurations, two on the Pareto front.
+runs = []
+for preset, lv, ft, rmse in (("fat", "stencil", 9000, 0.001), ("curtis", "stencil", 8000, 0.002),
+                             ("reference", "volume", 12000, 0.0001), ("compact", "volume", 13000, 0.003)):
+    trials = [dict(fps_mean=1e6 / ft, frametime_mean_us=ft, image_rmse=rmse, image_psnr_db=60)
+              for _ in range(2)]
+    runs.append((dict(base, scene="canyon", renderer="deferred", **{"gbuffer.preset": preset,
+                      "deferred.light_volumes": lv}), trials, None, None))
+experiment("out/ge", "gbuffer-error", runs)
+
+# an experiment the report does not know
+experiment("out/other", "my-own-sweep", [(dict(base, scene="shapes", renderer="deferred"),
+                                          [dict(fps_mean=1, frametime_mean_us=1)], None, None)])
+PY
+
+"$REPORT" out >report.out 2>report.err || fail "report: rc $? $(cat report.err)"
+grep -q "wrote out/report.md" report.out || fail "no summary line: $(cat report.out)"
+R=out/report.md
+[ -s $R ] || fail "no report.md"
+has() { grep -qF -- "$1" $R || fail "report.md lacks: $1"; }
+# the header
+has "llvmpipe (LLVM 15.0.6, 256 bits)"
+has "Test CPU 9000, 4 threads"
+has "abc1234"
+has "resolution 320x240"
+has "Software rendering"
+# the papers' numbers (Tables 1, 2, 6; draw calls) and ours beside them
+has "| 1 | 46.107 | 42.000 | 58.156 | 55.000 |"
+has "| Average Total | 46.105 | 42.000 | 56.248 | 55.000 |"
+has "| Average Standard Deviation | ± 5.800 | ± 2.108 | ± 12.695 | ± 5.270 |"
+has "| 1 | 22057.5 | 23900.0 | 17735.9 | 18200.0 |"
+has "| Average Total | 22546.5 | 33500.0 | 35013.5 | 28500.0 |"
+has "| canyon | auto | 17 | 17.0 (without shadow pass 17.0) | 16 | 15.0 (without shadow pass 15.0) |"
+has "| interior | auto | 346 | 300.0 (without shadow pass 100.0) | 531 | 450.0 (without shadow pass 120.0) |"
+has "| interior | off | 110 | 100.0 (without shadow pass 100.0) | 302 | 120.0 (without shadow pass 120.0) |"
+# the verdicts
+claim() {  # claim TEXT VERDICT: the claims row that starts with TEXT ends with VERDICT
+  grep -F -- "| $1" $R | grep -qF -- "| **$2** |" || fail "claim '$1' is not '$2': $(grep -F -- "| $1" $R)"
+}
+claim "curtis-scene1: forward is faster" yes
+claim "curtis-scene2: deferred slightly faster" yes
+claim "curtis-scene3: deferred is faster" no
+claim "scenes 1 and 3: deferred is more consistent" partly
+claim "canyon: forward needs fewer draw calls" yes
+claim "interior with shadows: forward needs more" yes
+claim "interior without shadows: forward needs more" partly
+claim "with no lights forward's FPS is almost triple" yes
+claim "deferred overtakes forward at 3-4 s" yes
+claim "forward's frame time starts rising steeply" yes
+has "deferred ahead from second 3 (30 lights) on"
+has "x1.53"
+# failed trials left out, experiments not run and unknown ones listed
+has "trial 4: failed:timeout"
+grep -q "^| s000-stencil | not run |" $R || fail "s000-stencil not listed as not run"
+grep -q "^| s000-resolution | not run |" $R || fail "s000-resolution not listed as not run"
+grep -q "^| my-own-sweep | not recognised" $R || fail "unknown experiment not listed"
+has "(experiment s000-drawcalls-smoke)"
+# the Pareto front: fat and curtis are on it, reference too (least error), compact is not
+grep -F "| compact/stencil" $R >/dev/null && fail "compact/stencil does not exist"
+grep -F "| compact/volume |" $R | grep -q "| yes |" && fail "compact/volume marked on the front"
+grep -F "| curtis/stencil |" $R | grep -q "| yes |" || fail "curtis/stencil not on the front"
+# the plots: valid PNGs, each linked from the report
+for p in s003-exp2_fps_time s003-exp2_frametime_time s003-exp2_frametime_lights s000-drawcalls \
+         gbuffer-error_pareto; do
+  f=out/plots/$p.png
+  [ -s "$f" ] || fail "no plot $f"
+  grep -qF "(plots/$p.png)" $R || fail "$p.png not linked"
+done
+"$PYTHON" - out/plots/*.png <<'PY' || fail "a plot is not a valid PNG"
+import struct, sys, zlib
+for path in sys.argv[1:]:
+    data = open(path, "rb").read()
+    assert data[:8] == b"\x89PNG\r\n\x1a\n", path
+    pos, seen = 8, []
+    while pos < len(data):
+        n, kind = struct.unpack(">I4s", data[pos:pos + 8])
+        body = data[pos + 8:pos + 8 + n]
+        crc, = struct.unpack(">I", data[pos + 8 + n:pos + 12 + n])
+        assert zlib.crc32(kind + body) == crc, (path, kind)
+        seen.append(kind)
+        pos += 12 + n
+    assert seen[0] == b"IHDR" and seen[-1] == b"IEND" and b"IDAT" in seen, (path, seen)
+    w, h = struct.unpack(">II", data[16:24])
+    assert w > 100 and h > 100, (path, w, h)
+PY
+
+# a bad OUTDIR: non-zero, one line naming it
+bad() {  # bad DIR WORDS
+  set +e
+  "$REPORT" "$1" >bad.out 2>bad.err; rc=$?
+  set -e
+  [ $rc -ne 0 ] || fail "report $1 succeeded"
+  [ "$(wc -l <bad.err)" -eq 1 ] && grep -q "^report: .*$2" bad.err || fail "report $1: $(cat bad.err)"
+}
+bad nowhere "no such folder"
+mkdir empty
+bad empty "no shadesweep output folder"
+bad out/report.md "not a folder"
+echo "report: ok"
