@@ -8,6 +8,28 @@ static const scene_catalog_entry catalog[] = {
     {"empty", "no geometry: an orbiting camera and the run's lights; measures the harness"},
     {"shapes", "a floor and a 3 x 3 grid of textured, glossy, normal-mapped and emissive "
                "objects, two of them rotating, under an orbiting camera"},
+    /* Curtis 2014 (seed 003) section 6 */
+    {"curtis-scene1", "Curtis 2014 scene 1: one rotating model (a torus knot) under a camera "
+                      "orbiting once in 60 s; made for 160 lights of radius 10"},
+    {"curtis-scene2", "Curtis 2014 scene 2: two models rotating about the X and Z axes and two "
+                      "icospheres, one of which fills the screen from about 19 to 21 s of the "
+                      "60 s orbit"},
+    {"curtis-scene3", "Curtis 2014 scene 3: a hundred spheres and four rotating models under "
+                      "a 60 s orbit; the scene of the 0 to 590 light growth"},
+    /* seed 000 section 4.8 */
+    {"canyon", "seed 000's exterior: four 128 x 128-cell terrain tiles forming an 8192-unit "
+               "canyon, a sun (its authored light), ambient and sky, draw distance 8192, an "
+               "orbit over the valley that sees to the far plane"},
+    {"interior", "seed 000's interior: a dark generator hall and corridor of 72 mesh "
+                 "instances, draw distance 2048; authored lights: a shadowing moon, 5 omni "
+                 "lights, 3 shadowing spots overlapping between the two generators"},
+    /* seed 000 sections 5.4 and 5.5: scripted cameras, camera.hold 0 and 1 are the two ends */
+    {"spot-coverage", "seed 000 5.4.1: one spot light covering about half the screen (hold 0), "
+                      "then the camera inside its cone (hold 1)"},
+    {"two-spots-overlap", "seed 000 5.4.2: two overlapping spots seen from above, zooming from "
+                          "a small overlap (hold 0) until it fills the screen (hold 1)"},
+    {"floating-spot", "seed 000 5.5: a spot whose volume covers most of the screen (hold 1) "
+                      "while it lights no visible pixel"},
 };
 
 /* Scenes that fail on purpose at schedule time 0.2 s, for the tests of run

@@ -5,14 +5,27 @@
 #include "scenes/rng.h"
 
 /* random: uniform in the scene's light bounds (positions, then colours, per light);
- * none: no lights; grid: non-overlapping lights on a regular grid in the light bounds
- * (coverage studies); scene: the scene's authored lights (scene.c documents each). */
+ * none: no lights;
+ * grid: on a regular grid of cells in the light bounds, one light at each cell's centre
+ *   (coverage studies): columns in x and z, one layer at mid-height unless the bounds are
+ *   tall enough that more layers space the lights further apart; the grid is laid out
+ *   for the schedule's largest count, filled in row order (x fastest, then z, then y), so
+ *   growth never moves earlier lights; colours as random. A radius over half the
+ *   neighbours' spacing (spheres that would overlap) fails scene_build, naming the
+ *   spacing and the largest radius allowed;
+ * scene: the scene's authored lights, in the order scene_*.c lists them; the count caps
+ *   how many are ever on (growth turns them on in that order). They keep their own
+ *   type, range, colour, attenuation and shadows: seed, rng, radius, overlap, color_max
+ *   and attenuation do not apply. A scene without authored lights fails scene_build. */
 typedef enum light_placement {
     PLACEMENT_RANDOM = 0,
     PLACEMENT_NONE,
     PLACEMENT_GRID,
     PLACEMENT_SCENE,
 } light_placement;
+
+/* count `all` (manifest): every authored light of the scene (placement scene only). */
+#define LIGHT_COUNT_ALL UINT32_MAX
 
 /* count: a fixed number (growth = false, start = max = n) or a growth schedule:
  * active(t) = min(max, start + step * floor(t / every)). */
@@ -28,9 +41,10 @@ typedef struct light_params {
     rng_kind rng;
     light_count count;
     float radius;              /* range of each point light, world units */
-    float overlap;             /* > 0: derive the radius so that the mean number of lights
-                                * reaching a point of the light bounds is `overlap`
-                                * (scene.c: lights_overlap_radius); 0: use radius */
+    float overlap;             /* > 0 (random and grid): the radius is
+                                * lights_overlap_radius(count max, overlap, light bounds),
+                                * so that a point of the light bounds is reached by
+                                * `overlap` lights on average; 0: use radius */
     float color_max;           /* each channel uniform in [0, color_max]; seed 003 used 0.3 */
     int attenuation;           /* attenuation_kind (scenes/scene.h) */
     float quadratic[3];        /* a, b, c of 1 / (a d^2 + b d + c) */
@@ -42,7 +56,11 @@ uint32_t light_count_at(const light_count *c, double t);
 uint32_t light_count_max(const light_count *c);
 
 /* The radius at which n lights placed uniformly in the box [bmin, bmax] reach, on
- * average, k lights per point of the box: n (4/3 pi r^3) / V = k (a flat box, zero
- * extent in one axis, uses the disc area: n pi r^2 / A = k). Boundary losses are
- * ignored, as seed 000's and 003's placements did. 0 when n = 0 or the box is empty. */
+ * average, k lights per point of the box: n (4/3 pi r^3) / V = k, so
+ * r = cbrt(3 k V / (4 pi n)); a flat box (zero extent in one axis) uses the disc area,
+ * n pi r^2 / A = k, r = sqrt(k A / (pi n)); a box flat in two axes the segment length,
+ * n 2 r / L = k, r = k L / (2 n). Boundary losses are ignored, as seed 000's and 003's
+ * placements did: the mean holds for points at least r inside the box, and is lower
+ * nearer its faces. 0 when n = 0, k is not positive and finite, or the box is empty
+ * (min > max on an axis, or a single point). */
 float lights_overlap_radius(uint32_t n, float k, const float bmin[3], const float bmax[3]);

@@ -1,5 +1,8 @@
-/* Scene construction and posing. Each catalog scene is built here from its name;
- * the run's lights are placed from the manifest's light parameters. */
+/* Scene construction and posing. Each catalog scene is built by its builder (the
+ * registry below; scenes/scene_*.c); the run's lights are then placed from the manifest's
+ * light parameters; scene_update poses everything from schedule time alone.
+ *
+ * Sections: >>registry >>placement >>build >>posing >>camera-overrides >>coverage */
 #include "scenes/scene.h"
 
 #include <math.h>
@@ -9,6 +12,63 @@
 #include <string.h>
 #include <time.h>
 
+#include "scenes/scene_build.h"
+
+// >>registry
+
+static const struct {
+    const char *name;
+    scene_build_fn build;
+} builders[] = {
+    {"empty", scene_build_empty},
+    {"shapes", scene_build_shapes},
+    {"curtis-scene1", scene_build_curtis1},
+    {"curtis-scene2", scene_build_curtis2},
+    {"curtis-scene3", scene_build_curtis3},
+    {"canyon", scene_build_canyon},
+    {"interior", scene_build_interior},
+    {"spot-coverage", scene_build_spot_coverage},
+    {"two-spots-overlap", scene_build_two_spots},
+    {"floating-spot", scene_build_floating_spot},
+    /* the test scenes (catalog.c) are "empty" that fails on purpose */
+    {"test-abort", scene_build_empty},
+    {"test-segv", scene_build_empty},
+    {"test-sigkill", scene_build_empty},
+    {"test-hang", scene_build_empty},
+};
+
+static scene_build_fn find_builder(const char *name)
+{
+    for (size_t i = 0; i < sizeof builders / sizeof builders[0]; i++)
+        if (strcmp(builders[i].name, name) == 0)
+            return builders[i].build;
+    return NULL;
+}
+
+// >>placement
+
+static void point_light_from_params(scene_light *l, const light_params *lp, float radius)
+{
+    l->type = LIGHT_POINT;
+    l->radius = radius;
+    l->attenuation = (attenuation_kind)lp->attenuation;
+    l->att_a = lp->quadratic[0];
+    l->att_b = lp->quadratic[1];
+    l->att_c = lp->quadratic[2];
+    sm_vec3_make(0.0f, -1.0f, 0.0f, l->direction);
+}
+
+/* The run's point-light radius: lp->radius, or with lp->overlap > 0 the radius at which
+ * the schedule's largest count reaches `overlap` lights per point of the light bounds
+ * (lights_overlap_radius). */
+static float placement_radius(const scene *s, const light_params *lp)
+{
+    if (lp->overlap > 0.0f)
+        return lights_overlap_radius(s->nlights_total, lp->overlap, s->light_bounds_min,
+                                     s->light_bounds_max);
+    return lp->radius;
+}
+
 /* Random placement: for each light in order, x, y, z uniform in the scene's light
  * bounds, then r, g, b uniform in [0, color_max]. Lights are generated up to the
  * schedule's maximum once, so growth adds lights without moving earlier ones. */
@@ -16,9 +76,9 @@ static void place_random(scene *s, const light_params *lp)
 {
     rng g;
     rng_seed(&g, lp->rng, lp->seed);
+    float radius = placement_radius(s, lp);
     for (uint32_t i = 0; i < s->nlights_total; i++) {
         scene_light *l = &s->lights[i];
-        l->type = LIGHT_POINT;
         for (int k = 0; k < 3; k++) {
             float u = rng_unit(&g);
             l->position[k] = s->light_bounds_min[k] +
@@ -26,164 +86,118 @@ static void place_random(scene *s, const light_params *lp)
         }
         for (int k = 0; k < 3; k++)
             l->color[k] = rng_unit(&g) * lp->color_max;
-        l->radius = lp->radius;
-        l->attenuation = (attenuation_kind)lp->attenuation;
-        l->att_a = lp->quadratic[0];
-        l->att_b = lp->quadratic[1];
-        l->att_c = lp->quadratic[2];
-        sm_vec3 down = {0.0f, -1.0f, 0.0f};
-        sm_vec3_copy(down, l->direction);
+        point_light_from_params(l, lp, radius);
     }
 }
 
-/* Adds a mesh made by a generator call; false (with err) on failure. */
-#define ADD_MESH(call)                                                                        \
-    (s->nmeshes < MAX_MESHES && (call) ? (s->nmeshes++, true) : false)
+/* A grid: n[] cells along x, y, z; the nearest neighbours are `spacing` apart. */
+typedef struct grid_layout {
+    uint32_t n[3];
+    double spacing;
+} grid_layout;
 
-enum { MAX_MESHES = 16, MAX_TEXTURES = 16, MAX_MATERIALS = 16 };
-
-static bool alloc_tables(scene *s, uint32_t nobjects)
+/* Distance between neighbouring cell centres along an axis; no neighbour: infinite. */
+static double axis_spacing(uint32_t cells, double extent)
 {
-    s->meshes = calloc(MAX_MESHES, sizeof *s->meshes);
-    s->textures = calloc(MAX_TEXTURES, sizeof *s->textures);
-    s->materials = calloc(MAX_MATERIALS, sizeof *s->materials);
-    s->objects = calloc(nobjects ? nobjects : 1, sizeof *s->objects);
-    return s->meshes && s->textures && s->materials && s->objects;
+    return cells > 1 ? extent / (double)cells : INFINITY;
 }
 
-static scene_material *add_material(scene *s, float r, float g, float b, float specular,
-                                    float shininess)
+/* m lights in one layer of x-z cells, as square as the extents allow: nx near
+ * sqrt(m ex / ez) (cells of side sqrt(ex ez / m)), the floor or ceiling of it, whichever
+ * spaces them further apart (the smaller on a tie), and nz = ceil(m / nx) rows. A flat
+ * extent gets one cell that way. */
+static void grid_layer(uint32_t m, double ex, double ez, uint32_t *nx, uint32_t *nz,
+                       double *spacing)
 {
-    scene_material *m = &s->materials[s->nmaterials++];
-    m->diffuse[0] = r;
-    m->diffuse[1] = g;
-    m->diffuse[2] = b;
-    m->specular = specular;
-    m->shininess = shininess;
-    m->diffuse_map = m->gloss_map = m->normal_map = m->emissive_map = -1;
-    return m;
-}
-
-static scene_object *add_object(scene *s, uint32_t meshi, uint32_t material, float x, float y,
-                                float z, float scale)
-{
-    scene_object *o = &s->objects[s->nobjects++];
-    o->mesh = meshi;
-    o->material = material;
-    o->position[0] = x;
-    o->position[1] = y;
-    o->position[2] = z;
-    o->scale = scale;
-    o->spin_axis[1] = 1.0f;
-    return o;
-}
-
-/* A texture made by one of texture_gen's makers; its index, or -1 on failure. */
-static int add_texture(scene *s, bool (*make)(const texture_desc *, texture_image *, char *, size_t),
-                       const texture_desc *d, char *err, size_t errlen)
-{
-    if (s->ntextures >= MAX_TEXTURES || !make(d, &s->textures[s->ntextures], err, errlen))
-        return -1;
-    return (int)s->ntextures++;
-}
-
-/* "shapes": a floor and a 3 x 3 grid of objects (sphere, torus knot, box, icosphere,
- * cone, pillar...) under an orbiting camera; materials without maps, with diffuse
- * and gloss maps, and with diffuse, normal and emissive maps, so every shader
- * variant has work. Lights are placed above the floor. */
-static bool build_shapes(scene *s, char *err, size_t errlen)
-{
-    if (!alloc_tables(s, 10))
-        goto oom;
-    texture_desc checker = {.width = 256, .height = 256, .pattern = TEXTURE_CHECKER, .cells = 8,
-                            .color_a = {0.9f, 0.85f, 0.7f}, .color_b = {0.35f, 0.3f, 0.25f}};
-    texture_desc bricks = {.width = 256, .height = 256, .pattern = TEXTURE_BRICKS, .cells = 8,
-                           .seed = 7, .color_a = {0.7f, 0.3f, 0.2f}, .color_b = {0.8f, 0.8f, 0.75f},
-                           .emissive_fraction = 0.1f, .emissive_color = {1.0f, 0.6f, 0.2f}};
-    texture_desc ground = {.width = 256, .height = 256, .pattern = TEXTURE_NOISE, .cells = 4,
-                           .seed = 3, .color_a = {0.25f, 0.3f, 0.2f}, .color_b = {0.5f, 0.5f, 0.4f},
-                           .noise = 0.5f};
-    int t_checker = add_texture(s, texture_diffuse, &checker, err, errlen);
-    int t_checker_gloss = add_texture(s, texture_gloss, &checker, err, errlen);
-    int t_bricks = add_texture(s, texture_diffuse, &bricks, err, errlen);
-    int t_bricks_normal = add_texture(s, texture_normal_map, &bricks, err, errlen);
-    int t_bricks_emissive = add_texture(s, texture_emissive, &bricks, err, errlen);
-    int t_ground = add_texture(s, texture_diffuse, &ground, err, errlen);
-    if (t_checker < 0 || t_checker_gloss < 0 || t_bricks < 0 || t_bricks_normal < 0 ||
-        t_bricks_emissive < 0 || t_ground < 0)
-        return false;
-
-    scene_material *floor = add_material(s, 1, 1, 1, 0.2f, 16);
-    floor->diffuse_map = t_ground;
-    add_material(s, 0.8f, 0.8f, 0.85f, 0.6f, 32);                  /* 1: plain */
-    scene_material *glossy = add_material(s, 1, 1, 1, 1.0f, 64);    /* 2: checker + gloss */
-    glossy->diffuse_map = t_checker;
-    glossy->gloss_map = t_checker_gloss;
-    scene_material *brick = add_material(s, 1, 1, 1, 0.3f, 24);     /* 3: bricks */
-    brick->diffuse_map = t_bricks;
-    brick->normal_map = t_bricks_normal;
-    brick->emissive_map = t_bricks_emissive;
-    brick->emissive[0] = brick->emissive[1] = brick->emissive[2] = 1.0f;
-
-    sm_vec3 floor_half = {40.0f, 0.5f, 40.0f}, box_half = {1.5f, 1.5f, 1.5f};
-    if (!ADD_MESH(mesh_box(floor_half, &s->meshes[s->nmeshes], err, errlen)) ||
-        !ADD_MESH(mesh_sphere(2.0f, 32, 16, &s->meshes[s->nmeshes], err, errlen)) ||
-        !ADD_MESH(mesh_torus_knot(2, 3, 1.6f, 0.5f, 128, 12, &s->meshes[s->nmeshes], err, errlen)) ||
-        !ADD_MESH(mesh_box(box_half, &s->meshes[s->nmeshes], err, errlen)) ||
-        !ADD_MESH(mesh_icosphere(2.0f, 2, &s->meshes[s->nmeshes], err, errlen)) ||
-        !ADD_MESH(mesh_cone(1.8f, 3.5f, 24, true, &s->meshes[s->nmeshes], err, errlen)) ||
-        !ADD_MESH(mesh_pillar(1.0f, 5.0f, 16, &s->meshes[s->nmeshes], err, errlen)))
-        return false;
-
-    add_object(s, 0, 0, 0.0f, -0.5f, 0.0f, 1.0f);
-    /* mesh, material per grid cell, row by row */
-    static const uint32_t grid[9][2] = {{1, 1}, {2, 2}, {3, 3}, {4, 2}, {2, 3},
-                                        {5, 1}, {6, 3}, {1, 2}, {3, 1}};
-    for (int i = 0; i < 9; i++) {
-        float x = (float)(i % 3 - 1) * 10.0f, z = (float)(i / 3 - 1) * 10.0f;
-        /* the pillar stands on the floor, the cone lies on its side */
-        float y = grid[i][0] == 6 ? 0.0f : (grid[i][0] == 5 ? 1.8f : 2.2f);
-        scene_object *o = add_object(s, grid[i][0], grid[i][1], x, y, z, 1.0f);
-        if (grid[i][0] == 2 || grid[i][0] == 3)
-            o->spin_rate = 0.5f;   /* the papers' rotating models */
+    *nx = *nz = 1;
+    if (m > 1) {
+        if (ex > 0 && ez > 0) {
+            double r = sqrt((double)m * ex / ez);
+            double cand[2] = {floor(r), ceil(r)};
+            double best = -1.0;
+            for (int c = 0; c < 2; c++) {
+                uint32_t x = (uint32_t)fmin(fmax(cand[c], 1.0), (double)m);
+                uint32_t z = (m + x - 1) / x;
+                double sp = fmin(axis_spacing(x, ex), axis_spacing(z, ez));
+                if (sp > best) {
+                    best = sp;
+                    *nx = x;
+                    *nz = z;
+                }
+            }
+        } else if (ez > 0) {
+            *nz = m;
+        } else {
+            *nx = m;   /* along x, or all in one point when both are flat */
+        }
     }
-    sm_vec3 bmin = {-20.0f, 0.5f, -20.0f}, bmax = {20.0f, 8.0f, 20.0f};
-    sm_vec3_copy(bmin, s->light_bounds_min);
-    sm_vec3_copy(bmax, s->light_bounds_max);
-    sm_vec3 amb = {0.05f, 0.05f, 0.06f};
-    sm_vec3_copy(amb, s->ambient);
-    s->sky = true;
-    s->sky_color[0] = 0.45f;
-    s->sky_color[1] = 0.6f;
-    s->sky_color[2] = 0.8f;
-    sm_vec3_zero(s->orbit_target);
-    s->orbit_radius = 35.0f;
-    s->orbit_height = 18.0f;
-    s->orbit_period = 30.0f;
-    s->fovy = sm_deg2rad(60.0f);
-    s->znear = 0.5f;
-    s->zfar = 200.0f;
+    *spacing = fmin(axis_spacing(*nx, ex), axis_spacing(*nz, ez));
+}
+
+/* The grid for n lights in extents e[3] with the largest nearest-neighbour spacing:
+ * ny layers (one at mid-height unless the bounds are tall enough that more layers
+ * space the lights further apart), each holding ceil(n / ny) lights as grid_layer
+ * lays them out. Ties keep the fewer layers. */
+static grid_layout grid_plan(uint32_t n, const double e[3])
+{
+    grid_layout best = {{1, 1, 1}, -1.0};
+    uint32_t most = n < 4096 ? n : 4096;
+    for (uint32_t ny = 1; ny <= most || ny == 1; ny++) {
+        double sy = axis_spacing(ny, e[1]);
+        if (sy <= best.spacing)
+            break;   /* more layers only bring them closer */
+        uint32_t m = n ? (n + ny - 1) / ny : 0, nx, nz;
+        double sxz;
+        grid_layer(m, e[0], e[2], &nx, &nz, &sxz);
+        double sp = fmin(sy, sxz);
+        if (sp > best.spacing) {
+            best.n[0] = nx;
+            best.n[1] = ny;
+            best.n[2] = nz;
+            best.spacing = sp;
+        }
+    }
+    return best;
+}
+
+/* Grid placement: the layout is planned for the schedule's largest count (grid_plan),
+ * and light k takes cell k in row order (x fastest, then z, then the layer), at the
+ * cell's centre: growth adds lights without moving earlier ones. Colours r, g, b uniform
+ * in [0, color_max] from the seeded generator, per light in order. Fails when the
+ * radius exceeds half the spacing (neighbouring spheres would overlap). */
+static bool place_grid(scene *s, const light_params *lp, char *err, size_t errlen)
+{
+    double e[3];
+    for (int k = 0; k < 3; k++)
+        e[k] = fmax(0.0, (double)s->light_bounds_max[k] - (double)s->light_bounds_min[k]);
+    grid_layout g = grid_plan(s->nlights_total, e);
+    float radius = placement_radius(s, lp);
+    if ((double)radius > g.spacing / 2.0) {
+        snprintf(err, errlen,
+                 "scene '%s': grid placement of %u lights in %u x %u x %u cells (x, y, z) "
+                 "of the light bounds puts neighbours %.6g apart: radius %.6g makes them "
+                 "overlap; the largest radius allowed is %.6g",
+                 s->name, s->nlights_total, g.n[0], g.n[1], g.n[2], g.spacing,
+                 (double)radius, g.spacing / 2.0);
+        return false;
+    }
+    rng r;
+    rng_seed(&r, lp->rng, lp->seed);
+    uint32_t per_layer = g.n[0] * g.n[2];
+    for (uint32_t i = 0; i < s->nlights_total; i++) {
+        scene_light *l = &s->lights[i];
+        uint32_t cell[3] = {i % per_layer % g.n[0], i / per_layer, i % per_layer / g.n[0]};
+        for (int k = 0; k < 3; k++)
+            l->position[k] = (float)((double)s->light_bounds_min[k] +
+                                     ((double)cell[k] + 0.5) * e[k] / (double)g.n[k]);
+        for (int k = 0; k < 3; k++)
+            l->color[k] = rng_unit(&r) * lp->color_max;
+        point_light_from_params(l, lp, radius);
+    }
     return true;
-oom:
-    snprintf(err, errlen, "out of memory building scene 'shapes'");
-    return false;
 }
 
-static void build_empty(scene *s)
-{
-    sm_vec3 bmin = {-50.0f, 0.0f, -50.0f}, bmax = {50.0f, 20.0f, 50.0f};
-    sm_vec3_copy(bmin, s->light_bounds_min);
-    sm_vec3_copy(bmax, s->light_bounds_max);
-    sm_vec3 amb = {0.1f, 0.1f, 0.1f};
-    sm_vec3_copy(amb, s->ambient);
-    sm_vec3_zero(s->orbit_target);
-    s->orbit_radius = 80.0f;
-    s->orbit_height = 30.0f;
-    s->orbit_period = 60.0f;
-    s->fovy = sm_deg2rad(60.0f);
-    s->znear = 0.1f;
-    s->zfar = 1000.0f;
-}
+// >>build
 
 scene *scene_build(const char *name, const light_params *lp, int width, int height,
                    char *err, size_t errlen)
@@ -192,26 +206,34 @@ scene *scene_build(const char *name, const light_params *lp, int width, int heig
         snprintf(err, errlen, "unknown scene '%s'", name);
         return NULL;
     }
+    scene_build_fn build = find_builder(name);
+    if (!build) {
+        snprintf(err, errlen, "bug: scene '%s' is in the catalog but has no builder", name);
+        return NULL;
+    }
     if (width <= 0 || height <= 0) {
         snprintf(err, errlen, "bug: scene '%s' built for a %dx%d target", name, width, height);
         return NULL;
     }
     scene *s = calloc(1, sizeof *s);
-    if (!s)
-        goto oom;
+    scene_builder *b = calloc(1, sizeof *b);
+    if (!s || !b) {
+        free(b);
+        free(s);
+        snprintf(err, errlen, "out of memory building scene '%s'", name);
+        return NULL;
+    }
     snprintf(s->name, sizeof s->name, "%s", name);
     s->width = width;
     s->height = height;
-    if (strcmp(name, "shapes") == 0) {
-        if (!build_shapes(s, err, errlen)) {
-            char why[256];
-            snprintf(why, sizeof why, "%s", err);
-            scene_destroy(s);
-            snprintf(err, errlen, "scene 'shapes': %s", why);
-            return NULL;
-        }
-    } else {
-        build_empty(s);   /* "empty" and the test scenes */
+    s->hold = NAN;
+    char why[256] = "";
+    b->s = s;
+    b->err = why;
+    b->errlen = sizeof why;
+    if (!build(b) || b->failed) {
+        snprintf(err, errlen, "scene '%s': %s", name, why);
+        goto fail;
     }
     static const char *const faults[] = {"test-abort", "test-segv", "test-sigkill", "test-hang"};
     for (int i = 0; i < 4; i++)
@@ -219,21 +241,52 @@ scene *scene_build(const char *name, const light_params *lp, int width, int heig
             s->fault = i + 1;
 
     s->count = lp->count;
-    s->nlights_total = lp->placement == PLACEMENT_NONE ? 0 : light_count_max(&lp->count);
+    uint32_t most = light_count_max(&lp->count);
+    switch (lp->placement) {
+    case PLACEMENT_NONE:
+        s->nlights_total = 0;
+        break;
+    case PLACEMENT_SCENE:
+        /* the authored lights in their order; the count caps how many are ever on */
+        if (b->nauthored == 0) {
+            snprintf(err, errlen, "scene '%s' has no authored lights", name);
+            goto fail;
+        }
+        s->nlights_total = most < b->nauthored ? most : b->nauthored;
+        s->ncoverage_lights = b->ncoverage < s->nlights_total ? b->ncoverage : s->nlights_total;
+        break;
+    case PLACEMENT_RANDOM:
+    case PLACEMENT_GRID:
+        s->nlights_total = most;
+        break;
+    default:
+        snprintf(err, errlen, "bug: light placement %d", (int)lp->placement);
+        goto fail;
+    }
     if (s->nlights_total) {
         s->lights = calloc(s->nlights_total, sizeof *s->lights);
-        if (!s->lights)
-            goto oom;
-        place_random(s, lp);
+        if (!s->lights) {
+            snprintf(err, errlen, "out of memory building scene '%s' with %u lights", name,
+                     s->nlights_total);
+            goto fail;
+        }
+        if (lp->placement == PLACEMENT_SCENE)
+            memcpy(s->lights, b->authored, s->nlights_total * sizeof *s->lights);
+        else if (lp->placement == PLACEMENT_RANDOM)
+            place_random(s, lp);
+        else if (!place_grid(s, lp, err, errlen))
+            goto fail;
     }
+    free(b);
     scene_update(s, 0.0);
     return s;
-oom:
+fail:
+    free(b);
     scene_destroy(s);
-    snprintf(err, errlen, "out of memory building scene '%s' with %u lights", name,
-             light_count_max(&lp->count));
     return NULL;
 }
+
+// >>posing
 
 /* model = translate(position) * rotate(spin_axis, spin_rate * t) * scale, and the
  * world bounding sphere of the object's mesh under it. */
@@ -274,6 +327,62 @@ static void inject_fault(const scene *s)
     }
 }
 
+/* Where the camera is at schedule time t, from the scene's path values alone.
+ *   orbit:    angle = 2 pi x (hold, or t / orbit_period reduced to one turn in double
+ *             precision, so long runs keep a precise camera); eye = orbit_target +
+ *             (orbit_radius cos angle, orbit_height, orbit_radius sin angle), looking at
+ *             orbit_target.
+ *   scripted: the path fraction f = hold, or clamp(t / orbit_period, 0, 1); the nkeys key
+ *             poses sit at f = k / (nkeys - 1), and eye and target are interpolated
+ *             linearly between the two around f (f = 0 and f = 1 give the first and last
+ *             key exactly).
+ * Up is +Y. A t that is not a number counts as 0. */
+static void camera_at(const scene *s, double t, scene_camera *c)
+{
+    if (isnan(t))
+        t = 0.0;
+    if (s->path == CAMERA_SCRIPTED && s->nkeys > 0) {
+        double f = !isnan(s->hold) ? (double)s->hold
+                                      : (s->orbit_period > 0 ? t / s->orbit_period : 1.0);
+        f = f > 0.0 ? (f < 1.0 ? f : 1.0) : 0.0;
+        double pos = f * (double)(s->nkeys - 1);
+        uint32_t k = (uint32_t)pos;
+        if (k + 1 >= s->nkeys) {
+            sm_vec3_copy(s->key_eye[s->nkeys - 1], c->eye);
+            sm_vec3_copy(s->key_target[s->nkeys - 1], c->target);
+        } else {
+            double u = pos - (double)k;
+            for (int i = 0; i < 3; i++) {
+                c->eye[i] = (float)((1.0 - u) * s->key_eye[k][i] + u * s->key_eye[k + 1][i]);
+                c->target[i] =
+                    (float)((1.0 - u) * s->key_target[k][i] + u * s->key_target[k + 1][i]);
+            }
+        }
+    } else {
+        double turns = !isnan(s->hold)
+                           ? (double)s->hold
+                           : (s->orbit_period > 0 ? fmod(t / s->orbit_period, 1.0) : 0.0);
+        float a = (float)(turns * 2.0 * SM_PI);
+        c->eye[0] = s->orbit_target[0] + s->orbit_radius * cosf(a);
+        c->eye[1] = s->orbit_target[1] + s->orbit_height;
+        c->eye[2] = s->orbit_target[2] + s->orbit_radius * sinf(a);
+        sm_vec3_copy(s->orbit_target, c->target);
+    }
+    sm_vec3_make(0.0f, 1.0f, 0.0f, c->up);
+    c->fovy = s->fovy;
+    c->znear = s->znear;
+    c->zfar = s->zfar;
+}
+
+static void pose_camera(scene *s, double t)
+{
+    camera_at(s, t, &s->cam);
+    const scene_camera *c = &s->cam;
+    sm_lookat(c->eye, c->target, c->up, s->view);
+    sm_perspective(c->fovy, (float)s->width / (float)s->height, c->znear, c->zfar, s->proj);
+    sm_mat4_mul(s->proj, s->view, s->viewproj);
+}
+
 void scene_update(scene *s, double t)
 {
     s->t = t;
@@ -281,35 +390,271 @@ void scene_update(scene *s, double t)
         inject_fault(s);
     uint32_t n = s->nlights_total ? light_count_at(&s->count, t) : 0;
     s->nlights_active = n < s->nlights_total ? n : s->nlights_total;
-
-    /* Orbit: one revolution per orbit_period seconds of schedule time. The angle
-     * is reduced in double precision so long runs keep a precise camera. */
-    double turns = s->orbit_period > 0 ? fmod(t / s->orbit_period, 1.0) : 0.0;
-    float a = (float)(turns * 2.0 * SM_PI);
-    scene_camera *c = &s->cam;
-    c->eye[0] = s->orbit_target[0] + s->orbit_radius * cosf(a);
-    c->eye[1] = s->orbit_target[1] + s->orbit_height;
-    c->eye[2] = s->orbit_target[2] + s->orbit_radius * sinf(a);
-    sm_vec3_copy(s->orbit_target, c->target);
-    sm_vec3 up = {0.0f, 1.0f, 0.0f};
-    sm_vec3_copy(up, c->up);
-    c->fovy = s->fovy;
-    c->znear = s->znear;
-    c->zfar = s->zfar;
     for (uint32_t i = 0; i < s->nobjects; i++)
         pose_object(s, &s->objects[i], t);
-    sm_lookat(c->eye, c->target, c->up, s->view);
-    sm_perspective(c->fovy, (float)s->width / (float)s->height, c->znear, c->zfar, s->proj);
-    sm_mat4_mul(s->proj, s->view, s->viewproj);
+    pose_camera(s, t);
+}
+
+// >>camera-overrides
+
+void camera_params_init(camera_params *cp)
+{
+    cp->radius = cp->height = cp->period = NAN;
+    cp->target[0] = cp->target[1] = cp->target[2] = NAN;
+    cp->znear = cp->zfar = NAN;
+    cp->hold = NAN;
+}
+
+static bool finite_positive(float x) { return isfinite(x) && x > 0.0f; }
+
+/* Whether a camera pose can make a view: finite, and the eye apart from the target by
+ * more than float rounding at their magnitude. */
+static bool pose_ok(const scene_camera *c)
+{
+    float big = 0.0f, d2 = 0.0f;
+    for (int i = 0; i < 3; i++) {
+        if (!isfinite(c->eye[i]) || !isfinite(c->target[i]))
+            return false;
+        big = fmaxf(big, fmaxf(fabsf(c->eye[i]), fabsf(c->target[i])));
+        d2 += (c->eye[i] - c->target[i]) * (c->eye[i] - c->target[i]);
+    }
+    return sqrtf(d2) > 1e-5f * fmaxf(big, 1.0f);
+}
+
+bool scene_set_camera(scene *s, const camera_params *cp, char *err, size_t errlen)
+{
+    bool scripted = s->path == CAMERA_SCRIPTED;
+    bool has_target = !isnan(cp->target[0]);
+    /* an orbit's values on a scripted path would be silently ignored: refuse them */
+    if (scripted && (!isnan(cp->radius) || !isnan(cp->height) || has_target)) {
+        const char *key = !isnan(cp->radius) ? "radius" : !isnan(cp->height) ? "height" : "target";
+        snprintf(err, errlen, "camera.%s: scene '%s' follows a scripted path, which has no "
+                 "orbit %s (period, hold, near and far apply)", key, s->name, key);
+        return false;
+    }
+    if (!isnan(cp->radius) && !finite_positive(cp->radius)) {
+        snprintf(err, errlen, "camera.radius: expected a finite number > 0, found %g",
+                 (double)cp->radius);
+        return false;
+    }
+    if (!isnan(cp->height) && !isfinite(cp->height)) {
+        snprintf(err, errlen, "camera.height: expected a finite number, found %g",
+                 (double)cp->height);
+        return false;
+    }
+    if (!isnan(cp->period) && !finite_positive(cp->period)) {
+        snprintf(err, errlen, "camera.period: expected a finite number of seconds > 0, found %g",
+                 (double)cp->period);
+        return false;
+    }
+    if (has_target && !(isfinite(cp->target[0]) && isfinite(cp->target[1]) &&
+                        isfinite(cp->target[2]))) {
+        snprintf(err, errlen, "camera.target: expected three finite numbers, found [%g, %g, %g]",
+                 (double)cp->target[0], (double)cp->target[1], (double)cp->target[2]);
+        return false;
+    }
+    if (!isnan(cp->znear) && !finite_positive(cp->znear)) {
+        snprintf(err, errlen, "camera.near: expected a finite number > 0, found %g",
+                 (double)cp->znear);
+        return false;
+    }
+    float znear = isnan(cp->znear) ? s->znear : cp->znear;
+    if (!isnan(cp->zfar) && !(isfinite(cp->zfar) && cp->zfar > znear)) {
+        snprintf(err, errlen, "camera.far: expected a finite number > near (%g), found %g",
+                 (double)znear, (double)cp->zfar);
+        return false;
+    }
+    float zfar = isnan(cp->zfar) ? s->zfar : cp->zfar;
+    if (!(zfar > znear)) {
+        snprintf(err, errlen, "camera.near: %g is not below the scene's far plane (%g)",
+                 (double)znear, (double)zfar);
+        return false;
+    }
+    if (!isnan(cp->hold) && !(cp->hold >= 0.0f && cp->hold <= 1.0f)) {
+        snprintf(err, errlen, "camera.hold: expected a path fraction in [0, 1], found %g",
+                 (double)cp->hold);
+        return false;
+    }
+
+    scene trial = *s;   /* camera values only: the copy's pointers are not used */
+    if (!isnan(cp->radius))
+        trial.orbit_radius = cp->radius;
+    if (!isnan(cp->height))
+        trial.orbit_height = cp->height;
+    if (!isnan(cp->period))
+        trial.orbit_period = cp->period;
+    if (has_target)
+        sm_vec3_copy(cp->target, trial.orbit_target);
+    trial.znear = znear;
+    trial.zfar = zfar;
+    if (!isnan(cp->hold))
+        trial.hold = cp->hold;
+    /* every pose the path can take: an orbit's eye at the quarter turns (and where it
+     * holds), a scripted path's keys (the poses between lie on the segments) */
+    scene_camera c;
+    bool ok = true;
+    if (scripted) {
+        for (uint32_t k = 0; k < trial.nkeys && ok; k++) {
+            trial.hold = trial.nkeys > 1 ? (float)k / (float)(trial.nkeys - 1) : 0.0f;
+            camera_at(&trial, 0.0, &c);
+            ok = pose_ok(&c);
+        }
+    } else {
+        for (int q = 0; q < 4 && ok; q++) {
+            trial.hold = (float)q * 0.25f;
+            camera_at(&trial, 0.0, &c);
+            ok = pose_ok(&c);
+        }
+    }
+    trial.hold = isnan(cp->hold) ? s->hold : cp->hold;
+    if (ok) {
+        camera_at(&trial, s->t, &c);
+        ok = pose_ok(&c);
+    }
+    if (!ok) {
+        snprintf(err, errlen, "camera: the eye (%g, %g, %g) meets the target (%g, %g, %g) or "
+                 "is not finite: no view direction (radius %g, height %g)",
+                 (double)c.eye[0], (double)c.eye[1], (double)c.eye[2], (double)c.target[0],
+                 (double)c.target[1], (double)c.target[2], (double)trial.orbit_radius,
+                 (double)trial.orbit_height);
+        return false;
+    }
+    s->orbit_radius = trial.orbit_radius;
+    s->orbit_height = trial.orbit_height;
+    s->orbit_period = trial.orbit_period;
+    sm_vec3_copy(trial.orbit_target, s->orbit_target);
+    s->znear = trial.znear;
+    s->zfar = trial.zfar;
+    s->hold = trial.hold;
+    pose_camera(s, s->t);
+    return true;
+}
+
+// >>coverage
+
+/* Whether the ray o + t d (t >= 0, d unit) meets the ball of radius r about c. */
+static bool ray_meets_sphere(const double o[3], const double d[3], const float c[3], double r)
+{
+    double v[3] = {c[0] - o[0], c[1] - o[1], c[2] - o[2]};
+    double vv = v[0] * v[0] + v[1] * v[1] + v[2] * v[2];
+    if (vv <= r * r)
+        return true;   /* the eye is inside */
+    double b = v[0] * d[0] + v[1] * d[1] + v[2] * d[2];
+    return b > 0.0 && vv - b * b <= r * r;
+}
+
+/* Whether the ray o + t d (t >= 0, d unit) meets the finite cone of apex a, unit axis u,
+ * half angle th and height h (the points p with 0 <= (p - a).u <= h and angle(p - a, u) <=
+ * th: capped by the plane at distance h along the axis). On the part of the ray within the
+ * two planes, (p - a).u >= 0, so p is in the cone exactly when
+ *   q(t) = ((p - a).u)^2 - cos^2(th) |p - a|^2 >= 0,
+ * a quadratic in t; the ray meets the cone when q's largest value over that part (at an
+ * end or at the vertex) is >= 0. */
+static bool ray_meets_cone(const double o[3], const double d[3], const float a[3],
+                           const double u[3], double th, double h)
+{
+    double w[3] = {o[0] - a[0], o[1] - a[1], o[2] - a[2]};
+    double wu = w[0] * u[0] + w[1] * u[1] + w[2] * u[2];
+    double du = d[0] * u[0] + d[1] * u[1] + d[2] * u[2];
+    double t0 = 0.0, t1 = INFINITY;
+    if (du == 0.0) {
+        if (wu < 0.0 || wu > h)
+            return false;
+    } else {
+        double ta = -wu / du, tb = (h - wu) / du;
+        t0 = fmax(0.0, fmin(ta, tb));
+        t1 = fmax(ta, tb);
+        if (t0 > t1)
+            return false;
+    }
+    double c2 = cos(th) * cos(th);
+    double dw = d[0] * w[0] + d[1] * w[1] + d[2] * w[2];
+    double ww = w[0] * w[0] + w[1] * w[1] + w[2] * w[2];
+    double A = du * du - c2, B = du * wu - c2 * dw, C = wu * wu - c2 * ww;
+#define Q(t) ((A * (t) + 2.0 * B) * (t) + C)
+    if (Q(t0) >= 0.0 || (isfinite(t1) && Q(t1) >= 0.0))
+        return true;
+    if (A < 0.0) {
+        double tv = -B / A;
+        if (tv > t0 && tv < t1 && Q(tv) >= 0.0)
+            return true;
+    }
+#undef Q
+    return false;
+}
+
+/* Point: the ball of `radius`. Spot: the cone of half angle spot_angle (clamped to
+ * [1e-4, pi/2 - 1e-3], as the renderers clamp it), apex at the light, along its direction
+ * (a zero direction counts as -Y, as in the renderers), capped by the PLANE at distance
+ * `radius` along the axis: the volume renderers/frontend.c culls with and the deferred
+ * renderer rasterizes (mesh_light_cone of height = range). The lit part of it (within
+ * `radius` of the light, lighting.inc) is the cone capped by the sphere, inside this.
+ * The ray is the whole ray from the eye: neither the near nor the far plane cuts it.
+ * An index beyond nlights_total gives 0; whether the light is active does not matter. */
+double scene_light_coverage(const scene *s, uint32_t i)
+{
+    if (!s || i >= s->nlights_total)
+        return 0.0;
+    const scene_light *l = &s->lights[i];
+    if (l->type == LIGHT_DIRECTIONAL)
+        return 1.0;
+    if (!(l->radius > 0.0f) || !isfinite(l->radius))
+        return 0.0;
+    double axis[3] = {l->direction[0], l->direction[1], l->direction[2]};
+    double len = sqrt(axis[0] * axis[0] + axis[1] * axis[1] + axis[2] * axis[2]);
+    if (!(len > 0.0) || !isfinite(len)) {
+        axis[0] = 0.0;
+        axis[1] = -1.0;
+        axis[2] = 0.0;
+        len = 1.0;
+    }
+    for (int k = 0; k < 3; k++)
+        axis[k] /= len;
+    double th = sm_clamp(l->spot_angle, 1e-4f, SM_PI_2 - 1e-3f);
+
+    /* the view's rows are the camera's right, up and backward axes in world space */
+    double right[3], up[3], back[3];
+    for (int k = 0; k < 3; k++) {
+        right[k] = s->view[k][0];
+        up[k] = s->view[k][1];
+        back[k] = s->view[k][2];
+    }
+    double ty = tan((double)s->cam.fovy / 2.0), tx = ty * (double)s->width / (double)s->height;
+    double eye[3] = {s->cam.eye[0], s->cam.eye[1], s->cam.eye[2]};
+    uint32_t sw = s->width < 128 ? (uint32_t)s->width : 128;
+    uint32_t sh = s->height < 128 ? (uint32_t)s->height : 128;
+    uint64_t hits = 0;
+    for (uint32_t j = 0; j < sh; j++) {
+        /* the pixel row at the sample's place, and that pixel's centre */
+        double py = floor(((double)j + 0.5) * s->height / sh) + 0.5;
+        double yn = 1.0 - 2.0 * py / s->height;
+        for (uint32_t k = 0; k < sw; k++) {
+            double px = floor(((double)k + 0.5) * s->width / sw) + 0.5;
+            double xn = 2.0 * px / s->width - 1.0;
+            double d[3], dd = 0.0;
+            for (int c = 0; c < 3; c++) {
+                d[c] = xn * tx * right[c] + yn * ty * up[c] - back[c];
+                dd += d[c] * d[c];
+            }
+            dd = sqrt(dd);
+            for (int c = 0; c < 3; c++)
+                d[c] /= dd;
+            bool hit = l->type == LIGHT_POINT
+                           ? ray_meets_sphere(eye, d, l->position, l->radius)
+                           : ray_meets_cone(eye, d, l->position, axis, th, l->radius);
+            hits += hit;
+        }
+    }
+    return (double)hits / ((double)sw * (double)sh);
 }
 
 void scene_destroy(scene *s)
 {
     if (!s)
         return;
-    for (uint32_t i = 0; i < s->nmeshes; i++)
+    for (uint32_t i = 0; s->meshes && i < s->nmeshes; i++)
         mesh_free(&s->meshes[i]);
-    for (uint32_t i = 0; i < s->ntextures; i++)
+    for (uint32_t i = 0; s->textures && i < s->ntextures; i++)
         texture_free(&s->textures[i]);
     free(s->meshes);
     free(s->textures);

@@ -65,7 +65,8 @@ typedef struct scene_camera {
  * scene's own value. camera_params_init() sets them all to NAN. */
 typedef enum camera_path {
     CAMERA_ORBIT = 0,          /* circle of orbit_radius at orbit_height about orbit_target,
-                                * one turn per orbit_period */
+                                * one turn per orbit_period, starting on +X and turning
+                                * towards +Z */
     CAMERA_SCRIPTED,           /* the scene's scripted path (the coverage scenes): a
                                 * sequence of key poses, linearly interpolated, taking
                                 * orbit_period seconds, then held at the last pose */
@@ -76,7 +77,8 @@ typedef struct camera_params {
     sm_vec3 target;
     float znear, zfar;
     float hold;                /* 0..1: stop the camera at this fraction of its path (orbit:
-                                * of a turn) for the whole run; NAN: move along it */
+                                * of a turn; scripted: 0 the first key pose, 1 the last)
+                                * for the whole run; NAN: move along it */
 } camera_params;
 
 void camera_params_init(camera_params *cp);
@@ -111,8 +113,10 @@ typedef struct scene {
     sm_vec3 key_eye[8], key_target[8];
     float fovy, znear, zfar;
 
-    /* Lights whose screen coverage the run records per frame (coverage.csv): the
-     * coverage scenes set this to their authored lights; 0 elsewhere. */
+    /* Lights whose screen coverage the run records per frame (coverage.csv): with
+     * lights.placement scene, the coverage scenes (spot-coverage, two-spots-overlap,
+     * floating-spot) set this to their authored lights (capped by the count); 0
+     * elsewhere and with any other placement. */
     uint32_t ncoverage_lights;
 
     int fault;                 /* test scenes: what scene_update does at t >= 0.2 (scene.c) */
@@ -133,22 +137,33 @@ size_t scene_catalog_count(void);
 const scene_catalog_entry *scene_catalog_at(size_t i);
 const scene_catalog_entry *scene_catalog_find(const char *name);   /* NULL if unknown */
 
-/* NULL with a message on failure (unknown name, out of memory). */
+/* NULL with a message on failure: unknown name, out of memory, grid placement whose
+ * radius makes neighbours overlap, scene placement on a scene without authored lights
+ * ("scene 'X' has no authored lights"). Placement: scenes/lights.h. */
 scene *scene_build(const char *name, const light_params *lp, int width, int height,
                    char *err, size_t errlen);
 void scene_update(scene *s, double t);
 
 /* Applies a manifest's camera overrides (call after scene_build, before the run; it
- * re-poses at the scene's current t). False with a message for values that cannot make
- * a camera: znear <= 0, zfar <= znear, non-positive radius or period, hold outside
- * [0, 1], a target or an eye that makes the view degenerate. */
+ * re-poses at the scene's current t). False with a message naming the manifest key
+ * ("camera.near: expected a finite number > 0, found -1"; znear and zfar are the
+ * manifest's camera.near and camera.far), and the scene unchanged, for values that
+ * cannot make a camera: znear not finite and > 0, zfar not finite and > znear, radius or
+ * period not finite and > 0, a non-finite height or target, hold outside [0, 1], an eye
+ * that meets the target anywhere on the path; and for radius, height or target on a
+ * scene with a scripted path (which has no orbit: they would be silently ignored). */
 bool scene_set_camera(scene *s, const camera_params *cp, char *err, size_t errlen);
 
 /* Fraction of the screen's pixels (0..1) whose view ray, through the pixel's centre,
- * passes through light i's volume (point: its sphere of `radius`; spot: its cone of
- * spot_angle and range `radius`; directional: 1), at the current pose. Geometry only:
- * what occludes the volume does not matter. Sampled on a grid of at most 128 x 128
- * pixel centres spread over the screen (exact for the screen at or below that size).
- * Deterministic. */
+ * passes through light i's volume (point: its ball of `radius`; spot: its cone of half
+ * angle spot_angle, clamped to [1e-4, pi/2 - 1e-3] as the renderers clamp it, capped by
+ * the plane at distance `radius` along its direction: the volume the renderers cull and
+ * draw (mesh_light_cone of height = range), which holds the sphere-capped part that the
+ * light can reach; directional: 1), at the current pose. Geometry only: what occludes
+ * the volume does not matter, and the whole ray from the eye counts (neither the near
+ * nor the far plane cuts it), so an eye inside the volume gives 1. Sampled on a grid of
+ * at most 128 x 128 pixel centres spread over the screen (row j of sh samples takes the
+ * pixel row floor((j + 0.5) H / sh); exact for a screen at or below that size).
+ * Deterministic; 0 for i >= nlights_total; whether the light is active does not matter. */
 double scene_light_coverage(const scene *s, uint32_t i);
 void scene_destroy(scene *s);   /* NULL is fine */
