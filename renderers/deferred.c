@@ -4,6 +4,9 @@
  * Every frame, in passes named as passes.csv names them (a pass the plan skips is
  * not run, and renderer_describe says why):
  *
+ *   shadows      (some spot or directional light casts shadows, shadows not off;
+ *                renderers/shadow.h) per visible shadow-casting light, its shadow map:
+ *                one depth-only draw per object of its shadow-casting set (frontend.h)
  *   gbuffer      the G-buffer framebuffer (the layout's attachments + the shared
  *                depth-stencil target) cleared (colour 0, depth 1, stencil 0 or, for
  *                stencil-two-pass, 1), then one draw per visible object (frontend order:
@@ -11,7 +14,11 @@
  *                depth LESS with writes, back faces culled (as the forward renderers)
  *   ambient      full screen: ambient x diffuse + emissive written over the light target
  *                (no blend; it starts the accumulation)
- *   directional  full screen per visible directional light, blend ONE + ONE
+ *   directional  full screen per visible directional light, blend ONE + ONE; a light
+ *                with a shadow map is shaded by the SHADOWS variant (seed 000 4.5.6:
+ *                the G-buffer position to the light's map, lighting.inc + shadow.inc),
+ *                and so are spots; the variant is built only for a light type some
+ *                light of which casts shadows
  *   point, spot  per visible light of that type, by renderer_options.light_volumes:
  *     fullscreen        a full-screen pass (the light's range and cone do the culling)
  *     volume            the volume's back faces (cull FRONT), depth test GREATER, no
@@ -32,16 +39,19 @@
  *   resolve      scene_gpu_resolve: the light target clamped into the output
  *
  * Draw calls per frame (V visible objects, D / P / S visible directional / point / spot
- * lights this frame, frontend_build; [x] = 1 when the pass runs, else 0):
+ * lights this frame, frontend_build; [x] = 1 when the pass runs, else 0; C(l) the
+ * shadow-casting set of a visible light l that casts shadows, Sh = sum of |C(l)| over
+ * them, 0 when the shadows pass does not run):
  *
- *   fullscreen:        V + 1 + D + P + S                 + [compose] + [sky] + 1
- *   volume:            V + 1 + D + P + S                 + [compose] + [sky] + 1
- *   stencil:           V + 1 + D + 2 (P + S)             + [compose] + [sky] + 1
- *   stencil-two-pass:  V + 1 + D + 3 (P + S)             + [compose] + [sky] + 1
+ *   fullscreen:        Sh + V + 1 + D + P + S            + [compose] + [sky] + 1
+ *   volume:            Sh + V + 1 + D + P + S            + [compose] + [sky] + 1
+ *   stencil:           Sh + V + 1 + D + 2 (P + S)        + [compose] + [sky] + 1
+ *   stencil-two-pass:  Sh + V + 1 + D + 3 (P + S)        + [compose] + [sky] + 1
  *
- * (gbuffer V, ambient 1, directional D, point/spot 1 per light (shade), 2 (mark +
- * shade) or 3 (front mark + back mark + shade), compose 1, sky 1, resolve 1; clears are
- * not draws.) They do not depend on where the camera is.
+ * (shadows Sh, gbuffer V, ambient 1, directional D, point/spot 1 per light (shade), 2
+ * (mark + shade) or 3 (front mark + back mark + shade), compose 1, sky 1, resolve 1;
+ * clears are not draws.) Without Sh they do not depend on where the camera is; the
+ * shadow-casting sets do (frontend.h).
  *
  * Camera inside a volume, near and far planes. The volume passes run with GL_DEPTH_CLAMP
  * on (and it is switched off again after them; it is not state the cache keeps): the
@@ -78,6 +88,11 @@
  *   reference  RGBA32F position.xyz + shininess | RGBA32F normal.xyz + gloss | RGBA32F
  *              diffuse | RGBA32F emissive
  *
+ * Position from the depth buffer (gbuffer position: depth) reads the shared depth-stencil
+ * texture in the light passes while it is attached to the light framebuffer (for the
+ * volumes' depth test, writes off): formally a feedback loop. Shadow maps do not touch
+ * it (they have their own depth targets).
+ *
  * Targets: the G-buffer attachments ("gbuffer.<slots>"), "light" (RGBA16F; with
  * separate_specular "light.diffuse" + "light.specular") and "depth" (depth24-stencil8,
  * shared by the G-buffer and light framebuffers so that volumes test against the scene's
@@ -93,6 +108,7 @@
 #include "renderers/renderer.h"
 #include "renderers/scene_gpu.h"
 #include "renderers/shading.h"
+#include "renderers/shadow.h"
 #include "scenes/scene.h"
 
 #include <math.h>
@@ -104,7 +120,8 @@
 _Static_assert(sizeof(gpu_light) == 80, "gpu_light is 5 vec4s, as lighting.inc's Light");
 
 enum {
-    DEFERRED_MAX_PASSES = 8,          /* gbuffer ambient directional point spot compose sky resolve */
+    DEFERRED_MAX_PASSES = 9,          /* shadows gbuffer ambient directional point spot compose
+                                         sky resolve */
     DEFERRED_VARIANTS = 16,           /* material map bits */
     DEFERRED_MAX_LAYOUT_DEFINES = 12,
     DEFERRED_LIGHT_TYPES = 3,
@@ -521,7 +538,7 @@ static void layout_to_defines(const deferred_layout *l, layout_defines *d)
 // >>the renderer
 
 typedef enum pass_id {
-    PASS_SHADOWS,                    /* never runs yet: in the plan to say so */
+    PASS_SHADOWS,                    /* renderers/shadow.h */
     PASS_GBUFFER,
     PASS_AMBIENT,
     PASS_DIRECTIONAL,
@@ -551,6 +568,7 @@ typedef struct deferred_renderer {
     frontend fe;
     deferred_needs needs;
     deferred_layout layout;
+    shadow_maps shadows;
     gl_target gbuf[DEFERRED_MAX_ATTACHMENTS];
     gl_target light, specular, depth;
     gl_framebuffer fb_gbuffer, fb_light, fb_compose;
@@ -630,6 +648,7 @@ static void release_prepared(deferred_renderer *r)
     gl_target_destroy(&r->light);
     gl_target_destroy(&r->specular);
     gl_target_destroy(&r->depth);
+    shadow_maps_destroy(&r->shadows);
     scene_gpu_destroy(r->gpu);
     r->gpu = NULL;
     frontend_free(&r->fe);
@@ -778,18 +797,26 @@ static bool compile_programs(deferred_renderer *r, char *err, size_t errlen)
     static const char *const display[DEFERRED_LIGHT_TYPES] = {
         [LIGHT_POINT] = "deferred_point", [LIGHT_SPOT] = "deferred_spot",
         [LIGHT_DIRECTIONAL] = "deferred_directional"};
+    /* Shadow variants say so in their display name: the plan cuts a variant's name at
+     * 63 characters, before the layout's defines end. */
+    static const char *const display_shadowed[DEFERRED_LIGHT_TYPES] = {
+        [LIGHT_POINT] = "deferred_point", [LIGHT_SPOT] = "deferred_spot_shadowed",
+        [LIGHT_DIRECTIONAL] = "deferred_directional_shadowed"};
     bool volumes = false;
     for (int t = 0; t < DEFERRED_LIGHT_TYPES; t++) {
         if (!r->run[light_pass[t]])
             continue;
         bool full = t == LIGHT_DIRECTIONAL || r->opts.light_volumes == LIGHT_VOLUMES_FULLSCREEN;
-        const char *extra[4] = {type_define[t], NULL, NULL, NULL};
+        const char *extra[6] = {type_define[t], NULL, NULL, NULL, NULL, NULL};
         int n = 1;
         if (full && unclipped)
             extra[n++] = unclipped;
         if (sep)
             extra[n++] = sep;
-        if (!build_program(r, display[t], full ? fs_vert : "light_volume.vert",
+        bool shadowed = shadow_maps_for_type(&r->shadows, t);
+        if (shadowed)
+            n += (int)shadow_maps_defines(&r->shadows, extra + n);
+        if (!build_program(r, shadowed ? display_shadowed[t] : display[t], full ? fs_vert : "light_volume.vert",
                            "deferred_light.frag", &ld, extra, &r->light_program[t], err, errlen))
             return false;
         if (!full)
@@ -845,7 +872,7 @@ static bool deferred_prepare(void *self, const scene *s, char *err, size_t errle
         r->variants |= 1u << material_variant(&s->materials[m]);
     }
     r->light_types = 0;
-    uint32_t count[DEFERRED_LIGHT_TYPES] = {0, 0, 0}, casters = 0;
+    uint32_t count[DEFERRED_LIGHT_TYPES] = {0, 0, 0};
     for (uint32_t i = 0; i < s->nlights_total; i++) {
         unsigned t = (unsigned)s->lights[i].type;
         if (t >= DEFERRED_LIGHT_TYPES) {
@@ -854,19 +881,14 @@ static bool deferred_prepare(void *self, const scene *s, char *err, size_t errle
         }
         r->light_types |= 1u << t;
         count[t]++;
-        if (s->lights[i].shadows)
-            casters++;
     }
     r->needs = deferred_needs_of(s);
     if (!deferred_layout_build(&r->opts, r->needs, &r->layout, err, errlen))
         return false;
 
     /* >>the pass plan */
-    if (casters)
-        plan(r, PASS_SHADOWS, false, "%u lights ask for shadows: shadow maps are not drawn yet",
-             casters);
-    else
-        plan(r, PASS_SHADOWS, false, "no light casts shadows");
+    shadow_maps_plan(&r->shadows, s, &r->opts);
+    plan(r, PASS_SHADOWS, r->shadows.run, "%s", r->shadows.reason);
     plan(r, PASS_GBUFFER, true, "%u objects into %d attachments (%s preset, %u bytes/pixel)",
          s->nobjects, r->layout.nattachments, deferred_preset_name(r->opts.gbuffer),
          deferred_layout_bytes_per_pixel(&r->layout));
@@ -897,12 +919,15 @@ static bool deferred_prepare(void *self, const scene *s, char *err, size_t errle
         snprintf(err, errlen, "deferred: %s", why);
         goto fail;
     }
+    r->fe.no_shadows = !r->shadows.run;
     r->gpu = scene_gpu_create(s, why, sizeof why);
     if (!r->gpu) {
         snprintf(err, errlen, "deferred: %s", why);
         goto fail;
     }
-    if (!make_targets(r, err, errlen) || !compile_programs(r, err, errlen))
+    if (!make_targets(r, err, errlen) ||
+        !shadow_maps_create(&r->shadows, r->programs, "deferred", err, errlen) ||
+        !compile_programs(r, err, errlen))
         goto fail;
     r->prepared = true;
     return true;
@@ -973,10 +998,12 @@ static void shade_end(deferred_renderer *r)
     r->nshade_queries++;
 }
 
-static void set_light_uniform(const scene *s, uint32_t li)
+/* Light li, whose shadow-map layer this frame is `layer` (FRONTEND_NO_SHADOW: none). */
+static void set_light_uniform(const scene *s, uint32_t li, uint32_t layer)
 {
     gpu_light pl;
     shading_pack_light(&s->lights[li], s->view, &pl);
+    shading_set_shadow_layer(&pl, layer);
     gl.Uniform4fv(DEFERRED_UNIFORM_LIGHT, 5, &pl.v[0][0]);
 }
 
@@ -986,14 +1013,15 @@ static void fullscreen(deferred_renderer *r)
 }
 
 /* Point and spot lights of type t by the light-volume mode (the file's header). */
-static void draw_volume_light(deferred_renderer *r, const scene *s, int t, uint32_t li)
+static void draw_volume_light(deferred_renderer *r, const scene *s, int t, uint32_t li,
+                              uint32_t layer)
 {
     gl_state *st = r->st;
     GLuint prog = r->light_program[t];
     switch (r->opts.light_volumes) {
     case LIGHT_VOLUMES_FULLSCREEN:
         gl_state_program(st, prog);
-        set_light_uniform(s, li);
+        set_light_uniform(s, li, layer);
         shade_begin(r, t);
         fullscreen(r);
         shade_end(r);
@@ -1002,7 +1030,7 @@ static void draw_volume_light(deferred_renderer *r, const scene *s, int t, uint3
     case LIGHT_VOLUMES_VOLUME:
         gl_state_viewport(st, 0, 0, r->width, r->height);
         gl_state_program(st, prog);
-        set_light_uniform(s, li);
+        set_light_uniform(s, li, layer);
         gl_state_cull(st, GLS_CULL_FRONT);
         gl_state_stencil(st, NULL);
         gl_state_depth(st, &(gls_depth){.compare = GLS_COMPARE_GREATER, .write = false});
@@ -1028,7 +1056,7 @@ static void draw_volume_light(deferred_renderer *r, const scene *s, int t, uint3
         scene_gpu_draw_light_volume(r->gpu, st, s, li);
         r->mark_draws[t]++;
         gl_state_program(st, prog);
-        set_light_uniform(s, li);
+        set_light_uniform(s, li, layer);
         gl_state_color_mask(st, GLS_COLOR_MASK_RGBA);
         gl_state_cull(st, GLS_CULL_FRONT);
         gl_state_depth(st, NULL);
@@ -1064,7 +1092,7 @@ static void draw_volume_light(deferred_renderer *r, const scene *s, int t, uint3
         scene_gpu_draw_light_volume(r->gpu, st, s, li);
         r->mark_draws[t] += 2;
         gl_state_program(st, prog);
-        set_light_uniform(s, li);
+        set_light_uniform(s, li, layer);
         gl_state_color_mask(st, GLS_COLOR_MASK_RGBA);
         gl_state_depth(st, NULL);
         gl_state_stencil(st, &(gls_stencil){
@@ -1098,19 +1126,21 @@ static void light_pass(deferred_renderer *r, const scene *s, frame_stats *out, p
     } else {
         gl.Enable(GL_DEPTH_CLAMP);
     }
+    if (shadow_maps_for_type(&r->shadows, type))
+        shadow_maps_bind(&r->shadows, st);
     for (uint32_t k = 0; k < r->fe.nlights; k++) {
         uint32_t li = r->fe.lights[k];
         if ((int)s->lights[li].type != type)
             continue;
         if (type == LIGHT_DIRECTIONAL) {
             gl_state_program(st, r->light_program[type]);
-            set_light_uniform(s, li);
+            set_light_uniform(s, li, r->fe.shadow_layer[k]);
             shade_begin(r, type);
             fullscreen(r);
             shade_end(r);
             r->shade_draws[type]++;
         } else {
-            draw_volume_light(r, s, type, li);
+            draw_volume_light(r, s, type, li, r->fe.shadow_layer[k]);
         }
         out->lights_drawn++;
     }
@@ -1136,6 +1166,13 @@ static void deferred_draw(void *self, const scene *s, frame_stats *out)
     gl_state_invalidate(st);
     frontend_build(&r->fe, s);
     scene_gpu_frame(r->gpu, s);
+
+    /* >>shadow maps, first: the light passes sample them */
+    if (r->run[PASS_SHADOWS]) {
+        pass_begin(r, out, PASS_SHADOWS);
+        shadow_maps_draw(&r->shadows, st, r->gpu, &r->fe, s);
+        pass_end(r, out);
+    }
 
     /* >>gbuffer */
     pass_begin(r, out, PASS_GBUFFER);
@@ -1254,6 +1291,7 @@ static void deferred_describe(const void *self, pass_plan *out)
     describe_target(&r->light, out);
     describe_target(&r->specular, out);
     describe_target(&r->depth, out);
+    shadow_maps_describe(&r->shadows, out);
 }
 
 static void deferred_destroy(void *self)

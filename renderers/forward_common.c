@@ -59,6 +59,7 @@ oom:
 
 static void release_prepared(forward_common *fc)
 {
+    shadow_maps_destroy(&fc->shadows);
     gl_framebuffer_destroy(&fc->fb);
     gl_target_destroy(&fc->hdr);
     gl_target_destroy(&fc->depth);
@@ -124,10 +125,12 @@ bool forward_common_prepare(forward_common *fc, const scene *s, char *err, size_
         fc->light_types |= 1u << t;
     }
 
+    shadow_maps_plan(&fc->shadows, s, &fc->opts);
     if (!frontend_init(&fc->fe, s, why, sizeof why)) {
         snprintf(err, errlen, "%s: %s", fc->name, why);
         goto fail;
     }
+    fc->fe.no_shadows = !fc->shadows.run;
     fc->gpu = scene_gpu_create(s, why, sizeof why);
     if (!fc->gpu) {
         snprintf(err, errlen, "%s: %s", fc->name, why);
@@ -149,6 +152,8 @@ bool forward_common_prepare(forward_common *fc, const scene *s, char *err, size_
         snprintf(err, errlen, "%s: %s", fc->name, why);
         goto fail;
     }
+    if (!shadow_maps_create(&fc->shadows, fc->programs, fc->name, err, errlen))
+        goto fail;
     fc->prepared = true;
     return true;
 fail:
@@ -215,6 +220,22 @@ void forward_begin_frame(forward_common *fc, const scene *s, frame_stats *out)
     gl_state_invalidate(fc->st);
     frontend_build(&fc->fe, s);
     scene_gpu_frame(fc->gpu, s);
+}
+
+void forward_shadow_pass(forward_common *fc, const scene *s, frame_stats *out)
+{
+    if (!fc->shadows.run)
+        return;
+    forward_pass_begin(fc, out, "shadows");
+    shadow_maps_draw(&fc->shadows, fc->st, fc->gpu, &fc->fe, s);
+    forward_pass_end(fc, out);
+}
+
+unsigned forward_shadow_defines(const forward_common *fc, int type, const char *defs[2])
+{
+    if (type >= 0 && !shadow_maps_for_type(&fc->shadows, type))
+        return 0;
+    return shadow_maps_defines(&fc->shadows, defs);
 }
 
 void forward_pass_begin(forward_common *fc, frame_stats *out, const char *name)
@@ -320,7 +341,17 @@ void forward_describe_resources(const forward_common *fc, pass_plan *out)
         gl_target_describe(targets[i], &out->target[out->ntargets++]);
         out->target_bytes += targets[i]->bytes;
     }
+    shadow_maps_describe(&fc->shadows, out);
     out->gbuffer_bytes = 0;
+}
+
+void forward_describe_shadows(const forward_common *fc, pass_plan *out)
+{
+    const shadow_maps *sm = &fc->shadows;
+    if (!fc->prepared ||
+        sm->asking[LIGHT_POINT] + sm->asking[LIGHT_SPOT] + sm->asking[LIGHT_DIRECTIONAL] == 0)
+        return;
+    forward_describe_pass(out, "shadows", sm->run, "%s", sm->reason);
 }
 
 // >>forward-spml's light limit
@@ -364,7 +395,9 @@ void forward_end_frame(forward_common *fc, frame_stats *out, uint64_t light_draw
     if (fc->sky)
         forward_sky_pass(fc, out);
     forward_resolve_pass(fc, out);
-    uint64_t expected = (uint64_t)fc->fe.nvisible + light_draws + (fc->sky ? 1u : 0u) + 1u;
+    uint64_t shadow_draws = fc->shadows.run ? fc->fe.shadow_start[fc->fe.nlights] : 0u;
+    uint64_t expected =
+        shadow_draws + (uint64_t)fc->fe.nvisible + light_draws + (fc->sky ? 1u : 0u) + 1u;
     uint64_t draws = 0;
     for (size_t i = 0; i < out->npasses; i++)
         draws += out->pass[i].draw_calls;

@@ -8,6 +8,9 @@
  *
  *     forward_begin_frame     cache invalidated (every frame counted alike),
  *                             frontend_build, scene_gpu_frame (the Frame block)
+ *     forward_shadow_pass     when some spot or directional light casts shadows (and
+ *                             shadows are not off): "shadows", renderers/shadow.h, one
+ *                             draw per object of each shadowed light's shadow-casting set
  *     ... the renderer's own passes into fc->fb (RGBA16F "hdr" + "depth") ...
  *     forward_sky_pass        when the scene has a sky: one draw into untouched depth
  *     forward_resolve_pass    hdr clamped into the output framebuffer: one draw
@@ -37,12 +40,13 @@
 #include "renderers/gl/target.h"
 #include "renderers/renderer.h"
 #include "renderers/scene_gpu.h"
+#include "renderers/shadow.h"
 #include "scenes/scene.h"
 
 enum {
     FORWARD_VARIANTS = 16,           /* 4 map bits */
     FORWARD_LIGHT_TYPES = 3,         /* LIGHT_POINT, LIGHT_SPOT, LIGHT_DIRECTIONAL */
-    FORWARD_MAX_PASSES = 4,
+    FORWARD_MAX_PASSES = 5,          /* shadows base lights sky resolve */
     FORWARD_UNIFORM_LIGHT = 16,      /* uniform location, see above */
     FORWARD_LIGHTS_BINDING = 1,      /* uniform block binding of forward-spml's lights */
 };
@@ -69,6 +73,7 @@ typedef struct forward_common {
     frontend fe;
     gl_target hdr, depth;
     gl_framebuffer fb;
+    shadow_maps shadows;             /* the plan, and the pool when it runs */
     bool sky;                        /* the scene has a sky: the sky pass runs */
     unsigned variants;               /* bit v: some object's material is of variant v */
     unsigned light_types;            /* bit t: some light of the scene is of type t */
@@ -92,7 +97,8 @@ bool forward_common_init(forward_common *fc, const char *name, const renderer_op
 void forward_common_destroy(forward_common *fc);
 
 /* What both renderers need of a scene: the frontend, the scene on the GPU, the HDR
- * target and depth, the variants and light types present. Compiles nothing. A
+ * target and depth, the variants and light types present, the shadow-map plan and,
+ * when it runs, the pool and its depth program. Compiles no lighting program. A
  * second call releases what the first made first. */
 bool forward_common_prepare(forward_common *fc, const scene *s, char *err, size_t errlen);
 
@@ -108,6 +114,14 @@ bool forward_compile_base(forward_common *fc, char *err, size_t errlen);
 // >>per frame
 
 void forward_begin_frame(forward_common *fc, const scene *s, frame_stats *out);
+
+/* The "shadows" pass when the plan runs it (renderers/shadow.h); nothing otherwise.
+ * Call it first, right after forward_begin_frame. */
+void forward_shadow_pass(forward_common *fc, const scene *s, frame_stats *out);
+/* The SHADOWS defines for programs lighting type t ("SHADOWS", "MAX_SHADOWS n") into
+ * defs, or nothing (shadow_maps_for_type); returns how many. type < 0: any type (a
+ * program that lights every type, forward-spml), i.e. whether the pass runs. */
+unsigned forward_shadow_defines(const forward_common *fc, int type, const char *defs[2]);
 
 /* Pass bracketing: the pass gets the next index of out->pass, its queries and the
  * state cache's counts. */
@@ -132,8 +146,10 @@ void forward_draw_objects(forward_common *fc, const scene *s, const uint32_t *ob
 void forward_sky_pass(forward_common *fc, frame_stats *out);
 void forward_resolve_pass(forward_common *fc, frame_stats *out);
 /* The end of every forward frame: the sky (when the scene has one) and the resolve;
- * then the frame's draws must equal the formula: one per visible object in the first
- * pass, `light_draws` more, the sky and the resolve (asserted in debug builds). */
+ * then the frame's draws must equal the formula: the shadows pass's (the sum of the
+ * shadow-casting sets, fe.shadow_start[fe.nlights], when it runs), one per visible
+ * object in the first pass, `light_draws` more, the sky and the resolve (asserted in
+ * debug builds). */
 void forward_end_frame(forward_common *fc, frame_stats *out, uint64_t light_draws);
 
 /* Fills GPU times and fragment counts after the frame's sync point (NAN without queries). */
@@ -146,6 +162,10 @@ void forward_describe_pass(pass_plan *out, const char *name, bool run, const cha
     __attribute__((format(printf, 4, 5)));
 /* The targets (hdr, depth), their bytes, the programs compiled; gbuffer_bytes 0. */
 void forward_describe_resources(const forward_common *fc, pass_plan *out);
+/* The "shadows" entry, first in the plan, when some light of the scene asks for
+ * shadows (it runs, or why not: "shadows: off", point lights only); a scene where no
+ * light asks has no entry (the forward plans list only their own passes then). */
+void forward_describe_shadows(const forward_common *fc, pass_plan *out);
 /* The sky and resolve entries, then the resources: how every describe ends. */
 void forward_describe_tail(const forward_common *fc, pass_plan *out);
 

@@ -1,5 +1,8 @@
 /* forward-mpml: multi-pass multi-light forward shading (seed 000 4.6).
  *
+ *   shadows  (some spot or directional light casts shadows, shadows not off) the
+ *            shadow maps of the frame's shadow-casting lights (renderers/shadow.h):
+ *            one depth-only draw per object of each one's shadow-casting set
  *   base     depth, ambient and emissive of every visible object in one pass
  *            (4.6.2): depth LESS with writes, no blending; forward_base.frag
  *   lights   for each visible light (frontend order) an additive pass (blend ONE,
@@ -8,16 +11,20 @@
  *            light's volume; every visible object for a directional light, 4.6.5),
  *            in `visible` order, so the state buckets hold within each light's set;
  *            forward_light.frag compiled per (light type x material variant) pair
- *            the scene has. With forward.illumination_sets false
+ *            the scene has, in its SHADOWS variant (seed 000 4.6.4: the light's map
+ *            looked up from the interpolated position, lighting.inc + shadow.inc)
+ *            for a type some light of which casts shadows. With forward.illumination_sets false
  *            (renderer_options.no_illumination_sets) every light draws every visible
  *            object (the brute force of seed 000 5.6). Runs when the scene has lights.
  *   sky      the sky into untouched depth, when the scene has one
  *   resolve  the HDR target clamped into the output framebuffer
  *
- * Draw calls per frame, with V visible objects, the visible lights l and I(l) the
- * illumination set of l:
+ * Draw calls per frame, with V visible objects, the visible lights l, I(l) the
+ * illumination set of l and C(l) the shadow-casting set of a visible light that casts
+ * shadows this frame (frontend.h; none when the shadows pass does not run):
  *
- *     draws = V + sum over l of |I(l)|  (V per light without illumination sets)
+ *     draws = sum over shadowed l of |C(l)|
+ *             + V + sum over l of |I(l)|  (V per light without illumination sets)
  *             + (1 if the scene has a sky) + 1
  *
  * A light whose set is empty draws nothing and is not counted in lights_drawn. */
@@ -52,6 +59,12 @@ static const char *const light_program_name[FORWARD_LIGHT_TYPES] = {
     [LIGHT_SPOT] = "forward_spot",
     [LIGHT_DIRECTIONAL] = "forward_directional",
 };
+/* The SHADOWS variants (point lights have none) */
+static const char *const shadowed_program_name[FORWARD_LIGHT_TYPES] = {
+    [LIGHT_POINT] = "forward_point",
+    [LIGHT_SPOT] = "forward_spot_shadowed",
+    [LIGHT_DIRECTIONAL] = "forward_directional_shadowed",
+};
 
 static void *mpml_create(const renderer_options *opts, char *err, size_t errlen)
 {
@@ -81,10 +94,13 @@ static bool mpml_prepare(void *self, const struct scene *s, char *err, size_t er
     for (unsigned t = 0; t < FORWARD_LIGHT_TYPES; t++) {
         if (!(r->c.light_types & (1u << t)))
             continue;
-        const char *extra[] = {light_type_define[t], NULL};
+        const char *extra[4] = {light_type_define[t], NULL, NULL, NULL};
+        const char *name = forward_shadow_defines(&r->c, (int)t, extra + 1)
+                               ? shadowed_program_name[t]
+                               : light_program_name[t];
         for (unsigned v = 0; v < FORWARD_VARIANTS; v++)
             if ((r->c.variants & (1u << v)) &&
-                !forward_program(&r->c, light_program_name[t], "forward_light.frag", v, extra,
+                !forward_program(&r->c, name, "forward_light.frag", v, extra,
                                  &r->light_program[t][v], err, errlen))
                 goto fail;
     }
@@ -120,6 +136,8 @@ static void mpml_draw(void *self, const struct scene *s, frame_stats *out)
     const frontend *fe = &c->fe;
     const bool sets = !c->opts.no_illumination_sets;
 
+    forward_shadow_pass(c, s, out);
+
     forward_pass_begin(c, out, "base");
     forward_bind_target(c);
     gl_state_blend(c->st, NULL);
@@ -137,6 +155,7 @@ static void mpml_draw(void *self, const struct scene *s, frame_stats *out)
         gl_state_blend(c->st, &(gls_blend){.enabled = true, .src = GLS_BLEND_ONE,
                                            .dst = GLS_BLEND_ONE, .op = GLS_BLEND_OP_ADD});
         gl_state_depth(c->st, &(gls_depth){.compare = GLS_COMPARE_EQUAL, .write = false});
+        shadow_maps_bind(&c->shadows, c->st);
         for (uint32_t k = 0; k < fe->nlights; k++) {
             const uint32_t *objects = fe->visible;
             uint32_t n = fe->nvisible;
@@ -150,6 +169,7 @@ static void mpml_draw(void *self, const struct scene *s, frame_stats *out)
             r->serial++;
             r->cur_type = (unsigned)l->type;
             shading_pack_light(l, s->view, &r->cur);
+            shading_set_shadow_layer(&r->cur, fe->shadow_layer[k]);
             forward_draw_objects(c, s, objects, n, r->light_program[r->cur_type],
                                  mpml_on_program, r);
             light_draws += n;
@@ -172,6 +192,7 @@ static void mpml_describe(const void *self, pass_plan *out)
     const forward_mpml *r = self;
     const forward_common *c = &r->c;
     out->npasses = 0;
+    forward_describe_shadows(c, out);
     forward_describe_pass(out, "base", true,
                           "depth, ambient and emissive of the visible objects (seed 000 4.6.2)");
     if (!c->prepared || r->lights_pass)

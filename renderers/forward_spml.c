@@ -1,15 +1,23 @@
 /* forward-spml: single-pass multi-light forward shading (seed 003 4.1).
  *
+ *   shadows  (some spot or directional light casts shadows, shadows not off) the
+ *            shadow maps of the frame's shadow-casting lights (renderers/shadow.h):
+ *            one depth-only draw per object of each one's shadow-casting set; all
+ *            of them are in memory when the shade pass loops over the lights
  *   shade    one pass: each visible object once, forward_spml.frag adds ambient,
  *            emissive and every visible light of the frame, looped from a uniform
  *            buffer (the seed's constant buffer) with a squared-range rejection;
- *            depth LESS with writes
+ *            depth LESS with writes; with shadows, every variant is the SHADOWS one
+ *            and a light's layer rides in its Light (params.z), so the buffer's
+ *            80 bytes per light and the light limit below do not change (the maps'
+ *            matrices are in a block of their own, shadow.h)
  *   sky      the sky into untouched depth, when the scene has one
  *   resolve  the HDR target clamped into the output framebuffer
  *
  * Draw calls per frame, with V visible objects:
  *
- *     draws = V + (1 if the scene has a sky) + 1
+ *     draws = sum over shadowed l of |C(l)|  (the shadows pass, see forward_mpml.c)
+ *             + V + (1 if the scene has a sky) + 1
  *
  * The light buffer: uniform block binding 1, std140, a Light being 5 vec4s (80
  * bytes), so a context holds forward_spml_max_lights(GL_MAX_UNIFORM_BLOCK_SIZE)
@@ -98,10 +106,12 @@ static bool spml_prepare(void *self, const struct scene *s, char *err, size_t er
         return false;
     r->max_lights = array_size(n, r->capacity);
     snprintf(r->max_lights_define, sizeof r->max_lights_define, "MAX_LIGHTS %u", r->max_lights);
-    const char *extra[] = {r->max_lights_define, NULL};
+    const char *extra[4] = {r->max_lights_define, NULL, NULL, NULL};
+    const char *name = forward_shadow_defines(&r->c, -1, extra + 1) ? "forward_spml_shadowed"
+                                                                      : "forward_spml";
     for (unsigned v = 0; v < FORWARD_VARIANTS; v++)
         if ((r->c.variants & (1u << v)) &&
-            !forward_program(&r->c, "forward_spml", "forward_spml.frag", v, extra,
+            !forward_program(&r->c, name, "forward_spml.frag", v, extra,
                              &r->program[v], err, errlen))
             goto fail;
 
@@ -144,12 +154,16 @@ static void spml_draw(void *self, const struct scene *s, frame_stats *out)
     forward_begin_frame(c, s, out);
     const frontend *fe = &c->fe;
 
+    forward_shadow_pass(c, s, out);
+
     forward_pass_begin(c, out, "shade");
     /* The frame's visible lights, packed in view space. The frontend's lights are
      * at most the run's lights, which prepare made sure fit. */
     uint32_t n = fe->nlights < r->max_lights ? fe->nlights : r->max_lights;
-    for (uint32_t k = 0; k < n; k++)
+    for (uint32_t k = 0; k < n; k++) {
         shading_pack_light(&s->lights[fe->lights[k]], s->view, &r->staging[k]);
+        shading_set_shadow_layer(&r->staging[k], fe->shadow_layer[k]);
+    }
     r->count = (int)n;
     r->frame++;
     if (n)   /* only what is used */
@@ -161,6 +175,7 @@ static void spml_draw(void *self, const struct scene *s, frame_stats *out)
     gl_state_stencil(c->st, NULL);
     forward_clear_target(c);
     gl_state_depth(c->st, &(gls_depth){.compare = GLS_COMPARE_LESS, .write = true});
+    shadow_maps_bind(&c->shadows, c->st);
     forward_draw_objects(c, s, fe->visible, fe->nvisible, r->program, spml_on_program, r);
     forward_pass_end(c, out);
 
@@ -179,6 +194,7 @@ static void spml_describe(const void *self, pass_plan *out)
     const forward_spml *r = self;
     const forward_common *c = &r->c;
     out->npasses = 0;
+    forward_describe_shadows(c, out);
     forward_describe_pass(out, "shade", true,
                           "every visible object once, up to %u lights of %u from a uniform "
                           "buffer (seed 003 4.1)",

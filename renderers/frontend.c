@@ -160,7 +160,8 @@ static bool reserve_objects(frontend *f, size_t n)
 
 static bool reserve_lights(frontend *f, size_t n)
 {
-    if (n <= f->cap_lights && f->lights && f->eye_inside && f->illum_start)
+    if (n <= f->cap_lights && f->lights && f->eye_inside && f->illum_start &&
+        f->shadow_layer && f->shadow_start && f->shadow_viewproj)
         return true;
     size_t cap = f->cap_lights ? f->cap_lights : 16;
     while (cap < n)
@@ -177,6 +178,18 @@ static bool reserve_lights(frontend *f, size_t n)
     if (!c)
         return false;
     f->illum_start = c;
+    uint32_t *d = realloc(f->shadow_layer, cap * sizeof *d);
+    if (!d)
+        return false;
+    f->shadow_layer = d;
+    uint32_t *e = realloc(f->shadow_start, (cap + 1) * sizeof *e);
+    if (!e)
+        return false;
+    f->shadow_start = e;
+    sm_mat4 *m = realloc(f->shadow_viewproj, cap * sizeof *m);
+    if (!m)
+        return false;
+    f->shadow_viewproj = m;
     f->cap_lights = cap;
     return true;
 }
@@ -193,6 +206,21 @@ static bool reserve_illum(frontend *f, size_t n)
         return false;
     f->illum = p;
     f->cap_illum = cap;
+    return true;
+}
+
+static bool reserve_shadow(frontend *f, size_t n)
+{
+    if (n <= f->cap_shadow && f->shadow)
+        return true;
+    size_t cap = f->cap_shadow ? f->cap_shadow : 16;
+    while (cap < n)
+        cap *= 2;
+    uint32_t *p = realloc(f->shadow, cap * sizeof *p);
+    if (!p)
+        return false;
+    f->shadow = p;
+    f->cap_shadow = cap;
     return true;
 }
 
@@ -216,14 +244,22 @@ bool frontend_init(frontend *f, const scene *s, char *err, size_t errlen)
     mesh_free(&cone);
 
     size_t worst = (size_t)s->nobjects * (size_t)s->nlights_total;
+    size_t casters = 0;
+    for (uint32_t i = 0; i < s->nlights_total; i++)
+        if (frontend_light_casts_shadows(&s->lights[i]))
+            casters++;
+    size_t worst_shadow = (size_t)s->nobjects * casters;
     if (!reserve_objects(f, s->nobjects) || !reserve_lights(f, s->nlights_total) ||
-        !reserve_illum(f, worst < ILLUM_RESERVE ? worst : ILLUM_RESERVE)) {
+        !reserve_illum(f, worst < ILLUM_RESERVE ? worst : ILLUM_RESERVE) ||
+        (worst_shadow &&
+         !reserve_shadow(f, worst_shadow < ILLUM_RESERVE ? worst_shadow : ILLUM_RESERVE))) {
         frontend_free(f);
         snprintf(err, errlen, "frontend: out of memory for %u objects and %u lights",
                  s->nobjects, s->nlights_total);
         return false;
     }
     f->illum_start[0] = 0;
+    f->shadow_start[0] = 0;
     return true;
 }
 
@@ -237,6 +273,10 @@ void frontend_free(frontend *f)
     free(f->illum);
     free(f->eye_inside);
     free(f->sort);
+    free(f->shadow_layer);
+    free(f->shadow_start);
+    free(f->shadow);
+    free(f->shadow_viewproj);
     memset(f, 0, sizeof *f);
 }
 
@@ -355,6 +395,113 @@ static bool light_reaches(const scene_light *l, const sm_vec4 bsphere)
     }
 }
 
+// >>shadow-casting sets (frontend.h, "shadow")
+
+bool frontend_light_casts_shadows(const scene_light *l)
+{
+    return l->shadows && (l->type == LIGHT_SPOT || l->type == LIGHT_DIRECTIONAL);
+}
+
+/* Appends object o to the shadow entries; false when memory ran out (the set is cut
+ * short and the frame marked truncated). */
+static bool push_shadow(frontend *f, size_t *k, uint32_t o)
+{
+    if (*k >= f->cap_shadow && !reserve_shadow(f, *k + 1)) {
+        fprintf(stderr, "frontend: out of memory for %zu shadow-set entries: sets cut short\n",
+                *k + 1);
+        f->truncated = true;
+        return false;
+    }
+    f->shadow[(*k)++] = o;
+    return true;
+}
+
+/* On the inside of all six planes (on a plane counts as inside; NaN as outside). */
+static bool point_in_frustum(const sm_vec4 planes[6], const sm_vec3 p)
+{
+    for (int i = 0; i < 6; i++)
+        if (!(sm_plane_distance(planes[i], p) >= 0.0f))
+            return false;
+    return true;
+}
+
+static void spot_shadow_viewproj(const scene_light *l, sm_mat4 out)
+{
+    sm_vec3 dir, up = {0.0f, 1.0f, 0.0f};
+    sm_mat4 view, proj;
+    unit_direction(l, dir);
+    sm_look(l->position, dir, up, view);
+    float far = l->radius;
+    /* radius <= 0 (or NaN) gives the zero matrix: nothing is drawn, every lookup is lit */
+    sm_perspective(2.0f * clamp_spot_angle(l->spot_angle), 1.0f, far * 1e-3f, far, proj);
+    sm_mat4_mul(proj, view, out);
+}
+
+/* The spot's set (frontend.h), entries from *k on. illum/nillum: its illumination set. */
+static void spot_shadow_set(frontend *f, const scene *s, const scene_light *l,
+                            const uint32_t *illum, uint32_t nillum, size_t *k)
+{
+    if (nillum == 0)
+        return;
+    if (point_in_frustum(f->planes, l->position)) {
+        for (uint32_t i = 0; i < nillum; i++)
+            if (!push_shadow(f, k, illum[i]))
+                return;
+        return;
+    }
+    for (uint32_t o = 0; o < s->nobjects; o++)
+        if (light_reaches(l, s->objects[o].bsphere) && !push_shadow(f, k, o))
+            return;
+}
+
+/* The directional light's set and matrix (frontend.h). */
+static void directional_shadow(frontend *f, const scene *s, const scene_light *l, size_t *k,
+                               sm_mat4 out)
+{
+    sm_vec3 dir, up = {0.0f, 1.0f, 0.0f}, origin = {0.0f, 0.0f, 0.0f};
+    sm_mat4 view, proj;
+    unit_direction(l, dir);
+    sm_look(origin, dir, up, view);
+    float x0 = INFINITY, x1 = -INFINITY, y0 = INFINITY, y1 = -INFINITY;
+    float dmin = INFINITY, dmax = -INFINITY;
+    for (uint32_t v = 0; v < f->nvisible; v++) {
+        const float *b = s->objects[f->visible[v]].bsphere;
+        sm_vec3 c;
+        sm_mat4_mulv3(view, b, 1.0f, c);
+        float r = b[3];
+        x0 = fminf(x0, c[0] - r);
+        x1 = fmaxf(x1, c[0] + r);
+        y0 = fminf(y0, c[1] - r);
+        y1 = fmaxf(y1, c[1] + r);
+        dmin = fminf(dmin, -c[2] - r);
+        dmax = fmaxf(dmax, -c[2] + r);
+    }
+    if (!(x0 <= x1 && y0 <= y1 && dmin <= dmax && isfinite(x1 - x0) && isfinite(y1 - y0) &&
+          isfinite(dmax - dmin))) {
+        sm_mat4_zero(out);   /* nothing visible: no receiver, nothing drawn */
+        return;
+    }
+    for (uint32_t o = 0; o < s->nobjects; o++) {
+        const float *b = s->objects[o].bsphere;
+        sm_vec3 c;
+        sm_mat4_mulv3(view, b, 1.0f, c);
+        float r = b[3];
+        float dx = fmaxf(fmaxf(x0 - c[0], c[0] - x1), 0.0f);
+        float dy = fmaxf(fmaxf(y0 - c[1], c[1] - y1), 0.0f);
+        if (!(dx * dx + dy * dy <= r * r && -c[2] - r <= dmax))
+            continue;
+        if (!push_shadow(f, k, o))
+            break;
+        dmin = fminf(dmin, -c[2] - r);
+    }
+    float ex = fmaxf(0.01f * (x1 - x0), 1e-3f), ey = fmaxf(0.01f * (y1 - y0), 1e-3f),
+          ed = fmaxf(0.01f * (dmax - dmin), 1e-3f);
+    sm_ortho(x0 - ex, x1 + ex, y0 - ey, y1 + ey, dmin - ed, dmax + ed, proj);
+    sm_mat4_mul(proj, view, out);
+}
+
+// >>per frame, everything
+
 void frontend_build(frontend *f, const scene *s)
 {
     sm_mat4 inv;
@@ -364,12 +511,15 @@ void frontend_build(frontend *f, const scene *s)
 
     f->nvisible = 0;
     f->nlights = 0;
+    f->nshadowed = 0;
     f->truncated = false;
     if (!reserve_objects(f, s->nobjects) || !reserve_lights(f, nactive)) {
         fprintf(stderr, "frontend: out of memory for %u objects and %u lights: nothing drawn\n",
                 s->nobjects, nactive);
         if (f->illum_start)
             f->illum_start[0] = 0;
+        if (f->shadow_start)
+            f->shadow_start[0] = 0;
         f->truncated = true;
         return;
     }
@@ -395,9 +545,10 @@ void frontend_build(frontend *f, const scene *s)
         f->visible[i] = sorted[i].object;
     f->nvisible = n;
 
-    /* lights and their illumination sets */
-    size_t k = 0;
+    /* lights, their illumination sets and shadow-casting sets */
+    size_t k = 0, ks = 0;
     f->illum_start[0] = 0;
+    f->shadow_start[0] = 0;
     for (uint32_t li = 0; li < nactive; li++) {
         const scene_light *l = &s->lights[li];
         if (!light_visible(f, l))
@@ -418,5 +569,21 @@ void frontend_build(frontend *f, const scene *s)
             f->illum[k++] = o;
         }
         f->illum_start[j + 1] = (uint32_t)k;
+
+        f->shadow_layer[j] = FRONTEND_NO_SHADOW;
+        if (!f->no_shadows && frontend_light_casts_shadows(l)) {
+            f->shadow_layer[j] = f->nshadowed++;
+            if (l->type == LIGHT_SPOT) {
+                spot_shadow_viewproj(l, f->shadow_viewproj[j]);
+                if (!f->truncated)
+                    spot_shadow_set(f, s, l, f->illum + f->illum_start[j],
+                                    f->illum_start[j + 1] - f->illum_start[j], &ks);
+            } else if (!f->truncated) {
+                directional_shadow(f, s, l, &ks, f->shadow_viewproj[j]);
+            } else {
+                sm_mat4_zero(f->shadow_viewproj[j]);
+            }
+        }
+        f->shadow_start[j + 1] = (uint32_t)ks;
     }
 }

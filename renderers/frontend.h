@@ -27,6 +27,48 @@
  *             is. Directional lights: always 1 (they have no volume; a full-screen
  *             pass).
  *
+ *   shadow    per light, its shadow-casting set (seed 000 4.4.4) when the light casts
+ *             shadows this frame (frontend_light_casts_shadows, and no_shadows is
+ *             false): it gets the next layer of the renderer's shadow-map pool
+ *             (shadow_layer, 0, 1, ... in light order; FRONTEND_NO_SHADOW for every
+ *             other light, whose set is empty), the matrix its map is drawn with
+ *             (shadow_viewproj, world to the light's clip space) and the objects drawn
+ *             into its map. A light whose illumination set is empty gets a layer and
+ *             an empty set: it lights nothing that is seen, so no shadow of it is
+ *             either. Otherwise:
+ *               spot, centre (position) inside the view frustum (on no plane's
+ *                 outside, sm_plane_distance >= 0 for all six): its illumination set,
+ *                 i.e. the visible objects whose bounding sphere meets its cone. Seed
+ *                 000 4.4.4's first case (after O'Rorke): shadows are cast away from
+ *                 the light, the frustum is convex, so a caster of a visible shadow
+ *                 lies on a segment from the light to a visible point, inside the
+ *                 frustum: it is visible. In `visible` order.
+ *               spot, centre outside the frustum: every object of the scene (visible
+ *                 or not) whose bounding sphere meets the cone, in object order. For
+ *                 this case seed 000 4.4.4 put every mesh of the scene in the set (brute
+ *                 force; its convex hull of frustum and light was left unfinished). An
+ *                 object outside the cone can cast no shadow of this light (its map
+ *                 covers the cone only), so this is the paper's set less what cannot
+ *                 matter, and still a superset of what does: it draws fewer objects
+ *                 than the paper did, and seed 000 5.3 names that set's excess as why
+ *                 its shadows-on draw counts are high.
+ *               directional: the receivers are the visible objects; in the light's
+ *                 view (sm_look from the origin along the light's direction, up +Y)
+ *                 their bounding spheres span the rectangle R = [x0, x1] x [y0, y1] and
+ *                 the depths (distance along the direction) up to dmax. The set is
+ *                 every object of the scene whose sphere's disc (centre xy, radius r)
+ *                 meets R and whose nearest depth (centre depth - r) is <= dmax: a
+ *                 shadow moves along the direction, keeping x and y, so nothing
+ *                 outside R or wholly beyond every receiver can fall on one. Object
+ *                 order. (The paper's scenes had one directional light, and its
+ *                 interior moon cast shadows; it does not say what set it used.)
+ *             Spot maps: perspective from the light along its direction (sm_look, up
+ *             +Y), fovy = 2 x spot_angle (clamped as for volumes), aspect 1, near =
+ *             radius / 1000, far = radius: the cone is inscribed in the map.
+ *             Directional maps: sm_ortho over R and depths [dmin, dmax] (dmin the
+ *             nearest depth of the set and the receivers), each side widened by 1% of
+ *             its extent (at least 1e-3) so that nothing is clipped by rounding.
+ *
  * All tests use the matrices scene_update() posed: planes from scene.viewproj
  * (sm_frustum_planes), the eye from the inverse of scene.view, the near rectangle
  * from the inverse of scene.viewproj (sm_frustum_corners); scene.cam is not read, so
@@ -46,8 +88,8 @@
  *
  * Counts here are what work-count tests derive their formulas from. Nothing is
  * allocated by frontend_build() unless the scene grew since the last call (more
- * objects or lights than any frame before, or more illumination entries than the
- * reserve: capacities only grow). */
+ * objects or lights than any frame before, or more illumination or shadow-set entries
+ * than the reserve: capacities only grow). */
 #include <stdbool.h>
 #include <stddef.h>
 #include <stdint.h>
@@ -89,7 +131,25 @@ typedef struct frontend {
     float cone_rim;               /* the unit cone's largest distance from its axis */
     float cone_apex_z, cone_base_z;   /* its largest and smallest z (apex ~ +1e-4,
                                          base ~ -(1 + 1e-4)) */
+
+    /* >>shadows (see "shadow" above) */
+    bool no_shadows;           /* set by the renderer after frontend_init: true = no light
+                                  casts shadows (the manifest's `shadows: off`); false (the
+                                  zero value) = lights with shadows = true cast them */
+    uint32_t nshadowed;        /* lights with a shadow map this frame */
+    uint32_t *shadow_layer;    /* per light in `lights`: its layer, or FRONTEND_NO_SHADOW */
+    uint32_t *shadow_start;    /* nlights + 1 offsets into shadow */
+    uint32_t *shadow;          /* object indices */
+    sm_mat4 *shadow_viewproj;  /* per light in `lights` with a layer: world -> light clip */
+    size_t cap_shadow;
 } frontend;
+
+#define FRONTEND_NO_SHADOW UINT32_MAX
+
+/* Whether light l casts shadows when shadows are on: it asks for them (shadows =
+ * true) and is a spot or a directional light. Point lights would need cube maps;
+ * seed 000 4.5.6 too implemented shadow mapping "for spot and directional lights". */
+bool frontend_light_casts_shadows(const scene_light *l);
 
 bool frontend_init(frontend *f, const scene *s, char *err, size_t errlen);
 /* Recomputes everything for the scene as scene_update() last posed it. */

@@ -108,6 +108,10 @@ typedef struct renderer_options {
     gbuffer_normal gbuffer_normal;
     light_volume_mode light_volumes;
     bool separate_specular;    /* seed 001: diffuse and specular in separate targets */
+    /* shadows (every renderer; renderers/shadow.h): false = auto (spot and directional
+     * lights with shadows = true cast them), true = the manifest's `shadows: off` */
+    bool no_shadows;
+    int shadow_map_size;       /* side of each shadow map in texels; 0: 1024 */
     /* forward-mpml */
     bool no_illumination_sets; /* draw every visible object for every light (seed 000 5.6) */
 } renderer_options;

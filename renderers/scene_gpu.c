@@ -305,6 +305,19 @@ void scene_gpu_draw_object_geometry(scene_gpu *g, gl_state *st, const scene *s,
     gl_state_draw_elements(st, GL_TRIANGLES, gm->count, GL_UNSIGNED_INT, 0);
 }
 
+void scene_gpu_draw_object_depth(scene_gpu *g, gl_state *st, const scene *s, uint32_t object,
+                                 const sm_mat4 viewproj)
+{
+    const gpu_mesh *gm = object_mesh(g, s, object, "scene_gpu_draw_object_depth");
+    if (!gm)
+        return;
+    sm_mat4 mvp;
+    sm_mat4_mul(viewproj, s->objects[object].model, mvp);
+    gl.UniformMatrix4fv(0, 1, GL_FALSE, &mvp[0][0]);
+    gl_state_vertex_array(st, gm->vao);
+    gl_state_draw_elements(st, GL_TRIANGLES, gm->count, GL_UNSIGNED_INT, 0);
+}
+
 void scene_gpu_draw_light_volume(scene_gpu *g, gl_state *st, const scene *s, uint32_t light)
 {
     if (light >= s->nlights_total) {

@@ -64,6 +64,11 @@ void scene_gpu_draw_object(scene_gpu *g, gl_state *st, const scene *s, uint32_t 
  * stencil only, shadow maps): mesh.vert + any fragment shader. One draw call. */
 void scene_gpu_draw_object_geometry(scene_gpu *g, gl_state *st, const scene *s,
                                     uint32_t object);
+/* The object's mesh for a depth-only pass from another point of view (shadow maps,
+ * shadow.vert): sets location 0 = viewproj x the object's model matrix (object to that
+ * clip space) and nothing else, binds no texture. One draw call. */
+void scene_gpu_draw_object_depth(scene_gpu *g, gl_state *st, const scene *s, uint32_t object,
+                                 const sm_mat4 viewproj);
 void scene_gpu_draw_light_volume(scene_gpu *g, gl_state *st, const scene *s, uint32_t light);
 
 /* The sky, drawn last into untouched depth (z = w, depth test LEQUAL against a depth

@@ -38,6 +38,11 @@ void shading_pack_light(const scene_light *l, const sm_mat4 view, gpu_light *out
     out->v[4][2] = l->att_c;
 }
 
+void shading_set_shadow_layer(gpu_light *l, uint32_t layer)
+{
+    l->v[3][2] = layer == UINT32_MAX ? 0.0f : (float)layer + 1.0f;
+}
+
 void shading_pack_frame(const scene *s, gpu_frame *out)
 {
     sm_mat4 inv;

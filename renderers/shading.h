@@ -23,9 +23,12 @@ typedef struct gpu_frame {
 /* Light l in the view space of `view`: [0] position transformed as a point, w range;
  * [1] colour, w type (light_type as a float); [2] direction transformed as a vector and
  * normalized, w cos(spot_angle) for a spot (-1 for the others: no cone); [3] x spot
- * exponent (0 unless a spot), y attenuation kind (attenuation_kind as a float);
- * [4] att_a, att_b, att_c, 0. */
+ * exponent (0 unless a spot), y attenuation kind (attenuation_kind as a float), z 0
+ * (no shadow map: shading_set_shadow_layer sets it), w 0; [4] att_a, att_b, att_c, 0. */
 void shading_pack_light(const scene_light *l, const sm_mat4 view, gpu_light *out);
+/* The light's shadow-map layer into a packed light: [3].z = layer + 1 (shadow.inc
+ * reads params.z - 1), or 0 for FRONTEND_NO_SHADOW (UINT32_MAX): no shadow map. */
+void shading_set_shadow_layer(gpu_light *l, uint32_t layer);
 /* proj = s->proj, inv_proj = its inverse (sm_mat4_inv), ambient = (s->ambient, 0),
  * viewport = (width, height, 1/width, 1/height) of s, sky = (s->sky_color, 1 when
  * s->sky else 0), clip = (s->cam.znear, s->cam.zfar, 0, 0). */

@@ -162,6 +162,7 @@ GL_FUNC(void, InvalidateFramebuffer, (GLenum target, GLsizei numAttachments, con
  * bindings the state cache (state.h) keeps */
 GL_FUNC(void, CreateTextures, (GLenum target, GLsizei n, GLuint *textures))
 GL_FUNC(void, TextureStorage2D, (GLuint texture, GLsizei levels, GLenum internalformat, GLsizei width, GLsizei height))
+GL_FUNC(void, TextureStorage3D, (GLuint texture, GLsizei levels, GLenum internalformat, GLsizei width, GLsizei height, GLsizei depth))
 GL_FUNC(void, TextureParameteri, (GLuint texture, GLenum pname, GLint param))
 GL_FUNC(void, GetTextureLevelParameteriv, (GLuint texture, GLint level, GLenum pname, GLint *params))
 GL_FUNC(void, GetTextureImage, (GLuint texture, GLint level, GLenum format, GLenum type, GLsizei bufSize, void *pixels))
@@ -169,6 +170,7 @@ GL_FUNC(void, GetTextureSubImage, (GLuint texture, GLint level, GLint xoffset, G
 GL_FUNC(void, BindTextureUnit, (GLuint unit, GLuint texture))
 GL_FUNC(void, CreateFramebuffers, (GLsizei n, GLuint *framebuffers))
 GL_FUNC(void, NamedFramebufferTexture, (GLuint framebuffer, GLenum attachment, GLuint texture, GLint level))
+GL_FUNC(void, NamedFramebufferTextureLayer, (GLuint framebuffer, GLenum attachment, GLuint texture, GLint level, GLint layer))
 GL_FUNC(void, NamedFramebufferDrawBuffers, (GLuint framebuffer, GLsizei n, const GLenum *bufs))
 GL_FUNC(void, NamedFramebufferReadBuffer, (GLuint framebuffer, GLenum src))
 GL_FUNC(GLenum, CheckNamedFramebufferStatus, (GLuint framebuffer, GLenum target))

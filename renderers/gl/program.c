@@ -598,7 +598,16 @@ gl_program_err gl_program_get(gl_program_cache *c, const gl_program_desc *desc,
         e = GLP_ERR_MEMORY;
         goto out;
     }
-    gl.ObjectLabel(GL_PROGRAM, prog, -1, v.name);
+    {
+        /* Labels are limited (GL_MAX_LABEL_LENGTH, at least 256 with the terminator);
+         * a variant with many defines has a longer name: the label is its start. */
+        GLint max_label = 0;
+        gl.GetIntegerv(GL_MAX_LABEL_LENGTH, &max_label);
+        size_t len = strlen(v.name);
+        if (max_label > 0 && len >= (size_t)max_label)
+            len = (size_t)max_label - 1;
+        gl.ObjectLabel(GL_PROGRAM, prog, (GLsizei)len, v.name);
+    }
     c->v[c->n++] = v;
     *program = prog;
     prog = 0;   /* the cache owns it now */

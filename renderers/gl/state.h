@@ -67,7 +67,9 @@
  * frame counted alike invalidates at the start of each frame.
  *
  * Assumed and never touched: GL_SCISSOR_TEST, GL_RASTERIZER_DISCARD and
- * GL_POLYGON_OFFSET_FILL off, glFrontFace GL_CCW (GL's defaults). Textures,
+ * GL_POLYGON_OFFSET_FILL off, glFrontFace GL_CCW (GL's defaults). (The shadows pass,
+ * renderers/shadow.c, switches GL_POLYGON_OFFSET_FILL on for its draws and off again
+ * before it ends, as deferred does with GL_DEPTH_CLAMP.) Textures,
  * framebuffers and vertex arrays should be made without binding them (direct state
  * access, as target.h does); the empty vertex array is the cache's own.
  *

@@ -11,8 +11,14 @@
 // uniform u_light[5] of the other passes; renderers/shading.h fills it):
 //   [0] xyz position, w range           [1] rgb colour, w type (0 point, 1 spot, 2 dir.)
 //   [2] xyz direction (unit, the way the light travels), w cos(spot angle)
-//   [3] x spot exponent, y attenuation (0 inverse-square, 1 linear-range, 2 quadratic)
+//   [3] x spot exponent, y attenuation (0 inverse-square, 1 linear-range, 2 quadratic),
+//       z shadow-map layer + 1 (0: none; read only with SHADOWS, shadow.inc)
 //   [4] xyz quadratic a, b, c
+//
+// With SHADOWS defined, the light arriving at a point is also multiplied by its
+// shadow-map lookup (shadow.inc): I = A + att * spot * shadow * (D + g * S).
+
+#include "shadow.inc"
 
 #define LIGHT_POINT 0
 #define LIGHT_SPOT 1
@@ -69,6 +75,11 @@ vec3 shade_light(Light l, vec3 P, vec3 N, vec3 diffuse, float gloss, float shini
 {
     vec3 L;
     vec3 incoming = light_incoming(l, P, N, L);
+#ifdef SHADOWS
+    // Only where the light arrives at all: no lookup outside its range or cone.
+    if (l.params.z > 0.5 && any(greaterThan(incoming, vec3(0.0))))
+        incoming *= shadow_visibility(int(l.params.z + 0.5) - 1, P);
+#endif
     float ndl = max(dot(N, L), 0.0);
     vec3 V = normalize(-P);
     vec3 R = reflect(-L, N);
