@@ -31,8 +31,12 @@ static const char usage_text[] =
     "      --shard I/N            only the runs of shard I of N (1 <= I <= N)\n"
     "      --debug-gl             debug context; any GL error fails the run\n"
     "                             (also SHADESWEEP_GL_DEBUG=1)\n"
+    "      --scale S              every resolution times S (e.g. 0.25: a paper's sweep\n"
+    "                             at a size llvmpipe renders in time)\n"
+    "      --smoke                the manifest's smoke variant: 160x120, one trial, no\n"
+    "                             warm-up, at most 2 s a run; out/<name>-smoke\n"
     "  validate MANIFEST...       check manifests; print every error\n"
-    "  list [--shard I/N] MANIFEST  the expanded runs, one per line\n"
+    "  list [--shard I/N] [--smoke] [--scale S] MANIFEST  the expanded runs, one per line\n"
     "  info [--backend B] [--device N]  the GL context's vendor, renderer and limits\n"
     "  merge -o OUT [--force] DIR...  combine the output folders of a sweep's shards\n"
     "  --version, --help\n"
@@ -42,13 +46,14 @@ static const char usage_text[] =
 
 typedef struct cli_opts {
     const char *out;
-    bool force, resume, debug_gl;
+    bool force, resume, debug_gl, smoke;
     gl_backend backend;
     int device;
     unsigned shard, nshards;
+    double scale;              /* 0: not given */
 } cli_opts;
 
-enum { OPT_FORCE = 1000, OPT_BACKEND, OPT_DEVICE, OPT_SHARD, OPT_DEBUG_GL, OPT_RESUME };
+enum { OPT_FORCE = 1000, OPT_BACKEND, OPT_DEVICE, OPT_SHARD, OPT_DEBUG_GL, OPT_RESUME, OPT_SMOKE, OPT_SCALE };
 
 /* Parses the options a command accepts; `allowed` lists their long names. Returns
  * the index of the first operand, or -1 after printing the problem. */
@@ -62,6 +67,8 @@ static int parse_opts(int argc, char **argv, const char *allowed, cli_opts *o)
         {"shard", required_argument, NULL, OPT_SHARD},
         {"debug-gl", no_argument, NULL, OPT_DEBUG_GL},
         {"resume", no_argument, NULL, OPT_RESUME},
+        {"smoke", no_argument, NULL, OPT_SMOKE},
+        {"scale", required_argument, NULL, OPT_SCALE},
         {NULL, 0, NULL, 0},
     };
     memset(o, 0, sizeof *o);
@@ -90,6 +97,19 @@ static int parse_opts(int argc, char **argv, const char *allowed, cli_opts *o)
         case OPT_FORCE: o->force = true; break;
         case OPT_DEBUG_GL: o->debug_gl = true; break;
         case OPT_RESUME: o->resume = true; break;
+        case OPT_SMOKE: o->smoke = true; break;
+        case OPT_SCALE: {
+            char *end;
+            errno = 0;
+            double v = strtod(optarg, &end);
+            if (errno || *end || end == optarg || !(v > 0 && v <= 16)) {
+                fprintf(stderr, "shadesweep: --scale: expected a number > 0 and <= 16, found '%s'\n",
+                        optarg);
+                return -1;
+            }
+            o->scale = v;
+            break;
+        }
         case OPT_BACKEND:
             if (strcmp(optarg, "egl") == 0)
                 o->backend = GL_BACKEND_EGL;
@@ -129,12 +149,20 @@ static int parse_opts(int argc, char **argv, const char *allowed, cli_opts *o)
 }
 
 /* Loads and expands a manifest, printing every problem. */
-static bool load_plan(const char *path, unsigned nshards, experiment **e, plan *p)
+static bool load_plan(const char *path, const cli_opts *o, experiment **e, plan *p)
 {
     diag_list d = {0};
     *e = NULL;
     memset(p, 0, sizeof *p);
-    bool ok = manifest_load(path, e, &d) && plan_expand(*e, nshards, p, &d);
+    bool ok = manifest_load(path, e, &d);
+    char err[256];
+    if (ok && o->scale > 0 && !experiment_scale_resolution(*e, o->scale, err, sizeof err)) {
+        diag_add(&d, path, 0, 0, "", "%s", err);
+        ok = false;
+    }
+    if (ok && o->smoke)
+        experiment_make_smoke(*e);
+    ok = ok && plan_expand(*e, o->nshards, p, &d);
     diag_print(&d, stderr);
     diag_free(&d);
     if (!ok) {
@@ -158,7 +186,7 @@ static int cmd_validate(int argc, char **argv)
     for (int i = first; i < argc; i++) {
         experiment *e;
         plan p;
-        if (!load_plan(argv[i], 1, &e, &p)) {
+        if (!load_plan(argv[i], &o, &e, &p)) {
             bad++;
             continue;
         }
@@ -172,7 +200,7 @@ static int cmd_validate(int argc, char **argv)
 static int cmd_list(int argc, char **argv)
 {
     cli_opts o;
-    int first = parse_opts(argc, argv, "shard", &o);
+    int first = parse_opts(argc, argv, "shard smoke scale", &o);
     if (first < 0)
         return 2;
     if (argc - first != 1) {
@@ -181,7 +209,7 @@ static int cmd_list(int argc, char **argv)
     }
     experiment *e;
     plan p;
-    if (!load_plan(argv[first], o.nshards, &e, &p))
+    if (!load_plan(argv[first], &o, &e, &p))
         return 2;
     plan_print(&p, o.shard, stdout);
     plan_free(&p);
@@ -230,7 +258,7 @@ static int cmd_info(int argc, char **argv)
 static int cmd_run(int argc, char **argv)
 {
     cli_opts o;
-    int first = parse_opts(argc, argv, "out force resume backend device shard debug-gl", &o);
+    int first = parse_opts(argc, argv, "out force resume backend device shard debug-gl smoke scale", &o);
     if (first < 0)
         return 2;
     if (argc - first != 1) {
@@ -243,7 +271,7 @@ static int cmd_run(int argc, char **argv)
     }
     experiment *e;
     plan p;
-    if (!load_plan(argv[first], o.nshards, &e, &p))
+    if (!load_plan(argv[first], &o, &e, &p))
         return 2;
 
     int rc = 2;

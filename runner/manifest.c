@@ -63,6 +63,7 @@ typedef enum ptype {
     PT_COUNT,        /* integer 0..MAX_LIGHTS | {start, step, every, max} -> light_count */
     PT_TIMES,        /* sequence of numbers >= 0, at most MAX_SCREENSHOTS -> size_t n, double[] */
     PT_RENDERER,     /* one renderer name -> char[32] */
+    PT_VEC3,         /* [x, y, z] finite numbers, or `scene` (PF_SCENE_DEFAULT) -> float[3] */
     PT_GROUP,        /* a mapping of the parameters whose path continues this one */
     PT_SWEEP,        /* parameter path -> non-empty sequence of its values */
 } ptype;
@@ -73,6 +74,8 @@ enum {
     PF_MIN_OPEN = 1u << 2,     /* PT_NUMBER, PT_SPAN seconds: value > min rather than >= */
     PF_FLOAT = 1u << 3,        /* PT_NUMBER stored as float */
     PF_NOT_IN_ID = 1u << 4,    /* recorded, but changes no result: not part of the run id */
+    PF_SCENE_DEFAULT = 1u << 5,/* PT_NUMBER (float), PT_VEC3: `scene` (stored as NAN) keeps
+                                  the scene's own value */
 };
 
 typedef struct param {
@@ -96,7 +99,9 @@ typedef struct param {
 
 static const char *const clock_names[] = {"wall", "fixed", NULL};
 static const char *const sync_names[] = {"finish", "fence", NULL};
-static const char *const placement_names[] = {"random", "none", NULL};
+/* In the order of light_placement (scenes/lights.h). */
+static const char *const placement_names[] = {"random", "none", "grid", "scene", NULL};
+static const char *const shadows_names[] = {"auto", "off", NULL};
 static const char *const rng_names[] = {"msvc", "pcg32", "mt19937", NULL};
 static const char *const attenuation_names[] = {"inverse-square", "linear-range", "quadratic",
                                                 NULL};
@@ -175,6 +180,35 @@ static const param table[] = {
      RP(illumination_sets),
      .description = "forward-mpml draws, per light, only the visible objects its volume "
                     "reaches (false: every visible object, seed 000 5.6)"},
+    {.path = "shadows", .type = PT_ENUM, .flags = PF_SWEEP, .def = "auto",
+     .values = shadows_names, RP(shadows),
+     .description = "auto: the lights the scene marks as shadow-casting get shadow maps; off: none do"},
+    {.path = "camera", .type = PT_GROUP,
+     .description = "the scene's camera path, changed: each key defaults to `scene` (the "
+                    "scene's own value)"},
+    {.path = "camera.radius", .type = PT_NUMBER,
+     .flags = PF_SWEEP | PF_FLOAT | PF_MIN_OPEN | PF_SCENE_DEFAULT, .def = "scene", .min = 0,
+     .max = 1e7, RP(camera.radius), .description = "orbit radius, world units"},
+    {.path = "camera.height", .type = PT_NUMBER, .flags = PF_SWEEP | PF_FLOAT | PF_SCENE_DEFAULT,
+     .def = "scene", .min = -1e7, .max = 1e7, RP(camera.height),
+     .description = "orbit height above the target, world units"},
+    {.path = "camera.period", .type = PT_NUMBER,
+     .flags = PF_SWEEP | PF_FLOAT | PF_MIN_OPEN | PF_SCENE_DEFAULT, .def = "scene", .min = 0,
+     .max = 1e7, RP(camera.period),
+     .description = "seconds of schedule time for one orbit, or for the scripted path"},
+    {.path = "camera.target", .type = PT_VEC3, .flags = PF_SWEEP | PF_SCENE_DEFAULT,
+     .def = "scene", .min = -1e7, .max = 1e7, RP(camera.target),
+     .description = "the point the orbit circles and looks at: [x, y, z]"},
+    {.path = "camera.near", .type = PT_NUMBER,
+     .flags = PF_SWEEP | PF_FLOAT | PF_MIN_OPEN | PF_SCENE_DEFAULT, .def = "scene", .min = 0,
+     .max = 1e9, RP(camera.znear), .description = "near plane distance"},
+    {.path = "camera.far", .type = PT_NUMBER,
+     .flags = PF_SWEEP | PF_FLOAT | PF_MIN_OPEN | PF_SCENE_DEFAULT, .def = "scene", .min = 0,
+     .max = 1e9, RP(camera.zfar), .description = "far plane distance (the draw distance)"},
+    {.path = "camera.hold", .type = PT_NUMBER, .flags = PF_SWEEP | PF_FLOAT | PF_SCENE_DEFAULT,
+     .def = "scene", .min = 0, .max = 1, RP(camera.hold),
+     .description = "stop the camera at this fraction of its path (orbit: of a turn) for the "
+                    "whole run; scene: move along it"},
     {.path = "error", .type = PT_GROUP,
      .description = "image error against a reference configuration rendering the same "
                     "frame: RMSE, PSNR, max error, pixels off by > 1/255, non-finite values"},
@@ -201,7 +235,9 @@ static const param table[] = {
                     "a run has no lights: placement none, count 0"},
     {.path = "lights.placement", .type = PT_ENUM, .flags = PF_SWEEP, .def = "random",
      .values = placement_names, RP(lights.placement),
-     .description = "random: uniform in the scene's light bounds; none: no lights (count must be 0)"},
+     .description = "random: uniform in the scene's light bounds; grid: non-overlapping, on a "
+                    "grid in them; scene: the scene's own lights (count caps them); none: no "
+                    "lights (count must be 0)"},
     {.path = "lights.seed", .type = PT_UINT, .flags = PF_SWEEP, .def = "1337", .min = 0,
      .max = 4294967295.0, RP(lights.seed),
      .description = "seed of the placement generator"},
@@ -214,6 +250,10 @@ static const param table[] = {
     {.path = "lights.radius", .type = PT_NUMBER, .flags = PF_SWEEP | PF_MIN_OPEN | PF_FLOAT,
      .def = "10", .min = 0, .max = 1e9, RP(lights.radius),
      .description = "range of each point light, world units"},
+    {.path = "lights.overlap", .type = PT_NUMBER, .flags = PF_SWEEP | PF_FLOAT, .def = "0",
+     .min = 0, .max = 1e6, RP(lights.overlap),
+     .description = "> 0: the radius is derived so that on average this many lights reach a "
+                    "point of the light bounds (random and grid placement); 0: lights.radius"},
     {.path = "lights.color_max", .type = PT_NUMBER, .flags = PF_SWEEP | PF_FLOAT, .def = "0.3",
      .min = 0, .max = 1e6, RP(lights.color_max),
      .description = "each colour channel uniform in [0, color_max]"},
@@ -427,11 +467,18 @@ static const char *expect(const param *pd, char *buf, size_t len)
     case PT_RENDERER: list_renderers(&b); break;
     case PT_RESOLUTION: sb_add(&b, "WxH with each side 1..%d", MAX_SIDE); break;
     case PT_UINT: sb_add(&b, "an integer %.0f..%.0f", pd->min, pd->max); break;
-    case PT_NUMBER: range_number(&b, pd->min, pd->max, pd->flags & PF_MIN_OPEN); break;
+    case PT_NUMBER:
+        range_number(&b, pd->min, pd->max, pd->flags & PF_MIN_OPEN);
+        if (pd->flags & PF_SCENE_DEFAULT)
+            sb_add(&b, ", or scene");
+        break;
+    case PT_VEC3: sb_add(&b, "[x, y, z] (finite numbers) or scene"); break;
     case PT_ENUM: list_enum(&b, pd->values); break;
     case PT_BOOL: sb_add(&b, "true or false"); break;
     case PT_SPAN: sb_add(&b, "{seconds: S} or {frames: N}"); break;
-    case PT_COUNT: sb_add(&b, "an integer 0..%u or {start, step, every, max}", MAX_LIGHTS); break;
+    case PT_COUNT:
+        sb_add(&b, "an integer 0..%u, all, or {start, step, every, max}", MAX_LIGHTS);
+        break;
     case PT_TIMES: sb_add(&b, "a sequence of at most %d times in seconds", MAX_SCREENSHOTS); break;
     case PT_GROUP:
         if (pd->shorthand) {
@@ -604,6 +651,8 @@ static bool parse_number_in(vctx *c, const ynode *n, const char *key, double min
     char e[128], f[128];
     sbuf b = {e, sizeof e, 0};
     range_number(&b, min, max, flags & PF_MIN_OPEN);
+    if (flags & PF_SCENE_DEFAULT)
+        sb_add(&b, ", or scene");
     if (!get_number(n, &v, &finite)) {
         err(c, n, key, "expected %s, found %s", e, found(n, false, f, sizeof f));
         return false;
@@ -729,6 +778,11 @@ static bool parse_count(vctx *c, const param *pd, const ynode *n, const char *ke
 {
     if (n->kind == YNODE_SCALAR) {
         uint64_t v;
+        if (ynode_plain(n) && strcmp(n->text, "all") == 0) {
+            *out = (light_count){.growth = false, .start = LIGHT_COUNT_ALL,
+                                 .max = LIGHT_COUNT_ALL};
+            return true;
+        }
         if (!get_uint(n, &v) || v > MAX_LIGHTS)
             return bad(c, pd, n, key);
         *out = (light_count){.growth = false, .start = (uint32_t)v, .max = (uint32_t)v};
@@ -923,6 +977,11 @@ static bool parse_value(vctx *c, const param *pd, const ynode *n, const char *ke
     }
     case PT_NUMBER: {
         double v;
+        if ((pd->flags & PF_SCENE_DEFAULT) && ynode_plain(n) && strcmp(n->text, "scene") == 0) {
+            float f = NAN;   /* PF_SCENE_DEFAULT numbers are floats */
+            memcpy(at, &f, sizeof f);
+            return true;
+        }
         if (!parse_number_in(c, n, key, pd->min, pd->max, pd->flags, &v))
             return false;
         if (pd->flags & PF_FLOAT) {
@@ -931,6 +990,25 @@ static bool parse_value(vctx *c, const param *pd, const ynode *n, const char *ke
         } else {
             memcpy(at, &v, sizeof v);
         }
+        return true;
+    }
+    case PT_VEC3: {
+        float v[3] = {NAN, NAN, NAN};
+        if (ynode_plain(n) && strcmp(n->text, "scene") == 0) {
+            memcpy(at, v, sizeof v);
+            return true;
+        }
+        if (n->kind != YNODE_SEQUENCE || n->n != 3)
+            return bad(c, pd, n, key);
+        for (size_t i = 0; i < 3; i++) {
+            char k[160];
+            double d;
+            snprintf(k, sizeof k, "%s[%zu]", key, i);
+            if (!parse_number_in(c, n->items[i], k, pd->min, pd->max, PF_FLOAT, &d))
+                return false;
+            v[i] = (float)d;
+        }
+        memcpy(at, v, sizeof v);
         return true;
     }
     case PT_ENUM:
@@ -1094,7 +1172,6 @@ static bool lights_swept(const vctx *c)
     return false;
 }
 
-/* Placement none means no lights: every count it can meet must be 0. */
 /* An error block names a reference renderer and at least one time, or neither. */
 static void check_error(vctx *c)
 {
@@ -1121,11 +1198,53 @@ static void check_error(vctx *c)
     }
 }
 
+/* Count `all` means the scene's authored lights: every placement it can meet must be
+ * scene; and placement scene without a count (set or swept) means all of them. */
+static void check_count_all(vctx *c)
+{
+    experiment *e = c->e;
+    size_t ip = (size_t)(param_find("lights.placement") - table);
+    size_t ic = (size_t)(param_find("lights.count") - table);
+    bool all_scene = e->base.lights.placement == PLACEMENT_SCENE;
+    if (c->axis_of[ip]) {
+        const struct sweep_axis *ax = &e->axes[c->axis_of[ip] - 1];
+        all_scene = true;
+        for (size_t j = 0; j < ax->nvalues; j++)
+            all_scene = all_scene && ax->values[j].lights.placement == PLACEMENT_SCENE;
+    }
+    if (all_scene && !c->set_val[ic] && !c->axis_of[ic]) {
+        e->base.lights.count = (light_count){.start = LIGHT_COUNT_ALL, .max = LIGHT_COUNT_ALL};
+        return;
+    }
+    if (all_scene)
+        return;
+    static const char msg[] = "expected a number of lights (all is for lights.placement scene "
+                              "only), found all";
+    if (c->axis_of[ic]) {
+        const struct sweep_axis *ax = &e->axes[c->axis_of[ic] - 1];
+        for (size_t j = 0; j < ax->nvalues; j++)
+            if (ax->values[j].lights.count.max == LIGHT_COUNT_ALL) {
+                char key[160];
+                snprintf(key, sizeof key, "sweep.lights.count[%zu]", j);
+                diag_add(c->d, c->file, ax->line[j], ax->col[j], key, "%s", msg);
+                c->nerr++;
+            }
+    } else if (c->set_val[ic] && e->base.lights.count.max == LIGHT_COUNT_ALL) {
+        err(c, c->set_val[ic], "lights.count", "%s", msg);
+    }
+}
+
+/* Placement none means no lights: every count it can meet must be 0. */
 static void check_lights(vctx *c)
 {
     const experiment *e = c->e;
     size_t ip = (size_t)(param_find("lights.placement") - table);
     size_t ic = (size_t)(param_find("lights.count") - table);
+
+    size_t nerr = c->nerr;
+    check_count_all(c);
+    if (c->nerr > nerr)
+        return;   /* a count of all is wrong already */
 
     bool none = e->base.lights.placement == PLACEMENT_NONE;
     if (c->axis_of[ip]) {
@@ -1310,6 +1429,7 @@ bool manifest_load_mem(const char *name, const char *data, size_t len, experimen
     if (!data)
         data = "";   /* libyaml wants a buffer even for no bytes */
     hash_hex(fnv1a64(data, len), 16, e->hash);
+    e->scale = 1;
     if (!apply_defaults(&c, &e->base))
         goto done;
     if (!ydoc_load(name, data, len, &doc, diags))
@@ -1351,6 +1471,116 @@ bool manifest_load(const char *path, experiment **out, diag_list *diags)
     return ok;
 }
 
+/* >>smoke */
+
+static void smoke_span(span *s, double max_s, uint32_t max_frames)
+{
+    if (s->kind == SPAN_FRAMES)
+        s->frames = s->frames < max_frames ? s->frames : max_frames;
+    else
+        s->seconds = s->seconds < max_s ? s->seconds : max_s;
+}
+
+/* Times past the smoke run's end (schedule seconds) move to its middle; duplicates go. */
+static void smoke_times(double *t, size_t *n, double end)
+{
+    size_t k = 0;
+    for (size_t i = 0; i < *n; i++) {
+        double v = t[i] < end ? t[i] : end / 2;
+        bool dup = false;
+        for (size_t j = 0; j < k; j++)
+            dup = dup || t[j] == v;
+        if (!dup)
+            t[k++] = v;
+    }
+    *n = k;
+}
+
+void experiment_make_smoke(experiment *e)
+{
+    static const char *const collapse[] = {"resolution", "trials", "warmup", "duration"};
+    size_t k = 0;
+    for (size_t i = 0; i < e->naxes; i++) {
+        bool drop = false;
+        for (size_t j = 0; j < sizeof collapse / sizeof collapse[0]; j++)
+            drop = drop || strcmp(e->axes[i].path, collapse[j]) == 0;
+        if (drop) {
+            free(e->axes[i].values);
+            free(e->axes[i].line);
+            free(e->axes[i].col);
+        } else {
+            e->axes[k++] = e->axes[i];
+        }
+    }
+    e->naxes = k;
+
+    run_params *b = &e->base;
+    if (b->width > 160 || b->height > 120) {
+        b->width = 160;
+        b->height = 120;
+    }
+    b->trials = 1;
+    b->warmup = (span){.kind = SPAN_FRAMES, .frames = 0};
+    smoke_span(&b->duration, 2.0, 120);
+    double end = b->duration.kind == SPAN_FRAMES
+                     ? b->duration.frames * (b->clock == RUN_CLOCK_FIXED ? b->step : 1.0 / 60)
+                     : b->duration.seconds;
+    smoke_times(b->screenshots, &b->nscreenshots, end);
+    smoke_times(b->error_at, &b->nerror_at, end);
+
+    size_t len = strlen(e->name);
+    if (len > sizeof e->name - 7)
+        len = sizeof e->name - 7;
+    snprintf(e->name + len, sizeof e->name - len, "-smoke");
+    char salted[32];
+    e->smoke = true;
+    snprintf(salted, sizeof salted, "%s+smoke", e->hash);
+    hash_hex(fnv1a64(salted, strlen(salted)), 16, e->hash);
+}
+
+static bool scale_side(int *side, double scale)
+{
+    double v = floor(*side * scale + 0.5);
+    *side = v < 1 ? 1 : v > MAX_SIDE ? MAX_SIDE + 1 : (int)v;
+    return *side <= MAX_SIDE;
+}
+
+bool experiment_scale_resolution(experiment *e, double scale, char *err, size_t errlen)
+{
+    if (!(scale > 0 && scale <= 16)) {
+        snprintf(err, errlen, "--scale: expected a number > 0 and <= 16, found %g", scale);
+        return false;
+    }
+    run_params *b = &e->base;
+    bool ok = scale_side(&b->width, scale) & scale_side(&b->height, scale);
+    for (size_t i = 0; i < e->naxes && ok; i++) {
+        struct sweep_axis *ax = &e->axes[i];
+        if (strcmp(ax->path, "resolution") != 0)
+            continue;
+        for (size_t j = 0; j < ax->nvalues && ok; j++) {
+            run_params *v = &ax->values[j];
+            ok = scale_side(&v->width, scale) & scale_side(&v->height, scale);
+            for (size_t k = 0; k < j && ok; k++)
+                if (ax->values[k].width == v->width && ax->values[k].height == v->height) {
+                    snprintf(err, errlen,
+                             "--scale %g: swept resolutions %zu and %zu both become %dx%d",
+                             scale, k + 1, j + 1, v->width, v->height);
+                    return false;
+                }
+        }
+    }
+    if (!ok) {
+        snprintf(err, errlen, "--scale %g: a resolution would exceed %dx%d", scale, MAX_SIDE,
+                 MAX_SIDE);
+        return false;
+    }
+    e->scale = scale;
+    char salted[64];
+    snprintf(salted, sizeof salted, "%s+scale=%.17g", e->hash, scale);
+    hash_hex(fnv1a64(salted, strlen(salted)), 16, e->hash);
+    return true;
+}
+
 /* >>kv */
 
 static void format_value(const param *pd, const run_params *p, char *out, size_t len)
@@ -1381,13 +1611,30 @@ static void format_value(const param *pd, const run_params *p, char *out, size_t
         if (pd->flags & PF_FLOAT) {
             float f;
             memcpy(&f, at, sizeof f);
-            fmt_float(f, out, len);
+            if (isnan(f))
+                snprintf(out, len, "scene");   /* PF_SCENE_DEFAULT */
+            else
+                fmt_float(f, out, len);
         } else {
             double v;
             memcpy(&v, at, sizeof v);
             fmt_double(v, out, len);
         }
         break;
+    case PT_VEC3: {
+        float v[3];
+        char y[32], z[32];
+        memcpy(v, at, sizeof v);
+        if (isnan(v[0])) {
+            snprintf(out, len, "scene");
+        } else {
+            fmt_float(v[0], a, sizeof a);
+            fmt_float(v[1], y, sizeof y);
+            fmt_float(v[2], z, sizeof z);
+            snprintf(out, len, "%s,%s,%s", a, y, z);
+        }
+        break;
+    }
     case PT_ENUM: {
         int i;
         memcpy(&i, at, sizeof i);
@@ -1417,7 +1664,9 @@ static void format_value(const param *pd, const run_params *p, char *out, size_t
     case PT_COUNT: {
         light_count lc;
         memcpy(&lc, at, sizeof lc);
-        if (lc.growth) {
+        if (!lc.growth && lc.start == LIGHT_COUNT_ALL) {
+            snprintf(out, len, "all");
+        } else if (lc.growth) {
             fmt_double(lc.every, a, sizeof a);
             snprintf(out, len, "start:%" PRIu32 ",step:%" PRIu32 ",every:%s,max:%" PRIu32,
                      lc.start, lc.step, a, lc.max);

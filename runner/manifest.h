@@ -11,6 +11,7 @@
 #include "renderers/renderer.h"
 #include "runner/diag.h"
 #include "scenes/lights.h"
+#include "scenes/scene.h"
 
 typedef enum span_kind { SPAN_SECONDS = 0, SPAN_FRAMES } span_kind;
 typedef struct span {          /* {seconds: x} or {frames: n} */
@@ -41,6 +42,8 @@ typedef struct run_params {
     light_volume_mode light_volumes;
     bool separate_specular;
     bool illumination_sets;    /* forward-mpml */
+    int shadows;               /* 0 auto, 1 off */
+    camera_params camera;      /* NAN fields: the scene's own */
     light_params lights;
     bool out_frames, out_seconds;
     size_t nscreenshots;
@@ -60,6 +63,8 @@ typedef struct experiment {
     char name[64];             /* [a-z0-9-]+ */
     char *description;         /* "" if absent */
     char hash[17];             /* FNV-1a 64 of the manifest's bytes, hex */
+    double scale;              /* run --scale (1 when not given) */
+    bool smoke;                /* run --smoke: experiment_make_smoke applied */
     run_params base;           /* the manifest's values with defaults, renderer = "" */
     size_t nrenderers;
     char (*renderers)[32];
@@ -90,6 +95,22 @@ bool manifest_load_mem(const char *name, const char *data, size_t len, experimen
                        diag_list *diags);
 void experiment_free(experiment *e);   /* NULL is fine */
 
+/* The smoke variant of a manifest (`run --smoke`), for CI and for a quick look before
+ * an overnight sweep: every run at 160x120 (or smaller if the manifest asks for
+ * smaller), one trial, no warm-up, at most 2 s (or 120 frames) measured; sweeps of
+ * resolution, trials, warm-up and duration collapse to that one value; screenshot
+ * and error times past the end move to the middle of the run. The name gets
+ * "-smoke" and the manifest hash changes with it, so a smoke folder never merges
+ * with a full one. */
+void experiment_make_smoke(experiment *e);
+
+/* `run --scale S`: every resolution of the manifest (the base and a resolution sweep's
+ * values) multiplied by S, rounded, each side at least 1; a paper's settings at a size
+ * a slower machine renders in time. False with a message when S is not in (0, 16] or a
+ * scaled side exceeds the largest allowed, or two swept resolutions become one. The
+ * run ids follow the scaled resolutions; the output's sweep.yaml records the scale. */
+bool experiment_scale_resolution(experiment *e, double scale, char *err, size_t errlen);
+
 /* The cartesian product of the sweep axes (first axis varies slowest) times the
  * renderers (fastest), in that order. nshards >= 1 assigns run k to shard
  * (k mod nshards) + 1. Duplicate points are an error in diags. */
@@ -104,7 +125,7 @@ typedef struct param_kv {
     bool in_id;                /* part of the run id (timeout is not: it changes no result) */
 } param_kv;
 size_t run_params_kv(const run_params *p, param_kv *out, size_t max);
-#define PARAM_KV_MAX 48
+#define PARAM_KV_MAX 64
 
 /* "--shard I/N" parser: 1 <= I <= N. */
 bool parse_shard(const char *s, unsigned *i, unsigned *n, char *err, size_t errlen);

@@ -40,6 +40,9 @@ static const char *const errors_columns[] = {
     "run_id", "trial", "frame", "t_scene_s", "rmse", "psnr_db", "max_abs", "frac_over_1_255",
     "nonfinite",
 };
+static const char *const coverage_columns[] = {
+    "run_id", "trial", "frame", "t_scene_s", "light", "coverage",
+};
 static const char *const passes_columns[] = {
     "run_id", "trial", "frame", "pass", "gpu_us", "cpu_us", "draw_calls", "state_changes",
     "fragments", "primitives",
@@ -199,6 +202,29 @@ bool run_files_open_errors(run_files *f, const char *run_dir, char *err, size_t 
     return f->errors != NULL;
 }
 
+bool run_files_open_coverage(run_files *f, const char *run_dir, char *err, size_t errlen)
+{
+    char path[4096];
+    join(path, sizeof path, run_dir, "coverage.csv");
+    f->coverage = csv_open(path, coverage_columns, NCOLS(coverage_columns), err, errlen);
+    return f->coverage != NULL;
+}
+
+void run_files_coverage(run_files *f, const char *run_id, uint32_t trial, uint32_t frame,
+                        double t_scene, uint32_t light, double coverage)
+{
+    csv_writer *w = f->coverage;
+    if (!w)
+        return;
+    csv_str(w, run_id);
+    csv_u64(w, trial);
+    csv_u64(w, frame);
+    csv_f64(w, t_scene, 6);
+    csv_u64(w, light);
+    csv_f64(w, coverage, 6);
+    csv_end_row(w);
+}
+
 void run_files_error(run_files *f, const char *run_id, uint32_t trial, uint32_t frame,
                      double t_scene, const image_error *e)
 {
@@ -219,7 +245,8 @@ void run_files_error(run_files *f, const char *run_id, uint32_t trial, uint32_t 
 
 bool run_files_commit(run_files *f, char *err, size_t errlen)
 {
-    csv_writer **all[] = {&f->frames, &f->passes, &f->seconds, &f->convergence, &f->errors};
+    csv_writer **all[] = {&f->frames, &f->passes, &f->seconds, &f->convergence, &f->errors,
+                          &f->coverage};
     bool ok = true;
     for (size_t i = 0; i < NCOLS(all); i++) {
         if (!*all[i])
@@ -240,6 +267,7 @@ void run_files_abort(run_files *f)
     csv_abort(f->seconds);
     csv_abort(f->convergence);
     csv_abort(f->errors);
+    csv_abort(f->coverage);
     memset(f, 0, sizeof *f);
 }
 
@@ -422,6 +450,8 @@ bool output_write_sweep_meta(const char *out_dir, const sweep_meta *m, char *err
     yo_key(y, "manifest_hash"); yo_str(y, m->manifest_hash);
     yo_key(y, "runs"); yo_i64(y, (int64_t)m->runs);
     yo_key(y, "shard"); yo_str(y, m->shard);
+    yo_key(y, "resolution_scale"); yo_f64(y, m->scale > 0 ? m->scale : 1.0);
+    yo_key(y, "smoke"); yo_bool(y, m->smoke);
     yo_map_end(y);
     return yo_commit(y, err, errlen);
 }
@@ -460,6 +490,10 @@ bool output_read_sweep_meta(const char *out_dir, sweep_meta *m, char *err, size_
             m->runs = (size_t)strtoull(v, NULL, 10);
         else if (strcmp(k, "shard") == 0)
             snprintf(m->shard, sizeof m->shard, "%s", v);
+        else if (strcmp(k, "resolution_scale") == 0)
+            m->scale = strtod(v, NULL);
+        else if (strcmp(k, "smoke") == 0)
+            m->smoke = strcmp(v, "true") == 0;
     }
     ydoc_free(doc);
     diag_free(&d);

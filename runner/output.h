@@ -31,13 +31,15 @@ typedef struct sweep_meta {
     char manifest_hash[17];
     size_t runs;
     char shard[64];
+    double scale;              /* run --scale (0 read as 1) */
+    bool smoke;                /* run --smoke */
 } sweep_meta;
 bool output_write_sweep_meta(const char *out_dir, const sweep_meta *m, char *err, size_t errlen);
 bool output_read_sweep_meta(const char *out_dir, sweep_meta *m, char *err, size_t errlen);
 
 /* The per-run CSV streams, open across the run's trials. */
 typedef struct run_files {
-    csv_writer *frames, *seconds, *passes, *convergence, *errors;
+    csv_writer *frames, *seconds, *passes, *convergence, *errors, *coverage;
 } run_files;
 
 bool run_files_open(run_files *f, const char *run_dir, const run_params *p, char *err,
@@ -53,6 +55,11 @@ void run_files_convergence(run_files *f, const char *run_id, uint32_t trial,
 bool run_files_open_errors(run_files *f, const char *run_dir, char *err, size_t errlen);
 void run_files_error(run_files *f, const char *run_id, uint32_t trial, uint32_t frame,
                      double t_scene, const image_error *e);
+/* Screen coverage of the scene's coverage lights (scene_light_coverage), a row per
+ * light per frame: coverage.csv, opened when the scene has such lights. */
+bool run_files_open_coverage(run_files *f, const char *run_dir, char *err, size_t errlen);
+void run_files_coverage(run_files *f, const char *run_id, uint32_t trial, uint32_t frame,
+                        double t_scene, uint32_t light, double coverage);
 bool run_files_commit(run_files *f, char *err, size_t errlen);
 void run_files_abort(run_files *f);
 
@@ -67,6 +74,7 @@ typedef struct trial_result {
     double gpu_mean_us, draw_calls_mean, state_changes_mean, fragments_mean;
     double harness_us_mean;    /* runner bookkeeping between frames, us */
     double ci1pct_after_s;     /* the CI stayed within 1% of the mean from then on; NAN: never */
+    unsigned gpu_dropped;      /* pass GPU times longer than their frame, made NAN (run.c) */
     /* the worst comparison with the reference (NAN: none made): largest RMSE and max
      * error, smallest PSNR; non-finite values summed over the comparisons */
     double image_rmse, image_psnr_db, image_max_abs;

@@ -138,6 +138,27 @@ static bool screenshot(run_state *st, uint32_t trial, double at, char *err, size
     return ok;
 }
 
+/* A pass's GPU time cannot exceed the wall time of the frame that waited for it;
+ * llvmpipe reports such values for the first timer queries of a context (9e9 us was
+ * seen). They become NAN (the CSVs then say nothing rather than something wrong), and
+ * the total is summed again. Returns how many were dropped. */
+static unsigned drop_implausible_gpu(frame_stats *fs, double frametime_us)
+{
+    unsigned dropped = 0;
+    double total = 0;
+    for (size_t i = 0; i < fs->npasses; i++) {
+        double g = fs->pass[i].gpu_us;
+        if (isfinite(g) && (g < 0 || g > frametime_us * 1.01 + 1000)) {
+            fs->pass[i].gpu_us = NAN;
+            dropped++;
+        }
+        total += fs->pass[i].gpu_us;
+    }
+    if (dropped)
+        fs->total.gpu_us = total;   /* NAN now, as for any pass without a result */
+    return dropped;
+}
+
 /* Draws one frame at schedule time t and waits for its end. */
 static bool draw_frame(run_state *st, double t, frame_stats *fs)
 {
@@ -283,6 +304,11 @@ static void run_trial(run_state *st, uint32_t trial, trial_result *tr)
             break;
         }
         renderer_collect(st->r, &fs);
+        unsigned dropped = drop_implausible_gpu(&fs, (end - start) * 1e6);
+        if (dropped && !tr->gpu_dropped)
+            fprintf(stderr, "run %s: frame %zu: %u GPU timer result%s longer than the frame "
+                    "itself, recorded as unknown\n", st->s->id, k, dropped, dropped == 1 ? "" : "s");
+        tr->gpu_dropped += dropped;
         frame_record rec = {
             .frame = (uint32_t)k,
             .t_wall_s = end - t0,
@@ -300,6 +326,9 @@ static void run_trial(run_state *st, uint32_t trial, trial_result *tr)
             break;
         }
         run_files_frame(&st->files, st->s->id, trial, &rec, &fs);
+        for (uint32_t i = 0; i < st->sc->ncoverage_lights && i < st->sc->nlights_active; i++)
+            run_files_coverage(&st->files, st->s->id, trial, rec.frame, t, i,
+                               scene_light_coverage(st->sc, i));
         bool clean = gl_clean(st, "frame");
         harness_s += progress_now() - end;
         if (!clean) {
@@ -355,11 +384,15 @@ static void run_trial(run_state *st, uint32_t trial, trial_result *tr)
         return;
     }
     double gpu = 0, dc = 0, sc = 0, frag = 0;
+    size_t ngpu = 0;           /* frames with a GPU time (some may have none) */
     unsigned lmax = 0;
     for (size_t i = 0; i < n; i++) {
         const frame_record *f = &st->log.v[i];
         ft[i] = f->frametime_us;
-        gpu += f->gpu_us;
+        if (isfinite(f->gpu_us)) {
+            gpu += f->gpu_us;
+            ngpu++;
+        }
         dc += (double)f->draw_calls;
         sc += (double)f->state_changes;
         frag += f->fragments;
@@ -371,7 +404,7 @@ static void run_trial(run_state *st, uint32_t trial, trial_result *tr)
     tr->frames = n;
     tr->measured_s = t_end;
     tr->fps_mean = t_end > 0 ? (double)n / t_end : NAN;
-    tr->gpu_mean_us = n ? gpu / (double)n : NAN;
+    tr->gpu_mean_us = ngpu ? gpu / (double)ngpu : NAN;   /* over the frames that have one */
     tr->draw_calls_mean = n ? dc / (double)n : NAN;
     tr->state_changes_mean = n ? sc / (double)n : NAN;
     tr->fragments_mean = n ? frag / (double)n : NAN;
@@ -539,7 +572,8 @@ static bool run_setup(run_state *st)
         return false;
     }
     if (!(st->sc = scene_build(p->scene, &p->lights, p->width, p->height, st->err,
-                               sizeof st->err))) {
+                               sizeof st->err)) ||
+        !scene_set_camera(st->sc, &p->camera, st->err, sizeof st->err)) {
         set_status(st, "scene");
         return false;
     }
@@ -557,6 +591,7 @@ static bool run_setup(run_state *st)
         .light_volumes = p->light_volumes,
         .separate_specular = p->separate_specular,
         .no_illumination_sets = !p->illumination_sets,
+        .no_shadows = p->shadows == 1,
     };
     if (!(st->r = renderer_create(p->renderer, &ro, st->err, sizeof st->err)) ||
         !renderer_prepare(st->r, st->sc, st->err, sizeof st->err)) {
@@ -570,6 +605,11 @@ static bool run_setup(run_state *st)
         return false;
     }
     if (!run_files_open(&st->files, st->dir, p, st->err, sizeof st->err)) {
+        set_status(st, "output");
+        return false;
+    }
+    if (st->sc->ncoverage_lights &&
+        !run_files_open_coverage(&st->files, st->dir, st->err, sizeof st->err)) {
         set_status(st, "output");
         return false;
     }
@@ -739,7 +779,7 @@ int run_plan(const experiment *e, const plan *p, const run_options *o)
         return 2;
     }
     remove_temp_files(o->out_dir);
-    sweep_meta sm = {.runs = p->nruns};
+    sweep_meta sm = {.runs = p->nruns, .scale = e->scale, .smoke = e->smoke};
     snprintf(sm.experiment, sizeof sm.experiment, "%s", e->name);
     snprintf(sm.manifest_path, sizeof sm.manifest_path, "%s", e->path);
     memcpy(sm.manifest_hash, e->hash, sizeof sm.manifest_hash);

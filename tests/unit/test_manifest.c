@@ -376,6 +376,14 @@ static void test_kv_canonical(void **state)
         {"deferred.light_volumes", "stencil"},
         {"deferred.separate_specular", "false"},
         {"forward.illumination_sets", "true"},
+        {"shadows", "auto"},
+        {"camera.radius", "scene"},
+        {"camera.height", "scene"},
+        {"camera.period", "scene"},
+        {"camera.target", "scene"},
+        {"camera.near", "scene"},
+        {"camera.far", "scene"},
+        {"camera.hold", "scene"},
         {"error.reference.renderer", ""},
         {"error.reference.gbuffer", "reference"},
         {"error.reference.light_volumes", "stencil"},
@@ -387,6 +395,7 @@ static void test_kv_canonical(void **state)
         {"lights.rng", "msvc"},
         {"lights.count", "0"},
         {"lights.radius", "10"},
+        {"lights.overlap", "0"},
         {"lights.color_max", "0.3"},
         {"lights.attenuation", "inverse-square"},
         {"lights.quadratic.a", "1"},
@@ -414,6 +423,14 @@ static void test_kv_canonical(void **state)
         {"deferred.light_volumes", "stencil"},
         {"deferred.separate_specular", "false"},
         {"forward.illumination_sets", "true"},
+        {"shadows", "off"},
+        {"camera.radius", "40"},
+        {"camera.height", "12.5"},
+        {"camera.period", "30"},
+        {"camera.target", "0,1.5,-2"},
+        {"camera.near", "0.25"},
+        {"camera.far", "500"},
+        {"camera.hold", "0.5"},
         {"error.reference.renderer", ""},
         {"error.reference.gbuffer", "reference"},
         {"error.reference.light_volumes", "stencil"},
@@ -425,6 +442,7 @@ static void test_kv_canonical(void **state)
         {"lights.rng", "pcg32"},
         {"lights.count", "start:0,step:10,every:1,max:590"},
         {"lights.radius", "12.5"},
+        {"lights.overlap", "1.5"},
         {"lights.color_max", "0.25"},
         {"lights.attenuation", "inverse-square"},
         {"lights.quadratic.a", "1"},
@@ -509,10 +527,10 @@ static const bad_case bad_cases[] = {
     {"unknown_top_key.yaml",
      {"1:1: duration: expected {seconds: S} or {frames: N}, found nothing",
       "5:1: durtion: expected one of shadesweep, name, description, scene, renderers, "
-      "resolution, trials, warmup, duration, clock, step, sync, timeout, gbuffer, deferred, forward, error, lights, outputs, sweep, "
+      "resolution, trials, warmup, duration, clock, step, sync, timeout, gbuffer, deferred, forward, shadows, camera, error, lights, outputs, sweep, "
       "found 'durtion'"}},
     {"unknown_nested_key.yaml",
-     {"8:3: lights.cnt: expected one of placement, seed, rng, count, radius, color_max, "
+     {"8:3: lights.cnt: expected one of placement, seed, rng, count, radius, overlap, color_max, "
       "attenuation, quadratic, found 'cnt'"}},
     {"duplicate_key.yaml",
      {"7:1: trials: expected a key used once, found a second 'trials' (first at 5:1)"}},
@@ -528,7 +546,7 @@ static const bad_case bad_cases[] = {
     {"negative_trials.yaml", {"6:9: trials: expected an integer 1..1000, found '-1'"}},
     {"zero_trials.yaml", {"6:9: trials: expected an integer 1..1000, found '0'"}},
     {"negative_light_count.yaml",
-     {"7:10: lights.count: expected an integer 0..1000000 or {start, step, every, max}, "
+     {"7:10: lights.count: expected an integer 0..1000000, all, or {start, step, every, max}, "
       "found '-5'"}},
     {"resolution_zero.yaml",
      {"6:13: resolution: expected WxH with each side 1..32768, found '0x0'"}},
@@ -536,7 +554,7 @@ static const bad_case bad_cases[] = {
      {"6:13: resolution: expected WxH with each side 1..32768, found '100000x100000'"}},
     {"resolution_malformed.yaml",
      {"6:13: resolution: expected WxH with each side 1..32768, found '640 x 480'"}},
-    {"unknown_scene.yaml", {"3:8: scene: expected one of empty, shapes, found 'canyon'"}},
+    {"unknown_scene.yaml", {"3:8: scene: expected one of empty, shapes, curtis-scene1, curtis-scene2, curtis-scene3, canyon, interior, spot-coverage, two-spots-overlap, floating-spot, found 'castle'"}},
     {"unknown_renderer.yaml",
      {"4:19: renderers[1]: expected one of null, deferred, forward-mpml, forward-spml, "
       "found 'raytrace'",
@@ -562,16 +580,33 @@ static const bad_case bad_cases[] = {
      {"5:11: expected an alias to an earlier anchor, found an undefined alias '*frames'"}},
     {"deep_nesting.yaml", {"2:262: expected nesting at most 256 deep, found deeper"}},
     {"two_documents.yaml", {"6:1: expected one YAML document, found a second document"}},
+    {"camera_bad.yaml",
+     {"7:11: camera.target: expected [x, y, z] (finite numbers) or scene, found a sequence",
+      "8:9: camera.hold: expected a number >= 0 and <= 1, or scene, found '1.5'",
+      "9:9: camera.near: expected a number > 0 and <= 1e+09, or scene, found '0'",
+      "10:8: camera.far: expected a number > 0 and <= 1e+09, or scene, found 'scenery'",
+      "11:10: shadows: expected one of auto, off, found 'maybe'"}},
+    {"camera_target_not_number.yaml",
+     {"6:22: camera.target[1]: expected a finite number, found '.inf'",
+      "8:20: sweep.camera.hold[1]: expected a number >= 0 and <= 1, or scene, found '-1'"}},
+    {"count_all_random.yaml",
+     {"8:10: lights.count: expected a number of lights (all is for lights.placement scene "
+      "only), found all",
+      "10:3: sweep.lights.placement: expected lights.placement either set or swept, found "
+      "both (set at 7:3)"}},
+    {"count_all_swept.yaml",
+     {"9:21: sweep.lights.count[1]: expected a number of lights (all is for lights.placement "
+      "scene only), found all"}},
     {"placement_none_swept_count.yaml",
      {"8:21: sweep.lights.count[1]: expected 0 lights with lights.placement none, found 5 lights",
       "8:24: sweep.lights.count[2]: expected 0 lights with lights.placement none, found up to 9 "
       "lights"}},
     {"not_mapping.yaml", {"1:1: expected a mapping, found a sequence"}},
-    {"missing_required.yaml", {"1:1: scene: expected one of empty, shapes, found nothing"}},
+    {"missing_required.yaml", {"1:1: scene: expected one of empty, shapes, curtis-scene1, curtis-scene2, curtis-scene3, canyon, interior, spot-coverage, two-spots-overlap, floating-spot, found nothing"}},
     {"missing_all.yaml",
      {"1:1: shadesweep: expected 1, found nothing",
       "1:1: name: expected a name of 1..63 characters from a-z, 0-9 and -, found nothing",
-      "1:1: scene: expected one of empty, shapes, found nothing",
+      "1:1: scene: expected one of empty, shapes, curtis-scene1, curtis-scene2, curtis-scene3, canyon, interior, spot-coverage, two-spots-overlap, floating-spot, found nothing",
       "1:1: renderers: expected a non-empty sequence of renderer names, found nothing",
       "1:1: duration: expected {seconds: S} or {frames: N}, found nothing"}},
     {"bad_name.yaml",
@@ -600,13 +635,14 @@ static const bad_case bad_cases[] = {
      {"7:3: sweep.lights.cnt: expected a sweepable parameter (one of scene, resolution, "
       "trials, warmup, duration, clock, step, sync, timeout, gbuffer.preset, gbuffer.position, "
       "gbuffer.normal, deferred.light_volumes, deferred.separate_specular, "
-      "forward.illumination_sets, lights.placement, lights.seed, lights.rng, lights.count, "
-      "lights.radius, lights.color_max, lights.attenuation, lights.quadratic.a, "
+      "forward.illumination_sets, shadows, camera.radius, camera.height, camera.period, "
+      "camera.target, camera.near, camera.far, camera.hold, lights.placement, lights.seed, "
+      "lights.rng, lights.count, lights.radius, lights.overlap, lights.color_max, lights.attenuation, lights.quadratic.a, "
       "lights.quadratic.b, lights.quadratic.c), found 'lights.cnt'"}},
     {"sweep_empty_list.yaml",
      {"7:11: sweep.trials: expected a non-empty sequence of values, found an empty sequence"}},
     {"sweep_wrong_type.yaml",
-     {"8:22: sweep.lights.count[1]: expected an integer 0..1000000 or {start, step, every, max}, "
+     {"8:22: sweep.lights.count[1]: expected an integer 0..1000000, all, or {start, step, every, max}, "
       "found 'ten'",
       "8:66: sweep.lights.count[3].max: expected an integer 5..1000000 (at least start), "
       "found '2'"}},
@@ -615,11 +651,11 @@ static const bad_case bad_cases[] = {
       "9:3: sweep.trials: expected a key used once, found a second 'trials' (first at 8:3)"}},
     {"several_errors.yaml",
      {"1:1: duration: expected {seconds: S} or {frames: N}, found nothing",
-      "3:8: scene: expected one of empty, shapes, found 'canyon'",
+      "3:8: scene: expected one of empty, shapes, curtis-scene1, curtis-scene2, curtis-scene3, canyon, interior, spot-coverage, two-spots-overlap, floating-spot, found 'castle'",
       "5:13: resolution: expected WxH with each side 1..32768, found '640x'",
       "6:9: trials: expected an integer 1..1000, found '0'",
       "7:1: durtion: expected one of shadesweep, name, description, scene, renderers, "
-      "resolution, trials, warmup, duration, clock, step, sync, timeout, gbuffer, deferred, forward, error, lights, outputs, sweep, "
+      "resolution, trials, warmup, duration, clock, step, sync, timeout, gbuffer, deferred, forward, shadows, camera, error, lights, outputs, sweep, "
       "found 'durtion'",
       "8:19: warmup.seconds: expected a number >= 0 and <= 3600, found '-1'",
       "10:9: lights.seed: expected an integer 0..4294967295, found '-1'",

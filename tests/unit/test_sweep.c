@@ -93,18 +93,18 @@ static void test_order_and_ids(void **state)
         int w, h;
         uint32_t lights;
     } want[] = {
-        {"e3806b5667e4", "null", 800, 600, 0},
-        {"912131b33ff5", "deferred", 800, 600, 0},
-        {"cc4bc435b031", "null", 800, 600, 100},
-        {"87fe8bacf3d9", "deferred", 800, 600, 100},
-        {"35da643ad594", "null", 1024, 768, 0},
-        {"d51007bd1555", "deferred", 1024, 768, 0},
-        {"872b27632a1f", "null", 1024, 768, 100},
-        {"97019850abee", "deferred", 1024, 768, 100},
-        {"beb128d0e10f", "null", 1600, 1200, 0},
-        {"42d63342407d", "deferred", 1600, 1200, 0},
-        {"ee67b7f127bc", "null", 1600, 1200, 100},
-        {"3b691f00dbdf", "deferred", 1600, 1200, 100},
+        {"d88b866d9092", "null", 800, 600, 0},
+        {"29a837501982", "deferred", 800, 600, 0},
+        {"b06ac42ade08", "null", 800, 600, 100},
+        {"030529bc962a", "deferred", 800, 600, 100},
+        {"414c8383f853", "null", 1024, 768, 0},
+        {"9f54d18165a5", "deferred", 1024, 768, 0},
+        {"c07daa5935d9", "null", 1024, 768, 100},
+        {"80c1691b11c2", "deferred", 1024, 768, 100},
+        {"0030e8a88eae", "null", 1600, 1200, 0},
+        {"61d74c8455b5", "deferred", 1600, 1200, 0},
+        {"49304bdc7219", "null", 1600, 1200, 100},
+        {"439d4f6325ac", "deferred", 1600, 1200, 100},
         {NULL, NULL, 0, 0, 0},
     };
     experiment *e = load("good/sweep.yaml");
@@ -137,12 +137,15 @@ static void test_order_and_ids(void **state)
                             "gbuffer.preset=curtis\ngbuffer.position=preset\n"
                             "gbuffer.normal=preset\ndeferred.light_volumes=stencil\n"
                             "deferred.separate_specular=false\nforward.illumination_sets=true\n"
+                            "shadows=auto\ncamera.radius=scene\ncamera.height=scene\n"
+                            "camera.period=scene\ncamera.target=scene\ncamera.near=scene\n"
+                            "camera.far=scene\ncamera.hold=scene\n"
                             "error.reference.renderer=\nerror.reference.gbuffer=reference\n"
                             "error.reference.light_volumes=stencil\nerror.at=\n"
                             "error.max_rmse=0\nerror.save_images=false\n"
                             "lights.placement=random\n"
                             "lights.seed=1337\nlights.rng=msvc\nlights.count=0\n"
-                            "lights.radius=10\nlights.color_max=0.3\n"
+                            "lights.radius=10\nlights.overlap=0\nlights.color_max=0.3\n"
                             "lights.attenuation=inverse-square\nlights.quadratic.a=1\n"
                             "lights.quadratic.b=0\nlights.quadratic.c=1\noutputs.frames=true\n"
                             "outputs.seconds=true\noutputs.screenshots=\n";
@@ -368,16 +371,16 @@ static void test_plan_print(void **state)
     assert_true(expand(e, 4, &p));
     char *all = print_plan(&p, 0);
     assert_string_equal(all,
-                        "e3806b5667e4  renderer=null resolution=800x600 lights.count=0\n"
-                        "cc4bc435b031  renderer=null resolution=800x600 lights.count=100\n"
-                        "35da643ad594  renderer=null resolution=1024x768 lights.count=0\n"
-                        "872b27632a1f  renderer=null resolution=1024x768 lights.count=100\n"
-                        "beb128d0e10f  renderer=null resolution=1600x1200 lights.count=0\n"
-                        "ee67b7f127bc  renderer=null resolution=1600x1200 lights.count=100\n");
+                        "d88b866d9092  renderer=null resolution=800x600 lights.count=0\n"
+                        "b06ac42ade08  renderer=null resolution=800x600 lights.count=100\n"
+                        "414c8383f853  renderer=null resolution=1024x768 lights.count=0\n"
+                        "c07daa5935d9  renderer=null resolution=1024x768 lights.count=100\n"
+                        "0030e8a88eae  renderer=null resolution=1600x1200 lights.count=0\n"
+                        "49304bdc7219  renderer=null resolution=1600x1200 lights.count=100\n");
     free(all);
     char *two = print_plan(&p, 2);
-    assert_string_equal(two, "cc4bc435b031  renderer=null resolution=800x600 lights.count=100\n"
-                             "ee67b7f127bc  renderer=null resolution=1600x1200 lights.count=100\n");
+    assert_string_equal(two, "b06ac42ade08  renderer=null resolution=800x600 lights.count=100\n"
+                             "49304bdc7219  renderer=null resolution=1600x1200 lights.count=100\n");
     free(two);
     char *none = print_plan(&p, 5);
     assert_string_equal(none, "");
@@ -389,7 +392,7 @@ static void test_plan_print(void **state)
     e = load("good/minimal.yaml");
     assert_true(expand(e, 1, &p));
     char *one = print_plan(&p, 0);
-    assert_string_equal(one, "fb996885426a  renderer=null\n");
+    assert_string_equal(one, "aeadc11847ef  renderer=null\n");
     free(one);
     plan_free(&p);
     experiment_free(e);
@@ -403,11 +406,11 @@ static void test_duplicate_points(void **state)
     } cases[] = {
         {"sweep/duplicate_value.yaml",
          "8:18: sweep.trials[2]: expected a distinct sweep point, found run 2 the same as run 0 "
-         "(id fb996885426a)"},
+         "(id aeadc11847ef)"},
         /* 0.50 repeats 0.5 at both resolutions: reported once, at its first pair */
         {"sweep/duplicate_canonical.yaml",
          "10:24: sweep.lights.radius[1]: expected a distinct sweep point, found run 1 the same "
-         "as run 0 (id 75bbeeb5d4e5)"},
+         "as run 0 (id 7f9c8297aedd)"},
         {NULL, NULL},
     };
     for (size_t k = 0; cases[k].file; k++) {
