@@ -39,7 +39,7 @@
 #include "scenes/scene.h"
 #include "tests/gl/gl_test.h"
 
-enum { W = 160, H = 120 };
+enum { W = 160, H = 120, MAX_OBJECTS = 128 };
 #define RMSE_MAX (1.0 / 255.0)
 #define MAX_ABS_MAX (4.0 / 255.0)
 
@@ -494,8 +494,8 @@ static uint32_t expected_set(const scene *s, const scene_light *l, uint32_t *out
 {
     sm_vec4 planes[6];
     sm_frustum_planes(s->viewproj, planes);
-    bool visible[64];
-    assert_true(s->nobjects <= 64);
+    bool visible[MAX_OBJECTS];
+    assert_true(s->nobjects <= MAX_OBJECTS);
     uint32_t nvis = 0;
     for (uint32_t o = 0; o < s->nobjects; o++) {
         visible[o] = sm_sphere_in_frustum(planes, s->objects[o].bsphere);
@@ -558,6 +558,52 @@ static uint32_t expected_set(const scene *s, const scene_light *l, uint32_t *out
     return n;
 }
 
+/* The frame's counts from the geometry alone (frontend.h's definitions, recomputed
+ * here without the frontend):
+ *   V     objects whose bounding sphere is not outside the frustum
+ *   lights[t]  active lights of type t that can light something visible: directional
+ *         always; point when the sphere (position, radius) is not outside the frustum;
+ *         spot when the bounding sphere of its cone is not outside it
+ *   illum the sum over those lights of |I(l)|: visible objects whose bounding sphere
+ *         meets the light's sphere or cone (every visible object for directional) */
+typedef struct frame_counts {
+    uint32_t visible, lights[3];
+    uint64_t illum;
+} frame_counts;
+
+static frame_counts expected_counts(const scene *s)
+{
+    sm_vec4 planes[6];
+    sm_frustum_planes(s->viewproj, planes);
+    frame_counts c = {0};
+    for (uint32_t o = 0; o < s->nobjects; o++)
+        c.visible += sm_sphere_in_frustum(planes, s->objects[o].bsphere);
+    for (uint32_t i = 0; i < s->nlights_active; i++) {
+        const scene_light *l = &s->lights[i];
+        sm_vec3 dir;
+        sm_vec4 b;
+        sm_vec3_normalize_to(l->direction, dir);
+        if (l->type == LIGHT_SPOT)
+            frontend_spot_cone_bound(l->position, dir, l->spot_angle, l->radius, b);
+        else
+            sm_vec4_from_vec3(l->position, l->radius, b);
+        if (l->type != LIGHT_DIRECTIONAL && !sm_sphere_in_frustum(planes, b))
+            continue;
+        c.lights[l->type]++;
+        for (uint32_t o = 0; o < s->nobjects; o++) {
+            const float *bs = s->objects[o].bsphere;
+            if (!sm_sphere_in_frustum(planes, bs))
+                continue;
+            c.illum += l->type == LIGHT_DIRECTIONAL ? 1
+                       : l->type == LIGHT_SPOT
+                           ? sm_cone_sphere_intersects(l->position, dir, l->spot_angle,
+                                                       l->radius, bs)
+                           : sm_sphere_sphere_intersects(b, bs);
+        }
+    }
+    return c;
+}
+
 typedef struct set_check {
     uint64_t shadow_draws;     /* sum of |C(l)| */
     uint32_t visible;          /* V */
@@ -586,7 +632,7 @@ static set_check check_sets(const scene *s, bool no_shadows)
         const scene_light *l = &s->lights[f.lights[k]];
         c.lights[l->type]++;
         c.illum += f.illum_start[k + 1] - f.illum_start[k];
-        uint32_t want[64], got[64];
+        uint32_t want[MAX_OBJECTS], got[MAX_OBJECTS];
         uint32_t nwant = no_shadows ? 0 : expected_set(s, l, want);
         uint32_t ngot = f.shadow_start[k + 1] - f.shadow_start[k];
         bool casts = !no_shadows && l->shadows && l->type != LIGHT_POINT;
@@ -618,6 +664,18 @@ static set_check check_sets(const scene *s, bool no_shadows)
     }
     assert_int_equal(f.nshadowed, layer);
     frontend_free(&f);
+    /* V, the visible lights and the illumination sets the formulas use are the
+     * geometry's, not only the frontend's word for them */
+    frame_counts want = expected_counts(s);
+    if (want.visible != c.visible || want.illum != c.illum ||
+        memcmp(want.lights, c.lights, sizeof want.lights) != 0)
+        print_error("frontend V %u, lights %u/%u/%u, sum |I| %llu; geometry V %u, lights "
+                    "%u/%u/%u, sum |I| %llu\n", c.visible, c.lights[0], c.lights[1],
+                    c.lights[2], (unsigned long long)c.illum, want.visible, want.lights[0],
+                    want.lights[1], want.lights[2], (unsigned long long)want.illum);
+    assert_int_equal(c.visible, want.visible);
+    assert_memory_equal(c.lights, want.lights, sizeof want.lights);
+    assert_int_equal(c.illum, want.illum);
     return c;
 }
 
@@ -724,6 +782,57 @@ static void test_sets_and_draws(void **state)
     /* the whole grid from above and afar: every light in view */
     look(s, EYE, TARGET);
     check_draws(s, false);
+    scene_destroy(s);
+}
+
+/* Seed 000's two scenes with their authored lights, at points of their camera paths,
+ * shadows on and off: every renderer's draws equal the formulas above with V, D, P, S,
+ * the illumination sets and the shadow-casting sets computed from the scene's
+ * geometry (expected_counts, expected_set).
+ *   interior: 72 objects; lights: the moon (directional, shadows), five omni lights
+ *     (no shadows), three spots (shadows). So Sh = |C(moon)| + the three spots' sets.
+ *   canyon: 4 terrain tiles, the sky, one directional sun without shadows: no
+ *     shadows pass, the same draws with shadows on and off: V + 1 + 1 + 1 + 1 for
+ *     deferred (gbuffer, ambient, the sun, sky, resolve), V + V + 1 + 1 for
+ *     forward-mpml (base, the sun over every visible tile, sky, resolve). */
+static void test_catalog_draws(void **state)
+{
+    (void)state;
+    char err[256];
+    light_params lp = {.placement = PLACEMENT_SCENE, .radius = 1.0f,
+                       .count = {.start = LIGHT_COUNT_ALL, .max = LIGHT_COUNT_ALL}};
+    scene *s = scene_build("interior", &lp, W, H, err, sizeof err);
+    if (!s)
+        fail_msg("interior: %s", err);
+    assert_int_equal(s->nobjects, 72);
+    assert_int_equal(s->nlights_total, 9);
+    uint64_t shadow_draws = 0;
+    for (double t = 0.0; t < 60.0; t += 7.5) {
+        scene_update(s, t);
+        set_check c = check_sets(s, false);
+        shadow_draws += c.shadow_draws;
+        check_draws(s, false);
+        check_draws(s, true);
+    }
+    assert_true(shadow_draws > 0);   /* the path sees shadows cast */
+    scene_destroy(s);
+
+    s = scene_build("canyon", &lp, W, H, err, sizeof err);
+    if (!s)
+        fail_msg("canyon: %s", err);
+    assert_int_equal(s->nobjects, 4);
+    assert_true(s->sky);
+    assert_int_equal(s->nlights_total, 1);
+    assert_int_equal(s->lights[0].type, LIGHT_DIRECTIONAL);
+    assert_false(s->lights[0].shadows);
+    for (double t = 0.0; t < 60.0; t += 15.0) {
+        scene_update(s, t);
+        set_check c = check_sets(s, false);
+        assert_int_equal(c.shadow_draws, 0);
+        assert_int_equal(c.lights[LIGHT_DIRECTIONAL], 1);
+        check_draws(s, false);
+        check_draws(s, true);
+    }
     scene_destroy(s);
 }
 
@@ -933,6 +1042,7 @@ int main(void)
         cmocka_unit_test(test_directional_occluder),
         cmocka_unit_test(test_agreement),
         cmocka_unit_test(test_sets_and_draws),
+        cmocka_unit_test(test_catalog_draws),
         cmocka_unit_test(test_plans),
         cmocka_unit_test(test_extremes),
     };
