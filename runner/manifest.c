@@ -1545,6 +1545,14 @@ static bool scale_side(int *side, double scale)
     return *side <= MAX_SIDE;
 }
 
+/* Both sides scaled (neither skipped when the other is too large). */
+static bool scale_size(int *w, int *h, double scale)
+{
+    bool ok_w = scale_side(w, scale);
+    bool ok_h = scale_side(h, scale);
+    return ok_w && ok_h;
+}
+
 bool experiment_scale_resolution(experiment *e, double scale, char *err, size_t errlen)
 {
     if (!(scale > 0 && scale <= 16)) {
@@ -1552,14 +1560,14 @@ bool experiment_scale_resolution(experiment *e, double scale, char *err, size_t 
         return false;
     }
     run_params *b = &e->base;
-    bool ok = scale_side(&b->width, scale) & scale_side(&b->height, scale);
+    bool ok = scale_size(&b->width, &b->height, scale);
     for (size_t i = 0; i < e->naxes && ok; i++) {
         struct sweep_axis *ax = &e->axes[i];
         if (strcmp(ax->path, "resolution") != 0)
             continue;
         for (size_t j = 0; j < ax->nvalues && ok; j++) {
             run_params *v = &ax->values[j];
-            ok = scale_side(&v->width, scale) & scale_side(&v->height, scale);
+            ok = scale_size(&v->width, &v->height, scale);
             for (size_t k = 0; k < j && ok; k++)
                 if (ax->values[k].width == v->width && ax->values[k].height == v->height) {
                     snprintf(err, errlen,
