@@ -15,6 +15,24 @@ for n in 1 2 3 5; do
 done
 # Same manifest, same ids: a second listing is identical.
 "$SHADESWEEP" list "$M" | cmp -s - all.txt || fail "ids not stable"
+# --scale and --smoke change the listed resolutions and the ids; a bad scale is refused
+# with one line and exit 2.
+"$SHADESWEEP" list --scale 0.5 "$M" >half.txt
+[ "$(wc -l <half.txt)" -eq 16 ] && grep -q "resolution=32x32" half.txt && ! grep -q "resolution=64x64" half.txt \
+  || fail "list --scale 0.5: $(cat half.txt)"
+[ -z "$(comm -12 <(cut -d' ' -f1 all.txt | sort) <(cut -d' ' -f1 half.txt | sort))" ] \
+  || fail "scaled runs keep the unscaled ids"
+for bad in 0 -1 17 abc; do
+  set +e
+  "$SHADESWEEP" list --scale "$bad" "$M" >out.txt 2>err.txt; rc=$?
+  set -e
+  [ $rc -eq 2 ] && [ ! -s out.txt ] && grep -q "^shadesweep: --scale: expected a number > 0 and <= 16, found '$bad'$" err.txt \
+    || fail "list --scale $bad: exit $rc: $(cat err.txt)"
+done
+"$SHADESWEEP" list --smoke "$SOURCE_ROOT/experiments/s000-resolution.yaml" >smoke.txt
+# the resolution axis collapses (no longer a swept parameter): 2 scenes x 2 renderers
+[ "$(wc -l <smoke.txt)" -eq 4 ] && ! grep -q 'resolution=' smoke.txt \
+  || fail "list --smoke: $(cat smoke.txt)"
 
 need_gl
 "$SHADESWEEP" run --shard 2/2 -o shard2 "$M" 2>run.err || { cat run.err >&2; fail "sharded run"; }

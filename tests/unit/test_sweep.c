@@ -435,6 +435,134 @@ static void test_duplicate_points(void **state)
     }
 }
 
+static experiment *load_text(const char *yaml)
+{
+    experiment *e = NULL;
+    diag_list d = {0};
+    if (!manifest_load_mem("mem.yaml", yaml, strlen(yaml), &e, &d)) {
+        diag_print(&d, stderr);
+        fail_msg("the manifest does not load");
+    }
+    diag_free(&d);
+    return e;
+}
+
+static const char PAPER[] =
+    "shadesweep: 1\n"
+    "name: paper\n"
+    "scene: shapes\n"
+    "renderers: [null]\n"
+    "trials: 3\n"
+    "warmup: {seconds: 2}\n"
+    "duration: {seconds: 60}\n"
+    "outputs: {screenshots: [0.5, 30, 45]}\n"
+    "sweep:\n"
+    "  resolution: [800x600, 2560x1440]\n"
+    "  lights.radius: [5, 10]\n";
+
+/* run --scale S: every resolution (base and swept) times S, rounded, at least 1; the
+ * hash changes with S; bad scales, collisions and overflow are refused with a message. */
+static void test_scale_resolution(void **state)
+{
+    (void)state;
+    experiment *e = load_text(PAPER);
+    char hash[17], err[256];
+    memcpy(hash, e->hash, sizeof hash);
+    assert_true(experiment_scale_resolution(e, 0.25, err, sizeof err));
+    assert_true(e->scale == 0.25);
+    assert_string_not_equal(e->hash, hash);
+    plan p;
+    diag_list d = {0};
+    assert_true(plan_expand(e, 1, &p, &d));
+    assert_int_equal(p.nruns, 4);   /* resolution slowest, then radius */
+    static const int want[4][2] = {{200, 150}, {200, 150}, {640, 360}, {640, 360}};
+    for (size_t i = 0; i < 4; i++) {
+        assert_int_equal(p.runs[i].p.width, want[i][0]);
+        assert_int_equal(p.runs[i].p.height, want[i][1]);
+        assert_int_equal(p.runs[i].p.trials, 3);   /* nothing else changes */
+    }
+    /* the ids follow the scaled parameters: a run of the scaled plan is not one of the
+     * full plan's */
+    experiment *full = load_text(PAPER);
+    plan q;
+    assert_true(plan_expand(full, 1, &q, &d));
+    for (size_t i = 0; i < 4; i++)
+        for (size_t j = 0; j < 4; j++)
+            assert_string_not_equal(p.runs[i].id, q.runs[j].id);
+    plan_free(&q);
+    plan_free(&p);
+    experiment_free(full);
+    experiment_free(e);
+
+    static const struct {
+        double scale;
+        const char *msg;
+    } bad[] = {
+        {0.0, "--scale: expected a number > 0 and <= 16, found 0"},
+        {17.0, "--scale: expected a number > 0 and <= 16, found 17"},
+        {0.0001, "--scale 0.0001: swept resolutions 1 and 2 both become 1x1"},
+        {16.0, "--scale 16: a resolution would exceed 32768x32768"},
+    };
+    for (size_t k = 0; k < sizeof bad / sizeof bad[0]; k++) {
+        e = load_text(PAPER);
+        memcpy(hash, e->hash, sizeof hash);
+        err[0] = 0;
+        assert_false(experiment_scale_resolution(e, bad[k].scale, err, sizeof err));
+        assert_string_equal(err, bad[k].msg);
+        experiment_free(e);
+    }
+    diag_free(&d);
+}
+
+/* run --smoke: 160x120, one trial, no warm-up, at most 2 s; the resolution sweep
+ * collapses, other axes stay; screenshot times past the end move to its middle (once);
+ * the name and the hash change. */
+static void test_make_smoke(void **state)
+{
+    (void)state;
+    experiment *e = load_text(PAPER);
+    char hash[17];
+    memcpy(hash, e->hash, sizeof hash);
+    experiment_make_smoke(e);
+    assert_true(e->smoke);
+    assert_string_equal(e->name, "paper-smoke");
+    assert_string_not_equal(e->hash, hash);
+    plan p;
+    diag_list d = {0};
+    assert_true(plan_expand(e, 1, &p, &d));
+    assert_int_equal(p.nruns, 2);   /* lights.radius 5 and 10 */
+    for (size_t i = 0; i < 2; i++) {
+        const run_params *r = &p.runs[i].p;
+        assert_int_equal(r->width, 160);
+        assert_int_equal(r->height, 120);
+        assert_int_equal(r->trials, 1);
+        assert_int_equal(r->warmup.kind, SPAN_FRAMES);
+        assert_int_equal(r->warmup.frames, 0);
+        assert_int_equal(r->duration.kind, SPAN_SECONDS);
+        assert_true(r->duration.seconds == 2.0);
+        assert_int_equal(r->nscreenshots, 2);   /* 0.5 kept; 30 and 45 both become 1 */
+        assert_true(r->screenshots[0] == 0.5);
+        assert_true(r->screenshots[1] == 1.0);
+    }
+    assert_true(p.runs[0].p.lights.radius == 5.0f);
+    assert_true(p.runs[1].p.lights.radius == 10.0f);
+    plan_free(&p);
+    experiment_free(e);
+
+    /* smaller than 160x120 stays as it is; a frame count is capped at 120 */
+    e = load_text("shadesweep: 1\nname: tiny\nscene: shapes\nrenderers: [null]\n"
+                  "resolution: 64x48\nduration: {frames: 500}\n");
+    experiment_make_smoke(e);
+    assert_true(plan_expand(e, 1, &p, &d));
+    assert_int_equal(p.runs[0].p.width, 64);
+    assert_int_equal(p.runs[0].p.height, 48);
+    assert_int_equal(p.runs[0].p.duration.kind, SPAN_FRAMES);
+    assert_int_equal(p.runs[0].p.duration.frames, 120);
+    plan_free(&p);
+    experiment_free(e);
+    diag_free(&d);
+}
+
 static void test_zero_shards(void **state)
 {
     (void)state;
@@ -459,6 +587,8 @@ int main(void)
         cmocka_unit_test(test_plan_print),
         cmocka_unit_test(test_duplicate_points),
         cmocka_unit_test(test_zero_shards),
+        cmocka_unit_test(test_scale_resolution),
+        cmocka_unit_test(test_make_smoke),
     };
     return cmocka_run_group_tests(tests, NULL, NULL);
 }
