@@ -6,7 +6,8 @@
  *                            never terminates the display: eglTerminate would unload
  *                            Mesa's driver mid-process (see context_egl.c).
  *   gl_test_context()        the debug context (every GL error counted) with its
- *                            off-screen framebuffer at w x h that most tests draw in. */
+ *                            off-screen framebuffer at w x h that most tests draw in.
+ *   find_pass()              a frame's pass by name, or NULL. */
 #include <EGL/egl.h>
 #include <EGL/eglext.h>
 #include <stdbool.h>
@@ -20,6 +21,7 @@
 #include <cmocka.h>
 
 #include "renderers/gl/context.h"
+#include "renderers/renderer.h"
 
 static inline bool egl_display_available(char *why, size_t len)
 {
@@ -50,4 +52,12 @@ static inline gl_context *gl_test_context(int w, int h)
     if (!ctx)
         print_error("context: %s\n", err);
     return ctx;
+}
+
+static inline const pass_stats *find_pass(const frame_stats *fs, const char *name)
+{
+    for (size_t i = 0; i < fs->npasses; i++)
+        if (strcmp(fs->pass[i].name, name) == 0)
+            return &fs->pass[i];
+    return NULL;
 }

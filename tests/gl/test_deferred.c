@@ -154,14 +154,6 @@ static void frame(void *self, const scene *s, frame_stats *fs)
     assert_int_equal(gl_context_error_count(ctx), 0);
 }
 
-static const pass_stats *find_pass(const frame_stats *fs, const char *name)
-{
-    for (size_t i = 0; i < fs->npasses; i++)
-        if (strcmp(fs->pass[i].name, name) == 0)
-            return &fs->pass[i];
-    return NULL;
-}
-
 static uint8_t *render(const scene *s, const renderer_options *o)
 {
     void *self = make(s, o);

@@ -173,14 +173,6 @@ static uint64_t total_draws(const frame_stats *fs)
     return n;
 }
 
-static const pass_stats *find_pass(const frame_stats *fs, const char *name)
-{
-    for (size_t i = 0; i < fs->npasses; i++)
-        if (strcmp(fs->pass[i].name, name) == 0)
-            return &fs->pass[i];
-    return NULL;
-}
-
 static size_t pass_index(const frame_stats *fs, const char *name)
 {
     for (size_t i = 0; i < fs->npasses; i++)

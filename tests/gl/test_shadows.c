@@ -222,14 +222,6 @@ static void render(const char *kind, const renderer_options *o, const scene *s, 
     assert_int_equal(gl_context_error_count(ctx), 0);
 }
 
-static const pass_stats *find_pass(const frame_stats *fs, const char *name)
-{
-    for (size_t i = 0; i < fs->npasses; i++)
-        if (strcmp(fs->pass[i].name, name) == 0)
-            return &fs->pass[i];
-    return NULL;
-}
-
 static const pass_plan_entry *plan_pass(const pass_plan *p, const char *name)
 {
     for (size_t i = 0; i < p->npasses; i++)
