@@ -135,8 +135,11 @@ for ren in ("deferred", "forward-spml"):
                 ft = 4000 + 1000 * s + 50 * t
             else:
                 ft = 1600 + 2000 * s + 50 * t + (6000 * (s - 15) if s > 15 else 0)
-            rows.append(dict(second=s, complete=1, lights_min=10 * s, lights_max=10 * s, frames=round(1e6 / ft),
-                             fps=round(1e6 / ft), frametime_mean_us=ft))
+            # second 18 of deferred: a whole-frame count below forward's although its frame
+            # time is lower (as at a few frames a second); the crossover goes by frame time
+            fps = 1 if (ren == "deferred" and s == 18) else round(1e6 / ft)
+            rows.append(dict(second=s, complete=1, lights_min=10 * s, lights_max=10 * s, frames=fps,
+                             fps=fps, frametime_mean_us=ft))
         secs[t] = rows
     trials = [dict(fps_mean=50, frametime_mean_us=20000) for _ in range(3)]
     runs.append((dict(base, scene="curtis-scene3", renderer=ren, duration="seconds:20",
