@@ -31,7 +31,7 @@ typedef struct scene_light {
     float spot_exponent;       /* spot: falloff f in (-L.A)^f */
     attenuation_kind attenuation;
     float att_a, att_b, att_c; /* ATTENUATION_QUADRATIC */
-    bool shadows;              /* casts shadows (a later milestone renders them) */
+    bool shadows;              /* spot and directional: casts shadows (renderers/shadow.h) */
 } scene_light;
 
 /* Phong material; a map index is -1 when the material has no such map. */
