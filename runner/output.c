@@ -82,26 +82,31 @@ bool output_write_plan(const char *out_dir, const plan *p, char *err, size_t err
     return csv_commit(w, err, errlen);
 }
 
+/* run_dir/name opened with its header (csv_open: a temporary name until committed). */
+static csv_writer *open_in(const char *run_dir, const char *name, const char *const *columns,
+                           size_t ncolumns, char *err, size_t errlen)
+{
+    char path[4096];
+    join(path, sizeof path, run_dir, name);
+    return csv_open(path, columns, ncolumns, err, errlen);
+}
+
 bool run_files_open(run_files *f, const char *run_dir, const run_params *p, char *err,
                     size_t errlen)
 {
-    char path[4096];
     memset(f, 0, sizeof *f);
     if (p->out_frames) {
-        join(path, sizeof path, run_dir, "frames.csv");
-        if (!(f->frames = csv_open(path, frames_columns, NCOLS(frames_columns), err, errlen)))
-            goto fail;
-        join(path, sizeof path, run_dir, "passes.csv");
-        if (!(f->passes = csv_open(path, passes_columns, NCOLS(passes_columns), err, errlen)))
+        if (!(f->frames = open_in(run_dir, "frames.csv", frames_columns, NCOLS(frames_columns),
+                                  err, errlen)) ||
+            !(f->passes = open_in(run_dir, "passes.csv", passes_columns, NCOLS(passes_columns),
+                                  err, errlen)))
             goto fail;
     }
     if (p->out_seconds) {
-        join(path, sizeof path, run_dir, "seconds.csv");
-        if (!(f->seconds = csv_open(path, seconds_columns, NCOLS(seconds_columns), err, errlen)))
-            goto fail;
-        join(path, sizeof path, run_dir, "convergence.csv");
-        if (!(f->convergence = csv_open(path, convergence_columns, NCOLS(convergence_columns),
-                                        err, errlen)))
+        if (!(f->seconds = open_in(run_dir, "seconds.csv", seconds_columns,
+                                   NCOLS(seconds_columns), err, errlen)) ||
+            !(f->convergence = open_in(run_dir, "convergence.csv", convergence_columns,
+                                       NCOLS(convergence_columns), err, errlen)))
             goto fail;
     }
     return true;
@@ -196,17 +201,15 @@ void run_files_convergence(run_files *f, const char *run_id, uint32_t trial,
 
 bool run_files_open_errors(run_files *f, const char *run_dir, char *err, size_t errlen)
 {
-    char path[4096];
-    join(path, sizeof path, run_dir, "errors.csv");
-    f->errors = csv_open(path, errors_columns, NCOLS(errors_columns), err, errlen);
+    f->errors = open_in(run_dir, "errors.csv", errors_columns, NCOLS(errors_columns), err,
+                        errlen);
     return f->errors != NULL;
 }
 
 bool run_files_open_coverage(run_files *f, const char *run_dir, char *err, size_t errlen)
 {
-    char path[4096];
-    join(path, sizeof path, run_dir, "coverage.csv");
-    f->coverage = csv_open(path, coverage_columns, NCOLS(coverage_columns), err, errlen);
+    f->coverage = open_in(run_dir, "coverage.csv", coverage_columns, NCOLS(coverage_columns),
+                          err, errlen);
     return f->coverage != NULL;
 }
 
