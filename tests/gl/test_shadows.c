@@ -684,8 +684,9 @@ static uint64_t total_draws(const frame_stats *fs)
  *   deferred (fullscreen):  Sh + V + 1 + D + P + S + [sky] + 1
  *   forward-mpml:        Sh + V + sum |I(l)| + [sky] + 1
  *   forward-spml:        Sh + V + [sky] + 1
- * with Sh = sum of |C(l)| (the shadows pass's draws) when shadows are on, 0 off. */
-static void check_draws(const scene *s, bool no_shadows)
+ * with Sh = sum of |C(l)| (the shadows pass's draws) when shadows are on, 0 off.
+ * Returns the counts check_sets found. */
+static set_check check_draws(const scene *s, bool no_shadows)
 {
     set_check c = check_sets(s, no_shadows);
     uint64_t sky = s->sky ? 1u : 0u;
@@ -741,6 +742,7 @@ static void check_draws(const scene *s, bool no_shadows)
         assert_int_equal(f.fs.total.draw_calls, cases[i].draws);
         frame_out_free(&f);
     }
+    return c;
 }
 
 static void test_sets_and_draws(void **state)
@@ -801,9 +803,7 @@ static void test_catalog_draws(void **state)
     uint64_t shadow_draws = 0;
     for (double t = 0.0; t < 60.0; t += 7.5) {
         scene_update(s, t);
-        set_check c = check_sets(s, false);
-        shadow_draws += c.shadow_draws;
-        check_draws(s, false);
+        shadow_draws += check_draws(s, false).shadow_draws;
         check_draws(s, true);
     }
     assert_true(shadow_draws > 0);   /* the path sees shadows cast */
@@ -819,10 +819,9 @@ static void test_catalog_draws(void **state)
     assert_false(s->lights[0].shadows);
     for (double t = 0.0; t < 60.0; t += 15.0) {
         scene_update(s, t);
-        set_check c = check_sets(s, false);
+        set_check c = check_draws(s, false);
         assert_int_equal(c.shadow_draws, 0);
         assert_int_equal(c.lights[LIGHT_DIRECTIONAL], 1);
-        check_draws(s, false);
         check_draws(s, true);
     }
     scene_destroy(s);
