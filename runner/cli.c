@@ -14,6 +14,7 @@
 #include "results/fsutil.h"
 #include "runner/manifest.h"
 #include "runner/merge.h"
+#include "runner/params.h"
 #include "runner/run.h"
 #include "scenes/scene.h"
 
@@ -39,10 +40,36 @@ static const char usage_text[] =
     "  list [--shard I/N] [--smoke] [--scale S] MANIFEST  the expanded runs, one per line\n"
     "  info [--backend B] [--device N]  the GL context's vendor, renderer and limits\n"
     "  merge -o OUT [--force] DIR...  combine the output folders of a sweep's shards\n"
-    "  --version, --help\n"
+    "  params [--markdown|--bash]  every manifest key: type, default, range, the renderers\n"
+    "                             that read it (docs/manifest.md is --markdown)\n"
+    "  --version, --help          (COMMAND --help: that command's options)\n"
     "\n"
     "exit status: 0 all runs succeeded; 1 some run failed (summary.csv says which);\n"
     "2 bad input or a fatal error.\n";
+
+/* The usage of one command: its lines of usage_text, from "  NAME " to the next
+ * command. False for a name that is not a command. */
+static bool print_command_help(const char *name)
+{
+    size_t n = strlen(name);
+    const char *s = strstr(usage_text, "commands:\n");
+    for (s = s ? strchr(s, '\n') + 1 : NULL; s && *s == ' '; s = strchr(s, '\n') + 1) {
+        if (strncmp(s, "  ", 2) == 0 && s[2] != ' ' && strncmp(s + 2, name, n) == 0 &&
+            s[2 + n] == ' ') {
+            printf("usage: shadesweep ");
+            const char *e = s;
+            do {
+                const char *nl = strchr(e, '\n');
+                fwrite(e == s ? e + 2 : e, 1, (size_t)(nl + 1 - (e == s ? e + 2 : e)), stdout);
+                e = nl + 1;
+            } while (strncmp(e, "    ", 4) == 0);
+            return true;
+        }
+        if (!strchr(s, '\n'))
+            break;
+    }
+    return false;
+}
 
 typedef struct cli_opts {
     const char *out;
@@ -79,7 +106,9 @@ static int parse_opts(int argc, char **argv, const char *allowed, cli_opts *o)
     optind = 1;
     opterr = 0;
     int c, li = -1;
-    while ((c = getopt_long(argc, argv, "+:o:", longopts, &li)) != -1) {
+    /* no leading '+': options may come before or after the operands (GNU getopt
+     * permutes argv), as `shadesweep run MANIFEST -o DIR` is written */
+    while ((c = getopt_long(argc, argv, ":o:", longopts, &li)) != -1) {
         const char *name = NULL;
         if (c == 'o')
             name = "out";
@@ -190,7 +219,11 @@ static int cmd_validate(int argc, char **argv)
             bad++;
             continue;
         }
-        printf("%s: ok, %zu run%s\n", argv[i], p.nruns, p.nruns == 1 ? "" : "s");
+        printf("%s: ok, %zu run%s", argv[i], p.nruns, p.nruns == 1 ? "" : "s");
+        if (p.nfolded)
+            printf(" (%zu of %zu grid points folded: they differ only in keys their renderer "
+                   "does not read)", p.nfolded, p.npoints);
+        printf("\n");
         plan_free(&p);
         experiment_free(e);
     }
@@ -326,6 +359,30 @@ done:
     return rc;
 }
 
+/* `shadesweep params [--markdown | --bash] [KEY...]`: the manifest keys from
+ * runner/params.def (docs/manifest.md and the bash completion are its output). */
+static int cmd_params(int argc, char **argv)
+{
+    params_format f = PARAMS_TEXT;
+    int i = 1;
+    for (; i < argc && argv[i][0] == '-'; i++) {
+        if (strcmp(argv[i], "--markdown") == 0)
+            f = PARAMS_MARKDOWN;
+        else if (strcmp(argv[i], "--bash") == 0)
+            f = PARAMS_BASH;
+        else {
+            fprintf(stderr, "shadesweep params: %s: unknown option here\n", argv[i]);
+            return 2;
+        }
+    }
+    if (i < argc) {
+        fprintf(stderr, "shadesweep params: unexpected argument '%s'\n", argv[i]);
+        return 2;
+    }
+    params_print(stdout, f);
+    return 0;
+}
+
 static int cmd_merge(int argc, char **argv)
 {
     cli_opts o;
@@ -354,6 +411,14 @@ int cli_main(int argc, char **argv)
         printf("shadesweep %s (%s)\n", SHADESWEEP_VERSION, SHADESWEEP_COMMIT);
         return 0;
     }
+    /* `shadesweep COMMAND ... --help` anywhere before a `--`: that command's part of
+     * the usage, on stdout, exit 0. */
+    for (int i = 2; i < argc && strcmp(argv[i], "--") != 0; i++)
+        if (strcmp(argv[i], "--help") == 0 || strcmp(argv[i], "-h") == 0) {
+            if (print_command_help(cmd))
+                return 0;
+            break;
+        }
     /* Each command parses argv[1..]: its name plays argv[0]. */
     if (strcmp(cmd, "run") == 0)
         return cmd_run(argc - 1, argv + 1);
@@ -365,6 +430,8 @@ int cli_main(int argc, char **argv)
         return cmd_info(argc - 1, argv + 1);
     if (strcmp(cmd, "merge") == 0)
         return cmd_merge(argc - 1, argv + 1);
+    if (strcmp(cmd, "params") == 0)
+        return cmd_params(argc - 1, argv + 1);
     fprintf(stderr, "shadesweep: unknown command '%s'\n\n%s", cmd, usage_text);
     return 2;
 }

@@ -25,37 +25,14 @@ typedef enum run_sync { RUN_SYNC_FINISH = 0, RUN_SYNC_FENCE } run_sync;
 
 #define MAX_SCREENSHOTS 16
 
-/* Everything that defines one run (one point of the sweep grid x renderer). */
+/* Everything that defines one run (one point of the sweep grid x renderer): the
+ * fields are declared by runner/params.def, one entry per manifest key. */
+#define SHADESWEEP_STRIP_PARENS(...) __VA_ARGS__
+#define PARAM_META(path, type, flags, decl, shorthand, desc) SHADESWEEP_STRIP_PARENS decl
+#define PARAM(path, type, flags, field, decl, def, lim, values, readers, ref, apply, desc) \
+    SHADESWEEP_STRIP_PARENS decl
 typedef struct run_params {
-    char scene[32];
-    char renderer[32];
-    int width, height;
-    uint32_t trials;
-    span warmup, duration;
-    run_clock clock;
-    double step;               /* seconds of scene time per frame with clock: fixed */
-    run_sync sync;
-    double timeout_s;          /* a run still going after this long is stopped; 0: automatic */
-    gbuffer_preset gbuffer;    /* deferred */
-    gbuffer_position gbuffer_position;
-    gbuffer_normal gbuffer_normal;
-    light_volume_mode light_volumes;
-    bool separate_specular;
-    bool illumination_sets;    /* forward-mpml */
-    int shadows;               /* 0 auto, 1 off */
-    camera_params camera;      /* NAN fields: the scene's own */
-    light_params lights;
-    bool out_frames, out_seconds;
-    size_t nscreenshots;
-    double screenshots[MAX_SCREENSHOTS];   /* schedule times, seconds */
-    /* image error against a reference configuration (error_renderer "" : none) */
-    char error_renderer[32];
-    gbuffer_preset error_gbuffer;
-    light_volume_mode error_light_volumes;
-    size_t nerror_at;
-    double error_at[MAX_SCREENSHOTS];      /* schedule times, seconds */
-    double error_max_rmse;                 /* 0: no limit */
-    bool error_save_images;
+#include "runner/params.def"
 } run_params;
 
 typedef struct experiment {
@@ -74,15 +51,28 @@ typedef struct experiment {
 
 typedef struct run_spec {
     size_t index;              /* position in the plan, from 0 */
+    size_t point;              /* its point of the sweep grid x renderers, from 0 */
+    size_t folded;             /* other grid points that are this same run (see plan_expand) */
     char id[13];               /* 12 hex digits: stable hash of the resolved parameters */
     unsigned shard;            /* 1..N for the --shard N given to plan_expand (1 without) */
     run_params p;
 } run_spec;
 
+/* A grid point folded into an earlier run: it differs from it only in parameters
+ * its renderer does not read (params.def's readers), so it would measure the same. */
+typedef struct plan_fold {
+    size_t point;              /* its grid point */
+    size_t into;               /* the index of the run it is */
+    run_params p;              /* its parameters as the sweep made them */
+} plan_fold;
+
 typedef struct plan {
     const experiment *exp;
-    size_t nruns;
+    size_t npoints;            /* grid points x renderers */
+    size_t nruns;              /* distinct runs: npoints - nfolded */
     run_spec *runs;
+    size_t nfolded;
+    plan_fold *folds;
 } plan;
 
 /* Parses and validates; on any error returns false with every problem in diags
@@ -112,8 +102,12 @@ void experiment_make_smoke(experiment *e);
 bool experiment_scale_resolution(experiment *e, double scale, char *err, size_t errlen);
 
 /* The cartesian product of the sweep axes (first axis varies slowest) times the
- * renderers (fastest), in that order. nshards >= 1 assigns run k to shard
- * (k mod nshards) + 1. Duplicate points are an error in diags. */
+ * renderers (fastest), in that order, each distinct configuration once: a
+ * parameter the run's renderer does not read (and its error reference does not
+ * inherit) is reset to its default, and a point that is then an earlier run is
+ * folded into it (plan.folds). nshards >= 1 assigns run k to shard
+ * (k mod nshards) + 1. Duplicate points (a value repeated in an axis) and a swept
+ * key that none of the renderers reads are errors in diags. */
 bool plan_expand(const experiment *e, unsigned nshards, plan *out, diag_list *diags);
 void plan_free(plan *p);
 
@@ -122,10 +116,17 @@ void plan_free(plan *p);
 typedef struct param_kv {
     const char *key;           /* dotted path, static */
     char value[96];
-    bool in_id;                /* part of the run id (timeout is not: it changes no result) */
+    bool in_id;                /* can be part of the run id (timeout is not: it changes no result) */
+    bool is_default;           /* at its default: left out of the run id (params.def) */
 } param_kv;
 size_t run_params_kv(const run_params *p, param_kv *out, size_t max);
-#define PARAM_KV_MAX 64
+/* The number of run parameters in params.def: an array of PARAM_KV_MAX pairs always
+ * holds every one (a compile-time constant, so no run can have more). */
+enum {
+    PARAM_KV_MAX = 0
+#define PARAM(path, type, flags, field, decl, def, lim, values, readers, ref, apply, desc) +1
+#include "runner/params.def"
+};
 
 /* "--shard I/N" parser: 1 <= I <= N. */
 bool parse_shard(const char *s, unsigned *i, unsigned *n, char *err, size_t errlen);

@@ -60,13 +60,14 @@ bool output_write_plan(const char *out_dir, const plan *p, char *err, size_t err
     join(path, sizeof path, out_dir, "plan.csv");
     param_kv kv[PARAM_KV_MAX];
     size_t nkv = p->nruns ? run_params_kv(&p->runs[0].p, kv, PARAM_KV_MAX) : 0;
-    const char *cols[3 + PARAM_KV_MAX];
+    const char *cols[4 + PARAM_KV_MAX];
     cols[0] = "index";
     cols[1] = "run_id";
     cols[2] = "shard";
+    cols[3] = "folded";   /* grid points folded into this run (runner/sweep.c) */
     for (size_t i = 0; i < nkv; i++)
-        cols[3 + i] = kv[i].key;
-    csv_writer *w = csv_open(path, cols, 3 + nkv, err, errlen);
+        cols[4 + i] = kv[i].key;
+    csv_writer *w = csv_open(path, cols, 4 + nkv, err, errlen);
     if (!w)
         return false;
     for (size_t r = 0; r < p->nruns; r++) {
@@ -75,6 +76,7 @@ bool output_write_plan(const char *out_dir, const plan *p, char *err, size_t err
         csv_u64(w, s->index);
         csv_str(w, s->id);
         csv_u64(w, s->shard);
+        csv_u64(w, s->folded);
         for (size_t i = 0; i < nkv; i++)
             csv_str(w, kv[i].value);
         csv_end_row(w);

@@ -22,6 +22,7 @@
 #include "results/yamlout.h"
 #include "runner/isolate.h"
 #include "runner/output.h"
+#include "runner/params.h"
 #include "runner/progress.h"
 #include "scenes/scene.h"
 
@@ -579,20 +580,12 @@ static bool run_setup(run_state *st)
     }
     const gl_info *gi = gl_context_info(st->ctx);
     renderer_options ro = {
-        .width = p->width,
-        .height = p->height,
         .queries = true,
         .timer_query = gi->timer_query,
         .pipeline_statistics = gi->pipeline_statistics,
         .max_uniform_block_size = gi->max_uniform_block_size,
-        .gbuffer = p->gbuffer,
-        .gbuffer_position = p->gbuffer_position,
-        .gbuffer_normal = p->gbuffer_normal,
-        .light_volumes = p->light_volumes,
-        .separate_specular = p->separate_specular,
-        .no_illumination_sets = !p->illumination_sets,
-        .no_shadows = p->shadows == 1,
     };
+    params_to_renderer_options(p, &ro);   /* params.def's `apply` column */
     if (!(st->r = renderer_create(p->renderer, &ro, st->err, sizeof st->err)) ||
         !renderer_prepare(st->r, st->sc, st->err, sizeof st->err)) {
         set_status(st, "renderer");
@@ -614,14 +607,12 @@ static bool run_setup(run_state *st)
         return false;
     }
     if (p->error_renderer[0]) {
+        /* params.def's `ref` column: what the reference inherits, what it resets */
+        run_params rp;
+        params_reference(p, &rp);
         renderer_options rr = ro;
+        params_to_renderer_options(&rp, &rr);
         rr.queries = false;
-        rr.gbuffer = p->error_gbuffer;
-        rr.gbuffer_position = GBUFFER_POSITION_PRESET;
-        rr.gbuffer_normal = GBUFFER_NORMAL_PRESET;
-        rr.light_volumes = p->error_light_volumes;
-        rr.separate_specular = false;
-        rr.no_illumination_sets = false;
         char why[512];
         if (!(st->ref = renderer_create(p->error_renderer, &rr, why, sizeof why)) ||
             !renderer_prepare(st->ref, st->sc, why, sizeof why)) {

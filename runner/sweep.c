@@ -7,19 +7,22 @@
 
 #include "runner/hash.h"
 #include "runner/manifest.h"
+#include "runner/params.h"
 #include "runner/sweep_axis.h"
 
 #define PLAN_MAX_RUNS 100000u
 #define SHARD_MAX 100000u
 
-/* The id: the first 12 hex digits of FNV-1a 64 over "key=value\n" per pair. */
+/* The id: the first 12 hex digits of FNV-1a 64 over "key=value\n" per pair, for
+ * the parameters not at their default (params.def: so a new key leaves every
+ * existing id as it was). */
 static void run_id(const run_params *p, char id[13])
 {
     param_kv kv[PARAM_KV_MAX];
     size_t n = run_params_kv(p, kv, PARAM_KV_MAX);
     uint64_t h = FNV1A64_OFFSET_BASIS;
     for (size_t i = 0; i < n; i++) {
-        if (!kv[i].in_id)
+        if (!kv[i].in_id || kv[i].is_default)
             continue;
         h = fnv1a64_update(h, kv[i].key, strlen(kv[i].key));
         h = fnv1a64_update(h, "=", 1);
@@ -124,6 +127,126 @@ done:
     return ok;
 }
 
+/* A swept key must change what some run measures: one that none of the renderers
+ * reads (nor an error reference that inherits it) would only repeat runs. */
+static bool check_axes_read(const experiment *e, diag_list *diags)
+{
+    bool ok = true;
+    for (size_t a = 0; a < e->naxes; a++) {
+        const struct sweep_axis *ax = &e->axes[a];
+        const param *pd = param_find(ax->path);
+        if (!pd)
+            continue;
+        bool read = false;
+        run_params probe = e->base;
+        for (size_t r = 0; r < e->nrenderers && !read; r++) {
+            snprintf(probe.renderer, sizeof probe.renderer, "%s", e->renderers[r]);
+            read = param_read_by_run(pd, &probe);
+        }
+        if (read)
+            continue;
+        char key[160], list[512] = "";
+        size_t len = 0;
+        for (size_t r = 0; r < e->nrenderers; r++)
+            len += (size_t)snprintf(list + len, len < sizeof list ? sizeof list - len : 0, "%s%s",
+                                    r ? ", " : "", e->renderers[r]);
+        snprintf(key, sizeof key, "sweep.%s", ax->path);
+        diag_add(diags, e->path, ax->line ? ax->line[0] : 0, ax->col ? ax->col[0] : 0, key,
+                 "expected a key one of the renderers reads (%s is read by %s), found none of %s",
+                 ax->path, pd->readers, list);
+        ok = false;
+    }
+    return ok;
+}
+
+static int id_ref_cmp_first(const void *x, const void *y)
+{
+    return id_ref_cmp(x, y);
+}
+
+/* Resets what each run's renderer does not read to its default, then keeps the
+ * first run of each id: the others are folded into it. Ids, indices and shards are
+ * assigned to the runs that remain, in plan order. */
+static bool fold(plan *p, unsigned nshards, diag_list *diags)
+{
+    run_params d;
+    params_defaults(&d);
+    for (size_t k = 0; k < p->nruns; k++) {
+        run_spec *r = &p->runs[k];
+        r->index = k;   /* scratch: the raw run it came from */
+        run_params raw = r->p;
+        for (size_t i = 0; i < NPARAMS; i++) {
+            const param *pd = &params_table[i];
+            if (pd->size && !param_read_by_run(pd, &raw))
+                memcpy((char *)&r->p + pd->off, (const char *)&d + pd->off, pd->size);
+        }
+        run_id(&r->p, r->id);
+    }
+    id_ref *refs = malloc((p->nruns ? p->nruns : 1) * sizeof *refs);
+    size_t *first_of = malloc((p->nruns ? p->nruns : 1) * sizeof *first_of);
+    run_params *raw = malloc((p->nruns ? p->nruns : 1) * sizeof *raw);
+    if (!refs || !first_of || !raw) {
+        free(refs);
+        free(first_of);
+        free(raw);
+        diag_add(diags, p->exp->path, 0, 0, "", "expected a plan that fits in memory, found no memory left");
+        return false;
+    }
+    for (size_t k = 0; k < p->nruns; k++)
+        refs[k] = (id_ref){p->runs[k].id, k};
+    qsort(refs, p->nruns, sizeof *refs, id_ref_cmp_first);
+    size_t nfolded = 0;
+    for (size_t i = 0, g = 0; i < p->nruns; i++) {
+        if (strcmp(refs[i].id, refs[g].id) != 0)
+            g = i;
+        first_of[refs[i].index] = refs[g].index;
+        nfolded += i != g;
+    }
+    /* the raw parameters of every point, for the folds' record */
+    const experiment *e = p->exp;
+    for (size_t k = 0; k < p->nruns; k++) {
+        raw[k] = e->base;
+        for (size_t a = 0; a < e->naxes; a++) {
+            const struct sweep_axis *ax = &e->axes[a];
+            size_t v = axis_value_of(e, k, a);
+            memcpy((char *)&raw[k] + ax->off, (const char *)&ax->values[v] + ax->off, ax->size);
+        }
+        snprintf(raw[k].renderer, sizeof raw[k].renderer, "%s", e->renderers[k % e->nrenderers]);
+    }
+    plan_fold *folds = nfolded ? calloc(nfolded, sizeof *folds) : NULL;
+    size_t *new_index = malloc((p->nruns ? p->nruns : 1) * sizeof *new_index);
+    bool ok = (!nfolded || folds) && new_index;
+    if (ok) {
+        size_t n = 0, f = 0;
+        for (size_t k = 0; k < p->nruns; k++) {
+            if (first_of[k] == k) {
+                new_index[k] = n;
+                p->runs[n] = p->runs[k];
+                p->runs[n].index = n;
+                p->runs[n].point = k;
+                p->runs[n].folded = 0;
+                p->runs[n].shard = (unsigned)(n % nshards) + 1;
+                n++;
+            } else {
+                size_t into = new_index[first_of[k]];
+                p->runs[into].folded++;
+                folds[f++] = (plan_fold){.point = k, .into = into, .p = raw[k]};
+            }
+        }
+        p->nruns = n;
+        p->nfolded = f;
+        p->folds = folds;
+    } else {
+        free(folds);
+        diag_add(diags, p->exp->path, 0, 0, "", "expected a plan that fits in memory, found no memory left");
+    }
+    free(new_index);
+    free(refs);
+    free(first_of);
+    free(raw);
+    return ok;
+}
+
 bool plan_expand(const experiment *e, unsigned nshards, plan *out, diag_list *diags)
 {
     *out = (plan){.exp = e};
@@ -159,8 +282,7 @@ bool plan_expand(const experiment *e, unsigned nshards, plan *out, diag_list *di
     }
     for (size_t k = 0; k < total; k++) {
         run_spec *r = &runs[k];
-        r->index = k;
-        r->shard = (unsigned)(k % nshards) + 1;
+        r->index = r->point = k;
         r->p = e->base;
         for (size_t a = 0; a < e->naxes; a++) {
             const struct sweep_axis *ax = &e->axes[a];
@@ -168,11 +290,12 @@ bool plan_expand(const experiment *e, unsigned nshards, plan *out, diag_list *di
             memcpy((char *)&r->p + ax->off, (const char *)&ax->values[v] + ax->off, ax->size);
         }
         snprintf(r->p.renderer, sizeof r->p.renderer, "%s", e->renderers[k % e->nrenderers]);
-        run_id(&r->p, r->id);
+        run_id(&r->p, r->id);   /* as swept: a repeated value is a duplicate */
     }
-    out->nruns = total;
+    out->npoints = out->nruns = total;
     out->runs = runs;
-    if (!check_duplicates(e, out, diags)) {
+    if (!check_duplicates(e, out, diags) || !check_axes_read(e, diags) ||
+        !fold(out, nshards, diags)) {
         plan_free(out);
         return false;
     }
@@ -184,8 +307,10 @@ void plan_free(plan *p)
     if (!p)
         return;
     free(p->runs);
+    free(p->folds);
     p->runs = NULL;
-    p->nruns = 0;
+    p->folds = NULL;
+    p->nruns = p->npoints = p->nfolded = 0;
 }
 
 /* Digits only, no sign, no spaces, at most 6 of them (100000 has 6). */
@@ -232,6 +357,18 @@ bool parse_shard(const char *s, unsigned *i, unsigned *n, char *err, size_t errl
     return false;
 }
 
+/* " key=value" for the renderer and each swept parameter of p. */
+static void print_point(const experiment *e, const run_params *p, FILE *out)
+{
+    param_kv kv[PARAM_KV_MAX];
+    size_t n = run_params_kv(p, kv, PARAM_KV_MAX);
+    fprintf(out, "renderer=%s", p->renderer);
+    for (size_t a = 0; e && a < e->naxes; a++)
+        for (size_t i = 0; i < n; i++)
+            if (strcmp(kv[i].key, e->axes[a].path) == 0)
+                fprintf(out, " %s=%s", kv[i].key, kv[i].value);
+}
+
 void plan_print(const plan *p, unsigned shard, FILE *out)
 {
     const experiment *e = p->exp;
@@ -239,13 +376,23 @@ void plan_print(const plan *p, unsigned shard, FILE *out)
         const run_spec *r = &p->runs[k];
         if (shard != 0 && r->shard != shard)
             continue;
-        param_kv kv[PARAM_KV_MAX];
-        size_t n = run_params_kv(&r->p, kv, PARAM_KV_MAX);
-        fprintf(out, "%s  renderer=%s", r->id, r->p.renderer);
-        for (size_t a = 0; e && a < e->naxes; a++)
-            for (size_t i = 0; i < n; i++)
-                if (strcmp(kv[i].key, e->axes[a].path) == 0)
-                    fprintf(out, " %s=%s", kv[i].key, kv[i].value);
+        fprintf(out, "%s  ", r->id);
+        print_point(e, &r->p, out);
         fputc('\n', out);
+    }
+    /* Folded points after the runs, as comments: what the sweep asked for that is
+     * already one of the runs above. */
+    size_t shown = 0;
+    for (size_t f = 0; f < p->nfolded; f++) {
+        const run_spec *r = &p->runs[p->folds[f].into];
+        if (shard != 0 && r->shard != shard)
+            continue;
+        if (shown++ == 0)
+            fprintf(out, "# %zu of %zu grid points folded into a run that measures the same "
+                    "(they differ only in keys their renderer does not read):\n",
+                    p->nfolded, p->npoints);
+        fprintf(out, "#   ");
+        print_point(e, &p->folds[f].p, out);
+        fprintf(out, " -> %s\n", r->id);
     }
 }

@@ -139,7 +139,7 @@ for p in plan:
     if not meta["gl"]["debug_context"]: fail("tests run in a debug context")
     if not meta["host"]["cpu"] or meta["host"]["threads"] < 1: fail("meta host")
     if meta["parameters"]["resolution"] != p["resolution"]: fail("meta parameters")
-    if meta["parameters"] != {k: v for k, v in p.items() if k not in ("index", "run_id", "shard")}:
+    if meta["parameters"] != {k: v for k, v in p.items() if k not in ("index", "run_id", "shard", "folded")}:
         fail(f"meta parameters differ from plan.csv: {meta['parameters']}")
     for k in ("started", "finished"):
         if not str(meta[k]).endswith("Z"): fail(f"meta {k}")

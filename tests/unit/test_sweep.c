@@ -93,18 +93,18 @@ static void test_order_and_ids(void **state)
         int w, h;
         uint32_t lights;
     } want[] = {
-        {"d88b866d9092", "null", 800, 600, 0},
-        {"29a837501982", "deferred", 800, 600, 0},
-        {"b06ac42ade08", "null", 800, 600, 100},
-        {"030529bc962a", "deferred", 800, 600, 100},
-        {"414c8383f853", "null", 1024, 768, 0},
-        {"9f54d18165a5", "deferred", 1024, 768, 0},
-        {"c07daa5935d9", "null", 1024, 768, 100},
-        {"80c1691b11c2", "deferred", 1024, 768, 100},
-        {"0030e8a88eae", "null", 1600, 1200, 0},
-        {"61d74c8455b5", "deferred", 1600, 1200, 0},
-        {"49304bdc7219", "null", 1600, 1200, 100},
-        {"439d4f6325ac", "deferred", 1600, 1200, 100},
+        {"2483101a0380", "null", 800, 600, 0},
+        {"b83a2809d8bc", "deferred", 800, 600, 0},
+        {"d323c9a10be4", "null", 800, 600, 100},
+        {"0e7607522d02", "deferred", 800, 600, 100},
+        {"1f54dd1ce9fd", "null", 1024, 768, 0},
+        {"b29a656e6fab", "deferred", 1024, 768, 0},
+        {"f04d2a90f5c0", "null", 1024, 768, 100},
+        {"546c536cf236", "deferred", 1024, 768, 100},
+        {"642f87933697", "null", 1600, 1200, 0},
+        {"de666e08c311", "deferred", 1600, 1200, 0},
+        {"d7ab31709cf6", "null", 1600, 1200, 100},
+        {"6b48b8eb2b60", "deferred", 1600, 1200, 100},
         {NULL, NULL, 0, 0, 0},
     };
     experiment *e = load("good/sweep.yaml");
@@ -130,25 +130,10 @@ static void test_order_and_ids(void **state)
         assert_int_equal(r->p.lights.placement, PLACEMENT_RANDOM);
     }
 
-    /* the id is the first 12 hex digits of FNV-1a 64 over "key=value\n" in table order */
-    const char *canonical = "scene=empty\nrenderer=null\nresolution=800x600\ntrials=1\n"
-                            "warmup=frames:0\nduration=frames:100\nclock=wall\n"
-                            "step=0.016666666666666666\nsync=finish\n"
-                            "gbuffer.preset=curtis\ngbuffer.position=preset\n"
-                            "gbuffer.normal=preset\ndeferred.light_volumes=stencil\n"
-                            "deferred.separate_specular=false\nforward.illumination_sets=true\n"
-                            "shadows=auto\ncamera.radius=scene\ncamera.height=scene\n"
-                            "camera.period=scene\ncamera.target=scene\ncamera.near=scene\n"
-                            "camera.far=scene\ncamera.hold=scene\n"
-                            "error.reference.renderer=\nerror.reference.gbuffer=reference\n"
-                            "error.reference.light_volumes=stencil\nerror.at=\n"
-                            "error.max_rmse=0\nerror.save_images=false\n"
-                            "lights.placement=random\n"
-                            "lights.seed=1337\nlights.rng=msvc\nlights.count=0\n"
-                            "lights.radius=10\nlights.overlap=0\nlights.color_max=0.3\n"
-                            "lights.attenuation=inverse-square\nlights.quadratic.a=1\n"
-                            "lights.quadratic.b=0\nlights.quadratic.c=1\noutputs.frames=true\n"
-                            "outputs.seconds=true\noutputs.screenshots=\n";
+    /* the id is the first 12 hex digits of FNV-1a 64 over "key=value\n" in table order,
+     * for the parameters not at their default (params.def) */
+    const char *canonical = "scene=empty\nrenderer=null\nresolution=800x600\n"
+                            "duration=frames:100\n";
     char id[17];
     snprintf(id, sizeof id, "%016llx", (unsigned long long)fnv(canonical));
     id[12] = '\0';
@@ -371,16 +356,16 @@ static void test_plan_print(void **state)
     assert_true(expand(e, 4, &p));
     char *all = print_plan(&p, 0);
     assert_string_equal(all,
-                        "d88b866d9092  renderer=null resolution=800x600 lights.count=0\n"
-                        "b06ac42ade08  renderer=null resolution=800x600 lights.count=100\n"
-                        "414c8383f853  renderer=null resolution=1024x768 lights.count=0\n"
-                        "c07daa5935d9  renderer=null resolution=1024x768 lights.count=100\n"
-                        "0030e8a88eae  renderer=null resolution=1600x1200 lights.count=0\n"
-                        "49304bdc7219  renderer=null resolution=1600x1200 lights.count=100\n");
+                        "2483101a0380  renderer=null resolution=800x600 lights.count=0\n"
+                        "d323c9a10be4  renderer=null resolution=800x600 lights.count=100\n"
+                        "1f54dd1ce9fd  renderer=null resolution=1024x768 lights.count=0\n"
+                        "f04d2a90f5c0  renderer=null resolution=1024x768 lights.count=100\n"
+                        "642f87933697  renderer=null resolution=1600x1200 lights.count=0\n"
+                        "d7ab31709cf6  renderer=null resolution=1600x1200 lights.count=100\n");
     free(all);
     char *two = print_plan(&p, 2);
-    assert_string_equal(two, "b06ac42ade08  renderer=null resolution=800x600 lights.count=100\n"
-                             "49304bdc7219  renderer=null resolution=1600x1200 lights.count=100\n");
+    assert_string_equal(two, "d323c9a10be4  renderer=null resolution=800x600 lights.count=100\n"
+                             "d7ab31709cf6  renderer=null resolution=1600x1200 lights.count=100\n");
     free(two);
     char *none = print_plan(&p, 5);
     assert_string_equal(none, "");
@@ -392,7 +377,7 @@ static void test_plan_print(void **state)
     e = load("good/minimal.yaml");
     assert_true(expand(e, 1, &p));
     char *one = print_plan(&p, 0);
-    assert_string_equal(one, "aeadc11847ef  renderer=null\n");
+    assert_string_equal(one, "ef47071b4194  renderer=null\n");
     free(one);
     plan_free(&p);
     experiment_free(e);
@@ -406,11 +391,11 @@ static void test_duplicate_points(void **state)
     } cases[] = {
         {"sweep/duplicate_value.yaml",
          "8:18: sweep.trials[2]: expected a distinct sweep point, found run 2 the same as run 0 "
-         "(id aeadc11847ef)"},
+         "(id ef47071b4194)"},
         /* 0.50 repeats 0.5 at both resolutions: reported once, at its first pair */
         {"sweep/duplicate_canonical.yaml",
          "10:24: sweep.lights.radius[1]: expected a distinct sweep point, found run 1 the same "
-         "as run 0 (id 7f9c8297aedd)"},
+         "as run 0 (id fbe0f6967819)"},
         {NULL, NULL},
     };
     for (size_t k = 0; cases[k].file; k++) {

@@ -1,0 +1,68 @@
+#pragma once
+/* Internal to the manifest code (manifest_text.c, manifest_values.c,
+ * manifest_check.c, manifest_load.c, manifest_variant.c, params.c): the
+ * validation context and the helpers the files share. */
+#include <stdbool.h>
+#include <stddef.h>
+#include <stdint.h>
+#include "runner/diag.h"
+#include "runner/manifest.h"
+#include "runner/params.h"
+#include "runner/yamldoc.h"
+
+#define MANIFEST_MAX_BYTES (1u << 20)
+
+/* A bounded string builder: appends what fits, always NUL-terminated. */
+typedef struct sbuf {
+    char *s;
+    size_t cap, len;
+} sbuf;
+void sb_add(sbuf *b, const char *fmt, ...) __attribute__((format(printf, 2, 3)));
+
+/* manifest_text.c: scalar text for a one-line message (escaped, cut at 60 bytes) */
+void escape_text(sbuf *b, const char *s, size_t len);
+bool tag_ok(const ynode *n);
+/* what a node is, for "found ..." */
+const char *found(const ynode *n, bool want_string, char *buf, size_t len);
+void list_enum(sbuf *b, const char *const *names);
+void list_scenes(sbuf *b);
+void list_renderers(sbuf *b);
+void range_number(sbuf *b, double min, double max, bool min_open);
+/* what a parameter expects, as the "expected ..." of its messages */
+const char *expect(const param *pd, char *buf, size_t len);
+bool wants_string(const param *pd);
+
+/* The validation of one manifest. */
+typedef struct vctx {
+    const char *file;
+    diag_list *d;
+    size_t nerr;
+    experiment *e;
+    const ynode *root;
+    const ynode *set_key[PARAMS_N];    /* where each parameter is set in place */
+    const ynode *set_val[PARAMS_N];
+    const ynode *swept[PARAMS_N];      /* its key in `sweep` */
+    size_t axis_of[PARAMS_N];          /* its axis index + 1, 0 if not swept */
+} vctx;
+
+/* manifest_values.c */
+bool stringish(const ynode *n);
+bool get_uint(const ynode *n, uint64_t *out);
+bool get_number(const ynode *n, double *out, bool *finite);
+void err(vctx *c, const ynode *at, const char *key, const char *fmt, ...)
+    __attribute__((format(printf, 4, 5)));
+bool bad(vctx *c, const param *pd, const ynode *n, const char *key);
+bool parse_uint_in(vctx *c, const ynode *n, const char *key, uint64_t min, uint64_t max,
+                   const char *note, uint64_t *out);
+bool parse_number_in(vctx *c, const ynode *n, const char *key, double min, double max,
+                     unsigned flags, double *out);
+bool map_keys(vctx *c, const ynode *map, const char *prefix, const char *const *names,
+              size_t nnames, const ynode **keys, const ynode **vals);
+/* Validates n as parameter pd; a run parameter's value goes into dst (at pd->off),
+ * the experiment's own (name, renderers...) into c->e. */
+bool parse_value(vctx *c, const param *pd, const ynode *n, const char *key, run_params *dst);
+/* A mapping whose keys are the table's parameters under `prefix` ("" at the top). */
+void parse_group(vctx *c, const char *prefix, const ynode *map, run_params *dst);
+
+/* manifest_check.c: every rule that needs the whole manifest, after parse_group */
+void manifest_check(vctx *c);

@@ -1,0 +1,225 @@
+/* Loading a manifest: the file, the defaults, the checks, the diagnostics in
+ * document order. */
+#include "runner/manifest_internal.h"
+
+#include <errno.h>
+#include <inttypes.h>
+#include <math.h>
+#include <stdarg.h>
+#include <stdlib.h>
+#include <string.h>
+
+#include "renderers/renderer.h"
+#include "runner/hash.h"
+#include "runner/sweep_axis.h"
+#include "scenes/scene.h"
+
+/* >>load */
+
+void experiment_free(experiment *e)
+{
+    if (!e)
+        return;
+    for (size_t i = 0; i < e->naxes; i++) {
+        free(e->axes[i].values);
+        free(e->axes[i].line);
+        free(e->axes[i].col);
+    }
+    free(e->axes);
+    free(e->renderers);
+    free(e->description);
+    free(e->path);
+    free(e);
+}
+
+static bool read_file(const char *path, unsigned char **out, size_t *outlen, diag_list *d)
+{
+    *out = NULL;
+    FILE *f = fopen(path, "rb");
+    if (!f) {
+        diag_add(d, path, 0, 0, "", "expected a readable file, found %s", strerror(errno));
+        return false;
+    }
+    size_t cap = 4096, len = 0;
+    unsigned char *buf = malloc(cap);
+    bool ok = false;
+    if (!buf) {
+        diag_add(d, path, 0, 0, "", "expected to load the manifest, found no memory left");
+        goto done;
+    }
+    for (;;) {
+        if (len == cap) {
+            if (cap > MANIFEST_MAX_BYTES) {
+                diag_add(d, path, 0, 0, "", "expected a manifest of at most %u bytes, found more",
+                         MANIFEST_MAX_BYTES);
+                goto done;
+            }
+            unsigned char *b = realloc(buf, cap * 2);
+            if (!b) {
+                diag_add(d, path, 0, 0, "", "expected to load the manifest, found no memory left");
+                goto done;
+            }
+            buf = b;
+            cap *= 2;
+        }
+        size_t got = fread(buf + len, 1, cap - len, f);
+        len += got;
+        if (got == 0)
+            break;
+    }
+    if (ferror(f)) {
+        diag_add(d, path, 0, 0, "", "expected a readable file, found %s", strerror(errno));
+        goto done;
+    }
+    if (len > MANIFEST_MAX_BYTES) {
+        diag_add(d, path, 0, 0, "", "expected a manifest of at most %u bytes, found %zu bytes",
+                 MANIFEST_MAX_BYTES, len);
+        goto done;
+    }
+    ok = true;
+done:
+    fclose(f);
+    if (ok) {
+        *out = buf;
+        *outlen = len;
+    } else {
+        free(buf);
+    }
+    return ok;
+}
+
+/* The table's defaults go through the same validation as any value: a default
+ * that fails its own parameter is a bug, caught by every load. */
+static bool apply_defaults(vctx *c, run_params *dst)
+{
+    bool ok = true;
+    for (size_t i = 0; i < NPARAMS && ok; i++) {
+        const param *pd = &params_table[i];
+        if (!pd->def)
+            continue;
+        diag_list scratch = {0};
+        ydoc *doc = NULL;
+        vctx dc = {.file = "<default>", .d = &scratch, .e = c->e};
+        ok = ydoc_load(dc.file, pd->def, strlen(pd->def), &doc, &scratch) &&
+             parse_value(&dc, pd, doc->root, pd->path, dst) && dc.nerr == 0;
+        if (!ok)
+            diag_add(c->d, c->file, 0, 0, "", "bug: the default of %s (%s) does not validate",
+                     pd->path, pd->def);
+        ydoc_free(doc);
+        diag_free(&scratch);
+    }
+    return ok;
+}
+
+typedef struct diag_seq {
+    diag g;
+    size_t seq;
+} diag_seq;
+
+static int diag_seq_cmp(const void *a, const void *b)
+{
+    const diag_seq *x = a, *y = b;
+    if (x->g.line != y->g.line)
+        return x->g.line < y->g.line ? -1 : 1;
+    if (x->g.col != y->g.col)
+        return x->g.col < y->g.col ? -1 : 1;
+    return x->seq < y->seq ? -1 : x->seq > y->seq;
+}
+
+/* Document order (line, column), stable: required keys are found missing only
+ * at the end, and belong where their mapping starts. */
+static void sort_diags(diag_list *d, size_t from)
+{
+    size_t n = d->n - from;
+    if (n < 2)
+        return;
+    diag_seq *t = malloc(n * sizeof *t);
+    if (!t)
+        return;   /* unsorted is still complete */
+    for (size_t i = 0; i < n; i++)
+        t[i] = (diag_seq){d->v[from + i], i};
+    qsort(t, n, sizeof *t, diag_seq_cmp);
+    for (size_t i = 0; i < n; i++)
+        d->v[from + i] = t[i].g;
+    free(t);
+}
+
+bool manifest_load_mem(const char *name, const char *data, size_t len, experiment **out,
+                       diag_list *diags)
+{
+    *out = NULL;
+    size_t from = diags->n;
+    ydoc *doc = NULL;
+    bool ok = false;
+    vctx c = {.file = name, .d = diags};
+
+    experiment *e = calloc(1, sizeof *e);
+    if (!e || !(e->path = strdup(name)) || !(e->description = strdup(""))) {
+        diag_add(diags, name, 0, 0, "", "expected to load the manifest, found no memory left");
+        goto done;
+    }
+    c.e = e;
+    if (len > MANIFEST_MAX_BYTES) {
+        diag_add(diags, name, 0, 0, "", "expected a manifest of at most %u bytes, found %zu bytes",
+                 MANIFEST_MAX_BYTES, len);
+        goto done;
+    }
+    if (!data)
+        data = "";   /* libyaml wants a buffer even for no bytes */
+    hash_hex(fnv1a64(data, len), 16, e->hash);
+    e->scale = 1;
+    if (!apply_defaults(&c, &e->base))
+        goto done;
+    if (!ydoc_load(name, data, len, &doc, diags))
+        goto done;
+
+    c.root = doc->root;
+    if (doc->root->kind != YNODE_MAPPING) {
+        char f[128];
+        err(&c, doc->root, "", "expected a mapping, found %s", found(doc->root, false, f, sizeof f));
+        goto done;
+    }
+    parse_group(&c, "", doc->root, &e->base);
+    manifest_check(&c);
+    ok = c.nerr == 0;
+
+done:
+    sort_diags(diags, from);
+    ydoc_free(doc);
+    if (ok)
+        *out = e;
+    else
+        experiment_free(e);
+    return ok;
+}
+
+bool manifest_load(const char *path, experiment **out, diag_list *diags)
+{
+    *out = NULL;
+    unsigned char *buf = NULL;
+    size_t len = 0;
+    if (!read_file(path, &buf, &len, diags))
+        return false;
+    bool ok = manifest_load_mem(path, (const char *)buf, len, out, diags);
+    free(buf);
+    return ok;
+}
+
+
+bool params_defaults(run_params *out)
+{
+    static run_params d;
+    static int state;   /* 0: not yet, 1: made, -1: a default does not validate (a bug) */
+    if (state == 0) {
+        diag_list scratch = {0};
+        experiment e = {0};
+        vctx c = {.file = "<default>", .d = &scratch, .e = &e};
+        memset(&d, 0, sizeof d);
+        state = apply_defaults(&c, &d) ? 1 : -1;
+        free(e.renderers);
+        free(e.description);
+        diag_free(&scratch);
+    }
+    *out = d;
+    return state == 1;
+}

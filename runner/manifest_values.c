@@ -1,0 +1,646 @@
+/* Manifest values: integers, numbers, booleans and strings out of YAML scalars, and
+ * one parser per parameter type (the one path for keys in place, sweep values and
+ * defaults). */
+#include "runner/manifest_internal.h"
+
+#include <errno.h>
+#include <inttypes.h>
+#include <math.h>
+#include <stdarg.h>
+#include <stdlib.h>
+#include <string.h>
+
+#include "renderers/renderer.h"
+#include "runner/hash.h"
+#include "runner/sweep_axis.h"
+#include "scenes/scene.h"
+
+/* >>scalars */
+
+/* Text a string parameter can take: any non-empty scalar without a non-string
+ * tag and without NUL bytes. */
+bool stringish(const ynode *n)
+{
+    return n && n->kind == YNODE_SCALAR && tag_ok(n) && !ynode_empty(n) &&
+           strlen(n->text) == n->len;
+}
+
+/* A plain scalar that is a decimal integer: [-+]?[0-9]+. Negative or too large
+ * for 64 bits is out of every range here, so those read as "not an integer". */
+bool get_uint(const ynode *n, uint64_t *out)
+{
+    if (!ynode_plain(n))
+        return false;
+    const char *s = n->text;
+    bool neg = *s == '-';
+    if (*s == '-' || *s == '+')
+        s++;
+    if (!*s)
+        return false;
+    uint64_t v = 0;
+    for (; *s; s++) {
+        if (*s < '0' || *s > '9')
+            return false;
+        unsigned dgt = (unsigned)(*s - '0');
+        if (v > (UINT64_MAX - dgt) / 10)
+            return false;
+        v = v * 10 + dgt;
+    }
+    if (neg && v != 0)
+        return false;
+    *out = v;
+    return true;
+}
+
+static bool all_digits(const char *s, const char *end)
+{
+    if (s == end)
+        return false;
+    for (; s < end; s++)
+        if (*s < '0' || *s > '9')
+            return false;
+    return true;
+}
+
+/* A plain scalar that is a YAML 1.2 core-schema number:
+ * [-+]?(\.[0-9]+|[0-9]+(\.[0-9]*)?)([eE][-+]?[0-9]+)?, or [-+]?.inf or .nan in
+ * their three spellings. *finite is false for those and for overflow (1e999). */
+bool get_number(const ynode *n, double *out, bool *finite)
+{
+    if (!ynode_plain(n))
+        return false;
+    const char *s = n->text, *p = s;
+    if (*p == '-' || *p == '+')
+        p++;
+    static const char *const specials[] = {".inf", ".Inf", ".INF", ".nan", ".NaN", ".NAN", NULL};
+    for (size_t i = 0; specials[i]; i++)
+        if (strcmp(p, specials[i]) == 0 && (i < 3 || p == s)) {
+            *finite = false;
+            *out = i < 3 ? (s[0] == '-' ? -INFINITY : INFINITY) : NAN;
+            return true;
+        }
+    const char *q = p;
+    while (*q >= '0' && *q <= '9')
+        q++;
+    bool int_part = q > p;
+    if (*q == '.') {
+        const char *frac = ++q;
+        while (*q >= '0' && *q <= '9')
+            q++;
+        if (!int_part && q == frac)
+            return false;
+    } else if (!int_part) {
+        return false;
+    }
+    if (*q == 'e' || *q == 'E') {
+        q++;
+        if (*q == '-' || *q == '+')
+            q++;
+        if (!all_digits(q, q + strlen(q)))
+            return false;
+        q += strlen(q);
+    }
+    if (*q)
+        return false;
+    errno = 0;
+    double v = strtod(s, NULL);
+    *finite = isfinite(v);
+    *out = v == 0 ? 0.0 : v;   /* -0 reads as 0: one canonical text */
+    return true;
+}
+
+/* >>values */
+
+
+void err(vctx *c, const ynode *at, const char *key, const char *fmt, ...)
+{
+    char msg[2048];
+    va_list ap;
+    va_start(ap, fmt);
+    vsnprintf(msg, sizeof msg, fmt, ap);
+    va_end(ap);
+    diag_add(c->d, c->file, at->line, at->col, key, "%s", msg);
+    c->nerr++;
+}
+
+/* The usual message: "expected <what the parameter takes>, found <the node>". */
+bool bad(vctx *c, const param *pd, const ynode *n, const char *key)
+{
+    char e[512], f[128];
+    err(c, n, key, "expected %s, found %s", expect(pd, e, sizeof e),
+        found(n, wants_string(pd), f, sizeof f));
+    return false;
+}
+
+bool parse_uint_in(vctx *c, const ynode *n, const char *key, uint64_t min, uint64_t max,
+                          const char *note, uint64_t *out)
+{
+    uint64_t v;
+    if (!get_uint(n, &v) || v < min || v > max) {
+        char f[128];
+        err(c, n, key, "expected an integer %" PRIu64 "..%" PRIu64 "%s, found %s", min, max, note,
+            found(n, false, f, sizeof f));
+        return false;
+    }
+    *out = v;
+    return true;
+}
+
+bool parse_number_in(vctx *c, const ynode *n, const char *key, double min, double max,
+                            unsigned flags, double *out)
+{
+    double v;
+    bool finite;
+    char e[128], f[128];
+    sbuf b = {e, sizeof e, 0};
+    range_number(&b, min, max, flags & PF_MIN_OPEN);
+    if (flags & PF_SCENE_DEFAULT)
+        sb_add(&b, ", or scene");
+    if (!get_number(n, &v, &finite)) {
+        err(c, n, key, "expected %s, found %s", e, found(n, false, f, sizeof f));
+        return false;
+    }
+    if (!finite) {
+        err(c, n, key, "expected a finite number, found %s", found(n, false, f, sizeof f));
+        return false;
+    }
+    if (flags & PF_FLOAT)
+        v = (double)(float)v;  /* what will be stored is what is checked */
+    if (((flags & PF_MIN_OPEN) ? v <= min : v < min) || v > max) {
+        err(c, n, key, "expected %s, found %s", e, found(n, false, f, sizeof f));
+        return false;
+    }
+    *out = v;
+    return true;
+}
+
+/* Checks the keys of a mapping against names[0..nnames): an unknown key, a key
+ * that is not a scalar and a second occurrence are errors. vals[i] (and keys[i])
+ * get the first occurrence of names[i], NULL if absent. Returns false if any key
+ * was wrong. */
+bool map_keys(vctx *c, const ynode *map, const char *prefix, const char *const *names,
+                     size_t nnames, const ynode **keys, const ynode **vals)
+{
+    bool ok = true;
+    for (size_t i = 0; i < nnames; i++)
+        keys[i] = vals[i] = NULL;
+    for (size_t p = 0; p < map->n; p++) {
+        const ynode *k = map->pairs[p].key;
+        char f[128];
+        if (k->kind != YNODE_SCALAR) {
+            err(c, k, prefix, "expected a key, found %s", found(k, true, f, sizeof f));
+            ok = false;
+            continue;
+        }
+        size_t i = 0;
+        while (i < nnames && strcmp(names[i], k->text) != 0)
+            i++;
+        char path[256];
+        sbuf pb = {path, sizeof path, 0};
+        sb_add(&pb, "%s%s", prefix, prefix[0] ? "." : "");
+        escape_text(&pb, k->text, k->len);
+        if (i == nnames) {
+            char list[1024];
+            sbuf lb = {list, sizeof list, 0};
+            list[0] = '\0';
+            for (size_t j = 0; j < nnames; j++)
+                sb_add(&lb, "%s%s", j ? ", " : "", names[j]);
+            err(c, k, path, "expected one of %s, found %s", list, found(k, true, f, sizeof f));
+            ok = false;
+        } else if (keys[i]) {
+            err(c, k, path, "expected a key used once, found a second '%s' (first at %d:%d)",
+                names[i], keys[i]->line, keys[i]->col);
+            ok = false;
+        } else {
+            keys[i] = k;
+            vals[i] = map->pairs[p].value;
+        }
+    }
+    return ok;
+}
+
+/* A mapping whose keys are the table's parameters under `prefix` ("" at the top). */
+void parse_group(vctx *c, const char *prefix, const ynode *map, run_params *dst)
+{
+    size_t idx[NPARAMS], nk = 0;
+    const char *names[NPARAMS];
+    for (size_t i = 0; i < NPARAMS; i++)
+        if (path_parent_is(params_table[i].path, prefix)) {
+            idx[nk] = i;
+            names[nk++] = path_leaf(params_table[i].path);
+        }
+    const ynode *keys[NPARAMS], *vals[NPARAMS];
+    map_keys(c, map, prefix, names, nk, keys, vals);
+    for (size_t j = 0; j < nk; j++) {
+        if (!keys[j])
+            continue;
+        c->set_key[idx[j]] = keys[j];
+        c->set_val[idx[j]] = vals[j];
+        parse_value(c, &params_table[idx[j]], vals[j], params_table[idx[j]].path, dst);
+    }
+}
+
+static bool parse_span(vctx *c, const param *pd, const ynode *n, const char *key, span *out)
+{
+    if (n->kind != YNODE_MAPPING)
+        return bad(c, pd, n, key);
+    static const char *const names[] = {"seconds", "frames"};
+    const ynode *keys[2], *vals[2];
+    bool keys_ok = map_keys(c, n, key, names, 2, keys, vals);
+    char e[64], sub[160];
+    if (vals[0] && vals[1]) {
+        err(c, n, key, "expected %s, found both seconds and frames", expect(pd, e, sizeof e));
+        return false;
+    }
+    if (!vals[0] && !vals[1]) {
+        if (keys_ok)
+            bad(c, pd, n, key);
+        return false;
+    }
+    if (vals[0]) {
+        double v;
+        snprintf(sub, sizeof sub, "%s.seconds", key);
+        if (!parse_number_in(c, vals[0], sub, pd->min, pd->max, pd->flags, &v))
+            return false;
+        *out = (span){.kind = SPAN_SECONDS, .seconds = v};
+    } else {
+        uint64_t v;
+        snprintf(sub, sizeof sub, "%s.frames", key);
+        if (!parse_uint_in(c, vals[1], sub, (uint64_t)pd->fmin, (uint64_t)pd->fmax, "", &v))
+            return false;
+        *out = (span){.kind = SPAN_FRAMES, .frames = (uint32_t)v};
+    }
+    return keys_ok;
+}
+
+static bool parse_count(vctx *c, const param *pd, const ynode *n, const char *key,
+                        light_count *out)
+{
+    if (n->kind == YNODE_SCALAR) {
+        uint64_t v;
+        if (ynode_plain(n) && strcmp(n->text, "all") == 0) {
+            *out = (light_count){.growth = false, .start = LIGHT_COUNT_ALL,
+                                 .max = LIGHT_COUNT_ALL};
+            return true;
+        }
+        if (!get_uint(n, &v) || v > MAX_LIGHTS)
+            return bad(c, pd, n, key);
+        *out = (light_count){.growth = false, .start = (uint32_t)v, .max = (uint32_t)v};
+        return true;
+    }
+    if (n->kind != YNODE_MAPPING)
+        return bad(c, pd, n, key);
+
+    static const char *const names[] = {"start", "step", "every", "max"};
+    const ynode *keys[4], *vals[4];
+    bool ok = map_keys(c, n, key, names, 4, keys, vals);
+    char sub[4][160];
+    for (size_t i = 0; i < 4; i++) {
+        snprintf(sub[i], sizeof sub[i], "%s.%s", key, names[i]);
+        if (!vals[i]) {
+            err(c, n, sub[i], "expected %s, found nothing",
+                i == 2 ? "a number > 0 and <= 604800" : "an integer 0..1000000");
+            ok = false;
+        }
+    }
+    uint64_t start = 0, step = 0, max = 0;
+    double every = 0;
+    bool have_start = vals[0] && parse_uint_in(c, vals[0], sub[0], 0, MAX_LIGHTS, "", &start);
+    if (vals[1] && !parse_uint_in(c, vals[1], sub[1], 0, MAX_LIGHTS, "", &step))
+        ok = false;
+    if (vals[2] && !parse_number_in(c, vals[2], sub[2], 0, MAX_EVERY, PF_MIN_OPEN, &every))
+        ok = false;
+    if (vals[3] &&
+        !parse_uint_in(c, vals[3], sub[3], have_start ? start : 0, MAX_LIGHTS,
+                       have_start ? " (at least start)" : "", &max))
+        ok = false;
+    if (!ok || !have_start)
+        return false;
+    *out = (light_count){.growth = true, .start = (uint32_t)start, .step = (uint32_t)step,
+                         .max = (uint32_t)max, .every = every};
+    return true;
+}
+
+static bool parse_times(vctx *c, const param *pd, const ynode *n, const char *key,
+                        run_params *dst)
+{
+    if (n->kind != YNODE_SEQUENCE)
+        return bad(c, pd, n, key);
+    if (n->n > MAX_SCREENSHOTS) {
+        char e[128];
+        err(c, n, key, "expected %s, found %zu times", expect(pd, e, sizeof e), n->n);
+        return false;
+    }
+    /* a size_t count followed by MAX_SCREENSHOTS doubles at pd->off (RP_SPAN) */
+    size_t *count = (size_t *)((char *)dst + pd->off);
+    double *times = (double *)((char *)dst + pd->off + sizeof(size_t));
+    bool ok = true;
+    for (size_t i = 0; i < n->n; i++) {
+        char sub[160];
+        snprintf(sub, sizeof sub, "%s[%zu]", key, i);
+        if (!parse_number_in(c, n->items[i], sub, pd->min, pd->max, 0, &times[i]))
+            ok = false;
+    }
+    if (ok)
+        *count = n->n;
+    return ok;
+}
+
+static bool parse_renderers(vctx *c, const param *pd, const ynode *n, const char *key)
+{
+    if (n->kind != YNODE_SEQUENCE || n->n == 0)
+        return bad(c, pd, n, key);
+    experiment *e = c->e;
+    free(e->renderers);
+    e->nrenderers = 0;
+    e->renderers = calloc(n->n, sizeof *e->renderers);
+    if (!e->renderers) {
+        err(c, n, key, "expected a sequence that fits in memory, found no memory left");
+        return false;
+    }
+    bool ok = true;
+    for (size_t i = 0; i < n->n; i++) {
+        const ynode *it = n->items[i];
+        char sub[160], f[128];
+        snprintf(sub, sizeof sub, "%s[%zu]", key, i);
+        const renderer_impl *impl = stringish(it) ? renderer_kind_find(it->text) : NULL;
+        if (!impl || strlen(impl->name) >= sizeof e->renderers[0]) {
+            char list[512];
+            sbuf lb = {list, sizeof list, 0};
+            list_renderers(&lb);
+            err(c, it, sub, "expected %s, found %s", list, found(it, true, f, sizeof f));
+            ok = false;
+            continue;
+        }
+        const ynode *first = NULL;
+        for (size_t j = 0; j < i && !first; j++)
+            if (n->items[j]->kind == YNODE_SCALAR && strcmp(n->items[j]->text, it->text) == 0)
+                first = n->items[j];
+        if (first) {
+            err(c, it, sub, "expected a renderer listed once, found a second '%s' (first at %d:%d)",
+                impl->name, first->line, first->col);
+            ok = false;
+            continue;
+        }
+        strcpy(e->renderers[e->nrenderers++], impl->name);
+    }
+    return ok;
+}
+
+static bool parse_resolution(vctx *c, const param *pd, const ynode *n, const char *key,
+                             run_params *dst)
+{
+    if (!stringish(n))
+        return bad(c, pd, n, key);
+    const char *s = n->text, *x = strchr(s, 'x');
+    if (!x || !all_digits(s, x) || !all_digits(x + 1, s + n->len) || x - s > 9 ||
+        (s + n->len) - (x + 1) > 9)
+        return bad(c, pd, n, key);
+    long w = strtol(s, NULL, 10), h = strtol(x + 1, NULL, 10);
+    if (w < 1 || w > MAX_SIDE || h < 1 || h > MAX_SIDE)
+        return bad(c, pd, n, key);
+    dst->width = (int)w;
+    dst->height = (int)h;
+    return true;
+}
+
+static bool parse_name(vctx *c, const param *pd, const ynode *n, const char *key)
+{
+    if (!stringish(n) || n->len > 63)
+        return bad(c, pd, n, key);
+    for (const char *s = n->text; *s; s++)
+        if (!((*s >= 'a' && *s <= 'z') || (*s >= '0' && *s <= '9') || *s == '-'))
+            return bad(c, pd, n, key);
+    strcpy(c->e->name, n->text);
+    return true;
+}
+
+static bool parse_text(vctx *c, const param *pd, const ynode *n, const char *key)
+{
+    /* an explicitly empty string ("") is a string too */
+    bool empty_quoted = n->kind == YNODE_SCALAR && n->len == 0 && n->style != YSTYLE_PLAIN;
+    if (!stringish(n) && !empty_quoted)
+        return bad(c, pd, n, key);
+    char *d = strdup(n->text);
+    if (!d) {
+        err(c, n, key, "expected a string that fits in memory, found no memory left");
+        return false;
+    }
+    free(c->e->description);
+    c->e->description = d;
+    return true;
+}
+
+static void parse_sweep(vctx *c, const param *pd, const ynode *map);
+
+/* Validates n as parameter pd; a run parameter's value goes into dst (at pd->off),
+ * the experiment's own (name, renderers...) into c->e. The one path for keys in
+ * place, sweep values and defaults. */
+bool parse_value(vctx *c, const param *pd, const ynode *n, const char *key,
+                        run_params *dst)
+{
+    char *at = (char *)dst + pd->off;
+    if (n->kind == YNODE_SCALAR && !tag_ok(n))
+        return bad(c, pd, n, key);
+    switch (pd->type) {
+    case PT_SCHEMA: {
+        uint64_t v;
+        if (!get_uint(n, &v) || v != 1)
+            return bad(c, pd, n, key);
+        return true;
+    }
+    case PT_NAME:
+        return parse_name(c, pd, n, key);
+    case PT_TEXT:
+        return parse_text(c, pd, n, key);
+    case PT_SCENE:
+        if (!stringish(n) || !scene_catalog_find(n->text) || n->len >= sizeof dst->scene)
+            return bad(c, pd, n, key);
+        strcpy(dst->scene, n->text);
+        return true;
+    case PT_RENDERERS:
+        return parse_renderers(c, pd, n, key);
+    case PT_RENDERER:
+        if (!stringish(n) || !renderer_kind_find(n->text) || n->len >= 32)
+            return bad(c, pd, n, key);
+        memcpy(at, n->text, n->len + 1);
+        return true;
+    case PT_RESOLUTION:
+        return parse_resolution(c, pd, n, key, dst);
+    case PT_UINT: {
+        uint64_t v;
+        if (!parse_uint_in(c, n, key, (uint64_t)pd->min, (uint64_t)pd->max, "", &v))
+            return false;
+        uint32_t u = (uint32_t)v;
+        memcpy(at, &u, sizeof u);
+        return true;
+    }
+    case PT_NUMBER: {
+        double v;
+        if ((pd->flags & PF_SCENE_DEFAULT) && ynode_plain(n) && strcmp(n->text, "scene") == 0) {
+            float f = NAN;   /* PF_SCENE_DEFAULT numbers are floats */
+            memcpy(at, &f, sizeof f);
+            return true;
+        }
+        if (!parse_number_in(c, n, key, pd->min, pd->max, pd->flags, &v))
+            return false;
+        if (pd->flags & PF_FLOAT) {
+            float f = (float)v;
+            memcpy(at, &f, sizeof f);
+        } else {
+            memcpy(at, &v, sizeof v);
+        }
+        return true;
+    }
+    case PT_VEC3: {
+        float v[3] = {NAN, NAN, NAN};
+        if (ynode_plain(n) && strcmp(n->text, "scene") == 0) {
+            memcpy(at, v, sizeof v);
+            return true;
+        }
+        if (n->kind != YNODE_SEQUENCE || n->n != 3)
+            return bad(c, pd, n, key);
+        for (size_t i = 0; i < 3; i++) {
+            char k[160];
+            double d;
+            snprintf(k, sizeof k, "%s[%zu]", key, i);
+            if (!parse_number_in(c, n->items[i], k, pd->min, pd->max, PF_FLOAT, &d))
+                return false;
+            v[i] = (float)d;
+        }
+        memcpy(at, v, sizeof v);
+        return true;
+    }
+    case PT_ENUM:
+        if (stringish(n))
+            for (int i = 0; pd->values[i]; i++)
+                if (strcmp(pd->values[i], n->text) == 0) {
+                    memcpy(at, &i, sizeof i);
+                    return true;
+                }
+        return bad(c, pd, n, key);
+    case PT_BOOL: {
+        bool t = ynode_plain(n) && strcmp(n->text, "true") == 0;
+        bool f = ynode_plain(n) && strcmp(n->text, "false") == 0;
+        if (!t && !f)
+            return bad(c, pd, n, key);
+        memcpy(at, &t, sizeof t);
+        return true;
+    }
+    case PT_SPAN: {
+        span s;
+        if (!parse_span(c, pd, n, key, &s))
+            return false;
+        memcpy(at, &s, sizeof s);
+        return true;
+    }
+    case PT_COUNT: {
+        light_count lc;
+        if (!parse_count(c, pd, n, key, &lc))
+            return false;
+        memcpy(at, &lc, sizeof lc);
+        return true;
+    }
+    case PT_TIMES:
+        return parse_times(c, pd, n, key, dst);
+    case PT_GROUP:
+        if (n->kind == YNODE_SCALAR && pd->shorthand) {
+            const param *member = param_find(pd->shorthand);
+            return parse_value(c, member, n, key, dst);
+        }
+        if (n->kind != YNODE_MAPPING)
+            return bad(c, pd, n, key);
+        parse_group(c, pd->path, n, dst);
+        return true;
+    case PT_SWEEP:
+        if (n->kind != YNODE_MAPPING)
+            return bad(c, pd, n, key);
+        parse_sweep(c, pd, n);
+        return true;
+    }
+    return false;
+}
+
+static void list_sweepable(sbuf *b)
+{
+    bool first = true;
+    for (size_t i = 0; i < NPARAMS; i++)
+        if (params_table[i].flags & PF_SWEEP) {
+            sb_add(b, "%s%s", first ? "" : ", ", params_table[i].path);
+            first = false;
+        }
+}
+
+static void parse_sweep(vctx *c, const param *pd, const ynode *map)
+{
+    experiment *e = c->e;
+    e->axes = calloc(map->n ? map->n : 1, sizeof *e->axes);
+    if (!e->axes) {
+        err(c, map, pd->path, "expected a sweep that fits in memory, found no memory left");
+        return;
+    }
+    for (size_t p = 0; p < map->n; p++) {
+        const ynode *k = map->pairs[p].key, *v = map->pairs[p].value;
+        char f[128], key[256];
+        if (k->kind != YNODE_SCALAR) {
+            err(c, k, pd->path, "expected a parameter, found %s", found(k, true, f, sizeof f));
+            continue;
+        }
+        sbuf kb = {key, sizeof key, 0};
+        sb_add(&kb, "%s.", pd->path);
+        escape_text(&kb, k->text, k->len);
+        const param *sp = param_find(k->text);
+        if (sp && sp->type == PT_GROUP && sp->shorthand)
+            sp = param_find(sp->shorthand);   /* `gbuffer: [fat, curtis]` as in place */
+        if (!sp || !(sp->flags & PF_SWEEP)) {
+            char list[1024];
+            sbuf lb = {list, sizeof list, 0};
+            list_sweepable(&lb);
+            err(c, k, key, "expected a sweepable parameter (one of %s), found %s", list,
+                found(k, true, f, sizeof f));
+            continue;
+        }
+        size_t idx = (size_t)(sp - params_table);
+        if (c->swept[idx]) {
+            err(c, k, key, "expected a key used once, found a second '%s' (first at %d:%d)",
+                sp->path, c->swept[idx]->line, c->swept[idx]->col);
+            continue;
+        }
+        c->swept[idx] = k;
+        if (v->kind != YNODE_SEQUENCE || v->n == 0) {
+            err(c, v, key, "expected a non-empty sequence of values, found %s",
+                found(v, false, f, sizeof f));
+            continue;
+        }
+        if (v->n > MAX_AXIS_VALUES) {
+            err(c, v, key, "expected at most %d values, found %zu", MAX_AXIS_VALUES, v->n);
+            continue;
+        }
+        struct sweep_axis *ax = &e->axes[e->naxes];
+        ax->path = sp->path;
+        ax->off = sp->off;
+        ax->size = sp->size;
+        ax->values = calloc(v->n, sizeof *ax->values);
+        ax->line = calloc(v->n, sizeof *ax->line);
+        ax->col = calloc(v->n, sizeof *ax->col);
+        if (!ax->values || !ax->line || !ax->col) {
+            free(ax->values);
+            free(ax->line);
+            free(ax->col);
+            *ax = (struct sweep_axis){0};
+            err(c, v, key, "expected a sweep that fits in memory, found no memory left");
+            continue;
+        }
+        ax->nvalues = v->n;
+        e->naxes++;
+        c->axis_of[idx] = e->naxes;
+        for (size_t j = 0; j < v->n; j++) {
+            char sub[300];
+            snprintf(sub, sizeof sub, "%s[%zu]", key, j);
+            ax->line[j] = v->items[j]->line;
+            ax->col[j] = v->items[j]->col;
+            parse_value(c, sp, v->items[j], sub, &ax->values[j]);
+        }
+    }
+}
+

@@ -1,0 +1,480 @@
+/* The parameter table (runner/params.def made into data) and what is computed from
+ * it alone: canonical text and run_params_kv, which renderers read a key, the error
+ * reference's parameters, the renderer options and `shadesweep params`. */
+#include "runner/params.h"
+
+#include <inttypes.h>
+#include <math.h>
+#include <stdint.h>
+#include <stdlib.h>
+#include <string.h>
+
+#include "runner/hash.h"
+#include "runner/manifest_internal.h"
+
+/* Enumerations are stored through their int representation. */
+_Static_assert(sizeof(run_clock) == sizeof(int), "enum size");
+_Static_assert(sizeof(run_sync) == sizeof(int), "enum size");
+_Static_assert(sizeof(light_placement) == sizeof(int), "enum size");
+_Static_assert(sizeof(rng_kind) == sizeof(int), "enum size");
+_Static_assert(sizeof(attenuation_kind) == sizeof(int), "enum size");
+_Static_assert(sizeof(gbuffer_preset) == sizeof(int), "enum size");
+_Static_assert(sizeof(gbuffer_position) == sizeof(int), "enum size");
+_Static_assert(sizeof(gbuffer_normal) == sizeof(int), "enum size");
+_Static_assert(sizeof(light_volume_mode) == sizeof(int), "enum size");
+
+static const char *const clock_names[] = {"wall", "fixed", NULL};
+static const char *const sync_names[] = {"finish", "fence", NULL};
+/* In the order of light_placement (scenes/lights.h). */
+static const char *const placement_names[] = {"random", "none", "grid", "scene", NULL};
+static const char *const shadows_names[] = {"auto", "off", NULL};
+static const char *const rng_names[] = {"msvc", "pcg32", "mt19937", NULL};
+static const char *const attenuation_names[] = {"inverse-square", "linear-range", "quadratic",
+                                                NULL};
+/* In the order of the enums of renderers/renderer.h. */
+static const char *const gbuffer_names[] = {"curtis", "fat", "compact", "spheremap", "reference",
+                                            NULL};
+static const char *const gbuffer_position_names[] = {"preset", "stored16", "stored32", "depth",
+                                                     NULL};
+static const char *const gbuffer_normal_names[] = {"preset", "float16", "float32", "unorm10",
+                                                   "spheremap8", "spheremap16", NULL};
+static const char *const light_volume_names[] = {"stencil", "fullscreen", "volume",
+                                                 "stencil-two-pass", NULL};
+
+#define RP(f) .off = offsetof(run_params, f), .size = sizeof(((run_params *)0)->f)
+#define RP_SPAN(a, b)                                                                         \
+    .off = offsetof(run_params, a),                                                           \
+    .size = offsetof(run_params, b) + sizeof(((run_params *)0)->b) - offsetof(run_params, a)
+#define LIM(lo, hi) .min = (lo), .max = (hi)
+#define LIMF(lo, hi, flo, fhi) .min = (lo), .max = (hi), .fmin = (flo), .fmax = (fhi)
+
+const param params_table[PARAMS_N] = {
+#define PARAM_META(path_, type_, flags_, decl, shorthand_, desc)                             \
+    {.path = path_, .type = type_, .flags = flags_, .shorthand = shorthand_,                \
+     .description = desc},
+#define PARAM(path_, type_, flags_, field, decl, def_, lim, values_, readers_, ref_, apply,   \
+              desc)                                                                         \
+    {.path = path_, .type = type_, .flags = flags_, field, .def = def_, lim,                \
+     .values = values_, .readers = readers_, .ref = ref_, .description = desc},
+#include "runner/params.def"
+};
+
+const param *param_find(const char *path)
+{
+    for (size_t i = 0; i < NPARAMS; i++)
+        if (strcmp(params_table[i].path, path) == 0)
+            return &params_table[i];
+    return NULL;
+}
+
+bool path_parent_is(const char *path, const char *parent)
+{
+    const char *dot = strrchr(path, '.');
+    size_t plen = dot ? (size_t)(dot - path) : 0;
+    return strlen(parent) == plen && strncmp(path, parent, plen) == 0;
+}
+
+const char *path_leaf(const char *path)
+{
+    const char *dot = strrchr(path, '.');
+    return dot ? dot + 1 : path;
+}
+
+const char *param_column(const param *pd)
+{
+    return pd->type == PT_RENDERERS ? "renderer" : pd->path;
+}
+
+/* >>text */
+
+/* The shortest %.*g text that reads back as the same value (10 is "10", not
+ * "1e+01"; 1e9 is "1e+09"; 0.1 is "0.1"). */
+void fmt_double(double v, char *out, size_t len)
+{
+    char t[40];
+    size_t best = SIZE_MAX;
+    for (int prec = 1; prec <= 17; prec++) {
+        snprintf(t, sizeof t, "%.*g", prec, v);
+        if (strtod(t, NULL) == v && strlen(t) < best) {
+            best = strlen(t);
+            snprintf(out, len, "%s", t);
+        }
+    }
+}
+
+void fmt_float(float v, char *out, size_t len)
+{
+    char t[40];
+    size_t best = SIZE_MAX;
+    for (int prec = 1; prec <= 9; prec++) {
+        snprintf(t, sizeof t, "%.*g", prec, (double)v);
+        if (strtof(t, NULL) == v && strlen(t) < best) {
+            best = strlen(t);
+            snprintf(out, len, "%s", t);
+        }
+    }
+}
+
+/* >>kv */
+
+void param_format(const param *pd, const run_params *p, char *out, size_t len)
+{
+    const char *at = (const char *)p + pd->off;
+    char a[32];
+    out[0] = '\0';
+    switch (pd->type) {
+    case PT_SCENE:
+        snprintf(out, len, "%s", p->scene);
+        break;
+    case PT_RENDERERS:
+        snprintf(out, len, "%s", p->renderer);
+        break;
+    case PT_RENDERER:
+        snprintf(out, len, "%.31s", at);
+        break;
+    case PT_RESOLUTION:
+        snprintf(out, len, "%dx%d", p->width, p->height);
+        break;
+    case PT_UINT: {
+        uint32_t u;
+        memcpy(&u, at, sizeof u);
+        snprintf(out, len, "%" PRIu32, u);
+        break;
+    }
+    case PT_NUMBER:
+        if (pd->flags & PF_FLOAT) {
+            float f;
+            memcpy(&f, at, sizeof f);
+            if (isnan(f))
+                snprintf(out, len, "scene");   /* PF_SCENE_DEFAULT */
+            else
+                fmt_float(f, out, len);
+        } else {
+            double v;
+            memcpy(&v, at, sizeof v);
+            fmt_double(v, out, len);
+        }
+        break;
+    case PT_VEC3: {
+        float v[3];
+        char y[32], z[32];
+        memcpy(v, at, sizeof v);
+        if (isnan(v[0])) {
+            snprintf(out, len, "scene");
+        } else {
+            fmt_float(v[0], a, sizeof a);
+            fmt_float(v[1], y, sizeof y);
+            fmt_float(v[2], z, sizeof z);
+            snprintf(out, len, "%s,%s,%s", a, y, z);
+        }
+        break;
+    }
+    case PT_ENUM: {
+        int i;
+        memcpy(&i, at, sizeof i);
+        int n = 0;
+        while (pd->values[n])
+            n++;
+        snprintf(out, len, "%s", i >= 0 && i < n ? pd->values[i] : "?");
+        break;
+    }
+    case PT_BOOL: {
+        bool b;
+        memcpy(&b, at, sizeof b);
+        snprintf(out, len, "%s", b ? "true" : "false");
+        break;
+    }
+    case PT_SPAN: {
+        span s;
+        memcpy(&s, at, sizeof s);
+        if (s.kind == SPAN_FRAMES) {
+            snprintf(out, len, "frames:%" PRIu32, s.frames);
+        } else {
+            fmt_double(s.seconds, a, sizeof a);
+            snprintf(out, len, "seconds:%s", a);
+        }
+        break;
+    }
+    case PT_COUNT: {
+        light_count lc;
+        memcpy(&lc, at, sizeof lc);
+        if (!lc.growth && lc.start == LIGHT_COUNT_ALL) {
+            snprintf(out, len, "all");
+        } else if (lc.growth) {
+            fmt_double(lc.every, a, sizeof a);
+            snprintf(out, len, "start:%" PRIu32 ",step:%" PRIu32 ",every:%s,max:%" PRIu32,
+                     lc.start, lc.step, a, lc.max);
+        } else {
+            snprintf(out, len, "%" PRIu32, lc.start);
+        }
+        break;
+    }
+    case PT_TIMES: {
+        /* Comma-separated; a list too long for the column is named by its count and
+         * hash instead, so that two different lists never share a text. */
+        char all[MAX_SCREENSHOTS * 32 + 1];
+        sbuf b = {all, sizeof all, 0};
+        all[0] = '\0';
+        size_t count;
+        memcpy(&count, at, sizeof count);
+        const double *times = (const double *)(at + sizeof(size_t));
+        size_t n = count < MAX_SCREENSHOTS ? count : MAX_SCREENSHOTS;
+        for (size_t i = 0; i < n; i++) {
+            fmt_double(times[i], a, sizeof a);
+            sb_add(&b, "%s%s", i ? "," : "", a);
+        }
+        if (b.len < len) {
+            snprintf(out, len, "%s", all);
+        } else {
+            char h[17];
+            hash_hex(fnv1a64(all, b.len), 16, h);
+            snprintf(out, len, "times:%zu,fnv:%s", n, h);
+        }
+        break;
+    }
+    case PT_SCHEMA:
+    case PT_NAME:
+    case PT_TEXT:
+    case PT_GROUP:
+    case PT_SWEEP:
+        break;
+    }
+}
+
+/* The canonical text of every parameter's default ("" for those without one). */
+static const char (*default_texts(void))[96]
+{
+    static char text[PARAMS_N][96];
+    static bool done;
+    if (!done) {
+        run_params d;
+        params_defaults(&d);
+        for (size_t i = 0; i < NPARAMS; i++)
+            if (params_table[i].size && params_table[i].def)
+                param_format(&params_table[i], &d, text[i], sizeof text[i]);
+        done = true;
+    }
+    return (const char (*)[96])text;
+}
+
+size_t run_params_kv(const run_params *p, param_kv *out, size_t max)
+{
+    const char (*defaults)[96] = default_texts();
+    size_t k = 0;
+    for (size_t i = 0; i < NPARAMS && k < max; i++) {
+        const param *pd = &params_table[i];
+        if (pd->size == 0)
+            continue;
+        out[k].key = param_column(pd);
+        out[k].in_id = !(pd->flags & PF_NOT_IN_ID);
+        param_format(pd, p, out[k].value, sizeof out[k].value);
+        /* without a default (scene, renderer, duration, error.reference.renderer), only
+         * the empty text: a reference renderer not named */
+        out[k].is_default = pd->def ? strcmp(out[k].value, defaults[i]) == 0 : !out[k].value[0];
+        k++;
+    }
+    return k;
+}
+
+/* >>readers */
+
+bool param_read_by(const param *pd, const char *name)
+{
+    if (!pd->readers || strcmp(pd->readers, "*") == 0)
+        return true;
+    size_t n = strlen(name);
+    for (const char *s = pd->readers; *s;) {
+        size_t len = strcspn(s, " ");
+        if (len == n && strncmp(s, name, n) == 0)
+            return true;
+        s += len;
+        s += strspn(s, " ");
+    }
+    return false;
+}
+
+bool param_read_by_run(const param *pd, const run_params *p)
+{
+    if (param_read_by(pd, p->renderer))
+        return true;
+    return p->error_renderer[0] && pd->ref && strcmp(pd->ref, "inherit") == 0 &&
+           param_read_by(pd, p->error_renderer);
+}
+
+void params_reference(const run_params *p, run_params *ref)
+{
+    run_params d;
+    params_defaults(&d);
+    *ref = *p;
+    for (size_t i = 0; i < NPARAMS; i++) {
+        const param *pd = &params_table[i];
+        if (pd->size && pd->ref && strcmp(pd->ref, "default") == 0)
+            memcpy((char *)ref + pd->off, (const char *)&d + pd->off, pd->size);
+    }
+    for (size_t i = 0; i < NPARAMS; i++) {
+        const param *pd = &params_table[i];
+        if (!pd->size || !pd->ref || strncmp(pd->ref, "sets:", 5) != 0)
+            continue;
+        const param *t = param_find(pd->ref + 5);
+        if (t && t->size == pd->size)   /* tests/unit/test_params.c checks every one */
+            memcpy((char *)ref + t->off, (const char *)p + pd->off, pd->size);
+    }
+    ref->error_renderer[0] = '\0';   /* the reference is compared with nothing */
+    ref->nerror_at = 0;
+}
+
+void params_to_renderer_options(const run_params *p, renderer_options *o)
+{
+#define PARAM(path, type, flags, field, decl, def, lim, values, readers, ref, apply, desc) apply;
+#include "runner/params.def"
+}
+
+/* >>print */
+
+static const char *type_name(const param *pd)
+{
+    switch (pd->type) {
+    case PT_SCHEMA: return "schema";
+    case PT_NAME: return "name";
+    case PT_TEXT: return "text";
+    case PT_SCENE: return "scene";
+    case PT_RENDERERS: return "renderer list";
+    case PT_RESOLUTION: return "resolution";
+    case PT_UINT: return "integer";
+    case PT_NUMBER: return "number";
+    case PT_ENUM: return "enum";
+    case PT_BOOL: return "bool";
+    case PT_SPAN: return "span";
+    case PT_COUNT: return "light count";
+    case PT_TIMES: return "times";
+    case PT_RENDERER: return "renderer";
+    case PT_VEC3: return "vec3";
+    case PT_GROUP: return "group";
+    case PT_SWEEP: return "sweep";
+    }
+    return "?";
+}
+
+/* Markdown cells: a | in text would end the cell. */
+static void md_cell(FILE *out, const char *s)
+{
+    for (; *s; s++) {
+        if (*s == '|')
+            fputs("\\|", out);
+        else
+            fputc(*s, out);
+    }
+}
+
+static void print_bash(FILE *out)
+{
+    fputs("# bash completion for shadesweep; generated by `shadesweep params --bash`\n"
+          "# from runner/params.def (tests/cli/params.sh fails when it is stale).\n"
+          "# Install: source it, or copy it to /usr/share/bash-completion/completions/shadesweep\n"
+          "_shadesweep() {\n"
+          "  local cur=${COMP_WORDS[COMP_CWORD]} cmd=${COMP_WORDS[1]}\n"
+          "  local prev=${COMP_WORDS[COMP_CWORD-1]}\n"
+          "  local commands=\"run validate list info merge params report compare\"\n"
+          "  local keys=\"",
+          out);
+    for (size_t i = 0; i < NPARAMS; i++)
+        if (params_table[i].type != PT_SCHEMA)
+            fprintf(out, "%s%s", i ? " " : "", params_table[i].path);
+    fputs("\"\n"
+          "  local sweepable=\"", out);
+    bool first = true;
+    for (size_t i = 0; i < NPARAMS; i++)
+        if (params_table[i].flags & PF_SWEEP) {
+            fprintf(out, "%s%s", first ? "" : " ", params_table[i].path);
+            first = false;
+        }
+    fputs("\"\n"
+          "  if [ \"$COMP_CWORD\" -eq 1 ]; then\n"
+          "    COMPREPLY=($(compgen -W \"$commands --help --version\" -- \"$cur\")); return\n"
+          "  fi\n"
+          "  case $prev in\n"
+          "    -o|--out) COMPREPLY=($(compgen -d -- \"$cur\")); return ;;\n"
+          "    --backend) COMPREPLY=($(compgen -W \"egl osmesa\" -- \"$cur\")); return ;;\n"
+          "  esac\n"
+          "  local opts\n"
+          "  case $cmd in\n"
+          "    run) opts=\"-o --out --force --resume --retry-failed --backend --device --shard "
+          "--debug-gl --scale --smoke --help\" ;;\n"
+          "    list) opts=\"--shard --smoke --scale --help\" ;;\n"
+          "    info) opts=\"--backend --device --help\" ;;\n"
+          "    merge) opts=\"-o --out --force --help\" ;;\n"
+          "    validate) opts=\"--help\" ;;\n"
+          "    params) opts=\"--markdown --bash --help\"\n"
+          "      COMPREPLY=($(compgen -W \"$opts $keys\" -- \"$cur\")); return ;;\n"
+          "    compare) opts=\"--threshold --csv --md --help\" ;;\n"
+          "    report) opts=\"--help\" ;;\n"
+          "  esac\n"
+          "  if [[ $cur == -* ]]; then\n"
+          "    COMPREPLY=($(compgen -W \"$opts\" -- \"$cur\"))\n"
+          "  elif [ \"$cmd\" = run ] || [ \"$cmd\" = validate ] || [ \"$cmd\" = list ]; then\n"
+          "    COMPREPLY=($(compgen -f -X '!*.y*ml' -- \"$cur\") $(compgen -d -- \"$cur\"))\n"
+          "  else\n"
+          "    COMPREPLY=($(compgen -d -- \"$cur\"))\n"
+          "  fi\n"
+          "}\n"
+          "# the sweepable keys, for scripts that build manifests: $sweepable\n"
+          "complete -F _shadesweep shadesweep\n",
+          out);
+}
+
+void params_print(FILE *out, params_format f)
+{
+    if (f == PARAMS_BASH) {
+        print_bash(out);
+        return;
+    }
+    const char (*defaults)[96] = default_texts();
+    if (f == PARAMS_MARKDOWN)
+        fputs("# Manifest keys (schema 1)\n\n"
+              "Generated by `shadesweep params --markdown` from `runner/params.def`; "
+              "tests/cli/params.sh fails when this file is stale. A key at its default "
+              "is left out of the run id, so a default never changes within a schema "
+              "version. *Read by* names the renderers whose output depends on the key "
+              "(`*`: every run); a sweep folds runs that differ only in keys their "
+              "renderer does not read. *Reference* says what the error reference does "
+              "with it: renders with the run's value (inherit), with the default, or "
+              "takes this key as its own value of another.\n\n"
+              "| key | type | default | accepts | sweep | read by | reference | description |\n"
+              "|---|---|---|---|---|---|---|---|\n",
+              out);
+    for (size_t i = 0; i < NPARAMS; i++) {
+        const param *pd = &params_table[i];
+        char accepts[1024];
+        expect(pd, accepts, sizeof accepts);
+        const char *def = pd->size && pd->def ? defaults[i]
+                          : (pd->flags & PF_REQUIRED) ? "(required)" : "";
+        const char *readers = pd->size ? (pd->readers ? pd->readers : "*") : "";
+        const char *ref = pd->size && pd->ref ? pd->ref : "";
+        bool sweep = pd->flags & PF_SWEEP;
+        if (f == PARAMS_MARKDOWN) {
+            fputs("| `", out);
+            md_cell(out, pd->path);
+            fprintf(out, "` | %s | ", type_name(pd));
+            md_cell(out, def);
+            fputs(" | ", out);
+            md_cell(out, accepts);
+            fprintf(out, " | %s | ", sweep ? "yes" : "");
+            md_cell(out, readers);
+            fputs(" | ", out);
+            md_cell(out, ref);
+            fputs(" | ", out);
+            md_cell(out, pd->description);
+            fputs(" |\n", out);
+        } else {
+            fprintf(out, "%s  (%s%s)\n", pd->path, type_name(pd), sweep ? ", sweepable" : "");
+            if (*def)
+                fprintf(out, "    default:   %s\n", def);
+            fprintf(out, "    accepts:   %s\n", accepts);
+            if (*readers)
+                fprintf(out, "    read by:   %s\n", readers);
+            if (*ref)
+                fprintf(out, "    reference: %s\n", ref);
+            fprintf(out, "    %s\n\n", pd->description);
+        }
+    }
+}

@@ -1,0 +1,277 @@
+/* The parameter definition (runner/params.def): run ids pinned for every manifest
+ * in experiments/ (this file is built twice, the second time with one more key,
+ * SHADESWEEP_TEST_EXTRA_PARAM: a new key at its default must change no id),
+ * folding of runs that differ only in keys their renderer does not read, sweeps of
+ * keys no renderer reads, and the table's own consistency. */
+#include <dirent.h>
+#include <stdarg.h>
+#include <stddef.h>
+#include <setjmp.h>
+#include <stdint.h>
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+#include <cmocka.h>
+
+#include "renderers/renderer.h"
+#include "runner/diag.h"
+#include "runner/manifest.h"
+#include "runner/params.h"
+
+static experiment *load_text(const char *yaml, diag_list *d)
+{
+    experiment *e = NULL;
+    manifest_load_mem("mem.yaml", yaml, strlen(yaml), &e, d);
+    return e;
+}
+
+static char *read_all(const char *path)
+{
+    FILE *f = fopen(path, "rb");
+    if (!f)
+        return NULL;
+    fseek(f, 0, SEEK_END);
+    long n = ftell(f);
+    fseek(f, 0, SEEK_SET);
+    char *s = malloc((size_t)n + 1);
+    size_t got = fread(s, 1, (size_t)n, f);
+    s[got] = '\0';
+    fclose(f);
+    return s;
+}
+
+/* tests/data/ids/NAME.txt holds the ids `shadesweep list experiments/NAME.yaml`
+ * printed when ids stopped depending on defaults; they must never change. */
+static void test_pinned_ids(void **state)
+{
+    (void)state;
+    const char *root = getenv("SOURCE_ROOT"), *data = getenv("TEST_DATA");
+    assert_non_null(root);
+    assert_non_null(data);
+    char dir[1024];
+    snprintf(dir, sizeof dir, "%s/experiments", root);
+    DIR *dp = opendir(dir);
+    assert_non_null(dp);
+    size_t nmanifests = 0;
+    struct dirent *de;
+    while ((de = readdir(dp))) {
+        size_t len = strlen(de->d_name);
+        if (len < 6 || strcmp(de->d_name + len - 5, ".yaml") != 0)
+            continue;
+        char path[2048], pinned[2048];
+        snprintf(path, sizeof path, "%s/%s", dir, de->d_name);
+        snprintf(pinned, sizeof pinned, "%s/ids/%.*s.txt", data, (int)(len - 5), de->d_name);
+        char *want = read_all(pinned);
+        if (!want)
+            fail_msg("%s has no pinned ids (%s): pin them when the manifest is added", path,
+                     pinned);
+        experiment *e = NULL;
+        diag_list d = {0};
+        plan p;
+        if (!manifest_load(path, &e, &d) || !plan_expand(e, 1, &p, &d)) {
+            diag_print(&d, stderr);
+            fail_msg("%s does not load", path);
+        }
+        size_t cap = p.nruns * 13 + 1, at = 0;
+        char *got = malloc(cap);
+        got[0] = '\0';
+        for (size_t k = 0; k < p.nruns; k++)
+            at += (size_t)snprintf(got + at, cap - at, "%s\n", p.runs[k].id);
+        if (strcmp(got, want) != 0)
+            fail_msg("%s: run ids differ from %s:\n%s", path, pinned, got);
+        free(got);
+        free(want);
+        plan_free(&p);
+        experiment_free(e);
+        diag_free(&d);
+        nmanifests++;
+    }
+    closedir(dp);
+    assert_true(nmanifests >= 16);
+}
+
+/* The G-buffer study with forward baselines of issue 15: 3 renderers x 4 modes x
+ * 2 presets = 24 points, of which the forward renderers' 16 are 2 runs. */
+static void test_fold(void **state)
+{
+    (void)state;
+    diag_list d = {0};
+    experiment *e = load_text("shadesweep: 1\nname: fold\nscene: shapes\n"
+                              "renderers: [deferred, forward-spml, forward-mpml]\n"
+                              "duration: {frames: 2}\n"
+                              "sweep:\n"
+                              "  deferred.light_volumes: [stencil, fullscreen, volume, "
+                              "stencil-two-pass]\n"
+                              "  gbuffer: [curtis, fat]\n",
+                              &d);
+    assert_non_null(e);
+    plan p;
+    assert_true(plan_expand(e, 3, &p, &d));
+    assert_int_equal(p.npoints, 24);
+    assert_int_equal(p.nruns, 10);
+    assert_int_equal(p.nfolded, 14);
+    size_t deferred = 0, folded = 0;
+    for (size_t k = 0; k < p.nruns; k++) {
+        const run_spec *r = &p.runs[k];
+        assert_int_equal(r->index, k);
+        assert_int_equal(r->shard, k % 3 + 1);
+        for (size_t j = 0; j < k; j++)
+            assert_string_not_equal(p.runs[j].id, r->id);
+        if (strcmp(r->p.renderer, "deferred") == 0) {
+            deferred++;
+            assert_int_equal(r->folded, 0);
+        } else {
+            /* each forward renderer: one run standing for its 8 points */
+            assert_int_equal(r->folded, 7);
+            assert_int_equal(r->p.gbuffer, GBUFFER_CURTIS);
+            assert_int_equal(r->p.light_volumes, LIGHT_VOLUMES_STENCIL);
+        }
+        folded += r->folded;
+    }
+    assert_int_equal(deferred, 8);
+    assert_int_equal(folded, 14);
+    for (size_t f = 0; f < p.nfolded; f++) {
+        const plan_fold *pf = &p.folds[f];
+        assert_string_equal(pf->p.renderer, p.runs[pf->into].p.renderer);
+        assert_true(pf->point > p.runs[pf->into].point);
+    }
+    plan_free(&p);
+    experiment_free(e);
+    diag_free(&d);
+}
+
+/* The error reference does not inherit gbuffer.* (params.def: "default"), so a
+ * null run with a reference folds over the G-buffer; the deferred runs do not. */
+static void test_fold_with_reference(void **state)
+{
+    (void)state;
+    diag_list d = {0};
+    experiment *e = load_text("shadesweep: 1\nname: ref\nscene: shapes\n"
+                              "renderers: [null, deferred]\nduration: {frames: 2}\n"
+                              "error: {reference: {renderer: forward-spml}, at: [0]}\n"
+                              "sweep:\n  gbuffer: [curtis, fat]\n",
+                              &d);
+    assert_non_null(e);
+    plan p;
+    assert_true(plan_expand(e, 1, &p, &d));
+    assert_int_equal(p.npoints, 4);
+    assert_int_equal(p.nruns, 3);
+    assert_string_equal(p.runs[0].p.renderer, "null");
+    assert_int_equal(p.runs[0].folded, 1);
+    assert_int_equal(p.folds[0].point, 2);
+    assert_int_equal(p.folds[0].p.gbuffer, GBUFFER_FAT);
+    plan_free(&p);
+    experiment_free(e);
+    diag_free(&d);
+}
+
+static void test_sweep_key_nobody_reads(void **state)
+{
+    (void)state;
+    diag_list d = {0};
+    experiment *e = load_text("shadesweep: 1\nname: unread\nscene: shapes\n"
+                              "renderers: [forward-spml, forward-mpml]\n"
+                              "duration: {frames: 2}\n"
+                              "sweep:\n  gbuffer.preset: [curtis, fat]\n",
+                              &d);
+    assert_non_null(e);
+    plan p;
+    assert_false(plan_expand(e, 1, &p, &d));
+    char *got = NULL;
+    size_t len = 0;
+    FILE *f = open_memstream(&got, &len);
+    diag_print(&d, f);
+    fclose(f);
+    assert_string_equal(got, "mem.yaml:7:20: sweep.gbuffer.preset: expected a key one of the "
+                             "renderers reads (gbuffer.preset is read by deferred), found none "
+                             "of forward-spml, forward-mpml\n");
+    free(got);
+    experiment_free(e);
+    diag_free(&d);
+}
+
+/* Every renderer a key names exists, every "sets:" names a key of the same size,
+ * every run parameter says what the reference does with it. */
+static void test_table(void **state)
+{
+    (void)state;
+    run_params d;
+    assert_true(params_defaults(&d));
+    size_t nrun = 0;
+    for (size_t i = 0; i < NPARAMS; i++) {
+        const param *pd = &params_table[i];
+        if (!pd->size)
+            continue;
+        nrun++;
+        assert_non_null(pd->readers);
+        assert_non_null(pd->ref);
+        if (strcmp(pd->readers, "*") != 0) {
+            char names[256];
+            snprintf(names, sizeof names, "%s", pd->readers);
+            for (char *t = strtok(names, " "); t; t = strtok(NULL, " "))
+                if (!renderer_kind_find(t))
+                    fail_msg("%s: read by '%s', which is no renderer", pd->path, t);
+        }
+        if (strncmp(pd->ref, "sets:", 5) == 0) {
+            const param *t = param_find(pd->ref + 5);
+            if (!t || t->size != pd->size)
+                fail_msg("%s: sets %s, which is no parameter of its size", pd->path, pd->ref + 5);
+        } else if (strcmp(pd->ref, "inherit") != 0 && strcmp(pd->ref, "default") != 0) {
+            fail_msg("%s: ref '%s'", pd->path, pd->ref);
+        }
+    }
+    assert_int_equal(nrun, PARAM_KV_MAX);
+#ifdef SHADESWEEP_TEST_EXTRA_PARAM
+    assert_non_null(param_find("test_extra"));   /* this build really has one more key */
+    assert_int_equal(d.test_extra, 7);
+#else
+    assert_null(param_find("test_extra"));
+#endif
+}
+
+/* The reference renders with error.reference.*, the run's inherited keys, and the
+ * defaults of the rest. */
+static void test_reference_params(void **state)
+{
+    (void)state;
+    diag_list d = {0};
+    experiment *e = load_text("shadesweep: 1\nname: ref\nscene: shapes\n"
+                              "renderers: [deferred]\nduration: {frames: 2}\nresolution: 64x32\n"
+                              "shadows: off\ngbuffer: {preset: fat, position: depth}\n"
+                              "deferred: {light_volumes: volume, separate_specular: true}\n"
+                              "error: {reference: {renderer: forward-spml, "
+                              "light_volumes: fullscreen}, at: [0]}\n",
+                              &d);
+    assert_non_null(e);
+    run_params r;
+    params_reference(&e->base, &r);
+    assert_string_equal(r.renderer, "forward-spml");
+    assert_int_equal(r.width, 64);
+    assert_int_equal(r.shadows, 1);
+    assert_int_equal(r.gbuffer, GBUFFER_REFERENCE);
+    assert_int_equal(r.gbuffer_position, GBUFFER_POSITION_PRESET);
+    assert_int_equal(r.light_volumes, LIGHT_VOLUMES_FULLSCREEN);
+    assert_false(r.separate_specular);
+    assert_string_equal(r.error_renderer, "");
+    renderer_options o = {0};
+    params_to_renderer_options(&r, &o);
+    assert_int_equal(o.width, 64);
+    assert_int_equal(o.height, 32);
+    assert_true(o.no_shadows);
+    assert_int_equal(o.gbuffer, GBUFFER_REFERENCE);
+    experiment_free(e);
+    diag_free(&d);
+}
+
+int main(void)
+{
+    const struct CMUnitTest tests[] = {
+        cmocka_unit_test(test_pinned_ids),
+        cmocka_unit_test(test_fold),
+        cmocka_unit_test(test_fold_with_reference),
+        cmocka_unit_test(test_sweep_key_nobody_reads),
+        cmocka_unit_test(test_table),
+        cmocka_unit_test(test_reference_params),
+    };
+    return cmocka_run_group_tests(tests, NULL, NULL);
+}
