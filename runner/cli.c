@@ -15,6 +15,7 @@
 #include "runner/manifest.h"
 #include "runner/merge.h"
 #include "runner/params.h"
+#include "runner/plan_check.h"
 #include "runner/run.h"
 #include "scenes/scene.h"
 
@@ -192,6 +193,10 @@ static bool load_plan(const char *path, const cli_opts *o, experiment **e, plan 
     if (ok && o->smoke)
         experiment_make_smoke(*e);
     ok = ok && plan_expand(*e, o->nshards, p, &d);
+    if (ok && !plan_check(*e, p, &d)) {
+        plan_free(p);
+        ok = false;
+    }
     diag_print(&d, stderr);
     diag_free(&d);
     if (!ok) {

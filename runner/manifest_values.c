@@ -406,7 +406,7 @@ static bool parse_resolution(vctx *c, const param *pd, const ynode *n, const cha
 
 static bool parse_name(vctx *c, const param *pd, const ynode *n, const char *key)
 {
-    if (!stringish(n) || n->len > 63)
+    if (!stringish(n) || n->len == 0 || n->len > 63)
         return bad(c, pd, n, key);
     for (const char *s = n->text; *s; s++)
         if (!((*s >= 'a' && *s <= 'z') || (*s >= '0' && *s <= '9') || *s == '-'))

@@ -1,0 +1,38 @@
+#!/usr/bin/env bash
+# Conditions that would make every run fail or mean nothing are refused by
+# `validate` and `run` before anything is written (exit 2, the reason named):
+# times past the run's end, placement scene without authored lights, near not
+# below far, quadratic attenuation with a = b = c = 0, an empty name.
+. "$(dirname "$0")/lib.sh"
+cd "$T"
+base='shadesweep: 1
+name: refused
+scene: shapes
+renderers: [null]
+resolution: 32x32'
+check() {   # name, the message stderr must hold
+  local f=$1 want=$2 rc
+  for cmd in validate run; do
+    set +e
+    "$SHADESWEEP" $cmd "$f.yaml" >out.txt 2>err.txt; rc=$?
+    set -e
+    [ $rc -eq 2 ] || fail "$cmd $f.yaml: exit $rc, want 2: $(cat err.txt)"
+    grep -qF -- "$want" err.txt || fail "$cmd $f.yaml: want '$want' in: $(cat err.txt)"
+    [ ! -e out ] || fail "$cmd $f.yaml wrote out/"
+  done
+}
+printf '%s\nduration: {seconds: 2}\noutputs: {screenshots: [1, 2.5]}\n' "$base" >shot.yaml
+check shot "shot.yaml: outputs.screenshots: expected a time the run reaches (duration {seconds: 2}: frames start before 2 s), found 2.5"
+printf '%s\nduration: {frames: 10}\nclock: fixed\nstep: 0.1\nerror: {reference: {renderer: forward-spml}, at: [0.9, 1]}\n' "$base" >at.yaml
+check at "at.yaml: error.at: expected a time the run reaches (duration {frames: 10} at step 0.1 s: the last frame is at 0.9 s), found 1 in run"
+printf '%s\nduration: {frames: 2}\nlights: {count: 4, attenuation: quadratic, quadratic: {a: 0, b: 0, c: 0}}\n' "$base" >quad.yaml
+check quad "quad.yaml: lights.quadratic: expected a, b and c not all 0"
+printf '%s\nduration: {frames: 2}\nlights: {placement: scene}\n' "$base" >scene.yaml
+check scene "scene.yaml: scene: expected a scene the runs can render, found: scene 'shapes' has no authored lights"
+printf '%s\nduration: {frames: 2}\nsweep: {camera.near: [1, 10]}\ncamera: {far: 5}\n' "$base" >near.yaml
+check near "near.yaml: scene: expected a scene the runs can render, found: camera.far: expected a finite number > near (10), found 5"
+printf 'shadesweep: 1\nname: ""\nscene: shapes\nrenderers: [null]\nduration: {frames: 2}\n' >name.yaml
+check name "name.yaml:2:7: name: expected a name of 1..63 characters from a-z, 0-9 and -, found ''"
+# the boundary is accepted: the last frame of {frames: 10} at step 0.1 is at 0.9 s
+printf '%s\nduration: {frames: 10}\nclock: fixed\nstep: 0.125\noutputs: {screenshots: [1.125]}\n' "$base" >edge.yaml
+"$SHADESWEEP" validate edge.yaml >/dev/null || fail "a screenshot at the last frame is valid"
