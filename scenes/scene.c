@@ -28,7 +28,14 @@ typedef struct source_plan {
 static bool plan_source(const scene_source *src, source_plan *p, char *err, size_t errlen)
 {
     memset(p, 0, sizeof *p);
-    /*FILESRC*/
+    if (src->file) {
+        const char *path = src->file->path ? src->file->path : "";
+        const char *base = strrchr(path, '/');
+        snprintf(p->name, sizeof p->name, "%s", base ? base + 1 : path);
+        p->build = scene_build_file;
+        p->arg = src->file;
+        return true;
+    }
     const char *name = src->name ? src->name : "";
     const scene_catalog_entry *e = scene_catalog_find(name);
     if (!e) {
