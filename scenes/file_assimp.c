@@ -33,6 +33,7 @@
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
+#include <strings.h>
 
 #include "results/image_io.h"
 #include "scenes/scene_build.h"
@@ -658,6 +659,7 @@ typedef struct find_node {
     const char *name;
     bool found;
     sm_mat4 world;
+    const struct aiNode *node;
 } find_node;
 
 static void find_fn(const struct aiNode *n, const sm_mat4 world, void *user)
@@ -665,8 +667,35 @@ static void find_fn(const struct aiNode *n, const sm_mat4 world, void *user)
     find_node *f = user;
     if (!f->found && strcmp(n->mName.data, f->name) == 0) {
         f->found = true;
+        f->node = n;
         sm_mat4_copy(world, f->world);
     }
+}
+
+/* A float of a node's metadata (assimp keeps KHR_lights_punctual's range there as
+ * "PBR_LightRange"); false if the node has none. */
+static bool node_float(const struct aiNode *n, const char *key, float *out)
+{
+    const struct aiMetadata *m = n ? n->mMetaData : NULL;
+    for (unsigned k = 0; m && k < m->mNumProperties; k++)
+        if (strcmp(m->mKeys[k].data, key) == 0) {
+            if (m->mValues[k].mType == AI_FLOAT && m->mValues[k].mData) {
+                *out = *(const float *)m->mValues[k].mData;
+                return true;
+            }
+            if (m->mValues[k].mType == AI_DOUBLE && m->mValues[k].mData) {
+                *out = (float)*(const double *)m->mValues[k].mData;
+                return true;
+            }
+        }
+    return false;
+}
+
+/* glTF by its extension: assimp's glTF importer gives cameras its own way (below). */
+static bool is_gltf(const char *path)
+{
+    const char *dot = strrchr(path, '.');
+    return dot && (strcasecmp(dot, ".gltf") == 0 || strcasecmp(dot, ".glb") == 0);
 }
 
 /* Counts and bounds over every mesh instance. */
@@ -968,8 +997,10 @@ static void object_fn(const struct aiNode *n, const sm_mat4 world, void *user)
     }
 }
 
-/* The light of a KHR_lights_punctual (or any assimp) light, in world space. */
-static void add_light(scene_builder *b, const struct aiLight *al, const sm_mat4 world)
+/* The light of a KHR_lights_punctual (or any assimp) light, in world space; range: the
+ * file's (KHR_lights_punctual range), or NAN for none. */
+static void add_light(scene_builder *b, const struct aiLight *al, const sm_mat4 world,
+                      float file_range)
 {
     sm_vec3 p = {al->mPosition.x, al->mPosition.y, al->mPosition.z}, wp;
     sm_vec3 d = {al->mDirection.x, al->mDirection.y, al->mDirection.z}, wd;
@@ -980,10 +1011,12 @@ static void add_light(scene_builder *b, const struct aiLight *al, const sm_mat4 
     else
         sm_vec3_make(0.0f, 0.0f, -1.0f, wd);
     sm_vec3 color = {al->mColorDiffuse.r, al->mColorDiffuse.g, al->mColorDiffuse.b};
-    /* assimp gives glTF lights as inverse-square without their range: the range is where
-     * 1 / d^2 falls to 1/256 of the brightest channel, as a light volume needs one */
+    /* glTF lights are inverse-square, cut off at their range; a light without one
+     * reaches where 1 / d^2 falls to 1/256 of its brightest channel (a light volume
+     * needs a range) */
     float peak = fmaxf(color[0], fmaxf(color[1], color[2]));
-    float range = sqrtf(fmaxf(peak, 1e-6f) * 256.0f);
+    float range = isfinite(file_range) && file_range > 0.0f
+                      ? file_range : sqrtf(fmaxf(peak, 1e-6f) * 256.0f);
     scene_light *l;
     switch (al->mType) {
     case aiLightSource_DIRECTIONAL:
@@ -993,6 +1026,7 @@ static void add_light(scene_builder *b, const struct aiLight *al, const sm_mat4 
         sm_vec3 at;
         sm_vec3_add(wp, wd, at);
         l = sb_spot(b, wp, at, sm_rad2deg(al->mAngleOuterCone), 1.0f, range, color, false);
+        l->spot_angle = al->mAngleOuterCone;   /* exactly the file's, not via degrees */
         break;
     }
     default:
@@ -1038,11 +1072,13 @@ bool scene_build_file(scene_builder *b, const void *arg)
     if (!b->failed)
         walk(ai->mRootNode, root, object_fn, &bn, 0);
     for (unsigned i = 0; i < ai->mNumLights && !b->failed; i++) {
-        find_node f = {ai->mLights[i]->mName.data, false, {{0}}};
+        find_node f = {ai->mLights[i]->mName.data, false, {{0}}, NULL};
         walk(ai->mRootNode, root, find_fn, &f, 0);
         if (!f.found)
             sm_mat4_copy(root, f.world);
-        add_light(b, ai->mLights[i], f.world);
+        float range = NAN;
+        node_float(f.node, "PBR_LightRange", &range);
+        add_light(b, ai->mLights[i], f.world, range);
     }
     if (b->failed)
         goto out;
@@ -1064,24 +1100,30 @@ bool scene_build_file(scene_builder *b, const void *arg)
             const struct aiCamera *cam = ai->mCameras[i];
             if (strcmp(cam->mName.data, o->camera) != 0)
                 continue;
-            find_node f = {cam->mName.data, false, {{0}}};
+            find_node f = {cam->mName.data, false, {{0}}, NULL};
             walk(ai->mRootNode, root, find_fn, &f, 0);
             if (!f.found)
                 sm_mat4_copy(root, f.world);
+            bool gltf = is_gltf(o->path);
+            /* glTF: the camera sits at its node's origin looking down -Z (assimp also
+             * copies the node's translation into mPosition, which would count it twice) */
             sm_vec3 p = {cam->mPosition.x, cam->mPosition.y, cam->mPosition.z};
-            sm_vec3 at = {cam->mPosition.x + cam->mLookAt.x, cam->mPosition.y + cam->mLookAt.y,
-                          cam->mPosition.z + cam->mLookAt.z};
+            if (gltf)
+                sm_vec3_make(0.0f, 0.0f, 0.0f, p);
+            sm_vec3 at = {p[0] + cam->mLookAt.x, p[1] + cam->mLookAt.y, p[2] + cam->mLookAt.z};
             float eye[1][3], target[1][3];
             sm_mat4_mulv3(f.world, p, 1.0f, eye[0]);
             sm_mat4_mulv3(f.world, at, 1.0f, target[0]);
             sb_set_keys(b, 1, (const float (*)[3])eye, (const float (*)[3])target, 60.0f);
-            /* assimp's mHorizontalFOV is half the horizontal angle; glTF's yfov is what
-             * the file gave: recover it through the aspect */
+            /* assimp documents mHorizontalFOV as half the horizontal angle; its glTF
+             * importer stores yfov x aspect instead */
             float aspect = cam->mAspect > 0.0f ? cam->mAspect : 1.0f;
-            float fovy = 2.0f * atanf(tanf(cam->mHorizontalFOV) / aspect);
+            float fovy = gltf ? cam->mHorizontalFOV / aspect
+                              : 2.0f * atanf(tanf(cam->mHorizontalFOV) / aspect);
             float zn = cam->mClipPlaneNear > 0.0f ? cam->mClipPlaneNear : size * 1e-3f;
             float zf = cam->mClipPlaneFar > zn ? cam->mClipPlaneFar : size * 10.0f;
             sb_set_projection(b, sm_rad2deg(fovy), zn, zf);
+            s->fovy = fovy;   /* exactly, not through degrees */
             break;
         }
     }
