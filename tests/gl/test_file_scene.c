@@ -14,6 +14,7 @@
 #include <stdlib.h>
 #include <string.h>
 #include <sys/stat.h>
+#include <unistd.h>
 
 #include "renderers/gl/context.h"
 #include "renderers/gl/loader.h"
@@ -135,6 +136,108 @@ static void test_textured_box(void **state)
     run_file(MODELS "/BoxTextured-glTF-Binary/BoxTextured.glb", 0.27, 0.31);
 }
 
+// >>alpha test
+
+/* A 2 x 2 quad facing a file camera 3 units away, lit by a KHR_lights_punctual
+ * directional light, textured with an 8 x 8 image whose left half has alpha 0. */
+static const char QUAD_GLTF[] =
+    "{\"asset\":{\"version\":\"2.0\"},\"extensionsUsed\":[\"KHR_lights_punctual\"],"
+    "\"extensions\":{\"KHR_lights_punctual\":{\"lights\":[{\"type\":\"directional\","
+    "\"color\":[1,1,1],\"intensity\":0.8}]}},"
+    "\"scene\":0,\"scenes\":[{\"nodes\":[0,1,2]}],"
+    "\"nodes\":[{\"mesh\":0},{\"name\":\"sun\",\"extensions\":{\"KHR_lights_punctual\":"
+    "{\"light\":0}}},{\"name\":\"cam\",\"translation\":[0,0,3],\"camera\":0}],"
+    "\"cameras\":[{\"type\":\"perspective\",\"perspective\":{\"yfov\":0.8,\"znear\":0.1,"
+    "\"zfar\":10,\"aspectRatio\":1.3333333}}],"
+    "\"images\":[{\"uri\":\"mask.png\"}],\"textures\":[{\"source\":0}],"
+    "\"materials\":[{\"pbrMetallicRoughness\":{\"baseColorTexture\":{\"index\":0},"
+    "\"metallicFactor\":0},\"alphaMode\":\"%s\",\"alphaCutoff\":0.5}],"
+    "\"meshes\":[{\"primitives\":[{\"attributes\":{\"POSITION\":0,\"NORMAL\":1,"
+    "\"TEXCOORD_0\":2},\"indices\":3,\"material\":0}]}],"
+    "\"buffers\":[{\"byteLength\":140,\"uri\":\"quad.bin\"}],"
+    "\"bufferViews\":[{\"buffer\":0,\"byteOffset\":0,\"byteLength\":48},"
+    "{\"buffer\":0,\"byteOffset\":48,\"byteLength\":48},"
+    "{\"buffer\":0,\"byteOffset\":96,\"byteLength\":32},"
+    "{\"buffer\":0,\"byteOffset\":128,\"byteLength\":12}],"
+    "\"accessors\":[{\"bufferView\":0,\"componentType\":5126,\"count\":4,\"type\":\"VEC3\","
+    "\"min\":[-1,-1,0],\"max\":[1,1,0]},"
+    "{\"bufferView\":1,\"componentType\":5126,\"count\":4,\"type\":\"VEC3\"},"
+    "{\"bufferView\":2,\"componentType\":5126,\"count\":4,\"type\":\"VEC2\"},"
+    "{\"bufferView\":3,\"componentType\":5123,\"count\":6,\"type\":\"SCALAR\"}]}";
+
+static void write_bytes(const char *path, const void *p, size_t n)
+{
+    FILE *f = fopen(path, "wb");
+    assert_non_null(f);
+    assert_int_equal(fwrite(p, 1, n, f), n);
+    assert_int_equal(fclose(f), 0);
+}
+
+/* Renders the quad (alphaMode `mode`) with every renderer; they agree; the fraction of
+ * pixels showing it. */
+static double quad_coverage(const char *dir, const char *mode)
+{
+    char path[512], text[4096], err[1024];
+    snprintf(text, sizeof text, QUAD_GLTF, mode);
+    snprintf(path, sizeof path, "%s/quad-%s.gltf", dir, mode);
+    write_bytes(path, text, strlen(text));
+    scene_file_options fo = {.path = path, .camera = "cam"};
+    light_params lp = {.placement = PLACEMENT_SCENE,
+                       .count = {.start = LIGHT_COUNT_ALL, .max = LIGHT_COUNT_ALL}};
+    scene_source src = {.file = &fo};
+    scene *s = scene_build_source(&src, &lp, W, H, err, sizeof err);
+    if (!s)
+        fail_msg("%s", err);
+    assert_int_equal(s->materials[s->objects[0].material].alpha,
+                     strcmp(mode, "MASK") == 0 ? MATERIAL_MASK : MATERIAL_OPAQUE);
+    image ref = {0}, img = {0};
+    assert_true(render("forward-spml", s, &ref));
+    static const char *const others[] = {"forward-mpml", "deferred"};
+    for (int i = 0; i < 2; i++) {
+        assert_true(render(others[i], s, &img));
+        image_error e;
+        assert_true(image_compare(&img, &ref, &e, err, sizeof err));
+        assert_true(e.rmse < RMSE_MAX && e.max_abs <= MAX_ABS_MAX);
+        image_free(&img);
+    }
+    double c = covered(&ref);
+    image_free(&ref);
+    scene_destroy(s);
+    return c;
+}
+
+/* alphaMode MASK: the texels under the cutoff are not drawn, in every renderer. The
+ * quad covers (1 / (3 tan 0.4)) x (1 / (3 tan 0.4 x 4/3)) = 0.467 of the screen, its
+ * opaque half 0.233. */
+static void test_alpha_mask(void **state)
+{
+    (void)state;
+    char dir[] = "/tmp/file_scene_mask.XXXXXX", path[512], err[512];
+    assert_non_null(mkdtemp(dir));
+    float bin[35] = {-1, -1, 0, 1, -1, 0, 1, 1, 0, -1, 1, 0,   /* positions */
+                     0, 0, 1, 0, 0, 1, 0, 0, 1, 0, 0, 1,       /* normals */
+                     0, 1, 1, 1, 1, 0, 0, 0};                  /* uv, v down the image */
+    uint16_t idx[6] = {0, 1, 2, 0, 2, 3};
+    memcpy(&bin[32], idx, sizeof idx);
+    snprintf(path, sizeof path, "%s/quad.bin", dir);
+    write_bytes(path, bin, 140);
+    unsigned char px[8 * 8 * 4];
+    for (int i = 0; i < 64; i++) {
+        px[4 * i] = px[4 * i + 1] = px[4 * i + 2] = 255;
+        px[4 * i + 3] = (i % 8) < 4 ? 0 : 255;
+    }
+    image mask = {8, 8, 4, IMAGE_U8, px};
+    snprintf(path, sizeof path, "%s/mask.png", dir);
+    assert_true(image_write(path, &mask, err, sizeof err));
+    double opaque = quad_coverage(dir, "OPAQUE"), masked = quad_coverage(dir, "MASK");
+    fprintf(stderr, "quad: %.4f of the pixels opaque, %.4f masked\n", opaque, masked);
+    assert_true(fabs(opaque - 0.467) < 0.02);
+    assert_true(fabs(masked - 0.233) < 0.02);
+    char cmd[600];
+    snprintf(cmd, sizeof cmd, "rm -rf '%s'", dir);
+    assert_int_equal(system(cmd), 0);
+}
+
 static int setup(void **state)
 {
     (void)state;
@@ -159,6 +262,7 @@ int main(void)
     const struct CMUnitTest tests[] = {
         cmocka_unit_test(test_engine),
         cmocka_unit_test(test_textured_box),
+        cmocka_unit_test(test_alpha_mask),
     };
     return cmocka_run_group_tests(tests, setup, teardown);
 }
