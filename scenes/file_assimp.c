@@ -739,6 +739,25 @@ static void counts_of(const scene_file_options *o, const loaded *l, count_nodes 
 
 // >>check
 
+/* A material's alpha mode (glTF alphaMode; OBJ: d < 1 is translucent) and cutoff. */
+static material_alpha alpha_mode(const struct aiMaterial *am, float *cutoff)
+{
+    struct aiString mode;
+    float opacity = 1.0f;
+    if (aiGetMaterialString(am, AI_MATKEY_GLTF_ALPHAMODE, &mode) == aiReturn_SUCCESS) {
+        if (strcmp(mode.data, "MASK") == 0) {
+            float c = 0.5f;
+            aiGetMaterialFloat(am, AI_MATKEY_GLTF_ALPHACUTOFF, &c);
+            if (cutoff)
+                *cutoff = c;
+            return MATERIAL_MASK;
+        }
+        return strcmp(mode.data, "BLEND") == 0 ? MATERIAL_BLEND : MATERIAL_OPAQUE;
+    }
+    aiGetMaterialFloat(am, AI_MATKEY_OPACITY, &opacity);
+    return opacity < 1.0f ? MATERIAL_BLEND : MATERIAL_OPAQUE;
+}
+
 bool scene_file_check(const scene_file_options *o, scene_file_info *info, char *err,
                       size_t errlen)
 {
@@ -764,6 +783,11 @@ bool scene_file_check(const scene_file_options *o, scene_file_info *info, char *
         info->textures = l.nimages;
         info->lights = l.ai->mNumLights;
         info->cameras = l.ai->mNumCameras;
+        for (unsigned i = 0; i < l.ai->mNumMaterials; i++) {
+            material_alpha a = alpha_mode(l.ai->mMaterials[i], NULL);
+            info->materials_mask += a == MATERIAL_MASK;
+            info->materials_blend += a == MATERIAL_BLEND;
+        }
         info->files = l.files.n;
         uint64_t h = UINT64_C(0xcbf29ce484222325);
         for (uint32_t i = 0; i < l.files.n; i++) {
@@ -841,7 +865,7 @@ static void add_material(scene_builder *b, loaded *l, const struct aiMaterial *a
     if (aiGetMaterialColor(am, AI_MATKEY_BASE_COLOR, &base) != aiReturn_SUCCESS)
         aiGetMaterialColor(am, AI_MATKEY_COLOR_DIFFUSE, &base);
     aiGetMaterialColor(am, AI_MATKEY_COLOR_EMISSIVE, &emis);
-    float metallic = 0.0f, roughness = 1.0f, gloss = 0.0f, shininess = 0.0f, opacity = 1.0f;
+    float metallic = 0.0f, roughness = 1.0f, gloss = 0.0f, shininess = 0.0f;
     float specular, exponent;
     if (aiGetMaterialFloat(am, AI_MATKEY_ROUGHNESS_FACTOR, &roughness) == aiReturn_SUCCESS &&
         aiGetMaterialFloat(am, AI_MATKEY_GLOSSINESS_FACTOR, &gloss) != aiReturn_SUCCESS) {
@@ -859,7 +883,6 @@ static void add_material(scene_builder *b, loaded *l, const struct aiMaterial *a
         specular = luminance(&spec);
         exponent = sm_clamp(shininess, 1.0f, 2048.0f);
     }
-    aiGetMaterialFloat(am, AI_MATKEY_OPACITY, &opacity);
     uint32_t mi = sb_material(b, base.r, base.g, base.b, sm_clamp(specular, 0.0f, 1.0f),
                               exponent);
     if (b->failed)
@@ -878,19 +901,10 @@ static void add_material(scene_builder *b, loaded *l, const struct aiMaterial *a
     sm_vec3_make(emis.r, emis.g, emis.b, m->emissive);
     if (em >= 0 && emis.r == 0.0f && emis.g == 0.0f && emis.b == 0.0f)
         sm_vec3_make(1.0f, 1.0f, 1.0f, m->emissive);   /* OBJ: map_Ke without Ke */
-    struct aiString mode;
     float cutoff = 0.5f;
-    if (aiGetMaterialString(am, AI_MATKEY_GLTF_ALPHAMODE, &mode) == aiReturn_SUCCESS) {
-        if (strcmp(mode.data, "MASK") == 0) {
-            m->alpha = MATERIAL_MASK;
-            aiGetMaterialFloat(am, AI_MATKEY_GLTF_ALPHACUTOFF, &cutoff);
-            m->alpha_cutoff = cutoff;
-        } else if (strcmp(mode.data, "BLEND") == 0) {
-            m->alpha = MATERIAL_BLEND;
-        }
-    } else if (opacity < 1.0f) {
-        m->alpha = MATERIAL_BLEND;
-    }
+    m->alpha = alpha_mode(am, &cutoff);
+    if (m->alpha == MATERIAL_MASK)
+        m->alpha_cutoff = cutoff;
 }
 
 // >>build

@@ -168,6 +168,9 @@ typedef struct scene_file_info {
     uint64_t triangles;        /* drawn: each node's meshes once per instance */
     uint32_t objects;          /* mesh instances */
     uint32_t materials, textures, lights, cameras;
+    uint32_t materials_mask;   /* alphaMode MASK: alpha tested */
+    uint32_t materials_blend;  /* alphaMode BLEND (or OBJ d < 1): translucent, drawn opaque
+                                * until the renderers have a translucent pass */
     uint32_t files;            /* the file and every buffer and image it pulled in */
     uint64_t hash;             /* FNV-1a 64 over those files' bytes, in the order read */
     sm_vec3 bounds_min, bounds_max;   /* world bounds after scale and up */

@@ -462,7 +462,7 @@ static void test_obj_with_mtl(void **state)
     assert_int_equal(temp_dir_make(dir, sizeof dir, "scene_file"), 0);
     snprintf(mtl, sizeof mtl, "%s/quad.mtl", dir);
     static const char M[] = "newmtl red\nKd 0.8 0.1 0.1\nKs 0.5 0.5 0.5\nNs 32\n"
-                            "newmtl blue\nKd 0.1 0.1 0.8\nKs 0 0 0\nNs 1\n";
+                            "newmtl blue\nKd 0.1 0.1 0.8\nKs 0 0 0\nNs 1\nd 0.5\n";
     write_file(mtl, M, sizeof M - 1);
     static const char O[] = "mtllib quad.mtl\n"
                             "v 0 0 0\nv 1 0 0\nv 1 1 0\nv 0 1 0\nv 2 0 0\nv 2 1 0\n"
@@ -475,6 +475,8 @@ static void test_obj_with_mtl(void **state)
         fail_msg("%s", err);
     assert_true(info.triangles == 4);   /* two quads, triangulated */
     assert_int_equal(info.files, 2);
+    assert_int_equal(info.materials_blend, 1);   /* d 0.5: translucent, drawn opaque */
+    assert_int_equal(info.materials_mask, 0);
     light_params lp = {.placement = PLACEMENT_GRID, .seed = 1, .rng = RNG_PCG32,
                        .count = {.start = 4, .max = 4}, .radius = 0.1f, .color_max = 1.0f};
     scene_source src = {.file = &o};
@@ -491,6 +493,7 @@ static void test_obj_with_mtl(void **state)
         } else if (m->diffuse[2] == 0.8f) {
             blue = true;
             assert_true(m->specular == 0.0f);
+            assert_int_equal(m->alpha, MATERIAL_BLEND);
         }
     }
     assert_true(red && blue);
