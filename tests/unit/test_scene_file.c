@@ -282,6 +282,57 @@ static void test_lights_and_camera_arrive_exactly(void **state)
     remove_dir(dir);
 }
 
+/* A node that mirrors (scale -1 in x) draws a mirrored copy of the mesh, so that every
+ * object's model keeps a positive determinant and its triangles stay counter-clockwise
+ * seen from outside, as the renderers' back-face culling needs. */
+static void test_mirrored_node(void **state)
+{
+    (void)state;
+    char dir[128], path[512], text[4096], err[1024] = "";
+    assert_int_equal(temp_dir_make(dir, sizeof dir, "scene_file"), 0);
+    write_lights_scene(dir, "lights.gltf", "3");   /* for tri.bin */
+    snprintf(text, sizeof text,
+             "{\"asset\":{\"version\":\"2.0\"},\"scene\":0,\"scenes\":[{\"nodes\":[0,1]}],"
+             "\"nodes\":[{\"mesh\":0},{\"mesh\":0,\"translation\":[5,0,0],"
+             "\"scale\":[-1,1,1]}],"
+             "\"meshes\":[{\"primitives\":[{\"attributes\":{\"POSITION\":0},\"indices\":1}]}],"
+             "\"buffers\":[{\"byteLength\":44,\"uri\":\"tri.bin\"}],"
+             "\"bufferViews\":[{\"buffer\":0,\"byteOffset\":0,\"byteLength\":36},"
+             "{\"buffer\":0,\"byteOffset\":36,\"byteLength\":6}],"
+             "\"accessors\":[{\"bufferView\":0,\"componentType\":5126,\"count\":3,"
+             "\"type\":\"VEC3\",\"min\":[0,0,0],\"max\":[1,1,0]},"
+             "{\"bufferView\":1,\"componentType\":5123,\"count\":3,\"type\":\"SCALAR\"}]}");
+    snprintf(path, sizeof path, "%s/mirror.gltf", dir);
+    write_file(path, text, strlen(text));
+    scene_file_options o = {.path = path};
+    scene_source src = {.file = &o};
+    light_params lp = {.placement = PLACEMENT_NONE};
+    scene *s = scene_build_source(&src, &lp, 64, 64, err, sizeof err);
+    if (!s)
+        fail_msg("%s", err);
+    assert_int_equal(s->nobjects, 2);
+    assert_int_equal(s->nmeshes, 2);   /* the mesh and its mirrored copy */
+    for (uint32_t i = 0; i < 2; i++) {
+        const scene_object *ob = &s->objects[i];
+        const mesh *m = &s->meshes[ob->mesh];
+        assert_true(sm_mat4_det(ob->model) > 0.0f);
+        sm_vec3 w[3];
+        for (int k = 0; k < 3; k++)
+            sm_mat4_mulv3(ob->model, m->vertices[m->indices[k]].position, 1.0f, w[k]);
+        sm_vec3 e1, e2, n;
+        sm_vec3_sub(w[1], w[0], e1);
+        sm_vec3_sub(w[2], w[0], e2);
+        sm_vec3_cross(e1, e2, n);
+        assert_true(n[2] > 0.0f);   /* still facing +Z, like the file's triangle */
+        float xmin = INFINITY;
+        for (int k = 0; k < 3; k++)
+            xmin = fminf(xmin, w[k][0]);
+        assert_true(xmin == (i == 0 ? 0.0f : 4.0f));   /* the mirror spans x 4..5 */
+    }
+    scene_destroy(s);
+    remove_dir(dir);
+}
+
 // >>broken files
 
 static void test_broken_samples_refused(void **state)
@@ -512,6 +563,7 @@ int main(void)
         cmocka_unit_test(test_samples_load_with_their_counts),
         cmocka_unit_test(test_sample_builds),
         cmocka_unit_test(test_lights_and_camera_arrive_exactly),
+        cmocka_unit_test(test_mirrored_node),
         cmocka_unit_test(test_broken_samples_refused),
         cmocka_unit_test(test_generated_broken_files_refused),
         cmocka_unit_test(test_hash_follows_content_not_names),
