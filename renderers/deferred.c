@@ -122,7 +122,7 @@ _Static_assert(sizeof(gpu_light) == 80, "gpu_light is 5 vec4s, as lighting.inc's
 enum {
     DEFERRED_MAX_PASSES = 9,          /* shadows gbuffer ambient directional point spot compose
                                          sky resolve */
-    DEFERRED_VARIANTS = 16,           /* material map bits */
+    DEFERRED_VARIANTS = 32,           /* material map bits and the alpha test */
     DEFERRED_MAX_LAYOUT_DEFINES = 12,
     DEFERRED_LIGHT_TYPES = 3,
 };
@@ -594,7 +594,8 @@ typedef struct deferred_renderer {
 static unsigned material_variant(const scene_material *m)
 {
     return (m->diffuse_map >= 0 ? 1u : 0u) | (m->gloss_map >= 0 ? 2u : 0u) |
-           (m->normal_map >= 0 ? 4u : 0u) | (m->emissive_map >= 0 ? 8u : 0u);
+           (m->normal_map >= 0 ? 4u : 0u) | (m->emissive_map >= 0 ? 8u : 0u) |
+           (m->alpha == MATERIAL_MASK ? 16u : 0u);
 }
 
 static void *deferred_create(const renderer_options *opts, char *err, size_t errlen)
@@ -770,8 +771,9 @@ static bool compile_programs(deferred_renderer *r, char *err, size_t errlen)
         if (!(r->variants & (1u << v)))
             continue;
         scene_material m = {.diffuse_map = (v & 1u) ? 0 : -1, .gloss_map = (v & 2u) ? 0 : -1,
-                            .normal_map = (v & 4u) ? 0 : -1, .emissive_map = (v & 8u) ? 0 : -1};
-        const char *defs[5] = {NULL, NULL, NULL, NULL, NULL};
+                            .normal_map = (v & 4u) ? 0 : -1, .emissive_map = (v & 8u) ? 0 : -1,
+                            .alpha = (v & 16u) ? MATERIAL_MASK : MATERIAL_OPAQUE};
+        const char *defs[SHADING_MATERIAL_DEFINES + 1] = {NULL};
         shading_material_defines(&m, defs);
         if (!build_program(r, "deferred_gbuffer", "mesh.vert", "gbuffer.frag", &ld, defs,
                            &r->gbuffer_program[v], err, errlen))

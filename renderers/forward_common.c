@@ -22,7 +22,8 @@ unsigned forward_material_variant(const scene_material *m)
     return (m->diffuse_map >= 0 ? FORWARD_VARIANT_DIFFUSE : 0u) |
            (m->gloss_map >= 0 ? FORWARD_VARIANT_GLOSS : 0u) |
            (m->normal_map >= 0 ? FORWARD_VARIANT_NORMAL : 0u) |
-           (m->emissive_map >= 0 ? FORWARD_VARIANT_EMISSIVE : 0u);
+           (m->emissive_map >= 0 ? FORWARD_VARIANT_EMISSIVE : 0u) |
+           (m->alpha == MATERIAL_MASK ? FORWARD_VARIANT_ALPHA_TEST : 0u);
 }
 
 // >>creation and preparation
@@ -180,9 +181,11 @@ bool forward_program(forward_common *fc, const char *display, const char *fragme
         mat.normal_map = 0;
     if (variant & FORWARD_VARIANT_EMISSIVE)
         mat.emissive_map = 0;
-    const char *defs[4] = {NULL, NULL, NULL, NULL};
+    if (variant & FORWARD_VARIANT_ALPHA_TEST)
+        mat.alpha = MATERIAL_MASK;
+    const char *defs[SHADING_MATERIAL_DEFINES] = {NULL};
     unsigned k = shading_material_defines(&mat, defs);
-    for (unsigned i = 0; i < k && i < 4; i++)
+    for (unsigned i = 0; i < k && i < SHADING_MATERIAL_DEFINES; i++)
         d.defines[n++] = defs[i];
     for (unsigned i = 0; extra && extra[i]; i++) {
         if (n + 1 >= GLP_MAX_DEFINES) {

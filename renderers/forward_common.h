@@ -44,7 +44,7 @@
 #include "scenes/scene.h"
 
 enum {
-    FORWARD_VARIANTS = 16,           /* 4 map bits */
+    FORWARD_VARIANTS = 32,           /* 4 map bits and the alpha test */
     FORWARD_LIGHT_TYPES = 3,         /* LIGHT_POINT, LIGHT_SPOT, LIGHT_DIRECTIONAL */
     FORWARD_MAX_PASSES = 5,          /* shadows base lights sky resolve */
     FORWARD_UNIFORM_LIGHT = 16,      /* uniform location, see above */
@@ -56,6 +56,7 @@ enum {
     FORWARD_VARIANT_GLOSS = 2,
     FORWARD_VARIANT_NORMAL = 4,
     FORWARD_VARIANT_EMISSIVE = 8,
+    FORWARD_VARIANT_ALPHA_TEST = 16, /* MATERIAL_MASK */
 };
 
 typedef struct forward_common {

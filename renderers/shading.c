@@ -66,7 +66,8 @@ void shading_pack_frame(const scene *s, gpu_frame *out)
     out->clip[1] = s->cam.zfar;
 }
 
-unsigned shading_material_defines(const scene_material *m, const char *defines[4])
+unsigned shading_material_defines(const scene_material *m,
+                                  const char *defines[SHADING_MATERIAL_DEFINES])
 {
     unsigned n = 0;
     if (m->diffuse_map >= 0)
@@ -77,5 +78,7 @@ unsigned shading_material_defines(const scene_material *m, const char *defines[4
         defines[n++] = "NORMAL_MAP";
     if (m->emissive_map >= 0)
         defines[n++] = "EMISSIVE_MAP";
+    if (m->alpha == MATERIAL_MASK)
+        defines[n++] = "ALPHA_TEST";
     return n;
 }

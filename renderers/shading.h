@@ -35,5 +35,8 @@ void shading_set_shadow_layer(gpu_light *l, uint32_t layer);
 void shading_pack_frame(const scene *s, gpu_frame *out);
 
 /* The shader defines a material needs ("DIFFUSE_MAP", "GLOSS_MAP", "NORMAL_MAP",
- * "EMISSIVE_MAP"), in that order; returns how many (<= 4). */
-unsigned shading_material_defines(const scene_material *m, const char *defines[4]);
+ * "EMISSIVE_MAP", "ALPHA_TEST" for a MATERIAL_MASK material), in that order; returns
+ * how many (<= SHADING_MATERIAL_DEFINES). */
+#define SHADING_MATERIAL_DEFINES 5
+unsigned shading_material_defines(const scene_material *m,
+                                  const char *defines[SHADING_MATERIAL_DEFINES]);

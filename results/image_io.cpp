@@ -4,6 +4,7 @@
 // it into false with a message (or a neutral value where the function cannot fail).
 #include "results/image_io.h"
 
+#include <OpenImageIO/filesystem.h>
 #include <OpenImageIO/imageio.h>
 
 #include <cerrno>
@@ -185,7 +186,10 @@ bool write_impl(const char *path, const image *img, char *err, size_t errlen)
     return ok;
 }
 
-bool read_impl(const char *path, image_type want, image *out, char *err, size_t errlen)
+// From a file (mem == nullptr) or from size bytes at mem, which `path` names in messages
+// (its extension, or else the bytes' signature, picks the format).
+bool read_impl(const char *path, image_type want, image *out, char *err, size_t errlen,
+               const void *mem = nullptr, size_t size = 0)
 {
     if (out == nullptr) {
         set_err(err, errlen, "image read: bug: no output image");
@@ -204,7 +208,20 @@ bool read_impl(const char *path, image_type want, image *out, char *err, size_t 
     ImageSpec config;
     config.attribute("oiio:UnassociatedAlpha", 1);
     errno = 0;
-    auto in = ImageInput::open(path, &config);
+    std::unique_ptr<OIIO::Filesystem::IOMemReader> proxy;
+    std::string name = path;
+    if (mem != nullptr) {
+        proxy.reset(new OIIO::Filesystem::IOMemReader(mem, size));
+        const unsigned char *b = static_cast<const unsigned char *>(mem);
+        if (size >= 8 && std::memcmp(b, "\x89PNG", 4) == 0)
+            name = "embedded.png";
+        else if (size >= 3 && b[0] == 0xFF && b[1] == 0xD8 && b[2] == 0xFF)
+            name = "embedded.jpg";
+        // readers look for the proxy in the configuration (OIIO 2.4 drops it otherwise)
+        void *ptr = proxy.get();
+        config.attribute("oiio:ioproxy", TypeDesc::PTR, &ptr);
+    }
+    auto in = ImageInput::open(name, &config, proxy.get());
     if (!in) {
         int e = errno;
         std::string why = one_line(OIIO::geterror());
@@ -347,6 +364,26 @@ bool image_read(const char *path, image_type want, image *out, char *err, size_t
     } catch (...) {
         set_err(err, errlen, std::string(path ? path : "image") +
                                  ": cannot read image: unknown exception");
+    }
+    return false;
+}
+
+bool image_decode(const void *data, size_t size, const char *name, image_type want, image *out,
+                  char *err, size_t errlen)
+{
+    const char *what = name && name[0] ? name : "embedded image";
+    try {
+        if (data == nullptr || size == 0) {
+            if (out != nullptr)
+                *out = image{};
+            set_err(err, errlen, std::string(what) + ": cannot read image: no bytes");
+            return false;
+        }
+        return read_impl(what, want, out, err, errlen, data, size);
+    } catch (const std::exception &e) {
+        set_err(err, errlen, std::string(what) + ": cannot read image: " + e.what());
+    } catch (...) {
+        set_err(err, errlen, std::string(what) + ": cannot read image: unknown exception");
     }
     return false;
 }

@@ -20,6 +20,11 @@ typedef struct image {
 bool image_write(const char *path, const image *img, char *err, size_t errlen);
 /* Reads any format OIIO knows; pixels malloc'ed, converted to `want` type. */
 bool image_read(const char *path, image_type want, image *out, char *err, size_t errlen);
+/* As image_read, from `size` bytes in memory (an embedded or already read file): `name`
+ * (NULL: "embedded image") names it in messages, and its extension, or else the bytes'
+ * PNG or JPEG signature, picks the format. */
+bool image_decode(const void *data, size_t size, const char *name, image_type want, image *out,
+                  char *err, size_t errlen);
 void image_free(image *img);
 
 /* Non-finite values in a float image (0 for IMAGE_U8). */

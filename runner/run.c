@@ -572,8 +572,12 @@ static bool run_setup(run_state *st)
         set_status(st, "context");
         return false;
     }
-    if (!(st->sc = scene_build(p->scene, &p->lights, p->width, p->height, st->err,
-                               sizeof st->err)) ||
+    /* the scene's source: the catalog by name; a file scene (scene: {file: ...}) sets
+     * src.file to its scene_file_options once the manifest carries them (the lead's
+     * scene.file key), checked by scene_file_check before any output exists */
+    scene_source src = {.name = p->scene, .file = NULL};
+    if (!(st->sc = scene_build_source(&src, &p->lights, p->width, p->height, st->err,
+                                      sizeof st->err)) ||
         !scene_set_camera(st->sc, &p->camera, st->err, sizeof st->err)) {
         set_status(st, "scene");
         return false;

@@ -16,33 +16,40 @@
 
 // >>registry
 
-static const struct {
-    const char *name;
+/* The scene sources: the catalog (catalog.c's table, each entry with its builder) and
+ * files (file_assimp.c); each builder takes its source's argument. */
+typedef struct source_plan {
+    char name[64];
     scene_build_fn build;
-} builders[] = {
-    {"empty", scene_build_empty},
-    {"shapes", scene_build_shapes},
-    {"curtis-scene1", scene_build_curtis1},
-    {"curtis-scene2", scene_build_curtis2},
-    {"curtis-scene3", scene_build_curtis3},
-    {"canyon", scene_build_canyon},
-    {"interior", scene_build_interior},
-    {"spot-coverage", scene_build_spot_coverage},
-    {"two-spots-overlap", scene_build_two_spots},
-    {"floating-spot", scene_build_floating_spot},
-    /* the test scenes (catalog.c) are "empty" that fails on purpose */
-    {"test-abort", scene_build_empty},
-    {"test-segv", scene_build_empty},
-    {"test-sigkill", scene_build_empty},
-    {"test-hang", scene_build_empty},
-};
+    const void *arg;
+    int fault;
+} source_plan;
 
-static scene_build_fn find_builder(const char *name)
+static bool plan_source(const scene_source *src, source_plan *p, char *err, size_t errlen)
 {
-    for (size_t i = 0; i < sizeof builders / sizeof builders[0]; i++)
-        if (strcmp(builders[i].name, name) == 0)
-            return builders[i].build;
-    return NULL;
+    memset(p, 0, sizeof *p);
+    if (src->file) {
+        const char *path = src->file->path ? src->file->path : "";
+        const char *base = strrchr(path, '/');
+        snprintf(p->name, sizeof p->name, "%s", base ? base + 1 : path);
+        p->build = scene_build_file;
+        p->arg = src->file;
+        return true;
+    }
+    const char *name = src->name ? src->name : "";
+    const scene_catalog_entry *e = scene_catalog_find(name);
+    if (!e) {
+        snprintf(err, errlen, "unknown scene '%s'", name);
+        return false;
+    }
+    snprintf(p->name, sizeof p->name, "%s", name);
+    p->build = scene_catalog_builder(e);
+    p->fault = scene_catalog_fault(e);
+    if (!p->build) {
+        snprintf(err, errlen, "bug: scene '%s' is in the catalog but has no builder", name);
+        return false;
+    }
+    return true;
 }
 
 // >>placement
@@ -202,15 +209,17 @@ static bool place_grid(scene *s, const light_params *lp, char *err, size_t errle
 scene *scene_build(const char *name, const light_params *lp, int width, int height,
                    char *err, size_t errlen)
 {
-    if (!scene_catalog_find(name)) {
-        snprintf(err, errlen, "unknown scene '%s'", name);
+    scene_source src = {.name = name, .file = NULL};
+    return scene_build_source(&src, lp, width, height, err, errlen);
+}
+
+scene *scene_build_source(const scene_source *src, const light_params *lp, int width,
+                          int height, char *err, size_t errlen)
+{
+    source_plan plan;
+    if (!plan_source(src, &plan, err, errlen))
         return NULL;
-    }
-    scene_build_fn build = find_builder(name);
-    if (!build) {
-        snprintf(err, errlen, "bug: scene '%s' is in the catalog but has no builder", name);
-        return NULL;
-    }
+    const char *name = plan.name;
     if (width <= 0 || height <= 0) {
         snprintf(err, errlen, "bug: scene '%s' built for a %dx%d target", name, width, height);
         return NULL;
@@ -231,14 +240,11 @@ scene *scene_build(const char *name, const light_params *lp, int width, int heig
     b->s = s;
     b->err = why;
     b->errlen = sizeof why;
-    if (!build(b) || b->failed) {
+    if (!plan.build(b, plan.arg) || b->failed) {
         snprintf(err, errlen, "scene '%s': %s", name, why);
         goto fail;
     }
-    static const char *const faults[] = {"test-abort", "test-segv", "test-sigkill", "test-hang"};
-    for (int i = 0; i < 4; i++)
-        if (strcmp(name, faults[i]) == 0)
-            s->fault = i + 1;
+    s->fault = plan.fault;
 
     s->count = lp->count;
     uint32_t most = light_count_max(&lp->count);
@@ -277,10 +283,12 @@ scene *scene_build(const char *name, const light_params *lp, int width, int heig
         else if (!place_grid(s, lp, err, errlen))
             goto fail;
     }
+    free(b->authored);
     free(b);
     scene_update(s, 0.0);
     return s;
 fail:
+    free(b->authored);
     free(b);
     scene_destroy(s);
     return NULL;
@@ -288,8 +296,25 @@ fail:
 
 // >>posing
 
-/* model = translate(position) * rotate(spin_axis, spin_rate * t) * scale, and the
- * world bounding sphere of the object's mesh under it. */
+/* An upper bound on how far the upper 3x3 of m stretches any vector (its largest
+ * singular value): sqrt of the largest absolute row sum of M^T M, which bounds M^T M's
+ * largest eigenvalue. Exactly 1 for the identity, s for a uniform scale s. */
+static float transform_stretch(const sm_mat4 m)
+{
+    double most = 0.0;
+    for (int i = 0; i < 3; i++) {
+        double row = 0.0;
+        for (int j = 0; j < 3; j++)
+            row += fabs((double)m[i][0] * m[j][0] + (double)m[i][1] * m[j][1] +
+                        (double)m[i][2] * m[j][2]);
+        most = fmax(most, row);
+    }
+    return (float)sqrt(most);
+}
+
+/* model = translate(position) * rotate(spin_axis, spin_rate * t) * scale * transform,
+ * and the world bounding sphere of the object's mesh under it (its radius times scale
+ * times the transform's stretch bound, so non-uniform scales and shears stay inside). */
 static void pose_object(const scene *s, scene_object *o, double t)
 {
     sm_mat4 tr, rot, sc, tmp;
@@ -298,8 +323,10 @@ static void pose_object(const scene *s, scene_object *o, double t)
     sm_mat4_translate_make(o->position, tr);
     sm_mat4_rotate_make((float)angle, o->spin_axis, rot);
     sm_mat4_scale_make(scale, sc);
+    sm_mat4 trs;
     sm_mat4_mul(tr, rot, tmp);
-    sm_mat4_mul(tmp, sc, o->model);
+    sm_mat4_mul(tmp, sc, trs);
+    sm_mat4_mul(trs, o->transform, o->model);
     const mesh *m = &s->meshes[o->mesh];
     sm_vec3 c = {m->sphere[0], m->sphere[1], m->sphere[2]};
     sm_vec3 wc;
@@ -307,7 +334,7 @@ static void pose_object(const scene *s, scene_object *o, double t)
     o->bsphere[0] = wc[0];
     o->bsphere[1] = wc[1];
     o->bsphere[2] = wc[2];
-    o->bsphere[3] = m->sphere[3] * o->scale;
+    o->bsphere[3] = m->sphere[3] * o->scale * transform_stretch(o->transform);
 }
 
 /* The test scenes' faults (catalog.c): each says what it does, then does it. */

@@ -34,6 +34,13 @@ typedef struct scene_light {
     bool shadows;              /* spot and directional: casts shadows (renderers/shadow.h) */
 } scene_light;
 
+/* How a material's alpha (diffuse alpha x the diffuse map's alpha) is used. */
+typedef enum material_alpha {
+    MATERIAL_OPAQUE = 0,       /* ignored */
+    MATERIAL_MASK,             /* alpha test: fragments with alpha < alpha_cutoff discarded */
+    MATERIAL_BLEND,            /* translucent: marked, drawn as opaque until translucency lands */
+} material_alpha;
+
 /* Phong material; a map index is -1 when the material has no such map. */
 typedef struct scene_material {
     sm_vec3 diffuse;           /* multiplies the diffuse map */
@@ -41,9 +48,14 @@ typedef struct scene_material {
     float shininess;           /* specular exponent n */
     sm_vec3 emissive;          /* multiplies the emissive mask */
     int diffuse_map, gloss_map, normal_map, emissive_map;   /* into scene.textures */
+    material_alpha alpha;      /* catalog materials: opaque */
+    float alpha_cutoff;        /* MATERIAL_MASK */
 } scene_material;
 
-/* One mesh instance. model and the world bounds are posed by scene_update(). */
+/* One mesh instance. model and the world bounds are posed by scene_update():
+ *   model = translate(position) * rotate(spin_axis, spin_rate t) * scale * transform
+ * where transform is the object's node transform (a file's accumulated node matrices,
+ * any affine matrix with a positive determinant; identity for the catalog's objects). */
 typedef struct scene_object {
     uint32_t mesh;             /* into scene.meshes */
     uint32_t material;         /* into scene.materials */
@@ -51,8 +63,10 @@ typedef struct scene_object {
     float scale;
     sm_vec3 spin_axis;         /* unit; rotation about it through the object's origin */
     float spin_rate;           /* radians per second of schedule time (0: static) */
+    sm_mat4 transform;         /* node transform, applied first */
     sm_mat4 model;
-    sm_vec4 bsphere;           /* world-space bounding sphere */
+    sm_vec4 bsphere;           /* world-space bounding sphere (the mesh's sphere under model:
+                                * radius x model's largest axis scale) */
 } scene_object;
 
 typedef struct scene_camera {
@@ -84,7 +98,7 @@ typedef struct camera_params {
 void camera_params_init(camera_params *cp);
 
 typedef struct scene {
-    char name[32];
+    char name[64];
     int width, height;         /* the run's resolution (aspect of the projection) */
     sm_vec3 light_bounds_min, light_bounds_max;   /* where random lights are placed */
     sm_vec3 ambient;
@@ -137,9 +151,51 @@ size_t scene_catalog_count(void);
 const scene_catalog_entry *scene_catalog_at(size_t i);
 const scene_catalog_entry *scene_catalog_find(const char *name);   /* NULL if unknown */
 
+/* A scene from a file (scenes/file_assimp.c): glTF 2.0 (.gltf + .bin + images, .glb,
+ * embedded), OBJ + MTL, and whatever else assimp reads. */
+typedef enum scene_up { SCENE_UP_Y = 0, SCENE_UP_Z } scene_up;
+typedef struct scene_file_options {
+    const char *path;          /* the file (the caller resolves it against the manifest) */
+    float scale;               /* uniform scale of the whole file; 0 counts as 1 */
+    scene_up up;               /* the file's up axis; z: rotated so that +Z becomes +Y */
+    const char *camera;        /* NULL, "" or "orbit": an orbit about the bounds; otherwise
+                                * the name of one of the file's cameras */
+} scene_file_options;
+
+/* What scene_file_check found (also what meta.yaml records). */
+typedef struct scene_file_info {
+    uint32_t meshes;           /* after post-processing (one per primitive) */
+    uint64_t triangles;        /* drawn: each node's meshes once per instance */
+    uint32_t objects;          /* mesh instances */
+    uint32_t materials, textures, lights, cameras;
+    uint32_t materials_mask;   /* alphaMode MASK: alpha tested */
+    uint32_t materials_blend;  /* alphaMode BLEND (or OBJ d < 1): translucent, drawn opaque
+                                * until the renderers have a translucent pass */
+    uint32_t files;            /* the file and every buffer and image it pulled in */
+    uint64_t hash;             /* FNV-1a 64 over those files' bytes, in the order read */
+    sm_vec3 bounds_min, bounds_max;   /* world bounds after scale and up */
+} scene_file_info;
+
+/* Opens the file and everything it references and checks it all, without GL: a missing
+ * file, buffer or image, a parse error, NaN or infinite positions, indices out of range,
+ * a recursive node hierarchy, an empty scene, an undecodable texture, a camera name the
+ * file lacks, counts beyond what memory can hold. False with a one-line message naming
+ * the file; info (NULL is fine) filled on success. */
+bool scene_file_check(const scene_file_options *o, scene_file_info *info, char *err,
+                      size_t errlen);
+
+/* Where a scene comes from: the catalog (name) or a file (file != NULL). */
+typedef struct scene_source {
+    const char *name;          /* catalog name; ignored when file is set */
+    const scene_file_options *file;
+} scene_source;
+
 /* NULL with a message on failure: unknown name, out of memory, grid placement whose
  * radius makes neighbours overlap, scene placement on a scene without authored lights
- * ("scene 'X' has no authored lights"). Placement: scenes/lights.h. */
+ * ("scene 'X' has no authored lights"), a file that scene_file_check refuses.
+ * Placement: scenes/lights.h. scene_build(name, ...) is the catalog's source. */
+scene *scene_build_source(const scene_source *src, const light_params *lp, int width,
+                          int height, char *err, size_t errlen);
 scene *scene_build(const char *name, const light_params *lp, int width, int height,
                    char *err, size_t errlen);
 void scene_update(scene *s, double t);

@@ -2,7 +2,7 @@
 #include "scenes/scene_build.h"
 
 /* "empty": no geometry, an orbiting camera and the run's lights; no authored lights. */
-bool scene_build_empty(scene_builder *b)
+bool scene_build_empty(scene_builder *b, const void *arg)
 {
     if (!sb_begin(b, 0))
         return false;
@@ -17,7 +17,7 @@ bool scene_build_empty(scene_builder *b)
  * cone, pillar...) under an orbiting camera; materials without maps, with diffuse
  * and gloss maps, and with diffuse, normal and emissive maps, so every shader
  * variant has work. Lights are placed above the floor; no authored lights. */
-bool scene_build_shapes(scene_builder *b)
+bool scene_build_shapes(scene_builder *b, const void *arg)
 {
     scene *s = b->s;
     if (!sb_begin(b, 10))

@@ -23,30 +23,55 @@ bool sb_fail(scene_builder *b, const char *fmt, ...)
     return false;
 }
 
+bool sb_reserve(scene_builder *b, void **items, uint32_t *cap, uint32_t n, uint32_t more,
+                size_t size, const char *what)
+{
+    if (b->failed)
+        return false;
+    if (more > UINT32_MAX - n)
+        return sb_fail(b, "too many %s (%u + %u)", what, n, more);
+    uint32_t need = n + more;
+    if (need <= *cap && *items)
+        return true;
+    uint64_t c = *cap ? *cap : 8;
+    while (c < need)
+        c *= 2;
+    if (c > UINT32_MAX)
+        c = UINT32_MAX;
+    if (c > SIZE_MAX / size)
+        return sb_fail(b, "too many %s (%u)", what, need);
+    void *p = realloc(*items, (size_t)c * size);
+    if (!p)
+        return sb_fail(b, "out of memory for %u %s (%.0f MiB)", need, what,
+                       (double)c * (double)size / 1048576.0);
+    /* the new slots start zeroed, as calloc'ed tables did */
+    memset((char *)p + (size_t)*cap * size, 0, ((size_t)c - *cap) * size);
+    *items = p;
+    *cap = (uint32_t)c;
+    return true;
+}
+
 bool sb_begin(scene_builder *b, uint32_t nobjects)
 {
     scene *s = b->s;
-    s->meshes = calloc(SB_MAX_MESHES, sizeof *s->meshes);
-    s->textures = calloc(SB_MAX_TEXTURES, sizeof *s->textures);
-    s->materials = calloc(SB_MAX_MATERIALS, sizeof *s->materials);
-    s->objects = calloc(nobjects ? nobjects : 1, sizeof *s->objects);
-    if (!s->meshes || !s->textures || !s->materials || !s->objects)
-        return sb_fail(b, "out of memory");
-    b->cap_objects = nobjects;
-    return true;
+    return sb_reserve(b, (void **)&s->meshes, &b->cap_meshes, 0, 1, sizeof *s->meshes,
+                      "meshes") &&
+           sb_reserve(b, (void **)&s->textures, &b->cap_textures, 0, 1, sizeof *s->textures,
+                      "textures") &&
+           sb_reserve(b, (void **)&s->materials, &b->cap_materials, 0, 1,
+                      sizeof *s->materials, "materials") &&
+           sb_reserve(b, (void **)&s->objects, &b->cap_objects, 0, nobjects ? nobjects : 1,
+                      sizeof *s->objects, "objects");
 }
 
 // >>meshes
 
-/* The next free mesh slot, or NULL after a failure or when the table is full. */
+/* The next free mesh slot (the table grown when full), or NULL after a failure. */
 static mesh *slot(scene_builder *b)
 {
-    if (b->failed)
+    if (!sb_reserve(b, (void **)&b->s->meshes, &b->cap_meshes, b->s->nmeshes, 1,
+                    sizeof *b->s->meshes, "meshes"))
         return NULL;
-    if (b->s->nmeshes >= SB_MAX_MESHES) {
-        sb_fail(b, "bug: more than %d meshes (SB_MAX_MESHES)", SB_MAX_MESHES);
-        return NULL;
-    }
     return &b->s->meshes[b->s->nmeshes];
 }
 
@@ -187,12 +212,9 @@ int sb_texture(scene_builder *b,
                bool (*make)(const texture_desc *, texture_image *, char *, size_t),
                const texture_desc *d)
 {
-    if (b->failed)
+    if (!sb_reserve(b, (void **)&b->s->textures, &b->cap_textures, b->s->ntextures, 1,
+                    sizeof *b->s->textures, "textures"))
         return -1;
-    if (b->s->ntextures >= SB_MAX_TEXTURES) {
-        sb_fail(b, "bug: more than %d textures (SB_MAX_TEXTURES)", SB_MAX_TEXTURES);
-        return -1;
-    }
     if (!make(d, &b->s->textures[b->s->ntextures], b->err, b->errlen)) {
         b->failed = true;
         return -1;
@@ -213,12 +235,9 @@ sb_map_set sb_maps(scene_builder *b, const texture_desc *d, bool emissive)
 uint32_t sb_material(scene_builder *b, float r, float g, float bl, float specular,
                      float shininess)
 {
-    if (b->failed)
+    if (!sb_reserve(b, (void **)&b->s->materials, &b->cap_materials, b->s->nmaterials, 1,
+                    sizeof *b->s->materials, "materials"))
         return 0;
-    if (b->s->nmaterials >= SB_MAX_MATERIALS) {
-        sb_fail(b, "bug: more than %d materials (SB_MAX_MATERIALS)", SB_MAX_MATERIALS);
-        return 0;
-    }
     scene_material *m = &b->s->materials[b->s->nmaterials];
     memset(m, 0, sizeof *m);
     sm_vec3_make(r, g, bl, m->diffuse);
@@ -250,8 +269,9 @@ scene_object *sb_object(scene_builder *b, int mesh_index, uint32_t material, flo
                         float z, float scale)
 {
     scene *s = b->s;
-    if (!b->failed && s->nobjects >= b->cap_objects)
-        sb_fail(b, "bug: more than the %u objects allocated", b->cap_objects);
+    if (!b->failed)
+        sb_reserve(b, (void **)&s->objects, &b->cap_objects, s->nobjects, 1, sizeof *s->objects,
+                   "objects");
     if (!b->failed && (mesh_index < 0 || (uint32_t)mesh_index >= s->nmeshes ||
                        material >= s->nmaterials))
         sb_fail(b, "bug: object of mesh %d, material %u", mesh_index, material);
@@ -266,6 +286,7 @@ scene_object *sb_object(scene_builder *b, int mesh_index, uint32_t material, flo
     sm_vec3_make(x, y, z, o->position);
     o->scale = scale;
     sm_vec3_make(0.0f, 1.0f, 0.0f, o->spin_axis);
+    sm_mat4_identity(o->transform);
     return o;
 }
 
@@ -273,8 +294,9 @@ scene_object *sb_object(scene_builder *b, int mesh_index, uint32_t material, flo
 
 static scene_light *new_light(scene_builder *b, light_type type)
 {
-    if (!b->failed && b->nauthored >= SB_MAX_AUTHORED)
-        sb_fail(b, "bug: more than %d authored lights (SB_MAX_AUTHORED)", SB_MAX_AUTHORED);
+    if (!b->failed)
+        sb_reserve(b, (void **)&b->authored, &b->cap_authored, b->nauthored, 1,
+                   sizeof *b->authored, "authored lights");
     scene_light *l = b->failed ? &b->scratch_light : &b->authored[b->nauthored++];
     memset(l, 0, sizeof *l);
     l->type = type;

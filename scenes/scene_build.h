@@ -25,35 +25,41 @@
 
 #include "scenes/scene.h"
 
-enum {
-    SB_MAX_MESHES = 32,
-    SB_MAX_TEXTURES = 32,
-    SB_MAX_MATERIALS = 32,
-    SB_MAX_AUTHORED = 16,
-};
-
+/* Every table grows as it fills (doubling); nothing has a fixed cap. sb_reserve checks a
+ * count against what a uint32_t index and size_t bytes can hold before allocating. */
 typedef struct scene_builder {
     scene *s;
     char *err;
     size_t errlen;
     bool failed;
-    uint32_t cap_objects;          /* what sb_begin allocated */
-    scene_light authored[SB_MAX_AUTHORED];
-    uint32_t nauthored;
+    uint32_t cap_meshes, cap_textures, cap_materials, cap_objects;   /* allocated slots */
+    scene_light *authored;         /* the scene's authored lights (freed by scene_build) */
+    uint32_t nauthored, cap_authored;
     uint32_t ncoverage;            /* the first ncoverage authored lights are the ones a
                                     * run records the screen coverage of */
     scene_object scratch_object;   /* what sb_object returns after a failure */
     scene_light scratch_light;
 } scene_builder;
 
-/* A builder: fills b->s, returns !b->failed. */
-typedef bool (*scene_build_fn)(scene_builder *b);
+/* A builder: fills b->s from its argument (NULL for the catalog's scenes, a
+ * scene_file_options for a file scene), returns !b->failed. */
+typedef bool (*scene_build_fn)(scene_builder *b, const void *arg);
+
+/* The catalog's builder of an entry (catalog.c), and which test fault it injects (0: none;
+ * scene.c's inject_fault). NULL / 0 for an entry that is not the catalog's. */
+scene_build_fn scene_catalog_builder(const scene_catalog_entry *e);
+int scene_catalog_fault(const scene_catalog_entry *e);
 
 /* Records the first failure (printf-style); false. */
 bool sb_fail(scene_builder *b, const char *fmt, ...) __attribute__((format(printf, 2, 3)));
 
-/* Allocates the tables: SB_MAX_* meshes, textures and materials, and nobjects objects. */
+/* Allocates the tables: room for nobjects objects to start with (they grow past it). */
 bool sb_begin(scene_builder *b, uint32_t nobjects);
+
+/* Makes room for `more` entries past *n in the array *items of *cap entries of `size`
+ * bytes (doubling); false with "too many WHAT (N)" or "out of memory for N WHAT". */
+bool sb_reserve(scene_builder *b, void **items, uint32_t *cap, uint32_t n, uint32_t more,
+                size_t size, const char *what);
 
 /* >>meshes: each builds one mesh with the mesh_gen.c generator of the same name (see
  * scenes/mesh.h for the parameters) and returns its index, or -1. */
@@ -96,7 +102,8 @@ uint32_t sb_material(scene_builder *b, float r, float g, float bl, float specula
 uint32_t sb_material_maps(scene_builder *b, const sb_map_set *maps, float specular,
                           float shininess, float emissive);
 
-/* >>objects: a static (spin_rate 0) instance; the caller may set spin afterwards. */
+/* >>objects: a static (spin_rate 0) instance with an identity node transform; the caller
+ * may set spin and transform afterwards. */
 scene_object *sb_object(scene_builder *b, int mesh_index, uint32_t material, float x, float y,
                         float z, float scale);
 
@@ -118,14 +125,16 @@ void sb_set_keys(scene_builder *b, uint32_t n, const float (*eyes)[3], const flo
                  float period);
 void sb_set_projection(scene_builder *b, float fovy_deg, float znear, float zfar);
 
-/* >>the builders (scene.c's registry) */
-bool scene_build_empty(scene_builder *b);
-bool scene_build_shapes(scene_builder *b);
-bool scene_build_curtis1(scene_builder *b);
-bool scene_build_curtis2(scene_builder *b);
-bool scene_build_curtis3(scene_builder *b);
-bool scene_build_canyon(scene_builder *b);
-bool scene_build_interior(scene_builder *b);
-bool scene_build_spot_coverage(scene_builder *b);
-bool scene_build_two_spots(scene_builder *b);
-bool scene_build_floating_spot(scene_builder *b);
+/* >>the builders (catalog.c's table) */
+bool scene_build_empty(scene_builder *b, const void *arg);
+bool scene_build_shapes(scene_builder *b, const void *arg);
+bool scene_build_curtis1(scene_builder *b, const void *arg);
+bool scene_build_curtis2(scene_builder *b, const void *arg);
+bool scene_build_curtis3(scene_builder *b, const void *arg);
+bool scene_build_canyon(scene_builder *b, const void *arg);
+bool scene_build_interior(scene_builder *b, const void *arg);
+bool scene_build_spot_coverage(scene_builder *b, const void *arg);
+bool scene_build_two_spots(scene_builder *b, const void *arg);
+bool scene_build_floating_spot(scene_builder *b, const void *arg);
+/* A file scene through assimp (scenes/file_assimp.c); arg: a scene_file_options. */
+bool scene_build_file(scene_builder *b, const void *arg);

@@ -52,7 +52,7 @@ static float canyon_height(float x, float z, void *user)
     return 1100.0f * w + (30.0f + 150.0f * w) * n;
 }
 
-bool scene_build_canyon(scene_builder *b)
+bool scene_build_canyon(scene_builder *b, const void *arg)
 {
     scene *s = b->s;
     if (!sb_begin(b, 4))

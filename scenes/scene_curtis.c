@@ -48,7 +48,7 @@ static void curtis_common(scene_builder *b)
  * (160 lights: 0.27 per cubic unit; every light within 7.7 of the box's centre, so at
  * radius 10 all of them reach most of the model). The camera orbits at radius 10, 4 above
  * the model's centre, once in 60 s. */
-bool scene_build_curtis1(scene_builder *b)
+bool scene_build_curtis1(scene_builder *b, const void *arg)
 {
     if (!sb_begin(b, 1))
         return false;
@@ -86,7 +86,7 @@ bool scene_build_curtis1(scene_builder *b)
  * 21.4 s at 4:3 and from 19.0 s to 21.0 s at 16:9 of each 60 s turn (scene_light_coverage
  * of the ball's sphere; tests/unit/test_scene_catalog.c checks 20 s and the ends). The
  * orbit: radius 16, height 4, once in 60 s about the origin. Light bounds 16 x 7 x 16. */
-bool scene_build_curtis2(scene_builder *b)
+bool scene_build_curtis2(scene_builder *b, const void *arg)
 {
     if (!sb_begin(b, 4))
         return false;
@@ -123,7 +123,7 @@ bool scene_build_curtis2(scene_builder *b)
  * X, Z and Y at 0.4 rad/s. Light bounds 30 x 7.5 x 30 about the grid (160 lights: 0.024
  * per cubic unit; 590: 0.087). The orbit: radius 30, 14 above a target 1 above the grid,
  * once in 60 s. */
-bool scene_build_curtis3(scene_builder *b)
+bool scene_build_curtis3(scene_builder *b, const void *arg)
 {
     if (!sb_begin(b, 104))
         return false;

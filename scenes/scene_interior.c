@@ -46,7 +46,7 @@
 
 enum { INTERIOR_OBJECTS = 72 };
 
-bool scene_build_interior(scene_builder *b)
+bool scene_build_interior(scene_builder *b, const void *arg)
 {
     scene *s = b->s;
     if (!sb_begin(b, INTERIOR_OBJECTS))

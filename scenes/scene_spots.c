@@ -56,7 +56,7 @@ static void spot_room(scene_builder *b, bool wall)
  * looking at the cone's middle: the volume covers about half the screen (0.51 at 4:3,
  * 0.38 at 16:9). Hold 1: the eye at (0, 3, 0.4), inside the cone, looking down at the
  * floor: coverage 1 (from hold 0.5 on at 4:3), and every visible pixel is lit. */
-bool scene_build_spot_coverage(scene_builder *b)
+bool scene_build_spot_coverage(scene_builder *b, const void *arg)
 {
     if (!sb_begin(b, 4))
         return false;
@@ -81,7 +81,7 @@ bool scene_build_spot_coverage(scene_builder *b)
  * each spot's volume covers a small part of the screen (0.09 at 4:3, 0.07 at 16:9).
  * Hold 1: from 2 up, both cover the whole screen (1), and every visible floor pixel is in
  * both footprints. */
-bool scene_build_two_spots(scene_builder *b)
+bool scene_build_two_spots(scene_builder *b, const void *arg)
 {
     if (!sb_begin(b, 4))
         return false;
@@ -110,7 +110,7 @@ bool scene_build_two_spots(scene_builder *b)
  * (where the cone is 1.1 wide), outside it: the volume covers most of the screen (0.75
  * at 4:3, 0.65 at 16:9) and every pixel behind it is unlit floor, wall or background:
  * deferred shading's stencil test then rejects them all. */
-bool scene_build_floating_spot(scene_builder *b)
+bool scene_build_floating_spot(scene_builder *b, const void *arg)
 {
     if (!sb_begin(b, 5))
         return false;

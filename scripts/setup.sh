@@ -8,6 +8,7 @@ packages=(
   libegl-dev libegl-mesa0 libgl-dev libgl1-mesa-dri   # EGL, GL headers, Mesa llvmpipe
   libosmesa6-dev                                      # the second backend
   libyaml-dev libopenimageio-dev
+  libassimp-dev assimp-testmodels                    # file scenes (glTF 2.0, OBJ); their tests
   libcmocka-dev libcglm-dev                           # tests; cglm is the math oracle
   python3 python3-yaml python3-matplotlib             # end-to-end test checks; scripts/report
   clang libclang-rt-14-dev                            # the manifest fuzzer (libFuzzer)

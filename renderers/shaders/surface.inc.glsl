@@ -1,7 +1,10 @@
 // The surface a fragment of a scene mesh shows, from the material and its maps:
 // shared by the forward passes and the G-buffer pass, so both see the same inputs.
 // Defines: DIFFUSE_MAP, GLOSS_MAP, NORMAL_MAP, EMISSIVE_MAP (only the maps the
-// material has are sampled: renderers compile only the variants a scene uses).
+// material has are sampled: renderers compile only the variants a scene uses), and
+// ALPHA_TEST (a MASK material of a file scene: fragments whose diffuse-map alpha is
+// below u_alpha_cutoff are discarded; only that variant has a discard, so opaque
+// materials keep early depth testing).
 layout(location = 0) in vec3 v_position;
 layout(location = 1) in vec3 v_normal;
 layout(location = 2) in vec4 v_tangent;
@@ -11,6 +14,9 @@ layout(location = 8) uniform vec3 u_diffuse;
 layout(location = 9) uniform float u_specular;
 layout(location = 10) uniform float u_shininess;
 layout(location = 11) uniform vec3 u_emissive;
+#ifdef ALPHA_TEST
+layout(location = 12) uniform float u_alpha_cutoff;
+#endif
 
 layout(binding = 0) uniform sampler2D t_diffuse;
 layout(binding = 1) uniform sampler2D t_gloss;
@@ -37,6 +43,14 @@ vec3 safe_normalize(vec3 n, vec3 fallback)
 Surface surface_get()
 {
     Surface s;
+#ifdef ALPHA_TEST
+    float alpha = 1.0;
+#ifdef DIFFUSE_MAP
+    alpha = texture(t_diffuse, v_uv).a;
+#endif
+    if (alpha < u_alpha_cutoff)
+        discard;
+#endif
     s.position = v_position;
     vec3 n = safe_normalize(v_normal, safe_normalize(-v_position, vec3(0.0, 0.0, 1.0)));
     if (!gl_FrontFacing)

@@ -532,7 +532,7 @@ static void test_pack_frame(void **state)
     assert_float_equal(fr.sky[3], 0.0f, 0.0f);
 
     /* material defines, in order */
-    const char *d[4];
+    const char *d[SHADING_MATERIAL_DEFINES];
     assert_int_equal(shading_material_defines(&s->materials[1], d), 0);
     assert_int_equal(shading_material_defines(&s->materials[2], d), 2);
     assert_string_equal(d[0], "DIFFUSE_MAP");

@@ -105,6 +105,42 @@ static void test_png_u8_round_trip(void **state)
     assert_int_equal(count_entries(f->dir), 4); /* no temporary files */
 }
 
+/* image_decode: the same pixels from the file's bytes in memory (no extension: the PNG
+ * signature picks the reader); bytes that are no image fail with the name given. */
+static void test_decode_from_memory(void **state)
+{
+    fixture *f = *state;
+    char err[512] = "", path[128];
+    image a = make(6, 3, 4, IMAGE_U8);
+    for (size_t i = 0; i < nvalues(&a); i++)
+        u8(&a)[i] = (uint8_t)((i * 53 + 7) % 256);
+    snprintf(path, sizeof path, "%s/mem.png", f->dir);
+    assert_true(image_write(path, &a, err, sizeof err));
+    FILE *in = fopen(path, "rb");
+    assert_non_null(in);
+    unsigned char bytes[4096];
+    size_t n = fread(bytes, 1, sizeof bytes, in);
+    fclose(in);
+    assert_true(n > 8 && n < sizeof bytes);
+    image b;
+    if (!image_decode(bytes, n, "texture *0", IMAGE_U8, &b, err, sizeof err)) {
+        print_error("%s\n", err);
+        fail();
+    }
+    assert_int_equal(b.width, 6);
+    assert_int_equal(b.height, 3);
+    assert_int_equal(b.channels, 4);
+    assert_memory_equal(b.pixels, a.pixels, nvalues(&a));
+    image_free(&b);
+    image_free(&a);
+    static const char junk[] = "this is not an image";
+    assert_false(image_decode(junk, sizeof junk, "junk.png", IMAGE_U8, &b, err, sizeof err));
+    assert_true(strncmp(err, "junk.png: cannot read image: ", 29) == 0);
+    assert_null(b.pixels);
+    assert_false(image_decode(junk, 0, NULL, IMAGE_U8, &b, err, sizeof err));
+    assert_string_equal(err, "embedded image: cannot read image: no bytes");
+}
+
 static void test_exr_f32_round_trip(void **state)
 {
     fixture *f = *state;
@@ -386,6 +422,7 @@ int main(void)
     const struct CMUnitTest tests[] = {
         cmocka_unit_test_setup_teardown(test_png_u8_round_trip, setup, teardown),
         cmocka_unit_test_setup_teardown(test_exr_f32_round_trip, setup, teardown),
+        cmocka_unit_test_setup_teardown(test_decode_from_memory, setup, teardown),
         cmocka_unit_test_setup_teardown(test_png_from_f32, setup, teardown),
         cmocka_unit_test(test_compare_identical),
         cmocka_unit_test(test_compare_f32_offset),

@@ -7,9 +7,11 @@
 #include <cmocka.h>
 
 #include <math.h>
+#include <stdlib.h>
 #include <string.h>
 
 #include "scenes/scene.h"
+#include "scenes/scene_build.h"
 
 static light_params lights(rng_kind k, uint32_t n)
 {
@@ -226,6 +228,60 @@ static void test_shapes_scene(void **state)
     scene_destroy(s);
 }
 
+/* The builder's tables grow past the old caps (32 meshes, materials, textures; 16
+ * authored lights), and a node transform (rotation, non-uniform scale) reaches model and
+ * keeps every vertex inside the world bounding sphere. */
+static void test_builder_grows_and_transforms(void **state)
+{
+    (void)state;
+    scene *s = calloc(1, sizeof *s);
+    scene_builder b = {0};
+    char why[256] = "";
+    b.s = s;
+    b.err = why;
+    b.errlen = sizeof why;
+    s->width = s->height = 64;
+    assert_true(sb_begin(&b, 1));
+    for (int i = 0; i < 40; i++) {
+        assert_int_equal(sb_box(&b, 1.0f, 0.5f + 0.01f * (float)i, 2.0f), i);
+        assert_int_equal(sb_material(&b, 0.5f, 0.5f, 0.5f, 0.1f, 8.0f), (uint32_t)i);
+        texture_desc d = {.width = 4, .height = 4, .cells = 2};
+        assert_int_equal(sb_texture(&b, texture_gloss, &d), i);
+        scene_object *o = sb_object(&b, i, (uint32_t)i, (float)i, 0.0f, 0.0f, 1.0f);
+        /* 90 degrees about Z, then x stretched by 3 */
+        sm_mat4_identity(o->transform);
+        o->transform[0][0] = 0.0f;
+        o->transform[0][1] = 3.0f;
+        o->transform[1][0] = -1.0f;
+        o->transform[1][1] = 0.0f;
+    }
+    for (int i = 0; i < 20; i++)
+        sb_point(&b, 0.0f, (float)i, 0.0f, 5.0f, 1.0f, 1.0f, 1.0f);
+    assert_false(b.failed);
+    assert_int_equal(s->nmeshes, 40);
+    assert_int_equal(s->nmaterials, 40);
+    assert_int_equal(s->ntextures, 40);
+    assert_int_equal(s->nobjects, 40);
+    assert_int_equal(b.nauthored, 20);
+    assert_true(b.authored[19].position[1] == 19.0f);
+    sb_set_orbit(&b, 0, 0, 0, 10, 5, 60);
+    sb_set_projection(&b, 60, 0.1f, 100);
+    scene_update(s, 0.0);
+    for (uint32_t i = 0; i < s->nobjects; i++) {
+        const scene_object *o = &s->objects[i];
+        const mesh *m = &s->meshes[o->mesh];
+        /* the mesh's +x axis lands on world +y, stretched 3 times */
+        assert_true(o->model[0][1] == 3.0f && o->model[3][0] == (float)i);
+        for (uint32_t v = 0; v < m->nvertices; v++) {
+            sm_vec3 w;
+            sm_mat4_mulv3(o->model, m->vertices[v].position, 1.0f, w);
+            assert_true(sm_vec3_distance(w, o->bsphere) <= o->bsphere[3] * 1.0001f);
+        }
+    }
+    free(b.authored);
+    scene_destroy(s);
+}
+
 int main(void)
 {
     const struct CMUnitTest tests[] = {
@@ -236,6 +292,7 @@ int main(void)
         cmocka_unit_test(test_no_lights_and_unknown_scene),
         cmocka_unit_test(test_orbit_camera),
         cmocka_unit_test(test_shapes_scene),
+        cmocka_unit_test(test_builder_grows_and_transforms),
     };
     return cmocka_run_group_tests(tests, NULL, NULL);
 }

@@ -1,0 +1,1150 @@
+/* File scenes through assimp's C API: glTF 2.0 (.gltf + .bin + images, .glb, embedded
+ * data URIs), OBJ + MTL, and whatever else assimp reads. No GL in here; textures decode
+ * through OpenImageIO (results/image_io.h).
+ *
+ * Every byte assimp reads goes through our own file callbacks (>>io), which read each
+ * file whole, once, and feed it to the content hash; images the materials reference
+ * are read the same way before they are decoded. scene_file_check and the builder share
+ * one loader (>>load), so what validate accepts is exactly what a run builds.
+ *
+ * Mapping onto the Phong model (docs/architecture.md, "File scenes"):
+ *   diffuse    base colour factor (glTF) or Kd (OBJ), times the base colour / diffuse map
+ *   specular   metallic-roughness: F0 = mix(0.04, luminance(base colour), metallic);
+ *              specular-glossiness and Phong: luminance of the specular colour
+ *   shininess  glTF: from roughness (1 - glossiness) as the Blinn-Phong exponent that
+ *              matches GGX's alpha = roughness^2, n = 2 / alpha^2 - 2, clamped to
+ *              [1, 2048]; OBJ: Ns (0 counts as 1)
+ *   normal map the normal texture, tangents from our own mesh_compute_tangents
+ *   emissive   the emissive factor times the emissive map (mask alpha = 1)
+ *   alpha      MASK -> MATERIAL_MASK with the cutoff; BLEND -> MATERIAL_BLEND
+ * Sections: >>io >>load >>check >>materials >>nodes >>build */
+#include "scenes/scene.h"
+
+#include <assimp/GltfMaterial.h>
+#include <assimp/cfileio.h>
+#include <assimp/cimport.h>
+#include <assimp/material.h>
+#include <assimp/postprocess.h>
+#include <assimp/scene.h>
+
+#include <errno.h>
+#include <math.h>
+#include <stdarg.h>
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+#include <strings.h>
+
+#include "results/image_io.h"
+#include "scenes/scene_build.h"
+
+/* Limits on what a file may ask for before anything is allocated for it. */
+#define FILE_MAX_BYTES ((size_t)1 << 31)      /* one file, buffer or image: 2 GiB */
+#define FILE_MAX_NODE_DEPTH 256u
+
+// >>io
+
+/* FNV-1a 64, the same function as runner/hash.h (scenes/ cannot reach runner/). */
+static uint64_t fnv1a64_more(uint64_t h, const void *data, size_t len)
+{
+    const unsigned char *p = data;
+    for (size_t i = 0; i < len; i++) {
+        h ^= p[i];
+        h *= UINT64_C(0x100000001b3);
+    }
+    return h;
+}
+
+typedef struct read_file {
+    char *path;
+    unsigned char *data;
+    size_t size;
+} read_file;
+
+/* Every file read for one load, in first-read order, each once. */
+typedef struct file_set {
+    read_file *files;
+    uint32_t n, cap;
+    char err[512];             /* the first read failure that is not "no such file" */
+} file_set;
+
+static void file_set_free(file_set *fs)
+{
+    for (uint32_t i = 0; i < fs->n; i++) {
+        free(fs->files[i].path);
+        free(fs->files[i].data);
+    }
+    free(fs->files);
+    memset(fs, 0, sizeof *fs);
+}
+
+/* The file's bytes (read once, then served from memory), or NULL with fs->err set for
+ * anything but a file that does not exist (errno ENOENT then). */
+static const read_file *file_get(file_set *fs, const char *path)
+{
+    for (uint32_t i = 0; i < fs->n; i++)
+        if (strcmp(fs->files[i].path, path) == 0)
+            return &fs->files[i];
+    FILE *f = fopen(path, "rb");
+    if (!f)
+        return NULL;
+    read_file r = {0};
+    long end = -1;
+    if (fseek(f, 0, SEEK_END) == 0)
+        end = ftell(f);
+    if (end < 0 || fseek(f, 0, SEEK_SET) != 0) {
+        snprintf(fs->err, sizeof fs->err, "%s: cannot read: %s", path, strerror(errno));
+        fclose(f);
+        errno = EIO;
+        return NULL;
+    }
+    if ((unsigned long)end > FILE_MAX_BYTES) {
+        snprintf(fs->err, sizeof fs->err, "%s: %ld bytes, more than the 2 GiB a file may have",
+                 path, end);
+        fclose(f);
+        errno = EFBIG;
+        return NULL;
+    }
+    r.size = (size_t)end;
+    r.data = malloc(r.size ? r.size : 1);
+    r.path = strdup(path);
+    read_file *grown = NULL;
+    if (r.data && r.path && fs->n == fs->cap) {
+        uint32_t cap = fs->cap ? fs->cap * 2 : 8;
+        grown = realloc(fs->files, cap * sizeof *grown);
+        if (grown) {
+            fs->files = grown;
+            fs->cap = cap;
+        }
+    }
+    if (!r.data || !r.path || fs->n == fs->cap) {
+        snprintf(fs->err, sizeof fs->err, "%s: out of memory reading %zu bytes", path, r.size);
+        free(r.data);
+        free(r.path);
+        fclose(f);
+        errno = ENOMEM;
+        return NULL;
+    }
+    if (fread(r.data, 1, r.size, f) != r.size) {
+        snprintf(fs->err, sizeof fs->err, "%s: cannot read: %s", path,
+                 ferror(f) ? strerror(errno) : "file shrank while read");
+        free(r.data);
+        free(r.path);
+        fclose(f);
+        errno = EIO;
+        return NULL;
+    }
+    fclose(f);
+    fs->files[fs->n] = r;
+    return &fs->files[fs->n++];
+}
+
+/* assimp's view of one open file: a cursor over the bytes in the file_set. */
+typedef struct open_file {
+    const read_file *f;
+    size_t pos;
+} open_file;
+
+static size_t io_read(struct aiFile *af, char *buf, size_t size, size_t count)
+{
+    open_file *o = (open_file *)af->UserData;
+    if (size == 0 || o->pos >= o->f->size)
+        return 0;
+    size_t n = (o->f->size - o->pos) / size;
+    if (n > count)
+        n = count;
+    memcpy(buf, o->f->data + o->pos, n * size);
+    o->pos += n * size;
+    return n;
+}
+
+static size_t io_write(struct aiFile *af, const char *buf, size_t size, size_t count)
+{
+    return 0;   /* loading never writes */
+}
+
+static size_t io_tell(struct aiFile *af) { return ((open_file *)af->UserData)->pos; }
+
+static size_t io_size(struct aiFile *af) { return ((open_file *)af->UserData)->f->size; }
+
+static void io_flush(struct aiFile *af) {}
+
+static enum aiReturn io_seek(struct aiFile *af, size_t off, enum aiOrigin origin)
+{
+    open_file *o = (open_file *)af->UserData;
+    size_t base = origin == aiOrigin_SET ? 0 : origin == aiOrigin_CUR ? o->pos : o->f->size;
+    if (off > o->f->size || base > o->f->size - off)
+        return aiReturn_FAILURE;
+    o->pos = base + off;
+    return aiReturn_SUCCESS;
+}
+
+static struct aiFile *io_open(struct aiFileIO *io, const char *path, const char *mode)
+{
+    if (strchr(mode, 'w') || strchr(mode, 'a'))
+        return NULL;
+    const read_file *f = file_get((file_set *)io->UserData, path);
+    if (!f)
+        return NULL;
+    struct aiFile *af = calloc(1, sizeof *af);
+    open_file *o = calloc(1, sizeof *o);
+    if (!af || !o) {
+        free(af);
+        free(o);
+        return NULL;
+    }
+    o->f = f;
+    af->ReadProc = io_read;
+    af->WriteProc = io_write;
+    af->TellProc = io_tell;
+    af->FileSizeProc = io_size;
+    af->SeekProc = io_seek;
+    af->FlushProc = io_flush;
+    af->UserData = (char *)o;
+    return af;
+}
+
+static void io_close(struct aiFileIO *io, struct aiFile *af)
+{
+    if (af) {
+        free(af->UserData);
+        free(af);
+    }
+}
+
+// >>load
+
+/* One loaded file: assimp's scene, the files read, the decoded images (one per distinct
+ * texture reference, in first-use order) and the world transforms of the mesh nodes. */
+typedef struct loaded_image {
+    char *ref;                 /* the material's texture path ("*N": embedded) */
+    image img;                 /* RGBA8 */
+} loaded_image;
+
+typedef struct loaded {
+    const struct aiScene *ai;
+    file_set files;
+    loaded_image *images;
+    uint32_t nimages, cap_images;
+    char dir[4096];            /* the file's folder, with a trailing '/', or "" */
+    const char *path;
+} loaded;
+
+static void loaded_free(loaded *l)
+{
+    if (l->ai)
+        aiReleaseImport(l->ai);
+    for (uint32_t i = 0; i < l->nimages; i++) {
+        free(l->images[i].ref);
+        image_free(&l->images[i].img);
+    }
+    free(l->images);
+    file_set_free(&l->files);
+    memset(l, 0, sizeof *l);
+}
+
+static bool fail(char *err, size_t errlen, const char *fmt, ...)
+    __attribute__((format(printf, 3, 4)));
+static bool fail(char *err, size_t errlen, const char *fmt, ...)
+{
+    va_list ap;
+    va_start(ap, fmt);
+    if (err && errlen)
+        vsnprintf(err, errlen, fmt, ap);
+    va_end(ap);
+    return false;
+}
+
+/* Percent-decodes a URI path (glTF image URIs may escape spaces and such). */
+static void uri_decode(const char *in, char *out, size_t outlen)
+{
+    size_t k = 0;
+    for (size_t i = 0; in[i] && k + 1 < outlen; i++) {
+        unsigned v;
+        if (in[i] == '%' && in[i + 1] && in[i + 2] && sscanf(in + i + 1, "%2x", &v) == 1) {
+            out[k++] = (char)v;
+            i += 2;
+        } else {
+            out[k++] = in[i];
+        }
+    }
+    out[k] = '\0';
+}
+
+/* The image a material references, decoded (once per reference), or -1 with a message. */
+static int load_image(loaded *l, const char *ref, char *err, size_t errlen)
+{
+    for (uint32_t i = 0; i < l->nimages; i++)
+        if (strcmp(l->images[i].ref, ref) == 0)
+            return (int)i;
+    const struct aiScene *ai = l->ai;
+    const void *bytes = NULL;
+    size_t size = 0;
+    char name[8300];
+    const struct aiTexture *emb = NULL;
+    if (ref[0] == '*') {
+        char *end;
+        unsigned long k = strtoul(ref + 1, &end, 10);
+        if (*end || k >= ai->mNumTextures) {
+            fail(err, errlen, "%s: texture '%s': no such embedded image", l->path, ref);
+            return -1;
+        }
+        emb = ai->mTextures[k];
+    } else {
+        for (unsigned k = 0; k < ai->mNumTextures && !emb; k++)
+            if (strcmp(ai->mTextures[k]->mFilename.data, ref) == 0)
+                emb = ai->mTextures[k];
+    }
+    image img = {0};
+    char why[512] = "";
+    if (emb && emb->mHeight != 0) {
+        /* already decoded by assimp: BGRA texels */
+        uint64_t n = (uint64_t)emb->mWidth * emb->mHeight;
+        if (n > FILE_MAX_BYTES / 4) {
+            fail(err, errlen, "%s: embedded texture '%s' of %ux%u texels is too large", l->path,
+                 ref, emb->mWidth, emb->mHeight);
+            return -1;
+        }
+        img.width = (int)emb->mWidth;
+        img.height = (int)emb->mHeight;
+        img.channels = 4;
+        img.type = IMAGE_U8;
+        img.pixels = malloc((size_t)n * 4);
+        if (!img.pixels) {
+            fail(err, errlen, "%s: out of memory for texture '%s'", l->path, ref);
+            return -1;
+        }
+        unsigned char *p = img.pixels;
+        for (uint64_t i = 0; i < n; i++) {
+            p[4 * i + 0] = emb->pcData[i].r;
+            p[4 * i + 1] = emb->pcData[i].g;
+            p[4 * i + 2] = emb->pcData[i].b;
+            p[4 * i + 3] = emb->pcData[i].a;
+        }
+        snprintf(name, sizeof name, "%s", ref);
+    } else {
+        if (emb) {
+            bytes = emb->pcData;
+            size = emb->mWidth;
+            snprintf(name, sizeof name, "%s: embedded image %s", l->path, ref);
+            /* embedded bytes are part of the file already hashed */
+        } else {
+            char rel[4096];
+            uri_decode(ref, rel, sizeof rel);
+            snprintf(name, sizeof name, "%s%s", rel[0] == '/' ? "" : l->dir, rel);
+            errno = 0;
+            const read_file *f = file_get(&l->files, name);
+            if (!f) {
+                if (l->files.err[0])
+                    fail(err, errlen, "%s", l->files.err);
+                else
+                    fail(err, errlen, "%s: image '%s' is missing (%s: %s)", l->path, ref, name,
+                         strerror(errno ? errno : ENOENT));
+                return -1;
+            }
+            bytes = f->data;
+            size = f->size;
+        }
+        image raw;
+        if (!image_decode(bytes, size, name, IMAGE_U8, &raw, why, sizeof why)) {
+            fail(err, errlen, "%s: texture '%s' does not decode: %s", l->path, ref, why);
+            return -1;
+        }
+        /* to RGBA: grey -> rgb, no alpha -> 255 */
+        size_t n = (size_t)raw.width * (size_t)raw.height;
+        img.width = raw.width;
+        img.height = raw.height;
+        img.channels = 4;
+        img.type = IMAGE_U8;
+        img.pixels = malloc(n * 4);
+        if (!img.pixels) {
+            image_free(&raw);
+            fail(err, errlen, "%s: out of memory for texture '%s'", l->path, ref);
+            return -1;
+        }
+        const unsigned char *s = raw.pixels;
+        unsigned char *d = img.pixels;
+        int c = raw.channels;
+        for (size_t i = 0; i < n; i++) {
+            const unsigned char *t = s + i * (size_t)c;
+            d[4 * i + 0] = t[0];
+            d[4 * i + 1] = c >= 3 ? t[1] : t[0];
+            d[4 * i + 2] = c >= 3 ? t[2] : t[0];
+            d[4 * i + 3] = c == 4 ? t[3] : c == 2 ? t[1] : 255;
+        }
+        image_free(&raw);
+    }
+    if (img.width > (int)TEXTURE_MAX_SIZE || img.height > (int)TEXTURE_MAX_SIZE) {
+        image_free(&img);
+        fail(err, errlen, "%s: texture '%s' is %dx%d, more than %u texels a side", l->path, ref,
+             img.width, img.height, TEXTURE_MAX_SIZE);
+        return -1;
+    }
+    if (l->nimages == l->cap_images) {
+        uint32_t cap = l->cap_images ? l->cap_images * 2 : 8;
+        loaded_image *g = realloc(l->images, cap * sizeof *g);
+        if (!g) {
+            image_free(&img);
+            fail(err, errlen, "%s: out of memory", l->path);
+            return -1;
+        }
+        l->images = g;
+        l->cap_images = cap;
+    }
+    l->images[l->nimages].ref = strdup(ref);
+    l->images[l->nimages].img = img;
+    if (!l->images[l->nimages].ref) {
+        image_free(&img);
+        fail(err, errlen, "%s: out of memory", l->path);
+        return -1;
+    }
+    return (int)l->nimages++;
+}
+
+/* The texture types a material may use, as scene_material's maps take them. */
+static const enum aiTextureType base_types[] = {aiTextureType_BASE_COLOR, aiTextureType_DIFFUSE};
+
+static bool material_texture(const struct aiMaterial *m, enum aiTextureType t, char *out,
+                             size_t outlen)
+{
+    struct aiString p;
+    if (aiGetMaterialTextureCount(m, t) == 0 ||
+        aiGetMaterialTexture(m, t, 0, &p, NULL, NULL, NULL, NULL, NULL, NULL) != aiReturn_SUCCESS)
+        return false;
+    snprintf(out, outlen, "%s", p.data);
+    return out[0] != '\0';
+}
+
+/* Which of a material's maps exist: diffuse, normal, emissive references, "" if none. */
+typedef struct material_refs {
+    char diffuse[1024], normal[1024], emissive[1024];
+} material_refs;
+
+static void material_refs_of(const struct aiMaterial *m, material_refs *r)
+{
+    r->diffuse[0] = r->normal[0] = r->emissive[0] = '\0';
+    for (size_t k = 0; k < 2; k++)
+        if (material_texture(m, base_types[k], r->diffuse, sizeof r->diffuse))
+            break;
+    if (!material_texture(m, aiTextureType_NORMALS, r->normal, sizeof r->normal))
+        r->normal[0] = '\0';
+    if (!material_texture(m, aiTextureType_EMISSIVE, r->emissive, sizeof r->emissive))
+        r->emissive[0] = '\0';
+}
+
+static bool finite3(const struct aiVector3D *v)
+{
+    return isfinite(v->x) && isfinite(v->y) && isfinite(v->z);
+}
+
+/* Node hierarchy: depth bounded and no node met twice (a hierarchy that recurses). */
+static bool check_nodes(const loaded *l, const struct aiNode *n, unsigned depth,
+                        const struct aiNode **path, char *err, size_t errlen)
+{
+    if (depth >= FILE_MAX_NODE_DEPTH)
+        return fail(err, errlen, "%s: the node hierarchy is more than %u deep (recursive?)",
+                    l->path, FILE_MAX_NODE_DEPTH);
+    for (unsigned i = 0; i < depth; i++)
+        if (path[i] == n)
+            return fail(err, errlen, "%s: node '%s' contains itself: the hierarchy recurses",
+                        l->path, n->mName.data);
+    path[depth] = n;
+    for (unsigned i = 0; i < n->mNumMeshes; i++)
+        if (n->mMeshes[i] >= l->ai->mNumMeshes)
+            return fail(err, errlen, "%s: node '%s' names mesh %u of %u", l->path,
+                        n->mName.data, n->mMeshes[i], l->ai->mNumMeshes);
+    for (unsigned i = 0; i < n->mNumChildren; i++)
+        if (!check_nodes(l, n->mChildren[i], depth + 1, path, err, errlen))
+            return false;
+    return true;
+}
+
+/* assimp reports some defects only as warnings and repairs them (faces with indices out
+ * of range are dropped): a log stream catches those during an import. */
+static char import_warning[512];
+
+static void log_fn(const char *msg, char *user)
+{
+    if (!import_warning[0] && strstr(msg, "out-of-range indices")) {
+        const char *m = strstr(msg, ": ");
+        snprintf(import_warning, sizeof import_warning, "%s", m ? m + 2 : msg);
+        size_t n = strlen(import_warning);
+        while (n && (import_warning[n - 1] == '\n' || import_warning[n - 1] == ' '))
+            import_warning[--n] = '\0';
+    }
+}
+
+/* Imports and checks everything; on success l holds the scene and every texture. */
+static bool load(const scene_file_options *o, loaded *l, char *err, size_t errlen)
+{
+    memset(l, 0, sizeof *l);
+    if (!o || !o->path || !o->path[0])
+        return fail(err, errlen, "scene file: no path");
+    l->path = o->path;
+    if (!(o->scale == 0.0f || (isfinite(o->scale) && o->scale > 0.0f)))
+        return fail(err, errlen, "%s: scale %g: expected a finite number > 0", o->path,
+                    (double)o->scale);
+    const char *slash = strrchr(o->path, '/');
+    if (slash) {
+        size_t n = (size_t)(slash - o->path) + 1;
+        if (n >= sizeof l->dir)
+            return fail(err, errlen, "%s: path too long", o->path);
+        memcpy(l->dir, o->path, n);
+        l->dir[n] = '\0';
+    }
+    errno = 0;
+    if (!file_get(&l->files, o->path)) {
+        if (l->files.err[0])
+            fail(err, errlen, "%s", l->files.err);
+        else
+            fail(err, errlen, "%s: cannot open: %s", o->path, strerror(errno ? errno : ENOENT));
+        loaded_free(l);
+        return false;
+    }
+    struct aiFileIO io = {io_open, io_close, (char *)&l->files};
+    struct aiPropertyStore *props = aiCreatePropertyStore();
+    /* drop points and lines after triangulation: shadesweep draws triangles */
+    aiSetImportPropertyInteger(props, AI_CONFIG_PP_SBP_REMOVE,
+                               aiPrimitiveType_POINT | aiPrimitiveType_LINE);
+    unsigned flags = aiProcess_Triangulate | aiProcess_JoinIdenticalVertices |
+                     aiProcess_GenSmoothNormals | aiProcess_SortByPType |
+                     aiProcess_ValidateDataStructure | aiProcess_FindDegenerates;
+    import_warning[0] = '\0';
+    struct aiLogStream stream = {log_fn, NULL};
+    aiAttachLogStream(&stream);
+    l->ai = aiImportFileExWithProperties(o->path, flags, &io, props);
+    aiDetachLogStream(&stream);
+    aiReleasePropertyStore(props);
+    bool ok = false;
+    const struct aiScene *ai = l->ai;
+    if (ai && import_warning[0]) {
+        fail(err, errlen, "%s: indices out of range: %s", o->path, import_warning);
+        goto out;
+    }
+    if (!ai) {
+        const char *why = aiGetErrorString();
+        if (l->files.err[0])
+            fail(err, errlen, "%s", l->files.err);
+        else
+            fail(err, errlen, "%s: cannot load: %s", o->path, why && why[0] ? why : "unknown error");
+        goto out;
+    }
+    if (ai->mFlags & AI_SCENE_FLAGS_INCOMPLETE) {
+        fail(err, errlen, "%s: incomplete scene (assimp could not read all of it)", o->path);
+        goto out;
+    }
+    if (!ai->mRootNode || ai->mNumMeshes == 0) {
+        fail(err, errlen, "%s: empty scene: no triangle meshes", o->path);
+        goto out;
+    }
+    const struct aiNode *path[FILE_MAX_NODE_DEPTH];
+    if (!check_nodes(l, ai->mRootNode, 0, path, err, errlen))
+        goto out;
+    for (unsigned i = 0; i < ai->mNumMeshes; i++) {
+        const struct aiMesh *m = ai->mMeshes[i];
+        if (!m->mVertices || m->mNumVertices == 0 || m->mNumFaces == 0) {
+            fail(err, errlen, "%s: mesh %u ('%s') has no triangles", o->path, i, m->mName.data);
+            goto out;
+        }
+        if (m->mNumVertices > MESH_MAX_VERTICES || m->mNumFaces > MESH_MAX_INDICES / 3) {
+            fail(err, errlen, "%s: mesh %u has %u vertices and %u triangles (at most %u and %u)",
+                 o->path, i, m->mNumVertices, m->mNumFaces, MESH_MAX_VERTICES,
+                 MESH_MAX_INDICES / 3);
+            goto out;
+        }
+        for (unsigned v = 0; v < m->mNumVertices; v++)
+            if (!finite3(&m->mVertices[v])) {
+                fail(err, errlen, "%s: mesh %u ('%s'): vertex %u has a position that is not "
+                     "finite (%g, %g, %g)", o->path, i, m->mName.data, v,
+                     (double)m->mVertices[v].x, (double)m->mVertices[v].y,
+                     (double)m->mVertices[v].z);
+                goto out;
+            }
+        for (unsigned f = 0; f < m->mNumFaces; f++) {
+            const struct aiFace *fc = &m->mFaces[f];
+            if (fc->mNumIndices != 3) {
+                fail(err, errlen, "%s: mesh %u: face %u has %u corners after triangulation",
+                     o->path, i, f, fc->mNumIndices);
+                goto out;
+            }
+            for (unsigned k = 0; k < 3; k++)
+                if (fc->mIndices[k] >= m->mNumVertices) {
+                    fail(err, errlen, "%s: mesh %u: index %u out of range (%u vertices)",
+                         o->path, i, fc->mIndices[k], m->mNumVertices);
+                    goto out;
+                }
+        }
+        if (m->mMaterialIndex >= ai->mNumMaterials) {
+            fail(err, errlen, "%s: mesh %u uses material %u of %u", o->path, i,
+                 m->mMaterialIndex, ai->mNumMaterials);
+            goto out;
+        }
+    }
+    for (unsigned i = 0; i < ai->mNumMaterials; i++) {
+        material_refs r;
+        material_refs_of(ai->mMaterials[i], &r);
+        const char *refs[3] = {r.diffuse, r.normal, r.emissive};
+        for (int k = 0; k < 3; k++)
+            if (refs[k][0] && load_image(l, refs[k], err, errlen) < 0)
+                goto out;
+    }
+    if (o->camera && o->camera[0] && strcmp(o->camera, "orbit") != 0) {
+        bool found = false;
+        for (unsigned i = 0; i < ai->mNumCameras && !found; i++)
+            found = strcmp(ai->mCameras[i]->mName.data, o->camera) == 0;
+        if (!found) {
+            char names[512] = "";
+            size_t k = 0;
+            for (unsigned i = 0; i < ai->mNumCameras && k + 4 < sizeof names; i++)
+                k += (size_t)snprintf(names + k, sizeof names - k, "%s'%s'", i ? ", " : "",
+                                      ai->mCameras[i]->mName.data);
+            fail(err, errlen, "%s: no camera named '%s' (the file has %s%s)", o->path,
+                 o->camera, ai->mNumCameras ? "" : "none", names);
+            goto out;
+        }
+    }
+    ok = true;
+out:
+    if (!ok)
+        loaded_free(l);
+    return ok;
+}
+
+// >>nodes
+
+/* Our matrix (column-major, m[col][row]) from assimp's row-major one. */
+static void from_ai(const struct aiMatrix4x4 *a, sm_mat4 m)
+{
+    const float r[4][4] = {{a->a1, a->a2, a->a3, a->a4},
+                           {a->b1, a->b2, a->b3, a->b4},
+                           {a->c1, a->c2, a->c3, a->c4},
+                           {a->d1, a->d2, a->d3, a->d4}};
+    for (int c = 0; c < 4; c++)
+        for (int k = 0; k < 4; k++)
+            m[c][k] = r[k][c];
+}
+
+/* The root transform: the file's scale, and z-up turned to y-up ((x, y, z) -> (x, z, -y)). */
+static void root_transform(const scene_file_options *o, sm_mat4 m)
+{
+    float s = o->scale > 0.0f ? o->scale : 1.0f;
+    sm_mat4_identity(m);
+    if (o->up == SCENE_UP_Z) {
+        m[1][1] = 0.0f;
+        m[1][2] = -s;
+        m[2][1] = s;
+        m[2][2] = 0.0f;
+        m[0][0] = s;
+    } else {
+        m[0][0] = m[1][1] = m[2][2] = s;
+    }
+}
+
+typedef void (*node_fn)(const struct aiNode *n, const sm_mat4 world, void *user);
+
+static void walk(const struct aiNode *n, const sm_mat4 parent, node_fn fn, void *user,
+                 unsigned depth)
+{
+    sm_mat4 local, world;
+    from_ai(&n->mTransformation, local);
+    sm_mat4_mul(parent, local, world);
+    fn(n, world, user);
+    if (depth + 1 < FILE_MAX_NODE_DEPTH)
+        for (unsigned i = 0; i < n->mNumChildren; i++)
+            walk(n->mChildren[i], world, fn, user, depth + 1);
+}
+
+/* The world transform of the node named `name` (lights, cameras), false if none. */
+typedef struct find_node {
+    const char *name;
+    bool found;
+    sm_mat4 world;
+    const struct aiNode *node;
+} find_node;
+
+static void find_fn(const struct aiNode *n, const sm_mat4 world, void *user)
+{
+    find_node *f = user;
+    if (!f->found && strcmp(n->mName.data, f->name) == 0) {
+        f->found = true;
+        f->node = n;
+        sm_mat4_copy(world, f->world);
+    }
+}
+
+/* A float of a node's metadata (assimp keeps KHR_lights_punctual's range there as
+ * "PBR_LightRange"); false if the node has none. */
+static bool node_float(const struct aiNode *n, const char *key, float *out)
+{
+    const struct aiMetadata *m = n ? n->mMetaData : NULL;
+    for (unsigned k = 0; m && k < m->mNumProperties; k++)
+        if (strcmp(m->mKeys[k].data, key) == 0) {
+            if (m->mValues[k].mType == AI_FLOAT && m->mValues[k].mData) {
+                *out = *(const float *)m->mValues[k].mData;
+                return true;
+            }
+            if (m->mValues[k].mType == AI_DOUBLE && m->mValues[k].mData) {
+                *out = (float)*(const double *)m->mValues[k].mData;
+                return true;
+            }
+        }
+    return false;
+}
+
+/* glTF by its extension: assimp's glTF importer gives cameras its own way (below). */
+static bool is_gltf(const char *path)
+{
+    const char *dot = strrchr(path, '.');
+    return dot && (strcasecmp(dot, ".gltf") == 0 || strcasecmp(dot, ".glb") == 0);
+}
+
+/* Counts and bounds over every mesh instance. */
+typedef struct count_nodes {
+    const struct aiScene *ai;
+    uint32_t objects;
+    uint64_t triangles;
+    sm_vec3 lo, hi;
+} count_nodes;
+
+static void count_fn(const struct aiNode *n, const sm_mat4 world, void *user)
+{
+    count_nodes *c = user;
+    for (unsigned i = 0; i < n->mNumMeshes; i++) {
+        const struct aiMesh *m = c->ai->mMeshes[n->mMeshes[i]];
+        c->objects++;
+        c->triangles += m->mNumFaces;
+        for (unsigned v = 0; v < m->mNumVertices; v++) {
+            sm_vec3 p = {m->mVertices[v].x, m->mVertices[v].y, m->mVertices[v].z}, w;
+            sm_mat4_mulv3(world, p, 1.0f, w);
+            for (int k = 0; k < 3; k++) {
+                c->lo[k] = fminf(c->lo[k], w[k]);
+                c->hi[k] = fmaxf(c->hi[k], w[k]);
+            }
+        }
+    }
+}
+
+static void counts_of(const scene_file_options *o, const loaded *l, count_nodes *c)
+{
+    memset(c, 0, sizeof *c);
+    c->ai = l->ai;
+    for (int k = 0; k < 3; k++) {
+        c->lo[k] = INFINITY;
+        c->hi[k] = -INFINITY;
+    }
+    sm_mat4 root;
+    root_transform(o, root);
+    walk(l->ai->mRootNode, root, count_fn, c, 0);
+}
+
+// >>check
+
+/* A material's alpha mode (glTF alphaMode; OBJ: d < 1 is translucent) and cutoff. */
+static material_alpha alpha_mode(const struct aiMaterial *am, float *cutoff)
+{
+    struct aiString mode;
+    float opacity = 1.0f;
+    if (aiGetMaterialString(am, AI_MATKEY_GLTF_ALPHAMODE, &mode) == aiReturn_SUCCESS) {
+        if (strcmp(mode.data, "MASK") == 0) {
+            float c = 0.5f;
+            aiGetMaterialFloat(am, AI_MATKEY_GLTF_ALPHACUTOFF, &c);
+            if (cutoff)
+                *cutoff = c;
+            return MATERIAL_MASK;
+        }
+        return strcmp(mode.data, "BLEND") == 0 ? MATERIAL_BLEND : MATERIAL_OPAQUE;
+    }
+    aiGetMaterialFloat(am, AI_MATKEY_OPACITY, &opacity);
+    return opacity < 1.0f ? MATERIAL_BLEND : MATERIAL_OPAQUE;
+}
+
+bool scene_file_check(const scene_file_options *o, scene_file_info *info, char *err,
+                      size_t errlen)
+{
+    loaded l;
+    if (!load(o, &l, err, errlen))
+        return false;
+    count_nodes c;
+    counts_of(o, &l, &c);
+    bool ok = true;
+    if (c.objects == 0 || !(c.lo[0] <= c.hi[0])) {
+        ok = fail(err, errlen, "%s: empty scene: no node draws a mesh", o->path);
+    } else if (!(isfinite(c.lo[0]) && isfinite(c.lo[1]) && isfinite(c.lo[2]) &&
+                 isfinite(c.hi[0]) && isfinite(c.hi[1]) && isfinite(c.hi[2]))) {
+        ok = fail(err, errlen, "%s: node transforms put vertices at non-finite positions",
+                  o->path);
+    }
+    if (ok && info) {
+        memset(info, 0, sizeof *info);
+        info->meshes = l.ai->mNumMeshes;
+        info->triangles = c.triangles;
+        info->objects = c.objects;
+        info->materials = l.ai->mNumMaterials;
+        info->textures = l.nimages;
+        info->lights = l.ai->mNumLights;
+        info->cameras = l.ai->mNumCameras;
+        for (unsigned i = 0; i < l.ai->mNumMaterials; i++) {
+            material_alpha a = alpha_mode(l.ai->mMaterials[i], NULL);
+            info->materials_mask += a == MATERIAL_MASK;
+            info->materials_blend += a == MATERIAL_BLEND;
+        }
+        info->files = l.files.n;
+        uint64_t h = UINT64_C(0xcbf29ce484222325);
+        for (uint32_t i = 0; i < l.files.n; i++) {
+            /* each file's length, then its bytes: names do not count */
+            uint64_t n = l.files.files[i].size;
+            unsigned char len[8];
+            for (int k = 0; k < 8; k++)
+                len[k] = (unsigned char)(n >> (8 * k));
+            h = fnv1a64_more(h, len, sizeof len);
+            h = fnv1a64_more(h, l.files.files[i].data, l.files.files[i].size);
+        }
+        info->hash = h;
+        sm_vec3_copy(c.lo, info->bounds_min);
+        sm_vec3_copy(c.hi, info->bounds_max);
+    }
+    loaded_free(&l);
+    return ok;
+}
+
+// >>materials
+
+static float luminance(const struct aiColor4D *c)
+{
+    return 0.2126f * c->r + 0.7152f * c->g + 0.0722f * c->b;
+}
+
+/* Blinn-Phong exponent for a roughness: GGX alpha = r^2, n = 2 / alpha^2 - 2. */
+static float shininess_of_roughness(float r)
+{
+    r = sm_clamp(r, 0.0f, 1.0f);
+    float a = r * r;
+    float n = a > 0.0f ? 2.0f / (a * a) - 2.0f : 2048.0f;
+    return sm_clamp(n, 1.0f, 2048.0f);
+}
+
+/* A texture of the file as a scene texture; its index, or -1 for none. */
+static int scene_texture(scene_builder *b, loaded *l, const char *ref, int *map, bool emissive)
+{
+    if (!ref[0] || b->failed)
+        return -1;
+    int i = load_image(l, ref, b->err, b->errlen);
+    if (i < 0) {
+        b->failed = true;
+        return -1;
+    }
+    if (map[i] >= 0 && !emissive)
+        return map[i];
+    scene *s = b->s;
+    if (!sb_reserve(b, (void **)&s->textures, &b->cap_textures, s->ntextures, 1,
+                    sizeof *s->textures, "textures"))
+        return -1;
+    const image *img = &l->images[i].img;
+    texture_image *t = &s->textures[s->ntextures];
+    size_t n = (size_t)img->width * (size_t)img->height * 4;
+    t->data = malloc(n);
+    if (!t->data) {
+        sb_fail(b, "%s: out of memory for a %dx%d texture", l->path, img->width, img->height);
+        return -1;
+    }
+    memcpy(t->data, img->pixels, n);
+    t->width = (uint32_t)img->width;
+    t->height = (uint32_t)img->height;
+    t->channels = 4;
+    if (emissive)   /* the emissive mask: the whole texel */
+        for (size_t k = 3; k < n; k += 4)
+            t->data[k] = 255;
+    else
+        map[i] = (int)s->ntextures;
+    return (int)s->ntextures++;
+}
+
+static void add_material(scene_builder *b, loaded *l, const struct aiMaterial *am, int *map)
+{
+    struct aiColor4D base = {1, 1, 1, 1}, spec = {0, 0, 0, 1}, emis = {0, 0, 0, 1};
+    if (aiGetMaterialColor(am, AI_MATKEY_BASE_COLOR, &base) != aiReturn_SUCCESS)
+        aiGetMaterialColor(am, AI_MATKEY_COLOR_DIFFUSE, &base);
+    aiGetMaterialColor(am, AI_MATKEY_COLOR_EMISSIVE, &emis);
+    float metallic = 0.0f, roughness = 1.0f, gloss = 0.0f, shininess = 0.0f;
+    float specular, exponent;
+    if (aiGetMaterialFloat(am, AI_MATKEY_ROUGHNESS_FACTOR, &roughness) == aiReturn_SUCCESS &&
+        aiGetMaterialFloat(am, AI_MATKEY_GLOSSINESS_FACTOR, &gloss) != aiReturn_SUCCESS) {
+        aiGetMaterialFloat(am, AI_MATKEY_METALLIC_FACTOR, &metallic);
+        metallic = sm_clamp(metallic, 0.0f, 1.0f);
+        specular = 0.04f * (1.0f - metallic) + luminance(&base) * metallic;
+        exponent = shininess_of_roughness(roughness);
+    } else if (aiGetMaterialFloat(am, AI_MATKEY_GLOSSINESS_FACTOR, &gloss) == aiReturn_SUCCESS) {
+        aiGetMaterialColor(am, AI_MATKEY_COLOR_SPECULAR, &spec);
+        specular = luminance(&spec);
+        exponent = shininess_of_roughness(1.0f - gloss);
+    } else {
+        aiGetMaterialColor(am, AI_MATKEY_COLOR_SPECULAR, &spec);
+        aiGetMaterialFloat(am, AI_MATKEY_SHININESS, &shininess);
+        specular = luminance(&spec);
+        exponent = sm_clamp(shininess, 1.0f, 2048.0f);
+    }
+    uint32_t mi = sb_material(b, base.r, base.g, base.b, sm_clamp(specular, 0.0f, 1.0f),
+                              exponent);
+    if (b->failed)
+        return;
+    material_refs r;
+    material_refs_of(am, &r);
+    int d = scene_texture(b, l, r.diffuse, map, false);
+    int nm = scene_texture(b, l, r.normal, map, false);
+    int em = scene_texture(b, l, r.emissive, map, true);
+    if (b->failed)
+        return;
+    scene_material *m = &b->s->materials[mi];
+    m->diffuse_map = d;
+    m->normal_map = nm;
+    m->emissive_map = em;
+    sm_vec3_make(emis.r, emis.g, emis.b, m->emissive);
+    if (em >= 0 && emis.r == 0.0f && emis.g == 0.0f && emis.b == 0.0f)
+        sm_vec3_make(1.0f, 1.0f, 1.0f, m->emissive);   /* OBJ: map_Ke without Ke */
+    float cutoff = 0.5f;
+    m->alpha = alpha_mode(am, &cutoff);
+    if (m->alpha == MATERIAL_MASK)
+        m->alpha_cutoff = cutoff;
+}
+
+// >>build
+
+typedef struct build_nodes {
+    scene_builder *b;
+    const struct aiScene *ai;
+    const uint32_t *mesh_index;    /* file mesh -> scene mesh */
+    const uint32_t *mesh_mirror;   /* file mesh -> its mirrored copy, made on demand */
+    uint32_t *mirror;
+} build_nodes;
+
+/* A mesh of the file as a scene mesh: uv v flipped (assimp gives GL's bottom-up v; ours
+ * is the image's first row at v = 0), tangents computed. Index or -1. */
+static int add_mesh(scene_builder *b, const char *path, const struct aiMesh *am)
+{
+    scene *s = b->s;
+    if (!sb_reserve(b, (void **)&s->meshes, &b->cap_meshes, s->nmeshes, 1, sizeof *s->meshes,
+                    "meshes"))
+        return -1;
+    mesh *m = &s->meshes[s->nmeshes];
+    memset(m, 0, sizeof *m);
+    m->vertices = calloc(am->mNumVertices, sizeof *m->vertices);
+    m->indices = malloc((size_t)am->mNumFaces * 3 * sizeof *m->indices);
+    if (!m->vertices || !m->indices) {
+        mesh_free(m);
+        sb_fail(b, "%s: out of memory for a mesh of %u vertices", path, am->mNumVertices);
+        return -1;
+    }
+    m->nvertices = am->mNumVertices;
+    m->nindices = am->mNumFaces * 3;
+    for (unsigned v = 0; v < am->mNumVertices; v++) {
+        mesh_vertex *mv = &m->vertices[v];
+        mv->position[0] = am->mVertices[v].x;
+        mv->position[1] = am->mVertices[v].y;
+        mv->position[2] = am->mVertices[v].z;
+        sm_vec3 n = {0.0f, 1.0f, 0.0f};
+        if (am->mNormals && finite3(&am->mNormals[v])) {
+            sm_vec3_make(am->mNormals[v].x, am->mNormals[v].y, am->mNormals[v].z, n);
+            if (sm_vec3_norm(n) > 0.0f)
+                sm_vec3_normalize(n);
+            else
+                sm_vec3_make(0.0f, 1.0f, 0.0f, n);
+        }
+        sm_vec3_copy(n, mv->normal);
+        if (am->mTextureCoords[0]) {
+            mv->uv[0] = am->mTextureCoords[0][v].x;
+            mv->uv[1] = 1.0f - am->mTextureCoords[0][v].y;
+            if (!isfinite(mv->uv[0]) || !isfinite(mv->uv[1]))
+                mv->uv[0] = mv->uv[1] = 0.0f;
+        }
+    }
+    for (unsigned f = 0; f < am->mNumFaces; f++)
+        for (unsigned k = 0; k < 3; k++)
+            m->indices[3 * f + k] = am->mFaces[f].mIndices[k];
+    if (!mesh_compute_tangents(m)) {
+        mesh_free(m);
+        sb_fail(b, "%s: out of memory computing tangents", path);
+        return -1;
+    }
+    mesh_compute_bounds(m);
+    return (int)s->nmeshes++;
+}
+
+static void object_fn(const struct aiNode *n, const sm_mat4 world, void *user)
+{
+    build_nodes *bn = user;
+    scene_builder *b = bn->b;
+    for (unsigned i = 0; i < n->mNumMeshes && !b->failed; i++) {
+        unsigned fm = n->mMeshes[i];
+        const struct aiMesh *am = bn->ai->mMeshes[fm];
+        uint32_t me = bn->mesh_index[fm];
+        sm_mat4 t;
+        sm_mat4_copy(world, t);
+        if (sm_mat4_det(world) < 0.0f) {
+            /* a mirroring node: renderers cull back faces by winding, so bake the mirror
+             * into a copy of the mesh (mesh_transform flips its winding) */
+            if (bn->mirror[fm] == UINT32_MAX) {
+                scene *s = b->s;
+                if (!sb_reserve(b, (void **)&s->meshes, &b->cap_meshes, s->nmeshes, 1,
+                                sizeof *s->meshes, "meshes") ||
+                    !mesh_append(&s->meshes[s->nmeshes], &s->meshes[me], NULL, b->err,
+                                 b->errlen)) {
+                    b->failed = true;
+                    return;
+                }
+                sm_mat4 flip;
+                sm_mat4_identity(flip);
+                flip[0][0] = -1.0f;
+                if (!mesh_transform(&s->meshes[s->nmeshes], flip, b->err, b->errlen)) {
+                    b->failed = true;
+                    return;
+                }
+                bn->mirror[fm] = s->nmeshes++;
+            }
+            me = bn->mirror[fm];
+            sm_mat4 flip;
+            sm_mat4_identity(flip);
+            flip[0][0] = -1.0f;
+            sm_mat4_mul(world, flip, t);
+        }
+        scene_object *o = sb_object(b, (int)me, am->mMaterialIndex, 0.0f, 0.0f, 0.0f, 1.0f);
+        sm_mat4_copy(t, o->transform);
+    }
+}
+
+/* The light of a KHR_lights_punctual (or any assimp) light, in world space; range: the
+ * file's (KHR_lights_punctual range), or NAN for none. */
+static void add_light(scene_builder *b, const struct aiLight *al, const sm_mat4 world,
+                      float file_range)
+{
+    sm_vec3 p = {al->mPosition.x, al->mPosition.y, al->mPosition.z}, wp;
+    sm_vec3 d = {al->mDirection.x, al->mDirection.y, al->mDirection.z}, wd;
+    sm_mat4_mulv3(world, p, 1.0f, wp);
+    sm_mat4_mulv3(world, d, 0.0f, wd);
+    if (sm_vec3_norm(wd) > 0.0f)
+        sm_vec3_normalize(wd);
+    else
+        sm_vec3_make(0.0f, 0.0f, -1.0f, wd);
+    sm_vec3 color = {al->mColorDiffuse.r, al->mColorDiffuse.g, al->mColorDiffuse.b};
+    /* glTF lights are inverse-square, cut off at their range; a light without one
+     * reaches where 1 / d^2 falls to 1/256 of its brightest channel (a light volume
+     * needs a range) */
+    float peak = fmaxf(color[0], fmaxf(color[1], color[2]));
+    float range = isfinite(file_range) && file_range > 0.0f
+                      ? file_range : sqrtf(fmaxf(peak, 1e-6f) * 256.0f);
+    scene_light *l;
+    switch (al->mType) {
+    case aiLightSource_DIRECTIONAL:
+        l = sb_directional(b, wd, color, false);
+        return;
+    case aiLightSource_SPOT: {
+        sm_vec3 at;
+        sm_vec3_add(wp, wd, at);
+        l = sb_spot(b, wp, at, sm_rad2deg(al->mAngleOuterCone), 1.0f, range, color, false);
+        l->spot_angle = al->mAngleOuterCone;   /* exactly the file's, not via degrees */
+        break;
+    }
+    default:
+        l = sb_point(b, wp[0], wp[1], wp[2], range, color[0], color[1], color[2]);
+        break;
+    }
+    l->attenuation = ATTENUATION_INVERSE_SQUARE;
+}
+
+bool scene_build_file(scene_builder *b, const void *arg)
+{
+    const scene_file_options *o = arg;
+    loaded l;
+    if (!load(o, &l, b->err, b->errlen)) {
+        b->failed = true;
+        return false;
+    }
+    const struct aiScene *ai = l.ai;
+    count_nodes c;
+    counts_of(o, &l, &c);
+    uint32_t *mesh_index = calloc(ai->mNumMeshes, sizeof *mesh_index);
+    uint32_t *mirror = malloc(ai->mNumMeshes * sizeof *mirror);
+    int *map = malloc((l.nimages ? l.nimages : 1) * sizeof *map);
+    if (!mesh_index || !mirror || !map) {
+        sb_fail(b, "%s: out of memory", o->path);
+        goto out;
+    }
+    for (uint32_t i = 0; i < l.nimages; i++)
+        map[i] = -1;
+    for (unsigned i = 0; i < ai->mNumMeshes; i++)
+        mirror[i] = UINT32_MAX;
+    if (!sb_begin(b, c.objects))
+        goto out;
+    for (unsigned i = 0; i < ai->mNumMaterials && !b->failed; i++)
+        add_material(b, &l, ai->mMaterials[i], map);
+    for (unsigned i = 0; i < ai->mNumMeshes && !b->failed; i++) {
+        int m = add_mesh(b, o->path, ai->mMeshes[i]);
+        mesh_index[i] = m < 0 ? 0 : (uint32_t)m;
+    }
+    sm_mat4 root;
+    root_transform(o, root);
+    build_nodes bn = {b, ai, mesh_index, NULL, mirror};
+    if (!b->failed)
+        walk(ai->mRootNode, root, object_fn, &bn, 0);
+    for (unsigned i = 0; i < ai->mNumLights && !b->failed; i++) {
+        find_node f = {ai->mLights[i]->mName.data, false, {{0}}, NULL};
+        walk(ai->mRootNode, root, find_fn, &f, 0);
+        if (!f.found)
+            sm_mat4_copy(root, f.world);
+        float range = NAN;
+        node_float(f.node, "PBR_LightRange", &range);
+        add_light(b, ai->mLights[i], f.world, range);
+    }
+    if (b->failed)
+        goto out;
+
+    /* bounds, camera and projection from the scene's extent */
+    scene *s = b->s;
+    sm_vec3 centre, ext;
+    for (int k = 0; k < 3; k++) {
+        centre[k] = 0.5f * (c.lo[k] + c.hi[k]);
+        ext[k] = c.hi[k] - c.lo[k];
+    }
+    float size = fmaxf(sm_vec3_norm(ext), 1e-3f);
+    sb_set_bounds(b, c.lo[0], c.lo[1], c.lo[2], c.hi[0], c.hi[1], c.hi[2]);
+    sm_vec3_make(0.1f, 0.1f, 0.1f, s->ambient);
+    sb_set_projection(b, 60.0f, size * 1e-3f, size * 10.0f);
+    sb_set_orbit(b, centre[0], centre[1], centre[2], size, 0.35f * size, 60.0f);
+    if (o->camera && o->camera[0] && strcmp(o->camera, "orbit") != 0) {
+        for (unsigned i = 0; i < ai->mNumCameras; i++) {
+            const struct aiCamera *cam = ai->mCameras[i];
+            if (strcmp(cam->mName.data, o->camera) != 0)
+                continue;
+            find_node f = {cam->mName.data, false, {{0}}, NULL};
+            walk(ai->mRootNode, root, find_fn, &f, 0);
+            if (!f.found)
+                sm_mat4_copy(root, f.world);
+            bool gltf = is_gltf(o->path);
+            /* glTF: the camera sits at its node's origin looking down -Z (assimp also
+             * copies the node's translation into mPosition, which would count it twice) */
+            sm_vec3 p = {cam->mPosition.x, cam->mPosition.y, cam->mPosition.z};
+            if (gltf)
+                sm_vec3_make(0.0f, 0.0f, 0.0f, p);
+            sm_vec3 at = {p[0] + cam->mLookAt.x, p[1] + cam->mLookAt.y, p[2] + cam->mLookAt.z};
+            float eye[1][3], target[1][3];
+            sm_mat4_mulv3(f.world, p, 1.0f, eye[0]);
+            sm_mat4_mulv3(f.world, at, 1.0f, target[0]);
+            sb_set_keys(b, 1, (const float (*)[3])eye, (const float (*)[3])target, 60.0f);
+            /* assimp documents mHorizontalFOV as half the horizontal angle; its glTF
+             * importer stores yfov x aspect instead */
+            float aspect = cam->mAspect > 0.0f ? cam->mAspect : 1.0f;
+            float fovy = gltf ? cam->mHorizontalFOV / aspect
+                              : 2.0f * atanf(tanf(cam->mHorizontalFOV) / aspect);
+            float zn = cam->mClipPlaneNear > 0.0f ? cam->mClipPlaneNear : size * 1e-3f;
+            float zf = cam->mClipPlaneFar > zn ? cam->mClipPlaneFar : size * 10.0f;
+            sb_set_projection(b, sm_rad2deg(fovy), zn, zf);
+            s->fovy = fovy;   /* exactly, not through degrees */
+            break;
+        }
+    }
+out:
+    free(mesh_index);
+    free(mirror);
+    free(map);
+    loaded_free(&l);
+    return !b->failed;
+}
