@@ -115,7 +115,7 @@ void plan_free(plan *p);
  * run id hashes exactly those with in_id. Returns the number of pairs (<= max). */
 typedef struct param_kv {
     const char *key;           /* dotted path, static */
-    char value[96];
+    char value[160];
     bool in_id;                /* can be part of the run id (timeout is not: it changes no result) */
     bool is_default;           /* at its default: left out of the run id (params.def) */
 } param_kv;

@@ -133,7 +133,10 @@ const char *expect(const param *pd, char *buf, size_t len)
     case PT_SCHEMA: sb_add(&b, "1"); break;
     case PT_NAME: sb_add(&b, "a name of 1..63 characters from a-z, 0-9 and -"); break;
     case PT_TEXT: sb_add(&b, "a string"); break;
-    case PT_SCENE: list_scenes(&b); break;
+    case PT_SCENE:
+        list_scenes(&b);
+        sb_add(&b, ", or {file: PATH, scale, up, camera}");
+        break;
     case PT_RENDERERS: sb_add(&b, "a non-empty sequence of renderer names"); break;
     case PT_RENDERER: list_renderers(&b); break;
     case PT_RESOLUTION: sb_add(&b, "WxH with each side 1..%d", MAX_SIDE); break;

@@ -436,6 +436,86 @@ static void parse_sweep(vctx *c, const param *pd, const ynode *map);
 /* Validates n as parameter pd; a run parameter's value goes into dst (at pd->off),
  * the experiment's own (name, renderers...) into c->e. The one path for keys in
  * place, sweep values and defaults. */
+/* `scene: {file: PATH, scale, up, camera}`: the file is opened and checked here
+ * (scene_file_check: no GL), so that validate and run refuse a bad file before any
+ * output exists; its content hash goes into the run id instead of its path. */
+static bool parse_scene_file(vctx *c, const param *pd, const ynode *n, const char *key,
+                             run_params *dst)
+{
+    static const char *const names[] = {"file", "scale", "up", "camera"};
+    const ynode *keys[4], *vals[4];
+    bool ok = map_keys(c, n, key, names, 4, keys, vals);
+    char sub[4][160], f[128];
+    for (size_t i = 0; i < 4; i++)
+        snprintf(sub[i], sizeof sub[i], "%s.%s", key, names[i]);
+    if (!vals[0]) {
+        err(c, n, sub[0], "expected a path to a glTF 2.0 (.gltf, .glb) or OBJ file, found nothing");
+        return false;
+    }
+    if (!stringish(vals[0])) {
+        err(c, vals[0], sub[0], "expected a path to a glTF 2.0 (.gltf, .glb) or OBJ file, found %s",
+            found(vals[0], true, f, sizeof f));
+        return false;
+    }
+    double scale = 1;
+    if (vals[1] && !parse_number_in(c, vals[1], sub[1], 0, 1e9, PF_MIN_OPEN | PF_FLOAT, &scale))
+        ok = false;
+    int up = SCENE_UP_Y;
+    if (vals[2]) {
+        if (ynode_plain(vals[2]) && strcmp(vals[2]->text, "y") == 0)
+            up = SCENE_UP_Y;
+        else if (ynode_plain(vals[2]) && strcmp(vals[2]->text, "z") == 0)
+            up = SCENE_UP_Z;
+        else {
+            err(c, vals[2], sub[2], "expected one of y, z, found %s",
+                found(vals[2], true, f, sizeof f));
+            ok = false;
+        }
+    }
+    const char *camera = "orbit";
+    if (vals[3]) {
+        if (!stringish(vals[3]) || vals[3]->len >= sizeof dst->scene_camera) {
+            err(c, vals[3], sub[3], "expected orbit or the name of one of the file's cameras "
+                "(at most %zu bytes), found %s", sizeof dst->scene_camera - 1,
+                found(vals[3], true, f, sizeof f));
+            ok = false;
+        } else {
+            camera = vals[3]->text;
+        }
+    }
+    if (!ok)
+        return false;
+    /* relative to the manifest's folder */
+    const char *given = vals[0]->text;
+    const char *slash = strrchr(c->file, '/');
+    int dirlen = given[0] != '/' && slash ? (int)(slash - c->file) : 0;
+    int need = dirlen ? snprintf(dst->scene_file, sizeof dst->scene_file, "%.*s/%s", dirlen,
+                                 c->file, given)
+                      : snprintf(dst->scene_file, sizeof dst->scene_file, "%s", given);
+    if (need < 0 || (size_t)need >= sizeof dst->scene_file) {
+        err(c, vals[0], sub[0], "expected a path of at most %zu bytes, found %d",
+            sizeof dst->scene_file - 1, need);
+        dst->scene_file[0] = '\0';
+        return false;
+    }
+    scene_file_options o = {.path = dst->scene_file, .scale = (float)scale, .up = (scene_up)up,
+                            .camera = camera};
+    scene_file_info info;
+    char msg[1024];
+    if (!scene_file_check(&o, &info, msg, sizeof msg)) {
+        err(c, vals[0], sub[0], "%s", msg);
+        dst->scene_file[0] = '\0';
+        return false;
+    }
+    const char *base = strrchr(given, '/');
+    snprintf(dst->scene, sizeof dst->scene, "%.63s", base ? base + 1 : given);
+    dst->scene_scale = (float)scale;
+    dst->scene_up = up;
+    snprintf(dst->scene_camera, sizeof dst->scene_camera, "%s", camera);
+    hash_hex(info.hash, 16, dst->scene_hash);
+    return true;
+}
+
 bool parse_value(vctx *c, const param *pd, const ynode *n, const char *key,
                         run_params *dst)
 {
@@ -454,6 +534,8 @@ bool parse_value(vctx *c, const param *pd, const ynode *n, const char *key,
     case PT_TEXT:
         return parse_text(c, pd, n, key);
     case PT_SCENE:
+        if (n->kind == YNODE_MAPPING)
+            return parse_scene_file(c, pd, n, key, dst);
         if (!stringish(n) || !scene_catalog_find(n->text) || n->len >= sizeof dst->scene)
             return bad(c, pd, n, key);
         strcpy(dst->scene, n->text);

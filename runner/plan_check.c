@@ -59,10 +59,20 @@ static bool check_times(const experiment *e, const run_spec *r, const char *key,
     return true;
 }
 
+void run_params_scene(const run_params *p, scene_file_options *fo, scene_source *src)
+{
+    *fo = (scene_file_options){.path = p->scene_file, .scale = p->scene_scale,
+                               .up = (scene_up)p->scene_up, .camera = p->scene_camera};
+    *src = (scene_source){.name = p->scene, .file = p->scene_file[0] ? fo : NULL};
+}
+
 /* Two runs build the same scene and camera when these agree. */
 static bool same_scene(const run_params *a, const run_params *b)
 {
-    return strcmp(a->scene, b->scene) == 0 && a->width == b->width && a->height == b->height &&
+    return strcmp(a->scene, b->scene) == 0 && strcmp(a->scene_file, b->scene_file) == 0 &&
+           a->scene_scale == b->scene_scale && a->scene_up == b->scene_up &&
+           strcmp(a->scene_camera, b->scene_camera) == 0 && a->width == b->width &&
+           a->height == b->height &&
            memcmp(&a->lights, &b->lights, sizeof a->lights) == 0 &&
            memcmp(&a->camera, &b->camera, sizeof a->camera) == 0;
 }
@@ -91,7 +101,10 @@ bool plan_check(const experiment *e, const plan *p, diag_list *d)
         if (seen)
             continue;
         char err[512] = "";
-        scene *sc = scene_build(q->scene, &q->lights, q->width, q->height, err, sizeof err);
+        scene_file_options fo;
+        scene_source src;
+        run_params_scene(q, &fo, &src);
+        scene *sc = scene_build_source(&src, &q->lights, q->width, q->height, err, sizeof err);
         bool ok = sc && scene_set_camera(sc, &q->camera, err, sizeof err);
         scene_destroy(sc);
         if (!ok)

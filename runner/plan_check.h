@@ -2,7 +2,12 @@
 #include <stdbool.h>
 #include "runner/diag.h"
 #include "runner/manifest.h"
+#include "scenes/scene.h"
 
 /* Refuses a plan some of whose runs would fail, or mean nothing, for reasons known
  * before any GL: every problem in d (at most a few), false if any. */
 bool plan_check(const experiment *e, const plan *p, diag_list *d);
+
+/* Where run p's scene comes from: the catalog, or its file (fo is filled and
+ * src->file points at it; both must outlive src). */
+void run_params_scene(const run_params *p, scene_file_options *fo, scene_source *src);

@@ -20,9 +20,11 @@
 #include "results/image_io.h"
 #include "results/stats.h"
 #include "results/yamlout.h"
+#include "runner/hash.h"
 #include "runner/isolate.h"
 #include "runner/output.h"
 #include "runner/params.h"
+#include "runner/plan_check.h"
 #include "runner/progress.h"
 #include "scenes/scene.h"
 
@@ -67,6 +69,7 @@ typedef struct run_state {
     char status[96];
     char message[1024];        /* why it failed, for summary.csv */
     char err[512];
+    scene_file_info scene_info; /* a file scene: what scene_file_check found */
 } run_state;
 
 static void utc_now(char *buf, size_t len)
@@ -483,6 +486,43 @@ static bool write_meta(run_state *st, char *err, size_t errlen)
     }
     yo_map_end(y);
 
+    const run_params *p = &st->s->p;
+    if (p->scene_file[0]) {
+        const scene_file_info *si = &st->scene_info;
+        char hash[17];
+        hash_hex(si->hash, 16, hash);
+        yo_key(y, "scene_file");
+        yo_map_begin(y);
+        yo_key(y, "path"); yo_str(y, p->scene_file);
+        yo_key(y, "hash"); yo_str(y, hash);
+        yo_key(y, "scale"); yo_f64(y, p->scene_scale);
+        yo_key(y, "up"); yo_str(y, p->scene_up == SCENE_UP_Z ? "z" : "y");
+        yo_key(y, "camera"); yo_str(y, p->scene_camera);
+        yo_key(y, "files"); yo_i64(y, si->files);
+        yo_key(y, "meshes"); yo_i64(y, si->meshes);
+        yo_key(y, "triangles"); yo_i64(y, (int64_t)si->triangles);
+        yo_key(y, "objects"); yo_i64(y, si->objects);
+        yo_key(y, "materials"); yo_i64(y, si->materials);
+        yo_key(y, "materials_mask"); yo_i64(y, si->materials_mask);
+        yo_key(y, "materials_blend"); yo_i64(y, si->materials_blend);
+        yo_key(y, "blend"); yo_str(y, si->materials_blend ? "translucent materials drawn opaque"
+                                                          : "none");
+        yo_key(y, "textures"); yo_i64(y, si->textures);
+        yo_key(y, "lights"); yo_i64(y, si->lights);
+        yo_key(y, "cameras"); yo_i64(y, si->cameras);
+        yo_key(y, "bounds_min");
+        yo_seq_begin(y);
+        for (int i = 0; i < 3; i++)
+            yo_f64(y, si->bounds_min[i]);
+        yo_seq_end(y);
+        yo_key(y, "bounds_max");
+        yo_seq_begin(y);
+        for (int i = 0; i < 3; i++)
+            yo_f64(y, si->bounds_max[i]);
+        yo_seq_end(y);
+        yo_map_end(y);
+    }
+
     yo_key(y, "gl");
     yo_map_begin(y);
     const gl_info *gi = st->ctx ? gl_context_info(st->ctx) : NULL;
@@ -572,10 +612,27 @@ static bool run_setup(run_state *st)
         set_status(st, "context");
         return false;
     }
-    /* the scene's source: the catalog by name; a file scene (scene: {file: ...}) sets
-     * src.file to its scene_file_options once the manifest carries them (the lead's
-     * scene.file key), checked by scene_file_check before any output exists */
-    scene_source src = {.name = p->scene, .file = NULL};
+    /* A file scene is checked again here: the plan named it by its content hash, and
+     * a file edited since then must not be measured under the old id. */
+    scene_file_options fo;
+    scene_source src;
+    run_params_scene(p, &fo, &src);
+    if (p->scene_file[0]) {
+        char hash[17];
+        if (!scene_file_check(&fo, &st->scene_info, st->err, sizeof st->err)) {
+            set_status(st, "scene");
+            return false;
+        }
+        hash_hex(st->scene_info.hash, 16, hash);
+        if (strcmp(hash, p->scene_hash) != 0) {
+            snprintf(st->err, sizeof st->err,
+                     "%.300s changed since the plan was made (content hash %s, now %s)",
+                     p->scene_file, p->scene_hash, hash);
+            set_status(st, "scene");
+            return false;
+        }
+    }
+
     if (!(st->sc = scene_build_source(&src, &p->lights, p->width, p->height, st->err,
                                       sizeof st->err)) ||
         !scene_set_camera(st->sc, &p->camera, st->err, sizeof st->err)) {

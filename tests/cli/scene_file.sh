@@ -1,0 +1,107 @@
+#!/usr/bin/env bash
+# `scene: {file: PATH}` end to end: PATH relative to the manifest's folder, checked
+# by validate and run before anything is written (MANIFEST:LINE:COL: scene.file:
+# naming the file and what is wrong), the id following the file's content and not
+# its name, a sweep over files, and meta.yaml recording the file.
+. "$(dirname "$0")/lib.sh"
+cd "$T"
+G=/usr/share/assimp/models/glTF2
+[ -d "$G" ] || { echo "SKIP: assimp-testmodels is not installed (scripts/setup.sh installs it)" >&2; exit 77; }
+mkdir -p scenes
+cp -r "$G/BoxTextured-glTF" scenes/box
+cp "$G/BoxTextured-glTF-Binary/BoxTextured.glb" scenes/box.glb
+manifest() {   # scene block -> m.yaml
+  cat >m.yaml <<YAML
+shadesweep: 1
+name: file-scene
+scene: $1
+renderers: [forward-spml, deferred]
+resolution: 48x32
+duration: {frames: 3}
+clock: fixed
+lights: {placement: random, count: 8, radius: 2}
+YAML
+}
+manifest "{file: scenes/box/BoxTextured.gltf}"
+"$SHADESWEEP" validate m.yaml >v.txt || fail "validate: $(cat v.txt)"
+grep -qx "m.yaml: ok, 2 runs" v.txt || fail "validate: $(cat v.txt)"
+"$SHADESWEEP" list m.yaml >ids1.txt
+grep -q "^[0-9a-f]\{12\}  renderer=forward-spml$" ids1.txt || fail "list: $(cat ids1.txt)"
+
+# the same file under another name and folder: the same ids; one changed byte: new ids
+mkdir -p elsewhere && cp -r scenes/box elsewhere/copy
+mv elsewhere/copy/BoxTextured.gltf elsewhere/copy/renamed.gltf
+manifest "{file: elsewhere/copy/renamed.gltf}"
+"$SHADESWEEP" list m.yaml >ids2.txt
+cmp -s ids1.txt ids2.txt || fail "a renamed copy changed the ids: $(cat ids1.txt ids2.txt)"
+$PYTHON - elsewhere/copy/BoxTextured0.bin <<'PY'
+import sys
+p = sys.argv[1]
+b = bytearray(open(p, "rb").read())
+b[576] ^= 1   # the lowest mantissa bit of the first texture coordinate
+open(p, "wb").write(b)
+PY
+"$SHADESWEEP" list m.yaml >ids3.txt
+[ "$(cut -c1-12 ids1.txt | sort)" != "$(cut -c1-12 ids3.txt | sort)" ] || fail "an edited buffer kept the ids"
+# scale, up and camera are part of the id
+manifest "{file: scenes/box/BoxTextured.gltf, scale: 2, up: z}"
+"$SHADESWEEP" list m.yaml >ids4.txt
+[ "$(head -c12 ids4.txt)" != "$(head -c12 ids1.txt)" ] || fail "scale and up did not change the id"
+
+# bad files: exit 2 from validate and run, the position and the file named, nothing written
+refuse() {   # scene block, message part
+  manifest "$1"
+  local cmd rc
+  for cmd in validate run; do
+    set +e
+    "$SHADESWEEP" $cmd m.yaml >out.txt 2>err.txt; rc=$?
+    set -e
+    [ $rc -eq 2 ] || fail "$cmd with $1: exit $rc: $(cat err.txt)"
+    grep -q "^m.yaml:3:[0-9]*: scene.file: .*$2" err.txt || fail "$cmd with $1: want '$2' in: $(cat err.txt)"
+    [ ! -e out ] || fail "$cmd with $1 wrote out/"
+  done
+}
+refuse "{file: scenes/nothere.glb}" "nothere.glb"
+printf 'not a model at all\n' >scenes/garbage.glb
+refuse "{file: scenes/garbage.glb}" "garbage.glb"
+head -c 2000 scenes/box.glb >scenes/cut.glb
+refuse "{file: scenes/cut.glb}" "cut.glb"
+refuse "{file: $G/MissingBin/BoxTextured.gltf}" "MissingBin"
+refuse "{file: $G/RecursiveNodes/RecursiveNodes.gltf}" "RecursiveNodes"
+refuse "{file: $G/IndexOutOfRange/IndexOutOfRange.gltf}" "IndexOutOfRange"
+manifest "{file: scenes/box.glb, up: x}"
+set +e; "$SHADESWEEP" validate m.yaml >out.txt 2>err.txt; rc=$?; set -e
+[ $rc -eq 2 ] && grep -q "scene.up: expected one of y, z, found 'x'" err.txt || fail "up: x: $(cat err.txt)"
+
+# a sweep over two files, rendered: each run's meta.yaml names its file and counts
+cat >s.yaml <<'YAML'
+shadesweep: 1
+name: file-sweep
+renderers: [forward-spml]
+resolution: 48x32
+duration: {frames: 3}
+clock: fixed
+lights: {placement: random, count: 4, radius: 2}
+sweep:
+  scene: [{file: scenes/box.glb}, {file: scenes/box/BoxTextured.gltf}, shapes]
+YAML
+need_gl
+"$SHADESWEEP" run s.yaml -o out >run.txt 2>&1 || fail "run s.yaml: $(tail -5 run.txt)"
+$PYTHON - out <<'PY'
+import csv, sys, yaml, glob
+d = sys.argv[1]
+summ = list(csv.DictReader(open(f"{d}/summary.csv")))
+if [r["scene"] for r in summ] != ["box.glb", "BoxTextured.gltf", "shapes"]:
+    sys.exit(f"FAIL: scenes {[r['scene'] for r in summ]}")
+if any(r["status"] != "ok" for r in summ): sys.exit(f"FAIL: {summ}")
+for r, files in zip(summ[:2], (1, 3)):   # the .glb alone; the .gltf, its .bin and its .png
+    m = yaml.safe_load(open(f"{d}/runs/{r['run_id']}/meta.yaml"))
+    sf = m["scene_file"]
+    if (sf["triangles"] != 12 or sf["textures"] != 1 or sf["files"] != files
+            or len(sf["hash"]) != 16 or sf["bounds_max"] != [0.5, 0.5, 0.5]):
+        sys.exit(f"FAIL: meta scene_file {sf}")
+    if not m["parameters"]["scene"].startswith("file:" + sf["hash"]):
+        sys.exit(f"FAIL: the id text names the content: {m['parameters']['scene']}")
+m = yaml.safe_load(open(f"{d}/runs/{summ[2]['run_id']}/meta.yaml"))
+if "scene_file" in m: sys.exit("FAIL: a catalog scene has no scene_file block")
+PY
