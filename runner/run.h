@@ -15,19 +15,21 @@ typedef struct run_options {
     bool debug_gl;             /* debug context: any GL error fails the run */
     unsigned shard, nshards;   /* only runs of shard `shard` of `nshards` (0 = all) */
     bool resume;               /* skip runs whose files are complete */
+    bool retry_failed;         /* with resume: complete runs with a failed row run again */
 } run_options;
 
 /* Each run executes in a child process (isolate.h) with the run's time limit; a
- * crash, hang or OOM kill fails that run and the sweep goes on. SIGINT/SIGTERM
+ * crash, hang or OOM kill fails that run and the sweep goes on. SIGINT/SIGTERM/SIGHUP
  * discard the current run, write the summary of the complete ones and return
- * 128 + the signal, after printing how to resume.
- * 0: every run succeeded; 1: some run failed (its rows say why); 2: the sweep
- * could not go on (message printed). */
+ * 128 + the signal, after printing how to resume. The folder is open and locked
+ * (folder.h) and has its sweep.yaml.
+ * 0: every run of the folder (this shard) is complete and ok; 1: some run failed or
+ * is missing (its rows say why); 2: the sweep could not go on (message printed). */
 int run_plan(const experiment *e, const plan *p, const run_options *o);
 
 /* The run's time limit: its `timeout`, or 600 + 3 x trials x (warm-up + duration)
  * seconds (spans in frames count 0). */
 double run_timeout_s(const run_params *p);
 
-/* A run is complete when its summary.csv (written last) exists. */
-bool run_is_complete(const char *out_dir, const char *id);
+/* Whether EGL device `device` exists (asked in a child process); false with a message. */
+bool run_probe_device(int device, char *err, size_t errlen);
