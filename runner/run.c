@@ -867,7 +867,8 @@ int run_plan(const experiment *e, const plan *p, const run_options *o)
             keep[i] = true;
             skipped++;
         } else if (fs_exists(dir)) {
-            fprintf(stderr, "run %s: incomplete (%s): running it again\n", s->id, why);
+            fprintf(stderr, "resuming: run %s is incomplete (%s): running it again\n", s->id,
+                    why);
         }
     }
     if (o->resume)

@@ -37,7 +37,7 @@ static const scene_catalog_entry catalog[] = {
 static const scene_catalog_entry test_catalog[] = {
     {"test-abort", "calls abort()"},
     {"test-segv", "raises SIGSEGV"},
-    {"test-sigkill", "raises SIGKILL, as the kernel's OOM killer would"},
+    {"test-sigkill", "raises SIGKILL, as a kill -9 from outside would"},
     {"test-hang", "never returns"},
 };
 
