@@ -413,6 +413,9 @@ bool folder_open(folder *f, const char *dir, folder_mode mode, const sweep_meta 
                  "%s exists; use --resume to finish it, --force to replace it, or --out DIR", dir);
         return false;
     }
+    /* Refusals that can be told before the lock leave the folder as it was, lock too. */
+    if (k == P_OURS && mode == FOLDER_RESUME && !same_meta(dir, &have, meta, err, errlen))
+        return false;
     if (k == P_ABSENT) {
         char parent[4096];
         snprintf(parent, sizeof parent, "%s", dir);

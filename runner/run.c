@@ -941,7 +941,9 @@ int run_plan(const experiment *e, const plan *p, const run_options *o)
             isolate_status(&ir, st.status, sizeof st.status);
             char tail[200];
             isolate_log_tail(log_path, 3, tail, sizeof tail);
-            snprintf(st.message, sizeof st.message, "%.80s after %.1f s%s%.200s", st.status + 7,
+            snprintf(st.message, sizeof st.message, "%.80s after %.1f s%s%.200s",
+                     ir.oom_killed ? "killed by the kernel's OOM killer (the cgroup counted it)"
+                                   : st.status + 7,
                      ir.seconds, tail[0] ? ": " : "", tail);
             fprintf(stderr, "run %s: %s\n", s->id, st.message);
             folder_remove_temp(st.dir);
