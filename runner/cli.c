@@ -277,10 +277,18 @@ static int cmd_run(int argc, char **argv)
         fprintf(stderr, "shadesweep run: --retry-failed: only with --resume\n");
         return 2;
     }
+    run_catch_stop_signals();
     experiment *e;
     plan p;
     if (!load_plan(argv[first], &o, &e, &p))
         return 2;
+    if (run_stop_signal()) {
+        fprintf(stderr, "shadesweep run: interrupted by signal %d before the sweep began; "
+                "nothing was written\n", run_stop_signal());
+        plan_free(&p);
+        experiment_free(e);
+        return 128 + run_stop_signal();
+    }
     int rc = 2;
     char dir[4096], err[4608];
     if (o.out)

@@ -757,6 +757,23 @@ static void on_stop_signal(int sig)
         stop_signal = sig;
 }
 
+void run_catch_stop_signals(void)
+{
+    static bool caught;
+    if (caught)
+        return;
+    caught = true;
+    struct sigaction sa = {.sa_handler = on_stop_signal}, ign = {.sa_handler = SIG_IGN};
+    sigemptyset(&sa.sa_mask);
+    sigemptyset(&ign.sa_mask);
+    sigaction(SIGINT, &sa, NULL);
+    sigaction(SIGTERM, &sa, NULL);
+    sigaction(SIGHUP, &sa, NULL);
+    sigaction(SIGPIPE, &ign, NULL);
+}
+
+int run_stop_signal(void) { return stop_signal; }
+
 static const char *stop_name(int sig)
 {
     return sig == SIGINT ? "SIGINT" : sig == SIGTERM ? "SIGTERM" : "SIGHUP";
@@ -820,18 +837,7 @@ bool run_probe_device(int device, char *err, size_t errlen)
 int run_plan(const experiment *e, const plan *p, const run_options *o)
 {
     char err[512];
-    /* SIGINT, SIGTERM and SIGHUP (to this process or its whole group) end the sweep
-     * between runs: the run in progress is discarded. A closed pipe on stderr must not
-     * kill the sweep half-way: its writes fail instead. */
-    struct sigaction sa = {.sa_handler = on_stop_signal}, ign = {.sa_handler = SIG_IGN};
-    struct sigaction old_int, old_term, old_hup, old_pipe;
-    sigemptyset(&sa.sa_mask);
-    sigemptyset(&ign.sa_mask);
-    stop_signal = 0;
-    sigaction(SIGINT, &sa, &old_int);
-    sigaction(SIGTERM, &sa, &old_term);
-    sigaction(SIGHUP, &sa, &old_hup);
-    sigaction(SIGPIPE, &ign, &old_pipe);
+    run_catch_stop_signals();
     int rc = 0;
     FILE *progress_out = NULL;
     if (!output_write_plan(o->out_dir, p, err, sizeof err)) {
@@ -977,9 +983,5 @@ int run_plan(const experiment *e, const plan *p, const run_options *o)
 restore:
     if (progress_out)
         fclose(progress_out);
-    sigaction(SIGINT, &old_int, NULL);
-    sigaction(SIGTERM, &old_term, NULL);
-    sigaction(SIGHUP, &old_hup, NULL);
-    sigaction(SIGPIPE, &old_pipe, NULL);
     return rc;
 }

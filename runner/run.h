@@ -31,5 +31,14 @@ int run_plan(const experiment *e, const plan *p, const run_options *o);
  * seconds (spans in frames count 0). */
 double run_timeout_s(const run_params *p);
 
+/* From now on SIGINT, SIGTERM and SIGHUP (to this process or its whole group) only
+ * ask the sweep to stop: run_plan discards the run in progress and returns 128 + the
+ * signal; SIGPIPE is ignored (a closed pipe on stderr fails writes, not the sweep).
+ * run_plan calls it too; calling it first (before the output folder is made) makes a
+ * signal at any moment after it an orderly stop. Not undone. */
+void run_catch_stop_signals(void);
+/* The stop signal caught so far, or 0. */
+int run_stop_signal(void);
+
 /* Whether EGL device `device` exists (asked in a child process); false with a message. */
 bool run_probe_device(int device, char *err, size_t errlen);
