@@ -73,12 +73,15 @@ grep -q '^manifest_hash: ' a/sweep.yaml || fail "no manifest hash in sweep.yaml"
 # --force on our folder deletes only what shadesweep wrote
 run1=$(ls a/runs | head -1)
 echo mine > a/notes.txt
+echo mine > a/draft.tmp.7
 echo mine > a/runs/$run1/annotations.txt
+echo mine > a/runs/$run1/x.tmp.3
 mkdir a/runs/figures && echo mine > a/runs/figures/f.txt
+mine="a/notes.txt a/draft.tmp.7 a/runs/$run1/annotations.txt a/runs/$run1/x.tmp.3 a/runs/figures/f.txt"
 "$SHADESWEEP" run --force -o a t.yaml 2>/dev/null || fail "--force"
-for f in a/notes.txt a/runs/$run1/annotations.txt a/runs/figures/f.txt; do
-  [ "$(cat $f)" = mine ] || fail "--force deleted $f"
-done
+for f in $mine; do [ "$(cat $f)" = mine ] || fail "--force deleted $f"; done
+"$SHADESWEEP" run --resume -o a t.yaml 2>/dev/null || fail "--resume"
+for f in $mine; do [ "$(cat $f)" = mine ] || fail "--resume deleted $f"; done
 check_summary a 8
 
 # Empty output folders: -o "" is an error, and nothing is written (today: into /).
