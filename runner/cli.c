@@ -11,7 +11,6 @@
 #include "renderers/forward_common.h"
 #include "renderers/gl/context.h"
 #include "renderers/renderer.h"
-#include "runner/folder.h"
 #include "runner/manifest.h"
 #include "runner/merge.h"
 #include "runner/run.h"
@@ -282,35 +281,7 @@ static int cmd_run(int argc, char **argv)
     plan p;
     if (!load_plan(argv[first], &o, &e, &p))
         return 2;
-    if (run_stop_signal()) {
-        fprintf(stderr, "shadesweep run: interrupted by signal %d before the sweep began; "
-                "nothing was written\n", run_stop_signal());
-        plan_free(&p);
-        experiment_free(e);
-        return 128 + run_stop_signal();
-    }
-    int rc = 2;
-    char dir[4096], err[4608];
-    if (o.out)
-        snprintf(dir, sizeof dir, "%s", o.out);
-    else if (e->name[0])
-        snprintf(dir, sizeof dir, "out/%s", e->name);
-    else
-        dir[0] = 0;   /* an empty name: refused below, never out/ itself */
-    if (o.device >= 0 && !run_probe_device(o.device, err, sizeof err)) {
-        fprintf(stderr, "shadesweep run: %s\n", err);
-        goto done;
-    }
-    sweep_meta sm;
-    output_sweep_meta_of(e, o.nshards > 1 ? o.shard : 0, o.nshards, p.nruns, &sm);
-    folder fo;
-    if (!folder_open(&fo, dir, o.force ? FOLDER_FORCE : o.resume ? FOLDER_RESUME : FOLDER_NEW,
-                     &sm, err, sizeof err)) {
-        fprintf(stderr, "shadesweep run: %s\n", err);
-        goto done;
-    }
     run_options ro = {
-        .out_dir = dir,
         .backend = o.backend,
         .device = o.device,
         .debug_gl = o.debug_gl,
@@ -319,11 +290,7 @@ static int cmd_run(int argc, char **argv)
         .resume = o.resume,
         .retry_failed = o.retry_failed,
     };
-    rc = run_plan(e, &p, &ro);
-    folder_close(&fo, rc == 2);
-    if (rc != 2)
-        fprintf(stderr, "results: %s/summary.csv\n", dir);
-done:
+    int rc = run_sweep(e, &p, o.out, o.force, &ro);
     plan_free(&p);
     experiment_free(e);
     return rc;

@@ -196,7 +196,10 @@ int merge_main(const char *out, bool force, int ndirs, char **dirs)
     snprintf(meta0.shard, sizeof meta0.shard, "merged from %d folder%s", ndirs,
              ndirs == 1 ? "" : "s");
     if (!folder_open(&fo, out, force ? FOLDER_FORCE : FOLDER_NEW, &meta0, err, sizeof err)) {
-        fprintf(stderr, "shadesweep merge: %s\n", err);
+        if (strstr(err, " exists; use --resume"))   /* run's advice; merge has no --resume */
+            fprintf(stderr, "shadesweep merge: %s exists; use --force to replace it\n", out);
+        else
+            fprintf(stderr, "shadesweep merge: %s\n", err);
         goto done;
     }
     opened = true;

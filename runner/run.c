@@ -985,3 +985,38 @@ restore:
         fclose(progress_out);
     return rc;
 }
+
+int run_sweep(const experiment *e, const plan *p, const char *out, bool force, run_options *o)
+{
+    if (run_stop_signal()) {
+        fprintf(stderr, "shadesweep run: interrupted by signal %d before the sweep began; "
+                "nothing was written\n", run_stop_signal());
+        return 128 + run_stop_signal();
+    }
+    char dir[4096], err[4608];
+    if (out)
+        snprintf(dir, sizeof dir, "%s", out);
+    else if (e->name[0])
+        snprintf(dir, sizeof dir, "out/%s", e->name);
+    else
+        dir[0] = 0;   /* an empty name: refused by folder_open, never out/ itself */
+    if (o->device >= 0 && !run_probe_device(o->device, err, sizeof err)) {
+        fprintf(stderr, "shadesweep run: %s\n", err);
+        return 2;
+    }
+    sweep_meta sm;
+    output_sweep_meta_of(e, o->shard, o->nshards, p->nruns, &sm);
+    folder fo;
+    if (!folder_open(&fo, dir, force ? FOLDER_FORCE : o->resume ? FOLDER_RESUME : FOLDER_NEW,
+                     &sm, err, sizeof err)) {
+        fprintf(stderr, "shadesweep run: %s\n", err);
+        return 2;
+    }
+    o->out_dir = dir;
+    int rc = run_plan(e, p, o);
+    o->out_dir = NULL;
+    folder_close(&fo, rc == 2);
+    if (rc != 2)
+        fprintf(stderr, "results: %s/summary.csv\n", dir);
+    return rc;
+}

@@ -27,6 +27,12 @@ typedef struct run_options {
  * is missing (its rows say why); 2: the sweep could not go on (message printed). */
 int run_plan(const experiment *e, const plan *p, const run_options *o);
 
+/* The whole of `shadesweep run` after the manifest is loaded: the output folder (out,
+ * or out/<name> when NULL) opened with folder_open (force, o->resume: its mode; the
+ * lock held throughout), --device checked up front, run_plan, the folder closed.
+ * o->out_dir is set here. Returns run_plan's status, or 2 (message printed). */
+int run_sweep(const experiment *e, const plan *p, const char *out, bool force, run_options *o);
+
 /* The run's time limit: its `timeout`, or 600 + 3 x trials x (warm-up + duration)
  * seconds (spans in frames count 0). */
 double run_timeout_s(const run_params *p);
