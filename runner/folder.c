@@ -163,11 +163,12 @@ void folder_remove_temp(const char *dir)
     closedir(d);
 }
 
-/* Removes shadesweep's files of an output folder (not the lock, not anyone else's). */
-static bool clear_folder(const char *dir, char *err, size_t errlen)
+/* Removes shadesweep's files of an output folder (not the lock, not anyone else's).
+ * keep_sweep: sweep.yaml stays (it is replaced next, atomically), so that a process
+ * killed half-way leaves a folder that still says it is shadesweep's. */
+static bool clear_folder(const char *dir, bool keep_sweep, char *err, size_t errlen)
 {
     char path[4608];
-    /* sweep.yaml last: until the end the folder still says it is shadesweep's */
     for (size_t i = 0; i < 2; i++) {
         pjoin(path, sizeof path, dir, top_names[i]);
         if (!remove_file(path, err, errlen))
@@ -194,6 +195,8 @@ static bool clear_folder(const char *dir, char *err, size_t errlen)
         if (!ok)
             return false;
     }
+    if (keep_sweep)
+        return true;
     snprintf(path, sizeof path, "%s/sweep.yaml", dir);
     return remove_file(path, err, errlen);
 }
@@ -372,7 +375,7 @@ static void release(folder *f)
 static void undo_fresh(folder *f)
 {
     char path[4608], err[512];
-    clear_folder(f->dir, err, sizeof err);
+    clear_folder(f->dir, false, err, sizeof err);
     snprintf(path, sizeof path, "%s/runs", f->dir);
     rmdir(path);
     if (f->created) {
@@ -465,7 +468,7 @@ bool folder_open(folder *f, const char *dir, folder_mode mode, const sweep_meta 
     f->fresh = k2 == P_EMPTY;
     bool write_meta = true;
     if (k2 == P_OURS && mode == FOLDER_FORCE) {
-        if (!clear_folder(dir, err, errlen)) {
+        if (!clear_folder(dir, true, err, errlen)) {
             release(f);
             return false;
         }
