@@ -220,4 +220,8 @@ set -e
 [ $rc -eq 0 ] || fail "stderr closed: exit $rc"
 check_summary closed 8
 [ -z "$(find closed -name '*.tmp.*')" ] || fail "temporary files left"
+# ... and a stderr whose reader has gone (a closed pipe): no SIGPIPE death half-way
+{ "$SHADESWEEP" run -o piped t.yaml 2>&1 >/dev/null; echo $? > piped.rc; } | true
+[ "$(cat piped.rc)" -eq 0 ] || fail "stderr into a closed pipe: exit $(cat piped.rc)"
+check_summary piped 8
 echo ok
