@@ -143,7 +143,7 @@ def children(pid):
         return []
 p = start("-o", "k", "m.yaml")
 victim = None
-for _ in range(400):
+for _ in range(3000):   # 30 s at most (a sanitizer build starts runs slowly)
     kids = children(p.pid)
     if kids and len(run_dirs("k")) >= 2:   # the second run is under way
         victim = kids[0]
