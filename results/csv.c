@@ -340,3 +340,125 @@ void csv_abort(csv_writer *w)
     afile_abort(&w->file);
     free(w);
 }
+
+/* >>input (csv.h: csv_next_record) */
+
+static bool rec_reserve(csv_record *r, size_t nbytes, size_t nfields)
+{
+    if (nbytes > r->bufcap) {
+        size_t cap = r->bufcap ? r->bufcap : 256;
+        while (cap < nbytes)
+            cap *= 2;
+        char *b = realloc(r->buf, cap);
+        if (!b)
+            return false;
+        r->buf = b;
+        r->bufcap = cap;
+    }
+    if (nfields > r->cap) {
+        size_t cap = r->cap ? r->cap * 2 : 16;
+        while (cap < nfields)
+            cap *= 2;
+        char **f = realloc(r->field, cap * sizeof *f);
+        if (!f)
+            return false;
+        r->field = f;
+        r->cap = cap;
+    }
+    return true;
+}
+
+int csv_next_record(const char *text, size_t len, size_t *pos, csv_record *r)
+{
+    size_t i = *pos;
+    r->n = 0;
+    if (i >= len)
+        return 0;
+    /* A field never grows when unquoted: the record's bytes bound the buffer. */
+    size_t end = i;
+    bool inq = false;
+    while (end < len && (inq || text[end] != '\n')) {
+        if (text[end] == '"')
+            inq = !inq;
+        end++;
+    }
+    if (end >= len)
+        return -1;   /* no line end: cut off (or an unterminated quote) */
+    if (!rec_reserve(r, end - i + 1, 1))
+        return -1;
+    /* Field starts are offsets into buf until the record is complete. */
+    size_t o = 0, nf = 0;
+    size_t *starts = NULL, cap = 0;
+    int rc = 1;
+    for (;;) {
+        if (nf == cap) {
+            size_t nc = cap ? cap * 2 : 16;
+            size_t *ns = realloc(starts, nc * sizeof *ns);
+            if (!ns) {
+                rc = -1;
+                break;
+            }
+            starts = ns;
+            cap = nc;
+        }
+        starts[nf++] = o;
+        if (i < end && text[i] == '"') {
+            i++;
+            for (;;) {
+                if (i >= end) {
+                    rc = -1;
+                    break;
+                }
+                if (text[i] == '"') {
+                    if (i + 1 < end && text[i + 1] == '"') {
+                        r->buf[o++] = '"';
+                        i += 2;
+                        continue;
+                    }
+                    i++;
+                    break;
+                }
+                r->buf[o++] = text[i++];
+            }
+            if (rc < 0)
+                break;
+            if (i < end && text[i] != ',' && !(text[i] == '\r' && i + 1 == end)) {
+                rc = -1;
+                break;
+            }
+        } else {
+            while (i < end && text[i] != ',' && !(text[i] == '\r' && i + 1 == end)) {
+                if (text[i] == '"') {
+                    rc = -1;
+                    break;
+                }
+                r->buf[o++] = text[i++];
+            }
+            if (rc < 0)
+                break;
+        }
+        r->buf[o++] = 0;
+        if (i < end && text[i] == ',') {
+            i++;
+            continue;
+        }
+        break;
+    }
+    if (rc > 0 && !rec_reserve(r, 0, nf))
+        rc = -1;
+    if (rc > 0) {
+        for (size_t k = 0; k < nf; k++)
+            r->field[k] = r->buf + starts[k];
+        r->n = nf;
+        *pos = end + 1;
+    }
+    free(starts);
+    return rc;
+}
+
+void csv_record_free(csv_record *r)
+{
+    free(r->field);
+    free(r->buf);
+    memset(r, 0, sizeof *r);
+}

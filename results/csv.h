@@ -31,3 +31,23 @@ void csv_abort(csv_writer *w);                             /* frees w; NULL is f
  * writes s to fp, in double quotes (inner quotes doubled) when it contains
  * a comma, a quote, CR or LF, or leading/trailing space. */
 void csv_write_field(FILE *fp, const char *s);
+
+/* A reader for what the writer writes (and RFC 4180 generally, with LF or CRLF row
+ * ends): one record at a time from text held in memory.
+ *
+ *   csv_record r = {0}; size_t pos = 0; int k;
+ *   while ((k = csv_next_record(text, len, &pos, &r)) > 0) use(r.field, r.n);
+ *   csv_record_free(&r);   // k < 0: malformed (see below)
+ *
+ * Returns 1 with a record, 0 at the end of the text, -1 for a record that is not
+ * complete: an unterminated quote, a quote inside an unquoted field, text after a
+ * closing quote, or a last row without its line end (a file cut off mid-row). */
+typedef struct csv_record {
+    char **field;      /* n NUL-terminated fields, valid until the next call */
+    size_t n;
+    size_t cap;
+    char *buf;
+    size_t bufcap;
+} csv_record;
+int csv_next_record(const char *text, size_t len, size_t *pos, csv_record *r);
+void csv_record_free(csv_record *r);

@@ -11,7 +11,6 @@
 #include "renderers/forward_common.h"
 #include "renderers/gl/context.h"
 #include "renderers/renderer.h"
-#include "results/fsutil.h"
 #include "runner/manifest.h"
 #include "runner/merge.h"
 #include "runner/params.h"
@@ -28,6 +27,7 @@ static const char usage_text[] =
     "      --force                replace an existing output folder made by shadesweep\n"
     "      --resume               keep the complete runs of an existing output folder and\n"
     "                             run the others (a killed sweep goes on where it stopped)\n"
+    "      --retry-failed         with --resume: run the failed runs again too\n"
     "      --backend egl|osmesa   GL backend (default: egl)\n"
     "      --device N             EGL device N instead of Mesa's surfaceless platform\n"
     "      --shard I/N            only the runs of shard I of N (1 <= I <= N)\n"
@@ -74,14 +74,15 @@ static bool print_command_help(const char *name)
 
 typedef struct cli_opts {
     const char *out;
-    bool force, resume, debug_gl, smoke;
+    bool force, resume, debug_gl, smoke, retry_failed;
     gl_backend backend;
     int device;
     unsigned shard, nshards;
     double scale;              /* 0: not given */
 } cli_opts;
 
-enum { OPT_FORCE = 1000, OPT_BACKEND, OPT_DEVICE, OPT_SHARD, OPT_DEBUG_GL, OPT_RESUME, OPT_SMOKE, OPT_SCALE };
+enum { OPT_FORCE = 1000, OPT_BACKEND, OPT_DEVICE, OPT_SHARD, OPT_DEBUG_GL, OPT_RESUME, OPT_SMOKE, OPT_SCALE,
+       OPT_RETRY_FAILED };
 
 /* Parses the options a command accepts; `allowed` lists their long names. Returns
  * the index of the first operand, or -1 after printing the problem. */
@@ -97,6 +98,7 @@ static int parse_opts(int argc, char **argv, const char *allowed, cli_opts *o)
         {"resume", no_argument, NULL, OPT_RESUME},
         {"smoke", no_argument, NULL, OPT_SMOKE},
         {"scale", required_argument, NULL, OPT_SCALE},
+        {"retry-failed", no_argument, NULL, OPT_RETRY_FAILED},
         {NULL, 0, NULL, 0},
     };
     memset(o, 0, sizeof *o);
@@ -128,6 +130,7 @@ static int parse_opts(int argc, char **argv, const char *allowed, cli_opts *o)
         case OPT_DEBUG_GL: o->debug_gl = true; break;
         case OPT_RESUME: o->resume = true; break;
         case OPT_SMOKE: o->smoke = true; break;
+        case OPT_RETRY_FAILED: o->retry_failed = true; break;
         case OPT_SCALE: {
             char *end;
             errno = 0;
@@ -296,7 +299,7 @@ static int cmd_info(int argc, char **argv)
 static int cmd_run(int argc, char **argv)
 {
     cli_opts o;
-    int first = parse_opts(argc, argv, "out force resume backend device shard debug-gl smoke scale", &o);
+    int first = parse_opts(argc, argv, "out force resume retry-failed backend device shard debug-gl smoke scale", &o);
     if (first < 0)
         return 2;
     if (argc - first != 1) {
@@ -307,58 +310,25 @@ static int cmd_run(int argc, char **argv)
         fprintf(stderr, "shadesweep run: --force and --resume exclude each other\n");
         return 2;
     }
+    if (o.retry_failed && !o.resume) {
+        fprintf(stderr, "shadesweep run: --retry-failed: only with --resume\n");
+        return 2;
+    }
+    run_catch_stop_signals();
     experiment *e;
     plan p;
     if (!load_plan(argv[first], &o, &e, &p))
         return 2;
-
-    int rc = 2;
-    char dir[4096], err[512];
-    if (o.out)
-        snprintf(dir, sizeof dir, "%s", o.out);
-    else
-        snprintf(dir, sizeof dir, "out/%s", e->name);
-    if (fs_exists(dir)) {
-        char marker[4200];
-        snprintf(marker, sizeof marker, "%s/plan.csv", dir);
-        if (!o.force && !o.resume) {
-            fprintf(stderr,
-                    "shadesweep run: %s exists; use --resume to finish it, --force to replace "
-                    "it, or --out DIR\n",
-                    dir);
-            goto done;
-        }
-        if (!fs_exists(marker)) {
-            fprintf(stderr,
-                    "shadesweep run: %s exists and has no plan.csv: not a shadesweep output "
-                    "folder, not replacing it\n",
-                    dir);
-            goto done;
-        }
-        if (o.force && !fs_remove_tree(dir, err, sizeof err)) {
-            fprintf(stderr, "shadesweep run: %s\n", err);
-            goto done;
-        }
-    }
-    char runs[4200];
-    snprintf(runs, sizeof runs, "%s/runs", dir);
-    if (!fs_mkdirs(runs, err, sizeof err)) {
-        fprintf(stderr, "shadesweep run: %s\n", err);
-        goto done;
-    }
     run_options ro = {
-        .out_dir = dir,
         .backend = o.backend,
         .device = o.device,
         .debug_gl = o.debug_gl,
         .shard = o.nshards > 1 ? o.shard : 0,
         .nshards = o.nshards,
         .resume = o.resume,
+        .retry_failed = o.retry_failed,
     };
-    rc = run_plan(e, &p, &ro);
-    if (rc != 2)
-        fprintf(stderr, "results: %s/summary.csv\n", dir);
-done:
+    int rc = run_sweep(e, &p, o.out, o.force, &ro);
     plan_free(&p);
     experiment_free(e);
     return rc;

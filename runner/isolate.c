@@ -42,10 +42,77 @@ static int kill_and_reap(pid_t pid)
     return st;
 }
 
+/* "oom_kill N" of one cgroup file; -1 when it has none. */
+static long oom_kill_in(const char *path)
+{
+    FILE *f = fopen(path, "re");
+    if (!f)
+        return -1;
+    char line[256];
+    long n = -1;
+    while (fgets(line, sizeof line, f))
+        if (sscanf(line, "oom_kill %ld", &n) == 1)
+            break;
+    fclose(f);
+    return n;
+}
+
+long isolate_oom_kills(void)
+{
+    FILE *f = fopen("/proc/self/cgroup", "re");
+    if (!f)
+        return -1;
+    char line[4096], v2[4096] = "", v1[4096] = "";
+    bool have_v1 = false, have_v2 = false;
+    while (fgets(line, sizeof line, f)) {
+        line[strcspn(line, "\n")] = 0;
+        char *c1 = strchr(line, ':');
+        char *c2 = c1 ? strchr(c1 + 1, ':') : NULL;
+        if (!c2)
+            continue;
+        *c1 = *c2 = 0;
+        const char *ctrl = c1 + 1, *path = c2 + 1;
+        if (strcmp(line, "0") == 0 && !ctrl[0]) {
+            snprintf(v2, sizeof v2, "%s", path);
+            have_v2 = true;
+        }
+        for (const char *t = ctrl; (t = strstr(t, "memory")); t += 6)
+            if ((t == ctrl || t[-1] == ',') && (t[6] == 0 || t[6] == ',')) {
+                snprintf(v1, sizeof v1, "%s", path);
+                have_v1 = true;
+                break;
+            }
+    }
+    fclose(f);
+    char p[4400];
+    long n = -1;
+    if (have_v1) {
+        snprintf(p, sizeof p, "/sys/fs/cgroup/memory%s/memory.oom_control",
+                 strcmp(v1, "/") == 0 ? "" : v1);
+        n = oom_kill_in(p);
+    }
+    if (n < 0 && have_v2) {
+        snprintf(p, sizeof p, "/sys/fs/cgroup%s/memory.events", strcmp(v2, "/") == 0 ? "" : v2);
+        n = oom_kill_in(p);
+        if (n < 0) {
+            snprintf(p, sizeof p, "/sys/fs/cgroup/unified%s/memory.events",
+                     strcmp(v2, "/") == 0 ? "" : v2);
+            n = oom_kill_in(p);
+        }
+    }
+    return n;
+}
+
+static bool stop_signal_kind(int sig)
+{
+    return sig == SIGINT || sig == SIGTERM || sig == SIGHUP;
+}
+
 bool isolate_run(int (*fn)(void *), void *arg, double timeout_s, const char *log_path,
                  volatile const int *stop, isolate_result *out)
 {
     memset(out, 0, sizeof *out);
+    long oom_before = isolate_oom_kills();
     fflush(NULL);   /* or the child would write the parent's buffered output again */
     double t0 = now_s();
     pid_t parent = getpid();
@@ -63,6 +130,8 @@ bool isolate_run(int (*fn)(void *), void *arg, double timeout_s, const char *log
             _exit(125);   /* the parent died before prctl: nobody waits for this run */
         signal(SIGINT, SIG_DFL);
         signal(SIGTERM, SIG_DFL);
+        signal(SIGHUP, SIG_DFL);
+        signal(SIGPIPE, SIG_DFL);
         int fd = open(log_path, O_WRONLY | O_CREAT | O_APPEND | O_CLOEXEC, 0644);
         if (fd >= 0) {
             dup2(fd, STDERR_FILENO);
@@ -103,6 +172,19 @@ bool isolate_run(int (*fn)(void *), void *arg, double timeout_s, const char *log
     } else {
         out->outcome = ISOLATE_SIGNALED;
         out->signal = WIFSIGNALED(st) ? WTERMSIG(st) : 0;
+        /* A signal to the whole group can reach the child before our own handler has
+         * run (or a sender may signal the processes one by one): a child that died of
+         * a stop signal is interrupted when ours follows soon after. */
+        if (stop && stop_signal_kind(out->signal)) {
+            for (int i = 0; i < 100 && !*stop; i++)
+                nap(0.005);
+            if (*stop)
+                out->outcome = ISOLATE_INTERRUPTED;
+        }
+        if (out->signal == SIGKILL) {
+            long now = isolate_oom_kills();
+            out->oom_killed = oom_before >= 0 && now > oom_before;
+        }
     }
     return true;
 }
@@ -118,6 +200,7 @@ static const char *signal_name(int sig)
     case SIGTERM: return "SIGTERM";
     case SIGINT: return "SIGINT";
     case SIGPIPE: return "SIGPIPE";
+    case SIGHUP: return "SIGHUP";
     case SIGTRAP: return "SIGTRAP";
     default: return NULL;
     }
@@ -131,8 +214,8 @@ void isolate_status(const isolate_result *r, char *buf, size_t len)
         break;
     case ISOLATE_SIGNALED: {
         const char *name = signal_name(r->signal);
-        if (r->signal == SIGKILL)
-            snprintf(buf, len, "failed:oom");   /* not ours: the kernel's OOM killer */
+        if (r->signal == SIGKILL)   /* not ours: the kernel's, or someone's kill -9 */
+            snprintf(buf, len, r->oom_killed ? "failed:oom" : "failed:SIGKILL");
         else if (name)
             snprintf(buf, len, "failed:%s", name);
         else

@@ -18,20 +18,28 @@ typedef struct isolate_result {
     isolate_outcome outcome;
     int exit_code;
     int signal;                /* ISOLATE_SIGNALED */
+    bool oom_killed;           /* SIGKILL, and the cgroup's OOM-kill count went up */
     double seconds;            /* wall time the child ran */
 } isolate_result;
 
 /* fn(arg) runs in a child whose stderr is appended to log_path; fn's return is the
  * child's exit code (0..255). The parent polls until the child ends, timeout_s
  * passes, or *stop (set by a signal handler) becomes true; then it kills the child
- * (SIGTERM, SIGKILL after a grace second) and reaps it. */
+ * (SIGTERM, SIGKILL after a grace second) and reaps it. A child that died of SIGINT,
+ * SIGTERM or SIGHUP while *stop became true within half a second (the signal went to
+ * the whole process group, or to both) is ISOLATE_INTERRUPTED too, not a failure. */
 bool isolate_run(int (*fn)(void *), void *arg, double timeout_s, const char *log_path,
                  volatile const int *stop, isolate_result *out);
 
 /* "failed:<reason>" for a result that is not a clean exit: timeout, SIGSEGV, SIGABRT,
- * oom (SIGKILL that we did not send: the kernel's OOM killer), interrupted. */
+ * SIGKILL (from outside), oom (a SIGKILL while the cgroup's count of OOM kills went up:
+ * memory.events of cgroup v2 or memory.oom_control of v1), interrupted. */
 void isolate_status(const isolate_result *r, char *buf, size_t len);
 
 /* The last `lines` lines of a log file, at most len-1 bytes, newlines turned into
  * " | "; "" if there is none. */
+/* The OOM kills the kernel counted in this process's memory cgroup; -1 when it does not
+ * say (no memory cgroup readable). */
+long isolate_oom_kills(void);
+
 void isolate_log_tail(const char *log_path, int lines, char *buf, size_t len);

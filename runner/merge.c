@@ -9,8 +9,8 @@
 #include <unistd.h>
 
 #include "results/fsutil.h"
+#include "runner/folder.h"
 #include "runner/output.h"
-#include "runner/run.h"
 
 /* The whole file into a NUL-terminated buffer (caller frees); NULL with a message. */
 static char *slurp(const char *path, size_t *len, char *err, size_t errlen)
@@ -123,7 +123,7 @@ static bool copy_run(const char *from, const char *to, char *err, size_t errlen)
         snprintf(src, sizeof src, "%s/%s", from, ent->d_name);
         snprintf(dst, sizeof dst, "%s/%s", to, ent->d_name);
         struct stat stt;
-        if (strstr(ent->d_name, ".tmp.") || stat(src, &stt) != 0 || !S_ISREG(stt.st_mode))
+        if (strstr(ent->d_name, ".tmp.") || lstat(src, &stt) != 0 || !S_ISREG(stt.st_mode))
             continue;
         ok = copy_file(src, dst, err, errlen);
     }
@@ -140,6 +140,8 @@ int merge_main(const char *out, bool force, int ndirs, char **dirs)
     char(*ids)[13] = NULL;
     size_t nids = 0;
     int rc = 2;
+    folder fo;
+    bool opened = false;
 
     for (int i = 0; i < ndirs; i++) {
         char path[4200];
@@ -184,31 +186,36 @@ int merge_main(const char *out, bool force, int ndirs, char **dirs)
         goto done;
     }
 
-    if (fs_exists(out)) {
-        char marker[4200];
-        snprintf(marker, sizeof marker, "%s/plan.csv", out);
-        if (!force || !fs_exists(marker)) {
-            fprintf(stderr, "shadesweep merge: %s exists%s\n", out,
-                    force ? " and is not a shadesweep output folder" : "; use --force to replace it");
+    for (int i = 0; i < ndirs; i++)
+        if (folder_overlaps(out, dirs[i])) {
+            fprintf(stderr, "shadesweep merge: the output %s is (or holds, or lies in) the "
+                    "input %s: merge never writes into its inputs; choose another -o\n",
+                    out, dirs[i]);
             goto done;
         }
-        if (!fs_remove_tree(out, err, sizeof err)) {
+    snprintf(meta0.shard, sizeof meta0.shard, "merged from %d folder%s", ndirs,
+             ndirs == 1 ? "" : "s");
+    if (!folder_open(&fo, out, force ? FOLDER_FORCE : FOLDER_NEW, &meta0, err, sizeof err)) {
+        if (strstr(err, " exists; use --resume"))   /* run's advice; merge has no --resume */
+            fprintf(stderr, "shadesweep merge: %s exists; use --force to replace it\n", out);
+        else
             fprintf(stderr, "shadesweep merge: %s\n", err);
-            goto done;
-        }
-    }
-    char runs[4200];
-    snprintf(runs, sizeof runs, "%s/runs", out);
-    if (!fs_mkdirs(runs, err, sizeof err)) {
-        fprintf(stderr, "shadesweep merge: %s\n", err);
         goto done;
     }
+    opened = true;
     size_t copied = 0;
     for (size_t r = 0; r < nids; r++) {
         int from = -1;
         for (int i = 0; i < ndirs; i++) {
-            if (!run_is_complete(dirs[i], ids[r]))
+            char why[512], dir[4200];
+            run_check c;
+            if (!folder_check_run(dirs[i], ids[r], true, &c, why, sizeof why)) {
+                snprintf(dir, sizeof dir, "%s/runs/%s", dirs[i], ids[r]);
+                if (fs_exists(dir))
+                    fprintf(stderr, "shadesweep merge: run %s in %s is incomplete (%s): not "
+                            "taken\n", ids[r], dirs[i], why);
                 continue;
+            }
             if (from < 0)
                 from = i;
             else
@@ -234,11 +241,8 @@ int merge_main(const char *out, bool force, int ndirs, char **dirs)
         fprintf(stderr, "shadesweep merge: %s\n", err);
         goto done;
     }
-    size_t missing = 0;
-    snprintf(meta0.shard, sizeof meta0.shard, "merged from %d folder%s", ndirs,
-             ndirs == 1 ? "" : "s");
-    if (!output_write_sweep_meta(out, &meta0, err, sizeof err) ||
-        !output_merge_summary_ids(out, ids, nids, &missing, err, sizeof err)) {
+    size_t missing = 0, failed = 0;
+    if (!output_merge_summary_ids(out, ids, nids, &missing, &failed, err, sizeof err)) {
         fprintf(stderr, "shadesweep merge: %s\n", err);
         goto done;
     }
@@ -247,15 +251,20 @@ int merge_main(const char *out, bool force, int ndirs, char **dirs)
     if (missing) {
         fprintf(stderr, "missing runs (no folder has them complete):");
         size_t shown = 0;
-        for (size_t r = 0; r < nids && shown < 20; r++)
-            if (!run_is_complete(out, ids[r])) {
+        for (size_t r = 0; r < nids && shown < 20; r++) {
+            run_check c;
+            char why[512];
+            if (!folder_check_run(out, ids[r], false, &c, why, sizeof why)) {
                 fprintf(stderr, " %s", ids[r]);
                 shown++;
             }
+        }
         fprintf(stderr, "%s\n", missing > shown ? " ..." : "");
     }
-    rc = missing ? 1 : 0;
+    rc = missing || failed ? 1 : 0;
 done:
+    if (opened)
+        folder_close(&fo, rc == 2);
     free(plan0);
     free(ids);
     return rc;

@@ -9,6 +9,7 @@
 #include "results/fsutil.h"
 #include "results/numfmt.h"
 #include "results/yamlout.h"
+#include "runner/folder.h"
 #include "runner/yamldoc.h"
 
 const char *const summary_columns[] = {
@@ -357,89 +358,120 @@ bool output_write_run_summary(const char *run_dir, const experiment *e, const ru
     return csv_commit(w, err, errlen);
 }
 
-/* Appends the data rows of one run's summary.csv (its header must equal ours). */
-static bool append_rows(FILE *out, const char *path, const char *header, bool *missing,
-                        char *err, size_t errlen)
+/* Appends the rows of one complete run's summary.csv, each parsed with the right
+ * column count, written again field by field; false (nothing appended) when a row
+ * does not parse. */
+static bool append_rows(csv_writer *w, const char *path, const char *id, bool *failed)
 {
     FILE *in = fopen(path, "rb");
-    if (!in) {
-        if (errno == ENOENT) {
-            *missing = true;
-            return true;
-        }
-        snprintf(err, errlen, "%s: %s", path, strerror(errno));
+    if (!in)
         return false;
-    }
-    char *line = NULL;
-    size_t cap = 0;
-    ssize_t len;
-    bool ok = true, first = true;
-    while ((len = getline(&line, &cap, in)) > 0) {
-        if (first) {
-            first = false;
-            if (strcmp(line, header) != 0) {
-                snprintf(err, errlen, "%s: header differs from this version's summary columns",
-                         path);
+    char *text = NULL;
+    size_t len = 0, cap = 0;
+    char buf[65536];
+    size_t got;
+    bool ok = true;
+    while ((got = fread(buf, 1, sizeof buf, in)) > 0) {
+        if (len + got + 1 > cap) {
+            size_t nc = cap ? cap * 2 : 65536;
+            while (nc < len + got + 1)
+                nc *= 2;
+            char *nt = realloc(text, nc);
+            if (!nt) {
                 ok = false;
                 break;
             }
-            continue;
+            text = nt;
+            cap = nc;
         }
-        if (fwrite(line, 1, (size_t)len, out) != (size_t)len) {
-            snprintf(err, errlen, "writing summary.csv: %s", strerror(errno));
-            ok = false;
-            break;
-        }
+        memcpy(text + len, buf, got);
+        len += got;
     }
-    free(line);
+    ok = ok && !ferror(in) && text;
     fclose(in);
+    /* parse everything first: a run goes in whole or not at all */
+    csv_record r = {0};
+    size_t pos = 0, rows = 0;
+    int k = 0;
+    for (bool header = true; ok && (k = csv_next_record(text, len, &pos, &r)) > 0; header = false) {
+        if (r.n != summary_ncolumns)
+            ok = false;
+        else if (!header && strcmp(r.field[1], id) != 0)
+            ok = false;
+        rows += !header;
+    }
+    ok = ok && k == 0 && rows > 0;
+    pos = 0;
+    *failed = false;
+    for (bool header = true; ok && csv_next_record(text, len, &pos, &r) > 0; header = false) {
+        if (header)
+            continue;
+        for (size_t i = 0; i < r.n; i++)
+            csv_str(w, r.field[i]);
+        csv_end_row(w);
+        *failed |= strcmp(r.field[summary_ncolumns - 2], "ok") != 0;
+    }
+    csv_record_free(&r);
+    free(text);
     return ok;
 }
 
 bool output_merge_summary_ids(const char *out_dir, char (*const ids)[13], size_t nids,
-                              size_t *nmissing, char *err, size_t errlen)
+                              size_t *nmissing, size_t *nfailed, char *err, size_t errlen)
 {
-    char path[4096], header[2048];
-    size_t off = 0;
-    for (size_t i = 0; i < summary_ncolumns; i++)
-        off += (size_t)snprintf(header + off, sizeof header - off, "%s%s", i ? "," : "",
-                                summary_columns[i]);
-    snprintf(header + off, sizeof header - off, "\n");
-
+    char path[4096];
     join(path, sizeof path, out_dir, "summary.csv");
-    afile f;
-    if (!afile_open(&f, path, err, errlen))
+    csv_writer *w = csv_open(path, summary_columns, summary_ncolumns, err, errlen);
+    if (!w)
         return false;
-    fputs(header, f.fp);
-    *nmissing = 0;
+    *nmissing = *nfailed = 0;
     for (size_t r = 0; r < nids; r++) {
-        char run_summary[4096];
+        char run_summary[4096], why[512];
+        run_check c;
+        bool failed = false;
         snprintf(run_summary, sizeof run_summary, "%s/runs/%s/summary.csv", out_dir, ids[r]);
-        bool missing = false;
-        if (!append_rows(f.fp, run_summary, header, &missing, err, errlen)) {
-            afile_abort(&f);
-            return false;
+        if (!folder_check_run(out_dir, ids[r], false, &c, why, sizeof why) ||
+            !append_rows(w, run_summary, ids[r], &failed)) {
+            (*nmissing)++;
+            continue;
         }
-        *nmissing += missing;
+        *nfailed += failed;
     }
-    return afile_commit(&f, err, errlen);
+    return csv_commit(w, err, errlen);
 }
 
-bool output_merge_summary(const char *out_dir, const plan *p, unsigned shard, char *err,
-                          size_t errlen)
+bool output_merge_summary(const char *out_dir, const plan *p, unsigned shard,
+                          size_t *nmissing, size_t *nfailed, char *err, size_t errlen)
 {
     char(*ids)[13] = calloc(p->nruns ? p->nruns : 1, sizeof *ids);
     if (!ids) {
         snprintf(err, errlen, "out of memory");
         return false;
     }
-    size_t n = 0, missing;
+    size_t n = 0;
     for (size_t r = 0; r < p->nruns; r++)
         if (!shard || p->runs[r].shard == shard)
             memcpy(ids[n++], p->runs[r].id, 13);
-    bool ok = output_merge_summary_ids(out_dir, ids, n, &missing, err, errlen);
+    bool ok = output_merge_summary_ids(out_dir, ids, n, nmissing, nfailed, err, errlen);
     free(ids);
     return ok;
+}
+
+void output_sweep_meta_of(const experiment *e, unsigned shard, unsigned nshards, size_t nruns,
+                          sweep_meta *m)
+{
+    memset(m, 0, sizeof *m);
+    snprintf(m->format, sizeof m->format, "%s", OUTPUT_FORMAT);
+    snprintf(m->experiment, sizeof m->experiment, "%s", e->name);
+    snprintf(m->manifest_path, sizeof m->manifest_path, "%s", e->path);
+    memcpy(m->manifest_hash, e->hash, sizeof m->manifest_hash);
+    m->runs = nruns;
+    m->scale = e->scale;
+    m->smoke = e->smoke;
+    if (shard)
+        snprintf(m->shard, sizeof m->shard, "%u/%u", shard, nshards);
+    else
+        snprintf(m->shard, sizeof m->shard, "all");
 }
 
 bool output_write_sweep_meta(const char *out_dir, const sweep_meta *m, char *err, size_t errlen)
@@ -450,6 +482,7 @@ bool output_write_sweep_meta(const char *out_dir, const sweep_meta *m, char *err
     if (!y)
         return false;
     yo_map_begin(y);
+    yo_key(y, "format"); yo_str(y, OUTPUT_FORMAT);   /* first: the folder is ours */
     yo_key(y, "experiment"); yo_str(y, m->experiment);
     yo_key(y, "manifest_path"); yo_str(y, m->manifest_path);
     yo_key(y, "manifest_hash"); yo_str(y, m->manifest_hash);
@@ -485,7 +518,9 @@ bool output_read_sweep_meta(const char *out_dir, sweep_meta *m, char *err, size_
         if (pr->key->kind != YNODE_SCALAR || pr->value->kind != YNODE_SCALAR)
             continue;
         const char *k = pr->key->text, *v = pr->value->text;
-        if (strcmp(k, "experiment") == 0)
+        if (strcmp(k, "format") == 0)
+            snprintf(m->format, sizeof m->format, "%s", v);
+        else if (strcmp(k, "experiment") == 0)
             snprintf(m->experiment, sizeof m->experiment, "%s", v);
         else if (strcmp(k, "manifest_path") == 0)
             snprintf(m->manifest_path, sizeof m->manifest_path, "%s", v);

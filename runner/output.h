@@ -25,7 +25,9 @@ bool output_write_plan(const char *out_dir, const plan *p, char *err, size_t err
 /* OUT/sweep.yaml: which manifest (path and hash) the folder's runs come from, how
  * many runs the plan has and which shard this folder holds ("2/4", "all", or
  * "merged from N folders"). merge refuses folders whose hashes differ. */
+#define OUTPUT_FORMAT "shadesweep-output 1"   /* sweep.yaml's first key: folder.h */
 typedef struct sweep_meta {
+    char format[64];           /* OUTPUT_FORMAT in a folder this version owns */
     char experiment[64];
     char manifest_path[4096];
     char manifest_hash[17];
@@ -34,6 +36,9 @@ typedef struct sweep_meta {
     double scale;              /* run --scale (0 read as 1) */
     bool smoke;                /* run --smoke */
 } sweep_meta;
+/* The meta of a sweep of e (shard 0: all of it). */
+void output_sweep_meta_of(const experiment *e, unsigned shard, unsigned nshards, size_t nruns,
+                          sweep_meta *m);
 bool output_write_sweep_meta(const char *out_dir, const sweep_meta *m, char *err, size_t errlen);
 bool output_read_sweep_meta(const char *out_dir, sweep_meta *m, char *err, size_t errlen);
 
@@ -88,11 +93,12 @@ bool output_write_run_summary(const char *run_dir, const experiment *e, const ru
                               const pass_plan *pp, const trial_result *t, size_t ntrials,
                               const char *message, char *err, size_t errlen);
 
-/* OUT/summary.csv from the runs' own summary.csv files, in plan order; runs of
- * other shards, and runs without a summary, are left out. */
-bool output_merge_summary(const char *out_dir, const plan *p, unsigned shard, char *err,
-                          size_t errlen);
-/* The same from a list of run ids (plan order); *nmissing counts ids without a
- * complete run. */
+/* OUT/summary.csv rebuilt from the runs' own summary.csv files, in plan order, from
+ * rows parsed with this version's column count only; runs of other shards, and runs
+ * that are not complete (folder_check_run), are left out. *nmissing counts the runs
+ * left out, *nfailed the complete runs with a row whose status is not ok. */
+bool output_merge_summary(const char *out_dir, const plan *p, unsigned shard,
+                          size_t *nmissing, size_t *nfailed, char *err, size_t errlen);
+/* The same from a list of run ids (plan order). */
 bool output_merge_summary_ids(const char *out_dir, char (*const ids)[13], size_t nids,
-                              size_t *nmissing, char *err, size_t errlen);
+                              size_t *nmissing, size_t *nfailed, char *err, size_t errlen);

@@ -3,12 +3,14 @@
 #include "runner/run.h"
 
 #include <dirent.h>
+#include <errno.h>
 #include <math.h>
 #include <signal.h>
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
 #include <sys/mman.h>
+#include <sys/wait.h>
 #include <time.h>
 #include <unistd.h>
 
@@ -21,6 +23,7 @@
 #include "results/stats.h"
 #include "results/yamlout.h"
 #include "runner/hash.h"
+#include "runner/folder.h"
 #include "runner/isolate.h"
 #include "runner/output.h"
 #include "runner/params.h"
@@ -718,8 +721,9 @@ static void fill_missing_trials(run_state *st)
     }
 }
 
-/* meta.yaml, then the run's summary.csv: the summary is written last, so its
- * presence means the run is complete (what --resume looks for). */
+/* meta.yaml, the run's summary.csv, then files.txt: written last, it lists the others
+ * with their sizes and checksums, and a run is complete only when they match
+ * (folder_check_run, what --resume and merge look for). */
 static void write_run_result(run_state *st)
 {
     fill_missing_trials(st);
@@ -727,7 +731,8 @@ static void write_run_result(run_state *st)
     char err[512];
     if (!fs_mkdirs(st->dir, err, sizeof err) || !write_meta(st, err, sizeof err) ||
         !output_write_run_summary(st->dir, st->e, st->s, &st->plan, st->trials,
-                                  st->s->p.trials, st->message, err, sizeof err)) {
+                                  st->s->p.trials, st->message, err, sizeof err) ||
+        !folder_write_run_files(st->dir, err, sizeof err)) {
         fprintf(stderr, "run %s: %s\n", st->s->id, err);
         set_status(st, "output");
     }
@@ -796,91 +801,161 @@ double run_timeout_s(const run_params *p)
     return 600.0 + 3.0 * p->trials * (seconds_of(&p->warmup) + seconds_of(&p->duration));
 }
 
-/* Removes what a child that did not finish left behind: temporary files. */
-static void remove_temp_files(const char *dir)
-{
-    DIR *d = opendir(dir);
-    if (!d)
-        return;
-    struct dirent *ent;
-    char path[4400];
-    while ((ent = readdir(d)))
-        if (strstr(ent->d_name, ".tmp.")) {
-            snprintf(path, sizeof path, "%s/%s", dir, ent->d_name);
-            unlink(path);
-        }
-    closedir(d);
-}
-
 static volatile sig_atomic_t stop_signal;
 
-static void on_stop_signal(int sig) { stop_signal = sig; }
-
-bool run_is_complete(const char *out_dir, const char *id)
+static void on_stop_signal(int sig)
 {
-    char path[4200];
-    snprintf(path, sizeof path, "%s/runs/%s/summary.csv", out_dir, id);
-    return fs_exists(path);
+    if (!stop_signal)
+        stop_signal = sig;
+}
+
+void run_catch_stop_signals(void)
+{
+    static bool caught;
+    if (caught)
+        return;
+    caught = true;
+    struct sigaction sa = {.sa_handler = on_stop_signal}, ign = {.sa_handler = SIG_IGN};
+    sigemptyset(&sa.sa_mask);
+    sigemptyset(&ign.sa_mask);
+    sigaction(SIGINT, &sa, NULL);
+    sigaction(SIGTERM, &sa, NULL);
+    sigaction(SIGHUP, &sa, NULL);
+    sigaction(SIGPIPE, &ign, NULL);
+}
+
+int run_stop_signal(void) { return stop_signal; }
+
+static const char *stop_name(int sig)
+{
+    return sig == SIGINT ? "SIGINT" : sig == SIGTERM ? "SIGTERM" : "SIGHUP";
+}
+
+/* EGL device N exists: asked in a child, so that the parent never loads a GL driver. */
+bool run_probe_device(int device, char *err, size_t errlen)
+{
+    int fds[2];
+    if (pipe(fds) != 0) {
+        snprintf(err, errlen, "--device: %s", strerror(errno));
+        return false;
+    }
+    fflush(NULL);
+    pid_t pid = fork();
+    if (pid < 0) {
+        close(fds[0]);
+        close(fds[1]);
+        snprintf(err, errlen, "--device: fork: %s", strerror(errno));
+        return false;
+    }
+    if (pid == 0) {
+        close(fds[0]);
+        char why[400] = "";
+        int n = gl_egl_device_count(why, sizeof why);
+        char msg[420];
+        int len = snprintf(msg, sizeof msg, "%d %s", n, why);
+        ssize_t w = write(fds[1], msg, (size_t)len);
+        _exit(w == len ? 0 : 1);
+    }
+    close(fds[1]);
+    char msg[420];
+    size_t got = 0;
+    ssize_t r;
+    while (got < sizeof msg - 1 &&
+           ((r = read(fds[0], msg + got, sizeof msg - 1 - got)) > 0 || (r < 0 && errno == EINTR)))
+        got += r > 0 ? (size_t)r : 0;
+    msg[got] = 0;
+    close(fds[0]);
+    int st;
+    while (waitpid(pid, &st, 0) < 0 && errno == EINTR)
+        ;
+    char *rest;
+    long n = strtol(msg, &rest, 10);
+    if (got == 0 || rest == msg) {
+        snprintf(err, errlen, "--device %d: could not count the EGL devices", device);
+        return false;
+    }
+    if (n < 0) {
+        snprintf(err, errlen, "--device %d: no EGL devices (%.300s)", device, rest[0] ? rest + 1 : "");
+        return false;
+    }
+    if (device >= n) {
+        snprintf(err, errlen, "--device %d: no such EGL device; %ld found (0..%ld)", device, n,
+                 n - 1);
+        return false;
+    }
+    return true;
 }
 
 int run_plan(const experiment *e, const plan *p, const run_options *o)
 {
     char err[512];
+    run_catch_stop_signals();
+    int rc = 0;
+    FILE *progress_out = NULL;
     if (!output_write_plan(o->out_dir, p, err, sizeof err)) {
         fprintf(stderr, "shadesweep: %s\n", err);
-        return 2;
+        rc = 2;
+        goto restore;
     }
-    remove_temp_files(o->out_dir);
-    sweep_meta sm = {.runs = p->nruns, .scale = e->scale, .smoke = e->smoke};
-    snprintf(sm.experiment, sizeof sm.experiment, "%s", e->name);
-    snprintf(sm.manifest_path, sizeof sm.manifest_path, "%s", e->path);
-    memcpy(sm.manifest_hash, e->hash, sizeof sm.manifest_hash);
-    if (o->shard)
-        snprintf(sm.shard, sizeof sm.shard, "%u/%u", o->shard, o->nshards);
-    else
-        snprintf(sm.shard, sizeof sm.shard, "all");
-    if (!output_write_sweep_meta(o->out_dir, &sm, err, sizeof err)) {
-        fprintf(stderr, "shadesweep: %s\n", err);
-        return 2;
+    folder_remove_temp(o->out_dir);
+
+    /* What is complete already, verified (files.txt) when resuming. */
+    bool *keep = calloc(p->nruns ? p->nruns : 1, sizeof *keep);
+    if (!keep) {
+        fprintf(stderr, "shadesweep: out of memory\n");
+        rc = 2;
+        goto restore;
     }
-    size_t selected = 0, skipped = 0;
+    size_t selected = 0, skipped = 0, retried = 0;
     for (size_t i = 0; i < p->nruns; i++) {
         const run_spec *s = &p->runs[i];
         if (o->shard && s->shard != o->shard)
             continue;
         selected++;
-        skipped += o->resume && run_is_complete(o->out_dir, s->id);
+        if (!o->resume)
+            continue;
+        char dir[4200], why[512];
+        snprintf(dir, sizeof dir, "%s/runs/%s", o->out_dir, s->id);
+        run_check c;
+        if (folder_check_run(o->out_dir, s->id, true, &c, why, sizeof why)) {
+            if (c.failed && o->retry_failed) {
+                retried++;
+                continue;
+            }
+            keep[i] = true;
+            skipped++;
+        } else if (fs_exists(dir)) {
+            fprintf(stderr, "resuming: run %s is incomplete (%s): running it again\n", s->id,
+                    why);
+        }
     }
     if (o->resume)
-        fprintf(stderr, "resuming: %zu of %zu runs already complete\n", skipped, selected);
+        fprintf(stderr, "resuming: %zu of %zu runs already complete\n", skipped + retried,
+                selected);
+    if (retried)
+        fprintf(stderr, "retrying %zu failed run%s\n", retried, retried == 1 ? "" : "s");
 
     /* Progress goes to the terminal (or log) the user sees; each child's own
      * stderr goes to its run's log.txt. */
     int fd = dup(STDERR_FILENO);
-    FILE *progress_out = fd >= 0 ? fdopen(fd, "w") : NULL;
+    progress_out = fd >= 0 ? fdopen(fd, "w") : NULL;
     if (!progress_out) {
+        if (fd >= 0)
+            close(fd);
         fprintf(stderr, "shadesweep: cannot duplicate stderr\n");
-        return 2;
+        free(keep);
+        rc = 2;
+        goto restore;
     }
     setvbuf(progress_out, NULL, _IOLBF, 0);
-    struct sigaction sa = {.sa_handler = on_stop_signal}, old_int, old_term;
-    sigemptyset(&sa.sa_mask);
-    sigaction(SIGINT, &sa, &old_int);
-    sigaction(SIGTERM, &sa, &old_term);
-    stop_signal = 0;
 
     progress pg;
     progress_init(&pg, selected - skipped, progress_out);
-    size_t k = 0, failed = 0, done = 0;
-    int rc = 0;
+    size_t k = 0;
     for (size_t i = 0; i < p->nruns && !stop_signal; i++) {
         const run_spec *s = &p->runs[i];
-        if (o->shard && s->shard != o->shard)
+        if ((o->shard && s->shard != o->shard) || keep[i])
             continue;
-        if (o->resume && run_is_complete(o->out_dir, s->id)) {
-            done++;
-            continue;
-        }
         progress_run_begin(&pg, ++k, s->id, s->p.renderer, s->p.width, s->p.height);
         run_state st = {.e = e, .s = s, .o = o, .pg = &pg};
         snprintf(st.status, sizeof st.status, "ok");
@@ -891,7 +966,7 @@ int run_plan(const experiment *e, const plan *p, const run_options *o)
         run_report *report = mmap(NULL, sizeof *report, PROT_READ | PROT_WRITE,
                                   MAP_SHARED | MAP_ANONYMOUS, -1, 0);
         st.trials = calloc(s->p.trials, sizeof *st.trials);
-        if (report == MAP_FAILED || !st.trials || !fs_remove_tree(st.dir, err, sizeof err) ||
+        if (report == MAP_FAILED || !st.trials || !folder_clear_run(st.dir, err, sizeof err) ||
             !fs_mkdirs(st.dir, err, sizeof err)) {
             fprintf(stderr, "shadesweep: run %s: %s\n", s->id,
                     st.trials && report != MAP_FAILED ? err : "out of memory");
@@ -912,7 +987,7 @@ int run_plan(const experiment *e, const plan *p, const run_options *o)
         }
         if (ir.outcome == ISOLATE_INTERRUPTED) {
             /* Discard the run: resume reruns it. */
-            fs_remove_tree(st.dir, err, sizeof err);
+            folder_clear_run(st.dir, err, sizeof err);
             snprintf(st.status, sizeof st.status, "interrupted, discarded");
         } else if (ir.outcome == ISOLATE_EXITED && report->done) {
             snprintf(st.status, sizeof st.status, "%s", report->status);
@@ -924,38 +999,76 @@ int run_plan(const experiment *e, const plan *p, const run_options *o)
             isolate_status(&ir, st.status, sizeof st.status);
             char tail[200];
             isolate_log_tail(log_path, 3, tail, sizeof tail);
-            snprintf(st.message, sizeof st.message, "%.80s after %.1f s%s%.200s", st.status + 7,
+            snprintf(st.message, sizeof st.message, "%.80s after %.1f s%s%.200s",
+                     ir.oom_killed ? "killed by the kernel's OOM killer (the cgroup counted it)"
+                                   : st.status + 7,
                      ir.seconds, tail[0] ? ": " : "", tail);
             fprintf(stderr, "run %s: %s\n", s->id, st.message);
-            remove_temp_files(st.dir);
+            folder_remove_temp(st.dir);
             write_run_result(&st);
         }
         munmap(report, sizeof *report);
         free(st.trials);
         progress_run_end(&pg, st.status, fps);
-        if (ir.outcome != ISOLATE_INTERRUPTED) {
-            failed += strcmp(st.status, "ok") != 0;
-            done++;
-        }
     }
+    free(keep);
     progress_finish(&pg);
-    sigaction(SIGINT, &old_int, NULL);
-    sigaction(SIGTERM, &old_term, NULL);
-    fclose(progress_out);
 
-    if (!output_merge_summary(o->out_dir, p, o->shard, err, sizeof err)) {
+    /* The exit status describes the folder as it stands, not this invocation's runs. */
+    size_t missing = 0, failed = 0;
+    if (!output_merge_summary(o->out_dir, p, o->shard, &missing, &failed, err, sizeof err)) {
         fprintf(stderr, "shadesweep: %s\n", err);
-        return 2;
+        rc = 2;
+        goto restore;
     }
     if (stop_signal) {
         fprintf(stderr,
                 "interrupted by %s: %zu of %zu runs complete; to finish the others:\n"
                 "  shadesweep run --resume -o %s %s\n",
-                stop_signal == SIGINT ? "SIGINT" : "SIGTERM", done, selected, o->out_dir,
-                e->path);
-        return 128 + stop_signal;
+                stop_name(stop_signal), selected - missing, selected, o->out_dir, e->path);
+        rc = 128 + stop_signal;
+    } else if (!rc) {
+        if (missing)
+            fprintf(stderr, "shadesweep: %zu of %zu runs are not complete\n", missing, selected);
+        rc = failed || missing ? 1 : 0;
     }
-    if (rc)
-        return rc;
-    return failed ? 1 : 0;
+restore:
+    if (progress_out)
+        fclose(progress_out);
+    return rc;
+}
+
+int run_sweep(const experiment *e, const plan *p, const char *out, bool force, run_options *o)
+{
+    if (run_stop_signal()) {
+        fprintf(stderr, "shadesweep run: interrupted by signal %d before the sweep began; "
+                "nothing was written\n", run_stop_signal());
+        return 128 + run_stop_signal();
+    }
+    char dir[4096], err[4608];
+    if (out)
+        snprintf(dir, sizeof dir, "%s", out);
+    else if (e->name[0])
+        snprintf(dir, sizeof dir, "out/%s", e->name);
+    else
+        dir[0] = 0;   /* an empty name: refused by folder_open, never out/ itself */
+    if (o->device >= 0 && !run_probe_device(o->device, err, sizeof err)) {
+        fprintf(stderr, "shadesweep run: %s\n", err);
+        return 2;
+    }
+    sweep_meta sm;
+    output_sweep_meta_of(e, o->shard, o->nshards, p->nruns, &sm);
+    folder fo;
+    if (!folder_open(&fo, dir, force ? FOLDER_FORCE : o->resume ? FOLDER_RESUME : FOLDER_NEW,
+                     &sm, err, sizeof err)) {
+        fprintf(stderr, "shadesweep run: %s\n", err);
+        return 2;
+    }
+    o->out_dir = dir;
+    int rc = run_plan(e, p, o);
+    o->out_dir = NULL;
+    folder_close(&fo, rc == 2);
+    if (rc != 2)
+        fprintf(stderr, "results: %s/summary.csv\n", dir);
+    return rc;
 }

@@ -15,19 +15,36 @@ typedef struct run_options {
     bool debug_gl;             /* debug context: any GL error fails the run */
     unsigned shard, nshards;   /* only runs of shard `shard` of `nshards` (0 = all) */
     bool resume;               /* skip runs whose files are complete */
+    bool retry_failed;         /* with resume: complete runs with a failed row run again */
 } run_options;
 
 /* Each run executes in a child process (isolate.h) with the run's time limit; a
- * crash, hang or OOM kill fails that run and the sweep goes on. SIGINT/SIGTERM
+ * crash, hang or OOM kill fails that run and the sweep goes on. SIGINT/SIGTERM/SIGHUP
  * discard the current run, write the summary of the complete ones and return
- * 128 + the signal, after printing how to resume.
- * 0: every run succeeded; 1: some run failed (its rows say why); 2: the sweep
- * could not go on (message printed). */
+ * 128 + the signal, after printing how to resume. The folder is open and locked
+ * (folder.h) and has its sweep.yaml.
+ * 0: every run of the folder (this shard) is complete and ok; 1: some run failed or
+ * is missing (its rows say why); 2: the sweep could not go on (message printed). */
 int run_plan(const experiment *e, const plan *p, const run_options *o);
+
+/* The whole of `shadesweep run` after the manifest is loaded: the output folder (out,
+ * or out/<name> when NULL) opened with folder_open (force, o->resume: its mode; the
+ * lock held throughout), --device checked up front, run_plan, the folder closed.
+ * o->out_dir is set here. Returns run_plan's status, or 2 (message printed). */
+int run_sweep(const experiment *e, const plan *p, const char *out, bool force, run_options *o);
 
 /* The run's time limit: its `timeout`, or 600 + 3 x trials x (warm-up + duration)
  * seconds (spans in frames count 0). */
 double run_timeout_s(const run_params *p);
 
-/* A run is complete when its summary.csv (written last) exists. */
-bool run_is_complete(const char *out_dir, const char *id);
+/* From now on SIGINT, SIGTERM and SIGHUP (to this process or its whole group) only
+ * ask the sweep to stop: run_plan discards the run in progress and returns 128 + the
+ * signal; SIGPIPE is ignored (a closed pipe on stderr fails writes, not the sweep).
+ * run_plan calls it too; calling it first (before the output folder is made) makes a
+ * signal at any moment after it an orderly stop. Not undone. */
+void run_catch_stop_signals(void);
+/* The stop signal caught so far, or 0. */
+int run_stop_signal(void);
+
+/* Whether EGL device `device` exists (asked in a child process); false with a message. */
+bool run_probe_device(int device, char *err, size_t errlen);

@@ -59,7 +59,7 @@ static const catalog_scene test_catalog[] = {
      scene_build_empty, 1},
     {{"test-segv", "raises SIGSEGV"},
      scene_build_empty, 2},
-    {{"test-sigkill", "raises SIGKILL, as the kernel's OOM killer would"},
+    {{"test-sigkill", "raises SIGKILL, as a kill -9 from outside would"},
      scene_build_empty, 3},
     {{"test-hang", "never returns"},
      scene_build_empty, 4},

@@ -29,7 +29,7 @@ status=0
 for m in "${only[@]}"; do
   [ -f "$root/experiments/$m.yaml" ] || { echo "reproduce: no experiments/$m.yaml" >&2; exit 2; }
   resume=()
-  [ -f "$out/$m/plan.csv" ] && resume=(--resume)
+  [ -f "$out/$m/sweep.yaml" ] && resume=(--resume)
   echo "== $m" >&2
   "$exe" run "${opts[@]}" "${resume[@]}" --out "$out/$m" "$root/experiments/$m.yaml" || status=1
 done

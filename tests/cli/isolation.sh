@@ -1,5 +1,5 @@
 #!/usr/bin/env bash
-# Run isolation: a run that aborts, segfaults, is killed (as by the OOM killer) or
+# Run isolation: a run that aborts, segfaults, is killed with SIGKILL or
 # hangs past its timeout fails alone, with its status and the tail of its log in
 # summary.csv, and the sweep goes on to the next run.
 . "$(dirname "$0")/lib.sh"
@@ -32,7 +32,7 @@ rows = list(csv.DictReader(open("out/faults/summary.csv")))
 got = [(r["scene"], r["trial"], r["status"]) for r in rows]
 want = []
 for scene, status in [("test-abort", "failed:SIGABRT"), ("test-segv", "failed:SIGSEGV"),
-                      ("test-hang", "failed:timeout"), ("test-sigkill", "failed:oom"),
+                      ("test-hang", "failed:timeout"), ("test-sigkill", "failed:SIGKILL"),
                       ("empty", "ok")]:
     want += [(scene, "1", status), (scene, "2", status)]
 if got != want: fail(f"statuses {got}")
@@ -51,7 +51,7 @@ timeout = [r for r in rows if r["scene"] == "test-hang"][0]["message"]
 if not timeout.startswith("timeout after 3."): fail(f"timeout message: {timeout}")
 PY
 grep -q "test-abort: failing at t = 0.200 s" out/faults/runs/*/log.txt || fail "log.txt of the aborted run"
-for s in SIGABRT SIGSEGV oom timeout; do
+for s in SIGABRT SIGSEGV SIGKILL timeout; do
   grep -q "failed:$s" err.txt || fail "console lacks failed:$s: $(cat err.txt)"
 done
 # The test scenes do not exist without the switch.

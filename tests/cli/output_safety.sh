@@ -37,11 +37,12 @@ set -e
 [ $rc -eq 2 ] && grep -q "exists; use --resume to finish it, --force to replace it" err.txt \
   || fail "existing folder: rc $rc $(cat err.txt)"
 [ -f out/tiny/note.txt ] || fail "existing folder was touched"
-# --force replaces a shadesweep folder ...
+# --force replaces a shadesweep folder's own files (and keeps anyone else's) ...
 set +e
 "$SHADESWEEP" run --force tiny.yaml 2>err.txt; rc=$?
 set -e
-[ $rc -eq 1 ] && [ ! -e out/tiny/note.txt ] && [ -f out/tiny/summary.csv ] || fail "--force: rc $rc"
+[ $rc -eq 1 ] && [ "$(cat out/tiny/note.txt)" = keep ] && [ -f out/tiny/summary.csv ] \
+  || fail "--force: rc $rc"
 # ... but never a folder that is not one.
 mkdir precious && echo data > precious/thesis.tex
 set +e

@@ -496,10 +496,46 @@ static void test_remove_tree(void **state)
     assert_false(fs_exists(NULL));
 }
 
+/* The reader: what the writer's quoting makes, read back field for field; records
+ * that are cut off or malformed are refused. */
+static void test_reader(void **state)
+{
+    (void)state;
+    const char text[] = "a,b,c\n1,\"x,y\",\"say \"\"hi\"\"\"\n,\"multi\nline\",\r\n";
+    size_t len = sizeof text - 1, pos = 0;
+    csv_record r = {0};
+    assert_int_equal(csv_next_record(text, len, &pos, &r), 1);
+    assert_int_equal(r.n, 3);
+    assert_string_equal(r.field[2], "c");
+    assert_int_equal(csv_next_record(text, len, &pos, &r), 1);
+    assert_int_equal(r.n, 3);
+    assert_string_equal(r.field[1], "x,y");
+    assert_string_equal(r.field[2], "say \"hi\"");
+    assert_int_equal(csv_next_record(text, len, &pos, &r), 1);
+    assert_int_equal(r.n, 3);
+    assert_string_equal(r.field[0], "");
+    assert_string_equal(r.field[1], "multi\nline");
+    assert_string_equal(r.field[2], "");
+    assert_int_equal(csv_next_record(text, len, &pos, &r), 0);
+    static const char *const bad[] = {
+        "a,b",            /* no line end: cut off */
+        "a,\"b\n",        /* unterminated quote */
+        "a,b\"c\n",       /* quote inside an unquoted field */
+        "a,\"b\"c\n",      /* text after the closing quote */
+    };
+    for (size_t i = 0; i < sizeof bad / sizeof bad[0]; i++) {
+        pos = 0;
+        assert_int_equal(csv_next_record(bad[i], strlen(bad[i]), &pos, &r), -1);
+        assert_int_equal(pos, 0);
+    }
+    csv_record_free(&r);
+}
+
 int main(void)
 {
     const struct CMUnitTest tests[] = {
         cmocka_unit_test(test_quoting),
+        cmocka_unit_test(test_reader),
         cmocka_unit_test_setup_teardown(test_full_file_bytes, setup, teardown),
         cmocka_unit_test_setup_teardown(test_header_quoted, setup, teardown),
         cmocka_unit_test_setup_teardown(test_f64_formatting, setup, teardown),
