@@ -280,6 +280,18 @@ static const param table[] = {
     {.path = "sweep", .type = PT_SWEEP,
      .description = "parameter path -> list of values; the runs are the cartesian product "
                     "(first key slowest) times the renderers"},
+    /* >>helper-report keys */
+    {.path = "debug", .type = PT_GROUP,
+     .description = "for testing regression gates (shadesweep compare): never in a real run"},
+    {.path = "debug.busy_us", .type = PT_UINT, .flags = PF_NOT_IN_ID, .def = "0", .min = 0,
+     .max = 1000000, RP(debug_busy_us),
+     .description = "busy-wait this many microseconds inside every frame's draw (after "
+                    "renderer_draw, before the sync): a known slowdown on the measured clock, "
+                    "not part of the run id, so the run compares with an unslowed one"},
+    {.path = "debug.busy_renderer", .type = PT_RENDERER, .flags = PF_NOT_IN_ID,
+     RP(debug_busy_renderer),
+     .description = "only runs of this renderer busy-wait (absent: every renderer)"},
+    /* <<helper-report keys */
 };
 
 #define NPARAMS (sizeof table / sizeof table[0])

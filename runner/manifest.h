@@ -56,6 +56,10 @@ typedef struct run_params {
     double error_at[MAX_SCREENSHOTS];      /* schedule times, seconds */
     double error_max_rmse;                 /* 0: no limit */
     bool error_save_images;
+    /* >>helper-report keys */
+    uint32_t debug_busy_us;                /* debug.busy_us: a busy-wait per frame (testing) */
+    char debug_busy_renderer[32];          /* debug.busy_renderer: "" every renderer */
+    /* <<helper-report keys */
 } run_params;
 
 typedef struct experiment {
