@@ -3,8 +3,9 @@
  * The runs both folders' summary.csv hold (by run id), each one's mean frame time
  * and its standard error from its trials' batch means (stats_pool_trials), the
  * change NEW - BASE with its 95% confidence interval by Welch's t-test, and a
- * verdict at a relative threshold: slower (faster) when the change exceeds
- * +threshold (-threshold) of BASE's mean and is significant; same otherwise.
+ * verdict at a relative threshold T: slower when NEW > BASE x (1 + T), faster when
+ * NEW < BASE / (1 + T) (so that swapping the folders swaps the verdicts), each only
+ * when the change is significant; same otherwise.
  * Markdown on stdout (and --md FILE), one CSV row per run with --csv FILE.
  * Exit 1 when any run is slower. */
 #include "runner/commands.h"
@@ -50,7 +51,7 @@ static bool parse_threshold(const char *s, double *out)
         return false;
     if (*end == '%')
         end++;
-    if (*end || !(v >= 0 && v < 1000))
+    if (*end || !(v >= 0 && v <= 1e6))
         return false;
     *out = v / 100;
     return true;
@@ -82,10 +83,11 @@ static void write_md(FILE *fp, const char *base, const char *new_, double thr, c
     for (size_t i = 0; i < np; i++)
         count[p[i].v]++;
     fprintf(fp, "# compare: `%s` -> `%s`\n\n", base, new_);
-    fprintf(fp, "A run is **slower** (**faster**) when its mean frame time changed by more than "
-            "+%g%% (-%g%%) of BASE's and Welch's t-test on the trials' batch means finds the "
-            "change significant at 5%% (two-sided); otherwise `same`. Frame times in ms, "
-            "± the half-width of the 95%% confidence interval.\n\n", thr * 100, thr * 100);
+    fprintf(fp, "A run is **slower** when its mean frame time grew by more than %g%% of BASE's "
+            "(NEW > BASE x %g), **faster** when it fell below BASE / %g, and Welch's t-test on "
+            "the trials' batch means finds the change significant at 5%% (two-sided); "
+            "otherwise `same`. Frame times in ms, ± the half-width of the 95%% confidence "
+            "interval.\n\n", thr * 100, 1 + thr, 1 + thr);
     fprintf(fp, "| run | renderer | BASE | NEW | change | 95%% CI of the change | verdict |\n"
                 "|---|---|---|---|---|---|---|\n");
     for (size_t i = 0; i < np; i++) {
@@ -183,7 +185,7 @@ int cmd_compare(int argc, char **argv)
         case OPT_THRESHOLD:
             if (!parse_threshold(optarg, &thr)) {
                 fprintf(stderr, "shadesweep compare: --threshold: expected a percentage "
-                        "0..1000 (e.g. 5%%), found '%s'\n", optarg);
+                        "0..1000000 (e.g. 5%%), found '%s'\n", optarg);
                 return 2;
             }
             break;
@@ -228,7 +230,7 @@ int cmd_compare(int argc, char **argv)
                     x->v = V_NA;
                 else if (x->w.significant && x->rel > thr)
                     x->v = V_SLOWER;
-                else if (x->w.significant && x->rel < -thr)
+                else if (x->w.significant && x->rel < 1 / (1 + thr) - 1)
                     x->v = V_FASTER;
                 else
                     x->v = V_SAME;

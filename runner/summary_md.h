@@ -20,7 +20,7 @@ typedef struct run_result {
     size_t trials, trials_ok;
     mean_estimate ft;          /* frame time, us, over the ok trials */
     double p99_us;             /* mean of the ok trials' frametime_p99_us */
-    double low1_fps;           /* mean of the ok trials' fps_1pct_low (1e6 / p99 if absent) */
+    double low1_fps;           /* 1e6 / p99_us (the trials' fps_1pct_low without a p99) */
     double rmse;               /* largest image_rmse of the ok trials; NAN: not measured */
     char status[96];           /* "ok", or the first trial status that is not */
 } run_result;
