@@ -2,7 +2,8 @@
  * DATADIR/shadesweep/python) run by python3 with the package on PYTHONPATH.
  * The package is looked for beside the program (BINDIR/../DATADIR/...: an installed,
  * possibly relocated tree), then at the configured install path, then in the source
- * tree the program was built from; SHADESWEEP_PYDIR overrides all three. */
+ * tree the program was built from; SHADESWEEP_PYDIR overrides all three. The
+ * interpreter is SHADESWEEP_PYTHON, else /usr/bin/python3, else python3 on PATH. */
 #include "runner/commands.h"
 
 #include <errno.h>
@@ -77,10 +78,13 @@ int cmd_report(int argc, char **argv)
     args[2] = "shadesweep_report";
     for (int i = 1; i < argc; i++)
         args[i + 2] = argv[i];
+    /* Debian's python3 (with python3-matplotlib and python3-yaml) before whatever
+     * python3 is first on PATH; SHADESWEEP_PYTHON overrides both. */
     const char *py = getenv("SHADESWEEP_PYTHON");
-    execvp(py && *py ? py : "python3", args);
-    fprintf(stderr, "shadesweep report: cannot run %s: %s\n", py && *py ? py : "python3",
-            strerror(errno));
+    if (!py || !*py)
+        py = access("/usr/bin/python3", X_OK) == 0 ? "/usr/bin/python3" : "python3";
+    execvp(py, args);
+    fprintf(stderr, "shadesweep report: cannot run %s: %s\n", py, strerror(errno));
     free(args);
     return 2;
 }
