@@ -30,7 +30,7 @@ def own_position(runs):
         targets = plan.get("targets") if isinstance(plan, dict) else None
         if not isinstance(targets, list):
             continue
-        gb = [(str(t.get("name", "")), str(t.get("format", ""))) for t in targets
+        gb = [(str(t.get("name", "")), str(t.get("format", "")).upper()) for t in targets
               if isinstance(t, dict) and str(t.get("name", "")).startswith("gbuffer.")]
         fields = [(name[len("gbuffer."):].split("+"), fmt_) for name, fmt_ in gb]
         stored = [f for fl, f in fields if any(x.startswith("position") for x in fl)]
