@@ -181,6 +181,11 @@ def main(argv):
         summary.append([", ".join(broken), "unreadable summary.csv", "-", "-"])
     lines = head + ["## Summary\n",
                     md_table(["experiment", "status", "runs measured", "claims reproduced"], summary)]
+    ranked = [os.path.join(f, "summary.md") for _, folders in sorted(unknown.items())
+              for f in folders if os.path.isfile(os.path.join(f, "summary.md"))]
+    if ranked:
+        lines.append("Without a paper table, the renderers ranked per sweep point (what `shadesweep "
+                     "run` printed): " + ", ".join(f"`{r}`" for r in ranked) + ".\n")
     if plots.error:
         lines.append(f"Plots not made: {plots.error}.\n")
     lines += body
