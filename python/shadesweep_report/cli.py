@@ -4,11 +4,12 @@ import os
 import re
 import sys
 
-from .loading import EXPERIMENTS, KNOWN, ME, die, load, reference_dir
+from .loading import EXPERIMENTS, KNOWN, ME, Experiment, die, load, read_csv, reference_dir
 from .plots import PLOT_NAMES, Plots
 from .reference import Reference
 from .sections import SECTIONS
 from .sections.base import Section
+from .sections.generic import section_generic
 from .text import md_table
 
 
@@ -177,15 +178,21 @@ def main(argv):
                         ", ".join(f"{counts[k]} {k}" for k in ("yes", "partly", "no", "n/a") if k in counts) or "-"])
     for raw, folders in sorted(unknown.items()):
         summary.append([raw, "not recognised (no paper table)", "-", "-"])
+        e = Experiment(raw, [raw])
+        for f in folders:
+            e.add_folder(f, read_csv(os.path.join(f, "summary.csv")) or [],
+                         read_csv(os.path.join(f, "plan.csv")))
+        sec = Section(e, ref, plots)
+        if e.measured():
+            section_generic(sec)
+        if sec.out:
+            body.append(f"## {raw}: not a paper experiment\n")
+            body.append(f"Output: {', '.join('`' + f + '`' for f in e.folders)}.\n")
+            body.append(sec.text())
     if broken:
         summary.append([", ".join(broken), "unreadable summary.csv", "-", "-"])
     lines = head + ["## Summary\n",
                     md_table(["experiment", "status", "runs measured", "claims reproduced"], summary)]
-    ranked = [os.path.join(f, "summary.md") for _, folders in sorted(unknown.items())
-              for f in folders if os.path.isfile(os.path.join(f, "summary.md"))]
-    if ranked:
-        lines.append("Without a paper table, the renderers ranked per sweep point (what `shadesweep "
-                     "run` printed): " + ", ".join(f"`{r}`" for r in ranked) + ".\n")
     if plots.error:
         lines.append(f"Plots not made: {plots.error}.\n")
     lines += body
