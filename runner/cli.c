@@ -1,4 +1,6 @@
 #include "runner/cli.h"
+#include "runner/commands.h"
+#include "runner/summary_md.h"
 
 #include <errno.h>
 #include <getopt.h>
@@ -296,6 +298,17 @@ static int cmd_info(int argc, char **argv)
     return 0;
 }
 
+/* The end-of-run table (runner/summary_md.c) on stdout and OUT/summary.md; a
+ * problem with it is reported and changes no exit status. */
+static void print_summary_table(const char *dir)
+{
+    char err[600];
+    fflush(stderr);
+    if (!summary_table_write(dir, stdout, err, sizeof err))
+        fprintf(stderr, "shadesweep: no summary table: %s\n", err);
+    fflush(stdout);
+}
+
 static int cmd_run(int argc, char **argv)
 {
     cli_opts o;
@@ -368,7 +381,10 @@ static int cmd_merge(int argc, char **argv)
         fprintf(stderr, "shadesweep merge: expected -o OUT and one or more shard folders\n");
         return 2;
     }
-    return merge_main(o.out, o.force, argc - first, argv + first);
+    int rc = merge_main(o.out, o.force, argc - first, argv + first);
+    if (rc != 2)
+        print_summary_table(o.out);
+    return rc;
 }
 
 int cli_main(int argc, char **argv)
@@ -407,6 +423,10 @@ int cli_main(int argc, char **argv)
         return cmd_merge(argc - 1, argv + 1);
     if (strcmp(cmd, "params") == 0)
         return cmd_params(argc - 1, argv + 1);
+    if (strcmp(cmd, "compare") == 0)
+        return cmd_compare(argc - 1, argv + 1);
+    if (strcmp(cmd, "report") == 0)
+        return cmd_report(argc - 1, argv + 1);
     fprintf(stderr, "shadesweep: unknown command '%s'\n\n%s", cmd, usage_text);
     return 2;
 }

@@ -29,6 +29,7 @@
 #include "runner/params.h"
 #include "runner/plan_check.h"
 #include "runner/progress.h"
+#include "runner/summary_md.h"
 #include "scenes/scene.h"
 
 /* A fence wait longer than this is a hung GPU: the run fails rather than waits forever. */
@@ -166,12 +167,27 @@ static unsigned drop_implausible_gpu(frame_stats *fs, double frametime_us)
     return dropped;
 }
 
-/* Draws one frame at schedule time t and waits for its end. */
-static bool draw_frame(run_state *st, double t, frame_stats *fs)
+/* debug.busy_us (testing regression gates): spins for us microseconds on the
+ * monotonic clock, so a measured frame costs that much more. */
+static void busy_wait_us(uint32_t us)
 {
+    double until = progress_now() + us * 1e-6;
+    while (progress_now() < until)
+        ;
+}
+
+/* Draws one frame at schedule time t and waits for its end; a measured frame of a
+ * run with debug.busy_us (of its renderer) then busy-waits inside the frame. */
+static bool draw_frame(run_state *st, double t, frame_stats *fs, bool measured)
+{
+    const run_params *p = &st->s->p;
     scene_update(st->sc, t);
     renderer_draw(st->r, st->sc, fs);
-    return frame_sync(st->s->p.sync, st->err, sizeof st->err);
+    bool ok = frame_sync(p->sync, st->err, sizeof st->err);
+    if (ok && measured && p->debug_busy_us &&
+        (!p->debug_busy_renderer[0] || strcmp(p->debug_busy_renderer, p->renderer) == 0))
+        busy_wait_us(p->debug_busy_us);
+    return ok;
 }
 
 static bool gl_clean(run_state *st, const char *where)
@@ -286,7 +302,7 @@ static void run_trial(run_state *st, uint32_t trial, trial_result *tr)
 
     double w0 = progress_now();
     for (size_t k = 0; !span_done(&p->warmup, k, progress_now() - w0); k++) {
-        if (!draw_frame(st, schedule_time(p, k, progress_now() - w0), &fs)) {
+        if (!draw_frame(st, schedule_time(p, k, progress_now() - w0), &fs, false)) {
             snprintf(tr->status, sizeof tr->status, "failed:sync");
             return;
         }
@@ -303,7 +319,7 @@ static void run_trial(run_state *st, uint32_t trial, trial_result *tr)
     for (size_t k = 0;; k++) {
         double start = progress_now();
         double t = schedule_time(p, k, start - t0);
-        bool ok = draw_frame(st, t, &fs);
+        bool ok = draw_frame(st, t, &fs, true);
         double end = progress_now();
         if (!ok) {
             snprintf(tr->status, sizeof tr->status, "failed:sync");
@@ -1067,8 +1083,16 @@ int run_sweep(const experiment *e, const plan *p, const char *out, bool force, r
     o->out_dir = dir;
     int rc = run_plan(e, p, o);
     o->out_dir = NULL;
-    folder_close(&fo, rc == 2);
-    if (rc != 2)
+    if (rc != 2) {
+        /* the answer (runner/summary_md.c): on stdout and as summary.md, written while
+         * the folder is still ours; a problem with it changes no exit status */
+        char terr[600];
         fprintf(stderr, "results: %s/summary.csv\n", dir);
+        fflush(stderr);
+        if (!summary_table_write(dir, stdout, terr, sizeof terr))
+            fprintf(stderr, "shadesweep: no summary table: %s\n", terr);
+        fflush(stdout);
+    }
+    folder_close(&fo, rc == 2);
     return rc;
 }

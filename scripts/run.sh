@@ -1,6 +1,7 @@
 #!/usr/bin/env bash
 # Set-up if needed, build, then `shadesweep ARGS`.
-# With no arguments: the quick-start experiment on EGL + llvmpipe, into out/quickstart.
+# With no arguments: the quick-start experiment on EGL + llvmpipe, into out/quickstart,
+# ending with the ranked table and a plot of frame time against lights.
 set -euo pipefail
 root=$(cd "$(dirname "$0")/.." && pwd)
 "$root/scripts/setup.sh"
@@ -11,6 +12,13 @@ if [ $# -eq 0 ]; then
   # are comparable across machines.
   export LIBGL_ALWAYS_SOFTWARE=1
   cd "$root"
-  exec "$exe" run --force experiments/quickstart.yaml
+  # the run ends with the renderers ranked (also out/quickstart/summary.md); the report
+  # adds the plot of frame time against lights per renderer
+  rc=0
+  "$exe" run --force experiments/quickstart.yaml || rc=$?
+  [ $rc -eq 2 ] && exit 2
+  "$exe" report out/quickstart >&2 &&
+    echo "plot: out/quickstart/plots/quickstart_frametime_lights.png (in out/quickstart/report.md)"
+  exit $rc
 fi
 exec "$exe" "$@"

@@ -1,5 +1,5 @@
 #!/usr/bin/env bash
-# scripts/report on hand-made output folders with known numbers: the papers' numbers and
+# scripts/report (and `shadesweep report`) on hand-made output folders with known numbers: the papers' numbers and
 # ours side by side, the verdicts (one claim reproduced, one not, one partly), failed
 # trials left out, experiments not run listed, valid PNG plots, and a bad OUTDIR refused
 # with one line. No GL: the folders are written here in shadesweep's formats.
@@ -244,4 +244,23 @@ bad nowhere "no such folder"
 mkdir empty
 bad empty "no shadesweep output folder"
 bad out/report.md "not a folder"
+# `shadesweep report` runs the same package: the same report byte for byte (the time
+# pinned by SOURCE_DATE_EPOCH), naming the folder as given, never an absolute path
+SOURCE_DATE_EPOCH=86400 "$SHADESWEEP" report out >cmd.out 2>cmd.err || fail "shadesweep report: $(cat cmd.err)"
+cp out/report.md cmd.md
+SOURCE_DATE_EPOCH=86400 "$REPORT" out >/dev/null 2>&1 || fail "scripts/report again"
+cmp -s cmd.md out/report.md || fail "shadesweep report and scripts/report differ"
+grep -qxF -- '- Report written: 1970-01-02 00:00 UTC by shadesweep report from `out`' cmd.md ||
+  fail "header: $(sed -n 3p cmd.md)"
+grep -qF -- "$T" cmd.md && fail "report.md names an absolute path: $(grep -F -- "$T" cmd.md | head -1)"
+grep -qF 'Output: `out/exp1`' cmd.md || fail "folder not named as given"
+# several folders into one report with -o; without -o, one line and exit 2
+"$SHADESWEEP" report -o both out/exp1 out/ge >both.out 2>&1 || fail "report -o: $(cat both.out)"
+grep -q "wrote both/report.md: 2 of 9 experiments (s003-exp1, gbuffer-error)" both.out ||
+  fail "report -o: $(cat both.out)"
+set +e
+"$SHADESWEEP" report out/exp1 out/ge >bad.out 2>bad.err; rc=$?
+set -e
+[ $rc -eq 2 ] && [ "$(cat bad.err)" = "report: several folders: say where the report goes with -o OUTDIR" ] ||
+  fail "several folders without -o: rc $rc $(cat bad.err)"
 echo "report: ok"

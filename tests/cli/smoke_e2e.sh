@@ -22,7 +22,7 @@ def rows(path, want_cols):
 summary_cols = ["experiment","run_id","renderer","scene","width","height","gbuffer",
   "lights_placement","lights_rng","lights_seed","lights_count","lights_radius","trial",
   "frames","measured_s","fps_mean","frametime_mean_us","frametime_sd_us","frametime_ci95_us",
-  "frametime_p50_us","frametime_p99_us","gpu_mean_us","draw_calls_mean","state_changes_mean",
+  "frametime_p50_us","frametime_p99_us","fps_1pct_low","gpu_mean_us","draw_calls_mean","state_changes_mean",
   "fragments_mean","gbuffer_bytes","image_rmse","image_psnr_db","image_max_abs",
   "nonfinite_pixels","harness_us_mean","ci1pct_after_s","status","message"]
 frames_cols = ["run_id","trial","frame","t_wall_s","t_scene_s","lights","frametime_us",
@@ -71,6 +71,8 @@ for s, want_id in zip(summary, [i for i in ids for _ in (1, 2)]):
         if not (math.isfinite(v) and v > 0): fail(f"{k} = {s[k]}")
     mean, p50, p99 = (float(s[k]) for k in ("frametime_mean_us","frametime_p50_us","frametime_p99_us"))
     if not p50 <= p99: fail("p50 > p99")
+    if abs(float(s["fps_1pct_low"]) - 1e6 / p99) > 0.0005 + 1e-6 * 1e6 / p99:
+        fail(f"fps_1pct_low {s['fps_1pct_low']} != 1e6 / p99 {p99}")
     if not math.isfinite(float(s["frametime_ci95_us"])): fail("ci95")
     # 30 frames in measured_s seconds
     if abs(float(s["fps_mean"]) - 30 / float(s["measured_s"])) > 0.01 * float(s["fps_mean"]) + 0.002:

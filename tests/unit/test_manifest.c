@@ -404,6 +404,8 @@ static void test_kv_canonical(void **state)
         {"outputs.frames", "true"},
         {"outputs.seconds", "true"},
         {"outputs.screenshots", ""},
+        {"debug.busy_us", "0"},
+        {"debug.busy_renderer", ""},
         {NULL, NULL},
     };
     static const char *const full[][2] = {
@@ -451,6 +453,8 @@ static void test_kv_canonical(void **state)
         {"outputs.frames", "false"},
         {"outputs.seconds", "false"},
         {"outputs.screenshots", "0,10,30.5"},
+        {"debug.busy_us", "0"},
+        {"debug.busy_renderer", ""},
         {NULL, NULL},
     };
     static const struct {
@@ -469,8 +473,10 @@ static void test_kv_canonical(void **state)
         for (size_t i = 0; i < n; i++) {
             assert_string_equal(kv[i].key, cases[c].kv[i][0]);
             assert_string_equal(kv[i].value, cases[c].kv[i][1]);
-            /* a timeout changes no result, so it is not part of the run id */
-            assert_int_equal(kv[i].in_id, strcmp(kv[i].key, "timeout") != 0);
+            /* a timeout changes no result, so it is not part of the run id; nor the
+             * debug keys (testing regression gates: a slowed run keeps its id) */
+            assert_int_equal(kv[i].in_id, strcmp(kv[i].key, "timeout") != 0 &&
+                                              strncmp(kv[i].key, "debug.", 6) != 0);
         }
         /* max bounds the pairs written */
         assert_int_equal(run_params_kv(&e->base, kv, 3), 3);
@@ -527,7 +533,7 @@ static const bad_case bad_cases[] = {
     {"unknown_top_key.yaml",
      {"1:1: duration: expected {seconds: S} or {frames: N}, found nothing",
       "5:1: durtion: expected one of shadesweep, name, description, scene, renderers, "
-      "resolution, trials, warmup, duration, clock, step, sync, timeout, gbuffer, deferred, forward, shadows, camera, error, lights, outputs, sweep, "
+      "resolution, trials, warmup, duration, clock, step, sync, timeout, gbuffer, deferred, forward, shadows, camera, error, lights, outputs, debug, sweep, "
       "found 'durtion'"}},
     {"unknown_nested_key.yaml",
      {"8:3: lights.cnt: expected one of placement, seed, rng, count, radius, overlap, color_max, "
@@ -655,7 +661,7 @@ static const bad_case bad_cases[] = {
       "5:13: resolution: expected WxH with each side 1..32768, found '640x'",
       "6:9: trials: expected an integer 1..1000, found '0'",
       "7:1: durtion: expected one of shadesweep, name, description, scene, renderers, "
-      "resolution, trials, warmup, duration, clock, step, sync, timeout, gbuffer, deferred, forward, shadows, camera, error, lights, outputs, sweep, "
+      "resolution, trials, warmup, duration, clock, step, sync, timeout, gbuffer, deferred, forward, shadows, camera, error, lights, outputs, debug, sweep, "
       "found 'durtion'",
       "8:19: warmup.seconds: expected a number >= 0 and <= 3600, found '-1'",
       "10:9: lights.seed: expected an integer 0..4294967295, found '-1'",

@@ -1,0 +1,468 @@
+#include "runner/summary_md.h"
+
+#include <math.h>
+#include <stdlib.h>
+#include <string.h>
+
+#include "results/csvread.h"
+#include "results/fsutil.h"
+#include "runner/params.h"
+
+typedef struct trial_cols {
+    int run_id, renderer, experiment, frames, mean, sd, ci95, p99, low1, rmse, status;
+} trial_cols;
+
+bool summary_load_runs(const char *path, run_result **out, size_t *n, char *err,
+                       size_t errlen)
+{
+    *out = NULL;
+    *n = 0;
+    csv_table t;
+    if (!csv_read(path, &t, err, errlen))
+        return false;
+    trial_cols c = {
+        csv_col(&t, "run_id"), csv_col(&t, "renderer"), csv_col(&t, "experiment"),
+        csv_col(&t, "frames"), csv_col(&t, "frametime_mean_us"), csv_col(&t, "frametime_sd_us"),
+        csv_col(&t, "frametime_ci95_us"), csv_col(&t, "frametime_p99_us"),
+        csv_col(&t, "fps_1pct_low"), csv_col(&t, "image_rmse"), csv_col(&t, "status"),
+    };
+    if (c.run_id < 0 || c.frames < 0 || c.mean < 0 || c.ci95 < 0 || c.status < 0) {
+        snprintf(err, errlen, "%s: not a shadesweep summary.csv (no run_id, frames, "
+                 "frametime_mean_us, frametime_ci95_us or status column)", path);
+        csv_table_free(&t);
+        return false;
+    }
+    run_result *runs = calloc(t.nrows ? t.nrows : 1, sizeof *runs);
+    /* per-row trial values, grouped by run below */
+    double *v = calloc(4 * (t.nrows ? t.nrows : 1), sizeof *v);
+    if (!runs || !v) {
+        free(runs);
+        free(v);
+        csv_table_free(&t);
+        snprintf(err, errlen, "out of memory");
+        return false;
+    }
+    size_t nr = 0;
+    for (size_t r = 0; r < t.nrows; r++) {
+        const char *id = csv_get(&t, r, c.run_id);
+        size_t k = 0;
+        while (k < nr && strcmp(runs[k].id, id) != 0)
+            k++;
+        if (k < nr)
+            continue;
+        run_result *x = &runs[nr++];
+        snprintf(x->id, sizeof x->id, "%s", id);
+        snprintf(x->renderer, sizeof x->renderer, "%s", csv_get(&t, r, c.renderer));
+        snprintf(x->experiment, sizeof x->experiment, "%s", csv_get(&t, r, c.experiment));
+        snprintf(x->status, sizeof x->status, "ok");
+        /* every row of this run */
+        size_t m = 0;
+        double p99 = 0, low = 0, *fr = v, *mn = v + t.nrows, *sd = v + 2 * t.nrows,
+               *ci = v + 3 * t.nrows;
+        x->rmse = NAN;
+        for (size_t q = r; q < t.nrows; q++) {
+            if (strcmp(csv_get(&t, q, c.run_id), id) != 0)
+                continue;
+            x->trials++;
+            const char *st = csv_get(&t, q, c.status);
+            if (strcmp(st, "ok") != 0) {
+                if (strcmp(x->status, "ok") == 0)
+                    snprintf(x->status, sizeof x->status, "%s", *st ? st : "unknown");
+                continue;
+            }
+            x->trials_ok++;
+            fr[m] = csv_num(&t, q, c.frames);
+            mn[m] = csv_num(&t, q, c.mean);
+            sd[m] = csv_num(&t, q, c.sd);
+            ci[m] = csv_num(&t, q, c.ci95);
+            m++;
+            double p = csv_num(&t, q, c.p99);
+            double l = c.low1 >= 0 ? csv_num(&t, q, c.low1) : (p > 0 ? 1e6 / p : NAN);
+            p99 += p;
+            low += l;
+            double e = csv_num(&t, q, c.rmse);
+            if (isfinite(e) && !(e <= x->rmse))
+                x->rmse = e;
+        }
+        if (x->trials_ok && strcmp(x->status, "ok") != 0)
+            snprintf(x->status, sizeof x->status, "ok");   /* some trials failed, not all */
+        stats_pool_trials(fr, mn, sd, ci, m, &x->ft);
+        x->p99_us = m ? p99 / (double)m : NAN;
+        /* the run's 1% low is that of its mean p99, as the table shows them side by side */
+        x->low1_fps = x->p99_us > 0 ? 1e6 / x->p99_us : m ? low / (double)m : NAN;
+    }
+    free(v);
+    csv_table_free(&t);
+    *out = runs;
+    *n = nr;
+    return true;
+}
+
+/* ---- grouping by sweep point */
+
+static bool meta_column(const char *name)
+{
+    return strcmp(name, "index") == 0 || strcmp(name, "run_id") == 0 ||
+           strcmp(name, "shard") == 0 || strcmp(name, "folded") == 0 ||
+           strcmp(name, "renderer") == 0;
+}
+
+/* A parameter only some renderers read (params.def: gbuffer.*, deferred.*, ...): not
+ * part of the sweep point, whose renderers are ranked together, but of the row's
+ * configuration ("deferred fat/volume"): a forward baseline then stands beside every
+ * G-buffer variant at the same resolution and lights. */
+static const param *config_column(const char *name)
+{
+    const param *pd = param_find(name);
+    return pd && pd->size && pd->readers && strcmp(pd->readers, "*") != 0 ? pd : NULL;
+}
+
+typedef struct point {
+    char *label;               /* "k=v, k=v" of the parameters that vary; "all runs" */
+    size_t *runs;              /* indices into the run array, ranked */
+    size_t nruns;
+} point;
+
+/* The pl row of a run id, or -1. */
+static long plan_row(const csv_table *pl, int idcol, const char *id)
+{
+    for (size_t r = 0; r < pl->nrows; r++)
+        if (strcmp(csv_get(pl, r, idcol), id) == 0)
+            return (long)r;
+    return -1;
+}
+
+static bool same_point(const csv_table *pl, long a, long b)
+{
+    if (a < 0 || b < 0)
+        return a == b;
+    for (size_t c = 0; c < pl->ncols; c++)
+        if (!meta_column(pl->header[c]) && !config_column(pl->header[c]) &&
+            strcmp(pl->rows[a][c], pl->rows[b][c]) != 0)
+            return false;
+    return true;
+}
+
+static const run_result *rank_base;
+static int by_frametime(const void *pa, const void *pb)
+{
+    const run_result *a = &rank_base[*(const size_t *)pa], *b = &rank_base[*(const size_t *)pb];
+    bool oka = isfinite(a->ft.mean), okb = isfinite(b->ft.mean);
+    if (oka != okb)
+        return oka ? -1 : 1;
+    if (oka && a->ft.mean != b->ft.mean)
+        return a->ft.mean < b->ft.mean ? -1 : 1;
+    /* stable: pl order */
+    size_t ia = *(const size_t *)pa, ib = *(const size_t *)pb;
+    return ia < ib ? -1 : ia > ib;
+}
+
+static char *label_of(const csv_table *pl, long row, const bool *varies)
+{
+    size_t cap = 256, len = 0;
+    char *s = malloc(cap);
+    if (!s)
+        return NULL;
+    s[0] = 0;
+    for (size_t c = 0; row >= 0 && c < pl->ncols; c++) {
+        if (!varies[c])
+            continue;
+        size_t need = strlen(pl->header[c]) + strlen(pl->rows[row][c]) + 4;
+        if (len + need >= cap) {
+            cap = (len + need) * 2;
+            char *t = realloc(s, cap);
+            if (!t) {
+                free(s);
+                return NULL;
+            }
+            s = t;
+        }
+        len += (size_t)snprintf(s + len, cap - len, "%s%s=%s", len ? ", " : "",
+                                pl->header[c], pl->rows[row][c]);
+    }
+    if (!len)
+        snprintf(s, cap, "%s", row >= 0 ? "all runs" : "runs not in plan.csv");
+    return s;
+}
+
+/* "renderer" or "renderer v1/v2": the renderer and its values of the swept
+ * parameters only it reads. */
+static char *config_of(const csv_table *pl, long row, const bool *cvaries, const char *rname)
+{
+    size_t cap = strlen(rname) + 2, len;
+    for (size_t c = 0; row >= 0 && c < pl->ncols; c++)
+        if (cvaries[c])
+            cap += strlen(pl->rows[row][c]) + 1;
+    char *s = malloc(cap);
+    if (!s)
+        return NULL;
+    len = (size_t)snprintf(s, cap, "%s", rname);
+    bool first = true;
+    for (size_t c = 0; row >= 0 && c < pl->ncols; c++) {
+        const param *pd = cvaries[c] ? config_column(pl->header[c]) : NULL;
+        if (!pd || !param_read_by(pd, rname))
+            continue;
+        len += (size_t)snprintf(s + len, cap - len, "%s%s", first ? " " : "/", pl->rows[row][c]);
+        first = false;
+    }
+    return s;
+}
+
+/* ---- formatting */
+
+static int decimals_for(double ms)
+{
+    double a = fabs(ms);
+    return a < 1 ? 4 : a < 10 ? 3 : a < 100 ? 2 : 1;
+}
+
+static void fmt_ms(char *dst, size_t len, double us, int dec)
+{
+    if (isfinite(us))
+        snprintf(dst, len, "%.*f", dec, us / 1000);
+    else
+        snprintf(dst, len, "-");
+}
+
+typedef struct cells {
+    char rank[24], mean[32], ci[32], ratio[24], sig[16], p99[32], low[32], rmse[32];
+} cells;
+
+static void make_cells(const run_result *x, const run_result *fastest, size_t rank, cells *o)
+{
+    memset(o, 0, sizeof *o);
+    bool ok = isfinite(x->ft.mean);
+    snprintf(o->rank, sizeof o->rank, "%s", ok ? "" : "-");
+    if (ok)
+        snprintf(o->rank, sizeof o->rank, "%zu", rank);
+    int dec = decimals_for(x->ft.mean / 1000);
+    fmt_ms(o->mean, sizeof o->mean, x->ft.mean, dec);
+    double ci = x->ft.se * stats_t975_real(x->ft.dof);
+    fmt_ms(o->ci, sizeof o->ci, ci, dec);
+    if (ok && fastest && fastest->ft.mean > 0)
+        snprintf(o->ratio, sizeof o->ratio, "%.2fx", x->ft.mean / fastest->ft.mean);
+    else
+        snprintf(o->ratio, sizeof o->ratio, "-");
+    if (!ok || x == fastest) {
+        snprintf(o->sig, sizeof o->sig, "-");
+    } else {
+        welch_result w;
+        if (stats_welch(&fastest->ft, &x->ft, &w))
+            snprintf(o->sig, sizeof o->sig, "%s", w.significant ? "yes" : "no");
+        else
+            snprintf(o->sig, sizeof o->sig, "n/a");
+    }
+    fmt_ms(o->p99, sizeof o->p99, x->p99_us, decimals_for(x->p99_us / 1000));
+    if (isfinite(x->low1_fps))
+        snprintf(o->low, sizeof o->low, "%.1f", x->low1_fps);
+    else
+        snprintf(o->low, sizeof o->low, "-");
+    if (isfinite(x->rmse))
+        snprintf(o->rmse, sizeof o->rmse, "%.4g", x->rmse);
+    else
+        snprintf(o->rmse, sizeof o->rmse, "-");
+}
+
+static const char md_intro[] =
+    "Per sweep point (the runs whose parameters are equal but for the renderer and the "
+    "keys only some renderers read, whose values follow the renderer's name), the "
+    "configurations ranked by mean frame time over their ok trials, ± the half-width of its 95% "
+    "confidence interval (each trial's batch means, pooled over the trials); `x fastest` "
+    "is the ratio of means; `differs` says whether Welch's t-test on the batch means finds "
+    "the difference to the fastest significant at 5% (two-sided); p99 is the mean of the "
+    "trials' 99th-percentile frame time and `1% low` the FPS at that frame time "
+    "(1e6 / p99 us: the slowest 1% of frames run at this rate or below); RMSE is the "
+    "largest image error against the reference where the manifest measures it.\n";
+
+/* Prints s left-aligned in a field of `width` columns (UTF-8 aware for "±"). */
+static void tcell(FILE *fp, const char *s, int width)
+{
+    int cols = 0;
+    for (const unsigned char *q = (const unsigned char *)s; *q; q++)
+        cols += (*q & 0xC0) != 0x80;
+    fprintf(fp, "%s%*s", s, width > cols ? width - cols : 0, "");
+}
+
+#define TERM_MAX_POINTS 8
+#define TERM_MAX_ROWS 12
+
+static void term_header(FILE *t, bool with_point, int cfg_width)
+{
+    fputs("  ", t);
+    tcell(t, "#", 4);
+    tcell(t, "renderer", cfg_width);
+    tcell(t, "frame time ms", 20);
+    tcell(t, "x fastest", 10);
+    tcell(t, "differs", 8);
+    tcell(t, "p99 ms", 9);
+    tcell(t, "1% low fps", 11);
+    tcell(t, "rmse", 10);
+    if (with_point)
+        fputs("point", t);
+    fputs("\n", t);
+}
+
+bool summary_table_write(const char *out_dir, FILE *terminal, char *err, size_t errlen)
+{
+    char path[4200];
+    snprintf(path, sizeof path, "%s/summary.csv", out_dir);
+    run_result *runs = NULL;
+    size_t nruns = 0;
+    if (!summary_load_runs(path, &runs, &nruns, err, errlen))
+        return false;
+    csv_table pl;
+    snprintf(path, sizeof path, "%s/plan.csv", out_dir);
+    if (!csv_read(path, &pl, err, errlen)) {
+        free(runs);
+        return false;
+    }
+    size_t nalloc = nruns ? nruns : 1;
+    int idcol = csv_col(&pl, "run_id");
+    bool *varies = calloc(pl.ncols ? pl.ncols : 1, sizeof *varies);
+    long *prow = calloc(nalloc, sizeof *prow);
+    point *pts = calloc(nalloc, sizeof *pts);
+    size_t *idx = calloc(nalloc, sizeof *idx), *all = calloc(nalloc, sizeof *all);
+    char **rlabel = calloc(nalloc, sizeof *rlabel);
+    bool *done = calloc(nalloc, sizeof *done);
+    size_t npts = 0;
+    bool ok = varies && prow && pts && idx && all && rlabel && done;
+    for (size_t r = 0; ok && r < nruns; r++)
+        prow[r] = idcol >= 0 ? plan_row(&pl, idcol, runs[r].id) : -1;
+    /* a parameter varies when two runs of this summary differ in it */
+    bool *cvaries = calloc(pl.ncols ? pl.ncols : 1, sizeof *cvaries);
+    char **rcfg = calloc(nalloc, sizeof *rcfg);
+    ok = ok && cvaries && rcfg;
+    for (size_t c = 0; ok && c < pl.ncols; c++) {
+        if (meta_column(pl.header[c]))
+            continue;
+        bool v = false;
+        for (size_t r = 1; r < nruns && !v; r++)
+            if (prow[r] >= 0 && prow[0] >= 0 &&
+                strcmp(pl.rows[prow[r]][c], pl.rows[prow[0]][c]) != 0)
+                v = true;
+        if (config_column(pl.header[c]))
+            cvaries[c] = v;
+        else
+            varies[c] = v;
+    }
+    for (size_t r = 0; ok && r < nruns; r++) {
+        ok = (rlabel[r] = label_of(&pl, prow[r], varies)) != NULL &&
+             (rcfg[r] = config_of(&pl, prow[r], cvaries, runs[r].renderer)) != NULL;
+    }
+    /* the points in order of first appearance; each point's runs ranked */
+    size_t *next = idx;
+    bool single = nruns > 1;   /* every point has one run: one renderer */
+    for (size_t r = 0; ok && r < nruns; r++) {
+        if (done[r])
+            continue;
+        point *p = &pts[npts++];
+        p->runs = next;
+        for (size_t q = r; q < nruns; q++)
+            if (!done[q] && same_point(&pl, prow[r], prow[q])) {
+                done[q] = true;
+                next[p->nruns++] = q;
+            }
+        next += p->nruns;
+        single = single && p->nruns == 1;
+        rank_base = runs;
+        qsort(p->runs, p->nruns, sizeof *p->runs, by_frametime);
+        p->label = rlabel[r];
+    }
+    if (!ok) {
+        snprintf(err, errlen, "out of memory");
+        goto out;
+    }
+    /* One renderer: the points' runs ranked against each other in one table. */
+    point one = {.label = "every run (one renderer: the sweep points ranked)", .runs = all,
+                 .nruns = nruns};
+    for (size_t r = 0; r < nruns; r++)
+        all[r] = r;
+    rank_base = runs;
+    qsort(all, nruns, sizeof *all, by_frametime);
+    point *shown = single ? &one : pts;
+    int cfg_width = 14;   /* the renderer column: the longest configuration, + 2 */
+    for (size_t r = 0; r < nruns; r++)
+        if ((int)strlen(rcfg[r]) + 2 > cfg_width)
+            cfg_width = (int)strlen(rcfg[r]) + 2;
+    size_t nshown = single ? 1 : npts;
+
+    char mdpath[4200];
+    snprintf(mdpath, sizeof mdpath, "%s/summary.md", out_dir);
+    afile f;
+    if (!(ok = afile_open(&f, mdpath, err, errlen)))
+        goto out;
+    const char *exp = nruns ? runs[0].experiment : "";
+    fprintf(f.fp, "# %s: the renderers ranked per sweep point\n\n", *exp ? exp : out_dir);
+    fputs(md_intro, f.fp);
+    if (terminal)
+        fprintf(terminal, "\n%s: %zu run%s, %zu sweep point%s; frame time ms: mean ± 95%% CI\n",
+                *exp ? exp : out_dir, nruns, nruns == 1 ? "" : "s", npts, npts == 1 ? "" : "s");
+    if (!nruns)
+        fputs("\nNo run has results yet.\n", f.fp);
+    for (size_t k = 0; k < nshown; k++) {
+        point *p = &shown[k];
+        const run_result *fastest = &runs[p->runs[0]];
+        if (!isfinite(fastest->ft.mean))
+            fastest = NULL;
+        fprintf(f.fp, "\n## %s\n\n", p->label);
+        fprintf(f.fp, "| rank | renderer |%s run | frame time (ms) | x fastest | differs | "
+                "p99 (ms) | 1%% low (FPS) | RMSE | trials |\n"
+                "|---|---|%s---|---|---|---|---|---|---|---|\n", single ? " point |" : "",
+                single ? "---|" : "");
+        bool term = terminal && k < TERM_MAX_POINTS;
+        if (term) {
+            fprintf(terminal, "%s\n", p->label);
+            term_header(terminal, single, cfg_width);
+        }
+        for (size_t i = 0; i < p->nruns; i++) {
+            const run_result *x = &runs[p->runs[i]];
+            cells c;
+            make_cells(x, fastest, i + 1, &c);
+            char ft[160], trials[64];
+            if (isfinite(x->ft.mean))
+                snprintf(ft, sizeof ft, "%s ± %s", c.mean, c.ci);
+            else
+                snprintf(ft, sizeof ft, "%s", x->status);
+            snprintf(trials, sizeof trials, "%zu of %zu ok", x->trials_ok, x->trials);
+            fprintf(f.fp, "| %s | %s |%s%s%s %s | %s | %s | %s | %s | %s | %s | %s |\n", c.rank,
+                    rcfg[p->runs[i]], single ? " " : "", single ? rlabel[p->runs[i]] : "",
+                    single ? " |" : "", x->id, ft, c.ratio, c.sig, c.p99, c.low, c.rmse, trials);
+            if (term && i < TERM_MAX_ROWS) {
+                fputs("  ", terminal);
+                tcell(terminal, c.rank, 4);
+                tcell(terminal, rcfg[p->runs[i]], cfg_width);
+                tcell(terminal, ft, 20);
+                tcell(terminal, c.ratio, 10);
+                tcell(terminal, c.sig, 8);
+                tcell(terminal, c.p99, 9);
+                tcell(terminal, c.low, 11);
+                tcell(terminal, c.rmse, 10);
+                fprintf(terminal, "%s\n", single ? rlabel[p->runs[i]] : "");
+            }
+        }
+        if (term && p->nruns > TERM_MAX_ROWS)
+            fprintf(terminal, "  ... %zu more\n", p->nruns - TERM_MAX_ROWS);
+    }
+    if (terminal && nshown > TERM_MAX_POINTS)
+        fprintf(terminal, "... %zu more sweep points\n", nshown - TERM_MAX_POINTS);
+    ok = afile_commit(&f, err, errlen);
+    if (ok && terminal)
+        fprintf(terminal, "ranked: %s (the definitions are there)\n", mdpath);
+out:
+    for (size_t r = 0; rlabel && r < nruns; r++)
+        free(rlabel[r]);
+    free(rlabel);
+    for (size_t r = 0; rcfg && r < nruns; r++)
+        free(rcfg[r]);
+    free(rcfg);
+    free(cvaries);
+    free(done);
+    free(idx);
+    free(all);
+    free(pts);
+    free(prow);
+    free(varies);
+    csv_table_free(&pl);
+    free(runs);
+    return ok;
+}

@@ -1,0 +1,116 @@
+#!/usr/bin/env bash
+# A GPU session in one command (issue 15, item 9):
+#   scripts/gpu-bench.sh [--smoke] [--resume] OUTDIR
+# 1. `shadesweep info` for every EGL device (saved as OUTDIR/info-device-N.txt);
+# 2. on the first hardware device (not llvmpipe's software device; when there is none it
+#    says so and uses the software device), the renderer benchmark
+#    (experiments/renderers-{deferred,forward}.yaml) and seed 003's experiments at the
+#    paper's 1280x720, cut to fit 8 minutes in all: one trial each, experiment 1 at 30 s a
+#    run instead of 3 x 60 s (the cut manifests are written to OUTDIR/manifests/, under
+#    the experiments' own names, so that the report recognises them);
+# 3. the report over OUTDIR (OUTDIR/report.md) and each folder's ranked table.
+# --resume keeps the complete runs of an earlier, interrupted OUTDIR; when the time
+# budget (GPU_BENCH_BUDGET_S, default 480 s) runs out, the run in progress is stopped
+# (SIGINT) and the script says how to go on. --smoke (or GPU_BENCH_SMOKE=1) runs every
+# manifest's smoke variant (160x120, 2 s): what CI runs on llvmpipe.
+# SHADESWEEP names the program (default: build/runner/shadesweep, built if needed).
+# Exit status: 0 every run ok, 1 some run failed or the budget ran out, 2 bad usage.
+set -euo pipefail
+root=$(cd "$(dirname "$0")/.." && pwd)
+smoke=${GPU_BENCH_SMOKE:-0} resume=0 out=""
+budget=${GPU_BENCH_BUDGET_S:-480}
+usage="usage: scripts/gpu-bench.sh [--smoke] [--resume] OUTDIR"
+while [ $# -gt 0 ]; do
+  case $1 in
+    --smoke) smoke=1; shift ;;
+    --resume) resume=1; shift ;;
+    -h|--help) echo "$usage"; exit 0 ;;
+    -*) echo "gpu-bench: unknown option $1 ($usage)" >&2; exit 2 ;;
+    *) [ -z "$out" ] || { echo "gpu-bench: one OUTDIR only ($usage)" >&2; exit 2; }
+       out=$1; shift ;;
+  esac
+done
+[ -n "$out" ] || { echo "gpu-bench: $usage" >&2; exit 2; }
+if [ -e "$out" ] && [ $resume -eq 0 ] && [ -n "$(ls -A "$out" 2>/dev/null)" ]; then
+  echo "gpu-bench: $out exists; --resume finishes it, or name another folder" >&2
+  exit 2
+fi
+exe=${SHADESWEEP:-}
+if [ -z "$exe" ]; then
+  "$root/scripts/build.sh" "$root/build" >&2
+  exe="$root/build/runner/shadesweep"
+fi
+mkdir -p "$out/manifests"
+start=$SECONDS
+
+# 1. every EGL device
+ndev=$("$exe" info 2>/dev/null | sed -n 's/^egl_devices: \([0-9][0-9]*\)$/\1/p')
+ndev=${ndev:-0}
+echo "gpu-bench: $ndev EGL device(s)"
+hw=-1 sw=-1
+for ((i = 0; i < ndev; i++)); do
+  if "$exe" info --device "$i" >"$out/info-device-$i.txt" 2>&1; then
+    r=$(sed -n 's/^renderer: //p' "$out/info-device-$i.txt")
+    echo "== device $i: $r"
+    cat "$out/info-device-$i.txt"
+    if grep -qiE 'llvmpipe|softpipe|swrast|lavapipe' <<<"$r"; then
+      [ $sw -ge 0 ] || sw=$i
+    else
+      [ $hw -ge 0 ] || hw=$i
+    fi
+  else
+    echo "== device $i: no context: $(tail -1 "$out/info-device-$i.txt")"
+  fi
+done
+dev=()
+if [ $hw -ge 0 ]; then
+  echo "gpu-bench: running on device $hw (hardware)"
+  dev=(--device "$hw")
+elif [ $sw -ge 0 ]; then
+  echo "gpu-bench: no hardware EGL device; running on llvmpipe's software device (device $sw)"
+  dev=(--device "$sw")
+else
+  echo "gpu-bench: no usable EGL device; running on Mesa's surfaceless platform"
+fi
+
+# 2. the manifests, cut to the budget
+cut() {  # cut NAME SED-SCRIPT: OUTDIR/manifests/NAME.yaml from experiments/NAME.yaml
+  sed -e "$2" "$root/experiments/$1.yaml" >"$out/manifests/$1.yaml"
+}
+cut renderers-deferred 's/^trials: 3$/trials: 1/'
+cut renderers-forward 's/^trials: 3$/trials: 1/'
+cut s003-exp2 's/^trials: 3$/trials: 1/'
+cut s003-exp1 's/^trials: 3$/trials: 1/; s/^duration: {seconds: 60}$/duration: {seconds: 30}/'
+opts=()
+[ "$smoke" -eq 1 ] && opts+=(--smoke)
+status=0
+for m in renderers-deferred renderers-forward s003-exp2 s003-exp1; do
+  left=$((budget - (SECONDS - start)))
+  if [ $left -le 0 ]; then
+    echo "gpu-bench: the ${budget} s budget is spent before $m" >&2
+    status=1
+    break
+  fi
+  r=()
+  [ -f "$out/$m/plan.csv" ] && r=(--resume)
+  echo "== $m (${left} s of the budget left)"
+  set +e
+  timeout -s INT -k 30 "$left" "$exe" run "${opts[@]}" "${dev[@]}" "${r[@]}" -o "$out/$m" \
+    "$out/manifests/$m.yaml"
+  rc=$?
+  set -e
+  case $rc in
+    0) ;;
+    1) status=1 ;;
+    124|130) echo "gpu-bench: the ${budget} s budget ran out during $m" >&2; status=1; break ;;
+    *) echo "gpu-bench: $m: shadesweep run exited $rc" >&2; status=1 ;;
+  esac
+done
+if [ $status -ne 0 ] && [ $((SECONDS - start)) -ge "$budget" ]; then
+  echo "gpu-bench: to finish: scripts/gpu-bench.sh --resume${opts:+ ${opts[*]}} $out" >&2
+fi
+
+# 3. the report
+"$exe" report "$out" || status=1
+echo "gpu-bench: $out/report.md; $((SECONDS - start)) s"
+exit $status

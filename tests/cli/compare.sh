@@ -1,0 +1,118 @@
+#!/usr/bin/env bash
+# The end-of-run table and `compare`: two folders from the same tiny manifest, in the
+# second one renderer slowed by debug.busy_us (a known busy-wait in every measured
+# frame, not part of the run id). The run prints the ranked table and writes
+# summary.md with the slowed renderer behind; compare flags exactly the slowed run,
+# with the exit status a CI gate reads; bad input exits 2 with one line.
+. "$(dirname "$0")/lib.sh"
+need_gl
+cd "$T"
+manifest() {  # manifest NAME [EXTRA]
+  cat <<YAML
+shadesweep: 1
+name: $1
+scene: shapes
+renderers: [deferred, forward-spml]
+resolution: 64x64
+trials: 2
+warmup: {frames: 5}
+duration: {frames: 40}
+clock: fixed
+lights: {count: 4, radius: 4}
+outputs: {frames: false, seconds: false}
+sweep:
+  lights.seed: [1, 2]
+$2
+YAML
+}
+manifest cmp "" > base.yaml
+# 50 ms a frame on frames of a few ms at 64x64: the slowed runs take 5x-20x as long. On a
+# shared machine an unslowed run's mean moves by tens of percent between two runs, so the
+# gate's threshold here is 200%: past any such noise, far below the slowdown.
+manifest cmp "debug: {busy_us: 50000, busy_renderer: forward-spml}" > new.yaml
+
+"$SHADESWEEP" run -o base base.yaml >base.out 2>base.err || fail "base run: $(cat base.err)"
+"$SHADESWEEP" run -o new new.yaml >new.out 2>new.err || fail "new run: $(cat new.err)"
+
+# the same four run ids: the busy-wait changes no id
+ids() { tail -n +2 "$1/plan.csv" | cut -d, -f2; }
+[ "$(ids base)" = "$(ids new)" ] || fail "run ids differ: $(ids base) / $(ids new)"
+[ "$(ids base | wc -l)" -eq 4 ] || fail "want 4 runs"
+slow=$(tail -n +2 new/plan.csv | awk -F, '$6 == "forward-spml" {print $2}' | sort)
+[ "$(echo "$slow" | wc -l)" -eq 2 ] || fail "want two forward-spml runs: $slow"
+
+# the end-of-run table on stdout, and summary.md
+grep -q "^cmp: 4 runs, 2 sweep points; frame time ms: mean ± 95% CI$" new.out ||
+  fail "no table header: $(cat new.out)"
+[ "$(grep -c '^lights.seed=' new.out)" -eq 2 ] || fail "want 2 points: $(cat new.out)"
+# per point: deferred first, forward-spml second and significantly slower
+"$PYTHON" - new.out new/summary.md <<'PY'
+import re, sys
+def fail(m): print("FAIL:", m, file=sys.stderr); sys.exit(1)
+out = open(sys.argv[1]).read().splitlines()
+rows = [l.split() for l in out if re.match(r"^  [12] ", l)]
+if len(rows) != 4: fail(f"terminal rows {rows}")
+for i in (0, 2):
+    a, b = rows[i], rows[i + 1]
+    if a[1] != "deferred" or b[1] != "forward-spml": fail(f"ranking {a} {b}")
+    if a[5] != "1.00x" or a[6] != "-": fail(f"fastest row {a}")
+    if float(b[5].rstrip("x")) < 2 or b[6] != "yes": fail(f"slowed row {b}")
+    # p99 and 1% low: 1e6 / p99
+    if abs(float(b[8]) - 1000 / float(b[7])) > 0.1: fail(f"1% low of {b}")
+md = open(sys.argv[2]).read()
+if md.count("\n## lights.seed=") != 2: fail("summary.md points")
+body = [l for l in md.splitlines() if re.match(r"^\| [12] \|", l)]
+if len(body) != 4 or any("2 of 2 ok" not in l for l in body): fail(f"summary.md rows {body}")
+if not all("| forward-spml |" in body[i] and "| yes |" in body[i] for i in (1, 3)):
+    fail(f"summary.md significance {body}")
+PY
+
+# compare BASE NEW: exactly the two slowed runs are slower, exit 1
+set +e
+"$SHADESWEEP" compare base new --threshold 200% --csv cmp.csv --md cmp.md >cmp.out 2>cmp.err; rc=$?
+set -e
+[ $rc -eq 1 ] || fail "compare base new: rc $rc $(cat cmp.err)"
+cmp -s cmp.out cmp.md || fail "--md differs from stdout"
+grep -q "4 runs in common: 2 slower, 0 faster, 2 same, 0 n/a" cmp.out || fail "counts: $(cat cmp.out)"
+flagged=$(tail -n +2 cmp.csv | awk -F, '$13 == "slower" {print $1}' | sort)
+[ "$flagged" = "$slow" ] || fail "slower runs: '$flagged', want '$slow'"
+[ "$(tail -n +2 cmp.csv | awk -F, '$13 == "same"' | wc -l)" -eq 2 ] || fail "same: $(cat cmp.csv)"
+head -1 cmp.csv | grep -qx "run_id,renderer,base_mean_us,base_ci95_us,new_mean_us,new_ci95_us,change_us,change_ci95_us,change_rel,change_ci95_rel,welch_dof,significant,verdict" ||
+  fail "csv header: $(head -1 cmp.csv)"
+# the reverse: exactly those runs got faster (below BASE / 3), nothing slower: exit 0
+"$SHADESWEEP" compare new base --threshold=200% --csv rev.csv >rev.out 2>rev.err ||
+  fail "compare new base: rc $? $(cat rev.err)"
+grep -q "4 runs in common: 0 slower, 2 faster, 2 same" rev.out || fail "reverse: $(cat rev.out)"
+[ "$(tail -n +2 rev.csv | awk -F, '$13 == "faster" {print $1}' | sort)" = "$slow" ] ||
+  fail "faster runs: $(cat rev.csv)"
+# a folder against itself: all the same
+"$SHADESWEEP" compare base base >self.out || fail "compare base base"
+grep -q "4 runs in common: 0 slower, 0 faster, 4 same" self.out || fail "self: $(cat self.out)"
+# a threshold the slowdown does not reach: same, exit 0
+"$SHADESWEEP" compare --threshold 100000% base new >thr.out || fail "huge threshold"
+grep -q "0 slower, 0 faster, 4 same" thr.out || fail "threshold: $(cat thr.out)"
+
+# merge prints the table too
+"$SHADESWEEP" merge -o merged new >merge.out 2>/dev/null || fail "merge"
+grep -q "^cmp: 4 runs, 2 sweep points" merge.out || fail "merge prints no table"
+[ -s merged/summary.md ] || fail "merge wrote no summary.md"
+
+# bad input: exit 2, one line
+bad() {  # bad WANT ARGS...
+  local want=$1; shift
+  set +e
+  "$SHADESWEEP" compare "$@" >bad.out 2>bad.err; local rc=$?
+  set -e
+  [ $rc -eq 2 ] || fail "compare $*: rc $rc"
+  grep -qF -- "$want" bad.err || fail "compare $*: $(cat bad.err)"
+  [ ! -s bad.out ] || fail "compare $* wrote to stdout"
+}
+bad "shadesweep compare: nowhere: no such folder" base nowhere
+bad "shadesweep compare: base.yaml: not a folder" base.yaml new
+mkdir empty
+bad "shadesweep compare: empty: not a shadesweep output folder (no summary.csv)" empty new
+bad "--threshold: expected a percentage 0..1000000 (e.g. 5%), found 'x'" --threshold x base new
+bad "expected two output folders, BASE and NEW" base
+mkdir -p other && printf 'run_id,frames,frametime_mean_us,frametime_ci95_us,status\nffffffffffff,40,1,1,ok\n' >other/summary.csv
+bad "have no run in common" base other
+echo "compare: ok"
