@@ -303,8 +303,9 @@ static double schedule_horizon(const run_state *st)
 
 /* Before the first trial, whatever the warm-up says: one frame at each of
  * PRIME_SAMPLES schedule times spread over the run's schedule, and at every screenshot
- * and error time, so that the shader variants the driver builds at first draw (llvmpipe
- * compiles per draw state) are built before anything is measured. None is recorded;
+ * and error time (with clock: fixed, at the frames the run will draw), so that the
+ * shader variants the driver builds at first draw (llvmpipe compiles per draw state)
+ * are built before anything is measured. None is recorded;
  * meta.yaml states how many there were and how long they took (timing.prime_*). */
 static bool prime_variants(run_state *st)
 {
@@ -318,6 +319,11 @@ static bool prime_variants(run_state *st)
         times[n++] = p->screenshots[i];
     for (size_t i = 0; i < p->nerror_at; i++)
         times[n++] = p->error_at[i];
+    /* clock: fixed visits multiples of step only: the nearest one, or for a capture
+     * the frame that takes it (the first at or after its time) */
+    for (size_t i = 0; p->clock == RUN_CLOCK_FIXED && p->step > 0 && i < n; i++)
+        times[i] = p->step * (i < PRIME_SAMPLES ? round(times[i] / p->step)
+                                                : ceil(times[i] / p->step - 1e-9));
     double t0 = progress_now();
     frame_stats fs;
     for (size_t i = 0; i < n; i++) {
