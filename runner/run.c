@@ -301,9 +301,15 @@ static double schedule_horizon(const run_state *st)
 
 #define PRIME_SAMPLES 5
 
-/* Before the first trial, whatever the warm-up says: one frame at each of
- * PRIME_SAMPLES schedule times spread over the run's schedule, and at every screenshot
- * and error time (with clock: fixed, at the frames the run will draw), so that the
+static int cmp_time(const void *pa, const void *pb)
+{
+    double a = *(const double *)pa, b = *(const double *)pb;
+    return (a > b) - (a < b);
+}
+
+/* Before the first trial, whatever the warm-up says: one frame at each distinct time
+ * of PRIME_SAMPLES spread over the run's schedule and of every screenshot and error
+ * time (with clock: fixed, at the frames the run will draw), so that the
  * shader variants the driver builds at first draw (llvmpipe compiles per draw state)
  * are built before anything is measured. None is recorded;
  * meta.yaml states how many there were and how long they took (timing.prime_*). */
@@ -324,6 +330,13 @@ static bool prime_variants(run_state *st)
     for (size_t i = 0; p->clock == RUN_CLOCK_FIXED && p->step > 0 && i < n; i++)
         times[i] = p->step * (i < PRIME_SAMPLES ? round(times[i] / p->step)
                                                 : ceil(times[i] / p->step - 1e-9));
+    /* each time once (a run of one frame has one priming frame), in schedule order */
+    qsort(times, n, sizeof times[0], cmp_time);
+    size_t m = 0;
+    for (size_t i = 0; i < n; i++)
+        if (m == 0 || times[i] != times[m - 1])
+            times[m++] = times[i];
+    n = m;
     double t0 = progress_now();
     frame_stats fs;
     for (size_t i = 0; i < n; i++) {

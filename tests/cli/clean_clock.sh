@@ -23,7 +23,7 @@ YAML
   [ $e = five ] && cat >> $e.yaml <<'YAML'
 error:
   reference: {renderer: forward-spml}
-  at: [0.1, 0.4, 0.7, 1.0, 1.3]
+  at: [0.1, 0.4, 0.7, 1.1, 1.3]
   save_images: true
 YAML
   "$SHADESWEEP" run -o out/$e $e.yaml >out.txt 2>err.txt || fail "$e: $(cat err.txt)"
@@ -36,7 +36,7 @@ for name, ncomp in (("none", 0), ("five", 5)):
     [s] = list(csv.DictReader(open(d + "summary.csv")))
     meta = yaml.safe_load(open(d + "meta.yaml"))
     tm = meta["timing"]
-    # primed: five frames over the schedule plus one at each comparison's time
+    # primed: five frames over the schedule (0, 0.5 .. 2 s) plus one at each comparison's time
     if tm["prime_frames"] != 5 + ncomp: fail(f"{name}: prime_frames {tm['prime_frames']}")
     if not tm["prime_s"] > 0: fail(f"{name}: prime_s {tm['prime_s']}")
     if (tm["paused_s"] > 0) != (ncomp > 0): fail(f"{name}: paused_s {tm['paused_s']}")
