@@ -21,6 +21,7 @@
 #include "results/fsutil.h"
 #include "results/image_io.h"
 #include "results/stats.h"
+#include "results/stream_stats.h"
 #include "results/yamlout.h"
 #include "runner/hash.h"
 #include "runner/folder.h"
@@ -35,25 +36,6 @@
 /* A fence wait longer than this is a hung GPU: the run fails rather than waits forever. */
 #define SYNC_TIMEOUT_S 60.0
 
-typedef struct frame_log {
-    frame_record *v;
-    size_t n, cap;
-} frame_log;
-
-static bool frame_log_push(frame_log *l, const frame_record *r)
-{
-    if (l->n == l->cap) {
-        size_t cap = l->cap ? l->cap * 2 : 4096;
-        frame_record *v = realloc(l->v, cap * sizeof *v);
-        if (!v)
-            return false;
-        l->v = v;
-        l->cap = cap;
-    }
-    l->v[l->n++] = *r;
-    return true;
-}
-
 /* Everything one run holds while it executes. */
 typedef struct run_state {
     const experiment *e;
@@ -67,7 +49,10 @@ typedef struct run_state {
     renderer *ref;             /* error: the reference configuration; NULL without one */
     pass_plan plan;
     run_files files;
-    frame_log log;
+    trial_stream *stream;      /* the per-trial statistics, fed frame by frame */
+    double prime_s;            /* prime_variants: wall time of the frames it drew */
+    size_t prime_frames;
+    double paused_s;           /* measured clock paused (comparisons, screenshots), all trials */
     trial_result *trials;
     char started[32], finished[32];
     char status[96];
@@ -289,7 +274,177 @@ static bool measure_error(run_state *st, uint32_t trial, uint32_t frame, double 
     return ok;
 }
 
-/* One trial: warm-up (not recorded), then the measured frames. */
+/* The measured clock: CLOCK_MONOTONIC seconds since the measurement started, less
+ * the time it was paused. Comparisons with the reference and screenshots run paused:
+ * they take neither frame time, nor harness time, nor per-second bin time, and with
+ * clock: wall the schedule time does not jump over them either. */
+typedef struct measured_clock {
+    double t0, paused, pause_start;
+} measured_clock;
+
+static void mclock_start(measured_clock *c)
+{
+    *c = (measured_clock){.t0 = progress_now()};
+}
+
+static double mclock_now(const measured_clock *c) { return progress_now() - c->t0 - c->paused; }
+
+static void mclock_pause(measured_clock *c) { c->pause_start = progress_now(); }
+
+static void mclock_resume(measured_clock *c) { c->paused += progress_now() - c->pause_start; }
+
+/* The schedule times a run visits (warm-up and measurement both start at 0) end at
+ * most at this; where the span does not say (clock: wall with {frames: n}, clock:
+ * fixed with {seconds: s}), one turn of the camera path and the light count's growth
+ * to its maximum are what can change with time. */
+static double schedule_horizon(const run_state *st)
+{
+    const run_params *p = &st->s->p;
+    double h = 0;
+    bool known = true;
+    const span *spans[2] = {&p->warmup, &p->duration};
+    for (int i = 0; i < 2; i++) {
+        const span *sp = spans[i];
+        if (p->clock == RUN_CLOCK_FIXED && sp->kind == SPAN_FRAMES)
+            h = fmax(h, sp->frames ? (double)(sp->frames - 1) * p->step : 0);
+        else if (p->clock == RUN_CLOCK_WALL && sp->kind == SPAN_SECONDS)
+            h = fmax(h, sp->seconds);
+        else if (!(sp->kind == SPAN_FRAMES && sp->frames == 0) &&
+                 !(sp->kind == SPAN_SECONDS && sp->seconds == 0))
+            known = false;
+    }
+    if (!known) {
+        const light_count *lc = &st->sc->count;
+        h = fmax(h, st->sc->orbit_period);
+        if (lc->growth && lc->step > 0 && lc->max > lc->start)
+            h = fmax(h, ceil((double)(lc->max - lc->start) / lc->step) * lc->every);
+    }
+    return isfinite(h) && h > 0 ? h : 0;
+}
+
+#define PRIME_SAMPLES 5
+
+static int cmp_time(const void *pa, const void *pb)
+{
+    double a = *(const double *)pa, b = *(const double *)pb;
+    return (a > b) - (a < b);
+}
+
+/* Before the first trial, whatever the warm-up says: one frame at each distinct time
+ * of PRIME_SAMPLES spread over the run's schedule and of every screenshot and error
+ * time (with clock: fixed, at the frames the run will draw), so that the
+ * shader variants the driver builds at first draw (llvmpipe compiles per draw state)
+ * are built before anything is measured. None is recorded;
+ * meta.yaml states how many there were and how long they took (timing.prime_*). */
+static bool prime_variants(run_state *st)
+{
+    const run_params *p = &st->s->p;
+    double h = schedule_horizon(st);
+    double times[PRIME_SAMPLES + 2 * MAX_SCREENSHOTS];
+    size_t n = 0;
+    for (size_t i = 0; i < PRIME_SAMPLES; i++)
+        times[n++] = h * (double)i / (PRIME_SAMPLES - 1);
+    for (size_t i = 0; i < p->nscreenshots; i++)
+        times[n++] = p->screenshots[i];
+    for (size_t i = 0; i < p->nerror_at; i++)
+        times[n++] = p->error_at[i];
+    /* clock: fixed visits multiples of step only: the nearest one, or for a capture
+     * the frame that takes it (the first at or after its time) */
+    for (size_t i = 0; p->clock == RUN_CLOCK_FIXED && p->step > 0 && i < n; i++)
+        times[i] = p->step * (i < PRIME_SAMPLES ? round(times[i] / p->step)
+                                                : ceil(times[i] / p->step - 1e-9));
+    /* each time once (a run of one frame has one priming frame), in schedule order */
+    qsort(times, n, sizeof times[0], cmp_time);
+    size_t m = 0;
+    for (size_t i = 0; i < n; i++)
+        if (m == 0 || times[i] != times[m - 1])
+            times[m++] = times[i];
+    n = m;
+    double t0 = progress_now();
+    frame_stats fs;
+    for (size_t i = 0; i < n; i++) {
+        if (!draw_frame(st, times[i], &fs, false)) {
+            char why[sizeof st->err];
+            memcpy(why, st->err, sizeof why);
+            snprintf(st->err, sizeof st->err, "priming: %.490s", why);
+            set_status(st, "sync");
+            return false;
+        }
+        renderer_collect(st->r, &fs);
+    }
+    st->prime_s = progress_now() - t0;
+    st->prime_frames = n;
+    if (!gl_clean(st, "prime")) {
+        snprintf(st->err, sizeof st->err, "GL error while priming the renderer");
+        set_status(st, "gl-error");
+        return false;
+    }
+    return true;
+}
+
+/* Where the trial's per-second bins and convergence points go as each second ends. */
+typedef struct trial_sink {
+    run_state *st;
+    uint32_t trial;
+} trial_sink;
+
+static void sink_second(void *ctx, const second_bin *b)
+{
+    trial_sink *k = ctx;
+    run_files_seconds(&k->st->files, k->st->s->id, k->trial, b, 1);
+}
+
+static void sink_point(void *ctx, const convergence_point *p)
+{
+    trial_sink *k = ctx;
+    run_files_convergence(&k->st->files, k->st->s->id, k->trial, p, 1);
+}
+
+/* The screenshots and comparisons due at schedule time t (each once per trial); the
+ * caller has paused the measured clock. */
+static void capture_due(run_state *st, uint32_t trial, uint32_t frame, double t, bool *shot_done,
+                        bool *error_done, trial_result *tr)
+{
+    const run_params *p = &st->s->p;
+    for (size_t i = 0; i < p->nscreenshots; i++) {
+        if (shot_done[i] || t < p->screenshots[i])
+            continue;
+        shot_done[i] = true;
+        char err[512];
+        if (!screenshot(st, trial, p->screenshots[i], err, sizeof err)) {
+            fprintf(stderr, "run %s: screenshot: %s\n", st->s->id, err);
+            snprintf(tr->status, sizeof tr->status, "failed:screenshot");
+        }
+    }
+    for (size_t i = 0; i < p->nerror_at; i++) {
+        if (error_done[i] || t < p->error_at[i])
+            continue;
+        error_done[i] = true;
+        char err[512];
+        if (!measure_error(st, trial, frame, p->error_at[i], tr, err, sizeof err)) {
+            fprintf(stderr, "run %s: error against the reference: %s\n", st->s->id, err);
+            snprintf(tr->status, sizeof tr->status, "failed:error");
+        }
+    }
+}
+
+static bool capture_is_due(const run_params *p, double t, const bool *shot_done,
+                           const bool *error_done)
+{
+    for (size_t i = 0; i < p->nscreenshots; i++)
+        if (!shot_done[i] && t >= p->screenshots[i])
+            return true;
+    for (size_t i = 0; i < p->nerror_at; i++)
+        if (!error_done[i] && t >= p->error_at[i])
+            return true;
+    return false;
+}
+
+/* One trial: warm-up (not recorded), then the measured frames. On the measured clock,
+ * the time from one frame's end to the next one's start is the harness's (CSV rows,
+ * GL error checks, statistics, progress), so measured_s = frames x (frametime_mean_us +
+ * harness_us_mean) by construction; the statistics (results/stream_stats.h) take each
+ * frame as it ends. */
 static void run_trial(run_state *st, uint32_t trial, trial_result *tr)
 {
     const run_params *p = &st->s->p;
@@ -298,7 +453,6 @@ static void run_trial(run_state *st, uint32_t trial, trial_result *tr)
     tr->trial = trial;
     tr->image_rmse = tr->image_psnr_db = tr->image_max_abs = tr->nonfinite = NAN;
     snprintf(tr->status, sizeof tr->status, "ok");
-    st->log.n = 0;
 
     double w0 = progress_now();
     for (size_t k = 0; !span_done(&p->warmup, k, progress_now() - w0); k++) {
@@ -313,14 +467,17 @@ static void run_trial(run_state *st, uint32_t trial, trial_result *tr)
         return;
     }
 
+    trial_sink sink = {.st = st, .trial = trial};
+    trial_stream_begin(st->stream, 0.01, sink_second, sink_point, &sink);
     bool shot_done[MAX_SCREENSHOTS] = {false}, error_done[MAX_SCREENSHOTS] = {false};
-    double harness_s = 0, t_end = 0;
-    double t0 = progress_now();
+    double harness_s = 0, t_end = 0, start = 0;
+    size_t n = 0;
+    measured_clock mc;
+    mclock_start(&mc);
     for (size_t k = 0;; k++) {
-        double start = progress_now();
-        double t = schedule_time(p, k, start - t0);
+        double t = schedule_time(p, k, start);
         bool ok = draw_frame(st, t, &fs, true);
-        double end = progress_now();
+        double end = mclock_now(&mc);
         if (!ok) {
             snprintf(tr->status, sizeof tr->status, "failed:sync");
             fprintf(stderr, "run %s: %s\n", st->s->id, st->err);
@@ -334,7 +491,7 @@ static void run_trial(run_state *st, uint32_t trial, trial_result *tr)
         tr->gpu_dropped += dropped;
         frame_record rec = {
             .frame = (uint32_t)k,
-            .t_wall_s = end - t0,
+            .t_wall_s = end,
             .t_scene_s = t,
             .lights = st->sc->nlights_active,
             .frametime_us = (end - start) * 1e6,
@@ -343,45 +500,29 @@ static void run_trial(run_state *st, uint32_t trial, trial_result *tr)
             .state_changes = fs.total.state_changes,
             .fragments = fs.total.fragments,
         };
-        t_end = rec.t_wall_s;
-        if (!frame_log_push(&st->log, &rec)) {
-            snprintf(tr->status, sizeof tr->status, "failed:oom");
-            break;
-        }
+        t_end = end;
+        n++;
+        trial_stream_add(st->stream, &rec);
         run_files_frame(&st->files, st->s->id, trial, &rec, &fs);
         for (uint32_t i = 0; i < st->sc->ncoverage_lights && i < st->sc->nlights_active; i++)
             run_files_coverage(&st->files, st->s->id, trial, rec.frame, t, i,
                                scene_light_coverage(st->sc, i));
-        bool clean = gl_clean(st, "frame");
-        harness_s += progress_now() - end;
-        if (!clean) {
+        if (!gl_clean(st, "frame")) {
             snprintf(tr->status, sizeof tr->status, "failed:gl-error");
             break;
         }
-        for (size_t i = 0; i < p->nscreenshots; i++) {
-            if (shot_done[i] || t < p->screenshots[i])
-                continue;
-            shot_done[i] = true;
-            char err[512];
-            if (!screenshot(st, trial, p->screenshots[i], err, sizeof err)) {
-                fprintf(stderr, "run %s: screenshot: %s\n", st->s->id, err);
-                snprintf(tr->status, sizeof tr->status, "failed:screenshot");
-            }
+        if (capture_is_due(p, t, shot_done, error_done)) {
+            mclock_pause(&mc);
+            capture_due(st, trial, rec.frame, t, shot_done, error_done, tr);
+            mclock_resume(&mc);
         }
-        for (size_t i = 0; i < p->nerror_at; i++) {
-            if (error_done[i] || t < p->error_at[i])
-                continue;
-            error_done[i] = true;
-            char err[512];
-            if (!measure_error(st, trial, rec.frame, p->error_at[i], tr, err, sizeof err)) {
-                fprintf(stderr, "run %s: error against the reference: %s\n", st->s->id, err);
-                snprintf(tr->status, sizeof tr->status, "failed:error");
-            }
-        }
-        progress_tick(st->pg, trial, rec.lights, (double)(k + 1) / (end - t0));
-        if (span_done(&p->duration, k + 1, end - t0))
+        progress_tick(st->pg, trial, rec.lights, (double)(k + 1) / end);
+        if (span_done(&p->duration, k + 1, end))
             break;
+        start = mclock_now(&mc);
+        harness_s += start - end;
     }
+    st->paused_s += mc.paused;
 
     /* A comparison that exceeded the manifest's limit, or non-finite light, fails it. */
     if (strcmp(tr->status, "ok") == 0 && p->error_max_rmse > 0 && tr->image_rmse > p->error_max_rmse) {
@@ -395,57 +536,19 @@ static void run_trial(run_state *st, uint32_t trial, trial_result *tr)
                  tr->nonfinite);
     }
 
-    /* Post-trial arithmetic counts as bookkeeping too, spread over the frames. */
-    double post0 = progress_now();
-    size_t n = st->log.n;
-    double *ft = malloc((n ? n : 1) * sizeof *ft);
-    second_bin *bins = NULL;
-    size_t nbins = 0;
-    if (!ft || !stats_bin_seconds(st->log.v, n, t_end, &bins, &nbins)) {
-        snprintf(tr->status, sizeof tr->status, "failed:oom");
-        free(ft);
-        return;
-    }
-    double gpu = 0, dc = 0, sc = 0, frag = 0;
-    size_t ngpu = 0;           /* frames with a GPU time (some may have none) */
-    unsigned lmax = 0;
-    for (size_t i = 0; i < n; i++) {
-        const frame_record *f = &st->log.v[i];
-        ft[i] = f->frametime_us;
-        if (isfinite(f->gpu_us)) {
-            gpu += f->gpu_us;
-            ngpu++;
-        }
-        dc += (double)f->draw_calls;
-        sc += (double)f->state_changes;
-        frag += f->fragments;
-        if (f->lights > lmax)
-            lmax = f->lights;
-    }
-    stats_summarize(ft, n, &tr->ft);
-    tr->ft_ci95 = stats_ci95_batch_means(ft, n);
+    trial_totals tt;
+    trial_stream_end(st->stream, t_end, &tt);
+    tr->ft = tt.ft;
+    tr->ft_ci95 = tt.ft_ci95;
     tr->frames = n;
     tr->measured_s = t_end;
     tr->fps_mean = t_end > 0 ? (double)n / t_end : NAN;
-    tr->gpu_mean_us = ngpu ? gpu / (double)ngpu : NAN;   /* over the frames that have one */
-    tr->draw_calls_mean = n ? dc / (double)n : NAN;
-    tr->state_changes_mean = n ? sc / (double)n : NAN;
-    tr->fragments_mean = n ? frag / (double)n : NAN;
-    tr->lights_max = lmax;
-    run_files_seconds(&st->files, st->s->id, trial, bins, nbins);
-    free(bins);
-    convergence_point *conv = NULL;
-    size_t nconv = 0;
-    if (!stats_convergence(st->log.v, n, t_end, &conv, &nconv)) {
-        snprintf(tr->status, sizeof tr->status, "failed:oom");
-        free(ft);
-        return;
-    }
-    tr->ci1pct_after_s = stats_converged_after(conv, nconv, 0.01);
-    run_files_convergence(&st->files, st->s->id, trial, conv, nconv);
-    free(conv);
-    free(ft);
-    harness_s += progress_now() - post0;
+    tr->gpu_mean_us = tt.gpu_mean_us;
+    tr->draw_calls_mean = tt.draw_calls_mean;
+    tr->state_changes_mean = tt.state_changes_mean;
+    tr->fragments_mean = tt.fragments_mean;
+    tr->lights_max = tt.lights_max;
+    tr->ci1pct_after_s = tt.ci_converged_after_s;
     tr->harness_us_mean = n ? harness_s * 1e6 / (double)n : NAN;
 }
 
@@ -470,6 +573,21 @@ static void cpu_model(char *buf, size_t len)
         }
     }
     fclose(f);
+}
+
+/* The process's peak resident size (VmHWM in /proc/self/status), kB; -1 unknown. */
+static int64_t vm_hwm_kb(void)
+{
+    FILE *f = fopen("/proc/self/status", "r");
+    if (!f)
+        return -1;
+    char line[256];
+    long long kb = -1;
+    while (fgets(line, sizeof line, f))
+        if (sscanf(line, "VmHWM: %lld kB", &kb) == 1)
+            break;
+    fclose(f);
+    return kb;
 }
 
 static bool write_meta(run_state *st, char *err, size_t errlen)
@@ -573,6 +691,11 @@ static bool write_meta(run_state *st, char *err, size_t errlen)
     yo_key(y, "clock_source"); yo_str(y, "CLOCK_MONOTONIC");
     yo_key(y, "frame_end"); yo_str(y, st->s->p.sync == RUN_SYNC_FINISH ? "glFinish" : "fence");
     yo_key(y, "ci95_method"); yo_str(y, "batch means, 10 batches, Student t");
+    yo_key(y, "percentiles"); yo_str(y, "nearest rank; exact up to 1024 frames, then a log histogram within 0.5%");
+    yo_key(y, "prime_frames"); yo_i64(y, (int64_t)st->prime_frames);
+    yo_key(y, "prime_s"); yo_f64(y, st->prime_s);
+    yo_key(y, "paused_s"); yo_f64(y, st->paused_s);
+    yo_key(y, "vm_hwm_kb"); yo_i64(y, vm_hwm_kb());
     yo_map_end(y);
 
     yo_key(y, "pass_plan");
@@ -705,6 +828,11 @@ static bool run_setup(run_state *st)
             return false;
         }
     }
+    if (!(st->stream = trial_stream_new())) {
+        snprintf(st->err, sizeof st->err, "out of memory for the trial statistics");
+        set_status(st, "oom");
+        return false;
+    }
     return true;
 }
 
@@ -716,7 +844,7 @@ static void run_teardown(run_state *st)
     renderer_destroy(st->r);
     scene_destroy(st->sc);
     gl_context_destroy(st->ctx);
-    free(st->log.v);
+    trial_stream_free(st->stream);
 }
 
 /* Rows for trials that never ran, so that every run has one row per trial. */
@@ -758,7 +886,7 @@ static void write_run_result(run_state *st)
 static void run_one(run_state *st)
 {
     const run_params *p = &st->s->p;
-    if (run_setup(st)) {
+    if (run_setup(st) && prime_variants(st)) {
         for (uint32_t t = 1; t <= p->trials; t++) {
             trial_result *tr = &st->trials[t - 1];
             run_trial(st, t, tr);
