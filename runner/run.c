@@ -470,12 +470,13 @@ static void run_trial(run_state *st, uint32_t trial, trial_result *tr)
     trial_sink sink = {.st = st, .trial = trial};
     trial_stream_begin(st->stream, 0.01, sink_second, sink_point, &sink);
     bool shot_done[MAX_SCREENSHOTS] = {false}, error_done[MAX_SCREENSHOTS] = {false};
-    double harness_s = 0, t_end = 0, start = 0;
+    double harness_s = 0, t_end = 0, start = 0, t_last = 0;
     size_t n = 0;
     measured_clock mc;
     mclock_start(&mc);
     for (size_t k = 0;; k++) {
         double t = schedule_time(p, k, start);
+        t_last = t;
         bool ok = draw_frame(st, t, &fs, true);
         double end = mclock_now(&mc);
         if (!ok) {
@@ -523,6 +524,21 @@ static void run_trial(run_state *st, uint32_t trial, trial_result *tr)
         harness_s += start - end;
     }
     st->paused_s += mc.paused;
+
+    /* A time the trial never reached (a wall clock counting frames, a fixed clock
+     * counting seconds: plan_check cannot know the end) fails it: an error gate that
+     * compared nothing must not pass. */
+    for (size_t i = 0; strcmp(tr->status, "ok") == 0 && i < p->nerror_at + p->nscreenshots; i++) {
+        bool is_error = i < p->nerror_at;
+        size_t j = is_error ? i : i - p->nerror_at;
+        if (is_error ? error_done[j] : shot_done[j])
+            continue;
+        snprintf(tr->status, sizeof tr->status, "failed:%s", is_error ? "error" : "screenshot");
+        snprintf(st->err, sizeof st->err,
+                 "%s time %g s never reached: the trial's last frame was at schedule time %g s",
+                 is_error ? "error.at" : "outputs.screenshots",
+                 is_error ? p->error_at[j] : p->screenshots[j], t_last);
+    }
 
     /* A comparison that exceeded the manifest's limit, or non-finite light, fails it. */
     if (strcmp(tr->status, "ok") == 0 && p->error_max_rmse > 0 && tr->image_rmse > p->error_max_rmse) {

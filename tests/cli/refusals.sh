@@ -36,3 +36,13 @@ check name "name.yaml:2:7: name: expected a name of 1..63 characters from a-z, 0
 # the boundary is accepted: the last frame of {frames: 10} at step 0.1 is at 0.9 s
 printf '%s\nduration: {frames: 10}\nclock: fixed\nstep: 0.125\noutputs: {screenshots: [1.125]}\n' "$base" >edge.yaml
 "$SHADESWEEP" validate edge.yaml >/dev/null || fail "a screenshot at the last frame is valid"
+
+# where only the run knows its end (a wall clock counting frames), a time it never
+# reaches fails the run instead of letting an error gate pass on nothing compared
+need_gl
+printf '%s\nduration: {frames: 3}\nerror: {reference: {renderer: forward-spml}, at: [0, 100], max_rmse: 0.5}\n' "$base" >late.yaml
+"$SHADESWEEP" validate late.yaml >/dev/null || fail "late.yaml is valid: only the run can tell"
+set +e; "$SHADESWEEP" run late.yaml -o out >run.txt 2>&1; rc=$?; set -e
+[ $rc -eq 1 ] || fail "run late.yaml: exit $rc, want 1: $(cat run.txt)"
+grep -q "^refused,.*,failed:error,error.at time 100 s never reached: the trial's last frame was at schedule time" out/summary.csv \
+  || fail "summary of late.yaml: $(cat out/summary.csv)"
