@@ -1,176 +1,107 @@
 #include "results/csvread.h"
 
+#include "results/csv.h"
+
 #include <errno.h>
 #include <math.h>
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
 
-typedef struct growbuf {
-    char *s;
-    size_t n, cap;
-} growbuf;
-
-static bool gb_put(growbuf *b, char c)
+/* The whole file in memory, then csv_next_record (results/csv.c, the one parser of
+ * the CSV shadesweep writes) record by record. */
+static bool slurp(const char *path, char **out, size_t *len, char *err, size_t errlen)
 {
-    if (b->n + 1 >= b->cap) {
-        size_t cap = b->cap ? b->cap * 2 : 64;
-        char *s = realloc(b->s, cap);
-        if (!s)
-            return false;
-        b->s = s;
-        b->cap = cap;
-    }
-    b->s[b->n++] = c;
-    b->s[b->n] = 0;
-    return true;
-}
-
-typedef struct fieldlist {
-    char **f;
-    size_t n, cap;
-} fieldlist;
-
-static bool fl_push(fieldlist *l, const char *s, size_t len)
-{
-    if (l->n == l->cap) {
-        size_t cap = l->cap ? l->cap * 2 : 16;
-        char **f = realloc(l->f, cap * sizeof *f);
-        if (!f)
-            return false;
-        l->f = f;
-        l->cap = cap;
-    }
-    char *d = malloc(len + 1);
-    if (!d)
-        return false;
-    memcpy(d, s ? s : "", len);
-    d[len] = 0;
-    l->f[l->n++] = d;
-    return true;
-}
-
-static void fl_free(fieldlist *l)
-{
-    for (size_t i = 0; i < l->n; i++)
-        free(l->f[i]);
-    free(l->f);
-    memset(l, 0, sizeof *l);
-}
-
-static bool add_row(csv_table *t, fieldlist *row, size_t *cap)
-{
-    if (t->nrows == *cap) {
-        size_t c = *cap ? *cap * 2 : 64;
-        char ***r = realloc(t->rows, c * sizeof *r);
-        if (!r)
-            return false;
-        t->rows = r;
-        *cap = c;
-    }
-    while (row->n < t->ncols)
-        if (!fl_push(row, "", 0))
-            return false;
-    t->rows[t->nrows++] = row->f;
-    memset(row, 0, sizeof *row);
-    return true;
-}
-
-bool csv_read(const char *path, csv_table *t, char *err, size_t errlen)
-{
-    memset(t, 0, sizeof *t);
     FILE *fp = fopen(path, "rb");
     if (!fp) {
         snprintf(err, errlen, "%s: %s", path, strerror(errno));
         return false;
     }
-    growbuf field = {0};
-    fieldlist row = {0};
-    size_t cap = 0, line = 1;
-    bool ok = true, quoted = false, have_header = false, any = false, row_started = false;
-    int c;
-    const char *why = NULL;
-    for (;;) {
-        c = getc(fp);
-        if (quoted) {
-            if (c == EOF) {
-                why = "unterminated quoted field";
+    size_t cap = 1 << 16, n = 0;
+    char *s = malloc(cap);
+    for (size_t got = 1; s && got;) {
+        if (n == cap) {
+            char *t = realloc(s, cap *= 2);
+            if (!t) {
+                free(s);
+                s = NULL;
                 break;
             }
-            if (c == '"') {
-                int d = getc(fp);
-                if (d == '"') {
-                    ok = gb_put(&field, '"');
-                } else {
-                    quoted = false;
-                    if (d != EOF)
-                        ungetc(d, fp);
-                }
-            } else {
-                if (c == '\n')
-                    line++;
-                ok = gb_put(&field, (char)c);
-            }
-            if (!ok)
-                break;
-            continue;
+            s = t;
         }
-        if (c == '"' && field.n == 0) {
-            quoted = true;
-            row_started = true;
-            continue;
-        }
-        if (c == ',' || c == '\n' || c == EOF) {
-            if (c == EOF && !row_started && field.n == 0)
-                break;
-            if (!(ok = fl_push(&row, field.s, field.n)))
-                break;
-            field.n = 0;
-            if (field.s)
-                field.s[0] = 0;
-            if (c == ',') {
-                row_started = true;
-                continue;
-            }
-            /* end of a row */
-            if (!have_header) {
-                t->header = row.f;
-                t->ncols = row.n;
-                memset(&row, 0, sizeof row);
-                have_header = true;
-            } else if (row.n > t->ncols) {
-                why = "a row has more fields than the header";
-                break;
-            } else if (!(ok = add_row(t, &row, &cap))) {
-                break;
-            }
-            any = true;
-            row_started = false;
-            line++;
-            if (c == EOF)
-                break;
-            continue;
-        }
-        if (c == '\r') {
-            int d = getc(fp);
-            if (d == '\n') {
-                ungetc(d, fp);
-                continue;
-            }
-            if (d != EOF)
-                ungetc(d, fp);
-        }
-        row_started = true;
-        if (!(ok = gb_put(&field, (char)c)))
-            break;
+        got = fread(s + n, 1, cap - n, fp);
+        n += got;
     }
+    bool ok = s && !ferror(fp);
     fclose(fp);
-    free(field.s);
-    fl_free(&row);
-    if (!ok)
-        why = "out of memory";
-    else if (!why && !any)
+    if (!ok) {
+        free(s);
+        snprintf(err, errlen, "%s: %s", path, s ? "read error" : "out of memory");
+        return false;
+    }
+    *out = s;
+    *len = n;
+    return true;
+}
+
+static char **copy_fields(const csv_record *r)
+{
+    char **f = calloc(r->n ? r->n : 1, sizeof *f);
+    for (size_t i = 0; f && i < r->n; i++)
+        if (!(f[i] = strdup(r->field[i]))) {
+            while (i--)
+                free(f[i]);
+            free(f);
+            return NULL;
+        }
+    return f;
+}
+
+bool csv_read(const char *path, csv_table *t, char *err, size_t errlen)
+{
+    memset(t, 0, sizeof *t);
+    char *text;
+    size_t len, pos = 0, cap = 0, line = 0;   /* the record, from 1 (the header) */
+    if (!slurp(path, &text, &len, err, errlen))
+        return false;
+    csv_record r = {0};
+    const char *why = NULL;
+    int k;
+    while (!why && (k = csv_next_record(text, len, &pos, &r)) > 0) {
+        line++;
+        if (!t->header) {
+            t->ncols = r.n;
+            if (!(t->header = copy_fields(&r)))
+                why = "out of memory";
+        } else if (r.n != t->ncols) {
+            why = "a row whose field count differs from the header's";
+        } else {
+            if (t->nrows == cap) {
+                size_t c = cap ? cap * 2 : 64;
+                char ***rows = realloc(t->rows, c * sizeof *rows);
+                if (!rows) {
+                    why = "out of memory";
+                    break;
+                }
+                t->rows = rows;
+                cap = c;
+            }
+            if (!(t->rows[t->nrows] = copy_fields(&r)))
+                why = "out of memory";
+            else
+                t->nrows++;
+        }
+    }
+    if (!why && k < 0) {
+        line++;
+        why = "a malformed or cut-off row";
+    }
+    if (!why && !t->header) {
+        line = 1;
         why = "empty (no header)";
+    }
+    csv_record_free(&r);
+    free(text);
     if (why) {
         snprintf(err, errlen, "%s:%zu: %s", path, line, why);
         csv_table_free(t);
@@ -187,7 +118,7 @@ void csv_table_free(csv_table *t)
         free(t->rows[r]);
     }
     free(t->rows);
-    for (size_t c = 0; c < t->ncols; c++)
+    for (size_t c = 0; t->header && c < t->ncols; c++)
         free(t->header[c]);
     free(t->header);
     memset(t, 0, sizeof *t);

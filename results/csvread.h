@@ -8,11 +8,11 @@
 typedef struct csv_table {
     size_t ncols, nrows;
     char **header;          /* ncols names */
-    char ***rows;           /* nrows x ncols fields; a short row is padded with "" */
+    char ***rows;           /* nrows x ncols fields */
 } csv_table;
 
-/* False with "PATH: why" in err (no such file, empty, a row longer than the header,
- * an unterminated quote). */
+/* False with "PATH:LINE: why" in err (no such file, empty, a row whose field count
+ * differs from the header's, a malformed or cut-off row: csv_next_record's rules). */
 bool csv_read(const char *path, csv_table *t, char *err, size_t errlen);
 void csv_table_free(csv_table *t);
 /* Column index of name, or -1. */
