@@ -27,15 +27,17 @@
 #include "renderers/gl/target.h"
 #include "renderers/renderer.h"
 
+#include "renderers/bindings.h"
+
 struct scene;
 
 enum {
     DEFERRED_MAX_ATTACHMENTS = 6,
     DEFERRED_MAX_SLOTS = 4,         /* per attachment: one per channel at most */
-    DEFERRED_FIRST_GBUFFER_UNIT = 4,   /* attachment k is sampled at unit 4 + k */
-    DEFERRED_DEPTH_UNIT = 10,          /* the depth-stencil target (position from depth) */
-    DEFERRED_SPECULAR_UNIT = 11,       /* the specular light target (compose) */
-    DEFERRED_UNIFORM_LIGHT = 16,       /* vec4 u_light[5] of deferred_light.frag */
+    DEFERRED_FIRST_GBUFFER_UNIT = BIND_TEX_GBUFFER0,   /* attachment k at unit 4 + k */
+    DEFERRED_DEPTH_UNIT = BIND_TEX_DEPTH,     /* the depth-stencil target (position from depth) */
+    DEFERRED_SPECULAR_UNIT = BIND_TEX_SPECULAR,   /* the specular light target (compose) */
+    DEFERRED_UNIFORM_LIGHT = LOC_RENDERER,    /* vec4 u_light[5] of deferred_light.frag */
 };
 
 typedef enum deferred_slot_kind {

@@ -32,6 +32,7 @@
 #include <stddef.h>
 #include <stdint.h>
 
+#include "renderers/bindings.h"
 #include "renderers/frontend.h"
 #include "renderers/gl/loader.h"
 #include "renderers/gl/program.h"
@@ -46,9 +47,10 @@
 enum {
     FORWARD_VARIANTS = 16,           /* 4 map bits */
     FORWARD_LIGHT_TYPES = 3,         /* LIGHT_POINT, LIGHT_SPOT, LIGHT_DIRECTIONAL */
-    FORWARD_MAX_PASSES = 5,          /* shadows base lights sky resolve */
-    FORWARD_UNIFORM_LIGHT = 16,      /* uniform location, see above */
-    FORWARD_LIGHTS_BINDING = 1,      /* uniform block binding of forward-spml's lights */
+    FORWARD_MAX_PASSES = 6,          /* shadows base lights sky resolve; forward-plus: shadows
+                                        depth cull shade sky resolve */
+    FORWARD_UNIFORM_LIGHT = LOC_RENDERER,   /* uniform location, see above */
+    FORWARD_LIGHTS_BINDING = BIND_UBO_LIGHTS,   /* uniform block of forward-spml's lights */
 };
 
 enum {

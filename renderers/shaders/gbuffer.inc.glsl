@@ -46,6 +46,7 @@ vec3 gb_spheremap_decode(vec2 enc)
 
 #ifdef GBUFFER_WRITE
 
+#include "bindings.h"
 layout(location = 0) out vec4 gb0;
 layout(location = 1) out vec4 gb1;
 layout(location = 2) out vec4 gb2;
@@ -97,13 +98,13 @@ void gbuffer_store(Surface s)
 
 #else // reading
 
-layout(binding = 4) uniform sampler2D t_gb0;
-layout(binding = 5) uniform sampler2D t_gb1;
-layout(binding = 6) uniform sampler2D t_gb2;
-layout(binding = 7) uniform sampler2D t_gb3;
-layout(binding = 8) uniform sampler2D t_gb4;
-layout(binding = 9) uniform sampler2D t_gb5;
-layout(binding = 10) uniform sampler2D t_depth;
+layout(binding = BIND_TEX_GBUFFER0 + 0) uniform sampler2D t_gb0;
+layout(binding = BIND_TEX_GBUFFER0 + 1) uniform sampler2D t_gb1;
+layout(binding = BIND_TEX_GBUFFER0 + 2) uniform sampler2D t_gb2;
+layout(binding = BIND_TEX_GBUFFER0 + 3) uniform sampler2D t_gb3;
+layout(binding = BIND_TEX_GBUFFER0 + 4) uniform sampler2D t_gb4;
+layout(binding = BIND_TEX_GBUFFER0 + 5) uniform sampler2D t_gb5;
+layout(binding = BIND_TEX_DEPTH) uniform sampler2D t_depth;
 
 #define gb0 texelFetch(t_gb0, ivec2(gl_FragCoord.xy), 0)
 #define gb1 texelFetch(t_gb1, ivec2(gl_FragCoord.xy), 0)

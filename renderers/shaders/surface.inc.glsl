@@ -2,6 +2,7 @@
 // shared by the forward passes and the G-buffer pass, so both see the same inputs.
 // Defines: DIFFUSE_MAP, GLOSS_MAP, NORMAL_MAP, EMISSIVE_MAP (only the maps the
 // material has are sampled: renderers compile only the variants a scene uses).
+#include "bindings.h"
 layout(location = 0) in vec3 v_position;
 layout(location = 1) in vec3 v_normal;
 layout(location = 2) in vec4 v_tangent;
@@ -12,10 +13,10 @@ layout(location = 9) uniform float u_specular;
 layout(location = 10) uniform float u_shininess;
 layout(location = 11) uniform vec3 u_emissive;
 
-layout(binding = 0) uniform sampler2D t_diffuse;
-layout(binding = 1) uniform sampler2D t_gloss;
-layout(binding = 2) uniform sampler2D t_normal;
-layout(binding = 3) uniform sampler2D t_emissive;
+layout(binding = BIND_TEX_DIFFUSE) uniform sampler2D t_diffuse;
+layout(binding = BIND_TEX_GLOSS) uniform sampler2D t_gloss;
+layout(binding = BIND_TEX_NORMAL) uniform sampler2D t_normal;
+layout(binding = BIND_TEX_EMISSIVE) uniform sampler2D t_emissive;
 
 struct Surface {
     vec3 position;   // view space
