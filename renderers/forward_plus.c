@@ -29,9 +29,10 @@
  * entries (renderer_options.max_lights_per_tile), or, with 0 (the default), every
  * light of the run in every tile (capped by GL_MAX_SHADER_STORAGE_BLOCK_SIZE and at
  * 2^25 entries, 128 MiB), so that no frame can run out unless that cap bites. A tile
- * whose list does not fit is never truncated: it is left empty, the overflow record
- * names it and its count, and collect puts that into frame_stats.overflow (the run
- * fails as failed:overflow).
+ * whose list does not fit is never truncated: it is left empty, and collect, seeing
+ * more entries asked for than the buffer holds, puts the total, the capacity and the
+ * longest tile with its count into frame_stats.overflow (the run fails as
+ * failed:overflow).
  *
  * Counters (collect, after the frame's sync point, so reading them never stalls):
  * grid_cells = tiles, the mean and largest list length over the tiles, and the light
@@ -48,7 +49,7 @@
 enum { PLUS_INDEX_CAP = 1u << 25 };
 
 typedef struct tile_stats {
-    uint32_t next, capacity, overflow_tile, overflow_count;
+    uint32_t next, capacity;
 } tile_stats;
 
 typedef struct forward_plus {
@@ -265,8 +266,9 @@ static void plus_draw(void *self, const struct scene *s, frame_stats *out)
     forward_pass_end(c, out);
 
     if (r->grid) {
+        out->grid_pass = out->npasses + 1;
         forward_pass_begin(c, out, "cull");
-        const tile_stats reset = {0, r->capacity, 0, 0};
+        const tile_stats reset = {0, r->capacity};
         gl.NamedBufferSubData(r->stats, 0, sizeof reset, &reset);
         gl_state_program(c->st, r->cull_program);
         gl.Uniform1i(FORWARD_UNIFORM_LIGHT, r->count);
@@ -302,30 +304,31 @@ static void plus_collect(void *self, frame_stats *out)
     gl.GetNamedBufferSubData(r->stats, 0, sizeof st, &st);
     gl.GetNamedBufferSubData(r->tiles, 0, (GLsizeiptr)((size_t)r->ntiles * 16u), r->readback);
     double sum = 0, weighted = 0, covered = 0;
-    uint32_t max = 0;
+    uint32_t max = 0, longest = 0;
     for (uint32_t t = 0; t < r->ntiles; t++) {
-        uint32_t len = r->readback[4 * t + 1], px = r->readback[4 * t + 2];
+        uint32_t len = r->readback[4 * t + 3], px = r->readback[4 * t + 2];
         r->counts[t] = len;
         sum += len;
         weighted += (double)len * px;
         covered += px;
-        if (len > max)
+        if (len > max) {
             max = len;
+            longest = t;
+        }
     }
     r->counted = true;
     out->grid_cells = r->ntiles;
     out->grid_lights_mean = r->ntiles ? sum / r->ntiles : NAN;
     out->grid_lights_max = max;
     out->light_evals_per_pixel = covered > 0 ? weighted / covered : 0.0;
-    if (st.overflow_tile) {
-        uint32_t t = st.overflow_tile - 1u;
+    /* the lengths are the lists' true lengths, written or not; which lists were left
+     * empty depends on the order the tiles ran in, so the message names the longest */
+    if (st.next > r->capacity)
         snprintf(out->overflow, sizeof out->overflow,
-                 "forward-plus: tile %u (%u, %u) needs %u light indices, the index buffer "
-                 "holds %u of which %u were taken",
-                 t, t % r->tiles_x, t / r->tiles_x, st.overflow_count, r->capacity,
-                 st.next - st.overflow_count < r->capacity ? st.next - st.overflow_count
-                                                           : r->capacity);
-    }
+                 "forward-plus: the tiles' light lists need %u indices, the index buffer "
+                 "holds %u; tile %u (%u, %u) alone needs %u",
+                 st.next, r->capacity, longest, longest % r->tiles_x, longest / r->tiles_x,
+                 max);
 }
 
 static const uint32_t *plus_light_grid(const void *self, size_t *n)

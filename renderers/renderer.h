@@ -32,6 +32,7 @@ typedef struct frame_stats {
      * and the light evaluations per shaded pixel (list length summed over the pixels
      * of the output / pixels: what the shading loop iterates). */
     uint32_t grid_cells;       /* tiles, or clusters */
+    size_t grid_pass;          /* 1 + the index of the pass that built the grid; 0: none */
     double grid_lights_mean, grid_lights_max;
     double light_evals_per_pixel;
     /* Non-empty when the frame could not be drawn as asked (a light list that would
@@ -139,7 +140,9 @@ typedef struct renderer_options {
      * buffer's capacity in entries per tile on average (0: enough for every light in
      * every tile, i.e. no list can overflow) */
     int tile_size;
-    uint32_t max_lights_per_tile;
+    uint32_t max_lights_per_tile;   /* clustered: per cluster */
+    /* clustered: exponential depth slices (clustered.slices; 0: 24) */
+    int clustered_slices;
 } renderer_options;
 
 typedef struct renderer_impl {

@@ -76,6 +76,11 @@ enum {
     PF_NOT_IN_ID = 1u << 4,    /* recorded, but changes no result: not part of the run id */
     PF_SCENE_DEFAULT = 1u << 5,/* PT_NUMBER (float), PT_VEC3: `scene` (stored as NAN) keeps
                                   the scene's own value */
+    /* >>helper-tiled keys */
+    PF_ID_UNLESS_DEFAULT = 1u << 6,   /* part of the run id only when not at its default:
+                                         a key added later leaves every earlier run's id
+                                         (and results folder name) as it was */
+    /* <<helper-tiled keys */
 };
 
 typedef struct param {
@@ -114,6 +119,10 @@ static const char *const gbuffer_normal_names[] = {"preset", "float16", "float32
                                                    "spheremap8", "spheremap16", NULL};
 static const char *const light_volume_names[] = {"stencil", "fullscreen", "volume",
                                                  "stencil-two-pass", NULL};
+/* >>helper-tiled keys */
+static const char *const light_buffer_names[] = {"uniform", "storage", NULL};
+static const char *const tile_size_names[] = {"8", "16", "32", NULL};   /* 8 << index */
+/* <<helper-tiled keys */
 
 static const param table[] = {
     {.path = "shadesweep", .type = PT_SCHEMA, .flags = PF_REQUIRED,
@@ -280,6 +289,30 @@ static const param table[] = {
     {.path = "sweep", .type = PT_SWEEP,
      .description = "parameter path -> list of values; the runs are the cartesian product "
                     "(first key slowest) times the renderers"},
+    /* >>helper-tiled keys */
+    {.path = "forward.light_buffer", .type = PT_ENUM, .flags = PF_SWEEP | PF_ID_UNLESS_DEFAULT,
+     .def = "uniform", .values = light_buffer_names, RP(light_buffer),
+     .description = "where forward-spml reads its lights: uniform (seed 003's block, at most "
+                    "GL_MAX_UNIFORM_BLOCK_SIZE / 80 lights) or storage (a storage buffer, no "
+                    "such limit)"},
+    {.path = "tiles", .type = PT_GROUP,
+     .description = "options of the tiled renderers (forward-plus)"},
+    {.path = "tiles.size", .type = PT_ENUM, .flags = PF_SWEEP | PF_ID_UNLESS_DEFAULT,
+     .def = "16", .values = tile_size_names, RP(tile_size),
+     .description = "side of a screen tile in pixels: 8, 16 or 32"},
+    {.path = "tiles.max_lights_per_tile", .type = PT_UINT,
+     .flags = PF_SWEEP | PF_ID_UNLESS_DEFAULT, .def = "0", .min = 0, .max = 1000000,
+     RP(max_lights_per_tile),
+     .description = "the light index buffer's size in entries per tile on average; 0: every "
+                    "light in every tile (no frame can overflow); a frame whose lists do not "
+                    "fit fails the run as failed:overflow"},
+    {.path = "clustered", .type = PT_GROUP,
+     .description = "options of the clustered renderer"},
+    {.path = "clustered.slices", .type = PT_UINT, .flags = PF_SWEEP | PF_ID_UNLESS_DEFAULT,
+     .def = "24", .min = 1, .max = 64, RP(clustered_slices),
+     .description = "exponential depth slices between the near and the far plane (Olsson "
+                    "et al. 2012): each slice's far/near ratio is (far/near)^(1/slices)"},
+    /* <<helper-tiled keys */
 };
 
 #define NPARAMS (sizeof table / sizeof table[0])
@@ -1725,6 +1758,10 @@ size_t run_params_kv(const run_params *p, param_kv *out, size_t max)
         out[k].key = pd->column ? pd->column : pd->path;
         out[k].in_id = !(pd->flags & PF_NOT_IN_ID);
         format_value(pd, p, out[k].value, sizeof out[k].value);
+        /* >>helper-tiled keys */
+        if ((pd->flags & PF_ID_UNLESS_DEFAULT) && pd->def && strcmp(out[k].value, pd->def) == 0)
+            out[k].in_id = false;
+        /* <<helper-tiled keys */
         k++;
     }
     return k;

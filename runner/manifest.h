@@ -56,6 +56,12 @@ typedef struct run_params {
     double error_at[MAX_SCREENSHOTS];      /* schedule times, seconds */
     double error_max_rmse;                 /* 0: no limit */
     bool error_save_images;
+    /* >>helper-tiled keys */
+    int light_buffer;                      /* forward.light_buffer: 0 uniform, 1 storage */
+    int tile_size;                         /* tiles.size: index into 8, 16, 32 */
+    uint32_t max_lights_per_tile;          /* tiles.max_lights_per_tile; 0: no budget */
+    uint32_t clustered_slices;             /* clustered.slices */
+    /* <<helper-tiled keys */
 } run_params;
 
 typedef struct experiment {

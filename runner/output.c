@@ -18,7 +18,8 @@ const char *const summary_columns[] = {
     "frametime_ci95_us", "frametime_p50_us", "frametime_p99_us", "gpu_mean_us",
     "draw_calls_mean", "state_changes_mean", "fragments_mean", "gbuffer_bytes",
     "image_rmse", "image_psnr_db", "image_max_abs", "nonfinite_pixels", "harness_us_mean",
-    "ci1pct_after_s",
+    "ci1pct_after_s", "dispatches_mean", "cell_lights_mean", "cell_lights_max",
+    "light_evals_per_pixel",
     "status", "message",
 };
 const size_t summary_ncolumns = sizeof summary_columns / sizeof summary_columns[0];
@@ -45,7 +46,8 @@ static const char *const coverage_columns[] = {
 };
 static const char *const passes_columns[] = {
     "run_id", "trial", "frame", "pass", "gpu_us", "cpu_us", "draw_calls", "state_changes",
-    "fragments", "primitives",
+    "fragments", "primitives", "dispatches", "cell_lights_mean", "cell_lights_max",
+    "light_evals_per_pixel",
 };
 #define NCOLS(a) (sizeof(a) / sizeof((a)[0]))
 
@@ -147,6 +149,12 @@ void run_files_frame(run_files *f, const char *run_id, uint32_t trial, const fra
         csv_u64(w, ps->state_changes);
         csv_f64(w, ps->fragments, 0);
         csv_f64(w, ps->primitives, 0);
+        csv_u64(w, ps->dispatches);
+        /* the light grid's counters on the pass that built it (empty elsewhere) */
+        bool grid = fs->grid_pass == i + 1;
+        csv_f64(w, grid ? fs->grid_lights_mean : NAN, 3);
+        csv_f64(w, grid ? fs->grid_lights_max : NAN, 0);
+        csv_f64(w, grid ? fs->light_evals_per_pixel : NAN, 3);
         csv_end_row(w);
     }
 }
@@ -348,6 +356,10 @@ bool output_write_run_summary(const char *run_dir, const experiment *e, const ru
             csv_str(w, "never");
         else
             csv_f64(w, r->ci1pct_after_s, 3);
+        csv_f64(w, r->dispatches_mean, 3);
+        csv_f64(w, r->cell_lights_mean, 3);
+        csv_f64(w, r->cell_lights_max, 0);
+        csv_f64(w, r->light_evals_per_pixel_mean, 3);
         csv_str(w, r->status);
         csv_str(w, strcmp(r->status, "ok") == 0 ? "" : message);
         csv_end_row(w);

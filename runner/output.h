@@ -72,6 +72,10 @@ typedef struct trial_result {
     sample_summary ft;         /* frame time, us */
     double ft_ci95;            /* half-width, us (batch means) */
     double gpu_mean_us, draw_calls_mean, state_changes_mean, fragments_mean;
+    /* compute dispatches per frame; over the frames, the mean of the mean and the
+     * largest light-list length per tile/cluster, the mean light evaluations per
+     * shaded pixel (NAN: the renderer has no light grid) */
+    double dispatches_mean, cell_lights_mean, cell_lights_max, light_evals_per_pixel_mean;
     double harness_us_mean;    /* runner bookkeeping between frames, us */
     double ci1pct_after_s;     /* the CI stayed within 1% of the mean from then on; NAN: never */
     unsigned gpu_dropped;      /* pass GPU times longer than their frame, made NAN (run.c) */

@@ -284,6 +284,11 @@ static void run_trial(run_state *st, uint32_t trial, trial_result *tr)
             return;
         }
         renderer_collect(st->r, &fs);
+        if (fs.overflow[0]) {
+            snprintf(tr->status, sizeof tr->status, "failed:overflow");
+            snprintf(st->err, sizeof st->err, "warm-up frame %zu: %s", k, fs.overflow);
+            return;
+        }
     }
     if (!gl_clean(st, "warm-up")) {
         snprintf(tr->status, sizeof tr->status, "failed:gl-error");
@@ -304,6 +309,12 @@ static void run_trial(run_state *st, uint32_t trial, trial_result *tr)
             break;
         }
         renderer_collect(st->r, &fs);
+        if (fs.overflow[0]) {   /* a light list did not fit: nothing is truncated silently */
+            snprintf(tr->status, sizeof tr->status, "failed:overflow");
+            snprintf(st->err, sizeof st->err, "frame %zu: %s", k, fs.overflow);
+            fprintf(stderr, "run %s: %s\n", st->s->id, st->err);
+            break;
+        }
         unsigned dropped = drop_implausible_gpu(&fs, (end - start) * 1e6);
         if (dropped && !tr->gpu_dropped)
             fprintf(stderr, "run %s: frame %zu: %u GPU timer result%s longer than the frame "
@@ -319,6 +330,10 @@ static void run_trial(run_state *st, uint32_t trial, trial_result *tr)
             .draw_calls = fs.total.draw_calls,
             .state_changes = fs.total.state_changes,
             .fragments = fs.total.fragments,
+            .dispatches = fs.total.dispatches,
+            .cell_lights_mean = fs.grid_lights_mean,
+            .cell_lights_max = fs.grid_lights_max,
+            .light_evals_per_pixel = fs.light_evals_per_pixel,
         };
         t_end = rec.t_wall_s;
         if (!frame_log_push(&st->log, &rec)) {
@@ -383,8 +398,9 @@ static void run_trial(run_state *st, uint32_t trial, trial_result *tr)
         free(ft);
         return;
     }
-    double gpu = 0, dc = 0, sc = 0, frag = 0;
+    double gpu = 0, dc = 0, sc = 0, frag = 0, disp = 0, cmean = 0, cmax = NAN, evals = 0;
     size_t ngpu = 0;           /* frames with a GPU time (some may have none) */
+    size_t ngrid = 0;          /* frames with a light grid */
     unsigned lmax = 0;
     for (size_t i = 0; i < n; i++) {
         const frame_record *f = &st->log.v[i];
@@ -396,6 +412,14 @@ static void run_trial(run_state *st, uint32_t trial, trial_result *tr)
         dc += (double)f->draw_calls;
         sc += (double)f->state_changes;
         frag += f->fragments;
+        disp += (double)f->dispatches;
+        if (isfinite(f->cell_lights_mean)) {
+            ngrid++;
+            cmean += f->cell_lights_mean;
+            evals += f->light_evals_per_pixel;
+            if (ngrid == 1 || f->cell_lights_max > cmax)
+                cmax = f->cell_lights_max;
+        }
         if (f->lights > lmax)
             lmax = f->lights;
     }
@@ -408,6 +432,10 @@ static void run_trial(run_state *st, uint32_t trial, trial_result *tr)
     tr->draw_calls_mean = n ? dc / (double)n : NAN;
     tr->state_changes_mean = n ? sc / (double)n : NAN;
     tr->fragments_mean = n ? frag / (double)n : NAN;
+    tr->dispatches_mean = n ? disp / (double)n : NAN;
+    tr->cell_lights_mean = ngrid ? cmean / (double)ngrid : NAN;
+    tr->cell_lights_max = ngrid ? cmax : NAN;
+    tr->light_evals_per_pixel_mean = ngrid ? evals / (double)ngrid : NAN;
     tr->lights_max = lmax;
     run_files_seconds(&st->files, st->s->id, trial, bins, nbins);
     free(bins);
@@ -592,6 +620,10 @@ static bool run_setup(run_state *st)
         .separate_specular = p->separate_specular,
         .no_illumination_sets = !p->illumination_sets,
         .no_shadows = p->shadows == 1,
+        .light_buffer = p->light_buffer == 1 ? LIGHT_BUFFER_STORAGE : LIGHT_BUFFER_UNIFORM,
+        .tile_size = 8 << p->tile_size,
+        .max_lights_per_tile = p->max_lights_per_tile,
+        .clustered_slices = (int)p->clustered_slices,
     };
     if (!(st->r = renderer_create(p->renderer, &ro, st->err, sizeof st->err)) ||
         !renderer_prepare(st->r, st->sc, st->err, sizeof st->err)) {
@@ -622,6 +654,9 @@ static bool run_setup(run_state *st)
         rr.light_volumes = p->error_light_volumes;
         rr.separate_specular = false;
         rr.no_illumination_sets = false;
+        /* a reference, not a measurement: forward-spml holds any number of lights */
+        rr.light_buffer = LIGHT_BUFFER_AUTO;
+        rr.max_lights_per_tile = 0;
         char why[512];
         if (!(st->ref = renderer_create(p->error_renderer, &rr, why, sizeof why)) ||
             !renderer_prepare(st->ref, st->sc, why, sizeof why)) {
@@ -659,6 +694,8 @@ static void fill_missing_trials(run_state *st)
         tr->ft.mean = tr->ft.sd = tr->ft.p50 = tr->ft.p99 = NAN;
         tr->ft_ci95 = tr->fps_mean = tr->measured_s = NAN;
         tr->gpu_mean_us = tr->draw_calls_mean = tr->state_changes_mean = NAN;
+        tr->dispatches_mean = tr->cell_lights_mean = tr->cell_lights_max = NAN;
+        tr->light_evals_per_pixel_mean = NAN;
         tr->fragments_mean = tr->harness_us_mean = tr->ci1pct_after_s = NAN;
         tr->image_rmse = tr->image_psnr_db = tr->image_max_abs = tr->nonfinite = NAN;
         snprintf(tr->status, sizeof tr->status, "%s",

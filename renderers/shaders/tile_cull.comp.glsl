@@ -15,8 +15,9 @@
 //   4. The list is counted first, then its place in the shared index buffer taken
 //      with one atomicAdd (dynamically sized: no per-tile budget), then written in
 //      light order (a prefix sum over each batch's pass flags). A list that does not
-//      fit the buffer is not written: the tile records an empty list and the
-//      overflow record names it (the frame then fails, forward_plus.c).
+//      fit the buffer is not written: the tile records an empty list (and its true
+//      length in w); b_stats.next then exceeds the capacity and the frame fails
+//      (forward_plus.c), whatever order the tiles took their places in.
 // Defines: TILE_SIZE, TILES_X. Uniforms: u_light_count (lights in b_lights).
 #include "bindings.h"
 #include "frame.inc"
@@ -150,10 +151,8 @@ void main()
     if (me == 0u) {
         uint offset = count == 0u ? 0u : atomicAdd(b_stats.next, count);
         bool fits = offset <= b_stats.capacity && count <= b_stats.capacity - offset;
-        if (!fits && atomicCompSwap(b_stats.overflow_tile, 0u, tile_index + 1u) == 0u)
-            b_stats.overflow_count = count;
         s_offset = fits ? offset : 0xffffffffu;
-        b_tiles[tile_index] = uvec4(fits ? offset : 0u, fits ? count : 0u, covered, 0u);
+        b_tiles[tile_index] = uvec4(fits ? offset : 0u, fits ? count : 0u, covered, count);
     }
     barrier();
     uint offset = s_offset;

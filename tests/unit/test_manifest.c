@@ -404,6 +404,10 @@ static void test_kv_canonical(void **state)
         {"outputs.frames", "true"},
         {"outputs.seconds", "true"},
         {"outputs.screenshots", ""},
+        {"forward.light_buffer", "uniform"},
+        {"tiles.size", "16"},
+        {"tiles.max_lights_per_tile", "0"},
+        {"clustered.slices", "24"},
         {NULL, NULL},
     };
     static const char *const full[][2] = {
@@ -451,6 +455,10 @@ static void test_kv_canonical(void **state)
         {"outputs.frames", "false"},
         {"outputs.seconds", "false"},
         {"outputs.screenshots", "0,10,30.5"},
+        {"forward.light_buffer", "uniform"},
+        {"tiles.size", "16"},
+        {"tiles.max_lights_per_tile", "0"},
+        {"clustered.slices", "24"},
         {NULL, NULL},
     };
     static const struct {
@@ -469,9 +477,26 @@ static void test_kv_canonical(void **state)
         for (size_t i = 0; i < n; i++) {
             assert_string_equal(kv[i].key, cases[c].kv[i][0]);
             assert_string_equal(kv[i].value, cases[c].kv[i][1]);
-            /* a timeout changes no result, so it is not part of the run id */
-            assert_int_equal(kv[i].in_id, strcmp(kv[i].key, "timeout") != 0);
+            /* a timeout changes no result, so it is not part of the run id; the keys
+             * of issue 10 are part of it only away from their defaults (both files
+             * leave them there), so that no earlier run's id changed with them */
+            const char *k = kv[i].key;
+            bool later = strcmp(k, "forward.light_buffer") == 0 ||
+                         strncmp(k, "tiles.", 6) == 0 || strncmp(k, "clustered.", 10) == 0;
+            assert_int_equal(kv[i].in_id, strcmp(k, "timeout") != 0 && !later);
         }
+        /* away from its default, such a key is part of the id */
+        run_params p = e->base;
+        p.tile_size = 2;   /* 32 */
+        size_t m = run_params_kv(&p, kv, PARAM_KV_MAX);
+        bool seen = false;
+        for (size_t i = 0; i < m; i++)
+            if (strcmp(kv[i].key, "tiles.size") == 0) {
+                assert_string_equal(kv[i].value, "32");
+                assert_true(kv[i].in_id);
+                seen = true;
+            }
+        assert_true(seen);
         /* max bounds the pairs written */
         assert_int_equal(run_params_kv(&e->base, kv, 3), 3);
         assert_string_equal(kv[2].key, "resolution");
@@ -527,7 +552,7 @@ static const bad_case bad_cases[] = {
     {"unknown_top_key.yaml",
      {"1:1: duration: expected {seconds: S} or {frames: N}, found nothing",
       "5:1: durtion: expected one of shadesweep, name, description, scene, renderers, "
-      "resolution, trials, warmup, duration, clock, step, sync, timeout, gbuffer, deferred, forward, shadows, camera, error, lights, outputs, sweep, "
+      "resolution, trials, warmup, duration, clock, step, sync, timeout, gbuffer, deferred, forward, shadows, camera, error, lights, outputs, sweep, tiles, clustered, "
       "found 'durtion'"}},
     {"unknown_nested_key.yaml",
      {"8:3: lights.cnt: expected one of placement, seed, rng, count, radius, overlap, color_max, "
@@ -556,7 +581,7 @@ static const bad_case bad_cases[] = {
      {"6:13: resolution: expected WxH with each side 1..32768, found '640 x 480'"}},
     {"unknown_scene.yaml", {"3:8: scene: expected one of empty, shapes, curtis-scene1, curtis-scene2, curtis-scene3, canyon, interior, spot-coverage, two-spots-overlap, floating-spot, found 'castle'"}},
     {"unknown_renderer.yaml",
-     {"4:19: renderers[1]: expected one of null, deferred, forward-mpml, forward-spml, "
+     {"4:19: renderers[1]: expected one of null, deferred, forward-mpml, forward-spml, forward-plus, "
       "found 'raytrace'",
       "4:29: renderers[2]: expected a renderer listed once, found a second 'null' (first at 4:13)"}},
     {"empty_renderers.yaml",
@@ -638,7 +663,8 @@ static const bad_case bad_cases[] = {
       "forward.illumination_sets, shadows, camera.radius, camera.height, camera.period, "
       "camera.target, camera.near, camera.far, camera.hold, lights.placement, lights.seed, "
       "lights.rng, lights.count, lights.radius, lights.overlap, lights.color_max, lights.attenuation, lights.quadratic.a, "
-      "lights.quadratic.b, lights.quadratic.c), found 'lights.cnt'"}},
+      "lights.quadratic.b, lights.quadratic.c, forward.light_buffer, tiles.size, "
+      "tiles.max_lights_per_tile, clustered.slices), found 'lights.cnt'"}},
     {"sweep_empty_list.yaml",
      {"7:11: sweep.trials: expected a non-empty sequence of values, found an empty sequence"}},
     {"sweep_wrong_type.yaml",
@@ -655,7 +681,7 @@ static const bad_case bad_cases[] = {
       "5:13: resolution: expected WxH with each side 1..32768, found '640x'",
       "6:9: trials: expected an integer 1..1000, found '0'",
       "7:1: durtion: expected one of shadesweep, name, description, scene, renderers, "
-      "resolution, trials, warmup, duration, clock, step, sync, timeout, gbuffer, deferred, forward, shadows, camera, error, lights, outputs, sweep, "
+      "resolution, trials, warmup, duration, clock, step, sync, timeout, gbuffer, deferred, forward, shadows, camera, error, lights, outputs, sweep, tiles, clustered, "
       "found 'durtion'",
       "8:19: warmup.seconds: expected a number >= 0 and <= 3600, found '-1'",
       "10:9: lights.seed: expected an integer 0..4294967295, found '-1'",
