@@ -54,8 +54,12 @@ typedef struct tile_stats {
 
 typedef struct forward_plus {
     forward_common c;        /* first: forward_last_pass_counts() reads self as this */
+    const char *name;        /* "forward-plus" or "clustered" */
     int tile;                /* pixels per tile side */
+    uint32_t slices;         /* clustered: depth slices; forward-plus: 0 */
     uint32_t tiles_x, tiles_y, ntiles;
+    uint32_t ncells;         /* tiles, or tiles x slices */
+    double slice_ratio;      /* clustered: far/near of each slice, (zfar/znear)^(1/slices) */
     bool grid;               /* the scene has point or spot lights: the cull pass runs */
     uint32_t max_lights;     /* entries of the light buffer */
     uint32_t capacity;       /* entries of the index buffer */
@@ -66,32 +70,51 @@ typedef struct forward_plus {
     uint32_t *readback;      /* ntiles x 4 */
     uint32_t *counts;        /* ntiles: list lengths of the last frame collected */
     bool counted;            /* counts hold a frame */
-    char tile_define[24], tiles_x_define[32];
+    char tile_define[24], tiles_x_define[32], tiles_y_define[32], slices_define[24];
     uint64_t frame;
     uint64_t program_frame[FORWARD_VARIANTS];
     int count;               /* lights uploaded this frame */
 } forward_plus;
 
-static void *plus_create(const renderer_options *opts, char *err, size_t errlen)
+static void *tiled_create(const char *name, bool clustered, const renderer_options *opts,
+                          char *err, size_t errlen)
 {
     forward_plus *r = calloc(1, sizeof *r);
     if (!r) {
-        snprintf(err, errlen, "forward-plus: out of memory");
+        snprintf(err, errlen, "%s: out of memory", name);
         return NULL;
     }
-    if (!forward_common_init(&r->c, "forward-plus", opts, err, errlen)) {
-        forward_common_destroy(&r->c);
-        free(r);
-        return NULL;
-    }
+    r->name = name;
+    if (!forward_common_init(&r->c, name, opts, err, errlen))
+        goto fail;
     r->tile = opts->tile_size ? opts->tile_size : 16;
     if (r->tile != 8 && r->tile != 16 && r->tile != 32) {
-        snprintf(err, errlen, "forward-plus: tiles.size %d: expected 8, 16 or 32", r->tile);
-        forward_common_destroy(&r->c);
-        free(r);
-        return NULL;
+        snprintf(err, errlen, "%s: tiles.size %d: expected 8, 16 or 32", name, r->tile);
+        goto fail;
+    }
+    if (clustered) {
+        int k = opts->clustered_slices ? opts->clustered_slices : 24;
+        if (k < 1 || k > 64) {
+            snprintf(err, errlen, "%s: clustered.slices %d: expected 1 to 64", name, k);
+            goto fail;
+        }
+        r->slices = (uint32_t)k;
     }
     return r;
+fail:
+    forward_common_destroy(&r->c);
+    free(r);
+    return NULL;
+}
+
+static void *plus_create(const renderer_options *opts, char *err, size_t errlen)
+{
+    return tiled_create("forward-plus", false, opts, err, errlen);
+}
+
+static void *clustered_create(const renderer_options *opts, char *err, size_t errlen)
+{
+    return tiled_create("clustered", true, opts, err, errlen);
 }
 
 static void release_buffers(forward_plus *r)
@@ -130,6 +153,8 @@ static bool plus_prepare(void *self, const struct scene *s, char *err, size_t er
     r->tiles_x = (uint32_t)((c->width + r->tile - 1) / r->tile);
     r->tiles_y = (uint32_t)((c->height + r->tile - 1) / r->tile);
     r->ntiles = r->tiles_x * r->tiles_y;
+    r->ncells = r->ntiles * (r->slices ? r->slices : 1u);
+    r->slice_ratio = r->slices ? pow((double)s->cam.zfar / s->cam.znear, 1.0 / r->slices) : 0;
     r->grid = (c->light_types & ((1u << LIGHT_POINT) | (1u << LIGHT_SPOT))) != 0;
     uint32_t n = s->nlights_total;
     r->max_lights = n ? n : 1u;
@@ -139,14 +164,14 @@ static bool plus_prepare(void *self, const struct scene *s, char *err, size_t er
     uint64_t block_entries = max_block > 0 ? (uint64_t)max_block / 4u : 0u;
     if ((uint64_t)r->max_lights * sizeof(gpu_light) > (uint64_t)(max_block > 0 ? max_block : 0)) {
         snprintf(err, errlen,
-                 "forward-plus: %u lights need %llu bytes of storage buffer, this context "
+                 "%s: %u lights need %llu bytes of storage buffer, this context "
                  "allows %d (GL_MAX_SHADER_STORAGE_BLOCK_SIZE)",
-                 n, (unsigned long long)r->max_lights * sizeof(gpu_light), max_block);
+                 r->name, n, (unsigned long long)r->max_lights * sizeof(gpu_light), max_block);
         goto fail;
     }
     uint64_t want = c->opts.max_lights_per_tile
-                        ? (uint64_t)r->ntiles * c->opts.max_lights_per_tile
-                        : (uint64_t)r->ntiles * r->max_lights;
+                        ? (uint64_t)r->ncells * c->opts.max_lights_per_tile
+                        : (uint64_t)r->ncells * r->max_lights;
     if (want > block_entries)
         want = block_entries;
     if (want > PLUS_INDEX_CAP)
@@ -156,27 +181,35 @@ static bool plus_prepare(void *self, const struct scene *s, char *err, size_t er
     /* programs */
     snprintf(r->tile_define, sizeof r->tile_define, "TILE_SIZE %d", r->tile);
     snprintf(r->tiles_x_define, sizeof r->tiles_x_define, "TILES_X %u", r->tiles_x);
+    snprintf(r->tiles_y_define, sizeof r->tiles_y_define, "TILES_Y %u", r->tiles_y);
+    snprintf(r->slices_define, sizeof r->slices_define, "SLICES %u", r->slices);
+    const char *grid_defs[4] = {r->tile_define, r->tiles_x_define,
+                                r->slices ? r->tiles_y_define : NULL,
+                                r->slices ? r->slices_define : NULL};
     char why[4096] = "";
     if (gl_program_get(c->programs,
                        &(gl_program_desc){.name = "depth_only", .vertex = "mesh.vert",
                                           .fragment = "depth_only.frag"},
                        &r->depth_program, why, sizeof why) != GLP_OK) {
-        snprintf(err, errlen, "forward-plus: %s", why);
+        snprintf(err, errlen, "%s: %s", r->name, why);
         goto fail;
     }
     if (r->grid &&
         gl_program_get(c->programs,
-                       &(gl_program_desc){.name = "tile_cull", .compute = "tile_cull.comp",
-                                          .defines = {r->tile_define, r->tiles_x_define}},
+                       &(gl_program_desc){.name = r->slices ? "cluster_cull" : "tile_cull",
+                                          .compute = "tile_cull.comp",
+                                          .defines = {grid_defs[0], grid_defs[1], grid_defs[2],
+                                                      grid_defs[3]}},
                        &r->cull_program, why, sizeof why) != GLP_OK) {
-        snprintf(err, errlen, "forward-plus: %s", why);
+        snprintf(err, errlen, "%s: %s", r->name, why);
         goto fail;
     }
-    const char *extra[6] = {NULL};
+    const char *extra[8] = {NULL};
     unsigned k = 0;
     if (r->grid) {
-        extra[k++] = r->tile_define;
-        extra[k++] = r->tiles_x_define;
+        for (unsigned i = 0; i < 4; i++)
+            if (grid_defs[i])
+                extra[k++] = grid_defs[i];
     } else {
         extra[k++] = "NO_GRID";
     }
@@ -190,15 +223,15 @@ static bool plus_prepare(void *self, const struct scene *s, char *err, size_t er
 
     /* buffers */
     r->staging = calloc(r->max_lights, sizeof *r->staging);
-    r->readback = calloc((size_t)r->ntiles * 4u, sizeof *r->readback);
-    r->counts = calloc(r->ntiles, sizeof *r->counts);
+    r->readback = calloc((size_t)r->ncells * 4u, sizeof *r->readback);
+    r->counts = calloc(r->ncells, sizeof *r->counts);
     if (!r->staging || !r->readback || !r->counts) {
-        snprintf(err, errlen, "forward-plus: out of memory for %u lights and %u tiles", n,
-                 r->ntiles);
+        snprintf(err, errlen, "%s: out of memory for %u lights and %u cells", r->name, n,
+                 r->ncells);
         goto fail;
     }
     r->lights = make_buffer((size_t)r->max_lights * sizeof(gpu_light));
-    r->tiles = make_buffer((size_t)r->ntiles * 16u);
+    r->tiles = make_buffer((size_t)r->ncells * 16u);
     r->indices = make_buffer((size_t)r->capacity * 4u);
     r->stats = make_buffer(sizeof(tile_stats));
     return true;
@@ -233,7 +266,7 @@ static void plus_draw(void *self, const struct scene *s, frame_stats *out)
     forward_plus *r = self;
     forward_common *c = &r->c;
     if (!c->prepared) {
-        fprintf(stderr, "bug: forward-plus: draw before a successful prepare\n");
+        fprintf(stderr, "bug: %s: draw before a successful prepare\n", r->name);
         out->npasses = 0;
         return;
     }
@@ -302,10 +335,10 @@ static void plus_collect(void *self, frame_stats *out)
         return;
     tile_stats st;
     gl.GetNamedBufferSubData(r->stats, 0, sizeof st, &st);
-    gl.GetNamedBufferSubData(r->tiles, 0, (GLsizeiptr)((size_t)r->ntiles * 16u), r->readback);
+    gl.GetNamedBufferSubData(r->tiles, 0, (GLsizeiptr)((size_t)r->ncells * 16u), r->readback);
     double sum = 0, weighted = 0, covered = 0;
     uint32_t max = 0, longest = 0;
-    for (uint32_t t = 0; t < r->ntiles; t++) {
+    for (uint32_t t = 0; t < r->ncells; t++) {
         uint32_t len = r->readback[4 * t + 3], px = r->readback[4 * t + 2];
         r->counts[t] = len;
         sum += len;
@@ -317,24 +350,31 @@ static void plus_collect(void *self, frame_stats *out)
         }
     }
     r->counted = true;
-    out->grid_cells = r->ntiles;
-    out->grid_lights_mean = r->ntiles ? sum / r->ntiles : NAN;
+    out->grid_cells = r->ncells;
+    out->grid_lights_mean = r->ncells ? sum / r->ncells : NAN;
     out->grid_lights_max = max;
     out->light_evals_per_pixel = covered > 0 ? weighted / covered : 0.0;
     /* the lengths are the lists' true lengths, written or not; which lists were left
      * empty depends on the order the tiles ran in, so the message names the longest */
-    if (st.next > r->capacity)
+    uint32_t tl = longest % r->ntiles;
+    if (st.next > r->capacity && r->slices)
         snprintf(out->overflow, sizeof out->overflow,
-                 "forward-plus: the tiles' light lists need %u indices, the index buffer "
+                 "%s: the clusters' light lists need %u indices, the index buffer holds %u; "
+                 "cluster %u (tile %u, %u, slice %u) alone needs %u",
+                 r->name, st.next, r->capacity, longest, tl % r->tiles_x, tl / r->tiles_x,
+                 longest / r->ntiles, max);
+    else if (st.next > r->capacity)
+        snprintf(out->overflow, sizeof out->overflow,
+                 "%s: the tiles' light lists need %u indices, the index buffer "
                  "holds %u; tile %u (%u, %u) alone needs %u",
-                 st.next, r->capacity, longest, longest % r->tiles_x, longest / r->tiles_x,
+                 r->name, st.next, r->capacity, longest, tl % r->tiles_x, tl / r->tiles_x,
                  max);
 }
 
 static const uint32_t *plus_light_grid(const void *self, size_t *n)
 {
     const forward_plus *r = self;
-    *n = r->counted ? r->ntiles : 0;
+    *n = r->counted ? r->ncells : 0;
     return r->counted ? r->counts : NULL;
 }
 
@@ -345,7 +385,12 @@ static void plus_describe(const void *self, pass_plan *out)
     out->npasses = 0;
     forward_describe_shadows(c, out);
     forward_describe_pass(out, "depth", true, "the visible objects, depth only");
-    if (!c->prepared || r->grid)
+    if ((!c->prepared || r->grid) && r->slices)
+        forward_describe_pass(out, "cull", true,
+                              "one dispatch: %ux%ux%u clusters (%d px, r = %.4g), lights "
+                              "culled per cluster",
+                              r->tiles_x, r->tiles_y, r->slices, r->tile, r->slice_ratio);
+    else if (!c->prepared || r->grid)
         forward_describe_pass(out, "cull", true,
                               "one dispatch: %ux%u tiles of %d px, lights culled per tile "
                               "into %u indices",
@@ -354,7 +399,10 @@ static void plus_describe(const void *self, pass_plan *out)
         forward_describe_pass(out, "cull", false,
                               "skipped, the scene has no point or spot light");
     forward_describe_pass(out, "shade", true,
-                          r->grid ? "every visible object once, depth EQUAL, its tile's lights"
+                          r->grid ? (r->slices ? "every visible object once, depth EQUAL, "
+                                                 "its cluster's lights"
+                                               : "every visible object once, depth EQUAL, "
+                                                 "its tile's lights")
                                   : "every visible object once, depth EQUAL, every light");
     forward_describe_tail(c, out);
 }
@@ -374,6 +422,21 @@ const renderer_impl renderer_forward_plus_impl = {
     .description = "tiled forward (Harada et al. 2012): depth pre-pass, lights culled per "
                    "screen tile by a compute pass, each pixel shaded with its tile's lights",
     .create = plus_create,
+    .prepare = plus_prepare,
+    .draw = plus_draw,
+    .collect = plus_collect,
+    .describe = plus_describe,
+    .destroy = plus_destroy,
+    .read_hdr = forward_read_hdr,
+    .light_grid = plus_light_grid,
+};
+
+const renderer_impl renderer_clustered_impl = {
+    .name = "clustered",
+    .description = "clustered forward (Olsson et al. 2012): depth pre-pass, lights culled per "
+                   "cluster (screen tile x exponential depth slice) by a compute pass, each "
+                   "pixel shaded with its cluster's lights",
+    .create = clustered_create,
     .prepare = plus_prepare,
     .draw = plus_draw,
     .collect = plus_collect,

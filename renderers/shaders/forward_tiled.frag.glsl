@@ -1,7 +1,9 @@
-// forward-plus's shading pass: ambient + emissive as forward_base.frag, then the lights
+// forward-plus's and clustered's shading pass: ambient + emissive as
+// forward_base.frag, then the lights
 // of this pixel's tile list (built by tile_cull.comp) in light order, each with the
 // squared-range rejection of forward_spml.frag, so that both loops add the same terms
 // in the same order. Depth EQUAL against the pre-pass: each pixel is shaded once.
+// clustered: SLICES (and TILES_Y) defined, the list is the fragment's cluster's.
 // Defines: the material's maps (surface.inc); TILE_SIZE and TILES_X (the grid);
 // NO_GRID: the scene has no point or spot light, there is no cull pass and every
 // light of the frame (u_light_count, all directional) is looped.
@@ -24,7 +26,14 @@ void main()
     uint first = 0u, n = uint(u_light_count);
 #else
     uvec2 t = uvec2(gl_FragCoord.xy) / uint(TILE_SIZE);
-    uvec4 list = b_tiles[t.y * uint(TILES_X) + t.x];
+    uint cell = t.y * uint(TILES_X) + t.x;
+#ifdef SLICES
+    // the cluster: this tile's slice of the fragment's view depth (tile_cull.comp)
+    float scale = float(SLICES) / log(f_clip.y / f_clip.x);
+    int k = clamp(int(floor(log(-s.position.z / f_clip.x) * scale)), 0, SLICES - 1);
+    cell += uint(k) * uint(TILES_X * TILES_Y);
+#endif
+    uvec4 list = b_tiles[cell];
     uint first = list.x, n = list.y;
 #endif
     for (uint k = 0u; k < n; k++) {

@@ -1,14 +1,13 @@
 /* Extreme inputs (issue 5): for each case, each of deferred (curtis and reference
  * G-buffers, stencil light volumes; also fullscreen volumes where volumes matter),
- * forward-mpml, forward-spml (uniform block and storage buffer) and forward-plus
- * renders one frame of "shapes" (64x48 unless the case says otherwise) with lights
- * and camera set by hand, in a debug context. Each ends
- * with no GL error, zero non-finite values in the float light accumulation
+ * forward-mpml, forward-spml (uniform block and storage buffer), forward-plus and
+ * clustered renders one frame of "shapes" (64x48 unless the case says otherwise)
+ * with lights and camera set by hand, in a debug context. Each ends with no GL error, zero non-finite values in the float light accumulation
  * (renderer_read_hdr) and a readable RGBA8 output, or with a clear message before
  * anything renders:
  *   0 lights; 1 light; 4096 and 65536 lights (forward-spml's uniform block: refused
- *   at prepare with the message naming GL_MAX_UNIFORM_BLOCK_SIZE); light radius 1e-4 (lights nothing)
- *   and 1e5 (covers everything); a light exactly on a surface with 1/d^2; the camera
+ *   at prepare with the message naming GL_MAX_UNIFORM_BLOCK_SIZE); light radius 1e-4
+ *   (lights nothing) and 1e5 (covers everything); a light exactly on a surface with 1/d^2; the camera
  *   inside 50 overlapping point lights; volumes cut by the near and by the far plane;
  *   specular exponent 0 and 10000; resolutions 1x1, the largest the context allows
  *   (null renderer only: 2 GB of framebuffer) and one beyond it (refused with the
@@ -53,16 +52,24 @@ typedef struct config {
 } config;
 
 static const config CONFIGS[] = {
-    {"deferred curtis stencil", "deferred", GBUFFER_CURTIS, LIGHT_VOLUMES_STENCIL, false, LIGHT_BUFFER_UNIFORM},
-    {"deferred reference stencil", "deferred", GBUFFER_REFERENCE, LIGHT_VOLUMES_STENCIL, false, LIGHT_BUFFER_UNIFORM},
-    {"deferred curtis fullscreen", "deferred", GBUFFER_CURTIS, LIGHT_VOLUMES_FULLSCREEN, true, LIGHT_BUFFER_UNIFORM},
+    {"deferred curtis stencil", "deferred", GBUFFER_CURTIS, LIGHT_VOLUMES_STENCIL, false,
+     LIGHT_BUFFER_UNIFORM},
+    {"deferred reference stencil", "deferred", GBUFFER_REFERENCE, LIGHT_VOLUMES_STENCIL, false,
+     LIGHT_BUFFER_UNIFORM},
+    {"deferred curtis fullscreen", "deferred", GBUFFER_CURTIS, LIGHT_VOLUMES_FULLSCREEN, true,
+     LIGHT_BUFFER_UNIFORM},
     {"deferred reference fullscreen", "deferred", GBUFFER_REFERENCE, LIGHT_VOLUMES_FULLSCREEN,
      true, LIGHT_BUFFER_UNIFORM},
-    {"forward-mpml", "forward-mpml", GBUFFER_CURTIS, LIGHT_VOLUMES_STENCIL, false, LIGHT_BUFFER_UNIFORM},
-    {"forward-spml", "forward-spml", GBUFFER_CURTIS, LIGHT_VOLUMES_STENCIL, false, LIGHT_BUFFER_UNIFORM},
+    {"forward-mpml", "forward-mpml", GBUFFER_CURTIS, LIGHT_VOLUMES_STENCIL, false,
+     LIGHT_BUFFER_UNIFORM},
+    {"forward-spml", "forward-spml", GBUFFER_CURTIS, LIGHT_VOLUMES_STENCIL, false,
+     LIGHT_BUFFER_UNIFORM},
     {"forward-spml storage", "forward-spml", GBUFFER_CURTIS, LIGHT_VOLUMES_STENCIL, false,
      LIGHT_BUFFER_STORAGE},
-    {"forward-plus", "forward-plus", GBUFFER_CURTIS, LIGHT_VOLUMES_STENCIL, false, LIGHT_BUFFER_UNIFORM},
+    {"forward-plus", "forward-plus", GBUFFER_CURTIS, LIGHT_VOLUMES_STENCIL, false,
+     LIGHT_BUFFER_UNIFORM},
+    {"clustered", "clustered", GBUFFER_CURTIS, LIGHT_VOLUMES_STENCIL, false,
+     LIGHT_BUFFER_UNIFORM},
 };
 enum { SPML_UNIFORM = 5 };   /* CONFIGS' forward-spml with its uniform block */
 enum { NCONFIGS = sizeof CONFIGS / sizeof CONFIGS[0] };
@@ -350,7 +357,7 @@ static void test_4096_lights(void **state)
 
 /* forward-mpml draws the lit objects once per light: 65536 passes are left out for
  * time (forward-mpml at 4096 covers its path); deferred, forward-spml with its
- * storage buffer and forward-plus render them. */
+ * storage buffer, forward-plus and clustered render them. */
 static void test_65536_lights(void **state)
 {
     (void)state;

@@ -1,5 +1,5 @@
-/* The tiled renderers (issue 10) against forward-spml with its lights in a storage
- * buffer: images within RMSE 1/255 and max 4/255 on the 8-bit output, with 4,096
+/* The tiled renderers (issue 10: forward-plus, clustered) against forward-spml with
+ * its lights in a storage buffer: images within RMSE 1/255 and max 4/255 on the 8-bit output, with 4,096
  * lights, with shadows on and off, and a tile whose list is longer than any fixed
  * per-tile budget could be; the exact passes, draws, dispatches and tiles; the
  * overflow policy (a list that does not fit fails the frame, naming the tile and its
@@ -30,12 +30,15 @@ enum { W = 100, H = 60 };
 
 static gl_context *ctx;
 
+static const char *const KINDS[] = {"forward-plus", "clustered"};
+enum { NKINDS = 2 };
+
 typedef struct shot {
     image img;
     frame_stats fs;
     pass_plan plan;
     size_t ngrid;
-    uint32_t grid[1024];
+    uint32_t grid[8192];
 } shot;
 
 static renderer_options options(void)
@@ -155,9 +158,26 @@ static void test_counts_and_tile_sizes(void **state)
     double prev_evals = 0.0;
     for (size_t k = 0; k < 3; k++) {
         o.tile_size = sizes[k];
-        render("forward-plus", &o, s, &t);
         uint32_t tx = (uint32_t)((W + sizes[k] - 1) / sizes[k]);
         uint32_t ty = (uint32_t)((H + sizes[k] - 1) / sizes[k]);
+        /* clustered: the same tiles cut into 24 slices; every cluster's list is part of
+         * its tile's, so it evaluates no more lights per pixel */
+        shot cl;
+        render("clustered", &o, s, &cl);
+        assert_int_equal(cl.fs.total.dispatches, 1);
+        assert_int_equal(find_pass(&cl.fs, "cull")->dispatches, 1);
+        assert_int_equal(cl.fs.total.draw_calls, 2u * v + (s->sky ? 1u : 0u) + 1u);
+        assert_int_equal(cl.fs.grid_cells, tx * ty * 24u);
+        assert_int_equal(cl.ngrid, tx * ty * 24u);
+        assert_int_equal(cl.fs.overflow[0], '\0');
+        char what[64];
+        snprintf(what, sizeof what, "clustered, %d px tiles", sizes[k]);
+        expect_agree(what, &cl.img, &ref.img);
+        image_free(&cl.img);
+
+        render("forward-plus", &o, s, &t);
+        assert_true(cl.fs.light_evals_per_pixel <= t.fs.light_evals_per_pixel);
+        assert_true(cl.fs.grid_lights_max <= t.fs.grid_lights_max);
         const char *names[] = {"depth", "cull", "shade", "sky", "resolve"};
         size_t np = s->sky ? 5 : 4;
         assert_int_equal(t.fs.npasses, np);
@@ -187,7 +207,6 @@ static void test_counts_and_tile_sizes(void **state)
         assert_true(t.fs.light_evals_per_pixel > prev_evals);
         prev_evals = t.fs.light_evals_per_pixel;
         assert_int_equal(t.fs.overflow[0], '\0');
-        char what[64];
         snprintf(what, sizeof what, "forward-plus, %d px tiles", sizes[k]);
         expect_agree(what, &t.img, &ref.img);
         image_free(&t.img);
@@ -212,11 +231,15 @@ static void test_4096_lights(void **state)
     renderer_options o = options();
     shot ref, t;
     render("forward-spml", &o, s, &ref);
-    render("forward-plus", &o, s, &t);
-    expect_agree("forward-plus, 4096 lights", &t.img, &ref.img);
-    assert_int_equal(t.fs.total.dispatches, 1);
-    assert_true(t.fs.lights_drawn > 1000);
-    image_free(&t.img);
+    for (size_t k = 0; k < NKINDS; k++) {
+        render(KINDS[k], &o, s, &t);
+        char what[64];
+        snprintf(what, sizeof what, "%s, 4096 lights", KINDS[k]);
+        expect_agree(what, &t.img, &ref.img);
+        assert_int_equal(t.fs.total.dispatches, 1);
+        assert_true(t.fs.lights_drawn > 1000);
+        image_free(&t.img);
+    }
     image_free(&ref.img);
 
     /* the uniform block cannot hold them: refused with the numbers, storage named */
@@ -239,24 +262,29 @@ static void test_4096_lights(void **state)
     free(many);
     o = options();
     render("forward-spml", &o, s, &ref);
-    render("forward-plus", &o, s, &t);
-    expect_agree("forward-plus, 4096 lights in one tile", &t.img, &ref.img);
-    assert_true(t.fs.grid_lights_max == 4096.0);
-    assert_int_equal(t.fs.overflow[0], '\0');
-    image_free(&t.img);
+    for (size_t k = 0; k < NKINDS; k++) {
+        render(KINDS[k], &o, s, &t);
+        char what[64];
+        snprintf(what, sizeof what, "%s, 4096 lights in one tile", KINDS[k]);
+        expect_agree(what, &t.img, &ref.img);
+        assert_true(t.fs.grid_lights_max == 4096.0);
+        assert_int_equal(t.fs.overflow[0], '\0');
+        image_free(&t.img);
+    }
     image_free(&ref.img);
     scene_destroy(s);
 }
 
-/* An index buffer too small for a frame's lists (tiles.max_lights_per_tile 1 with
- * sixteen overlapping lights): the frame reports the tile and its count. */
+/* An index buffer too small for a frame's lists (tiles.max_lights_per_tile 1 with 64
+ * overlapping lights): the frame reports the total, the capacity and the longest
+ * list, never a truncated image that passes. */
 static void test_overflow_is_reported(void **state)
 {
     (void)state;
-    scene_light l[16];
-    for (int i = 0; i < 16; i++)
-        l[i] = point(0.25f * (float)i - 2.0f, 2.0f, 0.0f, 20.0f);
-    scene *s = shapes(l, 16);
+    scene_light l[64];
+    for (int i = 0; i < 64; i++)
+        l[i] = point(0.0625f * (float)i - 2.0f, 2.0f, 0.0f, 20.0f);
+    scene *s = shapes(l, 64);
     renderer_options o = options();
     o.max_lights_per_tile = 1;
     shot t;
@@ -264,7 +292,13 @@ static void test_overflow_is_reported(void **state)
     print_message("overflow: %s\n", t.fs.overflow);
     assert_non_null(strstr(t.fs.overflow, "forward-plus: the tiles' light lists need "));
     assert_non_null(strstr(t.fs.overflow, " indices, the index buffer holds 28; tile "));
-    assert_non_null(strstr(t.fs.overflow, " alone needs 16"));
+    assert_non_null(strstr(t.fs.overflow, " alone needs 64"));
+    image_free(&t.img);
+    render("clustered", &o, s, &t);
+    print_message("overflow: %s\n", t.fs.overflow);
+    assert_non_null(strstr(t.fs.overflow, "clustered: the clusters' light lists need "));
+    assert_non_null(strstr(t.fs.overflow, " indices, the index buffer holds 672; cluster "));
+    assert_non_null(strstr(t.fs.overflow, " alone needs 64"));
     image_free(&t.img);
     scene_destroy(s);
 }
@@ -281,16 +315,20 @@ static void test_no_cull_without_local_lights(void **state)
     renderer_options o = options();
     shot ref, t;
     render("forward-spml", &o, s, &ref);
-    render("forward-plus", &o, s, &t);
-    assert_null(find_pass(&t.fs, "cull"));
-    assert_int_equal(t.fs.total.dispatches, 0);
-    assert_int_equal(t.fs.grid_cells, 0);
-    const pass_plan_entry *e = plan_pass(&t.plan, "cull");
-    assert_non_null(e);
-    assert_false(e->run);
-    assert_string_equal(e->reason, "skipped, the scene has no point or spot light");
-    expect_agree("forward-plus, one directional light", &t.img, &ref.img);
-    image_free(&t.img);
+    for (size_t k = 0; k < NKINDS; k++) {
+        render(KINDS[k], &o, s, &t);
+        assert_null(find_pass(&t.fs, "cull"));
+        assert_int_equal(t.fs.total.dispatches, 0);
+        assert_int_equal(t.fs.grid_cells, 0);
+        const pass_plan_entry *e = plan_pass(&t.plan, "cull");
+        assert_non_null(e);
+        assert_false(e->run);
+        assert_string_equal(e->reason, "skipped, the scene has no point or spot light");
+        char what[64];
+        snprintf(what, sizeof what, "%s, one directional light", KINDS[k]);
+        expect_agree(what, &t.img, &ref.img);
+        image_free(&t.img);
+    }
     image_free(&ref.img);
     scene_destroy(s);
 }
@@ -312,19 +350,23 @@ static void test_shadows_on_and_off(void **state)
         o.no_shadows = off;
         shot ref, t;
         render("forward-spml", &o, s, &ref);
-        render("forward-plus", &o, s, &t);
-        const pass_stats *a = find_pass(&ref.fs, "shadows"), *b = find_pass(&t.fs, "shadows");
-        if (off) {
-            assert_null(a);
-            assert_null(b);
-        } else {
-            assert_non_null(a);
-            assert_non_null(b);
-            assert_true(a->draw_calls > 0);
-            assert_int_equal(a->draw_calls, b->draw_calls);
+        for (size_t k = 0; k < NKINDS; k++) {
+            render(KINDS[k], &o, s, &t);
+            const pass_stats *a = find_pass(&ref.fs, "shadows"), *b = find_pass(&t.fs, "shadows");
+            if (off) {
+                assert_null(a);
+                assert_null(b);
+            } else {
+                assert_non_null(a);
+                assert_non_null(b);
+                assert_true(a->draw_calls > 0);
+                assert_int_equal(a->draw_calls, b->draw_calls);
+            }
+            char what[64];
+            snprintf(what, sizeof what, "%s, interior, shadows %s", KINDS[k], off ? "off" : "on");
+            expect_agree(what, &t.img, &ref.img);
+            image_free(&t.img);
         }
-        expect_agree(off ? "interior, shadows off" : "interior, shadows on", &t.img, &ref.img);
-        image_free(&t.img);
         image_free(&ref.img);
     }
     scene_destroy(s);
