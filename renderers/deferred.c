@@ -920,6 +920,7 @@ static bool deferred_prepare(void *self, const scene *s, char *err, size_t errle
         goto fail;
     }
     r->fe.no_shadows = !r->shadows.run;
+    r->fe.no_illumination = true;   /* light volumes, not object sets */
     r->gpu = scene_gpu_create(s, why, sizeof why);
     if (!r->gpu) {
         snprintf(err, errlen, "deferred: %s", why);

@@ -131,6 +131,7 @@ bool forward_common_prepare(forward_common *fc, const scene *s, char *err, size_
         goto fail;
     }
     fc->fe.no_shadows = !fc->shadows.run;
+    fc->fe.no_illumination = !fc->illumination_sets;
     fc->gpu = scene_gpu_create(s, why, sizeof why);
     if (!fc->gpu) {
         snprintf(err, errlen, "%s: %s", fc->name, why);

@@ -68,6 +68,8 @@ typedef struct forward_common {
     gl_state *st;
     gl_program_cache *programs;
     gl_pass_queries *queries;        /* NULL without opts.queries */
+    bool illumination_sets;          /* the frontend computes them (forward-mpml sets this
+                                        after init); the others leave it false */
 
     /* >>made by forward_common_prepare */
     bool prepared;

@@ -78,6 +78,7 @@ static void *mpml_create(const renderer_options *opts, char *err, size_t errlen)
         free(r);
         return NULL;
     }
+    r->c.illumination_sets = true;   /* the one renderer that draws them */
     return r;
 }
 

@@ -115,6 +115,11 @@ void renderer_destroy(renderer *r)
     free(r);
 }
 
+bool renderer_has_light_grid(const renderer *r)
+{
+    return r && r->impl->light_grid;
+}
+
 const uint32_t *renderer_light_grid(const renderer *r, size_t *n)
 {
     *n = 0;

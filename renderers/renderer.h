@@ -179,6 +179,7 @@ void renderer_destroy(renderer *r);                     /* NULL is fine */
 /* The light-list lengths of the last frame collected (renderer_impl.light_grid), or
  * NULL with *n = 0 for a renderer without a light grid. */
 const uint32_t *renderer_light_grid(const renderer *r, size_t *n);
+bool renderer_has_light_grid(const renderer *r);
 
 /* The renderer's float light accumulation of the last frame drawn (what its resolve
  * pass clamps into the output; deferred with separate_specular: the diffuse target

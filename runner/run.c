@@ -359,6 +359,10 @@ static void run_trial(run_state *st, uint32_t trial, trial_result *tr)
                 fprintf(stderr, "run %s: screenshot: %s\n", st->s->id, err);
                 snprintf(tr->status, sizeof tr->status, "failed:screenshot");
             }
+            size_t ncells = 0;
+            const uint32_t *grid = renderer_light_grid(st->r, &ncells);
+            if (!run_files_lightgrid(&st->files, st->s->id, trial, rec.frame, t, grid, ncells))
+                snprintf(tr->status, sizeof tr->status, "failed:oom");
         }
         for (size_t i = 0; i < p->nerror_at; i++) {
             if (error_done[i] || t < p->error_at[i])
@@ -642,6 +646,11 @@ static bool run_setup(run_state *st)
     }
     if (st->sc->ncoverage_lights &&
         !run_files_open_coverage(&st->files, st->dir, st->err, sizeof st->err)) {
+        set_status(st, "output");
+        return false;
+    }
+    if (p->nscreenshots && renderer_has_light_grid(st->r) &&
+        !run_files_open_lightgrid(&st->files, st->dir, st->err, sizeof st->err)) {
         set_status(st, "output");
         return false;
     }
