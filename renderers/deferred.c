@@ -120,7 +120,7 @@
 _Static_assert(sizeof(gpu_light) == 80, "gpu_light is 5 vec4s, as lighting.inc's Light");
 
 enum {
-    DEFERRED_MAX_PASSES = 9,          /* shadows gbuffer ambient directional point spot compose
+    DEFERRED_MAX_PASSES = 10,          /* shadows gbuffer ambient directional point spot compose
                                          sky resolve */
     DEFERRED_VARIANTS = 16,           /* material map bits */
     DEFERRED_MAX_LAYOUT_DEFINES = 12,
@@ -547,14 +547,39 @@ typedef enum pass_id {
     PASS_COMPOSE,
     PASS_SKY,
     PASS_RESOLVE,
+    PASS_TILED,                      /* tiled-deferred: ambient and every light, one dispatch */
     PASS_COUNT
 } pass_id;
 
 static const char *const pass_names[PASS_COUNT] = {
     "shadows", "gbuffer", "ambient", "directional", "point", "spot", "compose", "sky", "resolve",
+    "tiled",
 };
 
+/* The order describe lists them in (tiled-deferred's "tiled" after the G-buffer). */
+static const pass_id describe_order[PASS_COUNT] = {
+    PASS_SHADOWS, PASS_GBUFFER, PASS_TILED, PASS_AMBIENT, PASS_DIRECTIONAL, PASS_POINT,
+    PASS_SPOT, PASS_COMPOSE, PASS_SKY, PASS_RESOLVE,
+};
+
+/* tiled-deferred's light culling and shading pass (tiled_deferred.comp). */
+typedef struct tiled_pass {
+    int tile;                        /* pixels per tile side */
+    uint32_t tiles_x, tiles_y, ntiles;
+    bool grid;                       /* the scene has point or spot lights: lists are culled */
+    uint32_t max_lights, capacity;   /* entries of the light and index buffers */
+    GLuint program;
+    GLuint lights, tiles, indices, stats;
+    gpu_light *staging;
+    uint32_t *readback, *counts;
+    bool counted;
+    char tile_define[24], tiles_x_define[32];
+} tiled_pass;
+
 typedef struct deferred_renderer {
+    const char *name;                /* "deferred" or "tiled-deferred" */
+    bool tiled;                      /* tiled-deferred: PASS_TILED instead of the light passes */
+    tiled_pass tp;
     renderer_options opts;
     int width, height;
     GLuint output_fbo;               /* the draw framebuffer bound at creation */
@@ -597,13 +622,27 @@ static unsigned material_variant(const scene_material *m)
            (m->normal_map >= 0 ? 4u : 0u) | (m->emissive_map >= 0 ? 8u : 0u);
 }
 
-static void *deferred_create(const renderer_options *opts, char *err, size_t errlen)
+static void *create(const char *name, bool tiled, const renderer_options *opts, char *err,
+                    size_t errlen)
 {
-    deferred_renderer *r = calloc(1, sizeof *r);
-    if (!r) {
-        snprintf(err, errlen, "deferred: out of memory");
+    if (tiled && opts->separate_specular) {
+        snprintf(err, errlen, "%s: deferred.separate_specular: the one light pass adds diffuse "
+                 "and specular light together; there is no second target", name);
         return NULL;
     }
+    int tile = opts->tile_size ? opts->tile_size : 16;
+    if (tiled && tile != 8 && tile != 16 && tile != 32) {
+        snprintf(err, errlen, "%s: tiles.size %d: expected 8, 16 or 32", name, tile);
+        return NULL;
+    }
+    deferred_renderer *r = calloc(1, sizeof *r);
+    if (!r) {
+        snprintf(err, errlen, "%s: out of memory", name);
+        return NULL;
+    }
+    r->name = name;
+    r->tiled = tiled;
+    r->tp.tile = tile;
     r->opts = *opts;
     GLint fb = 0;
     gl.GetIntegerv(GL_DRAW_FRAMEBUFFER_BINDING, &fb);
@@ -638,8 +677,35 @@ oom:
     return NULL;
 }
 
+static void *deferred_create(const renderer_options *opts, char *err, size_t errlen)
+{
+    return create("deferred", false, opts, err, errlen);
+}
+
+static void *tiled_deferred_create(const renderer_options *opts, char *err, size_t errlen)
+{
+    return create("tiled-deferred", true, opts, err, errlen);
+}
+
+static void release_tiled(tiled_pass *tp)
+{
+    GLuint b[4] = {tp->lights, tp->tiles, tp->indices, tp->stats};
+    for (int i = 0; i < 4; i++)
+        if (b[i])
+            gl.DeleteBuffers(1, &b[i]);
+    tp->lights = tp->tiles = tp->indices = tp->stats = 0;
+    free(tp->staging);
+    free(tp->readback);
+    free(tp->counts);
+    tp->staging = NULL;
+    tp->readback = tp->counts = NULL;
+    tp->counted = false;
+    tp->program = 0;
+}
+
 static void release_prepared(deferred_renderer *r)
 {
+    release_tiled(&r->tp);
     gl_framebuffer_destroy(&r->fb_gbuffer);
     gl_framebuffer_destroy(&r->fb_light);
     gl_framebuffer_destroy(&r->fb_compose);
@@ -777,6 +843,30 @@ static bool compile_programs(deferred_renderer *r, char *err, size_t errlen)
                            &r->gbuffer_program[v], err, errlen))
             return false;
     }
+    if (r->tiled) {
+        tiled_pass *tp = &r->tp;
+        const char *extra[6] = {tp->tile_define, tp->tiles_x_define, NULL, NULL, NULL, NULL};
+        int n = 2;
+        if (!tp->grid)
+            extra[n++] = "NO_GRID";
+        n += (int)shadow_maps_defines(&r->shadows, extra + n);   /* any type: one program */
+        gl_program_desc d = {.name = "tiled_deferred", .compute = "tiled_deferred.comp"};
+        unsigned k = 0;
+        for (int i = 0; i < n; i++)
+            d.defines[k++] = extra[i];
+        for (int i = 0; i < ld.n && k < GLP_MAX_DEFINES; i++)
+            d.defines[k++] = ld.text[i];
+        if (k < (unsigned)n + (unsigned)ld.n) {
+            snprintf(err, errlen, "bug: %s: too many defines for tiled_deferred", r->name);
+            return false;
+        }
+        char why[4096] = "";
+        if (gl_program_get(r->programs, &d, &tp->program, why, sizeof why) != GLP_OK) {
+            snprintf(err, errlen, "%s: %s", r->name, why);
+            return false;
+        }
+        return true;
+    }
     {
         const char *extra[3] = {NULL, NULL, NULL};
         int n = 0;
@@ -833,6 +923,54 @@ static bool compile_programs(deferred_renderer *r, char *err, size_t errlen)
                            &r->compose_program, err, errlen))
             return false;
     }
+    return true;
+}
+
+static GLuint make_buffer(size_t bytes)
+{
+    GLuint b = 0;
+    gl.CreateBuffers(1, &b);
+    gl.NamedBufferStorage(b, (GLsizeiptr)bytes, NULL, GL_DYNAMIC_STORAGE_BIT);
+    return b;
+}
+
+/* tiled-deferred's buffers, as forward_plus.c sizes them. */
+static bool make_tiled(deferred_renderer *r, const scene *s, char *err, size_t errlen)
+{
+    tiled_pass *tp = &r->tp;
+    uint32_t n = s->nlights_total;
+    tp->max_lights = n ? n : 1u;
+    GLint max_block = 0;
+    gl.GetIntegerv(GL_MAX_SHADER_STORAGE_BLOCK_SIZE, &max_block);
+    if ((uint64_t)tp->max_lights * sizeof(gpu_light) > (uint64_t)(max_block > 0 ? max_block : 0)) {
+        snprintf(err, errlen, "%s: %u lights need %llu bytes of storage buffer, this context "
+                 "allows %d (GL_MAX_SHADER_STORAGE_BLOCK_SIZE)", r->name, n,
+                 (unsigned long long)tp->max_lights * sizeof(gpu_light), max_block);
+        return false;
+    }
+    uint64_t want = r->opts.max_lights_per_tile
+                        ? (uint64_t)tp->ntiles * r->opts.max_lights_per_tile
+                        : (uint64_t)tp->ntiles * tp->max_lights;
+    uint64_t block_entries = (uint64_t)max_block / 4u;
+    if (want > block_entries)
+        want = block_entries;
+    if (want > (1u << 25))
+        want = 1u << 25;
+    tp->capacity = (uint32_t)(want ? want : 1u);
+    snprintf(tp->tile_define, sizeof tp->tile_define, "TILE_SIZE %d", tp->tile);
+    snprintf(tp->tiles_x_define, sizeof tp->tiles_x_define, "TILES_X %u", tp->tiles_x);
+    tp->staging = calloc(tp->max_lights, sizeof *tp->staging);
+    tp->readback = calloc((size_t)tp->ntiles * 4u, sizeof *tp->readback);
+    tp->counts = calloc(tp->ntiles, sizeof *tp->counts);
+    if (!tp->staging || !tp->readback || !tp->counts) {
+        snprintf(err, errlen, "%s: out of memory for %u lights and %u tiles", r->name, n,
+                 tp->ntiles);
+        return false;
+    }
+    tp->lights = make_buffer((size_t)tp->max_lights * sizeof(gpu_light));
+    tp->tiles = make_buffer((size_t)tp->ntiles * 16u);
+    tp->indices = make_buffer((size_t)tp->capacity * 4u);
+    tp->stats = make_buffer(2 * sizeof(uint32_t));
     return true;
 }
 
@@ -908,6 +1046,22 @@ static bool deferred_prepare(void *self, const scene *s, char *err, size_t errle
         else
             plan(r, p, false, "no %s light in the scene", light_type_name(t));
     }
+    plan(r, PASS_TILED, false, "deferred shades with light volumes, not tiles");
+    if (r->tiled) {
+        tiled_pass *tp = &r->tp;
+        tp->tiles_x = (uint32_t)((r->width + tp->tile - 1) / tp->tile);
+        tp->tiles_y = (uint32_t)((r->height + tp->tile - 1) / tp->tile);
+        tp->ntiles = tp->tiles_x * tp->tiles_y;
+        tp->grid = count[LIGHT_POINT] + count[LIGHT_SPOT] > 0;
+        plan(r, PASS_TILED, true, "one dispatch: %ux%u tiles of %d px, %s", tp->tiles_x,
+             tp->tiles_y, tp->tile,
+             tp->grid ? "lights culled per tile, ambient and lights shaded"
+                      : "no point or spot light: no culling, ambient and lights shaded");
+        plan(r, PASS_AMBIENT, false, "in the tiled pass");
+        plan(r, PASS_DIRECTIONAL, false, "in the tiled pass");
+        plan(r, PASS_POINT, false, "in the tiled pass");
+        plan(r, PASS_SPOT, false, "in the tiled pass");
+    }
     plan(r, PASS_COMPOSE, r->opts.separate_specular, "%s",
          r->opts.separate_specular ? "specular light added into the diffuse light"
                                    : "diffuse and specular light share one target");
@@ -926,6 +1080,8 @@ static bool deferred_prepare(void *self, const scene *s, char *err, size_t errle
         snprintf(err, errlen, "deferred: %s", why);
         goto fail;
     }
+    if (r->tiled && !make_tiled(r, s, err, errlen))
+        goto fail;
     if (!make_targets(r, err, errlen) ||
         !shadow_maps_create(&r->shadows, r->programs, "deferred", err, errlen) ||
         !compile_programs(r, err, errlen))
@@ -1152,6 +1308,44 @@ static void light_pass(deferred_renderer *r, const scene *s, frame_stats *out, p
     pass_end(r, out);
 }
 
+/* tiled-deferred's pass: the frame's visible lights into the light buffer, then one
+ * dispatch that culls per tile and stores ambient + lights into the "light" target. */
+static void tiled_draw(deferred_renderer *r, const scene *s, frame_stats *out)
+{
+    gl_state *st = r->st;
+    tiled_pass *tp = &r->tp;
+    const frontend *fe = &r->fe;
+    uint32_t n = fe->nlights < tp->max_lights ? fe->nlights : tp->max_lights;
+    for (uint32_t k = 0; k < n; k++) {
+        shading_pack_light(&s->lights[fe->lights[k]], s->view, &tp->staging[k]);
+        shading_set_shadow_layer(&tp->staging[k], fe->shadow_layer[k]);
+    }
+    if (n)
+        gl.NamedBufferSubData(tp->lights, 0, (GLsizeiptr)(n * sizeof(gpu_light)), tp->staging);
+    out->grid_pass = tp->grid ? out->npasses + 1 : 0;
+    pass_begin(r, out, PASS_TILED);
+    const uint32_t reset[2] = {0, tp->capacity};
+    gl.NamedBufferSubData(tp->stats, 0, sizeof reset, reset);
+    gl_state_program(st, tp->program);
+    gl.Uniform1i(LOC_RENDERER, (GLint)n);
+    bind_gbuffer_textures(r);
+    gl_state_texture(st, DEFERRED_DEPTH_UNIT, r->depth.texture);
+    shadow_maps_bind(&r->shadows, st);
+    gl_state_storage_buffer(st, BIND_SSBO_LIGHTS, tp->lights);
+    gl_state_storage_buffer(st, BIND_SSBO_TILE_LISTS, tp->tiles);
+    gl_state_storage_buffer(st, BIND_SSBO_TILE_INDICES, tp->indices);
+    gl_state_storage_buffer(st, BIND_SSBO_TILE_STATS, tp->stats);
+    gl_state_image(st, BIND_IMAGE_HDR, r->light.texture, GL_WRITE_ONLY, GL_RGBA16F);
+    gl_state_dispatch(st, tp->tiles_x, tp->tiles_y, 1);
+    /* the sky draws into the target, resolve samples it */
+    gl_state_barrier(st, GL_FRAMEBUFFER_BARRIER_BIT | GL_TEXTURE_FETCH_BARRIER_BIT);
+    /* the depth target is drawn with (sky) next: not bound for sampling meanwhile */
+    if (r->layout.position != DEFERRED_POSITION_DEPTH_BUFFER)
+        gl_state_texture(st, DEFERRED_DEPTH_UNIT, 0);
+    pass_end(r, out);
+    out->lights_drawn = n;
+}
+
 static void deferred_draw(void *self, const scene *s, frame_stats *out)
 {
     deferred_renderer *r = self;
@@ -1194,6 +1388,12 @@ static void deferred_draw(void *self, const scene *s, frame_stats *out)
     }
     pass_end(r, out);
 
+    GLuint hdr_fbo = r->fb_light.fbo;   /* where the sky goes */
+    if (r->tiled) {
+        tiled_draw(r, s, out);
+        goto sky;
+    }
+
     /* >>ambient + emissive */
     pass_begin(r, out, PASS_AMBIENT);
     gl_state_framebuffer(st, r->fb_light.fbo);
@@ -1214,7 +1414,6 @@ static void deferred_draw(void *self, const scene *s, frame_stats *out)
     if (r->run[PASS_SPOT])
         light_pass(r, s, out, PASS_SPOT, LIGHT_SPOT);
 
-    GLuint hdr_fbo = r->fb_light.fbo;
     if (r->run[PASS_COMPOSE]) {
         pass_begin(r, out, PASS_COMPOSE);
         gl_state_framebuffer(st, r->fb_compose.fbo);
@@ -1229,6 +1428,7 @@ static void deferred_draw(void *self, const scene *s, frame_stats *out)
         hdr_fbo = r->fb_compose.fbo;
     }
 
+sky:
     /* >>sky: last, into untouched depth */
     if (r->run[PASS_SKY]) {
         pass_begin(r, out, PASS_SKY);
@@ -1252,15 +1452,59 @@ static void deferred_draw(void *self, const scene *s, frame_stats *out)
     pass_end(r, out);
 }
 
+/* tiled-deferred's counters, as forward_plus.c collects them. */
+static void tiled_collect(deferred_renderer *r, frame_stats *out)
+{
+    tiled_pass *tp = &r->tp;
+    if (!r->prepared || !tp->grid)
+        return;
+    uint32_t st[2];
+    gl.GetNamedBufferSubData(tp->stats, 0, sizeof st, st);
+    gl.GetNamedBufferSubData(tp->tiles, 0, (GLsizeiptr)((size_t)tp->ntiles * 16u), tp->readback);
+    double sum = 0, weighted = 0, covered = 0;
+    uint32_t max = 0, longest = 0;
+    for (uint32_t t = 0; t < tp->ntiles; t++) {
+        uint32_t len = tp->readback[4 * t + 3], px = tp->readback[4 * t + 2];
+        tp->counts[t] = len;
+        sum += len;
+        weighted += (double)len * px;
+        covered += px;
+        if (len > max) {
+            max = len;
+            longest = t;
+        }
+    }
+    tp->counted = true;
+    out->grid_cells = tp->ntiles;
+    out->grid_lights_mean = tp->ntiles ? sum / tp->ntiles : NAN;
+    out->grid_lights_max = max;
+    out->light_evals_per_pixel = covered > 0 ? weighted / covered : 0.0;
+    if (st[0] > tp->capacity)
+        snprintf(out->overflow, sizeof out->overflow,
+                 "%s: the tiles' light lists need %u indices, the index buffer holds %u; "
+                 "tile %u (%u, %u) alone needs %u",
+                 r->name, st[0], tp->capacity, longest, longest % tp->tiles_x,
+                 longest / tp->tiles_x, max);
+}
+
 static void deferred_collect(void *self, frame_stats *out)
 {
     deferred_renderer *r = self;
+    if (r->tiled)
+        tiled_collect(r, out);
     if (r->queries) {
         gl_pass_queries_collect(r->queries, out);
         return;
     }
     for (size_t i = 0; i < out->npasses; i++)
         out->pass[i].gpu_us = out->pass[i].fragments = out->pass[i].primitives = NAN;
+}
+
+static const uint32_t *tiled_light_grid(const void *self, size_t *n)
+{
+    const deferred_renderer *r = self;
+    *n = r->tp.counted ? r->tp.ntiles : 0;
+    return r->tp.counted ? r->tp.counts : NULL;
 }
 
 static void describe_target(const gl_target *t, pass_plan *out)
@@ -1277,7 +1521,10 @@ static void deferred_describe(const void *self, pass_plan *out)
     memset(out, 0, sizeof *out);
     if (!r->prepared)
         return;
-    for (int p = 0; p < PASS_COUNT && out->npasses < RENDERER_MAX_PASSES; p++) {
+    for (int i = 0; i < PASS_COUNT && out->npasses < RENDERER_MAX_PASSES; i++) {
+        pass_id p = describe_order[i];
+        if (p == PASS_TILED && !r->tiled)
+            continue;   /* deferred's plan is what it always was */
         pass_plan_entry *e = &out->pass[out->npasses++];
         snprintf(e->name, sizeof e->name, "%s", pass_names[p]);
         e->run = r->run[p];
@@ -1400,4 +1647,19 @@ const renderer_impl renderer_deferred_impl = {
     .describe = deferred_describe,
     .destroy = deferred_destroy,
     .read_hdr = deferred_read_hdr,
+};
+
+const renderer_impl renderer_tiled_deferred_impl = {
+    .name = "tiled-deferred",
+    .description = "G-buffer pass (every preset and override of deferred), then one compute "
+                   "pass that culls lights per screen tile and shades ambient, directional "
+                   "and local lights into the HDR target by image store; sky last",
+    .create = tiled_deferred_create,
+    .prepare = deferred_prepare,
+    .draw = deferred_draw,
+    .collect = deferred_collect,
+    .describe = deferred_describe,
+    .destroy = deferred_destroy,
+    .read_hdr = deferred_read_hdr,
+    .light_grid = tiled_light_grid,
 };

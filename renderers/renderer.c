@@ -12,6 +12,7 @@ extern const renderer_impl renderer_forward_mpml_impl;
 extern const renderer_impl renderer_forward_spml_impl;
 extern const renderer_impl renderer_forward_plus_impl;
 extern const renderer_impl renderer_clustered_impl;
+extern const renderer_impl renderer_tiled_deferred_impl;
 
 /* Every renderer the program knows, in the order `info` and errors list them. */
 static const renderer_impl *const registry[] = {
@@ -21,6 +22,7 @@ static const renderer_impl *const registry[] = {
     &renderer_forward_spml_impl,
     &renderer_forward_plus_impl,
     &renderer_clustered_impl,
+    &renderer_tiled_deferred_impl,
 };
 
 struct renderer {

@@ -34,145 +34,11 @@
 #include "lighting.inc"
 #include "lights.inc"
 #include "tiles.inc"
-
 layout(local_size_x = TILE_SIZE, local_size_y = TILE_SIZE) in;
 
 layout(binding = BIND_TEX_DEPTH) uniform sampler2D t_depth;
-layout(location = LOC_RENDERER) uniform int u_light_count;
 
-const uint N = uint(TILE_SIZE * TILE_SIZE);
-
-shared uint s_min_depth, s_max_depth, s_covered, s_count, s_offset;
-#ifdef SLICES
-shared uint s_slice_covered[SLICES];
-#endif
-shared uint s_scan[TILE_SIZE * TILE_SIZE];
-
-vec3 view_at(vec2 ndc_xy, float ndc_z)
-{
-    vec4 v = f_inv_proj * vec4(ndc_xy, ndc_z, 1.0);
-    return v.xyz / v.w;
-}
-
-float view_z(float depth)
-{
-    return view_at(vec2(0.0), depth * 2.0 - 1.0).z;
-}
-
-vec4 plane_through_eye(vec3 a, vec3 b, vec3 inside)
-{
-    vec3 n = normalize(cross(a, b));
-    if (dot(n, inside) < 0.0)
-        n = -n;
-    return vec4(n, 0.0);
-}
-
-vec4 g_planes[4];
-float g_znear, g_zfar;   // view z of the range: g_znear >= z >= g_zfar (both negative)
-
-bool sphere_passes(vec3 c, float r)
-{
-    if (c.z - r > g_znear || c.z + r < g_zfar)
-        return false;
-    for (int i = 0; i < 4; i++)
-        if (dot(g_planes[i].xyz, c) < -r)
-            return false;
-    return true;
-}
-
-bool light_passes(uint i)
-{
-    Light l = b_lights[i];
-    int type = int(l.color_type.w);
-    if (type == LIGHT_DIRECTIONAL)
-        return true;
-    vec3 p = l.position_range.xyz;
-    float range = l.position_range.w;
-    // conservative against rounding: a little larger than the range
-    float slack = 1e-4 * (range + length(p));
-    if (type == LIGHT_SPOT) {
-        float cosa = l.direction_cos.w;
-        if (cosa >= 0.5) {
-            float t = range / (2.0 * cosa);
-            return sphere_passes(p + l.direction_cos.xyz * t, t + slack);
-        }
-    }
-    return sphere_passes(p, range + slack);
-}
-
-// Inclusive prefix sum of s_scan over the work group (Hillis-Steele).
-void scan()
-{
-    uint me = gl_LocalInvocationIndex;
-    for (uint step = 1u; step < N; step *= 2u) {
-        uint add = me >= step ? s_scan[me - step] : 0u;
-        barrier();
-        s_scan[me] += add;
-        barrier();
-    }
-}
-
-#ifdef SLICES
-float slice_scale()
-{
-    return float(SLICES) / log(f_clip.y / f_clip.x);
-}
-
-// The slice of view depth z (negative), as forward_tiled.frag computes it.
-int slice_of(float z)
-{
-    return clamp(int(floor(log(-z / f_clip.x) * slice_scale())), 0, SLICES - 1);
-}
-
-// View depth (positive) where slice k begins.
-float slice_start(int k)
-{
-    return f_clip.x * exp(float(k) / slice_scale());
-}
-#endif
-
-// Culls every light against the planes and [g_zfar, g_znear] into cell `cell`'s list.
-// Called by the whole work group with the same arguments.
-void cull_cell(uint cell, uint covered, uint nlights)
-{
-    uint me = gl_LocalInvocationIndex;
-    if (me == 0u)
-        s_count = 0u;
-    barrier();
-
-    // count
-    for (uint base = 0u; base < nlights; base += N) {
-        uint i = base + me;
-        if (i < nlights && light_passes(i))
-            atomicAdd(s_count, 1u);
-    }
-    barrier();
-    uint count = s_count;
-    if (me == 0u) {
-        uint offset = count == 0u ? 0u : atomicAdd(b_stats.next, count);
-        bool fits = offset <= b_stats.capacity && count <= b_stats.capacity - offset;
-        s_offset = fits ? offset : 0xffffffffu;
-        b_tiles[cell] = uvec4(fits ? offset : 0u, fits ? count : 0u, covered, count);
-    }
-    barrier();
-    uint offset = s_offset;
-    if (offset == 0xffffffffu || count == 0u)
-        return;   // uniform across the work group
-    // write, in light order
-    uint written = 0u;
-    for (uint base = 0u; base < nlights; base += N) {
-        uint i = base + me;
-        bool pass = i < nlights && light_passes(i);
-        s_scan[me] = pass ? 1u : 0u;
-        barrier();
-        scan();
-        if (pass)
-            b_indices[offset + written + s_scan[me] - 1u] = i;
-        uint batch = s_scan[N - 1u];
-        barrier();
-        written += batch;
-    }
-}
+#include "tile_cull.inc"
 
 void main()
 {
@@ -206,20 +72,8 @@ void main()
     uint covered = s_covered;
     uint nlights = covered == 0u ? 0u : uint(u_light_count);
 
-    const float STEP = 2.0 / 16777215.0;
-    float dmin = max(uintBitsToFloat(s_min_depth) - STEP, 0.0);
-    float dmax = uintBitsToFloat(s_max_depth) + STEP;
-    float tile_znear = view_z(dmin);
-    float tile_zfar = dmax >= 1.0 ? uintBitsToFloat(0xff800000u) : view_z(dmax);   // -inf
-    vec2 lo = vec2(tile * uint(TILE_SIZE)) / vec2(size) * 2.0 - 1.0;
-    vec2 hi = vec2(min((tile + 1u) * uint(TILE_SIZE), uvec2(size))) / vec2(size) * 2.0 - 1.0;
-    vec3 c00 = view_at(lo, -1.0), c10 = view_at(vec2(hi.x, lo.y), -1.0);
-    vec3 c11 = view_at(hi, -1.0), c01 = view_at(vec2(lo.x, hi.y), -1.0);
-    vec3 inside = (c00 + c10 + c11 + c01) * 0.25;
-    g_planes[0] = plane_through_eye(c00, c01, inside);   // left
-    g_planes[1] = plane_through_eye(c10, c11, inside);   // right
-    g_planes[2] = plane_through_eye(c00, c10, inside);   // bottom
-    g_planes[3] = plane_through_eye(c01, c11, inside);   // top
+    float tile_znear, tile_zfar;
+    tile_frustum(tile, size, tile_znear, tile_zfar);
 
 #ifndef SLICES
     g_znear = tile_znear;

@@ -6,11 +6,17 @@
 //                 light order
 //   b_stats       next: entries asked for so far (beyond capacity: some list did not
 //                 fit); capacity: entries the index buffer holds
-// Needs bindings.h.
-layout(std430, binding = BIND_SSBO_TILE_LISTS) buffer TileLists {
+// Needs bindings.h. TILES_COHERENT (tiled_deferred.comp, which reads the lists its own
+// work group wrote) makes the lists coherent.
+#ifdef TILES_COHERENT
+#define TILES_QUALIFIER coherent
+#else
+#define TILES_QUALIFIER
+#endif
+layout(std430, binding = BIND_SSBO_TILE_LISTS) TILES_QUALIFIER buffer TileLists {
     uvec4 b_tiles[];
 };
-layout(std430, binding = BIND_SSBO_TILE_INDICES) buffer TileIndices {
+layout(std430, binding = BIND_SSBO_TILE_INDICES) TILES_QUALIFIER buffer TileIndices {
     uint b_indices[];
 };
 layout(std430, binding = BIND_SSBO_TILE_STATS) buffer TileStats {

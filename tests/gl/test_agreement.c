@@ -6,8 +6,9 @@
  * inside a point volume and inside a spot volume, a volume cut by the near plane
  * and one cut by the far plane. forward-spml with its lights in a storage buffer
  * gives the same image as with the uniform block, and the tiled renderers (issue
- * 10: forward-plus, clustered) agree with it within the same tolerance. Every
- * frame runs in a debug context; any GL error fails the test. */
+ * 10: forward-plus, clustered, tiled-deferred with the reference G-buffer) agree
+ * with it within the same tolerance. Every frame runs in a debug context; any GL
+ * error fails the test. */
 #include <setjmp.h>
 #include <stdarg.h>
 #include <stddef.h>
@@ -173,7 +174,7 @@ static void run_case(const light_case *c)
     assert_true(render_with("forward-spml", LIGHT_VOLUMES_STENCIL, true, s, &stored));
     snprintf(what, sizeof what, "%s: forward-spml storage vs uniform", c->name);
     expect_agree(what, &stored, &ref);
-    static const char *const tiled[] = {"forward-plus", "clustered"};
+    static const char *const tiled[] = {"forward-plus", "clustered", "tiled-deferred"};
     for (size_t k = 0; k < sizeof tiled / sizeof tiled[0]; k++) {
         assert_true(render(tiled[k], LIGHT_VOLUMES_STENCIL, s, &img));
         snprintf(what, sizeof what, "%s: %s vs forward-spml (storage)", c->name, tiled[k]);

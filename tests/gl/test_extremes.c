@@ -1,7 +1,7 @@
 /* Extreme inputs (issue 5): for each case, each of deferred (curtis and reference
  * G-buffers, stencil light volumes; also fullscreen volumes where volumes matter),
- * forward-mpml, forward-spml (uniform block and storage buffer), forward-plus and
- * clustered renders one frame of "shapes" (64x48 unless the case says otherwise)
+ * forward-mpml, forward-spml (uniform block and storage buffer), forward-plus,
+ * clustered and tiled-deferred (curtis G-buffer) renders one frame of "shapes" (64x48 unless the case says otherwise)
  * with lights and camera set by hand, in a debug context. Each ends with no GL error, zero non-finite values in the float light accumulation
  * (renderer_read_hdr) and a readable RGBA8 output, or with a clear message before
  * anything renders:
@@ -69,6 +69,8 @@ static const config CONFIGS[] = {
     {"forward-plus", "forward-plus", GBUFFER_CURTIS, LIGHT_VOLUMES_STENCIL, false,
      LIGHT_BUFFER_UNIFORM},
     {"clustered", "clustered", GBUFFER_CURTIS, LIGHT_VOLUMES_STENCIL, false,
+     LIGHT_BUFFER_UNIFORM},
+    {"tiled-deferred", "tiled-deferred", GBUFFER_CURTIS, LIGHT_VOLUMES_STENCIL, false,
      LIGHT_BUFFER_UNIFORM},
 };
 enum { SPML_UNIFORM = 5 };   /* CONFIGS' forward-spml with its uniform block */
@@ -357,7 +359,7 @@ static void test_4096_lights(void **state)
 
 /* forward-mpml draws the lit objects once per light: 65536 passes are left out for
  * time (forward-mpml at 4096 covers its path); deferred, forward-spml with its
- * storage buffer, forward-plus and clustered render them. */
+ * storage buffer, forward-plus, clustered and tiled-deferred render them. */
 static void test_65536_lights(void **state)
 {
     (void)state;

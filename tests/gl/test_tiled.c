@@ -1,4 +1,4 @@
-/* The tiled renderers (issue 10: forward-plus, clustered) against forward-spml with
+/* The tiled renderers (issue 10: forward-plus, clustered, tiled-deferred) against forward-spml with
  * its lights in a storage buffer: images within RMSE 1/255 and max 4/255 on the 8-bit output, with 4,096
  * lights, with shadows on and off, and a tile whose list is longer than any fixed
  * per-tile budget could be; the exact passes, draws, dispatches and tiles; the
@@ -30,8 +30,8 @@ enum { W = 100, H = 60 };
 
 static gl_context *ctx;
 
-static const char *const KINDS[] = {"forward-plus", "clustered"};
-enum { NKINDS = 2 };
+static const char *const KINDS[] = {"forward-plus", "clustered", "tiled-deferred"};
+enum { NKINDS = 3 };
 
 typedef struct shot {
     image img;
@@ -175,7 +175,26 @@ static void test_counts_and_tile_sizes(void **state)
         expect_agree(what, &cl.img, &ref.img);
         image_free(&cl.img);
 
+        /* tiled-deferred: the G-buffer, one dispatch for ambient and every light, the sky
+         * and the resolve: V + sky + 1 draws */
+        shot td;
+        render("tiled-deferred", &o, s, &td);
+        size_t ntd = s->sky ? 4 : 3;
+        assert_int_equal(td.fs.npasses, ntd);
+        assert_string_equal(td.fs.pass[0].name, "gbuffer");
+        assert_string_equal(td.fs.pass[1].name, "tiled");
+        assert_int_equal(td.fs.pass[0].draw_calls, v);
+        assert_int_equal(td.fs.pass[1].draw_calls, 0);
+        assert_int_equal(td.fs.pass[1].dispatches, 1);
+        assert_int_equal(td.fs.total.draw_calls, v + (s->sky ? 1u : 0u) + 1u);
+        assert_int_equal(td.fs.grid_cells, tx * ty);
+        snprintf(what, sizeof what, "tiled-deferred, %d px tiles", sizes[k]);
+        expect_agree(what, &td.img, &ref.img);
+        image_free(&td.img);
+
         render("forward-plus", &o, s, &t);
+        /* the same tiles, the same lists (tiled-deferred's depth is the G-buffer's) */
+        assert_true(fabs(td.fs.grid_lights_mean - t.fs.grid_lights_mean) < 1e-9);
         assert_true(cl.fs.light_evals_per_pixel <= t.fs.light_evals_per_pixel);
         assert_true(cl.fs.grid_lights_max <= t.fs.grid_lights_max);
         const char *names[] = {"depth", "cull", "shade", "sky", "resolve"};
@@ -318,12 +337,22 @@ static void test_no_cull_without_local_lights(void **state)
     for (size_t k = 0; k < NKINDS; k++) {
         render(KINDS[k], &o, s, &t);
         assert_null(find_pass(&t.fs, "cull"));
-        assert_int_equal(t.fs.total.dispatches, 0);
         assert_int_equal(t.fs.grid_cells, 0);
-        const pass_plan_entry *e = plan_pass(&t.plan, "cull");
-        assert_non_null(e);
-        assert_false(e->run);
-        assert_string_equal(e->reason, "skipped, the scene has no point or spot light");
+        assert_int_equal(t.fs.grid_pass, 0);
+        if (strcmp(KINDS[k], "tiled-deferred") == 0) {
+            /* its one dispatch shades too: it runs, without culling */
+            assert_int_equal(t.fs.total.dispatches, 1);
+            const pass_plan_entry *e = plan_pass(&t.plan, "tiled");
+            assert_non_null(e);
+            assert_true(e->run);
+            assert_non_null(strstr(e->reason, "no point or spot light: no culling"));
+        } else {
+            assert_int_equal(t.fs.total.dispatches, 0);
+            const pass_plan_entry *e = plan_pass(&t.plan, "cull");
+            assert_non_null(e);
+            assert_false(e->run);
+            assert_string_equal(e->reason, "skipped, the scene has no point or spot light");
+        }
         char what[64];
         snprintf(what, sizeof what, "%s, one directional light", KINDS[k]);
         expect_agree(what, &t.img, &ref.img);
@@ -372,6 +401,64 @@ static void test_shadows_on_and_off(void **state)
     scene_destroy(s);
 }
 
+/* tiled-deferred reads every G-buffer preset and field override of deferred: against
+ * deferred with the same G-buffer (full-screen lights) it agrees, and the plan lists
+ * the light passes as done in the tiled pass. */
+static void test_tiled_deferred_gbuffers(void **state)
+{
+    (void)state;
+    scene_light l[6];
+    for (int i = 0; i < 5; i++)
+        l[i] = point((float)i * 6.0f - 12.0f, 3.0f, (float)(i % 2) * 6.0f - 3.0f, 9.0f);
+    l[5] = (scene_light){.type = LIGHT_DIRECTIONAL, .direction = {-0.4f, -1.0f, -0.3f},
+                         .color = {0.3f, 0.3f, 0.25f}};
+    sm_vec3_normalize(l[5].direction);
+    scene *s = shapes(l, 6);
+    static const struct {
+        gbuffer_preset preset;
+        gbuffer_position position;
+        gbuffer_normal normal;
+        const char *name;
+    } g[] = {
+        {GBUFFER_CURTIS, 0, 0, "curtis"},
+        {GBUFFER_FAT, 0, 0, "fat"},
+        {GBUFFER_COMPACT, 0, 0, "compact"},
+        {GBUFFER_SPHEREMAP, 0, 0, "spheremap"},
+        {GBUFFER_REFERENCE, 0, 0, "reference"},
+        {GBUFFER_CURTIS, GBUFFER_POSITION_DEPTH, GBUFFER_NORMAL_SPHEREMAP8,
+         "curtis, position from depth, spheremap8 normals"},
+        {GBUFFER_FAT, GBUFFER_POSITION_STORED32, GBUFFER_NORMAL_UNORM10,
+         "fat, position float32, unorm10 normals"},
+    };
+    for (size_t i = 0; i < sizeof g / sizeof g[0]; i++) {
+        renderer_options o = options();
+        o.gbuffer = g[i].preset;
+        o.gbuffer_position = g[i].position;
+        o.gbuffer_normal = g[i].normal;
+        o.light_volumes = LIGHT_VOLUMES_FULLSCREEN;
+        shot d, t;
+        render("deferred", &o, s, &d);
+        render("tiled-deferred", &o, s, &t);
+        assert_int_equal(t.plan.gbuffer_bytes, d.plan.gbuffer_bytes);
+        const pass_plan_entry *e = plan_pass(&t.plan, "point");
+        assert_non_null(e);
+        assert_false(e->run);
+        assert_string_equal(e->reason, "in the tiled pass");
+        char what[96];
+        snprintf(what, sizeof what, "tiled-deferred vs deferred, %s", g[i].name);
+        expect_agree(what, &t.img, &d.img);
+        image_free(&t.img);
+        image_free(&d.img);
+    }
+    /* one target: no separate specular */
+    renderer_options o = options();
+    o.separate_specular = true;
+    char err[256];
+    assert_null(renderer_create("tiled-deferred", &o, err, sizeof err));
+    assert_non_null(strstr(err, "tiled-deferred: deferred.separate_specular: "));
+    scene_destroy(s);
+}
+
 static int setup(void **state)
 {
     (void)state;
@@ -399,6 +486,7 @@ int main(void)
         cmocka_unit_test(test_overflow_is_reported),
         cmocka_unit_test(test_no_cull_without_local_lights),
         cmocka_unit_test(test_shadows_on_and_off),
+        cmocka_unit_test(test_tiled_deferred_gbuffers),
     };
     return cmocka_run_group_tests(tests, setup, teardown);
 }

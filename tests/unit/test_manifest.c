@@ -582,6 +582,7 @@ static const bad_case bad_cases[] = {
     {"unknown_scene.yaml", {"3:8: scene: expected one of empty, shapes, curtis-scene1, curtis-scene2, curtis-scene3, canyon, interior, spot-coverage, two-spots-overlap, floating-spot, found 'castle'"}},
     {"unknown_renderer.yaml",
      {"4:19: renderers[1]: expected one of null, deferred, forward-mpml, forward-spml, forward-plus, clustered, "
+      "tiled-deferred, "
       "found 'raytrace'",
       "4:29: renderers[2]: expected a renderer listed once, found a second 'null' (first at 4:13)"}},
     {"empty_renderers.yaml",
