@@ -565,7 +565,9 @@ static const pass_id describe_order[PASS_COUNT] = {
 /* tiled-deferred's light culling and shading pass (tiled_deferred.comp). */
 typedef struct tiled_pass {
     int tile;                        /* pixels per tile side */
+    uint32_t slices;                 /* clustered.shading: deferred: depth slices; else 0 */
     uint32_t tiles_x, tiles_y, ntiles;
+    uint32_t ncells;                 /* tiles, or tiles x slices */
     bool grid;                       /* the scene has point or spot lights: lists are culled */
     uint32_t max_lights, capacity;   /* entries of the light and index buffers */
     GLuint program;
@@ -573,7 +575,7 @@ typedef struct tiled_pass {
     gpu_light *staging;
     uint32_t *readback, *counts;
     bool counted;
-    char tile_define[24], tiles_x_define[32];
+    char tile_define[24], tiles_x_define[32], tiles_y_define[32], slices_define[24];
 } tiled_pass;
 
 typedef struct deferred_renderer {
@@ -622,9 +624,14 @@ static unsigned material_variant(const scene_material *m)
            (m->normal_map >= 0 ? 4u : 0u) | (m->emissive_map >= 0 ? 8u : 0u);
 }
 
-static void *create(const char *name, bool tiled, const renderer_options *opts, char *err,
-                    size_t errlen)
+static void *create(const char *name, bool tiled, bool clustered,
+                    const renderer_options *opts, char *err, size_t errlen)
 {
+    int slices = opts->clustered_slices ? opts->clustered_slices : 24;
+    if (clustered && (slices < 1 || slices > 64)) {
+        snprintf(err, errlen, "%s: clustered.slices %d: expected 1 to 64", name, slices);
+        return NULL;
+    }
     if (tiled && opts->separate_specular) {
         snprintf(err, errlen, "%s: deferred.separate_specular: the one light pass adds diffuse "
                  "and specular light together; there is no second target", name);
@@ -643,6 +650,7 @@ static void *create(const char *name, bool tiled, const renderer_options *opts, 
     r->name = name;
     r->tiled = tiled;
     r->tp.tile = tile;
+    r->tp.slices = clustered ? (uint32_t)slices : 0u;
     r->opts = *opts;
     GLint fb = 0;
     gl.GetIntegerv(GL_DRAW_FRAMEBUFFER_BINDING, &fb);
@@ -679,12 +687,17 @@ oom:
 
 static void *deferred_create(const renderer_options *opts, char *err, size_t errlen)
 {
-    return create("deferred", false, opts, err, errlen);
+    return create("deferred", false, false, opts, err, errlen);
 }
 
 static void *tiled_deferred_create(const renderer_options *opts, char *err, size_t errlen)
 {
-    return create("tiled-deferred", true, opts, err, errlen);
+    return create("tiled-deferred", true, false, opts, err, errlen);
+}
+
+void *deferred_clustered_create(const renderer_options *opts, char *err, size_t errlen)
+{
+    return create("clustered", true, true, opts, err, errlen);
 }
 
 static void release_tiled(tiled_pass *tp)
@@ -845,12 +858,18 @@ static bool compile_programs(deferred_renderer *r, char *err, size_t errlen)
     }
     if (r->tiled) {
         tiled_pass *tp = &r->tp;
-        const char *extra[6] = {tp->tile_define, tp->tiles_x_define, NULL, NULL, NULL, NULL};
+        const char *extra[8] = {tp->tile_define, tp->tiles_x_define, NULL, NULL,
+                                NULL, NULL, NULL, NULL};
         int n = 2;
+        if (tp->slices) {
+            extra[n++] = tp->tiles_y_define;
+            extra[n++] = tp->slices_define;
+        }
         if (!tp->grid)
             extra[n++] = "NO_GRID";
         n += (int)shadow_maps_defines(&r->shadows, extra + n);   /* any type: one program */
-        gl_program_desc d = {.name = "tiled_deferred", .compute = "tiled_deferred.comp"};
+        gl_program_desc d = {.name = tp->slices ? "clustered_deferred" : "tiled_deferred",
+                             .compute = "tiled_deferred.comp"};
         unsigned k = 0;
         for (int i = 0; i < n; i++)
             d.defines[k++] = extra[i];
@@ -949,8 +968,8 @@ static bool make_tiled(deferred_renderer *r, const scene *s, char *err, size_t e
         return false;
     }
     uint64_t want = r->opts.max_lights_per_tile
-                        ? (uint64_t)tp->ntiles * r->opts.max_lights_per_tile
-                        : (uint64_t)tp->ntiles * tp->max_lights;
+                        ? (uint64_t)tp->ncells * r->opts.max_lights_per_tile
+                        : (uint64_t)tp->ncells * tp->max_lights;
     uint64_t block_entries = (uint64_t)max_block / 4u;
     if (want > block_entries)
         want = block_entries;
@@ -959,16 +978,18 @@ static bool make_tiled(deferred_renderer *r, const scene *s, char *err, size_t e
     tp->capacity = (uint32_t)(want ? want : 1u);
     snprintf(tp->tile_define, sizeof tp->tile_define, "TILE_SIZE %d", tp->tile);
     snprintf(tp->tiles_x_define, sizeof tp->tiles_x_define, "TILES_X %u", tp->tiles_x);
+    snprintf(tp->tiles_y_define, sizeof tp->tiles_y_define, "TILES_Y %u", tp->tiles_y);
+    snprintf(tp->slices_define, sizeof tp->slices_define, "SLICES %u", tp->slices);
     tp->staging = calloc(tp->max_lights, sizeof *tp->staging);
-    tp->readback = calloc((size_t)tp->ntiles * 4u, sizeof *tp->readback);
-    tp->counts = calloc(tp->ntiles, sizeof *tp->counts);
+    tp->readback = calloc((size_t)tp->ncells * 4u, sizeof *tp->readback);
+    tp->counts = calloc(tp->ncells, sizeof *tp->counts);
     if (!tp->staging || !tp->readback || !tp->counts) {
         snprintf(err, errlen, "%s: out of memory for %u lights and %u tiles", r->name, n,
                  tp->ntiles);
         return false;
     }
     tp->lights = make_buffer((size_t)tp->max_lights * sizeof(gpu_light));
-    tp->tiles = make_buffer((size_t)tp->ntiles * 16u);
+    tp->tiles = make_buffer((size_t)tp->ncells * 16u);
     tp->indices = make_buffer((size_t)tp->capacity * 4u);
     tp->stats = make_buffer(2 * sizeof(uint32_t));
     return true;
@@ -1052,15 +1073,23 @@ static bool deferred_prepare(void *self, const scene *s, char *err, size_t errle
         tp->tiles_x = (uint32_t)((r->width + tp->tile - 1) / tp->tile);
         tp->tiles_y = (uint32_t)((r->height + tp->tile - 1) / tp->tile);
         tp->ntiles = tp->tiles_x * tp->tiles_y;
+        tp->ncells = tp->ntiles * (tp->slices ? tp->slices : 1u);
         tp->grid = count[LIGHT_POINT] + count[LIGHT_SPOT] > 0;
-        plan(r, PASS_TILED, true, "one dispatch: %ux%u tiles of %d px, %s", tp->tiles_x,
-             tp->tiles_y, tp->tile,
-             tp->grid ? "lights culled per tile, ambient and lights shaded"
-                      : "no point or spot light: no culling, ambient and lights shaded");
-        plan(r, PASS_AMBIENT, false, "in the tiled pass");
-        plan(r, PASS_DIRECTIONAL, false, "in the tiled pass");
-        plan(r, PASS_POINT, false, "in the tiled pass");
-        plan(r, PASS_SPOT, false, "in the tiled pass");
+        if (tp->slices)
+            plan(r, PASS_TILED, true, "one dispatch: %ux%ux%u clusters (%d px), %s",
+                 tp->tiles_x, tp->tiles_y, tp->slices, tp->tile,
+                 tp->grid ? "lights culled per cluster, ambient and lights shaded"
+                          : "no point or spot light: no culling, ambient and lights shaded");
+        else
+            plan(r, PASS_TILED, true, "one dispatch: %ux%u tiles of %d px, %s", tp->tiles_x,
+                 tp->tiles_y, tp->tile,
+                 tp->grid ? "lights culled per tile, ambient and lights shaded"
+                          : "no point or spot light: no culling, ambient and lights shaded");
+        const char *in = tp->slices ? "in the clustered pass" : "in the tiled pass";
+        plan(r, PASS_AMBIENT, false, "%s", in);
+        plan(r, PASS_DIRECTIONAL, false, "%s", in);
+        plan(r, PASS_POINT, false, "%s", in);
+        plan(r, PASS_SPOT, false, "%s", in);
     }
     plan(r, PASS_COMPOSE, r->opts.separate_specular, "%s",
          r->opts.separate_specular ? "specular light added into the diffuse light"
@@ -1460,10 +1489,10 @@ static void tiled_collect(deferred_renderer *r, frame_stats *out)
         return;
     uint32_t st[2];
     gl.GetNamedBufferSubData(tp->stats, 0, sizeof st, st);
-    gl.GetNamedBufferSubData(tp->tiles, 0, (GLsizeiptr)((size_t)tp->ntiles * 16u), tp->readback);
+    gl.GetNamedBufferSubData(tp->tiles, 0, (GLsizeiptr)((size_t)tp->ncells * 16u), tp->readback);
     double sum = 0, weighted = 0, covered = 0;
     uint32_t max = 0, longest = 0;
-    for (uint32_t t = 0; t < tp->ntiles; t++) {
+    for (uint32_t t = 0; t < tp->ncells; t++) {
         uint32_t len = tp->readback[4 * t + 3], px = tp->readback[4 * t + 2];
         tp->counts[t] = len;
         sum += len;
@@ -1475,16 +1504,23 @@ static void tiled_collect(deferred_renderer *r, frame_stats *out)
         }
     }
     tp->counted = true;
-    out->grid_cells = tp->ntiles;
-    out->grid_lights_mean = tp->ntiles ? sum / tp->ntiles : NAN;
+    out->grid_cells = tp->ncells;
+    out->grid_lights_mean = tp->ncells ? sum / tp->ncells : NAN;
     out->grid_lights_max = max;
     out->light_evals_per_pixel = covered > 0 ? weighted / covered : 0.0;
-    if (st[0] > tp->capacity)
+    uint32_t tl = longest % tp->ntiles;
+    if (st[0] > tp->capacity && tp->slices)
+        snprintf(out->overflow, sizeof out->overflow,
+                 "%s: the clusters' light lists need %u indices, the index buffer holds %u; "
+                 "cluster %u (tile %u, %u, slice %u) alone needs %u",
+                 r->name, st[0], tp->capacity, longest, tl % tp->tiles_x, tl / tp->tiles_x,
+                 longest / tp->ntiles, max);
+    else if (st[0] > tp->capacity)
         snprintf(out->overflow, sizeof out->overflow,
                  "%s: the tiles' light lists need %u indices, the index buffer holds %u; "
                  "tile %u (%u, %u) alone needs %u",
-                 r->name, st[0], tp->capacity, longest, longest % tp->tiles_x,
-                 longest / tp->tiles_x, max);
+                 r->name, st[0], tp->capacity, longest, tl % tp->tiles_x, tl / tp->tiles_x,
+                 max);
 }
 
 static void deferred_collect(void *self, frame_stats *out)
@@ -1503,7 +1539,7 @@ static void deferred_collect(void *self, frame_stats *out)
 static const uint32_t *tiled_light_grid(const void *self, size_t *n)
 {
     const deferred_renderer *r = self;
-    *n = r->tp.counted ? r->tp.ntiles : 0;
+    *n = r->tp.counted ? r->tp.ncells : 0;
     return r->tp.counted ? r->tp.counts : NULL;
 }
 

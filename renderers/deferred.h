@@ -123,6 +123,11 @@ bool deferred_layout_build(const renderer_options *o, deferred_needs needs,
 /* Bytes per pixel of the layout's attachments. */
 unsigned deferred_layout_bytes_per_pixel(const deferred_layout *l);
 
+/* clustered with clustered.shading: deferred (forward_plus.c's "clustered" hands its
+ * calls to renderer_tiled_deferred_impl's entries with this object): tiled-deferred's
+ * pass, its tiles cut into clustered.slices depth slices. NULL with a message. */
+void *deferred_clustered_create(const renderer_options *opts, char *err, size_t errlen);
+
 // >>for tests: self is what renderer_deferred_impl.create returned
 
 /* The layout renderer_prepare chose (NULL before a successful prepare). */

@@ -38,6 +38,7 @@
  * grid_cells = tiles, the mean and largest list length over the tiles, and the light
  * evaluations per shaded pixel = sum over tiles of length x pixels with geometry /
  * pixels with geometry; renderer_light_grid gives the lengths (lightgrid.csv). */
+#include "renderers/deferred.h"
 #include "renderers/forward_common.h"
 #include "renderers/shading.h"
 
@@ -431,11 +432,18 @@ const renderer_impl renderer_forward_plus_impl = {
     .light_grid = plus_light_grid,
 };
 
-const renderer_impl renderer_clustered_impl = {
+/* clustered: the forward passes above, or with clustered.shading: deferred the
+ * G-buffer and one clustered compute pass (deferred.c, deferred_clustered_create), the
+ * same cluster lists; the entries hand each call to the one chosen at creation. */
+typedef struct clustered {
+    const renderer_impl *impl;
+    void *self;
+} clustered;
+
+extern const renderer_impl renderer_tiled_deferred_impl;
+
+static const renderer_impl clustered_forward_impl = {
     .name = "clustered",
-    .description = "clustered forward (Olsson et al. 2012): depth pre-pass, lights culled per "
-                   "cluster (screen tile x exponential depth slice) by a compute pass, each "
-                   "pixel shaded with its cluster's lights",
     .create = clustered_create,
     .prepare = plus_prepare,
     .draw = plus_draw,
@@ -444,4 +452,81 @@ const renderer_impl renderer_clustered_impl = {
     .destroy = plus_destroy,
     .read_hdr = forward_read_hdr,
     .light_grid = plus_light_grid,
+};
+
+static void *cl_create(const renderer_options *opts, char *err, size_t errlen)
+{
+    clustered *c = calloc(1, sizeof *c);
+    if (!c) {
+        snprintf(err, errlen, "clustered: out of memory");
+        return NULL;
+    }
+    c->impl = opts->clustered_deferred ? &renderer_tiled_deferred_impl : &clustered_forward_impl;
+    c->self = opts->clustered_deferred ? deferred_clustered_create(opts, err, errlen)
+                                       : clustered_create(opts, err, errlen);
+    if (!c->self) {
+        free(c);
+        return NULL;
+    }
+    return c;
+}
+
+static bool cl_prepare(void *self, const struct scene *s, char *err, size_t errlen)
+{
+    clustered *c = self;
+    return c->impl->prepare(c->self, s, err, errlen);
+}
+
+static void cl_draw(void *self, const struct scene *s, frame_stats *out)
+{
+    clustered *c = self;
+    c->impl->draw(c->self, s, out);
+}
+
+static void cl_collect(void *self, frame_stats *out)
+{
+    clustered *c = self;
+    c->impl->collect(c->self, out);
+}
+
+static void cl_describe(const void *self, pass_plan *out)
+{
+    const clustered *c = self;
+    c->impl->describe(c->self, out);
+}
+
+static void cl_destroy(void *self)
+{
+    clustered *c = self;
+    if (!c)
+        return;
+    c->impl->destroy(c->self);
+    free(c);
+}
+
+static bool cl_read_hdr(void *self, float *rgba, int width, int height)
+{
+    clustered *c = self;
+    return c->impl->read_hdr(c->self, rgba, width, height);
+}
+
+static const uint32_t *cl_light_grid(const void *self, size_t *n)
+{
+    const clustered *c = self;
+    return c->impl->light_grid(c->self, n);
+}
+
+const renderer_impl renderer_clustered_impl = {
+    .name = "clustered",
+    .description = "clustered (Olsson et al. 2012): lights culled per cluster (screen tile x "
+                   "exponential depth slice) by a compute pass; forward: depth pre-pass, each "
+                   "pixel shaded with its cluster's lights; deferred: from the G-buffer",
+    .create = cl_create,
+    .prepare = cl_prepare,
+    .draw = cl_draw,
+    .collect = cl_collect,
+    .describe = cl_describe,
+    .destroy = cl_destroy,
+    .read_hdr = cl_read_hdr,
+    .light_grid = cl_light_grid,
 };

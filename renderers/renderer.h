@@ -141,8 +141,10 @@ typedef struct renderer_options {
      * every tile, i.e. no list can overflow) */
     int tile_size;
     uint32_t max_lights_per_tile;   /* clustered: per cluster */
-    /* clustered: exponential depth slices (clustered.slices; 0: 24) */
+    /* clustered: exponential depth slices (clustered.slices; 0: 24), and shading from the
+     * G-buffer (clustered.shading: deferred; every deferred G-buffer option applies) */
     int clustered_slices;
+    bool clustered_deferred;
 } renderer_options;
 
 typedef struct renderer_impl {

@@ -122,6 +122,7 @@ static const char *const light_volume_names[] = {"stencil", "fullscreen", "volum
 /* >>helper-tiled keys */
 static const char *const light_buffer_names[] = {"uniform", "storage", NULL};
 static const char *const tile_size_names[] = {"8", "16", "32", NULL};   /* 8 << index */
+static const char *const clustered_shading_names[] = {"forward", "deferred", NULL};
 /* <<helper-tiled keys */
 
 static const param table[] = {
@@ -312,6 +313,11 @@ static const param table[] = {
      .def = "24", .min = 1, .max = 64, RP(clustered_slices),
      .description = "exponential depth slices between the near and the far plane (Olsson "
                     "et al. 2012): each slice's far/near ratio is (far/near)^(1/slices)"},
+    {.path = "clustered.shading", .type = PT_ENUM, .flags = PF_SWEEP | PF_ID_UNLESS_DEFAULT,
+     .def = "forward", .values = clustered_shading_names, RP(clustered_shading),
+     .description = "forward: a depth pre-pass, then the objects shaded with their "
+                    "clusters' lights; deferred: the G-buffer (every gbuffer option), then "
+                    "one compute pass shading from it with the same cluster lists"},
     /* <<helper-tiled keys */
 };
 

@@ -61,6 +61,7 @@ typedef struct run_params {
     int tile_size;                         /* tiles.size: index into 8, 16, 32 */
     uint32_t max_lights_per_tile;          /* tiles.max_lights_per_tile; 0: no budget */
     uint32_t clustered_slices;             /* clustered.slices */
+    int clustered_shading;                 /* clustered.shading: 0 forward, 1 deferred */
     /* <<helper-tiled keys */
 } run_params;
 

@@ -628,6 +628,7 @@ static bool run_setup(run_state *st)
         .tile_size = 8 << p->tile_size,
         .max_lights_per_tile = p->max_lights_per_tile,
         .clustered_slices = (int)p->clustered_slices,
+        .clustered_deferred = p->clustered_shading == 1,
     };
     if (!(st->r = renderer_create(p->renderer, &ro, st->err, sizeof st->err)) ||
         !renderer_prepare(st->r, st->sc, st->err, sizeof st->err)) {

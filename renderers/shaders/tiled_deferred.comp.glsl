@@ -8,7 +8,10 @@
 // rejection, and stores the sum into the HDR target (image unit BIND_IMAGE_HDR,
 // rgba16f): ambient, directional and local lights in one pass, one write per pixel.
 // NO_GRID (no point or spot light in the scene): no culling, every light looped.
-// Defines: TILE_SIZE, TILES_X, the G-buffer layout's, SHADOWS (shadow.inc).
+// SLICES (clustered with clustered.shading: deferred): the tile's clusters are culled as
+// tile_cull.comp culls them, and each pixel takes its cluster's list by the view depth
+// of its G-buffer position.
+// Defines: TILE_SIZE, TILES_X (TILES_Y, SLICES), the G-buffer layout's, SHADOWS.
 #define TILES_COHERENT
 #include "bindings.h"
 #include "frame.inc"
@@ -44,6 +47,10 @@ void main()
         s_max_depth = 0u;
         s_covered = 0u;
     }
+#ifdef SLICES
+    if (me < uint(SLICES))
+        s_slice_covered[me] = 0u;
+#endif
     barrier();
     if (inside) {
         float d = texelFetch(t_depth, pixel, 0).r;
@@ -51,6 +58,10 @@ void main()
             atomicMin(s_min_depth, floatBitsToUint(d));
             atomicMax(s_max_depth, floatBitsToUint(d));
             atomicAdd(s_covered, 1u);
+#ifdef SLICES
+            if (g.present)
+                atomicAdd(s_slice_covered[slice_of(g.position.z)], 1u);
+#endif
         }
     }
     barrier();
@@ -58,12 +69,36 @@ void main()
     uint nlights = covered == 0u ? 0u : uint(u_light_count);
     float tile_znear, tile_zfar;
     tile_frustum(tile, size, tile_znear, tile_zfar);
+#ifndef SLICES
     g_znear = tile_znear;
     g_zfar = tile_zfar;
     cull_cell(tile_index, covered, nlights);
+    uint cell = tile_index;
+#else
+    uint ntiles = uint(TILES_X * TILES_Y);
+    int kmin = 0, kmax = -1;
+    if (covered > 0u) {
+        kmin = max(slice_of(tile_znear) - 1, 0);
+        kmax = isinf(tile_zfar) ? SLICES - 1 : min(slice_of(tile_zfar) + 1, SLICES - 1);
+    }
+    for (int k = 0; k < SLICES; k++) {
+        uint c = uint(k) * ntiles + tile_index;
+        if (k < kmin || k > kmax) {
+            if (me == 0u)
+                b_tiles[c] = uvec4(0u);
+            continue;
+        }
+        const float EPS = 1e-3;
+        g_znear = min(tile_znear, -slice_start(k) * (1.0 - EPS));
+        g_zfar = max(tile_zfar, -slice_start(k + 1) * (1.0 + EPS));
+        cull_cell(c, s_slice_covered[k], nlights);
+        barrier();
+    }
+    uint cell = uint(slice_of(g.position.z)) * ntiles + tile_index;
+#endif
     memoryBarrierBuffer();
     barrier();
-    uvec4 list = b_tiles[tile_index];
+    uvec4 list = b_tiles[cell];
     uint first = list.x, n = list.y;
 #else
     uint first = 0u, n = uint(u_light_count);

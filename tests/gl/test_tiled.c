@@ -459,6 +459,87 @@ static void test_tiled_deferred_gbuffers(void **state)
     scene_destroy(s);
 }
 
+/* clustered with clustered.shading: deferred: the G-buffer, one clustered compute
+ * pass; agrees with forward-spml (16 lights, 4,096 lights, shadows on and off) and
+ * with deferred on other G-buffers; the same clusters as clustered forward. */
+static void test_clustered_deferred(void **state)
+{
+    (void)state;
+    scene_light l[16];
+    for (int i = 0; i < 16; i++)
+        l[i] = point((float)(i % 4) * 8.0f - 12.0f, 3.0f, (float)(i / 4) * 8.0f - 12.0f, 7.0f);
+    scene *s = shapes(l, 16);
+    renderer_options o = options();
+    shot ref, t, f;
+    render("forward-spml", &o, s, &ref);
+    uint32_t v = (uint32_t)find_pass(&ref.fs, "shade")->draw_calls;
+    render("clustered", &o, s, &f);
+    o.clustered_deferred = true;
+    render("clustered", &o, s, &t);
+    assert_string_equal(t.fs.pass[0].name, "gbuffer");
+    assert_string_equal(t.fs.pass[1].name, "tiled");
+    assert_int_equal(t.fs.pass[1].dispatches, 1);
+    assert_int_equal(t.fs.total.draw_calls, v + (s->sky ? 1u : 0u) + 1u);
+    uint32_t cells = ((W + 15) / 16) * ((H + 15) / 16) * 24u;
+    assert_int_equal(t.fs.grid_cells, cells);
+    assert_int_equal(t.ngrid, cells);
+    const pass_plan_entry *e = plan_pass(&t.plan, "tiled");
+    assert_non_null(e);
+    assert_non_null(strstr(e->reason, "clusters"));
+    expect_agree("clustered deferred vs forward-spml", &t.img, &ref.img);
+    expect_agree("clustered deferred vs clustered forward", &t.img, &f.img);
+    image_free(&t.img);
+    image_free(&f.img);
+    image_free(&ref.img);
+    /* the curtis G-buffer: against deferred with the same */
+    o.gbuffer = GBUFFER_CURTIS;
+    o.light_volumes = LIGHT_VOLUMES_FULLSCREEN;
+    render("deferred", &o, s, &ref);
+    render("clustered", &o, s, &t);
+    expect_agree("clustered deferred vs deferred, curtis", &t.img, &ref.img);
+    image_free(&t.img);
+    image_free(&ref.img);
+    scene_destroy(s);
+
+    char err[256];
+    light_params lp = {.placement = PLACEMENT_RANDOM, .seed = 1337, .rng = RNG_MSVC,
+                       .count = {.start = 4096, .max = 4096}, .radius = 3.0f,
+                       .color_max = 0.3f};
+    s = scene_build("curtis-scene3", &lp, W, H, err, sizeof err);
+    if (!s)
+        fail_msg("curtis-scene3: %s", err);
+    scene_update(s, 5.0);
+    o = options();
+    render("forward-spml", &o, s, &ref);
+    o.clustered_deferred = true;
+    render("clustered", &o, s, &t);
+    expect_agree("clustered deferred, 4096 lights", &t.img, &ref.img);
+    image_free(&t.img);
+    image_free(&ref.img);
+    scene_destroy(s);
+
+    light_params sp = {.placement = PLACEMENT_SCENE, .radius = 1.0f,
+                       .count = {.start = LIGHT_COUNT_ALL, .max = LIGHT_COUNT_ALL}};
+    s = scene_build("interior", &sp, W, H, err, sizeof err);
+    if (!s)
+        fail_msg("interior: %s", err);
+    scene_update(s, 15.0);
+    for (int off = 0; off < 2; off++) {
+        o = options();
+        o.no_shadows = off;
+        render("forward-spml", &o, s, &ref);
+        o.clustered_deferred = true;
+        render("clustered", &o, s, &t);
+        assert_true(off ? find_pass(&t.fs, "shadows") == NULL
+                        : find_pass(&t.fs, "shadows") != NULL);
+        expect_agree(off ? "clustered deferred, interior, shadows off"
+                         : "clustered deferred, interior, shadows on", &t.img, &ref.img);
+        image_free(&t.img);
+        image_free(&ref.img);
+    }
+    scene_destroy(s);
+}
+
 static int setup(void **state)
 {
     (void)state;
@@ -487,6 +568,7 @@ int main(void)
         cmocka_unit_test(test_no_cull_without_local_lights),
         cmocka_unit_test(test_shadows_on_and_off),
         cmocka_unit_test(test_tiled_deferred_gbuffers),
+        cmocka_unit_test(test_clustered_deferred),
     };
     return cmocka_run_group_tests(tests, setup, teardown);
 }

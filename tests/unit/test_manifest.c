@@ -408,6 +408,7 @@ static void test_kv_canonical(void **state)
         {"tiles.size", "16"},
         {"tiles.max_lights_per_tile", "0"},
         {"clustered.slices", "24"},
+        {"clustered.shading", "forward"},
         {NULL, NULL},
     };
     static const char *const full[][2] = {
@@ -459,6 +460,7 @@ static void test_kv_canonical(void **state)
         {"tiles.size", "16"},
         {"tiles.max_lights_per_tile", "0"},
         {"clustered.slices", "24"},
+        {"clustered.shading", "forward"},
         {NULL, NULL},
     };
     static const struct {
@@ -665,7 +667,7 @@ static const bad_case bad_cases[] = {
       "camera.target, camera.near, camera.far, camera.hold, lights.placement, lights.seed, "
       "lights.rng, lights.count, lights.radius, lights.overlap, lights.color_max, lights.attenuation, lights.quadratic.a, "
       "lights.quadratic.b, lights.quadratic.c, forward.light_buffer, tiles.size, "
-      "tiles.max_lights_per_tile, clustered.slices), found 'lights.cnt'"}},
+      "tiles.max_lights_per_tile, clustered.slices, clustered.shading), found 'lights.cnt'"}},
     {"sweep_empty_list.yaml",
      {"7:11: sweep.trials: expected a non-empty sequence of values, found an empty sequence"}},
     {"sweep_wrong_type.yaml",
