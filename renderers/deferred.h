@@ -123,6 +123,15 @@ bool deferred_layout_build(const renderer_options *o, deferred_needs needs,
 /* Bytes per pixel of the layout's attachments. */
 unsigned deferred_layout_bytes_per_pixel(const deferred_layout *l);
 
+/* The layout as gbuffer.inc.glsl's defines ("GB_DIFFUSE gb2.xyz", "GB_NORMAL_ENC 2",
+ * ...), what every program reading or writing the G-buffer is compiled with. */
+enum { DEFERRED_MAX_LAYOUT_DEFS = 12 };
+typedef struct deferred_layout_defs {
+    int n;
+    char text[DEFERRED_MAX_LAYOUT_DEFS][40];
+} deferred_layout_defs;
+void deferred_layout_defines(const deferred_layout *l, deferred_layout_defs *d);
+
 /* clustered with clustered.shading: deferred (forward_plus.c's "clustered" hands its
  * calls to renderer_tiled_deferred_impl's entries with this object): tiled-deferred's
  * pass, its tiles cut into clustered.slices depth slices. NULL with a message. */

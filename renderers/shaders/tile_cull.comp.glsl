@@ -14,9 +14,10 @@
 //      again, adds exactly what forward-spml adds.
 //   4. The list is counted first, then its place in the shared index buffer taken
 //      with one atomicAdd (dynamically sized: no per-tile budget), then written in
-//      light order (a prefix sum over each batch's pass flags). A list that does not
-//      fit the buffer is not written: the tile records an empty list (and its true
-//      length in w); b_stats.next then exceeds the capacity and the frame fails
+//      light order (a bit mask per chunk of lights, popped by runs of words at places
+//      given by an exclusive prefix of the runs' counts; cull_cell in
+//      tile_cull.inc). A list that does not fit the buffer is not written: the tile
+//      records an empty list (and its true length in w); b_stats.next then exceeds the capacity and the frame fails
 //      (forward_plus.c), whatever order the tiles took their places in.
 // Clustered (Olsson, Billeter and Assarsson 2012), with SLICES defined: each tile is cut
 // into SLICES exponential depth slices, slice k holding view depths from

@@ -11,7 +11,12 @@ shared uint s_min_depth, s_max_depth, s_covered, s_count, s_offset;
 #ifdef SLICES
 shared uint s_slice_covered[SLICES];
 #endif
-shared uint s_scan[TILE_SIZE * TILE_SIZE];
+const uint CHUNK = 8192u;                 // lights per bit mask
+const uint WORDS = CHUNK / 32u;
+shared uint s_bits[WORDS];               // this chunk's passing lights, a bit each
+shared uint s_part[TILE_SIZE * TILE_SIZE];   // per invocation: its words' count, then
+                                             // where its lights go
+shared uint s_chunk;                     // lights of this chunk in the list
 
 vec3 view_at(vec2 ndc_xy, float ndc_z)
 {
@@ -65,18 +70,6 @@ bool light_passes(uint i)
     return sphere_passes(p, range + slack);
 }
 
-// Inclusive prefix sum of s_scan over the work group (Hillis-Steele).
-void scan()
-{
-    uint me = gl_LocalInvocationIndex;
-    for (uint step = 1u; step < N; step *= 2u) {
-        uint add = me >= step ? s_scan[me - step] : 0u;
-        barrier();
-        s_scan[me] += add;
-        barrier();
-    }
-}
-
 #ifdef SLICES
 float slice_scale()
 {
@@ -118,20 +111,24 @@ void tile_frustum(uvec2 tile, ivec2 size, out float tile_znear, out float tile_z
 }
 
 // Culls every light against the planes and [g_zfar, g_znear] into cell `cell`'s list.
-// Called by the whole work group with the same arguments.
+// Called by the whole work group with the same arguments. First each invocation counts
+// its share of the lights (no barrier), the total takes its place in the index buffer;
+// then, CHUNK lights at a time, the passing lights set their bit in s_bits, each
+// invocation pops the bits of its run of words and writes them at its place (an
+// exclusive prefix of the runs' counts): the list in light order with a handful of
+// barriers per chunk (barriers are what a software rasterizer pays for).
 void cull_cell(uint cell, uint covered, uint nlights)
 {
     uint me = gl_LocalInvocationIndex;
     if (me == 0u)
         s_count = 0u;
     barrier();
-
-    // count
-    for (uint base = 0u; base < nlights; base += N) {
-        uint i = base + me;
-        if (i < nlights && light_passes(i))
-            atomicAdd(s_count, 1u);
-    }
+    uint mine = 0u;
+    for (uint i = me; i < nlights; i += N)
+        if (light_passes(i))
+            mine++;
+    if (mine > 0u)
+        atomicAdd(s_count, mine);
     barrier();
     uint count = s_count;
     if (me == 0u) {
@@ -144,19 +141,43 @@ void cull_cell(uint cell, uint covered, uint nlights)
     uint offset = s_offset;
     if (offset == 0xffffffffu || count == 0u)
         return;   // uniform across the work group
-    // write, in light order
+    const uint PER = (WORDS + N - 1u) / N;   // words each invocation owns
+    uint w0 = min(me * PER, WORDS), w1 = min(w0 + PER, WORDS);
     uint written = 0u;
-    for (uint base = 0u; base < nlights; base += N) {
-        uint i = base + me;
-        bool pass = i < nlights && light_passes(i);
-        s_scan[me] = pass ? 1u : 0u;
+    for (uint base = 0u; base < nlights; base += CHUNK) {
+        for (uint w = me; w < WORDS; w += N)
+            s_bits[w] = 0u;
         barrier();
-        scan();
-        if (pass)
-            b_indices[offset + written + s_scan[me] - 1u] = i;
-        uint batch = s_scan[N - 1u];
+        uint end = min(base + CHUNK, nlights);
+        for (uint i = base + me; i < end; i += N)
+            if (light_passes(i))
+                atomicOr(s_bits[(i - base) >> 5], 1u << ((i - base) & 31u));
         barrier();
-        written += batch;
+        uint c = 0u;
+        for (uint w = w0; w < w1; w++)
+            c += uint(bitCount(s_bits[w]));
+        s_part[me] = c;
+        barrier();
+        if (me == 0u) {   // exclusive prefix over the invocations' runs
+            uint sum = 0u;
+            for (uint k = 0u; k < N; k++) {
+                uint v = s_part[k];
+                s_part[k] = sum;
+                sum += v;
+            }
+            s_chunk = sum;
+        }
+        barrier();
+        uint pos = offset + written + s_part[me];
+        for (uint w = w0; w < w1; w++) {
+            uint b = s_bits[w];
+            while (b != 0u) {
+                int j = findLSB(b);
+                b &= b - 1u;
+                b_indices[pos++] = base + w * 32u + uint(j);
+            }
+        }
+        written += s_chunk;
+        barrier();
     }
 }
-
