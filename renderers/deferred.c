@@ -156,7 +156,9 @@ static const pass_id describe_order[PASS_COUNT] = {
 /* tiled-deferred's light culling and shading pass (tiled_deferred.comp). */
 typedef struct tiled_pass {
     int tile;                        /* pixels per tile side */
-    uint32_t slices;                 /* clustered.shading: deferred: depth slices; else 0 */
+    uint32_t slices_y;               /* clustered.shading: deferred: Olsson's S_y; else 0 */
+    uint32_t slices;                 /* its depth slices to the far plane (prepare) */
+    double slice_ratio;
     uint32_t tiles_x, tiles_y, ntiles;
     uint32_t ncells;                 /* tiles, or tiles x slices */
     bool grid;                       /* the scene has point or spot lights: lists are culled */
@@ -167,6 +169,7 @@ typedef struct tiled_pass {
     uint32_t *readback, *counts;
     bool counted;
     char tile_define[24], tiles_x_define[32], tiles_y_define[32], slices_define[24];
+    char slices_y_define[24];
 } tiled_pass;
 
 typedef struct deferred_renderer {
@@ -241,7 +244,7 @@ static void *create(const char *name, bool tiled, bool clustered,
     r->name = name;
     r->tiled = tiled;
     r->tp.tile = tile;
-    r->tp.slices = clustered ? (uint32_t)slices : 0u;
+    r->tp.slices_y = clustered ? (uint32_t)slices : 0u;
     r->opts = *opts;
     GLint fb = 0;
     gl.GetIntegerv(GL_DRAW_FRAMEBUFFER_BINDING, &fb);
@@ -449,12 +452,13 @@ static bool compile_programs(deferred_renderer *r, char *err, size_t errlen)
     }
     if (r->tiled) {
         tiled_pass *tp = &r->tp;
-        const char *extra[8] = {tp->tile_define, tp->tiles_x_define, NULL, NULL,
-                                NULL, NULL, NULL, NULL};
+        const char *extra[9] = {tp->tile_define, tp->tiles_x_define, NULL, NULL,
+                                NULL, NULL, NULL, NULL, NULL};
         int n = 2;
         if (tp->slices) {
             extra[n++] = tp->tiles_y_define;
             extra[n++] = tp->slices_define;
+            extra[n++] = tp->slices_y_define;
         }
         if (!tp->grid)
             extra[n++] = "NO_GRID";
@@ -571,6 +575,13 @@ static bool make_tiled(deferred_renderer *r, const scene *s, char *err, size_t e
     snprintf(tp->tiles_x_define, sizeof tp->tiles_x_define, "TILES_X %u", tp->tiles_x);
     snprintf(tp->tiles_y_define, sizeof tp->tiles_y_define, "TILES_Y %u", tp->tiles_y);
     snprintf(tp->slices_define, sizeof tp->slices_define, "SLICES %u", tp->slices);
+    snprintf(tp->slices_y_define, sizeof tp->slices_y_define, "SLICES_Y %u", tp->slices_y);
+    if ((uint64_t)tp->ncells * 16u > (uint64_t)(max_block > 0 ? max_block : 0)) {
+        snprintf(err, errlen, "%s: %u cells need %llu bytes of list heads, this context allows "
+                 "%d (GL_MAX_SHADER_STORAGE_BLOCK_SIZE)", r->name, tp->ncells,
+                 (unsigned long long)tp->ncells * 16u, max_block);
+        return false;
+    }
     tp->staging = calloc(tp->max_lights, sizeof *tp->staging);
     tp->readback = calloc((size_t)tp->ncells * 4u, sizeof *tp->readback);
     tp->counts = calloc(tp->ncells, sizeof *tp->counts);
@@ -664,6 +675,17 @@ static bool deferred_prepare(void *self, const scene *s, char *err, size_t errle
         tp->tiles_x = (uint32_t)((r->width + tp->tile - 1) / tp->tile);
         tp->tiles_y = (uint32_t)((r->height + tp->tile - 1) / tp->tile);
         tp->ntiles = tp->tiles_x * tp->tiles_y;
+        tp->slices = tp->slices_y ? shading_cluster_slices(s, (int)tp->slices_y,
+                                                          &tp->slice_ratio)
+                                  : 0u;
+        if (tp->slices > 1024) {
+            snprintf(err, errlen,
+                     "%s: %u depth slices from near %g to far %g (each %.4g times deeper, "
+                     "clustered.slices %u): at most 1024; raise near or lower clustered.slices",
+                     r->name, tp->slices, (double)s->cam.znear, (double)s->cam.zfar,
+                     tp->slice_ratio, tp->slices_y);
+            return false;
+        }
         tp->ncells = tp->ntiles * (tp->slices ? tp->slices : 1u);
         tp->grid = count[LIGHT_POINT] + count[LIGHT_SPOT] > 0;
         if (tp->slices)

@@ -57,7 +57,8 @@ typedef struct forward_plus {
     forward_common c;        /* first: forward_last_pass_counts() reads self as this */
     const char *name;        /* "forward-plus" or "clustered" */
     int tile;                /* pixels per tile side */
-    uint32_t slices;         /* clustered: depth slices; forward-plus: 0 */
+    uint32_t slices_y;       /* clustered: Olsson's S_y (clustered.slices); forward-plus: 0 */
+    uint32_t slices;         /* clustered: depth slices to the far plane (prepare) */
     uint32_t tiles_x, tiles_y, ntiles;
     uint32_t ncells;         /* tiles, or tiles x slices */
     double slice_ratio;      /* clustered: far/near of each slice, (zfar/znear)^(1/slices) */
@@ -72,6 +73,7 @@ typedef struct forward_plus {
     uint32_t *counts;        /* ntiles: list lengths of the last frame collected */
     bool counted;            /* counts hold a frame */
     char tile_define[24], tiles_x_define[32], tiles_y_define[32], slices_define[24];
+    char slices_y_define[24];
     uint64_t frame;
     uint64_t program_frame[FORWARD_VARIANTS];
     int count;               /* lights uploaded this frame */
@@ -99,7 +101,7 @@ static void *tiled_create(const char *name, bool clustered, const renderer_optio
             snprintf(err, errlen, "%s: clustered.slices %d: expected 1 to 64", name, k);
             goto fail;
         }
-        r->slices = (uint32_t)k;
+        r->slices_y = (uint32_t)k;
     }
     return r;
 fail:
@@ -154,14 +156,31 @@ static bool plus_prepare(void *self, const struct scene *s, char *err, size_t er
     r->tiles_x = (uint32_t)((c->width + r->tile - 1) / r->tile);
     r->tiles_y = (uint32_t)((c->height + r->tile - 1) / r->tile);
     r->ntiles = r->tiles_x * r->tiles_y;
+    r->slices = 0;
+    if (r->slices_y) {
+        r->slices = shading_cluster_slices(s, (int)r->slices_y, &r->slice_ratio);
+        if (r->slices > 1024) {
+            snprintf(err, errlen,
+                     "%s: %u depth slices from near %g to far %g (each %.4g times deeper, "
+                     "clustered.slices %u): at most 1024; raise near or lower clustered.slices",
+                     r->name, r->slices, (double)s->cam.znear, (double)s->cam.zfar,
+                     r->slice_ratio, r->slices_y);
+            goto fail;
+        }
+    }
     r->ncells = r->ntiles * (r->slices ? r->slices : 1u);
-    r->slice_ratio = r->slices ? pow((double)s->cam.zfar / s->cam.znear, 1.0 / r->slices) : 0;
     r->grid = (c->light_types & ((1u << LIGHT_POINT) | (1u << LIGHT_SPOT))) != 0;
     uint32_t n = s->nlights_total;
     r->max_lights = n ? n : 1u;
 
     GLint max_block = 0;
     gl.GetIntegerv(GL_MAX_SHADER_STORAGE_BLOCK_SIZE, &max_block);
+    if ((uint64_t)r->ncells * 16u > (uint64_t)(max_block > 0 ? max_block : 0)) {
+        snprintf(err, errlen, "%s: %u %s need %llu bytes of list heads, this context allows %d "
+                 "(GL_MAX_SHADER_STORAGE_BLOCK_SIZE)", r->name, r->ncells,
+                 r->slices ? "clusters" : "tiles", (unsigned long long)r->ncells * 16u, max_block);
+        goto fail;
+    }
     uint64_t block_entries = max_block > 0 ? (uint64_t)max_block / 4u : 0u;
     if ((uint64_t)r->max_lights * sizeof(gpu_light) > (uint64_t)(max_block > 0 ? max_block : 0)) {
         snprintf(err, errlen,
@@ -184,9 +203,11 @@ static bool plus_prepare(void *self, const struct scene *s, char *err, size_t er
     snprintf(r->tiles_x_define, sizeof r->tiles_x_define, "TILES_X %u", r->tiles_x);
     snprintf(r->tiles_y_define, sizeof r->tiles_y_define, "TILES_Y %u", r->tiles_y);
     snprintf(r->slices_define, sizeof r->slices_define, "SLICES %u", r->slices);
-    const char *grid_defs[4] = {r->tile_define, r->tiles_x_define,
+    snprintf(r->slices_y_define, sizeof r->slices_y_define, "SLICES_Y %u", r->slices_y);
+    const char *grid_defs[5] = {r->tile_define, r->tiles_x_define,
                                 r->slices ? r->tiles_y_define : NULL,
-                                r->slices ? r->slices_define : NULL};
+                                r->slices ? r->slices_define : NULL,
+                                r->slices ? r->slices_y_define : NULL};
     char why[4096] = "";
     if (gl_program_get(c->programs,
                        &(gl_program_desc){.name = "depth_only", .vertex = "mesh.vert",
@@ -200,15 +221,15 @@ static bool plus_prepare(void *self, const struct scene *s, char *err, size_t er
                        &(gl_program_desc){.name = r->slices ? "cluster_cull" : "tile_cull",
                                           .compute = "tile_cull.comp",
                                           .defines = {grid_defs[0], grid_defs[1], grid_defs[2],
-                                                      grid_defs[3]}},
+                                                      grid_defs[3], grid_defs[4]}},
                        &r->cull_program, why, sizeof why) != GLP_OK) {
         snprintf(err, errlen, "%s: %s", r->name, why);
         goto fail;
     }
-    const char *extra[8] = {NULL};
+    const char *extra[9] = {NULL};
     unsigned k = 0;
     if (r->grid) {
-        for (unsigned i = 0; i < 4; i++)
+        for (unsigned i = 0; i < 5; i++)
             if (grid_defs[i])
                 extra[k++] = grid_defs[i];
     } else {

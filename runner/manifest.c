@@ -311,8 +311,9 @@ static const param table[] = {
      .description = "options of the clustered renderer"},
     {.path = "clustered.slices", .type = PT_UINT, .flags = PF_SWEEP | PF_ID_UNLESS_DEFAULT,
      .def = "24", .min = 1, .max = 64, RP(clustered_slices),
-     .description = "exponential depth slices between the near and the far plane (Olsson "
-                    "et al. 2012): each slice's far/near ratio is (far/near)^(1/slices)"},
+     .description = "S_y of Olsson et al.'s depth slices, k = floor(log(-z/near) / log(1 + "
+                    "2 tan(fov/2) / S_y)): slices about as deep as a tile of a screen cut "
+                    "into S_y rows is wide; as many as reach the far plane (at most 1024)"},
     {.path = "clustered.shading", .type = PT_ENUM, .flags = PF_SWEEP | PF_ID_UNLESS_DEFAULT,
      .def = "forward", .values = clustered_shading_names, RP(clustered_shading),
      .description = "forward: a depth pre-pass, then the objects shaded with their "

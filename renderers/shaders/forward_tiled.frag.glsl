@@ -29,8 +29,8 @@ void main()
     uint cell = t.y * uint(TILES_X) + t.x;
 #ifdef SLICES
     // the cluster: this tile's slice of the fragment's view depth (tile_cull.comp)
-    float scale = float(SLICES) / log(f_clip.y / f_clip.x);
-    int k = clamp(int(floor(log(-s.position.z / f_clip.x) * scale)), 0, SLICES - 1);
+    float log_ratio = log(1.0 + 2.0 / (f_proj[1][1] * float(SLICES_Y)));
+    int k = clamp(int(floor(log(-s.position.z / f_clip.x) / log_ratio)), 0, SLICES - 1);
     cell += uint(k) * uint(TILES_X * TILES_Y);
 #endif
     uvec4 list = b_tiles[cell];

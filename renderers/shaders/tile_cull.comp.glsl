@@ -20,16 +20,14 @@
 //      records an empty list (and its true length in w); b_stats.next then exceeds the capacity and the frame fails
 //      (forward_plus.c), whatever order the tiles took their places in.
 // Clustered (Olsson, Billeter and Assarsson 2012), with SLICES defined: each tile is cut
-// into SLICES exponential depth slices, slice k holding view depths from
-// near x r^k to near x r^(k+1), r = (far/near)^(1/SLICES), i.e. k = floor(log(-z/near)
-// / log(r)) (Olsson's k with 1 + 2 tan(fov/2) / S_y = r); cluster (tile, k) gets the
-// lights of steps 3-4 tested against the tile's planes and the slice's depth range
-// (intersected with the tile's; each slice widened by 1e-3 of its depth so that a
-// fragment's own computation of k, in forward_tiled.frag, never lands in a cluster
-// that misses a light reaching it). Only the slices the tile's depth range meets, one
-// more on either side, get lists; the others are written empty. Cells are numbered
-// k x TILES_X x TILES_Y + tile.
-// Defines: TILE_SIZE, TILES_X (and SLICES, TILES_Y). Uniforms: u_light_count.
+// into exponential depth slices, k = floor(log(-z/near) / log(1 + 2 tan(fov/2) / S_y))
+// with S_y = SLICES_Y (clustered.slices), so that clusters are about as deep as they are
+// wide; SLICES of them reach the far plane (shading_cluster_slices). The tile's list is
+// made first, then each slice the tile's depth range meets (one more on either side) is
+// culled from that list against the slice's depth range (cull_clusters, tile_cull.inc);
+// the other clusters are written empty.
+// Defines: TILE_SIZE, TILES_X (and SLICES, SLICES_Y, TILES_Y). Uniforms: u_light_count.
+#define TILES_COHERENT   // clusters read their tile's list, written in this dispatch
 #include "bindings.h"
 #include "frame.inc"
 #include "lighting.inc"
@@ -76,29 +74,11 @@ void main()
     float tile_znear, tile_zfar;
     tile_frustum(tile, size, tile_znear, tile_zfar);
 
-#ifndef SLICES
     g_znear = tile_znear;
     g_zfar = tile_zfar;
-    cull_cell(tile_index, covered, nlights);
+#ifndef SLICES
+    cull_cell(tile_index, covered, nlights, 0u, false);
 #else
-    uint ntiles = uint(TILES_X * TILES_Y);
-    int kmin = 0, kmax = -1;   // no geometry: every cluster empty
-    if (covered > 0u) {
-        kmin = max(slice_of(tile_znear) - 1, 0);
-        kmax = isinf(tile_zfar) ? SLICES - 1 : min(slice_of(tile_zfar) + 1, SLICES - 1);
-    }
-    for (int k = 0; k < SLICES; k++) {
-        uint cell = uint(k) * ntiles + tile_index;
-        if (k < kmin || k > kmax) {
-            if (me == 0u)
-                b_tiles[cell] = uvec4(0u);
-            continue;
-        }
-        const float EPS = 1e-3;
-        g_znear = min(tile_znear, -slice_start(k) * (1.0 - EPS));
-        g_zfar = max(tile_zfar, -slice_start(k + 1) * (1.0 + EPS));
-        cull_cell(cell, s_slice_covered[k], nlights);
-        barrier();
-    }
+    cull_clusters(tile_index, covered, nlights, tile_znear, tile_zfar);
 #endif
 }

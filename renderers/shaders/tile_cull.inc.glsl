@@ -71,21 +71,25 @@ bool light_passes(uint i)
 }
 
 #ifdef SLICES
-float slice_scale()
+// Olsson et al.'s spacing: log(1 + 2 tan(fov/2) / S_y), S_y = SLICES_Y (clustered.slices);
+// tan(fov/2) = 1 / proj[1][1].
+float slice_log_ratio()
 {
-    return float(SLICES) / log(f_clip.y / f_clip.x);
+    return log(1.0 + 2.0 / (f_proj[1][1] * float(SLICES_Y)));
 }
 
-// The slice of view depth z (negative), as forward_tiled.frag computes it.
+// The slice of view depth z (negative): k = floor(log(-z/near) / log(1 + 2 tan(fov/2) /
+// S_y)), clamped to the SLICES slices that reach the far plane (the first and the last
+// are open towards the near and the far side, tile_cull.comp).
 int slice_of(float z)
 {
-    return clamp(int(floor(log(-z / f_clip.x) * slice_scale())), 0, SLICES - 1);
+    return clamp(int(floor(log(-z / f_clip.x) / slice_log_ratio())), 0, SLICES - 1);
 }
 
 // View depth (positive) where slice k begins.
 float slice_start(int k)
 {
-    return f_clip.x * exp(float(k) / slice_scale());
+    return f_clip.x * exp(float(k) * slice_log_ratio());
 }
 #endif
 
@@ -117,7 +121,18 @@ void tile_frustum(uvec2 tile, ivec2 size, out float tile_znear, out float tile_z
 // invocation pops the bits of its run of words and writes them at its place (an
 // exclusive prefix of the runs' counts): the list in light order with a handful of
 // barriers per chunk (barriers are what a software rasterizer pays for).
-void cull_cell(uint cell, uint covered, uint nlights)
+// from_list: the candidates are b_indices[src .. src + nlights) (a list written
+// earlier in this dispatch by this work group: the tile's, for its clusters) rather
+// than the lights 0 .. nlights. cell NO_CELL: no b_tiles entry, the list's place and
+// length stay in s_offset and s_count (0xffffffff: it did not fit).
+const uint NO_CELL = 0xffffffffu;
+
+uint candidate(uint e, uint src, bool from_list)
+{
+    return from_list ? b_indices[src + e] : e;
+}
+
+void cull_cell(uint cell, uint covered, uint nlights, uint src, bool from_list)
 {
     uint me = gl_LocalInvocationIndex;
     if (me == 0u)
@@ -125,7 +140,7 @@ void cull_cell(uint cell, uint covered, uint nlights)
     barrier();
     uint mine = 0u;
     for (uint i = me; i < nlights; i += N)
-        if (light_passes(i))
+        if (light_passes(candidate(i, src, from_list)))
             mine++;
     if (mine > 0u)
         atomicAdd(s_count, mine);
@@ -135,7 +150,8 @@ void cull_cell(uint cell, uint covered, uint nlights)
         uint offset = count == 0u ? 0u : atomicAdd(b_stats.next, count);
         bool fits = offset <= b_stats.capacity && count <= b_stats.capacity - offset;
         s_offset = fits ? offset : 0xffffffffu;
-        b_tiles[cell] = uvec4(fits ? offset : 0u, fits ? count : 0u, covered, count);
+        if (cell != NO_CELL)
+            b_tiles[cell] = uvec4(fits ? offset : 0u, fits ? count : 0u, covered, count);
     }
     barrier();
     uint offset = s_offset;
@@ -150,7 +166,7 @@ void cull_cell(uint cell, uint covered, uint nlights)
         barrier();
         uint end = min(base + CHUNK, nlights);
         for (uint i = base + me; i < end; i += N)
-            if (light_passes(i))
+            if (light_passes(candidate(i, src, from_list)))
                 atomicOr(s_bits[(i - base) >> 5], 1u << ((i - base) & 31u));
         barrier();
         uint c = 0u;
@@ -174,10 +190,45 @@ void cull_cell(uint cell, uint covered, uint nlights)
             while (b != 0u) {
                 int j = findLSB(b);
                 b &= b - 1u;
-                b_indices[pos++] = base + w * 32u + uint(j);
+                b_indices[pos++] = candidate(base + w * 32u + uint(j), src, from_list);
             }
         }
         written += s_chunk;
         barrier();
     }
 }
+
+#ifdef SLICES
+// The tile's clusters: the tile's own list first (over every light, into the index
+// buffer, not a cell of its own), then each slice the tile's depth range meets (one
+// more on either side) culled from that list against the slice's depth range (widened
+// by 1e-3; the first slice open towards the near side, the last towards the far), the
+// others written empty. Cells are numbered k x TILES_X x TILES_Y + tile.
+void cull_clusters(uint tile_index, uint covered, uint nlights, float tile_znear,
+                   float tile_zfar)
+{
+    uint me = gl_LocalInvocationIndex;
+    uint ntiles = uint(TILES_X * TILES_Y);
+    cull_cell(NO_CELL, covered, nlights, 0u, false);
+    memoryBarrierBuffer();
+    barrier();
+    uint src = s_offset, n = s_offset == 0xffffffffu ? 0u : s_count;
+    barrier();
+    int kmin = 0, kmax = -1;   // no geometry: every cluster empty
+    if (covered > 0u) {
+        kmin = max(slice_of(tile_znear) - 1, 0);
+        kmax = isinf(tile_zfar) ? SLICES - 1 : min(slice_of(tile_zfar) + 1, SLICES - 1);
+    }
+    for (uint k = me; k < uint(SLICES); k += N)
+        if (int(k) < kmin || int(k) > kmax)
+            b_tiles[k * ntiles + tile_index] = uvec4(0u);
+    for (int k = kmin; k <= kmax; k++) {
+        const float EPS = 1e-3;
+        g_znear = k == 0 ? tile_znear : min(tile_znear, -slice_start(k) * (1.0 - EPS));
+        g_zfar = k == SLICES - 1 ? tile_zfar
+                                 : max(tile_zfar, -slice_start(k + 1) * (1.0 + EPS));
+        cull_cell(uint(k) * ntiles + tile_index, s_slice_covered[k], n, src, true);
+        barrier();
+    }
+}
+#endif

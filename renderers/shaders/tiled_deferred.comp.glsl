@@ -69,32 +69,14 @@ void main()
     uint nlights = covered == 0u ? 0u : uint(u_light_count);
     float tile_znear, tile_zfar;
     tile_frustum(tile, size, tile_znear, tile_zfar);
-#ifndef SLICES
     g_znear = tile_znear;
     g_zfar = tile_zfar;
-    cull_cell(tile_index, covered, nlights);
+#ifndef SLICES
+    cull_cell(tile_index, covered, nlights, 0u, false);
     uint cell = tile_index;
 #else
-    uint ntiles = uint(TILES_X * TILES_Y);
-    int kmin = 0, kmax = -1;
-    if (covered > 0u) {
-        kmin = max(slice_of(tile_znear) - 1, 0);
-        kmax = isinf(tile_zfar) ? SLICES - 1 : min(slice_of(tile_zfar) + 1, SLICES - 1);
-    }
-    for (int k = 0; k < SLICES; k++) {
-        uint c = uint(k) * ntiles + tile_index;
-        if (k < kmin || k > kmax) {
-            if (me == 0u)
-                b_tiles[c] = uvec4(0u);
-            continue;
-        }
-        const float EPS = 1e-3;
-        g_znear = min(tile_znear, -slice_start(k) * (1.0 - EPS));
-        g_zfar = max(tile_zfar, -slice_start(k + 1) * (1.0 + EPS));
-        cull_cell(c, s_slice_covered[k], nlights);
-        barrier();
-    }
-    uint cell = uint(slice_of(g.position.z)) * ntiles + tile_index;
+    cull_clusters(tile_index, covered, nlights, tile_znear, tile_zfar);
+    uint cell = uint(slice_of(g.position.z)) * uint(TILES_X * TILES_Y) + tile_index;
 #endif
     memoryBarrierBuffer();
     barrier();

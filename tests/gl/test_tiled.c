@@ -19,6 +19,7 @@
 #include "renderers/gl/context.h"
 #include "renderers/gl/loader.h"
 #include "renderers/renderer.h"
+#include "renderers/shading.h"
 #include "results/image_io.h"
 #include "scenes/scene.h"
 #include "tests/gl/gl_test.h"
@@ -37,8 +38,9 @@ typedef struct shot {
     image img;
     frame_stats fs;
     pass_plan plan;
-    size_t ngrid;
-    uint32_t grid[8192];
+    size_t ngrid;              /* renderer_light_grid's cells */
+    uint32_t grid_max;         /* their longest list */
+    double grid_sum;           /* their lengths summed */
 } shot;
 
 static renderer_options options(void)
@@ -68,9 +70,10 @@ static void render(const char *kind, const renderer_options *o, scene *s, shot *
     renderer_describe(r, &out->plan);
     size_t n = 0;
     const uint32_t *g = renderer_light_grid(r, &n);
-    assert_true(n <= sizeof out->grid / sizeof out->grid[0]);
-    if (g)
-        memcpy(out->grid, g, n * sizeof *g);
+    for (size_t i = 0; g && i < n; i++) {
+        out->grid_max = g[i] > out->grid_max ? g[i] : out->grid_max;
+        out->grid_sum += g[i];
+    }
     out->ngrid = n;
     out->img = (image){.width = W, .height = H, .channels = 4, .type = IMAGE_U8,
                        .pixels = malloc((size_t)W * H * 4)};
@@ -160,15 +163,19 @@ static void test_counts_and_tile_sizes(void **state)
         o.tile_size = sizes[k];
         uint32_t tx = (uint32_t)((W + sizes[k] - 1) / sizes[k]);
         uint32_t ty = (uint32_t)((H + sizes[k] - 1) / sizes[k]);
-        /* clustered: the same tiles cut into 24 slices; every cluster's list is part of
-         * its tile's, so it evaluates no more lights per pixel */
+        /* clustered: the same tiles cut into Olsson's depth slices (S_y = 24: slices
+         * about as deep as wide, so many more than 24 reach the far plane); every
+         * cluster's list is part of its tile's, so it evaluates no more lights per
+         * pixel */
+        uint32_t K = shading_cluster_slices(s, 24, NULL);
+        assert_true(K > 24 && K <= 1024);
         shot cl;
         render("clustered", &o, s, &cl);
         assert_int_equal(cl.fs.total.dispatches, 1);
         assert_int_equal(find_pass(&cl.fs, "cull")->dispatches, 1);
         assert_int_equal(cl.fs.total.draw_calls, 2u * v + (s->sky ? 1u : 0u) + 1u);
-        assert_int_equal(cl.fs.grid_cells, tx * ty * 24u);
-        assert_int_equal(cl.ngrid, tx * ty * 24u);
+        assert_int_equal(cl.fs.grid_cells, tx * ty * K);
+        assert_int_equal(cl.ngrid, tx * ty * K);
         assert_int_equal(cl.fs.overflow[0], '\0');
         char what[64];
         snprintf(what, sizeof what, "clustered, %d px tiles", sizes[k]);
@@ -211,15 +218,9 @@ static void test_counts_and_tile_sizes(void **state)
         assert_int_equal(t.fs.total.draw_calls, 2u * v + (s->sky ? 1u : 0u) + 1u);
         assert_int_equal(t.fs.grid_cells, tx * ty);
         assert_int_equal(t.ngrid, tx * ty);
-        uint32_t max = 0;
-        double sum = 0;
-        for (size_t i = 0; i < t.ngrid; i++) {
-            max = t.grid[i] > max ? t.grid[i] : max;
-            sum += t.grid[i];
-        }
-        assert_true(max > 0 && max <= 16);
-        assert_true(fabs(t.fs.grid_lights_max - max) < 1e-9);
-        assert_true(fabs(t.fs.grid_lights_mean - sum / (double)t.ngrid) < 1e-9);
+        assert_true(t.grid_max > 0 && t.grid_max <= 16);
+        assert_true(fabs(t.fs.grid_lights_max - t.grid_max) < 1e-9);
+        assert_true(fabs(t.fs.grid_lights_mean - t.grid_sum / (double)t.ngrid) < 1e-9);
         /* culling culls: fewer than all 16 lights per shaded pixel, and fewer the
          * smaller the tiles (8 px: 3.17, 16 px: 4.89, 32 px: 9.25 here) */
         assert_true(t.fs.light_evals_per_pixel > 0.0 && t.fs.light_evals_per_pixel < 12.0);
@@ -315,8 +316,11 @@ static void test_overflow_is_reported(void **state)
     image_free(&t.img);
     render("clustered", &o, s, &t);
     print_message("overflow: %s\n", t.fs.overflow);
+    char want[96];
+    snprintf(want, sizeof want, " indices, the index buffer holds %u; cluster ",
+             28u * shading_cluster_slices(s, 24, NULL));
     assert_non_null(strstr(t.fs.overflow, "clustered: the clusters' light lists need "));
-    assert_non_null(strstr(t.fs.overflow, " indices, the index buffer holds 672; cluster "));
+    assert_non_null(strstr(t.fs.overflow, want));
     assert_non_null(strstr(t.fs.overflow, " alone needs 64"));
     image_free(&t.img);
     scene_destroy(s);
@@ -480,7 +484,7 @@ static void test_clustered_deferred(void **state)
     assert_string_equal(t.fs.pass[1].name, "tiled");
     assert_int_equal(t.fs.pass[1].dispatches, 1);
     assert_int_equal(t.fs.total.draw_calls, v + (s->sky ? 1u : 0u) + 1u);
-    uint32_t cells = ((W + 15) / 16) * ((H + 15) / 16) * 24u;
+    uint32_t cells = ((W + 15) / 16) * ((H + 15) / 16) * shading_cluster_slices(s, 24, NULL);
     assert_int_equal(t.fs.grid_cells, cells);
     assert_int_equal(t.ngrid, cells);
     const pass_plan_entry *e = plan_pass(&t.plan, "tiled");
