@@ -99,6 +99,8 @@
  * depth). gbuffer_bytes counts the G-buffer's colour attachments. */
 #include "renderers/deferred.h"
 
+#include "renderers/base.h"
+
 #include "renderers/frontend.h"
 #include "renderers/gl/loader.h"
 #include "renderers/gl/program.h"
@@ -173,15 +175,10 @@ typedef struct tiled_pass {
 } tiled_pass;
 
 typedef struct deferred_renderer {
-    const char *name;                /* "deferred" or "tiled-deferred" */
+    renderer_base b;                 /* first: name ("deferred", "tiled-deferred",
+                                        "clustered"), options, size, caches, queries */
     bool tiled;                      /* tiled-deferred: PASS_TILED instead of the light passes */
     tiled_pass tp;
-    renderer_options opts;
-    int width, height;
-    GLuint output_fbo;               /* the draw framebuffer bound at creation */
-    gl_state *st;
-    gl_program_cache *programs;
-    gl_pass_queries *queries;        /* NULL without opts.queries */
 
     /* >>made by prepare */
     bool prepared;
@@ -241,14 +238,9 @@ static void *create(const char *name, bool tiled, bool clustered,
         snprintf(err, errlen, "%s: out of memory", name);
         return NULL;
     }
-    r->name = name;
     r->tiled = tiled;
     r->tp.tile = tile;
     r->tp.slices_y = clustered ? (uint32_t)slices : 0u;
-    r->opts = *opts;
-    GLint fb = 0;
-    gl.GetIntegerv(GL_DRAW_FRAMEBUFFER_BINDING, &fb);
-    r->output_fbo = (GLuint)fb;
     /* Options are checked here, before any scene: a bad value never becomes a default. */
     deferred_layout probe;
     if (!deferred_layout_build(opts, (deferred_needs){true, true}, &probe, err, errlen)) {
@@ -260,23 +252,12 @@ static void *create(const char *name, bool tiled, bool clustered,
         free(r);
         return NULL;
     }
-    r->st = gl_state_create();
-    r->programs = gl_program_cache_create();
-    if (!r->st || !r->programs)
-        goto oom;
-    if (opts->queries) {
-        r->queries = gl_pass_queries_create(DEFERRED_MAX_PASSES, opts->timer_query,
-                                            opts->pipeline_statistics);
-        if (!r->queries)
-            goto oom;
+    if (!renderer_base_init(&r->b, name, opts, DEFERRED_MAX_PASSES, err, errlen)) {
+        renderer_base_destroy(&r->b);
+        free(r);
+        return NULL;
     }
     return r;
-oom:
-    gl_program_cache_destroy(r->programs);
-    gl_state_destroy(r->st);
-    free(r);
-    snprintf(err, errlen, "deferred: out of memory");
-    return NULL;
 }
 
 static void *deferred_create(const renderer_options *opts, char *err, size_t errlen)
@@ -362,7 +343,7 @@ static bool build_program(deferred_renderer *r, const char *display, const char 
         d.defines[n++] = ld->text[i];
     }
     char why[4096] = "";
-    if (gl_program_get(r->programs, &d, program, why, sizeof why) != GLP_OK) {
+    if (gl_program_get(r->b.programs, &d, program, why, sizeof why) != GLP_OK) {
         snprintf(err, errlen, "deferred: %s", why);
         return false;
     }
@@ -383,7 +364,7 @@ static void plan(deferred_renderer *r, pass_id p, bool run, const char *fmt, ...
 static bool make_targets(deferred_renderer *r, char *err, size_t errlen)
 {
     char why[512] = "";
-    const int w = r->width, h = r->height;
+    const int w = r->b.width, h = r->b.height;
     gl_framebuffer_desc gdesc = {.name = "gbuffer", .depth_stencil = &r->depth};
     if (!gl_target_create(&r->depth, &(gl_target_desc){.name = "depth",
                                                        .format = GLT_FORMAT_DEPTH24_STENCIL8,
@@ -398,7 +379,7 @@ static bool make_targets(deferred_renderer *r, char *err, size_t errlen)
             goto fail;
         gdesc.color[i] = &r->gbuf[i];
     }
-    bool sep = r->opts.separate_specular;
+    bool sep = r->b.opts.separate_specular;
     if (!gl_target_create(&r->light, &(gl_target_desc){.name = sep ? "light.diffuse" : "light",
                                                        .format = GLT_FORMAT_RGBA16F,
                                                        .width = w, .height = h},
@@ -437,7 +418,7 @@ static bool compile_programs(deferred_renderer *r, char *err, size_t errlen)
     deferred_layout_defines(&r->layout, &ld);
     const char *fs_vert = "fullscreen.vert";
     const char *unclipped = r->unclipped ? "FULLSCREEN_UNCLIPPED" : NULL;
-    const char *sep = r->opts.separate_specular ? "SEPARATE_SPECULAR" : NULL;
+    const char *sep = r->b.opts.separate_specular ? "SEPARATE_SPECULAR" : NULL;
 
     for (unsigned v = 0; v < DEFERRED_VARIANTS; v++) {
         if (!(r->variants & (1u << v)))
@@ -471,12 +452,12 @@ static bool compile_programs(deferred_renderer *r, char *err, size_t errlen)
         for (int i = 0; i < ld.n && k < GLP_MAX_DEFINES; i++)
             d.defines[k++] = ld.text[i];
         if (k < (unsigned)n + (unsigned)ld.n) {
-            snprintf(err, errlen, "bug: %s: too many defines for tiled_deferred", r->name);
+            snprintf(err, errlen, "bug: %s: too many defines for tiled_deferred", r->b.name);
             return false;
         }
         char why[4096] = "";
-        if (gl_program_get(r->programs, &d, &tp->program, why, sizeof why) != GLP_OK) {
-            snprintf(err, errlen, "%s: %s", r->name, why);
+        if (gl_program_get(r->b.programs, &d, &tp->program, why, sizeof why) != GLP_OK) {
+            snprintf(err, errlen, "%s: %s", r->b.name, why);
             return false;
         }
         return true;
@@ -510,7 +491,7 @@ static bool compile_programs(deferred_renderer *r, char *err, size_t errlen)
     for (int t = 0; t < DEFERRED_LIGHT_TYPES; t++) {
         if (!r->run[light_pass[t]])
             continue;
-        bool full = t == LIGHT_DIRECTIONAL || r->opts.light_volumes == LIGHT_VOLUMES_FULLSCREEN;
+        bool full = t == LIGHT_DIRECTIONAL || r->b.opts.light_volumes == LIGHT_VOLUMES_FULLSCREEN;
         const char *extra[6] = {type_define[t], NULL, NULL, NULL, NULL, NULL};
         int n = 1;
         if (full && unclipped)
@@ -526,8 +507,8 @@ static bool compile_programs(deferred_renderer *r, char *err, size_t errlen)
         if (!full)
             volumes = true;
     }
-    if (volumes && (r->opts.light_volumes == LIGHT_VOLUMES_STENCIL ||
-                    r->opts.light_volumes == LIGHT_VOLUMES_STENCIL_TWO_PASS) &&
+    if (volumes && (r->b.opts.light_volumes == LIGHT_VOLUMES_STENCIL ||
+                    r->b.opts.light_volumes == LIGHT_VOLUMES_STENCIL_TWO_PASS) &&
         !build_program(r, "deferred_stencil_mark", "light_volume.vert", "stencil_mark.frag", NULL,
                        NULL, &r->mark_program, err, errlen))
         return false;
@@ -558,12 +539,12 @@ static bool make_tiled(deferred_renderer *r, const scene *s, char *err, size_t e
     gl.GetIntegerv(GL_MAX_SHADER_STORAGE_BLOCK_SIZE, &max_block);
     if ((uint64_t)tp->max_lights * sizeof(gpu_light) > (uint64_t)(max_block > 0 ? max_block : 0)) {
         snprintf(err, errlen, "%s: %u lights need %llu bytes of storage buffer, this context "
-                 "allows %d (GL_MAX_SHADER_STORAGE_BLOCK_SIZE)", r->name, n,
+                 "allows %d (GL_MAX_SHADER_STORAGE_BLOCK_SIZE)", r->b.name, n,
                  (unsigned long long)tp->max_lights * sizeof(gpu_light), max_block);
         return false;
     }
-    uint64_t want = r->opts.max_lights_per_tile
-                        ? (uint64_t)tp->ncells * r->opts.max_lights_per_tile
+    uint64_t want = r->b.opts.max_lights_per_tile
+                        ? (uint64_t)tp->ncells * r->b.opts.max_lights_per_tile
                         : (uint64_t)tp->ncells * tp->max_lights;
     uint64_t block_entries = (uint64_t)max_block / 4u;
     if (want > block_entries)
@@ -578,7 +559,7 @@ static bool make_tiled(deferred_renderer *r, const scene *s, char *err, size_t e
     snprintf(tp->slices_y_define, sizeof tp->slices_y_define, "SLICES_Y %u", tp->slices_y);
     if ((uint64_t)tp->ncells * 16u > (uint64_t)(max_block > 0 ? max_block : 0)) {
         snprintf(err, errlen, "%s: %u cells need %llu bytes of list heads, this context allows "
-                 "%d (GL_MAX_SHADER_STORAGE_BLOCK_SIZE)", r->name, tp->ncells,
+                 "%d (GL_MAX_SHADER_STORAGE_BLOCK_SIZE)", r->b.name, tp->ncells,
                  (unsigned long long)tp->ncells * 16u, max_block);
         return false;
     }
@@ -586,7 +567,7 @@ static bool make_tiled(deferred_renderer *r, const scene *s, char *err, size_t e
     tp->readback = calloc((size_t)tp->ncells * 4u, sizeof *tp->readback);
     tp->counts = calloc(tp->ncells, sizeof *tp->counts);
     if (!tp->staging || !tp->readback || !tp->counts) {
-        snprintf(err, errlen, "%s: out of memory for %u lights and %u tiles", r->name, n,
+        snprintf(err, errlen, "%s: out of memory for %u lights and %u tiles", r->b.name, n,
                  tp->ntiles);
         return false;
     }
@@ -607,9 +588,9 @@ static bool deferred_prepare(void *self, const scene *s, char *err, size_t errle
         return false;
     }
     /* Programs of an earlier scene are not this scene's: start a fresh cache. */
-    gl_program_cache_destroy(r->programs);
-    r->programs = gl_program_cache_create();
-    if (!r->programs) {
+    gl_program_cache_destroy(r->b.programs);
+    r->b.programs = gl_program_cache_create();
+    if (!r->b.programs) {
         snprintf(err, errlen, "deferred: out of memory");
         return false;
     }
@@ -617,9 +598,9 @@ static bool deferred_prepare(void *self, const scene *s, char *err, size_t errle
     memset(r->light_program, 0, sizeof r->light_program);
     r->ambient_program = r->compose_program = r->mark_program = 0;
 
-    r->width = r->opts.width > 0 ? r->opts.width : s->width;
-    r->height = r->opts.height > 0 ? r->opts.height : s->height;
-    r->unclipped = gl_state_fullscreen_unclipped_fits(r->st, r->width, r->height);
+    if (!renderer_base_size(&r->b, s, err, errlen))
+        return false;
+    r->unclipped = gl_state_fullscreen_unclipped_fits(r->b.st, r->b.width, r->b.height);
 
     r->variants = 0;
     r->nobjects = s->nobjects;
@@ -644,14 +625,14 @@ static bool deferred_prepare(void *self, const scene *s, char *err, size_t errle
         count[t]++;
     }
     r->needs = deferred_needs_of(s);
-    if (!deferred_layout_build(&r->opts, r->needs, &r->layout, err, errlen))
+    if (!deferred_layout_build(&r->b.opts, r->needs, &r->layout, err, errlen))
         return false;
 
     /* >>the pass plan */
-    shadow_maps_plan(&r->shadows, s, &r->opts);
+    shadow_maps_plan(&r->shadows, s, &r->b.opts);
     plan(r, PASS_SHADOWS, r->shadows.run, "%s", r->shadows.reason);
     plan(r, PASS_GBUFFER, true, "%u objects into %d attachments (%s preset, %u bytes/pixel)",
-         s->nobjects, r->layout.nattachments, deferred_preset_name(r->opts.gbuffer),
+         s->nobjects, r->layout.nattachments, deferred_preset_name(r->b.opts.gbuffer),
          deferred_layout_bytes_per_pixel(&r->layout));
     plan(r, PASS_AMBIENT, true, "%s",
          r->needs.emissive ? "ambient x diffuse + emissive, full screen"
@@ -665,15 +646,15 @@ static bool deferred_prepare(void *self, const scene *s, char *err, size_t errle
         pass_id p = t == LIGHT_POINT ? PASS_POINT : PASS_SPOT;
         if (count[t])
             plan(r, p, true, "%u %s lights, light volumes: %s", count[t], light_type_name(t),
-                 mode_name(r->opts.light_volumes));
+                 mode_name(r->b.opts.light_volumes));
         else
             plan(r, p, false, "no %s light in the scene", light_type_name(t));
     }
     plan(r, PASS_TILED, false, "deferred shades with light volumes, not tiles");
     if (r->tiled) {
         tiled_pass *tp = &r->tp;
-        tp->tiles_x = (uint32_t)((r->width + tp->tile - 1) / tp->tile);
-        tp->tiles_y = (uint32_t)((r->height + tp->tile - 1) / tp->tile);
+        tp->tiles_x = (uint32_t)((r->b.width + tp->tile - 1) / tp->tile);
+        tp->tiles_y = (uint32_t)((r->b.height + tp->tile - 1) / tp->tile);
         tp->ntiles = tp->tiles_x * tp->tiles_y;
         tp->slices = tp->slices_y ? shading_cluster_slices(s, (int)tp->slices_y,
                                                           &tp->slice_ratio)
@@ -682,7 +663,7 @@ static bool deferred_prepare(void *self, const scene *s, char *err, size_t errle
             snprintf(err, errlen,
                      "%s: %u depth slices from near %g to far %g (each %.4g times deeper, "
                      "clustered.slices %u): at most 1024; raise near or lower clustered.slices",
-                     r->name, tp->slices, (double)s->cam.znear, (double)s->cam.zfar,
+                     r->b.name, tp->slices, (double)s->cam.znear, (double)s->cam.zfar,
                      tp->slice_ratio, tp->slices_y);
             return false;
         }
@@ -704,8 +685,8 @@ static bool deferred_prepare(void *self, const scene *s, char *err, size_t errle
         plan(r, PASS_POINT, false, "%s", in);
         plan(r, PASS_SPOT, false, "%s", in);
     }
-    plan(r, PASS_COMPOSE, r->opts.separate_specular, "%s",
-         r->opts.separate_specular ? "specular light added into the diffuse light"
+    plan(r, PASS_COMPOSE, r->b.opts.separate_specular, "%s",
+         r->b.opts.separate_specular ? "specular light added into the diffuse light"
                                    : "diffuse and specular light share one target");
     plan(r, PASS_SKY, s->sky, "%s",
          s->sky ? "into untouched depth, last" : "the scene has no sky");
@@ -725,7 +706,7 @@ static bool deferred_prepare(void *self, const scene *s, char *err, size_t errle
     if (r->tiled && !make_tiled(r, s, err, errlen))
         goto fail;
     if (!make_targets(r, err, errlen) ||
-        !shadow_maps_create(&r->shadows, r->programs, "deferred", err, errlen) ||
+        !shadow_maps_create(&r->shadows, r->b.programs, "deferred", err, errlen) ||
         !compile_programs(r, err, errlen))
         goto fail;
     r->prepared = true;
@@ -739,20 +720,12 @@ fail:
 
 static void pass_begin(deferred_renderer *r, frame_stats *out, pass_id p)
 {
-    gl_state_begin_pass(r->st, pass_names[p]);
-    if (r->queries)
-        gl_pass_queries_begin(r->queries, out->npasses);
+    renderer_base_pass_begin(&r->b, out, pass_names[p]);
 }
 
 static void pass_end(deferred_renderer *r, frame_stats *out)
 {
-    size_t i = out->npasses;
-    if (r->queries)
-        gl_pass_queries_end(r->queries);
-    pass_stats *ps = &out->pass[i];
-    gl_state_end_pass(r->st, ps);
-    ps->gpu_us = ps->fragments = ps->primitives = NAN;   /* collect() fills them */
-    out->npasses = i + 1;
+    renderer_base_pass_end(&r->b, out);
 }
 
 static const gls_blend BLEND_ADD = {.enabled = true, .src = GLS_BLEND_ONE, .dst = GLS_BLEND_ONE};
@@ -760,9 +733,9 @@ static const gls_blend BLEND_ADD = {.enabled = true, .src = GLS_BLEND_ONE, .dst 
 static void bind_gbuffer_textures(deferred_renderer *r)
 {
     for (int i = 0; i < r->layout.nattachments; i++)
-        gl_state_texture(r->st, DEFERRED_FIRST_GBUFFER_UNIT + (unsigned)i, r->gbuf[i].texture);
+        gl_state_texture(r->b.st, DEFERRED_FIRST_GBUFFER_UNIT + (unsigned)i, r->gbuf[i].texture);
     if (r->layout.position == DEFERRED_POSITION_DEPTH_BUFFER)
-        gl_state_texture(r->st, DEFERRED_DEPTH_UNIT, r->depth.texture);
+        gl_state_texture(r->b.st, DEFERRED_DEPTH_UNIT, r->depth.texture);
 }
 
 /* The test hook around one shade draw of light type t (deferred_count_shaded). */
@@ -808,16 +781,16 @@ static void set_light_uniform(const scene *s, uint32_t li, uint32_t layer)
 
 static void fullscreen(deferred_renderer *r)
 {
-    gl_state_draw_fullscreen(r->st, r->width, r->height, r->unclipped);
+    gl_state_draw_fullscreen(r->b.st, r->b.width, r->b.height, r->unclipped);
 }
 
 /* Point and spot lights of type t by the light-volume mode (the file's header). */
 static void draw_volume_light(deferred_renderer *r, const scene *s, int t, uint32_t li,
                               uint32_t layer)
 {
-    gl_state *st = r->st;
+    gl_state *st = r->b.st;
     GLuint prog = r->light_program[t];
-    switch (r->opts.light_volumes) {
+    switch (r->b.opts.light_volumes) {
     case LIGHT_VOLUMES_FULLSCREEN:
         gl_state_program(st, prog);
         set_light_uniform(s, li, layer);
@@ -827,7 +800,7 @@ static void draw_volume_light(deferred_renderer *r, const scene *s, int t, uint3
         r->shade_draws[t]++;
         return;
     case LIGHT_VOLUMES_VOLUME:
-        gl_state_viewport(st, 0, 0, r->width, r->height);
+        gl_state_viewport(st, 0, 0, r->b.width, r->b.height);
         gl_state_program(st, prog);
         set_light_uniform(s, li, layer);
         gl_state_cull(st, GLS_CULL_FRONT);
@@ -839,7 +812,7 @@ static void draw_volume_light(deferred_renderer *r, const scene *s, int t, uint3
         r->shade_draws[t]++;
         return;
     case LIGHT_VOLUMES_STENCIL:
-        gl_state_viewport(st, 0, 0, r->width, r->height);
+        gl_state_viewport(st, 0, 0, r->b.width, r->b.height);
         gl_state_program(st, r->mark_program);
         gl_state_color_mask(st, GLS_COLOR_MASK_NONE);
         gl_state_cull(st, GLS_CULL_NONE);
@@ -871,7 +844,7 @@ static void draw_volume_light(deferred_renderer *r, const scene *s, int t, uint3
         r->shade_draws[t]++;
         return;
     case LIGHT_VOLUMES_STENCIL_TWO_PASS:
-        gl_state_viewport(st, 0, 0, r->width, r->height);
+        gl_state_viewport(st, 0, 0, r->b.width, r->b.height);
         gl_state_program(st, r->mark_program);
         gl_state_color_mask(st, GLS_COLOR_MASK_NONE);
         gl_state_depth(st, &(gls_depth){.compare = GLS_COMPARE_LEQUAL, .write = false});
@@ -911,12 +884,12 @@ static void draw_volume_light(deferred_renderer *r, const scene *s, int t, uint3
 static void light_pass(deferred_renderer *r, const scene *s, frame_stats *out, pass_id p,
                        int type)
 {
-    gl_state *st = r->st;
+    gl_state *st = r->b.st;
     pass_begin(r, out, p);
     gl_state_framebuffer(st, r->fb_light.fbo);
     gl_state_color_mask(st, GLS_COLOR_MASK_RGBA);
     gl_state_blend(st, &BLEND_ADD);
-    bool volumes = type != LIGHT_DIRECTIONAL && r->opts.light_volumes != LIGHT_VOLUMES_FULLSCREEN;
+    bool volumes = type != LIGHT_DIRECTIONAL && r->b.opts.light_volumes != LIGHT_VOLUMES_FULLSCREEN;
     if (!volumes) {
         gl_state_depth(st, NULL);
         gl_state_stencil(st, NULL);
@@ -954,7 +927,7 @@ static void light_pass(deferred_renderer *r, const scene *s, frame_stats *out, p
  * dispatch that culls per tile and stores ambient + lights into the "light" target. */
 static void tiled_draw(deferred_renderer *r, const scene *s, frame_stats *out)
 {
-    gl_state *st = r->st;
+    gl_state *st = r->b.st;
     tiled_pass *tp = &r->tp;
     const frontend *fe = &r->fe;
     uint32_t n = fe->nlights < tp->max_lights ? fe->nlights : tp->max_lights;
@@ -991,7 +964,7 @@ static void tiled_draw(deferred_renderer *r, const scene *s, frame_stats *out)
 static void deferred_draw(void *self, const scene *s, frame_stats *out)
 {
     deferred_renderer *r = self;
-    gl_state *st = r->st;
+    gl_state *st = r->b.st;
     out->npasses = 0;
     out->lights_drawn = 0;
     memset(r->mark_draws, 0, sizeof r->mark_draws);
@@ -999,8 +972,7 @@ static void deferred_draw(void *self, const scene *s, frame_stats *out)
     r->nshade_queries = 0;
     if (!r->prepared || !s)
         return;
-    /* Every frame starts from unknown state, so every frame counts alike. */
-    gl_state_invalidate(st);
+    renderer_base_begin_frame(&r->b, out);   /* every frame counted alike */
     frontend_build(&r->fe, s);
     scene_gpu_frame(r->gpu, s);
 
@@ -1014,9 +986,9 @@ static void deferred_draw(void *self, const scene *s, frame_stats *out)
     /* >>gbuffer */
     pass_begin(r, out, PASS_GBUFFER);
     gl_state_framebuffer(st, r->fb_gbuffer.fbo);
-    gl_state_viewport(st, 0, 0, r->width, r->height);
+    gl_state_viewport(st, 0, 0, r->b.width, r->b.height);
     gl_state_clear(st, GL_COLOR_BUFFER_BIT | GL_DEPTH_BUFFER_BIT | GL_STENCIL_BUFFER_BIT, NULL,
-                   1.0, r->opts.light_volumes == LIGHT_VOLUMES_STENCIL_TWO_PASS ? 1 : 0);
+                   1.0, r->b.opts.light_volumes == LIGHT_VOLUMES_STENCIL_TWO_PASS ? 1 : 0);
     gl_state_color_mask(st, GLS_COLOR_MASK_RGBA);
     gl_state_blend(st, NULL);
     gl_state_stencil(st, NULL);
@@ -1075,7 +1047,7 @@ sky:
     if (r->run[PASS_SKY]) {
         pass_begin(r, out, PASS_SKY);
         gl_state_framebuffer(st, hdr_fbo);
-        gl_state_viewport(st, 0, 0, r->width, r->height);
+        gl_state_viewport(st, 0, 0, r->b.width, r->b.height);
         gl_state_blend(st, NULL);
         gl_state_stencil(st, NULL);
         gl_state_cull(st, GLS_CULL_NONE);
@@ -1090,7 +1062,7 @@ sky:
     gl_state_stencil(st, NULL);
     gl_state_depth(st, NULL);
     gl_state_cull(st, GLS_CULL_NONE);
-    scene_gpu_resolve(r->gpu, st, r->light.texture, r->output_fbo, r->width, r->height);
+    scene_gpu_resolve(r->gpu, st, r->light.texture, r->b.output_fbo, r->b.width, r->b.height);
     pass_end(r, out);
 }
 
@@ -1126,13 +1098,13 @@ static void tiled_collect(deferred_renderer *r, frame_stats *out)
         snprintf(out->overflow, sizeof out->overflow,
                  "%s: the clusters' light lists need %u indices, the index buffer holds %u; "
                  "cluster %u (tile %u, %u, slice %u) alone needs %u",
-                 r->name, st[0], tp->capacity, longest, tl % tp->tiles_x, tl / tp->tiles_x,
+                 r->b.name, st[0], tp->capacity, longest, tl % tp->tiles_x, tl / tp->tiles_x,
                  longest / tp->ntiles, max);
     else if (st[0] > tp->capacity)
         snprintf(out->overflow, sizeof out->overflow,
                  "%s: the tiles' light lists need %u indices, the index buffer holds %u; "
                  "tile %u (%u, %u) alone needs %u",
-                 r->name, st[0], tp->capacity, longest, tl % tp->tiles_x, tl / tp->tiles_x,
+                 r->b.name, st[0], tp->capacity, longest, tl % tp->tiles_x, tl / tp->tiles_x,
                  max);
 }
 
@@ -1141,12 +1113,7 @@ static void deferred_collect(void *self, frame_stats *out)
     deferred_renderer *r = self;
     if (r->tiled)
         tiled_collect(r, out);
-    if (r->queries) {
-        gl_pass_queries_collect(r->queries, out);
-        return;
-    }
-    for (size_t i = 0; i < out->npasses; i++)
-        out->pass[i].gpu_us = out->pass[i].fragments = out->pass[i].primitives = NAN;
+    renderer_base_collect(&r->b, out);
 }
 
 static const uint32_t *tiled_light_grid(const void *self, size_t *n)
@@ -1179,7 +1146,7 @@ static void deferred_describe(const void *self, pass_plan *out)
         e->run = r->run[p];
         snprintf(e->reason, sizeof e->reason, "%s", r->reason[p]);
     }
-    gl_program_cache_describe(r->programs, out);
+    gl_program_cache_describe(r->b.programs, out);
     scene_gpu_describe(r->gpu, out);
     for (int i = 0; i < r->layout.nattachments; i++) {
         describe_target(&r->gbuf[i], out);
@@ -1201,9 +1168,7 @@ static void deferred_destroy(void *self)
         gl.DeleteQueries((GLsizei)r->cap_shade_queries, r->shade_query);
     free(r->shade_query);
     free(r->shade_query_type);
-    gl_pass_queries_destroy(r->queries);
-    gl_program_cache_destroy(r->programs);
-    gl_state_destroy(r->st);
+    renderer_base_destroy(&r->b);
     free(r);
 }
 
@@ -1246,7 +1211,7 @@ uint64_t deferred_last_shade_draws(const void *self, int type)
 gl_state *deferred_state_cache(void *self)
 {
     deferred_renderer *r = self;
-    return r ? r->st : NULL;
+    return r ? r->b.st : NULL;
 }
 
 void deferred_count_shaded(void *self, bool on)

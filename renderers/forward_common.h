@@ -32,6 +32,7 @@
 #include <stddef.h>
 #include <stdint.h>
 
+#include "renderers/base.h"
 #include "renderers/bindings.h"
 #include "renderers/frontend.h"
 #include "renderers/gl/loader.h"
@@ -61,13 +62,7 @@ enum {
 };
 
 typedef struct forward_common {
-    const char *name;                /* "forward-mpml": prefixes messages */
-    renderer_options opts;
-    int width, height;               /* the output's size (opts, or the scene's) */
-    GLuint output_fbo;               /* the draw framebuffer bound at creation */
-    gl_state *st;
-    gl_program_cache *programs;
-    gl_pass_queries *queries;        /* NULL without opts.queries */
+    renderer_base b;                 /* first: name, options, size, caches, queries, passes */
     bool illumination_sets;          /* the frontend computes them (forward-mpml sets this
                                         after init); the others leave it false */
 
@@ -83,10 +78,6 @@ typedef struct forward_common {
     unsigned light_types;            /* bit t: some light of the scene is of type t */
     uint32_t nobjects_variant[FORWARD_VARIANTS];   /* objects of each variant */
     GLuint base_program[FORWARD_VARIANTS];    /* forward-mpml's base pass */
-
-    /* >>the last frame, for tests */
-    size_t npasses;
-    gls_counts pass_counts[FORWARD_MAX_PASSES];
 } forward_common;
 
 /* The variant of a material (FORWARD_VARIANT_* bits). */

@@ -153,8 +153,8 @@ static bool plus_prepare(void *self, const struct scene *s, char *err, size_t er
     if (!forward_common_prepare(&r->c, s, err, errlen))
         return false;
     forward_common *c = &r->c;
-    r->tiles_x = (uint32_t)((c->width + r->tile - 1) / r->tile);
-    r->tiles_y = (uint32_t)((c->height + r->tile - 1) / r->tile);
+    r->tiles_x = (uint32_t)((c->b.width + r->tile - 1) / r->tile);
+    r->tiles_y = (uint32_t)((c->b.height + r->tile - 1) / r->tile);
     r->ntiles = r->tiles_x * r->tiles_y;
     r->slices = 0;
     if (r->slices_y) {
@@ -189,8 +189,8 @@ static bool plus_prepare(void *self, const struct scene *s, char *err, size_t er
                  r->name, n, (unsigned long long)r->max_lights * sizeof(gpu_light), max_block);
         goto fail;
     }
-    uint64_t want = c->opts.max_lights_per_tile
-                        ? (uint64_t)r->ncells * c->opts.max_lights_per_tile
+    uint64_t want = c->b.opts.max_lights_per_tile
+                        ? (uint64_t)r->ncells * c->b.opts.max_lights_per_tile
                         : (uint64_t)r->ncells * r->max_lights;
     if (want > block_entries)
         want = block_entries;
@@ -209,7 +209,7 @@ static bool plus_prepare(void *self, const struct scene *s, char *err, size_t er
                                 r->slices ? r->slices_define : NULL,
                                 r->slices ? r->slices_y_define : NULL};
     char why[4096] = "";
-    if (gl_program_get(c->programs,
+    if (gl_program_get(c->b.programs,
                        &(gl_program_desc){.name = "depth_only", .vertex = "mesh.vert",
                                           .fragment = "depth_only.frag"},
                        &r->depth_program, why, sizeof why) != GLP_OK) {
@@ -217,7 +217,7 @@ static bool plus_prepare(void *self, const struct scene *s, char *err, size_t er
         goto fail;
     }
     if (r->grid &&
-        gl_program_get(c->programs,
+        gl_program_get(c->b.programs,
                        &(gl_program_desc){.name = r->slices ? "cluster_cull" : "tile_cull",
                                           .compute = "tile_cull.comp",
                                           .defines = {grid_defs[0], grid_defs[1], grid_defs[2],
@@ -275,11 +275,11 @@ static void plus_on_program(void *user, unsigned variant, GLuint program)
 
 static void bind_buffers(forward_plus *r)
 {
-    gl_state_storage_buffer(r->c.st, BIND_SSBO_LIGHTS, r->lights);
+    gl_state_storage_buffer(r->c.b.st, BIND_SSBO_LIGHTS, r->lights);
     if (r->grid) {
-        gl_state_storage_buffer(r->c.st, BIND_SSBO_TILE_LISTS, r->tiles);
-        gl_state_storage_buffer(r->c.st, BIND_SSBO_TILE_INDICES, r->indices);
-        gl_state_storage_buffer(r->c.st, BIND_SSBO_TILE_STATS, r->stats);
+        gl_state_storage_buffer(r->c.b.st, BIND_SSBO_TILE_LISTS, r->tiles);
+        gl_state_storage_buffer(r->c.b.st, BIND_SSBO_TILE_INDICES, r->indices);
+        gl_state_storage_buffer(r->c.b.st, BIND_SSBO_TILE_STATS, r->stats);
     }
 }
 
@@ -309,15 +309,15 @@ static void plus_draw(void *self, const struct scene *s, frame_stats *out)
 
     forward_pass_begin(c, out, "depth");
     forward_bind_target(c);
-    gl_state_blend(c->st, NULL);
-    gl_state_stencil(c->st, NULL);
+    gl_state_blend(c->b.st, NULL);
+    gl_state_stencil(c->b.st, NULL);
     forward_clear_target(c);
-    gl_state_color_mask(c->st, GLS_COLOR_MASK_NONE);
-    gl_state_depth(c->st, &(gls_depth){.compare = GLS_COMPARE_LESS, .write = true});
-    gl_state_cull(c->st, GLS_CULL_BACK);
-    gl_state_program(c->st, r->depth_program);
+    gl_state_color_mask(c->b.st, GLS_COLOR_MASK_NONE);
+    gl_state_depth(c->b.st, &(gls_depth){.compare = GLS_COMPARE_LESS, .write = true});
+    gl_state_cull(c->b.st, GLS_CULL_BACK);
+    gl_state_program(c->b.st, r->depth_program);
     for (uint32_t k = 0; k < fe->nvisible; k++)
-        scene_gpu_draw_object_geometry(c->gpu, c->st, s, fe->visible[k]);
+        scene_gpu_draw_object_geometry(c->gpu, c->b.st, s, fe->visible[k]);
     forward_pass_end(c, out);
 
     if (r->grid) {
@@ -325,23 +325,23 @@ static void plus_draw(void *self, const struct scene *s, frame_stats *out)
         forward_pass_begin(c, out, "cull");
         const tile_stats reset = {0, r->capacity};
         gl.NamedBufferSubData(r->stats, 0, sizeof reset, &reset);
-        gl_state_program(c->st, r->cull_program);
+        gl_state_program(c->b.st, r->cull_program);
         gl.Uniform1i(FORWARD_UNIFORM_LIGHT, r->count);
-        gl_state_texture(c->st, BIND_TEX_DEPTH, c->depth.texture);
+        gl_state_texture(c->b.st, BIND_TEX_DEPTH, c->depth.texture);
         bind_buffers(r);
-        gl_state_dispatch(c->st, r->tiles_x, r->tiles_y, 1);
-        gl_state_barrier(c->st, GL_SHADER_STORAGE_BARRIER_BIT);
+        gl_state_dispatch(c->b.st, r->tiles_x, r->tiles_y, 1);
+        gl_state_barrier(c->b.st, GL_SHADER_STORAGE_BARRIER_BIT);
         /* the depth target is drawn to next: not bound for sampling meanwhile */
-        gl_state_texture(c->st, BIND_TEX_DEPTH, 0);
+        gl_state_texture(c->b.st, BIND_TEX_DEPTH, 0);
         forward_pass_end(c, out);
     }
 
     forward_pass_begin(c, out, "shade");
     forward_bind_target(c);
-    gl_state_color_mask(c->st, GLS_COLOR_MASK_RGBA);
-    gl_state_depth(c->st, &(gls_depth){.compare = GLS_COMPARE_EQUAL, .write = false});
+    gl_state_color_mask(c->b.st, GLS_COLOR_MASK_RGBA);
+    gl_state_depth(c->b.st, &(gls_depth){.compare = GLS_COMPARE_EQUAL, .write = false});
     bind_buffers(r);
-    shadow_maps_bind(&c->shadows, c->st);
+    shadow_maps_bind(&c->shadows, c->b.st);
     forward_draw_objects(c, s, fe->visible, fe->nvisible, r->program, plus_on_program, r);
     forward_pass_end(c, out);
 

@@ -62,7 +62,7 @@ static void *spml_create(const renderer_options *opts, char *err, size_t errlen)
         free(r);
         return NULL;
     }
-    r->capacity = forward_spml_max_lights(r->c.opts.max_uniform_block_size);
+    r->capacity = forward_spml_max_lights(r->c.b.opts.max_uniform_block_size);
     return r;
 }
 
@@ -96,14 +96,14 @@ static bool spml_prepare(void *self, const struct scene *s, char *err, size_t er
         return false;
     }
     uint32_t n = s->nlights_total;
-    r->storage = r->c.opts.light_buffer == LIGHT_BUFFER_STORAGE ||
-                 (r->c.opts.light_buffer == LIGHT_BUFFER_AUTO && n > r->capacity);
+    r->storage = r->c.b.opts.light_buffer == LIGHT_BUFFER_STORAGE ||
+                 (r->c.b.opts.light_buffer == LIGHT_BUFFER_AUTO && n > r->capacity);
     if (!r->storage && (n > r->capacity || r->capacity == 0)) {
         snprintf(err, errlen,
                  "forward-spml: %u lights requested, this context allows at most %u "
                  "(GL_MAX_UNIFORM_BLOCK_SIZE %d / %zu bytes; forward.light_buffer: "
                  "storage has no such limit)",
-                 n, r->capacity, r->c.opts.max_uniform_block_size, sizeof(gpu_light));
+                 n, r->capacity, r->c.b.opts.max_uniform_block_size, sizeof(gpu_light));
         return false;
     }
     if (!forward_common_prepare(&r->c, s, err, errlen))
@@ -178,16 +178,16 @@ static void spml_draw(void *self, const struct scene *s, frame_stats *out)
     if (n)   /* only what is used */
         gl.NamedBufferSubData(r->ubo, 0, (GLsizeiptr)(n * sizeof(gpu_light)), r->staging);
     if (r->storage)
-        gl_state_storage_buffer(c->st, BIND_SSBO_LIGHTS, r->ubo);
+        gl_state_storage_buffer(c->b.st, BIND_SSBO_LIGHTS, r->ubo);
     else
         gl.BindBufferBase(GL_UNIFORM_BUFFER, FORWARD_LIGHTS_BINDING, r->ubo);
 
     forward_bind_target(c);
-    gl_state_blend(c->st, NULL);
-    gl_state_stencil(c->st, NULL);
+    gl_state_blend(c->b.st, NULL);
+    gl_state_stencil(c->b.st, NULL);
     forward_clear_target(c);
-    gl_state_depth(c->st, &(gls_depth){.compare = GLS_COMPARE_LESS, .write = true});
-    shadow_maps_bind(&c->shadows, c->st);
+    gl_state_depth(c->b.st, &(gls_depth){.compare = GLS_COMPARE_LESS, .write = true});
+    shadow_maps_bind(&c->shadows, c->b.st);
     forward_draw_objects(c, s, fe->visible, fe->nvisible, r->program, spml_on_program, r);
     forward_pass_end(c, out);
 
