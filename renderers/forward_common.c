@@ -250,7 +250,8 @@ void forward_sky_pass(forward_common *fc, frame_stats *out)
 void forward_resolve_pass(forward_common *fc, frame_stats *out)
 {
     forward_pass_begin(fc, out, "resolve");
-    scene_gpu_resolve(fc->gpu, fc->b.st, fc->hdr.texture, fc->b.output_fbo, fc->b.width, fc->b.height);
+    scene_gpu_resolve(fc->gpu, fc->b.st, fc->hdr.texture, fc->b.output_fbo, fc->b.width,
+                      fc->b.height);
     forward_pass_end(fc, out);
 }
 
