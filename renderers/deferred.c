@@ -99,6 +99,8 @@
  * depth). gbuffer_bytes counts the G-buffer's colour attachments. */
 #include "renderers/deferred.h"
 
+#include "renderers/base.h"
+
 #include "renderers/frontend.h"
 #include "renderers/gl/loader.h"
 #include "renderers/gl/program.h"
@@ -120,420 +122,11 @@
 _Static_assert(sizeof(gpu_light) == 80, "gpu_light is 5 vec4s, as lighting.inc's Light");
 
 enum {
-    DEFERRED_MAX_PASSES = 9,          /* shadows gbuffer ambient directional point spot compose
+    DEFERRED_MAX_PASSES = 10,          /* shadows gbuffer ambient directional point spot compose
                                          sky resolve */
     DEFERRED_VARIANTS = 32,           /* material map bits and the alpha test */
-    DEFERRED_MAX_LAYOUT_DEFINES = 12,
     DEFERRED_LIGHT_TYPES = 3,
 };
-
-// >>layout
-
-static const char *const slot_names[DEFERRED_SLOT_COUNT] = {
-    [DEFERRED_SLOT_POSITION_XY] = "position.xy", [DEFERRED_SLOT_POSITION_Z] = "position.z",
-    [DEFERRED_SLOT_DEPTH] = "depth",             [DEFERRED_SLOT_NORMAL_XY] = "normal.xy",
-    [DEFERRED_SLOT_NORMAL_Z] = "normal.z",       [DEFERRED_SLOT_DIFFUSE] = "diffuse",
-    [DEFERRED_SLOT_GLOSS] = "gloss",             [DEFERRED_SLOT_SHININESS] = "shininess",
-    [DEFERRED_SLOT_EMISSIVE] = "emissive",
-};
-
-const char *deferred_slot_name(deferred_slot_kind k)
-{
-    return (unsigned)k < DEFERRED_SLOT_COUNT ? slot_names[k] : "unknown";
-}
-
-const char *deferred_preset_name(gbuffer_preset p)
-{
-    switch (p) {
-    case GBUFFER_CURTIS: return "curtis";
-    case GBUFFER_FAT: return "fat";
-    case GBUFFER_COMPACT: return "compact";
-    case GBUFFER_SPHEREMAP: return "spheremap";
-    case GBUFFER_REFERENCE: return "reference";
-    }
-    return "unknown";
-}
-
-deferred_needs deferred_needs_of(const scene *s)
-{
-    deferred_needs n = {false, false};
-    if (!s)
-        return n;
-    for (uint32_t i = 0; i < s->nobjects; i++) {
-        uint32_t mi = s->objects[i].material;
-        if (mi >= s->nmaterials)
-            continue;
-        const scene_material *m = &s->materials[mi];
-        if (m->specular > 0.0f)
-            n.gloss = true;
-        if (m->emissive[0] > 0.0f || m->emissive[1] > 0.0f || m->emissive[2] > 0.0f)
-            n.emissive = true;
-    }
-    return n;
-}
-
-/* A draft attachment: its slots in channel order, and whether an override took a
- * slot from it (then it is packed again and narrowed). */
-enum { DRAFT_MAX_ATTACHMENTS = DEFERRED_MAX_ATTACHMENTS + 2 };   /* + the two overrides */
-
-typedef struct draft {
-    int nattachments;
-    deferred_attachment att[DRAFT_MAX_ATTACHMENTS];
-    bool touched[DRAFT_MAX_ATTACHMENTS];
-    bool emissive_intensity;
-} draft;
-
-static int draft_att(draft *d, deferred_channel_type ch, gl_format fmt, bool touched)
-{
-    int a = d->nattachments++;
-    deferred_attachment *at = &d->att[a];
-    memset(at, 0, sizeof *at);
-    at->channels = ch;
-    at->format = fmt;
-    d->touched[a] = touched;
-    return a;
-}
-
-static void draft_slot(draft *d, int a, deferred_slot_kind k, uint8_t count)
-{
-    deferred_attachment *at = &d->att[a];
-    uint8_t first = 0;
-    for (int i = 0; i < at->nslots; i++)
-        first = (uint8_t)(first + at->slot[i].count);
-    at->slot[at->nslots++] = (deferred_slot){.kind = k, .first = first, .count = count};
-}
-
-/* Removes every slot of kind k; marks the attachments it was in as touched if `touch`. */
-static void draft_remove(draft *d, deferred_slot_kind k, bool touch)
-{
-    for (int a = 0; a < d->nattachments; a++) {
-        deferred_attachment *at = &d->att[a];
-        int n = 0;
-        for (int i = 0; i < at->nslots; i++) {
-            if (at->slot[i].kind == k) {
-                if (touch)
-                    d->touched[a] = true;
-                continue;
-            }
-            at->slot[n++] = at->slot[i];
-        }
-        at->nslots = n;
-    }
-}
-
-static gl_format narrowest(deferred_channel_type ch, unsigned channels)
-{
-    switch (ch) {
-    case DEFERRED_CHANNELS_FLOAT16:
-        return channels <= 1 ? GLT_FORMAT_R16F
-                             : channels == 2 ? GLT_FORMAT_RG16F : GLT_FORMAT_RGBA16F;
-    case DEFERRED_CHANNELS_FLOAT32:
-        return channels <= 1 ? GLT_FORMAT_R32F : GLT_FORMAT_RGBA32F;
-    case DEFERRED_CHANNELS_UNORM8:
-        return channels <= 2 ? GLT_FORMAT_RG8 : GLT_FORMAT_RGBA8;
-    case DEFERRED_CHANNELS_UNORM10:
-        return GLT_FORMAT_RGB10A2;
-    }
-    return GLT_FORMAT_NONE;
-}
-
-/* "gbuffer." + the slots' field names joined by '+' (position.xy + position.z is
- * "position", and so the normal). The longest a layout makes is 29 characters. */
-static void name_attachment(deferred_attachment *at, bool spheremap)
-{
-    char *out = at->name;
-    const size_t cap = sizeof at->name;
-    size_t len = (size_t)snprintf(out, cap, "gbuffer.");
-    for (int i = 0; i < at->nslots && len < cap; i++) {
-        deferred_slot_kind k = at->slot[i].kind;
-        const char *nm = deferred_slot_name(k);
-        if (k == DEFERRED_SLOT_POSITION_XY && i + 1 < at->nslots &&
-            at->slot[i + 1].kind == DEFERRED_SLOT_POSITION_Z) {
-            nm = "position";
-            i++;
-        } else if (k == DEFERRED_SLOT_NORMAL_XY &&
-                   ((i + 1 < at->nslots && at->slot[i + 1].kind == DEFERRED_SLOT_NORMAL_Z) ||
-                    spheremap)) {
-            nm = "normal";
-            if (!spheremap)
-                i++;
-        }
-        int n = snprintf(out + len, cap - len, "%s%s", len > strlen("gbuffer.") ? "+" : "", nm);
-        if (n < 0)
-            break;
-        len += (size_t)n;
-    }
-}
-
-bool deferred_layout_build(const renderer_options *o, deferred_needs needs,
-                           deferred_layout *out, char *err, size_t errlen)
-{
-    draft d;
-    memset(&d, 0, sizeof d);
-    const deferred_channel_type F16 = DEFERRED_CHANNELS_FLOAT16, F32 = DEFERRED_CHANNELS_FLOAT32,
-                                U8 = DEFERRED_CHANNELS_UNORM8;
-    /* What the preset itself stores, in the override enums' terms (PRESET: none of them). */
-    gbuffer_position own_position = GBUFFER_POSITION_PRESET;
-    gbuffer_normal own_normal = GBUFFER_NORMAL_PRESET;
-    bool spheremap = false;
-    int a;
-
-    switch (o->gbuffer) {
-    case GBUFFER_FAT:
-        a = draft_att(&d, F16, GLT_FORMAT_RGBA16F, false);
-        draft_slot(&d, a, DEFERRED_SLOT_POSITION_XY, 2);
-        draft_slot(&d, a, DEFERRED_SLOT_POSITION_Z, 1);
-        draft_slot(&d, a, DEFERRED_SLOT_SHININESS, 1);
-        a = draft_att(&d, F16, GLT_FORMAT_RGBA16F, false);
-        draft_slot(&d, a, DEFERRED_SLOT_NORMAL_XY, 2);
-        draft_slot(&d, a, DEFERRED_SLOT_NORMAL_Z, 1);
-        draft_slot(&d, a, DEFERRED_SLOT_EMISSIVE, 1);
-        d.emissive_intensity = true;
-        a = draft_att(&d, F16, GLT_FORMAT_RGBA16F, false);
-        draft_slot(&d, a, DEFERRED_SLOT_DIFFUSE, 3);
-        draft_slot(&d, a, DEFERRED_SLOT_GLOSS, 1);
-        own_position = GBUFFER_POSITION_STORED16;
-        own_normal = GBUFFER_NORMAL_FLOAT16;
-        break;
-    case GBUFFER_CURTIS:
-        a = draft_att(&d, F16, GLT_FORMAT_RGBA16F, false);
-        draft_slot(&d, a, DEFERRED_SLOT_NORMAL_XY, 2);
-        draft_slot(&d, a, DEFERRED_SLOT_NORMAL_Z, 1);
-        draft_slot(&d, a, DEFERRED_SLOT_DEPTH, 1);
-        a = draft_att(&d, F16, GLT_FORMAT_RGBA16F, false);
-        draft_slot(&d, a, DEFERRED_SLOT_DIFFUSE, 3);
-        draft_slot(&d, a, DEFERRED_SLOT_GLOSS, 1);
-        a = draft_att(&d, F16, GLT_FORMAT_RGBA16F, false);
-        draft_slot(&d, a, DEFERRED_SLOT_SHININESS, 1);
-        a = draft_att(&d, F16, GLT_FORMAT_RGBA16F, false);
-        draft_slot(&d, a, DEFERRED_SLOT_EMISSIVE, 3);
-        own_normal = GBUFFER_NORMAL_FLOAT16;
-        break;
-    case GBUFFER_COMPACT:
-        a = draft_att(&d, F16, GLT_FORMAT_RG16F, false);
-        draft_slot(&d, a, DEFERRED_SLOT_POSITION_XY, 2);
-        a = draft_att(&d, F16, GLT_FORMAT_R16F, false);
-        draft_slot(&d, a, DEFERRED_SLOT_POSITION_Z, 1);
-        a = draft_att(&d, U8, GLT_FORMAT_RGBA8, false);
-        draft_slot(&d, a, DEFERRED_SLOT_DIFFUSE, 3);
-        draft_slot(&d, a, DEFERRED_SLOT_NORMAL_Z, 1);
-        a = draft_att(&d, U8, GLT_FORMAT_RG8, false);
-        draft_slot(&d, a, DEFERRED_SLOT_NORMAL_XY, 2);
-        a = draft_att(&d, U8, GLT_FORMAT_RG8, false);
-        draft_slot(&d, a, DEFERRED_SLOT_GLOSS, 1);
-        draft_slot(&d, a, DEFERRED_SLOT_SHININESS, 1);
-        a = draft_att(&d, U8, GLT_FORMAT_RGBA8, false);
-        draft_slot(&d, a, DEFERRED_SLOT_EMISSIVE, 3);
-        own_position = GBUFFER_POSITION_STORED16;
-        break;
-    case GBUFFER_SPHEREMAP:
-        a = draft_att(&d, U8, GLT_FORMAT_RG8, false);
-        draft_slot(&d, a, DEFERRED_SLOT_NORMAL_XY, 2);
-        a = draft_att(&d, F16, GLT_FORMAT_RGBA16F, false);
-        draft_slot(&d, a, DEFERRED_SLOT_DEPTH, 1);
-        draft_slot(&d, a, DEFERRED_SLOT_GLOSS, 1);
-        draft_slot(&d, a, DEFERRED_SLOT_SHININESS, 1);
-        a = draft_att(&d, U8, GLT_FORMAT_RGBA8, false);
-        draft_slot(&d, a, DEFERRED_SLOT_DIFFUSE, 3);
-        a = draft_att(&d, U8, GLT_FORMAT_RGBA8, false);
-        draft_slot(&d, a, DEFERRED_SLOT_EMISSIVE, 3);
-        own_normal = GBUFFER_NORMAL_SPHEREMAP8;
-        spheremap = true;
-        break;
-    case GBUFFER_REFERENCE:
-        a = draft_att(&d, F32, GLT_FORMAT_RGBA32F, false);
-        draft_slot(&d, a, DEFERRED_SLOT_POSITION_XY, 2);
-        draft_slot(&d, a, DEFERRED_SLOT_POSITION_Z, 1);
-        draft_slot(&d, a, DEFERRED_SLOT_SHININESS, 1);
-        a = draft_att(&d, F32, GLT_FORMAT_RGBA32F, false);
-        draft_slot(&d, a, DEFERRED_SLOT_NORMAL_XY, 2);
-        draft_slot(&d, a, DEFERRED_SLOT_NORMAL_Z, 1);
-        draft_slot(&d, a, DEFERRED_SLOT_GLOSS, 1);
-        a = draft_att(&d, F32, GLT_FORMAT_RGBA32F, false);
-        draft_slot(&d, a, DEFERRED_SLOT_DIFFUSE, 3);
-        a = draft_att(&d, F32, GLT_FORMAT_RGBA32F, false);
-        draft_slot(&d, a, DEFERRED_SLOT_EMISSIVE, 3);
-        own_position = GBUFFER_POSITION_STORED32;
-        own_normal = GBUFFER_NORMAL_FLOAT32;
-        break;
-    default:
-        snprintf(err, errlen, "deferred: unknown G-buffer preset %d", (int)o->gbuffer);
-        return false;
-    }
-
-    /* >>overrides: the field gets an attachment of its own */
-    gbuffer_position pos = o->gbuffer_position;
-    bool depth_buffer = false;
-    if (pos != GBUFFER_POSITION_PRESET && pos != own_position) {
-        draft_remove(&d, DEFERRED_SLOT_POSITION_XY, true);
-        draft_remove(&d, DEFERRED_SLOT_POSITION_Z, true);
-        draft_remove(&d, DEFERRED_SLOT_DEPTH, true);
-        switch (pos) {
-        case GBUFFER_POSITION_STORED16:
-        case GBUFFER_POSITION_STORED32:
-            a = draft_att(&d, pos == GBUFFER_POSITION_STORED16 ? F16 : F32, GLT_FORMAT_NONE,
-                          true);
-            draft_slot(&d, a, DEFERRED_SLOT_POSITION_XY, 2);
-            draft_slot(&d, a, DEFERRED_SLOT_POSITION_Z, 1);
-            break;
-        case GBUFFER_POSITION_DEPTH:
-            depth_buffer = true;
-            break;
-        default:
-            snprintf(err, errlen, "deferred: unknown G-buffer position %d", (int)pos);
-            return false;
-        }
-    }
-    gbuffer_normal nrm = o->gbuffer_normal;
-    if (nrm != GBUFFER_NORMAL_PRESET && nrm != own_normal) {
-        draft_remove(&d, DEFERRED_SLOT_NORMAL_XY, true);
-        draft_remove(&d, DEFERRED_SLOT_NORMAL_Z, true);
-        spheremap = false;
-        switch (nrm) {
-        case GBUFFER_NORMAL_FLOAT16:
-        case GBUFFER_NORMAL_FLOAT32:
-        case GBUFFER_NORMAL_UNORM10:
-            a = draft_att(&d,
-                          nrm == GBUFFER_NORMAL_FLOAT16   ? F16
-                          : nrm == GBUFFER_NORMAL_FLOAT32 ? F32
-                                                          : DEFERRED_CHANNELS_UNORM10,
-                          GLT_FORMAT_NONE, true);
-            draft_slot(&d, a, DEFERRED_SLOT_NORMAL_XY, 2);
-            draft_slot(&d, a, DEFERRED_SLOT_NORMAL_Z, 1);
-            break;
-        case GBUFFER_NORMAL_SPHEREMAP8:
-        case GBUFFER_NORMAL_SPHEREMAP16:
-            a = draft_att(&d, nrm == GBUFFER_NORMAL_SPHEREMAP8 ? U8 : F16, GLT_FORMAT_NONE, true);
-            draft_slot(&d, a, DEFERRED_SLOT_NORMAL_XY, 2);
-            spheremap = true;
-            break;
-        default:
-            snprintf(err, errlen, "deferred: unknown G-buffer normal %d", (int)nrm);
-            return false;
-        }
-    }
-
-    /* >>what the scene does not need: the slot goes, its channels stay where they were */
-    if (!needs.gloss) {
-        draft_remove(&d, DEFERRED_SLOT_GLOSS, false);
-        draft_remove(&d, DEFERRED_SLOT_SHININESS, false);
-    }
-    if (!needs.emissive)
-        draft_remove(&d, DEFERRED_SLOT_EMISSIVE, false);
-
-    /* >>the attachments that remain, packed again where an override took a slot */
-    memset(out, 0, sizeof *out);
-    for (int i = 0; i < d.nattachments; i++) {
-        deferred_attachment at = d.att[i];
-        if (at.nslots == 0)
-            continue;
-        if (out->nattachments >= DEFERRED_MAX_ATTACHMENTS) {
-            snprintf(err, errlen, "bug: deferred: more than %d G-buffer attachments",
-                     DEFERRED_MAX_ATTACHMENTS);
-            return false;
-        }
-        if (d.touched[i]) {
-            uint8_t first = 0;
-            for (int k = 0; k < at.nslots; k++) {
-                at.slot[k].first = first;
-                first = (uint8_t)(first + at.slot[k].count);
-            }
-            at.format = narrowest(at.channels, first);
-        }
-        name_attachment(&at, spheremap);
-        for (int k = 0; k < at.nslots; k++)
-            out->has[at.slot[k].kind] = true;
-        out->att[out->nattachments++] = at;
-    }
-    out->emissive_intensity = d.emissive_intensity && out->has[DEFERRED_SLOT_EMISSIVE];
-    out->position = out->has[DEFERRED_SLOT_POSITION_XY]  ? DEFERRED_POSITION_STORED
-                    : out->has[DEFERRED_SLOT_DEPTH] && !depth_buffer ? DEFERRED_POSITION_LINEAR_DEPTH
-                                                                     : DEFERRED_POSITION_DEPTH_BUFFER;
-    out->normal = DEFERRED_NORMAL_XYZ_FLOAT;
-    if (spheremap) {
-        out->normal = DEFERRED_NORMAL_SPHEREMAP;
-    } else {
-        for (int i = 0; i < out->nattachments; i++)
-            for (int k = 0; k < out->att[i].nslots; k++)
-                if (out->att[i].slot[k].kind == DEFERRED_SLOT_NORMAL_XY &&
-                    (out->att[i].channels == DEFERRED_CHANNELS_UNORM8 ||
-                     out->att[i].channels == DEFERRED_CHANNELS_UNORM10))
-                    out->normal = DEFERRED_NORMAL_XYZ_UNORM;
-    }
-    return true;
-}
-
-unsigned deferred_layout_bytes_per_pixel(const deferred_layout *l)
-{
-    unsigned b = 0;
-    for (int i = 0; i < l->nattachments; i++) {
-        const gl_format_info *fi = gl_format_get(l->att[i].format);
-        b += fi ? fi->bytes_per_pixel : 0;
-    }
-    return b;
-}
-
-/* The layout as shader defines (gbuffer.inc.glsl): "GB_DIFFUSE gb2.xyz", ... */
-typedef struct layout_defines {
-    int n;
-    char text[DEFERRED_MAX_LAYOUT_DEFINES][40];
-} layout_defines;
-
-static bool slot_where(const deferred_layout *l, deferred_slot_kind k, char *buf, size_t len,
-                       deferred_channel_type *ch)
-{
-    static const char swz[] = "xyzw";
-    for (int i = 0; i < l->nattachments; i++)
-        for (int s = 0; s < l->att[i].nslots; s++) {
-            const deferred_slot *sl = &l->att[i].slot[s];
-            if (sl->kind != k)
-                continue;
-            char sw[5] = "";
-            for (int c = 0; c < sl->count && sl->first + c < 4; c++)
-                sw[c] = swz[sl->first + c];
-            snprintf(buf, len, "gb%d.%s", i, sw);
-            if (ch)
-                *ch = l->att[i].channels;
-            return true;
-        }
-    return false;
-}
-
-static void add_define(layout_defines *d, const char *name, deferred_slot_kind k,
-                       const deferred_layout *l)
-{
-    char where[16];
-    if (d->n < DEFERRED_MAX_LAYOUT_DEFINES && slot_where(l, k, where, sizeof where, NULL))
-        snprintf(d->text[d->n++], sizeof d->text[0], "%s %s", name, where);
-}
-
-static void layout_to_defines(const deferred_layout *l, layout_defines *d)
-{
-    memset(d, 0, sizeof *d);
-    if (l->position == DEFERRED_POSITION_STORED) {
-        add_define(d, "GB_POSITION_XY", DEFERRED_SLOT_POSITION_XY, l);
-        add_define(d, "GB_POSITION_Z", DEFERRED_SLOT_POSITION_Z, l);
-    } else if (l->position == DEFERRED_POSITION_LINEAR_DEPTH) {
-        add_define(d, "GB_DEPTH", DEFERRED_SLOT_DEPTH, l);
-    }
-    snprintf(d->text[d->n++], sizeof d->text[0], "GB_NORMAL_ENC %d",
-             l->normal == DEFERRED_NORMAL_SPHEREMAP   ? 2
-             : l->normal == DEFERRED_NORMAL_XYZ_UNORM ? 1
-                                                      : 0);
-    add_define(d, "GB_NORMAL_XY", DEFERRED_SLOT_NORMAL_XY, l);
-    if (l->normal != DEFERRED_NORMAL_SPHEREMAP)
-        add_define(d, "GB_NORMAL_Z", DEFERRED_SLOT_NORMAL_Z, l);
-    add_define(d, "GB_DIFFUSE", DEFERRED_SLOT_DIFFUSE, l);
-    add_define(d, "GB_GLOSS", DEFERRED_SLOT_GLOSS, l);
-    add_define(d, "GB_SHININESS", DEFERRED_SLOT_SHININESS, l);
-    char where[16];
-    deferred_channel_type ch;
-    if (slot_where(l, DEFERRED_SLOT_SHININESS, where, sizeof where, &ch) &&
-        (ch == DEFERRED_CHANNELS_UNORM8 || ch == DEFERRED_CHANNELS_UNORM10))
-        snprintf(d->text[d->n++], sizeof d->text[0], "GB_SHININESS_UNORM");
-    add_define(d, l->emissive_intensity ? "GB_EMISSIVE_INTENSITY" : "GB_EMISSIVE",
-               DEFERRED_SLOT_EMISSIVE, l);
-}
 
 // >>the renderer
 
@@ -547,20 +140,45 @@ typedef enum pass_id {
     PASS_COMPOSE,
     PASS_SKY,
     PASS_RESOLVE,
+    PASS_TILED,                      /* tiled-deferred: ambient and every light, one dispatch */
     PASS_COUNT
 } pass_id;
 
 static const char *const pass_names[PASS_COUNT] = {
     "shadows", "gbuffer", "ambient", "directional", "point", "spot", "compose", "sky", "resolve",
+    "tiled",
 };
 
+/* The order describe lists them in (tiled-deferred's "tiled" after the G-buffer). */
+static const pass_id describe_order[PASS_COUNT] = {
+    PASS_SHADOWS, PASS_GBUFFER, PASS_TILED, PASS_AMBIENT, PASS_DIRECTIONAL, PASS_POINT,
+    PASS_SPOT, PASS_COMPOSE, PASS_SKY, PASS_RESOLVE,
+};
+
+/* tiled-deferred's light culling and shading pass (tiled_deferred.comp). */
+typedef struct tiled_pass {
+    int tile;                        /* pixels per tile side */
+    uint32_t slices_y;               /* clustered.shading: deferred: Olsson's S_y; else 0 */
+    uint32_t slices;                 /* its depth slices to the far plane (prepare) */
+    double slice_ratio;
+    uint32_t tiles_x, tiles_y, ntiles;
+    uint32_t ncells;                 /* tiles, or tiles x slices */
+    bool grid;                       /* the scene has point or spot lights: lists are culled */
+    uint32_t max_lights, capacity;   /* entries of the light and index buffers */
+    GLuint program;
+    GLuint lights, tiles, indices, stats;
+    gpu_light *staging;
+    uint32_t *readback, *counts;
+    bool counted;
+    char tile_define[24], tiles_x_define[32], tiles_y_define[32], slices_define[24];
+    char slices_y_define[24];
+} tiled_pass;
+
 typedef struct deferred_renderer {
-    renderer_options opts;
-    int width, height;
-    GLuint output_fbo;               /* the draw framebuffer bound at creation */
-    gl_state *st;
-    gl_program_cache *programs;
-    gl_pass_queries *queries;        /* NULL without opts.queries */
+    renderer_base b;                 /* first: name ("deferred", "tiled-deferred",
+                                        "clustered"), options, size, caches, queries */
+    bool tiled;                      /* tiled-deferred: PASS_TILED instead of the light passes */
+    tiled_pass tp;
 
     /* >>made by prepare */
     bool prepared;
@@ -598,17 +216,32 @@ static unsigned material_variant(const scene_material *m)
            (m->alpha == MATERIAL_MASK ? 16u : 0u);
 }
 
-static void *deferred_create(const renderer_options *opts, char *err, size_t errlen)
+static void *create(const char *name, bool tiled, bool clustered,
+                    const renderer_options *opts, char *err, size_t errlen)
 {
-    deferred_renderer *r = calloc(1, sizeof *r);
-    if (!r) {
-        snprintf(err, errlen, "deferred: out of memory");
+    int slices = opts->clustered_slices ? opts->clustered_slices : 24;
+    if (clustered && (slices < 1 || slices > 64)) {
+        snprintf(err, errlen, "%s: clustered.slices %d: expected 1 to 64", name, slices);
         return NULL;
     }
-    r->opts = *opts;
-    GLint fb = 0;
-    gl.GetIntegerv(GL_DRAW_FRAMEBUFFER_BINDING, &fb);
-    r->output_fbo = (GLuint)fb;
+    if (tiled && opts->separate_specular) {
+        snprintf(err, errlen, "%s: deferred.separate_specular: the one light pass adds diffuse "
+                 "and specular light together; there is no second target", name);
+        return NULL;
+    }
+    int tile = opts->tile_size ? opts->tile_size : 16;
+    if (tiled && tile != 8 && tile != 16 && tile != 32) {
+        snprintf(err, errlen, "%s: tiles.size %d: expected 8, 16 or 32", name, tile);
+        return NULL;
+    }
+    deferred_renderer *r = calloc(1, sizeof *r);
+    if (!r) {
+        snprintf(err, errlen, "%s: out of memory", name);
+        return NULL;
+    }
+    r->tiled = tiled;
+    r->tp.tile = tile;
+    r->tp.slices_y = clustered ? (uint32_t)slices : 0u;
     /* Options are checked here, before any scene: a bad value never becomes a default. */
     deferred_layout probe;
     if (!deferred_layout_build(opts, (deferred_needs){true, true}, &probe, err, errlen)) {
@@ -620,27 +253,48 @@ static void *deferred_create(const renderer_options *opts, char *err, size_t err
         free(r);
         return NULL;
     }
-    r->st = gl_state_create();
-    r->programs = gl_program_cache_create();
-    if (!r->st || !r->programs)
-        goto oom;
-    if (opts->queries) {
-        r->queries = gl_pass_queries_create(DEFERRED_MAX_PASSES, opts->timer_query,
-                                            opts->pipeline_statistics);
-        if (!r->queries)
-            goto oom;
+    if (!renderer_base_init(&r->b, name, opts, DEFERRED_MAX_PASSES, err, errlen)) {
+        renderer_base_destroy(&r->b);
+        free(r);
+        return NULL;
     }
     return r;
-oom:
-    gl_program_cache_destroy(r->programs);
-    gl_state_destroy(r->st);
-    free(r);
-    snprintf(err, errlen, "deferred: out of memory");
-    return NULL;
+}
+
+static void *deferred_create(const renderer_options *opts, char *err, size_t errlen)
+{
+    return create("deferred", false, false, opts, err, errlen);
+}
+
+static void *tiled_deferred_create(const renderer_options *opts, char *err, size_t errlen)
+{
+    return create("tiled-deferred", true, false, opts, err, errlen);
+}
+
+void *deferred_clustered_create(const renderer_options *opts, char *err, size_t errlen)
+{
+    return create("clustered", true, true, opts, err, errlen);
+}
+
+static void release_tiled(tiled_pass *tp)
+{
+    GLuint b[4] = {tp->lights, tp->tiles, tp->indices, tp->stats};
+    for (int i = 0; i < 4; i++)
+        if (b[i])
+            gl.DeleteBuffers(1, &b[i]);
+    tp->lights = tp->tiles = tp->indices = tp->stats = 0;
+    free(tp->staging);
+    free(tp->readback);
+    free(tp->counts);
+    tp->staging = NULL;
+    tp->readback = tp->counts = NULL;
+    tp->counted = false;
+    tp->program = 0;
 }
 
 static void release_prepared(deferred_renderer *r)
 {
+    release_tiled(&r->tp);
     gl_framebuffer_destroy(&r->fb_gbuffer);
     gl_framebuffer_destroy(&r->fb_light);
     gl_framebuffer_destroy(&r->fb_compose);
@@ -675,7 +329,7 @@ static const char *mode_name(light_volume_mode m)
 
 /* Builds one program; the defines are the layout's plus `extra` (NULL-terminated). */
 static bool build_program(deferred_renderer *r, const char *display, const char *vertex,
-                          const char *fragment, const layout_defines *ld,
+                          const char *fragment, const deferred_layout_defs *ld,
                           const char *const *extra, GLuint *program, char *err, size_t errlen)
 {
     gl_program_desc d = {.name = display, .vertex = vertex, .fragment = fragment};
@@ -690,7 +344,7 @@ static bool build_program(deferred_renderer *r, const char *display, const char 
         d.defines[n++] = ld->text[i];
     }
     char why[4096] = "";
-    if (gl_program_get(r->programs, &d, program, why, sizeof why) != GLP_OK) {
+    if (gl_program_get(r->b.programs, &d, program, why, sizeof why) != GLP_OK) {
         snprintf(err, errlen, "deferred: %s", why);
         return false;
     }
@@ -711,7 +365,7 @@ static void plan(deferred_renderer *r, pass_id p, bool run, const char *fmt, ...
 static bool make_targets(deferred_renderer *r, char *err, size_t errlen)
 {
     char why[512] = "";
-    const int w = r->width, h = r->height;
+    const int w = r->b.width, h = r->b.height;
     gl_framebuffer_desc gdesc = {.name = "gbuffer", .depth_stencil = &r->depth};
     if (!gl_target_create(&r->depth, &(gl_target_desc){.name = "depth",
                                                        .format = GLT_FORMAT_DEPTH24_STENCIL8,
@@ -726,7 +380,7 @@ static bool make_targets(deferred_renderer *r, char *err, size_t errlen)
             goto fail;
         gdesc.color[i] = &r->gbuf[i];
     }
-    bool sep = r->opts.separate_specular;
+    bool sep = r->b.opts.separate_specular;
     if (!gl_target_create(&r->light, &(gl_target_desc){.name = sep ? "light.diffuse" : "light",
                                                        .format = GLT_FORMAT_RGBA16F,
                                                        .width = w, .height = h},
@@ -761,11 +415,11 @@ fail:
 
 static bool compile_programs(deferred_renderer *r, char *err, size_t errlen)
 {
-    layout_defines ld;
-    layout_to_defines(&r->layout, &ld);
+    deferred_layout_defs ld;
+    deferred_layout_defines(&r->layout, &ld);
     const char *fs_vert = "fullscreen.vert";
     const char *unclipped = r->unclipped ? "FULLSCREEN_UNCLIPPED" : NULL;
-    const char *sep = r->opts.separate_specular ? "SEPARATE_SPECULAR" : NULL;
+    const char *sep = r->b.opts.separate_specular ? "SEPARATE_SPECULAR" : NULL;
 
     for (unsigned v = 0; v < DEFERRED_VARIANTS; v++) {
         if (!(r->variants & (1u << v)))
@@ -778,6 +432,37 @@ static bool compile_programs(deferred_renderer *r, char *err, size_t errlen)
         if (!build_program(r, "deferred_gbuffer", "mesh.vert", "gbuffer.frag", &ld, defs,
                            &r->gbuffer_program[v], err, errlen))
             return false;
+    }
+    if (r->tiled) {
+        tiled_pass *tp = &r->tp;
+        const char *extra[9] = {tp->tile_define, tp->tiles_x_define, NULL, NULL,
+                                NULL, NULL, NULL, NULL, NULL};
+        int n = 2;
+        if (tp->slices) {
+            extra[n++] = tp->tiles_y_define;
+            extra[n++] = tp->slices_define;
+            extra[n++] = tp->slices_y_define;
+        }
+        if (!tp->grid)
+            extra[n++] = "NO_GRID";
+        n += (int)shadow_maps_defines(&r->shadows, extra + n);   /* any type: one program */
+        gl_program_desc d = {.name = tp->slices ? "clustered_deferred" : "tiled_deferred",
+                             .compute = "tiled_deferred.comp"};
+        unsigned k = 0;
+        for (int i = 0; i < n; i++)
+            d.defines[k++] = extra[i];
+        for (int i = 0; i < ld.n && k < GLP_MAX_DEFINES; i++)
+            d.defines[k++] = ld.text[i];
+        if (k < (unsigned)n + (unsigned)ld.n) {
+            snprintf(err, errlen, "bug: %s: too many defines for tiled_deferred", r->b.name);
+            return false;
+        }
+        char why[4096] = "";
+        if (gl_program_get(r->b.programs, &d, &tp->program, why, sizeof why) != GLP_OK) {
+            snprintf(err, errlen, "%s: %s", r->b.name, why);
+            return false;
+        }
+        return true;
     }
     {
         const char *extra[3] = {NULL, NULL, NULL};
@@ -808,7 +493,7 @@ static bool compile_programs(deferred_renderer *r, char *err, size_t errlen)
     for (int t = 0; t < DEFERRED_LIGHT_TYPES; t++) {
         if (!r->run[light_pass[t]])
             continue;
-        bool full = t == LIGHT_DIRECTIONAL || r->opts.light_volumes == LIGHT_VOLUMES_FULLSCREEN;
+        bool full = t == LIGHT_DIRECTIONAL || r->b.opts.light_volumes == LIGHT_VOLUMES_FULLSCREEN;
         const char *extra[6] = {type_define[t], NULL, NULL, NULL, NULL, NULL};
         int n = 1;
         if (full && unclipped)
@@ -824,8 +509,8 @@ static bool compile_programs(deferred_renderer *r, char *err, size_t errlen)
         if (!full)
             volumes = true;
     }
-    if (volumes && (r->opts.light_volumes == LIGHT_VOLUMES_STENCIL ||
-                    r->opts.light_volumes == LIGHT_VOLUMES_STENCIL_TWO_PASS) &&
+    if (volumes && (r->b.opts.light_volumes == LIGHT_VOLUMES_STENCIL ||
+                    r->b.opts.light_volumes == LIGHT_VOLUMES_STENCIL_TWO_PASS) &&
         !build_program(r, "deferred_stencil_mark", "light_volume.vert", "stencil_mark.frag", NULL,
                        NULL, &r->mark_program, err, errlen))
         return false;
@@ -835,6 +520,63 @@ static bool compile_programs(deferred_renderer *r, char *err, size_t errlen)
                            &r->compose_program, err, errlen))
             return false;
     }
+    return true;
+}
+
+static GLuint make_buffer(size_t bytes)
+{
+    GLuint b = 0;
+    gl.CreateBuffers(1, &b);
+    gl.NamedBufferStorage(b, (GLsizeiptr)bytes, NULL, GL_DYNAMIC_STORAGE_BIT);
+    return b;
+}
+
+/* tiled-deferred's buffers, as forward_plus.c sizes them. */
+static bool make_tiled(deferred_renderer *r, const scene *s, char *err, size_t errlen)
+{
+    tiled_pass *tp = &r->tp;
+    uint32_t n = s->nlights_total;
+    tp->max_lights = n ? n : 1u;
+    GLint max_block = 0;
+    gl.GetIntegerv(GL_MAX_SHADER_STORAGE_BLOCK_SIZE, &max_block);
+    if ((uint64_t)tp->max_lights * sizeof(gpu_light) > (uint64_t)(max_block > 0 ? max_block : 0)) {
+        snprintf(err, errlen, "%s: %u lights need %llu bytes of storage buffer, this context "
+                 "allows %d (GL_MAX_SHADER_STORAGE_BLOCK_SIZE)", r->b.name, n,
+                 (unsigned long long)tp->max_lights * sizeof(gpu_light), max_block);
+        return false;
+    }
+    uint64_t want = r->b.opts.max_lights_per_tile
+                        ? (uint64_t)tp->ncells * r->b.opts.max_lights_per_tile
+                        : (uint64_t)tp->ncells * tp->max_lights;
+    uint64_t block_entries = (uint64_t)max_block / 4u;
+    if (want > block_entries)
+        want = block_entries;
+    if (want > (1u << 25))
+        want = 1u << 25;
+    tp->capacity = (uint32_t)(want ? want : 1u);
+    snprintf(tp->tile_define, sizeof tp->tile_define, "TILE_SIZE %d", tp->tile);
+    snprintf(tp->tiles_x_define, sizeof tp->tiles_x_define, "TILES_X %u", tp->tiles_x);
+    snprintf(tp->tiles_y_define, sizeof tp->tiles_y_define, "TILES_Y %u", tp->tiles_y);
+    snprintf(tp->slices_define, sizeof tp->slices_define, "SLICES %u", tp->slices);
+    snprintf(tp->slices_y_define, sizeof tp->slices_y_define, "SLICES_Y %u", tp->slices_y);
+    if ((uint64_t)tp->ncells * 16u > (uint64_t)(max_block > 0 ? max_block : 0)) {
+        snprintf(err, errlen, "%s: %u cells need %llu bytes of list heads, this context allows "
+                 "%d (GL_MAX_SHADER_STORAGE_BLOCK_SIZE)", r->b.name, tp->ncells,
+                 (unsigned long long)tp->ncells * 16u, max_block);
+        return false;
+    }
+    tp->staging = calloc(tp->max_lights, sizeof *tp->staging);
+    tp->readback = calloc((size_t)tp->ncells * 4u, sizeof *tp->readback);
+    tp->counts = calloc(tp->ncells, sizeof *tp->counts);
+    if (!tp->staging || !tp->readback || !tp->counts) {
+        snprintf(err, errlen, "%s: out of memory for %u lights and %u tiles", r->b.name, n,
+                 tp->ntiles);
+        return false;
+    }
+    tp->lights = make_buffer((size_t)tp->max_lights * sizeof(gpu_light));
+    tp->tiles = make_buffer((size_t)tp->ncells * 16u);
+    tp->indices = make_buffer((size_t)tp->capacity * 4u);
+    tp->stats = make_buffer(2 * sizeof(uint32_t));
     return true;
 }
 
@@ -848,9 +590,9 @@ static bool deferred_prepare(void *self, const scene *s, char *err, size_t errle
         return false;
     }
     /* Programs of an earlier scene are not this scene's: start a fresh cache. */
-    gl_program_cache_destroy(r->programs);
-    r->programs = gl_program_cache_create();
-    if (!r->programs) {
+    gl_program_cache_destroy(r->b.programs);
+    r->b.programs = gl_program_cache_create();
+    if (!r->b.programs) {
         snprintf(err, errlen, "deferred: out of memory");
         return false;
     }
@@ -858,9 +600,9 @@ static bool deferred_prepare(void *self, const scene *s, char *err, size_t errle
     memset(r->light_program, 0, sizeof r->light_program);
     r->ambient_program = r->compose_program = r->mark_program = 0;
 
-    r->width = r->opts.width > 0 ? r->opts.width : s->width;
-    r->height = r->opts.height > 0 ? r->opts.height : s->height;
-    r->unclipped = gl_state_fullscreen_unclipped_fits(r->st, r->width, r->height);
+    if (!renderer_base_size(&r->b, s, err, errlen))
+        return false;
+    r->unclipped = gl_state_fullscreen_unclipped_fits(r->b.st, r->b.width, r->b.height);
 
     r->variants = 0;
     r->nobjects = s->nobjects;
@@ -885,14 +627,14 @@ static bool deferred_prepare(void *self, const scene *s, char *err, size_t errle
         count[t]++;
     }
     r->needs = deferred_needs_of(s);
-    if (!deferred_layout_build(&r->opts, r->needs, &r->layout, err, errlen))
+    if (!deferred_layout_build(&r->b.opts, r->needs, &r->layout, err, errlen))
         return false;
 
     /* >>the pass plan */
-    shadow_maps_plan(&r->shadows, s, &r->opts);
+    shadow_maps_plan(&r->shadows, s, &r->b.opts);
     plan(r, PASS_SHADOWS, r->shadows.run, "%s", r->shadows.reason);
     plan(r, PASS_GBUFFER, true, "%u objects into %d attachments (%s preset, %u bytes/pixel)",
-         s->nobjects, r->layout.nattachments, deferred_preset_name(r->opts.gbuffer),
+         s->nobjects, r->layout.nattachments, deferred_preset_name(r->b.opts.gbuffer),
          deferred_layout_bytes_per_pixel(&r->layout));
     plan(r, PASS_AMBIENT, true, "%s",
          r->needs.emissive ? "ambient x diffuse + emissive, full screen"
@@ -906,12 +648,47 @@ static bool deferred_prepare(void *self, const scene *s, char *err, size_t errle
         pass_id p = t == LIGHT_POINT ? PASS_POINT : PASS_SPOT;
         if (count[t])
             plan(r, p, true, "%u %s lights, light volumes: %s", count[t], light_type_name(t),
-                 mode_name(r->opts.light_volumes));
+                 mode_name(r->b.opts.light_volumes));
         else
             plan(r, p, false, "no %s light in the scene", light_type_name(t));
     }
-    plan(r, PASS_COMPOSE, r->opts.separate_specular, "%s",
-         r->opts.separate_specular ? "specular light added into the diffuse light"
+    plan(r, PASS_TILED, false, "deferred shades with light volumes, not tiles");
+    if (r->tiled) {
+        tiled_pass *tp = &r->tp;
+        tp->tiles_x = (uint32_t)((r->b.width + tp->tile - 1) / tp->tile);
+        tp->tiles_y = (uint32_t)((r->b.height + tp->tile - 1) / tp->tile);
+        tp->ntiles = tp->tiles_x * tp->tiles_y;
+        tp->slices = tp->slices_y ? shading_cluster_slices(s, (int)tp->slices_y,
+                                                          &tp->slice_ratio)
+                                  : 0u;
+        if (tp->slices > 1024) {
+            snprintf(err, errlen,
+                     "%s: %u depth slices from near %g to far %g (each %.4g times deeper, "
+                     "clustered.slices %u): at most 1024; raise near or lower clustered.slices",
+                     r->b.name, tp->slices, (double)s->cam.znear, (double)s->cam.zfar,
+                     tp->slice_ratio, tp->slices_y);
+            return false;
+        }
+        tp->ncells = tp->ntiles * (tp->slices ? tp->slices : 1u);
+        tp->grid = count[LIGHT_POINT] + count[LIGHT_SPOT] > 0;
+        if (tp->slices)
+            plan(r, PASS_TILED, true, "one dispatch: %ux%ux%u clusters (%d px), %s",
+                 tp->tiles_x, tp->tiles_y, tp->slices, tp->tile,
+                 tp->grid ? "lights culled per cluster, ambient and lights shaded"
+                          : "no point or spot light: no culling, ambient and lights shaded");
+        else
+            plan(r, PASS_TILED, true, "one dispatch: %ux%u tiles of %d px, %s", tp->tiles_x,
+                 tp->tiles_y, tp->tile,
+                 tp->grid ? "lights culled per tile, ambient and lights shaded"
+                          : "no point or spot light: no culling, ambient and lights shaded");
+        const char *in = tp->slices ? "in the clustered pass" : "in the tiled pass";
+        plan(r, PASS_AMBIENT, false, "%s", in);
+        plan(r, PASS_DIRECTIONAL, false, "%s", in);
+        plan(r, PASS_POINT, false, "%s", in);
+        plan(r, PASS_SPOT, false, "%s", in);
+    }
+    plan(r, PASS_COMPOSE, r->b.opts.separate_specular, "%s",
+         r->b.opts.separate_specular ? "specular light added into the diffuse light"
                                    : "diffuse and specular light share one target");
     plan(r, PASS_SKY, s->sky, "%s",
          s->sky ? "into untouched depth, last" : "the scene has no sky");
@@ -922,13 +699,16 @@ static bool deferred_prepare(void *self, const scene *s, char *err, size_t errle
         goto fail;
     }
     r->fe.no_shadows = !r->shadows.run;
+    r->fe.no_illumination = true;   /* light volumes, not object sets */
     r->gpu = scene_gpu_create(s, why, sizeof why);
     if (!r->gpu) {
         snprintf(err, errlen, "deferred: %s", why);
         goto fail;
     }
+    if (r->tiled && !make_tiled(r, s, err, errlen))
+        goto fail;
     if (!make_targets(r, err, errlen) ||
-        !shadow_maps_create(&r->shadows, r->programs, "deferred", err, errlen) ||
+        !shadow_maps_create(&r->shadows, r->b.programs, "deferred", err, errlen) ||
         !compile_programs(r, err, errlen))
         goto fail;
     r->prepared = true;
@@ -942,20 +722,12 @@ fail:
 
 static void pass_begin(deferred_renderer *r, frame_stats *out, pass_id p)
 {
-    gl_state_begin_pass(r->st, pass_names[p]);
-    if (r->queries)
-        gl_pass_queries_begin(r->queries, out->npasses);
+    renderer_base_pass_begin(&r->b, out, pass_names[p]);
 }
 
 static void pass_end(deferred_renderer *r, frame_stats *out)
 {
-    size_t i = out->npasses;
-    if (r->queries)
-        gl_pass_queries_end(r->queries);
-    pass_stats *ps = &out->pass[i];
-    gl_state_end_pass(r->st, ps);
-    ps->gpu_us = ps->fragments = ps->primitives = NAN;   /* collect() fills them */
-    out->npasses = i + 1;
+    renderer_base_pass_end(&r->b, out);
 }
 
 static const gls_blend BLEND_ADD = {.enabled = true, .src = GLS_BLEND_ONE, .dst = GLS_BLEND_ONE};
@@ -963,9 +735,9 @@ static const gls_blend BLEND_ADD = {.enabled = true, .src = GLS_BLEND_ONE, .dst 
 static void bind_gbuffer_textures(deferred_renderer *r)
 {
     for (int i = 0; i < r->layout.nattachments; i++)
-        gl_state_texture(r->st, DEFERRED_FIRST_GBUFFER_UNIT + (unsigned)i, r->gbuf[i].texture);
+        gl_state_texture(r->b.st, DEFERRED_FIRST_GBUFFER_UNIT + (unsigned)i, r->gbuf[i].texture);
     if (r->layout.position == DEFERRED_POSITION_DEPTH_BUFFER)
-        gl_state_texture(r->st, DEFERRED_DEPTH_UNIT, r->depth.texture);
+        gl_state_texture(r->b.st, DEFERRED_DEPTH_UNIT, r->depth.texture);
 }
 
 /* The test hook around one shade draw of light type t (deferred_count_shaded). */
@@ -1011,16 +783,16 @@ static void set_light_uniform(const scene *s, uint32_t li, uint32_t layer)
 
 static void fullscreen(deferred_renderer *r)
 {
-    gl_state_draw_fullscreen(r->st, r->width, r->height, r->unclipped);
+    gl_state_draw_fullscreen(r->b.st, r->b.width, r->b.height, r->unclipped);
 }
 
 /* Point and spot lights of type t by the light-volume mode (the file's header). */
 static void draw_volume_light(deferred_renderer *r, const scene *s, int t, uint32_t li,
                               uint32_t layer)
 {
-    gl_state *st = r->st;
+    gl_state *st = r->b.st;
     GLuint prog = r->light_program[t];
-    switch (r->opts.light_volumes) {
+    switch (r->b.opts.light_volumes) {
     case LIGHT_VOLUMES_FULLSCREEN:
         gl_state_program(st, prog);
         set_light_uniform(s, li, layer);
@@ -1030,7 +802,7 @@ static void draw_volume_light(deferred_renderer *r, const scene *s, int t, uint3
         r->shade_draws[t]++;
         return;
     case LIGHT_VOLUMES_VOLUME:
-        gl_state_viewport(st, 0, 0, r->width, r->height);
+        gl_state_viewport(st, 0, 0, r->b.width, r->b.height);
         gl_state_program(st, prog);
         set_light_uniform(s, li, layer);
         gl_state_cull(st, GLS_CULL_FRONT);
@@ -1042,7 +814,7 @@ static void draw_volume_light(deferred_renderer *r, const scene *s, int t, uint3
         r->shade_draws[t]++;
         return;
     case LIGHT_VOLUMES_STENCIL:
-        gl_state_viewport(st, 0, 0, r->width, r->height);
+        gl_state_viewport(st, 0, 0, r->b.width, r->b.height);
         gl_state_program(st, r->mark_program);
         gl_state_color_mask(st, GLS_COLOR_MASK_NONE);
         gl_state_cull(st, GLS_CULL_NONE);
@@ -1074,7 +846,7 @@ static void draw_volume_light(deferred_renderer *r, const scene *s, int t, uint3
         r->shade_draws[t]++;
         return;
     case LIGHT_VOLUMES_STENCIL_TWO_PASS:
-        gl_state_viewport(st, 0, 0, r->width, r->height);
+        gl_state_viewport(st, 0, 0, r->b.width, r->b.height);
         gl_state_program(st, r->mark_program);
         gl_state_color_mask(st, GLS_COLOR_MASK_NONE);
         gl_state_depth(st, &(gls_depth){.compare = GLS_COMPARE_LEQUAL, .write = false});
@@ -1114,12 +886,12 @@ static void draw_volume_light(deferred_renderer *r, const scene *s, int t, uint3
 static void light_pass(deferred_renderer *r, const scene *s, frame_stats *out, pass_id p,
                        int type)
 {
-    gl_state *st = r->st;
+    gl_state *st = r->b.st;
     pass_begin(r, out, p);
     gl_state_framebuffer(st, r->fb_light.fbo);
     gl_state_color_mask(st, GLS_COLOR_MASK_RGBA);
     gl_state_blend(st, &BLEND_ADD);
-    bool volumes = type != LIGHT_DIRECTIONAL && r->opts.light_volumes != LIGHT_VOLUMES_FULLSCREEN;
+    bool volumes = type != LIGHT_DIRECTIONAL && r->b.opts.light_volumes != LIGHT_VOLUMES_FULLSCREEN;
     if (!volumes) {
         gl_state_depth(st, NULL);
         gl_state_stencil(st, NULL);
@@ -1153,10 +925,48 @@ static void light_pass(deferred_renderer *r, const scene *s, frame_stats *out, p
     pass_end(r, out);
 }
 
+/* tiled-deferred's pass: the frame's visible lights into the light buffer, then one
+ * dispatch that culls per tile and stores ambient + lights into the "light" target. */
+static void tiled_draw(deferred_renderer *r, const scene *s, frame_stats *out)
+{
+    gl_state *st = r->b.st;
+    tiled_pass *tp = &r->tp;
+    const frontend *fe = &r->fe;
+    uint32_t n = fe->nlights < tp->max_lights ? fe->nlights : tp->max_lights;
+    for (uint32_t k = 0; k < n; k++) {
+        shading_pack_light(&s->lights[fe->lights[k]], s->view, &tp->staging[k]);
+        shading_set_shadow_layer(&tp->staging[k], fe->shadow_layer[k]);
+    }
+    if (n)
+        gl.NamedBufferSubData(tp->lights, 0, (GLsizeiptr)(n * sizeof(gpu_light)), tp->staging);
+    out->grid_pass = tp->grid ? out->npasses + 1 : 0;
+    pass_begin(r, out, PASS_TILED);
+    const uint32_t reset[2] = {0, tp->capacity};
+    gl.NamedBufferSubData(tp->stats, 0, sizeof reset, reset);
+    gl_state_program(st, tp->program);
+    gl.Uniform1i(LOC_RENDERER, (GLint)n);
+    bind_gbuffer_textures(r);
+    gl_state_texture(st, DEFERRED_DEPTH_UNIT, r->depth.texture);
+    shadow_maps_bind(&r->shadows, st);
+    gl_state_storage_buffer(st, BIND_SSBO_LIGHTS, tp->lights);
+    gl_state_storage_buffer(st, BIND_SSBO_TILE_LISTS, tp->tiles);
+    gl_state_storage_buffer(st, BIND_SSBO_TILE_INDICES, tp->indices);
+    gl_state_storage_buffer(st, BIND_SSBO_TILE_STATS, tp->stats);
+    gl_state_image(st, BIND_IMAGE_HDR, r->light.texture, GL_WRITE_ONLY, GL_RGBA16F);
+    gl_state_dispatch(st, tp->tiles_x, tp->tiles_y, 1);
+    /* the sky draws into the target, resolve samples it */
+    gl_state_barrier(st, GL_FRAMEBUFFER_BARRIER_BIT | GL_TEXTURE_FETCH_BARRIER_BIT);
+    /* the depth target is drawn with (sky) next: not bound for sampling meanwhile */
+    if (r->layout.position != DEFERRED_POSITION_DEPTH_BUFFER)
+        gl_state_texture(st, DEFERRED_DEPTH_UNIT, 0);
+    pass_end(r, out);
+    out->lights_drawn = n;
+}
+
 static void deferred_draw(void *self, const scene *s, frame_stats *out)
 {
     deferred_renderer *r = self;
-    gl_state *st = r->st;
+    gl_state *st = r->b.st;
     out->npasses = 0;
     out->lights_drawn = 0;
     memset(r->mark_draws, 0, sizeof r->mark_draws);
@@ -1164,8 +974,7 @@ static void deferred_draw(void *self, const scene *s, frame_stats *out)
     r->nshade_queries = 0;
     if (!r->prepared || !s)
         return;
-    /* Every frame starts from unknown state, so every frame counts alike. */
-    gl_state_invalidate(st);
+    renderer_base_begin_frame(&r->b, out);   /* every frame counted alike */
     frontend_build(&r->fe, s);
     scene_gpu_frame(r->gpu, s);
 
@@ -1179,9 +988,9 @@ static void deferred_draw(void *self, const scene *s, frame_stats *out)
     /* >>gbuffer */
     pass_begin(r, out, PASS_GBUFFER);
     gl_state_framebuffer(st, r->fb_gbuffer.fbo);
-    gl_state_viewport(st, 0, 0, r->width, r->height);
+    gl_state_viewport(st, 0, 0, r->b.width, r->b.height);
     gl_state_clear(st, GL_COLOR_BUFFER_BIT | GL_DEPTH_BUFFER_BIT | GL_STENCIL_BUFFER_BIT, NULL,
-                   1.0, r->opts.light_volumes == LIGHT_VOLUMES_STENCIL_TWO_PASS ? 1 : 0);
+                   1.0, r->b.opts.light_volumes == LIGHT_VOLUMES_STENCIL_TWO_PASS ? 1 : 0);
     gl_state_color_mask(st, GLS_COLOR_MASK_RGBA);
     gl_state_blend(st, NULL);
     gl_state_stencil(st, NULL);
@@ -1194,6 +1003,12 @@ static void deferred_draw(void *self, const scene *s, frame_stats *out)
         scene_gpu_draw_object(r->gpu, st, s, o);
     }
     pass_end(r, out);
+
+    GLuint hdr_fbo = r->fb_light.fbo;   /* where the sky goes */
+    if (r->tiled) {
+        tiled_draw(r, s, out);
+        goto sky;
+    }
 
     /* >>ambient + emissive */
     pass_begin(r, out, PASS_AMBIENT);
@@ -1215,7 +1030,6 @@ static void deferred_draw(void *self, const scene *s, frame_stats *out)
     if (r->run[PASS_SPOT])
         light_pass(r, s, out, PASS_SPOT, LIGHT_SPOT);
 
-    GLuint hdr_fbo = r->fb_light.fbo;
     if (r->run[PASS_COMPOSE]) {
         pass_begin(r, out, PASS_COMPOSE);
         gl_state_framebuffer(st, r->fb_compose.fbo);
@@ -1230,11 +1044,12 @@ static void deferred_draw(void *self, const scene *s, frame_stats *out)
         hdr_fbo = r->fb_compose.fbo;
     }
 
+sky:
     /* >>sky: last, into untouched depth */
     if (r->run[PASS_SKY]) {
         pass_begin(r, out, PASS_SKY);
         gl_state_framebuffer(st, hdr_fbo);
-        gl_state_viewport(st, 0, 0, r->width, r->height);
+        gl_state_viewport(st, 0, 0, r->b.width, r->b.height);
         gl_state_blend(st, NULL);
         gl_state_stencil(st, NULL);
         gl_state_cull(st, GLS_CULL_NONE);
@@ -1249,19 +1064,65 @@ static void deferred_draw(void *self, const scene *s, frame_stats *out)
     gl_state_stencil(st, NULL);
     gl_state_depth(st, NULL);
     gl_state_cull(st, GLS_CULL_NONE);
-    scene_gpu_resolve(r->gpu, st, r->light.texture, r->output_fbo, r->width, r->height);
+    scene_gpu_resolve(r->gpu, st, r->light.texture, r->b.output_fbo, r->b.width, r->b.height);
     pass_end(r, out);
+}
+
+/* tiled-deferred's counters, as forward_plus.c collects them. */
+static void tiled_collect(deferred_renderer *r, frame_stats *out)
+{
+    tiled_pass *tp = &r->tp;
+    if (!r->prepared || !tp->grid)
+        return;
+    uint32_t st[2];
+    gl.GetNamedBufferSubData(tp->stats, 0, sizeof st, st);
+    gl.GetNamedBufferSubData(tp->tiles, 0, (GLsizeiptr)((size_t)tp->ncells * 16u), tp->readback);
+    double sum = 0, weighted = 0, covered = 0;
+    uint32_t max = 0, longest = 0;
+    for (uint32_t t = 0; t < tp->ncells; t++) {
+        uint32_t len = tp->readback[4 * t + 3], px = tp->readback[4 * t + 2];
+        tp->counts[t] = len;
+        sum += len;
+        weighted += (double)len * px;
+        covered += px;
+        if (len > max) {
+            max = len;
+            longest = t;
+        }
+    }
+    tp->counted = true;
+    out->grid_cells = tp->ncells;
+    out->grid_lights_mean = tp->ncells ? sum / tp->ncells : NAN;
+    out->grid_lights_max = max;
+    out->light_evals_per_pixel = covered > 0 ? weighted / covered : 0.0;
+    uint32_t tl = longest % tp->ntiles;
+    if (st[0] > tp->capacity && tp->slices)
+        snprintf(out->overflow, sizeof out->overflow,
+                 "%s: the clusters' light lists need %u indices, the index buffer holds %u; "
+                 "cluster %u (tile %u, %u, slice %u) alone needs %u",
+                 r->b.name, st[0], tp->capacity, longest, tl % tp->tiles_x, tl / tp->tiles_x,
+                 longest / tp->ntiles, max);
+    else if (st[0] > tp->capacity)
+        snprintf(out->overflow, sizeof out->overflow,
+                 "%s: the tiles' light lists need %u indices, the index buffer holds %u; "
+                 "tile %u (%u, %u) alone needs %u",
+                 r->b.name, st[0], tp->capacity, longest, tl % tp->tiles_x, tl / tp->tiles_x,
+                 max);
 }
 
 static void deferred_collect(void *self, frame_stats *out)
 {
     deferred_renderer *r = self;
-    if (r->queries) {
-        gl_pass_queries_collect(r->queries, out);
-        return;
-    }
-    for (size_t i = 0; i < out->npasses; i++)
-        out->pass[i].gpu_us = out->pass[i].fragments = out->pass[i].primitives = NAN;
+    if (r->tiled)
+        tiled_collect(r, out);
+    renderer_base_collect(&r->b, out);
+}
+
+static const uint32_t *tiled_light_grid(const void *self, size_t *n)
+{
+    const deferred_renderer *r = self;
+    *n = r->tp.counted ? r->tp.ncells : 0;
+    return r->tp.counted ? r->tp.counts : NULL;
 }
 
 static void describe_target(const gl_target *t, pass_plan *out)
@@ -1278,13 +1139,16 @@ static void deferred_describe(const void *self, pass_plan *out)
     memset(out, 0, sizeof *out);
     if (!r->prepared)
         return;
-    for (int p = 0; p < PASS_COUNT && out->npasses < RENDERER_MAX_PASSES; p++) {
+    for (int i = 0; i < PASS_COUNT && out->npasses < RENDERER_MAX_PASSES; i++) {
+        pass_id p = describe_order[i];
+        if (p == PASS_TILED && !r->tiled)
+            continue;   /* deferred's plan is what it always was */
         pass_plan_entry *e = &out->pass[out->npasses++];
         snprintf(e->name, sizeof e->name, "%s", pass_names[p]);
         e->run = r->run[p];
         snprintf(e->reason, sizeof e->reason, "%s", r->reason[p]);
     }
-    gl_program_cache_describe(r->programs, out);
+    gl_program_cache_describe(r->b.programs, out);
     scene_gpu_describe(r->gpu, out);
     for (int i = 0; i < r->layout.nattachments; i++) {
         describe_target(&r->gbuf[i], out);
@@ -1306,9 +1170,7 @@ static void deferred_destroy(void *self)
         gl.DeleteQueries((GLsizei)r->cap_shade_queries, r->shade_query);
     free(r->shade_query);
     free(r->shade_query_type);
-    gl_pass_queries_destroy(r->queries);
-    gl_program_cache_destroy(r->programs);
-    gl_state_destroy(r->st);
+    renderer_base_destroy(&r->b);
     free(r);
 }
 
@@ -1351,7 +1213,7 @@ uint64_t deferred_last_shade_draws(const void *self, int type)
 gl_state *deferred_state_cache(void *self)
 {
     deferred_renderer *r = self;
-    return r ? r->st : NULL;
+    return r ? r->b.st : NULL;
 }
 
 void deferred_count_shaded(void *self, bool on)
@@ -1401,4 +1263,19 @@ const renderer_impl renderer_deferred_impl = {
     .describe = deferred_describe,
     .destroy = deferred_destroy,
     .read_hdr = deferred_read_hdr,
+};
+
+const renderer_impl renderer_tiled_deferred_impl = {
+    .name = "tiled-deferred",
+    .description = "G-buffer pass (every preset and override of deferred), then one compute "
+                   "pass that culls lights per screen tile and shades ambient, directional "
+                   "and local lights into the HDR target by image store; sky last",
+    .create = tiled_deferred_create,
+    .prepare = deferred_prepare,
+    .draw = deferred_draw,
+    .collect = deferred_collect,
+    .describe = deferred_describe,
+    .destroy = deferred_destroy,
+    .read_hdr = deferred_read_hdr,
+    .light_grid = tiled_light_grid,
 };

@@ -27,15 +27,17 @@
 #include "renderers/gl/target.h"
 #include "renderers/renderer.h"
 
+#include "renderers/bindings.h"
+
 struct scene;
 
 enum {
     DEFERRED_MAX_ATTACHMENTS = 6,
     DEFERRED_MAX_SLOTS = 4,         /* per attachment: one per channel at most */
-    DEFERRED_FIRST_GBUFFER_UNIT = 4,   /* attachment k is sampled at unit 4 + k */
-    DEFERRED_DEPTH_UNIT = 10,          /* the depth-stencil target (position from depth) */
-    DEFERRED_SPECULAR_UNIT = 11,       /* the specular light target (compose) */
-    DEFERRED_UNIFORM_LIGHT = 16,       /* vec4 u_light[5] of deferred_light.frag */
+    DEFERRED_FIRST_GBUFFER_UNIT = BIND_TEX_GBUFFER0,   /* attachment k at unit 4 + k */
+    DEFERRED_DEPTH_UNIT = BIND_TEX_DEPTH,     /* the depth-stencil target (position from depth) */
+    DEFERRED_SPECULAR_UNIT = BIND_TEX_SPECULAR,   /* the specular light target (compose) */
+    DEFERRED_UNIFORM_LIGHT = LOC_RENDERER,    /* vec4 u_light[5] of deferred_light.frag */
 };
 
 typedef enum deferred_slot_kind {
@@ -120,6 +122,20 @@ bool deferred_layout_build(const renderer_options *o, deferred_needs needs,
 
 /* Bytes per pixel of the layout's attachments. */
 unsigned deferred_layout_bytes_per_pixel(const deferred_layout *l);
+
+/* The layout as gbuffer.inc.glsl's defines ("GB_DIFFUSE gb2.xyz", "GB_NORMAL_ENC 2",
+ * ...), what every program reading or writing the G-buffer is compiled with. */
+enum { DEFERRED_MAX_LAYOUT_DEFS = 12 };
+typedef struct deferred_layout_defs {
+    int n;
+    char text[DEFERRED_MAX_LAYOUT_DEFS][40];
+} deferred_layout_defs;
+void deferred_layout_defines(const deferred_layout *l, deferred_layout_defs *d);
+
+/* clustered with clustered.shading: deferred (forward_plus.c's "clustered" hands its
+ * calls to renderer_tiled_deferred_impl's entries with this object): tiled-deferred's
+ * pass, its tiles cut into clustered.slices depth slices. NULL with a message. */
+void *deferred_clustered_create(const renderer_options *opts, char *err, size_t errlen);
 
 // >>for tests: self is what renderer_deferred_impl.create returned
 

@@ -32,30 +32,7 @@ bool forward_common_init(forward_common *fc, const char *name, const renderer_op
                          char *err, size_t errlen)
 {
     memset(fc, 0, sizeof *fc);
-    fc->name = name;
-    fc->opts = *opts;
-    GLint fb = 0;
-    gl.GetIntegerv(GL_DRAW_FRAMEBUFFER_BINDING, &fb);
-    fc->output_fbo = (GLuint)fb;
-    if (fc->opts.max_uniform_block_size <= 0) {
-        GLint v = 0;
-        gl.GetIntegerv(GL_MAX_UNIFORM_BLOCK_SIZE, &v);
-        fc->opts.max_uniform_block_size = v;
-    }
-    fc->st = gl_state_create();
-    fc->programs = gl_program_cache_create();
-    if (!fc->st || !fc->programs)
-        goto oom;
-    if (opts->queries) {
-        fc->queries = gl_pass_queries_create(FORWARD_MAX_PASSES, opts->timer_query,
-                                             opts->pipeline_statistics);
-        if (!fc->queries)
-            goto oom;
-    }
-    return true;
-oom:
-    snprintf(err, errlen, "%s: out of memory", name);
-    return false;
+    return renderer_base_init(&fc->b, name, opts, FORWARD_MAX_PASSES, err, errlen);
 }
 
 static void release_prepared(forward_common *fc)
@@ -74,12 +51,7 @@ static void release_prepared(forward_common *fc)
 void forward_common_destroy(forward_common *fc)
 {
     release_prepared(fc);
-    gl_pass_queries_destroy(fc->queries);
-    gl_program_cache_destroy(fc->programs);
-    gl_state_destroy(fc->st);
-    fc->queries = NULL;
-    fc->programs = NULL;
-    fc->st = NULL;
+    renderer_base_destroy(&fc->b);
 }
 
 bool forward_common_prepare(forward_common *fc, const scene *s, char *err, size_t errlen)
@@ -87,17 +59,11 @@ bool forward_common_prepare(forward_common *fc, const scene *s, char *err, size_
     char why[512] = "";
     release_prepared(fc);
     if (!s) {
-        snprintf(err, errlen, "%s: no scene to prepare for", fc->name);
+        snprintf(err, errlen, "%s: no scene to prepare for", fc->b.name);
         return false;
     }
-    fc->width = fc->opts.width > 0 ? fc->opts.width : s->width;
-    fc->height = fc->opts.height > 0 ? fc->opts.height : s->height;
-    if (fc->width != s->width || fc->height != s->height) {
-        /* the projection's aspect and the sky's viewport are the scene's */
-        snprintf(err, errlen, "%s: the scene is posed for %dx%d, the output is %dx%d",
-                 fc->name, s->width, s->height, fc->width, fc->height);
+    if (!renderer_base_size(&fc->b, s, err, errlen))
         return false;
-    }
     fc->sky = s->sky;
 
     fc->variants = 0;
@@ -108,7 +74,7 @@ bool forward_common_prepare(forward_common *fc, const scene *s, char *err, size_
     for (uint32_t i = 0; i < s->nobjects; i++) {
         uint32_t m = s->objects[i].material;
         if (m >= s->nmaterials) {
-            snprintf(err, errlen, "%s: object %u has material %u, the scene has %u", fc->name,
+            snprintf(err, errlen, "%s: object %u has material %u, the scene has %u", fc->b.name,
                      i, m, s->nmaterials);
             return false;
         }
@@ -120,40 +86,41 @@ bool forward_common_prepare(forward_common *fc, const scene *s, char *err, size_
     for (uint32_t i = 0; i < s->nlights_total; i++) {
         unsigned t = (unsigned)s->lights[i].type;
         if (t >= FORWARD_LIGHT_TYPES) {
-            snprintf(err, errlen, "%s: light %u has an unknown type %u", fc->name, i, t);
+            snprintf(err, errlen, "%s: light %u has an unknown type %u", fc->b.name, i, t);
             return false;
         }
         fc->light_types |= 1u << t;
     }
 
-    shadow_maps_plan(&fc->shadows, s, &fc->opts);
+    shadow_maps_plan(&fc->shadows, s, &fc->b.opts);
     if (!frontend_init(&fc->fe, s, why, sizeof why)) {
-        snprintf(err, errlen, "%s: %s", fc->name, why);
+        snprintf(err, errlen, "%s: %s", fc->b.name, why);
         goto fail;
     }
     fc->fe.no_shadows = !fc->shadows.run;
+    fc->fe.no_illumination = !fc->illumination_sets;
     fc->gpu = scene_gpu_create(s, why, sizeof why);
     if (!fc->gpu) {
-        snprintf(err, errlen, "%s: %s", fc->name, why);
+        snprintf(err, errlen, "%s: %s", fc->b.name, why);
         goto fail;
     }
     if (!gl_target_create(&fc->hdr, &(gl_target_desc){.name = "hdr",
                                                       .format = GLT_FORMAT_RGBA16F,
-                                                      .width = fc->width, .height = fc->height},
+                                                      .width = fc->b.width, .height = fc->b.height},
                           why, sizeof why) ||
         !gl_target_create(&fc->depth, &(gl_target_desc){.name = "depth",
                                                         .format = GLT_FORMAT_DEPTH24_STENCIL8,
-                                                        .width = fc->width,
-                                                        .height = fc->height},
+                                                        .width = fc->b.width,
+                                                        .height = fc->b.height},
                           why, sizeof why) ||
         !gl_framebuffer_create(&fc->fb, &(gl_framebuffer_desc){.name = "forward",
                                                                .color = {&fc->hdr},
                                                                .depth_stencil = &fc->depth},
                                why, sizeof why)) {
-        snprintf(err, errlen, "%s: %s", fc->name, why);
+        snprintf(err, errlen, "%s: %s", fc->b.name, why);
         goto fail;
     }
-    if (!shadow_maps_create(&fc->shadows, fc->programs, fc->name, err, errlen))
+    if (!shadow_maps_create(&fc->shadows, fc->b.programs, fc->b.name, err, errlen))
         goto fail;
     fc->prepared = true;
     return true;
@@ -189,14 +156,14 @@ bool forward_program(forward_common *fc, const char *display, const char *fragme
         d.defines[n++] = defs[i];
     for (unsigned i = 0; extra && extra[i]; i++) {
         if (n + 1 >= GLP_MAX_DEFINES) {
-            snprintf(err, errlen, "bug: %s: too many defines for %s", fc->name, display);
+            snprintf(err, errlen, "bug: %s: too many defines for %s", fc->b.name, display);
             return false;
         }
         d.defines[n++] = extra[i];
     }
     char why[4096] = "";
-    if (gl_program_get(fc->programs, &d, program, why, sizeof why) != GLP_OK) {
-        snprintf(err, errlen, "%s: %s", fc->name, why);
+    if (gl_program_get(fc->b.programs, &d, program, why, sizeof why) != GLP_OK) {
+        snprintf(err, errlen, "%s: %s", fc->b.name, why);
         return false;
     }
     return true;
@@ -216,11 +183,7 @@ bool forward_compile_base(forward_common *fc, char *err, size_t errlen)
 
 void forward_begin_frame(forward_common *fc, const scene *s, frame_stats *out)
 {
-    out->npasses = 0;
-    fc->npasses = 0;
-    /* Every frame starts from unknown state, so every frame counts alike: the first
-     * set of each part of the state in a frame is a change. */
-    gl_state_invalidate(fc->st);
+    renderer_base_begin_frame(&fc->b, out);
     frontend_build(&fc->fe, s);
     scene_gpu_frame(fc->gpu, s);
 }
@@ -230,7 +193,7 @@ void forward_shadow_pass(forward_common *fc, const scene *s, frame_stats *out)
     if (!fc->shadows.run)
         return;
     forward_pass_begin(fc, out, "shadows");
-    shadow_maps_draw(&fc->shadows, fc->st, fc->gpu, &fc->fe, s);
+    shadow_maps_draw(&fc->shadows, fc->b.st, fc->gpu, &fc->fe, s);
     forward_pass_end(fc, out);
 }
 
@@ -243,36 +206,24 @@ unsigned forward_shadow_defines(const forward_common *fc, int type, const char *
 
 void forward_pass_begin(forward_common *fc, frame_stats *out, const char *name)
 {
-    size_t i = out->npasses;
-    gl_state_begin_pass(fc->st, name);
-    if (fc->queries)
-        gl_pass_queries_begin(fc->queries, i);
+    renderer_base_pass_begin(&fc->b, out, name);
 }
 
 void forward_pass_end(forward_common *fc, frame_stats *out)
 {
-    size_t i = out->npasses;
-    if (fc->queries)
-        gl_pass_queries_end(fc->queries);
-    pass_stats *p = &out->pass[i];
-    gl_state_end_pass(fc->st, p);
-    p->gpu_us = p->fragments = p->primitives = NAN;   /* collect() fills them */
-    if (i < FORWARD_MAX_PASSES)
-        fc->pass_counts[i] = *gl_state_pass_counts(fc->st);
-    out->npasses = i + 1;
-    fc->npasses = i + 1;
+    renderer_base_pass_end(&fc->b, out);
 }
 
 void forward_bind_target(forward_common *fc)
 {
-    gl_state_framebuffer(fc->st, fc->fb.fbo);
-    gl_state_viewport(fc->st, 0, 0, fc->width, fc->height);
+    gl_state_framebuffer(fc->b.st, fc->fb.fbo);
+    gl_state_viewport(fc->b.st, 0, 0, fc->b.width, fc->b.height);
 }
 
 void forward_clear_target(forward_common *fc)
 {
     static const float black[4] = {0.0f, 0.0f, 0.0f, 1.0f};
-    gl_state_clear(fc->st, GL_COLOR_BUFFER_BIT | GL_DEPTH_BUFFER_BIT | GL_STENCIL_BUFFER_BIT,
+    gl_state_clear(fc->b.st, GL_COLOR_BUFFER_BIT | GL_DEPTH_BUFFER_BIT | GL_STENCIL_BUFFER_BIT,
                    black, 1.0, 0);
 }
 
@@ -280,14 +231,14 @@ void forward_draw_objects(forward_common *fc, const scene *s, const uint32_t *ob
                           uint32_t n, const GLuint programs[FORWARD_VARIANTS],
                           forward_program_fn on_program, void *user)
 {
-    gl_state_cull(fc->st, FORWARD_CULL);
+    gl_state_cull(fc->b.st, FORWARD_CULL);
     for (uint32_t k = 0; k < n; k++) {
         uint32_t o = objects[k];
         unsigned v = forward_material_variant(&s->materials[s->objects[o].material]);
-        gl_state_program(fc->st, programs[v]);
+        gl_state_program(fc->b.st, programs[v]);
         if (on_program)
             on_program(user, v, programs[v]);
-        scene_gpu_draw_object(fc->gpu, fc->st, s, o);
+        scene_gpu_draw_object(fc->gpu, fc->b.st, s, o);
     }
 }
 
@@ -295,25 +246,21 @@ void forward_sky_pass(forward_common *fc, frame_stats *out)
 {
     forward_pass_begin(fc, out, "sky");
     forward_bind_target(fc);
-    scene_gpu_draw_sky(fc->gpu, fc->st);   /* depth LEQUAL, no writes: where depth is 1 */
+    scene_gpu_draw_sky(fc->gpu, fc->b.st);   /* depth LEQUAL, no writes: where depth is 1 */
     forward_pass_end(fc, out);
 }
 
 void forward_resolve_pass(forward_common *fc, frame_stats *out)
 {
     forward_pass_begin(fc, out, "resolve");
-    scene_gpu_resolve(fc->gpu, fc->st, fc->hdr.texture, fc->output_fbo, fc->width, fc->height);
+    scene_gpu_resolve(fc->gpu, fc->b.st, fc->hdr.texture, fc->b.output_fbo, fc->b.width,
+                      fc->b.height);
     forward_pass_end(fc, out);
 }
 
 void forward_collect(forward_common *fc, frame_stats *out)
 {
-    if (fc->queries) {
-        gl_pass_queries_collect(fc->queries, out);
-        return;
-    }
-    for (size_t i = 0; i < out->npasses; i++)
-        out->pass[i].gpu_us = out->pass[i].fragments = out->pass[i].primitives = NAN;
+    renderer_base_collect(&fc->b, out);
 }
 
 // >>describe
@@ -333,7 +280,7 @@ void forward_describe_pass(pass_plan *out, const char *name, bool run, const cha
 
 void forward_describe_resources(const forward_common *fc, pass_plan *out)
 {
-    gl_program_cache_describe(fc->programs, out);
+    gl_program_cache_describe(fc->b.programs, out);
     scene_gpu_describe(fc->gpu, out);   /* sky and resolve */
     out->ntargets = 0;
     out->target_bytes = 0;
@@ -371,9 +318,7 @@ uint32_t forward_spml_max_lights(int max_uniform_block_size)
 const gls_counts *forward_last_pass_counts(const void *self, size_t pass)
 {
     const forward_common *fc = self;
-    if (!fc || pass >= fc->npasses || pass >= FORWARD_MAX_PASSES)
-        return NULL;
-    return &fc->pass_counts[pass];
+    return fc ? renderer_base_pass_counts(&fc->b, pass) : NULL;
 }
 
 const gl_target *forward_hdr_target(const void *self)

@@ -32,6 +32,8 @@
 #include <stddef.h>
 #include <stdint.h>
 
+#include "renderers/base.h"
+#include "renderers/bindings.h"
 #include "renderers/frontend.h"
 #include "renderers/gl/loader.h"
 #include "renderers/gl/program.h"
@@ -46,9 +48,10 @@
 enum {
     FORWARD_VARIANTS = 32,           /* 4 map bits and the alpha test */
     FORWARD_LIGHT_TYPES = 3,         /* LIGHT_POINT, LIGHT_SPOT, LIGHT_DIRECTIONAL */
-    FORWARD_MAX_PASSES = 5,          /* shadows base lights sky resolve */
-    FORWARD_UNIFORM_LIGHT = 16,      /* uniform location, see above */
-    FORWARD_LIGHTS_BINDING = 1,      /* uniform block binding of forward-spml's lights */
+    FORWARD_MAX_PASSES = 6,          /* shadows base lights sky resolve; forward-plus: shadows
+                                        depth cull shade sky resolve */
+    FORWARD_UNIFORM_LIGHT = LOC_RENDERER,   /* uniform location, see above */
+    FORWARD_LIGHTS_BINDING = BIND_UBO_LIGHTS,   /* uniform block of forward-spml's lights */
 };
 
 enum {
@@ -60,13 +63,9 @@ enum {
 };
 
 typedef struct forward_common {
-    const char *name;                /* "forward-mpml": prefixes messages */
-    renderer_options opts;
-    int width, height;               /* the output's size (opts, or the scene's) */
-    GLuint output_fbo;               /* the draw framebuffer bound at creation */
-    gl_state *st;
-    gl_program_cache *programs;
-    gl_pass_queries *queries;        /* NULL without opts.queries */
+    renderer_base b;                 /* first: name, options, size, caches, queries, passes */
+    bool illumination_sets;          /* the frontend computes them (forward-mpml sets this
+                                        after init); the others leave it false */
 
     /* >>made by forward_common_prepare */
     bool prepared;
@@ -80,10 +79,6 @@ typedef struct forward_common {
     unsigned light_types;            /* bit t: some light of the scene is of type t */
     uint32_t nobjects_variant[FORWARD_VARIANTS];   /* objects of each variant */
     GLuint base_program[FORWARD_VARIANTS];    /* forward-mpml's base pass */
-
-    /* >>the last frame, for tests */
-    size_t npasses;
-    gls_counts pass_counts[FORWARD_MAX_PASSES];
 } forward_common;
 
 /* The variant of a material (FORWARD_VARIANT_* bits). */

@@ -78,6 +78,7 @@ static void *mpml_create(const renderer_options *opts, char *err, size_t errlen)
         free(r);
         return NULL;
     }
+    r->c.illumination_sets = true;   /* the one renderer that draws them */
     return r;
 }
 
@@ -134,16 +135,16 @@ static void mpml_draw(void *self, const struct scene *s, frame_stats *out)
     }
     forward_begin_frame(c, s, out);
     const frontend *fe = &c->fe;
-    const bool sets = !c->opts.no_illumination_sets;
+    const bool sets = !c->b.opts.no_illumination_sets;
 
     forward_shadow_pass(c, s, out);
 
     forward_pass_begin(c, out, "base");
     forward_bind_target(c);
-    gl_state_blend(c->st, NULL);
-    gl_state_stencil(c->st, NULL);
+    gl_state_blend(c->b.st, NULL);
+    gl_state_stencil(c->b.st, NULL);
     forward_clear_target(c);
-    gl_state_depth(c->st, &(gls_depth){.compare = GLS_COMPARE_LESS, .write = true});
+    gl_state_depth(c->b.st, &(gls_depth){.compare = GLS_COMPARE_LESS, .write = true});
     forward_draw_objects(c, s, fe->visible, fe->nvisible, c->base_program, NULL, NULL);
     forward_pass_end(c, out);
 
@@ -152,10 +153,10 @@ static void mpml_draw(void *self, const struct scene *s, frame_stats *out)
     if (r->lights_pass) {
         forward_pass_begin(c, out, "lights");
         forward_bind_target(c);
-        gl_state_blend(c->st, &(gls_blend){.enabled = true, .src = GLS_BLEND_ONE,
+        gl_state_blend(c->b.st, &(gls_blend){.enabled = true, .src = GLS_BLEND_ONE,
                                            .dst = GLS_BLEND_ONE, .op = GLS_BLEND_OP_ADD});
-        gl_state_depth(c->st, &(gls_depth){.compare = GLS_COMPARE_EQUAL, .write = false});
-        shadow_maps_bind(&c->shadows, c->st);
+        gl_state_depth(c->b.st, &(gls_depth){.compare = GLS_COMPARE_EQUAL, .write = false});
+        shadow_maps_bind(&c->shadows, c->b.st);
         for (uint32_t k = 0; k < fe->nlights; k++) {
             const uint32_t *objects = fe->visible;
             uint32_t n = fe->nvisible;
@@ -197,7 +198,7 @@ static void mpml_describe(const void *self, pass_plan *out)
                           "depth, ambient and emissive of the visible objects (seed 000 4.6.2)");
     if (!c->prepared || r->lights_pass)
         forward_describe_pass(out, "lights", true, "%s",
-                              c->opts.no_illumination_sets
+                              c->b.opts.no_illumination_sets
                                   ? "per visible light, every visible object, depth EQUAL, "
                                     "additive (illumination sets off)"
                                   : "per visible light, its illumination set, depth EQUAL, "

@@ -41,7 +41,8 @@ typedef struct forward_spml {
     uint32_t max_lights;     /* MAX_LIGHTS of the programs */
     char max_lights_define[32];
     GLuint program[FORWARD_VARIANTS];
-    GLuint ubo;
+    GLuint ubo;              /* the uniform block, or the storage buffer */
+    bool storage;            /* lights from the storage buffer (forward.light_buffer) */
     gpu_light *staging;      /* max_lights */
     /* u_light_count is set once per (frame, program): a serial per frame. */
     uint64_t frame;
@@ -61,7 +62,7 @@ static void *spml_create(const renderer_options *opts, char *err, size_t errlen)
         free(r);
         return NULL;
     }
-    r->capacity = forward_spml_max_lights(r->c.opts.max_uniform_block_size);
+    r->capacity = forward_spml_max_lights(r->c.b.opts.max_uniform_block_size);
     return r;
 }
 
@@ -95,20 +96,28 @@ static bool spml_prepare(void *self, const struct scene *s, char *err, size_t er
         return false;
     }
     uint32_t n = s->nlights_total;
-    if (n > r->capacity || r->capacity == 0) {
+    r->storage = r->c.b.opts.light_buffer == LIGHT_BUFFER_STORAGE ||
+                 (r->c.b.opts.light_buffer == LIGHT_BUFFER_AUTO && n > r->capacity);
+    if (!r->storage && (n > r->capacity || r->capacity == 0)) {
         snprintf(err, errlen,
                  "forward-spml: %u lights requested, this context allows at most %u "
-                 "(GL_MAX_UNIFORM_BLOCK_SIZE %d / %zu bytes)",
-                 n, r->capacity, r->c.opts.max_uniform_block_size, sizeof(gpu_light));
+                 "(GL_MAX_UNIFORM_BLOCK_SIZE %d / %zu bytes; forward.light_buffer: "
+                 "storage has no such limit)",
+                 n, r->capacity, r->c.b.opts.max_uniform_block_size, sizeof(gpu_light));
         return false;
     }
     if (!forward_common_prepare(&r->c, s, err, errlen))
         return false;
-    r->max_lights = array_size(n, r->capacity);
+    /* storage: the buffer holds every light of the run (at least one entry) and the
+     * shader's array is unsized */
+    r->max_lights = r->storage ? (n ? n : 1u) : array_size(n, r->capacity);
     snprintf(r->max_lights_define, sizeof r->max_lights_define, "MAX_LIGHTS %u", r->max_lights);
-    const char *extra[4] = {r->max_lights_define, NULL, NULL, NULL};
-    const char *name = forward_shadow_defines(&r->c, -1, extra + 1) ? "forward_spml_shadowed"
-                                                                      : "forward_spml";
+    const char *extra[5] = {r->storage ? "LIGHTS_STORAGE" : r->max_lights_define, NULL, NULL,
+                            NULL, NULL};
+    bool shadowed = forward_shadow_defines(&r->c, -1, extra + 1) != 0;
+    const char *name = r->storage ? (shadowed ? "forward_spml_storage_shadowed"
+                                              : "forward_spml_storage")
+                                  : (shadowed ? "forward_spml_shadowed" : "forward_spml");
     for (unsigned v = 0; v < FORWARD_VARIANTS; v++)
         if ((r->c.variants & (1u << v)) &&
             !forward_program(&r->c, name, "forward_spml.frag", v, extra,
@@ -168,14 +177,17 @@ static void spml_draw(void *self, const struct scene *s, frame_stats *out)
     r->frame++;
     if (n)   /* only what is used */
         gl.NamedBufferSubData(r->ubo, 0, (GLsizeiptr)(n * sizeof(gpu_light)), r->staging);
-    gl.BindBufferBase(GL_UNIFORM_BUFFER, FORWARD_LIGHTS_BINDING, r->ubo);
+    if (r->storage)
+        gl_state_storage_buffer(c->b.st, BIND_SSBO_LIGHTS, r->ubo);
+    else
+        gl.BindBufferBase(GL_UNIFORM_BUFFER, FORWARD_LIGHTS_BINDING, r->ubo);
 
     forward_bind_target(c);
-    gl_state_blend(c->st, NULL);
-    gl_state_stencil(c->st, NULL);
+    gl_state_blend(c->b.st, NULL);
+    gl_state_stencil(c->b.st, NULL);
     forward_clear_target(c);
-    gl_state_depth(c->st, &(gls_depth){.compare = GLS_COMPARE_LESS, .write = true});
-    shadow_maps_bind(&c->shadows, c->st);
+    gl_state_depth(c->b.st, &(gls_depth){.compare = GLS_COMPARE_LESS, .write = true});
+    shadow_maps_bind(&c->shadows, c->b.st);
     forward_draw_objects(c, s, fe->visible, fe->nvisible, r->program, spml_on_program, r);
     forward_pass_end(c, out);
 
@@ -195,10 +207,16 @@ static void spml_describe(const void *self, pass_plan *out)
     const forward_common *c = &r->c;
     out->npasses = 0;
     forward_describe_shadows(c, out);
-    forward_describe_pass(out, "shade", true,
-                          "every visible object once, up to %u lights of %u from a uniform "
-                          "buffer (seed 003 4.1)",
-                          r->max_lights, r->capacity);
+    if (r->storage)
+        forward_describe_pass(out, "shade", true,
+                              "every visible object once, up to %u lights from a storage "
+                              "buffer",
+                              r->max_lights);
+    else
+        forward_describe_pass(out, "shade", true,
+                              "every visible object once, up to %u lights of %u from a uniform "
+                              "buffer (seed 003 4.1)",
+                              r->max_lights, r->capacity);
     forward_describe_tail(c, out);
 }
 

@@ -556,7 +556,9 @@ void frontend_build(frontend *f, const scene *s)
         uint32_t j = f->nlights++;
         f->lights[j] = li;
         f->eye_inside[j] = volume_holds_eye(f, l) ? 1u : 0u;
-        for (uint32_t v = 0; v < f->nvisible && !f->truncated; v++) {
+        bool sets = !f->no_illumination ||
+                    (!f->no_shadows && l->type == LIGHT_SPOT && frontend_light_casts_shadows(l));
+        for (uint32_t v = 0; sets && v < f->nvisible && !f->truncated; v++) {
             uint32_t o = f->visible[v];
             if (!light_reaches(l, s->objects[o].bsphere))
                 continue;

@@ -136,6 +136,10 @@ typedef struct frontend {
     bool no_shadows;           /* set by the renderer after frontend_init: true = no light
                                   casts shadows (the manifest's `shadows: off`); false (the
                                   zero value) = lights with shadows = true cast them */
+    bool no_illumination;      /* set by a renderer that draws no per-light object sets
+                                  (all but forward-mpml): illumination sets are computed
+                                  only for spots that cast shadows (their shadow-casting
+                                  sets are made from them); the others' sets are empty */
     uint32_t nshadowed;        /* lights with a shadow map this frame */
     uint32_t *shadow_layer;    /* per light in `lights`: its layer, or FRONTEND_NO_SHADOW */
     uint32_t *shadow_start;    /* nlights + 1 offsets into shadow */

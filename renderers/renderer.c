@@ -10,6 +10,9 @@ extern const renderer_impl renderer_null_impl;
 extern const renderer_impl renderer_deferred_impl;
 extern const renderer_impl renderer_forward_mpml_impl;
 extern const renderer_impl renderer_forward_spml_impl;
+extern const renderer_impl renderer_forward_plus_impl;
+extern const renderer_impl renderer_clustered_impl;
+extern const renderer_impl renderer_tiled_deferred_impl;
 
 /* Every renderer the program knows, in the order `info` and errors list them. */
 static const renderer_impl *const registry[] = {
@@ -17,6 +20,9 @@ static const renderer_impl *const registry[] = {
     &renderer_deferred_impl,
     &renderer_forward_mpml_impl,
     &renderer_forward_spml_impl,
+    &renderer_forward_plus_impl,
+    &renderer_clustered_impl,
+    &renderer_tiled_deferred_impl,
 };
 
 struct renderer {
@@ -73,6 +79,7 @@ bool renderer_prepare(renderer *r, const struct scene *s, char *err, size_t errl
 void renderer_draw(renderer *r, const struct scene *s, frame_stats *out)
 {
     memset(out, 0, sizeof *out);
+    out->grid_lights_mean = out->grid_lights_max = out->light_evals_per_pixel = NAN;
     r->impl->draw(r->self, s, out);
 }
 
@@ -86,6 +93,7 @@ void renderer_collect(renderer *r, frame_stats *out)
         t.gpu_us += p->gpu_us;
         t.cpu_us += p->cpu_us;
         t.draw_calls += p->draw_calls;
+        t.dispatches += p->dispatches;
         t.state_changes += p->state_changes;
         t.fragments += p->fragments;
         t.primitives += p->primitives;
@@ -107,6 +115,19 @@ void renderer_destroy(renderer *r)
         return;
     r->impl->destroy(r->self);
     free(r);
+}
+
+bool renderer_has_light_grid(const renderer *r)
+{
+    return r && r->impl->light_grid;
+}
+
+const uint32_t *renderer_light_grid(const renderer *r, size_t *n)
+{
+    *n = 0;
+    if (!r || !r->impl->light_grid)
+        return NULL;
+    return r->impl->light_grid(r->self, n);
 }
 
 bool renderer_read_hdr(renderer *r, float *rgba, int w, int h, size_t *nonfinite)

@@ -16,6 +16,7 @@ typedef struct pass_stats {
     double gpu_us;             /* GL_TIME_ELAPSED */
     double cpu_us;             /* CPU time spent submitting the pass */
     uint64_t draw_calls;
+    uint64_t dispatches;       /* compute dispatches (not in draw_calls) */
     uint64_t state_changes;
     double fragments;          /* GL_FRAGMENT_SHADER_INVOCATIONS */
     double primitives;         /* GL_PRIMITIVES_SUBMITTED */
@@ -26,6 +27,17 @@ typedef struct frame_stats {
     pass_stats pass[RENDERER_MAX_PASSES];
     pass_stats total;          /* sums over passes (NAN if any pass's value is NAN) */
     uint32_t lights_drawn;
+    /* Tiled and clustered renderers, filled by collect (NAN and 0 for the others):
+     * over the frame's tiles (or clusters), the mean and largest light-list length,
+     * and the light evaluations per shaded pixel (list length summed over the pixels
+     * of the output / pixels: what the shading loop iterates). */
+    uint32_t grid_cells;       /* tiles, or clusters */
+    size_t grid_pass;          /* 1 + the index of the pass that built the grid; 0: none */
+    double grid_lights_mean, grid_lights_max;
+    double light_evals_per_pixel;
+    /* Non-empty when the frame could not be drawn as asked (a light list that would
+     * not fit, tiled renderers): the run fails as failed:overflow with this message. */
+    char overflow[160];
 } frame_stats;
 
 /* What renderer_prepare() decided: passes run and skipped (with why), programs
@@ -97,6 +109,14 @@ typedef enum light_volume_mode {
                                       back faces dec, shade where 0 */
 } light_volume_mode;
 
+/* Where forward-spml reads its lights from. */
+typedef enum light_buffer_kind {
+    LIGHT_BUFFER_UNIFORM = 0,      /* seed 003's uniform block: GL_MAX_UNIFORM_BLOCK_SIZE / 80 */
+    LIGHT_BUFFER_STORAGE,          /* one shader storage buffer: no limit of its own */
+    LIGHT_BUFFER_AUTO,             /* uniform when the run's lights fit, storage beyond
+                                      (what an error reference uses) */
+} light_buffer_kind;
+
 typedef struct renderer_options {
     int width, height;
     bool queries;              /* use timer / pipeline-statistics queries where the context has them */
@@ -114,6 +134,17 @@ typedef struct renderer_options {
     int shadow_map_size;       /* side of each shadow map in texels; 0: 1024 */
     /* forward-mpml */
     bool no_illumination_sets; /* draw every visible object for every light (seed 000 5.6) */
+    /* forward-spml's light buffer (forward.light_buffer) */
+    light_buffer_kind light_buffer;
+    /* forward-plus (tiles.*): tile side in pixels (8, 16 or 32; 0: 16); the index
+     * buffer's capacity in entries per tile on average (0: enough for every light in
+     * every tile, i.e. no list can overflow) */
+    int tile_size;
+    uint32_t max_lights_per_tile;   /* clustered: per cluster */
+    /* clustered: exponential depth slices (clustered.slices; 0: 24), and shading from the
+     * G-buffer (clustered.shading: deferred; every deferred G-buffer option applies) */
+    int clustered_slices;
+    bool clustered_deferred;
 } renderer_options;
 
 typedef struct renderer_impl {
@@ -130,6 +161,9 @@ typedef struct renderer_impl {
      * accumulation of the last frame drawn, as floats, see renderer_read_hdr. False,
      * with nothing written, when not prepared or width x height is not the target's. */
     bool (*read_hdr)(void *self, float *rgba, int width, int height);
+    /* Optional (NULL: no light grid): after collect, the light-list length of every
+     * tile (or cluster) of the last frame collected, *n of them (lightgrid.csv). */
+    const uint32_t *(*light_grid)(const void *self, size_t *n);
 } renderer_impl;
 
 typedef struct renderer renderer;
@@ -144,6 +178,10 @@ void renderer_draw(renderer *r, const struct scene *s, frame_stats *out);
 void renderer_collect(renderer *r, frame_stats *out);   /* also computes out->total */
 void renderer_describe(const renderer *r, pass_plan *out);
 void renderer_destroy(renderer *r);                     /* NULL is fine */
+/* The light-list lengths of the last frame collected (renderer_impl.light_grid), or
+ * NULL with *n = 0 for a renderer without a light grid. */
+const uint32_t *renderer_light_grid(const renderer *r, size_t *n);
+bool renderer_has_light_grid(const renderer *r);
 
 /* The renderer's float light accumulation of the last frame drawn (what its resolve
  * pass clamps into the output; deferred with separate_specular: the diffuse target

@@ -1,6 +1,7 @@
 /* A scene's meshes and textures on the GPU and the draws every renderer makes of
  * them (scene_gpu.h). Everything is made with direct state access, so creation
  * binds nothing the state cache keeps. */
+#include "renderers/bindings.h"
 #include "renderers/scene_gpu.h"
 
 #include "renderers/frontend.h"
@@ -290,7 +291,7 @@ void scene_gpu_draw_object(scene_gpu *g, gl_state *st, const scene *s, uint32_t 
     gl.Uniform1f(10, m->shininess);
     gl.Uniform3fv(11, 1, m->emissive);
     if (m->alpha == MATERIAL_MASK)   /* only the ALPHA_TEST variant has it */
-        gl.Uniform1f(12, m->alpha_cutoff);
+        gl.Uniform1f(LOC_ALPHA_CUTOFF, m->alpha_cutoff);
 
     gl_state_vertex_array(st, gm->vao);
     gl_state_draw_elements(st, GL_TRIANGLES, gm->count, GL_UNSIGNED_INT, 0);

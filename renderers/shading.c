@@ -82,3 +82,15 @@ unsigned shading_material_defines(const scene_material *m,
         defines[n++] = "ALPHA_TEST";
     return n;
 }
+
+uint32_t shading_cluster_slices(const scene *s, int slices_y, double *ratio)
+{
+    double r = 1.0 + 2.0 / ((double)s->proj[1][1] * (slices_y > 0 ? slices_y : 1));
+    if (ratio)
+        *ratio = r;
+    double n = s->cam.znear, f = s->cam.zfar;
+    if (!(r > 1.0) || !(n > 0.0) || !(f > n))
+        return 1;
+    double k = ceil(log(f / n) / log(r));
+    return k < 1.0 ? 1u : k > 1e6 ? 1000000u : (uint32_t)k;
+}

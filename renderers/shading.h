@@ -34,6 +34,12 @@ void shading_set_shadow_layer(gpu_light *l, uint32_t layer);
  * s->sky else 0), clip = (s->cam.znear, s->cam.zfar, 0, 0). */
 void shading_pack_frame(const scene *s, gpu_frame *out);
 
+/* clustered: the depth slices that reach from s's near to its far plane with Olsson
+ * et al.'s spacing, each slice's far/near ratio being 1 + 2 tan(fovy/2) / slices_y
+ * (tan(fovy/2) = 1 / proj[1][1], as tile_cull.inc computes it), at least 1; *ratio (may
+ * be NULL) gets that ratio. */
+uint32_t shading_cluster_slices(const scene *s, int slices_y, double *ratio);
+
 /* The shader defines a material needs ("DIFFUSE_MAP", "GLOSS_MAP", "NORMAL_MAP",
  * "EMISSIVE_MAP", "ALPHA_TEST" for a MATERIAL_MASK material), in that order; returns
  * how many (<= SHADING_MATERIAL_DEFINES). */

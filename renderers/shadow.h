@@ -65,11 +65,12 @@
 #include "renderers/gl/state.h"
 #include "renderers/renderer.h"
 #include "renderers/scene_gpu.h"
+#include "renderers/bindings.h"
 #include "scenes/scene.h"
 
 enum {
-    SHADOW_TEXTURE_UNIT = 12,
-    SHADOW_UBO_BINDING = 2,
+    SHADOW_TEXTURE_UNIT = BIND_TEX_SHADOW,
+    SHADOW_UBO_BINDING = BIND_UBO_SHADOWS,
     SHADOW_DEFAULT_SIZE = 1024,
     SHADOW_LIGHT_TYPES = 3,
 };

@@ -19,7 +19,8 @@ const char *const summary_columns[] = {
     "frametime_ci95_us", "frametime_p50_us", "frametime_p99_us", "fps_1pct_low", "gpu_mean_us",
     "draw_calls_mean", "state_changes_mean", "fragments_mean", "gbuffer_bytes",
     "image_rmse", "image_psnr_db", "image_max_abs", "nonfinite_pixels", "harness_us_mean",
-    "ci1pct_after_s",
+    "ci1pct_after_s", "dispatches_mean", "cell_lights_mean", "cell_lights_max",
+    "light_evals_per_pixel",
     "status", "message",
 };
 const size_t summary_ncolumns = sizeof summary_columns / sizeof summary_columns[0];
@@ -44,9 +45,13 @@ static const char *const errors_columns[] = {
 static const char *const coverage_columns[] = {
     "run_id", "trial", "frame", "t_scene_s", "light", "coverage",
 };
+static const char *const lightgrid_columns[] = {
+    "run_id", "trial", "frame", "t_scene_s", "lights", "cells",
+};
 static const char *const passes_columns[] = {
     "run_id", "trial", "frame", "pass", "gpu_us", "cpu_us", "draw_calls", "state_changes",
-    "fragments", "primitives",
+    "fragments", "primitives", "dispatches", "cell_lights_mean", "cell_lights_max",
+    "light_evals_per_pixel",
 };
 #define NCOLS(a) (sizeof(a) / sizeof((a)[0]))
 
@@ -150,6 +155,12 @@ void run_files_frame(run_files *f, const char *run_id, uint32_t trial, const fra
         csv_u64(w, ps->state_changes);
         csv_f64(w, ps->fragments, 0);
         csv_f64(w, ps->primitives, 0);
+        csv_u64(w, ps->dispatches);
+        /* the light grid's counters on the pass that built it (empty elsewhere) */
+        bool grid = fs->grid_pass == i + 1;
+        csv_f64(w, grid ? fs->grid_lights_mean : NAN, 3);
+        csv_f64(w, grid ? fs->grid_lights_max : NAN, 0);
+        csv_f64(w, grid ? fs->light_evals_per_pixel : NAN, 3);
         csv_end_row(w);
     }
 }
@@ -231,6 +242,47 @@ void run_files_coverage(run_files *f, const char *run_id, uint32_t trial, uint32
     csv_end_row(w);
 }
 
+bool run_files_open_lightgrid(run_files *f, const char *run_dir, char *err, size_t errlen)
+{
+    f->lightgrid = open_in(run_dir, "lightgrid.csv", lightgrid_columns, NCOLS(lightgrid_columns),
+                           err, errlen);
+    return f->lightgrid != NULL;
+}
+
+static int cmp_u32(const void *a, const void *b)
+{
+    uint32_t x = *(const uint32_t *)a, y = *(const uint32_t *)b;
+    return x < y ? -1 : x > y;
+}
+
+bool run_files_lightgrid(run_files *f, const char *run_id, uint32_t trial, uint32_t frame,
+                         double t_scene, const uint32_t *lengths, size_t n)
+{
+    csv_writer *w = f->lightgrid;
+    if (!w || n == 0)
+        return true;
+    uint32_t *v = malloc(n * sizeof *v);
+    if (!v)
+        return false;
+    memcpy(v, lengths, n * sizeof *v);
+    qsort(v, n, sizeof *v, cmp_u32);
+    for (size_t i = 0; i < n;) {
+        size_t j = i;
+        while (j < n && v[j] == v[i])
+            j++;
+        csv_str(w, run_id);
+        csv_u64(w, trial);
+        csv_u64(w, frame);
+        csv_f64(w, t_scene, 6);
+        csv_u64(w, v[i]);
+        csv_u64(w, j - i);
+        csv_end_row(w);
+        i = j;
+    }
+    free(v);
+    return true;
+}
+
 void run_files_error(run_files *f, const char *run_id, uint32_t trial, uint32_t frame,
                      double t_scene, const image_error *e)
 {
@@ -252,7 +304,7 @@ void run_files_error(run_files *f, const char *run_id, uint32_t trial, uint32_t 
 bool run_files_commit(run_files *f, char *err, size_t errlen)
 {
     csv_writer **all[] = {&f->frames, &f->passes, &f->seconds, &f->convergence, &f->errors,
-                          &f->coverage};
+                          &f->coverage, &f->lightgrid};
     bool ok = true;
     for (size_t i = 0; i < NCOLS(all); i++) {
         if (!*all[i])
@@ -274,6 +326,7 @@ void run_files_abort(run_files *f)
     csv_abort(f->convergence);
     csv_abort(f->errors);
     csv_abort(f->coverage);
+    csv_abort(f->lightgrid);
     memset(f, 0, sizeof *f);
 }
 
@@ -353,6 +406,10 @@ bool output_write_run_summary(const char *run_dir, const experiment *e, const ru
             csv_str(w, "never");
         else
             csv_f64(w, r->ci1pct_after_s, 3);
+        csv_f64(w, r->dispatches_mean, 3);
+        csv_f64(w, r->cell_lights_mean, 3);
+        csv_f64(w, r->cell_lights_max, 0);
+        csv_f64(w, r->light_evals_per_pixel_mean, 3);
         csv_str(w, r->status);
         csv_str(w, strcmp(r->status, "ok") == 0 ? "" : message);
         csv_end_row(w);

@@ -44,7 +44,7 @@ bool output_read_sweep_meta(const char *out_dir, sweep_meta *m, char *err, size_
 
 /* The per-run CSV streams, open across the run's trials. */
 typedef struct run_files {
-    csv_writer *frames, *seconds, *passes, *convergence, *errors, *coverage;
+    csv_writer *frames, *seconds, *passes, *convergence, *errors, *coverage, *lightgrid;
 } run_files;
 
 bool run_files_open(run_files *f, const char *run_dir, const run_params *p, char *err,
@@ -65,6 +65,13 @@ void run_files_error(run_files *f, const char *run_id, uint32_t trial, uint32_t 
 bool run_files_open_coverage(run_files *f, const char *run_dir, char *err, size_t errlen);
 void run_files_coverage(run_files *f, const char *run_id, uint32_t trial, uint32_t frame,
                         double t_scene, uint32_t light, double coverage);
+/* The histogram of the light-list lengths of a tiled or clustered renderer's frame
+ * (renderer_light_grid), a row per length that some tile or cluster has (lights,
+ * cells): lightgrid.csv, opened when the renderer has a light grid and the run takes
+ * screenshots; written for the screenshot frames. False when memory runs out. */
+bool run_files_open_lightgrid(run_files *f, const char *run_dir, char *err, size_t errlen);
+bool run_files_lightgrid(run_files *f, const char *run_id, uint32_t trial, uint32_t frame,
+                         double t_scene, const uint32_t *lengths, size_t n);
 bool run_files_commit(run_files *f, char *err, size_t errlen);
 void run_files_abort(run_files *f);
 
@@ -77,6 +84,10 @@ typedef struct trial_result {
     sample_summary ft;         /* frame time, us */
     double ft_ci95;            /* half-width, us (batch means) */
     double gpu_mean_us, draw_calls_mean, state_changes_mean, fragments_mean;
+    /* compute dispatches per frame; over the frames, the mean of the mean and the
+     * largest light-list length per tile/cluster, the mean light evaluations per
+     * shaded pixel (NAN: the renderer has no light grid) */
+    double dispatches_mean, cell_lights_mean, cell_lights_max, light_evals_per_pixel_mean;
     double harness_us_mean;    /* runner bookkeeping between frames, us */
     double ci1pct_after_s;     /* the CI stayed within 1% of the mean from then on; NAN: never */
     unsigned gpu_dropped;      /* pass GPU times longer than their frame, made NAN (run.c) */

@@ -40,6 +40,9 @@ static const char *const gbuffer_normal_names[] = {"preset", "float16", "float32
                                                    "spheremap8", "spheremap16", NULL};
 static const char *const light_volume_names[] = {"stencil", "fullscreen", "volume",
                                                  "stencil-two-pass", NULL};
+static const char *const light_buffer_names[] = {"uniform", "storage", NULL};
+static const char *const tile_size_names[] = {"8", "16", "32", NULL};   /* 8 << index */
+static const char *const clustered_shading_names[] = {"forward", "deferred", NULL};
 
 #define RP(f) .off = offsetof(run_params, f), .size = sizeof(((run_params *)0)->f)
 #define RP_SPAN(a, b)                                                                         \

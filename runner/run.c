@@ -415,6 +415,11 @@ static void capture_due(run_state *st, uint32_t trial, uint32_t frame, double t,
             fprintf(stderr, "run %s: screenshot: %s\n", st->s->id, err);
             snprintf(tr->status, sizeof tr->status, "failed:screenshot");
         }
+        /* the light lists of the screenshot's frame, as a histogram (lightgrid.csv) */
+        size_t ncells = 0;
+        const uint32_t *grid = renderer_light_grid(st->r, &ncells);
+        if (!run_files_lightgrid(&st->files, st->s->id, trial, frame, t, grid, ncells))
+            snprintf(tr->status, sizeof tr->status, "failed:oom");
     }
     for (size_t i = 0; i < p->nerror_at; i++) {
         if (error_done[i] || t < p->error_at[i])
@@ -461,6 +466,11 @@ static void run_trial(run_state *st, uint32_t trial, trial_result *tr)
             return;
         }
         renderer_collect(st->r, &fs);
+        if (fs.overflow[0]) {
+            snprintf(tr->status, sizeof tr->status, "failed:overflow");
+            snprintf(st->err, sizeof st->err, "warm-up frame %zu: %s", k, fs.overflow);
+            return;
+        }
     }
     if (!gl_clean(st, "warm-up")) {
         snprintf(tr->status, sizeof tr->status, "failed:gl-error");
@@ -485,6 +495,12 @@ static void run_trial(run_state *st, uint32_t trial, trial_result *tr)
             break;
         }
         renderer_collect(st->r, &fs);
+        if (fs.overflow[0]) {   /* a light list did not fit: nothing is truncated silently */
+            snprintf(tr->status, sizeof tr->status, "failed:overflow");
+            snprintf(st->err, sizeof st->err, "frame %zu: %s", k, fs.overflow);
+            fprintf(stderr, "run %s: %s\n", st->s->id, st->err);
+            break;
+        }
         unsigned dropped = drop_implausible_gpu(&fs, (end - start) * 1e6);
         if (dropped && !tr->gpu_dropped)
             fprintf(stderr, "run %s: frame %zu: %u GPU timer result%s longer than the frame "
@@ -500,6 +516,10 @@ static void run_trial(run_state *st, uint32_t trial, trial_result *tr)
             .draw_calls = fs.total.draw_calls,
             .state_changes = fs.total.state_changes,
             .fragments = fs.total.fragments,
+            .dispatches = fs.total.dispatches,
+            .cell_lights_mean = fs.grid_lights_mean,
+            .cell_lights_max = fs.grid_lights_max,
+            .light_evals_per_pixel = fs.light_evals_per_pixel,
         };
         t_end = end;
         n++;
@@ -563,6 +583,10 @@ static void run_trial(run_state *st, uint32_t trial, trial_result *tr)
     tr->draw_calls_mean = tt.draw_calls_mean;
     tr->state_changes_mean = tt.state_changes_mean;
     tr->fragments_mean = tt.fragments_mean;
+    tr->dispatches_mean = tt.dispatches_mean;
+    tr->cell_lights_mean = tt.cell_lights_mean;
+    tr->cell_lights_max = tt.cell_lights_max;
+    tr->light_evals_per_pixel_mean = tt.light_evals_per_pixel_mean;
     tr->lights_max = tt.lights_max;
     tr->ci1pct_after_s = tt.ci_converged_after_s;
     tr->harness_us_mean = n ? harness_s * 1e6 / (double)n : NAN;
@@ -825,6 +849,11 @@ static bool run_setup(run_state *st)
         set_status(st, "output");
         return false;
     }
+    if (p->nscreenshots && renderer_has_light_grid(st->r) &&
+        !run_files_open_lightgrid(&st->files, st->dir, st->err, sizeof st->err)) {
+        set_status(st, "output");
+        return false;
+    }
     if (p->error_renderer[0]) {
         /* params.def's `ref` column: what the reference inherits, what it resets */
         run_params rp;
@@ -832,6 +861,9 @@ static bool run_setup(run_state *st)
         renderer_options rr = ro;
         params_to_renderer_options(&rp, &rr);
         rr.queries = false;
+        /* a reference, not a measurement: forward-spml reads its lights from the
+         * uniform block where they fit and from a storage buffer beyond it */
+        rr.light_buffer = LIGHT_BUFFER_AUTO;
         char why[512];
         if (!(st->ref = renderer_create(p->error_renderer, &rr, why, sizeof why)) ||
             !renderer_prepare(st->ref, st->sc, why, sizeof why)) {
@@ -874,6 +906,8 @@ static void fill_missing_trials(run_state *st)
         tr->ft.mean = tr->ft.sd = tr->ft.p50 = tr->ft.p99 = NAN;
         tr->ft_ci95 = tr->fps_mean = tr->measured_s = NAN;
         tr->gpu_mean_us = tr->draw_calls_mean = tr->state_changes_mean = NAN;
+        tr->dispatches_mean = tr->cell_lights_mean = tr->cell_lights_max = NAN;
+        tr->light_evals_per_pixel_mean = NAN;
         tr->fragments_mean = tr->harness_us_mean = tr->ci1pct_after_s = NAN;
         tr->image_rmse = tr->image_psnr_db = tr->image_max_abs = tr->nonfinite = NAN;
         snprintf(tr->status, sizeof tr->status, "%s",

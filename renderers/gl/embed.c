@@ -9,8 +9,11 @@
  * written as numbers, not as string literals, so that no escaping and no limit on
  * the length of a literal can get in the way.
  *
+ * A C header (NAME.h, renderers/bindings.h) is embedded under its whole name
+ * ("bindings.h"), so that shaders can `#include "bindings.h"` the same file C does.
+ *
  * Refused, with "embed: FILE: why" on stderr and exit status 1 (and no OUTPUT
- * left behind): a name that does not end in ".glsl", two inputs with the same
+ * left behind): a name that ends in neither ".glsl" nor ".h", two inputs with the same
  * name, an input that cannot be read, a NUL byte in an input, and an input that
  * is not text ending in a newline. Built natively and run by renderers/meson.build;
  * it uses nothing but the C library. */
@@ -89,8 +92,11 @@ static int set_name(input *in)
     size_t n = strlen(base);
     const char *ext = ".glsl";
     size_t e = strlen(ext);
-    if (n <= e || strcmp(base + n - e, ext) != 0) {
-        fprintf(stderr, "embed: %s: the name does not end in .glsl\n", in->path);
+    /* A C header shared with GLSL (renderers/bindings.h) keeps its whole name. */
+    if (n > 2 && strcmp(base + n - 2, ".h") == 0)
+        e = 0;
+    else if (n <= e || strcmp(base + n - e, ext) != 0) {
+        fprintf(stderr, "embed: %s: the name does not end in .glsl or .h\n", in->path);
         return 0;
     }
     if (n - e >= sizeof in->name) {

@@ -18,6 +18,9 @@ static const char *const category_names[GLS_CAT_COUNT] = {
     [GLS_CAT_CULL] = "cull",
     [GLS_CAT_VIEWPORT] = "viewport",
     [GLS_CAT_VERTEX_ARRAY] = "vertex_array",
+    [GLS_CAT_BUFFER] = "buffer",
+    [GLS_CAT_IMAGE] = "image",
+    [GLS_CAT_BARRIER] = "barrier",
 };
 
 const char *gl_state_category_name(gls_category c)
@@ -130,6 +133,11 @@ typedef struct gl_values {
     GLuint program, framebuffer, vertex_array;
     GLint viewport[4];
     GLuint texture[GLS_MAX_TEXTURE_UNITS];
+    GLuint buffer[GLS_MAX_BUFFER_BINDINGS];
+    struct image_binding {
+        GLuint texture;
+        GLenum access, format;
+    } image[GLS_MAX_IMAGE_UNITS];
     bool blend_on;
     GLenum blend_func[6];            /* op rgb, op alpha, src rgb, dst rgb, src alpha, dst alpha */
     bool color_mask[4];
@@ -150,6 +158,8 @@ struct gl_state {
     GLint max_viewport[2];           /* GL_MAX_VIEWPORT_DIMS */
     uint32_t known;                  /* 1 << K_* */
     uint32_t texture_known;          /* 1 << unit */
+    uint32_t buffer_known;           /* 1 << storage binding */
+    uint32_t image_known;            /* 1 << image unit */
     gl_values gl;
 
     bool in_pass;
@@ -192,6 +202,8 @@ void gl_state_invalidate(gl_state *s)
 {
     s->known = 0;
     s->texture_known = 0;
+    s->buffer_known = 0;
+    s->image_known = 0;
 }
 
 // >>counting
@@ -213,6 +225,13 @@ static void count_draw(gl_state *s)
     s->total.draw_calls++;
     if (s->in_pass)
         s->pass.draw_calls++;
+}
+
+static void count_dispatch(gl_state *s)
+{
+    s->total.dispatches++;
+    if (s->in_pass)
+        s->pass.dispatches++;
 }
 
 /* Whether part k must be applied: forced, unknown, or different. Marks it known. */
@@ -446,7 +465,56 @@ void gl_state_vertex_array(gl_state *s, GLuint vertex_array)
     count_change(s, GLS_CAT_VERTEX_ARRAY);
 }
 
+void gl_state_storage_buffer(gl_state *s, unsigned binding, GLuint buffer)
+{
+    if (binding >= GLS_MAX_BUFFER_BINDINGS) {
+        fprintf(stderr, "bug: gl_state_storage_buffer: binding %u of %d\n", binding,
+                GLS_MAX_BUFFER_BINDINGS);
+        return;
+    }
+    uint32_t bit = 1u << binding;
+    bool apply = s->force || !(s->buffer_known & bit) || s->gl.buffer[binding] != buffer;
+    s->buffer_known |= bit;
+    if (!apply)
+        return;
+    s->gl.buffer[binding] = buffer;
+    gl.BindBufferBase(GL_SHADER_STORAGE_BUFFER, binding, buffer);
+    count_change(s, GLS_CAT_BUFFER);
+}
+
+void gl_state_image(gl_state *s, unsigned unit, GLuint texture, GLenum access, GLenum format)
+{
+    if (unit >= GLS_MAX_IMAGE_UNITS) {
+        fprintf(stderr, "bug: gl_state_image: unit %u of %d\n", unit, GLS_MAX_IMAGE_UNITS);
+        return;
+    }
+    uint32_t bit = 1u << unit;
+    struct image_binding *b = &s->gl.image[unit];
+    if (!texture)
+        access = GL_READ_ONLY, format = GL_R8;   /* what GL holds for an empty unit */
+    bool apply = s->force || !(s->image_known & bit) || b->texture != texture ||
+                 b->access != access || b->format != format;
+    s->image_known |= bit;
+    if (!apply)
+        return;
+    *b = (struct image_binding){texture, access, format};
+    gl.BindImageTexture(unit, texture, 0, GL_FALSE, 0, access, format);
+    count_change(s, GLS_CAT_IMAGE);
+}
+
+void gl_state_barrier(gl_state *s, GLbitfield bits)
+{
+    gl.MemoryBarrier(bits);
+    count_change(s, GLS_CAT_BARRIER);
+}
+
 // >>draws and clears
+
+void gl_state_dispatch(gl_state *s, GLuint x, GLuint y, GLuint z)
+{
+    gl.DispatchCompute(x, y, z);
+    count_dispatch(s);
+}
 
 static const void *offset_ptr(size_t offset)
 {
@@ -565,6 +633,7 @@ void gl_state_end_pass(gl_state *s, pass_stats *out)
     if (out) {
         out->name = s->pass_name;
         out->draw_calls = s->pass.draw_calls;
+        out->dispatches = s->pass.dispatches;
         out->state_changes = s->pass.state_changes;
         out->cpu_us = seconds_between(&s->pass_start, &now) * 1e6;
     }

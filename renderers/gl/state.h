@@ -37,7 +37,11 @@
  *   cull          gl_state_cull: GL_CULL_FACE, glCullFace (glFrontFace stays GL_CCW)
  *
  * Counted on their own and NOT in state_changes (the papers' state changes are the
- * seven above): viewport (gl_state_viewport) and vertex_array (gl_state_vertex_array).
+ * seven above): viewport (gl_state_viewport), vertex_array (gl_state_vertex_array),
+ * and what compute passes bind: buffer (gl_state_storage_buffer: SSBO binding
+ * points), image (gl_state_image: image units) and barrier (gl_state_barrier: every
+ * glMemoryBarrier, never cached). Compute dispatches (gl_state_dispatch) are counted
+ * per pass like draws, in their own count (dispatches), not in draw_calls.
  *
  * State that is switched off is not compared in its details: with blending off
  * the factors do not matter, so switching it off counts one change and leaves the
@@ -83,7 +87,7 @@
 #include <stddef.h>
 #include <stdint.h>
 
-enum { GLS_MAX_TEXTURE_UNITS = 16 };
+enum { GLS_MAX_TEXTURE_UNITS = 16, GLS_MAX_BUFFER_BINDINGS = 16, GLS_MAX_IMAGE_UNITS = 8 };
 
 // >>categories and counts
 
@@ -97,6 +101,9 @@ typedef enum gls_category {
     GLS_CAT_CULL,
     GLS_CAT_VIEWPORT,          /* from here on: not in state_changes */
     GLS_CAT_VERTEX_ARRAY,
+    GLS_CAT_BUFFER,            /* storage buffer bindings (gl_state_storage_buffer) */
+    GLS_CAT_IMAGE,             /* image unit bindings (gl_state_image) */
+    GLS_CAT_BARRIER,           /* memory barriers issued (gl_state_barrier) */
     GLS_CAT_COUNT
 } gls_category;
 
@@ -104,11 +111,13 @@ typedef enum gls_category {
 #define GLS_CAT_STATE_CHANGES_END GLS_CAT_VIEWPORT
 
 /* "program", "texture", "framebuffer", "blend", "depth", "stencil", "cull",
- * "viewport", "vertex_array"; "unknown" out of range. */
+ * "viewport", "vertex_array", "buffer", "image", "barrier"; "unknown" out of range. */
 const char *gl_state_category_name(gls_category c);
 
 typedef struct gls_counts {
     uint64_t draw_calls;
+    uint64_t dispatches;                 /* compute dispatches (gl_state_dispatch), apart
+                                            from draw_calls */
     uint64_t state_changes;              /* sum of category[0 .. GLS_CAT_STATE_CHANGES_END) */
     uint64_t category[GLS_CAT_COUNT];
 } gls_counts;
@@ -239,6 +248,16 @@ void gl_state_stencil(gl_state *s, const gls_stencil *stencil);       /* NULL: {
 void gl_state_cull(gl_state *s, gls_cull cull);
 void gl_state_viewport(gl_state *s, int x, int y, int width, int height);
 void gl_state_vertex_array(gl_state *s, GLuint vertex_array);         /* 0: the empty one */
+/* The whole of buffer at GL_SHADER_STORAGE_BUFFER binding point `binding` (< 16;
+ * glBindBufferBase); 0: none. Counted in "buffer", not in state_changes. */
+void gl_state_storage_buffer(gl_state *s, unsigned binding, GLuint buffer);
+/* Level 0 of texture (not layered) at image unit `unit` (< 8) with access
+ * (GL_READ_ONLY / GL_WRITE_ONLY / GL_READ_WRITE) and format (GL_RGBA16F, ...);
+ * texture 0: none. Counted in "image", not in state_changes. */
+void gl_state_image(gl_state *s, unsigned unit, GLuint texture, GLenum access, GLenum format);
+/* glMemoryBarrier(bits): never cached (a barrier orders what came before it), counted
+ * in "barrier" every time. */
+void gl_state_barrier(gl_state *s, GLbitfield bits);
 
 /* >>draws: one draw call each. offset: bytes into the element buffer of the
  * bound vertex array. */
@@ -250,6 +269,10 @@ void gl_state_draw_elements_instanced(gl_state *s, GLenum mode, GLsizei count, G
                                       size_t offset, GLsizei instances);
 void gl_state_draw_elements_base_vertex(gl_state *s, GLenum mode, GLsizei count, GLenum type,
                                         size_t offset, GLint base_vertex);
+
+/* A compute dispatch of x * y * z work groups with the bound program: one dispatch
+ * (gls_counts.dispatches), not a draw call. */
+void gl_state_dispatch(gl_state *s, GLuint x, GLuint y, GLuint z);
 
 /* The full-screen triangle of renderers/shaders/fullscreen.vert over a target of
  * width x height, with that program bound: sets the viewport the shader expects,

@@ -1,7 +1,8 @@
 // With separate diffuse and specular accumulation (seed 001): the specular target
 // added into the diffuse one (blend ONE, ONE), which is then the frame's light.
 // Full screen (fullscreen.vert).
-layout(binding = 11) uniform sampler2D t_specular;
+#include "bindings.h"
+layout(binding = BIND_TEX_SPECULAR) uniform sampler2D t_specular;
 
 layout(location = 0) out vec4 o_light;
 

@@ -8,11 +8,12 @@
 // the light's own type field drives shade_light). SEPARATE_SPECULAR (seed 001):
 // diffuse and specular go to two targets, shade_light evaluated once with gloss 0 and
 // once with a black diffuse (it is linear in both).
+#include "bindings.h"
 #include "frame.inc"
 #include "lighting.inc"
 #include "gbuffer.inc"
 
-layout(location = 16) uniform vec4 u_light[5];
+layout(location = LOC_RENDERER) uniform vec4 u_light[5];
 
 layout(location = 0) out vec4 o_light;
 #ifdef SEPARATE_SPECULAR

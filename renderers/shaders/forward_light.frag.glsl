@@ -4,6 +4,7 @@
 // Defines: the material's maps (surface.inc); LIGHT_TYPE, one of LIGHT_POINT,
 // LIGHT_SPOT, LIGHT_DIRECTIONAL, the one light type a program is compiled for (the
 // light's own type word is replaced by it, so the other types' code folds away).
+#include "bindings.h"
 #include "frame.inc"
 #include "surface.inc"
 #include "lighting.inc"
@@ -12,7 +13,7 @@
 #error "forward_light.frag is compiled for one LIGHT_TYPE"
 #endif
 
-layout(location = 16) uniform vec4 u_light[5];   // lighting.inc's layout
+layout(location = LOC_RENDERER) uniform vec4 u_light[5];   // lighting.inc's layout
 
 layout(location = 0) out vec4 o_color;
 

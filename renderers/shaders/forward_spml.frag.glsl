@@ -3,19 +3,29 @@
 // looped here. A point or spot light whose squared distance exceeds its squared range
 // is skipped before any other work (shade_light would give exactly zero there too).
 // Defines: the material's maps (surface.inc); MAX_LIGHTS, the array size, chosen once
-// per run from the run's largest light count (forward_spml.c).
+// per run from the run's largest light count (forward_spml.c); or LIGHTS_STORAGE:
+// the lights from a storage buffer.
+#include "bindings.h"
 #include "frame.inc"
 #include "surface.inc"
 #include "lighting.inc"
 
+#ifdef LIGHTS_STORAGE
+// forward.light_buffer: storage: the same packed lights, unsized (lights.inc's layout)
+layout(std430, binding = BIND_SSBO_LIGHTS) readonly buffer LightBuffer {
+    Light u_lights[];
+};
+#define MAX_LIGHTS 2147483647
+#else
 #ifndef MAX_LIGHTS
 #error "forward_spml.frag needs MAX_LIGHTS"
 #endif
 
-layout(std140, binding = 1) uniform Lights {
+layout(std140, binding = BIND_UBO_LIGHTS) uniform Lights {
     Light u_lights[MAX_LIGHTS];
 };
-layout(location = 16) uniform int u_light_count;   // lights in u_lights this frame
+#endif
+layout(location = LOC_RENDERER) uniform int u_light_count;   // lights in u_lights this frame
 
 layout(location = 0) out vec4 o_color;
 

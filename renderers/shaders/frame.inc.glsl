@@ -1,6 +1,7 @@
 // Per-frame values every pass can read: uniform block binding 0 (renderers/shading.h
 // fills it as gpu_frame, std140).
-layout(std140, binding = 0) uniform Frame {
+#include "bindings.h"
+layout(std140, binding = BIND_UBO_FRAME) uniform Frame {
     mat4 f_proj;
     mat4 f_inv_proj;
     vec4 f_ambient;    // rgb: ambient light (A = ambient x diffuse material)

@@ -46,6 +46,7 @@ vec3 gb_spheremap_decode(vec2 enc)
 
 #ifdef GBUFFER_WRITE
 
+#include "bindings.h"
 layout(location = 0) out vec4 gb0;
 layout(location = 1) out vec4 gb1;
 layout(location = 2) out vec4 gb2;
@@ -97,20 +98,26 @@ void gbuffer_store(Surface s)
 
 #else // reading
 
-layout(binding = 4) uniform sampler2D t_gb0;
-layout(binding = 5) uniform sampler2D t_gb1;
-layout(binding = 6) uniform sampler2D t_gb2;
-layout(binding = 7) uniform sampler2D t_gb3;
-layout(binding = 8) uniform sampler2D t_gb4;
-layout(binding = 9) uniform sampler2D t_gb5;
-layout(binding = 10) uniform sampler2D t_depth;
+// The pixel read: the fragment's own, or (a compute shader, tiled_deferred.comp) what
+// GB_FRAG_XY is defined to be, the pixel's centre.
+#ifndef GB_FRAG_XY
+#define GB_FRAG_XY gl_FragCoord.xy
+#endif
 
-#define gb0 texelFetch(t_gb0, ivec2(gl_FragCoord.xy), 0)
-#define gb1 texelFetch(t_gb1, ivec2(gl_FragCoord.xy), 0)
-#define gb2 texelFetch(t_gb2, ivec2(gl_FragCoord.xy), 0)
-#define gb3 texelFetch(t_gb3, ivec2(gl_FragCoord.xy), 0)
-#define gb4 texelFetch(t_gb4, ivec2(gl_FragCoord.xy), 0)
-#define gb5 texelFetch(t_gb5, ivec2(gl_FragCoord.xy), 0)
+layout(binding = BIND_TEX_GBUFFER0 + 0) uniform sampler2D t_gb0;
+layout(binding = BIND_TEX_GBUFFER0 + 1) uniform sampler2D t_gb1;
+layout(binding = BIND_TEX_GBUFFER0 + 2) uniform sampler2D t_gb2;
+layout(binding = BIND_TEX_GBUFFER0 + 3) uniform sampler2D t_gb3;
+layout(binding = BIND_TEX_GBUFFER0 + 4) uniform sampler2D t_gb4;
+layout(binding = BIND_TEX_GBUFFER0 + 5) uniform sampler2D t_gb5;
+layout(binding = BIND_TEX_DEPTH) uniform sampler2D t_depth;
+
+#define gb0 texelFetch(t_gb0, ivec2(GB_FRAG_XY), 0)
+#define gb1 texelFetch(t_gb1, ivec2(GB_FRAG_XY), 0)
+#define gb2 texelFetch(t_gb2, ivec2(GB_FRAG_XY), 0)
+#define gb3 texelFetch(t_gb3, ivec2(GB_FRAG_XY), 0)
+#define gb4 texelFetch(t_gb4, ivec2(GB_FRAG_XY), 0)
+#define gb5 texelFetch(t_gb5, ivec2(GB_FRAG_XY), 0)
 
 struct GSurface {
     bool present;      // a surface covers the pixel
@@ -127,7 +134,7 @@ struct GSurface {
 // full-screen passes and light volumes get the same ray.
 vec3 gb_view_ray()
 {
-    vec2 ndc = gl_FragCoord.xy * f_viewport.zw * 2.0 - 1.0;
+    vec2 ndc = GB_FRAG_XY * f_viewport.zw * 2.0 - 1.0;
     vec4 p = f_inv_proj * vec4(ndc, 1.0, 1.0);
     return p.xyz / -p.z;
 }
@@ -155,8 +162,8 @@ GSurface gbuffer_load()
 #elif defined(GB_DEPTH)
     g.position = gb_view_ray() * GB_DEPTH;
 #else
-    float d = texelFetch(t_depth, ivec2(gl_FragCoord.xy), 0).r;
-    vec2 ndc = gl_FragCoord.xy * f_viewport.zw * 2.0 - 1.0;
+    float d = texelFetch(t_depth, ivec2(GB_FRAG_XY), 0).r;
+    vec2 ndc = GB_FRAG_XY * f_viewport.zw * 2.0 - 1.0;
     vec4 p = f_inv_proj * vec4(ndc, d * 2.0 - 1.0, 1.0);
     g.position = p.xyz / p.w;
 #endif

@@ -23,10 +23,11 @@
 #error "SHADOWS needs MAX_SHADOWS, the size of the shadow-map pool"
 #endif
 
-layout(std140, binding = 2) uniform Shadows {
+#include "bindings.h"
+layout(std140, binding = BIND_UBO_SHADOWS) uniform Shadows {
     mat4 u_shadow_matrix[MAX_SHADOWS];
 };
-layout(binding = 12) uniform sampler2DArrayShadow t_shadow;
+layout(binding = BIND_TEX_SHADOW) uniform sampler2DArrayShadow t_shadow;
 
 // 1 lit, 0 in shadow, between on the filtered edge of a shadow.
 float shadow_visibility(int layer, vec3 P)

@@ -5,6 +5,7 @@
 // ALPHA_TEST (a MASK material of a file scene: fragments whose diffuse-map alpha is
 // below u_alpha_cutoff are discarded; only that variant has a discard, so opaque
 // materials keep early depth testing).
+#include "bindings.h"
 layout(location = 0) in vec3 v_position;
 layout(location = 1) in vec3 v_normal;
 layout(location = 2) in vec4 v_tangent;
@@ -15,13 +16,13 @@ layout(location = 9) uniform float u_specular;
 layout(location = 10) uniform float u_shininess;
 layout(location = 11) uniform vec3 u_emissive;
 #ifdef ALPHA_TEST
-layout(location = 12) uniform float u_alpha_cutoff;
+layout(location = LOC_ALPHA_CUTOFF) uniform float u_alpha_cutoff;
 #endif
 
-layout(binding = 0) uniform sampler2D t_diffuse;
-layout(binding = 1) uniform sampler2D t_gloss;
-layout(binding = 2) uniform sampler2D t_normal;
-layout(binding = 3) uniform sampler2D t_emissive;
+layout(binding = BIND_TEX_DIFFUSE) uniform sampler2D t_diffuse;
+layout(binding = BIND_TEX_GLOSS) uniform sampler2D t_gloss;
+layout(binding = BIND_TEX_NORMAL) uniform sampler2D t_normal;
+layout(binding = BIND_TEX_EMISSIVE) uniform sampler2D t_emissive;
 
 struct Surface {
     vec3 position;   // view space

@@ -11,7 +11,7 @@ cat >interior.yaml <<'YAML'
 shadesweep: 1
 name: det-interior
 scene: interior
-renderers: [deferred, forward-mpml, forward-spml]
+renderers: [deferred, forward-mpml, forward-spml, forward-plus, clustered, tiled-deferred]
 resolution: 160x120
 trials: 2
 warmup: {frames: 1}
@@ -25,7 +25,7 @@ cat >growth.yaml <<'YAML'
 shadesweep: 1
 name: det-growth
 scene: curtis-scene3
-renderers: [deferred, forward-mpml, forward-spml]
+renderers: [deferred, forward-mpml, forward-spml, forward-plus, clustered, tiled-deferred]
 resolution: 160x120
 trials: 2
 warmup: {frames: 1}
@@ -53,11 +53,12 @@ def table(path):
 WORK = {"frames.csv": ["trial", "frame", "t_scene_s", "lights", "draw_calls", "state_changes",
                        "fragments"],
         "passes.csv": ["trial", "frame", "pass", "draw_calls", "state_changes", "fragments",
-                       "primitives"]}
+                       "primitives", "dispatches", "cell_lights_mean", "cell_lights_max",
+                       "light_evals_per_pixel"]}
 for m in ("interior", "growth"):
     a, b = f"a-{m}", f"b-{m}"
     ids = sorted(os.listdir(os.path.join(a, "runs")))
-    if len(ids) != 3 or ids != sorted(os.listdir(os.path.join(b, "runs"))):
+    if len(ids) != 6 or ids != sorted(os.listdir(os.path.join(b, "runs"))):
         fail(f"{m}: runs {ids}")
     for s in table(os.path.join(a, "summary.csv")) + table(os.path.join(b, "summary.csv")):
         if s["status"] != "ok":
@@ -81,6 +82,12 @@ for m in ("interior", "growth"):
             fail(f"{m} {rid}: trials 1 and 2 differ at t = 0.5")
         if data["screenshot-trial1-t0.5.png"] == data["screenshot-trial1-t1.5.png"]:
             fail(f"{m} {rid}: the same image at t = 0.5 and 1.5: nothing moved")
+        # the tiled renderers' light-list histograms of the screenshot frames
+        grid = os.path.join(ra, "lightgrid.csv")
+        if os.path.exists(grid):
+            ga, gb = table(grid), table(os.path.join(rb, "lightgrid.csv"))
+            if not ga or [tuple(r.values())[1:] for r in ga] != [tuple(r.values())[1:] for r in gb]:
+                fail(f"{m} {rid}: lightgrid.csv differs between the runs")
         for f, cols in WORK.items():
             ta, tb = table(os.path.join(ra, f)), table(os.path.join(rb, f))
             ka = [tuple(r[c] for c in cols) for r in ta]

@@ -24,13 +24,15 @@ summary_cols = ["experiment","run_id","renderer","scene","width","height","gbuff
   "frames","measured_s","fps_mean","frametime_mean_us","frametime_sd_us","frametime_ci95_us",
   "frametime_p50_us","frametime_p99_us","fps_1pct_low","gpu_mean_us","draw_calls_mean","state_changes_mean",
   "fragments_mean","gbuffer_bytes","image_rmse","image_psnr_db","image_max_abs",
-  "nonfinite_pixels","harness_us_mean","ci1pct_after_s","status","message"]
+  "nonfinite_pixels","harness_us_mean","ci1pct_after_s","dispatches_mean","cell_lights_mean",
+  "cell_lights_max","light_evals_per_pixel","status","message"]
 frames_cols = ["run_id","trial","frame","t_wall_s","t_scene_s","lights","frametime_us",
   "gpu_us","draw_calls","state_changes","fragments"]
 seconds_cols = ["run_id","trial","second","complete","lights_min","lights_max","frames","fps",
   "frametime_mean_us","frametime_sd_us","frametime_p50_us","frametime_p99_us","draw_calls_mean"]
 passes_cols = ["run_id","trial","frame","pass","gpu_us","cpu_us","draw_calls","state_changes",
-  "fragments","primitives"]
+  "fragments","primitives","dispatches","cell_lights_mean","cell_lights_max",
+  "light_evals_per_pixel"]
 convergence_cols = ["run_id","trial","elapsed_s","frames","frametime_mean_us","frametime_ci95_us",
   "ci95_rel"]
 

@@ -1,13 +1,13 @@
 /* Extreme inputs (issue 5): for each case, each of deferred (curtis and reference
  * G-buffers, stencil light volumes; also fullscreen volumes where volumes matter),
- * forward-mpml and forward-spml renders one frame of "shapes" (64x48 unless the case
- * says otherwise) with lights and camera set by hand, in a debug context. Each ends
- * with no GL error, zero non-finite values in the float light accumulation
+ * forward-mpml, forward-spml (uniform block and storage buffer), forward-plus,
+ * clustered and tiled-deferred (curtis G-buffer) renders one frame of "shapes" (64x48 unless the case says otherwise)
+ * with lights and camera set by hand, in a debug context. Each ends with no GL error, zero non-finite values in the float light accumulation
  * (renderer_read_hdr) and a readable RGBA8 output, or with a clear message before
  * anything renders:
- *   0 lights; 1 light; 4096 and 65536 lights (forward-spml: refused at prepare with
- *   the message naming GL_MAX_UNIFORM_BLOCK_SIZE); light radius 1e-4 (lights nothing)
- *   and 1e5 (covers everything); a light exactly on a surface with 1/d^2; the camera
+ *   0 lights; 1 light; 4096 and 65536 lights (forward-spml's uniform block: refused
+ *   at prepare with the message naming GL_MAX_UNIFORM_BLOCK_SIZE); light radius 1e-4
+ *   (lights nothing) and 1e5 (covers everything); a light exactly on a surface with 1/d^2; the camera
  *   inside 50 overlapping point lights; volumes cut by the near and by the far plane;
  *   specular exponent 0 and 10000; resolutions 1x1, the largest the context allows
  *   (null renderer only: 2 GB of framebuffer) and one beyond it (refused with the
@@ -48,17 +48,32 @@ typedef struct config {
     gbuffer_preset gbuffer;
     light_volume_mode mode;
     bool volumes_only;         /* only where light volumes matter (fullscreen mode) */
+    light_buffer_kind light_buffer;   /* forward-spml */
 } config;
 
 static const config CONFIGS[] = {
-    {"deferred curtis stencil", "deferred", GBUFFER_CURTIS, LIGHT_VOLUMES_STENCIL, false},
-    {"deferred reference stencil", "deferred", GBUFFER_REFERENCE, LIGHT_VOLUMES_STENCIL, false},
-    {"deferred curtis fullscreen", "deferred", GBUFFER_CURTIS, LIGHT_VOLUMES_FULLSCREEN, true},
+    {"deferred curtis stencil", "deferred", GBUFFER_CURTIS, LIGHT_VOLUMES_STENCIL, false,
+     LIGHT_BUFFER_UNIFORM},
+    {"deferred reference stencil", "deferred", GBUFFER_REFERENCE, LIGHT_VOLUMES_STENCIL, false,
+     LIGHT_BUFFER_UNIFORM},
+    {"deferred curtis fullscreen", "deferred", GBUFFER_CURTIS, LIGHT_VOLUMES_FULLSCREEN, true,
+     LIGHT_BUFFER_UNIFORM},
     {"deferred reference fullscreen", "deferred", GBUFFER_REFERENCE, LIGHT_VOLUMES_FULLSCREEN,
-     true},
-    {"forward-mpml", "forward-mpml", GBUFFER_CURTIS, LIGHT_VOLUMES_STENCIL, false},
-    {"forward-spml", "forward-spml", GBUFFER_CURTIS, LIGHT_VOLUMES_STENCIL, false},
+     true, LIGHT_BUFFER_UNIFORM},
+    {"forward-mpml", "forward-mpml", GBUFFER_CURTIS, LIGHT_VOLUMES_STENCIL, false,
+     LIGHT_BUFFER_UNIFORM},
+    {"forward-spml", "forward-spml", GBUFFER_CURTIS, LIGHT_VOLUMES_STENCIL, false,
+     LIGHT_BUFFER_UNIFORM},
+    {"forward-spml storage", "forward-spml", GBUFFER_CURTIS, LIGHT_VOLUMES_STENCIL, false,
+     LIGHT_BUFFER_STORAGE},
+    {"forward-plus", "forward-plus", GBUFFER_CURTIS, LIGHT_VOLUMES_STENCIL, false,
+     LIGHT_BUFFER_UNIFORM},
+    {"clustered", "clustered", GBUFFER_CURTIS, LIGHT_VOLUMES_STENCIL, false,
+     LIGHT_BUFFER_UNIFORM},
+    {"tiled-deferred", "tiled-deferred", GBUFFER_CURTIS, LIGHT_VOLUMES_STENCIL, false,
+     LIGHT_BUFFER_UNIFORM},
 };
+enum { SPML_UNIFORM = 5 };   /* CONFIGS' forward-spml with its uniform block */
 enum { NCONFIGS = sizeof CONFIGS / sizeof CONFIGS[0] };
 
 // >>contexts
@@ -159,7 +174,8 @@ static renderer *make(const config *c, int w, int h, char *err, size_t errlen)
                           .timer_query = i->timer_query,
                           .pipeline_statistics = i->pipeline_statistics,
                           .max_uniform_block_size = i->max_uniform_block_size,
-                          .gbuffer = c->gbuffer, .light_volumes = c->mode};
+                          .gbuffer = c->gbuffer, .light_volumes = c->mode,
+                          .light_buffer = c->light_buffer};
     gl.BindFramebuffer(GL_FRAMEBUFFER, gl_context_framebuffer(ctx));
     return renderer_create(c->kind, &o, err, errlen);
 }
@@ -296,9 +312,10 @@ static void expect_spml_refuses(const scene *s, uint32_t n)
     char want[256], err[512] = "";
     snprintf(want, sizeof want,
              "forward-spml: %u lights requested, this context allows at most %u "
-             "(GL_MAX_UNIFORM_BLOCK_SIZE %d / %zu bytes)",
+             "(GL_MAX_UNIFORM_BLOCK_SIZE %d / %zu bytes; forward.light_buffer: storage has "
+             "no such limit)",
              n, cap, gi->max_uniform_block_size, sizeof(gpu_light));
-    renderer *r = make(&CONFIGS[NCONFIGS - 1], ctx_w, ctx_h, err, sizeof err);
+    renderer *r = make(&CONFIGS[SPML_UNIFORM], ctx_w, ctx_h, err, sizeof err);
     assert_non_null(r);
     assert_false(renderer_prepare(r, s, err, sizeof err));
     if (strcmp(err, want) != 0)
@@ -309,7 +326,7 @@ static void expect_spml_refuses(const scene *s, uint32_t n)
     assert_int_equal(gl_context_error_count(ctx), 0);
 }
 
-static void many(uint32_t n, bool deferred_only)
+static void many(uint32_t n, bool no_mpml)
 {
     enum { MW = 32, MH = 24 };
     need_context(MW, MH);
@@ -320,11 +337,11 @@ static void many(uint32_t n, bool deferred_only)
     snprintf(what, sizeof what, "%u lights", n);
     for (size_t i = 0; i < NCONFIGS; i++) {
         const config *c = &CONFIGS[i];
-        if (strcmp(c->kind, "forward-spml") == 0) {
+        if (c == &CONFIGS[SPML_UNIFORM]) {
             expect_spml_refuses(s, n);
             continue;
         }
-        if (c->volumes_only || (deferred_only && strcmp(c->kind, "deferred") != 0))
+        if (c->volumes_only || (no_mpml && strcmp(c->kind, "forward-mpml") == 0))
             continue;
         result r = render_finite(c, s, what, NULL);
         print_message("%u lights, %s: %u drawn\n", n, c->name, r.lights_drawn);
@@ -341,7 +358,8 @@ static void test_4096_lights(void **state)
 }
 
 /* forward-mpml draws the lit objects once per light: 65536 passes are left out for
- * time (forward-mpml at 4096 covers its path); deferred renders them. */
+ * time (forward-mpml at 4096 covers its path); deferred, forward-spml with its
+ * storage buffer, forward-plus, clustered and tiled-deferred render them. */
 static void test_65536_lights(void **state)
 {
     (void)state;

@@ -668,10 +668,21 @@ static GLuint surface_program(const char *defines, const char *expr)
              "layout(location = 0) out vec4 o_color;\n"
              "void main() { Surface s = surface_get(); o_color = vec4(%s, 1.0); }\n", expr);
     const char *vs[] = {gl_shader_source("mesh.vert")};
-    const char *fs[] = {defines, gl_shader_source("surface.inc"), main_src};
+    /* surface.inc names its texture units from bindings.h: that file first, the
+     * include line itself blanked (raw GLSL has no #include) */
+    const char *surface = gl_shader_source("surface.inc");
+    assert_non_null(surface);
+    char *body = strdup(surface);
+    assert_non_null(body);
+    char *inc = strstr(body, "#include \"bindings.h\"");
+    assert_non_null(inc);
+    memset(inc, ' ', strlen("#include \"bindings.h\""));
+    const char *fs[] = {defines, gl_shader_source("bindings.h"), body, main_src};
     assert_non_null(vs[0]);
     assert_non_null(fs[1]);
-    return test_program(vs, 1, fs, 3);
+    GLuint p = test_program(vs, 1, fs, 4);
+    free(body);
+    return p;
 }
 
 static void read_color(fixture *f, uint8_t *px)

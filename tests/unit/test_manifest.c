@@ -376,6 +376,11 @@ static void test_kv_canonical(void **state)
         {"deferred.light_volumes", "stencil"},
         {"deferred.separate_specular", "false"},
         {"forward.illumination_sets", "true"},
+        {"forward.light_buffer", "uniform"},
+        {"tiles.size", "16"},
+        {"tiles.max_lights_per_tile", "0"},
+        {"clustered.slices", "24"},
+        {"clustered.shading", "forward"},
         {"shadows", "auto"},
         {"camera.radius", "scene"},
         {"camera.height", "scene"},
@@ -425,6 +430,11 @@ static void test_kv_canonical(void **state)
         {"deferred.light_volumes", "stencil"},
         {"deferred.separate_specular", "false"},
         {"forward.illumination_sets", "true"},
+        {"forward.light_buffer", "uniform"},
+        {"tiles.size", "16"},
+        {"tiles.max_lights_per_tile", "0"},
+        {"clustered.slices", "24"},
+        {"clustered.shading", "forward"},
         {"shadows", "off"},
         {"camera.radius", "40"},
         {"camera.height", "12.5"},
@@ -474,10 +484,23 @@ static void test_kv_canonical(void **state)
             assert_string_equal(kv[i].key, cases[c].kv[i][0]);
             assert_string_equal(kv[i].value, cases[c].kv[i][1]);
             /* a timeout changes no result, so it is not part of the run id; nor the
-             * debug keys (testing regression gates: a slowed run keeps its id) */
+             * debug keys (testing regression gates: a slowed run keeps its id). Keys at
+             * their default leave the id too (is_default), which test_params.c checks. */
             assert_int_equal(kv[i].in_id, strcmp(kv[i].key, "timeout") != 0 &&
                                               strncmp(kv[i].key, "debug.", 6) != 0);
         }
+        /* away from its default, such a key is part of the id */
+        run_params p = e->base;
+        p.tile_size = 2;   /* 32 */
+        size_t m = run_params_kv(&p, kv, PARAM_KV_MAX);
+        bool seen = false;
+        for (size_t i = 0; i < m; i++)
+            if (strcmp(kv[i].key, "tiles.size") == 0) {
+                assert_string_equal(kv[i].value, "32");
+                assert_true(kv[i].in_id);
+                seen = true;
+            }
+        assert_true(seen);
         /* max bounds the pairs written */
         assert_int_equal(run_params_kv(&e->base, kv, 3), 3);
         assert_string_equal(kv[2].key, "resolution");
@@ -533,7 +556,7 @@ static const bad_case bad_cases[] = {
     {"unknown_top_key.yaml",
      {"1:1: duration: expected {seconds: S} or {frames: N}, found nothing",
       "5:1: durtion: expected one of shadesweep, name, description, scene, renderers, "
-      "resolution, trials, warmup, duration, clock, step, sync, timeout, gbuffer, deferred, forward, shadows, camera, error, lights, outputs, debug, sweep, "
+      "resolution, trials, warmup, duration, clock, step, sync, timeout, gbuffer, deferred, forward, tiles, clustered, shadows, camera, error, lights, outputs, debug, sweep, "
       "found 'durtion'"}},
     {"unknown_nested_key.yaml",
      {"8:3: lights.cnt: expected one of placement, seed, rng, count, radius, overlap, color_max, "
@@ -562,7 +585,8 @@ static const bad_case bad_cases[] = {
      {"6:13: resolution: expected WxH with each side 1..32768, found '640 x 480'"}},
     {"unknown_scene.yaml", {"3:8: scene: expected one of empty, shapes, curtis-scene1, curtis-scene2, curtis-scene3, canyon, interior, spot-coverage, two-spots-overlap, floating-spot, or {file: PATH, scale, up, camera}, found 'castle'"}},
     {"unknown_renderer.yaml",
-     {"4:19: renderers[1]: expected one of null, deferred, forward-mpml, forward-spml, "
+     {"4:19: renderers[1]: expected one of null, deferred, forward-mpml, forward-spml, forward-plus, clustered, "
+      "tiled-deferred, "
       "found 'raytrace'",
       "4:29: renderers[2]: expected a renderer listed once, found a second 'null' (first at 4:13)"}},
     {"empty_renderers.yaml",
@@ -641,7 +665,9 @@ static const bad_case bad_cases[] = {
      {"7:3: sweep.lights.cnt: expected a sweepable parameter (one of scene, resolution, "
       "trials, warmup, duration, clock, step, sync, timeout, gbuffer.preset, gbuffer.position, "
       "gbuffer.normal, deferred.light_volumes, deferred.separate_specular, "
-      "forward.illumination_sets, shadows, camera.radius, camera.height, camera.period, "
+      "forward.illumination_sets, forward.light_buffer, tiles.size, "
+      "tiles.max_lights_per_tile, clustered.slices, clustered.shading, shadows, camera.radius, "
+      "camera.height, camera.period, "
       "camera.target, camera.near, camera.far, camera.hold, lights.placement, lights.seed, "
       "lights.rng, lights.count, lights.radius, lights.overlap, lights.color_max, lights.attenuation, lights.quadratic.a, "
       "lights.quadratic.b, lights.quadratic.c), found 'lights.cnt'"}},
@@ -661,7 +687,7 @@ static const bad_case bad_cases[] = {
       "5:13: resolution: expected WxH with each side 1..32768, found '640x'",
       "6:9: trials: expected an integer 1..1000, found '0'",
       "7:1: durtion: expected one of shadesweep, name, description, scene, renderers, "
-      "resolution, trials, warmup, duration, clock, step, sync, timeout, gbuffer, deferred, forward, shadows, camera, error, lights, outputs, debug, sweep, "
+      "resolution, trials, warmup, duration, clock, step, sync, timeout, gbuffer, deferred, forward, tiles, clustered, shadows, camera, error, lights, outputs, debug, sweep, "
       "found 'durtion'",
       "8:19: warmup.seconds: expected a number >= 0 and <= 3600, found '-1'",
       "10:9: lights.seed: expected an integer 0..4294967295, found '-1'",

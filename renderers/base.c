@@ -1,0 +1,110 @@
+/* The renderer base (base.h). */
+#include "renderers/base.h"
+
+#include <math.h>
+#include <stdio.h>
+#include <string.h>
+
+#include "scenes/scene.h"
+
+bool renderer_base_init(renderer_base *b, const char *name, const renderer_options *opts,
+                        size_t max_passes, char *err, size_t errlen)
+{
+    memset(b, 0, sizeof *b);
+    b->name = name;
+    b->opts = *opts;
+    b->max_passes = max_passes < RENDERER_BASE_MAX_PASSES ? max_passes
+                                                           : RENDERER_BASE_MAX_PASSES;
+    GLint fb = 0;
+    gl.GetIntegerv(GL_DRAW_FRAMEBUFFER_BINDING, &fb);
+    b->output_fbo = (GLuint)fb;
+    if (b->opts.max_uniform_block_size <= 0) {
+        GLint v = 0;
+        gl.GetIntegerv(GL_MAX_UNIFORM_BLOCK_SIZE, &v);
+        b->opts.max_uniform_block_size = v;
+    }
+    b->st = gl_state_create();
+    b->programs = gl_program_cache_create();
+    if (!b->st || !b->programs)
+        goto oom;
+    if (opts->queries) {
+        b->queries = gl_pass_queries_create(b->max_passes, opts->timer_query,
+                                            opts->pipeline_statistics);
+        if (!b->queries)
+            goto oom;
+    }
+    return true;
+oom:
+    snprintf(err, errlen, "%s: out of memory", name);
+    return false;
+}
+
+void renderer_base_destroy(renderer_base *b)
+{
+    gl_pass_queries_destroy(b->queries);
+    gl_program_cache_destroy(b->programs);
+    gl_state_destroy(b->st);
+    b->queries = NULL;
+    b->programs = NULL;
+    b->st = NULL;
+}
+
+bool renderer_base_size(renderer_base *b, const struct scene *s, char *err, size_t errlen)
+{
+    b->width = b->opts.width > 0 ? b->opts.width : s->width;
+    b->height = b->opts.height > 0 ? b->opts.height : s->height;
+    if (b->width != s->width || b->height != s->height) {
+        /* the projection's aspect and the sky's viewport are the scene's */
+        snprintf(err, errlen, "%s: the scene is posed for %dx%d, the output is %dx%d",
+                 b->name, s->width, s->height, b->width, b->height);
+        return false;
+    }
+    return true;
+}
+
+void renderer_base_begin_frame(renderer_base *b, frame_stats *out)
+{
+    out->npasses = 0;
+    b->npasses = 0;
+    /* Every frame starts from unknown state, so every frame counts alike: the first
+     * set of each part of the state in a frame is a change. */
+    gl_state_invalidate(b->st);
+}
+
+void renderer_base_pass_begin(renderer_base *b, frame_stats *out, const char *name)
+{
+    gl_state_begin_pass(b->st, name);
+    if (b->queries)
+        gl_pass_queries_begin(b->queries, out->npasses);
+}
+
+void renderer_base_pass_end(renderer_base *b, frame_stats *out)
+{
+    size_t i = out->npasses;
+    if (b->queries)
+        gl_pass_queries_end(b->queries);
+    pass_stats *p = &out->pass[i];
+    gl_state_end_pass(b->st, p);
+    p->gpu_us = p->fragments = p->primitives = NAN;   /* collect fills them */
+    if (i < RENDERER_BASE_MAX_PASSES)
+        b->pass_counts[i] = *gl_state_pass_counts(b->st);
+    out->npasses = i + 1;
+    b->npasses = i + 1;
+}
+
+void renderer_base_collect(renderer_base *b, frame_stats *out)
+{
+    if (b->queries) {
+        gl_pass_queries_collect(b->queries, out);
+        return;
+    }
+    for (size_t i = 0; i < out->npasses; i++)
+        out->pass[i].gpu_us = out->pass[i].fragments = out->pass[i].primitives = NAN;
+}
+
+const gls_counts *renderer_base_pass_counts(const renderer_base *b, size_t pass)
+{
+    if (!b || pass >= b->npasses || pass >= RENDERER_BASE_MAX_PASSES)
+        return NULL;
+    return &b->pass_counts[pass];
+}

@@ -1,0 +1,59 @@
+#pragma once
+/* What every renderer that draws (deferred, tiled-deferred and the forward family)
+ * embeds as its first member: the options and output size, the output framebuffer,
+ * the state cache, the program cache, the per-pass queries, and the bracketing and
+ * collection of passes. A renderer is then its own passes plus this.
+ *
+ *     renderer_base_init      at create: records the output framebuffer (the draw
+ *                             framebuffer bound now), the context's uniform block limit
+ *                             when opts does not give it, makes the caches and (with
+ *                             opts.queries) max_passes pass queries
+ *     renderer_base_size      at prepare: the output size (opts, or the scene's), refused
+ *                             when the scene is posed for another size
+ *     renderer_base_begin_frame   every frame: the state cache invalidated (every frame
+ *                             counts alike), the frame's passes reset
+ *     renderer_base_pass_begin / _end   around each pass: the pass gets the next index
+ *                             of frame_stats.pass, its queries and the cache's counts
+ *                             (draws, dispatches, state changes); GPU time and fragments
+ *                             are NAN until collect
+ *     renderer_base_collect   after the frame's sync point: the queries' results
+ *     renderer_base_destroy   what init made; a zeroed base is fine */
+#include <stdbool.h>
+#include <stddef.h>
+
+#include "renderers/gl/loader.h"
+#include "renderers/gl/program.h"
+#include "renderers/gl/query.h"
+#include "renderers/gl/state.h"
+#include "renderers/renderer.h"
+
+enum { RENDERER_BASE_MAX_PASSES = 12 };
+
+struct scene;
+
+typedef struct renderer_base {
+    const char *name;                /* "deferred": prefixes messages */
+    renderer_options opts;
+    int width, height;               /* the output's size (opts, or the scene's) */
+    GLuint output_fbo;               /* the draw framebuffer bound at creation */
+    gl_state *st;
+    gl_program_cache *programs;
+    gl_pass_queries *queries;        /* NULL without opts.queries */
+    size_t max_passes;
+    /* >>the last frame, for tests */
+    size_t npasses;
+    gls_counts pass_counts[RENDERER_BASE_MAX_PASSES];
+} renderer_base;
+
+/* False with "NAME: out of memory"; renderer_base_destroy is then still right. */
+bool renderer_base_init(renderer_base *b, const char *name, const renderer_options *opts,
+                        size_t max_passes, char *err, size_t errlen);
+void renderer_base_destroy(renderer_base *b);
+/* Sets width and height; false with a message when s is posed for another size. */
+bool renderer_base_size(renderer_base *b, const struct scene *s, char *err, size_t errlen);
+void renderer_base_begin_frame(renderer_base *b, frame_stats *out);
+void renderer_base_pass_begin(renderer_base *b, frame_stats *out, const char *name);
+void renderer_base_pass_end(renderer_base *b, frame_stats *out);
+void renderer_base_collect(renderer_base *b, frame_stats *out);
+/* The state cache's counts of pass i of the last frame, or NULL past its passes. */
+const gls_counts *renderer_base_pass_counts(const renderer_base *b, size_t pass);

@@ -1,0 +1,34 @@
+#ifndef SHADESWEEP_BINDINGS_H
+#define SHADESWEEP_BINDINGS_H
+/* Binding slots, shared by C and GLSL: the C code includes this file, and every shader
+ * that names a slot does `#include "bindings.h"` (renderers/gl/embed.c embeds it under
+ * that name). Only #define lines of plain integers and comments: both languages' own
+ * preprocessors read it.
+ *
+ * Uniform blocks (std140) */
+#define BIND_UBO_FRAME 0            /* frame.inc's Frame (shading.h gpu_frame) */
+#define BIND_UBO_LIGHTS 1           /* forward-spml's Lights with forward.light_buffer: uniform */
+#define BIND_UBO_SHADOWS 2          /* shadow.inc's Shadows (renderers/shadow.h) */
+/* Shader storage blocks (std430) */
+#define BIND_SSBO_LIGHTS 0          /* lights.inc: the frame's packed lights (gpu_light[]) */
+#define BIND_SSBO_TILE_LISTS 1      /* tiles.inc: per tile/cluster (offset, count) */
+#define BIND_SSBO_TILE_INDICES 2    /* tiles.inc: the light indices all lists point into */
+#define BIND_SSBO_TILE_STATS 3      /* tiles.inc: the index allocator and overflow record */
+/* Texture units */
+#define BIND_TEX_DIFFUSE 0          /* surface.inc's material maps */
+#define BIND_TEX_GLOSS 1
+#define BIND_TEX_NORMAL 2
+#define BIND_TEX_EMISSIVE 3
+#define BIND_TEX_HDR 0              /* resolve.frag's input (no material is bound then) */
+#define BIND_TEX_GBUFFER0 4         /* G-buffer attachment k at unit 4 + k (k < 6) */
+#define BIND_TEX_DEPTH 10           /* the depth-stencil target, sampled */
+#define BIND_TEX_SPECULAR 11        /* deferred's separate specular target (compose) */
+#define BIND_TEX_SHADOW 12          /* the shadow-map pool (sampler2DArrayShadow) */
+/* Image units */
+#define BIND_IMAGE_HDR 0            /* tiled-deferred writes the HDR target */
+/* Uniform locations: surface.inc's alpha cutoff of a MASK material (file scenes) */
+#define LOC_ALPHA_CUTOFF 12
+/* Uniform locations of one light (forward_light.frag, deferred_light.frag) and of a
+ * renderer's own first uniform beside mesh.vert's and surface.inc's (0..11) */
+#define LOC_RENDERER 16
+#endif

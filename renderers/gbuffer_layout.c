@@ -1,0 +1,414 @@
+/* The G-buffer layout logic of deferred.h, apart from the renderer: layouts built from
+ * the preset, the field overrides and what the scene's materials write, their bytes,
+ * and their shader defines. No GL call (formats come from target.h's table), so the
+ * deferred renderer, tiled-deferred and clustered deferred shading, and tests without
+ * a context share it. */
+#include "renderers/deferred.h"
+
+#include "renderers/gl/target.h"
+#include "scenes/scene.h"
+
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+
+static const char *const slot_names[DEFERRED_SLOT_COUNT] = {
+    [DEFERRED_SLOT_POSITION_XY] = "position.xy", [DEFERRED_SLOT_POSITION_Z] = "position.z",
+    [DEFERRED_SLOT_DEPTH] = "depth",             [DEFERRED_SLOT_NORMAL_XY] = "normal.xy",
+    [DEFERRED_SLOT_NORMAL_Z] = "normal.z",       [DEFERRED_SLOT_DIFFUSE] = "diffuse",
+    [DEFERRED_SLOT_GLOSS] = "gloss",             [DEFERRED_SLOT_SHININESS] = "shininess",
+    [DEFERRED_SLOT_EMISSIVE] = "emissive",
+};
+
+const char *deferred_slot_name(deferred_slot_kind k)
+{
+    return (unsigned)k < DEFERRED_SLOT_COUNT ? slot_names[k] : "unknown";
+}
+
+const char *deferred_preset_name(gbuffer_preset p)
+{
+    switch (p) {
+    case GBUFFER_CURTIS: return "curtis";
+    case GBUFFER_FAT: return "fat";
+    case GBUFFER_COMPACT: return "compact";
+    case GBUFFER_SPHEREMAP: return "spheremap";
+    case GBUFFER_REFERENCE: return "reference";
+    }
+    return "unknown";
+}
+
+deferred_needs deferred_needs_of(const scene *s)
+{
+    deferred_needs n = {false, false};
+    if (!s)
+        return n;
+    for (uint32_t i = 0; i < s->nobjects; i++) {
+        uint32_t mi = s->objects[i].material;
+        if (mi >= s->nmaterials)
+            continue;
+        const scene_material *m = &s->materials[mi];
+        if (m->specular > 0.0f)
+            n.gloss = true;
+        if (m->emissive[0] > 0.0f || m->emissive[1] > 0.0f || m->emissive[2] > 0.0f)
+            n.emissive = true;
+    }
+    return n;
+}
+
+/* A draft attachment: its slots in channel order, and whether an override took a
+ * slot from it (then it is packed again and narrowed). */
+enum { DRAFT_MAX_ATTACHMENTS = DEFERRED_MAX_ATTACHMENTS + 2 };   /* + the two overrides */
+
+typedef struct draft {
+    int nattachments;
+    deferred_attachment att[DRAFT_MAX_ATTACHMENTS];
+    bool touched[DRAFT_MAX_ATTACHMENTS];
+    bool emissive_intensity;
+} draft;
+
+static int draft_att(draft *d, deferred_channel_type ch, gl_format fmt, bool touched)
+{
+    int a = d->nattachments++;
+    deferred_attachment *at = &d->att[a];
+    memset(at, 0, sizeof *at);
+    at->channels = ch;
+    at->format = fmt;
+    d->touched[a] = touched;
+    return a;
+}
+
+static void draft_slot(draft *d, int a, deferred_slot_kind k, uint8_t count)
+{
+    deferred_attachment *at = &d->att[a];
+    uint8_t first = 0;
+    for (int i = 0; i < at->nslots; i++)
+        first = (uint8_t)(first + at->slot[i].count);
+    at->slot[at->nslots++] = (deferred_slot){.kind = k, .first = first, .count = count};
+}
+
+/* Removes every slot of kind k; marks the attachments it was in as touched if `touch`. */
+static void draft_remove(draft *d, deferred_slot_kind k, bool touch)
+{
+    for (int a = 0; a < d->nattachments; a++) {
+        deferred_attachment *at = &d->att[a];
+        int n = 0;
+        for (int i = 0; i < at->nslots; i++) {
+            if (at->slot[i].kind == k) {
+                if (touch)
+                    d->touched[a] = true;
+                continue;
+            }
+            at->slot[n++] = at->slot[i];
+        }
+        at->nslots = n;
+    }
+}
+
+static gl_format narrowest(deferred_channel_type ch, unsigned channels)
+{
+    switch (ch) {
+    case DEFERRED_CHANNELS_FLOAT16:
+        return channels <= 1 ? GLT_FORMAT_R16F
+                             : channels == 2 ? GLT_FORMAT_RG16F : GLT_FORMAT_RGBA16F;
+    case DEFERRED_CHANNELS_FLOAT32:
+        return channels <= 1 ? GLT_FORMAT_R32F : GLT_FORMAT_RGBA32F;
+    case DEFERRED_CHANNELS_UNORM8:
+        return channels <= 2 ? GLT_FORMAT_RG8 : GLT_FORMAT_RGBA8;
+    case DEFERRED_CHANNELS_UNORM10:
+        return GLT_FORMAT_RGB10A2;
+    }
+    return GLT_FORMAT_NONE;
+}
+
+/* "gbuffer." + the slots' field names joined by '+' (position.xy + position.z is
+ * "position", and so the normal). The longest a layout makes is 29 characters. */
+static void name_attachment(deferred_attachment *at, bool spheremap)
+{
+    char *out = at->name;
+    const size_t cap = sizeof at->name;
+    size_t len = (size_t)snprintf(out, cap, "gbuffer.");
+    for (int i = 0; i < at->nslots && len < cap; i++) {
+        deferred_slot_kind k = at->slot[i].kind;
+        const char *nm = deferred_slot_name(k);
+        if (k == DEFERRED_SLOT_POSITION_XY && i + 1 < at->nslots &&
+            at->slot[i + 1].kind == DEFERRED_SLOT_POSITION_Z) {
+            nm = "position";
+            i++;
+        } else if (k == DEFERRED_SLOT_NORMAL_XY &&
+                   ((i + 1 < at->nslots && at->slot[i + 1].kind == DEFERRED_SLOT_NORMAL_Z) ||
+                    spheremap)) {
+            nm = "normal";
+            if (!spheremap)
+                i++;
+        }
+        int n = snprintf(out + len, cap - len, "%s%s", len > strlen("gbuffer.") ? "+" : "", nm);
+        if (n < 0)
+            break;
+        len += (size_t)n;
+    }
+}
+
+bool deferred_layout_build(const renderer_options *o, deferred_needs needs,
+                           deferred_layout *out, char *err, size_t errlen)
+{
+    draft d;
+    memset(&d, 0, sizeof d);
+    const deferred_channel_type F16 = DEFERRED_CHANNELS_FLOAT16, F32 = DEFERRED_CHANNELS_FLOAT32,
+                                U8 = DEFERRED_CHANNELS_UNORM8;
+    /* What the preset itself stores, in the override enums' terms (PRESET: none of them). */
+    gbuffer_position own_position = GBUFFER_POSITION_PRESET;
+    gbuffer_normal own_normal = GBUFFER_NORMAL_PRESET;
+    bool spheremap = false;
+    int a;
+
+    switch (o->gbuffer) {
+    case GBUFFER_FAT:
+        a = draft_att(&d, F16, GLT_FORMAT_RGBA16F, false);
+        draft_slot(&d, a, DEFERRED_SLOT_POSITION_XY, 2);
+        draft_slot(&d, a, DEFERRED_SLOT_POSITION_Z, 1);
+        draft_slot(&d, a, DEFERRED_SLOT_SHININESS, 1);
+        a = draft_att(&d, F16, GLT_FORMAT_RGBA16F, false);
+        draft_slot(&d, a, DEFERRED_SLOT_NORMAL_XY, 2);
+        draft_slot(&d, a, DEFERRED_SLOT_NORMAL_Z, 1);
+        draft_slot(&d, a, DEFERRED_SLOT_EMISSIVE, 1);
+        d.emissive_intensity = true;
+        a = draft_att(&d, F16, GLT_FORMAT_RGBA16F, false);
+        draft_slot(&d, a, DEFERRED_SLOT_DIFFUSE, 3);
+        draft_slot(&d, a, DEFERRED_SLOT_GLOSS, 1);
+        own_position = GBUFFER_POSITION_STORED16;
+        own_normal = GBUFFER_NORMAL_FLOAT16;
+        break;
+    case GBUFFER_CURTIS:
+        a = draft_att(&d, F16, GLT_FORMAT_RGBA16F, false);
+        draft_slot(&d, a, DEFERRED_SLOT_NORMAL_XY, 2);
+        draft_slot(&d, a, DEFERRED_SLOT_NORMAL_Z, 1);
+        draft_slot(&d, a, DEFERRED_SLOT_DEPTH, 1);
+        a = draft_att(&d, F16, GLT_FORMAT_RGBA16F, false);
+        draft_slot(&d, a, DEFERRED_SLOT_DIFFUSE, 3);
+        draft_slot(&d, a, DEFERRED_SLOT_GLOSS, 1);
+        a = draft_att(&d, F16, GLT_FORMAT_RGBA16F, false);
+        draft_slot(&d, a, DEFERRED_SLOT_SHININESS, 1);
+        a = draft_att(&d, F16, GLT_FORMAT_RGBA16F, false);
+        draft_slot(&d, a, DEFERRED_SLOT_EMISSIVE, 3);
+        own_normal = GBUFFER_NORMAL_FLOAT16;
+        break;
+    case GBUFFER_COMPACT:
+        a = draft_att(&d, F16, GLT_FORMAT_RG16F, false);
+        draft_slot(&d, a, DEFERRED_SLOT_POSITION_XY, 2);
+        a = draft_att(&d, F16, GLT_FORMAT_R16F, false);
+        draft_slot(&d, a, DEFERRED_SLOT_POSITION_Z, 1);
+        a = draft_att(&d, U8, GLT_FORMAT_RGBA8, false);
+        draft_slot(&d, a, DEFERRED_SLOT_DIFFUSE, 3);
+        draft_slot(&d, a, DEFERRED_SLOT_NORMAL_Z, 1);
+        a = draft_att(&d, U8, GLT_FORMAT_RG8, false);
+        draft_slot(&d, a, DEFERRED_SLOT_NORMAL_XY, 2);
+        a = draft_att(&d, U8, GLT_FORMAT_RG8, false);
+        draft_slot(&d, a, DEFERRED_SLOT_GLOSS, 1);
+        draft_slot(&d, a, DEFERRED_SLOT_SHININESS, 1);
+        a = draft_att(&d, U8, GLT_FORMAT_RGBA8, false);
+        draft_slot(&d, a, DEFERRED_SLOT_EMISSIVE, 3);
+        own_position = GBUFFER_POSITION_STORED16;
+        break;
+    case GBUFFER_SPHEREMAP:
+        a = draft_att(&d, U8, GLT_FORMAT_RG8, false);
+        draft_slot(&d, a, DEFERRED_SLOT_NORMAL_XY, 2);
+        a = draft_att(&d, F16, GLT_FORMAT_RGBA16F, false);
+        draft_slot(&d, a, DEFERRED_SLOT_DEPTH, 1);
+        draft_slot(&d, a, DEFERRED_SLOT_GLOSS, 1);
+        draft_slot(&d, a, DEFERRED_SLOT_SHININESS, 1);
+        a = draft_att(&d, U8, GLT_FORMAT_RGBA8, false);
+        draft_slot(&d, a, DEFERRED_SLOT_DIFFUSE, 3);
+        a = draft_att(&d, U8, GLT_FORMAT_RGBA8, false);
+        draft_slot(&d, a, DEFERRED_SLOT_EMISSIVE, 3);
+        own_normal = GBUFFER_NORMAL_SPHEREMAP8;
+        spheremap = true;
+        break;
+    case GBUFFER_REFERENCE:
+        a = draft_att(&d, F32, GLT_FORMAT_RGBA32F, false);
+        draft_slot(&d, a, DEFERRED_SLOT_POSITION_XY, 2);
+        draft_slot(&d, a, DEFERRED_SLOT_POSITION_Z, 1);
+        draft_slot(&d, a, DEFERRED_SLOT_SHININESS, 1);
+        a = draft_att(&d, F32, GLT_FORMAT_RGBA32F, false);
+        draft_slot(&d, a, DEFERRED_SLOT_NORMAL_XY, 2);
+        draft_slot(&d, a, DEFERRED_SLOT_NORMAL_Z, 1);
+        draft_slot(&d, a, DEFERRED_SLOT_GLOSS, 1);
+        a = draft_att(&d, F32, GLT_FORMAT_RGBA32F, false);
+        draft_slot(&d, a, DEFERRED_SLOT_DIFFUSE, 3);
+        a = draft_att(&d, F32, GLT_FORMAT_RGBA32F, false);
+        draft_slot(&d, a, DEFERRED_SLOT_EMISSIVE, 3);
+        own_position = GBUFFER_POSITION_STORED32;
+        own_normal = GBUFFER_NORMAL_FLOAT32;
+        break;
+    default:
+        snprintf(err, errlen, "deferred: unknown G-buffer preset %d", (int)o->gbuffer);
+        return false;
+    }
+
+    /* >>overrides: the field gets an attachment of its own */
+    gbuffer_position pos = o->gbuffer_position;
+    bool depth_buffer = false;
+    if (pos != GBUFFER_POSITION_PRESET && pos != own_position) {
+        draft_remove(&d, DEFERRED_SLOT_POSITION_XY, true);
+        draft_remove(&d, DEFERRED_SLOT_POSITION_Z, true);
+        draft_remove(&d, DEFERRED_SLOT_DEPTH, true);
+        switch (pos) {
+        case GBUFFER_POSITION_STORED16:
+        case GBUFFER_POSITION_STORED32:
+            a = draft_att(&d, pos == GBUFFER_POSITION_STORED16 ? F16 : F32, GLT_FORMAT_NONE,
+                          true);
+            draft_slot(&d, a, DEFERRED_SLOT_POSITION_XY, 2);
+            draft_slot(&d, a, DEFERRED_SLOT_POSITION_Z, 1);
+            break;
+        case GBUFFER_POSITION_DEPTH:
+            depth_buffer = true;
+            break;
+        default:
+            snprintf(err, errlen, "deferred: unknown G-buffer position %d", (int)pos);
+            return false;
+        }
+    }
+    gbuffer_normal nrm = o->gbuffer_normal;
+    if (nrm != GBUFFER_NORMAL_PRESET && nrm != own_normal) {
+        draft_remove(&d, DEFERRED_SLOT_NORMAL_XY, true);
+        draft_remove(&d, DEFERRED_SLOT_NORMAL_Z, true);
+        spheremap = false;
+        switch (nrm) {
+        case GBUFFER_NORMAL_FLOAT16:
+        case GBUFFER_NORMAL_FLOAT32:
+        case GBUFFER_NORMAL_UNORM10:
+            a = draft_att(&d,
+                          nrm == GBUFFER_NORMAL_FLOAT16   ? F16
+                          : nrm == GBUFFER_NORMAL_FLOAT32 ? F32
+                                                          : DEFERRED_CHANNELS_UNORM10,
+                          GLT_FORMAT_NONE, true);
+            draft_slot(&d, a, DEFERRED_SLOT_NORMAL_XY, 2);
+            draft_slot(&d, a, DEFERRED_SLOT_NORMAL_Z, 1);
+            break;
+        case GBUFFER_NORMAL_SPHEREMAP8:
+        case GBUFFER_NORMAL_SPHEREMAP16:
+            a = draft_att(&d, nrm == GBUFFER_NORMAL_SPHEREMAP8 ? U8 : F16, GLT_FORMAT_NONE, true);
+            draft_slot(&d, a, DEFERRED_SLOT_NORMAL_XY, 2);
+            spheremap = true;
+            break;
+        default:
+            snprintf(err, errlen, "deferred: unknown G-buffer normal %d", (int)nrm);
+            return false;
+        }
+    }
+
+    /* >>what the scene does not need: the slot goes, its channels stay where they were */
+    if (!needs.gloss) {
+        draft_remove(&d, DEFERRED_SLOT_GLOSS, false);
+        draft_remove(&d, DEFERRED_SLOT_SHININESS, false);
+    }
+    if (!needs.emissive)
+        draft_remove(&d, DEFERRED_SLOT_EMISSIVE, false);
+
+    /* >>the attachments that remain, packed again where an override took a slot */
+    memset(out, 0, sizeof *out);
+    for (int i = 0; i < d.nattachments; i++) {
+        deferred_attachment at = d.att[i];
+        if (at.nslots == 0)
+            continue;
+        if (out->nattachments >= DEFERRED_MAX_ATTACHMENTS) {
+            snprintf(err, errlen, "bug: deferred: more than %d G-buffer attachments",
+                     DEFERRED_MAX_ATTACHMENTS);
+            return false;
+        }
+        if (d.touched[i]) {
+            uint8_t first = 0;
+            for (int k = 0; k < at.nslots; k++) {
+                at.slot[k].first = first;
+                first = (uint8_t)(first + at.slot[k].count);
+            }
+            at.format = narrowest(at.channels, first);
+        }
+        name_attachment(&at, spheremap);
+        for (int k = 0; k < at.nslots; k++)
+            out->has[at.slot[k].kind] = true;
+        out->att[out->nattachments++] = at;
+    }
+    out->emissive_intensity = d.emissive_intensity && out->has[DEFERRED_SLOT_EMISSIVE];
+    out->position = out->has[DEFERRED_SLOT_POSITION_XY]  ? DEFERRED_POSITION_STORED
+                    : out->has[DEFERRED_SLOT_DEPTH] && !depth_buffer ? DEFERRED_POSITION_LINEAR_DEPTH
+                                                                     : DEFERRED_POSITION_DEPTH_BUFFER;
+    out->normal = DEFERRED_NORMAL_XYZ_FLOAT;
+    if (spheremap) {
+        out->normal = DEFERRED_NORMAL_SPHEREMAP;
+    } else {
+        for (int i = 0; i < out->nattachments; i++)
+            for (int k = 0; k < out->att[i].nslots; k++)
+                if (out->att[i].slot[k].kind == DEFERRED_SLOT_NORMAL_XY &&
+                    (out->att[i].channels == DEFERRED_CHANNELS_UNORM8 ||
+                     out->att[i].channels == DEFERRED_CHANNELS_UNORM10))
+                    out->normal = DEFERRED_NORMAL_XYZ_UNORM;
+    }
+    return true;
+}
+
+unsigned deferred_layout_bytes_per_pixel(const deferred_layout *l)
+{
+    unsigned b = 0;
+    for (int i = 0; i < l->nattachments; i++) {
+        const gl_format_info *fi = gl_format_get(l->att[i].format);
+        b += fi ? fi->bytes_per_pixel : 0;
+    }
+    return b;
+}
+
+
+static bool slot_where(const deferred_layout *l, deferred_slot_kind k, char *buf, size_t len,
+                       deferred_channel_type *ch)
+{
+    static const char swz[] = "xyzw";
+    for (int i = 0; i < l->nattachments; i++)
+        for (int s = 0; s < l->att[i].nslots; s++) {
+            const deferred_slot *sl = &l->att[i].slot[s];
+            if (sl->kind != k)
+                continue;
+            char sw[5] = "";
+            for (int c = 0; c < sl->count && sl->first + c < 4; c++)
+                sw[c] = swz[sl->first + c];
+            snprintf(buf, len, "gb%d.%s", i, sw);
+            if (ch)
+                *ch = l->att[i].channels;
+            return true;
+        }
+    return false;
+}
+
+static void add_define(deferred_layout_defs *d, const char *name, deferred_slot_kind k,
+                       const deferred_layout *l)
+{
+    char where[16];
+    if (d->n < DEFERRED_MAX_LAYOUT_DEFS && slot_where(l, k, where, sizeof where, NULL))
+        snprintf(d->text[d->n++], sizeof d->text[0], "%s %s", name, where);
+}
+
+void deferred_layout_defines(const deferred_layout *l, deferred_layout_defs *d)
+{
+    memset(d, 0, sizeof *d);
+    if (l->position == DEFERRED_POSITION_STORED) {
+        add_define(d, "GB_POSITION_XY", DEFERRED_SLOT_POSITION_XY, l);
+        add_define(d, "GB_POSITION_Z", DEFERRED_SLOT_POSITION_Z, l);
+    } else if (l->position == DEFERRED_POSITION_LINEAR_DEPTH) {
+        add_define(d, "GB_DEPTH", DEFERRED_SLOT_DEPTH, l);
+    }
+    snprintf(d->text[d->n++], sizeof d->text[0], "GB_NORMAL_ENC %d",
+             l->normal == DEFERRED_NORMAL_SPHEREMAP   ? 2
+             : l->normal == DEFERRED_NORMAL_XYZ_UNORM ? 1
+                                                      : 0);
+    add_define(d, "GB_NORMAL_XY", DEFERRED_SLOT_NORMAL_XY, l);
+    if (l->normal != DEFERRED_NORMAL_SPHEREMAP)
+        add_define(d, "GB_NORMAL_Z", DEFERRED_SLOT_NORMAL_Z, l);
+    add_define(d, "GB_DIFFUSE", DEFERRED_SLOT_DIFFUSE, l);
+    add_define(d, "GB_GLOSS", DEFERRED_SLOT_GLOSS, l);
+    add_define(d, "GB_SHININESS", DEFERRED_SLOT_SHININESS, l);
+    char where[16];
+    deferred_channel_type ch;
+    if (slot_where(l, DEFERRED_SLOT_SHININESS, where, sizeof where, &ch) &&
+        (ch == DEFERRED_CHANNELS_UNORM8 || ch == DEFERRED_CHANNELS_UNORM10))
+        snprintf(d->text[d->n++], sizeof d->text[0], "GB_SHININESS_UNORM");
+    add_define(d, l->emissive_intensity ? "GB_EMISSIVE_INTENSITY" : "GB_EMISSIVE",
+               DEFERRED_SLOT_EMISSIVE, l);
+}

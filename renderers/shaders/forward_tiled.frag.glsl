@@ -1,0 +1,54 @@
+// forward-plus's and clustered's shading pass: ambient + emissive as
+// forward_base.frag, then the lights
+// of this pixel's tile list (built by tile_cull.comp) in light order, each with the
+// squared-range rejection of forward_spml.frag, so that both loops add the same terms
+// in the same order. Depth EQUAL against the pre-pass: each pixel is shaded once.
+// clustered: SLICES (and TILES_Y) defined, the list is the fragment's cluster's.
+// Defines: the material's maps (surface.inc); TILE_SIZE and TILES_X (the grid);
+// NO_GRID: the scene has no point or spot light, there is no cull pass and every
+// light of the frame (u_light_count, all directional) is looped.
+#include "bindings.h"
+#include "frame.inc"
+#include "surface.inc"
+#include "lighting.inc"
+#include "lights.inc"
+#include "tiles.inc"
+
+layout(location = LOC_RENDERER) uniform int u_light_count;   // lights in b_lights
+
+layout(location = 0) out vec4 o_color;
+
+void main()
+{
+    Surface s = surface_get();
+    vec3 c = f_ambient.rgb * s.diffuse + s.emissive;
+#ifdef NO_GRID
+    uint first = 0u, n = uint(u_light_count);
+#else
+    uvec2 t = uvec2(gl_FragCoord.xy) / uint(TILE_SIZE);
+    uint cell = t.y * uint(TILES_X) + t.x;
+#ifdef SLICES
+    // the cluster: this tile's slice of the fragment's view depth (tile_cull.comp)
+    float log_ratio = log(1.0 + 2.0 / (f_proj[1][1] * float(SLICES_Y)));
+    int k = clamp(int(floor(log(-s.position.z / f_clip.x) / log_ratio)), 0, SLICES - 1);
+    cell += uint(k) * uint(TILES_X * TILES_Y);
+#endif
+    uvec4 list = b_tiles[cell];
+    uint first = list.x, n = list.y;
+#endif
+    for (uint k = 0u; k < n; k++) {
+#ifdef NO_GRID
+        Light l = b_lights[k];
+#else
+        Light l = b_lights[b_indices[first + k]];
+#endif
+        if (int(l.color_type.w) != LIGHT_DIRECTIONAL) {
+            vec3 d = l.position_range.xyz - s.position;
+            float r = l.position_range.w;
+            if (dot(d, d) > r * r)
+                continue;
+        }
+        c += shade_light(l, s.position, s.normal, s.diffuse, s.gloss, s.shininess);
+    }
+    o_color = vec4(c, 1.0);
+}

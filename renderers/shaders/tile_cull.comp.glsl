@@ -1,0 +1,84 @@
+// forward-plus's light culling (Harada et al. 2012): one work group per screen tile of
+// TILE_SIZE x TILE_SIZE pixels, one invocation per pixel.
+//   1. The tile's depth range: the smallest and largest pre-pass depth of its pixels
+//      with geometry (depth < 1), widened by two steps of the 24-bit depth buffer so
+//      that no surface's reconstructed depth falls outside; a tile without geometry
+//      gets an empty list.
+//   2. Its frustum: four planes through the eye and the edges of the tile on the near
+//      plane (from the inverse projection), and the depth range.
+//   3. Every light of the frame is tested, TILE_SIZE^2 at a time, one per invocation:
+//      point lights as their sphere (radius = range); spots as the smaller of that
+//      sphere and the cone's bounding sphere; directional lights always pass. The
+//      test is conservative (a light that reaches no pixel of the tile may pass; one
+//      that reaches one always does), so the shading loop, which rejects by range
+//      again, adds exactly what forward-spml adds.
+//   4. The list is counted first, then its place in the shared index buffer taken
+//      with one atomicAdd (dynamically sized: no per-tile budget), then written in
+//      light order (a bit mask per chunk of lights, popped by runs of words at places
+//      given by an exclusive prefix of the runs' counts; cull_cell in
+//      tile_cull.inc). A list that does not fit the buffer is not written: the tile
+//      records an empty list (and its true length in w); b_stats.next then exceeds the capacity and the frame fails
+//      (forward_plus.c), whatever order the tiles took their places in.
+// Clustered (Olsson, Billeter and Assarsson 2012), with SLICES defined: each tile is cut
+// into exponential depth slices, k = floor(log(-z/near) / log(1 + 2 tan(fov/2) / S_y))
+// with S_y = SLICES_Y (clustered.slices), so that clusters are about as deep as they are
+// wide; SLICES of them reach the far plane (shading_cluster_slices). The tile's list is
+// made first, then each slice the tile's depth range meets (one more on either side) is
+// culled from that list against the slice's depth range (cull_clusters, tile_cull.inc);
+// the other clusters are written empty.
+// Defines: TILE_SIZE, TILES_X (and SLICES, SLICES_Y, TILES_Y). Uniforms: u_light_count.
+#define TILES_COHERENT   // clusters read their tile's list, written in this dispatch
+#include "bindings.h"
+#include "frame.inc"
+#include "lighting.inc"
+#include "lights.inc"
+#include "tiles.inc"
+layout(local_size_x = TILE_SIZE, local_size_y = TILE_SIZE) in;
+
+layout(binding = BIND_TEX_DEPTH) uniform sampler2D t_depth;
+
+#include "tile_cull.inc"
+
+void main()
+{
+    uint me = gl_LocalInvocationIndex;
+    uvec2 tile = gl_WorkGroupID.xy;
+    uint tile_index = tile.y * uint(TILES_X) + tile.x;
+    ivec2 size = ivec2(f_viewport.xy);
+    ivec2 pixel = ivec2(gl_GlobalInvocationID.xy);
+    if (me == 0u) {
+        s_min_depth = floatBitsToUint(1.0);
+        s_max_depth = 0u;
+        s_covered = 0u;
+    }
+#ifdef SLICES
+    if (me < uint(SLICES))
+        s_slice_covered[me] = 0u;
+#endif
+    barrier();
+    if (all(lessThan(pixel, size))) {
+        float d = texelFetch(t_depth, pixel, 0).r;
+        if (d < 1.0) {
+            atomicMin(s_min_depth, floatBitsToUint(d));
+            atomicMax(s_max_depth, floatBitsToUint(d));
+            atomicAdd(s_covered, 1u);
+#ifdef SLICES
+            atomicAdd(s_slice_covered[slice_of(view_z(d))], 1u);
+#endif
+        }
+    }
+    barrier();
+    uint covered = s_covered;
+    uint nlights = covered == 0u ? 0u : uint(u_light_count);
+
+    float tile_znear, tile_zfar;
+    tile_frustum(tile, size, tile_znear, tile_zfar);
+
+    g_znear = tile_znear;
+    g_zfar = tile_zfar;
+#ifndef SLICES
+    cull_cell(tile_index, covered, nlights, 0u, false);
+#else
+    cull_clusters(tile_index, covered, nlights, tile_znear, tile_zfar);
+#endif
+}

@@ -1,0 +1,234 @@
+// The light culling of the tiled renderers (tile_cull.comp's steps 2-4, see there),
+// shared with tiled_deferred.comp: the shared memory, the tile's planes and depth
+// range, the sphere tests, and cull_cell(), which counts, places and writes one
+// tile's (or cluster's) list. Needs bindings.h, frame.inc, lighting.inc, lights.inc,
+// tiles.inc and TILE_SIZE, TILES_X (SLICES, TILES_Y).
+layout(location = LOC_RENDERER) uniform int u_light_count;
+
+const uint N = uint(TILE_SIZE * TILE_SIZE);
+
+shared uint s_min_depth, s_max_depth, s_covered, s_count, s_offset;
+#ifdef SLICES
+shared uint s_slice_covered[SLICES];
+#endif
+const uint CHUNK = 8192u;                 // lights per bit mask
+const uint WORDS = CHUNK / 32u;
+shared uint s_bits[WORDS];               // this chunk's passing lights, a bit each
+shared uint s_part[TILE_SIZE * TILE_SIZE];   // per invocation: its words' count, then
+                                             // where its lights go
+shared uint s_chunk;                     // lights of this chunk in the list
+
+vec3 view_at(vec2 ndc_xy, float ndc_z)
+{
+    vec4 v = f_inv_proj * vec4(ndc_xy, ndc_z, 1.0);
+    return v.xyz / v.w;
+}
+
+float view_z(float depth)
+{
+    return view_at(vec2(0.0), depth * 2.0 - 1.0).z;
+}
+
+vec4 plane_through_eye(vec3 a, vec3 b, vec3 inside)
+{
+    vec3 n = normalize(cross(a, b));
+    if (dot(n, inside) < 0.0)
+        n = -n;
+    return vec4(n, 0.0);
+}
+
+vec4 g_planes[4];
+float g_znear, g_zfar;   // view z of the range: g_znear >= z >= g_zfar (both negative)
+
+bool sphere_passes(vec3 c, float r)
+{
+    if (c.z - r > g_znear || c.z + r < g_zfar)
+        return false;
+    for (int i = 0; i < 4; i++)
+        if (dot(g_planes[i].xyz, c) < -r)
+            return false;
+    return true;
+}
+
+bool light_passes(uint i)
+{
+    Light l = b_lights[i];
+    int type = int(l.color_type.w);
+    if (type == LIGHT_DIRECTIONAL)
+        return true;
+    vec3 p = l.position_range.xyz;
+    float range = l.position_range.w;
+    // conservative against rounding: a little larger than the range
+    float slack = 1e-4 * (range + length(p));
+    if (type == LIGHT_SPOT) {
+        float cosa = l.direction_cos.w;
+        if (cosa >= 0.5) {
+            float t = range / (2.0 * cosa);
+            return sphere_passes(p + l.direction_cos.xyz * t, t + slack);
+        }
+    }
+    return sphere_passes(p, range + slack);
+}
+
+#ifdef SLICES
+// Olsson et al.'s spacing: log(1 + 2 tan(fov/2) / S_y), S_y = SLICES_Y (clustered.slices);
+// tan(fov/2) = 1 / proj[1][1].
+float slice_log_ratio()
+{
+    return log(1.0 + 2.0 / (f_proj[1][1] * float(SLICES_Y)));
+}
+
+// The slice of view depth z (negative): k = floor(log(-z/near) / log(1 + 2 tan(fov/2) /
+// S_y)), clamped to the SLICES slices that reach the far plane (the first and the last
+// are open towards the near and the far side, tile_cull.comp).
+int slice_of(float z)
+{
+    return clamp(int(floor(log(-z / f_clip.x) / slice_log_ratio())), 0, SLICES - 1);
+}
+
+// View depth (positive) where slice k begins.
+float slice_start(int k)
+{
+    return f_clip.x * exp(float(k) * slice_log_ratio());
+}
+#endif
+
+// The tile's four planes into g_planes, and its depth range (view z, widened by two
+// steps of the 24-bit depth buffer; -inf far when some pixel is at depth 1) from
+// s_min_depth and s_max_depth.
+void tile_frustum(uvec2 tile, ivec2 size, out float tile_znear, out float tile_zfar)
+{
+    const float STEP = 2.0 / 16777215.0;
+    float dmin = max(uintBitsToFloat(s_min_depth) - STEP, 0.0);
+    float dmax = uintBitsToFloat(s_max_depth) + STEP;
+    vec2 lo = vec2(tile * uint(TILE_SIZE)) / vec2(size) * 2.0 - 1.0;
+    vec2 hi = vec2(min((tile + 1u) * uint(TILE_SIZE), uvec2(size))) / vec2(size) * 2.0 - 1.0;
+    vec3 c00 = view_at(lo, -1.0), c10 = view_at(vec2(hi.x, lo.y), -1.0);
+    vec3 c11 = view_at(hi, -1.0), c01 = view_at(vec2(lo.x, hi.y), -1.0);
+    vec3 inside = (c00 + c10 + c11 + c01) * 0.25;
+    g_planes[0] = plane_through_eye(c00, c01, inside);   // left
+    g_planes[1] = plane_through_eye(c10, c11, inside);   // right
+    g_planes[2] = plane_through_eye(c00, c10, inside);   // bottom
+    g_planes[3] = plane_through_eye(c01, c11, inside);   // top
+    tile_znear = view_z(dmin);
+    tile_zfar = dmax >= 1.0 ? uintBitsToFloat(0xff800000u) : view_z(dmax);   // -inf
+}
+
+// Culls every light against the planes and [g_zfar, g_znear] into cell `cell`'s list.
+// Called by the whole work group with the same arguments. First each invocation counts
+// its share of the lights (no barrier), the total takes its place in the index buffer;
+// then, CHUNK lights at a time, the passing lights set their bit in s_bits, each
+// invocation pops the bits of its run of words and writes them at its place (an
+// exclusive prefix of the runs' counts): the list in light order with a handful of
+// barriers per chunk (barriers are what a software rasterizer pays for).
+// from_list: the candidates are b_indices[src .. src + nlights) (a list written
+// earlier in this dispatch by this work group: the tile's, for its clusters) rather
+// than the lights 0 .. nlights. cell NO_CELL: no b_tiles entry, the list's place and
+// length stay in s_offset and s_count (0xffffffff: it did not fit).
+const uint NO_CELL = 0xffffffffu;
+
+uint candidate(uint e, uint src, bool from_list)
+{
+    return from_list ? b_indices[src + e] : e;
+}
+
+void cull_cell(uint cell, uint covered, uint nlights, uint src, bool from_list)
+{
+    uint me = gl_LocalInvocationIndex;
+    if (me == 0u)
+        s_count = 0u;
+    barrier();
+    uint mine = 0u;
+    for (uint i = me; i < nlights; i += N)
+        if (light_passes(candidate(i, src, from_list)))
+            mine++;
+    if (mine > 0u)
+        atomicAdd(s_count, mine);
+    barrier();
+    uint count = s_count;
+    if (me == 0u) {
+        uint offset = count == 0u ? 0u : atomicAdd(b_stats.next, count);
+        bool fits = offset <= b_stats.capacity && count <= b_stats.capacity - offset;
+        s_offset = fits ? offset : 0xffffffffu;
+        if (cell != NO_CELL)
+            b_tiles[cell] = uvec4(fits ? offset : 0u, fits ? count : 0u, covered, count);
+    }
+    barrier();
+    uint offset = s_offset;
+    if (offset == 0xffffffffu || count == 0u)
+        return;   // uniform across the work group
+    const uint PER = (WORDS + N - 1u) / N;   // words each invocation owns
+    uint w0 = min(me * PER, WORDS), w1 = min(w0 + PER, WORDS);
+    uint written = 0u;
+    for (uint base = 0u; base < nlights; base += CHUNK) {
+        for (uint w = me; w < WORDS; w += N)
+            s_bits[w] = 0u;
+        barrier();
+        uint end = min(base + CHUNK, nlights);
+        for (uint i = base + me; i < end; i += N)
+            if (light_passes(candidate(i, src, from_list)))
+                atomicOr(s_bits[(i - base) >> 5], 1u << ((i - base) & 31u));
+        barrier();
+        uint c = 0u;
+        for (uint w = w0; w < w1; w++)
+            c += uint(bitCount(s_bits[w]));
+        s_part[me] = c;
+        barrier();
+        if (me == 0u) {   // exclusive prefix over the invocations' runs
+            uint sum = 0u;
+            for (uint k = 0u; k < N; k++) {
+                uint v = s_part[k];
+                s_part[k] = sum;
+                sum += v;
+            }
+            s_chunk = sum;
+        }
+        barrier();
+        uint pos = offset + written + s_part[me];
+        for (uint w = w0; w < w1; w++) {
+            uint b = s_bits[w];
+            while (b != 0u) {
+                int j = findLSB(b);
+                b &= b - 1u;
+                b_indices[pos++] = candidate(base + w * 32u + uint(j), src, from_list);
+            }
+        }
+        written += s_chunk;
+        barrier();
+    }
+}
+
+#ifdef SLICES
+// The tile's clusters: the tile's own list first (over every light, into the index
+// buffer, not a cell of its own), then each slice the tile's depth range meets (one
+// more on either side) culled from that list against the slice's depth range (widened
+// by 1e-3; the first slice open towards the near side, the last towards the far), the
+// others written empty. Cells are numbered k x TILES_X x TILES_Y + tile.
+void cull_clusters(uint tile_index, uint covered, uint nlights, float tile_znear,
+                   float tile_zfar)
+{
+    uint me = gl_LocalInvocationIndex;
+    uint ntiles = uint(TILES_X * TILES_Y);
+    cull_cell(NO_CELL, covered, nlights, 0u, false);
+    memoryBarrierBuffer();
+    barrier();
+    uint src = s_offset, n = s_offset == 0xffffffffu ? 0u : s_count;
+    barrier();
+    int kmin = 0, kmax = -1;   // no geometry: every cluster empty
+    if (covered > 0u) {
+        kmin = max(slice_of(tile_znear) - 1, 0);
+        kmax = isinf(tile_zfar) ? SLICES - 1 : min(slice_of(tile_zfar) + 1, SLICES - 1);
+    }
+    for (uint k = me; k < uint(SLICES); k += N)
+        if (int(k) < kmin || int(k) > kmax)
+            b_tiles[k * ntiles + tile_index] = uvec4(0u);
+    for (int k = kmin; k <= kmax; k++) {
+        const float EPS = 1e-3;
+        g_znear = k == 0 ? tile_znear : min(tile_znear, -slice_start(k) * (1.0 - EPS));
+        g_zfar = k == SLICES - 1 ? tile_zfar
+                                 : max(tile_zfar, -slice_start(k + 1) * (1.0 + EPS));
+        cull_cell(uint(k) * ntiles + tile_index, s_slice_covered[k], n, src, true);
+        barrier();
+    }
+}
+#endif

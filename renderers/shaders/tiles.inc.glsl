@@ -1,0 +1,25 @@
+// The per-tile light lists of the tiled renderers (forward_plus.c), std430:
+//   b_tiles[t]    x: the list's first entry in b_indices, y: its length (lights),
+//                 z: pixels of the tile with geometry (depth < 1), w: the length the
+//                 list needs (y = 0 when it did not fit the index buffer)
+//   b_indices[]   light indices into b_lights, each tile's list contiguous and in
+//                 light order
+//   b_stats       next: entries asked for so far (beyond capacity: some list did not
+//                 fit); capacity: entries the index buffer holds
+// Needs bindings.h. TILES_COHERENT (tiled_deferred.comp, which reads the lists its own
+// work group wrote) makes the lists coherent.
+#ifdef TILES_COHERENT
+#define TILES_QUALIFIER coherent
+#else
+#define TILES_QUALIFIER
+#endif
+layout(std430, binding = BIND_SSBO_TILE_LISTS) TILES_QUALIFIER buffer TileLists {
+    uvec4 b_tiles[];
+};
+layout(std430, binding = BIND_SSBO_TILE_INDICES) TILES_QUALIFIER buffer TileIndices {
+    uint b_indices[];
+};
+layout(std430, binding = BIND_SSBO_TILE_STATS) buffer TileStats {
+    uint next;
+    uint capacity;
+} b_stats;

@@ -1,0 +1,578 @@
+/* The tiled renderers (issue 10: forward-plus, clustered, tiled-deferred) against forward-spml with
+ * its lights in a storage buffer: images within RMSE 1/255 and max 4/255 on the 8-bit output, with 4,096
+ * lights, with shadows on and off, and a tile whose list is longer than any fixed
+ * per-tile budget could be; the exact passes, draws, dispatches and tiles; the
+ * overflow policy (a list that does not fit fails the frame, naming the tile and its
+ * count; nothing is truncated silently); the cull pass pruned without point or spot
+ * lights. Debug contexts: any GL error fails. */
+#include <setjmp.h>
+#include <stdarg.h>
+#include <stddef.h>
+#include <stdint.h>
+#include <cmocka.h>
+
+#include <math.h>
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+
+#include "renderers/gl/context.h"
+#include "renderers/gl/loader.h"
+#include "renderers/renderer.h"
+#include "renderers/shading.h"
+#include "results/image_io.h"
+#include "scenes/scene.h"
+#include "tests/gl/gl_test.h"
+
+/* Not multiples of 16: the last column and row of tiles are partial. */
+enum { W = 100, H = 60 };
+#define RMSE_MAX (1.0 / 255.0)
+#define MAX_ABS_MAX (4.0 / 255.0)
+
+static gl_context *ctx;
+
+static const char *const KINDS[] = {"forward-plus", "clustered", "tiled-deferred"};
+enum { NKINDS = 3 };
+
+typedef struct shot {
+    image img;
+    frame_stats fs;
+    pass_plan plan;
+    size_t ngrid;              /* renderer_light_grid's cells */
+    uint32_t grid_max;         /* their longest list */
+    double grid_sum;           /* their lengths summed */
+} shot;
+
+static renderer_options options(void)
+{
+    const gl_info *gi = gl_context_info(ctx);
+    renderer_options o = {
+        .width = W, .height = H, .queries = true,
+        .timer_query = gi->timer_query, .pipeline_statistics = gi->pipeline_statistics,
+        .max_uniform_block_size = gi->max_uniform_block_size,
+        .gbuffer = GBUFFER_REFERENCE, .light_buffer = LIGHT_BUFFER_STORAGE,
+    };
+    return o;
+}
+
+/* One frame of s with `kind` and options o: the output, the frame's stats (after
+ * collect), the plan and the light grid. */
+static void render(const char *kind, const renderer_options *o, scene *s, shot *out)
+{
+    char err[512];
+    memset(out, 0, sizeof *out);
+    renderer *r = renderer_create(kind, o, err, sizeof err);
+    if (!r || !renderer_prepare(r, s, err, sizeof err))
+        fail_msg("%s: %s", kind, err);
+    renderer_draw(r, s, &out->fs);
+    gl.Finish();
+    renderer_collect(r, &out->fs);
+    renderer_describe(r, &out->plan);
+    size_t n = 0;
+    const uint32_t *g = renderer_light_grid(r, &n);
+    for (size_t i = 0; g && i < n; i++) {
+        out->grid_max = g[i] > out->grid_max ? g[i] : out->grid_max;
+        out->grid_sum += g[i];
+    }
+    out->ngrid = n;
+    out->img = (image){.width = W, .height = H, .channels = 4, .type = IMAGE_U8,
+                       .pixels = malloc((size_t)W * H * 4)};
+    assert_true(gl_context_read_rgba8(ctx, out->img.pixels, err, sizeof err));
+    renderer_destroy(r);
+    gl_context_poll_errors(ctx, kind);
+    assert_int_equal(gl_context_error_count(ctx), 0);
+}
+
+static void expect_agree(const char *what, const image *a, const image *b)
+{
+    image_error e;
+    char err[256];
+    assert_true(image_compare(a, b, &e, err, sizeof err));
+    if (e.rmse >= RMSE_MAX || e.max_abs > MAX_ABS_MAX)
+        print_error("%s: rmse %.3f/255, max %.1f/255\n", what, e.rmse * 255, e.max_abs * 255);
+    assert_true(e.rmse < RMSE_MAX);
+    assert_true(e.max_abs <= MAX_ABS_MAX);
+    assert_int_equal(e.nonfinite, 0);
+}
+
+static const pass_plan_entry *plan_pass(const pass_plan *p, const char *name)
+{
+    for (size_t i = 0; i < p->npasses; i++)
+        if (strcmp(p->pass[i].name, name) == 0)
+            return &p->pass[i];
+    return NULL;
+}
+
+static void look(scene *s, const float eye[3], const float target[3])
+{
+    sm_vec3 up = {0.0f, 1.0f, 0.0f};
+    sm_vec3_copy(eye, s->cam.eye);
+    sm_vec3_copy(target, s->cam.target);
+    sm_lookat(s->cam.eye, s->cam.target, up, s->view);
+    sm_perspective(s->fovy, (float)W / (float)H, s->znear, s->zfar, s->proj);
+    sm_mat4_mul(s->proj, s->view, s->viewproj);
+}
+
+/* "shapes" at t = 0 with exactly these lights, seen from (0, 12, 28). */
+static scene *shapes(const scene_light *lights, uint32_t n)
+{
+    char err[256];
+    light_params lp = {.placement = PLACEMENT_NONE, .radius = 1.0f};
+    scene *s = scene_build("shapes", &lp, W, H, err, sizeof err);
+    if (!s)
+        fail_msg("shapes: %s", err);
+    s->lights = calloc(n ? n : 1, sizeof *s->lights);
+    memcpy(s->lights, lights, n * sizeof *s->lights);
+    s->nlights_total = n;
+    s->count = (light_count){.start = n, .max = n};
+    scene_update(s, 0.0);
+    static const float eye[3] = {0.0f, 12.0f, 28.0f}, target[3] = {0.0f, 1.0f, 0.0f};
+    look(s, eye, target);
+    return s;
+}
+
+static scene_light point(float x, float y, float z, float radius)
+{
+    scene_light l = {.type = LIGHT_POINT, .position = {x, y, z}, .color = {0.6f, 0.5f, 0.4f},
+                     .radius = radius, .attenuation = ATTENUATION_LINEAR_RANGE};
+    return l;
+}
+
+/* Sixteen point lights over the floor: the exact passes, draws, dispatches and tiles
+ * of forward-plus at every tile size, and its image. */
+static void test_counts_and_tile_sizes(void **state)
+{
+    (void)state;
+    scene_light l[16];
+    for (int i = 0; i < 16; i++)
+        l[i] = point((float)(i % 4) * 8.0f - 12.0f, 3.0f, (float)(i / 4) * 8.0f - 12.0f, 7.0f);
+    scene *s = shapes(l, 16);
+    renderer_options o = options();
+    shot ref, t;
+    render("forward-spml", &o, s, &ref);
+    uint32_t v = 0;
+    const pass_stats *shade = find_pass(&ref.fs, "shade");
+    assert_non_null(shade);
+    v = (uint32_t)shade->draw_calls;   /* forward-spml: one draw per visible object */
+    assert_true(v > 0);
+    assert_int_equal(ref.fs.total.dispatches, 0);
+
+    static const int sizes[] = {8, 16, 32};
+    double prev_evals = 0.0;
+    for (size_t k = 0; k < 3; k++) {
+        o.tile_size = sizes[k];
+        uint32_t tx = (uint32_t)((W + sizes[k] - 1) / sizes[k]);
+        uint32_t ty = (uint32_t)((H + sizes[k] - 1) / sizes[k]);
+        /* clustered: the same tiles cut into Olsson's depth slices (S_y = 24: slices
+         * about as deep as wide, so many more than 24 reach the far plane); every
+         * cluster's list is part of its tile's, so it evaluates no more lights per
+         * pixel */
+        uint32_t K = shading_cluster_slices(s, 24, NULL);
+        assert_true(K > 24 && K <= 1024);
+        shot cl;
+        render("clustered", &o, s, &cl);
+        assert_int_equal(cl.fs.total.dispatches, 1);
+        assert_int_equal(find_pass(&cl.fs, "cull")->dispatches, 1);
+        assert_int_equal(cl.fs.total.draw_calls, 2u * v + (s->sky ? 1u : 0u) + 1u);
+        assert_int_equal(cl.fs.grid_cells, tx * ty * K);
+        assert_int_equal(cl.ngrid, tx * ty * K);
+        assert_int_equal(cl.fs.overflow[0], '\0');
+        char what[64];
+        snprintf(what, sizeof what, "clustered, %d px tiles", sizes[k]);
+        expect_agree(what, &cl.img, &ref.img);
+        image_free(&cl.img);
+
+        /* tiled-deferred: the G-buffer, one dispatch for ambient and every light, the sky
+         * and the resolve: V + sky + 1 draws */
+        shot td;
+        render("tiled-deferred", &o, s, &td);
+        size_t ntd = s->sky ? 4 : 3;
+        assert_int_equal(td.fs.npasses, ntd);
+        assert_string_equal(td.fs.pass[0].name, "gbuffer");
+        assert_string_equal(td.fs.pass[1].name, "tiled");
+        assert_int_equal(td.fs.pass[0].draw_calls, v);
+        assert_int_equal(td.fs.pass[1].draw_calls, 0);
+        assert_int_equal(td.fs.pass[1].dispatches, 1);
+        assert_int_equal(td.fs.total.draw_calls, v + (s->sky ? 1u : 0u) + 1u);
+        assert_int_equal(td.fs.grid_cells, tx * ty);
+        snprintf(what, sizeof what, "tiled-deferred, %d px tiles", sizes[k]);
+        expect_agree(what, &td.img, &ref.img);
+        image_free(&td.img);
+
+        render("forward-plus", &o, s, &t);
+        /* the same tiles, the same lists (tiled-deferred's depth is the G-buffer's) */
+        assert_true(fabs(td.fs.grid_lights_mean - t.fs.grid_lights_mean) < 1e-9);
+        assert_true(cl.fs.light_evals_per_pixel <= t.fs.light_evals_per_pixel);
+        assert_true(cl.fs.grid_lights_max <= t.fs.grid_lights_max);
+        const char *names[] = {"depth", "cull", "shade", "sky", "resolve"};
+        size_t np = s->sky ? 5 : 4;
+        assert_int_equal(t.fs.npasses, np);
+        for (size_t i = 0; i < np; i++)
+            assert_string_equal(t.fs.pass[i].name, i == 4 || (i == 3 && !s->sky)
+                                                       ? "resolve" : names[i]);
+        assert_int_equal(find_pass(&t.fs, "depth")->draw_calls, v);
+        assert_int_equal(find_pass(&t.fs, "cull")->draw_calls, 0);
+        assert_int_equal(find_pass(&t.fs, "cull")->dispatches, 1);
+        assert_int_equal(find_pass(&t.fs, "shade")->draw_calls, v);
+        assert_int_equal(t.fs.total.dispatches, 1);
+        assert_int_equal(t.fs.total.draw_calls, 2u * v + (s->sky ? 1u : 0u) + 1u);
+        assert_int_equal(t.fs.grid_cells, tx * ty);
+        assert_int_equal(t.ngrid, tx * ty);
+        assert_true(t.grid_max > 0 && t.grid_max <= 16);
+        assert_true(fabs(t.fs.grid_lights_max - t.grid_max) < 1e-9);
+        assert_true(fabs(t.fs.grid_lights_mean - t.grid_sum / (double)t.ngrid) < 1e-9);
+        /* culling culls: fewer than all 16 lights per shaded pixel, and fewer the
+         * smaller the tiles (8 px: 3.17, 16 px: 4.89, 32 px: 9.25 here) */
+        assert_true(t.fs.light_evals_per_pixel > 0.0 && t.fs.light_evals_per_pixel < 12.0);
+        assert_true(t.fs.light_evals_per_pixel > prev_evals);
+        prev_evals = t.fs.light_evals_per_pixel;
+        assert_int_equal(t.fs.overflow[0], '\0');
+        snprintf(what, sizeof what, "forward-plus, %d px tiles", sizes[k]);
+        expect_agree(what, &t.img, &ref.img);
+        image_free(&t.img);
+    }
+    image_free(&ref.img);
+    scene_destroy(s);
+}
+
+/* 4,096 radius-3 lights on curtis-scene3, and one tile reached by all of them: longer
+ * than any per-tile budget a work group's shared memory could hold. */
+static void test_4096_lights(void **state)
+{
+    (void)state;
+    char err[256];
+    light_params lp = {.placement = PLACEMENT_RANDOM, .seed = 1337, .rng = RNG_MSVC,
+                       .count = {.start = 4096, .max = 4096}, .radius = 3.0f,
+                       .color_max = 0.3f};
+    scene *s = scene_build("curtis-scene3", &lp, W, H, err, sizeof err);
+    if (!s)
+        fail_msg("curtis-scene3: %s", err);
+    scene_update(s, 5.0);
+    renderer_options o = options();
+    shot ref, t;
+    render("forward-spml", &o, s, &ref);
+    for (size_t k = 0; k < NKINDS; k++) {
+        render(KINDS[k], &o, s, &t);
+        char what[64];
+        snprintf(what, sizeof what, "%s, 4096 lights", KINDS[k]);
+        expect_agree(what, &t.img, &ref.img);
+        assert_int_equal(t.fs.total.dispatches, 1);
+        assert_true(t.fs.lights_drawn > 1000);
+        image_free(&t.img);
+    }
+    image_free(&ref.img);
+
+    /* the uniform block cannot hold them: refused with the numbers, storage named */
+    o.light_buffer = LIGHT_BUFFER_UNIFORM;
+    renderer *r = renderer_create("forward-spml", &o, err, sizeof err);
+    assert_non_null(r);
+    assert_false(renderer_prepare(r, s, err, sizeof err));
+    assert_non_null(strstr(err, "4096 lights requested"));
+    assert_non_null(strstr(err, "forward.light_buffer: storage"));
+    renderer_destroy(r);
+    scene_destroy(s);
+
+    /* 4,096 lights over the middle of the floor, every one reaching the tiles there */
+    scene_light *many = calloc(4096, sizeof *many);
+    for (int i = 0; i < 4096; i++) {
+        many[i] = point(-2.0f + 0.001f * (float)i, 1.0f, 0.0f, 6.0f);
+        many[i].color[0] = many[i].color[1] = many[i].color[2] = 0.0002f;
+    }
+    s = shapes(many, 4096);
+    free(many);
+    o = options();
+    render("forward-spml", &o, s, &ref);
+    for (size_t k = 0; k < NKINDS; k++) {
+        render(KINDS[k], &o, s, &t);
+        char what[64];
+        snprintf(what, sizeof what, "%s, 4096 lights in one tile", KINDS[k]);
+        expect_agree(what, &t.img, &ref.img);
+        assert_true(t.fs.grid_lights_max == 4096.0);
+        assert_int_equal(t.fs.overflow[0], '\0');
+        image_free(&t.img);
+    }
+    image_free(&ref.img);
+    scene_destroy(s);
+}
+
+/* An index buffer too small for a frame's lists (tiles.max_lights_per_tile 1 with 64
+ * overlapping lights): the frame reports the total, the capacity and the longest
+ * list, never a truncated image that passes. */
+static void test_overflow_is_reported(void **state)
+{
+    (void)state;
+    scene_light l[64];
+    for (int i = 0; i < 64; i++)
+        l[i] = point(0.0625f * (float)i - 2.0f, 2.0f, 0.0f, 20.0f);
+    scene *s = shapes(l, 64);
+    renderer_options o = options();
+    o.max_lights_per_tile = 1;
+    shot t;
+    render("forward-plus", &o, s, &t);
+    print_message("overflow: %s\n", t.fs.overflow);
+    assert_non_null(strstr(t.fs.overflow, "forward-plus: the tiles' light lists need "));
+    assert_non_null(strstr(t.fs.overflow, " indices, the index buffer holds 28; tile "));
+    assert_non_null(strstr(t.fs.overflow, " alone needs 64"));
+    image_free(&t.img);
+    render("clustered", &o, s, &t);
+    print_message("overflow: %s\n", t.fs.overflow);
+    char want[96];
+    snprintf(want, sizeof want, " indices, the index buffer holds %u; cluster ",
+             28u * shading_cluster_slices(s, 24, NULL));
+    assert_non_null(strstr(t.fs.overflow, "clustered: the clusters' light lists need "));
+    assert_non_null(strstr(t.fs.overflow, want));
+    assert_non_null(strstr(t.fs.overflow, " alone needs 64"));
+    image_free(&t.img);
+    scene_destroy(s);
+}
+
+/* Without point or spot lights there is nothing to cull: no cull pass, no dispatch,
+ * and the plan says why; the image still agrees. */
+static void test_no_cull_without_local_lights(void **state)
+{
+    (void)state;
+    scene_light sun = {.type = LIGHT_DIRECTIONAL, .direction = {-0.4f, -1.0f, -0.3f},
+                       .color = {0.8f, 0.8f, 0.7f}};
+    sm_vec3_normalize(sun.direction);
+    scene *s = shapes(&sun, 1);
+    renderer_options o = options();
+    shot ref, t;
+    render("forward-spml", &o, s, &ref);
+    for (size_t k = 0; k < NKINDS; k++) {
+        render(KINDS[k], &o, s, &t);
+        assert_null(find_pass(&t.fs, "cull"));
+        assert_int_equal(t.fs.grid_cells, 0);
+        assert_int_equal(t.fs.grid_pass, 0);
+        if (strcmp(KINDS[k], "tiled-deferred") == 0) {
+            /* its one dispatch shades too: it runs, without culling */
+            assert_int_equal(t.fs.total.dispatches, 1);
+            const pass_plan_entry *e = plan_pass(&t.plan, "tiled");
+            assert_non_null(e);
+            assert_true(e->run);
+            assert_non_null(strstr(e->reason, "no point or spot light: no culling"));
+        } else {
+            assert_int_equal(t.fs.total.dispatches, 0);
+            const pass_plan_entry *e = plan_pass(&t.plan, "cull");
+            assert_non_null(e);
+            assert_false(e->run);
+            assert_string_equal(e->reason, "skipped, the scene has no point or spot light");
+        }
+        char what[64];
+        snprintf(what, sizeof what, "%s, one directional light", KINDS[k]);
+        expect_agree(what, &t.img, &ref.img);
+        image_free(&t.img);
+    }
+    image_free(&ref.img);
+    scene_destroy(s);
+}
+
+/* interior: a shadowing moon, omni lights and shadowing spots; with shadows on and
+ * off the images agree and the shadows pass draws what forward-spml's does. */
+static void test_shadows_on_and_off(void **state)
+{
+    (void)state;
+    char err[256];
+    light_params lp = {.placement = PLACEMENT_SCENE, .radius = 1.0f,
+                       .count = {.start = LIGHT_COUNT_ALL, .max = LIGHT_COUNT_ALL}};
+    scene *s = scene_build("interior", &lp, W, H, err, sizeof err);
+    if (!s)
+        fail_msg("interior: %s", err);
+    scene_update(s, 15.0);
+    for (int off = 0; off < 2; off++) {
+        renderer_options o = options();
+        o.no_shadows = off;
+        shot ref, t;
+        render("forward-spml", &o, s, &ref);
+        for (size_t k = 0; k < NKINDS; k++) {
+            render(KINDS[k], &o, s, &t);
+            const pass_stats *a = find_pass(&ref.fs, "shadows"), *b = find_pass(&t.fs, "shadows");
+            if (off) {
+                assert_null(a);
+                assert_null(b);
+            } else {
+                assert_non_null(a);
+                assert_non_null(b);
+                assert_true(a->draw_calls > 0);
+                assert_int_equal(a->draw_calls, b->draw_calls);
+            }
+            char what[64];
+            snprintf(what, sizeof what, "%s, interior, shadows %s", KINDS[k], off ? "off" : "on");
+            expect_agree(what, &t.img, &ref.img);
+            image_free(&t.img);
+        }
+        image_free(&ref.img);
+    }
+    scene_destroy(s);
+}
+
+/* tiled-deferred reads every G-buffer preset and field override of deferred: against
+ * deferred with the same G-buffer (full-screen lights) it agrees, and the plan lists
+ * the light passes as done in the tiled pass. */
+static void test_tiled_deferred_gbuffers(void **state)
+{
+    (void)state;
+    scene_light l[6];
+    for (int i = 0; i < 5; i++)
+        l[i] = point((float)i * 6.0f - 12.0f, 3.0f, (float)(i % 2) * 6.0f - 3.0f, 9.0f);
+    l[5] = (scene_light){.type = LIGHT_DIRECTIONAL, .direction = {-0.4f, -1.0f, -0.3f},
+                         .color = {0.3f, 0.3f, 0.25f}};
+    sm_vec3_normalize(l[5].direction);
+    scene *s = shapes(l, 6);
+    static const struct {
+        gbuffer_preset preset;
+        gbuffer_position position;
+        gbuffer_normal normal;
+        const char *name;
+    } g[] = {
+        {GBUFFER_CURTIS, 0, 0, "curtis"},
+        {GBUFFER_FAT, 0, 0, "fat"},
+        {GBUFFER_COMPACT, 0, 0, "compact"},
+        {GBUFFER_SPHEREMAP, 0, 0, "spheremap"},
+        {GBUFFER_REFERENCE, 0, 0, "reference"},
+        {GBUFFER_CURTIS, GBUFFER_POSITION_DEPTH, GBUFFER_NORMAL_SPHEREMAP8,
+         "curtis, position from depth, spheremap8 normals"},
+        {GBUFFER_FAT, GBUFFER_POSITION_STORED32, GBUFFER_NORMAL_UNORM10,
+         "fat, position float32, unorm10 normals"},
+    };
+    for (size_t i = 0; i < sizeof g / sizeof g[0]; i++) {
+        renderer_options o = options();
+        o.gbuffer = g[i].preset;
+        o.gbuffer_position = g[i].position;
+        o.gbuffer_normal = g[i].normal;
+        o.light_volumes = LIGHT_VOLUMES_FULLSCREEN;
+        shot d, t;
+        render("deferred", &o, s, &d);
+        render("tiled-deferred", &o, s, &t);
+        assert_int_equal(t.plan.gbuffer_bytes, d.plan.gbuffer_bytes);
+        const pass_plan_entry *e = plan_pass(&t.plan, "point");
+        assert_non_null(e);
+        assert_false(e->run);
+        assert_string_equal(e->reason, "in the tiled pass");
+        char what[96];
+        snprintf(what, sizeof what, "tiled-deferred vs deferred, %s", g[i].name);
+        expect_agree(what, &t.img, &d.img);
+        image_free(&t.img);
+        image_free(&d.img);
+    }
+    /* one target: no separate specular */
+    renderer_options o = options();
+    o.separate_specular = true;
+    char err[256];
+    assert_null(renderer_create("tiled-deferred", &o, err, sizeof err));
+    assert_non_null(strstr(err, "tiled-deferred: deferred.separate_specular: "));
+    scene_destroy(s);
+}
+
+/* clustered with clustered.shading: deferred: the G-buffer, one clustered compute
+ * pass; agrees with forward-spml (16 lights, 4,096 lights, shadows on and off) and
+ * with deferred on other G-buffers; the same clusters as clustered forward. */
+static void test_clustered_deferred(void **state)
+{
+    (void)state;
+    scene_light l[16];
+    for (int i = 0; i < 16; i++)
+        l[i] = point((float)(i % 4) * 8.0f - 12.0f, 3.0f, (float)(i / 4) * 8.0f - 12.0f, 7.0f);
+    scene *s = shapes(l, 16);
+    renderer_options o = options();
+    shot ref, t, f;
+    render("forward-spml", &o, s, &ref);
+    uint32_t v = (uint32_t)find_pass(&ref.fs, "shade")->draw_calls;
+    render("clustered", &o, s, &f);
+    o.clustered_deferred = true;
+    render("clustered", &o, s, &t);
+    assert_string_equal(t.fs.pass[0].name, "gbuffer");
+    assert_string_equal(t.fs.pass[1].name, "tiled");
+    assert_int_equal(t.fs.pass[1].dispatches, 1);
+    assert_int_equal(t.fs.total.draw_calls, v + (s->sky ? 1u : 0u) + 1u);
+    uint32_t cells = ((W + 15) / 16) * ((H + 15) / 16) * shading_cluster_slices(s, 24, NULL);
+    assert_int_equal(t.fs.grid_cells, cells);
+    assert_int_equal(t.ngrid, cells);
+    const pass_plan_entry *e = plan_pass(&t.plan, "tiled");
+    assert_non_null(e);
+    assert_non_null(strstr(e->reason, "clusters"));
+    expect_agree("clustered deferred vs forward-spml", &t.img, &ref.img);
+    expect_agree("clustered deferred vs clustered forward", &t.img, &f.img);
+    image_free(&t.img);
+    image_free(&f.img);
+    image_free(&ref.img);
+    /* the curtis G-buffer: against deferred with the same */
+    o.gbuffer = GBUFFER_CURTIS;
+    o.light_volumes = LIGHT_VOLUMES_FULLSCREEN;
+    render("deferred", &o, s, &ref);
+    render("clustered", &o, s, &t);
+    expect_agree("clustered deferred vs deferred, curtis", &t.img, &ref.img);
+    image_free(&t.img);
+    image_free(&ref.img);
+    scene_destroy(s);
+
+    char err[256];
+    light_params lp = {.placement = PLACEMENT_RANDOM, .seed = 1337, .rng = RNG_MSVC,
+                       .count = {.start = 4096, .max = 4096}, .radius = 3.0f,
+                       .color_max = 0.3f};
+    s = scene_build("curtis-scene3", &lp, W, H, err, sizeof err);
+    if (!s)
+        fail_msg("curtis-scene3: %s", err);
+    scene_update(s, 5.0);
+    o = options();
+    render("forward-spml", &o, s, &ref);
+    o.clustered_deferred = true;
+    render("clustered", &o, s, &t);
+    expect_agree("clustered deferred, 4096 lights", &t.img, &ref.img);
+    image_free(&t.img);
+    image_free(&ref.img);
+    scene_destroy(s);
+
+    light_params sp = {.placement = PLACEMENT_SCENE, .radius = 1.0f,
+                       .count = {.start = LIGHT_COUNT_ALL, .max = LIGHT_COUNT_ALL}};
+    s = scene_build("interior", &sp, W, H, err, sizeof err);
+    if (!s)
+        fail_msg("interior: %s", err);
+    scene_update(s, 15.0);
+    for (int off = 0; off < 2; off++) {
+        o = options();
+        o.no_shadows = off;
+        render("forward-spml", &o, s, &ref);
+        o.clustered_deferred = true;
+        render("clustered", &o, s, &t);
+        assert_true(off ? find_pass(&t.fs, "shadows") == NULL
+                        : find_pass(&t.fs, "shadows") != NULL);
+        expect_agree(off ? "clustered deferred, interior, shadows off"
+                         : "clustered deferred, interior, shadows on", &t.img, &ref.img);
+        image_free(&t.img);
+        image_free(&ref.img);
+    }
+    scene_destroy(s);
+}
+
+static int setup(void **state)
+{
+    (void)state;
+    ctx = gl_test_context(W, H);
+    return ctx ? 0 : -1;
+}
+
+static int teardown(void **state)
+{
+    (void)state;
+    gl_context_destroy(ctx);
+    return 0;
+}
+
+int main(void)
+{
+    char why[256];
+    if (!egl_display_available(why, sizeof why)) {
+        fprintf(stderr, "SKIP: %s\n", why);
+        return 77;
+    }
+    const struct CMUnitTest tests[] = {
+        cmocka_unit_test(test_counts_and_tile_sizes),
+        cmocka_unit_test(test_4096_lights),
+        cmocka_unit_test(test_overflow_is_reported),
+        cmocka_unit_test(test_no_cull_without_local_lights),
+        cmocka_unit_test(test_shadows_on_and_off),
+        cmocka_unit_test(test_tiled_deferred_gbuffers),
+        cmocka_unit_test(test_clustered_deferred),
+    };
+    return cmocka_run_group_tests(tests, setup, teardown);
+}
