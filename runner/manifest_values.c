@@ -503,7 +503,7 @@ static bool parse_scene_file(vctx *c, const param *pd, const ynode *n, const cha
     scene_file_info info;
     char msg[1024];
     if (!scene_file_check(&o, &info, msg, sizeof msg)) {
-        err(c, vals[0], sub[0], "%s", msg);
+        err(c, vals[0], sub[0], "expected a scene file that loads, found %s", msg);
         dst->scene_file[0] = '\0';
         return false;
     }

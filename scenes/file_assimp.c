@@ -45,6 +45,15 @@
 // >>io
 
 /* FNV-1a 64, the same function as runner/hash.h (scenes/ cannot reach runner/). */
+/* assimp's aiGetMaterialFloat is a C99 `inline` function with no external definition: an
+ * unoptimised build (the sanitizer suite's -O0) would not link. The array form is a real
+ * export. */
+static enum aiReturn mat_float(const struct aiMaterial *m, const char *key, unsigned type,
+                               unsigned index, float *out)
+{
+    return aiGetMaterialFloatArray(m, key, type, index, out, NULL);
+}
+
 static uint64_t fnv1a64_more(uint64_t h, const void *data, size_t len)
 {
     const unsigned char *p = data;
@@ -747,14 +756,14 @@ static material_alpha alpha_mode(const struct aiMaterial *am, float *cutoff)
     if (aiGetMaterialString(am, AI_MATKEY_GLTF_ALPHAMODE, &mode) == aiReturn_SUCCESS) {
         if (strcmp(mode.data, "MASK") == 0) {
             float c = 0.5f;
-            aiGetMaterialFloat(am, AI_MATKEY_GLTF_ALPHACUTOFF, &c);
+            mat_float(am, AI_MATKEY_GLTF_ALPHACUTOFF, &c);
             if (cutoff)
                 *cutoff = c;
             return MATERIAL_MASK;
         }
         return strcmp(mode.data, "BLEND") == 0 ? MATERIAL_BLEND : MATERIAL_OPAQUE;
     }
-    aiGetMaterialFloat(am, AI_MATKEY_OPACITY, &opacity);
+    mat_float(am, AI_MATKEY_OPACITY, &opacity);
     return opacity < 1.0f ? MATERIAL_BLEND : MATERIAL_OPAQUE;
 }
 
@@ -867,19 +876,19 @@ static void add_material(scene_builder *b, loaded *l, const struct aiMaterial *a
     aiGetMaterialColor(am, AI_MATKEY_COLOR_EMISSIVE, &emis);
     float metallic = 0.0f, roughness = 1.0f, gloss = 0.0f, shininess = 0.0f;
     float specular, exponent;
-    if (aiGetMaterialFloat(am, AI_MATKEY_ROUGHNESS_FACTOR, &roughness) == aiReturn_SUCCESS &&
-        aiGetMaterialFloat(am, AI_MATKEY_GLOSSINESS_FACTOR, &gloss) != aiReturn_SUCCESS) {
-        aiGetMaterialFloat(am, AI_MATKEY_METALLIC_FACTOR, &metallic);
+    if (mat_float(am, AI_MATKEY_ROUGHNESS_FACTOR, &roughness) == aiReturn_SUCCESS &&
+        mat_float(am, AI_MATKEY_GLOSSINESS_FACTOR, &gloss) != aiReturn_SUCCESS) {
+        mat_float(am, AI_MATKEY_METALLIC_FACTOR, &metallic);
         metallic = sm_clamp(metallic, 0.0f, 1.0f);
         specular = 0.04f * (1.0f - metallic) + luminance(&base) * metallic;
         exponent = shininess_of_roughness(roughness);
-    } else if (aiGetMaterialFloat(am, AI_MATKEY_GLOSSINESS_FACTOR, &gloss) == aiReturn_SUCCESS) {
+    } else if (mat_float(am, AI_MATKEY_GLOSSINESS_FACTOR, &gloss) == aiReturn_SUCCESS) {
         aiGetMaterialColor(am, AI_MATKEY_COLOR_SPECULAR, &spec);
         specular = luminance(&spec);
         exponent = shininess_of_roughness(1.0f - gloss);
     } else {
         aiGetMaterialColor(am, AI_MATKEY_COLOR_SPECULAR, &spec);
-        aiGetMaterialFloat(am, AI_MATKEY_SHININESS, &shininess);
+        mat_float(am, AI_MATKEY_SHININESS, &shininess);
         specular = luminance(&spec);
         exponent = sm_clamp(shininess, 1.0f, 2048.0f);
     }

@@ -632,6 +632,9 @@ static const bad_case bad_cases[] = {
       "8:24: sweep.lights.count[2]: expected 0 lights with lights.placement none, found up to 9 "
       "lights"}},
     {"not_mapping.yaml", {"1:1: expected a mapping, found a sequence"}},
+    {"scene_file_missing.yaml",
+     {"5:15: scene.file: expected a scene file that loads, found "
+      "/nonexistent-shadesweep-test/scene.glb: cannot open: No such file or directory"}},
     {"missing_required.yaml", {"1:1: scene: expected one of empty, shapes, curtis-scene1, curtis-scene2, curtis-scene3, canyon, interior, spot-coverage, two-spots-overlap, floating-spot, or {file: PATH, scale, up, camera}, found nothing"}},
     {"missing_all.yaml",
      {"1:1: shadesweep: expected 1, found nothing",
