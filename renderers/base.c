@@ -86,6 +86,7 @@ void renderer_base_pass_end(renderer_base *b, frame_stats *out)
     pass_stats *p = &out->pass[i];
     gl_state_end_pass(b->st, p);
     p->gpu_us = p->fragments = p->primitives = NAN;   /* collect fills them */
+    p->scissor_pixels = NAN;                          /* a scissoring renderer sets it */
     if (i < RENDERER_BASE_MAX_PASSES)
         b->pass_counts[i] = *gl_state_pass_counts(b->st);
     out->npasses = i + 1;

@@ -32,6 +32,14 @@
  *                       faces (increment on depth fail), then back faces (decrement on
  *                       depth fail); shade back faces where the stencil is 0, INCR on pass
  *                       (which resets it to 1)
+ *     hull              (seed 000 4.5.8's unoptimised baseline) the volume's back faces (cull
+ *                       FRONT), no depth test, no stencil: every pixel the hull covers is
+ *                       shaded, whatever surface lies there
+ *     scissor           a full-screen pass with the scissor test on, the rectangle
+ *                       deferred_scissor_rect (the projection of the box around the light's
+ *                       volume; Policarpo & Fonseca as seed 000 4.5.8 cites them); passes.csv's
+ *                       scissor_pixels is the sum of the pass's rectangles. GL_SCISSOR_TEST is
+ *                       not state the cache keeps: it is switched off again after the pass
  *   compose      (separate_specular only, seed 001) the specular target added into the
  *                diffuse one, full screen
  *   sky          (the scene has a sky) scene_gpu_draw_sky into the light target's
@@ -43,8 +51,8 @@
  * shadow-casting set of a visible light l that casts shadows, Sh = sum of |C(l)| over
  * them, 0 when the shadows pass does not run):
  *
- *   fullscreen:        Sh + V + 1 + D + P + S            + [compose] + [sky] + 1
- *   volume:            Sh + V + 1 + D + P + S            + [compose] + [sky] + 1
+ *   fullscreen, scissor, volume, hull:
+ *                      Sh + V + 1 + D + P + S            + [compose] + [sky] + 1
  *   stencil:           Sh + V + 1 + D + 2 (P + S)        + [compose] + [sky] + 1
  *   stencil-two-pass:  Sh + V + 1 + D + 3 (P + S)        + [compose] + [sky] + 1
  *
@@ -207,6 +215,7 @@ typedef struct deferred_renderer {
     GLuint *shade_query;
     int *shade_query_type;
     size_t nshade_queries, cap_shade_queries;
+    int64_t scissor_area;            /* light_volumes scissor: this pass's rectangles */
 } deferred_renderer;
 
 static unsigned material_variant(const scene_material *m)
@@ -248,7 +257,7 @@ static void *create(const char *name, bool tiled, bool clustered,
         free(r);
         return NULL;
     }
-    if ((unsigned)opts->light_volumes > (unsigned)LIGHT_VOLUMES_STENCIL_TWO_PASS) {
+    if ((unsigned)opts->light_volumes > (unsigned)LIGHT_VOLUMES_SCISSOR) {
         snprintf(err, errlen, "deferred: unknown light volume mode %d", (int)opts->light_volumes);
         free(r);
         return NULL;
@@ -323,6 +332,8 @@ static const char *mode_name(light_volume_mode m)
     case LIGHT_VOLUMES_FULLSCREEN: return "fullscreen";
     case LIGHT_VOLUMES_VOLUME: return "volume";
     case LIGHT_VOLUMES_STENCIL_TWO_PASS: return "stencil-two-pass";
+    case LIGHT_VOLUMES_HULL: return "hull";
+    case LIGHT_VOLUMES_SCISSOR: return "scissor";
     }
     return "unknown";
 }
@@ -349,6 +360,12 @@ static bool build_program(deferred_renderer *r, const char *display, const char 
         return false;
     }
     return true;
+}
+
+/* The modes whose point and spot lights draw the full-screen triangle. */
+static bool full_screen_mode(light_volume_mode m)
+{
+    return m == LIGHT_VOLUMES_FULLSCREEN || m == LIGHT_VOLUMES_SCISSOR;
 }
 
 static void plan(deferred_renderer *r, pass_id p, bool run, const char *fmt, ...)
@@ -493,7 +510,7 @@ static bool compile_programs(deferred_renderer *r, char *err, size_t errlen)
     for (int t = 0; t < DEFERRED_LIGHT_TYPES; t++) {
         if (!r->run[light_pass[t]])
             continue;
-        bool full = t == LIGHT_DIRECTIONAL || r->b.opts.light_volumes == LIGHT_VOLUMES_FULLSCREEN;
+        bool full = t == LIGHT_DIRECTIONAL || full_screen_mode(r->b.opts.light_volumes);
         const char *extra[6] = {type_define[t], NULL, NULL, NULL, NULL, NULL};
         int n = 1;
         if (full && unclipped)
@@ -786,6 +803,67 @@ static void fullscreen(deferred_renderer *r)
     gl_state_draw_fullscreen(r->b.st, r->b.width, r->b.height, r->unclipped);
 }
 
+int64_t deferred_scissor_rect(const scene *s, uint32_t light, int w, int h, int rect[4])
+{
+    const scene_light *l = &s->lights[light];
+    rect[0] = rect[1] = 0;
+    rect[2] = w;
+    rect[3] = h;
+    sm_mat4 model, mv, mvp;
+    frontend_light_volume_model(l, model);
+    /* the volume mesh's box in the model's frame, with room to spare (deferred.h) */
+    float lo[3], hi[3];
+    if (l->type == LIGHT_POINT) {
+        const float b = 1.05f;   /* the sphere's vertices lie within 1.0389 */
+        lo[0] = lo[1] = lo[2] = -b;
+        hi[0] = hi[1] = hi[2] = b;
+    } else {
+        const float b = 1.03f;   /* the cone's base: (1 + 2e-4) / cos(pi / 16) = 1.0198 */
+        lo[0] = lo[1] = -b;
+        hi[0] = hi[1] = b;
+        lo[2] = -1.001f;
+        hi[2] = 0.001f;
+    }
+    sm_mat4_mul(s->view, model, mv);
+    sm_mat4_mul(s->proj, mv, mvp);
+    float x0 = INFINITY, y0 = INFINITY, x1 = -INFINITY, y1 = -INFINITY;
+    float clip[8][4];
+    int behind = 0;
+    for (int c = 0; c < 8; c++) {
+        float p[3] = {(c & 1) ? hi[0] : lo[0], (c & 2) ? hi[1] : lo[1], (c & 4) ? hi[2] : lo[2]};
+        for (int k = 0; k < 4; k++)
+            clip[c][k] = mvp[0][k] * p[0] + mvp[1][k] * p[1] + mvp[2][k] * p[2] + mvp[3][k];
+        behind += clip[c][3] <= 1e-6f;
+    }
+    if (behind == 8) {   /* wholly behind the eye: nothing */
+        rect[2] = rect[3] = 0;
+        return 0;
+    }
+    if (behind)          /* the box reaches the eye's plane: the whole screen */
+        return (int64_t)w * h;
+    for (int c = 0; c < 8; c++) {
+        const float *cl = clip[c];
+        float x = (cl[0] / cl[3] * 0.5f + 0.5f) * (float)w;
+        float y = (cl[1] / cl[3] * 0.5f + 0.5f) * (float)h;
+        x0 = fminf(x0, x);
+        x1 = fmaxf(x1, x);
+        y0 = fminf(y0, y);
+        y1 = fmaxf(y1, y);
+    }
+    /* whole pixels that the box's projection touches, on the screen */
+    float fx0 = fmaxf(floorf(x0), 0.0f), fy0 = fmaxf(floorf(y0), 0.0f);
+    float fx1 = fminf(ceilf(x1), (float)w), fy1 = fminf(ceilf(y1), (float)h);
+    if (!(fx1 > fx0 && fy1 > fy0)) {
+        rect[2] = rect[3] = 0;
+        return 0;
+    }
+    rect[0] = (int)fx0;
+    rect[1] = (int)fy0;
+    rect[2] = (int)fx1 - rect[0];
+    rect[3] = (int)fy1 - rect[1];
+    return (int64_t)rect[2] * rect[3];
+}
+
 /* Point and spot lights of type t by the light-volume mode (the file's header). */
 static void draw_volume_light(deferred_renderer *r, const scene *s, int t, uint32_t li,
                               uint32_t layer)
@@ -793,6 +871,30 @@ static void draw_volume_light(deferred_renderer *r, const scene *s, int t, uint3
     gl_state *st = r->b.st;
     GLuint prog = r->light_program[t];
     switch (r->b.opts.light_volumes) {
+    case LIGHT_VOLUMES_SCISSOR: {
+        int rect[4];
+        r->scissor_area += deferred_scissor_rect(s, li, r->b.width, r->b.height, rect);
+        gl.Scissor(rect[0], rect[1], rect[2], rect[3]);
+        gl_state_program(st, prog);
+        set_light_uniform(s, li, layer);
+        shade_begin(r, t);
+        fullscreen(r);
+        shade_end(r);
+        r->shade_draws[t]++;
+        return;
+    }
+    case LIGHT_VOLUMES_HULL:
+        gl_state_viewport(st, 0, 0, r->b.width, r->b.height);
+        gl_state_program(st, prog);
+        set_light_uniform(s, li, layer);
+        gl_state_cull(st, GLS_CULL_FRONT);
+        gl_state_stencil(st, NULL);
+        gl_state_depth(st, NULL);
+        shade_begin(r, t);
+        scene_gpu_draw_light_volume(r->gpu, st, s, li);
+        shade_end(r);
+        r->shade_draws[t]++;
+        return;
     case LIGHT_VOLUMES_FULLSCREEN:
         gl_state_program(st, prog);
         set_light_uniform(s, li, layer);
@@ -891,7 +993,12 @@ static void light_pass(deferred_renderer *r, const scene *s, frame_stats *out, p
     gl_state_framebuffer(st, r->fb_light.fbo);
     gl_state_color_mask(st, GLS_COLOR_MASK_RGBA);
     gl_state_blend(st, &BLEND_ADD);
-    bool volumes = type != LIGHT_DIRECTIONAL && r->b.opts.light_volumes != LIGHT_VOLUMES_FULLSCREEN;
+    bool volumes = type != LIGHT_DIRECTIONAL && !full_screen_mode(r->b.opts.light_volumes);
+    bool scissor = type != LIGHT_DIRECTIONAL &&
+                   r->b.opts.light_volumes == LIGHT_VOLUMES_SCISSOR;
+    r->scissor_area = 0;
+    if (scissor)
+        gl.Enable(GL_SCISSOR_TEST);   /* not state the cache keeps: off again below */
     if (!volumes) {
         gl_state_depth(st, NULL);
         gl_state_stencil(st, NULL);
@@ -922,7 +1029,11 @@ static void light_pass(deferred_renderer *r, const scene *s, frame_stats *out, p
         gl.Disable(GL_DEPTH_CLAMP);
         gl_state_color_mask(st, GLS_COLOR_MASK_RGBA);
     }
+    if (scissor)
+        gl.Disable(GL_SCISSOR_TEST);
     pass_end(r, out);
+    if (scissor)
+        out->pass[out->npasses - 1].scissor_pixels = (double)r->scissor_area;
 }
 
 /* tiled-deferred's pass: the frame's visible lights into the light buffer, then one

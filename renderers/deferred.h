@@ -161,4 +161,10 @@ uint64_t deferred_last_shade_draws(const void *self, int type);
  * depth- and stencil-rejected ones included, so pass_stats.fragments cannot show it
  * there. */
 void deferred_count_shaded(void *self, bool on);
+/* light_volumes scissor: the screen rectangle {x, y, width, height} (GL's window
+ * coordinates, whole pixels, clipped to the w x h screen) that holds the projection of
+ * light `light`'s volume (the box around its mesh in the volume's own frame, a little
+ * larger than the mesh); the whole screen when the box reaches the eye's plane. Returns
+ * its area in pixels (0: off screen). */
+int64_t deferred_scissor_rect(const struct scene *s, uint32_t light, int w, int h, int rect[4]);
 uint64_t deferred_shaded_samples(const void *self, int type);

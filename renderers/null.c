@@ -88,6 +88,7 @@ static void null_draw(void *self, const struct scene *s, frame_stats *out)
         .state_changes = 0,      /* ... nor a state change */
         .fragments = NAN,
         .primitives = NAN,
+        .scissor_pixels = NAN,
     };
     out->lights_drawn = 0;
 }

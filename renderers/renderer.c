@@ -87,7 +87,7 @@ void renderer_draw(renderer *r, const struct scene *s, frame_stats *out)
 void renderer_collect(renderer *r, frame_stats *out)
 {
     r->impl->collect(r->self, out);
-    pass_stats t = {.name = "total"};
+    pass_stats t = {.name = "total", .scissor_pixels = NAN};
     for (size_t i = 0; i < out->npasses; i++) {
         const pass_stats *p = &out->pass[i];
         t.gpu_us += p->gpu_us;

@@ -51,7 +51,7 @@ static const char *const lightgrid_columns[] = {
 static const char *const passes_columns[] = {
     "run_id", "trial", "frame", "pass", "gpu_us", "cpu_us", "draw_calls", "state_changes",
     "fragments", "primitives", "dispatches", "cell_lights_mean", "cell_lights_max",
-    "light_evals_per_pixel",
+    "light_evals_per_pixel", "scissor_pixels",
 };
 #define NCOLS(a) (sizeof(a) / sizeof((a)[0]))
 
@@ -161,6 +161,7 @@ void run_files_frame(run_files *f, const char *run_id, uint32_t trial, const fra
         csv_f64(w, grid ? fs->grid_lights_mean : NAN, 3);
         csv_f64(w, grid ? fs->grid_lights_max : NAN, 0);
         csv_f64(w, grid ? fs->light_evals_per_pixel : NAN, 3);
+        csv_f64(w, ps->scissor_pixels, 0);   /* light_volumes scissor only */
         csv_end_row(w);
     }
 }

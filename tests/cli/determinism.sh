@@ -54,7 +54,7 @@ WORK = {"frames.csv": ["trial", "frame", "t_scene_s", "lights", "draw_calls", "s
                        "fragments"],
         "passes.csv": ["trial", "frame", "pass", "draw_calls", "state_changes", "fragments",
                        "primitives", "dispatches", "cell_lights_mean", "cell_lights_max",
-                       "light_evals_per_pixel"]}
+                       "light_evals_per_pixel", "scissor_pixels"]}
 for m in ("interior", "growth"):
     a, b = f"a-{m}", f"b-{m}"
     ids = sorted(os.listdir(os.path.join(a, "runs")))
