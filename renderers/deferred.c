@@ -210,11 +210,6 @@ typedef struct deferred_renderer {
 
     /* >>the last frame, for tests */
     uint64_t mark_draws[DEFERRED_LIGHT_TYPES], shade_draws[DEFERRED_LIGHT_TYPES];
-    bool count_shaded;               /* deferred_count_shaded: a GL_SAMPLES_PASSED query per
-                                        shade draw */
-    GLuint *shade_query;
-    int *shade_query_type;
-    size_t nshade_queries, cap_shade_queries;
     int64_t scissor_area;            /* light_volumes scissor: this pass's rectangles */
 } deferred_renderer;
 
@@ -757,38 +752,6 @@ static void bind_gbuffer_textures(deferred_renderer *r)
         gl_state_texture(r->b.st, DEFERRED_DEPTH_UNIT, r->depth.texture);
 }
 
-/* The test hook around one shade draw of light type t (deferred_count_shaded). */
-static void shade_begin(deferred_renderer *r, int t)
-{
-    if (!r->count_shaded)
-        return;
-    if (r->nshade_queries == r->cap_shade_queries) {
-        size_t cap = r->cap_shade_queries ? 2 * r->cap_shade_queries : 16;
-        GLuint *q = realloc(r->shade_query, cap * sizeof *q);
-        if (q)
-            r->shade_query = q;
-        int *ty = q ? realloc(r->shade_query_type, cap * sizeof *ty) : NULL;
-        if (!q || !ty) {
-            fprintf(stderr, "deferred: out of memory counting shaded samples\n");
-            r->count_shaded = false;
-            return;
-        }
-        r->shade_query_type = ty;
-        gl.GenQueries((GLsizei)(cap - r->cap_shade_queries), q + r->cap_shade_queries);
-        r->cap_shade_queries = cap;
-    }
-    r->shade_query_type[r->nshade_queries] = t;
-    gl.BeginQuery(GL_SAMPLES_PASSED, r->shade_query[r->nshade_queries]);
-}
-
-static void shade_end(deferred_renderer *r)
-{
-    if (!r->count_shaded)
-        return;
-    gl.EndQuery(GL_SAMPLES_PASSED);
-    r->nshade_queries++;
-}
-
 /* Light li, whose shadow-map layer this frame is `layer` (FRONTEND_NO_SHADOW: none). */
 static void set_light_uniform(const scene *s, uint32_t li, uint32_t layer)
 {
@@ -877,9 +840,7 @@ static void draw_volume_light(deferred_renderer *r, const scene *s, int t, uint3
         gl.Scissor(rect[0], rect[1], rect[2], rect[3]);
         gl_state_program(st, prog);
         set_light_uniform(s, li, layer);
-        shade_begin(r, t);
         fullscreen(r);
-        shade_end(r);
         r->shade_draws[t]++;
         return;
     }
@@ -890,17 +851,13 @@ static void draw_volume_light(deferred_renderer *r, const scene *s, int t, uint3
         gl_state_cull(st, GLS_CULL_FRONT);
         gl_state_stencil(st, NULL);
         gl_state_depth(st, NULL);
-        shade_begin(r, t);
         scene_gpu_draw_light_volume(r->gpu, st, s, li);
-        shade_end(r);
         r->shade_draws[t]++;
         return;
     case LIGHT_VOLUMES_FULLSCREEN:
         gl_state_program(st, prog);
         set_light_uniform(s, li, layer);
-        shade_begin(r, t);
         fullscreen(r);
-        shade_end(r);
         r->shade_draws[t]++;
         return;
     case LIGHT_VOLUMES_VOLUME:
@@ -910,13 +867,12 @@ static void draw_volume_light(deferred_renderer *r, const scene *s, int t, uint3
         gl_state_cull(st, GLS_CULL_FRONT);
         gl_state_stencil(st, NULL);
         gl_state_depth(st, &(gls_depth){.compare = GLS_COMPARE_GREATER, .write = false});
-        shade_begin(r, t);
         scene_gpu_draw_light_volume(r->gpu, st, s, li);
-        shade_end(r);
         r->shade_draws[t]++;
         return;
     case LIGHT_VOLUMES_STENCIL:
         gl_state_viewport(st, 0, 0, r->b.width, r->b.height);
+        renderer_base_shading(&r->b, false);   /* marks shade nothing: not in samples */
         gl_state_program(st, r->mark_program);
         gl_state_color_mask(st, GLS_COLOR_MASK_NONE);
         gl_state_cull(st, GLS_CULL_NONE);
@@ -931,6 +887,7 @@ static void draw_volume_light(deferred_renderer *r, const scene *s, int t, uint3
                              });
         scene_gpu_draw_light_volume(r->gpu, st, s, li);
         r->mark_draws[t]++;
+        renderer_base_shading(&r->b, true);
         gl_state_program(st, prog);
         set_light_uniform(s, li, layer);
         gl_state_color_mask(st, GLS_COLOR_MASK_RGBA);
@@ -942,13 +899,12 @@ static void draw_volume_light(deferred_renderer *r, const scene *s, int t, uint3
                                            .pass = GLS_STENCIL_OP_ZERO},
                                  .ref = 0,
                              });
-        shade_begin(r, t);
         scene_gpu_draw_light_volume(r->gpu, st, s, li);
-        shade_end(r);
         r->shade_draws[t]++;
         return;
     case LIGHT_VOLUMES_STENCIL_TWO_PASS:
         gl_state_viewport(st, 0, 0, r->b.width, r->b.height);
+        renderer_base_shading(&r->b, false);
         gl_state_program(st, r->mark_program);
         gl_state_color_mask(st, GLS_COLOR_MASK_NONE);
         gl_state_depth(st, &(gls_depth){.compare = GLS_COMPARE_LEQUAL, .write = false});
@@ -967,6 +923,7 @@ static void draw_volume_light(deferred_renderer *r, const scene *s, int t, uint3
                              });
         scene_gpu_draw_light_volume(r->gpu, st, s, li);
         r->mark_draws[t] += 2;
+        renderer_base_shading(&r->b, true);
         gl_state_program(st, prog);
         set_light_uniform(s, li, layer);
         gl_state_color_mask(st, GLS_COLOR_MASK_RGBA);
@@ -977,9 +934,7 @@ static void draw_volume_light(deferred_renderer *r, const scene *s, int t, uint3
                                            .pass = GLS_STENCIL_OP_INCR_WRAP},
                                  .ref = 0,
                              });
-        shade_begin(r, t);
         scene_gpu_draw_light_volume(r->gpu, st, s, li);
-        shade_end(r);
         r->shade_draws[t]++;
         return;
     }
@@ -1016,9 +971,7 @@ static void light_pass(deferred_renderer *r, const scene *s, frame_stats *out, p
         if (type == LIGHT_DIRECTIONAL) {
             gl_state_program(st, r->light_program[type]);
             set_light_uniform(s, li, r->fe.shadow_layer[k]);
-            shade_begin(r, type);
             fullscreen(r);
-            shade_end(r);
             r->shade_draws[type]++;
         } else {
             draw_volume_light(r, s, type, li, r->fe.shadow_layer[k]);
@@ -1082,7 +1035,6 @@ static void deferred_draw(void *self, const scene *s, frame_stats *out)
     out->lights_drawn = 0;
     memset(r->mark_draws, 0, sizeof r->mark_draws);
     memset(r->shade_draws, 0, sizeof r->shade_draws);
-    r->nshade_queries = 0;
     if (!r->prepared || !s)
         return;
     renderer_base_begin_frame(&r->b, out);   /* every frame counted alike */
@@ -1092,6 +1044,7 @@ static void deferred_draw(void *self, const scene *s, frame_stats *out)
     /* >>shadow maps, first: the light passes sample them */
     if (r->run[PASS_SHADOWS]) {
         pass_begin(r, out, PASS_SHADOWS);
+        renderer_base_shading(&r->b, false);   /* depth only: no samples shaded */
         shadow_maps_draw(&r->shadows, st, r->gpu, &r->fe, s);
         pass_end(r, out);
     }
@@ -1277,10 +1230,6 @@ static void deferred_destroy(void *self)
     if (!r)
         return;
     release_prepared(r);
-    if (r->cap_shade_queries)
-        gl.DeleteQueries((GLsizei)r->cap_shade_queries, r->shade_query);
-    free(r->shade_query);
-    free(r->shade_query_type);
     renderer_base_destroy(&r->b);
     free(r);
 }
@@ -1327,26 +1276,6 @@ gl_state *deferred_state_cache(void *self)
     return r ? r->b.st : NULL;
 }
 
-void deferred_count_shaded(void *self, bool on)
-{
-    deferred_renderer *r = self;
-    r->count_shaded = on;
-    r->nshade_queries = 0;
-}
-
-uint64_t deferred_shaded_samples(const void *self, int type)
-{
-    const deferred_renderer *r = self;
-    uint64_t sum = 0;
-    for (size_t i = 0; i < r->nshade_queries; i++) {
-        if (r->shade_query_type[i] != type)
-            continue;
-        GLuint64 v = 0;
-        gl.GetQueryObjectui64v(r->shade_query[i], GL_QUERY_RESULT, &v);
-        sum += v;
-    }
-    return sum;
-}
 
 // >>read_hdr
 

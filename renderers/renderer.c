@@ -96,10 +96,11 @@ void renderer_collect(renderer *r, frame_stats *out)
         t.dispatches += p->dispatches;
         t.state_changes += p->state_changes;
         t.fragments += p->fragments;
+        t.samples += p->samples;
         t.primitives += p->primitives;
     }
     if (out->npasses == 0)
-        t.gpu_us = t.fragments = t.primitives = NAN;
+        t.gpu_us = t.fragments = t.primitives = t.samples = NAN;
     out->total = t;
 }
 

@@ -19,6 +19,8 @@ typedef struct pass_stats {
     uint64_t dispatches;       /* compute dispatches (not in draw_calls) */
     uint64_t state_changes;
     double fragments;          /* GL_FRAGMENT_SHADER_INVOCATIONS */
+    double samples;            /* GL_SAMPLES_PASSED of the pass's shading draws (not the
+                                  stencil marks, shadow maps or depth pre-pass) */
     double primitives;         /* GL_PRIMITIVES_SUBMITTED */
     double scissor_pixels;     /* light_volumes scissor: the pass's scissor rectangles'
                                   area, summed over its lights; NAN elsewhere */

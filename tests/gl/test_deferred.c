@@ -331,7 +331,8 @@ static void test_draw_calls(void **state)
 // >>fragments
 
 /* The light pass's fragment-shader invocations (pipeline statistics, NAN without
- * them) and the samples its shade draws lit (GL_SAMPLES_PASSED, deferred.h). */
+ * them) and the samples its shade draws lit (pass_stats.samples: GL_SAMPLES_PASSED
+ * outside the stencil marks). */
 typedef struct light_work {
     double invocations;
     uint64_t shaded;
@@ -342,13 +343,14 @@ static light_work light_fragments(const scene *s, light_volume_mode mode, int ty
 {
     renderer_options o = options(mode, GBUFFER_REFERENCE);
     void *self = make(s, &o);
-    deferred_count_shaded(self, true);
     frame_stats fs;
     frame(self, s, &fs);
     frame(self, s, &fs);
     const pass_stats *p = find_pass(&fs, type == LIGHT_POINT ? "point" : "spot");
     assert_non_null(p);
-    light_work w = {.invocations = p->fragments, .shaded = deferred_shaded_samples(self, type),
+    /* samples: GL_SAMPLES_PASSED of the shade draws, the stencil marks left out */
+    assert_false(isnan(p->samples));
+    light_work w = {.invocations = p->fragments, .shaded = (uint64_t)p->samples,
                     .scissor_pixels = p->scissor_pixels};
     if (mode == LIGHT_VOLUMES_SCISSOR)
         assert_false(isnan(p->scissor_pixels));
@@ -441,6 +443,40 @@ static void test_floating_light(void **state)
     assert_int_equal(ff.shaded, (uint64_t)W * H);
     if (gl_context_info(ctx)->pipeline_statistics)
         assert_true(fv.invocations > 0.0);   /* the volume is on screen */
+    scene_destroy(s);
+}
+
+/* Seed 000 5.5's floating spot (the catalog's floating-spot, its lights, the eye of
+ * its hold 1): the volume covers most of the screen and lights nothing. Both stencil
+ * modes shade exactly no sample (their marks are not counted); the hull, the paper's
+ * baseline, shades every pixel it covers: more than half the screen. */
+static void test_floating_spot(void **state)
+{
+    (void)state;
+    char err[256];
+    light_params lp = {.placement = PLACEMENT_SCENE, .radius = 1.0f,
+                       .count = {.start = LIGHT_COUNT_ALL, .max = LIGHT_COUNT_ALL}};
+    scene *s = scene_build("floating-spot", &lp, W, H, err, sizeof err);
+    if (!s)
+        fail_msg("floating-spot: %s", err);
+    assert_int_equal(s->nlights_total, 1);
+    scene_update(s, 0.0);
+    const float eye[3] = {0.0f, 3.3f, 1.8f}, target[3] = {0.0f, 3.2f, 0.0f};
+    look(s, eye, target, 0.0f, 0.0f);
+    assert_int_equal(count_visible(s).lights[LIGHT_SPOT], 1);
+    light_work st = light_fragments(s, LIGHT_VOLUMES_STENCIL, LIGHT_SPOT);
+    light_work s2 = light_fragments(s, LIGHT_VOLUMES_STENCIL_TWO_PASS, LIGHT_SPOT);
+    light_work hu = light_fragments(s, LIGHT_VOLUMES_HULL, LIGHT_SPOT);
+    light_work sc = light_fragments(s, LIGHT_VOLUMES_SCISSOR, LIGHT_SPOT);
+    print_message("floating-spot: samples stencil %llu stencil-two-pass %llu hull %llu "
+                  "scissor %llu (of %d)\n", (unsigned long long)st.shaded,
+                  (unsigned long long)s2.shaded, (unsigned long long)hu.shaded,
+                  (unsigned long long)sc.shaded, W * H);
+    assert_int_equal(st.shaded, 0);
+    assert_int_equal(s2.shaded, 0);
+    assert_true(hu.shaded > (uint64_t)W * H / 2);
+    assert_true(hu.shaded >= 10u * (st.shaded + 1u));
+    assert_true(sc.shaded == (uint64_t)sc.scissor_pixels && sc.shaded >= hu.shaded);
     scene_destroy(s);
 }
 
@@ -1064,6 +1100,7 @@ int main(void)
         cmocka_unit_test(test_fragment_order),
         cmocka_unit_test(test_floating_light),
         cmocka_unit_test(test_scissor_rect),
+        cmocka_unit_test(test_floating_spot),
         cmocka_unit_test(test_modes_agree),
         cmocka_unit_test(test_presets),
         cmocka_unit_test(test_separate_specular),
