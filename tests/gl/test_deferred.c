@@ -1,7 +1,9 @@
 /* The deferred renderer (renderers/deferred.c) in a debug context, on scenes set up
  * here: draw calls per pass against the formulas of deferred.c's header for every
- * light-volume mode; the pixels the light passes shade (GL_SAMPLES_PASSED around the
- * shade draws, deferred_count_shaded) ordered stencil <= volume < fullscreen, with
+ * light-volume mode; the pixels the light passes shade (pass_stats.samples:
+ * GL_SAMPLES_PASSED of the shade draws) ordered stencil <= volume <= hull <= scissor <
+ * fullscreen, the scissor's exactly its rectangle; seed 000 5.5's floating-spot (stencil
+ * 0, hull most of the screen); with
  * fragment-shader invocations exactly W x H full screen and fewer for a volume (llvmpipe
  * counts every 4x4 block a triangle covers, depth- and stencil-rejected ones included,
  * so invocations cannot show what the stencil saves); a floating light (its volume
