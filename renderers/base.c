@@ -85,11 +85,20 @@ void renderer_base_pass_end(renderer_base *b, frame_stats *out)
         gl_pass_queries_end(b->queries);
     pass_stats *p = &out->pass[i];
     gl_state_end_pass(b->st, p);
-    p->gpu_us = p->fragments = p->primitives = NAN;   /* collect fills them */
+    p->gpu_us = p->fragments = p->primitives = p->samples = NAN;   /* collect fills them */
+    p->scissor_pixels = NAN;                          /* a scissoring renderer sets it */
     if (i < RENDERER_BASE_MAX_PASSES)
         b->pass_counts[i] = *gl_state_pass_counts(b->st);
     out->npasses = i + 1;
     b->npasses = i + 1;
+}
+
+void renderer_base_shading(renderer_base *b, bool on)
+{
+    if (on)
+        gl_pass_queries_resume(b->queries);
+    else
+        gl_pass_queries_pause(b->queries);
 }
 
 void renderer_base_collect(renderer_base *b, frame_stats *out)
@@ -99,7 +108,8 @@ void renderer_base_collect(renderer_base *b, frame_stats *out)
         return;
     }
     for (size_t i = 0; i < out->npasses; i++)
-        out->pass[i].gpu_us = out->pass[i].fragments = out->pass[i].primitives = NAN;
+        out->pass[i].gpu_us = out->pass[i].fragments = out->pass[i].primitives =
+            out->pass[i].samples = NAN;
 }
 
 const gls_counts *renderer_base_pass_counts(const renderer_base *b, size_t pass)

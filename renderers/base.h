@@ -55,5 +55,9 @@ void renderer_base_begin_frame(renderer_base *b, frame_stats *out);
 void renderer_base_pass_begin(renderer_base *b, frame_stats *out, const char *name);
 void renderer_base_pass_end(renderer_base *b, frame_stats *out);
 void renderer_base_collect(renderer_base *b, frame_stats *out);
+/* Within a pass: false before draws that shade nothing (stencil marks, shadow maps, a
+ * depth pre-pass), true after them; pass_stats.samples (GL_SAMPLES_PASSED) counts the
+ * pass's other draws. A pass starts counting; without queries it does nothing. */
+void renderer_base_shading(renderer_base *b, bool on);
 /* The state cache's counts of pass i of the last frame, or NULL past its passes. */
 const gls_counts *renderer_base_pass_counts(const renderer_base *b, size_t pass);

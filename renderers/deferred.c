@@ -32,6 +32,14 @@
  *                       faces (increment on depth fail), then back faces (decrement on
  *                       depth fail); shade back faces where the stencil is 0, INCR on pass
  *                       (which resets it to 1)
+ *     hull              (seed 000 4.5.8's unoptimised baseline) the volume's back faces (cull
+ *                       FRONT), no depth test, no stencil: every pixel the hull covers is
+ *                       shaded, whatever surface lies there
+ *     scissor           a full-screen pass with the scissor test on, the rectangle
+ *                       deferred_scissor_rect (the projection of the box around the light's
+ *                       volume; Policarpo & Fonseca as seed 000 4.5.8 cites them); passes.csv's
+ *                       scissor_pixels is the sum of the pass's rectangles. GL_SCISSOR_TEST is
+ *                       not state the cache keeps: it is switched off again after the pass
  *   compose      (separate_specular only, seed 001) the specular target added into the
  *                diffuse one, full screen
  *   sky          (the scene has a sky) scene_gpu_draw_sky into the light target's
@@ -43,8 +51,8 @@
  * shadow-casting set of a visible light l that casts shadows, Sh = sum of |C(l)| over
  * them, 0 when the shadows pass does not run):
  *
- *   fullscreen:        Sh + V + 1 + D + P + S            + [compose] + [sky] + 1
- *   volume:            Sh + V + 1 + D + P + S            + [compose] + [sky] + 1
+ *   fullscreen, scissor, volume, hull:
+ *                      Sh + V + 1 + D + P + S            + [compose] + [sky] + 1
  *   stencil:           Sh + V + 1 + D + 2 (P + S)        + [compose] + [sky] + 1
  *   stencil-two-pass:  Sh + V + 1 + D + 3 (P + S)        + [compose] + [sky] + 1
  *
@@ -202,11 +210,7 @@ typedef struct deferred_renderer {
 
     /* >>the last frame, for tests */
     uint64_t mark_draws[DEFERRED_LIGHT_TYPES], shade_draws[DEFERRED_LIGHT_TYPES];
-    bool count_shaded;               /* deferred_count_shaded: a GL_SAMPLES_PASSED query per
-                                        shade draw */
-    GLuint *shade_query;
-    int *shade_query_type;
-    size_t nshade_queries, cap_shade_queries;
+    int64_t scissor_area;            /* light_volumes scissor: this pass's rectangles */
 } deferred_renderer;
 
 static unsigned material_variant(const scene_material *m)
@@ -248,7 +252,7 @@ static void *create(const char *name, bool tiled, bool clustered,
         free(r);
         return NULL;
     }
-    if ((unsigned)opts->light_volumes > (unsigned)LIGHT_VOLUMES_STENCIL_TWO_PASS) {
+    if ((unsigned)opts->light_volumes > (unsigned)LIGHT_VOLUMES_SCISSOR) {
         snprintf(err, errlen, "deferred: unknown light volume mode %d", (int)opts->light_volumes);
         free(r);
         return NULL;
@@ -323,6 +327,8 @@ static const char *mode_name(light_volume_mode m)
     case LIGHT_VOLUMES_FULLSCREEN: return "fullscreen";
     case LIGHT_VOLUMES_VOLUME: return "volume";
     case LIGHT_VOLUMES_STENCIL_TWO_PASS: return "stencil-two-pass";
+    case LIGHT_VOLUMES_HULL: return "hull";
+    case LIGHT_VOLUMES_SCISSOR: return "scissor";
     }
     return "unknown";
 }
@@ -349,6 +355,12 @@ static bool build_program(deferred_renderer *r, const char *display, const char 
         return false;
     }
     return true;
+}
+
+/* The modes whose point and spot lights draw the full-screen triangle. */
+static bool full_screen_mode(light_volume_mode m)
+{
+    return m == LIGHT_VOLUMES_FULLSCREEN || m == LIGHT_VOLUMES_SCISSOR;
 }
 
 static void plan(deferred_renderer *r, pass_id p, bool run, const char *fmt, ...)
@@ -493,7 +505,7 @@ static bool compile_programs(deferred_renderer *r, char *err, size_t errlen)
     for (int t = 0; t < DEFERRED_LIGHT_TYPES; t++) {
         if (!r->run[light_pass[t]])
             continue;
-        bool full = t == LIGHT_DIRECTIONAL || r->b.opts.light_volumes == LIGHT_VOLUMES_FULLSCREEN;
+        bool full = t == LIGHT_DIRECTIONAL || full_screen_mode(r->b.opts.light_volumes);
         const char *extra[6] = {type_define[t], NULL, NULL, NULL, NULL, NULL};
         int n = 1;
         if (full && unclipped)
@@ -740,38 +752,6 @@ static void bind_gbuffer_textures(deferred_renderer *r)
         gl_state_texture(r->b.st, DEFERRED_DEPTH_UNIT, r->depth.texture);
 }
 
-/* The test hook around one shade draw of light type t (deferred_count_shaded). */
-static void shade_begin(deferred_renderer *r, int t)
-{
-    if (!r->count_shaded)
-        return;
-    if (r->nshade_queries == r->cap_shade_queries) {
-        size_t cap = r->cap_shade_queries ? 2 * r->cap_shade_queries : 16;
-        GLuint *q = realloc(r->shade_query, cap * sizeof *q);
-        if (q)
-            r->shade_query = q;
-        int *ty = q ? realloc(r->shade_query_type, cap * sizeof *ty) : NULL;
-        if (!q || !ty) {
-            fprintf(stderr, "deferred: out of memory counting shaded samples\n");
-            r->count_shaded = false;
-            return;
-        }
-        r->shade_query_type = ty;
-        gl.GenQueries((GLsizei)(cap - r->cap_shade_queries), q + r->cap_shade_queries);
-        r->cap_shade_queries = cap;
-    }
-    r->shade_query_type[r->nshade_queries] = t;
-    gl.BeginQuery(GL_SAMPLES_PASSED, r->shade_query[r->nshade_queries]);
-}
-
-static void shade_end(deferred_renderer *r)
-{
-    if (!r->count_shaded)
-        return;
-    gl.EndQuery(GL_SAMPLES_PASSED);
-    r->nshade_queries++;
-}
-
 /* Light li, whose shadow-map layer this frame is `layer` (FRONTEND_NO_SHADOW: none). */
 static void set_light_uniform(const scene *s, uint32_t li, uint32_t layer)
 {
@@ -786,6 +766,67 @@ static void fullscreen(deferred_renderer *r)
     gl_state_draw_fullscreen(r->b.st, r->b.width, r->b.height, r->unclipped);
 }
 
+int64_t deferred_scissor_rect(const scene *s, uint32_t light, int w, int h, int rect[4])
+{
+    const scene_light *l = &s->lights[light];
+    rect[0] = rect[1] = 0;
+    rect[2] = w;
+    rect[3] = h;
+    sm_mat4 model, mv, mvp;
+    frontend_light_volume_model(l, model);
+    /* the volume mesh's box in the model's frame, with room to spare (deferred.h) */
+    float lo[3], hi[3];
+    if (l->type == LIGHT_POINT) {
+        const float b = 1.05f;   /* the sphere's vertices lie within 1.0389 */
+        lo[0] = lo[1] = lo[2] = -b;
+        hi[0] = hi[1] = hi[2] = b;
+    } else {
+        const float b = 1.03f;   /* the cone's base: (1 + 2e-4) / cos(pi / 16) = 1.0198 */
+        lo[0] = lo[1] = -b;
+        hi[0] = hi[1] = b;
+        lo[2] = -1.001f;
+        hi[2] = 0.001f;
+    }
+    sm_mat4_mul(s->view, model, mv);
+    sm_mat4_mul(s->proj, mv, mvp);
+    float x0 = INFINITY, y0 = INFINITY, x1 = -INFINITY, y1 = -INFINITY;
+    float clip[8][4];
+    int behind = 0;
+    for (int c = 0; c < 8; c++) {
+        float p[3] = {(c & 1) ? hi[0] : lo[0], (c & 2) ? hi[1] : lo[1], (c & 4) ? hi[2] : lo[2]};
+        for (int k = 0; k < 4; k++)
+            clip[c][k] = mvp[0][k] * p[0] + mvp[1][k] * p[1] + mvp[2][k] * p[2] + mvp[3][k];
+        behind += clip[c][3] <= 1e-6f;
+    }
+    if (behind == 8) {   /* wholly behind the eye: nothing */
+        rect[2] = rect[3] = 0;
+        return 0;
+    }
+    if (behind)          /* the box reaches the eye's plane: the whole screen */
+        return (int64_t)w * h;
+    for (int c = 0; c < 8; c++) {
+        const float *cl = clip[c];
+        float x = (cl[0] / cl[3] * 0.5f + 0.5f) * (float)w;
+        float y = (cl[1] / cl[3] * 0.5f + 0.5f) * (float)h;
+        x0 = fminf(x0, x);
+        x1 = fmaxf(x1, x);
+        y0 = fminf(y0, y);
+        y1 = fmaxf(y1, y);
+    }
+    /* whole pixels that the box's projection touches, on the screen */
+    float fx0 = fmaxf(floorf(x0), 0.0f), fy0 = fmaxf(floorf(y0), 0.0f);
+    float fx1 = fminf(ceilf(x1), (float)w), fy1 = fminf(ceilf(y1), (float)h);
+    if (!(fx1 > fx0 && fy1 > fy0)) {
+        rect[2] = rect[3] = 0;
+        return 0;
+    }
+    rect[0] = (int)fx0;
+    rect[1] = (int)fy0;
+    rect[2] = (int)fx1 - rect[0];
+    rect[3] = (int)fy1 - rect[1];
+    return (int64_t)rect[2] * rect[3];
+}
+
 /* Point and spot lights of type t by the light-volume mode (the file's header). */
 static void draw_volume_light(deferred_renderer *r, const scene *s, int t, uint32_t li,
                               uint32_t layer)
@@ -793,12 +834,30 @@ static void draw_volume_light(deferred_renderer *r, const scene *s, int t, uint3
     gl_state *st = r->b.st;
     GLuint prog = r->light_program[t];
     switch (r->b.opts.light_volumes) {
+    case LIGHT_VOLUMES_SCISSOR: {
+        int rect[4];
+        r->scissor_area += deferred_scissor_rect(s, li, r->b.width, r->b.height, rect);
+        gl.Scissor(rect[0], rect[1], rect[2], rect[3]);
+        gl_state_program(st, prog);
+        set_light_uniform(s, li, layer);
+        fullscreen(r);
+        r->shade_draws[t]++;
+        return;
+    }
+    case LIGHT_VOLUMES_HULL:
+        gl_state_viewport(st, 0, 0, r->b.width, r->b.height);
+        gl_state_program(st, prog);
+        set_light_uniform(s, li, layer);
+        gl_state_cull(st, GLS_CULL_FRONT);
+        gl_state_stencil(st, NULL);
+        gl_state_depth(st, NULL);
+        scene_gpu_draw_light_volume(r->gpu, st, s, li);
+        r->shade_draws[t]++;
+        return;
     case LIGHT_VOLUMES_FULLSCREEN:
         gl_state_program(st, prog);
         set_light_uniform(s, li, layer);
-        shade_begin(r, t);
         fullscreen(r);
-        shade_end(r);
         r->shade_draws[t]++;
         return;
     case LIGHT_VOLUMES_VOLUME:
@@ -808,13 +867,12 @@ static void draw_volume_light(deferred_renderer *r, const scene *s, int t, uint3
         gl_state_cull(st, GLS_CULL_FRONT);
         gl_state_stencil(st, NULL);
         gl_state_depth(st, &(gls_depth){.compare = GLS_COMPARE_GREATER, .write = false});
-        shade_begin(r, t);
         scene_gpu_draw_light_volume(r->gpu, st, s, li);
-        shade_end(r);
         r->shade_draws[t]++;
         return;
     case LIGHT_VOLUMES_STENCIL:
         gl_state_viewport(st, 0, 0, r->b.width, r->b.height);
+        renderer_base_shading(&r->b, false);   /* marks shade nothing: not in samples */
         gl_state_program(st, r->mark_program);
         gl_state_color_mask(st, GLS_COLOR_MASK_NONE);
         gl_state_cull(st, GLS_CULL_NONE);
@@ -829,6 +887,7 @@ static void draw_volume_light(deferred_renderer *r, const scene *s, int t, uint3
                              });
         scene_gpu_draw_light_volume(r->gpu, st, s, li);
         r->mark_draws[t]++;
+        renderer_base_shading(&r->b, true);
         gl_state_program(st, prog);
         set_light_uniform(s, li, layer);
         gl_state_color_mask(st, GLS_COLOR_MASK_RGBA);
@@ -840,13 +899,12 @@ static void draw_volume_light(deferred_renderer *r, const scene *s, int t, uint3
                                            .pass = GLS_STENCIL_OP_ZERO},
                                  .ref = 0,
                              });
-        shade_begin(r, t);
         scene_gpu_draw_light_volume(r->gpu, st, s, li);
-        shade_end(r);
         r->shade_draws[t]++;
         return;
     case LIGHT_VOLUMES_STENCIL_TWO_PASS:
         gl_state_viewport(st, 0, 0, r->b.width, r->b.height);
+        renderer_base_shading(&r->b, false);
         gl_state_program(st, r->mark_program);
         gl_state_color_mask(st, GLS_COLOR_MASK_NONE);
         gl_state_depth(st, &(gls_depth){.compare = GLS_COMPARE_LEQUAL, .write = false});
@@ -865,6 +923,7 @@ static void draw_volume_light(deferred_renderer *r, const scene *s, int t, uint3
                              });
         scene_gpu_draw_light_volume(r->gpu, st, s, li);
         r->mark_draws[t] += 2;
+        renderer_base_shading(&r->b, true);
         gl_state_program(st, prog);
         set_light_uniform(s, li, layer);
         gl_state_color_mask(st, GLS_COLOR_MASK_RGBA);
@@ -875,9 +934,7 @@ static void draw_volume_light(deferred_renderer *r, const scene *s, int t, uint3
                                            .pass = GLS_STENCIL_OP_INCR_WRAP},
                                  .ref = 0,
                              });
-        shade_begin(r, t);
         scene_gpu_draw_light_volume(r->gpu, st, s, li);
-        shade_end(r);
         r->shade_draws[t]++;
         return;
     }
@@ -891,7 +948,12 @@ static void light_pass(deferred_renderer *r, const scene *s, frame_stats *out, p
     gl_state_framebuffer(st, r->fb_light.fbo);
     gl_state_color_mask(st, GLS_COLOR_MASK_RGBA);
     gl_state_blend(st, &BLEND_ADD);
-    bool volumes = type != LIGHT_DIRECTIONAL && r->b.opts.light_volumes != LIGHT_VOLUMES_FULLSCREEN;
+    bool volumes = type != LIGHT_DIRECTIONAL && !full_screen_mode(r->b.opts.light_volumes);
+    bool scissor = type != LIGHT_DIRECTIONAL &&
+                   r->b.opts.light_volumes == LIGHT_VOLUMES_SCISSOR;
+    r->scissor_area = 0;
+    if (scissor)
+        gl.Enable(GL_SCISSOR_TEST);   /* not state the cache keeps: off again below */
     if (!volumes) {
         gl_state_depth(st, NULL);
         gl_state_stencil(st, NULL);
@@ -909,9 +971,7 @@ static void light_pass(deferred_renderer *r, const scene *s, frame_stats *out, p
         if (type == LIGHT_DIRECTIONAL) {
             gl_state_program(st, r->light_program[type]);
             set_light_uniform(s, li, r->fe.shadow_layer[k]);
-            shade_begin(r, type);
             fullscreen(r);
-            shade_end(r);
             r->shade_draws[type]++;
         } else {
             draw_volume_light(r, s, type, li, r->fe.shadow_layer[k]);
@@ -922,7 +982,11 @@ static void light_pass(deferred_renderer *r, const scene *s, frame_stats *out, p
         gl.Disable(GL_DEPTH_CLAMP);
         gl_state_color_mask(st, GLS_COLOR_MASK_RGBA);
     }
+    if (scissor)
+        gl.Disable(GL_SCISSOR_TEST);
     pass_end(r, out);
+    if (scissor)
+        out->pass[out->npasses - 1].scissor_pixels = (double)r->scissor_area;
 }
 
 /* tiled-deferred's pass: the frame's visible lights into the light buffer, then one
@@ -971,7 +1035,6 @@ static void deferred_draw(void *self, const scene *s, frame_stats *out)
     out->lights_drawn = 0;
     memset(r->mark_draws, 0, sizeof r->mark_draws);
     memset(r->shade_draws, 0, sizeof r->shade_draws);
-    r->nshade_queries = 0;
     if (!r->prepared || !s)
         return;
     renderer_base_begin_frame(&r->b, out);   /* every frame counted alike */
@@ -981,6 +1044,7 @@ static void deferred_draw(void *self, const scene *s, frame_stats *out)
     /* >>shadow maps, first: the light passes sample them */
     if (r->run[PASS_SHADOWS]) {
         pass_begin(r, out, PASS_SHADOWS);
+        renderer_base_shading(&r->b, false);   /* depth only: no samples shaded */
         shadow_maps_draw(&r->shadows, st, r->gpu, &r->fe, s);
         pass_end(r, out);
     }
@@ -1166,10 +1230,6 @@ static void deferred_destroy(void *self)
     if (!r)
         return;
     release_prepared(r);
-    if (r->cap_shade_queries)
-        gl.DeleteQueries((GLsizei)r->cap_shade_queries, r->shade_query);
-    free(r->shade_query);
-    free(r->shade_query_type);
     renderer_base_destroy(&r->b);
     free(r);
 }
@@ -1216,26 +1276,6 @@ gl_state *deferred_state_cache(void *self)
     return r ? r->b.st : NULL;
 }
 
-void deferred_count_shaded(void *self, bool on)
-{
-    deferred_renderer *r = self;
-    r->count_shaded = on;
-    r->nshade_queries = 0;
-}
-
-uint64_t deferred_shaded_samples(const void *self, int type)
-{
-    const deferred_renderer *r = self;
-    uint64_t sum = 0;
-    for (size_t i = 0; i < r->nshade_queries; i++) {
-        if (r->shade_query_type[i] != type)
-            continue;
-        GLuint64 v = 0;
-        gl.GetQueryObjectui64v(r->shade_query[i], GL_QUERY_RESULT, &v);
-        sum += v;
-    }
-    return sum;
-}
 
 // >>read_hdr
 

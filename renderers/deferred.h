@@ -152,13 +152,9 @@ struct gl_state *deferred_state_cache(void *self);
  * LIGHT_SPOT, LIGHT_DIRECTIONAL). */
 uint64_t deferred_last_mark_draws(const void *self, int type);
 uint64_t deferred_last_shade_draws(const void *self, int type);
-/* Test hook: with `on`, every shade draw of the light passes is wrapped in a
- * GL_SAMPLES_PASSED query (off: no query, as in runs). deferred_shaded_samples then
- * gives, for the last frame drawn, the samples of light type `type` that passed the
- * depth and stencil tests in the shade draws: the pixels each light really lit
- * (waits for the results). This is what the stencil modes save; llvmpipe's
- * GL_FRAGMENT_SHADER_INVOCATIONS counts every 4x4 block a triangle covers, the
- * depth- and stencil-rejected ones included, so pass_stats.fragments cannot show it
- * there. */
-void deferred_count_shaded(void *self, bool on);
-uint64_t deferred_shaded_samples(const void *self, int type);
+/* light_volumes scissor: the screen rectangle {x, y, width, height} (GL's window
+ * coordinates, whole pixels, clipped to the w x h screen) that holds the projection of
+ * light `light`'s volume (the box around its mesh in the volume's own frame, a little
+ * larger than the mesh); the whole screen when the box reaches the eye's plane. Returns
+ * its area in pixels (0: off screen). */
+int64_t deferred_scissor_rect(const struct scene *s, uint32_t light, int w, int h, int rect[4]);

@@ -193,6 +193,7 @@ void forward_shadow_pass(forward_common *fc, const scene *s, frame_stats *out)
     if (!fc->shadows.run)
         return;
     forward_pass_begin(fc, out, "shadows");
+    renderer_base_shading(&fc->b, false);   /* depth only: no samples shaded */
     shadow_maps_draw(&fc->shadows, fc->b.st, fc->gpu, &fc->fe, s);
     forward_pass_end(fc, out);
 }

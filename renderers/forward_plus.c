@@ -308,6 +308,7 @@ static void plus_draw(void *self, const struct scene *s, frame_stats *out)
         gl.NamedBufferSubData(r->lights, 0, (GLsizeiptr)(n * sizeof(gpu_light)), r->staging);
 
     forward_pass_begin(c, out, "depth");
+    renderer_base_shading(&c->b, false);   /* depth only: no samples shaded */
     forward_bind_target(c);
     gl_state_blend(c->b.st, NULL);
     gl_state_stencil(c->b.st, NULL);

@@ -87,7 +87,9 @@ static void null_draw(void *self, const struct scene *s, frame_stats *out)
         .draw_calls = 0,         /* a clear is neither a draw call ... */
         .state_changes = 0,      /* ... nor a state change */
         .fragments = NAN,
+        .samples = NAN,
         .primitives = NAN,
+        .scissor_pixels = NAN,
     };
     out->lights_drawn = 0;
 }
@@ -100,7 +102,8 @@ static void null_collect(void *self, frame_stats *out)
         return;
     }
     for (size_t i = 0; i < out->npasses; i++)
-        out->pass[i].gpu_us = out->pass[i].fragments = out->pass[i].primitives = NAN;
+        out->pass[i].gpu_us = out->pass[i].fragments = out->pass[i].primitives =
+            out->pass[i].samples = NAN;
 }
 
 static void null_describe(const void *self, pass_plan *out)

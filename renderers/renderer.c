@@ -87,7 +87,7 @@ void renderer_draw(renderer *r, const struct scene *s, frame_stats *out)
 void renderer_collect(renderer *r, frame_stats *out)
 {
     r->impl->collect(r->self, out);
-    pass_stats t = {.name = "total"};
+    pass_stats t = {.name = "total", .scissor_pixels = NAN};
     for (size_t i = 0; i < out->npasses; i++) {
         const pass_stats *p = &out->pass[i];
         t.gpu_us += p->gpu_us;
@@ -96,10 +96,11 @@ void renderer_collect(renderer *r, frame_stats *out)
         t.dispatches += p->dispatches;
         t.state_changes += p->state_changes;
         t.fragments += p->fragments;
+        t.samples += p->samples;
         t.primitives += p->primitives;
     }
     if (out->npasses == 0)
-        t.gpu_us = t.fragments = t.primitives = NAN;
+        t.gpu_us = t.fragments = t.primitives = t.samples = NAN;
     out->total = t;
 }
 

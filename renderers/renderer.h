@@ -19,7 +19,11 @@ typedef struct pass_stats {
     uint64_t dispatches;       /* compute dispatches (not in draw_calls) */
     uint64_t state_changes;
     double fragments;          /* GL_FRAGMENT_SHADER_INVOCATIONS */
+    double samples;            /* GL_SAMPLES_PASSED of the pass's shading draws (not the
+                                  stencil marks, shadow maps or depth pre-pass) */
     double primitives;         /* GL_PRIMITIVES_SUBMITTED */
+    double scissor_pixels;     /* light_volumes scissor: the pass's scissor rectangles'
+                                  area, summed over its lights; NAN elsewhere */
 } pass_stats;
 
 typedef struct frame_stats {
@@ -107,6 +111,10 @@ typedef enum light_volume_mode {
     LIGHT_VOLUMES_VOLUME,          /* back faces, depth test GREATER, no stencil */
     LIGHT_VOLUMES_STENCIL_TWO_PASS,/* seed 000: clear to 1, front faces inc on depth fail,
                                       back faces dec, shade where 0 */
+    LIGHT_VOLUMES_HULL,            /* seed 000 4.5.8's unoptimised hull: back faces, no depth
+                                      test, no stencil: every pixel the hull covers */
+    LIGHT_VOLUMES_SCISSOR,         /* a full-screen pass scissored to the light's projected
+                                      screen rectangle */
 } light_volume_mode;
 
 /* Where forward-spml reads its lights from. */

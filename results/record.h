@@ -15,6 +15,7 @@ typedef struct frame_record {
     uint64_t draw_calls;
     uint64_t state_changes;
     double fragments;      /* fragment shader invocations; NAN when unavailable */
+    double samples;        /* GL_SAMPLES_PASSED of the shading draws; NAN when unavailable */
     uint64_t dispatches;   /* compute dispatches (not in draw_calls) */
     /* tiled and clustered renderers (NAN for the others): mean and largest light-list
      * length over the tiles or clusters, light evaluations per shaded pixel */

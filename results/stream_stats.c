@@ -202,7 +202,7 @@ struct trial_stream {
     moments ft;
     quantile_sketch q;
     batch_prefix bp;
-    double gpu, dc, sc, frag, disp;
+    double gpu, dc, sc, frag, samp, disp;
     double cmean, cmax, evals;   /* light grids */
     size_t ngrid;
     size_t ngpu;
@@ -281,7 +281,7 @@ void trial_stream_begin(trial_stream *ts, double rel, second_sink on_second,
     ts->ft = (moments){0};
     qs_reset(&ts->q);
     bp_reset(&ts->bp);
-    ts->gpu = ts->dc = ts->sc = ts->frag = ts->disp = 0;
+    ts->gpu = ts->dc = ts->sc = ts->frag = ts->samp = ts->disp = 0;
     ts->cmean = ts->cmax = ts->evals = 0;
     ts->ngrid = 0;
     ts->ngpu = 0;
@@ -332,6 +332,7 @@ void trial_stream_add(trial_stream *ts, const frame_record *r)
     ts->dc += (double)r->draw_calls;
     ts->sc += (double)r->state_changes;
     ts->frag += r->fragments;
+    ts->samp += r->samples;
     ts->disp += (double)r->dispatches;
     if (isfinite(r->cell_lights_mean)) {
         ts->cmean += r->cell_lights_mean;
@@ -384,6 +385,7 @@ void trial_stream_end(trial_stream *ts, double t_end, trial_totals *out)
     out->draw_calls_mean = n ? ts->dc / (double)n : NAN;
     out->state_changes_mean = n ? ts->sc / (double)n : NAN;
     out->fragments_mean = n ? ts->frag / (double)n : NAN;
+    out->samples_mean = n ? ts->samp / (double)n : NAN;
     out->dispatches_mean = n ? ts->disp / (double)n : NAN;
     out->cell_lights_mean = ts->ngrid ? ts->cmean / (double)ts->ngrid : NAN;
     out->cell_lights_max = ts->ngrid ? ts->cmax : NAN;

@@ -78,6 +78,7 @@ typedef struct trial_totals {
     double ci_converged_after_s;   /* stats_converged_after(points, rel); NAN: never */
     double gpu_mean_us;         /* over the frames that have one; NAN: none */
     double draw_calls_mean, state_changes_mean, fragments_mean;   /* NAN with no frames */
+    double samples_mean;        /* GL_SAMPLES_PASSED of the shading draws; NAN as fragments */
     double dispatches_mean;     /* compute dispatches; NAN with no frames */
     /* the light grid of the tiled and clustered renderers, over the frames that built
      * one (NAN: none): mean and largest list length, light evaluations per pixel */

@@ -17,7 +17,8 @@ const char *const summary_columns[] = {
     "lights_placement", "lights_rng", "lights_seed", "lights_count", "lights_radius",
     "trial", "frames", "measured_s", "fps_mean", "frametime_mean_us", "frametime_sd_us",
     "frametime_ci95_us", "frametime_p50_us", "frametime_p99_us", "fps_1pct_low", "gpu_mean_us",
-    "draw_calls_mean", "state_changes_mean", "fragments_mean", "gbuffer_bytes",
+    "draw_calls_mean", "state_changes_mean", "fragments_mean", "samples_mean",
+    "gbuffer_bytes",
     "image_rmse", "image_psnr_db", "image_max_abs", "nonfinite_pixels", "harness_us_mean",
     "ci1pct_after_s", "dispatches_mean", "cell_lights_mean", "cell_lights_max",
     "light_evals_per_pixel",
@@ -27,7 +28,7 @@ const size_t summary_ncolumns = sizeof summary_columns / sizeof summary_columns[
 
 static const char *const frames_columns[] = {
     "run_id", "trial", "frame", "t_wall_s", "t_scene_s", "lights", "frametime_us", "gpu_us",
-    "draw_calls", "state_changes", "fragments",
+    "draw_calls", "state_changes", "fragments", "samples",
 };
 static const char *const seconds_columns[] = {
     "run_id", "trial", "second", "complete", "lights_min", "lights_max", "frames", "fps",
@@ -50,8 +51,8 @@ static const char *const lightgrid_columns[] = {
 };
 static const char *const passes_columns[] = {
     "run_id", "trial", "frame", "pass", "gpu_us", "cpu_us", "draw_calls", "state_changes",
-    "fragments", "primitives", "dispatches", "cell_lights_mean", "cell_lights_max",
-    "light_evals_per_pixel",
+    "fragments", "samples", "primitives", "dispatches", "cell_lights_mean", "cell_lights_max",
+    "light_evals_per_pixel", "scissor_pixels",
 };
 #define NCOLS(a) (sizeof(a) / sizeof((a)[0]))
 
@@ -140,6 +141,7 @@ void run_files_frame(run_files *f, const char *run_id, uint32_t trial, const fra
     csv_u64(w, r->draw_calls);
     csv_u64(w, r->state_changes);
     csv_f64(w, r->fragments, 0);
+    csv_f64(w, r->samples, 0);
     csv_end_row(w);
 
     for (size_t i = 0; i < fs->npasses; i++) {
@@ -154,6 +156,7 @@ void run_files_frame(run_files *f, const char *run_id, uint32_t trial, const fra
         csv_u64(w, ps->draw_calls);
         csv_u64(w, ps->state_changes);
         csv_f64(w, ps->fragments, 0);
+        csv_f64(w, ps->samples, 0);
         csv_f64(w, ps->primitives, 0);
         csv_u64(w, ps->dispatches);
         /* the light grid's counters on the pass that built it (empty elsewhere) */
@@ -161,6 +164,7 @@ void run_files_frame(run_files *f, const char *run_id, uint32_t trial, const fra
         csv_f64(w, grid ? fs->grid_lights_mean : NAN, 3);
         csv_f64(w, grid ? fs->grid_lights_max : NAN, 0);
         csv_f64(w, grid ? fs->light_evals_per_pixel : NAN, 3);
+        csv_f64(w, ps->scissor_pixels, 0);   /* light_volumes scissor only */
         csv_end_row(w);
     }
 }
@@ -393,6 +397,7 @@ bool output_write_run_summary(const char *run_dir, const experiment *e, const ru
         csv_f64(w, r->draw_calls_mean, 3);
         csv_f64(w, r->state_changes_mean, 3);
         csv_f64(w, r->fragments_mean, 1);
+        csv_f64(w, r->samples_mean, 1);
         csv_u64(w, pp->gbuffer_bytes);
         /* Image error: empty unless the manifest names a reference (error:). */
         csv_g(w, r->image_rmse);

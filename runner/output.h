@@ -83,7 +83,7 @@ typedef struct trial_result {
     double fps_mean;           /* frames / measured_s */
     sample_summary ft;         /* frame time, us */
     double ft_ci95;            /* half-width, us (batch means) */
-    double gpu_mean_us, draw_calls_mean, state_changes_mean, fragments_mean;
+    double gpu_mean_us, draw_calls_mean, state_changes_mean, fragments_mean, samples_mean;
     /* compute dispatches per frame; over the frames, the mean of the mean and the
      * largest light-list length per tile/cluster, the mean light evaluations per
      * shaded pixel (NAN: the renderer has no light grid) */

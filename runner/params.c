@@ -39,7 +39,7 @@ static const char *const gbuffer_position_names[] = {"preset", "stored16", "stor
 static const char *const gbuffer_normal_names[] = {"preset", "float16", "float32", "unorm10",
                                                    "spheremap8", "spheremap16", NULL};
 static const char *const light_volume_names[] = {"stencil", "fullscreen", "volume",
-                                                 "stencil-two-pass", NULL};
+                                                 "stencil-two-pass", "hull", "scissor", NULL};
 static const char *const light_buffer_names[] = {"uniform", "storage", NULL};
 static const char *const tile_size_names[] = {"8", "16", "32", NULL};   /* 8 << index */
 static const char *const clustered_shading_names[] = {"forward", "deferred", NULL};

@@ -516,6 +516,7 @@ static void run_trial(run_state *st, uint32_t trial, trial_result *tr)
             .draw_calls = fs.total.draw_calls,
             .state_changes = fs.total.state_changes,
             .fragments = fs.total.fragments,
+            .samples = fs.total.samples,
             .dispatches = fs.total.dispatches,
             .cell_lights_mean = fs.grid_lights_mean,
             .cell_lights_max = fs.grid_lights_max,
@@ -583,6 +584,7 @@ static void run_trial(run_state *st, uint32_t trial, trial_result *tr)
     tr->draw_calls_mean = tt.draw_calls_mean;
     tr->state_changes_mean = tt.state_changes_mean;
     tr->fragments_mean = tt.fragments_mean;
+    tr->samples_mean = tt.samples_mean;
     tr->dispatches_mean = tt.dispatches_mean;
     tr->cell_lights_mean = tt.cell_lights_mean;
     tr->cell_lights_max = tt.cell_lights_max;
@@ -909,6 +911,7 @@ static void fill_missing_trials(run_state *st)
         tr->dispatches_mean = tr->cell_lights_mean = tr->cell_lights_max = NAN;
         tr->light_evals_per_pixel_mean = NAN;
         tr->fragments_mean = tr->harness_us_mean = tr->ci1pct_after_s = NAN;
+        tr->samples_mean = NAN;
         tr->image_rmse = tr->image_psnr_db = tr->image_max_abs = tr->nonfinite = NAN;
         snprintf(tr->status, sizeof tr->status, "%s",
                  strcmp(st->status, "ok") ? st->status : "failed:not-run");

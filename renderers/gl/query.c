@@ -16,8 +16,17 @@ static const GLenum kind_target[KIND_COUNT] = {
     [KIND_PRIMITIVES] = GL_PRIMITIVES_SUBMITTED_ARB,
 };
 
+/* A pass's GL_SAMPLES_PASSED queries: one per stretch of shading draws between
+ * gl_pass_queries_pause and _resume. */
+typedef struct sample_segments {
+    GLuint *ids;
+    size_t n, cap;
+} sample_segments;
+
 struct gl_pass_queries {
     size_t max_passes;
+    sample_segments *samples;     /* [slot][pass] */
+    bool counting;                /* a GL_SAMPLES_PASSED query is active */
     bool enabled[KIND_COUNT];
     size_t frame;                 /* ring slot of the frame being recorded */
     bool active;                  /* a pass is being measured */
@@ -46,7 +55,8 @@ gl_pass_queries *gl_pass_queries_create(size_t max_passes, bool timer, bool stat
     size_t slots = GL_PASS_QUERIES_FRAMES * max_passes;
     q->ids = calloc(slots * KIND_COUNT, sizeof *q->ids);
     q->issued = calloc(slots, sizeof *q->issued);
-    if (!q->ids || !q->issued) {
+    q->samples = calloc(slots, sizeof *q->samples);
+    if (!q->ids || !q->issued || !q->samples) {
         gl_pass_queries_destroy(q);
         return NULL;
     }
@@ -70,9 +80,51 @@ void gl_pass_queries_destroy(gl_pass_queries *q)
             if (q->ids[i])
                 gl.DeleteQueries(1, &q->ids[i]);
     }
+    if (q->samples) {
+        for (size_t i = 0; i < GL_PASS_QUERIES_FRAMES * q->max_passes; i++) {
+            if (q->samples[i].cap)
+                gl.DeleteQueries((GLsizei)q->samples[i].cap, q->samples[i].ids);
+            free(q->samples[i].ids);
+        }
+    }
+    free(q->samples);
     free(q->ids);
     free(q->issued);
     free(q);
+}
+
+/* Begins the next GL_SAMPLES_PASSED query of the measured pass. */
+static void samples_start(gl_pass_queries *q)
+{
+    sample_segments *sg = &q->samples[q->frame * q->max_passes + q->active_pass];
+    if (sg->n == sg->cap) {
+        size_t cap = sg->cap ? 2 * sg->cap : 4;
+        GLuint *ids = realloc(sg->ids, cap * sizeof *ids);
+        if (!ids) {
+            fprintf(stderr, "gl_pass_queries: out of memory for sample queries\n");
+            return;
+        }
+        gl.GenQueries((GLsizei)(cap - sg->cap), ids + sg->cap);
+        sg->ids = ids;
+        sg->cap = cap;
+    }
+    gl.BeginQuery(GL_SAMPLES_PASSED, sg->ids[sg->n++]);
+    q->counting = true;
+}
+
+void gl_pass_queries_pause(gl_pass_queries *q)
+{
+    if (!q || !q->active || !q->counting)
+        return;
+    gl.EndQuery(GL_SAMPLES_PASSED);
+    q->counting = false;
+}
+
+void gl_pass_queries_resume(gl_pass_queries *q)
+{
+    if (!q || !q->active || q->counting)
+        return;
+    samples_start(q);
 }
 
 void gl_pass_queries_begin(gl_pass_queries *q, size_t pass)
@@ -97,6 +149,8 @@ void gl_pass_queries_begin(gl_pass_queries *q, size_t pass)
     *issued = true;
     q->active = true;
     q->active_pass = pass;
+    q->samples[q->frame * q->max_passes + pass].n = 0;
+    samples_start(q);
 }
 
 void gl_pass_queries_end(gl_pass_queries *q)
@@ -108,6 +162,7 @@ void gl_pass_queries_end(gl_pass_queries *q)
     for (size_t k = 0; k < KIND_COUNT; k++)
         if (q->enabled[k])
             gl.EndQuery(kind_target[k]);
+    gl_pass_queries_pause(q);
     q->active = false;
 }
 
@@ -139,6 +194,12 @@ void gl_pass_queries_collect(gl_pass_queries *q, frame_stats *fs)
         fs->pass[p].gpu_us = v[KIND_TIME] / 1000.0;   /* ns -> us; NAN stays NAN */
         fs->pass[p].fragments = v[KIND_FRAGMENTS];
         fs->pass[p].primitives = v[KIND_PRIMITIVES];
+        /* the pass's shading draws: every stretch between pauses (0 if none) */
+        const sample_segments *sg = &q->samples[q->frame * q->max_passes + p];
+        double samples = issued ? 0.0 : NAN;
+        for (size_t i = 0; issued && i < sg->n; i++)
+            samples += result(sg->ids[i]);
+        fs->pass[p].samples = samples;
     }
     for (size_t p = 0; p < q->max_passes; p++)
         q->issued[q->frame * q->max_passes + p] = false;

@@ -14,8 +14,9 @@
  *   Each pass is measured at most once per frame; one pass is measured at a time
  *   (begin/end do not nest). Passes need not all run every frame.
  * - collect() ends the frame: for i < min(fs->npasses, max_passes) it sets
- *   fs->pass[i].gpu_us, .fragments and .primitives from the queries of the frame
- *   just ended, NAN where that kind of query was not asked for (timer / stats
+ *   fs->pass[i].gpu_us, .fragments, .primitives and .samples (GL_SAMPLES_PASSED,
+ *   core GL: every driver, of the pass's draws outside gl_pass_queries_pause) from the
+ *   queries of the frame just ended, NAN where that kind of query was not asked for (timer / stats
  *   false at creation), the pass was not measured this frame, or its result is
  *   not available yet. It never blocks: it checks GL_QUERY_RESULT_AVAILABLE and
  *   reports NAN rather than wait. Other fields of fs are left alone.
@@ -48,3 +49,9 @@ void gl_pass_queries_destroy(gl_pass_queries *q);   /* NULL is fine */
 void gl_pass_queries_begin(gl_pass_queries *q, size_t pass);
 void gl_pass_queries_end(gl_pass_queries *q);
 void gl_pass_queries_collect(gl_pass_queries *q, frame_stats *fs);
+/* Around draws of the measured pass that shade nothing (stencil marks, shadow maps, a
+ * depth pre-pass): pass_stats.samples counts the GL_SAMPLES_PASSED of every other draw
+ * of the pass. Nothing outside a pass, or when already paused / counting; NULL is
+ * fine. */
+void gl_pass_queries_pause(gl_pass_queries *q);
+void gl_pass_queries_resume(gl_pass_queries *q);

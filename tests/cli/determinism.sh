@@ -51,10 +51,11 @@ def table(path):
     with open(path, newline="") as f:
         return list(csv.DictReader(f))
 WORK = {"frames.csv": ["trial", "frame", "t_scene_s", "lights", "draw_calls", "state_changes",
-                       "fragments"],
+                       "fragments", "samples"],
         "passes.csv": ["trial", "frame", "pass", "draw_calls", "state_changes", "fragments",
+                       "samples",
                        "primitives", "dispatches", "cell_lights_mean", "cell_lights_max",
-                       "light_evals_per_pixel"]}
+                       "light_evals_per_pixel", "scissor_pixels"]}
 for m in ("interior", "growth"):
     a, b = f"a-{m}", f"b-{m}"
     ids = sorted(os.listdir(os.path.join(a, "runs")))

@@ -23,16 +23,16 @@ summary_cols = ["experiment","run_id","renderer","scene","width","height","gbuff
   "lights_placement","lights_rng","lights_seed","lights_count","lights_radius","trial",
   "frames","measured_s","fps_mean","frametime_mean_us","frametime_sd_us","frametime_ci95_us",
   "frametime_p50_us","frametime_p99_us","fps_1pct_low","gpu_mean_us","draw_calls_mean","state_changes_mean",
-  "fragments_mean","gbuffer_bytes","image_rmse","image_psnr_db","image_max_abs",
+  "fragments_mean","samples_mean","gbuffer_bytes","image_rmse","image_psnr_db","image_max_abs",
   "nonfinite_pixels","harness_us_mean","ci1pct_after_s","dispatches_mean","cell_lights_mean",
   "cell_lights_max","light_evals_per_pixel","status","message"]
 frames_cols = ["run_id","trial","frame","t_wall_s","t_scene_s","lights","frametime_us",
-  "gpu_us","draw_calls","state_changes","fragments"]
+  "gpu_us","draw_calls","state_changes","fragments","samples"]
 seconds_cols = ["run_id","trial","second","complete","lights_min","lights_max","frames","fps",
   "frametime_mean_us","frametime_sd_us","frametime_p50_us","frametime_p99_us","draw_calls_mean"]
 passes_cols = ["run_id","trial","frame","pass","gpu_us","cpu_us","draw_calls","state_changes",
-  "fragments","primitives","dispatches","cell_lights_mean","cell_lights_max",
-  "light_evals_per_pixel"]
+  "fragments","samples","primitives","dispatches","cell_lights_mean","cell_lights_max",
+  "light_evals_per_pixel","scissor_pixels"]
 convergence_cols = ["run_id","trial","elapsed_s","frames","frametime_mean_us","frametime_ci95_us",
   "ci95_rel"]
 
@@ -95,9 +95,13 @@ for p in plan:
         if null and (r["draw_calls"] != "0" or r["state_changes"] != "0"): fail("work counts")
         if null and r["fragments"] not in ("0", ""): fail(f"fragments of a clear: {r['fragments']}")
         if not null and int(r["draw_calls"]) <= 0: fail(f"no draws: {r}")
+        # GL_SAMPLES_PASSED is core GL: counted on every driver, none for a clear
+        if r["samples"] == "" or (null and r["samples"] != "0") or \
+                (not null and int(r["samples"]) <= 0): fail(f"samples: {r}")
         if float(r["frametime_us"]) <= 0: fail("frame time")
     # clock: fixed makes the work of frame k the same in both trials and both sync modes
-    counts = [(r["lights"], r["draw_calls"], r["state_changes"], r["fragments"]) for r in fr]
+    counts = [(r["lights"], r["draw_calls"], r["state_changes"], r["fragments"], r["samples"])
+              for r in fr]
     if counts[:30] != counts[30:]: fail(f"{p['renderer']}: work counts differ between trials")
     k = (p["renderer"], p["resolution"])
     if work.setdefault(k, counts) != counts: fail(f"{k}: work counts differ between sync modes")

@@ -1,7 +1,9 @@
 /* The deferred renderer (renderers/deferred.c) in a debug context, on scenes set up
  * here: draw calls per pass against the formulas of deferred.c's header for every
- * light-volume mode; the pixels the light passes shade (GL_SAMPLES_PASSED around the
- * shade draws, deferred_count_shaded) ordered stencil <= volume < fullscreen, with
+ * light-volume mode; the pixels the light passes shade (pass_stats.samples:
+ * GL_SAMPLES_PASSED of the shade draws) ordered stencil <= volume <= hull <= scissor <
+ * fullscreen, the scissor's exactly its rectangle; seed 000 5.5's floating-spot (stencil
+ * 0, hull most of the screen); with
  * fragment-shader invocations exactly W x H full screen and fewer for a volume (llvmpipe
  * counts every 4x4 block a triangle covers, depth- and stencil-rejected ones included,
  * so invocations cannot show what the stencil saves); a floating light (its volume
@@ -46,10 +48,12 @@ enum { W = 128, H = 96 };
 
 static gl_context *ctx;
 
-static const light_volume_mode MODES[4] = {LIGHT_VOLUMES_FULLSCREEN, LIGHT_VOLUMES_VOLUME,
-                                           LIGHT_VOLUMES_STENCIL,
-                                           LIGHT_VOLUMES_STENCIL_TWO_PASS};
-static const char *const MODE_NAMES[4] = {"fullscreen", "volume", "stencil", "stencil-two-pass"};
+enum { NMODES = 6 };
+static const light_volume_mode MODES[NMODES] = {
+    LIGHT_VOLUMES_FULLSCREEN, LIGHT_VOLUMES_VOLUME, LIGHT_VOLUMES_STENCIL,
+    LIGHT_VOLUMES_STENCIL_TWO_PASS, LIGHT_VOLUMES_HULL, LIGHT_VOLUMES_SCISSOR};
+static const char *const MODE_NAMES[NMODES] = {"fullscreen", "volume", "stencil",
+                                               "stencil-two-pass", "hull", "scissor"};
 
 static const gbuffer_preset PRESETS[5] = {GBUFFER_FAT, GBUFFER_CURTIS, GBUFFER_COMPACT,
                                           GBUFFER_SPHEREMAP, GBUFFER_REFERENCE};
@@ -307,21 +311,21 @@ static void test_draw_calls(void **state)
     scene *s = build("shapes", lights, 5);
     visible v = count_visible(s);
     assert_int_equal(v.lights[LIGHT_POINT], 2);   /* the far one is culled */
-    for (int m = 0; m < 4; m++) {
+    for (int m = 0; m < NMODES; m++) {
         check_formula(s, MODES[m], false);
         check_formula(s, MODES[m], true);
     }
     /* The counts do not depend on where the camera is: inside a volume too. */
     const float in_eye[3] = {0.0f, 4.0f, 12.0f};
     look(s, in_eye, TARGET, 0.0f, 0.0f);
-    for (int m = 0; m < 4; m++)
+    for (int m = 0; m < NMODES; m++)
         check_formula(s, MODES[m], false);
     scene_destroy(s);
 
     /* "empty": no objects, no sky, point lights only */
     scene_light pl[] = {point(0.0f, 5.0f, 0.0f, 20.0f, 1.0f, 1.0f, 1.0f)};
     s = build("empty", pl, 1);
-    for (int m = 0; m < 4; m++)
+    for (int m = 0; m < NMODES; m++)
         check_formula(s, MODES[m], false);
     scene_destroy(s);
 }
@@ -329,23 +333,31 @@ static void test_draw_calls(void **state)
 // >>fragments
 
 /* The light pass's fragment-shader invocations (pipeline statistics, NAN without
- * them) and the samples its shade draws lit (GL_SAMPLES_PASSED, deferred.h). */
+ * them) and the samples its shade draws lit (pass_stats.samples: GL_SAMPLES_PASSED
+ * outside the stencil marks). */
 typedef struct light_work {
     double invocations;
     uint64_t shaded;
+    double scissor_pixels;   /* passes.csv's scissor_pixels of the pass (NAN: not scissor) */
 } light_work;
 
 static light_work light_fragments(const scene *s, light_volume_mode mode, int type)
 {
     renderer_options o = options(mode, GBUFFER_REFERENCE);
     void *self = make(s, &o);
-    deferred_count_shaded(self, true);
     frame_stats fs;
     frame(self, s, &fs);
     frame(self, s, &fs);
     const pass_stats *p = find_pass(&fs, type == LIGHT_POINT ? "point" : "spot");
     assert_non_null(p);
-    light_work w = {.invocations = p->fragments, .shaded = deferred_shaded_samples(self, type)};
+    /* samples: GL_SAMPLES_PASSED of the shade draws, the stencil marks left out */
+    assert_false(isnan(p->samples));
+    light_work w = {.invocations = p->fragments, .shaded = (uint64_t)p->samples,
+                    .scissor_pixels = p->scissor_pixels};
+    if (mode == LIGHT_VOLUMES_SCISSOR)
+        assert_false(isnan(p->scissor_pixels));
+    else
+        assert_true(isnan(p->scissor_pixels));
     IMPL->destroy(self);
     return w;
 }
@@ -360,9 +372,21 @@ static void test_fragment_order(void **state)
     static const int types[2] = {LIGHT_POINT, LIGHT_SPOT};
     const bool stats = gl_context_info(ctx)->pipeline_statistics;
     for (int p = 0; p < 2; p++) {
-        light_work w[4];
-        for (int m = 0; m < 4; m++)
+        light_work w[NMODES];
+        for (int m = 0; m < NMODES; m++)
             w[m] = light_fragments(s, MODES[m], types[p]);
+        print_message("%s: shaded samples hull %llu scissor %llu (rectangle %.0f)\n",
+                      types[p] == LIGHT_POINT ? "point" : "spot",
+                      (unsigned long long)w[4].shaded, (unsigned long long)w[5].shaded,
+                      w[5].scissor_pixels);
+        /* the hull shades every pixel its back faces cover: at least what the volume's
+         * depth test lets through, fewer than the screen; the scissor's full-screen
+         * triangle shades exactly its rectangle, which holds the hull's projection */
+        assert_true(w[4].shaded >= w[1].shaded);
+        assert_true(w[4].shaded < w[0].shaded);
+        assert_true(w[5].shaded == (uint64_t)w[5].scissor_pixels);
+        assert_true(w[5].shaded >= w[4].shaded);
+        assert_true(w[5].shaded < w[0].shaded);
         print_message("%s: shaded samples fullscreen %llu volume %llu stencil %llu "
                       "stencil-two-pass %llu; invocations %.0f %.0f %.0f %.0f\n",
                       types[p] == LIGHT_POINT ? "point" : "spot",
@@ -403,6 +427,14 @@ static void test_floating_light(void **state)
     light_work s2 = light_fragments(s, LIGHT_VOLUMES_STENCIL_TWO_PASS, LIGHT_POINT);
     light_work fv = light_fragments(s, LIGHT_VOLUMES_VOLUME, LIGHT_POINT);
     light_work ff = light_fragments(s, LIGHT_VOLUMES_FULLSCREEN, LIGHT_POINT);
+    light_work fh = light_fragments(s, LIGHT_VOLUMES_HULL, LIGHT_POINT);
+    light_work fs = light_fragments(s, LIGHT_VOLUMES_SCISSOR, LIGHT_POINT);
+    print_message("floating light: shaded samples hull %llu scissor %llu (rectangle %.0f)\n",
+                  (unsigned long long)fh.shaded, (unsigned long long)fs.shaded,
+                  fs.scissor_pixels);
+    /* seed 000 4.5.8's baseline shades the whole hull where the stencil shades nothing */
+    assert_true(fh.shaded >= 10u * (st.shaded + 1u));
+    assert_true(fs.shaded == (uint64_t)fs.scissor_pixels && fs.shaded >= fh.shaded);
     print_message("floating light: shaded samples stencil %llu stencil-two-pass %llu volume "
                   "%llu fullscreen %llu; invocations %.0f %.0f %.0f %.0f\n",
                   (unsigned long long)st.shaded, (unsigned long long)s2.shaded,
@@ -413,6 +445,79 @@ static void test_floating_light(void **state)
     assert_int_equal(ff.shaded, (uint64_t)W * H);
     if (gl_context_info(ctx)->pipeline_statistics)
         assert_true(fv.invocations > 0.0);   /* the volume is on screen */
+    scene_destroy(s);
+}
+
+/* Seed 000 5.5's floating spot (the catalog's floating-spot, its lights, the eye of
+ * its hold 1): the volume covers most of the screen and lights nothing. Both stencil
+ * modes shade exactly no sample (their marks are not counted); the hull, the paper's
+ * baseline, shades every pixel it covers: more than half the screen. */
+static void test_floating_spot(void **state)
+{
+    (void)state;
+    char err[256];
+    light_params lp = {.placement = PLACEMENT_SCENE, .radius = 1.0f,
+                       .count = {.start = LIGHT_COUNT_ALL, .max = LIGHT_COUNT_ALL}};
+    scene *s = scene_build("floating-spot", &lp, W, H, err, sizeof err);
+    if (!s)
+        fail_msg("floating-spot: %s", err);
+    assert_int_equal(s->nlights_total, 1);
+    scene_update(s, 0.0);
+    const float eye[3] = {0.0f, 3.3f, 1.8f}, target[3] = {0.0f, 3.2f, 0.0f};
+    look(s, eye, target, 0.0f, 0.0f);
+    assert_int_equal(count_visible(s).lights[LIGHT_SPOT], 1);
+    light_work st = light_fragments(s, LIGHT_VOLUMES_STENCIL, LIGHT_SPOT);
+    light_work s2 = light_fragments(s, LIGHT_VOLUMES_STENCIL_TWO_PASS, LIGHT_SPOT);
+    light_work hu = light_fragments(s, LIGHT_VOLUMES_HULL, LIGHT_SPOT);
+    light_work sc = light_fragments(s, LIGHT_VOLUMES_SCISSOR, LIGHT_SPOT);
+    print_message("floating-spot: samples stencil %llu stencil-two-pass %llu hull %llu "
+                  "scissor %llu (of %d)\n", (unsigned long long)st.shaded,
+                  (unsigned long long)s2.shaded, (unsigned long long)hu.shaded,
+                  (unsigned long long)sc.shaded, W * H);
+    assert_int_equal(st.shaded, 0);
+    assert_int_equal(s2.shaded, 0);
+    assert_true(hu.shaded > (uint64_t)W * H / 2);
+    assert_true(hu.shaded >= 10u * (st.shaded + 1u));
+    assert_true(sc.shaded == (uint64_t)sc.scissor_pixels && sc.shaded >= hu.shaded);
+    scene_destroy(s);
+}
+
+// >>the scissor rectangle
+
+/* A point light straight ahead of the camera: its volume's box (+-1.05 x 1.1 x radius
+ * about the light, deferred_scissor_rect) projects to a square whose half side in NDC
+ * is proj[0][0] b / (d - b) (x) and proj[1][1] b / (d - b) (y), b the box's half side,
+ * d the light's distance: the near face is the widest. The rectangle is the whole
+ * pixels that holds, its area what the pass reports and what it shades. */
+static void test_scissor_rect(void **state)
+{
+    (void)state;
+    const float d = 20.0f, radius = 3.0f;
+    scene_light lights[] = {point(0.0f, 2.0f, -d, radius, 1.0f, 1.0f, 1.0f)};
+    scene *s = build("shapes", lights, 1);
+    const float eye[3] = {0.0f, 2.0f, 0.0f}, target[3] = {0.0f, 2.0f, -1.0f};
+    look(s, eye, target, 0.0f, 0.0f);
+    double b = 1.05 * 1.1 * radius;
+    double ax = s->proj[0][0] * b / (d - b), ay = s->proj[1][1] * b / (d - b);
+    int x0 = (int)floor(W / 2.0 * (1.0 - ax)), x1 = (int)ceil(W / 2.0 * (1.0 + ax));
+    int y0 = (int)floor(H / 2.0 * (1.0 - ay)), y1 = (int)ceil(H / 2.0 * (1.0 + ay));
+    int rect[4];
+    int64_t area = deferred_scissor_rect(s, 0, W, H, rect);
+    print_message("scissor rectangle (%d, %d) %dx%d, expected (%d, %d) %dx%d\n", rect[0],
+                  rect[1], rect[2], rect[3], x0, y0, x1 - x0, y1 - y0);
+    assert_int_equal(rect[0], x0);
+    assert_int_equal(rect[1], y0);
+    assert_int_equal(rect[2], x1 - x0);
+    assert_int_equal(rect[3], y1 - y0);
+    assert_int_equal(area, (int64_t)(x1 - x0) * (y1 - y0));
+    light_work w = light_fragments(s, LIGHT_VOLUMES_SCISSOR, LIGHT_POINT);
+    assert_true(w.scissor_pixels == (double)area);
+    assert_int_equal(w.shaded, (uint64_t)area);
+    /* behind the camera: nothing; reaching the eye's plane: the whole screen */
+    s->lights[0].position[2] = 30.0f;
+    assert_int_equal(deferred_scissor_rect(s, 0, W, H, rect), 0);
+    s->lights[0].position[2] = -2.0f;
+    assert_int_equal(deferred_scissor_rect(s, 0, W, H, rect), (int64_t)W * H);
     scene_destroy(s);
 }
 
@@ -464,8 +569,8 @@ static void check_modes_agree(const image_case *c)
         assert_true(dist > hi && -pv[2] + lo > s->zfar && -pv[2] < s->zfar);
         break;
     }
-    uint8_t *img[4];
-    for (int m = 0; m < 4; m++) {
+    uint8_t *img[NMODES];
+    for (int m = 0; m < NMODES; m++) {
         renderer_options o = options(MODES[m], GBUFFER_REFERENCE);
         img[m] = render(s, &o);
     }
@@ -476,14 +581,19 @@ static void check_modes_agree(const image_case *c)
     size_t lit = count_different(img[0], dark, 2);
     print_message("%s: %zu pixels lit\n", c->what, lit);
     assert_true(lit > (size_t)W * H / 50);
-    for (int m = 1; m < 4; m++) {
+    for (int m = 1; m < NMODES; m++) {
         size_t at = 0;
         int diff = max_diff(img[0], img[m], &at);
         if (diff > 1)
             fail_msg("%s: %s differs from fullscreen by %d/255 at pixel (%zu, %zu)", c->what,
                      MODE_NAMES[m], diff, at % W, at / W);
+        /* hull and scissor against stencil too (seed 000 5.5 compares them) */
+        diff = m >= 4 ? max_diff(img[2], img[m], &at) : 0;
+        if (diff > 1)
+            fail_msg("%s: %s differs from stencil by %d/255 at pixel (%zu, %zu)", c->what,
+                     MODE_NAMES[m], diff, at % W, at / W);
     }
-    for (int m = 0; m < 4; m++)
+    for (int m = 0; m < NMODES; m++)
         free(img[m]);
     free(dark);
     scene_destroy(s);
@@ -652,7 +762,7 @@ static void test_force(void **state)
                             point(0.0f, 4.0f, 10.0f, 9.0f, 0.5f, 0.7f, 1.0f),
                             spot(sp, st, 14.0f, 30.0f)};
     scene *s = build("shapes", lights, 3);
-    for (int m = 0; m < 4; m++) {
+    for (int m = 0; m < NMODES; m++) {
         renderer_options o = options(MODES[m], GBUFFER_SPHEREMAP);
         o.separate_specular = m == 1;
         uint8_t *a = render(s, &o);
@@ -740,7 +850,7 @@ static void test_pruning(void **state)
     scene_light lights[] = {point(0.0f, 4.0f, 10.0f, 9.0f, 1.0f, 1.0f, 1.0f),
                             point(-10.0f, 3.0f, -10.0f, 8.0f, 1.0f, 0.8f, 0.6f)};
     scene *s = build("shapes", lights, 2);
-    for (int m = 0; m < 4; m++) {
+    for (int m = 0; m < NMODES; m++) {
         renderer_options o = options(MODES[m], GBUFFER_CURTIS);
         void *self = make(s, &o);
         pass_plan p;
@@ -991,6 +1101,8 @@ int main(void)
         cmocka_unit_test(test_draw_calls),
         cmocka_unit_test(test_fragment_order),
         cmocka_unit_test(test_floating_light),
+        cmocka_unit_test(test_scissor_rect),
+        cmocka_unit_test(test_floating_spot),
         cmocka_unit_test(test_modes_agree),
         cmocka_unit_test(test_presets),
         cmocka_unit_test(test_separate_specular),

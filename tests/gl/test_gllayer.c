@@ -944,23 +944,31 @@ static void test_fullscreen_triangle(void **state)
     gl_state_program(s, clipped);
     gl.Uniform4f(0, 0.0f, 0.0f, 153.0f / 255.0f, 1.0f);
     assert_true(gl_state_draw_fullscreen(s, w, h, false));
+    /* samples: a paused stretch is not counted, resuming counts again */
+    gl_pass_queries_pause(q);
+    assert_true(gl_state_draw_fullscreen(s, w, h, false));
+    gl_pass_queries_resume(q);
+    assert_true(gl_state_draw_fullscreen(s, w, h, false));
     gl_pass_queries_end(q);
     gl_state_end_pass(s, &fs.pass[1]);
     uint64_t want2[GLS_CAT_COUNT] = {[GLS_CAT_PROGRAM] = 1, [GLS_CAT_VIEWPORT] = 1};
-    assert_counts(gl_state_pass_counts(s), want2, 1);
+    assert_counts(gl_state_pass_counts(s), want2, 3);
     assert_fragcoord_image(&color);
 
     gl.Finish();
     gl_pass_queries_collect(q, &fs);
     assert_string_equal(fs.pass[0].name, "fullscreen");
     assert_int_equal(fs.pass[0].draw_calls, 1);
+    /* GL_SAMPLES_PASSED on every driver: exactly the pixels, 2 of 3 draws in pass 1 */
+    assert_true(fs.pass[0].samples == (double)(w * h));
+    assert_true(fs.pass[1].samples == (double)(2 * w * h));
     if (info->pipeline_statistics) {
         if (fs.pass[0].fragments != (double)(w * h) || fs.pass[0].primitives != 1.0)
             fail_msg("%g fragments and %g primitives, expected %d and 1", fs.pass[0].fragments,
                      fs.pass[0].primitives, w * h);
         /* Clipped, an implementation may shade more (llvmpipe: see fullscreen.vert). */
-        assert_true(fs.pass[1].fragments >= (double)(w * h));
-        assert_true(fs.pass[1].primitives == 1.0);
+        assert_true(fs.pass[1].fragments >= (double)(3 * w * h));   /* three draws */
+        assert_true(fs.pass[1].primitives == 3.0);
     } else {
         fprintf(stderr, "note: no pipeline statistics queries here; fragments not checked\n");
     }
