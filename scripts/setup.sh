@@ -11,6 +11,7 @@ packages=(
   libassimp-dev assimp-testmodels                    # file scenes (glTF 2.0, OBJ); their tests
   libcmocka-dev libcglm-dev                           # tests; cglm is the math oracle
   python3 python3-yaml python3-matplotlib             # end-to-end test checks; scripts/report
+  python3-numpy                                       # the independent shading-model check
   clang libclang-rt-14-dev                            # the manifest fuzzer (libFuzzer)
   valgrind                                            # meson test --setup=valgrind
 )
