@@ -96,15 +96,24 @@
  *   reference  RGBA32F position.xyz + shininess | RGBA32F normal.xyz + gloss | RGBA32F
  *              diffuse | RGBA32F emissive
  *
- * Position from the depth buffer (gbuffer position: depth) reads the shared depth-stencil
- * texture in the light passes while it is attached to the light framebuffer (for the
- * volumes' depth test, writes off): formally a feedback loop. Shadow maps do not touch
- * it (they have their own depth targets).
+ * Position from the depth buffer (gbuffer position: depth): the light passes test against
+ * the shared depth-stencil target, which is attached to the light framebuffer, so they
+ * cannot sample it too: texturing from an image attached to the bound draw framebuffer
+ * is undefined in GL 4.5 (section 9.3), write masks off or not (llvmpipe gives the
+ * expected texels, a GPU need not). So the G-buffer pass ends, after its draws, with one
+ * glCopyImageSubData of the depth-stencil target into "depth.sampled" (the same format;
+ * no draw, counted in the G-buffer pass's GPU time), and the light passes sample that.
+ * tiled-deferred needs no copy: its one dispatch is the only reader, and the output
+ * framebuffer (no texture attached) is bound for it, as forward-plus does for its cull.
+ * Shadow maps do not touch it (they have their own depth targets). The state cache's
+ * feedback-loop check (state.h) fails any draw or dispatch that samples an attached
+ * texture in debug contexts (every test).
  *
  * Targets: the G-buffer attachments ("gbuffer.<slots>"), "light" (RGBA16F; with
  * separate_specular "light.diffuse" + "light.specular") and "depth" (depth24-stencil8,
  * shared by the G-buffer and light framebuffers so that volumes test against the scene's
- * depth). gbuffer_bytes counts the G-buffer's colour attachments. */
+ * depth), and with position from depth (deferred only) "depth.sampled", its copy.
+ * gbuffer_bytes counts the G-buffer's colour attachments. */
 #include "renderers/deferred.h"
 
 #include "renderers/base.h"
@@ -197,6 +206,7 @@ typedef struct deferred_renderer {
     shadow_maps shadows;
     gl_target gbuf[DEFERRED_MAX_ATTACHMENTS];
     gl_target light, specular, depth;
+    gl_target depth_sampled;         /* position from depth: the G-buffer's depth, copied */
     gl_framebuffer fb_gbuffer, fb_light, fb_compose;
     bool unclipped;                  /* full-screen passes draw the unclipped triangle */
     unsigned variants;               /* bit v: some object's material is of map variant v */
@@ -307,6 +317,7 @@ static void release_prepared(deferred_renderer *r)
     gl_target_destroy(&r->light);
     gl_target_destroy(&r->specular);
     gl_target_destroy(&r->depth);
+    gl_target_destroy(&r->depth_sampled);
     shadow_maps_destroy(&r->shadows);
     scene_gpu_destroy(r->gpu);
     r->gpu = NULL;
@@ -392,6 +403,13 @@ static bool make_targets(deferred_renderer *r, char *err, size_t errlen)
             goto fail;
         gdesc.color[i] = &r->gbuf[i];
     }
+    if (!r->tiled && r->layout.position == DEFERRED_POSITION_DEPTH_BUFFER &&
+        !gl_target_create(&r->depth_sampled,
+                          &(gl_target_desc){.name = "depth.sampled",
+                                            .format = GLT_FORMAT_DEPTH24_STENCIL8,
+                                            .width = w, .height = h},
+                          why, sizeof why))
+        goto fail;
     bool sep = r->b.opts.separate_specular;
     if (!gl_target_create(&r->light, &(gl_target_desc){.name = sep ? "light.diffuse" : "light",
                                                        .format = GLT_FORMAT_RGBA16F,
@@ -749,7 +767,9 @@ static void bind_gbuffer_textures(deferred_renderer *r)
     for (int i = 0; i < r->layout.nattachments; i++)
         gl_state_texture(r->b.st, DEFERRED_FIRST_GBUFFER_UNIT + (unsigned)i, r->gbuf[i].texture);
     if (r->layout.position == DEFERRED_POSITION_DEPTH_BUFFER)
-        gl_state_texture(r->b.st, DEFERRED_DEPTH_UNIT, r->depth.texture);
+        gl_state_texture(r->b.st, DEFERRED_DEPTH_UNIT, r->depth_sampled.texture
+                                                           ? r->depth_sampled.texture
+                                                           : r->depth.texture);
 }
 
 /* Light li, whose shadow-map layer this frame is `layer` (FRONTEND_NO_SHADOW: none). */
@@ -1017,6 +1037,8 @@ static void tiled_draw(deferred_renderer *r, const scene *s, frame_stats *out)
     gl_state_storage_buffer(st, BIND_SSBO_TILE_INDICES, tp->indices);
     gl_state_storage_buffer(st, BIND_SSBO_TILE_STATS, tp->stats);
     gl_state_image(st, BIND_IMAGE_HDR, r->light.texture, GL_WRITE_ONLY, GL_RGBA16F);
+    /* it samples the depth target: no draw framebuffer that has it attached (header) */
+    gl_state_framebuffer(st, r->b.output_fbo);
     gl_state_dispatch(st, tp->tiles_x, tp->tiles_y, 1);
     /* the sky draws into the target, resolve samples it */
     gl_state_barrier(st, GL_FRAMEBUFFER_BARRIER_BIT | GL_TEXTURE_FETCH_BARRIER_BIT);
@@ -1066,6 +1088,10 @@ static void deferred_draw(void *self, const scene *s, frame_stats *out)
         gl_state_program(st, r->gbuffer_program[v]);
         scene_gpu_draw_object(r->gpu, st, s, o);
     }
+    if (r->depth_sampled.texture)   /* position from depth: what the light passes sample */
+        gl.CopyImageSubData(r->depth.texture, GL_TEXTURE_2D, 0, 0, 0, 0,
+                            r->depth_sampled.texture, GL_TEXTURE_2D, 0, 0, 0, 0, r->b.width,
+                            r->b.height, 1);
     pass_end(r, out);
 
     GLuint hdr_fbo = r->fb_light.fbo;   /* where the sky goes */
@@ -1221,6 +1247,7 @@ static void deferred_describe(const void *self, pass_plan *out)
     describe_target(&r->light, out);
     describe_target(&r->specular, out);
     describe_target(&r->depth, out);
+    describe_target(&r->depth_sampled, out);
     shadow_maps_describe(&r->shadows, out);
 }
 

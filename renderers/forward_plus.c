@@ -9,7 +9,11 @@
  *            from the pre-pass and its frustum, every light of the frame tested
  *            against them, the passing lights' indices written into one index buffer,
  *            dynamically sized: each tile takes its place with one atomicAdd after
- *            counting, so no tile has a budget of its own (see "overflow" below)
+ *            counting, so no tile has a budget of its own (see "overflow" below). The
+ *            dispatch samples the depth target, so the output framebuffer (no texture
+ *            attached) is bound for it: texturing from an image attached to the bound
+ *            draw framebuffer is undefined, compute shaders included (GL 4.5 section 9.3;
+ *            the state cache's feedback-loop check, state.h)
  *   shade    the visible objects again, depth EQUAL without writes:
  *            forward_tiled.frag adds ambient, emissive and the lights of its tile's
  *            list (directional lights pass every tile's test, so each list holds the
@@ -328,6 +332,8 @@ static void plus_draw(void *self, const struct scene *s, frame_stats *out)
         gl.NamedBufferSubData(r->stats, 0, sizeof reset, &reset);
         gl_state_program(c->b.st, r->cull_program);
         gl.Uniform1i(FORWARD_UNIFORM_LIGHT, r->count);
+        /* no draw framebuffer that has the sampled depth attached (the header) */
+        gl_state_framebuffer(c->b.st, c->b.output_fbo);
         gl_state_texture(c->b.st, BIND_TEX_DEPTH, c->depth.texture);
         bind_buffers(r);
         gl_state_dispatch(c->b.st, r->tiles_x, r->tiles_y, 1);

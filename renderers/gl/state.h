@@ -259,6 +259,37 @@ void gl_state_image(gl_state *s, unsigned unit, GLuint texture, GLenum access, G
  * in "barrier" every time. */
 void gl_state_barrier(gl_state *s, GLbitfield bits);
 
+/* >>the feedback-loop check (debug contexts and tests)
+ *
+ * GL 4.5 section 9.3 ("Feedback Loops Between Textures and the Framebuffer") leaves
+ * texturing from an image undefined while that image is attached to the bound draw
+ * framebuffer; depth and colour write masks are no exception (only disjoint texels,
+ * one read and write per fragment, or glTextureBarrier between draws are). llvmpipe
+ * happens to give the expected texels, a GPU need not. With the check on, every draw
+ * and dispatch through the cache first asks GL (not the cache) which texture each
+ * active sampler uniform of the current program reads (its unit and target) and which
+ * textures the draw framebuffer has attached (colour, depth, stencil); a texture that
+ * is both counts one loop and, for the first 8 of a cache's life, gives the message
+ *
+ *     feedback loop in pass point: draw of program deferred_point+... samples texture
+ *     depth (sampler t_depth, unit 6) while it is attached to the draw framebuffer
+ *     light (depth); GL 4.5 section 9.3 leaves the result undefined
+ *
+ * as a GL_DEBUG_TYPE_ERROR message (glDebugMessageInsert: a debug context counts it
+ * as a GL error, so a test fails and a run is failed:gl-error), or on stderr as
+ * "bug: ..." where debug output is off. Dispatches are checked the same way (a
+ * compute shader's texturing is undefined too while the image is attached: switch
+ * the draw framebuffer before the dispatch). On by default exactly when
+ * GL_DEBUG_OUTPUT is enabled at gl_state_create (debug contexts: --debug-gl,
+ * SHADESWEEP_GL_DEBUG=1, every test), so measured runs pay nothing; the samplers of
+ * each program are read once per frame (gl_state_invalidate forgets them). */
+void gl_state_set_feedback_check(gl_state *s, bool on);
+bool gl_state_feedback_check(const gl_state *s);
+/* Draws and dispatches found sampling an attached texture since creation, and the
+ * message of the last one ("" when none). */
+uint64_t gl_state_feedback_loops(const gl_state *s);
+const char *gl_state_feedback_message(const gl_state *s);
+
 /* >>draws: one draw call each. offset: bytes into the element buffer of the
  * bound vertex array. */
 void gl_state_draw_arrays(gl_state *s, GLenum mode, GLint first, GLsizei count);
