@@ -46,6 +46,26 @@
  *                untouched depth (z = w, depth LEQUAL): last, as seed 000 4.5.11
  *   resolve      scene_gpu_resolve: the light target clamped into the output
  *
+ * Sky mask (renderer_options.sky_stencil, deferred.sky_stencil; seed 001 section 19.7.2,
+ * "Stencil Masking": the opaque geometry marks, at no extra draw, the pixels that deferred
+ * shading will light, and the lighting passes skip the others by the stencil test): the
+ * G-buffer draws set stencil bit 7 (SURFACE_BIT) where they pass the depth test (ALWAYS,
+ * REPLACE on pass, write mask 0x80), so the pixels no geometry covers, the sky, keep it
+ * clear; the full-screen passes (ambient, directional, point and spot in the fullscreen
+ * and scissor modes, compose) test EQUAL 0x80 under read mask 0x80 and write nothing,
+ * so each of their draws shades exactly the sky's pixel count fewer samples. The
+ * stencil and stencil-two-pass modes then count in bits 0-6 (read and write masks
+ * 0x7f: increment and decrement wrap within the seven bits, and reset them only), so
+ * the mark survives every light. The volume, stencil and stencil-two-pass modes
+ * already reject the sky by depth (nothing lies in front of a volume's back face
+ * there); hull, seed 000's unoptimised baseline, is left as it is. The ambient pass
+ * no longer writes the sky's pixels, so with no sky pass to draw them the light
+ * target is cleared to (0, 0, 0, 1) first (the ambient pass's value there); with one,
+ * the sky covers exactly the unmarked pixels (depth 1). Not in tiled-deferred or
+ * clustered deferred shading: their shading is one compute dispatch, which no stencil
+ * test masks, and it already skips pixels without a surface (create refuses the
+ * option there).
+ *
  * Draw calls per frame (V visible objects, D / P / S visible directional / point / spot
  * lights this frame, frontend_build; [x] = 1 when the pass runs, else 0; C(l) the
  * shadow-casting set of a visible light l that casts shadows, Sh = sum of |C(l)| over
@@ -236,6 +256,12 @@ static void *create(const char *name, bool tiled, bool clustered,
     int slices = opts->clustered_slices ? opts->clustered_slices : 24;
     if (clustered && (slices < 1 || slices > 64)) {
         snprintf(err, errlen, "%s: clustered.slices %d: expected 1 to 64", name, slices);
+        return NULL;
+    }
+    if (tiled && opts->sky_stencil) {
+        snprintf(err, errlen, "%s: deferred.sky_stencil: the shading is one compute dispatch, "
+                 "which no stencil test masks (it skips pixels without a surface itself)",
+                 name);
         return NULL;
     }
     if (tiled && opts->separate_specular) {
@@ -666,9 +692,10 @@ static bool deferred_prepare(void *self, const scene *s, char *err, size_t errle
     plan(r, PASS_GBUFFER, true, "%u objects into %d attachments (%s preset, %u bytes/pixel)",
          s->nobjects, r->layout.nattachments, deferred_preset_name(r->b.opts.gbuffer),
          deferred_layout_bytes_per_pixel(&r->layout));
-    plan(r, PASS_AMBIENT, true, "%s",
+    plan(r, PASS_AMBIENT, true, "%s%s",
          r->needs.emissive ? "ambient x diffuse + emissive, full screen"
-                           : "ambient x diffuse, full screen (no material is emissive)");
+                           : "ambient x diffuse, full screen (no material is emissive)",
+         r->b.opts.sky_stencil ? "; the full-screen passes skip the sky by the stencil" : "");
     if (count[LIGHT_DIRECTIONAL])
         plan(r, PASS_DIRECTIONAL, true, "%u directional lights, full screen each",
              count[LIGHT_DIRECTIONAL]);
@@ -761,6 +788,27 @@ static void pass_end(deferred_renderer *r, frame_stats *out)
 }
 
 static const gls_blend BLEND_ADD = {.enabled = true, .src = GLS_BLEND_ONE, .dst = GLS_BLEND_ONE};
+
+/* The sky mask (the file's header): bit 7 marks a surface, bits 0-6 count light volumes. */
+enum { SURFACE_BIT = 0x80, VOLUME_BITS = 0x7f };
+static const gls_stencil SURFACE_MARK = {
+    .enabled = true, .front = {.compare = GLS_COMPARE_ALWAYS, .pass = GLS_STENCIL_OP_REPLACE},
+    .ref = SURFACE_BIT, .write_mask = SURFACE_BIT};
+static const gls_stencil SURFACE_TEST = {
+    .enabled = true, .front = {.compare = GLS_COMPARE_EQUAL}, .ref = SURFACE_BIT,
+    .read_mask = SURFACE_BIT};   /* every op KEEP: writes nothing */
+
+/* What a full-screen pass tests: the surface bit with the sky mask, else nothing. */
+static const gls_stencil *full_screen_stencil(const deferred_renderer *r)
+{
+    return r->b.opts.sky_stencil ? &SURFACE_TEST : NULL;
+}
+
+/* The stencil modes' read and write masks: bits 0-6 with the sky mask, else 0 (0xff). */
+static uint8_t volume_bits(const deferred_renderer *r)
+{
+    return r->b.opts.sky_stencil ? VOLUME_BITS : 0;
+}
 
 static void bind_gbuffer_textures(deferred_renderer *r)
 {
@@ -904,6 +952,8 @@ static void draw_volume_light(deferred_renderer *r, const scene *s, int t, uint3
                                            .depth_fail = GLS_STENCIL_OP_DECR_WRAP},
                                  .back = {.compare = GLS_COMPARE_ALWAYS,
                                           .depth_fail = GLS_STENCIL_OP_INCR_WRAP},
+                                 .read_mask = volume_bits(r),
+                                 .write_mask = volume_bits(r),
                              });
         scene_gpu_draw_light_volume(r->gpu, st, s, li);
         r->mark_draws[t]++;
@@ -918,6 +968,8 @@ static void draw_volume_light(deferred_renderer *r, const scene *s, int t, uint3
                                  .front = {.compare = GLS_COMPARE_NOTEQUAL,
                                            .pass = GLS_STENCIL_OP_ZERO},
                                  .ref = 0,
+                                 .read_mask = volume_bits(r),
+                                 .write_mask = volume_bits(r),
                              });
         scene_gpu_draw_light_volume(r->gpu, st, s, li);
         r->shade_draws[t]++;
@@ -933,6 +985,8 @@ static void draw_volume_light(deferred_renderer *r, const scene *s, int t, uint3
                                  .enabled = true,
                                  .front = {.compare = GLS_COMPARE_ALWAYS,
                                            .depth_fail = GLS_STENCIL_OP_INCR_WRAP},
+                                 .read_mask = volume_bits(r),
+                                 .write_mask = volume_bits(r),
                              });
         scene_gpu_draw_light_volume(r->gpu, st, s, li);
         gl_state_cull(st, GLS_CULL_FRONT);
@@ -940,6 +994,8 @@ static void draw_volume_light(deferred_renderer *r, const scene *s, int t, uint3
                                  .enabled = true,
                                  .front = {.compare = GLS_COMPARE_ALWAYS,
                                            .depth_fail = GLS_STENCIL_OP_DECR_WRAP},
+                                 .read_mask = volume_bits(r),
+                                 .write_mask = volume_bits(r),
                              });
         scene_gpu_draw_light_volume(r->gpu, st, s, li);
         r->mark_draws[t] += 2;
@@ -953,6 +1009,8 @@ static void draw_volume_light(deferred_renderer *r, const scene *s, int t, uint3
                                  .front = {.compare = GLS_COMPARE_EQUAL,
                                            .pass = GLS_STENCIL_OP_INCR_WRAP},
                                  .ref = 0,
+                                 .read_mask = volume_bits(r),
+                                 .write_mask = volume_bits(r),
                              });
         scene_gpu_draw_light_volume(r->gpu, st, s, li);
         r->shade_draws[t]++;
@@ -976,7 +1034,7 @@ static void light_pass(deferred_renderer *r, const scene *s, frame_stats *out, p
         gl.Enable(GL_SCISSOR_TEST);   /* not state the cache keeps: off again below */
     if (!volumes) {
         gl_state_depth(st, NULL);
-        gl_state_stencil(st, NULL);
+        gl_state_stencil(st, full_screen_stencil(r));
         gl_state_cull(st, GLS_CULL_NONE);
         gl_state_program(st, r->light_program[type]);
     } else {
@@ -1079,7 +1137,7 @@ static void deferred_draw(void *self, const scene *s, frame_stats *out)
                    1.0, r->b.opts.light_volumes == LIGHT_VOLUMES_STENCIL_TWO_PASS ? 1 : 0);
     gl_state_color_mask(st, GLS_COLOR_MASK_RGBA);
     gl_state_blend(st, NULL);
-    gl_state_stencil(st, NULL);
+    gl_state_stencil(st, r->b.opts.sky_stencil ? &SURFACE_MARK : NULL);   /* the sky mask */
     gl_state_depth(st, &(gls_depth){.compare = GLS_COMPARE_LESS, .write = true});
     gl_state_cull(st, GLS_CULL_BACK);
     for (uint32_t k = 0; k < r->fe.nvisible; k++) {
@@ -1103,9 +1161,14 @@ static void deferred_draw(void *self, const scene *s, frame_stats *out)
     /* >>ambient + emissive */
     pass_begin(r, out, PASS_AMBIENT);
     gl_state_framebuffer(st, r->fb_light.fbo);
+    if (r->b.opts.sky_stencil && !r->run[PASS_SKY]) {
+        /* the sky's pixels: what the ambient pass writes there, as nothing else will */
+        static const float black[4] = {0.0f, 0.0f, 0.0f, 1.0f};
+        gl_state_clear(st, GL_COLOR_BUFFER_BIT, black, 1.0, 0);
+    }
     gl_state_blend(st, NULL);
     gl_state_depth(st, NULL);
-    gl_state_stencil(st, NULL);
+    gl_state_stencil(st, full_screen_stencil(r));
     gl_state_cull(st, GLS_CULL_NONE);
     bind_gbuffer_textures(r);
     gl_state_program(st, r->ambient_program);
@@ -1125,7 +1188,7 @@ static void deferred_draw(void *self, const scene *s, frame_stats *out)
         gl_state_framebuffer(st, r->fb_compose.fbo);
         gl_state_blend(st, &BLEND_ADD);
         gl_state_depth(st, NULL);
-        gl_state_stencil(st, NULL);
+        gl_state_stencil(st, full_screen_stencil(r));
         gl_state_cull(st, GLS_CULL_NONE);
         gl_state_texture(st, DEFERRED_SPECULAR_UNIT, r->specular.texture);
         gl_state_program(st, r->compose_program);
@@ -1281,6 +1344,12 @@ const gl_target *deferred_gbuffer_target(const void *self, int k)
     if (!r || !r->prepared || k < 0 || k >= r->layout.nattachments)
         return NULL;
     return &r->gbuf[k];
+}
+
+const gl_target *deferred_depth_target(const void *self)
+{
+    const deferred_renderer *r = self;
+    return r && r->prepared ? &r->depth : NULL;
 }
 
 uint64_t deferred_last_mark_draws(const void *self, int type)

@@ -145,6 +145,8 @@ const deferred_layout *deferred_gbuffer_layout(const void *self);
  * G-buffer attachment k (NULL past the layout's attachments). */
 const gl_target *deferred_hdr_target(const void *self);
 const gl_target *deferred_gbuffer_target(const void *self, int k);
+/* The shared depth-stencil target (what the G-buffer pass left in it). */
+const gl_target *deferred_depth_target(const void *self);
 /* The renderer's state cache (gl/state.h), e.g. to switch on gl_state_set_force. */
 struct gl_state *deferred_state_cache(void *self);
 /* Draw calls of the light-volume draws of the last frame that marked the stencil

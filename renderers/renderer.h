@@ -136,6 +136,8 @@ typedef struct renderer_options {
     gbuffer_normal gbuffer_normal;
     light_volume_mode light_volumes;
     bool separate_specular;    /* seed 001: diffuse and specular in separate targets */
+    bool sky_stencil;          /* seed 001 19.7.2: the full-screen passes skip the pixels no
+                                  surface covers by a stencil bit the G-buffer pass sets */
     /* shadows (every renderer; renderers/shadow.h): false = auto (spot and directional
      * lights with shadows = true cast them), true = the manifest's `shadows: off` */
     bool no_shadows;

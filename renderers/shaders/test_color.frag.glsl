@@ -1,6 +1,7 @@
 // Test shader (tests/gl/test_gllayer.c): writes u_color, or with FRAGCOORD the
 // pixel's own coordinates (x/255, y/255, u_color.b, u_color.a), or with READ_UV
 // fullscreen.vert's v_uv (v_uv, u_color.b, u_color.a), to every colour output.
+// SAMPLE adds texel (0, 0) of the texture at unit 0 (tests/gl/test_feedback.c).
 // OUTPUTS (default 1) is the number of colour outputs, for MRT tests.
 // TEST_EARLY_ERROR, TEST_COMPILE_ERROR, TEST_INCLUDE_ERROR (in test_common.inc)
 // and TEST_LINK_ERROR break the shader on purpose.
@@ -22,6 +23,9 @@ layout(location = 0) in vec2 v_uv;   // as fullscreen.vert writes it
 #ifdef TEST_LINK_ERROR
 in vec4 v_not_written_by_any_vertex_shader;
 #endif
+#ifdef SAMPLE
+layout(binding = 0) uniform sampler2D t_input;
+#endif
 
 void main()
 {
@@ -34,6 +38,9 @@ void main()
 #endif
 #ifdef TEST_LINK_ERROR
     c += v_not_written_by_any_vertex_shader;
+#endif
+#ifdef SAMPLE
+    c += texelFetch(t_input, ivec2(0), 0);
 #endif
 #ifdef TEST_COMPILE_ERROR
     c = this_is_not_declared;   // the test checks this line number

@@ -13,7 +13,10 @@
  * inside a spot volume, with a volume cut by the near plane and one cut by the far
  * plane; every preset (and field overrides) rendering with no GL error and no
  * non-finite value in the HDR target, close to the reference G-buffer; separate
- * specular accumulation and the state cache's force mode leaving the image alone;
+ * specular accumulation and the state cache's force mode leaving the image alone; the
+ * sky mask (deferred.sky_stencil, seed 001 19.7.2) in every mode, with and without a sky
+ * pass: the image within 1/255, and each full-screen draw's samples lower by exactly the
+ * sky's pixels counted from a depth read-back (scissor: those in its rectangles);
  * pruning of
  * passes, programs and G-buffer attachments, asserted through renderer_describe;
  * gbuffer_bytes; the layouts themselves. Any GL error fails. Exits 77 (skip) when no
@@ -752,6 +755,176 @@ static void test_separate_specular(void **state)
     scene_destroy(s);
 }
 
+// >>the sky mask (deferred.sky_stencil, seed 001 section 19.7.2)
+
+typedef struct sky_result {
+    frame_stats fs;
+    uint8_t *px;
+    float *depth;   /* the depth target after the frame, row 0 at the bottom */
+} sky_result;
+
+static sky_result sky_render(const scene *s, const renderer_options *o)
+{
+    sky_result r;
+    void *self = make(s, o);
+    frame(self, s, &r.fs);
+    frame(self, s, &r.fs);
+    r.px = malloc((size_t)W * H * 4);
+    r.depth = malloc((size_t)W * H * sizeof(float));
+    assert_non_null(r.px);
+    assert_non_null(r.depth);
+    char err[256];
+    assert_true(gl_context_read_rgba8(ctx, r.px, err, sizeof err));
+    const gl_target *d = deferred_depth_target(self);
+    assert_non_null(d);
+    gl.GetTextureImage(d->texture, 0, GL_DEPTH_COMPONENT, GL_FLOAT,
+                       (GLsizei)((size_t)W * H * sizeof(float)), r.depth);
+    assert_int_equal(gl_context_poll_errors(ctx, "depth read-back"), 0);
+    IMPL->destroy(self);
+    return r;
+}
+
+static int64_t samples_of(const frame_stats *fs, const char *pass)
+{
+    const pass_stats *p = find_pass(fs, pass);
+    if (!p)
+        fail_msg("no pass %s", pass);
+    assert_true(isfinite(p->samples) && p->samples >= 0.0);
+    return (int64_t)p->samples;
+}
+
+/* Pixels at depth 1 (no surface: the sky) in the rectangle {x, y, w, h} of window
+ * coordinates, from the depth read back: counted without the stencil. */
+static int64_t sky_in(const float *depth, const int rect[4])
+{
+    int64_t n = 0;
+    for (int y = rect[1]; y < rect[1] + rect[3]; y++)
+        for (int x = rect[0]; x < rect[0] + rect[2]; x++)
+            n += depth[(size_t)y * W + (size_t)x] == 1.0f;
+    return n;
+}
+
+/* The sky pixels in the scissor rectangles of the visible lights of type t. */
+static int64_t sky_in_scissors(const scene *s, int t, const float *depth)
+{
+    frontend fe;
+    memset(&fe, 0, sizeof fe);
+    char err[256];
+    if (!frontend_init(&fe, s, err, sizeof err))
+        fail_msg("frontend_init: %s", err);
+    frontend_build(&fe, s);
+    int64_t n = 0;
+    for (uint32_t k = 0; k < fe.nlights; k++) {
+        if ((int)s->lights[fe.lights[k]].type != t)
+            continue;
+        int rect[4];
+        deferred_scissor_rect(s, fe.lights[k], W, H, rect);
+        n += sky_in(depth, rect);
+    }
+    frontend_free(&fe);
+    return n;
+}
+
+/* With the mask, the same image within 1/255, and every full-screen draw shades exactly
+ * the sky's pixels fewer samples; the other passes shade what they did. */
+static void check_sky_stencil(const scene *s, light_volume_mode mode, bool separate)
+{
+    renderer_options o = options(mode, GBUFFER_CURTIS);
+    o.separate_specular = separate;
+    sky_result off = sky_render(s, &o);
+    o.sky_stencil = true;
+    sky_result on = sky_render(s, &o);
+    const int screen[4] = {0, 0, W, H};
+    const int64_t sky = sky_in(off.depth, screen);
+    assert_memory_equal(off.depth, on.depth, (size_t)W * H * sizeof(float));
+    const visible v = count_visible(s);
+    const int64_t d = v.lights[LIGHT_DIRECTIONAL], np = v.lights[LIGHT_POINT],
+                  ns = v.lights[LIGHT_SPOT];
+    size_t where = 0;
+    int diff = max_diff(off.px, on.px, &where);
+    print_message("sky mask, %s%s%s: %lld sky pixels of %d; ambient samples %lld -> %lld, "
+                  "point %lld -> %lld, spot %lld -> %lld; image max difference %d/255\n",
+                  MODE_NAMES[mode == LIGHT_VOLUMES_FULLSCREEN ? 0
+                             : mode == LIGHT_VOLUMES_VOLUME ? 1
+                             : mode == LIGHT_VOLUMES_STENCIL ? 2
+                             : mode == LIGHT_VOLUMES_STENCIL_TWO_PASS ? 3
+                             : mode == LIGHT_VOLUMES_HULL ? 4 : 5],
+                  separate ? ", separate specular" : "", s->sky ? "" : ", no sky pass",
+                  (long long)sky, W * H, (long long)samples_of(&off.fs, "ambient"),
+                  (long long)samples_of(&on.fs, "ambient"),
+                  (long long)samples_of(&off.fs, "point"), (long long)samples_of(&on.fs, "point"),
+                  (long long)samples_of(&off.fs, "spot"), (long long)samples_of(&on.fs, "spot"),
+                  diff);
+    assert_true(sky > W * H / 8 && sky < W * H * 7 / 8);   /* the case has both */
+    assert_true(d > 0 && np > 0 && ns > 0);
+    assert_true(diff <= 1);
+    assert_int_equal(off.fs.npasses, on.fs.npasses);
+    for (size_t i = 0; i < off.fs.npasses; i++) {
+        assert_string_equal(off.fs.pass[i].name, on.fs.pass[i].name);
+        assert_int_equal(off.fs.pass[i].draw_calls, on.fs.pass[i].draw_calls);
+    }
+    assert_int_equal(samples_of(&on.fs, "gbuffer"), samples_of(&off.fs, "gbuffer"));
+    /* full screen: every pixel without the mask, all but the sky's with it */
+    assert_int_equal(samples_of(&off.fs, "ambient"), (int64_t)W * H);
+    assert_int_equal(samples_of(&off.fs, "ambient") - samples_of(&on.fs, "ambient"), sky);
+    assert_int_equal(samples_of(&off.fs, "directional") - samples_of(&on.fs, "directional"),
+                     d * sky);
+    int64_t point_less = 0, spot_less = 0;   /* what the mask saves the point and spot passes */
+    if (mode == LIGHT_VOLUMES_FULLSCREEN) {
+        point_less = np * sky;
+        spot_less = ns * sky;
+    } else if (mode == LIGHT_VOLUMES_SCISSOR) {
+        point_less = sky_in_scissors(s, LIGHT_POINT, off.depth);
+        spot_less = sky_in_scissors(s, LIGHT_SPOT, off.depth);
+        assert_true(point_less > 0);   /* the point light's rectangle reaches the sky */
+    }
+    assert_int_equal(samples_of(&off.fs, "point") - samples_of(&on.fs, "point"), point_less);
+    assert_int_equal(samples_of(&off.fs, "spot") - samples_of(&on.fs, "spot"), spot_less);
+    if (separate)
+        assert_int_equal(samples_of(&off.fs, "compose") - samples_of(&on.fs, "compose"), sky);
+    if (s->sky) {
+        /* the sky pass draws exactly the unmarked pixels, mask or not */
+        assert_int_equal(samples_of(&off.fs, "sky"), sky);
+        assert_int_equal(samples_of(&on.fs, "sky"), sky);
+    }
+    free(off.px);
+    free(off.depth);
+    free(on.px);
+    free(on.depth);
+}
+
+extern const renderer_impl renderer_tiled_deferred_impl;
+
+static void test_sky_stencil(void **state)
+{
+    (void)state;
+    const float sp[3] = {-10.0f, 8.0f, -10.0f}, st[3] = {-10.0f, 0.0f, -10.0f};
+    scene_light lights[] = {directional(0.2f, -1.0f, -0.4f, 0.4f, 0.4f, 0.4f),
+                            point(10.0f, 2.0f, 0.0f, 8.0f, 1.0f, 0.8f, 0.6f),
+                            point(-10.0f, 3.0f, 10.0f, 6.0f, 0.5f, 0.6f, 1.0f),
+                            spot(sp, st, 12.0f, 25.0f)};
+    scene *s = build("shapes", lights, 4);
+    /* eye level with the horizon: the floor below, the sky above, the objects between */
+    const float eye[3] = {0.0f, 3.0f, 28.0f}, target[3] = {0.0f, 3.0f, 0.0f};
+    look(s, eye, target, 0.0f, 0.0f);
+    assert_true(s->sky);
+    for (int m = 0; m < NMODES; m++)
+        check_sky_stencil(s, MODES[m], false);
+    check_sky_stencil(s, LIGHT_VOLUMES_SCISSOR, true);
+    /* no sky pass: the light target is cleared where the ambient pass no longer writes */
+    s->sky = false;
+    check_sky_stencil(s, LIGHT_VOLUMES_FULLSCREEN, true);
+    check_sky_stencil(s, LIGHT_VOLUMES_STENCIL_TWO_PASS, false);
+    check_sky_stencil(s, LIGHT_VOLUMES_STENCIL, false);
+    /* tiled-deferred shades in a compute dispatch: no stencil test to mask it */
+    renderer_options o = options(LIGHT_VOLUMES_STENCIL, GBUFFER_CURTIS);
+    o.sky_stencil = true;
+    char err[512] = "";
+    assert_null(renderer_tiled_deferred_impl.create(&o, err, sizeof err));
+    assert_non_null(strstr(err, "tiled-deferred: deferred.sky_stencil:"));
+    scene_destroy(s);
+}
+
 /* With the state cache forcing every set, nothing changes: no state is changed behind
  * the cache's back (depth clamp is outside the cache and switched back each pass). */
 static void test_force(void **state)
@@ -1106,6 +1279,7 @@ int main(void)
         cmocka_unit_test(test_modes_agree),
         cmocka_unit_test(test_presets),
         cmocka_unit_test(test_separate_specular),
+        cmocka_unit_test(test_sky_stencil),
         cmocka_unit_test(test_force),
         cmocka_unit_test(test_pruning),
         cmocka_unit_test(test_layouts),
