@@ -375,6 +375,7 @@ static void test_kv_canonical(void **state)
         {"gbuffer.normal", "preset"},
         {"deferred.light_volumes", "stencil"},
         {"deferred.separate_specular", "false"},
+        {"deferred.sky_stencil", "false"},
         {"forward.illumination_sets", "true"},
         {"forward.light_buffer", "uniform"},
         {"tiles.size", "16"},
@@ -429,6 +430,7 @@ static void test_kv_canonical(void **state)
         {"gbuffer.normal", "preset"},
         {"deferred.light_volumes", "stencil"},
         {"deferred.separate_specular", "false"},
+        {"deferred.sky_stencil", "false"},
         {"forward.illumination_sets", "true"},
         {"forward.light_buffer", "uniform"},
         {"tiles.size", "16"},
@@ -668,6 +670,7 @@ static const bad_case bad_cases[] = {
      {"7:3: sweep.lights.cnt: expected a sweepable parameter (one of scene, resolution, "
       "trials, warmup, duration, clock, step, sync, timeout, gbuffer.preset, gbuffer.position, "
       "gbuffer.normal, deferred.light_volumes, deferred.separate_specular, "
+      "deferred.sky_stencil, "
       "forward.illumination_sets, forward.light_buffer, tiles.size, "
       "tiles.max_lights_per_tile, clustered.slices, clustered.shading, shadows, camera.radius, "
       "camera.height, camera.period, "
