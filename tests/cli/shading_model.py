@@ -45,7 +45,7 @@ the visible plane except linear-range's (whose attenuation reaches 0 there anywa
 light is within 1 cm of the plane (1/d^2 is clamped there), and every light is above
 the plane (N.L > 0 everywhere, so the project's gating of S by N.L > 0 does not show).
 
-The deferred renderers (deferred, tiled-deferred, clustered's G-buffer) run with
+The G-buffer renderers (deferred, tiled-deferred) run with
 `gbuffer: reference` (RGBA32F, position stored): with the default preset (curtis) the
 point light's highlight misses by one more level at one pixel (1.015/255), which is the
 G-buffer's precision, not the shading model.
@@ -56,6 +56,8 @@ between the screenshot (u8 / 255) and the model (clamped to [0, 1]) at most 1/25
 spot cosine lies within 1e-4 of cos(c) (the cone's edge, a step of cos(c) in the model)
 are left out of both and counted.
 """
+import base64
+import csv
 import glob
 import json
 import math
@@ -142,7 +144,7 @@ def plane_gltf(case):
     idx = [0, 1, 2, 0, 2, 3, 4, 5, 6]
     bin_ = struct.pack("<21f", *pos) + struct.pack("<21f", *nrm) + struct.pack("<9H", *idx)
     bin_ += b"\0" * (-len(bin_) % 4)
-    uri = "data:application/octet-stream;base64," + __import__("base64").b64encode(bin_).decode()
+    uri = "data:application/octet-stream;base64," + base64.b64encode(bin_).decode()
     cam = CAMERA
     nodes = [{"mesh": 0},
              {"name": "cam", "translation": list(cam["t"]),
@@ -361,7 +363,6 @@ def read_png(path):
 
 
 def check(d):
-    import csv
     failures, rows = [], []
     for name, case in CASES.items():
         want, edge = model(case)
