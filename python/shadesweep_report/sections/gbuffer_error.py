@@ -163,11 +163,10 @@ def bandwidth(s, e):
         s.w("No gbuffer_bytes_per_frame in summary.csv (no G-buffer renderer, or a folder "
             "written before the column).\n")
         return
-    rows = [[p[0], p[1], fmt(p[2], 3), fmt(p[3], 3), fmt(p[4], 3), fmt_ci(p[5], p[6], 3),
-             fmt(p[5] / p[4], 3) if p[5] is not None and p[4] else "-"]
+    rows = [[p[0], p[1], fmt(p[2], 3), fmt(p[3], 3), fmt(p[4], 3), fmt_ci(p[5], p[6], 3)]
             for p in sorted(pts, key=lambda p: (p[0], p[4]))]
     s.w(md_table(["scene", "configuration", "MB written", "MB read", "MB per frame",
-                  "frame time ms", "ms per MB"], rows))
+                  "frame time ms"], rows))
     fits = []
     for scene in sorted({p[0] for p in pts}) + [None]:
         sel = [p for p in pts if scene is None or p[0] == scene]
