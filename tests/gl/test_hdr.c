@@ -15,6 +15,8 @@
  * accumulation, L f + C (1 - f) with L the same frame without fog, C the fog colour and
  * f = exp(-density z), z the view depth unprojected from the depth buffer read back;
  * pixels at depth 1 (the sky) are unchanged; and the fog changes the image by a lot.
+ * With fog on, the deferred renderers draw exactly one draw more, their "fog" pass's
+ * (every pixel sampled once), and the forward ones exactly what they drew without it.
  * Any GL error fails. Exits 77 (skip) when no EGL display can be created at all. */
 #include <setjmp.h>
 #include <stdarg.h>
@@ -339,8 +341,12 @@ static renderer_options options32(const char *kind, hdr_format hdr, float fog)
     return o;
 }
 
+/* The frame render32 drew last. */
+static frame_stats last_fs;
+
 /* One frame of kind (clustered: clustered_deferred as given) into out (RGBA8, top row
- * first) and hdr (floats, bottom row first); the plan into plan. */
+ * first) and hdr (floats, bottom row first); the plan into plan, the frame's stats into
+ * last_fs. */
 static void render32(const char *kind, bool clustered_deferred, hdr_format fmt, float fog,
                      const scene *s, uint8_t **out, float **hdr, pass_plan *plan)
 {
@@ -352,7 +358,10 @@ static void render32(const char *kind, bool clustered_deferred, hdr_format fmt, 
     if (!r || !renderer_prepare(r, s, err, sizeof err))
         fail_msg("%s (%s, fog %g): %s", kind, fmt == HDR_RGBA32F ? "rgba32f" : "rgba16f",
                  (double)fog, err);
-    frame(r, s);
+    renderer_draw(r, s, &last_fs);
+    gl.Finish();
+    renderer_collect(r, &last_fs);
+    assert_int_equal(gl_context_error_count(ctx), 0);
     *out = read_output();
     *hdr = alloc_hdr();
     size_t nonfinite = 1;
@@ -373,11 +382,20 @@ static const pass_plan_entry *plan_pass(const pass_plan *p, const char *name)
     return NULL;
 }
 
+static uint64_t frame_draws(const frame_stats *fs)
+{
+    uint64_t n = 0;
+    for (size_t i = 0; i < fs->npasses; i++)
+        n += fs->pass[i].draw_calls;
+    return n;
+}
+
 static void test_rgba32f_every_renderer(void **state)
 {
     (void)state;
     scene *s = build_few();
     size_t kinds = 0;
+    uint64_t draws_without_fog = 0;
     for (size_t i = 0; i < renderer_kind_count() + 1; i++) {
         /* every registered renderer, then clustered once more with deferred shading */
         bool again = i == renderer_kind_count();
@@ -392,6 +410,24 @@ static void test_rgba32f_every_renderer(void **state)
             pass_plan p16, p32;
             render32(k->name, again, HDR_RGBA16F, fog, s, &out16, &hdr16, &p16);
             render32(k->name, again, HDR_RGBA32F, fog, s, &out32, &hdr32, &p32);
+            /* the passes: deferred shading adds one pass of one full-screen draw (every
+             * pixel shaded once), forward fogs in its shaders and draws what it did */
+            bool deferred = again || strcmp(k->name, "deferred") == 0 ||
+                            strcmp(k->name, "tiled-deferred") == 0;
+            const pass_stats *fp = find_pass(&last_fs, "fog");
+            if (!fogged) {
+                draws_without_fog = frame_draws(&last_fs);
+                assert_null(fp);
+            } else if (deferred) {
+                assert_non_null(fp);
+                assert_int_equal(fp->draw_calls, 1);
+                if (!isnan(fp->samples))
+                    assert_true(fp->samples == (double)W * H);
+                assert_int_equal(frame_draws(&last_fs), draws_without_fog + 1);
+            } else {
+                assert_null(fp);
+                assert_int_equal(frame_draws(&last_fs), draws_without_fog);
+            }
             /* the plan: the light target in the format asked for, 16 bytes a pixel */
             const char *target = strcmp(p32.target[0].name, "hdr") == 0 ? "hdr" : "light";
             bool found = false;
