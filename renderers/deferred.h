@@ -162,7 +162,8 @@ void *deferred_clustered_create(const renderer_options *opts, char *err, size_t 
 
 /* The layout renderer_prepare chose (NULL before a successful prepare). */
 const deferred_layout *deferred_gbuffer_layout(const void *self);
-/* The RGBA16F target the frame's light is accumulated in (the one resolved), and the
+/* The float target (the run's hdr format) the frame's light is accumulated in (the one
+ * resolved), and the
  * G-buffer attachment k (NULL past the layout's attachments). */
 const gl_target *deferred_hdr_target(const void *self);
 const gl_target *deferred_gbuffer_target(const void *self, int k);
