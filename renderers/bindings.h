@@ -31,4 +31,6 @@
 /* Uniform locations of one light (forward_light.frag, deferred_light.frag) and of a
  * renderer's own first uniform beside mesh.vert's and surface.inc's (0..11) */
 #define LOC_RENDERER 16
+/* Uniform location of fog.inc's u_fog (rgb colour, w density), past u_light[5] (16..20) */
+#define LOC_FOG 24
 #endif
