@@ -7,7 +7,7 @@
  * with the check off, is not. Then every renderer of the registry, and deferred in every
  * light-volume mode and G-buffer position source (with the sky mask and separate
  * specular), tiled-deferred and clustered deferred shading in every position source,
- * draws frames with shadow-casting spot and directional lights without a single loop
+ * and every renderer with fog and the RGBA32F light target, draws frames with shadow-casting spot and directional lights without a single loop
  * (no GL error). Exits 77 (skip) when no EGL display can be created at all. */
 #include <setjmp.h>
 #include <stdarg.h>
@@ -252,6 +252,12 @@ static void test_renderers_have_no_loop(void **state)
                 (renderer_options){.light_volumes = (light_volume_mode)m,
                                    .gbuffer_position = GBUFFER_POSITION_DEPTH,
                                    .sky_stencil = true, .separate_specular = m == 1},
+                s);
+    /* fog (it samples depth too) and the 32-bit light target, every renderer */
+    for (size_t i = 0; i < renderer_kind_count(); i++)
+        run_one(renderer_kind_at(i)->name,
+                (renderer_options){.fog_density = 0.02f, .hdr = HDR_RGBA32F,
+                                   .gbuffer_position = GBUFFER_POSITION_DEPTH},
                 s);
     /* every position source in the deferred family */
     for (int p = 0; p < 4; p++) {
