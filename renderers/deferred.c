@@ -62,7 +62,8 @@
  * 0x7f: increment and decrement wrap within the seven bits, and reset them only), so
  * the mark survives every light. The volume, stencil and stencil-two-pass modes
  * already reject the sky by depth (nothing lies in front of a volume's back face
- * there); hull, seed 000's unoptimised baseline, is left as it is. The ambient pass
+ * there); hull, seed 000's unoptimised baseline, is left as it is, and so is fog (its
+ * framebuffer has no stencil; it leaves depth-1 pixels alone anyway). The ambient pass
  * no longer writes the sky's pixels, so with no sky pass to draw them the light
  * target is cleared to (0, 0, 0, 1) first (the ambient pass's value there); with one,
  * the sky covers exactly the unmarked pixels (depth 1). Not in tiled-deferred or
