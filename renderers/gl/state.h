@@ -272,7 +272,7 @@ void gl_state_barrier(gl_state *s, GLbitfield bits);
  * is both counts one loop and, for the first 8 of a cache's life, gives the message
  *
  *     feedback loop in pass point: draw of program deferred_point+... samples texture
- *     depth (sampler t_depth, unit 6) while it is attached to the draw framebuffer
+ *     depth (sampler t_depth, unit 10) while it is attached to the draw framebuffer
  *     light (depth); GL 4.5 section 9.3 leaves the result undefined
  *
  * as a GL_DEBUG_TYPE_ERROR message (glDebugMessageInsert: a debug context counts it
