@@ -182,3 +182,41 @@ void renderer_base_fog_uniform(const renderer_base *b, GLuint program)
     gl.ProgramUniform4f(program, LOC_FOG, b->opts.fog_color[0], b->opts.fog_color[1],
                         b->opts.fog_color[2], b->opts.fog_density);
 }
+
+void light_grid_collect(const light_grid_readback *g, frame_stats *out)
+{
+    uint32_t needed = 0;
+    gl.GetNamedBufferSubData(g->stats, 0, sizeof needed, &needed);
+    gl.GetNamedBufferSubData(g->cells, 0, (GLsizeiptr)((size_t)g->ncells * 16u), g->readback);
+    double sum = 0, weighted = 0, covered = 0;
+    uint32_t max = 0, longest = 0;
+    for (uint32_t t = 0; t < g->ncells; t++) {
+        uint32_t len = g->readback[4 * t + 3], px = g->readback[4 * t + 2];
+        g->counts[t] = len;
+        sum += len;
+        weighted += (double)len * px;
+        covered += px;
+        if (len > max) {
+            max = len;
+            longest = t;
+        }
+    }
+    out->grid_cells = g->ncells;
+    out->grid_lights_mean = g->ncells ? sum / g->ncells : NAN;
+    out->grid_lights_max = max;
+    out->light_evals_per_pixel = covered > 0 ? weighted / covered : 0.0;
+    /* the lengths are the lists' true lengths, written or not; which lists were left
+     * empty depends on the order the cells ran in, so the message names the longest */
+    uint32_t tl = longest % g->ntiles;
+    if (needed > g->capacity && g->slices)
+        snprintf(out->overflow, sizeof out->overflow,
+                 "%s: the clusters' light lists need %u indices, the index buffer holds %u; "
+                 "cluster %u (tile %u, %u, slice %u) alone needs %u",
+                 g->name, needed, g->capacity, longest, tl % g->tiles_x, tl / g->tiles_x,
+                 longest / g->ntiles, max);
+    else if (needed > g->capacity)
+        snprintf(out->overflow, sizeof out->overflow,
+                 "%s: the tiles' light lists need %u indices, the index buffer holds %u; "
+                 "tile %u (%u, %u) alone needs %u",
+                 g->name, needed, g->capacity, longest, tl % g->tiles_x, tl / g->tiles_x, max);
+}

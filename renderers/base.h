@@ -42,6 +42,24 @@
 
 enum { RENDERER_BASE_MAX_PASSES = 12 };
 
+/* The light lists of the tiled and clustered renderers (forward-plus, clustered,
+ * tiled-deferred) as their cull pass leaves them: per cell a 16-byte record whose last
+ * two words are the cell's shaded pixels and its list length, and a stats buffer whose
+ * first word is the indices the lists needed. light_grid_collect reads both back into
+ * the frame's counters (mean and maximum list length, light evaluations per shaded
+ * pixel), keeps the lengths in counts (lightgrid.csv), and writes the overflow message
+ * naming the longest cell when the index buffer (capacity) was too small. */
+typedef struct light_grid_readback {
+    const char *name;                /* the renderer, first word of the message */
+    GLuint cells, stats;             /* the buffers */
+    uint32_t ncells, ntiles, tiles_x; /* cells = tiles x slices */
+    uint32_t slices;                 /* 0: tiles only */
+    uint32_t capacity;               /* entries of the index buffer */
+    uint32_t *readback, *counts;     /* ncells x 4 and ncells, the caller's */
+} light_grid_readback;
+
+void light_grid_collect(const light_grid_readback *g, frame_stats *out);
+
 struct scene;
 
 typedef struct renderer_base {

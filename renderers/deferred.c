@@ -1285,40 +1285,11 @@ static void tiled_collect(deferred_renderer *r, frame_stats *out)
     tiled_pass *tp = &r->tp;
     if (!r->prepared || !tp->grid)
         return;
-    uint32_t st[2];
-    gl.GetNamedBufferSubData(tp->stats, 0, sizeof st, st);
-    gl.GetNamedBufferSubData(tp->tiles, 0, (GLsizeiptr)((size_t)tp->ncells * 16u), tp->readback);
-    double sum = 0, weighted = 0, covered = 0;
-    uint32_t max = 0, longest = 0;
-    for (uint32_t t = 0; t < tp->ncells; t++) {
-        uint32_t len = tp->readback[4 * t + 3], px = tp->readback[4 * t + 2];
-        tp->counts[t] = len;
-        sum += len;
-        weighted += (double)len * px;
-        covered += px;
-        if (len > max) {
-            max = len;
-            longest = t;
-        }
-    }
+    light_grid_collect(&(light_grid_readback){r->b.name, tp->tiles, tp->stats, tp->ncells,
+                                              tp->ntiles, tp->tiles_x, tp->slices, tp->capacity,
+                                              tp->readback, tp->counts},
+                       out);
     tp->counted = true;
-    out->grid_cells = tp->ncells;
-    out->grid_lights_mean = tp->ncells ? sum / tp->ncells : NAN;
-    out->grid_lights_max = max;
-    out->light_evals_per_pixel = covered > 0 ? weighted / covered : 0.0;
-    uint32_t tl = longest % tp->ntiles;
-    if (st[0] > tp->capacity && tp->slices)
-        snprintf(out->overflow, sizeof out->overflow,
-                 "%s: the clusters' light lists need %u indices, the index buffer holds %u; "
-                 "cluster %u (tile %u, %u, slice %u) alone needs %u",
-                 r->b.name, st[0], tp->capacity, longest, tl % tp->tiles_x, tl / tp->tiles_x,
-                 longest / tp->ntiles, max);
-    else if (st[0] > tp->capacity)
-        snprintf(out->overflow, sizeof out->overflow,
-                 "%s: the tiles' light lists need %u indices, the index buffer holds %u; "
-                 "tile %u (%u, %u) alone needs %u",
-                 r->b.name, st[0], tp->capacity, longest, tl % tp->tiles_x, tl / tp->tiles_x,
-                 max);
 }
 
 static void deferred_collect(void *self, frame_stats *out)

@@ -362,42 +362,11 @@ static void plus_collect(void *self, frame_stats *out)
     forward_collect(&r->c, out);
     if (!r->c.prepared || !r->grid)
         return;
-    tile_stats st;
-    gl.GetNamedBufferSubData(r->stats, 0, sizeof st, &st);
-    gl.GetNamedBufferSubData(r->tiles, 0, (GLsizeiptr)((size_t)r->ncells * 16u), r->readback);
-    double sum = 0, weighted = 0, covered = 0;
-    uint32_t max = 0, longest = 0;
-    for (uint32_t t = 0; t < r->ncells; t++) {
-        uint32_t len = r->readback[4 * t + 3], px = r->readback[4 * t + 2];
-        r->counts[t] = len;
-        sum += len;
-        weighted += (double)len * px;
-        covered += px;
-        if (len > max) {
-            max = len;
-            longest = t;
-        }
-    }
+    light_grid_collect(&(light_grid_readback){r->name, r->tiles, r->stats, r->ncells, r->ntiles,
+                                              r->tiles_x, r->slices, r->capacity, r->readback,
+                                              r->counts},
+                       out);
     r->counted = true;
-    out->grid_cells = r->ncells;
-    out->grid_lights_mean = r->ncells ? sum / r->ncells : NAN;
-    out->grid_lights_max = max;
-    out->light_evals_per_pixel = covered > 0 ? weighted / covered : 0.0;
-    /* the lengths are the lists' true lengths, written or not; which lists were left
-     * empty depends on the order the tiles ran in, so the message names the longest */
-    uint32_t tl = longest % r->ntiles;
-    if (st.next > r->capacity && r->slices)
-        snprintf(out->overflow, sizeof out->overflow,
-                 "%s: the clusters' light lists need %u indices, the index buffer holds %u; "
-                 "cluster %u (tile %u, %u, slice %u) alone needs %u",
-                 r->name, st.next, r->capacity, longest, tl % r->tiles_x, tl / r->tiles_x,
-                 longest / r->ntiles, max);
-    else if (st.next > r->capacity)
-        snprintf(out->overflow, sizeof out->overflow,
-                 "%s: the tiles' light lists need %u indices, the index buffer "
-                 "holds %u; tile %u (%u, %u) alone needs %u",
-                 r->name, st.next, r->capacity, longest, tl % r->tiles_x, tl / r->tiles_x,
-                 max);
 }
 
 static const uint32_t *plus_light_grid(const void *self, size_t *n)
