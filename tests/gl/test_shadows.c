@@ -702,13 +702,13 @@ static set_check check_draws(const scene *s, bool no_shadows)
     } cases[] = {
         {"deferred", LIGHT_VOLUMES_STENCIL,
          sh + c.visible + 1 + c.lights[LIGHT_DIRECTIONAL] +
-             2 * (c.lights[LIGHT_POINT] + c.lights[LIGHT_SPOT]) + sky + 1},
+             2 * (c.lights[LIGHT_POINT] + c.lights[LIGHT_SPOT]) + sky + 1, false},
         {"deferred", LIGHT_VOLUMES_FULLSCREEN,
          sh + c.visible + 1 + c.lights[LIGHT_DIRECTIONAL] + c.lights[LIGHT_POINT] +
-             c.lights[LIGHT_SPOT] + sky + 1},
-        {"forward-mpml", LIGHT_VOLUMES_STENCIL, sh + c.visible + c.illum + sky + 1},
+             c.lights[LIGHT_SPOT] + sky + 1, false},
+        {"forward-mpml", LIGHT_VOLUMES_STENCIL, sh + c.visible + c.illum + sky + 1, false},
         {"forward-mpml", LIGHT_VOLUMES_STENCIL, sh + c.visible + c.illum - dv + sky + 1, true},
-        {"forward-spml", LIGHT_VOLUMES_STENCIL, sh + c.visible + sky + 1},
+        {"forward-spml", LIGHT_VOLUMES_STENCIL, sh + c.visible + sky + 1, false},
     };
     for (size_t i = 0; i < sizeof cases / sizeof cases[0]; i++) {
         renderer_options o = options(cases[i].mode, GBUFFER_CURTIS, no_shadows);
