@@ -293,29 +293,32 @@ static void mpml_describe(const void *self, pass_plan *out)
     forward_describe_shadows(c, out);
     if (r->fold)
         forward_describe_pass(out, "base", true,
-                              "depth, ambient, emissive and the %u directional light%s of the "
-                              "visible objects (forward.directional_in_base)",
+                              "depth, ambient, emissive and %u directional light%s "
+                              "(forward.directional_in_base)",
                               r->base_max, r->base_max == 1 ? "" : "s");
     else
         forward_describe_pass(out, "base", true, "%s",
                               c->b.opts.directional_in_base && c->prepared
-                                  ? "depth, ambient and emissive of the visible objects (seed "
-                                    "000 4.6.2; forward.directional_in_base: the scene has no "
-                                    "directional light)"
+                                  ? "depth, ambient and emissive (seed 000 4.6.2); no directional "
+                                    "light to fold in"
                                   : "depth, ambient and emissive of the visible objects (seed "
                                     "000 4.6.2)");
     if (c->prepared && r->fold && !r->lights_pass)
         forward_describe_pass(out, "lights", false,
-                              "skipped, the scene's only lights are directional, shaded in the "
-                              "base pass (forward.directional_in_base)");
+                              "skipped: the scene's only lights are directional, shaded in the "
+                              "base pass");
     else if (!c->prepared || r->lights_pass)
-        forward_describe_pass(out, "lights", true, "%s%s",
-                              c->b.opts.no_illumination_sets
+        forward_describe_pass(out, "lights", true, "%s",
+                              r->fold ? (c->b.opts.no_illumination_sets
+                                             ? "per point and spot light, every visible object, "
+                                               "depth EQUAL, additive (sets off)"
+                                             : "per point and spot light, its illumination set, "
+                                               "depth EQUAL, additive (4.6.3)")
+                              : c->b.opts.no_illumination_sets
                                   ? "per visible light, every visible object, depth EQUAL, "
                                     "additive (illumination sets off)"
                                   : "per visible light, its illumination set, depth EQUAL, "
-                                    "additive (seed 000 4.6.3)",
-                              r->fold ? "; directional lights in the base pass" : "");
+                                    "additive (seed 000 4.6.3)");
     else
         forward_describe_pass(out, "lights", false, "skipped, the scene has no lights");
     forward_describe_tail(c, out);
