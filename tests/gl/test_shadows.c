@@ -914,6 +914,23 @@ static void test_directional_in_base(void **state)
                           directional(0.6f, -0.5f, 0.2f, false), point(-8, 4, 8, 9, false)};
     set_lights(s, two, 3);
     fold_case(s, "shapes, two directional lights", true, false);
+    /* more directional lights than the base pass holds: refused in prepare, saying so */
+    scene_light nine[9];
+    for (int i = 0; i < 9; i++)
+        nine[i] = directional(-0.4f + 0.1f * (float)i, -1.0f, -0.3f, false);
+    set_lights(s, nine, 9);
+    renderer_options o = options(LIGHT_VOLUMES_STENCIL, GBUFFER_CURTIS, false);
+    o.directional_in_base = true;
+    char msg[512] = "";
+    gl.BindFramebuffer(GL_FRAMEBUFFER, gl_context_framebuffer(ctx));
+    renderer *r = renderer_create("forward-mpml", &o, msg, sizeof msg);
+    assert_non_null(r);
+    assert_false(renderer_prepare(r, s, msg, sizeof msg));
+    assert_string_equal(msg, "forward-mpml: forward.directional_in_base shades at most 8 "
+                             "directional lights in the base pass; the scene has 9");
+    renderer_destroy(r);
+    gl_context_poll_errors(ctx, "forward-mpml, nine directional lights");
+    assert_int_equal(gl_context_error_count(ctx), 0);
     scene_destroy(s);
 
     char err[256];
