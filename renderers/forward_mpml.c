@@ -146,6 +146,7 @@ static bool mpml_prepare(void *self, const struct scene *s, char *err, size_t er
     memset(r->base_frame, 0, sizeof r->base_frame);
     r->frame = 0;
     r->base_max = 0;
+    r->fold = false;
     if (!forward_common_prepare(&r->c, s, err, errlen))
         return false;
     r->fold = r->c.b.opts.directional_in_base &&
