@@ -376,6 +376,7 @@ static void test_kv_canonical(void **state)
         {"deferred.light_volumes", "stencil"},
         {"deferred.separate_specular", "false"},
         {"forward.illumination_sets", "true"},
+        {"forward.directional_in_base", "false"},
         {"forward.light_buffer", "uniform"},
         {"tiles.size", "16"},
         {"tiles.max_lights_per_tile", "0"},
@@ -430,6 +431,7 @@ static void test_kv_canonical(void **state)
         {"deferred.light_volumes", "stencil"},
         {"deferred.separate_specular", "false"},
         {"forward.illumination_sets", "true"},
+        {"forward.directional_in_base", "false"},
         {"forward.light_buffer", "uniform"},
         {"tiles.size", "16"},
         {"tiles.max_lights_per_tile", "0"},
@@ -668,7 +670,7 @@ static const bad_case bad_cases[] = {
      {"7:3: sweep.lights.cnt: expected a sweepable parameter (one of scene, resolution, "
       "trials, warmup, duration, clock, step, sync, timeout, gbuffer.preset, gbuffer.position, "
       "gbuffer.normal, deferred.light_volumes, deferred.separate_specular, "
-      "forward.illumination_sets, forward.light_buffer, tiles.size, "
+      "forward.illumination_sets, forward.directional_in_base, forward.light_buffer, tiles.size, "
       "tiles.max_lights_per_tile, clustered.slices, clustered.shading, shadows, camera.radius, "
       "camera.height, camera.period, "
       "camera.target, camera.near, camera.far, camera.hold, lights.placement, lights.seed, "
