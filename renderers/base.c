@@ -5,6 +5,7 @@
 #include <stdio.h>
 #include <string.h>
 
+#include "renderers/bindings.h"
 #include "scenes/scene.h"
 
 bool renderer_base_init(renderer_base *b, const char *name, const renderer_options *opts,
@@ -13,6 +14,22 @@ bool renderer_base_init(renderer_base *b, const char *name, const renderer_optio
     memset(b, 0, sizeof *b);
     b->name = name;
     b->opts = *opts;
+    if ((unsigned)opts->hdr > (unsigned)HDR_RGBA32F) {
+        snprintf(err, errlen, "%s: unknown HDR format %d (expected rgba16f or rgba32f)", name,
+                 (int)opts->hdr);
+        return false;
+    }
+    if (!(opts->fog_density >= 0.0f && isfinite(opts->fog_density))) {
+        snprintf(err, errlen, "%s: fog.density %g: expected a finite number >= 0", name,
+                 (double)opts->fog_density);
+        return false;
+    }
+    for (int i = 0; i < 3; i++)
+        if (!(opts->fog_color[i] >= 0.0f && isfinite(opts->fog_color[i]))) {
+            snprintf(err, errlen, "%s: fog.colour[%d] %g: expected a finite number >= 0", name,
+                     i, (double)opts->fog_color[i]);
+            return false;
+        }
     b->max_passes = max_passes < RENDERER_BASE_MAX_PASSES ? max_passes
                                                            : RENDERER_BASE_MAX_PASSES;
     GLint fb = 0;
@@ -117,4 +134,51 @@ const gls_counts *renderer_base_pass_counts(const renderer_base *b, size_t pass)
     if (!b || pass >= b->npasses || pass >= RENDERER_BASE_MAX_PASSES)
         return NULL;
     return &b->pass_counts[pass];
+}
+
+// >>targets and fog
+
+gl_format renderer_base_hdr_format(const renderer_base *b)
+{
+    return b->opts.hdr == HDR_RGBA32F ? GLT_FORMAT_RGBA32F : GLT_FORMAT_RGBA16F;
+}
+
+GLenum renderer_base_hdr_image_format(const renderer_base *b)
+{
+    return gl_format_get(renderer_base_hdr_format(b))->internal_format;
+}
+
+const char *renderer_base_hdr_define(const renderer_base *b)
+{
+    return b->opts.hdr == HDR_RGBA32F ? "HDR_RGBA32F" : NULL;
+}
+
+bool renderer_base_hdr_target(const renderer_base *b, gl_target *t, const char *name, char *err,
+                              size_t errlen)
+{
+    return gl_target_create(t, &(gl_target_desc){.name = name,
+                                                 .format = renderer_base_hdr_format(b),
+                                                 .width = b->width, .height = b->height},
+                            err, errlen);
+}
+
+bool renderer_base_depth_target(const renderer_base *b, gl_target *t, char *err, size_t errlen)
+{
+    return gl_target_create(t, &(gl_target_desc){.name = "depth",
+                                                 .format = GLT_FORMAT_DEPTH24_STENCIL8,
+                                                 .width = b->width, .height = b->height},
+                            err, errlen);
+}
+
+bool renderer_base_fog(const renderer_base *b)
+{
+    return b->opts.fog_density > 0.0f;
+}
+
+void renderer_base_fog_uniform(const renderer_base *b, GLuint program)
+{
+    if (!program || !renderer_base_fog(b))
+        return;
+    gl.ProgramUniform4f(program, LOC_FOG, b->opts.fog_color[0], b->opts.fog_color[1],
+                        b->opts.fog_color[2], b->opts.fog_density);
 }

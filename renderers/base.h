@@ -17,7 +17,19 @@
  *                             (draws, dispatches, state changes); GPU time and fragments
  *                             are NAN until collect
  *     renderer_base_collect   after the frame's sync point: the queries' results
- *     renderer_base_destroy   what init made; a zeroed base is fine */
+ *     renderer_base_destroy   what init made; a zeroed base is fine
+ *
+ * The targets every renderer shades into are made here, so that all of them follow
+ * the run's options alike: renderer_base_hdr_target (the float light accumulation in
+ * opts.hdr's format: RGBA16F or RGBA32F, at the output's size) and
+ * renderer_base_depth_target (depth24-stencil8 at that size). A compute pass that
+ * image-stores into the HDR target binds it with renderer_base_hdr_image_format and
+ * compiles its shader with renderer_base_hdr_define (the image's format qualifier; no
+ * define for RGBA16F, so the default's programs are what they always were).
+ *
+ * Fog (seed 000 4.5.12, opts.fog_*): renderer_base_fog says whether it is on; each
+ * program compiled with the "FOG" define (fog.inc.glsl) gets the run's fog once from
+ * renderer_base_fog_uniform. */
 #include <stdbool.h>
 #include <stddef.h>
 
@@ -25,6 +37,7 @@
 #include "renderers/gl/program.h"
 #include "renderers/gl/query.h"
 #include "renderers/gl/state.h"
+#include "renderers/gl/target.h"
 #include "renderers/renderer.h"
 
 enum { RENDERER_BASE_MAX_PASSES = 12 };
@@ -61,3 +74,23 @@ void renderer_base_collect(renderer_base *b, frame_stats *out);
 void renderer_base_shading(renderer_base *b, bool on);
 /* The state cache's counts of pass i of the last frame, or NULL past its passes. */
 const gls_counts *renderer_base_pass_counts(const renderer_base *b, size_t pass);
+
+// >>targets and fog
+
+/* opts.hdr as a target format (GLT_FORMAT_RGBA16F or GLT_FORMAT_RGBA32F), as an image
+ * unit format (GL_RGBA16F, GL_RGBA32F), and as the shader define of an image store's
+ * format qualifier ("HDR_RGBA32F", or NULL for RGBA16F). */
+gl_format renderer_base_hdr_format(const renderer_base *b);
+GLenum renderer_base_hdr_image_format(const renderer_base *b);
+const char *renderer_base_hdr_define(const renderer_base *b);
+/* Creates t, named name, in the HDR format at width x height (renderer_base_size
+ * first); false with gl_target_create's message. */
+bool renderer_base_hdr_target(const renderer_base *b, gl_target *t, const char *name, char *err,
+                              size_t errlen);
+/* Creates t ("depth", depth24-stencil8) at width x height. */
+bool renderer_base_depth_target(const renderer_base *b, gl_target *t, char *err, size_t errlen);
+/* Fog is on: opts.fog_density > 0. */
+bool renderer_base_fog(const renderer_base *b);
+/* The run's fog (colour, density) into a FOG program's u_fog (LOC_FOG), with direct state
+ * access (nothing bound); nothing while fog is off or for program 0. */
+void renderer_base_fog_uniform(const renderer_base *b, GLuint program);

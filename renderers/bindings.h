@@ -31,4 +31,8 @@
 /* Uniform locations of one light (forward_light.frag, deferred_light.frag) and of a
  * renderer's own first uniform beside mesh.vert's and surface.inc's (0..11) */
 #define LOC_RENDERER 16
+/* Uniform location of fog.inc's u_fog (rgb colour, w density), past u_light[5] (16..20) */
+#define LOC_FOG 24
+/* forward_base.frag's u_base_lights (forward.directional_in_base: 5 per light), past u_fog */
+#define LOC_BASE_LIGHTS 25
 #endif

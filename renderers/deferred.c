@@ -42,6 +42,10 @@
  *                       not state the cache keeps: it is switched off again after the pass
  *   compose      (separate_specular only, seed 001) the specular target added into the
  *                diffuse one, full screen
+ *   fog          (fog.density > 0; seed 000 4.5.12) full screen into the light target
+ *                alone (no depth attachment): each pixel's depth unprojected to view z,
+ *                and deferred_fog.frag blends exp(-density z) of the light with the fog
+ *                colour; pixels at depth 1 unchanged. Skipped (no program) when off
  *   sky          (the scene has a sky) scene_gpu_draw_sky into the light target's
  *                untouched depth (z = w, depth LEQUAL): last, as seed 000 4.5.11
  *   resolve      scene_gpu_resolve: the light target clamped into the output
@@ -52,12 +56,12 @@
  * them, 0 when the shadows pass does not run):
  *
  *   fullscreen, scissor, volume, hull:
- *                      Sh + V + 1 + D + P + S            + [compose] + [sky] + 1
- *   stencil:           Sh + V + 1 + D + 2 (P + S)        + [compose] + [sky] + 1
- *   stencil-two-pass:  Sh + V + 1 + D + 3 (P + S)        + [compose] + [sky] + 1
+ *                      Sh + V + 1 + D + P + S            + [compose] + [fog] + [sky] + 1
+ *   stencil:           Sh + V + 1 + D + 2 (P + S)        + [compose] + [fog] + [sky] + 1
+ *   stencil-two-pass:  Sh + V + 1 + D + 3 (P + S)        + [compose] + [fog] + [sky] + 1
  *
  * (shadows Sh, gbuffer V, ambient 1, directional D, point/spot 1 per light (shade), 2
- * (mark + shade) or 3 (front mark + back mark + shade), compose 1, sky 1, resolve 1;
+ * (mark + shade) or 3 (front mark + back mark + shade), compose 1, fog 1, sky 1, resolve 1;
  * clears are not draws.) Without Sh they do not depend on where the camera is; the
  * shadow-casting sets do (frontend.h).
  *
@@ -101,7 +105,8 @@
  * volumes' depth test, writes off): formally a feedback loop. Shadow maps do not touch
  * it (they have their own depth targets).
  *
- * Targets: the G-buffer attachments ("gbuffer.<slots>"), "light" (RGBA16F; with
+ * Targets: the G-buffer attachments ("gbuffer.<slots>"), "light" (the run's HDR format,
+ * RGBA16F or RGBA32F, renderers/base.h; with
  * separate_specular "light.diffuse" + "light.specular") and "depth" (depth24-stencil8,
  * shared by the G-buffer and light framebuffers so that volumes test against the scene's
  * depth). gbuffer_bytes counts the G-buffer's colour attachments. */
@@ -130,8 +135,8 @@
 _Static_assert(sizeof(gpu_light) == 80, "gpu_light is 5 vec4s, as lighting.inc's Light");
 
 enum {
-    DEFERRED_MAX_PASSES = 10,          /* shadows gbuffer ambient directional point spot compose
-                                         sky resolve */
+    DEFERRED_MAX_PASSES = 11,          /* shadows gbuffer ambient directional point spot compose
+                                         fog sky resolve */
     DEFERRED_VARIANTS = 32,           /* material map bits and the alpha test */
     DEFERRED_LIGHT_TYPES = 3,
 };
@@ -149,18 +154,19 @@ typedef enum pass_id {
     PASS_SKY,
     PASS_RESOLVE,
     PASS_TILED,                      /* tiled-deferred: ambient and every light, one dispatch */
+    PASS_FOG,                        /* fog.density > 0: deferred_fog.frag after the lights */
     PASS_COUNT
 } pass_id;
 
 static const char *const pass_names[PASS_COUNT] = {
     "shadows", "gbuffer", "ambient", "directional", "point", "spot", "compose", "sky", "resolve",
-    "tiled",
+    "tiled", "fog",
 };
 
 /* The order describe lists them in (tiled-deferred's "tiled" after the G-buffer). */
 static const pass_id describe_order[PASS_COUNT] = {
     PASS_SHADOWS, PASS_GBUFFER, PASS_TILED, PASS_AMBIENT, PASS_DIRECTIONAL, PASS_POINT,
-    PASS_SPOT, PASS_COMPOSE, PASS_SKY, PASS_RESOLVE,
+    PASS_SPOT, PASS_COMPOSE, PASS_FOG, PASS_SKY, PASS_RESOLVE,
 };
 
 /* tiled-deferred's light culling and shading pass (tiled_deferred.comp). */
@@ -198,6 +204,8 @@ typedef struct deferred_renderer {
     gl_target gbuf[DEFERRED_MAX_ATTACHMENTS];
     gl_target light, specular, depth;
     gl_framebuffer fb_gbuffer, fb_light, fb_compose;
+    gl_framebuffer fb_fog;           /* the light target alone (fog reads depth) */
+    GLuint fog_program;
     bool unclipped;                  /* full-screen passes draw the unclipped triangle */
     unsigned variants;               /* bit v: some object's material is of map variant v */
     unsigned light_types;            /* bit t: some light of the scene is of type t */
@@ -302,6 +310,7 @@ static void release_prepared(deferred_renderer *r)
     gl_framebuffer_destroy(&r->fb_gbuffer);
     gl_framebuffer_destroy(&r->fb_light);
     gl_framebuffer_destroy(&r->fb_compose);
+    gl_framebuffer_destroy(&r->fb_fog);
     for (int i = 0; i < DEFERRED_MAX_ATTACHMENTS; i++)
         gl_target_destroy(&r->gbuf[i]);
     gl_target_destroy(&r->light);
@@ -379,10 +388,7 @@ static bool make_targets(deferred_renderer *r, char *err, size_t errlen)
     char why[512] = "";
     const int w = r->b.width, h = r->b.height;
     gl_framebuffer_desc gdesc = {.name = "gbuffer", .depth_stencil = &r->depth};
-    if (!gl_target_create(&r->depth, &(gl_target_desc){.name = "depth",
-                                                       .format = GLT_FORMAT_DEPTH24_STENCIL8,
-                                                       .width = w, .height = h},
-                          why, sizeof why))
+    if (!renderer_base_depth_target(&r->b, &r->depth, why, sizeof why))
         goto fail;
     for (int i = 0; i < r->layout.nattachments; i++) {
         if (!gl_target_create(&r->gbuf[i], &(gl_target_desc){.name = r->layout.att[i].name,
@@ -393,16 +399,11 @@ static bool make_targets(deferred_renderer *r, char *err, size_t errlen)
         gdesc.color[i] = &r->gbuf[i];
     }
     bool sep = r->b.opts.separate_specular;
-    if (!gl_target_create(&r->light, &(gl_target_desc){.name = sep ? "light.diffuse" : "light",
-                                                       .format = GLT_FORMAT_RGBA16F,
-                                                       .width = w, .height = h},
-                          why, sizeof why))
+    /* the light accumulation in the run's HDR format (renderers/base.h) */
+    if (!renderer_base_hdr_target(&r->b, &r->light, sep ? "light.diffuse" : "light", why,
+                                  sizeof why))
         goto fail;
-    if (sep && !gl_target_create(&r->specular,
-                                 &(gl_target_desc){.name = "light.specular",
-                                                   .format = GLT_FORMAT_RGBA16F,
-                                                   .width = w, .height = h},
-                                 why, sizeof why))
+    if (sep && !renderer_base_hdr_target(&r->b, &r->specular, "light.specular", why, sizeof why))
         goto fail;
     if (!gl_framebuffer_create(&r->fb_gbuffer, &gdesc, why, sizeof why))
         goto fail;
@@ -418,6 +419,11 @@ static bool make_targets(deferred_renderer *r, char *err, size_t errlen)
                                                              .color = {&r->light},
                                                              .depth_stencil = &r->depth},
                                       why, sizeof why))
+        goto fail;
+    if (r->run[PASS_FOG] &&
+        !gl_framebuffer_create(&r->fb_fog, &(gl_framebuffer_desc){.name = "fog",
+                                                                  .color = {&r->light}},
+                               why, sizeof why))
         goto fail;
     return true;
 fail:
@@ -447,9 +453,11 @@ static bool compile_programs(deferred_renderer *r, char *err, size_t errlen)
     }
     if (r->tiled) {
         tiled_pass *tp = &r->tp;
-        const char *extra[9] = {tp->tile_define, tp->tiles_x_define, NULL, NULL,
-                                NULL, NULL, NULL, NULL, NULL};
+        const char *extra[10] = {tp->tile_define, tp->tiles_x_define, NULL, NULL, NULL,
+                                 NULL, NULL, NULL, NULL, NULL};
         int n = 2;
+        if (renderer_base_hdr_define(&r->b))   /* the image store's format qualifier */
+            extra[n++] = renderer_base_hdr_define(&r->b);
         if (tp->slices) {
             extra[n++] = tp->tiles_y_define;
             extra[n++] = tp->slices_define;
@@ -535,6 +543,19 @@ static bool compile_programs(deferred_renderer *r, char *err, size_t errlen)
     return true;
 }
 
+/* The fog pass's program (only when it runs): fullscreen.vert + deferred_fog.frag. */
+static bool compile_fog(deferred_renderer *r, char *err, size_t errlen)
+{
+    if (!r->run[PASS_FOG])
+        return true;
+    const char *extra[3] = {"FOG", r->unclipped ? "FULLSCREEN_UNCLIPPED" : NULL, NULL};
+    if (!build_program(r, "deferred_fog", "fullscreen.vert", "deferred_fog.frag", NULL, extra,
+                       &r->fog_program, err, errlen))
+        return false;
+    renderer_base_fog_uniform(&r->b, r->fog_program);
+    return true;
+}
+
 static GLuint make_buffer(size_t bytes)
 {
     GLuint b = 0;
@@ -611,6 +632,7 @@ static bool deferred_prepare(void *self, const scene *s, char *err, size_t errle
     memset(r->gbuffer_program, 0, sizeof r->gbuffer_program);
     memset(r->light_program, 0, sizeof r->light_program);
     r->ambient_program = r->compose_program = r->mark_program = 0;
+    r->fog_program = 0;
 
     if (!renderer_base_size(&r->b, s, err, errlen))
         return false;
@@ -702,6 +724,11 @@ static bool deferred_prepare(void *self, const scene *s, char *err, size_t errle
     plan(r, PASS_COMPOSE, r->b.opts.separate_specular, "%s",
          r->b.opts.separate_specular ? "specular light added into the diffuse light"
                                    : "diffuse and specular light share one target");
+    if (renderer_base_fog(&r->b))
+        plan(r, PASS_FOG, true, "full screen after the lights: depth to view z, exp(-%g z) "
+             "of the light kept (seed 000 4.5.12)", (double)r->b.opts.fog_density);
+    else
+        plan(r, PASS_FOG, false, "fog off (fog.density 0)");
     plan(r, PASS_SKY, s->sky, "%s",
          s->sky ? "into untouched depth, last" : "the scene has no sky");
     plan(r, PASS_RESOLVE, true, "light clamped into the output framebuffer");
@@ -721,7 +748,7 @@ static bool deferred_prepare(void *self, const scene *s, char *err, size_t errle
         goto fail;
     if (!make_targets(r, err, errlen) ||
         !shadow_maps_create(&r->shadows, r->b.programs, "deferred", err, errlen) ||
-        !compile_programs(r, err, errlen))
+        !compile_programs(r, err, errlen) || !compile_fog(r, err, errlen))
         goto fail;
     r->prepared = true;
     return true;
@@ -1016,7 +1043,8 @@ static void tiled_draw(deferred_renderer *r, const scene *s, frame_stats *out)
     gl_state_storage_buffer(st, BIND_SSBO_TILE_LISTS, tp->tiles);
     gl_state_storage_buffer(st, BIND_SSBO_TILE_INDICES, tp->indices);
     gl_state_storage_buffer(st, BIND_SSBO_TILE_STATS, tp->stats);
-    gl_state_image(st, BIND_IMAGE_HDR, r->light.texture, GL_WRITE_ONLY, GL_RGBA16F);
+    gl_state_image(st, BIND_IMAGE_HDR, r->light.texture, GL_WRITE_ONLY,
+                   renderer_base_hdr_image_format(&r->b));
     gl_state_dispatch(st, tp->tiles_x, tp->tiles_y, 1);
     /* the sky draws into the target, resolve samples it */
     gl_state_barrier(st, GL_FRAMEBUFFER_BARRIER_BIT | GL_TEXTURE_FETCH_BARRIER_BIT);
@@ -1025,6 +1053,32 @@ static void tiled_draw(deferred_renderer *r, const scene *s, frame_stats *out)
         gl_state_texture(st, DEFERRED_DEPTH_UNIT, 0);
     pass_end(r, out);
     out->lights_drawn = n;
+}
+
+/* Fog after the lights (deferred_fog.frag): into the light target alone, blended so
+ * that light' = colour (1 - f) + light f, alpha kept; the sky comes after it. */
+static const gls_blend BLEND_FOG = {.enabled = true, .src = GLS_BLEND_ONE,
+                                    .dst = GLS_BLEND_SRC_ALPHA, .op = GLS_BLEND_OP_ADD,
+                                    .src_alpha = GLS_BLEND_ZERO, .dst_alpha = GLS_BLEND_ONE,
+                                    .op_alpha = GLS_BLEND_OP_ADD};
+
+static void fog_pass(deferred_renderer *r, frame_stats *out)
+{
+    gl_state *st = r->b.st;
+    pass_begin(r, out, PASS_FOG);
+    gl_state_framebuffer(st, r->fb_fog.fbo);
+    gl_state_color_mask(st, GLS_COLOR_MASK_RGBA);
+    gl_state_blend(st, &BLEND_FOG);
+    gl_state_depth(st, NULL);
+    gl_state_stencil(st, NULL);
+    gl_state_cull(st, GLS_CULL_NONE);
+    gl_state_texture(st, DEFERRED_DEPTH_UNIT, r->depth.texture);
+    gl_state_program(st, r->fog_program);
+    fullscreen(r);
+    /* the depth target is drawn with (sky) next: not bound for sampling meanwhile */
+    if (r->layout.position != DEFERRED_POSITION_DEPTH_BUFFER)
+        gl_state_texture(st, DEFERRED_DEPTH_UNIT, 0);
+    pass_end(r, out);
 }
 
 static void deferred_draw(void *self, const scene *s, frame_stats *out)
@@ -1109,6 +1163,9 @@ static void deferred_draw(void *self, const scene *s, frame_stats *out)
     }
 
 sky:
+    if (r->run[PASS_FOG])
+        fog_pass(r, out);
+
     /* >>sky: last, into untouched depth */
     if (r->run[PASS_SKY]) {
         pass_begin(r, out, PASS_SKY);

@@ -26,6 +26,7 @@
 
 #include "renderers/gl/target.h"
 #include "renderers/renderer.h"
+#include "results/bandwidth.h"
 
 #include "renderers/bindings.h"
 
@@ -123,6 +124,26 @@ bool deferred_layout_build(const renderer_options *o, deferred_needs needs,
 /* Bytes per pixel of the layout's attachments. */
 unsigned deferred_layout_bytes_per_pixel(const deferred_layout *l);
 
+/* >>seed 002's G-buffer traffic (results/bandwidth.h, equations 4 and 5's MRT terms) */
+
+/* Whether the renderer `kind` with options o shades from a G-buffer: deferred,
+ * tiled-deferred, and clustered with clustered.shading: deferred. */
+bool deferred_uses_gbuffer(const char *kind, const renderer_options *o);
+/* The bytes per pixel of the G-buffer such a renderer builds for scene s (the layout of
+ * o's preset and overrides for what s's materials need, as renderer_prepare builds it);
+ * 0 for any other renderer or a layout that does not build. */
+unsigned deferred_gbuffer_bytes_per_pixel_of(const char *kind, const renderer_options *o,
+                                             const struct scene *s);
+/* One collected frame of such a renderer at width x height: writes = bytes_per_pixel x
+ * the samples of the pass named "gbuffer"; reads = bytes_per_pixel x (the samples of
+ * "ambient", "directional", "point" and "spot", the passes that fetch the G-buffer per
+ * shaded sample, + width x height for each "tiled" pass: a compute pass counts no
+ * samples, and tiled_deferred.comp loads the surface of every pixel of the screen once).
+ * Other passes (shadows, compose, sky, resolve) touch no G-buffer attachment. NAN for
+ * both when bytes_per_pixel is 0 (no G-buffer), NAN for one whose samples are NAN. */
+gbuffer_traffic deferred_gbuffer_traffic(unsigned bytes_per_pixel, int width, int height,
+                                         const frame_stats *fs);
+
 /* The layout as gbuffer.inc.glsl's defines ("GB_DIFFUSE gb2.xyz", "GB_NORMAL_ENC 2",
  * ...), what every program reading or writing the G-buffer is compiled with. */
 enum { DEFERRED_MAX_LAYOUT_DEFS = 12 };
@@ -141,7 +162,8 @@ void *deferred_clustered_create(const renderer_options *opts, char *err, size_t 
 
 /* The layout renderer_prepare chose (NULL before a successful prepare). */
 const deferred_layout *deferred_gbuffer_layout(const void *self);
-/* The RGBA16F target the frame's light is accumulated in (the one resolved), and the
+/* The float target (the run's hdr format) the frame's light is accumulated in (the one
+ * resolved), and the
  * G-buffer attachment k (NULL past the layout's attachments). */
 const gl_target *deferred_hdr_target(const void *self);
 const gl_target *deferred_gbuffer_target(const void *self, int k);

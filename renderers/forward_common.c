@@ -104,15 +104,8 @@ bool forward_common_prepare(forward_common *fc, const scene *s, char *err, size_
         snprintf(err, errlen, "%s: %s", fc->b.name, why);
         goto fail;
     }
-    if (!gl_target_create(&fc->hdr, &(gl_target_desc){.name = "hdr",
-                                                      .format = GLT_FORMAT_RGBA16F,
-                                                      .width = fc->b.width, .height = fc->b.height},
-                          why, sizeof why) ||
-        !gl_target_create(&fc->depth, &(gl_target_desc){.name = "depth",
-                                                        .format = GLT_FORMAT_DEPTH24_STENCIL8,
-                                                        .width = fc->b.width,
-                                                        .height = fc->b.height},
-                          why, sizeof why) ||
+    if (!renderer_base_hdr_target(&fc->b, &fc->hdr, "hdr", why, sizeof why) ||
+        !renderer_base_depth_target(&fc->b, &fc->depth, why, sizeof why) ||
         !gl_framebuffer_create(&fc->fb, &(gl_framebuffer_desc){.name = "forward",
                                                                .color = {&fc->hdr},
                                                                .depth_stencil = &fc->depth},
@@ -155,17 +148,21 @@ bool forward_program(forward_common *fc, const char *display, const char *fragme
     for (unsigned i = 0; i < k && i < SHADING_MATERIAL_DEFINES; i++)
         d.defines[n++] = defs[i];
     for (unsigned i = 0; extra && extra[i]; i++) {
-        if (n + 1 >= GLP_MAX_DEFINES) {
+        if (n + 2 >= GLP_MAX_DEFINES) {
             snprintf(err, errlen, "bug: %s: too many defines for %s", fc->b.name, display);
             return false;
         }
         d.defines[n++] = extra[i];
     }
+    /* fog at the end of the shading (fog.inc): only the programs of a foggy run */
+    if (renderer_base_fog(&fc->b))
+        d.defines[n++] = "FOG";
     char why[4096] = "";
     if (gl_program_get(fc->b.programs, &d, program, why, sizeof why) != GLP_OK) {
         snprintf(err, errlen, "%s: %s", fc->b.name, why);
         return false;
     }
+    renderer_base_fog_uniform(&fc->b, *program);
     return true;
 }
 
@@ -328,6 +325,12 @@ const gl_target *forward_hdr_target(const void *self)
     return fc ? &fc->hdr : NULL;
 }
 
+const gl_target *forward_depth_target(const void *self)
+{
+    const forward_common *fc = self;
+    return fc ? &fc->depth : NULL;
+}
+
 
 bool forward_read_hdr(void *self, float *rgba, int width, int height)
 {
@@ -357,6 +360,12 @@ void forward_end_frame(forward_common *fc, frame_stats *out, uint64_t light_draw
 
 void forward_describe_tail(const forward_common *fc, pass_plan *out)
 {
+    if (renderer_base_fog(&fc->b))
+        forward_describe_pass(out, "fog", true,
+                              "no pass of its own: in the shading passes' FOG variants, "
+                              "exp(-%g z) of the light kept", (double)fc->b.opts.fog_density);
+    else
+        forward_describe_pass(out, "fog", false, "skipped, fog off (fog.density 0)");
     if (!fc->prepared || fc->sky)
         forward_describe_pass(out, "sky", true, "the sky, last, into untouched depth");
     else

@@ -11,7 +11,8 @@
  *     forward_shadow_pass     when some spot or directional light casts shadows (and
  *                             shadows are not off): "shadows", renderers/shadow.h, one
  *                             draw per object of each shadowed light's shadow-casting set
- *     ... the renderer's own passes into fc->fb (RGBA16F "hdr" + "depth") ...
+ *     ... the renderer's own passes into fc->fb ("hdr" in the run's HDR format,
+ *         RGBA16F or RGBA32F, + "depth": renderer_base_hdr_target, _depth_target) ...
  *     forward_sky_pass        when the scene has a sky: one draw into untouched depth
  *     forward_resolve_pass    hdr clamped into the output framebuffer: one draw
  *
@@ -22,7 +23,10 @@
  *
  * Material variants: bit 0 diffuse map, 1 gloss map, 2 normal map, 3 emissive map
  * (the defines of shading_material_defines); only the variants some object's
- * material has are compiled.
+ * material has are compiled. With fog on (opts.fog_density > 0) every program
+ * forward_program builds has the FOG define and its u_fog set (fog.inc.glsl): fog at
+ * the end of the shading, no pass of its own; describe lists "fog" (run or skipped)
+ * before the sky.
  *
  * Programs bound here carry, beside mesh.vert's and surface.inc's uniforms (0..11),
  * FORWARD_UNIFORM_LIGHT (16): forward_light.frag's vec4 u_light[5] (one light),
@@ -162,7 +166,8 @@ void forward_describe_resources(const forward_common *fc, pass_plan *out);
  * shadows (it runs, or why not: "shadows: off", point lights only); a scene where no
  * light asks has no entry (the forward plans list only their own passes then). */
 void forward_describe_shadows(const forward_common *fc, pass_plan *out);
-/* The sky and resolve entries, then the resources: how every describe ends. */
+/* The fog (run, in the shaders, or skipped), sky and resolve entries, then the
+ * resources: how every describe ends. */
 void forward_describe_tail(const forward_common *fc, pass_plan *out);
 
 // >>forward-spml's light limit
@@ -176,10 +181,12 @@ uint32_t forward_spml_max_lights(int max_uniform_block_size);
 
 /* The state cache's counts of pass i of the last frame drawn, or NULL past its passes. */
 const gls_counts *forward_last_pass_counts(const void *self, size_t pass);
-/* The HDR colour target (RGBA16F) the frame was lit in. */
+/* The HDR colour target (RGBA16F, or RGBA32F with hdr) the frame was lit in, and its
+ * depth-stencil target. */
 const gl_target *forward_hdr_target(const void *self);
+const gl_target *forward_depth_target(const void *self);
 
-/* Both renderers' renderer_impl.read_hdr: the "hdr" target (RGBA16F) of the last frame
+/* Both renderers' renderer_impl.read_hdr: the "hdr" target of the last frame
  * as RGBA floats, row 0 at the bottom (renderer_read_hdr). False when not prepared or
  * width x height is not the target's. Direct state access: the cache is not disturbed. */
 bool forward_read_hdr(void *self, float *rgba, int width, int height);

@@ -49,8 +49,8 @@
 #include <string.h>
 
 /* The most directional lights directional_in_base folds into the base pass (its
- * u_base_lights array takes 5 uniform locations each); a scene with more is refused in
- * prepare. */
+ * u_base_lights array takes 5 uniform locations each from LOC_BASE_LIGHTS); a scene
+ * with more is refused in prepare. */
 #define MPML_BASE_DIRECTIONAL_MAX 8
 
 typedef struct forward_mpml {
@@ -198,8 +198,8 @@ static void base_on_program(void *user, unsigned variant, GLuint program)
     if (r->base_frame[variant] == r->frame)
         return;
     if (r->base_count > 0)
-        gl.Uniform4fv(FORWARD_UNIFORM_LIGHT, 5 * r->base_count, &r->base_lights[0].v[0][0]);
-    gl.Uniform1i(FORWARD_UNIFORM_LIGHT + 5 * (GLint)r->base_max, r->base_count);
+        gl.Uniform4fv(LOC_BASE_LIGHTS, 5 * r->base_count, &r->base_lights[0].v[0][0]);
+    gl.Uniform1i(FORWARD_UNIFORM_LIGHT, r->base_count);
     r->base_frame[variant] = r->frame;
 }
 

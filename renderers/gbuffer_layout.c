@@ -8,6 +8,7 @@
 #include "renderers/gl/target.h"
 #include "scenes/scene.h"
 
+#include <math.h>
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
@@ -354,6 +355,52 @@ unsigned deferred_layout_bytes_per_pixel(const deferred_layout *l)
         b += fi ? fi->bytes_per_pixel : 0;
     }
     return b;
+}
+
+bool deferred_uses_gbuffer(const char *kind, const renderer_options *o)
+{
+    if (!kind)
+        return false;
+    return strcmp(kind, "deferred") == 0 || strcmp(kind, "tiled-deferred") == 0 ||
+           (strcmp(kind, "clustered") == 0 && o && o->clustered_deferred);
+}
+
+unsigned deferred_gbuffer_bytes_per_pixel_of(const char *kind, const renderer_options *o,
+                                             const scene *s)
+{
+    deferred_layout l;
+    char err[160];
+    if (!o || !deferred_uses_gbuffer(kind, o) ||
+        !deferred_layout_build(o, deferred_needs_of(s), &l, err, sizeof err))
+        return 0;
+    return deferred_layout_bytes_per_pixel(&l);
+}
+
+gbuffer_traffic deferred_gbuffer_traffic(unsigned bytes_per_pixel, int width, int height,
+                                         const frame_stats *fs)
+{
+    gbuffer_traffic t = {NAN, NAN};
+    if (bytes_per_pixel == 0 || !fs)
+        return t;
+    /* deferred.c's pass names: what writes the G-buffer, what reads it per sample */
+    static const char *const readers[] = {"ambient", "directional", "point", "spot"};
+    double written = 0.0, shaded = 0.0;
+    for (size_t i = 0; i < fs->npasses; i++) {
+        const pass_stats *ps = &fs->pass[i];
+        if (!ps->name)
+            continue;
+        if (strcmp(ps->name, "gbuffer") == 0)
+            written += ps->samples;
+        else if (strcmp(ps->name, "tiled") == 0)
+            shaded += (double)width * (double)height;
+        else
+            for (size_t k = 0; k < sizeof readers / sizeof readers[0]; k++)
+                if (strcmp(ps->name, readers[k]) == 0)
+                    shaded += ps->samples;
+    }
+    t.write_bytes = s002_mrt_write_bytes((double)bytes_per_pixel, written);
+    t.read_bytes = s002_mrt_read_bytes((double)bytes_per_pixel, shaded);
+    return t;
 }
 
 

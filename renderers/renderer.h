@@ -125,6 +125,13 @@ typedef enum light_buffer_kind {
                                       (what an error reference uses) */
 } light_buffer_kind;
 
+/* The float light accumulation's format (the manifest's `hdr`): every renderer that
+ * draws accumulates into one target of it (renderers/base.h). */
+typedef enum hdr_format {
+    HDR_RGBA16F = 0,               /* the default: 16-bit floats (seed 000 4.5.12's FP16 HDR) */
+    HDR_RGBA32F,                   /* 32-bit floats: no rounding of additive passes to 11 bits */
+} hdr_format;
+
 typedef struct renderer_options {
     int width, height;
     bool queries;              /* use timer / pipeline-statistics queries where the context has them */
@@ -155,6 +162,12 @@ typedef struct renderer_options {
      * G-buffer (clustered.shading: deferred; every deferred G-buffer option applies) */
     int clustered_slices;
     bool clustered_deferred;
+    /* every renderer that draws: the light accumulation's format (hdr), and seed 000
+     * 4.5.12's fog from depth (fog.*): off while fog_density is 0; on, a surface at view
+     * depth z keeps exp(-fog_density z) of its light and takes the rest from fog_color */
+    hdr_format hdr;
+    float fog_density;
+    float fog_color[3];
 } renderer_options;
 
 typedef struct renderer_impl {
@@ -167,8 +180,8 @@ typedef struct renderer_impl {
     void (*collect)(void *self, frame_stats *out);
     void (*describe)(const void *self, pass_plan *out);
     void (*destroy)(void *self);
-    /* Optional (NULL: the renderer has no float target, as null): the RGBA16F light
-     * accumulation of the last frame drawn, as floats, see renderer_read_hdr. False,
+    /* Optional (NULL: the renderer has no float target, as null): the float light
+     * accumulation (RGBA16F, or RGBA32F with hdr_format) of the last frame drawn, as floats, see renderer_read_hdr. False,
      * with nothing written, when not prepared or width x height is not the target's. */
     bool (*read_hdr)(void *self, float *rgba, int width, int height);
     /* Optional (NULL: no light grid): after collect, the light-list length of every

@@ -1,48 +1,13 @@
 #include "results/csvread.h"
 
 #include "results/csv.h"
+#include "results/fsutil.h"
 
 #include <errno.h>
 #include <math.h>
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
-
-/* The whole file in memory, then csv_next_record (results/csv.c, the one parser of
- * the CSV shadesweep writes) record by record. */
-static bool slurp(const char *path, char **out, size_t *len, char *err, size_t errlen)
-{
-    FILE *fp = fopen(path, "rb");
-    if (!fp) {
-        snprintf(err, errlen, "%s: %s", path, strerror(errno));
-        return false;
-    }
-    size_t cap = 1 << 16, n = 0;
-    char *s = malloc(cap);
-    for (size_t got = 1; s && got;) {
-        if (n == cap) {
-            char *t = realloc(s, cap *= 2);
-            if (!t) {
-                free(s);
-                s = NULL;
-                break;
-            }
-            s = t;
-        }
-        got = fread(s + n, 1, cap - n, fp);
-        n += got;
-    }
-    bool ok = s && !ferror(fp);
-    fclose(fp);
-    if (!ok) {
-        free(s);
-        snprintf(err, errlen, "%s: %s", path, s ? "read error" : "out of memory");
-        return false;
-    }
-    *out = s;
-    *len = n;
-    return true;
-}
 
 static char **copy_fields(const csv_record *r)
 {
@@ -57,13 +22,18 @@ static char **copy_fields(const csv_record *r)
     return f;
 }
 
+/* The whole file in memory, then csv_next_record (results/csv.c, the one parser of
+ * the CSV shadesweep writes) record by record. */
 bool csv_read(const char *path, csv_table *t, char *err, size_t errlen)
 {
     memset(t, 0, sizeof *t);
     char *text;
     size_t len, pos = 0, cap = 0, line = 0;   /* the record, from 1 (the header) */
-    if (!slurp(path, &text, &len, err, errlen))
+    int e;
+    if (!(text = fs_read_all(path, 0, &len, &e))) {
+        snprintf(err, errlen, "%s: %s", path, strerror(e));
         return false;
+    }
     csv_record r = {0};
     const char *why = NULL;
     int k;

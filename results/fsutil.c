@@ -23,6 +23,49 @@ static char *dup_str(const char *s)
     return d;
 }
 
+char *fs_read_all(const char *path, size_t max, size_t *len, int *err)
+{
+    FILE *f = fopen(path, "rb");
+    if (!f) {
+        *err = errno;
+        return NULL;
+    }
+    size_t cap = 4096, n = 0;
+    char *buf = malloc(cap);
+    *err = buf ? 0 : ENOMEM;
+    while (buf) {
+        if (n + 1 == cap) {
+            if (max && n > max) {
+                *err = EFBIG;
+                break;
+            }
+            char *nb = realloc(buf, cap * 2);
+            if (!nb) {
+                *err = ENOMEM;
+                break;
+            }
+            buf = nb;
+            cap *= 2;
+        }
+        size_t got = fread(buf + n, 1, cap - n - 1, f);
+        n += got;
+        if (got == 0)
+            break;
+    }
+    if (!*err && ferror(f))
+        *err = EIO;
+    if (!*err && max && n > max)
+        *err = EFBIG;
+    fclose(f);
+    if (*err) {
+        free(buf);
+        return NULL;
+    }
+    buf[n] = '\0';
+    *len = n;
+    return buf;
+}
+
 static void afile_clear(afile *f)
 {
     free(f->final_path);

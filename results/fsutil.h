@@ -18,6 +18,11 @@ bool afile_open(afile *f, const char *final_path, char *err, size_t errlen);
 bool afile_commit(afile *f, char *err, size_t errlen);
 void afile_abort(afile *f);
 
+/* The whole file into a NUL-terminated buffer the caller frees, its length (without the
+ * NUL) in *len. NULL on failure with *err an errno value: the open's, EIO for a read
+ * error, ENOMEM, or EFBIG when the file holds more than max bytes (max 0: no limit). */
+char *fs_read_all(const char *path, size_t max, size_t *len, int *err);
+
 /* mkdir -p; true if the directory exists afterwards. */
 bool fs_mkdirs(const char *path, char *err, size_t errlen);
 bool fs_exists(const char *path);

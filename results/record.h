@@ -20,4 +20,7 @@ typedef struct frame_record {
     /* tiled and clustered renderers (NAN for the others): mean and largest light-list
      * length over the tiles or clusters, light evaluations per shaded pixel */
     double cell_lights_mean, cell_lights_max, light_evals_per_pixel;
+    /* G-buffer renderers (NAN for the others): seed 002's G-buffer bytes written by the
+     * G-buffer pass and read by the light passes (results/bandwidth.h) */
+    double gbuffer_write_bytes, gbuffer_read_bytes;
 } frame_record;

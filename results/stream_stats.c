@@ -205,6 +205,8 @@ struct trial_stream {
     double gpu, dc, sc, frag, samp, disp;
     double cmean, cmax, evals;   /* light grids */
     size_t ngrid;
+    double gbw, gbr;             /* G-buffer bytes written / read (seed 002) */
+    size_t ngb;
     size_t ngpu;
     unsigned lmax;
     double last_t;
@@ -284,6 +286,8 @@ void trial_stream_begin(trial_stream *ts, double rel, second_sink on_second,
     ts->gpu = ts->dc = ts->sc = ts->frag = ts->samp = ts->disp = 0;
     ts->cmean = ts->cmax = ts->evals = 0;
     ts->ngrid = 0;
+    ts->gbw = ts->gbr = 0;
+    ts->ngb = 0;
     ts->ngpu = 0;
     ts->lmax = 0;
     ts->last_t = 0;
@@ -340,6 +344,11 @@ void trial_stream_add(trial_stream *ts, const frame_record *r)
         if (ts->ngrid++ == 0 || r->cell_lights_max > ts->cmax)
             ts->cmax = r->cell_lights_max;
     }
+    if (isfinite(r->gbuffer_write_bytes) && isfinite(r->gbuffer_read_bytes)) {
+        ts->gbw += r->gbuffer_write_bytes;
+        ts->gbr += r->gbuffer_read_bytes;
+        ts->ngb++;
+    }
     if (r->lights > ts->lmax)
         ts->lmax = r->lights;
     if (t > ts->last_t)
@@ -390,5 +399,7 @@ void trial_stream_end(trial_stream *ts, double t_end, trial_totals *out)
     out->cell_lights_mean = ts->ngrid ? ts->cmean / (double)ts->ngrid : NAN;
     out->cell_lights_max = ts->ngrid ? ts->cmax : NAN;
     out->light_evals_per_pixel_mean = ts->ngrid ? ts->evals / (double)ts->ngrid : NAN;
+    out->gbuffer_write_bytes_mean = ts->ngb ? ts->gbw / (double)ts->ngb : NAN;
+    out->gbuffer_read_bytes_mean = ts->ngb ? ts->gbr / (double)ts->ngb : NAN;
     out->lights_max = ts->lmax;
 }

@@ -83,6 +83,9 @@ typedef struct trial_totals {
     /* the light grid of the tiled and clustered renderers, over the frames that built
      * one (NAN: none): mean and largest list length, light evaluations per pixel */
     double cell_lights_mean, cell_lights_max, light_evals_per_pixel_mean;
+    /* seed 002's G-buffer bytes per frame, written and read, over the frames that have
+     * them (NAN: none, i.e. no G-buffer) */
+    double gbuffer_write_bytes_mean, gbuffer_read_bytes_mean;
     unsigned lights_max;
 } trial_totals;
 

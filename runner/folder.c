@@ -618,43 +618,6 @@ bool folder_write_run_files(const char *run_dir, char *err, size_t errlen)
     return ok;
 }
 
-static char *slurp(const char *path, size_t *len, int *e)
-{
-    FILE *f = fopen(path, "rb");
-    if (!f) {
-        *e = errno;
-        return NULL;
-    }
-    size_t cap = 4096, n = 0;
-    char *buf = malloc(cap);
-    while (buf) {
-        size_t got = fread(buf + n, 1, cap - n - 1, f);
-        n += got;
-        if (got == 0)
-            break;
-        if (cap - n - 1 == 0) {
-            char *nb = realloc(buf, cap * 2);
-            if (!nb) {
-                free(buf);
-                buf = NULL;
-                break;
-            }
-            buf = nb;
-            cap *= 2;
-        }
-    }
-    *e = ferror(f) ? EIO : ENOMEM;
-    bool bad = ferror(f);
-    fclose(f);
-    if (!buf || bad) {
-        free(buf);
-        return NULL;
-    }
-    buf[n] = 0;
-    *len = n;
-    return buf;
-}
-
 /* The run's summary.csv: this version's header, every row with its column count and
  * this run's id. */
 static bool check_summary(const char *path, const char *id, run_check *c, char *why,
@@ -662,7 +625,7 @@ static bool check_summary(const char *path, const char *id, run_check *c, char *
 {
     size_t len;
     int e;
-    char *text = slurp(path, &len, &e);
+    char *text = fs_read_all(path, 0, &len, &e);
     if (!text) {
         snprintf(why, whylen, "summary.csv: %s", e == ENOENT ? "missing" : strerror(e));
         return false;
@@ -721,7 +684,7 @@ bool folder_check_run(const char *out_dir, const char *id, bool all_files, run_c
     snprintf(path, sizeof path, "%s/files.txt", run_dir);
     size_t len;
     int e;
-    char *text = slurp(path, &len, &e);
+    char *text = fs_read_all(path, 0, &len, &e);
     if (!text) {
         snprintf(why, whylen, e == ENOENT ? "no files.txt (the run did not finish)"
                                           : "files.txt: %s", strerror(e));

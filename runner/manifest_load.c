@@ -10,6 +10,7 @@
 #include <string.h>
 
 #include "renderers/renderer.h"
+#include "results/fsutil.h"
 #include "runner/hash.h"
 #include "runner/sweep_axis.h"
 #include "scenes/scene.h"
@@ -34,58 +35,18 @@ void experiment_free(experiment *e)
 
 static bool read_file(const char *path, unsigned char **out, size_t *outlen, diag_list *d)
 {
-    *out = NULL;
-    FILE *f = fopen(path, "rb");
-    if (!f) {
-        diag_add(d, path, 0, 0, "", "expected a readable file, found %s", strerror(errno));
-        return false;
-    }
-    size_t cap = 4096, len = 0;
-    unsigned char *buf = malloc(cap);
-    bool ok = false;
-    if (!buf) {
+    int e;
+    *out = (unsigned char *)fs_read_all(path, MANIFEST_MAX_BYTES, outlen, &e);
+    if (*out)
+        return true;
+    if (e == EFBIG)
+        diag_add(d, path, 0, 0, "", "expected a manifest of at most %u bytes, found more",
+                 MANIFEST_MAX_BYTES);
+    else if (e == ENOMEM)
         diag_add(d, path, 0, 0, "", "expected to load the manifest, found no memory left");
-        goto done;
-    }
-    for (;;) {
-        if (len == cap) {
-            if (cap > MANIFEST_MAX_BYTES) {
-                diag_add(d, path, 0, 0, "", "expected a manifest of at most %u bytes, found more",
-                         MANIFEST_MAX_BYTES);
-                goto done;
-            }
-            unsigned char *b = realloc(buf, cap * 2);
-            if (!b) {
-                diag_add(d, path, 0, 0, "", "expected to load the manifest, found no memory left");
-                goto done;
-            }
-            buf = b;
-            cap *= 2;
-        }
-        size_t got = fread(buf + len, 1, cap - len, f);
-        len += got;
-        if (got == 0)
-            break;
-    }
-    if (ferror(f)) {
-        diag_add(d, path, 0, 0, "", "expected a readable file, found %s", strerror(errno));
-        goto done;
-    }
-    if (len > MANIFEST_MAX_BYTES) {
-        diag_add(d, path, 0, 0, "", "expected a manifest of at most %u bytes, found %zu bytes",
-                 MANIFEST_MAX_BYTES, len);
-        goto done;
-    }
-    ok = true;
-done:
-    fclose(f);
-    if (ok) {
-        *out = buf;
-        *outlen = len;
-    } else {
-        free(buf);
-    }
-    return ok;
+    else
+        diag_add(d, path, 0, 0, "", "expected a readable file, found %s", strerror(e));
+    return false;
 }
 
 /* The table's defaults go through the same validation as any value: a default

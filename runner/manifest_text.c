@@ -146,7 +146,11 @@ const char *expect(const param *pd, char *buf, size_t len)
         if (pd->flags & PF_SCENE_DEFAULT)
             sb_add(&b, ", or scene");
         break;
-    case PT_VEC3: sb_add(&b, "[x, y, z] (finite numbers) or scene"); break;
+    case PT_VEC3:
+        sb_add(&b, "[x, y, z] (finite numbers)");
+        if (pd->flags & PF_SCENE_DEFAULT)
+            sb_add(&b, " or scene");
+        break;
     case PT_ENUM: list_enum(&b, pd->values); break;
     case PT_BOOL: sb_add(&b, "true or false"); break;
     case PT_SPAN: sb_add(&b, "{seconds: S} or {frames: N}"); break;

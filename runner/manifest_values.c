@@ -576,7 +576,7 @@ bool parse_value(vctx *c, const param *pd, const ynode *n, const char *key,
     }
     case PT_VEC3: {
         float v[3] = {NAN, NAN, NAN};
-        if (ynode_plain(n) && strcmp(n->text, "scene") == 0) {
+        if ((pd->flags & PF_SCENE_DEFAULT) && ynode_plain(n) && strcmp(n->text, "scene") == 0) {
             memcpy(at, v, sizeof v);
             return true;
         }

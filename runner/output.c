@@ -22,6 +22,7 @@ const char *const summary_columns[] = {
     "image_rmse", "image_psnr_db", "image_max_abs", "nonfinite_pixels", "harness_us_mean",
     "ci1pct_after_s", "dispatches_mean", "cell_lights_mean", "cell_lights_max",
     "light_evals_per_pixel",
+    "gbuffer_bytes_per_frame", "gbuffer_write_bytes_mean", "gbuffer_read_bytes_mean",
     "status", "message",
 };
 const size_t summary_ncolumns = sizeof summary_columns / sizeof summary_columns[0];
@@ -29,6 +30,7 @@ const size_t summary_ncolumns = sizeof summary_columns / sizeof summary_columns[
 static const char *const frames_columns[] = {
     "run_id", "trial", "frame", "t_wall_s", "t_scene_s", "lights", "frametime_us", "gpu_us",
     "draw_calls", "state_changes", "fragments", "samples",
+    "gbuffer_bytes_per_frame", "gbuffer_write_bytes", "gbuffer_read_bytes",
 };
 static const char *const seconds_columns[] = {
     "run_id", "trial", "second", "complete", "lights_min", "lights_max", "frames", "fps",
@@ -142,6 +144,10 @@ void run_files_frame(run_files *f, const char *run_id, uint32_t trial, const fra
     csv_u64(w, r->state_changes);
     csv_f64(w, r->fragments, 0);
     csv_f64(w, r->samples, 0);
+    /* seed 002's G-buffer traffic: empty for renderers without a G-buffer */
+    csv_f64(w, r->gbuffer_write_bytes + r->gbuffer_read_bytes, 0);
+    csv_f64(w, r->gbuffer_write_bytes, 0);
+    csv_f64(w, r->gbuffer_read_bytes, 0);
     csv_end_row(w);
 
     for (size_t i = 0; i < fs->npasses; i++) {
@@ -415,6 +421,9 @@ bool output_write_run_summary(const char *run_dir, const experiment *e, const ru
         csv_f64(w, r->cell_lights_mean, 3);
         csv_f64(w, r->cell_lights_max, 0);
         csv_f64(w, r->light_evals_per_pixel_mean, 3);
+        csv_f64(w, r->gbuffer_write_bytes_mean + r->gbuffer_read_bytes_mean, 1);
+        csv_f64(w, r->gbuffer_write_bytes_mean, 1);
+        csv_f64(w, r->gbuffer_read_bytes_mean, 1);
         csv_str(w, r->status);
         csv_str(w, strcmp(r->status, "ok") == 0 ? "" : message);
         csv_end_row(w);

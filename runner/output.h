@@ -88,6 +88,8 @@ typedef struct trial_result {
      * largest light-list length per tile/cluster, the mean light evaluations per
      * shaded pixel (NAN: the renderer has no light grid) */
     double dispatches_mean, cell_lights_mean, cell_lights_max, light_evals_per_pixel_mean;
+    /* seed 002's G-buffer bytes per frame written and read (NAN: no G-buffer) */
+    double gbuffer_write_bytes_mean, gbuffer_read_bytes_mean;
     double harness_us_mean;    /* runner bookkeeping between frames, us */
     double ci1pct_after_s;     /* the CI stayed within 1% of the mean from then on; NAN: never */
     unsigned gpu_dropped;      /* pass GPU times longer than their frame, made NAN (run.c) */

@@ -16,6 +16,7 @@
 
 #include "config.h"
 #include "version.h"
+#include "renderers/deferred.h"
 #include "renderers/gl/loader.h"
 #include "renderers/renderer.h"
 #include "results/fsutil.h"
@@ -59,6 +60,7 @@ typedef struct run_state {
     char message[1024];        /* why it failed, for summary.csv */
     char err[512];
     scene_file_info scene_info; /* a file scene: what scene_file_check found */
+    unsigned gbuffer_bpp;      /* the G-buffer's bytes per pixel, seed 002's model; 0: none */
 } run_state;
 
 static void utc_now(char *buf, size_t len)
@@ -457,6 +459,7 @@ static void run_trial(run_state *st, uint32_t trial, trial_result *tr)
     memset(tr, 0, sizeof *tr);
     tr->trial = trial;
     tr->image_rmse = tr->image_psnr_db = tr->image_max_abs = tr->nonfinite = NAN;
+    tr->gbuffer_write_bytes_mean = tr->gbuffer_read_bytes_mean = NAN;
     snprintf(tr->status, sizeof tr->status, "ok");
 
     double w0 = progress_now();
@@ -506,6 +509,7 @@ static void run_trial(run_state *st, uint32_t trial, trial_result *tr)
             fprintf(stderr, "run %s: frame %zu: %u GPU timer result%s longer than the frame "
                     "itself, recorded as unknown\n", st->s->id, k, dropped, dropped == 1 ? "" : "s");
         tr->gpu_dropped += dropped;
+        gbuffer_traffic gt = deferred_gbuffer_traffic(st->gbuffer_bpp, p->width, p->height, &fs);
         frame_record rec = {
             .frame = (uint32_t)k,
             .t_wall_s = end,
@@ -521,6 +525,8 @@ static void run_trial(run_state *st, uint32_t trial, trial_result *tr)
             .cell_lights_mean = fs.grid_lights_mean,
             .cell_lights_max = fs.grid_lights_max,
             .light_evals_per_pixel = fs.light_evals_per_pixel,
+            .gbuffer_write_bytes = gt.write_bytes,
+            .gbuffer_read_bytes = gt.read_bytes,
         };
         t_end = end;
         n++;
@@ -589,6 +595,8 @@ static void run_trial(run_state *st, uint32_t trial, trial_result *tr)
     tr->cell_lights_mean = tt.cell_lights_mean;
     tr->cell_lights_max = tt.cell_lights_max;
     tr->light_evals_per_pixel_mean = tt.light_evals_per_pixel_mean;
+    tr->gbuffer_write_bytes_mean = tt.gbuffer_write_bytes_mean;
+    tr->gbuffer_read_bytes_mean = tt.gbuffer_read_bytes_mean;
     tr->lights_max = tt.lights_max;
     tr->ci1pct_after_s = tt.ci_converged_after_s;
     tr->harness_us_mean = n ? harness_s * 1e6 / (double)n : NAN;
@@ -837,6 +845,8 @@ static bool run_setup(run_state *st)
         return false;
     }
     renderer_describe(st->r, &st->plan);
+    /* seed 002's G-buffer traffic (results/bandwidth.h): the layout the renderer built */
+    st->gbuffer_bpp = deferred_gbuffer_bytes_per_pixel_of(p->renderer, &ro, st->sc);
     if (!gl_clean(st, "prepare")) {
         snprintf(st->err, sizeof st->err, "GL error while preparing the renderer");
         set_status(st, "gl-error");
@@ -912,6 +922,7 @@ static void fill_missing_trials(run_state *st)
         tr->light_evals_per_pixel_mean = NAN;
         tr->fragments_mean = tr->harness_us_mean = tr->ci1pct_after_s = NAN;
         tr->samples_mean = NAN;
+        tr->gbuffer_write_bytes_mean = tr->gbuffer_read_bytes_mean = NAN;
         tr->image_rmse = tr->image_psnr_db = tr->image_max_abs = tr->nonfinite = NAN;
         snprintf(tr->status, sizeof tr->status, "%s",
                  strcmp(st->status, "ok") ? st->status : "failed:not-run");

@@ -198,9 +198,10 @@ class Run:
         return self._cache["seconds"]
 
     def passes(self):
-        """passes.csv of ok trials: {pass: {gpu_us, draw_calls, frames_with_pass}}: the median
-        GPU time per frame (robust to a wild timer result; None when the driver gave none)
-        and the mean draw calls per frame."""
+        """passes.csv of ok trials: {pass: {gpu_us, draw_calls, samples, frames_with_pass}}:
+        the median GPU time per frame (robust to a wild timer result; None when the driver
+        gave none), the mean draw calls and the mean shaded samples (GL_SAMPLES_PASSED)
+        per frame (None when the folder has no samples column)."""
         if "passes" not in self._cache:
             path = os.path.join(self.dir, "passes.csv")
             out = None
@@ -213,15 +214,19 @@ class Run:
                         if r.get("trial") not in ok:
                             continue
                         frames.add((r["trial"], r["frame"]))
-                        a = acc.setdefault(r["pass"], [[], 0, 0.0, 0])
+                        a = acc.setdefault(r["pass"], [[], None, 0.0, 0])
                         g = num(r.get("gpu_us"))
                         if g is not None:
                             a[0].append(g)
+                        smp = num(r.get("samples"))
+                        if smp is not None:
+                            a[1] = (a[1] or 0.0) + smp
                         a[2] += num(r.get("draw_calls")) or 0.0
                         a[3] += 1
                 nf = len(frames)
                 out = {p: {"gpu_us": median(a[0]),
                            "draw_calls": a[2] / nf if nf else None,
+                           "samples": a[1] / nf if nf and a[1] is not None else None,
                            "frames_with_pass": a[3]} for p, a in acc.items()}
                 out["_frames"] = nf
             self._cache["passes"] = out

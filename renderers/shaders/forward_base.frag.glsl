@@ -1,19 +1,22 @@
 // forward-mpml's first pass (seed 000 4.6.2): depth, ambient and emissive in one pass,
 // A = ambient light x diffuse material (appendix D), plus the emissive term. The
 // lights are added by forward_light.frag in depth-EQUAL additive passes.
-// Defines: the material's maps (surface.inc); BASE_DIRECTIONAL n (only with
-// forward.directional_in_base, for a scene with n directional lights): the frame's
-// directional lights, u_base_count <= n of them in u_base_lights (lighting.inc's
-// layout, 5 vec4s each), are shaded here too, each as forward_light.frag would add it
-// (with SHADOWS, through the light's shadow map), so they need no pass of their own.
+// Defines: the material's maps (surface.inc); FOG (fog.inc): the sum fogged, so that
+// with the light passes' fog_factor the total is the fogged image; BASE_DIRECTIONAL n
+// (only with forward.directional_in_base, for a scene with n directional lights): the
+// frame's directional lights, u_base_count <= n of them in u_base_lights (lighting.inc's
+// layout, 5 vec4s each), are shaded here too (before the fog), each as
+// forward_light.frag would add it (with SHADOWS, through the light's shadow map), so
+// they need no pass of their own.
 #include "frame.inc"
 #include "surface.inc"
+#include "fog.inc"
 
 #ifdef BASE_DIRECTIONAL
 #include "bindings.h"
 #include "lighting.inc"
-layout(location = LOC_RENDERER) uniform vec4 u_base_lights[5 * BASE_DIRECTIONAL];
-layout(location = LOC_RENDERER + 5 * BASE_DIRECTIONAL) uniform int u_base_count;
+layout(location = LOC_RENDERER) uniform int u_base_count;
+layout(location = LOC_BASE_LIGHTS) uniform vec4 u_base_lights[5 * BASE_DIRECTIONAL];
 #endif
 
 layout(location = 0) out vec4 o_color;
@@ -30,6 +33,9 @@ void main()
         l.color_type.w = float(LIGHT_DIRECTIONAL);
         c += shade_light(l, s.position, s.normal, s.diffuse, s.gloss, s.shininess);
     }
+#endif
+#ifdef FOG
+    c = fog_apply(c, s.position.z);
 #endif
     o_color = vec4(c, 1.0);
 }

@@ -4,10 +4,12 @@
 // Defines: the material's maps (surface.inc); LIGHT_TYPE, one of LIGHT_POINT,
 // LIGHT_SPOT, LIGHT_DIRECTIONAL, the one light type a program is compiled for (the
 // light's own type word is replaced by it, so the other types' code folds away).
+// FOG (fog.inc): the light scaled by the fog factor (the base pass adds the colour).
 #include "bindings.h"
 #include "frame.inc"
 #include "surface.inc"
 #include "lighting.inc"
+#include "fog.inc"
 
 #ifndef LIGHT_TYPE
 #error "forward_light.frag is compiled for one LIGHT_TYPE"
@@ -22,5 +24,9 @@ void main()
     Surface s = surface_get();
     Light l = light_from(u_light);
     l.color_type.w = float(LIGHT_TYPE);
-    o_color = vec4(shade_light(l, s.position, s.normal, s.diffuse, s.gloss, s.shininess), 0.0);
+    vec3 c = shade_light(l, s.position, s.normal, s.diffuse, s.gloss, s.shininess);
+#ifdef FOG
+    c *= fog_factor(s.position.z);
+#endif
+    o_color = vec4(c, 0.0);
 }

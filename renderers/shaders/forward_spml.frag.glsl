@@ -4,11 +4,12 @@
 // is skipped before any other work (shade_light would give exactly zero there too).
 // Defines: the material's maps (surface.inc); MAX_LIGHTS, the array size, chosen once
 // per run from the run's largest light count (forward_spml.c); or LIGHTS_STORAGE:
-// the lights from a storage buffer.
+// the lights from a storage buffer; FOG (fog.inc): the sum fogged.
 #include "bindings.h"
 #include "frame.inc"
 #include "surface.inc"
 #include "lighting.inc"
+#include "fog.inc"
 
 #ifdef LIGHTS_STORAGE
 // forward.light_buffer: storage: the same packed lights, unsized (lights.inc's layout)
@@ -44,5 +45,8 @@ void main()
         }
         c += shade_light(l, s.position, s.normal, s.diffuse, s.gloss, s.shininess);
     }
+#ifdef FOG
+    c = fog_apply(c, s.position.z);
+#endif
     o_color = vec4(c, 1.0);
 }

@@ -6,13 +6,15 @@
 // clustered: SLICES (and TILES_Y) defined, the list is the fragment's cluster's.
 // Defines: the material's maps (surface.inc); TILE_SIZE and TILES_X (the grid);
 // NO_GRID: the scene has no point or spot light, there is no cull pass and every
-// light of the frame (u_light_count, all directional) is looped.
+// light of the frame (u_light_count, all directional) is looped. FOG (fog.inc): the sum
+// fogged.
 #include "bindings.h"
 #include "frame.inc"
 #include "surface.inc"
 #include "lighting.inc"
 #include "lights.inc"
 #include "tiles.inc"
+#include "fog.inc"
 
 layout(location = LOC_RENDERER) uniform int u_light_count;   // lights in b_lights
 
@@ -50,5 +52,8 @@ void main()
         }
         c += shade_light(l, s.position, s.normal, s.diffuse, s.gloss, s.shininess);
     }
+#ifdef FOG
+    c = fog_apply(c, s.position.z);
+#endif
     o_color = vec4(c, 1.0);
 }

@@ -6,7 +6,9 @@
 // renderer's passes get them) and adds ambient x diffuse + emissive and the lights of
 // the tile's list (directional lights pass every tile) with forward-spml's range
 // rejection, and stores the sum into the HDR target (image unit BIND_IMAGE_HDR,
-// rgba16f): ambient, directional and local lights in one pass, one write per pixel.
+// rgba16f, or rgba32f with HDR_RGBA32F: the image's format qualifier must be the
+// target's, renderers/base.h): ambient, directional and local lights in one pass, one
+// write per pixel.
 // NO_GRID (no point or spot light in the scene): no culling, every light looped.
 // SLICES (clustered with clustered.shading: deferred): the tile's clusters are culled as
 // tile_cull.comp culls them, and each pixel takes its cluster's list by the view depth
@@ -24,7 +26,11 @@ vec2 g_frag_xy;   // the pixel's centre, for gbuffer.inc
 #include "gbuffer.inc"
 
 layout(local_size_x = TILE_SIZE, local_size_y = TILE_SIZE) in;
+#ifdef HDR_RGBA32F
+layout(binding = BIND_IMAGE_HDR, rgba32f) writeonly uniform image2D i_hdr;
+#else
 layout(binding = BIND_IMAGE_HDR, rgba16f) writeonly uniform image2D i_hdr;
+#endif
 
 #include "tile_cull.inc"
 

@@ -17,7 +17,8 @@ SUMMARY = ("experiment,run_id,renderer,scene,width,height,gbuffer,lights_placeme
            "lights_seed,lights_count,lights_radius,trial,frames,measured_s,fps_mean,"
            "frametime_mean_us,frametime_sd_us,frametime_ci95_us,frametime_p50_us,frametime_p99_us,"
            "gpu_mean_us,draw_calls_mean,state_changes_mean,fragments_mean,gbuffer_bytes,image_rmse,"
-           "image_psnr_db,image_max_abs,nonfinite_pixels,harness_us_mean,ci1pct_after_s,status,"
+           "image_psnr_db,image_max_abs,nonfinite_pixels,harness_us_mean,ci1pct_after_s,"
+           "gbuffer_bytes_per_frame,gbuffer_write_bytes_mean,gbuffer_read_bytes_mean,status,"
            "message").split(",")
 SECONDS = ("run_id,trial,second,complete,lights_min,lights_max,frames,fps,frametime_mean_us,"
            "frametime_sd_us,frametime_p50_us,frametime_p99_us,draw_calls_mean").split(",")
@@ -151,11 +152,16 @@ for ren in ("deferred", "forward-spml"):
                       **{"lights.count": "start:0,step:10,every:1,max:590"}), trials, secs, None))
 experiment("out/exp2", "s003-exp2", runs)
 
-# gbuffer-error: four configurations, two on the Pareto front.
+# gbuffer-error: four configurations, two on the Pareto front. Seed 002's G-buffer bytes
+# per frame (written + read) 3, 2, 6 and 7 MB against 9, 8, 12 and 13 ms: time = 6 ms +
+# 1 ms per MB exactly (R^2 = 1), so time follows the bytes.
 runs = []
-for preset, lv, ft, rmse in (("fat", "stencil", 9000, 0.001), ("curtis", "stencil", 8000, 0.002),
-                             ("reference", "volume", 12000, 0.0001), ("compact", "volume", 13000, 0.003)):
-    trials = [dict(fps_mean=1e6 / ft, frametime_mean_us=ft, image_rmse=rmse, image_psnr_db=60)
+for preset, lv, ft, rmse, mb in (("fat", "stencil", 9000, 0.001, 3), ("curtis", "stencil", 8000, 0.002, 2),
+                                 ("reference", "volume", 12000, 0.0001, 6),
+                                 ("compact", "volume", 13000, 0.003, 7)):
+    trials = [dict(fps_mean=1e6 / ft, frametime_mean_us=ft, image_rmse=rmse, image_psnr_db=60,
+                   gbuffer_bytes_per_frame=mb * 1e6, gbuffer_write_bytes_mean=0.25e6,
+                   gbuffer_read_bytes_mean=mb * 1e6 - 0.25e6)
               for _ in range(2)]
     runs.append((dict(base, scene="canyon", renderer="deferred", **{"gbuffer.preset": preset,
                       "deferred.light_volumes": lv}), trials, None, None))
@@ -214,9 +220,27 @@ has "(experiment s000-drawcalls-smoke)"
 grep -F "| compact/stencil" $R >/dev/null && fail "compact/stencil does not exist"
 grep -F "| compact/volume |" $R | grep -q "| yes |" && fail "compact/volume marked on the front"
 grep -F "| curtis/stencil |" $R | grep -q "| yes |" || fail "curtis/stencil not on the front"
+# seed 002's bandwidth model beside the frame time: the bytes, the fit and its verdict
+has "**Seed 002's bandwidth model.**"
+has "| canyon | curtis/stencil | 0.250 | 1.750 | 2.000 | 8.000 ± 0.100 |"
+has "| canyon | compact/volume | 0.250 | 6.750 | 7.000 | 13.000 ± 0.100 |"
+has "| all | 4 | 6 | 1 | 1.000 | yes |"
+has "Does time follow the bytes across the study? **Yes**: over 4 configurations the least-squares line time = 6 ms + 1 ms per MB (more bytes, more time) explains 100% of the frame time's variance (R^2 = 1.000)."
+# the verdict comes from the numbers: a flat or scattered cloud says no, a loose one partly
+PYTHONPATH="$SOURCE_ROOT/python" "$PYTHON" - <<'PY' || fail "the bandwidth verdict"
+from shadesweep_report.sections.gbuffer_error import follows, follows_sentence
+from shadesweep_report.stats import linfit
+assert follows(linfit([1, 2, 3, 4], [5, 1, 6, 2])) == "no"          # R^2 = 0.05
+assert follows(linfit([1, 2, 3, 4], [4, 3, 2, 1])) == "no"          # time falls as bytes grow
+assert follows(linfit([1, 2, 3, 4], [1, 3, 2, 4])) == "partly"      # R^2 = 0.64
+assert follows(linfit([1, 2, 3, 4], [1, 2, 3, 4])) == "yes"
+assert follows(linfit([1, 1, 1], [1, 2, 3])) is None
+assert "Cannot say" in follows_sentence("here", 2, None)
+assert "**No**" in follows_sentence("here", 4, linfit([1, 2, 3, 4], [5, 1, 6, 2]))
+PY
 # the plots: valid PNGs, each linked from the report
 for p in s003-exp2_fps_time s003-exp2_frametime_time s003-exp2_frametime_lights s000-drawcalls \
-         gbuffer-error_pareto; do
+         gbuffer-error_pareto gbuffer-error_bandwidth; do
   f=out/plots/$p.png
   [ -s "$f" ] || fail "no plot $f"
   grep -qF "(plots/$p.png)" $R || fail "$p.png not linked"

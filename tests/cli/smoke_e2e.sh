@@ -25,9 +25,11 @@ summary_cols = ["experiment","run_id","renderer","scene","width","height","gbuff
   "frametime_p50_us","frametime_p99_us","fps_1pct_low","gpu_mean_us","draw_calls_mean","state_changes_mean",
   "fragments_mean","samples_mean","gbuffer_bytes","image_rmse","image_psnr_db","image_max_abs",
   "nonfinite_pixels","harness_us_mean","ci1pct_after_s","dispatches_mean","cell_lights_mean",
-  "cell_lights_max","light_evals_per_pixel","status","message"]
+  "cell_lights_max","light_evals_per_pixel","gbuffer_bytes_per_frame","gbuffer_write_bytes_mean",
+  "gbuffer_read_bytes_mean","status","message"]
 frames_cols = ["run_id","trial","frame","t_wall_s","t_scene_s","lights","frametime_us",
-  "gpu_us","draw_calls","state_changes","fragments","samples"]
+  "gpu_us","draw_calls","state_changes","fragments","samples","gbuffer_bytes_per_frame",
+  "gbuffer_write_bytes","gbuffer_read_bytes"]
 seconds_cols = ["run_id","trial","second","complete","lights_min","lights_max","frames","fps",
   "frametime_mean_us","frametime_sd_us","frametime_p50_us","frametime_p99_us","draw_calls_mean"]
 passes_cols = ["run_id","trial","frame","pass","gpu_us","cpu_us","draw_calls","state_changes",
@@ -66,6 +68,10 @@ for s, want_id in zip(summary, [i for i in ids for _ in (1, 2)]):
     # the G-buffer belongs to deferred runs alone
     if (s["gbuffer"] == "curtis") != (s["renderer"] == "deferred"): fail(f"gbuffer {s}")
     if (int(s["gbuffer_bytes"]) > 0) != (s["renderer"] == "deferred"): fail(f"gbuffer_bytes {s}")
+    if (s["gbuffer_bytes_per_frame"] != "") != (s["renderer"] == "deferred") or \
+            (s["renderer"] == "deferred" and abs(float(s["gbuffer_bytes_per_frame"]) - float(s["gbuffer_write_bytes_mean"])
+                                              - float(s["gbuffer_read_bytes_mean"])) > 0.2):
+        fail(f"gbuffer_bytes_per_frame {s}")
     if s["lights_count"] != "8":   # 30 frames at 0.1 s: t < 3, so 4 * 2 lights at most
         fail(f"lights_count {s['lights_count']}")
     for k in ("fps_mean","frametime_mean_us","frametime_p50_us","frametime_p99_us","measured_s"):
@@ -122,6 +128,20 @@ for p in plan:
         for f in fr:
             mine = [r for r in pa if (r["trial"], r["frame"]) == (f["trial"], f["frame"])]
             if sum(int(r["draw_calls"]) for r in mine) != int(f["draw_calls"]): fail("pass sums")
+            # seed 002's G-buffer traffic: the layout's bytes per pixel (summary's
+            # gbuffer_bytes / pixels) x the G-buffer pass's samples written, x the
+            # ambient and light passes' samples read; empty without a G-buffer
+            gb = [f[k] for k in ("gbuffer_bytes_per_frame", "gbuffer_write_bytes", "gbuffer_read_bytes")]
+            if p["renderer"] != "deferred":
+                if gb != ["", "", ""]: fail(f"G-buffer traffic of {p['renderer']}: {gb}")
+                continue
+            srow = next(s for s in summary if s["run_id"] == p["run_id"])
+            bpp = int(srow["gbuffer_bytes"]) // (w * h)
+            samp = {r["pass"]: int(r["samples"]) for r in mine}
+            want_w = bpp * samp["gbuffer"]
+            want_r = bpp * sum(samp.get(k, 0) for k in ("ambient", "directional", "point", "spot"))
+            if [int(x) for x in gb] != [want_w + want_r, want_w, want_r]:
+                fail(f"G-buffer traffic {gb} != {bpp} B x samples {samp}")
         if not {r["pass"] for r in pa} >= {"sky", "resolve"}: fail(f"passes {sorted({r['pass'] for r in pa})}")
     # convergence.csv: the last point of each trial holds all its frames, and its
     # mean and CI are the summary's

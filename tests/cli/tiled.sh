@@ -56,6 +56,20 @@ for s in table("out/tiled/summary.csv"):
     meta = yaml.safe_load(open(os.path.join(run, "meta.yaml")))
     passes = {p["name"]: p for p in meta["pass_plan"]["passes"]}
     grid = os.path.join(run, "lightgrid.csv")
+    # seed 002's G-buffer traffic: tiled-deferred writes bpp x the G-buffer pass's samples
+    # and its one compute pass reads every pixel once (bpp x 64 x 48 = gbuffer_bytes);
+    # the forward renderers (clustered shades forward here) have none: empty
+    fr, pa = table(os.path.join(run, "frames.csv")), table(os.path.join(run, "passes.csv"))
+    for f in fr:
+        gb = [f[k] for k in ("gbuffer_bytes_per_frame", "gbuffer_write_bytes", "gbuffer_read_bytes")]
+        if r != "tiled-deferred":
+            if gb != ["", "", ""]: fail(f"{r}: G-buffer traffic {gb}")
+            continue
+        bpp = int(s["gbuffer_bytes"]) // (64 * 48)
+        w = bpp * sum(int(p["samples"]) for p in pa
+                      if (p["trial"], p["frame"], p["pass"]) == (f["trial"], f["frame"], "gbuffer"))
+        if bpp <= 0 or [int(x) for x in gb] != [w + int(s["gbuffer_bytes"]), w, int(s["gbuffer_bytes"])]:
+            fail(f"tiled-deferred: G-buffer traffic {gb}, {bpp} B per pixel")
     if r == "forward-spml":
         if s["dispatches_mean"] != "0.000" or s["cell_lights_mean"] != "":
             fail(f"forward-spml: dispatches {s['dispatches_mean']} cells {s['cell_lights_mean']}")

@@ -7,6 +7,16 @@
  * null has no float target (false, count 0). Lights bright enough to overflow RGBA16F
  * (64 lights of colour 1e5 at one point): the count is the number of non-finite values
  * the read gives, and the output saturates at 255 where the accumulation is +Inf.
+ * hdr: rgba32f (issue 13): every renderer that draws, with and without fog, renders
+ * without GL error into a target GL reports as GL_RGBA32F (glGetTextureLevelParameteriv)
+ * whose plan says rgba32f at 16 bytes a pixel, and the output is the RGBA16F one's within
+ * 2/255 (tiled-deferred's image store has the matching format qualifier). Fog
+ * (seed 000 4.5.12): with fog on, every pixel that a surface covers is, in the float
+ * accumulation, L f + C (1 - f) with L the same frame without fog, C the fog colour and
+ * f = exp(-density z), z the view depth unprojected from the depth buffer read back;
+ * pixels at depth 1 (the sky) are unchanged; and the fog changes the image by a lot.
+ * With fog on, the deferred renderers draw exactly one draw more, their "fog" pass's
+ * (every pixel sampled once), and the forward ones exactly what they drew without it.
  * Any GL error fails. Exits 77 (skip) when no EGL display can be created at all. */
 #include <setjmp.h>
 #include <stdarg.h>
@@ -17,6 +27,8 @@
 
 #include "renderers/gl/context.h"
 #include "renderers/gl/loader.h"
+#include "renderers/deferred.h"
+#include "renderers/forward_common.h"
 #include "renderers/renderer.h"
 #include "scenes/scene.h"
 #include "tests/gl/gl_test.h"
@@ -314,6 +326,266 @@ static void test_overflow(void **state)
     assert_true(check_bright(&CONFIGS[1], 3e38f) > 0);
 }
 
+// >>hdr: rgba32f, fog
+
+static renderer_options options32(const char *kind, hdr_format hdr, float fog)
+{
+    const gl_info *i = gl_context_info(ctx);
+    renderer_options o = {.width = W, .height = H, .queries = true,
+                          .timer_query = i->timer_query,
+                          .pipeline_statistics = i->pipeline_statistics,
+                          .max_uniform_block_size = i->max_uniform_block_size,
+                          .gbuffer = GBUFFER_REFERENCE, .hdr = hdr, .fog_density = fog,
+                          .fog_color = {0.6f, 0.5f, 0.4f}};
+    (void)kind;
+    return o;
+}
+
+/* The frame render32 drew last. */
+static frame_stats last_fs;
+
+/* One frame of kind (clustered: clustered_deferred as given) into out (RGBA8, top row
+ * first) and hdr (floats, bottom row first); the plan into plan, the frame's stats into
+ * last_fs. */
+static void render32(const char *kind, bool clustered_deferred, hdr_format fmt, float fog,
+                     const scene *s, uint8_t **out, float **hdr, pass_plan *plan)
+{
+    char err[512] = "";
+    renderer_options o = options32(kind, fmt, fog);
+    o.clustered_deferred = clustered_deferred;
+    gl.BindFramebuffer(GL_FRAMEBUFFER, gl_context_framebuffer(ctx));
+    renderer *r = renderer_create(kind, &o, err, sizeof err);
+    if (!r || !renderer_prepare(r, s, err, sizeof err))
+        fail_msg("%s (%s, fog %g): %s", kind, fmt == HDR_RGBA32F ? "rgba32f" : "rgba16f",
+                 (double)fog, err);
+    renderer_draw(r, s, &last_fs);
+    gl.Finish();
+    renderer_collect(r, &last_fs);
+    assert_int_equal(gl_context_error_count(ctx), 0);
+    *out = read_output();
+    *hdr = alloc_hdr();
+    size_t nonfinite = 1;
+    assert_true(renderer_read_hdr(r, *hdr, W, H, &nonfinite));
+    assert_int_equal(nonfinite, 0);
+    if (plan)
+        renderer_describe(r, plan);
+    renderer_destroy(r);
+    gl_context_poll_errors(ctx, kind);
+    assert_int_equal(gl_context_error_count(ctx), 0);
+}
+
+static const pass_plan_entry *plan_pass(const pass_plan *p, const char *name)
+{
+    for (size_t i = 0; i < p->npasses; i++)
+        if (strcmp(p->pass[i].name, name) == 0)
+            return &p->pass[i];
+    return NULL;
+}
+
+static uint64_t frame_draws(const frame_stats *fs)
+{
+    uint64_t n = 0;
+    for (size_t i = 0; i < fs->npasses; i++)
+        n += fs->pass[i].draw_calls;
+    return n;
+}
+
+static void test_rgba32f_every_renderer(void **state)
+{
+    (void)state;
+    scene *s = build_few();
+    size_t kinds = 0;
+    uint64_t draws_without_fog = 0;
+    for (size_t i = 0; i < renderer_kind_count() + 1; i++) {
+        /* every registered renderer, then clustered once more with deferred shading */
+        bool again = i == renderer_kind_count();
+        const renderer_impl *k = again ? renderer_kind_find("clustered") : renderer_kind_at(i);
+        if (!k->read_hdr)
+            continue;   /* null: no float target */
+        kinds++;
+        for (int fogged = 0; fogged < 2; fogged++) {
+            float fog = fogged ? 0.03f : 0.0f;
+            uint8_t *out16, *out32;
+            float *hdr16, *hdr32;
+            pass_plan p16, p32;
+            render32(k->name, again, HDR_RGBA16F, fog, s, &out16, &hdr16, &p16);
+            render32(k->name, again, HDR_RGBA32F, fog, s, &out32, &hdr32, &p32);
+            /* the passes: deferred shading adds one pass of one full-screen draw (every
+             * pixel shaded once), forward fogs in its shaders and draws what it did */
+            bool deferred = again || strcmp(k->name, "deferred") == 0 ||
+                            strcmp(k->name, "tiled-deferred") == 0;
+            const pass_stats *fp = find_pass(&last_fs, "fog");
+            if (!fogged) {
+                draws_without_fog = frame_draws(&last_fs);
+                assert_null(fp);
+            } else if (deferred) {
+                assert_non_null(fp);
+                assert_int_equal(fp->draw_calls, 1);
+                if (!isnan(fp->samples))
+                    assert_true(fp->samples == (double)W * H);
+                assert_int_equal(frame_draws(&last_fs), draws_without_fog + 1);
+            } else {
+                assert_null(fp);
+                assert_int_equal(frame_draws(&last_fs), draws_without_fog);
+            }
+            /* the plan: the light target in the format asked for, 16 bytes a pixel */
+            const char *target = strcmp(p32.target[0].name, "hdr") == 0 ? "hdr" : "light";
+            bool found = false;
+            for (size_t t = 0; t < p32.ntargets; t++)
+                if (strcmp(p32.target[t].name, target) == 0) {
+                    assert_string_equal(p32.target[t].format, "rgba32f");
+                    assert_int_equal(p32.target[t].bytes, (uint64_t)W * H * 16);
+                    assert_string_equal(p16.target[t].format, "rgba16f");
+                    found = true;
+                }
+            if (!found)
+                fail_msg("%s: no %s target in the plan", k->name, target);
+            const pass_plan_entry *f16 = plan_pass(&p16, "fog");
+            assert_non_null(f16);
+            assert_true(f16->run == (fogged != 0));
+            /* the same image whatever the precision */
+            int worst = 0;
+            for (size_t q = 0; q < (size_t)W * H * 4; q++) {
+                int d = abs((int)out16[q] - (int)out32[q]);
+                worst = d > worst ? d : worst;
+            }
+            print_message("%s%s%s: rgba32f vs rgba16f output: max %d/255\n", k->name,
+                          again ? " (deferred)" : "", fogged ? ", fog" : "", worst);
+            assert_true(worst <= 2);
+            free(out16);
+            free(out32);
+            free(hdr16);
+            free(hdr32);
+        }
+    }
+    assert_int_equal(kinds, 7);   /* deferred, the forward three, tiled-deferred, clustered x 2 */
+    scene_destroy(s);
+}
+
+static GLint internal_format(GLuint texture)
+{
+    GLint f = 0;
+    gl.GetTextureLevelParameteriv(texture, 0, GL_TEXTURE_INTERNAL_FORMAT, &f);
+    return f;
+}
+
+/* What GL itself says the light target is: forward-mpml's, deferred's and
+ * tiled-deferred's, made through their implementations (the accessors take self). */
+static void test_rgba32f_internal_format(void **state)
+{
+    (void)state;
+    scene *s = build_few();
+    static const char *const kinds[] = {"forward-mpml", "deferred", "tiled-deferred"};
+    for (size_t i = 0; i < sizeof kinds / sizeof kinds[0]; i++)
+        for (int f = 0; f < 2; f++) {
+            char err[512] = "";
+            const renderer_impl *k = renderer_kind_find(kinds[i]);
+            renderer_options o = options32(kinds[i], f ? HDR_RGBA32F : HDR_RGBA16F, 0.0f);
+            gl.BindFramebuffer(GL_FRAMEBUFFER, gl_context_framebuffer(ctx));
+            void *self = k->create(&o, err, sizeof err);
+            if (!self || !k->prepare(self, s, err, sizeof err))
+                fail_msg("%s: %s", kinds[i], err);
+            frame_stats fs;
+            k->draw(self, s, &fs);
+            gl.Finish();
+            k->collect(self, &fs);
+            const gl_target *t = i == 0 ? forward_hdr_target(self) : deferred_hdr_target(self);
+            assert_non_null(t);
+            assert_int_equal(internal_format(t->texture), f ? GL_RGBA32F : GL_RGBA16F);
+            k->destroy(self);
+            assert_int_equal(gl_context_error_count(ctx), 0);
+        }
+    scene_destroy(s);
+}
+
+/* The depth buffer of forward-spml's frame (bottom row first) as view-space z. */
+static double *view_depth(const scene *s, float density)
+{
+    char err[512] = "";
+    const renderer_impl *k = renderer_kind_find("forward-spml");
+    renderer_options o = options32("forward-spml", HDR_RGBA32F, density);
+    gl.BindFramebuffer(GL_FRAMEBUFFER, gl_context_framebuffer(ctx));
+    void *self = k->create(&o, err, sizeof err);
+    if (!self || !k->prepare(self, s, err, sizeof err))
+        fail_msg("forward-spml: %s", err);
+    frame_stats fs;
+    k->draw(self, s, &fs);
+    gl.Finish();
+    k->collect(self, &fs);
+    const gl_target *t = forward_depth_target(self);
+    float *d = malloc((size_t)W * H * sizeof *d);
+    double *z = malloc((size_t)W * H * sizeof *z);
+    assert_true(d && z);
+    gl.GetTextureImage(t->texture, 0, GL_DEPTH_COMPONENT, GL_FLOAT, (GLsizei)(W * H * sizeof *d),
+                       d);
+    k->destroy(self);
+    assert_int_equal(gl_context_error_count(ctx), 0);
+    /* clip z = P22 z + P32, w = -z: ndc = 2 d - 1 = (P22 z + P32) / -z */
+    double p22 = s->proj[2][2], p32 = s->proj[3][2];
+    for (size_t i = 0; i < (size_t)W * H; i++)
+        z[i] = d[i] >= 1.0f ? NAN : -p32 / (2.0 * d[i] - 1.0 + p22);
+    free(d);
+    return z;
+}
+
+static void test_fog_formula(void **state)
+{
+    (void)state;
+    scene *s = build_few();
+    const float density = 0.04f, colour[3] = {0.6f, 0.5f, 0.4f};
+    double *z = view_depth(s, density);
+    static const struct {
+        const char *kind;
+        bool clustered_deferred;
+    } kinds[] = {{"forward-spml", false}, {"forward-mpml", false}, {"forward-plus", false},
+                 {"deferred", false},     {"tiled-deferred", false}, {"clustered", true}};
+    for (size_t i = 0; i < sizeof kinds / sizeof kinds[0]; i++) {
+        uint8_t *out0, *out1;
+        float *clear, *fogged;
+        render32(kinds[i].kind, kinds[i].clustered_deferred, HDR_RGBA32F, 0.0f, s, &out0, &clear,
+                 NULL);
+        render32(kinds[i].kind, kinds[i].clustered_deferred, HDR_RGBA32F, density, s, &out1,
+                 &fogged, NULL);
+        size_t covered = 0, sky = 0;
+        double worst = 0, change = 0, fmin = 1, fmax = 0;
+        for (size_t p = 0; p < (size_t)W * H; p++)
+            for (int c = 0; c < 3; c++) {
+                double l = clear[4 * p + c], lf = fogged[4 * p + c];
+                if (isnan(z[p])) {   /* no surface: the sky, unchanged */
+                    if (lf != l)
+                        fail_msg("%s: sky pixel %zu[%d]: %g without fog, %g with", kinds[i].kind,
+                                 p, c, l, lf);
+                    sky += c == 0;
+                    continue;
+                }
+                double f = exp(density * z[p]);   /* z < 0 in front of the eye */
+                double want = l * f + colour[c] * (1.0 - f);
+                double e = fabs(lf - want);
+                if (e > 1e-4 + 1e-4 * fabs(want))   /* measured: about 1.5e-6 */
+                    fail_msg("%s: pixel (%zu, %zu)[%d] at z %g: %g without fog, %g with, "
+                             "formula %g (f %g)", kinds[i].kind, p % W, p / W, c, z[p], l, lf,
+                             want, f);
+                worst = e > worst ? e : worst;
+                change += fabs(lf - l);
+                covered += c == 0;
+                fmin = f < fmin ? f : fmin;
+                fmax = f > fmax ? f : fmax;
+            }
+        print_message("%s: fog f in [%.3f, %.3f] over %zu pixels (%zu sky): max |hdr - formula| "
+                      "%.2e, mean change %.3f\n", kinds[i].kind, fmin, fmax, covered, sky,
+                      worst, change / (3.0 * (double)covered));
+        assert_true(covered > (size_t)W * H / 2);
+        assert_true(sky > 0);
+        assert_true(change / (3.0 * (double)covered) > 0.05);   /* fog changes the image */
+        free(out0);
+        free(out1);
+        free(clear);
+        free(fogged);
+    }
+    free(z);
+    scene_destroy(s);
+}
+
 static int setup(void **state)
 {
     (void)state;
@@ -340,6 +612,9 @@ int main(void)
         cmocka_unit_test(test_unprepared),
         cmocka_unit_test(test_null_has_none),
         cmocka_unit_test(test_overflow),
+        cmocka_unit_test(test_rgba32f_every_renderer),
+        cmocka_unit_test(test_rgba32f_internal_format),
+        cmocka_unit_test(test_fog_formula),
     };
     return cmocka_run_group_tests(tests, setup, teardown);
 }

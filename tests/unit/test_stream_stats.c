@@ -279,14 +279,26 @@ static void test_trial_totals(void **state)
         {.t_wall_s = 0.2, .frametime_us = 100, .gpu_us = NAN, .draw_calls = 4, .state_changes = 7, .fragments = 32, .lights = 9},
         {.t_wall_s = 0.3, .frametime_us = 100, .gpu_us = 60, .draw_calls = 6, .state_changes = 9, .fragments = 0, .lights = 1},
     };
+    /* seed 002's G-buffer bytes: the means over the frames that have them */
+    r[0].gbuffer_write_bytes = 100, r[0].gbuffer_read_bytes = 300;
+    r[1].gbuffer_write_bytes = NAN, r[1].gbuffer_read_bytes = NAN;
+    r[2].gbuffer_write_bytes = 200, r[2].gbuffer_read_bytes = 500;
     for (int i = 0; i < 3; i++)
         trial_stream_add(ts, &r[i]);
     trial_totals tt;
     trial_stream_end(ts, 0.3, &tt);
+    assert_true(tt.gbuffer_write_bytes_mean == 150 && tt.gbuffer_read_bytes_mean == 400);
     assert_true(tt.gpu_mean_us == 50);   /* over the two frames that have one */
     assert_true(tt.draw_calls_mean == 4 && tt.state_changes_mean == 7 && tt.fragments_mean == 32);
     assert_int_equal(tt.lights_max, 9);
     assert_true(tt.ft_ci95 == 0 && tt.ci_converged_after_s == 0.3);
+    /* no frame with a G-buffer: NAN (an empty column) */
+    trial_stream_begin(ts, 0.01, NULL, NULL, NULL);
+    frame_record f = {.t_wall_s = 0.1, .frametime_us = 100, .gpu_us = NAN,
+                      .gbuffer_write_bytes = NAN, .gbuffer_read_bytes = NAN};
+    trial_stream_add(ts, &f);
+    trial_stream_end(ts, 0.1, &tt);
+    assert_true(isnan(tt.gbuffer_write_bytes_mean) && isnan(tt.gbuffer_read_bytes_mean));
     trial_stream_free(ts);
 }
 

@@ -2,7 +2,7 @@
 import os
 
 from ..loading import read_csv
-from ..stats import num
+from ..stats import linfit, mean, num
 from ..text import fmt, fmt_ci, md_table, nan
 
 
@@ -102,6 +102,106 @@ def position_storage(s, e):
                 + " the RMSE of the position rebuilt from depth.\n")
 
 
+# ---- seed 002's bandwidth model beside the frame time
+
+MB = 1e6   # bytes; seed 002's GB/s are 10^9 bytes (1024 x 768 x 60 = 0.05 G)
+
+
+def follows(fit):
+    """The answer to "does time follow the bytes?" from a fit (a, b, r2) of frame time on
+    G-buffer bytes: yes when the bytes explain at least 80% of the variance with a positive
+    slope, partly from 50%, else no; None without a fit."""
+    if fit is None:
+        return None
+    a, b, r2 = fit
+    if b > 0 and r2 >= 0.8:
+        return "yes"
+    if b > 0 and r2 >= 0.5:
+        return "partly"
+    return "no"
+
+
+def follows_sentence(where, n, fit):
+    """One sentence with the verdict and the numbers it comes from."""
+    if fit is None:
+        return (f"Does time follow the bytes {where}? Cannot say: fewer than three "
+                "configurations, or all with the same bytes per frame.")
+    a, b, r2 = fit
+    v = follows(fit)
+    head = {"yes": "Yes", "partly": "Partly", "no": "No"}[v]
+    how = ("more bytes, more time" if b > 0 else "more bytes, less time" if b < 0
+           else "no slope at all")
+    return (f"Does time follow the bytes {where}? **{head}**: over {n} configurations the "
+            f"least-squares line time = {a:.3g} ms + {b:.3g} ms per MB ({how}) explains "
+            f"{100 * r2:.0f}% of the frame time's variance (R^2 = {r2:.3f}).")
+
+
+def bandwidth(s, e):
+    """Per configuration, seed 002's G-buffer bytes per frame (summary.csv's
+    gbuffer_bytes_per_frame and its write / read split) beside the frame time; the fit of
+    time on bytes per scene and over the study, and the verdict it gives."""
+    pts = []   # scene, label, written MB, read MB, MB per frame, frame time ms, ci
+    for r in e.measured():
+        b = mean(r.col("gbuffer_bytes_per_frame"))
+        if b is None:
+            continue
+        lv = r.param("deferred.light_volumes") if r.renderer == "deferred" else ""
+        gb = r.rows[0].get("gbuffer") or r.param("gbuffer.preset")
+        label = f"{gb}/{lv}" if lv else f"{r.renderer} {gb}".strip()
+        m, ci, _ = r.frametime_ms()
+        wr, rd = mean(r.col("gbuffer_write_bytes_mean")), mean(r.col("gbuffer_read_bytes_mean"))
+        pts.append((r.scene, label, None if wr is None else wr / MB,
+                    None if rd is None else rd / MB, b / MB, m, ci))
+    s.w("**Seed 002's bandwidth model.** The bytes the G-buffer pass writes and the light "
+        "passes read per frame, by the MRT terms of seed 002's equations 4 and 5 "
+        "(n_MRT x MRT_BPP x W x H x Sorting written, n_MRT x MRT_BPP x W x H x n read): "
+        "the layout's bytes per pixel times the samples (GL_SAMPLES_PASSED) of the G-buffer "
+        "pass and of the light passes (summary.csv's gbuffer_bytes_per_frame = "
+        "gbuffer_write_bytes_mean + gbuffer_read_bytes_mean; MB = 10^6 bytes), beside the "
+        "measured frame time, and the least-squares line time = a + b x bytes.\n")
+    if not pts:
+        s.w("No gbuffer_bytes_per_frame in summary.csv (no G-buffer renderer, or a folder "
+            "written before the column).\n")
+        return
+    rows = [[p[0], p[1], fmt(p[2], 3), fmt(p[3], 3), fmt(p[4], 3), fmt_ci(p[5], p[6], 3)]
+            for p in sorted(pts, key=lambda p: (p[0], p[4]))]
+    s.w(md_table(["scene", "configuration", "MB written", "MB read", "MB per frame",
+                  "frame time ms"], rows))
+    fits = []
+    for scene in sorted({p[0] for p in pts}) + [None]:
+        sel = [p for p in pts if scene is None or p[0] == scene]
+        fit = linfit([p[4] for p in sel], [p[5] for p in sel])
+        n = len([p for p in sel if p[5] is not None])
+        fits.append((scene, n, fit))
+    s.w(md_table(["scene", "configurations", "a (ms)", "b (ms per MB)", "R^2", "time follows the bytes"],
+                 [["all" if sc is None else sc, n, "-" if f is None else f"{f[0]:.3g}",
+                   "-" if f is None else f"{f[1]:.3g}", "-" if f is None else f"{f[2]:.3f}",
+                   follows(f) or "-"] for sc, n, f in fits]))
+    scenes = [f for f in fits if f[0] is not None]
+    _, n_all, fit_all = fits[-1]
+    s.w(follows_sentence("across the study", n_all, fit_all)
+        + ("" if len(scenes) < 2 else " Per scene: " + "; ".join(
+            f"{sc} {follows(f) or 'cannot say'}" + ("" if f is None else f" (R^2 = {f[2]:.3f})")
+            for sc, _, f in scenes) + ".") + "\n")
+    if s.plots.plt:
+        plt = s.plots.plt
+        fig, ax = plt.subplots(figsize=(7, 5))
+        cmap = plt.get_cmap("tab10")
+        for i, (scene, _, fit) in enumerate(scenes):
+            sel = [p for p in pts if p[0] == scene and p[5] is not None]
+            ax.plot([p[4] for p in sel], [p[5] for p in sel], "o", color=cmap(i % 10),
+                    label=scene)
+            if fit:
+                xs = [min(p[4] for p in sel), max(p[4] for p in sel)]
+                ax.plot(xs, [fit[0] + fit[1] * x for x in xs], "-", color=cmap(i % 10),
+                        linewidth=1, label=f"{scene}: fit, R^2 = {fit[2]:.2f}")
+        ax.set_xlabel("G-buffer MB per frame (seed 002 eq. 4 + 5, MRT terms)")
+        ax.set_ylabel("frame time (ms)")
+        ax.grid(alpha=0.3)
+        ax.legend(fontsize=7)
+        s.w(s.plots.save(fig, "gbuffer-error_bandwidth.png"))
+
+
 def section_gbuffer_error(s):
     e = s.e
     s.w("No paper table: our own question, what each G-buffer layout and light-volume mode "
@@ -173,3 +273,4 @@ def section_gbuffer_error(s):
             ax.set_ylabel("image RMSE against the reference (worst trial)")
             ax.grid(alpha=0.3)
         s.w(s.plots.save(fig, "gbuffer-error_pareto.png"))
+    bandwidth(s, e)

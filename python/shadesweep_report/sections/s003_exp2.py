@@ -61,7 +61,10 @@ def exp2_claims(series_d, series_f):
     res["cross_s"] = common[cross] if cross is not None and cross > 0 else None
     res["cross_lights"] = fd[common[cross]][1] if cross is not None and cross > 0 else None
     res["first_overtake_s"] = next((s for s, a in zip(common, ahead) if a), None)
-    last = common[-1]
+    # the last second in which both measured a frame time (at the most lights a second
+    # may end before either finishes a frame: it holds no number to compare)
+    timed = [sec for sec in common if fd[sec][3] and ff[sec][3]]
+    last = timed[-1] if timed else common[-1]
     res["last_s"] = last
     res["last_lights"] = fd[last][1]
     res["last_fps"] = (fd[last][2], ff[last][2])
@@ -158,7 +161,8 @@ def section_s003_exp2(s):
         return (f"second {c.get('last_s')} ({fmt(c.get('last_lights'), 0)} lights): deferred "
                 f"{fmt(d, 1)} vs forward {fmt(f, 1)} fps; forward/deferred frame time "
                 f"x{fmt(c.get('last_ratio'), 2)}")
-    v = na if not have else ("yes" if oc["last_ratio"] >= 1.2 else "partly" if oc["last_ratio"] > 1 else "no")
+    lr = oc.get("last_ratio")
+    v = na if not have or lr is None else ("yes" if lr >= 1.2 else "partly" if lr > 1 else "no")
     s.claim(f"at the most lights deferred is faster: {fmt(td, 0)} vs {fmt(tf, 0)} FPS at 600 "
             "(text; yes: x1.2 or more, partly: above x1)", rl(pc), rl(oc) if have else "-", v)
 
@@ -224,7 +228,7 @@ def section_s003_exp2(s):
         for ren in ("deferred", "forward-spml"):
             p = paper[ren]
             axes[0].plot([x[1] for x in p], [nan(x[3]) for x in p], color=COLORS[ren], label=ren)
-            o = ours[ren]
+            o = [x for x in ours[ren] if x[1] is not None]   # a second with no complete frame has no lights
             if o:
                 xs = [x[1] for x in o]
                 m = [nan(x[4]) for x in o]

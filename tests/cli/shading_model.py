@@ -1,0 +1,417 @@
+#!/usr/bin/env python3
+"""An independent check of the shading model (issue 13, item 8).
+
+Every renderer includes the same lighting.inc.glsl, so their agreement with each other
+cannot catch an error in it. This script evaluates the Phong model of seed 000
+appendix D (I = A + attenuation * spot * (D + g * S), its three attenuation forms and
+its spot falloff) by itself, in float64 with numpy, for a plane seen by a known camera
+and lit by one light per case, and compares every renderer's screenshot with it.
+
+    shading_model.py gen DIR      writes the glTF scenes and the manifests into DIR
+    shading_model.py check DIR    compares DIR/out-*/runs/*/screenshot-*.png with the model
+
+Written from the paper's formulas (seed 000 appendix D), not from our shaders:
+    A = ambient light * ambient material                      (our ambient material: Kd)
+    D = light * Kd * max(N.L, 0)
+    S = light * Ks * max(R.V, 0)^n,  R = 2 (N.L) N - L        (Ks: white, see g)
+    attenuation: 1 / (a d^2 + b d + c) | 1 / d^2 | max(0, 1 - d / maxRange)
+    spot = (-L.A)^f if -L.A > cos(c), else 0
+    I = A + attenuation * spot * (D + g * S)
+
+What is taken from the project (its mapping of files and manifests onto that model,
+and how the image is produced), each read from the code named:
+  scenes/file_assimp.c  glTF pbrMetallicRoughness -> Phong: Kd = baseColorFactor;
+                        g = 0.04 (1 - metallic) + luminance(baseColor) metallic, with
+                        luminance = 0.2126 r + 0.7152 g + 0.0722 b; n = 2 / r^4 - 2 for
+                        roughness r (the Blinn-Phong exponent of GGX alpha = r^2).
+                        KHR_lights_punctual: colour x intensity; position and direction
+                        (-Z) from the light's node; point and spot: 1/d^2 cut off at
+                        `range`; spot: c = outerConeAngle, f = 1 (innerConeAngle is not
+                        used). Cameras: at the node, looking down -Z, yfov, the run's
+                        aspect. The ambient light of a file scene is 0.1 (grey).
+  scenes/scene.c        lights.placement grid with one light: at the centre of the light
+                        bounds (a file scene's are its mesh bounds); colour r, g, b =
+                        rand() / RAND_MAX x color_max in that order, from Visual C++'s
+                        rand (holdrand = holdrand * 214013 + 2531011, rand = holdrand >> 16
+                        & 0x7fff, RAND_MAX 0x7fff) seeded with lights.seed; the attenuation
+                        form and its coefficients from lights.attenuation / lights.quadratic.
+  scenes/scene.h        a point or spot light reaches nothing beyond its radius (range).
+  renderers/shaders/resolve.frag.glsl  the output is the HDR value clamped to [0, 1]
+                        (no tone curve, no sRGB encoding), written to RGBA8: GL rounds
+                        to the nearest of the 255 levels; screenshots are that image,
+                        top row first (renderers/gl/context.c).
+The scenes avoid what the project adds to the paper: every light's range lies beyond
+the visible plane except linear-range's (whose attenuation reaches 0 there anyway), no
+light is within 1 cm of the plane (1/d^2 is clamped there), and every light is above
+the plane (N.L > 0 everywhere, so the project's gating of S by N.L > 0 does not show).
+
+The G-buffer renderers (deferred, tiled-deferred) run with
+`gbuffer: reference` (RGBA32F, position stored): with the default preset (curtis) the
+point light's highlight misses by one more level at one pixel (1.015/255), which is the
+G-buffer's precision, not the shading model.
+
+Tolerance: per case and renderer, over every pixel, the largest channel difference
+between the screenshot (u8 / 255) and the model (clamped to [0, 1]) at most 1/255 (the
+8-bit rounding alone is up to 0.5/255), and the RMSE at most 0.5/255. Pixels whose
+spot cosine lies within 1e-4 of cos(c) (the cone's edge, a step of cos(c) in the model)
+are left out of both and counted.
+"""
+import base64
+import csv
+import glob
+import json
+import math
+import os
+import struct
+import sys
+import zlib
+
+import numpy as np
+
+W, H = 80, 60
+RENDERERS = ["deferred", "forward-spml", "forward-mpml", "forward-plus", "tiled-deferred",
+             "clustered"]
+HALF = 20.0              # the plane: y = 0, x and z in [-HALF, HALF], normal +Y
+TOP = 4.0                # a small triangle at this height behind the camera: it puts
+                         # the light bounds' centre (a grid light) at (0, TOP / 2, 0)
+AMBIENT = 0.1
+BASE = (0.8, 0.6, 0.4)
+METALLIC, ROUGHNESS = 1.0, 0.5
+CAMERA = {"t": (0.0, 4.0, 4.0), "pitch_deg": -50.0, "yfov": 0.7, "znear": 0.1,
+          "zfar": 100.0}
+SEED, COLOR_MAX = 1337, 3.0
+EDGE_EPS = 1e-4
+MAX_TOL, RMSE_TOL = 1.0 / 255.0, 0.5 / 255.0
+
+
+def unit(v):
+    v = np.asarray(v, dtype=np.float64)
+    return v / np.linalg.norm(v)
+
+
+def quat_axis(axis, angle):
+    a = unit(axis) * math.sin(angle / 2.0)
+    return [float(a[0]), float(a[1]), float(a[2]), math.cos(angle / 2.0)]
+
+
+def quat_to_dir(q, v=(0.0, 0.0, -1.0)):
+    """v rotated by the unit quaternion q = (x, y, z, w) (glTF's order)."""
+    x, y, z, w = q
+    m = np.array([[1 - 2 * (y * y + z * z), 2 * (x * y - z * w), 2 * (x * z + y * w)],
+                  [2 * (x * y + z * w), 1 - 2 * (x * x + z * z), 2 * (y * z - x * w)],
+                  [2 * (x * z - y * w), 2 * (y * z + x * w), 1 - 2 * (x * x + y * y)]])
+    return m @ np.asarray(v, dtype=np.float64), m
+
+
+def quat_towards(d):
+    """The rotation that turns -Z into the unit direction d (shortest arc)."""
+    f = np.array([0.0, 0.0, -1.0])
+    d = unit(d)
+    axis = np.cross(f, d)
+    s = np.linalg.norm(axis)
+    if s < 1e-12:
+        return [0.0, 0.0, 0.0, 1.0]
+    return quat_axis(axis, math.atan2(s, float(np.dot(f, d))))
+
+
+# The cases: a light each. `file` lights come from the glTF (lights.placement scene);
+# `grid` ones from the manifest (one grid light at the bounds' centre).
+CASES = {
+    "directional": {"light": {"type": "directional", "color": [1.0, 0.9, 0.8],
+                              "intensity": 0.6},
+                    "dir": (0.3, -0.75, 0.6)},
+    "point": {"light": {"type": "point", "color": [1.0, 0.85, 0.6], "intensity": 3.0,
+                        "range": 60.0},
+              "pos": (0.6, 1.5, 0.2)},
+    "spot": {"light": {"type": "spot", "color": [0.7, 0.9, 1.0], "intensity": 5.0,
+                       "range": 60.0,
+                       "spot": {"innerConeAngle": 0.2, "outerConeAngle": 0.45}},
+             "pos": (-0.5, 2.5, 0.3), "at": (0.2, 0.0, 0.6)},
+    "linear-range": {"grid": {"attenuation": "linear-range", "radius": 3.0}},
+    "quadratic": {"grid": {"attenuation": "quadratic", "radius": 60.0,
+                           "quadratic": {"a": 0.5, "b": 0.4, "c": 0.6}}},
+}
+
+
+# >>scene files
+
+def plane_gltf(case):
+    """The glTF of a case: the plane, the bounds triangle, the camera, the case's light."""
+    L = HALF
+    pos = [-L, 0, L, L, 0, L, L, 0, -L, -L, 0, -L,                      # the plane
+           -0.1, TOP, L, 0.1, TOP, L, 0.0, TOP, L - 0.1]                 # the bounds triangle
+    nrm = [0, 1, 0] * 7
+    idx = [0, 1, 2, 0, 2, 3, 4, 5, 6]
+    bin_ = struct.pack("<21f", *pos) + struct.pack("<21f", *nrm) + struct.pack("<9H", *idx)
+    bin_ += b"\0" * (-len(bin_) % 4)
+    uri = "data:application/octet-stream;base64," + base64.b64encode(bin_).decode()
+    cam = CAMERA
+    nodes = [{"mesh": 0},
+             {"name": "cam", "translation": list(cam["t"]),
+              "rotation": quat_axis((1, 0, 0), math.radians(cam["pitch_deg"])), "camera": 0}]
+    doc = {
+        "asset": {"version": "2.0"},
+        "scene": 0,
+        "scenes": [{"nodes": list(range(3 if "light" in case else 2))}],
+        "nodes": nodes,
+        "cameras": [{"type": "perspective",
+                     "perspective": {"yfov": cam["yfov"], "znear": cam["znear"],
+                                     "zfar": cam["zfar"], "aspectRatio": W / H}}],
+        "materials": [{"pbrMetallicRoughness": {"baseColorFactor": list(BASE) + [1.0],
+                                                "metallicFactor": METALLIC,
+                                                "roughnessFactor": ROUGHNESS}}],
+        "meshes": [{"primitives": [{"attributes": {"POSITION": 0, "NORMAL": 1}, "indices": 2,
+                                    "material": 0}]}],
+        "buffers": [{"byteLength": len(bin_), "uri": uri}],
+        "bufferViews": [{"buffer": 0, "byteOffset": 0, "byteLength": 84},
+                        {"buffer": 0, "byteOffset": 84, "byteLength": 84},
+                        {"buffer": 0, "byteOffset": 168, "byteLength": 18}],
+        "accessors": [{"bufferView": 0, "componentType": 5126, "count": 7, "type": "VEC3",
+                       "min": [-L, 0, -L], "max": [L, TOP, L]},
+                      {"bufferView": 1, "componentType": 5126, "count": 7, "type": "VEC3"},
+                      {"bufferView": 2, "componentType": 5123, "count": 9, "type": "SCALAR"}],
+    }
+    if "light" in case:
+        doc["extensionsUsed"] = ["KHR_lights_punctual"]
+        doc["extensions"] = {"KHR_lights_punctual": {"lights": [case["light"]]}}
+        node = {"name": "light", "extensions": {"KHR_lights_punctual": {"light": 0}}}
+        if "pos" in case:
+            node["translation"] = list(case["pos"])
+        d = case.get("dir")
+        if d is None and "at" in case:
+            d = np.subtract(case["at"], case["pos"])
+        if d is not None:
+            node["rotation"] = quat_towards(d)
+        nodes.append(node)
+    return doc
+
+
+def manifest(name, case):
+    lines = ["shadesweep: 1", f"name: shading-{name}",
+             f"scene: {{file: {name}.gltf, camera: cam}}",
+             "renderers: [" + ", ".join(RENDERERS) + "]",
+             f"resolution: {W}x{H}", "duration: {frames: 2}", "clock: fixed",
+             "outputs: {screenshots: [0]}",
+             # the deferred renderers' lossless G-buffer: this checks the shading model,
+             # not what a G-buffer loses (gl-agreement and gbuffer-error measure that)
+             "gbuffer: reference"]
+    if "light" in case:
+        lines.append("lights: {placement: scene, count: 1}")
+    else:
+        g = case["grid"]
+        q = g.get("quadratic")
+        extra = (f", quadratic: {{a: {q['a']}, b: {q['b']}, c: {q['c']}}}" if q else "")
+        lines.append(f"lights: {{placement: grid, count: 1, seed: {SEED}, rng: msvc, "
+                     f"color_max: {COLOR_MAX}, radius: {g['radius']}, "
+                     f"attenuation: {g['attenuation']}{extra}}}")
+    return "\n".join(lines) + "\n"
+
+
+def gen(d):
+    os.makedirs(d, exist_ok=True)
+    for name, case in CASES.items():
+        with open(os.path.join(d, name + ".gltf"), "w") as f:
+            json.dump(plane_gltf(case), f)
+        with open(os.path.join(d, name + ".yaml"), "w") as f:
+            f.write(manifest(name, case))
+
+
+# >>the model
+
+def msvc_rand(seed, n):
+    s, out = seed & 0xffffffff, []
+    for _ in range(n):
+        s = (s * 214013 + 2531011) & 0xffffffff
+        out.append(((s >> 16) & 0x7fff) / 32767.0)
+    return out
+
+
+def light_of(case):
+    """The case's light in the model's terms: type, colour, position, unit direction of
+    travel, attenuation (form, coefficients, range), spot cut-off and exponent."""
+    if "light" in case:
+        gl = case["light"]
+        col = np.array(gl["color"]) * gl["intensity"]
+        lt = {"type": gl["type"], "color": col, "range": gl.get("range", math.inf),
+              "att": "inverse-square"}
+        if "pos" in case:
+            lt["pos"] = np.array(case["pos"], dtype=np.float64)
+        if gl["type"] != "point":
+            d = case.get("dir")
+            if d is None:
+                d = np.subtract(case["at"], case["pos"])
+            lt["dir"] = unit(d)
+        if gl["type"] == "spot":
+            lt["cos_c"] = math.cos(gl["spot"]["outerConeAngle"])
+            lt["f"] = 1.0
+        return lt
+    g = case["grid"]
+    q = g.get("quadratic", {"a": 1.0, "b": 0.0, "c": 1.0})
+    return {"type": "point", "color": np.array(msvc_rand(SEED, 3)) * COLOR_MAX,
+            "pos": np.array([0.0, TOP / 2.0, 0.0]), "range": g["radius"],
+            "att": g["attenuation"], "abc": (q["a"], q["b"], q["c"])}
+
+
+def material():
+    lum = 0.2126 * BASE[0] + 0.7152 * BASE[1] + 0.0722 * BASE[2]
+    g = 0.04 * (1.0 - METALLIC) + lum * METALLIC
+    a = ROUGHNESS * ROUGHNESS
+    n = min(max(2.0 / (a * a) - 2.0, 1.0), 2048.0)
+    return np.array(BASE), g, n
+
+
+def model(case):
+    """The expected image (H x W x 3, clamped to [0, 1]) and the mask of pixels on a
+    spot cone's edge."""
+    cam = CAMERA
+    _, rot = quat_to_dir(quat_axis((1, 0, 0), math.radians(cam["pitch_deg"])))
+    eye = np.array(cam["t"], dtype=np.float64)
+    ty = math.tan(cam["yfov"] / 2.0)
+    xs = (2.0 * (np.arange(W) + 0.5) / W - 1.0) * ty * (W / H)
+    ys = (1.0 - 2.0 * (np.arange(H) + 0.5) / H) * ty
+    X, Y = np.meshgrid(xs, ys)
+    rays = np.stack([X, Y, -np.ones_like(X)], axis=-1) @ rot.T       # world space
+    t = -eye[1] / rays[..., 1]
+    if not np.all(t > 0):
+        sys.exit("FAIL: the model: a pixel's ray misses the plane (the horizon is in view)")
+    P = eye + rays * t[..., None]
+    if np.abs(P[..., [0, 2]]).max() > HALF - 1.0:
+        sys.exit("FAIL: the model: the plane does not fill the view")
+    N = np.array([0.0, 1.0, 0.0])
+    V = eye - P
+    V /= np.linalg.norm(V, axis=-1, keepdims=True)
+    kd, g, n = material()
+    lt = light_of(case)
+    edge = np.zeros((H, W), dtype=bool)
+    if lt["type"] == "directional":
+        Ld = np.broadcast_to(-lt["dir"], P.shape)
+        att = np.ones((H, W))
+    else:
+        toL = lt["pos"] - P
+        d = np.linalg.norm(toL, axis=-1)
+        Ld = toL / d[..., None]
+        if lt["att"] == "inverse-square":                      # appendix D form 2
+            att = 1.0 / (d * d)
+        elif lt["att"] == "linear-range":                      # form 3, maxRange = radius
+            att = np.maximum(0.0, 1.0 - d / lt["range"])
+        else:                                                  # form 1
+            a, b, c = lt["abc"]
+            att = 1.0 / (a * d * d + b * d + c)
+        att = np.where(d <= lt["range"], att, 0.0)
+        if lt["type"] == "spot":
+            s = -(Ld @ lt["dir"])                              # -L.A
+            att = att * np.where(s > lt["cos_c"], np.maximum(s, 0.0) ** lt["f"], 0.0)
+            edge = np.abs(s - lt["cos_c"]) < EDGE_EPS
+    ndl = Ld @ N
+    R = 2.0 * ndl[..., None] * N - Ld
+    rv = np.maximum(np.sum(R * V, axis=-1), 0.0)
+    D = lt["color"] * kd * np.maximum(ndl, 0.0)[..., None]
+    S = lt["color"] * (rv ** n)[..., None]
+    A = AMBIENT * kd
+    I = A + att[..., None] * (D + g * S)
+    return np.clip(I, 0.0, 1.0), edge
+
+
+# >>images
+
+def read_png(path):
+    """An 8-bit RGB or RGBA PNG (no interlace) as H x W x C uint8."""
+    data = open(path, "rb").read()
+    if data[:8] != b"\x89PNG\r\n\x1a\n":
+        sys.exit(f"FAIL: {path}: not a PNG")
+    pos, idat, w = 8, b"", None
+    while pos < len(data):
+        n, kind = struct.unpack(">I4s", data[pos:pos + 8])
+        body = data[pos + 8:pos + 8 + n]
+        pos += 12 + n
+        if kind == b"IHDR":
+            w, h, depth, ctype, _, _, inter = struct.unpack(">IIBBBBB", body)
+            if depth != 8 or ctype not in (2, 6) or inter:
+                sys.exit(f"FAIL: {path}: PNG depth {depth} colour type {ctype}")
+            ch = 4 if ctype == 6 else 3
+        elif kind == b"IDAT":
+            idat += body
+        elif kind == b"IEND":
+            break
+    raw = zlib.decompress(idat)
+    stride = w * ch
+    out = np.zeros((h, stride), dtype=np.int32)
+    prev = np.zeros(stride, dtype=np.int32)
+    for y in range(h):
+        ft = raw[y * (stride + 1)]
+        line = np.frombuffer(raw, np.uint8, stride, y * (stride + 1) + 1).astype(np.int32)
+        cur = np.zeros(stride, dtype=np.int32)
+        for x in range(stride):
+            a = cur[x - ch] if x >= ch else 0
+            b = prev[x]
+            c = prev[x - ch] if x >= ch else 0
+            if ft == 0:
+                p = 0
+            elif ft == 1:
+                p = a
+            elif ft == 2:
+                p = b
+            elif ft == 3:
+                p = (a + b) // 2
+            else:
+                pa, pb, pc = abs(b - c), abs(a - c), abs(a + b - 2 * c)
+                p = a if pa <= pb and pa <= pc else (b if pb <= pc else c)
+            cur[x] = (line[x] + p) & 0xff
+        out[y] = cur
+        prev = cur
+    return out.reshape(h, w, ch).astype(np.uint8)
+
+
+def check(d):
+    failures, rows = [], []
+    for name, case in CASES.items():
+        want, edge = model(case)
+        out = os.path.join(d, "out-" + name)
+        summ = list(csv.DictReader(open(os.path.join(out, "summary.csv"))))
+        got_renderers = [r["renderer"] for r in summ]
+        if sorted(got_renderers) != sorted(RENDERERS):
+            failures.append(f"{name}: renderers {got_renderers}")
+            continue
+        for r in summ:
+            if r["status"] != "ok":
+                failures.append(f"{name} {r['renderer']}: status {r['status']}")
+                continue
+            shots = glob.glob(os.path.join(out, "runs", r["run_id"], "screenshot-*.png"))
+            if len(shots) != 1:
+                failures.append(f"{name} {r['renderer']}: screenshots {shots}")
+                continue
+            img = read_png(shots[0])[..., :3].astype(np.float64) / 255.0
+            if img.shape != want.shape:
+                failures.append(f"{name} {r['renderer']}: image {img.shape}")
+                continue
+            diff = np.abs(img - want)[~edge]
+            mx, rmse = float(diff.max()), float(np.sqrt(np.mean(diff ** 2)))
+            rows.append((name, r["renderer"], mx * 255, rmse * 255, int(edge.sum())))
+            if not (mx <= MAX_TOL + 1e-9 and rmse <= RMSE_TOL):
+                yx = np.unravel_index(np.argmax(np.where(edge[..., None], 0,
+                                                         np.abs(img - want)).max(axis=-1)),
+                                      edge.shape)
+                failures.append(
+                    f"{name} {r['renderer']}: max {mx * 255:.3f}/255 rmse {rmse * 255:.3f}/255 "
+                    f"(tolerance {MAX_TOL * 255:.1f}/255, {RMSE_TOL * 255:.1f}/255); worst pixel "
+                    f"x={yx[1]} y={yx[0]}: image {np.round(img[yx] * 255, 1)} model "
+                    f"{np.round(want[yx] * 255, 2)}")
+    # the model itself must be far from flat, or the comparison proves nothing
+    for name, case in CASES.items():
+        want, _ = model(case)
+        if want.max() - want.min() < 0.3 or (want >= 1.0).mean() > 0.02:
+            failures.append(f"{name}: the model's image spans {want.min():.3f}..{want.max():.3f} "
+                            f"with {(want >= 1.0).mean():.1%} saturated: a weak case")
+    print("case          renderer        max/255  rmse/255  edge px")
+    for row in rows:
+        print(f"{row[0]:13s} {row[1]:15s} {row[2]:7.3f}  {row[3]:7.3f}  {row[4]:6d}")
+    if failures:
+        for f in failures:
+            print("FAIL:", f, file=sys.stderr)
+        sys.exit(1)
+
+
+if __name__ == "__main__":
+    if len(sys.argv) != 3 or sys.argv[1] not in ("gen", "check"):
+        sys.exit(__doc__)
+    (gen if sys.argv[1] == "gen" else check)(sys.argv[2])
