@@ -33,4 +33,6 @@
 #define LOC_RENDERER 16
 /* Uniform location of fog.inc's u_fog (rgb colour, w density), past u_light[5] (16..20) */
 #define LOC_FOG 24
+/* forward_base.frag's u_base_lights (forward.directional_in_base: 5 per light), past u_fog */
+#define LOC_BASE_LIGHTS 25
 #endif

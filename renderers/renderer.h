@@ -151,6 +151,8 @@ typedef struct renderer_options {
     int shadow_map_size;       /* side of each shadow map in texels; 0: 1024 */
     /* forward-mpml */
     bool no_illumination_sets; /* draw every visible object for every light (seed 000 5.6) */
+    bool directional_in_base;  /* the directional lights shaded in the base pass, not in
+                                  passes of their own (forward.directional_in_base) */
     /* forward-spml's light buffer (forward.light_buffer) */
     light_buffer_kind light_buffer;
     /* forward-plus (tiles.*): tile side in pixels (8, 16 or 32; 0: 16); the index

@@ -65,12 +65,27 @@ for rid in plan:
         fail(f"s003-exp2: lights per second {[(s['lights_min'], s['lights_max']) for s in secs]}")
 
 # seed 000 draw calls: shadow passes on the interior only when shadows are on; the
-# canyon's sun casts none, so auto and off draw the same
+# canyon's sun casts none, so auto and off draw the same. forward-mpml with the
+# directional lights in its base pass: the same base draws, the lights pass less the
+# directional lights' V each (the canyon: no lights pass at all)
 d, plan, summ = runs("s000-drawcalls")
-dc = {}
+dc, base = {}, {}
 for rid, p in plan.items():
     tot, n = passes(d, rid)
-    dc[(p["scene"], p["shadows"], p["renderer"])] = (tot, n)
+    if p["forward.directional_in_base"] == "true":
+        base[(p["scene"], p["shadows"])] = (tot, n)
+    else:
+        dc[(p["scene"], p["shadows"], p["renderer"])] = (tot, n)
+if sorted(base) != sorted((s, h) for s in ("canyon", "interior") for h in ("auto", "off")):
+    fail(f"s000-drawcalls: folded runs {sorted(base)}")
+for (scene, sh), (tot, n) in base.items():
+    own, n2 = dc[(scene, sh, "forward-mpml")]
+    if n != n2 or tot.get("base") != own.get("base") or tot.get("shadows") != own.get("shadows"):
+        fail(f"{scene} {sh}: directional_in_base {tot}, own passes {own}")
+    if scene == "canyon" and ("lights" in tot or own["lights"] != own["base"]):
+        fail(f"canyon {sh}: directional_in_base {tot}, own passes {own}")
+    if scene == "interior" and not 0 < tot["lights"] < own["lights"]:
+        fail(f"interior {sh}: directional_in_base {tot}, own passes {own}")
 for r in ("deferred", "forward-mpml"):
     on, off = dc[("interior", "auto", r)][0], dc[("interior", "off", r)][0]
     if not on.get("shadows") or off.get("shadows"):

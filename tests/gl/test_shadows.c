@@ -683,6 +683,8 @@ static uint64_t total_draws(const frame_stats *fs)
  *   deferred (stencil):  Sh + V + 1 + D + 2 (P + S) + [sky] + 1
  *   deferred (fullscreen):  Sh + V + 1 + D + P + S + [sky] + 1
  *   forward-mpml:        Sh + V + sum |I(l)| + [sky] + 1
+ *   forward-mpml, forward.directional_in_base:  Sh + V + sum |I(l)| - D V + [sky] + 1
+ *                        (the directional lights, |I(l)| = V each, shaded in the base pass)
  *   forward-spml:        Sh + V + [sky] + 1
  * with Sh = sum of |C(l)| (the shadows pass's draws) when shadows are on, 0 off.
  * Returns the counts check_sets found. */
@@ -691,22 +693,26 @@ static set_check check_draws(const scene *s, bool no_shadows)
     set_check c = check_sets(s, no_shadows);
     uint64_t sky = s->sky ? 1u : 0u;
     uint64_t sh = no_shadows ? 0u : c.shadow_draws;
+    uint64_t dv = (uint64_t)c.lights[LIGHT_DIRECTIONAL] * c.visible;
     struct {
         const char *kind;
         light_volume_mode mode;
         uint64_t draws;
+        bool fold;
     } cases[] = {
         {"deferred", LIGHT_VOLUMES_STENCIL,
          sh + c.visible + 1 + c.lights[LIGHT_DIRECTIONAL] +
-             2 * (c.lights[LIGHT_POINT] + c.lights[LIGHT_SPOT]) + sky + 1},
+             2 * (c.lights[LIGHT_POINT] + c.lights[LIGHT_SPOT]) + sky + 1, false},
         {"deferred", LIGHT_VOLUMES_FULLSCREEN,
          sh + c.visible + 1 + c.lights[LIGHT_DIRECTIONAL] + c.lights[LIGHT_POINT] +
-             c.lights[LIGHT_SPOT] + sky + 1},
-        {"forward-mpml", LIGHT_VOLUMES_STENCIL, sh + c.visible + c.illum + sky + 1},
-        {"forward-spml", LIGHT_VOLUMES_STENCIL, sh + c.visible + sky + 1},
+             c.lights[LIGHT_SPOT] + sky + 1, false},
+        {"forward-mpml", LIGHT_VOLUMES_STENCIL, sh + c.visible + c.illum + sky + 1, false},
+        {"forward-mpml", LIGHT_VOLUMES_STENCIL, sh + c.visible + c.illum - dv + sky + 1, true},
+        {"forward-spml", LIGHT_VOLUMES_STENCIL, sh + c.visible + sky + 1, false},
     };
     for (size_t i = 0; i < sizeof cases / sizeof cases[0]; i++) {
         renderer_options o = options(cases[i].mode, GBUFFER_CURTIS, no_shadows);
+        o.directional_in_base = cases[i].fold;
         frame_out f;
         render(cases[i].kind, &o, s, &f);
         const pass_stats *p = find_pass(&f.fs, "shadows");
@@ -735,7 +741,8 @@ static set_check check_draws(const scene *s, bool no_shadows)
             frame_out_free(&off);
         }
         if (total_draws(&f.fs) != cases[i].draws)
-            print_error("%s: %llu draws, the formula gives %llu\n", cases[i].kind,
+            print_error("%s%s: %llu draws, the formula gives %llu\n", cases[i].kind,
+                        cases[i].fold ? " (directional_in_base)" : "",
                         (unsigned long long)total_draws(&f.fs),
                         (unsigned long long)cases[i].draws);
         assert_int_equal(total_draws(&f.fs), cases[i].draws);
@@ -823,7 +830,123 @@ static void test_catalog_draws(void **state)
         assert_int_equal(c.shadow_draws, 0);
         assert_int_equal(c.lights[LIGHT_DIRECTIONAL], 1);
         check_draws(s, true);
+        /* in numbers: forward-mpml 2V + 2 with the sun in its own pass, V + 2 with it in
+         * the base pass (forward.directional_in_base); deferred V + 4 */
+        renderer_options o = options(LIGHT_VOLUMES_STENCIL_TWO_PASS, GBUFFER_FAT, false);
+        frame_out f;
+        render("forward-mpml", &o, s, &f);
+        assert_int_equal(f.fs.total.draw_calls, 2 * (uint64_t)c.visible + 2);
+        frame_out_free(&f);
+        o.directional_in_base = true;
+        render("forward-mpml", &o, s, &f);
+        assert_int_equal(f.fs.total.draw_calls, (uint64_t)c.visible + 2);
+        frame_out_free(&f);
+        render("deferred", &o, s, &f);
+        assert_int_equal(f.fs.total.draw_calls, (uint64_t)c.visible + 4);
+        frame_out_free(&f);
     }
+    scene_destroy(s);
+}
+
+/* forward.directional_in_base: forward-mpml with the directional lights shaded in its
+ * base pass agrees with the same renderer drawing them in passes of their own (RMSE <
+ * 1/255, max <= 4/255: fp16 rounds the sum once instead of per pass) on "shapes" with a
+ * shadowed directional light among others, on the canyon (its sun, no shadows) and on
+ * the interior (its shadowed moon, omni lights and shadowed spots); draws V x D fewer
+ * (check_draws asserts the formula); compiles the BASE_DIRECTIONAL variants (SHADOWS
+ * only when a directional light casts shadows) and no light-pass program for
+ * directional lights; the canyon's light pass is skipped and says why. */
+static void fold_case(scene *s, const char *name, bool shadowed_directional, bool only_directional)
+{
+    char what[160];
+    frame_out a, b;
+    renderer_options o = options(LIGHT_VOLUMES_STENCIL, GBUFFER_CURTIS, false);
+    render("forward-mpml", &o, s, &a);
+    o.directional_in_base = true;
+    render("forward-mpml", &o, s, &b);
+    snprintf(what, sizeof what, "%s: directional lights in the base pass vs their own passes",
+             name);
+    expect_agree(what, &b.rgba8, &a.rgba8);
+    set_check c = check_sets(s, false);
+    assert_true(c.lights[LIGHT_DIRECTIONAL] > 0);
+    assert_true(c.visible > 0);
+    assert_int_equal(a.fs.total.draw_calls - b.fs.total.draw_calls,
+                     (uint64_t)c.lights[LIGHT_DIRECTIONAL] * c.visible);
+    assert_int_equal(b.fs.lights_drawn, a.fs.lights_drawn);
+    /* the variants: folded base programs only when folded, no directional light pass */
+    assert_int_equal(programs_with(&a.plan, "forward_base_directional", ""), 0);
+    assert_true(programs_with(&a.plan, "forward_directional", "") > 0);
+    assert_true(programs_with(&b.plan, "forward_base_directional", "") > 0);
+    assert_int_equal(programs_with(&b.plan, "forward_base", ""),
+                     programs_with(&b.plan, "forward_base_directional", ""));
+    assert_int_equal(programs_with(&b.plan, "forward_directional", ""), 0);
+    assert_int_equal(programs_with(&b.plan, "forward_base_directional_shadowed", ""),
+                     shadowed_directional ? programs_with(&b.plan, "forward_base_directional", "")
+                                          : 0);
+    const pass_plan_entry *base = plan_pass(&b.plan, "base");
+    assert_non_null(base);
+    assert_non_null(strstr(base->reason, "directional light"));
+    assert_non_null(strstr(base->reason, "(forward.directional_in_base)"));
+    const pass_plan_entry *lights = plan_pass(&b.plan, "lights");
+    assert_non_null(lights);
+    assert_int_equal(lights->run, !only_directional);
+    if (only_directional) {
+        assert_string_equal(lights->reason,
+                            "skipped: the scene's only lights are directional, shaded in the "
+                            "base pass");
+        assert_null(find_pass(&b.fs, "lights"));
+    }
+    frame_out_free(&a);
+    frame_out_free(&b);
+}
+
+static void test_directional_in_base(void **state)
+{
+    (void)state;
+    scene_light lights[4] = {spot(0, 10, 0, 0.2f, -1, 0.1f, 20, 30, true),
+                             directional(-0.4f, -1.0f, -0.3f, true),
+                             point(-8, 4, 8, 9, false),
+                             spot(10, 6, 10, -0.5f, -1, -0.5f, 14, 25, false)};
+    scene *s = shapes(lights, 4, EYE, TARGET);
+    fold_case(s, "shapes", true, false);
+    /* two directional lights, one shadowed */
+    scene_light two[3] = {directional(-0.4f, -1.0f, -0.3f, true),
+                          directional(0.6f, -0.5f, 0.2f, false), point(-8, 4, 8, 9, false)};
+    set_lights(s, two, 3);
+    fold_case(s, "shapes, two directional lights", true, false);
+    /* more directional lights than the base pass holds: refused in prepare, saying so */
+    scene_light nine[9];
+    for (int i = 0; i < 9; i++)
+        nine[i] = directional(-0.4f + 0.1f * (float)i, -1.0f, -0.3f, false);
+    set_lights(s, nine, 9);
+    renderer_options o = options(LIGHT_VOLUMES_STENCIL, GBUFFER_CURTIS, false);
+    o.directional_in_base = true;
+    char msg[512] = "";
+    gl.BindFramebuffer(GL_FRAMEBUFFER, gl_context_framebuffer(ctx));
+    renderer *r = renderer_create("forward-mpml", &o, msg, sizeof msg);
+    assert_non_null(r);
+    assert_false(renderer_prepare(r, s, msg, sizeof msg));
+    assert_string_equal(msg, "forward-mpml: forward.directional_in_base shades at most 8 "
+                             "directional lights in the base pass; the scene has 9");
+    renderer_destroy(r);
+    gl_context_poll_errors(ctx, "forward-mpml, nine directional lights");
+    assert_int_equal(gl_context_error_count(ctx), 0);
+    scene_destroy(s);
+
+    char err[256];
+    light_params lp = {.placement = PLACEMENT_SCENE, .radius = 1.0f,
+                       .count = {.start = LIGHT_COUNT_ALL, .max = LIGHT_COUNT_ALL}};
+    s = scene_build("canyon", &lp, W, H, err, sizeof err);
+    if (!s)
+        fail_msg("canyon: %s", err);
+    scene_update(s, 10.0);
+    fold_case(s, "canyon", false, true);
+    scene_destroy(s);
+    s = scene_build("interior", &lp, W, H, err, sizeof err);
+    if (!s)
+        fail_msg("interior: %s", err);
+    scene_update(s, 10.0);
+    fold_case(s, "interior", true, false);
     scene_destroy(s);
 }
 
@@ -1034,6 +1157,7 @@ int main(void)
         cmocka_unit_test(test_agreement),
         cmocka_unit_test(test_sets_and_draws),
         cmocka_unit_test(test_catalog_draws),
+        cmocka_unit_test(test_directional_in_base),
         cmocka_unit_test(test_plans),
         cmocka_unit_test(test_extremes),
     };

@@ -377,6 +377,7 @@ static void test_kv_canonical(void **state)
         {"deferred.separate_specular", "false"},
         {"deferred.sky_stencil", "false"},
         {"forward.illumination_sets", "true"},
+        {"forward.directional_in_base", "false"},
         {"forward.light_buffer", "uniform"},
         {"tiles.size", "16"},
         {"tiles.max_lights_per_tile", "0"},
@@ -435,6 +436,7 @@ static void test_kv_canonical(void **state)
         {"deferred.separate_specular", "false"},
         {"deferred.sky_stencil", "false"},
         {"forward.illumination_sets", "true"},
+        {"forward.directional_in_base", "false"},
         {"forward.light_buffer", "uniform"},
         {"tiles.size", "16"},
         {"tiles.max_lights_per_tile", "0"},
@@ -676,8 +678,8 @@ static const bad_case bad_cases[] = {
      {"7:3: sweep.lights.cnt: expected a sweepable parameter (one of scene, resolution, "
       "trials, warmup, duration, clock, step, sync, timeout, gbuffer.preset, gbuffer.position, "
       "gbuffer.normal, deferred.light_volumes, deferred.separate_specular, "
-      "deferred.sky_stencil, "
-      "forward.illumination_sets, forward.light_buffer, tiles.size, "
+       "deferred.sky_stencil, "
+       "forward.illumination_sets, forward.directional_in_base, forward.light_buffer, tiles.size, "
       "tiles.max_lights_per_tile, clustered.slices, clustered.shading, shadows, hdr, fog.density, "
       "fog.colour, camera.radius, "
       "camera.height, camera.period, "
