@@ -8,20 +8,14 @@
 #include <stdint.h>
 #include <cmocka.h>
 
+#include "tests/unit/assert_near.h"
+
 #include <math.h>
 #include <string.h>
 
 #include "renderers/deferred.h"
 #include "results/bandwidth.h"
 
-static void check_near(double a, double b, double eps, const char *file, int line)
-{
-    if (a == b || fabs(a - b) <= eps)
-        return;
-    print_error("%.17g != %.17g (tolerance %g)\n", a, b, eps);
-    _fail(file, line);
-}
-#define assert_near(a, b, eps) check_near((a), (b), (eps), __FILE__, __LINE__)
 
 /* Table 1's practical values as the worked example enters them (bytes): 1024 x 768,
  * depth term 8 (the example writes 8 x (3 + 1.5)), back buffer 4, overdraw 3, sorting

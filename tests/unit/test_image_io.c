@@ -6,6 +6,8 @@
 #include <stdint.h>
 #include <cmocka.h>
 
+#include "tests/unit/assert_near.h"
+
 #include <dirent.h>
 #include <math.h>
 #include <stdio.h>
@@ -42,14 +44,6 @@ static int teardown(void **state)
     return ok ? 0 : -1;
 }
 
-static void check_near(double a, double b, double eps, const char *file, int line)
-{
-    if (a == b || fabs(a - b) <= eps)
-        return;
-    print_error("%.17g != %.17g (tolerance %g)\n", a, b, eps);
-    _fail(file, line);
-}
-#define assert_near(a, b, eps) check_near((a), (b), (eps), __FILE__, __LINE__)
 
 
 static image make(int w, int h, int c, image_type t)

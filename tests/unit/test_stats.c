@@ -6,6 +6,8 @@
 #include <stdint.h>
 #include <cmocka.h>
 
+#include "tests/unit/assert_near.h"
+
 #include <math.h>
 #include <stdlib.h>
 #include <string.h>
@@ -14,16 +16,6 @@
 
 #define EPS 1e-9
 
-/* cmocka 1.1 compares only floats; doubles need their own check. Equal values
- * (infinities included) always pass. */
-static void check_near(double a, double b, double eps, const char *file, int line)
-{
-    if (a == b || fabs(a - b) <= eps)
-        return;
-    print_error("%.17g != %.17g (tolerance %g)\n", a, b, eps);
-    _fail(file, line);
-}
-#define assert_near(a, b, eps) check_near((a), (b), (eps), __FILE__, __LINE__)
 
 /* >>summaries */
 
