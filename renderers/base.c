@@ -58,6 +58,7 @@ oom:
 
 void renderer_base_destroy(renderer_base *b)
 {
+    renderer_base_release_targets(b);
     gl_pass_queries_destroy(b->queries);
     gl_program_cache_destroy(b->programs);
     gl_state_destroy(b->st);
@@ -162,12 +163,28 @@ bool renderer_base_hdr_target(const renderer_base *b, gl_target *t, const char *
                             err, errlen);
 }
 
-bool renderer_base_depth_target(const renderer_base *b, gl_target *t, char *err, size_t errlen)
+bool renderer_base_targets(renderer_base *b, const char *hdr_name, char *err, size_t errlen)
 {
-    return gl_target_create(t, &(gl_target_desc){.name = "depth",
-                                                 .format = GLT_FORMAT_DEPTH24_STENCIL8,
-                                                 .width = b->width, .height = b->height},
+    renderer_base_release_targets(b);
+    return renderer_base_hdr_target(b, &b->hdr, hdr_name, err, errlen) &&
+           gl_target_create(&b->depth, &(gl_target_desc){.name = "depth",
+                                                         .format = GLT_FORMAT_DEPTH24_STENCIL8,
+                                                         .width = b->width, .height = b->height},
                             err, errlen);
+}
+
+void renderer_base_release_targets(renderer_base *b)
+{
+    gl_target_destroy(&b->hdr);
+    gl_target_destroy(&b->depth);
+}
+
+bool renderer_base_read_hdr(const renderer_base *b, float *rgba, int width, int height)
+{
+    if (!b->hdr.texture || width != b->hdr.width || height != b->hdr.height)
+        return false;
+    gl_texture_read_float(b->hdr.texture, width, height, rgba);
+    return true;
 }
 
 bool renderer_base_fog(const renderer_base *b)

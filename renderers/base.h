@@ -19,10 +19,12 @@
  *     renderer_base_collect   after the frame's sync point: the queries' results
  *     renderer_base_destroy   what init made; a zeroed base is fine
  *
- * The targets every renderer shades into are made here, so that all of them follow
- * the run's options alike: renderer_base_hdr_target (the float light accumulation in
- * opts.hdr's format: RGBA16F or RGBA32F, at the output's size) and
- * renderer_base_depth_target (depth24-stencil8 at that size). A compute pass that
+ * The targets every renderer shades into are the base's, so that all of them follow
+ * the run's options alike: renderer_base_targets makes hdr (the float light
+ * accumulation in opts.hdr's format: RGBA16F or RGBA32F, at the output's size) and
+ * depth (depth24-stencil8 at that size), renderer_base_read_hdr reads hdr back for
+ * every renderer's read_hdr; renderer_base_hdr_target makes another target like hdr
+ * (deferred's light.specular). A compute pass that
  * image-stores into the HDR target binds it with renderer_base_hdr_image_format and
  * compiles its shader with renderer_base_hdr_define (the image's format qualifier; no
  * define for RGBA16F, so the default's programs are what they always were).
@@ -71,6 +73,9 @@ typedef struct renderer_base {
     gl_program_cache *programs;
     gl_pass_queries *queries;        /* NULL without opts.queries */
     size_t max_passes;
+    /* >>made by renderer_base_targets at prepare */
+    gl_target hdr;                   /* the light accumulation, opts.hdr's format */
+    gl_target depth;                 /* depth24-stencil8 */
     /* >>the last frame, for tests */
     size_t npasses;
     gls_counts pass_counts[RENDERER_BASE_MAX_PASSES];
@@ -105,8 +110,15 @@ const char *renderer_base_hdr_define(const renderer_base *b);
  * first); false with gl_target_create's message. */
 bool renderer_base_hdr_target(const renderer_base *b, gl_target *t, const char *name, char *err,
                               size_t errlen);
-/* Creates t ("depth", depth24-stencil8) at width x height. */
-bool renderer_base_depth_target(const renderer_base *b, gl_target *t, char *err, size_t errlen);
+/* The renderer's own targets, at width x height (renderer_base_size first): hdr
+ * (renderer_base_hdr_target, named hdr_name) and depth ("depth", depth24-stencil8).
+ * False with gl_target_create's message; renderer_base_release_targets (which
+ * renderer_base_destroy calls too) undoes it, as often as wanted. */
+bool renderer_base_targets(renderer_base *b, const char *hdr_name, char *err, size_t errlen);
+void renderer_base_release_targets(renderer_base *b);
+/* renderer_impl.read_hdr of every renderer: the hdr target of the last frame as RGBA
+ * floats, row 0 at the bottom; false when there is none or it is not width x height. */
+bool renderer_base_read_hdr(const renderer_base *b, float *rgba, int width, int height);
 /* Fog is on: opts.fog_density > 0. */
 bool renderer_base_fog(const renderer_base *b);
 /* The run's fog (colour, density) into a FOG program's u_fog (LOC_FOG), with direct state

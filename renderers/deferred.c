@@ -350,9 +350,8 @@ static void release_prepared(deferred_renderer *r)
     gl_framebuffer_destroy(&r->fb_fog);
     for (int i = 0; i < DEFERRED_MAX_ATTACHMENTS; i++)
         gl_target_destroy(&r->gbuf[i]);
-    gl_target_destroy(&r->light);
+    renderer_base_release_targets(&r->b);
     gl_target_destroy(&r->specular);
-    gl_target_destroy(&r->depth);
     gl_target_destroy(&r->depth_sampled);
     shadow_maps_destroy(&r->shadows);
     scene_gpu_destroy(r->gpu);
@@ -425,8 +424,10 @@ static bool make_targets(deferred_renderer *r, char *err, size_t errlen)
 {
     char why[512] = "";
     const int w = r->b.width, h = r->b.height;
-    gl_framebuffer_desc gdesc = {.name = "gbuffer", .depth_stencil = &r->depth};
-    if (!renderer_base_depth_target(&r->b, &r->depth, why, sizeof why))
+    gl_framebuffer_desc gdesc = {.name = "gbuffer", .depth_stencil = &r->b.depth};
+    bool sep = r->b.opts.separate_specular;
+    /* the light accumulation in the run's HDR format, and depth (renderers/base.h) */
+    if (!renderer_base_targets(&r->b, sep ? "light.diffuse" : "light", why, sizeof why))
         goto fail;
     for (int i = 0; i < r->layout.nattachments; i++) {
         if (!gl_target_create(&r->gbuf[i], &(gl_target_desc){.name = r->layout.att[i].name,
@@ -439,14 +440,9 @@ static bool make_targets(deferred_renderer *r, char *err, size_t errlen)
     if (!r->tiled && r->layout.position == DEFERRED_POSITION_DEPTH_BUFFER &&
         !gl_target_create(&r->depth_sampled,
                           &(gl_target_desc){.name = "depth.sampled",
-                                            .format = r->depth.format,
+                                            .format = r->b.depth.format,
                                             .width = w, .height = h},
                           why, sizeof why))
-        goto fail;
-    bool sep = r->b.opts.separate_specular;
-    /* the light accumulation in the run's HDR format (renderers/base.h) */
-    if (!renderer_base_hdr_target(&r->b, &r->light, sep ? "light.diffuse" : "light", why,
-                                  sizeof why))
         goto fail;
     if (sep && !renderer_base_hdr_target(&r->b, &r->specular, "light.specular", why, sizeof why))
         goto fail;
@@ -454,20 +450,20 @@ static bool make_targets(deferred_renderer *r, char *err, size_t errlen)
         goto fail;
     if (!gl_framebuffer_create(&r->fb_light,
                                &(gl_framebuffer_desc){.name = "light",
-                                                      .color = {&r->light,
+                                                      .color = {&r->b.hdr,
                                                                 sep ? &r->specular : NULL},
-                                                      .depth_stencil = &r->depth},
+                                                      .depth_stencil = &r->b.depth},
                                why, sizeof why))
         goto fail;
     if (sep && !gl_framebuffer_create(&r->fb_compose,
                                       &(gl_framebuffer_desc){.name = "compose",
-                                                             .color = {&r->light},
-                                                             .depth_stencil = &r->depth},
+                                                             .color = {&r->b.hdr},
+                                                             .depth_stencil = &r->b.depth},
                                       why, sizeof why))
         goto fail;
     if (r->run[PASS_FOG] &&
         !gl_framebuffer_create(&r->fb_fog, &(gl_framebuffer_desc){.name = "fog",
-                                                                  .color = {&r->light}},
+                                                                  .color = {&r->b.hdr}},
                                why, sizeof why))
         goto fail;
     return true;
@@ -845,7 +841,7 @@ static void bind_gbuffer_textures(deferred_renderer *r)
     if (r->layout.position == DEFERRED_POSITION_DEPTH_BUFFER)
         gl_state_texture(r->b.st, DEFERRED_DEPTH_UNIT, r->depth_sampled.texture
                                                            ? r->depth_sampled.texture
-                                                           : r->depth.texture);
+                                                           : r->b.depth.texture);
 }
 
 /* Light li, whose shadow-map layer this frame is `layer` (FRONTEND_NO_SHADOW: none). */
@@ -1116,13 +1112,13 @@ static void tiled_draw(deferred_renderer *r, const scene *s, frame_stats *out)
     gl_state_program(st, tp->program);
     gl.Uniform1i(LOC_RENDERER, (GLint)n);
     bind_gbuffer_textures(r);
-    gl_state_texture(st, DEFERRED_DEPTH_UNIT, r->depth.texture);
+    gl_state_texture(st, DEFERRED_DEPTH_UNIT, r->b.depth.texture);
     shadow_maps_bind(&r->shadows, st);
     gl_state_storage_buffer(st, BIND_SSBO_LIGHTS, tp->lights);
     gl_state_storage_buffer(st, BIND_SSBO_TILE_LISTS, tp->tiles);
     gl_state_storage_buffer(st, BIND_SSBO_TILE_INDICES, tp->indices);
     gl_state_storage_buffer(st, BIND_SSBO_TILE_STATS, tp->stats);
-    gl_state_image(st, BIND_IMAGE_HDR, r->light.texture, GL_WRITE_ONLY,
+    gl_state_image(st, BIND_IMAGE_HDR, r->b.hdr.texture, GL_WRITE_ONLY,
                    renderer_base_hdr_image_format(&r->b));
     /* it samples the depth target: no draw framebuffer that has it attached (header) */
     gl_state_framebuffer(st, r->b.output_fbo);
@@ -1153,7 +1149,7 @@ static void fog_pass(deferred_renderer *r, frame_stats *out)
     gl_state_depth(st, NULL);
     gl_state_stencil(st, NULL);
     gl_state_cull(st, GLS_CULL_NONE);
-    gl_state_texture(st, DEFERRED_DEPTH_UNIT, r->depth.texture);
+    gl_state_texture(st, DEFERRED_DEPTH_UNIT, r->b.depth.texture);
     gl_state_program(st, r->fog_program);
     fullscreen(r);
     /* the depth target is drawn with (sky) next: not bound for sampling meanwhile */
@@ -1202,7 +1198,7 @@ static void deferred_draw(void *self, const scene *s, frame_stats *out)
         scene_gpu_draw_object(r->gpu, st, s, o);
     }
     if (r->depth_sampled.texture)   /* position from depth: what the light passes sample */
-        gl.CopyImageSubData(r->depth.texture, GL_TEXTURE_2D, 0, 0, 0, 0,
+        gl.CopyImageSubData(r->b.depth.texture, GL_TEXTURE_2D, 0, 0, 0, 0,
                             r->depth_sampled.texture, GL_TEXTURE_2D, 0, 0, 0, 0, r->b.width,
                             r->b.height, 1);
     pass_end(r, out);
@@ -1275,7 +1271,7 @@ sky:
     gl_state_stencil(st, NULL);
     gl_state_depth(st, NULL);
     gl_state_cull(st, GLS_CULL_NONE);
-    scene_gpu_resolve(r->gpu, st, r->light.texture, r->b.output_fbo, r->b.width, r->b.height);
+    scene_gpu_resolve(r->gpu, st, r->b.hdr.texture, r->b.output_fbo, r->b.width, r->b.height);
     pass_end(r, out);
 }
 
@@ -1336,9 +1332,9 @@ static void deferred_describe(const void *self, pass_plan *out)
         describe_target(&r->gbuf[i], out);
         out->gbuffer_bytes += r->gbuf[i].bytes;
     }
-    describe_target(&r->light, out);
+    describe_target(&r->b.hdr, out);
     describe_target(&r->specular, out);
-    describe_target(&r->depth, out);
+    describe_target(&r->b.depth, out);
     describe_target(&r->depth_sampled, out);
     shadow_maps_describe(&r->shadows, out);
 }
@@ -1364,7 +1360,7 @@ const deferred_layout *deferred_gbuffer_layout(const void *self)
 const gl_target *deferred_hdr_target(const void *self)
 {
     const deferred_renderer *r = self;
-    return r && r->prepared ? &r->light : NULL;
+    return r && r->prepared ? &r->b.hdr : NULL;
 }
 
 const gl_target *deferred_gbuffer_target(const void *self, int k)
@@ -1378,7 +1374,7 @@ const gl_target *deferred_gbuffer_target(const void *self, int k)
 const gl_target *deferred_depth_target(const void *self)
 {
     const deferred_renderer *r = self;
-    return r && r->prepared ? &r->depth : NULL;
+    return r && r->prepared ? &r->b.depth : NULL;
 }
 
 uint64_t deferred_last_mark_draws(const void *self, int type)
@@ -1410,11 +1406,7 @@ gl_state *deferred_state_cache(void *self)
 static bool deferred_read_hdr(void *self, float *rgba, int width, int height)
 {
     const deferred_renderer *r = self;
-    if (!r || !r->prepared || !r->light.texture || width != r->light.width ||
-        height != r->light.height)
-        return false;
-    gl_texture_read_float(r->light.texture, width, height, rgba);
-    return true;
+    return r && r->prepared && renderer_base_read_hdr(&r->b, rgba, width, height);
 }
 
 const renderer_impl renderer_deferred_impl = {

@@ -39,8 +39,7 @@ static void release_prepared(forward_common *fc)
 {
     shadow_maps_destroy(&fc->shadows);
     gl_framebuffer_destroy(&fc->fb);
-    gl_target_destroy(&fc->hdr);
-    gl_target_destroy(&fc->depth);
+    renderer_base_release_targets(&fc->b);
     scene_gpu_destroy(fc->gpu);
     fc->gpu = NULL;
     frontend_free(&fc->fe);
@@ -104,11 +103,10 @@ bool forward_common_prepare(forward_common *fc, const scene *s, char *err, size_
         snprintf(err, errlen, "%s: %s", fc->b.name, why);
         goto fail;
     }
-    if (!renderer_base_hdr_target(&fc->b, &fc->hdr, "hdr", why, sizeof why) ||
-        !renderer_base_depth_target(&fc->b, &fc->depth, why, sizeof why) ||
+    if (!renderer_base_targets(&fc->b, "hdr", why, sizeof why) ||
         !gl_framebuffer_create(&fc->fb, &(gl_framebuffer_desc){.name = "forward",
-                                                               .color = {&fc->hdr},
-                                                               .depth_stencil = &fc->depth},
+                                                               .color = {&fc->b.hdr},
+                                                               .depth_stencil = &fc->b.depth},
                                why, sizeof why)) {
         snprintf(err, errlen, "%s: %s", fc->b.name, why);
         goto fail;
@@ -251,7 +249,7 @@ void forward_sky_pass(forward_common *fc, frame_stats *out)
 void forward_resolve_pass(forward_common *fc, frame_stats *out)
 {
     forward_pass_begin(fc, out, "resolve");
-    scene_gpu_resolve(fc->gpu, fc->b.st, fc->hdr.texture, fc->b.output_fbo, fc->b.width,
+    scene_gpu_resolve(fc->gpu, fc->b.st, fc->b.hdr.texture, fc->b.output_fbo, fc->b.width,
                       fc->b.height);
     forward_pass_end(fc, out);
 }
@@ -282,7 +280,7 @@ void forward_describe_resources(const forward_common *fc, pass_plan *out)
     scene_gpu_describe(fc->gpu, out);   /* sky and resolve */
     out->ntargets = 0;
     out->target_bytes = 0;
-    const gl_target *targets[] = {&fc->hdr, &fc->depth};
+    const gl_target *targets[] = {&fc->b.hdr, &fc->b.depth};
     for (size_t i = 0; i < sizeof targets / sizeof targets[0]; i++) {
         if (!targets[i]->texture)
             continue;
@@ -322,24 +320,20 @@ const gls_counts *forward_last_pass_counts(const void *self, size_t pass)
 const gl_target *forward_hdr_target(const void *self)
 {
     const forward_common *fc = self;
-    return fc ? &fc->hdr : NULL;
+    return fc ? &fc->b.hdr : NULL;
 }
 
 const gl_target *forward_depth_target(const void *self)
 {
     const forward_common *fc = self;
-    return fc ? &fc->depth : NULL;
+    return fc ? &fc->b.depth : NULL;
 }
 
 
 bool forward_read_hdr(void *self, float *rgba, int width, int height)
 {
     const forward_common *fc = self;
-    if (!fc || !fc->prepared || !fc->hdr.texture || width != fc->hdr.width ||
-        height != fc->hdr.height)
-        return false;
-    gl_texture_read_float(fc->hdr.texture, width, height, rgba);
-    return true;
+    return fc && fc->prepared && renderer_base_read_hdr(&fc->b, rgba, width, height);
 }
 
 void forward_end_frame(forward_common *fc, frame_stats *out, uint64_t light_draws)

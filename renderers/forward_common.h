@@ -11,8 +11,8 @@
  *     forward_shadow_pass     when some spot or directional light casts shadows (and
  *                             shadows are not off): "shadows", renderers/shadow.h, one
  *                             draw per object of each shadowed light's shadow-casting set
- *     ... the renderer's own passes into fc->fb ("hdr" in the run's HDR format,
- *         RGBA16F or RGBA32F, + "depth": renderer_base_hdr_target, _depth_target) ...
+ *     ... the renderer's own passes into fc->fb (the base's "hdr", in the run's HDR
+ *         format, RGBA16F or RGBA32F, + "depth": renderer_base_targets) ...
  *     forward_sky_pass        when the scene has a sky: one draw into untouched depth
  *     forward_resolve_pass    hdr clamped into the output framebuffer: one draw
  *
@@ -75,8 +75,7 @@ typedef struct forward_common {
     bool prepared;
     scene_gpu *gpu;
     frontend fe;
-    gl_target hdr, depth;
-    gl_framebuffer fb;
+    gl_framebuffer fb;               /* the base's hdr and depth targets */
     shadow_maps shadows;             /* the plan, and the pool when it runs */
     bool sky;                        /* the scene has a sky: the sky pass runs */
     unsigned variants;               /* bit v: some object's material is of variant v */

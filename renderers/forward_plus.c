@@ -334,7 +334,7 @@ static void plus_draw(void *self, const struct scene *s, frame_stats *out)
         gl.Uniform1i(FORWARD_UNIFORM_LIGHT, r->count);
         /* no draw framebuffer that has the sampled depth attached (the header) */
         gl_state_framebuffer(c->b.st, c->b.output_fbo);
-        gl_state_texture(c->b.st, BIND_TEX_DEPTH, c->depth.texture);
+        gl_state_texture(c->b.st, BIND_TEX_DEPTH, c->b.depth.texture);
         bind_buffers(r);
         gl_state_dispatch(c->b.st, r->tiles_x, r->tiles_y, 1);
         gl_state_barrier(c->b.st, GL_SHADER_STORAGE_BARRIER_BIT);

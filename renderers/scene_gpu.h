@@ -81,7 +81,7 @@ void scene_gpu_draw_light_volume(scene_gpu *g, gl_state *st, const scene *s, uin
 void scene_gpu_draw_sky(scene_gpu *g, gl_state *st);
 
 /* Every renderer accumulates light in a float target of the run's size (RGBA16F, or
- * RGBA32F with hdr: rgba32f; renderer_base_hdr_target) (HDR, so
+ * RGBA32F with hdr: rgba32f; renderer_base_targets) (HDR, so
  * that N additive passes are not clamped and rounded to 8 bits N times) and ends the
  * frame with this pass: hdr_texture clamped to [0, 1] into output_fbo (the context's
  * RGBA8 framebuffer). One draw.
