@@ -263,6 +263,17 @@ assert follows(linfit([1, 1, 1], [1, 2, 3])) is None
 assert "Cannot say" in follows_sentence("here", 2, None)
 assert "**No**" in follows_sentence("here", 4, linfit([1, 2, 3, 4], [5, 1, 6, 2]))
 PY
+# renderers-tiled's helpers: Welch without spread, a crossover from 0 lights (interpolated
+# on lights, log 0 being undefined), two changes of order in one pair
+PYTHONPATH="$SOURCE_ROOT/python" "$PYTHON" - <<'PY' || fail "renderers-tiled helpers"
+from shadesweep_report.sections.renderers_tiled import crossovers, welch
+assert welch([1, 1], [2, 2])[2] is True and welch([1, 1], [1, 1])[2] is False
+assert welch([1], [2, 3]) is None
+by = {"a": {0: (1,), 10: (4,), 100: (1,)}, "b": {0: (2,), 10: (2,), 100: (2,)}}
+x = crossovers(by, "a", "b")
+assert [(c1, c2, f, t) for c1, c2, f, t, _ in x] == [(0, 10, "a", "b"), (10, 100, "b", "a")], x
+assert 0 < x[0][4] < 10 and 10 < x[1][4] < 100, x
+PY
 # the plots: valid PNGs, each linked from the report
 for p in s003-exp2_fps_time s003-exp2_frametime_time s003-exp2_frametime_lights s000-drawcalls \
          gbuffer-error_pareto gbuffer-error_bandwidth renderers-tiled_frametime_lights; do
