@@ -39,6 +39,8 @@ EXPERIMENTS = [
     ("s000-stencil", "Stencil-masked light hull (5.5)", SEED0),
     ("s000-illumination-sets", "Forward illumination sets (5.6)", SEED0),
     ("gbuffer-error", "G-buffer layout: image error against frame time (ours only)", "ours"),
+    ("renderers-tiled", "Six renderers as lights grow: the fastest and the crossovers (ours only)",
+     "ours"),
 ]
 KNOWN = [e[0] for e in EXPERIMENTS]
 

@@ -167,6 +167,22 @@ for preset, lv, ft, rmse, mb in (("fat", "stencil", 9000, 0.001, 3), ("curtis", 
                       "deferred.light_volumes": lv}), trials, None, None))
 experiment("out/ge", "gbuffer-error", runs)
 
+# renderers-tiled: three renderers x four light counts x three trials (the mean -0.1, +0,
+# +0.1 ms: CI ± 0.248 ms). forward-plus is fastest at 1 and 16 lights, clustered at 256
+# (5.0 against forward-plus's 5.2: Welch t = 2.45 < 2.776 at df 4, not significant) and
+# 4096; the one crossover is forward-plus -> clustered between 16 and 256 lights
+# (log-log interpolation: ~200). deferred is slowest everywhere.
+runs = []
+rt = {"deferred": (8, 9, 12, 45), "forward-plus": (2, 3, 5.2, 40), "clustered": (4, 4.5, 5, 10)}
+for ren, ms in rt.items():
+    for c, m in zip((1, 16, 256, 4096), ms):
+        trials = [dict(fps_mean=1e3 / m, frametime_mean_us=m * 1000 + d, lights_count=c)
+                  for d in (-100, 0, 100)]
+        runs.append((dict(base, scene="shapes", renderer=ren, resolution="640x360",
+                          **{"deferred.light_volumes": "volume", "lights.count": c}),
+                     trials, None, None))
+experiment("out/rt", "renderers-tiled", runs)
+
 # an experiment the report does not know
 experiment("out/other", "my-own-sweep", [(dict(base, scene="shapes", renderer="deferred"),
                                           [dict(fps_mean=1, frametime_mean_us=1)], None, None)])
@@ -216,6 +232,15 @@ grep -q "^| s000-stencil | not run |" $R || fail "s000-stencil not listed as not
 grep -q "^| s000-resolution | not run |" $R || fail "s000-resolution not listed as not run"
 grep -q "^| my-own-sweep | not recognised" $R || fail "unknown experiment not listed"
 has "(experiment s000-drawcalls-smoke)"
+# renderers-tiled: the fastest per light count, the significance, the one crossover
+has "| 1 | 8.000 ± 0.248 | 2.000 ± 0.248 | 4.000 ± 0.248 | **forward-plus** | clustered (x2.00) | yes (t = 24.49, df = 4.0) | no |"
+has "| 256 | 12.000 ± 0.248 | 5.200 ± 0.248 | 5.000 ± 0.248 | **clustered** | forward-plus (x1.04) | no (t = 2.45, df = 4.0) | yes |"
+has "| 4096 | 45.000 ± 0.248 | 40.000 ± 0.248 | 10.000 ± 0.248 | **clustered** |"
+has "Fastest on shapes: forward-plus at 1, 16 lights; clustered at 256, 4096 lights."
+has "| forward-plus -> clustered | 16-256 | 3.000 ± 0.248 vs 4.500 ± 0.248 | 5.200 ± 0.248 vs 5.000 ± 0.248 | yes / no | ~200 |"
+[ "$(sed -n '/^## renderers-tiled/,/^## /p' $R | grep -c '^| [a-z-]* -> ')" -eq 1 ] ||
+  fail "renderers-tiled: not exactly one crossover: $(grep -F -- ' -> ' $R)"
+grep -q "^| renderers-tiled | run | 12 |" $R || fail "renderers-tiled not in the summary"
 # the Pareto front: fat and curtis are on it, reference too (least error), compact is not
 grep -F "| compact/stencil" $R >/dev/null && fail "compact/stencil does not exist"
 grep -F "| compact/volume |" $R | grep -q "| yes |" && fail "compact/volume marked on the front"
@@ -238,9 +263,20 @@ assert follows(linfit([1, 1, 1], [1, 2, 3])) is None
 assert "Cannot say" in follows_sentence("here", 2, None)
 assert "**No**" in follows_sentence("here", 4, linfit([1, 2, 3, 4], [5, 1, 6, 2]))
 PY
+# renderers-tiled's helpers: Welch without spread, a crossover from 0 lights (interpolated
+# on lights, log 0 being undefined), two changes of order in one pair
+PYTHONPATH="$SOURCE_ROOT/python" "$PYTHON" - <<'PY' || fail "renderers-tiled helpers"
+from shadesweep_report.sections.renderers_tiled import crossovers, welch
+assert welch([1, 1], [2, 2])[2] is True and welch([1, 1], [1, 1])[2] is False
+assert welch([1], [2, 3]) is None
+by = {"a": {0: (1,), 10: (4,), 100: (1,)}, "b": {0: (2,), 10: (2,), 100: (2,)}}
+x = crossovers(by, "a", "b")
+assert [(c1, c2, f, t) for c1, c2, f, t, _ in x] == [(0, 10, "a", "b"), (10, 100, "b", "a")], x
+assert 0 < x[0][4] < 10 and 10 < x[1][4] < 100, x
+PY
 # the plots: valid PNGs, each linked from the report
 for p in s003-exp2_fps_time s003-exp2_frametime_time s003-exp2_frametime_lights s000-drawcalls \
-         gbuffer-error_pareto gbuffer-error_bandwidth; do
+         gbuffer-error_pareto gbuffer-error_bandwidth renderers-tiled_frametime_lights; do
   f=out/plots/$p.png
   [ -s "$f" ] || fail "no plot $f"
   grep -qF "(plots/$p.png)" $R || fail "$p.png not linked"
@@ -287,7 +323,7 @@ grep -qF -- "$T" cmd.md && fail "report.md names an absolute path: $(grep -F -- 
 grep -qF 'Output: `out/exp1`' cmd.md || fail "folder not named as given"
 # several folders into one report with -o; without -o, one line and exit 2
 "$SHADESWEEP" report -o both out/exp1 out/ge >both.out 2>&1 || fail "report -o: $(cat both.out)"
-grep -q "wrote both/report.md: 2 of 9 experiments (s003-exp1, gbuffer-error)" both.out ||
+grep -q "wrote both/report.md: 2 of 10 experiments (s003-exp1, gbuffer-error)" both.out ||
   fail "report -o: $(cat both.out)"
 set +e
 "$SHADESWEEP" report out/exp1 out/ge >bad.out 2>bad.err; rc=$?

@@ -1,5 +1,6 @@
 """One module per paper section; SECTIONS maps an experiment to its section."""
 from .gbuffer_error import section_gbuffer_error
+from .renderers_tiled import section_renderers_tiled
 from .s000_coverage import section_s000_coverage
 from .s000_drawcalls import section_s000_drawcalls
 from .s000_illum import section_s000_illum
@@ -20,4 +21,5 @@ SECTIONS = {
     "s000-stencil": section_s000_stencil,
     "s000-illumination-sets": section_s000_illum,
     "gbuffer-error": section_gbuffer_error,
+    "renderers-tiled": section_renderers_tiled,
 }
