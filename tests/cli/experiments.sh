@@ -111,9 +111,11 @@ for exp, nlights in (("s000-spot-coverage", 1), ("s000-two-spots", 2)):
             fail(f"{exp}: hold 0 coverage {max(vals)}")
 
 # seed 000 5.5: the floating spot: two stencil draws + one light draw a frame with the
-# two-pass mask (the paper counts the two mask passes), one with the others
+# two-pass mask (the paper counts the two mask passes), one with the others (hull, the
+# paper's unmasked baseline, and scissor among them)
 d, plan, summ = runs("s000-stencil")
-want = {"stencil-two-pass": 3, "stencil": 2, "volume": 1, "fullscreen": 1}
+want = {"stencil-two-pass": 3, "stencil": 2, "volume": 1, "fullscreen": 1, "hull": 1,
+        "scissor": 1}
 for rid, p in plan.items():
     tot, n = passes(d, rid)
     mode = p["deferred.light_volumes"]

@@ -330,4 +330,22 @@ set +e
 set -e
 [ $rc -eq 2 ] && [ "$(cat bad.err)" = "report: several folders: say where the report goes with -o OUTDIR" ] ||
   fail "several folders without -o: rc $rc $(cat bad.err)"
+# Every committed reproduction (docs/results/*/ with data/ and report.md): the report over
+# its data, from the source root as it was written, is the committed report.md again,
+# byte for byte (its "Report written" time fed back through SOURCE_DATE_EPOCH)
+ncommitted=0
+for d in "$SOURCE_ROOT"/docs/results/*/; do
+  [ -d "$d/data" ] && [ -f "$d/report.md" ] || continue
+  rel=${d#"$SOURCE_ROOT"/}; rel=${rel%/}
+  when=$(sed -n 's/^- Report written: \(.*\) UTC by shadesweep report from .*/\1/p' "$d/report.md")
+  [ -n "$when" ] || fail "$rel/report.md: no 'Report written' line"
+  epoch=$(date -u -d "$when" +%s)
+  (cd "$SOURCE_ROOT" && SOURCE_DATE_EPOCH=$epoch "$SHADESWEEP" report -o "$T/again" "$rel/data") \
+    >again.out 2>&1 || fail "report over $rel/data: $(cat again.out)"
+  diff -u "$d/report.md" "$T/again/report.md" >again.diff ||
+    fail "report over $rel/data differs from the committed $rel/report.md: $(head -40 again.diff)"
+  rm -rf "$T/again"
+  ncommitted=$((ncommitted + 1))
+done
+[ "$ncommitted" -ge 1 ] || fail "no committed reproduction (docs/results/*/data with report.md)"
 echo "report: ok"
