@@ -7,7 +7,8 @@
  *                            Mesa's driver mid-process (see context_egl.c).
  *   gl_test_context()        the debug context (every GL error counted) with its
  *                            off-screen framebuffer at w x h that most tests draw in.
- *   find_pass()              a frame's pass by name, or NULL. */
+ *   find_pass()              a frame's pass by name, or NULL.
+ *   plan_pass()              a renderer's planned pass (renderer_describe) by name, or NULL. */
 #include <EGL/egl.h>
 #include <EGL/eglext.h>
 #include <stdbool.h>
@@ -59,5 +60,13 @@ static inline const pass_stats *find_pass(const frame_stats *fs, const char *nam
     for (size_t i = 0; i < fs->npasses; i++)
         if (strcmp(fs->pass[i].name, name) == 0)
             return &fs->pass[i];
+    return NULL;
+}
+
+static inline const pass_plan_entry *plan_pass(const pass_plan *p, const char *name)
+{
+    for (size_t i = 0; i < p->npasses; i++)
+        if (strcmp(p->pass[i].name, name) == 0)
+            return &p->pass[i];
     return NULL;
 }

@@ -374,14 +374,6 @@ static void render32(const char *kind, bool clustered_deferred, hdr_format fmt, 
     assert_int_equal(gl_context_error_count(ctx), 0);
 }
 
-static const pass_plan_entry *plan_pass(const pass_plan *p, const char *name)
-{
-    for (size_t i = 0; i < p->npasses; i++)
-        if (strcmp(p->pass[i].name, name) == 0)
-            return &p->pass[i];
-    return NULL;
-}
-
 static uint64_t frame_draws(const frame_stats *fs)
 {
     uint64_t n = 0;

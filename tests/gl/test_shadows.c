@@ -222,14 +222,6 @@ static void render(const char *kind, const renderer_options *o, const scene *s, 
     assert_int_equal(gl_context_error_count(ctx), 0);
 }
 
-static const pass_plan_entry *plan_pass(const pass_plan *p, const char *name)
-{
-    for (size_t i = 0; i < p->npasses; i++)
-        if (strcmp(p->pass[i].name, name) == 0)
-            return &p->pass[i];
-    return NULL;
-}
-
 static size_t programs_containing(const pass_plan *p, const char *part)
 {
     size_t n = 0;

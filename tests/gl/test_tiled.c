@@ -95,14 +95,6 @@ static void expect_agree(const char *what, const image *a, const image *b)
     assert_int_equal(e.nonfinite, 0);
 }
 
-static const pass_plan_entry *plan_pass(const pass_plan *p, const char *name)
-{
-    for (size_t i = 0; i < p->npasses; i++)
-        if (strcmp(p->pass[i].name, name) == 0)
-            return &p->pass[i];
-    return NULL;
-}
-
 static void look(scene *s, const float eye[3], const float target[3])
 {
     sm_vec3 up = {0.0f, 1.0f, 0.0f};
