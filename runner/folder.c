@@ -226,6 +226,36 @@ static bool is_lock_only(const char *dir)
     return n == 0 || (i > 0 && i + 1 == n && buf[i] == '\n');
 }
 
+/* "sweep.yaml.tmp.PID": what afile_open makes while sweep.yaml is written; a process
+ * killed then leaves it in a folder it had just made. */
+static bool is_sweep_tmp(const char *name)
+{
+    static const char prefix[] = "sweep.yaml.tmp.";
+    if (strncmp(name, prefix, sizeof prefix - 1) != 0 || !name[sizeof prefix - 1])
+        return false;
+    for (const char *c = name + sizeof prefix - 1; *c; c++)
+        if (*c < '0' || *c > '9')
+            return false;
+    return true;
+}
+
+/* A fresh folder's leftovers of a killed first write (is_sweep_tmp), removed under the
+ * lock before sweep.yaml is written again. */
+static void remove_sweep_tmps(const char *dir)
+{
+    DIR *d = opendir(dir);
+    struct dirent *ent;
+    while (d && (ent = readdir(d))) {
+        if (!is_sweep_tmp(ent->d_name))
+            continue;
+        char path[4200];
+        snprintf(path, sizeof path, "%s/%s", dir, ent->d_name);
+        unlink(path);
+    }
+    if (d)
+        closedir(d);
+}
+
 static probe_kind probe(const char *dir, sweep_meta *meta, char *why, size_t whylen)
 {
     struct stat st;
@@ -254,7 +284,7 @@ static probe_kind probe(const char *dir, sweep_meta *meta, char *why, size_t why
             lock = true;
         else if (strcmp(ent->d_name, "sweep.yaml") == 0)
             sweep = true;
-        else
+        else if (!is_sweep_tmp(ent->d_name))
             others++;
     }
     closedir(d);
@@ -466,6 +496,8 @@ bool folder_open(folder *f, const char *dir, folder_mode mode, const sweep_meta 
         return false;
     }
     f->fresh = k2 == P_EMPTY;
+    if (f->fresh)
+        remove_sweep_tmps(dir);
     bool write_meta = true;
     if (k2 == P_OURS && mode == FOLDER_FORCE) {
         if (!clear_folder(dir, true, err, errlen)) {

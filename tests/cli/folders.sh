@@ -58,6 +58,22 @@ expect 2 "thesis exists and is not a shadesweep output folder (no sweep.yaml)" \
 expect 2 "thesis exists and is not a shadesweep output folder (no sweep.yaml)" \
   "$SHADESWEEP" run --resume -o thesis t.yaml
 expect 2 "not a shadesweep output folder" "$SHADESWEEP" run -o thesis t.yaml
+# A folder shadesweep had just made when it was killed (only its lock and the temporary
+# file of its first sweep.yaml) is its own, fresh: --resume takes it and clears the
+# leftover; a name outside that pattern still makes a folder the user's.
+mkdir killed
+echo 4242 > killed/lock
+echo "format: half-writ" > killed/sweep.yaml.tmp.4242
+"$SHADESWEEP" run --resume -o killed t.yaml >/dev/null 2>"$T/cmd.err" ||
+  fail "resume of a folder killed before its sweep.yaml: $(cat "$T/cmd.err")"
+[ -f killed/sweep.yaml ] && [ ! -e killed/sweep.yaml.tmp.4242 ] ||
+  fail "killed folder: $(ls killed)"
+check_summary killed 8
+mkdir notours
+echo "mine" > notours/sweep.yaml.tmp.draft
+expect 2 "notours exists and is not a shadesweep output folder (no sweep.yaml)" \
+  "$SHADESWEEP" run --resume -o notours t.yaml
+[ "$(cat notours/sweep.yaml.tmp.draft)" = mine ] || fail "notours: its file was touched"
 [ "$(tree thesis)" = "$before" ] && [ ! -e thesis/lock ] || fail "the user's folder was touched"
 # a sweep.yaml of someone else's (or an older shadesweep's: no format marker)
 mkdir old && printf 'experiment: t\nmanifest_hash: "0123456789abcdef"\n' > old/sweep.yaml
