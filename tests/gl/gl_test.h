@@ -8,7 +8,8 @@
  *   gl_test_context()        the debug context (every GL error counted) with its
  *                            off-screen framebuffer at w x h that most tests draw in.
  *   find_pass()              a frame's pass by name, or NULL.
- *   plan_pass()              a renderer's planned pass (renderer_describe) by name, or NULL. */
+ *   plan_pass()              a renderer's planned pass (renderer_describe) by name, or NULL.
+ *   total_draws()            a frame's draw calls over all its passes. */
 #include <EGL/egl.h>
 #include <EGL/eglext.h>
 #include <stdbool.h>
@@ -61,6 +62,14 @@ static inline const pass_stats *find_pass(const frame_stats *fs, const char *nam
         if (strcmp(fs->pass[i].name, name) == 0)
             return &fs->pass[i];
     return NULL;
+}
+
+static inline uint64_t total_draws(const frame_stats *fs)
+{
+    uint64_t n = 0;
+    for (size_t i = 0; i < fs->npasses; i++)
+        n += fs->pass[i].draw_calls;
+    return n;
 }
 
 static inline const pass_plan_entry *plan_pass(const pass_plan *p, const char *name)

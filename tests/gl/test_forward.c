@@ -165,14 +165,6 @@ static void frame(fwd *f, const scene *s, frame_stats *fs)
     assert_int_equal(gl_context_error_count(ctx), 0);
 }
 
-static uint64_t total_draws(const frame_stats *fs)
-{
-    uint64_t n = 0;
-    for (size_t i = 0; i < fs->npasses; i++)
-        n += fs->pass[i].draw_calls;
-    return n;
-}
-
 static size_t pass_index(const frame_stats *fs, const char *name)
 {
     for (size_t i = 0; i < fs->npasses; i++)

@@ -374,14 +374,6 @@ static void render32(const char *kind, bool clustered_deferred, hdr_format fmt, 
     assert_int_equal(gl_context_error_count(ctx), 0);
 }
 
-static uint64_t frame_draws(const frame_stats *fs)
-{
-    uint64_t n = 0;
-    for (size_t i = 0; i < fs->npasses; i++)
-        n += fs->pass[i].draw_calls;
-    return n;
-}
-
 static void test_rgba32f_every_renderer(void **state)
 {
     (void)state;
@@ -408,17 +400,17 @@ static void test_rgba32f_every_renderer(void **state)
                             strcmp(k->name, "tiled-deferred") == 0;
             const pass_stats *fp = find_pass(&last_fs, "fog");
             if (!fogged) {
-                draws_without_fog = frame_draws(&last_fs);
+                draws_without_fog = total_draws(&last_fs);
                 assert_null(fp);
             } else if (deferred) {
                 assert_non_null(fp);
                 assert_int_equal(fp->draw_calls, 1);
                 if (!isnan(fp->samples))
                     assert_true(fp->samples == (double)W * H);
-                assert_int_equal(frame_draws(&last_fs), draws_without_fog + 1);
+                assert_int_equal(total_draws(&last_fs), draws_without_fog + 1);
             } else {
                 assert_null(fp);
-                assert_int_equal(frame_draws(&last_fs), draws_without_fog);
+                assert_int_equal(total_draws(&last_fs), draws_without_fog);
             }
             /* the plan: the light target in the format asked for, 16 bytes a pixel */
             const char *target = strcmp(p32.target[0].name, "hdr") == 0 ? "hdr" : "light";

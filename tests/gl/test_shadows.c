@@ -663,14 +663,6 @@ static set_check check_sets(const scene *s, bool no_shadows)
     return c;
 }
 
-static uint64_t total_draws(const frame_stats *fs)
-{
-    uint64_t n = 0;
-    for (size_t i = 0; i < fs->npasses; i++)
-        n += fs->pass[i].draw_calls;
-    return n;
-}
-
 /* The renderers' draws against the formulas:
  *   deferred (stencil):  Sh + V + 1 + D + 2 (P + S) + [sky] + 1
  *   deferred (fullscreen):  Sh + V + 1 + D + P + S + [sky] + 1
