@@ -50,6 +50,7 @@ typedef struct run_state {
     renderer *r;
     renderer *ref;             /* error: the reference configuration; NULL without one */
     gl_offscreen ref_fb;       /* error.reference.supersample K > 1: its K W x K H output */
+    float *ref_hdr;            /* ... and its HDR image read back, K W x K H RGBA */
     pass_plan plan;
     run_files files;
     trial_stream *stream;      /* the per-trial statistics, fed frame by frame */
@@ -237,22 +238,18 @@ static bool read_reference_supersampled(run_state *st, image *img, char *err, si
     const run_params *p = &st->s->p;
     const int k = (int)p->error_supersample, w = p->width, h = p->height;
     const size_t small = (size_t)w * (size_t)h * 4u;
-    float *big = malloc(small * (size_t)k * (size_t)k * sizeof *big);
     float *box = malloc(small * sizeof *box);
     *img = (image){.width = w, .height = h, .channels = 4, .type = IMAGE_U8};
     img->pixels = malloc(small);
-    bool ok = big && box && img->pixels;
+    bool ok = box && img->pixels;
     if (!ok)
-        snprintf(err, errlen, "out of memory for the %dx%d supersampled reference", k * w,
-                 k * h);
-    else if (!(ok = renderer_read_hdr(st->ref, big, k * w, k * h, NULL)))
-        snprintf(err, errlen, "reference %.31s has no HDR image to box-filter "
-                 "(error.reference.supersample %d needs one)", p->error_renderer, k);
+        snprintf(err, errlen, "out of memory for the %dx%d supersampled reference", w, h);
+    else if (!(ok = renderer_read_hdr(st->ref, st->ref_hdr, k * w, k * h, NULL)))
+        snprintf(err, errlen, "reference %.31s: no HDR image to read", p->error_renderer);
     if (ok) {
-        image_box_filter(big, w, h, k, box);
+        image_box_filter(st->ref_hdr, w, h, k, box);
         image_display_rgba8(box, w, h, true, img->pixels);   /* GL's rows: bottom first */
     }
-    free(big);
     free(box);
     return ok;
 }
@@ -955,6 +952,23 @@ static bool run_setup(run_state *st)
             set_status(st, "reference");
             return false;
         }
+        /* the box filter reads the reference's HDR target: one it has (null has none) */
+        if (k > 1) {
+            size_t n = (size_t)rr.width * (size_t)rr.height * 4u;
+            if (!(st->ref_hdr = malloc(n * sizeof *st->ref_hdr))) {
+                snprintf(st->err, sizeof st->err, "out of memory for the %dx%d reference",
+                         rr.width, rr.height);
+                set_status(st, "oom");
+                return false;
+            }
+            if (!renderer_read_hdr(st->ref, st->ref_hdr, rr.width, rr.height, NULL)) {
+                snprintf(st->err, sizeof st->err,
+                         "error.reference.supersample %d: reference %.31s has no HDR image to "
+                         "box-filter", k, p->error_renderer);
+                set_status(st, "reference");
+                return false;
+            }
+        }
         if (!run_files_open_errors(&st->files, st->dir, st->err, sizeof st->err)) {
             set_status(st, "output");
             return false;
@@ -974,6 +988,7 @@ static void run_teardown(run_state *st)
     run_files_abort(&st->files);
     renderer_destroy(st->ref);
     gl_offscreen_destroy(&st->ref_fb);
+    free(st->ref_hdr);
     renderer_destroy(st->r);
     scene_destroy(st->sc);
     gl_context_destroy(st->ctx);

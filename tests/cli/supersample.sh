@@ -7,8 +7,9 @@
 . "$(dirname "$0")/lib.sh"
 need_gl
 cd "$T"
-# case_yaml NAME K [EXTRA-YAML] [RESOLUTION]: the shapes scene (its walls' silhouette
-# against the sky and the objects are hard edges), forward-spml both sides
+# case_yaml NAME K [EXTRA-YAML] [RESOLUTION] [REFERENCE]: the shapes scene (its walls'
+# silhouette against the sky and the objects are hard edges), forward-spml runs, the
+# reference forward-spml unless named
 case_yaml() {
   cat > "$1.yaml" <<YAML
 shadesweep: 1
@@ -20,7 +21,7 @@ duration: {frames: 2}
 clock: fixed
 lights: {count: 4, radius: 8, attenuation: linear-range}
 error:
-  reference: {renderer: forward-spml, supersample: $2}
+  reference: {renderer: ${5:-forward-spml}, supersample: $2}
   at: [0]
   save_images: true
 ${3:-}
@@ -28,8 +29,10 @@ YAML
 }
 case_yaml self 1
 case_yaml ss4 4
-"$SHADESWEEP" run self.yaml >out.txt 2>err.txt || fail "self: $(cat err.txt)"
-"$SHADESWEEP" run ss4.yaml >out.txt 2>err.txt || fail "ss4: $(cat err.txt)"
+case_yaml ss4def 4 "" 64x48 deferred
+for c in self ss4 ss4def; do
+  "$SHADESWEEP" run $c.yaml >out.txt 2>err.txt || fail "$c: $(cat err.txt)"
+done
 # supersample 1 is the default: no part of the run id, the plain reference of before
 sed 's/, supersample: 1//' self.yaml > plain.yaml
 [ "$("$SHADESWEEP" list self.yaml)" = "$("$SHADESWEEP" list plain.yaml)" ] ||
@@ -69,6 +72,11 @@ if not float(r["image_max_abs"]) <= 1: fail("ss4: max_abs")
 for suffix in ("-run.png", "-reference.png"):
     head = open(glob.glob(f"{d}/error-trial1-t0{suffix}")[0], "rb").read(24)
     if struct.unpack(">II", head[16:24]) != (64, 48): fail(f"{suffix} is not the run's size")
+# deferred (its G-buffer, light volumes and compose at 256x192) as the 4x reference
+# gives the same verdict as forward-spml's, within 1/2550 (equal on llvmpipe)
+r2, e2, _ = one("ss4def")
+for c in ("image_rmse", "image_edge_rmse"):
+    if not abs(float(r2[c]) - float(r[c])) < 1 / 2550: fail(f"deferred 4x reference {c}: {r2[c]} vs {r[c]}")
 PY
 # a supersample beyond the context's limits (32768 is the most a side may be in a
 # manifest, so 4 x 8200 is refused on any driver): failed:reference, before any frame
@@ -87,4 +95,12 @@ want = "error.reference.supersample 4: the reference at 32800x4: resolution 3280
 if r["status"] != "failed:reference" or want not in r["message"]: fail(f"big: {r}")
 if r["frames"] not in ("", "0"): fail(f"big: frames {r['frames']}")
 PY
+# null has no HDR image to filter: refused at setup too, saying so
+case_yaml nullref 2 "" 64x48 null
+set +e
+"$SHADESWEEP" run nullref.yaml >out.txt 2>err.txt; rc=$?
+set -e
+[ $rc -eq 1 ] || fail "nullref: exit $rc"
+grep -q ',failed:reference,error.reference.supersample 2: reference null has no HDR image to box-filter$' \
+  out/nullref/summary.csv || fail "nullref: $(cat out/nullref/summary.csv)"
 echo ok
