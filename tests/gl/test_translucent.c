@@ -4,7 +4,8 @@
  *     agrees with forward-spml within RMSE 1/255 (max 4/255) on the 8-bit output, and
  *     each one's `translucent` pass draws exactly the translucent objects whose
  *     bounding sphere is in the frustum (counted here independently; forward-spml at a
- *     pose among the particles too, where some are culled), after the sky and before the resolve;
+ *     pose among the particles too, where some are culled), after the sky and before
+ *     the resolve; with fog on (density 0.05) deferred agrees with forward-spml too;
  *   - a pane in front of a point light's volume (that light lights the floor behind the
  *     pane, another one in front lights the pane) is lit the same by forward-spml and
  *     deferred (stencil and volume modes): the image within RMSE 1/255, the pane's
@@ -42,6 +43,7 @@ enum { W = 128, H = 96 };
 #define MAX_ABS_MAX (4.0 / 255.0)
 
 static gl_context *ctx;
+static float g_fog_density;   /* what every render uses */
 
 static const uint8_t *px(const image *im)
 {
@@ -84,6 +86,7 @@ static bool render(const char *kind, light_volume_mode mode, scene *s, image *ou
         .timer_query = gi->timer_query, .pipeline_statistics = gi->pipeline_statistics,
         .max_uniform_block_size = gi->max_uniform_block_size,
         .gbuffer = GBUFFER_REFERENCE, .light_volumes = mode,
+        .fog_density = g_fog_density, .fog_color = {0.55f, 0.6f, 0.7f},
     };
     renderer *r = renderer_create(kind, &o, err, sizeof err);
     if (!r || !renderer_prepare(r, s, err, sizeof err)) {
@@ -183,6 +186,15 @@ static void test_glass_agreement(void **state)
         }
         image_free(&ref);
     }
+    /* fog on: the FOG variant of the pass, after deferred's fog pass */
+    g_fog_density = 0.05f;
+    image ref = {0}, img = {0};
+    assert_true(render("forward-spml", LIGHT_VOLUMES_STENCIL, s, &ref, NULL, NULL));
+    assert_true(render("deferred", LIGHT_VOLUMES_STENCIL, s, &img, NULL, NULL));
+    expect_agree("glass, fog 0.05: deferred vs forward-spml", &img, &ref);
+    image_free(&img);
+    image_free(&ref);
+    g_fog_density = 0.0f;
     scene_destroy(s);
 }
 
