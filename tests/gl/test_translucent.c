@@ -10,6 +10,7 @@
  *     pane, another one in front lights the pane) is lit the same by forward-spml and
  *     deferred (stencil and volume modes): the image within RMSE 1/255, the pane's
  *     centre pixel within 1/255;
+ *   - with a shadowing spot the pass's SHADOWS variant runs, and deferred agrees;
  *   - two overlapping panes of different colours (the front one first in object order,
  *     so drawing in object order would be wrong): where they overlap the pixel is the
  *     back-to-front "over" of the two panes over the background, computed here from
@@ -252,6 +253,38 @@ static void test_pane_in_front_of_light_volume(void **state)
     scene_destroy(s);
 }
 
+/* A shadowing spot over the panes: the translucent pass's SHADOWS variant (the pool
+ * bound for it), in forward-spml and deferred alike; the panes cast no shadow (they are
+ * in no shadow-casting set), so both agree. */
+static void test_shadowed_spot(void **state)
+{
+    (void)state;
+    scene *s = build_glass(PLACEMENT_NONE);
+    s->lights = calloc(1, sizeof *s->lights);
+    s->lights[0] = (scene_light){.type = LIGHT_SPOT, .position = {6.0f, 8.0f, 0.0f},
+                                 .direction = {-0.6f, -0.8f, 0.0f}, .color = {1.0f, 1.0f, 0.9f},
+                                 .radius = 20.0f, .spot_angle = sm_deg2rad(35.0f),
+                                 .spot_exponent = 2.0f,
+                                 .attenuation = ATTENUATION_LINEAR_RANGE, .shadows = true};
+    s->nlights_total = 1;
+    s->count = (light_count){.start = 1, .max = 1};
+    scene_update(s, 0.0);
+    image ref = {0}, img = {0};
+    pass_plan plan;
+    frame_stats fs;
+    assert_true(render("forward-spml", LIGHT_VOLUMES_STENCIL, s, &ref, &fs, &plan));
+    assert_non_null(find_pass(&fs, "shadows"));
+    bool shadowed = false;
+    for (size_t i = 0; i < plan.nprograms; i++)
+        shadowed |= strstr(plan.program[i], "translucent_shadowed") != NULL;
+    assert_true(shadowed);
+    assert_true(render("deferred", LIGHT_VOLUMES_STENCIL, s, &img, NULL, NULL));
+    expect_agree("glass, a shadowing spot: deferred vs forward-spml", &img, &ref);
+    image_free(&img);
+    image_free(&ref);
+    scene_destroy(s);
+}
+
 static double over(double c, double a, double dst)
 {
     return c * a + (1.0 - a) * dst;
@@ -369,6 +402,7 @@ int main(void)
     const struct CMUnitTest tests[] = {
         cmocka_unit_test(test_glass_agreement),
         cmocka_unit_test(test_pane_in_front_of_light_volume),
+        cmocka_unit_test(test_shadowed_spot),
         cmocka_unit_test(test_back_to_front),
         cmocka_unit_test(test_no_translucency_skips_the_pass),
     };
