@@ -738,7 +738,7 @@ static bool write_meta(run_state *st, char *err, size_t errlen)
         yo_key(y, "materials"); yo_i64(y, si->materials);
         yo_key(y, "materials_mask"); yo_i64(y, si->materials_mask);
         yo_key(y, "materials_blend"); yo_i64(y, si->materials_blend);
-        yo_key(y, "blend"); yo_str(y, si->materials_blend ? "translucent materials drawn opaque"
+        yo_key(y, "blend"); yo_str(y, si->materials_blend ? "translucent, in the translucent pass"
                                                           : "none");
         yo_key(y, "textures"); yo_i64(y, si->textures);
         yo_key(y, "lights"); yo_i64(y, si->lights);
