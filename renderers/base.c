@@ -175,15 +175,22 @@ bool renderer_base_targets(renderer_base *b, const char *hdr_name, char *err, si
 
 void renderer_base_release_targets(renderer_base *b)
 {
+    edge_aa_release(&b->aa);
     gl_target_destroy(&b->hdr);
     gl_target_destroy(&b->depth);
 }
 
+const gl_target *renderer_base_display(const renderer_base *b)
+{
+    return b->aa.run ? &b->aa.out : &b->hdr;
+}
+
 bool renderer_base_read_hdr(const renderer_base *b, float *rgba, int width, int height)
 {
-    if (!b->hdr.texture || width != b->hdr.width || height != b->hdr.height)
+    const gl_target *t = renderer_base_display(b);
+    if (!t->texture || width != t->width || height != t->height)
         return false;
-    gl_texture_read_float(b->hdr.texture, width, height, rgba);
+    gl_texture_read_float(t->texture, width, height, rgba);
     return true;
 }
 

@@ -35,6 +35,7 @@
 #include <stdbool.h>
 #include <stddef.h>
 
+#include "renderers/edge_aa.h"
 #include "renderers/gl/loader.h"
 #include "renderers/gl/program.h"
 #include "renderers/gl/query.h"
@@ -76,6 +77,7 @@ typedef struct renderer_base {
     /* >>made by renderer_base_targets at prepare */
     gl_target hdr;                   /* the light accumulation, opts.hdr's format */
     gl_target depth;                 /* depth24-stencil8 */
+    edge_aa aa;                      /* aa: edge (edge_aa.h): its pass, target, program */
     /* >>the last frame, for tests */
     size_t npasses;
     gls_counts pass_counts[RENDERER_BASE_MAX_PASSES];
@@ -116,8 +118,12 @@ bool renderer_base_hdr_target(const renderer_base *b, gl_target *t, const char *
  * renderer_base_destroy calls too) undoes it, as often as wanted. */
 bool renderer_base_targets(renderer_base *b, const char *hdr_name, char *err, size_t errlen);
 void renderer_base_release_targets(renderer_base *b);
-/* renderer_impl.read_hdr of every renderer: the hdr target of the last frame as RGBA
- * floats, row 0 at the bottom; false when there is none or it is not width x height. */
+/* The HDR image the resolve clamps into the output and read_hdr reads: with aa: edge
+ * the edge pass's "hdr.aa", else hdr. */
+const gl_target *renderer_base_display(const renderer_base *b);
+/* renderer_impl.read_hdr of every renderer: renderer_base_display's target of the last
+ * frame as RGBA floats, row 0 at the bottom; false when there is none or it is not
+ * width x height. */
 bool renderer_base_read_hdr(const renderer_base *b, float *rgba, int width, int height);
 /* Fog is on: opts.fog_density > 0. */
 bool renderer_base_fog(const renderer_base *b);
