@@ -248,9 +248,10 @@ void forward_sky_pass(forward_common *fc, frame_stats *out)
 
 void forward_resolve_pass(forward_common *fc, frame_stats *out)
 {
+    renderer_base_msaa_resolve_pass(&fc->b, out);   /* msaa > 1 only */
     forward_pass_begin(fc, out, "resolve");
-    scene_gpu_resolve(fc->gpu, fc->b.st, fc->b.hdr.texture, fc->b.output_fbo, fc->b.width,
-                      fc->b.height);
+    scene_gpu_resolve(fc->gpu, fc->b.st, renderer_base_display_texture(&fc->b),
+                      fc->b.output_fbo, fc->b.width, fc->b.height);
     forward_pass_end(fc, out);
 }
 
@@ -280,7 +281,7 @@ void forward_describe_resources(const forward_common *fc, pass_plan *out)
     scene_gpu_describe(fc->gpu, out);   /* sky and resolve */
     out->ntargets = 0;
     out->target_bytes = 0;
-    const gl_target *targets[] = {&fc->b.hdr, &fc->b.depth};
+    const gl_target *targets[] = {&fc->b.hdr, &fc->b.depth, &fc->b.hdr_resolved};
     for (size_t i = 0; i < sizeof targets / sizeof targets[0]; i++) {
         if (!targets[i]->texture)
             continue;
@@ -364,6 +365,10 @@ void forward_describe_tail(const forward_common *fc, pass_plan *out)
         forward_describe_pass(out, "sky", true, "the sky, last, into untouched depth");
     else
         forward_describe_pass(out, "sky", false, "skipped, the scene has no sky");
+    if (fc->b.samples > 1)
+        forward_describe_pass(out, "msaa-resolve", true,
+                              "the %d samples of the HDR target averaged (a blit, linear HDR)",
+                              fc->b.samples);
     forward_describe_pass(out, "resolve", true,
                           "the HDR target clamped into the output framebuffer");
     forward_describe_resources(fc, out);

@@ -52,8 +52,9 @@
 enum {
     FORWARD_VARIANTS = 32,           /* 4 map bits and the alpha test */
     FORWARD_LIGHT_TYPES = 3,         /* LIGHT_POINT, LIGHT_SPOT, LIGHT_DIRECTIONAL */
-    FORWARD_MAX_PASSES = 6,          /* shadows base lights sky resolve; forward-plus: shadows
-                                        depth cull shade sky resolve */
+    FORWARD_MAX_PASSES = 7,          /* shadows base lights sky [msaa-resolve] resolve;
+                                        forward-plus: shadows depth cull shade sky
+                                        [msaa-resolve] resolve */
     FORWARD_UNIFORM_LIGHT = LOC_RENDERER,   /* uniform location, see above */
     FORWARD_LIGHTS_BINDING = BIND_UBO_LIGHTS,   /* uniform block of forward-spml's lights */
 };

@@ -94,6 +94,11 @@ static void *tiled_create(const char *name, bool clustered, const renderer_optio
     r->name = name;
     if (!forward_common_init(&r->c, name, opts, err, errlen))
         goto fail;
+    if (opts->msaa > 1) {   /* the cull pass reads a single-sampled depth */
+        snprintf(err, errlen, "%s: msaa %d: not supported by this renderer yet (msaa: 1)",
+                 name, opts->msaa);
+        goto fail;
+    }
     r->tile = opts->tile_size ? opts->tile_size : 16;
     if (r->tile != 8 && r->tile != 16 && r->tile != 32) {
         snprintf(err, errlen, "%s: tiles.size %d: expected 8, 16 or 32", name, r->tile);

@@ -170,6 +170,9 @@ typedef struct renderer_options {
     hdr_format hdr;
     float fog_density;
     float fog_color[3];
+    /* every renderer that draws (msaa): samples per pixel of its HDR and depth targets;
+     * 0 or 1: single-sampled (renderers/base.h) */
+    int msaa;
 } renderer_options;
 
 typedef struct renderer_impl {
