@@ -2,10 +2,11 @@
  * (renderers/forward_plus.c): at msaa 4 each agrees with forward-spml at msaa 4 (its
  * lights from storage) within RMSE 1/255 and max 4/255 on the 8-bit output, on the
  * agreement cases (tests/gl/test_agreement.c's lights and cameras, at a smaller size
- * whose last tiles are partial), with no non-finite value in the HDR target; a small
- * light just beyond a sphere's silhouette, which reaches only the rim (the samples at
- * the far end of the tile's depth range), is lit the same; msaa 2 and 8 (where the
- * context allows them) agree too; the draws and dispatches are those of msaa 1, plus
+ * whose last tiles are partial), with no non-finite value in the HDR target; small
+ * lights that reach only what lies at the far end of a tile's depth range (behind a
+ * sphere's rim, beyond the floor's far edge: samples off the pixel centres, and the
+ * extrapolated centres of partly covered pixels) are lit the same, at msaa 2, 4 and 8
+ * (where the context allows them); the draws and dispatches are those of msaa 1, plus
  * the pass msaa-resolve; clustered with clustered.shading: deferred refuses msaa > 1.
  * Debug contexts: any GL error fails. */
 #include <setjmp.h>
