@@ -30,6 +30,15 @@ bool renderer_base_init(renderer_base *b, const char *name, const renderer_optio
                      i, (double)opts->fog_color[i]);
             return false;
         }
+    b->samples = opts->msaa > 1 ? opts->msaa : 1;
+    if (b->samples > 1) {
+        GLint ms = 0, mc = 0, md = 0;
+        gl.GetIntegerv(GL_MAX_SAMPLES, &ms);
+        gl.GetIntegerv(GL_MAX_COLOR_TEXTURE_SAMPLES, &mc);
+        gl.GetIntegerv(GL_MAX_DEPTH_TEXTURE_SAMPLES, &md);
+        if (!renderer_base_msaa_check(name, opts->msaa, (int)ms, (int)mc, (int)md, err, errlen))
+            return false;
+    }
     b->max_passes = max_passes < RENDERER_BASE_MAX_PASSES ? max_passes
                                                            : RENDERER_BASE_MAX_PASSES;
     GLint fb = 0;
@@ -139,6 +148,30 @@ const gls_counts *renderer_base_pass_counts(const renderer_base *b, size_t pass)
 
 // >>targets and fog
 
+bool renderer_base_msaa_check(const char *name, int msaa, int max_samples, int max_color,
+                              int max_depth, char *err, size_t errlen)
+{
+    if (msaa == 0 || msaa == 1)
+        return true;
+    if (msaa != 2 && msaa != 4 && msaa != 8) {
+        snprintf(err, errlen, "%s: msaa %d: expected 1, 2, 4 or 8 samples", name, msaa);
+        return false;
+    }
+    int limit = max_samples;
+    if (max_color < limit)
+        limit = max_color;
+    if (max_depth < limit)
+        limit = max_depth;
+    if (msaa > limit) {
+        snprintf(err, errlen,
+                 "%s: msaa %d: this context allows at most %d samples (GL_MAX_SAMPLES %d, "
+                 "GL_MAX_COLOR_TEXTURE_SAMPLES %d, GL_MAX_DEPTH_TEXTURE_SAMPLES %d)",
+                 name, msaa, limit, max_samples, max_color, max_depth);
+        return false;
+    }
+    return true;
+}
+
 gl_format renderer_base_hdr_format(const renderer_base *b)
 {
     return b->opts.hdr == HDR_RGBA32F ? GLT_FORMAT_RGBA32F : GLT_FORMAT_RGBA16F;
@@ -159,30 +192,52 @@ bool renderer_base_hdr_target(const renderer_base *b, gl_target *t, const char *
 {
     return gl_target_create(t, &(gl_target_desc){.name = name,
                                                  .format = renderer_base_hdr_format(b),
-                                                 .width = b->width, .height = b->height},
+                                                 .width = b->width, .height = b->height,
+                                                 .samples = b->samples},
                             err, errlen);
 }
 
 bool renderer_base_targets(renderer_base *b, const char *hdr_name, char *err, size_t errlen)
 {
     renderer_base_release_targets(b);
-    return renderer_base_hdr_target(b, &b->hdr, hdr_name, err, errlen) &&
-           gl_target_create(&b->depth, &(gl_target_desc){.name = "depth",
-                                                         .format = GLT_FORMAT_DEPTH24_STENCIL8,
-                                                         .width = b->width, .height = b->height},
-                            err, errlen);
+    if (!renderer_base_hdr_target(b, &b->hdr, hdr_name, err, errlen) ||
+        !gl_target_create(&b->depth, &(gl_target_desc){.name = "depth",
+                                                      .format = GLT_FORMAT_DEPTH24_STENCIL8,
+                                                      .width = b->width, .height = b->height,
+                                                      .samples = b->samples},
+                          err, errlen))
+        return false;
+    if (b->samples <= 1)
+        return true;
+    return gl_target_create(&b->hdr_resolved,
+                            &(gl_target_desc){.name = "hdr.resolved",
+                                              .format = renderer_base_hdr_format(b),
+                                              .width = b->width, .height = b->height},
+                            err, errlen) &&
+           gl_framebuffer_create(&b->msaa_read, &(gl_framebuffer_desc){.name = "msaa.read",
+                                                                      .color = {&b->hdr}},
+                                 err, errlen) &&
+           gl_framebuffer_create(&b->msaa_draw,
+                                 &(gl_framebuffer_desc){.name = "msaa.resolved",
+                                                        .color = {&b->hdr_resolved}},
+                                 err, errlen);
 }
 
 void renderer_base_release_targets(renderer_base *b)
 {
     edge_aa_release(&b->aa);
+    gl_framebuffer_destroy(&b->msaa_read);
+    gl_framebuffer_destroy(&b->msaa_draw);
+    gl_target_destroy(&b->hdr_resolved);
     gl_target_destroy(&b->hdr);
     gl_target_destroy(&b->depth);
 }
 
 const gl_target *renderer_base_display(const renderer_base *b)
 {
-    return b->aa.run ? &b->aa.out : &b->hdr;
+    if (b->aa.run)
+        return &b->aa.out;
+    return b->samples > 1 ? &b->hdr_resolved : &b->hdr;
 }
 
 bool renderer_base_read_hdr(const renderer_base *b, float *rgba, int width, int height)
@@ -192,6 +247,25 @@ bool renderer_base_read_hdr(const renderer_base *b, float *rgba, int width, int 
         return false;
     gl_texture_read_float(t->texture, width, height, rgba);
     return true;
+}
+
+void renderer_base_msaa_resolve_pass(renderer_base *b, frame_stats *out)
+{
+    if (b->samples <= 1 || !b->msaa_read.fbo)
+        return;
+    renderer_base_pass_begin(b, out, "msaa-resolve");
+    renderer_base_shading(b, false);   /* a blit: no fragment is shaded */
+    /* Averages the samples in linear HDR (a float blit of a multisampled source to a
+     * single-sampled one of the same size). Scissor and rasterizer discard, which a
+     * blit obeys, are off between passes (state.h). */
+    gl.BlitNamedFramebuffer(b->msaa_read.fbo, b->msaa_draw.fbo, 0, 0, b->width, b->height, 0,
+                            0, b->width, b->height, GL_COLOR_BUFFER_BIT, GL_NEAREST);
+    renderer_base_pass_end(b, out);
+}
+
+GLuint renderer_base_display_texture(const renderer_base *b)
+{
+    return renderer_base_display(b)->texture;
 }
 
 bool renderer_base_fog(const renderer_base *b)

@@ -29,6 +29,18 @@
  * compiles its shader with renderer_base_hdr_define (the image's format qualifier; no
  * define for RGBA16F, so the default's programs are what they always were).
  *
+ * MSAA (opts.msaa > 1, the manifest's `msaa`): renderer_base_init refuses a count above
+ * the context's min(GL_MAX_SAMPLES, GL_MAX_COLOR_TEXTURE_SAMPLES,
+ * GL_MAX_DEPTH_TEXTURE_SAMPLES) (renderer_base_msaa_check, before anything renders);
+ * renderer_base_targets then makes hdr and depth multisampled (GL_TEXTURE_2D_MULTISAMPLE,
+ * renderer_base_hdr_target too) plus hdr_resolved, single-sampled in the HDR format.
+ * renderer_base_msaa_resolve_pass, after the renderer's last shading pass and before
+ * the display resolve, is the pass "msaa-resolve": a blit of hdr into hdr_resolved,
+ * i.e. the samples averaged in linear HDR (before the clamp to the display, so a bright
+ * sample is not clipped before it is averaged). renderer_base_display_texture (what
+ * scene_gpu_resolve reads) and renderer_base_read_hdr use hdr_resolved. At msaa 1
+ * none of this exists: no pass, no target, the same programs and images as before.
+ *
  * Fog (seed 000 4.5.12, opts.fog_*): renderer_base_fog says whether it is on; each
  * program compiled with the "FOG" define (fog.inc.glsl) gets the run's fog once from
  * renderer_base_fog_uniform. */
@@ -78,6 +90,9 @@ typedef struct renderer_base {
     gl_target hdr;                   /* the light accumulation, opts.hdr's format */
     gl_target depth;                 /* depth24-stencil8 */
     edge_aa aa;                      /* aa: edge (edge_aa.h): its pass, target, program */
+    int samples;                     /* 1, or opts.msaa: the samples of hdr and depth */
+    gl_target hdr_resolved;          /* samples > 1: hdr averaged (msaa-resolve) */
+    gl_framebuffer msaa_read, msaa_draw;   /* samples > 1: the blit's hdr -> hdr_resolved */
     /* >>the last frame, for tests */
     size_t npasses;
     gls_counts pass_counts[RENDERER_BASE_MAX_PASSES];
@@ -102,6 +117,12 @@ const gls_counts *renderer_base_pass_counts(const renderer_base *b, size_t pass)
 
 // >>targets and fog
 
+/* The msaa refusal of renderer_base_init, on given limits (so that a test can pass a
+ * limit the context does not have): msaa 0 or 1 is single-sampled; otherwise it must be
+ * 2, 4 or 8 and at most every limit. False with "NAME: msaa N: ..." naming the limits. */
+bool renderer_base_msaa_check(const char *name, int msaa, int max_samples, int max_color,
+                              int max_depth, char *err, size_t errlen);
+
 /* opts.hdr as a target format (GLT_FORMAT_RGBA16F or GLT_FORMAT_RGBA32F), as an image
  * unit format (GL_RGBA16F, GL_RGBA32F), and as the shader define of an image store's
  * format qualifier ("HDR_RGBA32F", or NULL for RGBA16F). */
@@ -125,6 +146,13 @@ const gl_target *renderer_base_display(const renderer_base *b);
  * frame as RGBA floats, row 0 at the bottom; false when there is none or it is not
  * width x height. */
 bool renderer_base_read_hdr(const renderer_base *b, float *rgba, int width, int height);
+/* samples > 1: the pass "msaa-resolve" (a blit of hdr into hdr_resolved, in the HDR
+ * format); nothing at all when single-sampled. After the last pass that shades into hdr,
+ * before the display resolve. */
+void renderer_base_msaa_resolve_pass(renderer_base *b, frame_stats *out);
+/* The single-sampled HDR texture the display resolve reads: hdr_resolved when
+ * multisampled, hdr otherwise. */
+GLuint renderer_base_display_texture(const renderer_base *b);
 /* Fog is on: opts.fog_density > 0. */
 bool renderer_base_fog(const renderer_base *b);
 /* The run's fog (colour, density) into a FOG program's u_fog (LOC_FOG), with direct state

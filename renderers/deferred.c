@@ -314,6 +314,12 @@ static void *create(const char *name, bool tiled, bool clustered,
         free(r);
         return NULL;
     }
+    if (opts->msaa > 1) {
+        snprintf(err, errlen, "%s: msaa %d: not supported by this renderer yet (msaa: 1)",
+                 name, opts->msaa);
+        free(r);
+        return NULL;
+    }
     if (!renderer_base_init(&r->b, name, opts, DEFERRED_MAX_PASSES, err, errlen)) {
         renderer_base_destroy(&r->b);
         free(r);

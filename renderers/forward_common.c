@@ -256,7 +256,7 @@ void forward_sky_pass(forward_common *fc, frame_stats *out)
 void forward_resolve_pass(forward_common *fc, frame_stats *out)
 {
     forward_pass_begin(fc, out, "resolve");
-    scene_gpu_resolve(fc->gpu, fc->b.st, renderer_base_display(&fc->b)->texture,
+    scene_gpu_resolve(fc->gpu, fc->b.st, renderer_base_display_texture(&fc->b),
                       fc->b.output_fbo, fc->b.width, fc->b.height);
     forward_pass_end(fc, out);
 }
@@ -287,7 +287,7 @@ void forward_describe_resources(const forward_common *fc, pass_plan *out)
     scene_gpu_describe(fc->gpu, out);   /* sky and resolve */
     out->ntargets = 0;
     out->target_bytes = 0;
-    const gl_target *targets[] = {&fc->b.hdr, &fc->b.depth};
+    const gl_target *targets[] = {&fc->b.hdr, &fc->b.depth, &fc->b.hdr_resolved};
     for (size_t i = 0; i < sizeof targets / sizeof targets[0]; i++) {
         if (!targets[i]->texture)
             continue;
@@ -350,6 +350,7 @@ void forward_end_frame(forward_common *fc, frame_stats *out, uint64_t light_draw
         forward_sky_pass(fc, out);
     uint64_t translucent_draws = translucent_draw(&fc->translucent, &fc->b, fc->gpu, &fc->fe,
                                                   fc->frame_scene, &fc->shadows, fc->fb.fbo, out);
+    renderer_base_msaa_resolve_pass(&fc->b, out);   /* msaa > 1 only */
     edge_aa_pass(&fc->b, out, NULL, 0);   /* aa: edge */
     forward_resolve_pass(fc, out);
     uint64_t shadow_draws = fc->shadows.run ? fc->fe.shadow_start[fc->fe.nlights] : 0u;
@@ -379,6 +380,10 @@ void forward_describe_tail(const forward_common *fc, pass_plan *out)
     char why[256];
     translucent_reason(&fc->translucent, fc->prepared, why, sizeof why);
     forward_describe_pass(out, "translucent", !fc->prepared || fc->translucent.run, "%s", why);
+    if (fc->b.samples > 1)
+        forward_describe_pass(out, "msaa-resolve", true,
+                              "the %d samples of the HDR target averaged (a blit, linear HDR)",
+                              fc->b.samples);
     edge_aa_describe_pass(&fc->b, out);
     forward_describe_pass(out, "resolve", true,
                           "the HDR target clamped into the output framebuffer");

@@ -57,9 +57,9 @@
 enum {
     FORWARD_VARIANTS = 32,           /* 4 map bits and the alpha test */
     FORWARD_LIGHT_TYPES = 3,         /* LIGHT_POINT, LIGHT_SPOT, LIGHT_DIRECTIONAL */
-    FORWARD_MAX_PASSES = 8,          /* shadows base lights sky translucent edge-aa resolve;
-                                        forward-plus: shadows depth cull shade sky
-                                        translucent edge-aa resolve */
+    FORWARD_MAX_PASSES = 9,          /* shadows base lights sky translucent [msaa-resolve]
+                                        edge-aa resolve; forward-plus: shadows depth cull
+                                        shade sky translucent [msaa-resolve] edge-aa resolve */
     FORWARD_UNIFORM_LIGHT = LOC_RENDERER,   /* uniform location, see above */
     FORWARD_LIGHTS_BINDING = BIND_UBO_LIGHTS,   /* uniform block of forward-spml's lights */
 };

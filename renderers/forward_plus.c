@@ -39,6 +39,22 @@
  * longest tile with its count into frame_stats.overflow (the run fails as
  * failed:overflow).
  *
+ * MSAA (msaa > 1; renderers/base.h): the same passes, draws and dispatch. The depth
+ * pre-pass writes the multisampled depth; the cull pass (tile_cull.comp with
+ * MSAA_SAMPLES) reads every sample of every pixel of its tile with texelFetch and a
+ * sample index (no resolved depth copy: a copy would keep one depth per pixel and
+ * cull a light that reaches only another sample), so the tile's depth range holds
+ * every sample with geometry; it also writes that range per tile (b_tile_depth,
+ * TILE_DEPTH_RANGES, one more small buffer). The shade pass draws into the
+ * multisampled HDR target, depth EQUAL per sample, shading once per pixel at its
+ * centre with the coverage of the samples it passes on, as forward-spml does; a
+ * fragment whose centre's view z falls outside its tile's range (the centre of a
+ * partly covered pixel is extrapolated) loops every light of the frame instead of
+ * the tile's or cluster's list, so it adds what forward-spml adds. Then the base's
+ * msaa-resolve and the resolve. clustered with clustered.shading: deferred refuses
+ * msaa > 1 (cl_create). Counters count a pixel with geometry when some sample has it
+ * (a cluster's: in the slice of its nearest sample). At msaa 1 none of this exists.
+ *
  * Counters (collect, after the frame's sync point, so reading them never stalls):
  * grid_cells = tiles, the mean and largest list length over the tiles, and the light
  * evaluations per shaded pixel = sum over tiles of length x pixels with geometry /
@@ -73,12 +89,13 @@ typedef struct forward_plus {
     GLuint depth_program, cull_program;
     GLuint program[FORWARD_VARIANTS];
     GLuint lights, tiles, indices, stats;   /* buffers */
+    GLuint depth_ranges;     /* msaa > 1 with the cull pass: per tile its range (vec2) */
     gpu_light *staging;      /* max_lights */
     uint32_t *readback;      /* ntiles x 4 */
     uint32_t *counts;        /* ntiles: list lengths of the last frame collected */
     bool counted;            /* counts hold a frame */
     char tile_define[24], tiles_x_define[32], tiles_y_define[32], slices_define[24];
-    char slices_y_define[24];
+    char slices_y_define[24], samples_define[24];
     uint64_t frame;
     uint64_t program_frame[FORWARD_VARIANTS];
     int count;               /* lights uploaded this frame */
@@ -127,11 +144,11 @@ static void *clustered_create(const renderer_options *opts, char *err, size_t er
 
 static void release_buffers(forward_plus *r)
 {
-    GLuint b[4] = {r->lights, r->tiles, r->indices, r->stats};
-    for (int i = 0; i < 4; i++)
+    GLuint b[5] = {r->lights, r->tiles, r->indices, r->stats, r->depth_ranges};
+    for (int i = 0; i < 5; i++)
         if (b[i])
             gl.DeleteBuffers(1, &b[i]);
-    r->lights = r->tiles = r->indices = r->stats = 0;
+    r->lights = r->tiles = r->indices = r->stats = r->depth_ranges = 0;
     free(r->staging);
     free(r->readback);
     free(r->counts);
@@ -209,10 +226,21 @@ static bool plus_prepare(void *self, const struct scene *s, char *err, size_t er
     snprintf(r->tiles_y_define, sizeof r->tiles_y_define, "TILES_Y %u", r->tiles_y);
     snprintf(r->slices_define, sizeof r->slices_define, "SLICES %u", r->slices);
     snprintf(r->slices_y_define, sizeof r->slices_y_define, "SLICES_Y %u", r->slices_y);
-    const char *grid_defs[5] = {r->tile_define, r->tiles_x_define,
+    /* msaa > 1: the cull reads every sample, and shading gets the tiles' ranges */
+    bool ms = c->b.samples > 1;
+    snprintf(r->samples_define, sizeof r->samples_define, "MSAA_SAMPLES %d", c->b.samples);
+    const char *grid_defs[6] = {r->tile_define, r->tiles_x_define,
                                 r->slices ? r->tiles_y_define : NULL,
                                 r->slices ? r->slices_define : NULL,
-                                r->slices ? r->slices_y_define : NULL};
+                                r->slices ? r->slices_y_define : NULL,
+                                ms ? "TILE_DEPTH_RANGES" : NULL};
+    const char *cull_defs[7] = {NULL};   /* grid_defs without the NULLs, then samples */
+    unsigned ncull = 0;
+    for (unsigned i = 0; i < 6; i++)
+        if (grid_defs[i])
+            cull_defs[ncull++] = grid_defs[i];
+    if (ms)
+        cull_defs[ncull++] = r->samples_define;
     char why[4096] = "";
     if (gl_program_get(c->b.programs,
                        &(gl_program_desc){.name = "depth_only", .vertex = "mesh.vert",
@@ -225,16 +253,17 @@ static bool plus_prepare(void *self, const struct scene *s, char *err, size_t er
         gl_program_get(c->b.programs,
                        &(gl_program_desc){.name = r->slices ? "cluster_cull" : "tile_cull",
                                           .compute = "tile_cull.comp",
-                                          .defines = {grid_defs[0], grid_defs[1], grid_defs[2],
-                                                      grid_defs[3], grid_defs[4]}},
+                                          .defines = {cull_defs[0], cull_defs[1], cull_defs[2],
+                                                      cull_defs[3], cull_defs[4], cull_defs[5],
+                                                      cull_defs[6]}},
                        &r->cull_program, why, sizeof why) != GLP_OK) {
         snprintf(err, errlen, "%s: %s", r->name, why);
         goto fail;
     }
-    const char *extra[9] = {NULL};
+    const char *extra[10] = {NULL};
     unsigned k = 0;
     if (r->grid) {
-        for (unsigned i = 0; i < 5; i++)
+        for (unsigned i = 0; i < 6; i++)
             if (grid_defs[i])
                 extra[k++] = grid_defs[i];
     } else {
@@ -261,6 +290,8 @@ static bool plus_prepare(void *self, const struct scene *s, char *err, size_t er
     r->tiles = make_buffer((size_t)r->ncells * 16u);
     r->indices = make_buffer((size_t)r->capacity * 4u);
     r->stats = make_buffer(sizeof(tile_stats));
+    if (ms && r->grid)
+        r->depth_ranges = make_buffer((size_t)r->ntiles * 2u * sizeof(float));
     return true;
 fail:
     release_buffers(r);
@@ -285,6 +316,8 @@ static void bind_buffers(forward_plus *r)
         gl_state_storage_buffer(r->c.b.st, BIND_SSBO_TILE_LISTS, r->tiles);
         gl_state_storage_buffer(r->c.b.st, BIND_SSBO_TILE_INDICES, r->indices);
         gl_state_storage_buffer(r->c.b.st, BIND_SSBO_TILE_STATS, r->stats);
+        if (r->depth_ranges)
+            gl_state_storage_buffer(r->c.b.st, BIND_SSBO_TILE_DEPTH, r->depth_ranges);
     }
 }
 
@@ -335,7 +368,7 @@ static void plus_draw(void *self, const struct scene *s, frame_stats *out)
         gl.Uniform1i(FORWARD_UNIFORM_LIGHT, r->count);
         /* no draw framebuffer that has the sampled depth attached (the header) */
         gl_state_framebuffer(c->b.st, c->b.output_fbo);
-        gl_state_texture(c->b.st, BIND_TEX_DEPTH, c->b.depth.texture);
+        gl_state_texture(c->b.st, BIND_TEX_DEPTH, c->b.depth.texture);   /* x samples */
         bind_buffers(r);
         gl_state_dispatch(c->b.st, r->tiles_x, r->tiles_y, 1);
         gl_state_barrier(c->b.st, GL_SHADER_STORAGE_BARRIER_BIT);
@@ -457,6 +490,15 @@ static void *cl_create(const renderer_options *opts, char *err, size_t errlen)
     clustered *c = calloc(1, sizeof *c);
     if (!c) {
         snprintf(err, errlen, "clustered: out of memory");
+        return NULL;
+    }
+    if (opts->clustered_deferred && opts->msaa > 1) {
+        /* its shading is deferred.c's tiled compute pass from the G-buffer */
+        snprintf(err, errlen,
+                 "clustered: msaa %d: not supported with clustered.shading: deferred "
+                 "(use clustered.shading: forward, or msaa: 1)",
+                 opts->msaa);
+        free(c);
         return NULL;
     }
     c->impl = opts->clustered_deferred ? &renderer_tiled_deferred_impl : &clustered_forward_impl;

@@ -178,6 +178,9 @@ typedef struct renderer_options {
     float fog_color[3];
     /* every renderer that draws: anti-aliasing (aa), a post pass on the HDR image */
     aa_mode aa;
+    /* every renderer that draws (msaa): samples per pixel of its HDR and depth targets;
+     * 0 or 1: single-sampled (renderers/base.h) */
+    int msaa;
 } renderer_options;
 
 typedef struct renderer_impl {

@@ -72,20 +72,45 @@ bool gl_target_create(gl_target *t, const gl_target_desc *desc, char *err, size_
                  (int)max_size, (int)max_size);
         return false;
     }
+    int samples = desc->samples > 1 ? desc->samples : 1;
+    if (desc->samples < 0) {
+        snprintf(err, errlen, "target %s (%s): %d samples", name, fi->name, desc->samples);
+        return false;
+    }
+    if (samples > 1) {
+        GLint max_samples = 0;
+        gl.GetIntegerv(fi->color ? GL_MAX_COLOR_TEXTURE_SAMPLES : GL_MAX_DEPTH_TEXTURE_SAMPLES,
+                       &max_samples);
+        if (samples > max_samples) {
+            snprintf(err, errlen, "target %s (%s): %d samples, the context allows %d (%s)",
+                     name, fi->name, samples, (int)max_samples,
+                     fi->color ? "GL_MAX_COLOR_TEXTURE_SAMPLES"
+                               : "GL_MAX_DEPTH_TEXTURE_SAMPLES");
+            return false;
+        }
+    }
     GLuint tex = 0;
-    gl.CreateTextures(GL_TEXTURE_2D, 1, &tex);
-    gl.TextureStorage2D(tex, 1, fi->internal_format, desc->width, desc->height);
-    GLint filter = desc->linear ? GL_LINEAR : GL_NEAREST;
-    gl.TextureParameteri(tex, GL_TEXTURE_MIN_FILTER, filter);
-    gl.TextureParameteri(tex, GL_TEXTURE_MAG_FILTER, filter);
-    gl.TextureParameteri(tex, GL_TEXTURE_WRAP_S, GL_CLAMP_TO_EDGE);
-    gl.TextureParameteri(tex, GL_TEXTURE_WRAP_T, GL_CLAMP_TO_EDGE);
+    if (samples > 1) {
+        /* no sampler state on a multisample texture: texelFetch only */
+        gl.CreateTextures(GL_TEXTURE_2D_MULTISAMPLE, 1, &tex);
+        gl.TextureStorage2DMultisample(tex, samples, fi->internal_format, desc->width,
+                                       desc->height, GL_TRUE);
+    } else {
+        gl.CreateTextures(GL_TEXTURE_2D, 1, &tex);
+        gl.TextureStorage2D(tex, 1, fi->internal_format, desc->width, desc->height);
+        GLint filter = desc->linear ? GL_LINEAR : GL_NEAREST;
+        gl.TextureParameteri(tex, GL_TEXTURE_MIN_FILTER, filter);
+        gl.TextureParameteri(tex, GL_TEXTURE_MAG_FILTER, filter);
+        gl.TextureParameteri(tex, GL_TEXTURE_WRAP_S, GL_CLAMP_TO_EDGE);
+        gl.TextureParameteri(tex, GL_TEXTURE_WRAP_T, GL_CLAMP_TO_EDGE);
+    }
     set_name(t->name, sizeof t->name, desc->name, "target");
     gl.ObjectLabel(GL_TEXTURE, tex, -1, t->name);
     t->format = desc->format;
     t->width = desc->width;
     t->height = desc->height;
-    t->bytes = gl_format_bytes(desc->format, desc->width, desc->height);
+    t->samples = samples;
+    t->bytes = gl_format_bytes(desc->format, desc->width, desc->height) * (uint64_t)samples;
     t->texture = tex;
     return true;
 }
@@ -103,7 +128,11 @@ void gl_target_describe(const gl_target *t, target_plan_entry *out)
 {
     memset(out, 0, sizeof *out);
     snprintf(out->name, sizeof out->name, "%s", t->name);
-    snprintf(out->format, sizeof out->format, "%s", gl_format_name(t->format));
+    if (t->samples > 1)
+        snprintf(out->format, sizeof out->format, "%s x%d", gl_format_name(t->format),
+                 t->samples);
+    else
+        snprintf(out->format, sizeof out->format, "%s", gl_format_name(t->format));
     out->width = t->width;
     out->height = t->height;
     out->bytes = t->bytes;
@@ -145,9 +174,12 @@ static void list_attachments(char *buf, size_t size, const gl_target *const *col
             snprintf(what, sizeof what, "colour %d", i);
         else
             snprintf(what, sizeof what, "depth-stencil");
-        int n = snprintf(buf + used, size - used, "%s%s %s %s %dx%d", used ? ", " : "", what,
+        char samples[16] = "";
+        if (t->samples > 1)
+            snprintf(samples, sizeof samples, " x%d", t->samples);
+        int n = snprintf(buf + used, size - used, "%s%s %s %s %dx%d%s", used ? ", " : "", what,
                          t->name[0] ? t->name : "(unnamed)", gl_format_name(t->format), t->width,
-                         t->height);
+                         t->height, samples);
         if (n < 0 || (size_t)n >= size - used)
             return;
         used += (size_t)n;
@@ -178,7 +210,7 @@ bool gl_framebuffer_create(gl_framebuffer *fb, const gl_framebuffer_desc *desc, 
         snprintf(err, errlen, "framebuffer %s: no attachments", name);
         return false;
     }
-    int w = 0, h = 0;
+    int w = 0, h = 0, samples = 0;
     for (int i = 0; i <= ncolor; i++) {
         const gl_target *t = i < ncolor ? desc->color[i] : ds;
         if (!t)
@@ -204,11 +236,17 @@ bool gl_framebuffer_create(gl_framebuffer *fb, const gl_framebuffer_desc *desc, 
                      "format %s (%s)", name, fi->name, list);
             return false;
         }
+        int ts = t->samples > 1 ? t->samples : 1;
         if (w == 0) {
             w = t->width;
             h = t->height;
+            samples = ts;
         } else if (t->width != w || t->height != h) {
             snprintf(err, errlen, "framebuffer %s: attachments differ in size (%s)", name, list);
+            return false;
+        } else if (ts != samples) {
+            snprintf(err, errlen, "framebuffer %s: attachments differ in samples (%s)", name,
+                     list);
             return false;
         }
     }
@@ -257,6 +295,7 @@ bool gl_framebuffer_create(gl_framebuffer *fb, const gl_framebuffer_desc *desc, 
     fb->ncolor = ncolor;
     fb->width = w;
     fb->height = h;
+    fb->samples = samples;
     return true;
 }
 

@@ -20,6 +20,9 @@
  *
  * Textures have one mip level, GL_NEAREST filtering (GL_LINEAR with .linear) and
  * GL_CLAMP_TO_EDGE wrapping; depth formats are sampled as depth (no compare mode).
+ * A target with .samples > 1 is a GL_TEXTURE_2D_MULTISAMPLE of that many samples at
+ * fixed sample locations (no sampler state: read with texelFetch and a sample index);
+ * its bytes count every sample.
  * Needs a current GL 4.5 context whose GL table is loaded. */
 #include "renderers/gl/loader.h"
 #include "renderers/renderer.h"
@@ -83,23 +86,28 @@ typedef struct gl_target_desc {
     gl_format format;
     int width, height;           /* > 0 and within GL_MAX_TEXTURE_SIZE */
     bool linear;                 /* GL_LINEAR filtering instead of GL_NEAREST */
+    int samples;                 /* 0 or 1: GL_TEXTURE_2D; > 1: GL_TEXTURE_2D_MULTISAMPLE */
 } gl_target_desc;
 
 typedef struct gl_target {
     char name[32];
     gl_format format;
     int width, height;
-    uint64_t bytes;              /* gl_format_bytes(format, width, height) */
-    GLuint texture;              /* GL_TEXTURE_2D; 0 when none */
+    int samples;                 /* 1, or the samples of a multisampled target */
+    uint64_t bytes;              /* gl_format_bytes(format, width, height) x samples */
+    GLuint texture;              /* GL_TEXTURE_2D (GL_TEXTURE_2D_MULTISAMPLE with samples
+                                    > 1); 0 when none */
 } gl_target;
 
 /* Creates the texture; false with a message naming the target (and the format
- * and size) on a bad desc: no format, size <= 0 or above GL_MAX_TEXTURE_SIZE.
+ * and size) on a bad desc: no format, size <= 0 or above GL_MAX_TEXTURE_SIZE, samples
+ * < 0 or above the context's GL_MAX_COLOR_TEXTURE_SAMPLES / GL_MAX_DEPTH_TEXTURE_SAMPLES.
  * *t is zeroed on failure. */
 bool gl_target_create(gl_target *t, const gl_target_desc *desc, char *err, size_t errlen);
 void gl_target_destroy(gl_target *t);
 
-/* The pass_plan row of t: name, format name, size, bytes. */
+/* The pass_plan row of t: name, format name ("rgba16f", "rgba16f x4" when
+ * multisampled), size, bytes. */
 void gl_target_describe(const gl_target *t, target_plan_entry *out);
 
 // >>framebuffers
@@ -120,12 +128,13 @@ typedef struct gl_framebuffer {
     GLuint fbo;                  /* 0 when none */
     int ncolor;
     int width, height;
+    int samples;                 /* the attachments' (1: single-sampled) */
 } gl_framebuffer;
 
 /* Creates and checks the framebuffer. Refused, with a message that names the
  * framebuffer and every attachment's target, format and size: no attachment at
  * all, a target that was not created, a colour format as depth or a depth format
- * as colour, attachments of different sizes, more colour targets than the context's
+ * as colour, attachments of different sizes or sample counts, more colour targets than the context's
  * GL_MAX_COLOR_ATTACHMENTS / GL_MAX_DRAW_BUFFERS, and a framebuffer GL does not
  * call complete (with the status: "GL_FRAMEBUFFER_UNSUPPORTED"). *fb is zeroed
  * on failure. A framebuffer without colour targets draws to and reads from

@@ -7,7 +7,12 @@
 // Defines: the material's maps (surface.inc); TILE_SIZE and TILES_X (the grid);
 // NO_GRID: the scene has no point or spot light, there is no cull pass and every
 // light of the frame (u_light_count, all directional) is looped. FOG (fog.inc): the sum
-// fogged.
+// fogged. TILE_DEPTH_RANGES (msaa > 1): the fragment is shaded once per pixel at the
+// pixel centre (as forward-spml's), which an edge's triangle need not cover (its
+// position then extrapolated) and whose samples may be occluded where the fragment is
+// not; when that position's view z lies outside the depth range its tile was culled
+// against (b_tile_depth), every light of the frame is looped, in light order, so that
+// no light the centre sees is missed (rare: pixels on the edges of steep surfaces).
 #include "bindings.h"
 #include "frame.inc"
 #include "surface.inc"
@@ -37,10 +42,18 @@ void main()
 #endif
     uvec4 list = b_tiles[cell];
     uint first = list.x, n = list.y;
+#ifdef TILE_DEPTH_RANGES
+    vec2 range = b_tile_depth[t.y * uint(TILES_X) + t.x];
+    bool every = s.position.z > range.x || s.position.z < range.y;
+    if (every)
+        n = uint(u_light_count);
+#endif
 #endif
     for (uint k = 0u; k < n; k++) {
 #ifdef NO_GRID
         Light l = b_lights[k];
+#elif defined(TILE_DEPTH_RANGES)
+        Light l = b_lights[every ? k : b_indices[first + k]];
 #else
         Light l = b_lights[b_indices[first + k]];
 #endif

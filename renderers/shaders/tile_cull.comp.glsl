@@ -26,7 +26,15 @@
 // made first, then each slice the tile's depth range meets (one more on either side) is
 // culled from that list against the slice's depth range (cull_clusters, tile_cull.inc);
 // the other clusters are written empty.
-// Defines: TILE_SIZE, TILES_X (and SLICES, SLICES_Y, TILES_Y). Uniforms: u_light_count.
+// MSAA_SAMPLES (msaa > 1): the depth is multisampled and step 1 reads EVERY sample of
+// each pixel (texelFetch with each sample index, not a resolved copy: a resolve would
+// average or pick depths, and a light reaching only a sample off the pixel centre, at
+// the tile's nearest or farthest depth, would be culled); a pixel counts as covered
+// when some sample has geometry, in the slice of its nearest such sample. With
+// TILE_DEPTH_RANGES the tile's range is also written to b_tile_depth (tiles.inc) for
+// the shading pass.
+// Defines: TILE_SIZE, TILES_X (and SLICES, SLICES_Y, TILES_Y; MSAA_SAMPLES,
+// TILE_DEPTH_RANGES). Uniforms: u_light_count.
 #define TILES_COHERENT   // clusters read their tile's list, written in this dispatch
 #include "bindings.h"
 #include "frame.inc"
@@ -35,7 +43,11 @@
 #include "tiles.inc"
 layout(local_size_x = TILE_SIZE, local_size_y = TILE_SIZE) in;
 
+#ifdef MSAA_SAMPLES
+layout(binding = BIND_TEX_DEPTH) uniform sampler2DMS t_depth;
+#else
 layout(binding = BIND_TEX_DEPTH) uniform sampler2D t_depth;
+#endif
 
 #include "tile_cull.inc"
 
@@ -57,10 +69,21 @@ void main()
 #endif
     barrier();
     if (all(lessThan(pixel, size))) {
-        float d = texelFetch(t_depth, pixel, 0).r;
+#ifdef MSAA_SAMPLES
+        float d = 1.0, d_far = 0.0;   // the nearest and farthest sample with geometry
+        for (int i = 0; i < MSAA_SAMPLES; i++) {
+            float di = texelFetch(t_depth, pixel, i).r;
+            if (di < 1.0) {
+                d = min(d, di);
+                d_far = max(d_far, di);
+            }
+        }
+#else
+        float d = texelFetch(t_depth, pixel, 0).r, d_far = d;
+#endif
         if (d < 1.0) {
             atomicMin(s_min_depth, floatBitsToUint(d));
-            atomicMax(s_max_depth, floatBitsToUint(d));
+            atomicMax(s_max_depth, floatBitsToUint(d_far));
             atomicAdd(s_covered, 1u);
 #ifdef SLICES
             atomicAdd(s_slice_covered[slice_of(view_z(d))], 1u);
@@ -74,6 +97,10 @@ void main()
     float tile_znear, tile_zfar;
     tile_frustum(tile, size, tile_znear, tile_zfar);
 
+#ifdef TILE_DEPTH_RANGES
+    if (me == 0u)
+        b_tile_depth[tile_index] = vec2(tile_znear, tile_zfar);
+#endif
     g_znear = tile_znear;
     g_zfar = tile_zfar;
 #ifndef SLICES

@@ -6,6 +6,9 @@
 //                 light order
 //   b_stats       next: entries asked for so far (beyond capacity: some list did not
 //                 fit); capacity: entries the index buffer holds
+//   b_tile_depth[t]  (TILE_DEPTH_RANGES: forward-plus and clustered at msaa > 1) the
+//                 view-z range (near, far; far -inf when open) tile t's lights were
+//                 culled against, for forward_tiled.frag's fallback
 // Needs bindings.h. TILES_COHERENT (tiled_deferred.comp, which reads the lists its own
 // work group wrote) makes the lists coherent.
 #ifdef TILES_COHERENT
@@ -23,3 +26,8 @@ layout(std430, binding = BIND_SSBO_TILE_STATS) buffer TileStats {
     uint next;
     uint capacity;
 } b_stats;
+#ifdef TILE_DEPTH_RANGES
+layout(std430, binding = BIND_SSBO_TILE_DEPTH) buffer TileDepth {
+    vec2 b_tile_depth[];
+};
+#endif
