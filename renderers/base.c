@@ -92,6 +92,7 @@ bool renderer_base_size(renderer_base *b, const struct scene *s, char *err, size
 void renderer_base_begin_frame(renderer_base *b, frame_stats *out)
 {
     out->npasses = 0;
+    out->msaa = b->samples;
     b->npasses = 0;
     /* Every frame starts from unknown state, so every frame counts alike: the first
      * set of each part of the state in a frame is a change. */
@@ -113,6 +114,7 @@ void renderer_base_pass_end(renderer_base *b, frame_stats *out)
     pass_stats *p = &out->pass[i];
     gl_state_end_pass(b->st, p);
     p->gpu_us = p->fragments = p->primitives = p->samples = NAN;   /* collect fills them */
+    p->per_sample_samples = 0.0;
     p->scissor_pixels = NAN;                          /* a scissoring renderer sets it */
     if (i < RENDERER_BASE_MAX_PASSES)
         b->pass_counts[i] = *gl_state_pass_counts(b->st);
@@ -128,6 +130,11 @@ void renderer_base_shading(renderer_base *b, bool on)
         gl_pass_queries_pause(b->queries);
 }
 
+void renderer_base_per_sample(renderer_base *b, bool on)
+{
+    gl_pass_queries_per_sample(b->queries, on);
+}
+
 void renderer_base_collect(renderer_base *b, frame_stats *out)
 {
     if (b->queries) {
@@ -136,7 +143,7 @@ void renderer_base_collect(renderer_base *b, frame_stats *out)
     }
     for (size_t i = 0; i < out->npasses; i++)
         out->pass[i].gpu_us = out->pass[i].fragments = out->pass[i].primitives =
-            out->pass[i].samples = NAN;
+            out->pass[i].samples = out->pass[i].per_sample_samples = NAN;
 }
 
 const gls_counts *renderer_base_pass_counts(const renderer_base *b, size_t pass)

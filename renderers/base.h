@@ -54,7 +54,7 @@
 #include "renderers/gl/target.h"
 #include "renderers/renderer.h"
 
-enum { RENDERER_BASE_MAX_PASSES = 12 };
+enum { RENDERER_BASE_MAX_PASSES = 16 };
 
 /* The light lists of the tiled and clustered renderers (forward-plus, clustered,
  * tiled-deferred) as their cull pass leaves them: per cell a 16-byte record whose last
@@ -110,6 +110,10 @@ void renderer_base_collect(renderer_base *b, frame_stats *out);
  * depth pre-pass), true after them; pass_stats.samples (GL_SAMPLES_PASSED) counts the
  * pass's other draws. A pass starts counting; without queries it does nothing. */
 void renderer_base_shading(renderer_base *b, bool on);
+/* Within a pass (msaa): the shading draws from now on shade per sample (true) or per
+ * pixel (false, what every pass starts with); pass_stats.per_sample_samples counts the
+ * former's samples apart. */
+void renderer_base_per_sample(renderer_base *b, bool on);
 /* The state cache's counts of pass i of the last frame, or NULL past its passes. */
 const gls_counts *renderer_base_pass_counts(const renderer_base *b, size_t pass);
 
