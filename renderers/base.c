@@ -216,6 +216,7 @@ bool renderer_base_targets(renderer_base *b, const char *hdr_name, char *err, si
         return false;
     if (b->samples <= 1)
         return true;
+    b->samples = b->hdr.samples;   /* what the driver gave: at least opts.msaa */
     return gl_target_create(&b->hdr_resolved,
                             &(gl_target_desc){.name = "hdr.resolved",
                                               .format = renderer_base_hdr_format(b),

@@ -88,7 +88,9 @@ typedef struct renderer_base {
     /* >>made by renderer_base_targets at prepare */
     gl_target hdr;                   /* the light accumulation, opts.hdr's format */
     gl_target depth;                 /* depth24-stencil8 */
-    int samples;                     /* 1, or opts.msaa: the samples of hdr and depth */
+    int samples;                     /* 1, or opts.msaa: the samples of hdr and depth (after
+                                        renderer_base_targets what the driver gave, which
+                                        may be more: llvmpipe gives 4 for 2) */
     gl_target hdr_resolved;          /* samples > 1: hdr averaged (msaa-resolve) */
     gl_framebuffer msaa_read, msaa_draw;   /* samples > 1: the blit's hdr -> hdr_resolved */
     /* >>the last frame, for tests */

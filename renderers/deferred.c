@@ -53,7 +53,8 @@
  * MSAA (msaa > 1; docs/architecture.md): every G-buffer attachment, the light targets and
  * depth are multisampled. After the G-buffer pass, `edges` (edge_mark.frag, full screen,
  * per pixel) sets stencil EDGE_BIT (0x40) on every sample of a pixel whose samples differ
- * from sample 0 (surface / none, view depth > 1 %, normal > acos(0.98)); the stencil
+ * from sample 0 (surface / none, off its tangent plane by > 1 % of the view depth, normal
+ * > acos(0.98)); the stencil
  * modes then count in bits 0-5. Every shading draw of ambient, the light passes (every
  * light-volume mode) and compose runs twice, edges first: the per-sample variant
  * (GB_SAMPLE gl_SampleID) where EDGE_BIT is set, the per-pixel one (sample 0) where it is
@@ -593,6 +594,17 @@ static bool compile_programs(deferred_renderer *r, char *err, size_t errlen)
                         &r->edge_program, NULL, err, errlen))
             return false;
     }
+    if (r->b.samples > 1 && r->layout.position == DEFERRED_POSITION_DEPTH_BUFFER) {
+        /* the samples' positions in the pixel (edge_mark.frag, position from depth) */
+        GLfloat pos[8][2] = {{0.5f, 0.5f}};
+        GLint prev = 0;
+        gl.GetIntegerv(GL_DRAW_FRAMEBUFFER_BINDING, &prev);
+        gl.BindFramebuffer(GL_DRAW_FRAMEBUFFER, r->fb_light.fbo);
+        for (int i = 0; i < r->b.samples && i < 8; i++)
+            gl.GetMultisamplefv(GL_SAMPLE_POSITION, (GLuint)i, pos[i]);
+        gl.BindFramebuffer(GL_DRAW_FRAMEBUFFER, (GLuint)prev);
+        gl.ProgramUniform2fv(r->edge_program, DEFERRED_UNIFORM_LIGHT, 8, &pos[0][0]);
+    }
     static const pass_id light_pass[DEFERRED_LIGHT_TYPES] = {
         [LIGHT_POINT] = PASS_POINT, [LIGHT_SPOT] = PASS_SPOT,
         [LIGHT_DIRECTIONAL] = PASS_DIRECTIONAL};
@@ -843,8 +855,8 @@ static bool deferred_prepare(void *self, const scene *s, char *err, size_t errle
          s->sky ? "into untouched depth, last" : "the scene has no sky");
     plan(r, PASS_RESOLVE, true, "light clamped into the output framebuffer");
     plan(r, PASS_EDGES, r->b.samples > 1,
-         "msaa %d: pixels whose samples differ (depth > 1%%, normal > 11.5 deg) get stencil "
-         "bit 0x40; shaded per sample there, per pixel elsewhere", r->b.samples);
+         "msaa %d: pixels whose samples differ (off the plane > 1%% of depth, normal > 11.5 "
+         "deg) get stencil bit 0x40; per sample there, per pixel elsewhere", r->b.samples);
     plan(r, PASS_MSAA, r->b.samples > 1, "the %d samples of the light averaged (a blit, "
          "linear HDR)", r->b.samples);
 

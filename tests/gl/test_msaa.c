@@ -10,7 +10,8 @@
  * of the pixels off by more than 1/255) in every
  * light-volume mode (point, spot and directional lights; also with the sky mask, with
  * separate specular and with fog). Per-sample shading exactly on the edge pixels: one
- * box face seen head-on against the sky, its edge pixels counted on the CPU from the
+ * box face seen head-on against the sky (position stored and from depth), its edge
+ * pixels counted on the CPU from the
  * projected rectangle and the context's sample positions; the edge pass finds exactly
  * them, and the ambient and directional passes pass 4 samples per pixel, 4 x edges of
  * them from per-sample draws (so P + 3 E fragment runs). Any GL error fails. */
@@ -42,6 +43,7 @@ static gl_context *ctx;
 
 static light_volume_mode g_mode = LIGHT_VOLUMES_STENCIL;
 static bool g_sky_stencil, g_separate_specular;
+static gbuffer_position g_position = GBUFFER_POSITION_PRESET;
 static float g_fog;
 
 static renderer_options options(int msaa)
@@ -52,7 +54,7 @@ static renderer_options options(int msaa)
         .timer_query = gi->timer_query, .pipeline_statistics = gi->pipeline_statistics,
         .max_uniform_block_size = gi->max_uniform_block_size,
         .gbuffer = GBUFFER_REFERENCE, .msaa = msaa, .light_volumes = g_mode,
-        .sky_stencil = g_sky_stencil, .separate_specular = g_separate_specular,
+        .sky_stencil = g_sky_stencil, .gbuffer_position = g_position, .separate_specular = g_separate_specular,
         .fog_density = g_fog, .fog_color = {0.55f, 0.6f, 0.7f},
     };
 }
@@ -355,9 +357,12 @@ static void test_per_sample_exactly_on_edges(void **state)
     const int edges = count_edge_pixels(21.5f, 42.5f, 13.5f, 34.5f);
     print_message("box face: %d edge pixels of %d\n", edges, W * H);
     assert_true(edges > 0);
-    static const light_volume_mode modes[] = {LIGHT_VOLUMES_STENCIL, LIGHT_VOLUMES_FULLSCREEN};
-    for (size_t m = 0; m < sizeof modes / sizeof modes[0]; m++) {
-        g_mode = modes[m];
+    /* position stored (the reference preset) and rebuilt from the multisampled depth */
+    static const light_volume_mode modes[] = {LIGHT_VOLUMES_STENCIL, LIGHT_VOLUMES_FULLSCREEN,
+                                              LIGHT_VOLUMES_VOLUME};
+    for (size_t m = 0; m < 2 * sizeof modes / sizeof modes[0]; m++) {
+        g_mode = modes[m % 3];
+        g_position = m < 3 ? GBUFFER_POSITION_PRESET : GBUFFER_POSITION_DEPTH;
         image img = {0};
         frame_stats fs;
         assert_true(render("deferred", 4, s, &img, &fs, NULL));
@@ -381,6 +386,7 @@ static void test_per_sample_exactly_on_edges(void **state)
         }
     }
     g_mode = LIGHT_VOLUMES_STENCIL;
+    g_position = GBUFFER_POSITION_PRESET;
     scene_destroy(s);
 }
 
