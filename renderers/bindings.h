@@ -28,6 +28,8 @@
 #define BIND_IMAGE_HDR 0            /* tiled-deferred writes the HDR target */
 /* Uniform locations: surface.inc's alpha cutoff of a MASK material (file scenes) */
 #define LOC_ALPHA_CUTOFF 12
+/* surface.inc's opacity of a MATERIAL_BLEND material (the TRANSLUCENT variant) */
+#define LOC_OPACITY 13
 /* Uniform locations of one light (forward_light.frag, deferred_light.frag) and of a
  * renderer's own first uniform beside mesh.vert's and surface.inc's (0..11) */
 #define LOC_RENDERER 16

@@ -48,6 +48,12 @@
  *                colour; pixels at depth 1 unchanged. Skipped (no program) when off
  *   sky          (the scene has a sky) scene_gpu_draw_sky into the light target's
  *                untouched depth (z = w, depth LEQUAL): last, as seed 000 4.5.11
+ *   translucent  (the scene has MATERIAL_BLEND objects; seed 001 19.8.1: translucent
+ *                geometry drawn by a forward renderer after the deferred one) the
+ *                frontend's translucent objects, back to front, shaded by the forward
+ *                single-pass program with every visible light and blended over the light
+ *                target, testing (not writing) the G-buffer pass's depth
+ *                (renderers/translucent.h); one draw each. Skipped, no program, otherwise
  *   resolve      scene_gpu_resolve: the light target clamped into the output
  *
  * MSAA (msaa > 1; docs/architecture.md): every G-buffer attachment, the light targets and
@@ -95,7 +101,8 @@
  *
  * (shadows Sh, gbuffer V, ambient 1, directional D, point/spot 1 per light (shade), 2
  * (mark + shade) or 3 (front mark + back mark + shade), compose 1, fog 1, sky 1, resolve 1;
- * clears are not draws.) Without Sh they do not depend on where the camera is; the
+ * clears are not draws; V counts opaque objects, and the translucent pass adds one draw
+ * per visible translucent object.) Without Sh they do not depend on where the camera is; the
  * shadow-casting sets do (frontend.h).
  *
  * Camera inside a volume, near and far planes. The volume passes run with GL_DEPTH_CLAMP
@@ -166,6 +173,7 @@
 #include "renderers/scene_gpu.h"
 #include "renderers/shading.h"
 #include "renderers/shadow.h"
+#include "renderers/translucent.h"
 #include "scenes/scene.h"
 
 #include <math.h>
@@ -177,8 +185,9 @@
 _Static_assert(sizeof(gpu_light) == 80, "gpu_light is 5 vec4s, as lighting.inc's Light");
 
 enum {
-    DEFERRED_MAX_PASSES = 13,          /* shadows gbuffer [edges] ambient directional point
-                                         spot compose fog sky [msaa-resolve] resolve */
+    DEFERRED_MAX_PASSES = 14,          /* shadows gbuffer [edges] ambient directional point
+                                         spot compose fog sky translucent [msaa-resolve]
+                                         resolve */
     DEFERRED_VARIANTS = 32,           /* material map bits and the alpha test */
     DEFERRED_LIGHT_TYPES = 3,
 };
@@ -197,6 +206,7 @@ typedef enum pass_id {
     PASS_RESOLVE,
     PASS_TILED,                      /* tiled-deferred: ambient and every light, one dispatch */
     PASS_FOG,                        /* fog.density > 0: deferred_fog.frag after the lights */
+    PASS_TRANSLUCENT,                /* MATERIAL_BLEND objects, forward, after the sky */
     PASS_EDGES,                      /* msaa > 1: edge_mark.frag sets EDGE_BIT */
     PASS_MSAA,                       /* msaa > 1: renderer_base_msaa_resolve_pass */
     PASS_COUNT
@@ -204,13 +214,14 @@ typedef enum pass_id {
 
 static const char *const pass_names[PASS_COUNT] = {
     "shadows", "gbuffer", "ambient", "directional", "point", "spot", "compose", "sky", "resolve",
-    "tiled", "fog", "edges", "msaa-resolve",
+    "tiled", "fog", "translucent", "edges", "msaa-resolve",
 };
 
 /* The order describe lists them in (tiled-deferred's "tiled" after the G-buffer). */
 static const pass_id describe_order[PASS_COUNT] = {
     PASS_SHADOWS, PASS_GBUFFER, PASS_EDGES, PASS_TILED, PASS_AMBIENT, PASS_DIRECTIONAL,
-    PASS_POINT, PASS_SPOT, PASS_COMPOSE, PASS_FOG, PASS_SKY, PASS_MSAA, PASS_RESOLVE,
+    PASS_POINT, PASS_SPOT, PASS_COMPOSE, PASS_FOG, PASS_SKY, PASS_TRANSLUCENT, PASS_MSAA,
+    PASS_RESOLVE,
 };
 
 /* tiled-deferred's light culling and shading pass (tiled_deferred.comp). */
@@ -245,6 +256,7 @@ typedef struct deferred_renderer {
     deferred_needs needs;
     deferred_layout layout;
     shadow_maps shadows;
+    translucent_pass translucent;    /* MATERIAL_BLEND objects after the sky (translucent.h) */
     gl_target gbuf[DEFERRED_MAX_ATTACHMENTS];
     gl_target light, specular, depth;
     gl_target depth_sampled;         /* position from depth: the G-buffer's depth, copied */
@@ -367,6 +379,7 @@ static void release_tiled(tiled_pass *tp)
 
 static void release_prepared(deferred_renderer *r)
 {
+    translucent_release(&r->translucent);
     release_tiled(&r->tp);
     gl_framebuffer_destroy(&r->fb_gbuffer);
     gl_framebuffer_destroy(&r->fb_light);
@@ -768,7 +781,8 @@ static bool deferred_prepare(void *self, const scene *s, char *err, size_t errle
                      s->nmaterials);
             return false;
         }
-        r->variants |= 1u << material_variant(&s->materials[m]);
+        if (!scene_material_translucent(&s->materials[m]))   /* translucent.h's */
+            r->variants |= 1u << material_variant(&s->materials[m]);
     }
     r->light_types = 0;
     uint32_t count[DEFERRED_LIGHT_TYPES] = {0, 0, 0};
@@ -875,8 +889,11 @@ static bool deferred_prepare(void *self, const scene *s, char *err, size_t errle
         goto fail;
     if (!make_targets(r, err, errlen) ||
         !shadow_maps_create(&r->shadows, r->b.programs, "deferred", err, errlen) ||
-        !compile_programs(r, err, errlen) || !compile_fog(r, err, errlen))
+        !compile_programs(r, err, errlen) || !compile_fog(r, err, errlen) ||
+        !translucent_prepare(&r->translucent, &r->b, s, &r->shadows, err, errlen))
         goto fail;
+    translucent_reason(&r->translucent, true, why, sizeof why);
+    plan(r, PASS_TRANSLUCENT, r->translucent.run, "%s", why);
     r->prepared = true;
     return true;
 fail:
@@ -1466,6 +1483,10 @@ sky:
         scene_gpu_draw_sky(r->gpu, st);
         pass_end(r, out);
     }
+
+    /* >>translucent: forward, over the opaque light and depth (seed 001 19.8.1) */
+    if (r->run[PASS_TRANSLUCENT])
+        translucent_draw(&r->translucent, &r->b, r->gpu, &r->fe, s, &r->shadows, hdr_fbo, out);
 
     /* >>resolve: msaa > 1, the samples averaged first (renderers/base.h) */
     renderer_base_msaa_resolve_pass(&r->b, out);

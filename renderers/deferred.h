@@ -108,7 +108,8 @@ const char *deferred_slot_name(deferred_slot_kind k);
 /* "fat", "curtis", "compact", "spheremap", "reference"; "unknown" out of range. */
 const char *deferred_preset_name(gbuffer_preset p);
 
-/* What objects' materials of s write. */
+/* What objects' materials of s write (opaque and alpha-tested ones: translucent objects
+ * never reach the G-buffer, renderers/translucent.h). */
 deferred_needs deferred_needs_of(const struct scene *s);
 
 /* The layout of preset (with the field-by-field overrides of o) for a scene that needs

@@ -37,6 +37,7 @@ bool forward_common_init(forward_common *fc, const char *name, const renderer_op
 
 static void release_prepared(forward_common *fc)
 {
+    translucent_release(&fc->translucent);
     shadow_maps_destroy(&fc->shadows);
     gl_framebuffer_destroy(&fc->fb);
     renderer_base_release_targets(&fc->b);
@@ -77,6 +78,8 @@ bool forward_common_prepare(forward_common *fc, const scene *s, char *err, size_
                      i, m, s->nmaterials);
             return false;
         }
+        if (scene_material_translucent(&s->materials[m]))
+            continue;   /* the translucent pass's (translucent.h) */
         unsigned v = forward_material_variant(&s->materials[m]);
         fc->variants |= 1u << v;
         fc->nobjects_variant[v]++;
@@ -112,6 +115,8 @@ bool forward_common_prepare(forward_common *fc, const scene *s, char *err, size_
         goto fail;
     }
     if (!shadow_maps_create(&fc->shadows, fc->b.programs, fc->b.name, err, errlen))
+        goto fail;
+    if (!translucent_prepare(&fc->translucent, &fc->b, s, &fc->shadows, err, errlen))
         goto fail;
     fc->prepared = true;
     return true;
@@ -179,6 +184,7 @@ bool forward_compile_base(forward_common *fc, char *err, size_t errlen)
 void forward_begin_frame(forward_common *fc, const scene *s, frame_stats *out)
 {
     renderer_base_begin_frame(&fc->b, out);
+    fc->frame_scene = s;
     frontend_build(&fc->fe, s);
     scene_gpu_frame(fc->gpu, s);
 }
@@ -341,10 +347,13 @@ void forward_end_frame(forward_common *fc, frame_stats *out, uint64_t light_draw
 {
     if (fc->sky)
         forward_sky_pass(fc, out);
+    uint64_t translucent_draws = translucent_draw(&fc->translucent, &fc->b, fc->gpu, &fc->fe,
+                                                  fc->frame_scene, &fc->shadows, fc->fb.fbo, out);
     forward_resolve_pass(fc, out);
     uint64_t shadow_draws = fc->shadows.run ? fc->fe.shadow_start[fc->fe.nlights] : 0u;
-    uint64_t expected =
-        shadow_draws + (uint64_t)fc->fe.nvisible + light_draws + (fc->sky ? 1u : 0u) + 1u;
+    uint64_t expected = shadow_draws + (uint64_t)fc->fe.nvisible + light_draws +
+                        (fc->sky ? 1u : 0u) + translucent_draws + 1u;
+    assert(translucent_draws == (fc->translucent.run ? fc->fe.ntranslucent : 0u));
     uint64_t draws = 0;
     for (size_t i = 0; i < out->npasses; i++)
         draws += out->pass[i].draw_calls;
@@ -365,6 +374,9 @@ void forward_describe_tail(const forward_common *fc, pass_plan *out)
         forward_describe_pass(out, "sky", true, "the sky, last, into untouched depth");
     else
         forward_describe_pass(out, "sky", false, "skipped, the scene has no sky");
+    char why[256];
+    translucent_reason(&fc->translucent, fc->prepared, why, sizeof why);
+    forward_describe_pass(out, "translucent", !fc->prepared || fc->translucent.run, "%s", why);
     if (fc->b.samples > 1)
         forward_describe_pass(out, "msaa-resolve", true,
                               "the %d samples of the HDR target averaged (a blit, linear HDR)",

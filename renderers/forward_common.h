@@ -14,6 +14,8 @@
  *     ... the renderer's own passes into fc->fb (the base's "hdr", in the run's HDR
  *         format, RGBA16F or RGBA32F, + "depth": renderer_base_targets) ...
  *     forward_sky_pass        when the scene has a sky: one draw into untouched depth
+ *     translucent             when the scene has translucent objects (translucent.h):
+ *                             one blended draw per visible one, back to front
  *     forward_resolve_pass    hdr clamped into the output framebuffer: one draw
  *
  * Objects are drawn back faces culled (every scene mesh is closed or a shell seen
@@ -47,14 +49,15 @@
 #include "renderers/renderer.h"
 #include "renderers/scene_gpu.h"
 #include "renderers/shadow.h"
+#include "renderers/translucent.h"
 #include "scenes/scene.h"
 
 enum {
     FORWARD_VARIANTS = 32,           /* 4 map bits and the alpha test */
     FORWARD_LIGHT_TYPES = 3,         /* LIGHT_POINT, LIGHT_SPOT, LIGHT_DIRECTIONAL */
-    FORWARD_MAX_PASSES = 7,          /* shadows base lights sky [msaa-resolve] resolve;
-                                        forward-plus: shadows depth cull shade sky
-                                        [msaa-resolve] resolve */
+    FORWARD_MAX_PASSES = 8,          /* shadows base lights sky translucent [msaa-resolve]
+                                        resolve; forward-plus: shadows depth cull shade sky
+                                        translucent [msaa-resolve] resolve */
     FORWARD_UNIFORM_LIGHT = LOC_RENDERER,   /* uniform location, see above */
     FORWARD_LIGHTS_BINDING = BIND_UBO_LIGHTS,   /* uniform block of forward-spml's lights */
 };
@@ -83,6 +86,8 @@ typedef struct forward_common {
     unsigned light_types;            /* bit t: some light of the scene is of type t */
     uint32_t nobjects_variant[FORWARD_VARIANTS];   /* objects of each variant */
     GLuint base_program[FORWARD_VARIANTS];    /* forward-mpml's base pass */
+    translucent_pass translucent;    /* the scene's MATERIAL_BLEND objects (translucent.h) */
+    const scene *frame_scene;        /* the scene forward_begin_frame was given */
 } forward_common;
 
 /* The variant of a material (FORWARD_VARIANT_* bits). */
@@ -145,11 +150,12 @@ void forward_draw_objects(forward_common *fc, const scene *s, const uint32_t *ob
 /* The sky pass (one draw; only call it when fc->sky) and the resolve pass (one draw). */
 void forward_sky_pass(forward_common *fc, frame_stats *out);
 void forward_resolve_pass(forward_common *fc, frame_stats *out);
-/* The end of every forward frame: the sky (when the scene has one) and the resolve;
- * then the frame's draws must equal the formula: the shadows pass's (the sum of the
- * shadow-casting sets, fe.shadow_start[fe.nlights], when it runs), one per visible
- * object in the first pass, `light_draws` more, the sky and the resolve (asserted in
- * debug builds). */
+/* The end of every forward frame: the sky (when the scene has one), the translucent
+ * pass (when the scene has translucent objects) and the resolve; then the frame's
+ * draws must equal the formula: the shadows pass's (the sum of the shadow-casting
+ * sets, fe.shadow_start[fe.nlights], when it runs), one per visible opaque object in
+ * the first pass, `light_draws` more, the sky, one per visible translucent object and
+ * the resolve (asserted in debug builds). */
 void forward_end_frame(forward_common *fc, frame_stats *out, uint64_t light_draws);
 
 /* Fills GPU times and fragment counts after the frame's sync point (NAN without queries). */

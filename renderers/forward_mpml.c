@@ -25,15 +25,17 @@
  *            object (the brute force of seed 000 5.6). Runs when the scene has lights
  *            (with directional_in_base: point or spot lights).
  *   sky      the sky into untouched depth, when the scene has one
+ *   translucent  (the scene has translucent objects) renderers/translucent.h: one
+ *            blended draw per visible translucent object, back to front, all lights
  *   resolve  the HDR target clamped into the output framebuffer
  *
- * Draw calls per frame, with V visible objects, the visible lights l, I(l) the
- * illumination set of l and C(l) the shadow-casting set of a visible light that casts
- * shadows this frame (frontend.h; none when the shadows pass does not run):
+ * Draw calls per frame, with V visible opaque objects, T visible translucent ones, the
+ * visible lights l, I(l) the illumination set of l and C(l) the shadow-casting set of a
+ * visible light that casts shadows this frame (frontend.h; none when the shadows pass does not run):
  *
  *     draws = sum over shadowed l of |C(l)|
  *             + V + sum over l of |I(l)|  (V per light without illumination sets)
- *             + (1 if the scene has a sky) + 1
+ *             + (1 if the scene has a sky) + T + 1
  *
  * (|I(l)| = V for a directional light.) With directional_in_base the sum runs over
  * the point and spot lights only: D x V fewer draws for D visible directional lights.

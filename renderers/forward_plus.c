@@ -19,7 +19,8 @@
  *            list (directional lights pass every tile's test, so each list holds the
  *            same terms as forward-spml's loop, in the same order); without the cull
  *            pass every light of the frame (all directional) is looped
- *   sky, resolve   as every renderer
+ *   sky, [translucent], resolve   as every renderer (translucent.h: the frame's whole
+ *                  light list, not the tile lists, which the opaque depth bounds)
  *
  * Draw calls per frame, with V visible objects (dispatches counted apart):
  *

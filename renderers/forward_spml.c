@@ -12,12 +12,14 @@
  *            80 bytes per light and the light limit below do not change (the maps'
  *            matrices are in a block of their own, shadow.h)
  *   sky      the sky into untouched depth, when the scene has one
+ *   translucent  (the scene has translucent objects) renderers/translucent.h: one
+ *            blended draw per visible translucent object, back to front, all lights
  *   resolve  the HDR target clamped into the output framebuffer
  *
- * Draw calls per frame, with V visible objects:
+ * Draw calls per frame, with V visible opaque objects and T visible translucent ones:
  *
  *     draws = sum over shadowed l of |C(l)|  (the shadows pass, see forward_mpml.c)
- *             + V + (1 if the scene has a sky) + 1
+ *             + V + (1 if the scene has a sky) + T + 1
  *
  * The light buffer: uniform block binding 1, std140, a Light being 5 vec4s (80
  * bytes), so a context holds forward_spml_max_lights(GL_MAX_UNIFORM_BLOCK_SIZE)

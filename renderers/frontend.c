@@ -141,7 +141,7 @@ void frontend_light_volume_bound(const frontend *f, const scene_light *l, sm_vec
  * halves); light arrays (lights, eye_inside) cap_lights and illum_start cap_lights + 1. */
 static bool reserve_objects(frontend *f, size_t n)
 {
-    if (n <= f->cap_objects && f->visible && f->sort)
+    if (n <= f->cap_objects && f->visible && f->translucent && f->sort)
         return true;
     size_t cap = f->cap_objects ? f->cap_objects : 16;
     while (cap < n)
@@ -150,6 +150,10 @@ static bool reserve_objects(frontend *f, size_t n)
     if (!v)
         return false;
     f->visible = v;
+    uint32_t *t = realloc(f->translucent, cap * sizeof *t);
+    if (!t)
+        return false;
+    f->translucent = t;
     frontend_sort_item *s = realloc(f->sort, 2 * cap * sizeof *s);
     if (!s)
         return false;
@@ -268,6 +272,7 @@ void frontend_free(frontend *f)
     if (!f)
         return;
     free(f->visible);
+    free(f->translucent);
     free(f->lights);
     free(f->illum_start);
     free(f->illum);
@@ -397,6 +402,24 @@ static bool light_reaches(const scene_light *l, const sm_vec4 bsphere)
 
 // >>shadow-casting sets (frontend.h, "shadow")
 
+/* Drawn in the translucent pass, not in the opaque passes (frontend.h). */
+static bool object_translucent(const scene *s, uint32_t o)
+{
+    uint32_t m = s->objects[o].material;
+    return m < s->nmaterials && scene_material_translucent(&s->materials[m]);
+}
+
+/* A key whose ascending order is the descending order of the float d (NaN last). */
+static uint64_t far_first_key(float d)
+{
+    uint32_t u;
+    memcpy(&u, &d, sizeof u);
+    if (d != d)
+        return UINT64_MAX;
+    u = (u & 0x80000000u) ? ~u : (u | 0x80000000u);   /* ascending with d */
+    return (uint64_t)(~u);
+}
+
 bool frontend_light_casts_shadows(const scene_light *l)
 {
     return l->shadows && (l->type == LIGHT_SPOT || l->type == LIGHT_DIRECTIONAL);
@@ -450,7 +473,8 @@ static void spot_shadow_set(frontend *f, const scene *s, const scene_light *l,
         return;
     }
     for (uint32_t o = 0; o < s->nobjects; o++)
-        if (light_reaches(l, s->objects[o].bsphere) && !push_shadow(f, k, o))
+        if (!object_translucent(s, o) && light_reaches(l, s->objects[o].bsphere) &&
+            !push_shadow(f, k, o))
             return;
 }
 
@@ -482,6 +506,8 @@ static void directional_shadow(frontend *f, const scene *s, const scene_light *l
         return;
     }
     for (uint32_t o = 0; o < s->nobjects; o++) {
+        if (object_translucent(s, o))
+            continue;
         const float *b = s->objects[o].bsphere;
         sm_vec3 c;
         sm_mat4_mulv3(view, b, 1.0f, c);
@@ -510,6 +536,7 @@ void frontend_build(frontend *f, const scene *s)
                                                              : s->nlights_total;
 
     f->nvisible = 0;
+    f->ntranslucent = 0;
     f->nlights = 0;
     f->nshadowed = 0;
     f->truncated = false;
@@ -533,9 +560,13 @@ void frontend_build(frontend *f, const scene *s)
         sm_vec4_copy(corners[i], f->near_corners[i]);
 
     /* visible objects, sorted */
-    uint32_t n = 0;
+    uint32_t n = 0, nt = 0;
     for (uint32_t i = 0; i < s->nobjects; i++)
         if (sm_sphere_in_frustum(f->planes, s->objects[i].bsphere)) {
+            if (object_translucent(s, i)) {
+                f->translucent[nt++] = i;   /* sorted below */
+                continue;
+            }
             f->sort[n].key = frontend_sort_key(s, i);
             f->sort[n].object = i;
             n++;
@@ -544,6 +575,20 @@ void frontend_build(frontend *f, const scene *s)
     for (uint32_t i = 0; i < n; i++)
         f->visible[i] = sorted[i].object;
     f->nvisible = n;
+
+    /* translucent objects back to front: the view depth of each sphere's centre */
+    for (uint32_t i = 0; i < nt; i++) {
+        uint32_t o = f->translucent[i];
+        const float *c = s->objects[o].bsphere;
+        float z = s->view[0][2] * c[0] + s->view[1][2] * c[1] + s->view[2][2] * c[2] +
+                  s->view[3][2];
+        f->sort[i].key = far_first_key(-z);
+        f->sort[i].object = o;
+    }
+    sorted = merge_sort(f->sort, f->sort + f->cap_objects, nt);
+    for (uint32_t i = 0; i < nt; i++)
+        f->translucent[i] = sorted[i].object;
+    f->ntranslucent = nt;
 
     /* lights, their illumination sets and shadow-casting sets */
     size_t k = 0, ks = 0;

@@ -2,10 +2,17 @@
 /* The frontend (DOOM 3 BFG's split): what to draw this frame, decided once and
  * shared by every renderer; the backends only execute it.
  *
- *   visible   objects whose world bounding sphere is not outside the view
- *             frustum, sorted into state buckets: by diffuse map, then material,
+ *   visible   opaque objects (material not MATERIAL_BLEND) whose world bounding
+ *             sphere is not outside the view frustum, sorted into state buckets: by diffuse map, then material,
  *             then mesh (seed 000 4.4.3 sorts by diffuse texture); ties (objects
  *             with the same key) keep their object order
+ *   translucent  the visible objects of MATERIAL_BLEND materials (same frustum
+ *             test), sorted back to front: by the view depth of their bounding
+ *             sphere's centre (-z in view space), farthest first; equal depths keep
+ *             object order. Not in `visible`, in no illumination set and in no
+ *             shadow-casting set (translucent objects cast no shadows): every
+ *             renderer draws them in its translucent pass (renderers/translucent.h),
+ *             lit by the frame's `lights`
  *   lights    active lights (scene.lights[0 .. nlights_active)) that can light
  *             something visible, in light order: directional lights always; a point
  *             light when its sphere (position, radius) is not outside the frustum; a
@@ -112,6 +119,8 @@ typedef struct frontend {
     sm_vec4 planes[6];         /* the view frustum (sm_frustum_planes order) */
     uint32_t *visible;         /* object indices, sorted */
     uint32_t nvisible;
+    uint32_t *translucent;     /* object indices, back to front (see above) */
+    uint32_t ntranslucent;
     uint32_t *lights;          /* light indices (into scene.lights), in light order */
     uint32_t nlights;
     uint32_t *illum_start;     /* nlights + 1 offsets into illum */

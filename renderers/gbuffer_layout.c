@@ -48,6 +48,8 @@ deferred_needs deferred_needs_of(const scene *s)
         if (mi >= s->nmaterials)
             continue;
         const scene_material *m = &s->materials[mi];
+        if (scene_material_translucent(m))
+            continue;   /* forward, in the translucent pass: never in the G-buffer */
         if (m->specular > 0.0f)
             n.gloss = true;
         if (m->emissive[0] > 0.0f || m->emissive[1] > 0.0f || m->emissive[2] > 0.0f)

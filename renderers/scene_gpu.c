@@ -292,6 +292,8 @@ void scene_gpu_draw_object(scene_gpu *g, gl_state *st, const scene *s, uint32_t 
     gl.Uniform3fv(11, 1, m->emissive);
     if (m->alpha == MATERIAL_MASK)   /* only the ALPHA_TEST variant has it */
         gl.Uniform1f(LOC_ALPHA_CUTOFF, m->alpha_cutoff);
+    if (m->alpha == MATERIAL_BLEND)   /* only the TRANSLUCENT variant has it */
+        gl.Uniform1f(LOC_OPACITY, m->opacity);
 
     gl_state_vertex_array(st, gm->vao);
     gl_state_draw_elements(st, GL_TRIANGLES, gm->count, GL_UNSIGNED_INT, 0);

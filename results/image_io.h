@@ -36,6 +36,10 @@ typedef struct image_error {
     double max_abs;
     double frac_over_1_255; /* fraction of pixels with any channel off by more than 1/255 */
     size_t nonfinite;       /* non-finite values in either image */
+    /* over the reference's edge pixels only: image_edge_rmse (image_ref.h) fills them,
+     * image_compare leaves them as they are */
+    double edge_rmse;       /* NAN when the reference has no edge */
+    size_t edge_pixels;
 } image_error;
 
 /* a and b must have equal size and channels. Computed in double precision.

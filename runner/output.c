@@ -23,6 +23,7 @@ const char *const summary_columns[] = {
     "ci1pct_after_s", "dispatches_mean", "cell_lights_mean", "cell_lights_max",
     "light_evals_per_pixel",
     "gbuffer_bytes_per_frame", "gbuffer_write_bytes_mean", "gbuffer_read_bytes_mean",
+    "image_edge_rmse", "image_edge_pixels",
     "samples_shaded_mean", "edge_fraction_mean",
     "status", "message",
 };
@@ -44,7 +45,7 @@ static const char *const convergence_columns[] = {
 };
 static const char *const errors_columns[] = {
     "run_id", "trial", "frame", "t_scene_s", "rmse", "psnr_db", "max_abs", "frac_over_1_255",
-    "nonfinite",
+    "nonfinite", "edge_rmse", "edge_pixels",
 };
 static const char *const coverage_columns[] = {
     "run_id", "trial", "frame", "t_scene_s", "light", "coverage",
@@ -312,6 +313,8 @@ void run_files_error(run_files *f, const char *run_id, uint32_t trial, uint32_t 
     csv_g(w, e->max_abs);
     csv_g(w, e->frac_over_1_255);
     csv_u64(w, e->nonfinite);
+    csv_g(w, e->edge_rmse);   /* empty when the reference has no edge pixel */
+    csv_u64(w, e->edge_pixels);
     csv_end_row(w);
 }
 
@@ -428,6 +431,8 @@ bool output_write_run_summary(const char *run_dir, const experiment *e, const ru
         csv_f64(w, r->gbuffer_write_bytes_mean + r->gbuffer_read_bytes_mean, 1);
         csv_f64(w, r->gbuffer_write_bytes_mean, 1);
         csv_f64(w, r->gbuffer_read_bytes_mean, 1);
+        csv_g(w, r->image_edge_rmse);
+        csv_f64(w, r->image_edge_pixels, 0);
         csv_f64(w, r->samples_shaded_mean, 1);
         csv_f64(w, r->edge_fraction_mean, 6);
         csv_str(w, r->status);

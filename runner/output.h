@@ -99,6 +99,9 @@ typedef struct trial_result {
      * error, smallest PSNR; non-finite values summed over the comparisons */
     double image_rmse, image_psnr_db, image_max_abs;
     double nonfinite;
+    /* the largest RMSE over the reference's edge pixels (image_ref.h) and their count in
+     * that comparison (NAN: no comparison, or no edge in any) */
+    double image_edge_rmse, image_edge_pixels;
     unsigned lights_max;
     char status[96];           /* "ok" or "failed:<reason>" */
 } trial_result;

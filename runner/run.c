@@ -21,6 +21,7 @@
 #include "renderers/renderer.h"
 #include "results/fsutil.h"
 #include "results/image_io.h"
+#include "results/image_ref.h"
 #include "results/stats.h"
 #include "results/stream_stats.h"
 #include "results/yamlout.h"
@@ -48,6 +49,8 @@ typedef struct run_state {
     scene *sc;
     renderer *r;
     renderer *ref;             /* error: the reference configuration; NULL without one */
+    gl_offscreen ref_fb;       /* error.reference.supersample K > 1: its K W x K H output */
+    float *ref_hdr;            /* ... and its HDR image read back, K W x K H RGBA */
     pass_plan plan;
     run_files files;
     trial_stream *stream;      /* the per-trial statistics, fed frame by frame */
@@ -226,9 +229,37 @@ static bool save_heat_map(const image *a, const image *b, const char *base, char
     return ok;
 }
 
+/* error.reference.supersample K > 1: the reference drew at K W x K H into st->ref_fb;
+ * its linear HDR image is box-filtered K x K down to W x H and made what the resolve
+ * pass would display of it (clamped, 8 bits: image_display_rgba8), so that the 8-bit
+ * images compared are alike: the run's displayed output and the filtered reference's. */
+static bool read_reference_supersampled(run_state *st, image *img, char *err, size_t errlen)
+{
+    const run_params *p = &st->s->p;
+    const int k = (int)p->error_supersample, w = p->width, h = p->height;
+    const size_t small = (size_t)w * (size_t)h * 4u;
+    float *box = malloc(small * sizeof *box);
+    *img = (image){.width = w, .height = h, .channels = 4, .type = IMAGE_U8};
+    img->pixels = malloc(small);
+    bool ok = box && img->pixels;
+    if (!ok)
+        snprintf(err, errlen, "out of memory for the %dx%d supersampled reference", w, h);
+    else if (!(ok = renderer_read_hdr(st->ref, st->ref_hdr, k * w, k * h, NULL)))
+        snprintf(err, errlen, "reference %.31s: no HDR image to read", p->error_renderer);
+    if (ok) {
+        image_box_filter(st->ref_hdr, w, h, k, box);
+        image_display_rgba8(box, w, h, true, img->pixels);   /* GL's rows: bottom first */
+    }
+    free(box);
+    return ok;
+}
+
 /* error: the frame just drawn against the reference configuration drawing the same
  * scene state (same time, lights and camera): its row in errors.csv, the worst values
- * in *tr, images on request. Runs between measured frames, after the bookkeeping. */
+ * in *tr, images on request. Runs between measured frames, after the bookkeeping.
+ * Compared are the displayed 8-bit images (the output framebuffers, RGBA8); with
+ * error.reference.supersample K > 1 the reference's is its box-filtered HDR image as
+ * the resolve would display it (read_reference_supersampled). */
 static bool measure_error(run_state *st, uint32_t trial, uint32_t frame, double at,
                           trial_result *tr, char *err, size_t errlen)
 {
@@ -245,10 +276,18 @@ static bool measure_error(run_state *st, uint32_t trial, uint32_t frame, double 
             nonfinite = 0;
         free(hdr);
         frame_stats fs;
+        /* at its own size: see run_setup */
+        st->sc->width = (int)p->error_supersample * p->width;
+        st->sc->height = (int)p->error_supersample * p->height;
         renderer_draw(st->ref, st->sc, &fs);
+        st->sc->width = p->width;
+        st->sc->height = p->height;
         gl.Finish();
         renderer_collect(st->ref, &fs);
-        ok = read_output(st, &ref, err, errlen) && image_compare(&run, &ref, &e, err, errlen);
+        ok = (p->error_supersample > 1 ? read_reference_supersampled(st, &ref, err, errlen)
+                                       : read_output(st, &ref, err, errlen)) &&
+             image_compare(&run, &ref, &e, err, errlen) &&
+             image_edge_rmse(&run, &ref, &e.edge_rmse, &e.edge_pixels, err, errlen);
     }
     if (ok) {
         e.nonfinite += nonfinite;
@@ -260,6 +299,12 @@ static bool measure_error(run_state *st, uint32_t trial, uint32_t frame, double 
         if (isnan(tr->image_max_abs) || e.max_abs > tr->image_max_abs)
             tr->image_max_abs = e.max_abs;
         tr->nonfinite = (isnan(tr->nonfinite) ? 0 : tr->nonfinite) + (double)e.nonfinite;
+        /* the largest edge RMSE, and over how many edge pixels it was */
+        if (!isnan(e.edge_rmse) &&
+            (isnan(tr->image_edge_rmse) || e.edge_rmse > tr->image_edge_rmse)) {
+            tr->image_edge_rmse = e.edge_rmse;
+            tr->image_edge_pixels = (double)e.edge_pixels;
+        }
     }
     if (ok && p->error_save_images) {
         char base[4300];
@@ -459,6 +504,7 @@ static void run_trial(run_state *st, uint32_t trial, trial_result *tr)
     memset(tr, 0, sizeof *tr);
     tr->trial = trial;
     tr->image_rmse = tr->image_psnr_db = tr->image_max_abs = tr->nonfinite = NAN;
+    tr->image_edge_rmse = tr->image_edge_pixels = NAN;
     tr->gbuffer_write_bytes_mean = tr->gbuffer_read_bytes_mean = NAN;
     tr->samples_shaded_mean = tr->edge_fraction_mean = NAN;
     snprintf(tr->status, sizeof tr->status, "ok");
@@ -697,7 +743,7 @@ static bool write_meta(run_state *st, char *err, size_t errlen)
         yo_key(y, "materials"); yo_i64(y, si->materials);
         yo_key(y, "materials_mask"); yo_i64(y, si->materials_mask);
         yo_key(y, "materials_blend"); yo_i64(y, si->materials_blend);
-        yo_key(y, "blend"); yo_str(y, si->materials_blend ? "translucent materials drawn opaque"
+        yo_key(y, "blend"); yo_str(y, si->materials_blend ? "translucent, in the translucent pass"
                                                           : "none");
         yo_key(y, "textures"); yo_i64(y, si->textures);
         yo_key(y, "lights"); yo_i64(y, si->lights);
@@ -882,11 +928,51 @@ static bool run_setup(run_state *st)
          * uniform block where they fit and from a storage buffer beyond it */
         rr.light_buffer = LIGHT_BUFFER_AUTO;
         char why[512];
-        if (!(st->ref = renderer_create(p->error_renderer, &rr, why, sizeof why)) ||
-            !renderer_prepare(st->ref, st->sc, why, sizeof why)) {
+        const int k = (int)p->error_supersample;
+        if (k > 1) {
+            /* its own K W x K H output, bound while renderer_create takes it as the output */
+            rr.width = k * p->width;
+            rr.height = k * p->height;
+            if (!gl_offscreen_create(st->ctx, rr.width, rr.height, &st->ref_fb, why,
+                                     sizeof why)) {
+                snprintf(st->err, sizeof st->err,
+                         "error.reference.supersample %d: the reference at %dx%d: %.400s", k,
+                         rr.width, rr.height, why);
+                set_status(st, "reference");
+                return false;
+            }
+        }
+        /* The scene's size is what renderer_base_size checks, the frame's viewport
+         * (shading.c) and the projection's aspect (the same at K W x K H): the reference
+         * prepares and draws (measure_error) with it at its own size, the run at W x H. */
+        st->sc->width = rr.width;
+        st->sc->height = rr.height;
+        bool made = (st->ref = renderer_create(p->error_renderer, &rr, why, sizeof why)) &&
+                    renderer_prepare(st->ref, st->sc, why, sizeof why);
+        st->sc->width = p->width;
+        st->sc->height = p->height;
+        gl.BindFramebuffer(GL_FRAMEBUFFER, gl_context_framebuffer(st->ctx));
+        if (!made) {
             snprintf(st->err, sizeof st->err, "reference %.31s: %.400s", p->error_renderer, why);
             set_status(st, "reference");
             return false;
+        }
+        /* the box filter reads the reference's HDR target: one it has (null has none) */
+        if (k > 1) {
+            size_t n = (size_t)rr.width * (size_t)rr.height * 4u;
+            if (!(st->ref_hdr = malloc(n * sizeof *st->ref_hdr))) {
+                snprintf(st->err, sizeof st->err, "out of memory for the %dx%d reference",
+                         rr.width, rr.height);
+                set_status(st, "oom");
+                return false;
+            }
+            if (!renderer_read_hdr(st->ref, st->ref_hdr, rr.width, rr.height, NULL)) {
+                snprintf(st->err, sizeof st->err,
+                         "error.reference.supersample %d: reference %.31s has no HDR image to "
+                         "box-filter", k, p->error_renderer);
+                set_status(st, "reference");
+                return false;
+            }
         }
         if (!run_files_open_errors(&st->files, st->dir, st->err, sizeof st->err)) {
             set_status(st, "output");
@@ -906,6 +992,8 @@ static void run_teardown(run_state *st)
 {
     run_files_abort(&st->files);
     renderer_destroy(st->ref);
+    gl_offscreen_destroy(&st->ref_fb);
+    free(st->ref_hdr);
     renderer_destroy(st->r);
     scene_destroy(st->sc);
     gl_context_destroy(st->ctx);
@@ -930,6 +1018,7 @@ static void fill_missing_trials(run_state *st)
         tr->gbuffer_write_bytes_mean = tr->gbuffer_read_bytes_mean = NAN;
         tr->samples_shaded_mean = tr->edge_fraction_mean = NAN;
         tr->image_rmse = tr->image_psnr_db = tr->image_max_abs = tr->nonfinite = NAN;
+        tr->image_edge_rmse = tr->image_edge_pixels = NAN;
         snprintf(tr->status, sizeof tr->status, "%s",
                  strcmp(st->status, "ok") ? st->status : "failed:not-run");
     }

@@ -50,6 +50,10 @@ static const catalog_scene catalog[] = {
     {{"floating-spot", "seed 000 5.5: a spot whose volume covers most of the screen (hold 1) "
                       "while it lights no visible pixel"},
      scene_build_floating_spot, 0},
+    /* ours: the translucent pass (renderers/translucent.h) */
+    {{"glass", "four overlapping translucent panes of different colours and 24 translucent "
+              "particles over a textured floor, 12 authored point lights, a 30 s orbit"},
+     scene_build_glass, 0},
 };
 
 /* Scenes that fail on purpose at schedule time 0.2 s, for the tests of run

@@ -16,7 +16,8 @@
  *              [1, 2048]; OBJ: Ns (0 counts as 1)
  *   normal map the normal texture, tangents from our own mesh_compute_tangents
  *   emissive   the emissive factor times the emissive map (mask alpha = 1)
- *   alpha      MASK -> MATERIAL_MASK with the cutoff; BLEND -> MATERIAL_BLEND
+ *   alpha      MASK -> MATERIAL_MASK with the cutoff; BLEND -> MATERIAL_BLEND (translucent,
+ *              opacity: assimp's opacity, else the base colour's alpha)
  * Sections: >>io >>load >>check >>materials >>nodes >>build */
 #include "scenes/scene.h"
 
@@ -914,6 +915,14 @@ static void add_material(scene_builder *b, loaded *l, const struct aiMaterial *a
     m->alpha = alpha_mode(am, &cutoff);
     if (m->alpha == MATERIAL_MASK)
         m->alpha_cutoff = cutoff;
+    if (m->alpha == MATERIAL_BLEND) {
+        /* glTF: the base colour factor's alpha (the map's alpha multiplies it in the
+         * shader); OBJ: d (assimp's opacity) */
+        float opacity = base.a;
+        if (mat_float(am, AI_MATKEY_OPACITY, &opacity) != aiReturn_SUCCESS)
+            opacity = base.a;
+        m->opacity = isfinite(opacity) ? sm_clamp(opacity, 0.0f, 1.0f) : 1.0f;
+    }
 }
 
 // >>build

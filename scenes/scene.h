@@ -38,7 +38,9 @@ typedef struct scene_light {
 typedef enum material_alpha {
     MATERIAL_OPAQUE = 0,       /* ignored */
     MATERIAL_MASK,             /* alpha test: fragments with alpha < alpha_cutoff discarded */
-    MATERIAL_BLEND,            /* translucent: marked, drawn as opaque until translucency lands */
+    MATERIAL_BLEND,            /* translucent: coverage = opacity x the diffuse map's alpha,
+                                * drawn after the opaque scene, back to front, blended over
+                                * it (renderers/translucent.h); casts no shadow */
 } material_alpha;
 
 /* Phong material; a map index is -1 when the material has no such map. */
@@ -50,7 +52,15 @@ typedef struct scene_material {
     int diffuse_map, gloss_map, normal_map, emissive_map;   /* into scene.textures */
     material_alpha alpha;      /* catalog materials: opaque */
     float alpha_cutoff;        /* MATERIAL_MASK */
+    float opacity;             /* MATERIAL_BLEND: the coverage alpha in [0, 1] (glTF base
+                                * colour alpha, OBJ d); 1 for the others */
 } scene_material;
+
+/* Whether an object is drawn in the translucent pass (its material is MATERIAL_BLEND). */
+static inline bool scene_material_translucent(const scene_material *m)
+{
+    return m->alpha == MATERIAL_BLEND;
+}
 
 /* One mesh instance. model and the world bounds are posed by scene_update():
  *   model = translate(position) * rotate(spin_axis, spin_rate t) * scale * transform
@@ -169,8 +179,8 @@ typedef struct scene_file_info {
     uint32_t objects;          /* mesh instances */
     uint32_t materials, textures, lights, cameras;
     uint32_t materials_mask;   /* alphaMode MASK: alpha tested */
-    uint32_t materials_blend;  /* alphaMode BLEND (or OBJ d < 1): translucent, drawn opaque
-                                * until the renderers have a translucent pass */
+    uint32_t materials_blend;  /* alphaMode BLEND (or OBJ d < 1): translucent, drawn in the
+                                * renderers' translucent pass */
     uint32_t files;            /* the file and every buffer and image it pulled in */
     uint64_t hash;             /* FNV-1a 64 over those files' bytes, in the order read */
     sm_vec3 bounds_min, bounds_max;   /* world bounds after scale and up */

@@ -243,6 +243,7 @@ uint32_t sb_material(scene_builder *b, float r, float g, float bl, float specula
     sm_vec3_make(r, g, bl, m->diffuse);
     m->specular = specular;
     m->shininess = shininess;
+    m->opacity = 1.0f;
     m->diffuse_map = m->gloss_map = m->normal_map = m->emissive_map = -1;
     return b->s->nmaterials++;
 }

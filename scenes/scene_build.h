@@ -136,5 +136,6 @@ bool scene_build_interior(scene_builder *b, const void *arg);
 bool scene_build_spot_coverage(scene_builder *b, const void *arg);
 bool scene_build_two_spots(scene_builder *b, const void *arg);
 bool scene_build_floating_spot(scene_builder *b, const void *arg);
+bool scene_build_glass(scene_builder *b, const void *arg);
 /* A file scene through assimp (scenes/file_assimp.c); arg: a scene_file_options. */
 bool scene_build_file(scene_builder *b, const void *arg);

@@ -475,3 +475,58 @@ void gl_context_print_info(const gl_context *ctx, FILE *out)
     fprintf(out, "pipeline_statistics_query: %s\n", i->pipeline_statistics ? "yes" : "no");
     fprintf(out, "debug_context: %s\n", i->debug_context ? "yes" : "no");
 }
+
+// >>second framebuffer
+
+bool gl_offscreen_create(gl_context *ctx, int width, int height, gl_offscreen *o, char *err,
+                         size_t errlen)
+{
+    *o = (gl_offscreen){.width = width, .height = height};
+    if (width < 1 || height < 1) {
+        snprintf(err, errlen, "resolution %dx%d is invalid", width, height);
+        return false;
+    }
+    if (!check_size(ctx, width, height, err, errlen))
+        return false;
+    gl.GenRenderbuffers(1, &o->color_rb);
+    gl.BindRenderbuffer(GL_RENDERBUFFER, o->color_rb);
+    gl.RenderbufferStorage(GL_RENDERBUFFER, GL_RGBA8, width, height);
+    label(ctx, GL_RENDERBUFFER, o->color_rb, "shadesweep reference colour (RGBA8)");
+    gl.GenRenderbuffers(1, &o->depth_stencil_rb);
+    gl.BindRenderbuffer(GL_RENDERBUFFER, o->depth_stencil_rb);
+    gl.RenderbufferStorage(GL_RENDERBUFFER, GL_DEPTH24_STENCIL8, width, height);
+    label(ctx, GL_RENDERBUFFER, o->depth_stencil_rb, "shadesweep reference depth-stencil");
+    gl.BindRenderbuffer(GL_RENDERBUFFER, 0);
+    gl.GenFramebuffers(1, &o->fbo);
+    gl.BindFramebuffer(GL_FRAMEBUFFER, o->fbo);
+    label(ctx, GL_FRAMEBUFFER, o->fbo, "shadesweep reference output");
+    gl.FramebufferRenderbuffer(GL_FRAMEBUFFER, GL_COLOR_ATTACHMENT0, GL_RENDERBUFFER,
+                               o->color_rb);
+    gl.FramebufferRenderbuffer(GL_FRAMEBUFFER, GL_DEPTH_STENCIL_ATTACHMENT, GL_RENDERBUFFER,
+                               o->depth_stencil_rb);
+    if (gl_context_poll_errors(ctx, "creating the reference framebuffer") > 0) {
+        snprintf(err, errlen, "GL: creating the %dx%d reference framebuffer raised GL errors",
+                 width, height);
+        return false;
+    }
+    GLenum status = gl.CheckFramebufferStatus(GL_FRAMEBUFFER);
+    if (status != GL_FRAMEBUFFER_COMPLETE) {
+        snprintf(err, errlen, "GL: the %dx%d reference framebuffer is incomplete (%s)", width,
+                 height, framebuffer_status_name(status));
+        return false;
+    }
+    gl.DrawBuffer(GL_COLOR_ATTACHMENT0);
+    gl.ReadBuffer(GL_COLOR_ATTACHMENT0);
+    return true;
+}
+
+void gl_offscreen_destroy(gl_offscreen *o)
+{
+    if (o->fbo)
+        gl.DeleteFramebuffers(1, &o->fbo);
+    if (o->color_rb)
+        gl.DeleteRenderbuffers(1, &o->color_rb);
+    if (o->depth_stencil_rb)
+        gl.DeleteRenderbuffers(1, &o->depth_stencil_rb);
+    *o = (gl_offscreen){0};
+}

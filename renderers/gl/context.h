@@ -54,3 +54,16 @@ int gl_egl_device_count(char *err, size_t errlen);
 
 /* Prints `info` output (one "key: value" per line) for ctx. */
 void gl_context_print_info(const gl_context *ctx, FILE *out);
+
+/* A second off-screen framebuffer like the context's (RGBA8 colour + depth24-stencil8
+ * renderbuffers) at width x height: the supersampled error reference's output
+ * (error.reference.supersample). The size is checked against the limits the context's
+ * own framebuffer is checked against, with the same message; created, it is left bound
+ * as the draw and read framebuffer. gl_offscreen_destroy on a zeroed one is fine. */
+typedef struct gl_offscreen {
+    unsigned fbo, color_rb, depth_stencil_rb;
+    int width, height;
+} gl_offscreen;
+bool gl_offscreen_create(gl_context *ctx, int width, int height, gl_offscreen *out, char *err,
+                         size_t errlen);
+void gl_offscreen_destroy(gl_offscreen *o);

@@ -4,7 +4,9 @@
 // is skipped before any other work (shade_light would give exactly zero there too).
 // Defines: the material's maps (surface.inc); MAX_LIGHTS, the array size, chosen once
 // per run from the run's largest light count (forward_spml.c); or LIGHTS_STORAGE:
-// the lights from a storage buffer; FOG (fog.inc): the sum fogged.
+// the lights from a storage buffer; FOG (fog.inc): the sum fogged; TRANSLUCENT (the
+// translucent pass, renderers/translucent.c): the output premultiplied by the surface's
+// alpha, (c a, a), for blending ONE, ONE_MINUS_SRC_ALPHA over what lies behind.
 #include "bindings.h"
 #include "frame.inc"
 #include "surface.inc"
@@ -48,5 +50,9 @@ void main()
 #ifdef FOG
     c = fog_apply(c, s.position.z);
 #endif
+#ifdef TRANSLUCENT
+    o_color = vec4(c * s.alpha, s.alpha);
+#else
     o_color = vec4(c, 1.0);
+#endif
 }

@@ -4,7 +4,8 @@
 // material has are sampled: renderers compile only the variants a scene uses), and
 // ALPHA_TEST (a MASK material of a file scene: fragments whose diffuse-map alpha is
 // below u_alpha_cutoff are discarded; only that variant has a discard, so opaque
-// materials keep early depth testing).
+// materials keep early depth testing); TRANSLUCENT (a MATERIAL_BLEND material, drawn in
+// the translucent pass): Surface.alpha = u_opacity x the diffuse map's alpha (1 otherwise).
 #include "bindings.h"
 layout(location = 0) in vec3 v_position;
 layout(location = 1) in vec3 v_normal;
@@ -17,6 +18,9 @@ layout(location = 10) uniform float u_shininess;
 layout(location = 11) uniform vec3 u_emissive;
 #ifdef ALPHA_TEST
 layout(location = LOC_ALPHA_CUTOFF) uniform float u_alpha_cutoff;
+#endif
+#ifdef TRANSLUCENT
+layout(location = LOC_OPACITY) uniform float u_opacity;
 #endif
 
 layout(binding = BIND_TEX_DIFFUSE) uniform sampler2D t_diffuse;
@@ -31,6 +35,7 @@ struct Surface {
     float gloss;     // specular intensity x gloss map
     float shininess;
     vec3 emissive;
+    float alpha;     // coverage (TRANSLUCENT), 1 otherwise
 };
 
 // A unit vector from n, or `fallback` where n has no length (degenerate normals
@@ -80,6 +85,13 @@ Surface surface_get()
 #ifdef EMISSIVE_MAP
     vec4 e = texture(t_emissive, v_uv);   // rgb: colour, a: mask
     s.emissive *= e.rgb * e.a;
+#endif
+    s.alpha = 1.0;
+#ifdef TRANSLUCENT
+    s.alpha = clamp(u_opacity, 0.0, 1.0);
+#ifdef DIFFUSE_MAP
+    s.alpha *= texture(t_diffuse, v_uv).a;
+#endif
 #endif
     return s;
 }

@@ -20,7 +20,7 @@ def fail(msg):
 def table(name):
     with open(os.path.join(d, name), newline="") as f:
         return list(csv.DictReader(f))
-plan = {p["run_id"]: p for p in table("plan.csv")}
+plan = {p["run_id"]: p for p in table("plan.csv") if p["shard"] == "1"}  # the whole plan, shard marked
 summ = table("summary.csv")
 if len(summ) != 18 or {s["run_id"] for s in summ} != set(plan):
     fail(f"{len(summ)} summary rows for a plan of {len(plan)} (want 18)")

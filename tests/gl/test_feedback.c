@@ -35,8 +35,8 @@ static gl_context *ctx;
 
 static void assert_contains(const char *haystack, const char *needle)
 {
-    if (!strstr(haystack, needle))
-        fail_msg("expected \"%s\" in:\n%s", needle, haystack);
+    if (!haystack || !strstr(haystack, needle))
+        fail_msg("expected \"%s\" in:\n%s", needle, haystack ? haystack : "(no message)");
 }
 
 static GLuint get_program(gl_program_cache *pc, const gl_program_desc *d)

@@ -631,13 +631,15 @@ static void test_describe(void **state)
     pass_plan p;
     memset(&p, 0, sizeof p);
     f.impl->describe(f.self, &p);
-    assert_int_equal(p.npasses, 5);
-    static const char *const names[] = {"base", "lights", "fog", "sky", "resolve"};
-    for (size_t i = 0; i < 5; i++) {
+    assert_int_equal(p.npasses, 6);
+    static const char *const names[] = {"base", "lights", "fog", "sky", "translucent",
+                                        "resolve"};
+    for (size_t i = 0; i < 6; i++) {
         assert_string_equal(p.pass[i].name, names[i]);
-        assert_true(p.pass[i].run == (i != 2));   /* fog off: skipped */
+        assert_true(p.pass[i].run == (i != 2 && i != 4));   /* fog off, nothing translucent */
         assert_true(p.pass[i].reason[0] != '\0');
     }
+    assert_string_equal(p.pass[4].reason, "skipped: no translucent materials");
     /* 4 material variants x (base + point lights), then the sky and the resolve */
     assert_int_equal(p.nprograms, 10);
     assert_true(has_program(&p, "forward_base"));
@@ -673,7 +675,7 @@ static void test_describe(void **state)
     f = make(SPML, s, true);
     memset(&p, 0, sizeof p);
     f.impl->describe(f.self, &p);
-    assert_int_equal(p.npasses, 4);
+    assert_int_equal(p.npasses, 5);
     assert_string_equal(p.pass[0].name, "shade");
     assert_string_equal(p.pass[1].name, "fog");
     assert_false(p.pass[1].run);

@@ -188,6 +188,56 @@ static void test_shapes_sort_order(void **state)
 /* A hand-made scene of n objects in front of the camera, with keys from a small
  * pseudo-random sequence (many ties): the sort against insertion sort, and the
  * frontend growing past the size it was made for. */
+/* glass (issue 12): the translucent objects are not in `visible`; the visible ones are in
+ * `translucent`, back to front by the view depth of their spheres' centres; none is in
+ * an illumination set (forward-mpml's frontend computes them). */
+static void test_translucent_list(void **state)
+{
+    (void)state;
+    char err[256];
+    light_params lp = {.placement = PLACEMENT_SCENE, .count = {.start = 12, .max = 12}};
+    scene *s = scene_build("glass", &lp, W, H, err, sizeof err);
+    if (!s)
+        fail_msg("%s", err);
+    frontend f;
+    assert_true(frontend_init(&f, s, err, sizeof err));
+    f.no_illumination = false;
+    static const double times[] = {0.0, 7.5, 20.0};
+    for (size_t t = 0; t < sizeof times / sizeof times[0]; t++) {
+        scene_update(s, times[t]);
+        frontend_build(&f, s);
+        assert_int_equal(f.nvisible, 2);   /* the floor and the pillar */
+        for (uint32_t i = 0; i < f.nvisible; i++)
+            assert_false(scene_material_translucent(
+                &s->materials[s->objects[f.visible[i]].material]));
+        assert_int_equal(f.ntranslucent, 28);   /* all in view from the orbit */
+        float prev = INFINITY;
+        for (uint32_t i = 0; i < f.ntranslucent; i++) {
+            const float *c = s->objects[f.translucent[i]].bsphere;
+            sm_vec3 v;
+            sm_mat4_mulv3(s->view, c, 1.0f, v);
+            assert_true(-v[2] <= prev);   /* farthest first */
+            prev = -v[2];
+            assert_true(scene_material_translucent(
+                &s->materials[s->objects[f.translucent[i]].material]));
+        }
+        for (uint32_t j = 0; j < f.illum_start[f.nlights]; j++)
+            assert_true(f.illum[j] < 2);
+    }
+    /* t = 0, camera on +x: the panes (objects 2..5, x = 2.25, 0.75, -0.75, -2.25) come
+     * in the order 5, 4, 3, 2 */
+    scene_update(s, 0.0);
+    frontend_build(&f, s);
+    uint32_t panes[4], n = 0;
+    for (uint32_t i = 0; i < f.ntranslucent; i++)
+        if (f.translucent[i] >= 2 && f.translucent[i] < 6)
+            panes[n++] = f.translucent[i];
+    static const uint32_t want[] = {5, 4, 3, 2};
+    assert_u32_list(panes, n, want, 4, "glass panes, back to front");
+    frontend_free(&f);
+    scene_destroy(s);
+}
+
 static void test_sort_many(void **state)
 {
     (void)state;
@@ -1087,6 +1137,7 @@ int main(void)
     const struct CMUnitTest cpu_tests[] = {
         cmocka_unit_test(test_shapes_sort_order),
         cmocka_unit_test(test_sort_many),
+        cmocka_unit_test(test_translucent_list),
         cmocka_unit_test(test_visible_sets),
         cmocka_unit_test(test_lights_and_illumination),
         cmocka_unit_test(test_eye_inside),

@@ -398,6 +398,7 @@ static void test_kv_canonical(void **state)
         {"error.reference.renderer", ""},
         {"error.reference.gbuffer", "reference"},
         {"error.reference.light_volumes", "stencil"},
+        {"error.reference.supersample", "1"},
         {"error.at", ""},
         {"error.max_rmse", "0"},
         {"error.save_images", "false"},
@@ -458,6 +459,7 @@ static void test_kv_canonical(void **state)
         {"error.reference.renderer", ""},
         {"error.reference.gbuffer", "reference"},
         {"error.reference.light_volumes", "stencil"},
+        {"error.reference.supersample", "1"},
         {"error.at", ""},
         {"error.max_rmse", "0"},
         {"error.save_images", "false"},
@@ -586,6 +588,10 @@ static const bad_case bad_cases[] = {
     {"overflow.yaml", {"5:21: duration.seconds: expected a finite number, found '1e999'"}},
     {"negative_trials.yaml", {"6:9: trials: expected an integer 1..1000, found '-1'"}},
     {"zero_trials.yaml", {"6:9: trials: expected an integer 1..1000, found '0'"}},
+    {"error_supersample_zero.yaml",
+     {"8:52: error.reference.supersample: expected an integer 1..4, found '0'"}},
+    {"error_supersample_five.yaml",
+     {"8:52: error.reference.supersample: expected an integer 1..4, found '5'"}},
     {"negative_light_count.yaml",
      {"7:10: lights.count: expected an integer 0..1000000, all, or {start, step, every, max}, "
       "found '-5'"}},
@@ -595,7 +601,7 @@ static const bad_case bad_cases[] = {
      {"6:13: resolution: expected WxH with each side 1..32768, found '100000x100000'"}},
     {"resolution_malformed.yaml",
      {"6:13: resolution: expected WxH with each side 1..32768, found '640 x 480'"}},
-    {"unknown_scene.yaml", {"3:8: scene: expected one of empty, shapes, curtis-scene1, curtis-scene2, curtis-scene3, canyon, interior, spot-coverage, two-spots-overlap, floating-spot, or {file: PATH, scale, up, camera}, found 'castle'"}},
+    {"unknown_scene.yaml", {"3:8: scene: expected one of empty, shapes, curtis-scene1, curtis-scene2, curtis-scene3, canyon, interior, spot-coverage, two-spots-overlap, floating-spot, glass, or {file: PATH, scale, up, camera}, found 'castle'"}},
     {"unknown_renderer.yaml",
      {"4:19: renderers[1]: expected one of null, deferred, forward-mpml, forward-spml, forward-plus, clustered, "
       "tiled-deferred, "
@@ -647,11 +653,11 @@ static const bad_case bad_cases[] = {
     {"scene_file_missing.yaml",
      {"5:15: scene.file: expected a scene file that loads, found "
       "/nonexistent-shadesweep-test/scene.glb: cannot open: No such file or directory"}},
-    {"missing_required.yaml", {"1:1: scene: expected one of empty, shapes, curtis-scene1, curtis-scene2, curtis-scene3, canyon, interior, spot-coverage, two-spots-overlap, floating-spot, or {file: PATH, scale, up, camera}, found nothing"}},
+    {"missing_required.yaml", {"1:1: scene: expected one of empty, shapes, curtis-scene1, curtis-scene2, curtis-scene3, canyon, interior, spot-coverage, two-spots-overlap, floating-spot, glass, or {file: PATH, scale, up, camera}, found nothing"}},
     {"missing_all.yaml",
      {"1:1: shadesweep: expected 1, found nothing",
       "1:1: name: expected a name of 1..63 characters from a-z, 0-9 and -, found nothing",
-      "1:1: scene: expected one of empty, shapes, curtis-scene1, curtis-scene2, curtis-scene3, canyon, interior, spot-coverage, two-spots-overlap, floating-spot, or {file: PATH, scale, up, camera}, found nothing",
+      "1:1: scene: expected one of empty, shapes, curtis-scene1, curtis-scene2, curtis-scene3, canyon, interior, spot-coverage, two-spots-overlap, floating-spot, glass, or {file: PATH, scale, up, camera}, found nothing",
       "1:1: renderers: expected a non-empty sequence of renderer names, found nothing",
       "1:1: duration: expected {seconds: S} or {frames: N}, found nothing"}},
     {"bad_name.yaml",
@@ -700,7 +706,7 @@ static const bad_case bad_cases[] = {
       "9:3: sweep.trials: expected a key used once, found a second 'trials' (first at 8:3)"}},
     {"several_errors.yaml",
      {"1:1: duration: expected {seconds: S} or {frames: N}, found nothing",
-      "3:8: scene: expected one of empty, shapes, curtis-scene1, curtis-scene2, curtis-scene3, canyon, interior, spot-coverage, two-spots-overlap, floating-spot, or {file: PATH, scale, up, camera}, found 'castle'",
+      "3:8: scene: expected one of empty, shapes, curtis-scene1, curtis-scene2, curtis-scene3, canyon, interior, spot-coverage, two-spots-overlap, floating-spot, glass, or {file: PATH, scale, up, camera}, found 'castle'",
       "5:13: resolution: expected WxH with each side 1..32768, found '640x'",
       "6:9: trials: expected an integer 1..1000, found '0'",
       "7:1: durtion: expected one of shadesweep, name, description, scene, renderers, "

@@ -338,6 +338,47 @@ static void test_floating_spot_lights_nothing(void **state)
     scene_destroy(s);
 }
 
+/* glass (scene_glass.c): a floor and a pillar (opaque), 4 panes and 24 particles
+ * (translucent, MATERIAL_BLEND, opacity in (0, 1)), 12 authored point lights; the
+ * panes are of four different colours and, from the camera at t = 0 (on +x), each
+ * overlaps the next on screen (their z ranges overlap, their x differ) and none
+ * intersects another (boxes apart in x). */
+static void test_glass(void **state)
+{
+    (void)state;
+    scene *s = build("glass", PLACEMENT_SCENE, 12, 320, 240);
+    assert_int_equal(s->nobjects, 30);
+    assert_int_equal(s->nlights_total, 12);
+    uint32_t opaque = 0, translucent = 0;
+    for (uint32_t i = 0; i < s->nobjects; i++) {
+        const scene_material *m = &s->materials[s->objects[i].material];
+        if (scene_material_translucent(m)) {
+            translucent++;
+            assert_true(m->opacity > 0.0f && m->opacity < 1.0f);
+        } else {
+            opaque++;
+            assert_int_equal(m->alpha, MATERIAL_OPAQUE);
+        }
+    }
+    assert_int_equal(opaque, 2);
+    assert_int_equal(translucent, 28);
+    for (uint32_t i = 0; i < s->nlights_total; i++)
+        assert_int_equal(s->lights[i].type, LIGHT_POINT);
+    for (uint32_t i = 2; i < 6; i++) {   /* the panes */
+        const scene_object *p = &s->objects[i];
+        assert_true(p->mesh == s->objects[2].mesh);
+        for (uint32_t j = i + 1; j < 6; j++) {
+            const scene_object *q = &s->objects[j];
+            const float *a = s->materials[p->material].diffuse, *b = s->materials[q->material].diffuse;
+            assert_false(a[0] == b[0] && a[1] == b[1] && a[2] == b[2]);
+            assert_true(fabsf(p->position[0] - q->position[0]) >= 1.5f);   /* 0.1 thick */
+        }
+        if (i < 5)   /* 4 wide, 1.8 apart in z: they overlap by 2.2 */
+            assert_true(fabsf(p->position[2] - s->objects[i + 1].position[2]) < 4.0f);
+    }
+    scene_destroy(s);
+}
+
 int main(void)
 {
     const struct CMUnitTest tests[] = {
@@ -347,6 +388,7 @@ int main(void)
         cmocka_unit_test(test_curtis_scenes),
         cmocka_unit_test(test_curtis2_occlusion),
         cmocka_unit_test(test_floating_spot_lights_nothing),
+        cmocka_unit_test(test_glass),
     };
     return cmocka_run_group_tests(tests, NULL, NULL);
 }

@@ -526,7 +526,7 @@ static void test_obj_with_mtl(void **state)
         fail_msg("%s", err);
     assert_true(info.triangles == 4);   /* two quads, triangulated */
     assert_int_equal(info.files, 2);
-    assert_int_equal(info.materials_blend, 1);   /* d 0.5: translucent, drawn opaque */
+    assert_int_equal(info.materials_blend, 1);   /* d 0.5: translucent */
     assert_int_equal(info.materials_mask, 0);
     light_params lp = {.placement = PLACEMENT_GRID, .seed = 1, .rng = RNG_PCG32,
                        .count = {.start = 4, .max = 4}, .radius = 0.1f, .color_max = 1.0f};
@@ -544,7 +544,9 @@ static void test_obj_with_mtl(void **state)
         } else if (m->diffuse[2] == 0.8f) {
             blue = true;
             assert_true(m->specular == 0.0f);
-            assert_int_equal(m->alpha, MATERIAL_BLEND);
+            assert_int_equal(m->alpha, MATERIAL_BLEND);   /* the translucent pass's */
+            assert_true(fabsf(m->opacity - 0.5f) < 1e-6f);  /* d */
+            assert_true(scene_material_translucent(m));
         }
     }
     assert_true(red && blue);

@@ -1,0 +1,72 @@
+#pragma once
+/* The translucent pass every drawing renderer ends its frame with (before resolve):
+ * the frontend's `translucent` objects (MATERIAL_BLEND materials, back to front by
+ * the view depth of their bounding sphere's centre), drawn over the opaque image and
+ * its depth buffer, after the sky (which would otherwise overwrite them: it fills
+ * every pixel still at depth 1) and after deferred's fog pass.
+ *
+ *   program   forward_spml.frag (mesh.vert) with LIGHTS_STORAGE and TRANSLUCENT, one
+ *             per material map variant the translucent objects have, plus SHADOWS
+ *             when the run's shadows pass runs and FOG when fog is on: the same
+ *             surface, lighting and fog code as every forward pass, every visible
+ *             light of the frame (the frontend's `lights`, in its order) in one pass,
+ *             so forward-mpml's additive per-light passes never meet blending (an
+ *             object is lit fully before it is blended once)
+ *   lights    the frame's visible lights from a storage buffer of the pass's own: the
+ *             tiled and clustered renderers do not use their tile lists here (those
+ *             are bounded by the opaque depth, which a pane in front of it is not):
+ *             the list is every light whose volume meets the frustum, a conservative
+ *             list for every tile (van Oosten's lists without the tile's depth bound,
+ *             taken to the whole screen)
+ *   state     blend premultiplied: RGB ONE, ONE_MINUS_SRC_ALPHA (the shader writes
+ *             (c a, a)); alpha ZERO, ONE (the HDR target's alpha stays 1); depth test
+ *             LESS, no depth writes; back faces culled (one layer per closed mesh)
+ *   draws     one per translucent object visible (frontend.ntranslucent); its
+ *             samples and fragments are the pass's like any other pass's
+ *
+ * A scene with no MATERIAL_BLEND object skips the pass: no program, no buffer, and the
+ * plan's entry says "skipped: no translucent materials". */
+#include <stdbool.h>
+#include <stddef.h>
+#include <stdint.h>
+
+#include "renderers/base.h"
+#include "renderers/frontend.h"
+#include "renderers/scene_gpu.h"
+#include "renderers/shading.h"
+#include "renderers/shadow.h"
+#include "scenes/scene.h"
+
+enum { TRANSLUCENT_VARIANTS = 16 };   /* the four map bits (no alpha test) */
+
+typedef struct translucent_pass {
+    bool run;                        /* the scene has translucent objects */
+    uint32_t nobjects;               /* the scene's translucent objects */
+    unsigned variants;               /* bit v: some translucent object is of variant v */
+    GLuint program[TRANSLUCENT_VARIANTS];
+    GLuint lights;                   /* storage buffer: the frame's visible lights */
+    gpu_light *staging;
+    uint32_t capacity;               /* lights the buffer holds (the run's lights) */
+    int count;                       /* lights uploaded this frame */
+    uint64_t frame, program_frame[TRANSLUCENT_VARIANTS];
+    uint64_t last_draws;             /* the last frame's draws (for tests) */
+} translucent_pass;
+
+/* The material map variant (bits: diffuse 1, gloss 2, normal 4, emissive 8). */
+unsigned translucent_variant(const scene_material *m);
+
+/* Plans the pass for s and, when it runs, compiles its programs into b's cache (with
+ * SHADOWS when sm runs, FOG when b's fog is on) and makes the light buffer. A second
+ * call releases what the first made. False with a message. */
+bool translucent_prepare(translucent_pass *t, renderer_base *b, const scene *s,
+                         const shadow_maps *sm, char *err, size_t errlen);
+void translucent_release(translucent_pass *t);   /* a zeroed pass is fine */
+
+/* The "translucent" pass (when t->run) into framebuffer fbo (the HDR target and the
+ * opaque depth, nothing else attached); returns its draws (0 when skipped). */
+uint64_t translucent_draw(translucent_pass *t, renderer_base *b, scene_gpu *gpu,
+                          const frontend *fe, const scene *s, const shadow_maps *sm, GLuint fbo,
+                          frame_stats *out);
+
+/* The plan entry's reason (run or skipped) into buf. */
+void translucent_reason(const translucent_pass *t, bool prepared, char *buf, size_t len);
