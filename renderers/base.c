@@ -38,6 +38,11 @@ bool renderer_base_init(renderer_base *b, const char *name, const renderer_optio
         gl.GetIntegerv(GL_MAX_DEPTH_TEXTURE_SAMPLES, &md);
         if (!renderer_base_msaa_check(name, opts->msaa, (int)ms, (int)mc, (int)md, err, errlen))
             return false;
+        if (opts->aa == AA_EDGE) {   /* edge_aa reads single-sampled depth and normals */
+            snprintf(err, errlen, "%s: aa: edge with msaa %d: not supported together (msaa: 1 "
+                     "or aa: none)", name, opts->msaa);
+            return false;
+        }
     }
     b->max_passes = max_passes < RENDERER_BASE_MAX_PASSES ? max_passes
                                                            : RENDERER_BASE_MAX_PASSES;
@@ -236,13 +241,21 @@ void renderer_base_release_targets(renderer_base *b)
     gl_framebuffer_destroy(&b->msaa_read);
     gl_framebuffer_destroy(&b->msaa_draw);
     gl_target_destroy(&b->hdr_resolved);
+    edge_aa_release(&b->aa);
     gl_target_destroy(&b->hdr);
     gl_target_destroy(&b->depth);
 }
 
+const gl_target *renderer_base_display(const renderer_base *b)
+{
+    if (b->aa.run)
+        return &b->aa.out;
+    return b->samples > 1 ? &b->hdr_resolved : &b->hdr;
+}
+
 bool renderer_base_read_hdr(const renderer_base *b, float *rgba, int width, int height)
 {
-    const gl_target *t = b->samples > 1 ? &b->hdr_resolved : &b->hdr;
+    const gl_target *t = renderer_base_display(b);
     if (!t->texture || width != t->width || height != t->height)
         return false;
     gl_texture_read_float(t->texture, width, height, rgba);
@@ -263,10 +276,7 @@ void renderer_base_msaa_resolve_pass(renderer_base *b, frame_stats *out)
     renderer_base_pass_end(b, out);
 }
 
-GLuint renderer_base_display_texture(const renderer_base *b)
-{
-    return b->samples > 1 ? b->hdr_resolved.texture : b->hdr.texture;
-}
+
 
 bool renderer_base_fog(const renderer_base *b)
 {

@@ -37,8 +37,9 @@
  * renderer_base_msaa_resolve_pass, after the renderer's last shading pass and before
  * the display resolve, is the pass "msaa-resolve": a blit of hdr into hdr_resolved,
  * i.e. the samples averaged in linear HDR (before the clamp to the display, so a bright
- * sample is not clipped before it is averaged). renderer_base_display_texture (what
- * scene_gpu_resolve reads) and renderer_base_read_hdr use hdr_resolved. At msaa 1
+ * sample is not clipped before it is averaged). renderer_base_display (what
+ * scene_gpu_resolve reads) and renderer_base_read_hdr use hdr_resolved; aa: edge is
+ * refused with msaa > 1 (edge_aa reads single-sampled targets). At msaa 1
  * none of this exists: no pass, no target, the same programs and images as before.
  *
  * Fog (seed 000 4.5.12, opts.fog_*): renderer_base_fog says whether it is on; each
@@ -47,6 +48,7 @@
 #include <stdbool.h>
 #include <stddef.h>
 
+#include "renderers/edge_aa.h"
 #include "renderers/gl/loader.h"
 #include "renderers/gl/program.h"
 #include "renderers/gl/query.h"
@@ -93,6 +95,7 @@ typedef struct renderer_base {
                                         may be more: llvmpipe gives 4 for 2) */
     gl_target hdr_resolved;          /* samples > 1: hdr averaged (msaa-resolve) */
     gl_framebuffer msaa_read, msaa_draw;   /* samples > 1: the blit's hdr -> hdr_resolved */
+    edge_aa aa;                      /* aa: edge (edge_aa.h): its pass, target, program */
     /* >>the last frame, for tests */
     size_t npasses;
     gls_counts pass_counts[RENDERER_BASE_MAX_PASSES];
@@ -143,16 +146,18 @@ bool renderer_base_hdr_target(const renderer_base *b, gl_target *t, const char *
  * renderer_base_destroy calls too) undoes it, as often as wanted. */
 bool renderer_base_targets(renderer_base *b, const char *hdr_name, char *err, size_t errlen);
 void renderer_base_release_targets(renderer_base *b);
-/* renderer_impl.read_hdr of every renderer: the hdr target of the last frame as RGBA
- * floats, row 0 at the bottom; false when there is none or it is not width x height. */
+/* The HDR image the resolve clamps into the output and read_hdr reads: with aa: edge
+ * the edge pass's "hdr.aa", with msaa > 1 "hdr.resolved", else hdr. */
+const gl_target *renderer_base_display(const renderer_base *b);
+/* renderer_impl.read_hdr of every renderer: renderer_base_display's target of the last
+ * frame as RGBA floats, row 0 at the bottom; false when there is none or it is not
+ * width x height. */
 bool renderer_base_read_hdr(const renderer_base *b, float *rgba, int width, int height);
 /* samples > 1: the pass "msaa-resolve" (a blit of hdr into hdr_resolved, in the HDR
  * format); nothing at all when single-sampled. After the last pass that shades into hdr,
  * before the display resolve. */
 void renderer_base_msaa_resolve_pass(renderer_base *b, frame_stats *out);
-/* The single-sampled HDR texture the display resolve reads: hdr_resolved when
- * multisampled, hdr otherwise. */
-GLuint renderer_base_display_texture(const renderer_base *b);
+
 /* Fog is on: opts.fog_density > 0. */
 bool renderer_base_fog(const renderer_base *b);
 /* The run's fog (colour, density) into a FOG program's u_fog (LOC_FOG), with direct state

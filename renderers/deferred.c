@@ -54,7 +54,9 @@
  *                single-pass program with every visible light and blended over the light
  *                target, testing (not writing) the G-buffer pass's depth
  *                (renderers/translucent.h); one draw each. Skipped, no program, otherwise
- *   resolve      scene_gpu_resolve: the light target clamped into the output
+ *   edge-aa      (aa: edge; renderers/edge_aa.h) seed 001 19.5.2's edge blur of the light
+ *                target into "hdr.aa", its normals from the G-buffer (gbuffer.inc)
+ *   resolve      scene_gpu_resolve: the light target (or "hdr.aa") clamped into the output
  *
  * MSAA (msaa > 1; docs/architecture.md): every G-buffer attachment, the light targets and
  * depth are multisampled. After the G-buffer pass, `edges` (edge_mark.frag, full screen,
@@ -95,14 +97,14 @@
  * them, 0 when the shadows pass does not run):
  *
  *   fullscreen, scissor, volume, hull:
- *                      Sh + V + 1 + D + P + S            + [compose] + [fog] + [sky] + 1
- *   stencil:           Sh + V + 1 + D + 2 (P + S)        + [compose] + [fog] + [sky] + 1
- *   stencil-two-pass:  Sh + V + 1 + D + 3 (P + S)        + [compose] + [fog] + [sky] + 1
+ *                      Sh + V + 1 + D + P + S            + [compose] + [fog] + [sky] + [aa] + 1
+ *   stencil:           Sh + V + 1 + D + 2 (P + S)        + [compose] + [fog] + [sky] + [aa] + 1
+ *   stencil-two-pass:  Sh + V + 1 + D + 3 (P + S)        + [compose] + [fog] + [sky] + [aa] + 1
  *
  * (shadows Sh, gbuffer V, ambient 1, directional D, point/spot 1 per light (shade), 2
- * (mark + shade) or 3 (front mark + back mark + shade), compose 1, fog 1, sky 1, resolve 1;
- * clears are not draws; V counts opaque objects, and the translucent pass adds one draw
- * per visible translucent object.) Without Sh they do not depend on where the camera is; the
+ * (mark + shade) or 3 (front mark + back mark + shade), compose 1, fog 1, sky 1, edge-aa 1,
+ * resolve 1; clears are not draws; V counts opaque objects, and the translucent pass adds
+ * one draw per visible translucent object.) Without Sh they do not depend on where the camera is; the
  * shadow-casting sets do (frontend.h).
  *
  * Camera inside a volume, near and far planes. The volume passes run with GL_DEPTH_CLAMP
@@ -187,7 +189,7 @@ _Static_assert(sizeof(gpu_light) == 80, "gpu_light is 5 vec4s, as lighting.inc's
 enum {
     DEFERRED_MAX_PASSES = 14,          /* shadows gbuffer [edges] ambient directional point
                                          spot compose fog sky translucent [msaa-resolve]
-                                         resolve */
+                                         edge-aa resolve */
     DEFERRED_VARIANTS = 32,           /* material map bits and the alpha test */
     DEFERRED_LIGHT_TYPES = 3,
 };
@@ -688,6 +690,17 @@ static bool compile_fog(deferred_renderer *r, char *err, size_t errlen)
     return true;
 }
 
+/* aa: edge (edge_aa.h), its normals from this G-buffer (the layout's defines). */
+static bool prepare_edge_aa(deferred_renderer *r, char *err, size_t errlen)
+{
+    deferred_layout_defs ld;
+    deferred_layout_defines(&r->layout, &ld);
+    const char *defs[DEFERRED_MAX_LAYOUT_DEFS];
+    for (int i = 0; i < ld.n; i++)
+        defs[i] = ld.text[i];
+    return edge_aa_prepare(&r->b, defs, ld.n, err, errlen);
+}
+
 static GLuint make_buffer(size_t bytes)
 {
     GLuint b = 0;
@@ -890,7 +903,8 @@ static bool deferred_prepare(void *self, const scene *s, char *err, size_t errle
     if (!make_targets(r, err, errlen) ||
         !shadow_maps_create(&r->shadows, r->b.programs, "deferred", err, errlen) ||
         !compile_programs(r, err, errlen) || !compile_fog(r, err, errlen) ||
-        !translucent_prepare(&r->translucent, &r->b, s, &r->shadows, err, errlen))
+        !translucent_prepare(&r->translucent, &r->b, s, &r->shadows, err, errlen) ||
+        !prepare_edge_aa(r, err, errlen))
         goto fail;
     translucent_reason(&r->translucent, true, why, sizeof why);
     plan(r, PASS_TRANSLUCENT, r->translucent.run, "%s", why);
@@ -1490,12 +1504,20 @@ sky:
 
     /* >>resolve: msaa > 1, the samples averaged first (renderers/base.h) */
     renderer_base_msaa_resolve_pass(&r->b, out);
+
+    /* >>edge-aa (aa: edge), its normals from the G-buffer */
+    GLuint gb[DEFERRED_MAX_ATTACHMENTS];
+    for (int i = 0; i < r->layout.nattachments; i++)
+        gb[i] = r->gbuf[i].texture;
+    edge_aa_pass(&r->b, out, gb, r->layout.nattachments);
+
+    /* >>resolve */
     pass_begin(r, out, PASS_RESOLVE);
     gl_state_blend(st, NULL);
     gl_state_stencil(st, NULL);
     gl_state_depth(st, NULL);
     gl_state_cull(st, GLS_CULL_NONE);
-    scene_gpu_resolve(r->gpu, st, renderer_base_display_texture(&r->b), r->b.output_fbo,
+    scene_gpu_resolve(r->gpu, st, renderer_base_display(&r->b)->texture, r->b.output_fbo,
                       r->b.width, r->b.height);
     pass_end(r, out);
 }
@@ -1552,6 +1574,10 @@ static void deferred_describe(const void *self, pass_plan *out)
             continue;   /* deferred's plan is what it always was */
         if ((p == PASS_EDGES || p == PASS_MSAA) && r->b.samples <= 1)
             continue;   /* single-sampled: the plan is what it always was */
+        if (p == PASS_RESOLVE)
+            edge_aa_describe_pass(&r->b, out);   /* run or skipped, before the resolve */
+        if (out->npasses >= RENDERER_MAX_PASSES)
+            break;
         pass_plan_entry *e = &out->pass[out->npasses++];
         snprintf(e->name, sizeof e->name, "%s", pass_names[p]);
         e->run = r->run[p];
@@ -1568,6 +1594,7 @@ static void deferred_describe(const void *self, pass_plan *out)
     describe_target(&r->b.depth, out);
     describe_target(&r->depth_sampled, out);
     describe_target(&r->b.hdr_resolved, out);
+    edge_aa_describe_target(&r->b, out);
     shadow_maps_describe(&r->shadows, out);
 }
 

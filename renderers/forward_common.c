@@ -114,7 +114,8 @@ bool forward_common_prepare(forward_common *fc, const scene *s, char *err, size_
         snprintf(err, errlen, "%s: %s", fc->b.name, why);
         goto fail;
     }
-    if (!shadow_maps_create(&fc->shadows, fc->b.programs, fc->b.name, err, errlen))
+    if (!shadow_maps_create(&fc->shadows, fc->b.programs, fc->b.name, err, errlen) ||
+        !edge_aa_prepare(&fc->b, NULL, 0, err, errlen))   /* normals from depth */
         goto fail;
     if (!translucent_prepare(&fc->translucent, &fc->b, s, &fc->shadows, err, errlen))
         goto fail;
@@ -256,7 +257,7 @@ void forward_resolve_pass(forward_common *fc, frame_stats *out)
 {
     renderer_base_msaa_resolve_pass(&fc->b, out);   /* msaa > 1 only */
     forward_pass_begin(fc, out, "resolve");
-    scene_gpu_resolve(fc->gpu, fc->b.st, renderer_base_display_texture(&fc->b),
+    scene_gpu_resolve(fc->gpu, fc->b.st, renderer_base_display(&fc->b)->texture,
                       fc->b.output_fbo, fc->b.width, fc->b.height);
     forward_pass_end(fc, out);
 }
@@ -294,6 +295,7 @@ void forward_describe_resources(const forward_common *fc, pass_plan *out)
         gl_target_describe(targets[i], &out->target[out->ntargets++]);
         out->target_bytes += targets[i]->bytes;
     }
+    edge_aa_describe_target(&fc->b, out);
     shadow_maps_describe(&fc->shadows, out);
     out->gbuffer_bytes = 0;
 }
@@ -349,10 +351,11 @@ void forward_end_frame(forward_common *fc, frame_stats *out, uint64_t light_draw
         forward_sky_pass(fc, out);
     uint64_t translucent_draws = translucent_draw(&fc->translucent, &fc->b, fc->gpu, &fc->fe,
                                                   fc->frame_scene, &fc->shadows, fc->fb.fbo, out);
+    edge_aa_pass(&fc->b, out, NULL, 0);   /* aa: edge */
     forward_resolve_pass(fc, out);
     uint64_t shadow_draws = fc->shadows.run ? fc->fe.shadow_start[fc->fe.nlights] : 0u;
     uint64_t expected = shadow_draws + (uint64_t)fc->fe.nvisible + light_draws +
-                        (fc->sky ? 1u : 0u) + translucent_draws + 1u;
+                        (fc->sky ? 1u : 0u) + translucent_draws + (fc->b.aa.run ? 1u : 0u) + 1u;
     assert(translucent_draws == (fc->translucent.run ? fc->fe.ntranslucent : 0u));
     uint64_t draws = 0;
     for (size_t i = 0; i < out->npasses; i++)
@@ -381,6 +384,7 @@ void forward_describe_tail(const forward_common *fc, pass_plan *out)
         forward_describe_pass(out, "msaa-resolve", true,
                               "the %d samples of the HDR target averaged (a blit, linear HDR)",
                               fc->b.samples);
+    edge_aa_describe_pass(&fc->b, out);
     forward_describe_pass(out, "resolve", true,
                           "the HDR target clamped into the output framebuffer");
     forward_describe_resources(fc, out);

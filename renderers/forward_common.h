@@ -16,6 +16,8 @@
  *     forward_sky_pass        when the scene has a sky: one draw into untouched depth
  *     translucent             when the scene has translucent objects (translucent.h):
  *                             one blended draw per visible one, back to front
+ *     edge_aa_pass            with aa: edge, "edge-aa" (edge_aa.h): one draw into "hdr.aa",
+ *                             which the resolve then reads
  *     forward_resolve_pass    hdr clamped into the output framebuffer: one draw
  *
  * Objects are drawn back faces culled (every scene mesh is closed or a shell seen
@@ -55,9 +57,9 @@
 enum {
     FORWARD_VARIANTS = 32,           /* 4 map bits and the alpha test */
     FORWARD_LIGHT_TYPES = 3,         /* LIGHT_POINT, LIGHT_SPOT, LIGHT_DIRECTIONAL */
-    FORWARD_MAX_PASSES = 8,          /* shadows base lights sky translucent [msaa-resolve]
-                                        resolve; forward-plus: shadows depth cull shade sky
-                                        translucent [msaa-resolve] resolve */
+    FORWARD_MAX_PASSES = 9,          /* shadows base lights sky translucent [msaa-resolve]
+                                        edge-aa resolve; forward-plus: shadows depth cull
+                                        shade sky translucent [msaa-resolve] edge-aa resolve */
     FORWARD_UNIFORM_LIGHT = LOC_RENDERER,   /* uniform location, see above */
     FORWARD_LIGHTS_BINDING = BIND_UBO_LIGHTS,   /* uniform block of forward-spml's lights */
 };
@@ -151,11 +153,11 @@ void forward_draw_objects(forward_common *fc, const scene *s, const uint32_t *ob
 void forward_sky_pass(forward_common *fc, frame_stats *out);
 void forward_resolve_pass(forward_common *fc, frame_stats *out);
 /* The end of every forward frame: the sky (when the scene has one), the translucent
- * pass (when the scene has translucent objects) and the resolve; then the frame's
- * draws must equal the formula: the shadows pass's (the sum of the shadow-casting
- * sets, fe.shadow_start[fe.nlights], when it runs), one per visible opaque object in
- * the first pass, `light_draws` more, the sky, one per visible translucent object and
- * the resolve (asserted in debug builds). */
+ * pass (when the scene has translucent objects), the edge-aa pass (aa: edge) and the
+ * resolve; then the frame's draws must equal the formula: the shadows pass's (the sum of
+ * the shadow-casting sets, fe.shadow_start[fe.nlights], when it runs), one per visible
+ * opaque object in the first pass, `light_draws` more, the sky, one per visible
+ * translucent object, the edge-aa pass and the resolve (asserted in debug builds). */
 void forward_end_frame(forward_common *fc, frame_stats *out, uint64_t light_draws);
 
 /* Fills GPU times and fragment counts after the frame's sync point (NAN without queries). */

@@ -141,6 +141,12 @@ typedef enum hdr_format {
     HDR_RGBA32F,                   /* 32-bit floats: no rounding of additive passes to 11 bits */
 } hdr_format;
 
+/* Anti-aliasing after the lighting (the manifest's `aa`): every renderer that draws. */
+typedef enum aa_mode {
+    AA_NONE = 0,                   /* the default: no pass */
+    AA_EDGE,                       /* seed 001 19.5.2's edge-detect blur (renderers/edge_aa.h) */
+} aa_mode;
+
 typedef struct renderer_options {
     int width, height;
     bool queries;              /* use timer / pipeline-statistics queries where the context has them */
@@ -179,6 +185,8 @@ typedef struct renderer_options {
     hdr_format hdr;
     float fog_density;
     float fog_color[3];
+    /* every renderer that draws: anti-aliasing (aa), a post pass on the HDR image */
+    aa_mode aa;
     /* every renderer that draws (msaa): samples per pixel of its HDR and depth targets;
      * 0 or 1: single-sampled (renderers/base.h) */
     int msaa;

@@ -631,12 +631,13 @@ static void test_describe(void **state)
     pass_plan p;
     memset(&p, 0, sizeof p);
     f.impl->describe(f.self, &p);
-    assert_int_equal(p.npasses, 6);
+    assert_int_equal(p.npasses, 7);
     static const char *const names[] = {"base", "lights", "fog", "sky", "translucent",
-                                        "resolve"};
-    for (size_t i = 0; i < 6; i++) {
+                                        "edge-aa", "resolve"};
+    for (size_t i = 0; i < 7; i++) {
         assert_string_equal(p.pass[i].name, names[i]);
-        assert_true(p.pass[i].run == (i != 2 && i != 4));   /* fog off, nothing translucent */
+        /* fog off, nothing translucent, aa: none: skipped */
+        assert_true(p.pass[i].run == (i != 2 && i != 4 && i != 5));
         assert_true(p.pass[i].reason[0] != '\0');
     }
     assert_string_equal(p.pass[4].reason, "skipped: no translucent materials");
@@ -675,7 +676,7 @@ static void test_describe(void **state)
     f = make(SPML, s, true);
     memset(&p, 0, sizeof p);
     f.impl->describe(f.self, &p);
-    assert_int_equal(p.npasses, 5);
+    assert_int_equal(p.npasses, 6);   /* shade fog sky translucent edge-aa resolve */
     assert_string_equal(p.pass[0].name, "shade");
     assert_string_equal(p.pass[1].name, "fog");
     assert_false(p.pass[1].run);

@@ -1,0 +1,105 @@
+/* Edge-detect anti-aliasing, seed 001 19.5.2 (edge_aa.h). */
+#include "renderers/edge_aa.h"
+
+#include <stdio.h>
+#include <string.h>
+
+#include "renderers/base.h"
+#include "renderers/bindings.h"
+#include "renderers/gl/program.h"
+#include "renderers/gl/state.h"
+
+void edge_aa_release(edge_aa *e)
+{
+    gl_framebuffer_destroy(&e->fb);
+    gl_target_destroy(&e->out);
+    e->program = 0;   /* the base's cache owns it */
+    e->run = false;
+}
+
+bool edge_aa_prepare(renderer_base *b, const char *const *gbuffer_defines, int n, char *err,
+                     size_t errlen)
+{
+    edge_aa *e = &b->aa;
+    edge_aa_release(e);
+    e->gbuffer_normals = false;
+    if (b->opts.aa != AA_EDGE)
+        return true;
+    if (n < 0 || n + 2 >= GLP_MAX_DEFINES) {
+        snprintf(err, errlen, "bug: %s: %d G-buffer defines for edge_aa", b->name, n);
+        return false;
+    }
+    gl_program_desc d = {.name = "edge_aa", .vertex = "fullscreen.vert",
+                         .fragment = "edge_aa.frag"};
+    int k = 0;
+    if (gl_state_fullscreen_unclipped_fits(b->st, b->width, b->height))
+        d.defines[k++] = "FULLSCREEN_UNCLIPPED";
+    if (gbuffer_defines) {
+        d.defines[k++] = "EDGE_NORMALS_GBUFFER";
+        for (int i = 0; i < n; i++)
+            d.defines[k++] = gbuffer_defines[i];
+        e->gbuffer_normals = true;
+    }
+    char why[4096] = "";
+    if (!renderer_base_hdr_target(b, &e->out, "hdr.aa", why, sizeof why) ||
+        !gl_framebuffer_create(&e->fb, &(gl_framebuffer_desc){.name = "edge-aa",
+                                                              .color = {&e->out}},
+                               why, sizeof why) ||
+        gl_program_get(b->programs, &d, &e->program, why, sizeof why) != GLP_OK) {
+        snprintf(err, errlen, "%s: aa: edge: %s", b->name, why);
+        edge_aa_release(e);
+        return false;
+    }
+    e->run = true;
+    return true;
+}
+
+void edge_aa_pass(renderer_base *b, frame_stats *out, const GLuint *gbuffer, int n)
+{
+    edge_aa *e = &b->aa;
+    if (!e->run)
+        return;
+    gl_state *st = b->st;
+    renderer_base_pass_begin(b, out, "edge-aa");
+    /* its own target alone: nothing it samples is attached */
+    gl_state_framebuffer(st, e->fb.fbo);
+    gl_state_blend(st, NULL);
+    gl_state_depth(st, NULL);
+    gl_state_stencil(st, NULL);
+    gl_state_cull(st, GLS_CULL_NONE);
+    gl_state_color_mask(st, GLS_COLOR_MASK_RGBA);
+    gl_state_program(st, e->program);
+    gl_state_texture(st, BIND_TEX_HDR, b->hdr.texture);
+    gl_state_texture(st, BIND_TEX_DEPTH, b->depth.texture);
+    for (int k = 0; e->gbuffer_normals && gbuffer && k < n && k < EDGE_AA_MAX_GBUFFER; k++)
+        gl_state_texture(st, BIND_TEX_GBUFFER0 + (unsigned)k, gbuffer[k]);
+    gl_state_draw_fullscreen(st, b->width, b->height,
+                             gl_state_fullscreen_unclipped_fits(st, b->width, b->height));
+    /* the depth target is drawn into again next frame: not left bound for sampling */
+    gl_state_texture(st, BIND_TEX_DEPTH, 0);
+    renderer_base_pass_end(b, out);
+}
+
+void edge_aa_describe_pass(const renderer_base *b, pass_plan *out)
+{
+    if (out->npasses >= RENDERER_MAX_PASSES)
+        return;
+    pass_plan_entry *p = &out->pass[out->npasses++];
+    snprintf(p->name, sizeof p->name, "edge-aa");
+    p->run = b->aa.run;
+    if (!b->aa.run)
+        snprintf(p->reason, sizeof p->reason, "skipped, aa: none");
+    else
+        snprintf(p->reason, sizeof p->reason,
+                 "seed 001 19.5.2: depth-gradient ratio and %s normals, edges blended",
+                 b->aa.gbuffer_normals ? "G-buffer" : "depth-rebuilt");
+}
+
+void edge_aa_describe_target(const renderer_base *b, pass_plan *out)
+{
+    const gl_target *t = &b->aa.out;
+    if (!t->texture || out->ntargets >= sizeof out->target / sizeof out->target[0])
+        return;
+    gl_target_describe(t, &out->target[out->ntargets++]);
+    out->target_bytes += t->bytes;
+}
