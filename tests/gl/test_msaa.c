@@ -177,6 +177,15 @@ static void test_refusal_on_the_context(void **state)
         if (over <= 8 && strcmp(kinds[k], "forward-spml") == 0)
             assert_non_null(strstr(err, "GL_MAX_SAMPLES"));
     }
+    /* aa: edge reads single-sampled targets: refused with msaa > 1 */
+    if (limit >= 4) {
+        renderer_options o = options(4);
+        o.aa = AA_EDGE;
+        renderer *r = renderer_create("forward-spml", &o, err, sizeof err);
+        assert_null(r);
+        assert_string_equal(err, "forward-spml: aa: edge with msaa 4: not supported together "
+                                 "(msaa: 1 or aa: none)");
+    }
     gl_context_poll_errors(ctx, "refusal");
     assert_int_equal(gl_context_error_count(ctx), 0);
 }
