@@ -38,6 +38,11 @@ bool renderer_base_init(renderer_base *b, const char *name, const renderer_optio
         gl.GetIntegerv(GL_MAX_DEPTH_TEXTURE_SAMPLES, &md);
         if (!renderer_base_msaa_check(name, opts->msaa, (int)ms, (int)mc, (int)md, err, errlen))
             return false;
+        if (opts->aa == AA_EDGE) {   /* edge_aa reads single-sampled depth and normals */
+            snprintf(err, errlen, "%s: aa: edge with msaa %d: not supported together (msaa: 1 "
+                     "or aa: none)", name, opts->msaa);
+            return false;
+        }
     }
     b->max_passes = max_passes < RENDERER_BASE_MAX_PASSES ? max_passes
                                                            : RENDERER_BASE_MAX_PASSES;
@@ -92,6 +97,7 @@ bool renderer_base_size(renderer_base *b, const struct scene *s, char *err, size
 void renderer_base_begin_frame(renderer_base *b, frame_stats *out)
 {
     out->npasses = 0;
+    out->msaa = b->samples;
     b->npasses = 0;
     /* Every frame starts from unknown state, so every frame counts alike: the first
      * set of each part of the state in a frame is a change. */
@@ -113,6 +119,7 @@ void renderer_base_pass_end(renderer_base *b, frame_stats *out)
     pass_stats *p = &out->pass[i];
     gl_state_end_pass(b->st, p);
     p->gpu_us = p->fragments = p->primitives = p->samples = NAN;   /* collect fills them */
+    p->per_sample_samples = 0.0;
     p->scissor_pixels = NAN;                          /* a scissoring renderer sets it */
     if (i < RENDERER_BASE_MAX_PASSES)
         b->pass_counts[i] = *gl_state_pass_counts(b->st);
@@ -128,6 +135,11 @@ void renderer_base_shading(renderer_base *b, bool on)
         gl_pass_queries_pause(b->queries);
 }
 
+void renderer_base_per_sample(renderer_base *b, bool on)
+{
+    gl_pass_queries_per_sample(b->queries, on);
+}
+
 void renderer_base_collect(renderer_base *b, frame_stats *out)
 {
     if (b->queries) {
@@ -136,7 +148,7 @@ void renderer_base_collect(renderer_base *b, frame_stats *out)
     }
     for (size_t i = 0; i < out->npasses; i++)
         out->pass[i].gpu_us = out->pass[i].fragments = out->pass[i].primitives =
-            out->pass[i].samples = NAN;
+            out->pass[i].samples = out->pass[i].per_sample_samples = NAN;
 }
 
 const gls_counts *renderer_base_pass_counts(const renderer_base *b, size_t pass)
@@ -209,6 +221,7 @@ bool renderer_base_targets(renderer_base *b, const char *hdr_name, char *err, si
         return false;
     if (b->samples <= 1)
         return true;
+    b->samples = b->hdr.samples;   /* what the driver gave: at least opts.msaa */
     return gl_target_create(&b->hdr_resolved,
                             &(gl_target_desc){.name = "hdr.resolved",
                                               .format = renderer_base_hdr_format(b),
@@ -225,10 +238,10 @@ bool renderer_base_targets(renderer_base *b, const char *hdr_name, char *err, si
 
 void renderer_base_release_targets(renderer_base *b)
 {
-    edge_aa_release(&b->aa);
     gl_framebuffer_destroy(&b->msaa_read);
     gl_framebuffer_destroy(&b->msaa_draw);
     gl_target_destroy(&b->hdr_resolved);
+    edge_aa_release(&b->aa);
     gl_target_destroy(&b->hdr);
     gl_target_destroy(&b->depth);
 }
@@ -263,10 +276,7 @@ void renderer_base_msaa_resolve_pass(renderer_base *b, frame_stats *out)
     renderer_base_pass_end(b, out);
 }
 
-GLuint renderer_base_display_texture(const renderer_base *b)
-{
-    return renderer_base_display(b)->texture;
-}
+
 
 bool renderer_base_fog(const renderer_base *b)
 {

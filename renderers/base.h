@@ -37,8 +37,9 @@
  * renderer_base_msaa_resolve_pass, after the renderer's last shading pass and before
  * the display resolve, is the pass "msaa-resolve": a blit of hdr into hdr_resolved,
  * i.e. the samples averaged in linear HDR (before the clamp to the display, so a bright
- * sample is not clipped before it is averaged). renderer_base_display_texture (what
- * scene_gpu_resolve reads) and renderer_base_read_hdr use hdr_resolved. At msaa 1
+ * sample is not clipped before it is averaged). renderer_base_display (what
+ * scene_gpu_resolve reads) and renderer_base_read_hdr use hdr_resolved; aa: edge is
+ * refused with msaa > 1 (edge_aa reads single-sampled targets). At msaa 1
  * none of this exists: no pass, no target, the same programs and images as before.
  *
  * Fog (seed 000 4.5.12, opts.fog_*): renderer_base_fog says whether it is on; each
@@ -55,7 +56,7 @@
 #include "renderers/gl/target.h"
 #include "renderers/renderer.h"
 
-enum { RENDERER_BASE_MAX_PASSES = 12 };
+enum { RENDERER_BASE_MAX_PASSES = 16 };
 
 /* The light lists of the tiled and clustered renderers (forward-plus, clustered,
  * tiled-deferred) as their cull pass leaves them: per cell a 16-byte record whose last
@@ -89,10 +90,12 @@ typedef struct renderer_base {
     /* >>made by renderer_base_targets at prepare */
     gl_target hdr;                   /* the light accumulation, opts.hdr's format */
     gl_target depth;                 /* depth24-stencil8 */
-    edge_aa aa;                      /* aa: edge (edge_aa.h): its pass, target, program */
-    int samples;                     /* 1, or opts.msaa: the samples of hdr and depth */
+    int samples;                     /* 1, or opts.msaa: the samples of hdr and depth (after
+                                        renderer_base_targets what the driver gave, which
+                                        may be more: llvmpipe gives 4 for 2) */
     gl_target hdr_resolved;          /* samples > 1: hdr averaged (msaa-resolve) */
     gl_framebuffer msaa_read, msaa_draw;   /* samples > 1: the blit's hdr -> hdr_resolved */
+    edge_aa aa;                      /* aa: edge (edge_aa.h): its pass, target, program */
     /* >>the last frame, for tests */
     size_t npasses;
     gls_counts pass_counts[RENDERER_BASE_MAX_PASSES];
@@ -112,6 +115,10 @@ void renderer_base_collect(renderer_base *b, frame_stats *out);
  * depth pre-pass), true after them; pass_stats.samples (GL_SAMPLES_PASSED) counts the
  * pass's other draws. A pass starts counting; without queries it does nothing. */
 void renderer_base_shading(renderer_base *b, bool on);
+/* Within a pass (msaa): the shading draws from now on shade per sample (true) or per
+ * pixel (false, what every pass starts with); pass_stats.per_sample_samples counts the
+ * former's samples apart. */
+void renderer_base_per_sample(renderer_base *b, bool on);
 /* The state cache's counts of pass i of the last frame, or NULL past its passes. */
 const gls_counts *renderer_base_pass_counts(const renderer_base *b, size_t pass);
 
@@ -140,7 +147,7 @@ bool renderer_base_hdr_target(const renderer_base *b, gl_target *t, const char *
 bool renderer_base_targets(renderer_base *b, const char *hdr_name, char *err, size_t errlen);
 void renderer_base_release_targets(renderer_base *b);
 /* The HDR image the resolve clamps into the output and read_hdr reads: with aa: edge
- * the edge pass's "hdr.aa", else hdr. */
+ * the edge pass's "hdr.aa", with msaa > 1 "hdr.resolved", else hdr. */
 const gl_target *renderer_base_display(const renderer_base *b);
 /* renderer_impl.read_hdr of every renderer: renderer_base_display's target of the last
  * frame as RGBA floats, row 0 at the bottom; false when there is none or it is not
@@ -150,9 +157,7 @@ bool renderer_base_read_hdr(const renderer_base *b, float *rgba, int width, int 
  * format); nothing at all when single-sampled. After the last pass that shades into hdr,
  * before the display resolve. */
 void renderer_base_msaa_resolve_pass(renderer_base *b, frame_stats *out);
-/* The single-sampled HDR texture the display resolve reads: hdr_resolved when
- * multisampled, hdr otherwise. */
-GLuint renderer_base_display_texture(const renderer_base *b);
+
 /* Fog is on: opts.fog_density > 0. */
 bool renderer_base_fog(const renderer_base *b);
 /* The run's fog (colour, density) into a FOG program's u_fog (LOC_FOG), with direct state

@@ -58,6 +58,18 @@
  *                target into "hdr.aa", its normals from the G-buffer (gbuffer.inc)
  *   resolve      scene_gpu_resolve: the light target (or "hdr.aa") clamped into the output
  *
+ * MSAA (msaa > 1; docs/architecture.md): every G-buffer attachment, the light targets and
+ * depth are multisampled. After the G-buffer pass, `edges` (edge_mark.frag, full screen,
+ * per pixel) sets stencil EDGE_BIT (0x40) on every sample of a pixel whose samples differ
+ * from sample 0 (surface / none, off its tangent plane by > 1 % of the view depth, normal
+ * > acos(0.98)); the stencil
+ * modes then count in bits 0-5. Every shading draw of ambient, the light passes (every
+ * light-volume mode) and compose runs twice, edges first: the per-sample variant
+ * (GB_SAMPLE gl_SampleID) where EDGE_BIT is set, the per-pixel one (sample 0) where it is
+ * clear (class_begin, class_stencil; the draw counts above double for those passes). Fog
+ * runs per sample everywhere. `msaa-resolve` (renderers/base.h) averages the light
+ * before resolve. tiled-deferred and clustered deferred shading refuse msaa > 1.
+ *
  * Sky mask (renderer_options.sky_stencil, deferred.sky_stencil; seed 001 section 19.7.2,
  * "Stencil Masking": the opaque geometry marks, at no extra draw, the pixels that deferred
  * shading will light, and the lighting passes skip the others by the stencil test): the
@@ -175,8 +187,9 @@
 _Static_assert(sizeof(gpu_light) == 80, "gpu_light is 5 vec4s, as lighting.inc's Light");
 
 enum {
-    DEFERRED_MAX_PASSES = 12,          /* shadows gbuffer ambient directional point spot compose
-                                         fog sky translucent edge-aa resolve */
+    DEFERRED_MAX_PASSES = 14,          /* shadows gbuffer [edges] ambient directional point
+                                         spot compose fog sky translucent [msaa-resolve]
+                                         edge-aa resolve */
     DEFERRED_VARIANTS = 32,           /* material map bits and the alpha test */
     DEFERRED_LIGHT_TYPES = 3,
 };
@@ -196,18 +209,21 @@ typedef enum pass_id {
     PASS_TILED,                      /* tiled-deferred: ambient and every light, one dispatch */
     PASS_FOG,                        /* fog.density > 0: deferred_fog.frag after the lights */
     PASS_TRANSLUCENT,                /* MATERIAL_BLEND objects, forward, after the sky */
+    PASS_EDGES,                      /* msaa > 1: edge_mark.frag sets EDGE_BIT */
+    PASS_MSAA,                       /* msaa > 1: renderer_base_msaa_resolve_pass */
     PASS_COUNT
 } pass_id;
 
 static const char *const pass_names[PASS_COUNT] = {
     "shadows", "gbuffer", "ambient", "directional", "point", "spot", "compose", "sky", "resolve",
-    "tiled", "fog", "translucent",
+    "tiled", "fog", "translucent", "edges", "msaa-resolve",
 };
 
 /* The order describe lists them in (tiled-deferred's "tiled" after the G-buffer). */
 static const pass_id describe_order[PASS_COUNT] = {
-    PASS_SHADOWS, PASS_GBUFFER, PASS_TILED, PASS_AMBIENT, PASS_DIRECTIONAL, PASS_POINT,
-    PASS_SPOT, PASS_COMPOSE, PASS_FOG, PASS_SKY, PASS_TRANSLUCENT, PASS_RESOLVE,
+    PASS_SHADOWS, PASS_GBUFFER, PASS_EDGES, PASS_TILED, PASS_AMBIENT, PASS_DIRECTIONAL,
+    PASS_POINT, PASS_SPOT, PASS_COMPOSE, PASS_FOG, PASS_SKY, PASS_TRANSLUCENT, PASS_MSAA,
+    PASS_RESOLVE,
 };
 
 /* tiled-deferred's light culling and shading pass (tiled_deferred.comp). */
@@ -258,10 +274,14 @@ typedef struct deferred_renderer {
     GLuint gbuffer_program[DEFERRED_VARIANTS];
     GLuint ambient_program, compose_program, mark_program;
     GLuint light_program[DEFERRED_LIGHT_TYPES];
+    /* msaa > 1: the per-sample variants (edge pixels) and the edge-mark program */
+    GLuint ambient_sample_program, compose_sample_program, edge_program;
+    GLuint light_sample_program[DEFERRED_LIGHT_TYPES];
 
     /* >>the last frame, for tests */
     uint64_t mark_draws[DEFERRED_LIGHT_TYPES], shade_draws[DEFERRED_LIGHT_TYPES];
     int64_t scissor_area;            /* light_volumes scissor: this pass's rectangles */
+    size_t edges_pass;               /* msaa > 1: 1 + the edge pass's index; 0: none */
 } deferred_renderer;
 
 static unsigned material_variant(const scene_material *m)
@@ -314,7 +334,7 @@ static void *create(const char *name, bool tiled, bool clustered,
         free(r);
         return NULL;
     }
-    if (opts->msaa > 1) {
+    if (opts->msaa > 1 && tiled) {   /* its compute pass reads a single-sampled G-buffer */
         snprintf(err, errlen, "%s: msaa %d: not supported by this renderer yet (msaa: 1)",
                  name, opts->msaa);
         free(r);
@@ -422,6 +442,32 @@ static bool build_program(deferred_renderer *r, const char *display, const char 
     return true;
 }
 
+/* build_program, and with msaa > 1 two variants over the multisampled G-buffer (GB_MSAA):
+ * *pixel reads sample 0 (shaded once per pixel, off the edges) and *sample (when not
+ * NULL) reads gl_SampleID (per-sample shading, on the edges). Single-sampled: *pixel
+ * alone, with exactly build_program's defines. */
+static bool build_msaa(deferred_renderer *r, const char *display, const char *vertex,
+                       const char *fragment, const deferred_layout_defs *ld,
+                       const char *const *extra, GLuint *pixel, GLuint *sample, char *err,
+                       size_t errlen)
+{
+    if (r->b.samples <= 1)
+        return build_program(r, display, vertex, fragment, ld, extra, pixel, err, errlen);
+    const char *more[12];
+    unsigned n = 0;
+    for (unsigned i = 0; extra && extra[i] && n < 9; i++)
+        more[n++] = extra[i];
+    more[n++] = "GB_MSAA";
+    more[n] = NULL;
+    if (!build_program(r, display, vertex, fragment, ld, more, pixel, err, errlen))
+        return false;
+    if (!sample)
+        return true;
+    more[n++] = "GB_SAMPLE gl_SampleID";
+    more[n] = NULL;
+    return build_program(r, display, vertex, fragment, ld, more, sample, err, errlen);
+}
+
 /* The modes whose point and spot lights draw the full-screen triangle. */
 static bool full_screen_mode(light_volume_mode m)
 {
@@ -451,7 +497,8 @@ static bool make_targets(deferred_renderer *r, char *err, size_t errlen)
     for (int i = 0; i < r->layout.nattachments; i++) {
         if (!gl_target_create(&r->gbuf[i], &(gl_target_desc){.name = r->layout.att[i].name,
                                                              .format = r->layout.att[i].format,
-                                                             .width = w, .height = h},
+                                                             .width = w, .height = h,
+                                                             .samples = r->b.samples},
                               why, sizeof why))
             goto fail;
         gdesc.color[i] = &r->gbuf[i];
@@ -460,7 +507,8 @@ static bool make_targets(deferred_renderer *r, char *err, size_t errlen)
         !gl_target_create(&r->depth_sampled,
                           &(gl_target_desc){.name = "depth.sampled",
                                             .format = r->b.depth.format,
-                                            .width = w, .height = h},
+                                            .width = w, .height = h,
+                                            .samples = r->b.samples},
                           why, sizeof why))
         goto fail;
     if (sep && !renderer_base_hdr_target(&r->b, &r->specular, "light.specular", why, sizeof why))
@@ -551,9 +599,26 @@ static bool compile_programs(deferred_renderer *r, char *err, size_t errlen)
             extra[n++] = unclipped;
         if (sep)
             extra[n++] = sep;
-        if (!build_program(r, "deferred_ambient", fs_vert, "deferred_ambient.frag", &ld, extra,
-                           &r->ambient_program, err, errlen))
+        if (!build_msaa(r, "deferred_ambient", fs_vert, "deferred_ambient.frag", &ld, extra,
+                        &r->ambient_program, &r->ambient_sample_program, err, errlen))
             return false;
+    }
+    if (r->b.samples > 1) {
+        const char *extra[2] = {unclipped, NULL};
+        if (!build_msaa(r, "deferred_edges", fs_vert, "edge_mark.frag", &ld, extra,
+                        &r->edge_program, NULL, err, errlen))
+            return false;
+    }
+    if (r->b.samples > 1 && r->layout.position == DEFERRED_POSITION_DEPTH_BUFFER) {
+        /* the samples' positions in the pixel (edge_mark.frag, position from depth) */
+        GLfloat pos[8][2] = {{0.5f, 0.5f}};
+        GLint prev = 0;
+        gl.GetIntegerv(GL_DRAW_FRAMEBUFFER_BINDING, &prev);
+        gl.BindFramebuffer(GL_DRAW_FRAMEBUFFER, r->fb_light.fbo);
+        for (int i = 0; i < r->b.samples && i < 8; i++)
+            gl.GetMultisamplefv(GL_SAMPLE_POSITION, (GLuint)i, pos[i]);
+        gl.BindFramebuffer(GL_DRAW_FRAMEBUFFER, (GLuint)prev);
+        gl.ProgramUniform2fv(r->edge_program, DEFERRED_UNIFORM_LIGHT, 8, &pos[0][0]);
     }
     static const pass_id light_pass[DEFERRED_LIGHT_TYPES] = {
         [LIGHT_POINT] = PASS_POINT, [LIGHT_SPOT] = PASS_SPOT,
@@ -583,8 +648,9 @@ static bool compile_programs(deferred_renderer *r, char *err, size_t errlen)
         bool shadowed = shadow_maps_for_type(&r->shadows, t);
         if (shadowed)
             n += (int)shadow_maps_defines(&r->shadows, extra + n);
-        if (!build_program(r, shadowed ? display_shadowed[t] : display[t], full ? fs_vert : "light_volume.vert",
-                           "deferred_light.frag", &ld, extra, &r->light_program[t], err, errlen))
+        if (!build_msaa(r, shadowed ? display_shadowed[t] : display[t],
+                        full ? fs_vert : "light_volume.vert", "deferred_light.frag", &ld, extra,
+                        &r->light_program[t], &r->light_sample_program[t], err, errlen))
             return false;
         if (!full)
             volumes = true;
@@ -596,8 +662,8 @@ static bool compile_programs(deferred_renderer *r, char *err, size_t errlen)
         return false;
     if (r->run[PASS_COMPOSE]) {
         const char *extra[2] = {unclipped, NULL};
-        if (!build_program(r, "deferred_compose", fs_vert, "deferred_compose.frag", NULL, extra,
-                           &r->compose_program, err, errlen))
+        if (!build_msaa(r, "deferred_compose", fs_vert, "deferred_compose.frag", NULL, extra,
+                        &r->compose_program, &r->compose_sample_program, err, errlen))
             return false;
     }
     return true;
@@ -608,7 +674,15 @@ static bool compile_fog(deferred_renderer *r, char *err, size_t errlen)
 {
     if (!r->run[PASS_FOG])
         return true;
-    const char *extra[3] = {"FOG", r->unclipped ? "FULLSCREEN_UNCLIPPED" : NULL, NULL};
+    /* msaa > 1: per sample everywhere (its one input, depth, differs per sample) */
+    const char *extra[5] = {"FOG", NULL, NULL, NULL, NULL};
+    int n = 1;
+    if (r->unclipped)
+        extra[n++] = "FULLSCREEN_UNCLIPPED";
+    if (r->b.samples > 1) {
+        extra[n++] = "GB_MSAA";
+        extra[n++] = "GB_SAMPLE gl_SampleID";
+    }
     if (!build_program(r, "deferred_fog", "fullscreen.vert", "deferred_fog.frag", NULL, extra,
                        &r->fog_program, err, errlen))
         return false;
@@ -702,7 +776,9 @@ static bool deferred_prepare(void *self, const scene *s, char *err, size_t errle
     }
     memset(r->gbuffer_program, 0, sizeof r->gbuffer_program);
     memset(r->light_program, 0, sizeof r->light_program);
+    memset(r->light_sample_program, 0, sizeof r->light_sample_program);
     r->ambient_program = r->compose_program = r->mark_program = 0;
+    r->ambient_sample_program = r->compose_sample_program = r->edge_program = 0;
     r->fog_program = 0;
 
     if (!renderer_base_size(&r->b, s, err, errlen))
@@ -805,6 +881,11 @@ static bool deferred_prepare(void *self, const scene *s, char *err, size_t errle
     plan(r, PASS_SKY, s->sky, "%s",
          s->sky ? "into untouched depth, last" : "the scene has no sky");
     plan(r, PASS_RESOLVE, true, "light clamped into the output framebuffer");
+    plan(r, PASS_EDGES, r->b.samples > 1,
+         "msaa %d: pixels whose samples differ (off the plane > 1%% of depth, normal > 11.5 "
+         "deg) get stencil bit 0x40; per sample there, per pixel elsewhere", r->b.samples);
+    plan(r, PASS_MSAA, r->b.samples > 1, "the %d samples of the light averaged (a blit, "
+         "linear HDR)", r->b.samples);
 
     if (!frontend_init(&r->fe, s, why, sizeof why)) {
         snprintf(err, errlen, "deferred: %s", why);
@@ -848,8 +929,35 @@ static void pass_end(deferred_renderer *r, frame_stats *out)
 
 static const gls_blend BLEND_ADD = {.enabled = true, .src = GLS_BLEND_ONE, .dst = GLS_BLEND_ONE};
 
-/* The sky mask (the file's header): bit 7 marks a surface, bits 0-6 count light volumes. */
-enum { SURFACE_BIT = 0x80, VOLUME_BITS = 0x7f };
+/* The sky mask (the file's header): bit 7 marks a surface, bits 0-6 count light volumes;
+ * with msaa > 1 bit 6 marks edge pixels and bits 0-5 count. */
+enum { SURFACE_BIT = 0x80, VOLUME_BITS = 0x7f, EDGE_BIT = 0x40, MSAA_VOLUME_BITS = 0x3f };
+
+/* msaa > 1: each shading draw runs twice, for the edge pixels (per sample, stencil
+ * EDGE_BIT set) and then for the others (per pixel); single-sampled once, for all. */
+typedef enum draw_class { CLASS_ALL, CLASS_EDGE, CLASS_PIXEL } draw_class;
+
+static int nclasses(const deferred_renderer *r)
+{
+    return r->b.samples > 1 ? 2 : 1;
+}
+
+/* The i-th class of a draw (edges first: the stencil mode's edge draw must reset the
+ * edge samples' counts before the per-pixel draw tests them), and starts counting its
+ * draws' samples as per-sample or not. */
+static draw_class class_begin(deferred_renderer *r, int i)
+{
+    if (r->b.samples <= 1)
+        return CLASS_ALL;
+    draw_class c = i == 0 ? CLASS_EDGE : CLASS_PIXEL;
+    renderer_base_per_sample(&r->b, c == CLASS_EDGE);
+    return c;
+}
+
+static GLuint class_program(draw_class c, GLuint pixel, GLuint sample)
+{
+    return c == CLASS_EDGE ? sample : pixel;
+}
 static const gls_stencil SURFACE_MARK = {
     .enabled = true, .front = {.compare = GLS_COMPARE_ALWAYS, .pass = GLS_STENCIL_OP_REPLACE},
     .ref = SURFACE_BIT, .write_mask = SURFACE_BIT};
@@ -857,15 +965,33 @@ static const gls_stencil SURFACE_TEST = {
     .enabled = true, .front = {.compare = GLS_COMPARE_EQUAL}, .ref = SURFACE_BIT,
     .read_mask = SURFACE_BIT};   /* every op KEEP: writes nothing */
 
-/* What a full-screen pass tests: the surface bit with the sky mask, else nothing. */
-static const gls_stencil *full_screen_stencil(const deferred_renderer *r)
+/* What a full-screen pass tests: the surface bit with the sky mask, else nothing; with a
+ * class, the edge bit too (EQUAL: set for CLASS_EDGE, clear for CLASS_PIXEL). */
+static const gls_stencil *class_stencil(const deferred_renderer *r, draw_class c,
+                                        bool sky_mask, gls_stencil *buf)
 {
-    return r->b.opts.sky_stencil ? &SURFACE_TEST : NULL;
+    bool sky = sky_mask && r->b.opts.sky_stencil;
+    if (c == CLASS_ALL)
+        return sky ? &SURFACE_TEST : NULL;
+    *buf = (gls_stencil){.enabled = true, .front = {.compare = GLS_COMPARE_EQUAL},
+                         .ref = (uint8_t)((sky ? SURFACE_BIT : 0) |
+                                          (c == CLASS_EDGE ? EDGE_BIT : 0)),
+                         .read_mask = (uint8_t)((sky ? SURFACE_BIT : 0) | EDGE_BIT)};
+    return buf;
 }
 
-/* The stencil modes' read and write masks: bits 0-6 with the sky mask, else 0 (0xff). */
+static const gls_stencil *full_screen_stencil(const deferred_renderer *r, draw_class c,
+                                              gls_stencil *buf)
+{
+    return class_stencil(r, c, true, buf);
+}
+
+/* The stencil modes' read and write masks: bits 0-6 with the sky mask, else 0 (0xff);
+ * with msaa, bits 0-5. */
 static uint8_t volume_bits(const deferred_renderer *r)
 {
+    if (r->b.samples > 1)
+        return MSAA_VOLUME_BITS;
     return r->b.opts.sky_stencil ? VOLUME_BITS : 0;
 }
 
@@ -960,42 +1086,58 @@ static void draw_volume_light(deferred_renderer *r, const scene *s, int t, uint3
 {
     gl_state *st = r->b.st;
     GLuint prog = r->light_program[t];
+    GLuint sprog = r->light_sample_program[t];
+    gls_stencil sbuf;
     switch (r->b.opts.light_volumes) {
     case LIGHT_VOLUMES_SCISSOR: {
         int rect[4];
         r->scissor_area += deferred_scissor_rect(s, li, r->b.width, r->b.height, rect);
         gl.Scissor(rect[0], rect[1], rect[2], rect[3]);
-        gl_state_program(st, prog);
-        set_light_uniform(s, li, layer);
-        fullscreen(r);
-        r->shade_draws[t]++;
+        for (int i = 0; i < nclasses(r); i++) {
+            draw_class c = class_begin(r, i);
+            gl_state_stencil(st, full_screen_stencil(r, c, &sbuf));
+            gl_state_program(st, class_program(c, prog, sprog));
+            set_light_uniform(s, li, layer);
+            fullscreen(r);
+            r->shade_draws[t]++;
+        }
         return;
     }
     case LIGHT_VOLUMES_HULL:
         gl_state_viewport(st, 0, 0, r->b.width, r->b.height);
-        gl_state_program(st, prog);
-        set_light_uniform(s, li, layer);
         gl_state_cull(st, GLS_CULL_FRONT);
-        gl_state_stencil(st, NULL);
         gl_state_depth(st, NULL);
-        scene_gpu_draw_light_volume(r->gpu, st, s, li);
-        r->shade_draws[t]++;
+        for (int i = 0; i < nclasses(r); i++) {
+            draw_class c = class_begin(r, i);
+            gl_state_program(st, class_program(c, prog, sprog));
+            set_light_uniform(s, li, layer);
+            gl_state_stencil(st, class_stencil(r, c, false, &sbuf));
+            scene_gpu_draw_light_volume(r->gpu, st, s, li);
+            r->shade_draws[t]++;
+        }
         return;
     case LIGHT_VOLUMES_FULLSCREEN:
-        gl_state_program(st, prog);
-        set_light_uniform(s, li, layer);
-        fullscreen(r);
-        r->shade_draws[t]++;
+        for (int i = 0; i < nclasses(r); i++) {
+            draw_class c = class_begin(r, i);
+            gl_state_stencil(st, full_screen_stencil(r, c, &sbuf));
+            gl_state_program(st, class_program(c, prog, sprog));
+            set_light_uniform(s, li, layer);
+            fullscreen(r);
+            r->shade_draws[t]++;
+        }
         return;
     case LIGHT_VOLUMES_VOLUME:
         gl_state_viewport(st, 0, 0, r->b.width, r->b.height);
-        gl_state_program(st, prog);
-        set_light_uniform(s, li, layer);
         gl_state_cull(st, GLS_CULL_FRONT);
-        gl_state_stencil(st, NULL);
         gl_state_depth(st, &(gls_depth){.compare = GLS_COMPARE_GREATER, .write = false});
-        scene_gpu_draw_light_volume(r->gpu, st, s, li);
-        r->shade_draws[t]++;
+        for (int i = 0; i < nclasses(r); i++) {
+            draw_class c = class_begin(r, i);
+            gl_state_program(st, class_program(c, prog, sprog));
+            set_light_uniform(s, li, layer);
+            gl_state_stencil(st, class_stencil(r, c, false, &sbuf));
+            scene_gpu_draw_light_volume(r->gpu, st, s, li);
+            r->shade_draws[t]++;
+        }
         return;
     case LIGHT_VOLUMES_STENCIL:
         gl_state_viewport(st, 0, 0, r->b.width, r->b.height);
@@ -1017,21 +1159,30 @@ static void draw_volume_light(deferred_renderer *r, const scene *s, int t, uint3
         scene_gpu_draw_light_volume(r->gpu, st, s, li);
         r->mark_draws[t]++;
         renderer_base_shading(&r->b, true);
-        gl_state_program(st, prog);
-        set_light_uniform(s, li, layer);
         gl_state_color_mask(st, GLS_COLOR_MASK_RGBA);
         gl_state_cull(st, GLS_CULL_FRONT);
         gl_state_depth(st, NULL);
-        gl_state_stencil(st, &(gls_stencil){
-                                 .enabled = true,
-                                 .front = {.compare = GLS_COMPARE_NOTEQUAL,
-                                           .pass = GLS_STENCIL_OP_ZERO},
-                                 .ref = 0,
-                                 .read_mask = volume_bits(r),
-                                 .write_mask = volume_bits(r),
-                             });
-        scene_gpu_draw_light_volume(r->gpu, st, s, li);
-        r->shade_draws[t]++;
+        for (int i = 0; i < nclasses(r); i++) {
+            draw_class c = class_begin(r, i);
+            gl_state_program(st, class_program(c, prog, sprog));
+            set_light_uniform(s, li, layer);
+            /* counts != 0; the edge draw first: EDGE_BIT < (edge | count) picks the lit
+             * edge samples and zeroes their counts, then != 0 on the count bits alone
+             * picks the lit samples of the other pixels */
+            gl_state_stencil(st, &(gls_stencil){
+                                     .enabled = true,
+                                     .front = {.compare = c == CLASS_EDGE
+                                                             ? GLS_COMPARE_LESS
+                                                             : GLS_COMPARE_NOTEQUAL,
+                                               .pass = GLS_STENCIL_OP_ZERO},
+                                     .ref = c == CLASS_EDGE ? EDGE_BIT : 0,
+                                     .read_mask = (uint8_t)(volume_bits(r) |
+                                                            (c == CLASS_EDGE ? EDGE_BIT : 0)),
+                                     .write_mask = volume_bits(r),
+                                 });
+            scene_gpu_draw_light_volume(r->gpu, st, s, li);
+            r->shade_draws[t]++;
+        }
         return;
     case LIGHT_VOLUMES_STENCIL_TWO_PASS:
         gl_state_viewport(st, 0, 0, r->b.width, r->b.height);
@@ -1059,20 +1210,25 @@ static void draw_volume_light(deferred_renderer *r, const scene *s, int t, uint3
         scene_gpu_draw_light_volume(r->gpu, st, s, li);
         r->mark_draws[t] += 2;
         renderer_base_shading(&r->b, true);
-        gl_state_program(st, prog);
-        set_light_uniform(s, li, layer);
         gl_state_color_mask(st, GLS_COLOR_MASK_RGBA);
         gl_state_depth(st, NULL);
-        gl_state_stencil(st, &(gls_stencil){
-                                 .enabled = true,
-                                 .front = {.compare = GLS_COMPARE_EQUAL,
-                                           .pass = GLS_STENCIL_OP_INCR_WRAP},
-                                 .ref = 0,
-                                 .read_mask = volume_bits(r),
-                                 .write_mask = volume_bits(r),
-                             });
-        scene_gpu_draw_light_volume(r->gpu, st, s, li);
-        r->shade_draws[t]++;
+        for (int i = 0; i < nclasses(r); i++) {
+            draw_class c = class_begin(r, i);
+            gl_state_program(st, class_program(c, prog, sprog));
+            set_light_uniform(s, li, layer);
+            /* count == 0, and with msaa the edge bit as the class has it */
+            gl_state_stencil(st, &(gls_stencil){
+                                     .enabled = true,
+                                     .front = {.compare = GLS_COMPARE_EQUAL,
+                                               .pass = GLS_STENCIL_OP_INCR_WRAP},
+                                     .ref = c == CLASS_EDGE ? EDGE_BIT : 0,
+                                     .read_mask = (uint8_t)(volume_bits(r) |
+                                                            (c == CLASS_ALL ? 0 : EDGE_BIT)),
+                                     .write_mask = volume_bits(r),
+                                 });
+            scene_gpu_draw_light_volume(r->gpu, st, s, li);
+            r->shade_draws[t]++;
+        }
         return;
     }
 }
@@ -1091,9 +1247,10 @@ static void light_pass(deferred_renderer *r, const scene *s, frame_stats *out, p
     r->scissor_area = 0;
     if (scissor)
         gl.Enable(GL_SCISSOR_TEST);   /* not state the cache keeps: off again below */
+    gls_stencil sbuf;
     if (!volumes) {
         gl_state_depth(st, NULL);
-        gl_state_stencil(st, full_screen_stencil(r));
+        gl_state_stencil(st, full_screen_stencil(r, CLASS_ALL, &sbuf));
         gl_state_cull(st, GLS_CULL_NONE);
         gl_state_program(st, r->light_program[type]);
     } else {
@@ -1106,10 +1263,15 @@ static void light_pass(deferred_renderer *r, const scene *s, frame_stats *out, p
         if ((int)s->lights[li].type != type)
             continue;
         if (type == LIGHT_DIRECTIONAL) {
-            gl_state_program(st, r->light_program[type]);
-            set_light_uniform(s, li, r->fe.shadow_layer[k]);
-            fullscreen(r);
-            r->shade_draws[type]++;
+            for (int i = 0; i < nclasses(r); i++) {
+                draw_class c = class_begin(r, i);
+                gl_state_stencil(st, full_screen_stencil(r, c, &sbuf));
+                gl_state_program(st, class_program(c, r->light_program[type],
+                                                   r->light_sample_program[type]));
+                set_light_uniform(s, li, r->fe.shadow_layer[k]);
+                fullscreen(r);
+                r->shade_draws[type]++;
+            }
         } else {
             draw_volume_light(r, s, type, li, r->fe.shadow_layer[k]);
         }
@@ -1186,7 +1348,9 @@ static void fog_pass(deferred_renderer *r, frame_stats *out)
     gl_state_cull(st, GLS_CULL_NONE);
     gl_state_texture(st, DEFERRED_DEPTH_UNIT, r->b.depth.texture);
     gl_state_program(st, r->fog_program);
+    renderer_base_per_sample(&r->b, r->b.samples > 1);   /* msaa: per sample everywhere */
     fullscreen(r);
+    renderer_base_per_sample(&r->b, false);
     /* the depth target is drawn with (sky) next: not bound for sampling meanwhile */
     if (r->layout.position != DEFERRED_POSITION_DEPTH_BUFFER)
         gl_state_texture(st, DEFERRED_DEPTH_UNIT, 0);
@@ -1200,6 +1364,7 @@ static void deferred_draw(void *self, const scene *s, frame_stats *out)
     out->npasses = 0;
     out->lights_drawn = 0;
     memset(r->mark_draws, 0, sizeof r->mark_draws);
+    r->edges_pass = 0;
     memset(r->shade_draws, 0, sizeof r->shade_draws);
     if (!r->prepared || !s)
         return;
@@ -1232,11 +1397,35 @@ static void deferred_draw(void *self, const scene *s, frame_stats *out)
         gl_state_program(st, r->gbuffer_program[v]);
         scene_gpu_draw_object(r->gpu, st, s, o);
     }
-    if (r->depth_sampled.texture)   /* position from depth: what the light passes sample */
-        gl.CopyImageSubData(r->b.depth.texture, GL_TEXTURE_2D, 0, 0, 0, 0,
-                            r->depth_sampled.texture, GL_TEXTURE_2D, 0, 0, 0, 0, r->b.width,
-                            r->b.height, 1);
+    if (r->depth_sampled.texture) {   /* position from depth: what the light passes sample */
+        GLenum target = r->b.samples > 1 ? GL_TEXTURE_2D_MULTISAMPLE : GL_TEXTURE_2D;
+        gl.CopyImageSubData(r->b.depth.texture, target, 0, 0, 0, 0, r->depth_sampled.texture,
+                            target, 0, 0, 0, 0, r->b.width, r->b.height, 1);
+    }
     pass_end(r, out);
+
+    /* >>edges (msaa > 1): EDGE_BIT on every sample of the pixels whose samples differ */
+    if (r->run[PASS_EDGES]) {
+        pass_begin(r, out, PASS_EDGES);
+        gl_state_framebuffer(st, r->fb_light.fbo);
+        gl_state_color_mask(st, GLS_COLOR_MASK_NONE);
+        gl_state_blend(st, NULL);
+        gl_state_depth(st, NULL);
+        gl_state_cull(st, GLS_CULL_NONE);
+        gl_state_stencil(st, &(gls_stencil){
+                                 .enabled = true,
+                                 .front = {.compare = GLS_COMPARE_ALWAYS,
+                                           .pass = GLS_STENCIL_OP_REPLACE},
+                                 .ref = EDGE_BIT,
+                                 .write_mask = EDGE_BIT,
+                             });
+        bind_gbuffer_textures(r);
+        gl_state_program(st, r->edge_program);
+        fullscreen(r);   /* samples: N per edge pixel (the others are discarded) */
+        gl_state_color_mask(st, GLS_COLOR_MASK_RGBA);
+        pass_end(r, out);
+        r->edges_pass = out->npasses;
+    }
 
     GLuint hdr_fbo = r->fb_light.fbo;   /* where the sky goes */
     if (r->tiled) {
@@ -1254,11 +1443,15 @@ static void deferred_draw(void *self, const scene *s, frame_stats *out)
     }
     gl_state_blend(st, NULL);
     gl_state_depth(st, NULL);
-    gl_state_stencil(st, full_screen_stencil(r));
     gl_state_cull(st, GLS_CULL_NONE);
     bind_gbuffer_textures(r);
-    gl_state_program(st, r->ambient_program);
-    fullscreen(r);
+    for (int i = 0; i < nclasses(r); i++) {
+        gls_stencil sbuf;
+        draw_class c = class_begin(r, i);
+        gl_state_stencil(st, full_screen_stencil(r, c, &sbuf));
+        gl_state_program(st, class_program(c, r->ambient_program, r->ambient_sample_program));
+        fullscreen(r);
+    }
     pass_end(r, out);
 
     /* >>lights */
@@ -1274,11 +1467,16 @@ static void deferred_draw(void *self, const scene *s, frame_stats *out)
         gl_state_framebuffer(st, r->fb_compose.fbo);
         gl_state_blend(st, &BLEND_ADD);
         gl_state_depth(st, NULL);
-        gl_state_stencil(st, full_screen_stencil(r));
         gl_state_cull(st, GLS_CULL_NONE);
         gl_state_texture(st, DEFERRED_SPECULAR_UNIT, r->specular.texture);
-        gl_state_program(st, r->compose_program);
-        fullscreen(r);
+        for (int i = 0; i < nclasses(r); i++) {
+            gls_stencil sbuf;
+            draw_class c = class_begin(r, i);
+            gl_state_stencil(st, full_screen_stencil(r, c, &sbuf));
+            gl_state_program(st,
+                             class_program(c, r->compose_program, r->compose_sample_program));
+            fullscreen(r);
+        }
         pass_end(r, out);
         hdr_fbo = r->fb_compose.fbo;
     }
@@ -1303,6 +1501,9 @@ sky:
     /* >>translucent: forward, over the opaque light and depth (seed 001 19.8.1) */
     if (r->run[PASS_TRANSLUCENT])
         translucent_draw(&r->translucent, &r->b, r->gpu, &r->fe, s, &r->shadows, hdr_fbo, out);
+
+    /* >>resolve: msaa > 1, the samples averaged first (renderers/base.h) */
+    renderer_base_msaa_resolve_pass(&r->b, out);
 
     /* >>edge-aa (aa: edge), its normals from the G-buffer */
     GLuint gb[DEFERRED_MAX_ATTACHMENTS];
@@ -1340,6 +1541,10 @@ static void deferred_collect(void *self, frame_stats *out)
     if (r->tiled)
         tiled_collect(r, out);
     renderer_base_collect(&r->b, out);
+    /* the edge pass passes N samples per edge pixel and discards every other pixel */
+    if (r->edges_pass && r->edges_pass <= out->npasses)
+        out->edge_fraction = out->pass[r->edges_pass - 1].samples / r->b.samples /
+                             ((double)r->b.width * r->b.height);
 }
 
 static const uint32_t *tiled_light_grid(const void *self, size_t *n)
@@ -1367,6 +1572,8 @@ static void deferred_describe(const void *self, pass_plan *out)
         pass_id p = describe_order[i];
         if (p == PASS_TILED && !r->tiled)
             continue;   /* deferred's plan is what it always was */
+        if ((p == PASS_EDGES || p == PASS_MSAA) && r->b.samples <= 1)
+            continue;   /* single-sampled: the plan is what it always was */
         if (p == PASS_RESOLVE)
             edge_aa_describe_pass(&r->b, out);   /* run or skipped, before the resolve */
         if (out->npasses >= RENDERER_MAX_PASSES)
@@ -1386,6 +1593,7 @@ static void deferred_describe(const void *self, pass_plan *out)
     describe_target(&r->specular, out);
     describe_target(&r->b.depth, out);
     describe_target(&r->depth_sampled, out);
+    describe_target(&r->b.hdr_resolved, out);
     edge_aa_describe_target(&r->b, out);
     shadow_maps_describe(&r->shadows, out);
 }

@@ -34,9 +34,7 @@ bool edge_aa_prepare(renderer_base *b, const char *const *gbuffer_defines, int n
     int k = 0;
     if (gl_state_fullscreen_unclipped_fits(b->st, b->width, b->height))
         d.defines[k++] = "FULLSCREEN_UNCLIPPED";
-    if (b->samples > 1)   /* sample 0 of the multisampled depth; normals rebuilt from it */
-        d.defines[k++] = "EDGE_DEPTH_MS";
-    else if (gbuffer_defines) {
+    if (gbuffer_defines) {
         d.defines[k++] = "EDGE_NORMALS_GBUFFER";
         for (int i = 0; i < n; i++)
             d.defines[k++] = gbuffer_defines[i];
@@ -71,8 +69,7 @@ void edge_aa_pass(renderer_base *b, frame_stats *out, const GLuint *gbuffer, int
     gl_state_cull(st, GLS_CULL_NONE);
     gl_state_color_mask(st, GLS_COLOR_MASK_RGBA);
     gl_state_program(st, e->program);
-    /* after msaa-resolve: the averaged samples */
-    gl_state_texture(st, BIND_TEX_HDR, b->samples > 1 ? b->hdr_resolved.texture : b->hdr.texture);
+    gl_state_texture(st, BIND_TEX_HDR, b->hdr.texture);
     gl_state_texture(st, BIND_TEX_DEPTH, b->depth.texture);
     for (int k = 0; e->gbuffer_normals && gbuffer && k < n && k < EDGE_AA_MAX_GBUFFER; k++)
         gl_state_texture(st, BIND_TEX_GBUFFER0 + (unsigned)k, gbuffer[k]);

@@ -384,7 +384,8 @@ gbuffer_traffic deferred_gbuffer_traffic(unsigned bytes_per_pixel, int width, in
     gbuffer_traffic t = {NAN, NAN};
     if (bytes_per_pixel == 0 || !fs)
         return t;
-    /* deferred.c's pass names: what writes the G-buffer, what reads it per sample */
+    /* deferred.c's pass names: what writes the G-buffer (with msaa, every sample it
+     * passes is stored), what reads it per sample */
     static const char *const readers[] = {"ambient", "directional", "point", "spot"};
     double written = 0.0, shaded = 0.0;
     for (size_t i = 0; i < fs->npasses; i++) {
@@ -395,10 +396,13 @@ gbuffer_traffic deferred_gbuffer_traffic(unsigned bytes_per_pixel, int width, in
             written += ps->samples;
         else if (strcmp(ps->name, "tiled") == 0)
             shaded += (double)width * (double)height;
+        else if (strcmp(ps->name, "edges") == 0)   /* msaa: every sample of every pixel */
+            shaded += (double)width * (double)height * (double)fs->msaa;
         else
             for (size_t k = 0; k < sizeof readers / sizeof readers[0]; k++)
                 if (strcmp(ps->name, readers[k]) == 0)
-                    shaded += ps->samples;
+                    /* msaa: a pixel shaded once reads one sample (samples_shaded) */
+                    shaded += fs->msaa > 1 ? ps->samples_shaded : ps->samples;
     }
     t.write_bytes = s002_mrt_write_bytes((double)bytes_per_pixel, written);
     t.read_bytes = s002_mrt_read_bytes((double)bytes_per_pixel, shaded);

@@ -80,6 +80,7 @@ void renderer_draw(renderer *r, const struct scene *s, frame_stats *out)
 {
     memset(out, 0, sizeof *out);
     out->grid_lights_mean = out->grid_lights_max = out->light_evals_per_pixel = NAN;
+    out->edge_fraction = NAN;
     r->impl->draw(r->self, s, out);
 }
 
@@ -88,8 +89,15 @@ void renderer_collect(renderer *r, frame_stats *out)
 {
     r->impl->collect(r->self, out);
     pass_stats t = {.name = "total", .scissor_pixels = NAN};
+    double n = out->msaa > 1 ? out->msaa : 1;
     for (size_t i = 0; i < out->npasses; i++) {
-        const pass_stats *p = &out->pass[i];
+        pass_stats *p = &out->pass[i];
+        /* a pixel shaded once covers n samples; a per-sample draw shades each */
+        p->samples_shaded = n == 1 ? p->samples
+                                   : (p->samples - p->per_sample_samples) / n +
+                                         p->per_sample_samples;
+        t.per_sample_samples += p->per_sample_samples;
+        t.samples_shaded += p->samples_shaded;
         t.gpu_us += p->gpu_us;
         t.cpu_us += p->cpu_us;
         t.draw_calls += p->draw_calls;
@@ -100,7 +108,7 @@ void renderer_collect(renderer *r, frame_stats *out)
         t.primitives += p->primitives;
     }
     if (out->npasses == 0)
-        t.gpu_us = t.fragments = t.primitives = t.samples = NAN;
+        t.gpu_us = t.fragments = t.primitives = t.samples = t.samples_shaded = NAN;
     out->total = t;
 }
 

@@ -21,6 +21,11 @@ typedef struct pass_stats {
     double fragments;          /* GL_FRAGMENT_SHADER_INVOCATIONS */
     double samples;            /* GL_SAMPLES_PASSED of the pass's shading draws (not the
                                   stencil marks, shadow maps or depth pre-pass) */
+    double per_sample_samples; /* msaa: of samples, those of draws shaded per sample (deferred's
+                                  edge pixels); 0 elsewhere */
+    double samples_shaded;     /* fragment shader runs in samples: samples at msaa 1; with msaa
+                                  N, (samples - per_sample_samples) / N + per_sample_samples
+                                  (a pixel shaded once covers N samples) */
     double primitives;         /* GL_PRIMITIVES_SUBMITTED */
     double scissor_pixels;     /* light_volumes scissor: the pass's scissor rectangles'
                                   area, summed over its lights; NAN elsewhere */
@@ -31,6 +36,10 @@ typedef struct frame_stats {
     pass_stats pass[RENDERER_MAX_PASSES];
     pass_stats total;          /* sums over passes (NAN if any pass's value is NAN) */
     uint32_t lights_drawn;
+    /* deferred with msaa > 1 (NAN elsewhere): the fraction of the output's pixels whose
+     * samples differ (the edge-mark pass's samples / N / pixels), after collect */
+    double edge_fraction;
+    int msaa;                  /* samples per pixel of the frame's targets (0: 1) */
     /* Tiled and clustered renderers, filled by collect (NAN and 0 for the others):
      * over the frame's tiles (or clusters), the mean and largest light-list length,
      * and the light evaluations per shaded pixel (list length summed over the pixels

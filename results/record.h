@@ -23,4 +23,7 @@ typedef struct frame_record {
     /* G-buffer renderers (NAN for the others): seed 002's G-buffer bytes written by the
      * G-buffer pass and read by the light passes (results/bandwidth.h) */
     double gbuffer_write_bytes, gbuffer_read_bytes;
+    /* msaa: fragment shader runs in samples (frame_stats.total.samples_shaded; NAN when
+     * unavailable), and deferred's fraction of edge pixels (NAN for the others) */
+    double samples_shaded, edge_fraction;
 } frame_record;

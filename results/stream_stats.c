@@ -207,6 +207,8 @@ struct trial_stream {
     size_t ngrid;
     double gbw, gbr;             /* G-buffer bytes written / read (seed 002) */
     size_t ngb;
+    double shaded, edges;        /* msaa: samples shaded; edge fractions */
+    size_t nedges;
     size_t ngpu;
     unsigned lmax;
     double last_t;
@@ -288,6 +290,8 @@ void trial_stream_begin(trial_stream *ts, double rel, second_sink on_second,
     ts->ngrid = 0;
     ts->gbw = ts->gbr = 0;
     ts->ngb = 0;
+    ts->shaded = ts->edges = 0;
+    ts->nedges = 0;
     ts->ngpu = 0;
     ts->lmax = 0;
     ts->last_t = 0;
@@ -337,6 +341,11 @@ void trial_stream_add(trial_stream *ts, const frame_record *r)
     ts->sc += (double)r->state_changes;
     ts->frag += r->fragments;
     ts->samp += r->samples;
+    ts->shaded += r->samples_shaded;
+    if (isfinite(r->edge_fraction)) {
+        ts->edges += r->edge_fraction;
+        ts->nedges++;
+    }
     ts->disp += (double)r->dispatches;
     if (isfinite(r->cell_lights_mean)) {
         ts->cmean += r->cell_lights_mean;
@@ -401,5 +410,7 @@ void trial_stream_end(trial_stream *ts, double t_end, trial_totals *out)
     out->light_evals_per_pixel_mean = ts->ngrid ? ts->evals / (double)ts->ngrid : NAN;
     out->gbuffer_write_bytes_mean = ts->ngb ? ts->gbw / (double)ts->ngb : NAN;
     out->gbuffer_read_bytes_mean = ts->ngb ? ts->gbr / (double)ts->ngb : NAN;
+    out->samples_shaded_mean = n ? ts->shaded / (double)n : NAN;
+    out->edge_fraction_mean = ts->nedges ? ts->edges / (double)ts->nedges : NAN;
     out->lights_max = ts->lmax;
 }

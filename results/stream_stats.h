@@ -86,6 +86,9 @@ typedef struct trial_totals {
     /* seed 002's G-buffer bytes per frame, written and read, over the frames that have
      * them (NAN: none, i.e. no G-buffer) */
     double gbuffer_write_bytes_mean, gbuffer_read_bytes_mean;
+    /* msaa: samples shaded per frame (NAN as fragments), and deferred's edge-pixel
+     * fraction over the frames that have one (NAN: none) */
+    double samples_shaded_mean, edge_fraction_mean;
     unsigned lights_max;
 } trial_totals;
 

@@ -24,6 +24,7 @@ const char *const summary_columns[] = {
     "light_evals_per_pixel",
     "gbuffer_bytes_per_frame", "gbuffer_write_bytes_mean", "gbuffer_read_bytes_mean",
     "image_edge_rmse", "image_edge_pixels",
+    "samples_shaded_mean", "edge_fraction_mean",
     "status", "message",
 };
 const size_t summary_ncolumns = sizeof summary_columns / sizeof summary_columns[0];
@@ -55,7 +56,7 @@ static const char *const lightgrid_columns[] = {
 static const char *const passes_columns[] = {
     "run_id", "trial", "frame", "pass", "gpu_us", "cpu_us", "draw_calls", "state_changes",
     "fragments", "samples", "primitives", "dispatches", "cell_lights_mean", "cell_lights_max",
-    "light_evals_per_pixel", "scissor_pixels",
+    "light_evals_per_pixel", "scissor_pixels", "samples_shaded", "edge_fraction",
 };
 #define NCOLS(a) (sizeof(a) / sizeof((a)[0]))
 
@@ -172,6 +173,9 @@ void run_files_frame(run_files *f, const char *run_id, uint32_t trial, const fra
         csv_f64(w, grid ? fs->grid_lights_max : NAN, 0);
         csv_f64(w, grid ? fs->light_evals_per_pixel : NAN, 3);
         csv_f64(w, ps->scissor_pixels, 0);   /* light_volumes scissor only */
+        csv_f64(w, ps->samples_shaded, 1);
+        /* msaa, deferred: the frame's edge-pixel fraction on its edge pass's row */
+        csv_f64(w, strcmp(ps->name, "edges") == 0 ? fs->edge_fraction : NAN, 6);
         csv_end_row(w);
     }
 }
@@ -429,6 +433,8 @@ bool output_write_run_summary(const char *run_dir, const experiment *e, const ru
         csv_f64(w, r->gbuffer_read_bytes_mean, 1);
         csv_g(w, r->image_edge_rmse);
         csv_f64(w, r->image_edge_pixels, 0);
+        csv_f64(w, r->samples_shaded_mean, 1);
+        csv_f64(w, r->edge_fraction_mean, 6);
         csv_str(w, r->status);
         csv_str(w, strcmp(r->status, "ok") == 0 ? "" : message);
         csv_end_row(w);

@@ -90,6 +90,8 @@ typedef struct trial_result {
     double dispatches_mean, cell_lights_mean, cell_lights_max, light_evals_per_pixel_mean;
     /* seed 002's G-buffer bytes per frame written and read (NAN: no G-buffer) */
     double gbuffer_write_bytes_mean, gbuffer_read_bytes_mean;
+    /* msaa: samples shaded per frame; deferred's edge-pixel fraction (NAN: none) */
+    double samples_shaded_mean, edge_fraction_mean;
     double harness_us_mean;    /* runner bookkeeping between frames, us */
     double ci1pct_after_s;     /* the CI stayed within 1% of the mean from then on; NAN: never */
     unsigned gpu_dropped;      /* pass GPU times longer than their frame, made NAN (run.c) */

@@ -506,6 +506,7 @@ static void run_trial(run_state *st, uint32_t trial, trial_result *tr)
     tr->image_rmse = tr->image_psnr_db = tr->image_max_abs = tr->nonfinite = NAN;
     tr->image_edge_rmse = tr->image_edge_pixels = NAN;
     tr->gbuffer_write_bytes_mean = tr->gbuffer_read_bytes_mean = NAN;
+    tr->samples_shaded_mean = tr->edge_fraction_mean = NAN;
     snprintf(tr->status, sizeof tr->status, "ok");
 
     double w0 = progress_now();
@@ -573,6 +574,8 @@ static void run_trial(run_state *st, uint32_t trial, trial_result *tr)
             .light_evals_per_pixel = fs.light_evals_per_pixel,
             .gbuffer_write_bytes = gt.write_bytes,
             .gbuffer_read_bytes = gt.read_bytes,
+            .samples_shaded = fs.total.samples_shaded,
+            .edge_fraction = fs.edge_fraction,
         };
         t_end = end;
         n++;
@@ -643,6 +646,8 @@ static void run_trial(run_state *st, uint32_t trial, trial_result *tr)
     tr->light_evals_per_pixel_mean = tt.light_evals_per_pixel_mean;
     tr->gbuffer_write_bytes_mean = tt.gbuffer_write_bytes_mean;
     tr->gbuffer_read_bytes_mean = tt.gbuffer_read_bytes_mean;
+    tr->samples_shaded_mean = tt.samples_shaded_mean;
+    tr->edge_fraction_mean = tt.edge_fraction_mean;
     tr->lights_max = tt.lights_max;
     tr->ci1pct_after_s = tt.ci_converged_after_s;
     tr->harness_us_mean = n ? harness_s * 1e6 / (double)n : NAN;
@@ -1011,6 +1016,7 @@ static void fill_missing_trials(run_state *st)
         tr->fragments_mean = tr->harness_us_mean = tr->ci1pct_after_s = NAN;
         tr->samples_mean = NAN;
         tr->gbuffer_write_bytes_mean = tr->gbuffer_read_bytes_mean = NAN;
+        tr->samples_shaded_mean = tr->edge_fraction_mean = NAN;
         tr->image_rmse = tr->image_psnr_db = tr->image_max_abs = tr->nonfinite = NAN;
         tr->image_edge_rmse = tr->image_edge_pixels = NAN;
         snprintf(tr->status, sizeof tr->status, "%s",

@@ -20,6 +20,7 @@ static const GLenum kind_target[KIND_COUNT] = {
  * gl_pass_queries_pause and _resume. */
 typedef struct sample_segments {
     GLuint *ids;
+    bool *per_sample;             /* the stretch's draws shade per sample (MSAA edges) */
     size_t n, cap;
 } sample_segments;
 
@@ -27,6 +28,7 @@ struct gl_pass_queries {
     size_t max_passes;
     sample_segments *samples;     /* [slot][pass] */
     bool counting;                /* a GL_SAMPLES_PASSED query is active */
+    bool per_sample;              /* the stretches begun now are per-sample shading */
     bool enabled[KIND_COUNT];
     size_t frame;                 /* ring slot of the frame being recorded */
     bool active;                  /* a pass is being measured */
@@ -85,6 +87,7 @@ void gl_pass_queries_destroy(gl_pass_queries *q)
             if (q->samples[i].cap)
                 gl.DeleteQueries((GLsizei)q->samples[i].cap, q->samples[i].ids);
             free(q->samples[i].ids);
+            free(q->samples[i].per_sample);
         }
     }
     free(q->samples);
@@ -100,14 +103,19 @@ static void samples_start(gl_pass_queries *q)
     if (sg->n == sg->cap) {
         size_t cap = sg->cap ? 2 * sg->cap : 4;
         GLuint *ids = realloc(sg->ids, cap * sizeof *ids);
-        if (!ids) {
+        if (ids)
+            sg->ids = ids;
+        bool *ps = ids ? realloc(sg->per_sample, cap * sizeof *ps) : NULL;
+        if (!ids || !ps) {
             fprintf(stderr, "gl_pass_queries: out of memory for sample queries\n");
             return;
         }
+        sg->per_sample = ps;
         gl.GenQueries((GLsizei)(cap - sg->cap), ids + sg->cap);
         sg->ids = ids;
         sg->cap = cap;
     }
+    sg->per_sample[sg->n] = q->per_sample;
     gl.BeginQuery(GL_SAMPLES_PASSED, sg->ids[sg->n++]);
     q->counting = true;
 }
@@ -125,6 +133,17 @@ void gl_pass_queries_resume(gl_pass_queries *q)
     if (!q || !q->active || q->counting)
         return;
     samples_start(q);
+}
+
+void gl_pass_queries_per_sample(gl_pass_queries *q, bool on)
+{
+    if (!q || q->per_sample == on)
+        return;
+    bool counting = q->counting;
+    gl_pass_queries_pause(q);
+    q->per_sample = on;
+    if (counting)
+        gl_pass_queries_resume(q);
 }
 
 void gl_pass_queries_begin(gl_pass_queries *q, size_t pass)
@@ -149,6 +168,7 @@ void gl_pass_queries_begin(gl_pass_queries *q, size_t pass)
     *issued = true;
     q->active = true;
     q->active_pass = pass;
+    q->per_sample = false;
     q->samples[q->frame * q->max_passes + pass].n = 0;
     samples_start(q);
 }
@@ -196,10 +216,15 @@ void gl_pass_queries_collect(gl_pass_queries *q, frame_stats *fs)
         fs->pass[p].primitives = v[KIND_PRIMITIVES];
         /* the pass's shading draws: every stretch between pauses (0 if none) */
         const sample_segments *sg = &q->samples[q->frame * q->max_passes + p];
-        double samples = issued ? 0.0 : NAN;
-        for (size_t i = 0; issued && i < sg->n; i++)
-            samples += result(sg->ids[i]);
+        double samples = issued ? 0.0 : NAN, per_sample = issued ? 0.0 : NAN;
+        for (size_t i = 0; issued && i < sg->n; i++) {
+            double v1 = result(sg->ids[i]);
+            samples += v1;
+            if (sg->per_sample[i])
+                per_sample += v1;
+        }
         fs->pass[p].samples = samples;
+        fs->pass[p].per_sample_samples = per_sample;
     }
     for (size_t p = 0; p < q->max_passes; p++)
         q->issued[q->frame * q->max_passes + p] = false;

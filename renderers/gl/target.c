@@ -95,6 +95,11 @@ bool gl_target_create(gl_target *t, const gl_target_desc *desc, char *err, size_
         gl.CreateTextures(GL_TEXTURE_2D_MULTISAMPLE, 1, &tex);
         gl.TextureStorage2DMultisample(tex, samples, fi->internal_format, desc->width,
                                        desc->height, GL_TRUE);
+        /* the driver may give more samples than asked (llvmpipe: 4 for 2) */
+        GLint got = 0;
+        gl.GetTextureLevelParameteriv(tex, 0, GL_TEXTURE_SAMPLES, &got);
+        if (got > samples)
+            samples = (int)got;
     } else {
         gl.CreateTextures(GL_TEXTURE_2D, 1, &tex);
         gl.TextureStorage2D(tex, 1, fi->internal_format, desc->width, desc->height);

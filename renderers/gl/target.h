@@ -93,7 +93,8 @@ typedef struct gl_target {
     char name[32];
     gl_format format;
     int width, height;
-    int samples;                 /* 1, or the samples of a multisampled target */
+    int samples;                 /* 1, or the samples of a multisampled target: what the
+                                    driver gave (GL_TEXTURE_SAMPLES), at least the desc's */
     uint64_t bytes;              /* gl_format_bytes(format, width, height) x samples */
     GLuint texture;              /* GL_TEXTURE_2D (GL_TEXTURE_2D_MULTISAMPLE with samples
                                     > 1); 0 when none */

@@ -2,11 +2,19 @@
 // added into the diffuse one (blend ONE, ONE), which is then the frame's light.
 // Full screen (fullscreen.vert).
 #include "bindings.h"
+// MSAA (GB_MSAA): the specular target is multisampled, GB_SAMPLE the sample read.
+#ifndef GB_SAMPLE
+#define GB_SAMPLE 0
+#endif
+#ifdef GB_MSAA
+layout(binding = BIND_TEX_SPECULAR) uniform sampler2DMS t_specular;
+#else
 layout(binding = BIND_TEX_SPECULAR) uniform sampler2D t_specular;
+#endif
 
 layout(location = 0) out vec4 o_light;
 
 void main()
 {
-    o_light = vec4(texelFetch(t_specular, ivec2(gl_FragCoord.xy), 0).rgb, 0.0);
+    o_light = vec4(texelFetch(t_specular, ivec2(gl_FragCoord.xy), GB_SAMPLE).rgb, 0.0);
 }

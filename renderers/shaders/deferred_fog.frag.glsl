@@ -16,13 +16,21 @@
 #error "deferred_fog.frag is compiled with FOG"
 #endif
 
+// MSAA (GB_MSAA): depth is multisampled; the pass runs per sample (GB_SAMPLE gl_SampleID).
+#ifndef GB_SAMPLE
+#define GB_SAMPLE 0
+#endif
+#ifdef GB_MSAA
+layout(binding = BIND_TEX_DEPTH) uniform sampler2DMS t_depth;
+#else
 layout(binding = BIND_TEX_DEPTH) uniform sampler2D t_depth;
+#endif
 
 layout(location = 0) out vec4 o_fog;
 
 void main()
 {
-    float d = texelFetch(t_depth, ivec2(gl_FragCoord.xy), 0).r;
+    float d = texelFetch(t_depth, ivec2(gl_FragCoord.xy), GB_SAMPLE).r;
     float f = 1.0;
     if (d < 1.0) {
         vec2 ndc = gl_FragCoord.xy * f_viewport.zw * 2.0 - 1.0;

@@ -15,9 +15,6 @@
 vec2 g_edge_xy;
 #define GB_FRAG_XY g_edge_xy
 #include "gbuffer.inc"
-#elif defined(EDGE_DEPTH_MS)
-// msaa > 1: the multisampled depth's sample 0 (the image it blends is the resolved one)
-layout(binding = BIND_TEX_DEPTH) uniform sampler2DMS t_depth;
 #else
 layout(binding = BIND_TEX_DEPTH) uniform sampler2D t_depth;
 #endif

@@ -104,20 +104,32 @@ void gbuffer_store(Surface s)
 #define GB_FRAG_XY gl_FragCoord.xy
 #endif
 
-layout(binding = BIND_TEX_GBUFFER0 + 0) uniform sampler2D t_gb0;
-layout(binding = BIND_TEX_GBUFFER0 + 1) uniform sampler2D t_gb1;
-layout(binding = BIND_TEX_GBUFFER0 + 2) uniform sampler2D t_gb2;
-layout(binding = BIND_TEX_GBUFFER0 + 3) uniform sampler2D t_gb3;
-layout(binding = BIND_TEX_GBUFFER0 + 4) uniform sampler2D t_gb4;
-layout(binding = BIND_TEX_GBUFFER0 + 5) uniform sampler2D t_gb5;
-layout(binding = BIND_TEX_DEPTH) uniform sampler2D t_depth;
+// MSAA (GB_MSAA, renderers/deferred.c): the attachments are multisampled and GB_SAMPLE
+// is the sample read: 0 (per pixel: sample 0), gl_SampleID (per-sample shading of edge
+// pixels) or a variable (edge_mark.frag). Single-sampled, GB_SAMPLE is texelFetch's
+// level, 0.
+#ifndef GB_SAMPLE
+#define GB_SAMPLE 0
+#endif
+#ifdef GB_MSAA
+#define GB_SAMPLER sampler2DMS
+#else
+#define GB_SAMPLER sampler2D
+#endif
+layout(binding = BIND_TEX_GBUFFER0 + 0) uniform GB_SAMPLER t_gb0;
+layout(binding = BIND_TEX_GBUFFER0 + 1) uniform GB_SAMPLER t_gb1;
+layout(binding = BIND_TEX_GBUFFER0 + 2) uniform GB_SAMPLER t_gb2;
+layout(binding = BIND_TEX_GBUFFER0 + 3) uniform GB_SAMPLER t_gb3;
+layout(binding = BIND_TEX_GBUFFER0 + 4) uniform GB_SAMPLER t_gb4;
+layout(binding = BIND_TEX_GBUFFER0 + 5) uniform GB_SAMPLER t_gb5;
+layout(binding = BIND_TEX_DEPTH) uniform GB_SAMPLER t_depth;
 
-#define gb0 texelFetch(t_gb0, ivec2(GB_FRAG_XY), 0)
-#define gb1 texelFetch(t_gb1, ivec2(GB_FRAG_XY), 0)
-#define gb2 texelFetch(t_gb2, ivec2(GB_FRAG_XY), 0)
-#define gb3 texelFetch(t_gb3, ivec2(GB_FRAG_XY), 0)
-#define gb4 texelFetch(t_gb4, ivec2(GB_FRAG_XY), 0)
-#define gb5 texelFetch(t_gb5, ivec2(GB_FRAG_XY), 0)
+#define gb0 texelFetch(t_gb0, ivec2(GB_FRAG_XY), GB_SAMPLE)
+#define gb1 texelFetch(t_gb1, ivec2(GB_FRAG_XY), GB_SAMPLE)
+#define gb2 texelFetch(t_gb2, ivec2(GB_FRAG_XY), GB_SAMPLE)
+#define gb3 texelFetch(t_gb3, ivec2(GB_FRAG_XY), GB_SAMPLE)
+#define gb4 texelFetch(t_gb4, ivec2(GB_FRAG_XY), GB_SAMPLE)
+#define gb5 texelFetch(t_gb5, ivec2(GB_FRAG_XY), GB_SAMPLE)
 
 struct GSurface {
     bool present;      // a surface covers the pixel
@@ -162,7 +174,7 @@ GSurface gbuffer_load()
 #elif defined(GB_DEPTH)
     g.position = gb_view_ray() * GB_DEPTH;
 #else
-    float d = texelFetch(t_depth, ivec2(GB_FRAG_XY), 0).r;
+    float d = texelFetch(t_depth, ivec2(GB_FRAG_XY), GB_SAMPLE).r;
     vec2 ndc = GB_FRAG_XY * f_viewport.zw * 2.0 - 1.0;
     vec4 p = f_inv_proj * vec4(ndc, d * 2.0 - 1.0, 1.0);
     g.position = p.xyz / p.w;

@@ -26,7 +26,8 @@ summary_cols = ["experiment","run_id","renderer","scene","width","height","gbuff
   "fragments_mean","samples_mean","gbuffer_bytes","image_rmse","image_psnr_db","image_max_abs",
   "nonfinite_pixels","harness_us_mean","ci1pct_after_s","dispatches_mean","cell_lights_mean",
   "cell_lights_max","light_evals_per_pixel","gbuffer_bytes_per_frame","gbuffer_write_bytes_mean",
-  "gbuffer_read_bytes_mean","image_edge_rmse","image_edge_pixels","status","message"]
+  "gbuffer_read_bytes_mean","image_edge_rmse","image_edge_pixels","samples_shaded_mean",
+  "edge_fraction_mean","status","message"]
 frames_cols = ["run_id","trial","frame","t_wall_s","t_scene_s","lights","frametime_us",
   "gpu_us","draw_calls","state_changes","fragments","samples","gbuffer_bytes_per_frame",
   "gbuffer_write_bytes","gbuffer_read_bytes"]
@@ -34,7 +35,7 @@ seconds_cols = ["run_id","trial","second","complete","lights_min","lights_max","
   "frametime_mean_us","frametime_sd_us","frametime_p50_us","frametime_p99_us","draw_calls_mean"]
 passes_cols = ["run_id","trial","frame","pass","gpu_us","cpu_us","draw_calls","state_changes",
   "fragments","samples","primitives","dispatches","cell_lights_mean","cell_lights_max",
-  "light_evals_per_pixel","scissor_pixels"]
+  "light_evals_per_pixel","scissor_pixels","samples_shaded","edge_fraction"]
 convergence_cols = ["run_id","trial","elapsed_s","frames","frametime_mean_us","frametime_ci95_us",
   "ci95_rel"]
 
