@@ -7,7 +7,11 @@
 // Defines: the material's maps (surface.inc); TILE_SIZE and TILES_X (the grid);
 // NO_GRID: the scene has no point or spot light, there is no cull pass and every
 // light of the frame (u_light_count, all directional) is looped. FOG (fog.inc): the sum
-// fogged.
+// fogged. TRANSLUCENT (the translucent pass of forward-plus, clustered and
+// tiled-deferred, renderers/translucent.c): the list is the tile's translucent one,
+// b_tiles[TLISTS + tile] (near plane to the tile's max opaque depth, tile_cull.inc),
+// for clustered too (its clusters cover only the depths of the tile's opaque samples),
+// and the output premultiplied, (c a, a), as forward_spml.frag's TRANSLUCENT.
 #include "bindings.h"
 #include "frame.inc"
 #include "surface.inc"
@@ -29,7 +33,9 @@ void main()
 #else
     uvec2 t = uvec2(gl_FragCoord.xy) / uint(TILE_SIZE);
     uint cell = t.y * uint(TILES_X) + t.x;
-#ifdef SLICES
+#if defined(TRANSLUCENT)
+    cell += uint(TLISTS);
+#elif defined(SLICES)
     // the cluster: this tile's slice of the fragment's view depth (tile_cull.comp)
     float log_ratio = log(1.0 + 2.0 / (f_proj[1][1] * float(SLICES_Y)));
     int k = clamp(int(floor(log(-s.position.z / f_clip.x) / log_ratio)), 0, SLICES - 1);
@@ -55,5 +61,9 @@ void main()
 #ifdef FOG
     c = fog_apply(c, s.position.z);
 #endif
+#ifdef TRANSLUCENT
+    o_color = vec4(c * s.alpha, s.alpha);
+#else
     o_color = vec4(c, 1.0);
+#endif
 }

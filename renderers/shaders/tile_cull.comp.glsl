@@ -26,7 +26,11 @@
 // made first, then each slice the tile's depth range meets (one more on either side) is
 // culled from that list against the slice's depth range (cull_clusters, tile_cull.inc);
 // the other clusters are written empty.
-// Defines: TILE_SIZE, TILES_X (and SLICES, SLICES_Y, TILES_Y). Uniforms: u_light_count.
+// TLISTS (the scene has translucent objects): then, in the same work group, the tile's
+// translucent list (near plane to the tile's max depth, cull_translucent in
+// tile_cull.inc) for the translucent pass.
+// Defines: TILE_SIZE, TILES_X (and SLICES, SLICES_Y, TILES_Y; TLISTS). Uniforms:
+// u_light_count.
 #define TILES_COHERENT   // clusters read their tile's list, written in this dispatch
 #include "bindings.h"
 #include "frame.inc"
@@ -80,5 +84,8 @@ void main()
     cull_cell(tile_index, covered, nlights, 0u, false);
 #else
     cull_clusters(tile_index, covered, nlights, tile_znear, tile_zfar);
+#endif
+#ifdef TLISTS
+    cull_translucent(tile, tile_index, size, covered, tile_zfar);
 #endif
 }
