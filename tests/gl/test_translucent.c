@@ -21,7 +21,9 @@
  *     longest translucent list, 1 in the longest opaque one, 3 visible, and the pane lit
  *     as forward-spml lights it (that light changes it); a near wall's edge across a
  *     pane seen over the sky, lit by a light wholly behind the wall: tiles with a pixel
- *     of sky take lights to the far side, and the image agrees;
+ *     of sky take lights to the far side, and the image agrees; the lists share the
+ *     opaque lists' index buffer: a budget the opaque lists alone fit but not with
+ *     the translucent ones reports the overflow;
  *   - with a shadowing spot the pass's SHADOWS variant runs, and deferred agrees;
  *   - two overlapping panes of different colours (the front one first in object order,
  *     so drawing in object order would be wrong): where they overlap the pixel is the
@@ -59,6 +61,7 @@ enum { W = 128, H = 96 };
 
 static gl_context *ctx;
 static float g_fog_density;   /* what every render uses */
+static int g_max_lights_per_tile;
 
 static const uint8_t *px(const image *im)
 {
@@ -102,6 +105,7 @@ static bool render(const char *kind, light_volume_mode mode, scene *s, image *ou
         .max_uniform_block_size = gi->max_uniform_block_size,
         .gbuffer = GBUFFER_REFERENCE, .light_volumes = mode,
         .fog_density = g_fog_density, .fog_color = {0.55f, 0.6f, 0.7f},
+        .max_lights_per_tile = g_max_lights_per_tile,
     };
     renderer *r = renderer_create(kind, &o, err, sizeof err);
     if (!r || !renderer_prepare(r, s, err, sizeof err)) {
@@ -426,6 +430,33 @@ static void test_pane_beyond_a_wall_edge(void **state)
     scene_destroy(s);
 }
 
+/* The translucent lists share the opaque lists' index buffer and overflow rule: on
+ * glass, with tiles.max_lights_per_tile 5 (capacity 5 x (48 opaque + 48 translucent
+ * heads) = 480 entries) the opaque lists alone fit (about 183) but not with the
+ * translucent ones (about 516): the frame reports the overflow, nothing is truncated
+ * silently; with 12 everything fits. */
+static void test_translucent_lists_overflow(void **state)
+{
+    (void)state;
+    scene *s = build_glass(PLACEMENT_SCENE);
+    static const char *const tiled[] = {"forward-plus", "tiled-deferred"};
+    for (size_t k = 0; k < 2; k++) {
+        frame_stats fs;
+        g_max_lights_per_tile = 5;
+        assert_true(render(tiled[k], LIGHT_VOLUMES_STENCIL, s, NULL, &fs, NULL));
+        print_message("%s, 5 a tile: opaque %.0f of 480, translucent %.0f: %s\n", tiled[k],
+                      fs.grid_lights_mean * 48, fs.translucent_lights_mean * 48, fs.overflow);
+        assert_true(fs.grid_lights_mean * 48 <= 480.0);
+        assert_true((fs.grid_lights_mean + fs.translucent_lights_mean) * 48 > 480.0);
+        assert_non_null(strstr(fs.overflow, "the index buffer holds 480"));
+        g_max_lights_per_tile = 12;
+        assert_true(render(tiled[k], LIGHT_VOLUMES_STENCIL, s, NULL, &fs, NULL));
+        assert_int_equal(fs.overflow[0], '\0');
+    }
+    g_max_lights_per_tile = 0;
+    scene_destroy(s);
+}
+
 /* A shadowing spot over the panes: the translucent pass's SHADOWS variant (the pool
  * bound for it), in forward-spml and deferred alike; the panes cast no shadow (they are
  * in no shadow-casting set), so both agree. */
@@ -585,6 +616,7 @@ int main(void)
         cmocka_unit_test(test_pane_in_front_of_light_volume),
         cmocka_unit_test(test_light_before_the_wall),
         cmocka_unit_test(test_pane_beyond_a_wall_edge),
+        cmocka_unit_test(test_translucent_lists_overflow),
         cmocka_unit_test(test_shadowed_spot),
         cmocka_unit_test(test_back_to_front),
         cmocka_unit_test(test_no_translucency_skips_the_pass),
