@@ -295,7 +295,9 @@ void light_grid_collect(const light_grid_readback *g, frame_stats *out)
 {
     uint32_t needed = 0;
     gl.GetNamedBufferSubData(g->stats, 0, sizeof needed, &needed);
-    gl.GetNamedBufferSubData(g->cells, 0, (GLsizeiptr)((size_t)g->ncells * 16u), g->readback);
+    gl.GetNamedBufferSubData(g->cells, 0,
+                             (GLsizeiptr)(((size_t)g->ncells + g->ntranslucent) * 16u),
+                             g->readback);
     double sum = 0, weighted = 0, covered = 0;
     uint32_t max = 0, longest = 0;
     for (uint32_t t = 0; t < g->ncells; t++) {
@@ -313,10 +315,31 @@ void light_grid_collect(const light_grid_readback *g, frame_stats *out)
     out->grid_lights_mean = g->ncells ? sum / g->ncells : NAN;
     out->grid_lights_max = max;
     out->light_evals_per_pixel = covered > 0 ? weighted / covered : 0.0;
+    double tsum = 0;
+    uint32_t tmax = 0, tlongest = 0;
+    for (uint32_t t = 0; t < g->ntranslucent; t++) {
+        uint32_t len = g->readback[4 * ((size_t)g->ncells + t) + 3];
+        tsum += len;
+        if (len > tmax) {
+            tmax = len;
+            tlongest = t;
+        }
+    }
+    if (g->ntranslucent) {
+        out->translucent_lists = g->ntranslucent;
+        out->translucent_lights_mean = tsum / g->ntranslucent;
+        out->translucent_lights_max = tmax;
+    }
     /* the lengths are the lists' true lengths, written or not; which lists were left
      * empty depends on the order the cells ran in, so the message names the longest */
     uint32_t tl = longest % g->ntiles;
-    if (needed > g->capacity && g->slices)
+    if (needed > g->capacity && tmax > max)
+        snprintf(out->overflow, sizeof out->overflow,
+                 "%s: the light lists need %u indices, the index buffer holds %u; tile %u "
+                 "(%u, %u)'s translucent list alone needs %u",
+                 g->name, needed, g->capacity, tlongest, tlongest % g->tiles_x,
+                 tlongest / g->tiles_x, tmax);
+    else if (needed > g->capacity && g->slices)
         snprintf(out->overflow, sizeof out->overflow,
                  "%s: the clusters' light lists need %u indices, the index buffer holds %u; "
                  "cluster %u (tile %u, %u, slice %u) alone needs %u",

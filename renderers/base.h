@@ -71,7 +71,8 @@ typedef struct light_grid_readback {
     uint32_t ncells, ntiles, tiles_x; /* cells = tiles x slices */
     uint32_t slices;                 /* 0: tiles only */
     uint32_t capacity;               /* entries of the index buffer */
-    uint32_t *readback, *counts;     /* ncells x 4 and ncells, the caller's */
+    uint32_t *readback, *counts;     /* (ncells + ntranslucent) x 4 and ncells, the caller's */
+    uint32_t ntranslucent;           /* translucent lists (one a tile) after the cells; 0: none */
 } light_grid_readback;
 
 void light_grid_collect(const light_grid_readback *g, frame_stats *out);

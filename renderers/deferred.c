@@ -53,7 +53,12 @@
  *                frontend's translucent objects, back to front, shaded by the forward
  *                single-pass program with every visible light and blended over the light
  *                target, testing (not writing) the G-buffer pass's depth
- *                (renderers/translucent.h); one draw each. Skipped, no program, otherwise
+ *                (renderers/translucent.h); one draw each. Skipped, no program, otherwise.
+ *                tiled-deferred and clustered deferred with point or spot lights: each
+ *                fragment loops its tile's translucent list instead, which the tiled
+ *                dispatch builds after the tile's opaque list (TLISTS, tile_cull.inc: near
+ *                plane to the tile's max depth; same index buffer and overflow rule, heads
+ *                after the opaque cells); the plan's "translucent-lists" says whether
  *   edge-aa      (aa: edge; renderers/edge_aa.h) seed 001 19.5.2's edge blur of the light
  *                target into "hdr.aa", its normals from the G-buffer (gbuffer.inc)
  *   resolve      scene_gpu_resolve: the light target (or "hdr.aa") clamped into the output
@@ -211,19 +216,20 @@ typedef enum pass_id {
     PASS_TRANSLUCENT,                /* MATERIAL_BLEND objects, forward, after the sky */
     PASS_EDGES,                      /* msaa > 1: edge_mark.frag sets EDGE_BIT */
     PASS_MSAA,                       /* msaa > 1: renderer_base_msaa_resolve_pass */
+    PASS_TLISTS,                     /* not a pass: the tiled pass's translucent lists */
     PASS_COUNT
 } pass_id;
 
 static const char *const pass_names[PASS_COUNT] = {
     "shadows", "gbuffer", "ambient", "directional", "point", "spot", "compose", "sky", "resolve",
-    "tiled", "fog", "translucent", "edges", "msaa-resolve",
+    "tiled", "fog", "translucent", "edges", "msaa-resolve", "translucent-lists",
 };
 
 /* The order describe lists them in (tiled-deferred's "tiled" after the G-buffer). */
 static const pass_id describe_order[PASS_COUNT] = {
-    PASS_SHADOWS, PASS_GBUFFER, PASS_EDGES, PASS_TILED, PASS_AMBIENT, PASS_DIRECTIONAL,
-    PASS_POINT, PASS_SPOT, PASS_COMPOSE, PASS_FOG, PASS_SKY, PASS_TRANSLUCENT, PASS_MSAA,
-    PASS_RESOLVE,
+    PASS_SHADOWS, PASS_GBUFFER, PASS_EDGES, PASS_TILED, PASS_TLISTS, PASS_AMBIENT,
+    PASS_DIRECTIONAL, PASS_POINT, PASS_SPOT, PASS_COMPOSE, PASS_FOG, PASS_SKY,
+    PASS_TRANSLUCENT, PASS_MSAA, PASS_RESOLVE,
 };
 
 /* tiled-deferred's light culling and shading pass (tiled_deferred.comp). */
@@ -235,6 +241,8 @@ typedef struct tiled_pass {
     uint32_t tiles_x, tiles_y, ntiles;
     uint32_t ncells;                 /* tiles, or tiles x slices */
     bool grid;                       /* the scene has point or spot lights: lists are culled */
+    uint32_t ntlists;                /* tiles: translucent lists built too (grid and the scene
+                                        has translucent objects); 0: none */
     uint32_t max_lights, capacity;   /* entries of the light and index buffers */
     GLuint program;
     GLuint lights, tiles, indices, stats;
@@ -242,7 +250,7 @@ typedef struct tiled_pass {
     uint32_t *readback, *counts;
     bool counted;
     char tile_define[24], tiles_x_define[32], tiles_y_define[32], slices_define[24];
-    char slices_y_define[24];
+    char slices_y_define[24], tlists_define[24];
 } tiled_pass;
 
 typedef struct deferred_renderer {
@@ -573,8 +581,13 @@ static bool compile_programs(deferred_renderer *r, char *err, size_t errlen)
         }
         if (!tp->grid)
             extra[n++] = "NO_GRID";
+        if (tp->ntlists)
+            extra[n++] = tp->tlists_define;
         n += (int)shadow_maps_defines(&r->shadows, extra + n);   /* any type: one program */
-        gl_program_desc d = {.name = tp->slices ? "clustered_deferred" : "tiled_deferred",
+        gl_program_desc d = {.name = tp->slices ? (tp->ntlists ? "clustered_deferred_translucent"
+                                                               : "clustered_deferred")
+                                                : (tp->ntlists ? "tiled_deferred_translucent"
+                                                               : "tiled_deferred"),
                              .compute = "tiled_deferred.comp"};
         unsigned k = 0;
         for (int i = 0; i < n; i++)
@@ -723,9 +736,10 @@ static bool make_tiled(deferred_renderer *r, const scene *s, char *err, size_t e
                  (unsigned long long)tp->max_lights * sizeof(gpu_light), max_block);
         return false;
     }
+    uint32_t heads = tp->ncells + tp->ntlists;   /* opaque cells, then translucent lists */
     uint64_t want = r->b.opts.max_lights_per_tile
-                        ? (uint64_t)tp->ncells * r->b.opts.max_lights_per_tile
-                        : (uint64_t)tp->ncells * tp->max_lights;
+                        ? (uint64_t)heads * r->b.opts.max_lights_per_tile
+                        : (uint64_t)heads * tp->max_lights;
     uint64_t block_entries = (uint64_t)max_block / 4u;
     if (want > block_entries)
         want = block_entries;
@@ -737,14 +751,15 @@ static bool make_tiled(deferred_renderer *r, const scene *s, char *err, size_t e
     snprintf(tp->tiles_y_define, sizeof tp->tiles_y_define, "TILES_Y %u", tp->tiles_y);
     snprintf(tp->slices_define, sizeof tp->slices_define, "SLICES %u", tp->slices);
     snprintf(tp->slices_y_define, sizeof tp->slices_y_define, "SLICES_Y %u", tp->slices_y);
-    if ((uint64_t)tp->ncells * 16u > (uint64_t)(max_block > 0 ? max_block : 0)) {
+    snprintf(tp->tlists_define, sizeof tp->tlists_define, "TLISTS %u", tp->ncells);
+    if ((uint64_t)heads * 16u > (uint64_t)(max_block > 0 ? max_block : 0)) {
         snprintf(err, errlen, "%s: %u cells need %llu bytes of list heads, this context allows "
-                 "%d (GL_MAX_SHADER_STORAGE_BLOCK_SIZE)", r->b.name, tp->ncells,
-                 (unsigned long long)tp->ncells * 16u, max_block);
+                 "%d (GL_MAX_SHADER_STORAGE_BLOCK_SIZE)", r->b.name, heads,
+                 (unsigned long long)heads * 16u, max_block);
         return false;
     }
     tp->staging = calloc(tp->max_lights, sizeof *tp->staging);
-    tp->readback = calloc((size_t)tp->ncells * 4u, sizeof *tp->readback);
+    tp->readback = calloc((size_t)heads * 4u, sizeof *tp->readback);
     tp->counts = calloc(tp->ncells, sizeof *tp->counts);
     if (!tp->staging || !tp->readback || !tp->counts) {
         snprintf(err, errlen, "%s: out of memory for %u lights and %u tiles", r->b.name, n,
@@ -752,7 +767,7 @@ static bool make_tiled(deferred_renderer *r, const scene *s, char *err, size_t e
         return false;
     }
     tp->lights = make_buffer((size_t)tp->max_lights * sizeof(gpu_light));
-    tp->tiles = make_buffer((size_t)tp->ncells * 16u);
+    tp->tiles = make_buffer((size_t)heads * 16u);
     tp->indices = make_buffer((size_t)tp->capacity * 4u);
     tp->stats = make_buffer(2 * sizeof(uint32_t));
     return true;
@@ -787,6 +802,7 @@ static bool deferred_prepare(void *self, const scene *s, char *err, size_t errle
 
     r->variants = 0;
     r->nobjects = s->nobjects;
+    bool translucency = false;   /* translucent_prepare plans the same pass, later */
     for (uint32_t i = 0; i < s->nobjects; i++) {
         uint32_t m = s->objects[i].material;
         if (m >= s->nmaterials) {
@@ -796,6 +812,8 @@ static bool deferred_prepare(void *self, const scene *s, char *err, size_t errle
         }
         if (!scene_material_translucent(&s->materials[m]))   /* translucent.h's */
             r->variants |= 1u << material_variant(&s->materials[m]);
+        else
+            translucency = true;
     }
     r->light_types = 0;
     uint32_t count[DEFERRED_LIGHT_TYPES] = {0, 0, 0};
@@ -854,6 +872,13 @@ static bool deferred_prepare(void *self, const scene *s, char *err, size_t errle
         }
         tp->ncells = tp->ntiles * (tp->slices ? tp->slices : 1u);
         tp->grid = count[LIGHT_POINT] + count[LIGHT_SPOT] > 0;
+        tp->ntlists = tp->grid && translucency ? tp->ntiles : 0u;
+        if (tp->ntlists)
+            plan(r, PASS_TLISTS, true, "in the %s dispatch: per tile, near plane to its max depth",
+                 tp->slices ? "clustered" : "tiled");
+        else
+            plan(r, PASS_TLISTS, false, "%s", !translucency ? "skipped: no translucent materials"
+                                                            : "skipped: no culling, every light");
         if (tp->slices)
             plan(r, PASS_TILED, true, "one dispatch: %ux%ux%u clusters (%d px), %s",
                  tp->tiles_x, tp->tiles_y, tp->slices, tp->tile,
@@ -903,9 +928,17 @@ static bool deferred_prepare(void *self, const scene *s, char *err, size_t errle
     if (!make_targets(r, err, errlen) ||
         !shadow_maps_create(&r->shadows, r->b.programs, "deferred", err, errlen) ||
         !compile_programs(r, err, errlen) || !compile_fog(r, err, errlen) ||
-        !translucent_prepare(&r->translucent, &r->b, s, &r->shadows, err, errlen) ||
+        !translucent_prepare(&r->translucent, &r->b, s, &r->shadows, r->tiled, err, errlen) ||
         !prepare_edge_aa(r, err, errlen))
         goto fail;
+    if (r->tiled) {
+        const translucent_grid tg = {{r->tp.tile_define, r->tp.tiles_x_define,
+                                      r->tp.tlists_define},
+                                     r->tp.lights, r->tp.tiles, r->tp.indices};
+        if (!translucent_compile(&r->translucent, &r->b, &r->shadows,
+                                 r->tp.ntlists ? &tg : NULL, err, errlen))
+            goto fail;
+    }
     translucent_reason(&r->translucent, true, why, sizeof why);
     plan(r, PASS_TRANSLUCENT, r->translucent.run, "%s", why);
     r->prepared = true;
@@ -1320,8 +1353,10 @@ static void tiled_draw(deferred_renderer *r, const scene *s, frame_stats *out)
     /* it samples the depth target: no draw framebuffer that has it attached (header) */
     gl_state_framebuffer(st, r->b.output_fbo);
     gl_state_dispatch(st, tp->tiles_x, tp->tiles_y, 1);
-    /* the sky draws into the target, resolve samples it */
-    gl_state_barrier(st, GL_FRAMEBUFFER_BARRIER_BIT | GL_TEXTURE_FETCH_BARRIER_BIT);
+    /* the sky draws into the target, resolve samples it; the translucent pass reads
+     * the translucent lists */
+    gl_state_barrier(st, GL_FRAMEBUFFER_BARRIER_BIT | GL_TEXTURE_FETCH_BARRIER_BIT |
+                             (tp->ntlists ? GL_SHADER_STORAGE_BARRIER_BIT : 0u));
     /* the depth target is drawn with (sky) next: not bound for sampling meanwhile */
     if (r->layout.position != DEFERRED_POSITION_DEPTH_BUFFER)
         gl_state_texture(st, DEFERRED_DEPTH_UNIT, 0);
@@ -1530,7 +1565,7 @@ static void tiled_collect(deferred_renderer *r, frame_stats *out)
         return;
     light_grid_collect(&(light_grid_readback){r->b.name, tp->tiles, tp->stats, tp->ncells,
                                               tp->ntiles, tp->tiles_x, tp->slices, tp->capacity,
-                                              tp->readback, tp->counts},
+                                              tp->readback, tp->counts, tp->ntlists},
                        out);
     tp->counted = true;
 }
@@ -1570,7 +1605,7 @@ static void deferred_describe(const void *self, pass_plan *out)
         return;
     for (int i = 0; i < PASS_COUNT && out->npasses < RENDERER_MAX_PASSES; i++) {
         pass_id p = describe_order[i];
-        if (p == PASS_TILED && !r->tiled)
+        if ((p == PASS_TILED || p == PASS_TLISTS) && !r->tiled)
             continue;   /* deferred's plan is what it always was */
         if ((p == PASS_EDGES || p == PASS_MSAA) && r->b.samples <= 1)
             continue;   /* single-sampled: the plan is what it always was */

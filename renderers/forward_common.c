@@ -117,7 +117,8 @@ bool forward_common_prepare(forward_common *fc, const scene *s, char *err, size_
     if (!shadow_maps_create(&fc->shadows, fc->b.programs, fc->b.name, err, errlen) ||
         !edge_aa_prepare(&fc->b, NULL, 0, err, errlen))   /* normals from depth */
         goto fail;
-    if (!translucent_prepare(&fc->translucent, &fc->b, s, &fc->shadows, err, errlen))
+    if (!translucent_prepare(&fc->translucent, &fc->b, s, &fc->shadows,
+                             fc->translucent_later, err, errlen))
         goto fail;
     fc->prepared = true;
     return true;

@@ -89,6 +89,7 @@ typedef struct forward_common {
     uint32_t nobjects_variant[FORWARD_VARIANTS];   /* objects of each variant */
     GLuint base_program[FORWARD_VARIANTS];    /* forward-mpml's base pass */
     translucent_pass translucent;    /* the scene's MATERIAL_BLEND objects (translucent.h) */
+    bool translucent_later;          /* the renderer calls translucent_compile itself (tiled) */
     const scene *frame_scene;        /* the scene forward_begin_frame was given */
 } forward_common;
 

@@ -19,8 +19,15 @@
  *            list (directional lights pass every tile's test, so each list holds the
  *            same terms as forward-spml's loop, in the same order); without the cull
  *            pass every light of the frame (all directional) is looped
- *   sky, [translucent], resolve   as every renderer (translucent.h: the frame's whole
- *                  light list, not the tile lists, which the opaque depth bounds)
+ *   sky, [translucent], resolve   as every renderer (translucent.h); when the cull
+ *            pass runs, the translucent pass loops its tile's translucent list, which
+ *            the cull dispatch builds after the opaque lists when (and only when) the
+ *            scene has translucent objects (TLISTS, tile_cull.inc: every light against
+ *            the tile's planes from the camera's near plane to the tile's max depth, or
+ *            to the far side where some pixel of the tile has no geometry), per tile for
+ *            clustered too: its clusters cover only the slices the tile's opaque depth
+ *            range meets, so a pane's own cluster may be empty. Same index buffer, same
+ *            overflow rule; heads after the opaque cells (b_tiles[cells + tile])
  *
  * Draw calls per frame, with V visible objects (dispatches counted apart):
  *
@@ -32,7 +39,7 @@
  *
  * Overflow: the index buffer holds, per tile on average, tiles.max_lights_per_tile
  * entries (renderer_options.max_lights_per_tile), or, with 0 (the default), every
- * light of the run in every tile (capped by GL_MAX_SHADER_STORAGE_BLOCK_SIZE and at
+ * light of the run in every tile (cells, plus the tiles' translucent lists when built) (capped by GL_MAX_SHADER_STORAGE_BLOCK_SIZE and at
  * 2^25 entries, 128 MiB), so that no frame can run out unless that cap bites. A tile
  * whose list does not fit is never truncated: it is left empty, and collect, seeing
  * more entries asked for than the buffer holds, puts the total, the capacity and the
@@ -84,6 +91,8 @@ typedef struct forward_plus {
     uint32_t ncells;         /* tiles, or tiles x slices */
     double slice_ratio;      /* clustered: far/near of each slice, (zfar/znear)^(1/slices) */
     bool grid;               /* the scene has point or spot lights: the cull pass runs */
+    uint32_t ntlists;        /* tiles: the cull builds translucent lists (grid and the
+                                scene has translucent objects); 0: it does not */
     uint32_t max_lights;     /* entries of the light buffer */
     uint32_t capacity;       /* entries of the index buffer */
     GLuint depth_program, cull_program;
@@ -95,7 +104,7 @@ typedef struct forward_plus {
     uint32_t *counts;        /* ntiles: list lengths of the last frame collected */
     bool counted;            /* counts hold a frame */
     char tile_define[24], tiles_x_define[32], tiles_y_define[32], slices_define[24];
-    char slices_y_define[24], samples_define[24];
+    char slices_y_define[24], samples_define[24], tlists_define[24];
     uint64_t frame;
     uint64_t program_frame[FORWARD_VARIANTS];
     int count;               /* lights uploaded this frame */
@@ -112,6 +121,7 @@ static void *tiled_create(const char *name, bool clustered, const renderer_optio
     r->name = name;
     if (!forward_common_init(&r->c, name, opts, err, errlen))
         goto fail;
+    r->c.translucent_later = true;   /* plus_prepare: over the tile lists or not */
     r->tile = opts->tile_size ? opts->tile_size : 16;
     if (r->tile != 8 && r->tile != 16 && r->tile != 32) {
         snprintf(err, errlen, "%s: tiles.size %d: expected 8, 16 or 32", name, r->tile);
@@ -192,15 +202,17 @@ static bool plus_prepare(void *self, const struct scene *s, char *err, size_t er
     }
     r->ncells = r->ntiles * (r->slices ? r->slices : 1u);
     r->grid = (c->light_types & ((1u << LIGHT_POINT) | (1u << LIGHT_SPOT))) != 0;
+    r->ntlists = r->grid && c->translucent.run ? r->ntiles : 0u;
+    uint32_t heads = r->ncells + r->ntlists;   /* opaque cells, then translucent lists */
     uint32_t n = s->nlights_total;
     r->max_lights = n ? n : 1u;
 
     GLint max_block = 0;
     gl.GetIntegerv(GL_MAX_SHADER_STORAGE_BLOCK_SIZE, &max_block);
-    if ((uint64_t)r->ncells * 16u > (uint64_t)(max_block > 0 ? max_block : 0)) {
+    if ((uint64_t)heads * 16u > (uint64_t)(max_block > 0 ? max_block : 0)) {
         snprintf(err, errlen, "%s: %u %s need %llu bytes of list heads, this context allows %d "
-                 "(GL_MAX_SHADER_STORAGE_BLOCK_SIZE)", r->name, r->ncells,
-                 r->slices ? "clusters" : "tiles", (unsigned long long)r->ncells * 16u, max_block);
+                 "(GL_MAX_SHADER_STORAGE_BLOCK_SIZE)", r->name, heads,
+                 r->slices ? "clusters" : "tiles", (unsigned long long)heads * 16u, max_block);
         goto fail;
     }
     uint64_t block_entries = max_block > 0 ? (uint64_t)max_block / 4u : 0u;
@@ -212,8 +224,8 @@ static bool plus_prepare(void *self, const struct scene *s, char *err, size_t er
         goto fail;
     }
     uint64_t want = c->b.opts.max_lights_per_tile
-                        ? (uint64_t)r->ncells * c->b.opts.max_lights_per_tile
-                        : (uint64_t)r->ncells * r->max_lights;
+                        ? (uint64_t)heads * c->b.opts.max_lights_per_tile
+                        : (uint64_t)heads * r->max_lights;
     if (want > block_entries)
         want = block_entries;
     if (want > PLUS_INDEX_CAP)
@@ -229,18 +241,23 @@ static bool plus_prepare(void *self, const struct scene *s, char *err, size_t er
     /* msaa > 1: the cull reads every sample, and shading gets the tiles' ranges */
     bool ms = c->b.samples > 1;
     snprintf(r->samples_define, sizeof r->samples_define, "MSAA_SAMPLES %d", c->b.samples);
+    snprintf(r->tlists_define, sizeof r->tlists_define, "TLISTS %u", r->ncells);
     const char *grid_defs[6] = {r->tile_define, r->tiles_x_define,
                                 r->slices ? r->tiles_y_define : NULL,
                                 r->slices ? r->slices_define : NULL,
                                 r->slices ? r->slices_y_define : NULL,
                                 ms ? "TILE_DEPTH_RANGES" : NULL};
-    const char *cull_defs[7] = {NULL};   /* grid_defs without the NULLs, then samples */
+    /* the cull's defines: grid_defs without the NULLs, then the samples, then TLISTS
+     * when it builds translucent lists (a NULL ends the list) */
+    const char *cull_defs[9] = {NULL};
     unsigned ncull = 0;
     for (unsigned i = 0; i < 6; i++)
         if (grid_defs[i])
             cull_defs[ncull++] = grid_defs[i];
     if (ms)
         cull_defs[ncull++] = r->samples_define;
+    if (r->ntlists)
+        cull_defs[ncull++] = r->tlists_define;
     char why[4096] = "";
     if (gl_program_get(c->b.programs,
                        &(gl_program_desc){.name = "depth_only", .vertex = "mesh.vert",
@@ -251,11 +268,15 @@ static bool plus_prepare(void *self, const struct scene *s, char *err, size_t er
     }
     if (r->grid &&
         gl_program_get(c->b.programs,
-                       &(gl_program_desc){.name = r->slices ? "cluster_cull" : "tile_cull",
-                                          .compute = "tile_cull.comp",
-                                          .defines = {cull_defs[0], cull_defs[1], cull_defs[2],
-                                                      cull_defs[3], cull_defs[4], cull_defs[5],
-                                                      cull_defs[6]}},
+                       &(gl_program_desc){
+                           .name = r->slices ? (r->ntlists ? "cluster_cull_translucent"
+                                                           : "cluster_cull")
+                                             : (r->ntlists ? "tile_cull_translucent"
+                                                           : "tile_cull"),
+                           .compute = "tile_cull.comp",
+                           .defines = {cull_defs[0], cull_defs[1], cull_defs[2],
+                                       cull_defs[3], cull_defs[4], cull_defs[5],
+                                       cull_defs[6], cull_defs[7]}},
                        &r->cull_program, why, sizeof why) != GLP_OK) {
         snprintf(err, errlen, "%s: %s", r->name, why);
         goto fail;
@@ -279,7 +300,7 @@ static bool plus_prepare(void *self, const struct scene *s, char *err, size_t er
 
     /* buffers */
     r->staging = calloc(r->max_lights, sizeof *r->staging);
-    r->readback = calloc((size_t)r->ncells * 4u, sizeof *r->readback);
+    r->readback = calloc((size_t)heads * 4u, sizeof *r->readback);
     r->counts = calloc(r->ncells, sizeof *r->counts);
     if (!r->staging || !r->readback || !r->counts) {
         snprintf(err, errlen, "%s: out of memory for %u lights and %u cells", r->name, n,
@@ -287,11 +308,16 @@ static bool plus_prepare(void *self, const struct scene *s, char *err, size_t er
         goto fail;
     }
     r->lights = make_buffer((size_t)r->max_lights * sizeof(gpu_light));
-    r->tiles = make_buffer((size_t)r->ncells * 16u);
+    r->tiles = make_buffer((size_t)heads * 16u);
     r->indices = make_buffer((size_t)r->capacity * 4u);
     r->stats = make_buffer(sizeof(tile_stats));
     if (ms && r->grid)
         r->depth_ranges = make_buffer((size_t)r->ntiles * 2u * sizeof(float));
+    const translucent_grid tg = {{r->tile_define, r->tiles_x_define, r->tlists_define},
+                                 r->lights, r->tiles, r->indices};
+    if (!translucent_compile(&c->translucent, &c->b, &c->shadows, r->ntlists ? &tg : NULL,
+                             err, errlen))
+        goto fail;
     return true;
 fail:
     release_buffers(r);
@@ -398,7 +424,7 @@ static void plus_collect(void *self, frame_stats *out)
         return;
     light_grid_collect(&(light_grid_readback){r->name, r->tiles, r->stats, r->ncells, r->ntiles,
                                               r->tiles_x, r->slices, r->capacity, r->readback,
-                                              r->counts},
+                                              r->counts, r->ntlists},
                        out);
     r->counted = true;
 }
@@ -430,6 +456,16 @@ static void plus_describe(const void *self, pass_plan *out)
     else
         forward_describe_pass(out, "cull", false,
                               "skipped, the scene has no point or spot light");
+    if (r->ntlists)
+        forward_describe_pass(out, "translucent-lists", true,
+                              "in the cull dispatch: per tile, near plane to its max depth");
+    else if (!c->prepared)
+        forward_describe_pass(out, "translucent-lists", true,
+                              "per tile in the cull dispatch, when the scene has translucency");
+    else
+        forward_describe_pass(out, "translucent-lists", false, "%s",
+                              !c->translucent.run ? "skipped: no translucent materials"
+                                                  : "skipped: no cull pass, every light");
     forward_describe_pass(out, "shade", true,
                           r->grid ? (r->slices ? "every visible object once, depth EQUAL, "
                                                  "its cluster's lights"

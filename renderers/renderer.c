@@ -81,6 +81,7 @@ void renderer_draw(renderer *r, const struct scene *s, frame_stats *out)
     memset(out, 0, sizeof *out);
     out->grid_lights_mean = out->grid_lights_max = out->light_evals_per_pixel = NAN;
     out->edge_fraction = NAN;
+    out->translucent_lights_mean = out->translucent_lights_max = NAN;
     r->impl->draw(r->self, s, out);
 }
 

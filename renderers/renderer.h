@@ -48,6 +48,11 @@ typedef struct frame_stats {
     size_t grid_pass;          /* 1 + the index of the pass that built the grid; 0: none */
     double grid_lights_mean, grid_lights_max;
     double light_evals_per_pixel;
+    /* The tiles' translucent lists (tiled and clustered renderers whose cull builds them
+     * because the scene has translucent objects; 0 and NAN otherwise): how many, and
+     * their mean and largest length. The grid_* counters above stay the opaque lists'. */
+    uint32_t translucent_lists;
+    double translucent_lights_mean, translucent_lights_max;
     /* Non-empty when the frame could not be drawn as asked (a light list that would
      * not fit, tiled renderers): the run fails as failed:overflow with this message. */
     char overflow[160];

@@ -21,17 +21,24 @@ void translucent_release(translucent_pass *t)
     memset(t, 0, sizeof *t);   /* programs belong to the renderer's cache */
 }
 
+/* grid NULL: forward_spml.frag over the pass's light buffer; else forward_tiled.frag
+ * over the grid's translucent lists. */
 static bool compile(translucent_pass *t, renderer_base *b, unsigned v, const shadow_maps *sm,
-                    char *err, size_t errlen)
+                    const translucent_grid *grid, char *err, size_t errlen)
 {
     scene_material mat = {.diffuse_map = (v & 1u) ? 0 : -1, .gloss_map = (v & 2u) ? 0 : -1,
                           .normal_map = (v & 4u) ? 0 : -1, .emissive_map = (v & 8u) ? 0 : -1};
-    gl_program_desc d = {.vertex = "mesh.vert", .fragment = "forward_spml.frag"};
+    gl_program_desc d = {.vertex = "mesh.vert",
+                         .fragment = grid ? "forward_tiled.frag" : "forward_spml.frag"};
     const char *defs[SHADING_MATERIAL_DEFINES] = {NULL};
     unsigned n = 0, k = shading_material_defines(&mat, defs);
     for (unsigned i = 0; i < k; i++)
         d.defines[n++] = defs[i];
-    d.defines[n++] = "LIGHTS_STORAGE";
+    if (grid)
+        for (unsigned i = 0; i < sizeof grid->defines / sizeof grid->defines[0]; i++)
+            d.defines[n++] = grid->defines[i];
+    else
+        d.defines[n++] = "LIGHTS_STORAGE";
     d.defines[n++] = "TRANSLUCENT";
     const char *sdefs[2] = {NULL, NULL};
     unsigned ns = sm->run ? shadow_maps_defines(sm, sdefs) : 0;
@@ -39,7 +46,8 @@ static bool compile(translucent_pass *t, renderer_base *b, unsigned v, const sha
         d.defines[n++] = sdefs[i];
     if (renderer_base_fog(b))
         d.defines[n++] = "FOG";
-    d.name = ns ? "translucent_shadowed" : "translucent";
+    d.name = grid ? (ns ? "translucent_tiled_shadowed" : "translucent_tiled")
+                  : (ns ? "translucent_shadowed" : "translucent");
     char why[4096] = "";
     if (gl_program_get(b->programs, &d, &t->program[v], why, sizeof why) != GLP_OK) {
         snprintf(err, errlen, "%s: %s", b->name, why);
@@ -50,7 +58,7 @@ static bool compile(translucent_pass *t, renderer_base *b, unsigned v, const sha
 }
 
 bool translucent_prepare(translucent_pass *t, renderer_base *b, const scene *s,
-                         const shadow_maps *sm, char *err, size_t errlen)
+                         const shadow_maps *sm, bool later, char *err, size_t errlen)
 {
     translucent_release(t);
     for (uint32_t i = 0; i < s->nobjects; i++) {
@@ -63,8 +71,8 @@ bool translucent_prepare(translucent_pass *t, renderer_base *b, const scene *s,
     t->run = t->nobjects > 0;
     if (!t->run)
         return true;
-    for (unsigned v = 0; v < TRANSLUCENT_VARIANTS; v++)
-        if ((t->variants & (1u << v)) && !compile(t, b, v, sm, err, errlen))
+    for (unsigned v = 0; !later && v < TRANSLUCENT_VARIANTS; v++)
+        if ((t->variants & (1u << v)) && !compile(t, b, v, sm, NULL, err, errlen))
             goto fail;
     t->capacity = s->nlights_total ? s->nlights_total : 1u;
     t->staging = calloc(t->capacity, sizeof *t->staging);
@@ -79,6 +87,26 @@ bool translucent_prepare(translucent_pass *t, renderer_base *b, const scene *s,
 fail:
     translucent_release(t);
     return false;
+}
+
+bool translucent_compile(translucent_pass *t, renderer_base *b, const shadow_maps *sm,
+                         const translucent_grid *g, char *err, size_t errlen)
+{
+    if (!t->run)
+        return true;
+    for (unsigned v = 0; v < TRANSLUCENT_VARIANTS; v++)
+        if ((t->variants & (1u << v)) && !compile(t, b, v, sm, g, err, errlen))
+            return false;
+    if (!g)
+        return true;
+    if (t->lights)
+        gl.DeleteBuffers(1, &t->lights);
+    t->lights = 0;
+    free(t->staging);   /* the renderer packs the lights */
+    t->staging = NULL;
+    t->gridded = true;
+    t->grid = *g;
+    return true;
 }
 
 /* Premultiplied "over": RGB src + (1 - a) dst; the target's alpha kept. */
@@ -96,14 +124,14 @@ uint64_t translucent_draw(translucent_pass *t, renderer_base *b, scene_gpu *gpu,
         return 0;
     gl_state *st = b->st;
     uint32_t n = fe->nlights < t->capacity ? fe->nlights : t->capacity;
-    for (uint32_t k = 0; k < n; k++) {
+    for (uint32_t k = 0; !t->gridded && k < n; k++) {
         shading_pack_light(&s->lights[fe->lights[k]], s->view, &t->staging[k]);
         shading_set_shadow_layer(&t->staging[k], fe->shadow_layer[k]);
     }
     t->count = (int)n;
     t->frame++;
     renderer_base_pass_begin(b, out, "translucent");
-    if (n)
+    if (n && !t->gridded)
         gl.NamedBufferSubData(t->lights, 0, (GLsizeiptr)(n * sizeof(gpu_light)), t->staging);
     gl_state_framebuffer(st, fbo);
     gl_state_viewport(st, 0, 0, b->width, b->height);
@@ -112,7 +140,13 @@ uint64_t translucent_draw(translucent_pass *t, renderer_base *b, scene_gpu *gpu,
     gl_state_stencil(st, NULL);
     gl_state_depth(st, &(gls_depth){.compare = GLS_COMPARE_LESS, .write = false});
     gl_state_cull(st, GLS_CULL_BACK);
-    gl_state_storage_buffer(st, BIND_SSBO_LIGHTS, t->lights);
+    if (t->gridded) {   /* the renderer's lights (this frame's, as packed here) and lists */
+        gl_state_storage_buffer(st, BIND_SSBO_LIGHTS, t->grid.lights);
+        gl_state_storage_buffer(st, BIND_SSBO_TILE_LISTS, t->grid.tiles);
+        gl_state_storage_buffer(st, BIND_SSBO_TILE_INDICES, t->grid.indices);
+    } else {
+        gl_state_storage_buffer(st, BIND_SSBO_LIGHTS, t->lights);
+    }
     if (sm->run)
         shadow_maps_bind(sm, st);
     for (uint32_t k = 0; k < fe->ntranslucent; k++) {
@@ -136,6 +170,7 @@ void translucent_reason(const translucent_pass *t, bool prepared, char *buf, siz
     if (prepared && !t->run)
         snprintf(buf, len, "skipped: no translucent materials");
     else
-        snprintf(buf, len, "%u translucent objects, back to front after the sky, every "
-                 "visible light, blended over", t->nobjects);
+        snprintf(buf, len, "%u translucent objects, back to front after the sky, %s, "
+                 "blended over", t->nobjects,
+                 t->gridded ? "their tile's translucent list" : "every visible light");
 }

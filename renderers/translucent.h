@@ -12,12 +12,13 @@
  *             light of the frame (the frontend's `lights`, in its order) in one pass,
  *             so forward-mpml's additive per-light passes never meet blending (an
  *             object is lit fully before it is blended once)
- *   lights    the frame's visible lights from a storage buffer of the pass's own: the
- *             tiled and clustered renderers do not use their tile lists here (those
- *             are bounded by the opaque depth, which a pane in front of it is not):
- *             the list is every light whose volume meets the frustum, a conservative
- *             list for every tile (van Oosten's lists without the tile's depth bound,
- *             taken to the whole screen)
+ *   lights    the frame's visible lights from a storage buffer of the pass's own;
+ *             or, given a grid (translucent_compile: forward-plus, clustered and
+ *             tiled-deferred when their cull runs), forward_tiled.frag's TRANSLUCENT
+ *             variant over the fragment's tile's translucent list, which the
+ *             renderer's cull dispatch builds beside the opaque lists (TLISTS,
+ *             tile_cull.inc: near plane to the tile's max opaque depth, van Oosten's
+ *             transparent lists), from the renderer's own light and list buffers
  *   state     blend premultiplied: RGB ONE, ONE_MINUS_SRC_ALPHA (the shader writes
  *             (c a, a)); alpha ZERO, ONE (the HDR target's alpha stays 1); depth test
  *             LESS, no depth writes; back faces culled (one layer per closed mesh)
@@ -39,6 +40,12 @@
 
 enum { TRANSLUCENT_VARIANTS = 16 };   /* the four map bits (no alpha test) */
 
+/* A tiled renderer's translucent lists (see "lights" above). */
+typedef struct translucent_grid {
+    const char *defines[3];          /* TILE_SIZE, TILES_X, TLISTS (the opaque cells) */
+    GLuint lights, tiles, indices;   /* the renderer's buffers (tiles.inc) */
+} translucent_grid;
+
 typedef struct translucent_pass {
     bool run;                        /* the scene has translucent objects */
     uint32_t nobjects;               /* the scene's translucent objects */
@@ -50,17 +57,28 @@ typedef struct translucent_pass {
     int count;                       /* lights uploaded this frame */
     uint64_t frame, program_frame[TRANSLUCENT_VARIANTS];
     uint64_t last_draws;             /* the last frame's draws (for tests) */
+    bool gridded;                    /* lights from `grid`'s tile lists */
+    translucent_grid grid;
 } translucent_pass;
 
 /* The material map variant (bits: diffuse 1, gloss 2, normal 4, emissive 8). */
 unsigned translucent_variant(const scene_material *m);
 
 /* Plans the pass for s and, when it runs, compiles its programs into b's cache (with
- * SHADOWS when sm runs, FOG when b's fog is on) and makes the light buffer. A second
- * call releases what the first made. False with a message. */
+ * SHADOWS when sm runs, FOG when b's fog is on; not with `later`: the caller then calls
+ * translucent_compile) and makes the light buffer. A second call releases what the
+ * first made. False with a message. */
 bool translucent_prepare(translucent_pass *t, renderer_base *b, const scene *s,
-                         const shadow_maps *sm, char *err, size_t errlen);
+                         const shadow_maps *sm, bool later, char *err, size_t errlen);
 void translucent_release(translucent_pass *t);   /* a zeroed pass is fine */
+
+/* After translucent_prepare(later), a no-op unless t->run: the programs, g NULL as
+ * translucent_prepare compiles them; else the pass lights from g's per-tile
+ * translucent lists (forward_tiled.frag's TRANSLUCENT variant; its own light buffer
+ * released): the renderer builds the lists each frame before the pass, and keeps g's
+ * buffers until it releases the pass. False with a message. */
+bool translucent_compile(translucent_pass *t, renderer_base *b, const shadow_maps *sm,
+                         const translucent_grid *g, char *err, size_t errlen);
 
 /* The "translucent" pass (when t->run) into framebuffer fbo (the HDR target and the
  * opaque depth, nothing else attached); returns its draws (0 when skipped). */

@@ -13,6 +13,11 @@
 // not; when that position's view z lies outside the depth range its tile was culled
 // against (b_tile_depth), every light of the frame is looped, in light order, so that
 // no light the centre sees is missed (rare: pixels on the edges of steep surfaces).
+// fogged. TRANSLUCENT (the translucent pass of forward-plus, clustered and
+// tiled-deferred, renderers/translucent.c): the list is the tile's translucent one,
+// b_tiles[TLISTS + tile] (near plane to the tile's max opaque depth, tile_cull.inc),
+// for clustered too (its clusters cover only the depths of the tile's opaque samples),
+// and the output premultiplied, (c a, a), as forward_spml.frag's TRANSLUCENT.
 #include "bindings.h"
 #include "frame.inc"
 #include "surface.inc"
@@ -34,7 +39,9 @@ void main()
 #else
     uvec2 t = uvec2(gl_FragCoord.xy) / uint(TILE_SIZE);
     uint cell = t.y * uint(TILES_X) + t.x;
-#ifdef SLICES
+#if defined(TRANSLUCENT)
+    cell += uint(TLISTS);
+#elif defined(SLICES)
     // the cluster: this tile's slice of the fragment's view depth (tile_cull.comp)
     float log_ratio = log(1.0 + 2.0 / (f_proj[1][1] * float(SLICES_Y)));
     int k = clamp(int(floor(log(-s.position.z / f_clip.x) / log_ratio)), 0, SLICES - 1);
@@ -68,5 +75,9 @@ void main()
 #ifdef FOG
     c = fog_apply(c, s.position.z);
 #endif
+#ifdef TRANSLUCENT
+    o_color = vec4(c * s.alpha, s.alpha);
+#else
     o_color = vec4(c, 1.0);
+#endif
 }

@@ -33,8 +33,11 @@
 // when some sample has geometry, in the slice of its nearest such sample. With
 // TILE_DEPTH_RANGES the tile's range is also written to b_tile_depth (tiles.inc) for
 // the shading pass.
+// TLISTS (the scene has translucent objects): then, in the same work group, the tile's
+// translucent list (near plane to the tile's max depth, cull_translucent in
+// tile_cull.inc) for the translucent pass.
 // Defines: TILE_SIZE, TILES_X (and SLICES, SLICES_Y, TILES_Y; MSAA_SAMPLES,
-// TILE_DEPTH_RANGES). Uniforms: u_light_count.
+// TILE_DEPTH_RANGES; TLISTS). Uniforms: u_light_count.
 #define TILES_COHERENT   // clusters read their tile's list, written in this dispatch
 #include "bindings.h"
 #include "frame.inc"
@@ -107,5 +110,8 @@ void main()
     cull_cell(tile_index, covered, nlights, 0u, false);
 #else
     cull_clusters(tile_index, covered, nlights, tile_znear, tile_zfar);
+#endif
+#ifdef TLISTS
+    cull_translucent(tile, tile_index, size, covered, tile_zfar);
 #endif
 }

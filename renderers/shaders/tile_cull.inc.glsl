@@ -1,8 +1,9 @@
 // The light culling of the tiled renderers (tile_cull.comp's steps 2-4, see there),
 // shared with tiled_deferred.comp: the shared memory, the tile's planes and depth
 // range, the sphere tests, and cull_cell(), which counts, places and writes one
-// tile's (or cluster's) list. Needs bindings.h, frame.inc, lighting.inc, lights.inc,
-// tiles.inc and TILE_SIZE, TILES_X (SLICES, TILES_Y).
+// tile's (or cluster's) list, and cull_translucent() (TLISTS). Needs bindings.h,
+// frame.inc, lighting.inc, lights.inc, tiles.inc and TILE_SIZE, TILES_X (SLICES, TILES_Y,
+// TLISTS).
 layout(location = LOC_RENDERER) uniform int u_light_count;
 
 const uint N = uint(TILE_SIZE * TILE_SIZE);
@@ -230,5 +231,27 @@ void cull_clusters(uint tile_index, uint covered, uint nlights, float tile_znear
         cull_cell(uint(k) * ntiles + tile_index, s_slice_covered[k], n, src, true);
         barrier();
     }
+}
+#endif
+
+#ifdef TLISTS
+// The tile's translucent list (issue 12; van Oosten's transparent lists, "the camera's
+// near plane" instead of the tile's min depth): the lights whose volume meets the
+// tile's four planes between the camera's near plane and the tile's largest opaque
+// depth (what lies behind it is hidden), or the far side when some pixel of the tile
+// has no geometry (a pane can be seen over the sky there at any depth). Every light
+// is tested, covered tile or not, into the same index buffer (the same allocator and
+// overflow rule as the opaque lists); the head is b_tiles[TLISTS + tile], TLISTS being
+// the number of opaque cells. Called by the whole work group after the opaque lists,
+// with g_planes still the tile's.
+void cull_translucent(uvec2 tile, uint tile_index, ivec2 size, uint covered, float tile_zfar)
+{
+    uvec2 lo = tile * uint(TILE_SIZE);
+    uvec2 hi = min(lo + uint(TILE_SIZE), uvec2(size));
+    uint pixels = (hi.x - lo.x) * (hi.y - lo.y);
+    g_znear = -f_clip.x;
+    g_zfar = covered == pixels ? tile_zfar : uintBitsToFloat(0xff800000u);   // -inf
+    barrier();
+    cull_cell(uint(TLISTS) + tile_index, covered, uint(u_light_count), 0u, false);
 }
 #endif

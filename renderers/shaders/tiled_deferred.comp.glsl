@@ -13,7 +13,9 @@
 // SLICES (clustered with clustered.shading: deferred): the tile's clusters are culled as
 // tile_cull.comp culls them, and each pixel takes its cluster's list by the view depth
 // of its G-buffer position.
-// Defines: TILE_SIZE, TILES_X (TILES_Y, SLICES), the G-buffer layout's, SHADOWS.
+// TLISTS (the scene has translucent objects): each tile's translucent list too, as
+// tile_cull.comp makes it (cull_translucent), for the translucent pass after the sky.
+// Defines: TILE_SIZE, TILES_X (TILES_Y, SLICES, TLISTS), the G-buffer layout's, SHADOWS.
 #define TILES_COHERENT
 #include "bindings.h"
 #include "frame.inc"
@@ -83,6 +85,9 @@ void main()
 #else
     cull_clusters(tile_index, covered, nlights, tile_znear, tile_zfar);
     uint cell = uint(slice_of(g.position.z)) * uint(TILES_X * TILES_Y) + tile_index;
+#endif
+#ifdef TLISTS
+    cull_translucent(tile, tile_index, size, covered, tile_zfar);
 #endif
     memoryBarrierBuffer();
     barrier();

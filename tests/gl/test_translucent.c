@@ -10,6 +10,20 @@
  *     pane, another one in front lights the pane) is lit the same by forward-spml and
  *     deferred (stencil and volume modes): the image within RMSE 1/255, the pane's
  *     centre pixel within 1/255;
+ *   - the tiled renderers' translucent lists (near plane to the tile's max opaque
+ *     depth, built in their cull dispatch only when the scene has translucency): on
+ *     `glass` one list a tile, each renderer's dispatches still 1, the longest list no
+ *     shorter than the longest opaque one and no longer than the visible lights (and
+ *     for forward-plus and tiled-deferred, whose per-tile lists they contain, the mean
+ *     no smaller); a wall filling the view with a light between the camera and the
+ *     wall (in front of every tile's min depth: in no opaque list) lighting a pane, one
+ *     near the wall (in both) and one behind it (in neither): exactly 2 lights in the
+ *     longest translucent list, 1 in the longest opaque one, 3 visible, and the pane lit
+ *     as forward-spml lights it (that light changes it); a near wall's edge across a
+ *     pane seen over the sky, lit by a light wholly behind the wall: tiles with a pixel
+ *     of sky take lights to the far side, and the image agrees; the lists share the
+ *     opaque lists' index buffer: a budget the opaque lists alone fit but not with
+ *     the translucent ones reports the overflow;
  *   - with a shadowing spot the pass's SHADOWS variant runs, and deferred agrees;
  *   - two overlapping panes of different colours (the front one first in object order,
  *     so drawing in object order would be wrong): where they overlap the pixel is the
@@ -19,7 +33,9 @@
  *     turns with the camera (every renderer from +x, forward-spml and deferred from
  *     -x too);
  *   - a scene without translucent materials (shapes) plans the pass as "skipped: no
- *     translucent materials", runs no such pass and compiles no translucent program.
+ *     translucent materials", runs no such pass and compiles no translucent program
+ *     (the tiled renderers plan their translucent lists as skipped and build none;
+ *     tests/gl/test_tiled.c's exact dispatch counts hold).
  * Every frame runs in a debug context; any GL error fails the test. */
 #include <setjmp.h>
 #include <stdarg.h>
@@ -45,6 +61,7 @@ enum { W = 128, H = 96 };
 
 static gl_context *ctx;
 static float g_fog_density;   /* what every render uses */
+static int g_max_lights_per_tile;
 
 static const uint8_t *px(const image *im)
 {
@@ -88,6 +105,7 @@ static bool render(const char *kind, light_volume_mode mode, scene *s, image *ou
         .max_uniform_block_size = gi->max_uniform_block_size,
         .gbuffer = GBUFFER_REFERENCE, .light_volumes = mode,
         .fog_density = g_fog_density, .fog_color = {0.55f, 0.6f, 0.7f},
+        .max_lights_per_tile = g_max_lights_per_tile,
     };
     renderer *r = renderer_create(kind, &o, err, sizeof err);
     if (!r || !renderer_prepare(r, s, err, sizeof err)) {
@@ -158,6 +176,43 @@ static void expect_translucent_pass(const char *kind, const scene *s, const fram
     assert_string_equal(fs->pass[fs->npasses - 3].name, "sky");
 }
 
+static bool tiled_kind(const char *kind)
+{
+    return strcmp(kind, "forward-plus") == 0 || strcmp(kind, "clustered") == 0 ||
+           strcmp(kind, "tiled-deferred") == 0;
+}
+
+/* The translucent lists of a tiled renderer's frame of a scene with translucency: one
+ * per tile, built in the one cull (or tiled) dispatch, planned, and their pass's
+ * programs the tiled ones. */
+static void expect_translucent_lists(const char *kind, const frame_stats *fs,
+                                     const pass_plan *plan)
+{
+    enum { TILES = ((W + 15) / 16) * ((H + 15) / 16) };
+    print_message("%s: %u translucent lists, mean %.3f, max %.0f; opaque mean %.3f, max %.0f; "
+                  "%u visible lights\n", kind, fs->translucent_lists,
+                  fs->translucent_lights_mean, fs->translucent_lights_max,
+                  fs->grid_lights_mean, fs->grid_lights_max, fs->lights_drawn);
+    assert_int_equal(fs->translucent_lists, TILES);
+    assert_int_equal(fs->total.dispatches, 1);
+    const pass_stats *cull = find_pass(fs, strcmp(kind, "tiled-deferred") == 0 ? "tiled"
+                                                                                : "cull");
+    assert_non_null(cull);
+    assert_int_equal(cull->dispatches, 1);
+    assert_int_equal(fs->overflow[0], '\0');
+    assert_true(fs->translucent_lights_max >= fs->grid_lights_max);
+    assert_true(fs->translucent_lights_max <= (double)fs->lights_drawn);
+    if (strcmp(kind, "clustered") != 0)   /* per tile, a superset of the opaque list */
+        assert_true(fs->translucent_lights_mean >= fs->grid_lights_mean);
+    const pass_plan_entry *e = plan_pass(plan, "translucent-lists");
+    assert_non_null(e);
+    assert_true(e->run);
+    bool tiled = false;
+    for (size_t i = 0; i < plan->nprograms; i++)
+        tiled |= strncmp(plan->program[i], "translucent_tiled", 17) == 0;
+    assert_true(tiled);
+}
+
 static void test_glass_agreement(void **state)
 {
     (void)state;
@@ -178,8 +233,11 @@ static void test_glass_agreement(void **state)
         assert_true(render("forward-spml", LIGHT_VOLUMES_STENCIL, s, &ref, &fs, NULL));
         expect_translucent_pass("forward-spml", s, &fs);
         for (size_t k = 1; k < sizeof kinds / sizeof kinds[0]; k++) {
-            assert_true(render(kinds[k], LIGHT_VOLUMES_STENCIL, s, &img, &fs, NULL));
+            pass_plan plan;
+            assert_true(render(kinds[k], LIGHT_VOLUMES_STENCIL, s, &img, &fs, &plan));
             expect_translucent_pass(kinds[k], s, &fs);
+            if (tiled_kind(kinds[k]))
+                expect_translucent_lists(kinds[k], &fs, &plan);
             char what[96];
             snprintf(what, sizeof what, "glass t = %g: %s vs forward-spml", times[t], kinds[k]);
             expect_agree(what, &img, &ref);
@@ -250,6 +308,152 @@ static void test_pane_in_front_of_light_volume(void **state)
         image_free(&img);
     }
     image_free(&ref);
+    scene_destroy(s);
+}
+
+/* The glass scene's floor turned into a wall facing +x (its box's 0.5 half-height along
+ * x), front face at x = front, its edge at z = edge (the wall spans z from there to
+ * edge + 24 when edge is finite; else it is centred on z = -2.7); the pillar moved
+ * behind it, out of sight; objects: wall, pillar, pane 0. */
+static void make_wall(scene *s, float front, float edge)
+{
+    sm_vec3 axis = {0.0f, 0.0f, 1.0f};
+    sm_mat4_rotate_make(SM_PI / 2.0f, axis, s->objects[0].transform);
+    sm_vec3_make(front - 0.5f, 1.5f, isfinite(edge) ? edge + 12.0f : -2.7f,
+                 s->objects[0].position);
+    sm_vec3_make(-30.0f, 0.0f, -2.7f, s->objects[1].position);
+    s->nobjects = 3;
+}
+
+static void set_lights(scene *s, const scene_light *l, uint32_t n)
+{
+    free(s->lights);
+    s->lights = calloc(n, sizeof *s->lights);
+    memcpy(s->lights, l, n * sizeof *l);
+    s->nlights_total = n;
+    s->count = (light_count){.start = n, .max = n};
+}
+
+/* Pane 0 (front face x = 2.3, view depth 6.7 from x = 9) before a wall filling the view
+ * (front face x = -0.5, depth 9.5 in every pixel); light F (depth 5, range 2) lights the
+ * pane and not the wall: wholly in front of every tile's min depth, in no opaque list;
+ * W (depth 8.5, range 3) lights both: in both lists; B (depth 12, range 2) is behind the
+ * wall: in neither (the translucent lists end at the tile's max depth). */
+static void test_light_before_the_wall(void **state)
+{
+    (void)state;
+    scene *s = build_glass(PLACEMENT_NONE);
+    make_wall(s, -0.5f, NAN);
+    static const scene_light l[3] = {
+        {.type = LIGHT_POINT, .position = {4.0f, 1.5f, -2.7f}, .color = {1.0f, 0.9f, 0.8f},
+         .radius = 2.0f, .attenuation = ATTENUATION_LINEAR_RANGE},
+        {.type = LIGHT_POINT, .position = {0.5f, 1.5f, -2.7f}, .color = {0.5f, 0.6f, 0.9f},
+         .radius = 3.0f, .attenuation = ATTENUATION_LINEAR_RANGE},
+        {.type = LIGHT_POINT, .position = {-3.0f, 1.5f, -2.7f}, .color = {0.9f, 0.9f, 0.3f},
+         .radius = 2.0f, .attenuation = ATTENUATION_LINEAR_RANGE},
+    };
+    set_lights(s, l, 3);
+    scene_update(s, 0.0);
+    look(s, 9.0f, 2.0f, -2.7f, 0.0f, 1.5f, -2.7f);
+    image ref = {0}, img = {0}, dark = {0};
+    assert_true(render("forward-spml", LIGHT_VOLUMES_STENCIL, s, &ref, NULL, NULL));
+    size_t c = ((size_t)(H / 2) * W + W / 2) * 4;
+    /* F makes a difference on the pane (the centre pixel) */
+    set_lights(s, l + 1, 2);
+    scene_update(s, 0.0);   /* the orbit camera again: */
+    look(s, 9.0f, 2.0f, -2.7f, 0.0f, 1.5f, -2.7f);
+    assert_true(render("forward-spml", LIGHT_VOLUMES_STENCIL, s, &dark, NULL, NULL));
+    int diff = 0;
+    for (int k = 0; k < 3; k++)
+        diff += abs((int)px(&ref)[c + k] - (int)px(&dark)[c + k]);
+    print_message("light before the wall: the pane's pixel changes by %d/255 with it\n", diff);
+    assert_true(diff > 15);
+    image_free(&dark);
+    set_lights(s, l, 3);
+    scene_update(s, 0.0);
+    look(s, 9.0f, 2.0f, -2.7f, 0.0f, 1.5f, -2.7f);
+    static const char *const tiled[] = {"forward-plus", "clustered", "tiled-deferred"};
+    for (size_t k = 0; k < 3; k++) {
+        frame_stats fs;
+        pass_plan plan;
+        assert_true(render(tiled[k], LIGHT_VOLUMES_STENCIL, s, &img, &fs, &plan));
+        expect_translucent_lists(tiled[k], &fs, &plan);
+        assert_int_equal(fs.lights_drawn, 3);
+        assert_true(fs.grid_lights_max == 1.0);          /* W alone */
+        assert_true(fs.translucent_lights_max == 2.0);   /* F and W, not B */
+        char what[96];
+        snprintf(what, sizeof what, "light before the wall: %s vs forward-spml", tiled[k]);
+        expect_agree(what, &img, &ref);
+        int d = 0;
+        for (int j = 0; j < 3; j++)
+            d = abs((int)px(&img)[c + j] - (int)px(&ref)[c + j]) > d
+                    ? abs((int)px(&img)[c + j] - (int)px(&ref)[c + j])
+                    : d;
+        assert_true(d <= 1);   /* the pane's own pixel */
+        image_free(&img);
+    }
+    image_free(&ref);
+    scene_destroy(s);
+}
+
+/* A near wall (front face x = 5.5, depth 3.5) over the left part of the view, its edge
+ * at z = -2.5 in front of pane 0 (depth 6.7), which is seen over the sky right of it;
+ * light P (depth 6.2, range 1.5) is wholly behind the wall's depth and lights the pane
+ * on both sides of the edge: the tiles the edge crosses have sky pixels, so their
+ * translucent lists run to the far side and keep P. */
+static void test_pane_beyond_a_wall_edge(void **state)
+{
+    (void)state;
+    scene *s = build_glass(PLACEMENT_NONE);
+    make_wall(s, 5.5f, -2.5f);
+    static const scene_light p = {.type = LIGHT_POINT, .position = {2.8f, 1.5f, -3.5f},
+                                  .color = {1.0f, 0.9f, 0.8f}, .radius = 1.5f,
+                                  .attenuation = ATTENUATION_LINEAR_RANGE};
+    set_lights(s, &p, 1);
+    scene_update(s, 0.0);
+    look(s, 9.0f, 2.0f, -2.7f, 0.0f, 1.5f, -2.7f);
+    image ref = {0}, img = {0};
+    assert_true(render("forward-spml", LIGHT_VOLUMES_STENCIL, s, &ref, NULL, NULL));
+    static const char *const tiled[] = {"forward-plus", "clustered", "tiled-deferred"};
+    for (size_t k = 0; k < 3; k++) {
+        frame_stats fs;
+        pass_plan plan;
+        assert_true(render(tiled[k], LIGHT_VOLUMES_STENCIL, s, &img, &fs, &plan));
+        expect_translucent_lists(tiled[k], &fs, &plan);
+        assert_true(fs.translucent_lights_max == 1.0);
+        char what[96];
+        snprintf(what, sizeof what, "pane beyond a wall's edge: %s vs forward-spml", tiled[k]);
+        expect_agree(what, &img, &ref);
+        image_free(&img);
+    }
+    image_free(&ref);
+    scene_destroy(s);
+}
+
+/* The translucent lists share the opaque lists' index buffer and overflow rule: on
+ * glass, with tiles.max_lights_per_tile 5 (capacity 5 x (48 opaque + 48 translucent
+ * heads) = 480 entries) the opaque lists alone fit (about 183) but not with the
+ * translucent ones (about 516): the frame reports the overflow, nothing is truncated
+ * silently; with 12 everything fits. */
+static void test_translucent_lists_overflow(void **state)
+{
+    (void)state;
+    scene *s = build_glass(PLACEMENT_SCENE);
+    static const char *const tiled[] = {"forward-plus", "tiled-deferred"};
+    for (size_t k = 0; k < 2; k++) {
+        frame_stats fs;
+        g_max_lights_per_tile = 5;
+        assert_true(render(tiled[k], LIGHT_VOLUMES_STENCIL, s, NULL, &fs, NULL));
+        print_message("%s, 5 a tile: opaque %.0f of 480, translucent %.0f: %s\n", tiled[k],
+                      fs.grid_lights_mean * 48, fs.translucent_lights_mean * 48, fs.overflow);
+        assert_true(fs.grid_lights_mean * 48 <= 480.0);
+        assert_true((fs.grid_lights_mean + fs.translucent_lights_mean) * 48 > 480.0);
+        assert_non_null(strstr(fs.overflow, "the index buffer holds 480"));
+        g_max_lights_per_tile = 12;
+        assert_true(render(tiled[k], LIGHT_VOLUMES_STENCIL, s, NULL, &fs, NULL));
+        assert_int_equal(fs.overflow[0], '\0');
+    }
+    g_max_lights_per_tile = 0;
     scene_destroy(s);
 }
 
@@ -362,8 +566,16 @@ static void test_no_translucency_skips_the_pass(void **state)
         assert_false(e->run);
         assert_string_equal(e->reason, "skipped: no translucent materials");
         assert_null(find_pass(&fs, "translucent"));
-        for (size_t i = 0; i < plan.nprograms; i++)
+        for (size_t i = 0; i < plan.nprograms; i++)   /* no *_cull_translucent either */
             assert_null(strstr(plan.program[i], "translucent"));
+        if (tiled_kind(kinds[k])) {   /* no translucent lists: planned as skipped */
+            e = plan_pass(&plan, "translucent-lists");
+            assert_non_null(e);
+            assert_false(e->run);
+            assert_string_equal(e->reason, "skipped: no translucent materials");
+            assert_int_equal(fs.translucent_lists, 0);
+            assert_true(isnan(fs.translucent_lights_max));
+        }
     }
     scene_destroy(s);
     /* glass plans it as run, and compiles its program */
@@ -402,6 +614,9 @@ int main(void)
     const struct CMUnitTest tests[] = {
         cmocka_unit_test(test_glass_agreement),
         cmocka_unit_test(test_pane_in_front_of_light_volume),
+        cmocka_unit_test(test_light_before_the_wall),
+        cmocka_unit_test(test_pane_beyond_a_wall_edge),
+        cmocka_unit_test(test_translucent_lists_overflow),
         cmocka_unit_test(test_shadowed_spot),
         cmocka_unit_test(test_back_to_front),
         cmocka_unit_test(test_no_translucency_skips_the_pass),
