@@ -41,6 +41,8 @@ EXPERIMENTS = [
     ("gbuffer-error", "G-buffer layout: image error against frame time (ours only)", "ours"),
     ("renderers-tiled", "Six renderers as lights grow: the fastest and the crossovers (ours only)",
      "ours"),
+    ("aa-translucency", "Anti-aliasing and translucency: frame time against edge error (ours only)",
+     "ours"),
 ]
 KNOWN = [e[0] for e in EXPERIMENTS]
 

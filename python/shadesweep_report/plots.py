@@ -30,5 +30,6 @@ class Plots:
 PLOT_NAMES = ["s003-exp2_fps_time.png", "s003-exp2_frametime_time.png",
               "s003-exp2_frametime_lights.png", "s000-resolution_frametime.png",
               "s000-drawcalls.png", "gbuffer-error_pareto.png",
-              "gbuffer-error_bandwidth.png", "renderers-tiled_frametime_lights.png"]
+              "gbuffer-error_bandwidth.png", "renderers-tiled_frametime_lights.png",
+              "aa-translucency_error_time.png"]
 COLORS = {"deferred": "tab:blue", "forward-spml": "tab:orange", "forward-mpml": "tab:red"}

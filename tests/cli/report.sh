@@ -323,7 +323,7 @@ grep -qF -- "$T" cmd.md && fail "report.md names an absolute path: $(grep -F -- 
 grep -qF 'Output: `out/exp1`' cmd.md || fail "folder not named as given"
 # several folders into one report with -o; without -o, one line and exit 2
 "$SHADESWEEP" report -o both out/exp1 out/ge >both.out 2>&1 || fail "report -o: $(cat both.out)"
-grep -q "wrote both/report.md: 2 of 10 experiments (s003-exp1, gbuffer-error)" both.out ||
+grep -q "wrote both/report.md: 2 of 11 experiments (s003-exp1, gbuffer-error)" both.out ||
   fail "report -o: $(cat both.out)"
 set +e
 "$SHADESWEEP" report out/exp1 out/ge >bad.out 2>bad.err; rc=$?

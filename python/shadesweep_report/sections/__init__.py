@@ -1,4 +1,5 @@
 """One module per paper section; SECTIONS maps an experiment to its section."""
+from .aa_translucency import section_aa_translucency
 from .gbuffer_error import section_gbuffer_error
 from .renderers_tiled import section_renderers_tiled
 from .s000_coverage import section_s000_coverage
@@ -22,4 +23,5 @@ SECTIONS = {
     "s000-illumination-sets": section_s000_illum,
     "gbuffer-error": section_gbuffer_error,
     "renderers-tiled": section_renderers_tiled,
+    "aa-translucency": section_aa_translucency,
 }
