@@ -38,11 +38,6 @@ bool renderer_base_init(renderer_base *b, const char *name, const renderer_optio
         gl.GetIntegerv(GL_MAX_DEPTH_TEXTURE_SAMPLES, &md);
         if (!renderer_base_msaa_check(name, opts->msaa, (int)ms, (int)mc, (int)md, err, errlen))
             return false;
-        if (opts->aa == AA_EDGE) {   /* edge_aa reads single-sampled depth and normals */
-            snprintf(err, errlen, "%s: aa: edge with msaa %d: not supported together (msaa: 1 "
-                     "or aa: none)", name, opts->msaa);
-            return false;
-        }
     }
     b->max_passes = max_passes < RENDERER_BASE_MAX_PASSES ? max_passes
                                                            : RENDERER_BASE_MAX_PASSES;

@@ -13,6 +13,9 @@ void edge_aa_release(edge_aa *e)
 {
     gl_framebuffer_destroy(&e->fb);
     gl_target_destroy(&e->out);
+    gl_framebuffer_destroy(&e->depth_read);
+    gl_framebuffer_destroy(&e->depth_draw);
+    gl_target_destroy(&e->depth1);
     e->program = 0;   /* the base's cache owns it */
     e->run = false;
 }
@@ -34,18 +37,36 @@ bool edge_aa_prepare(renderer_base *b, const char *const *gbuffer_defines, int n
     int k = 0;
     if (gl_state_fullscreen_unclipped_fits(b->st, b->width, b->height))
         d.defines[k++] = "FULLSCREEN_UNCLIPPED";
-    if (gbuffer_defines) {
+    if (gbuffer_defines && b->samples <= 1) {
         d.defines[k++] = "EDGE_NORMALS_GBUFFER";
         for (int i = 0; i < n; i++)
             d.defines[k++] = gbuffer_defines[i];
         e->gbuffer_normals = true;
     }
     char why[4096] = "";
-    if (!renderer_base_hdr_target(b, &e->out, "hdr.aa", why, sizeof why) ||
+    /* one sample a pixel: it blends the resolved image (msaa-resolve comes first) */
+    if (!gl_target_create(&e->out, &(gl_target_desc){.name = "hdr.aa",
+                                                     .format = renderer_base_hdr_format(b),
+                                                     .width = b->width, .height = b->height},
+                          why, sizeof why) ||
         !gl_framebuffer_create(&e->fb, &(gl_framebuffer_desc){.name = "edge-aa",
                                                               .color = {&e->out}},
                                why, sizeof why) ||
-        gl_program_get(b->programs, &d, &e->program, why, sizeof why) != GLP_OK) {
+        gl_program_get(b->programs, &d, &e->program, why, sizeof why) != GLP_OK ||
+        (b->samples > 1 &&
+         (!gl_target_create(&e->depth1, &(gl_target_desc){.name = "depth.aa",
+                                                          .format = b->depth.format,
+                                                          .width = b->width,
+                                                          .height = b->height},
+                            why, sizeof why) ||
+          !gl_framebuffer_create(&e->depth_read,
+                                 &(gl_framebuffer_desc){.name = "edge-aa.depth.read",
+                                                        .depth_stencil = &b->depth},
+                                 why, sizeof why) ||
+          !gl_framebuffer_create(&e->depth_draw,
+                                 &(gl_framebuffer_desc){.name = "edge-aa.depth.draw",
+                                                        .depth_stencil = &e->depth1},
+                                 why, sizeof why)))) {
         snprintf(err, errlen, "%s: aa: edge: %s", b->name, why);
         edge_aa_release(e);
         return false;
@@ -69,8 +90,16 @@ void edge_aa_pass(renderer_base *b, frame_stats *out, const GLuint *gbuffer, int
     gl_state_cull(st, GLS_CULL_NONE);
     gl_state_color_mask(st, GLS_COLOR_MASK_RGBA);
     gl_state_program(st, e->program);
-    gl_state_texture(st, BIND_TEX_HDR, b->hdr.texture);
-    gl_state_texture(st, BIND_TEX_DEPTH, b->depth.texture);
+    GLuint depth = b->depth.texture, hdr = b->hdr.texture;
+    if (b->samples > 1) {   /* the averaged colour; one depth sample a pixel */
+        gl.BlitNamedFramebuffer(e->depth_read.fbo, e->depth_draw.fbo, 0, 0, b->width,
+                                b->height, 0, 0, b->width, b->height, GL_DEPTH_BUFFER_BIT,
+                                GL_NEAREST);
+        depth = e->depth1.texture;
+        hdr = b->hdr_resolved.texture;
+    }
+    gl_state_texture(st, BIND_TEX_HDR, hdr);
+    gl_state_texture(st, BIND_TEX_DEPTH, depth);
     for (int k = 0; e->gbuffer_normals && gbuffer && k < n && k < EDGE_AA_MAX_GBUFFER; k++)
         gl_state_texture(st, BIND_TEX_GBUFFER0 + (unsigned)k, gbuffer[k]);
     gl_state_draw_fullscreen(st, b->width, b->height,
@@ -98,6 +127,11 @@ void edge_aa_describe_pass(const renderer_base *b, pass_plan *out)
 void edge_aa_describe_target(const renderer_base *b, pass_plan *out)
 {
     const gl_target *t = &b->aa.out;
+    if (!t->texture || out->ntargets >= sizeof out->target / sizeof out->target[0])
+        return;
+    gl_target_describe(t, &out->target[out->ntargets++]);
+    out->target_bytes += t->bytes;
+    t = &b->aa.depth1;
     if (!t->texture || out->ntargets >= sizeof out->target / sizeof out->target[0])
         return;
     gl_target_describe(t, &out->target[out->ntargets++]);

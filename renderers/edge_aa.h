@@ -39,8 +39,9 @@
  * target "hdr.aa" (the HDR format, the output's size), which the resolve and
  * read_hdr then take (renderer_base_display). With aa: none nothing is made or run,
  * and the plan lists the pass as skipped. One draw (full screen) a frame, pass
- * "edge-aa". Single-sample textures: with multisampled targets the pass must read
- * the resolved single-sample HDR image (and a single-sample depth). */
+ * "edge-aa". It reads single-sample textures: with multisampled targets (msaa > 1) the
+ * resolved HDR image (msaa-resolve first) and depth1, a blit of the multisampled depth
+ * to one sample a pixel, with normals rebuilt from it; "hdr.aa" is single-sampled. */
 #include <stdbool.h>
 #include <stddef.h>
 
@@ -58,6 +59,10 @@ typedef struct edge_aa {
     gl_target out;                   /* "hdr.aa" */
     gl_framebuffer fb;               /* out alone */
     GLuint program;                  /* in the base's program cache */
+    /* msaa > 1: the multisampled depth blitted to one sample a pixel ("depth.aa"), what
+     * the edge test reads; normals then come from it, not from the G-buffer */
+    gl_target depth1;
+    gl_framebuffer depth_read, depth_draw;
 } edge_aa;
 
 /* At prepare, after renderer_base_targets: with opts.aa == AA_EDGE, the target, its
