@@ -73,7 +73,11 @@
  * (GB_SAMPLE gl_SampleID) where EDGE_BIT is set, the per-pixel one (sample 0) where it is
  * clear (class_begin, class_stencil; the draw counts above double for those passes). Fog
  * runs per sample everywhere. `msaa-resolve` (renderers/base.h) averages the light
- * before resolve. tiled-deferred and clustered deferred shading refuse msaa > 1.
+ * before resolve. tiled-deferred and clustered deferred shading have no stencil pass: their
+ * one dispatch classifies the pixels by the same rule (edge_rule.inc), shades sample 0 of
+ * every pixel into all its samples off the edges and, from a per-tile edge list in shared
+ * memory, the other samples of the edge pixels (Lauritzen 2010's compute path); the edge
+ * pixels are counted into a small storage buffer (BIND_SSBO_EDGES), read back by collect.
  *
  * Sky mask (renderer_options.sky_stencil, deferred.sky_stencil; seed 001 section 19.7.2,
  * "Stencil Masking": the opaque geometry marks, at no extra draw, the pixels that deferred
@@ -246,11 +250,13 @@ typedef struct tiled_pass {
     uint32_t max_lights, capacity;   /* entries of the light and index buffers */
     GLuint program;
     GLuint lights, tiles, indices, stats;
+    GLuint edges;                    /* msaa > 1: the dispatch's edge-pixel count */
+    uint32_t edge_pixels;            /* msaa > 1: the last frame's, after collect */
     gpu_light *staging;
     uint32_t *readback, *counts;
     bool counted;
     char tile_define[24], tiles_x_define[32], tiles_y_define[32], slices_define[24];
-    char slices_y_define[24], tlists_define[24];
+    char slices_y_define[24], tlists_define[24], msaa_define[24];
 } tiled_pass;
 
 typedef struct deferred_renderer {
@@ -290,6 +296,7 @@ typedef struct deferred_renderer {
     uint64_t mark_draws[DEFERRED_LIGHT_TYPES], shade_draws[DEFERRED_LIGHT_TYPES];
     int64_t scissor_area;            /* light_volumes scissor: this pass's rectangles */
     size_t edges_pass;               /* msaa > 1: 1 + the edge pass's index; 0: none */
+    size_t tiled_index;              /* tiled, msaa > 1: 1 + the tiled pass's index; 0: none */
 } deferred_renderer;
 
 static unsigned material_variant(const scene_material *m)
@@ -342,12 +349,6 @@ static void *create(const char *name, bool tiled, bool clustered,
         free(r);
         return NULL;
     }
-    if (opts->msaa > 1 && tiled) {   /* its compute pass reads a single-sampled G-buffer */
-        snprintf(err, errlen, "%s: msaa %d: not supported by this renderer yet (msaa: 1)",
-                 name, opts->msaa);
-        free(r);
-        return NULL;
-    }
     if (!renderer_base_init(&r->b, name, opts, DEFERRED_MAX_PASSES, err, errlen)) {
         renderer_base_destroy(&r->b);
         free(r);
@@ -373,11 +374,11 @@ void *deferred_clustered_create(const renderer_options *opts, char *err, size_t 
 
 static void release_tiled(tiled_pass *tp)
 {
-    GLuint b[4] = {tp->lights, tp->tiles, tp->indices, tp->stats};
-    for (int i = 0; i < 4; i++)
+    GLuint b[5] = {tp->lights, tp->tiles, tp->indices, tp->stats, tp->edges};
+    for (int i = 0; i < 5; i++)
         if (b[i])
             gl.DeleteBuffers(1, &b[i]);
-    tp->lights = tp->tiles = tp->indices = tp->stats = 0;
+    tp->lights = tp->tiles = tp->indices = tp->stats = tp->edges = 0;
     free(tp->staging);
     free(tp->readback);
     free(tp->counts);
@@ -448,6 +449,20 @@ static bool build_program(deferred_renderer *r, const char *display, const char 
         return false;
     }
     return true;
+}
+
+/* The samples' positions in the pixel (GL_SAMPLE_POSITION of the multisampled framebuffer
+ * fbo) into program's vec2[8] at location loc: edge_rule.inc, position from depth. */
+static void set_sample_positions(deferred_renderer *r, GLuint fbo, GLuint program, GLint loc)
+{
+    GLfloat pos[8][2] = {{0.5f, 0.5f}};
+    GLint prev = 0;
+    gl.GetIntegerv(GL_DRAW_FRAMEBUFFER_BINDING, &prev);
+    gl.BindFramebuffer(GL_DRAW_FRAMEBUFFER, fbo);
+    for (int i = 0; i < r->b.samples && i < 8; i++)
+        gl.GetMultisamplefv(GL_SAMPLE_POSITION, (GLuint)i, pos[i]);
+    gl.BindFramebuffer(GL_DRAW_FRAMEBUFFER, (GLuint)prev);
+    gl.ProgramUniform2fv(program, loc, 8, &pos[0][0]);
 }
 
 /* build_program, and with msaa > 1 two variants over the multisampled G-buffer (GB_MSAA):
@@ -569,9 +584,14 @@ static bool compile_programs(deferred_renderer *r, char *err, size_t errlen)
     }
     if (r->tiled) {
         tiled_pass *tp = &r->tp;
-        const char *extra[10] = {tp->tile_define, tp->tiles_x_define, NULL, NULL, NULL,
-                                 NULL, NULL, NULL, NULL, NULL};
+        const char *extra[16] = {tp->tile_define, tp->tiles_x_define};
         int n = 2;
+        if (r->b.samples > 1) {   /* the multisampled G-buffer, per tile edge list */
+            /* the count the driver gave (known once the targets exist) */
+            snprintf(tp->msaa_define, sizeof tp->msaa_define, "MSAA_SAMPLES %d", r->b.samples);
+            extra[n++] = "GB_MSAA";
+            extra[n++] = tp->msaa_define;
+        }
         if (renderer_base_hdr_define(&r->b))   /* the image store's format qualifier */
             extra[n++] = renderer_base_hdr_define(&r->b);
         if (tp->slices) {
@@ -603,6 +623,8 @@ static bool compile_programs(deferred_renderer *r, char *err, size_t errlen)
             snprintf(err, errlen, "%s: %s", r->b.name, why);
             return false;
         }
+        if (r->b.samples > 1)   /* u_sample_pos, after u_light_count */
+            set_sample_positions(r, r->fb_gbuffer.fbo, tp->program, DEFERRED_UNIFORM_LIGHT + 1);
         return true;
     }
     {
@@ -622,17 +644,8 @@ static bool compile_programs(deferred_renderer *r, char *err, size_t errlen)
                         &r->edge_program, NULL, err, errlen))
             return false;
     }
-    if (r->b.samples > 1 && r->layout.position == DEFERRED_POSITION_DEPTH_BUFFER) {
-        /* the samples' positions in the pixel (edge_mark.frag, position from depth) */
-        GLfloat pos[8][2] = {{0.5f, 0.5f}};
-        GLint prev = 0;
-        gl.GetIntegerv(GL_DRAW_FRAMEBUFFER_BINDING, &prev);
-        gl.BindFramebuffer(GL_DRAW_FRAMEBUFFER, r->fb_light.fbo);
-        for (int i = 0; i < r->b.samples && i < 8; i++)
-            gl.GetMultisamplefv(GL_SAMPLE_POSITION, (GLuint)i, pos[i]);
-        gl.BindFramebuffer(GL_DRAW_FRAMEBUFFER, (GLuint)prev);
-        gl.ProgramUniform2fv(r->edge_program, DEFERRED_UNIFORM_LIGHT, 8, &pos[0][0]);
-    }
+    if (r->b.samples > 1 && r->layout.position == DEFERRED_POSITION_DEPTH_BUFFER)
+        set_sample_positions(r, r->fb_light.fbo, r->edge_program, DEFERRED_UNIFORM_LIGHT);
     static const pass_id light_pass[DEFERRED_LIGHT_TYPES] = {
         [LIGHT_POINT] = PASS_POINT, [LIGHT_SPOT] = PASS_SPOT,
         [LIGHT_DIRECTIONAL] = PASS_DIRECTIONAL};
@@ -770,6 +783,8 @@ static bool make_tiled(deferred_renderer *r, const scene *s, char *err, size_t e
     tp->tiles = make_buffer((size_t)heads * 16u);
     tp->indices = make_buffer((size_t)tp->capacity * 4u);
     tp->stats = make_buffer(2 * sizeof(uint32_t));
+    if (r->b.samples > 1)
+        tp->edges = make_buffer(sizeof(uint32_t));
     return true;
 }
 
@@ -906,9 +921,14 @@ static bool deferred_prepare(void *self, const scene *s, char *err, size_t errle
     plan(r, PASS_SKY, s->sky, "%s",
          s->sky ? "into untouched depth, last" : "the scene has no sky");
     plan(r, PASS_RESOLVE, true, "light clamped into the output framebuffer");
-    plan(r, PASS_EDGES, r->b.samples > 1,
-         "msaa %d: pixels whose samples differ (off the plane > 1%% of depth, normal > 11.5 "
-         "deg) get stencil bit 0x40; per sample there, per pixel elsewhere", r->b.samples);
+    if (r->tiled)
+        plan(r, PASS_EDGES, false, "msaa %d: in the %s pass: pixels whose samples differ (the "
+             "same rule) listed per tile; per sample there, per pixel elsewhere", r->b.samples,
+             r->tp.slices_y ? "clustered" : "tiled");
+    else
+        plan(r, PASS_EDGES, r->b.samples > 1,
+             "msaa %d: pixels whose samples differ (off the plane > 1%% of depth, normal > 11.5 "
+             "deg) get stencil bit 0x40; per sample there, per pixel elsewhere", r->b.samples);
     plan(r, PASS_MSAA, r->b.samples > 1, "the %d samples of the light averaged (a blit, "
          "linear HDR)", r->b.samples);
 
@@ -1339,6 +1359,10 @@ static void tiled_draw(deferred_renderer *r, const scene *s, frame_stats *out)
     pass_begin(r, out, PASS_TILED);
     const uint32_t reset[2] = {0, tp->capacity};
     gl.NamedBufferSubData(tp->stats, 0, sizeof reset, reset);
+    if (tp->edges) {
+        gl.NamedBufferSubData(tp->edges, 0, sizeof(uint32_t), reset);
+        gl_state_storage_buffer(st, BIND_SSBO_EDGES, tp->edges);
+    }
     gl_state_program(st, tp->program);
     gl.Uniform1i(LOC_RENDERER, (GLint)n);
     bind_gbuffer_textures(r);
@@ -1361,6 +1385,8 @@ static void tiled_draw(deferred_renderer *r, const scene *s, frame_stats *out)
     if (r->layout.position != DEFERRED_POSITION_DEPTH_BUFFER)
         gl_state_texture(st, DEFERRED_DEPTH_UNIT, 0);
     pass_end(r, out);
+    if (tp->edges)
+        r->tiled_index = out->npasses;   /* 1 + its index */
     out->lights_drawn = n;
 }
 
@@ -1399,7 +1425,7 @@ static void deferred_draw(void *self, const scene *s, frame_stats *out)
     out->npasses = 0;
     out->lights_drawn = 0;
     memset(r->mark_draws, 0, sizeof r->mark_draws);
-    r->edges_pass = 0;
+    r->edges_pass = r->tiled_index = 0;
     memset(r->shade_draws, 0, sizeof r->shade_draws);
     if (!r->prepared || !s)
         return;
@@ -1576,6 +1602,18 @@ static void deferred_collect(void *self, frame_stats *out)
     if (r->tiled)
         tiled_collect(r, out);
     renderer_base_collect(&r->b, out);
+    if (r->tiled_index && r->tiled_index <= out->npasses) {
+        tiled_pass *tp = &r->tp;
+        /* msaa N: the dispatch shades sample 0 of every pixel and N - 1 more samples of
+         * each edge pixel; as deferred counts them: N samples per pixel, the edge pixels'
+         * per sample (samples_shaded = pixels + edges (N - 1), renderer_collect) */
+        gl.GetNamedBufferSubData(tp->edges, 0, sizeof(uint32_t), &tp->edge_pixels);
+        double pixels = (double)r->b.width * r->b.height, n = r->b.samples;
+        pass_stats *p = &out->pass[r->tiled_index - 1];
+        p->samples = pixels * n;
+        p->per_sample_samples = (double)tp->edge_pixels * n;
+        out->edge_fraction = tp->edge_pixels / pixels;
+    }
     /* the edge pass passes N samples per edge pixel and discards every other pixel */
     if (r->edges_pass && r->edges_pass <= out->npasses)
         out->edge_fraction = out->pass[r->edges_pass - 1].samples / r->b.samples /

@@ -58,8 +58,8 @@
  * fragment whose centre's view z falls outside its tile's range (the centre of a
  * partly covered pixel is extrapolated) loops every light of the frame instead of
  * the tile's or cluster's list, so it adds what forward-spml adds. Then the base's
- * msaa-resolve and the resolve. clustered with clustered.shading: deferred refuses
- * msaa > 1 (cl_create). Counters count a pixel with geometry when some sample has it
+ * msaa-resolve and the resolve. clustered with clustered.shading: deferred shades in
+ * deferred.c's compute pass (per-tile edge lists, as tiled-deferred). Counters count a pixel with geometry when some sample has it
  * (a cluster's: in the slice of its nearest sample). At msaa 1 none of this exists.
  *
  * Counters (collect, after the frame's sync point, so reading them never stalls):
@@ -526,15 +526,6 @@ static void *cl_create(const renderer_options *opts, char *err, size_t errlen)
     clustered *c = calloc(1, sizeof *c);
     if (!c) {
         snprintf(err, errlen, "clustered: out of memory");
-        return NULL;
-    }
-    if (opts->clustered_deferred && opts->msaa > 1) {
-        /* its shading is deferred.c's tiled compute pass from the G-buffer */
-        snprintf(err, errlen,
-                 "clustered: msaa %d: not supported with clustered.shading: deferred "
-                 "(use clustered.shading: forward, or msaa: 1)",
-                 opts->msaa);
-        free(c);
         return NULL;
     }
     c->impl = opts->clustered_deferred ? &renderer_tiled_deferred_impl : &clustered_forward_impl;

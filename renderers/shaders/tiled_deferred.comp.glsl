@@ -15,7 +15,18 @@
 // of its G-buffer position.
 // TLISTS (the scene has translucent objects): each tile's translucent list too, as
 // tile_cull.comp makes it (cull_translucent), for the translucent pass after the sky.
-// Defines: TILE_SIZE, TILES_X (TILES_Y, SLICES, TLISTS), the G-buffer layout's, SHADOWS.
+// MSAA_SAMPLES (msaa > 1; Lauritzen 2010's compute path): the G-buffer, depth and HDR
+// target are multisampled (GB_MSAA, image2DMS). The tile's depth range covers every
+// sample (as tile_cull.comp's MSAA_SAMPLES path); each pixel is classified by
+// edge_rule.inc (the rule of deferred's edge_mark.frag) and sample 0 is shaded for every
+// pixel and stored into every sample of a non-edge pixel; edge pixels are appended to a
+// per-tile list in shared memory and, after a barrier, the work group shades their other
+// samples (read at their GL_SAMPLE_POSITIONs, u_sample_pos), N - 1 per listed pixel,
+// spread over its invocations. b_edges counts the frame's edge pixels. With SLICES a
+// cluster is counted covered when any sample of a pixel lies in it, so that each sample
+// finds its cluster's list.
+// Defines: TILE_SIZE, TILES_X (TILES_Y, SLICES, TLISTS, MSAA_SAMPLES), the G-buffer
+// layout's, SHADOWS.
 #define TILES_COHERENT
 #include "bindings.h"
 #include "frame.inc"
@@ -23,74 +34,46 @@
 #include "lights.inc"
 #include "tiles.inc"
 
-vec2 g_frag_xy;   // the pixel's centre, for gbuffer.inc
+vec2 g_frag_xy;   // the pixel's centre (or a sample's position), for gbuffer.inc
 #define GB_FRAG_XY g_frag_xy
+#ifdef MSAA_SAMPLES
+int gb_sample = 0;
+#define GB_SAMPLE gb_sample
+#define HDR_IMAGE image2DMS
+// the context's GL_SAMPLE_POSITIONs (after u_light_count)
+layout(location = LOC_RENDERER + 1) uniform vec2 u_sample_pos[8];
+#else
+#define HDR_IMAGE image2D
+#endif
 #include "gbuffer.inc"
+#ifdef MSAA_SAMPLES
+#include "edge_rule.inc"
+layout(std430, binding = BIND_SSBO_EDGES) buffer EdgeCount {
+    uint edges;   // edge pixels of the frame
+} b_edges;
+shared uint s_nedges;
+shared uint s_edges[TILE_SIZE * TILE_SIZE];   // the tile's edge pixels (local index)
+#endif
 
 layout(local_size_x = TILE_SIZE, local_size_y = TILE_SIZE) in;
 #ifdef HDR_RGBA32F
-layout(binding = BIND_IMAGE_HDR, rgba32f) writeonly uniform image2D i_hdr;
+layout(binding = BIND_IMAGE_HDR, rgba32f) writeonly uniform HDR_IMAGE i_hdr;
 #else
-layout(binding = BIND_IMAGE_HDR, rgba16f) writeonly uniform image2D i_hdr;
+layout(binding = BIND_IMAGE_HDR, rgba16f) writeonly uniform HDR_IMAGE i_hdr;
 #endif
 
 #include "tile_cull.inc"
 
-void main()
+// ambient x diffuse + emissive and the lights of g's list (its tile's, or its cluster's
+// by its view depth), after the lists are made
+vec3 shade_surface(GSurface g, uint tile_index)
 {
-    uint me = gl_LocalInvocationIndex;
-    uvec2 tile = gl_WorkGroupID.xy;
-    uint tile_index = tile.y * uint(TILES_X) + tile.x;
-    ivec2 size = ivec2(f_viewport.xy);
-    ivec2 pixel = ivec2(gl_GlobalInvocationID.xy);
-    bool inside = all(lessThan(pixel, size));
-    g_frag_xy = vec2(pixel) + 0.5;
-    GSurface g = GSurface(false, vec3(0.0, 0.0, -1.0), vec3(0.0, 0.0, 1.0), vec3(0.0), 0.0, 1.0,
-                          vec3(0.0));
-    if (inside)
-        g = gbuffer_load();
 #ifndef NO_GRID
-    if (me == 0u) {
-        s_min_depth = floatBitsToUint(1.0);
-        s_max_depth = 0u;
-        s_covered = 0u;
-    }
-#ifdef SLICES
-    if (me < uint(SLICES))
-        s_slice_covered[me] = 0u;
-#endif
-    barrier();
-    if (inside) {
-        float d = texelFetch(t_depth, pixel, 0).r;
-        if (d < 1.0) {
-            atomicMin(s_min_depth, floatBitsToUint(d));
-            atomicMax(s_max_depth, floatBitsToUint(d));
-            atomicAdd(s_covered, 1u);
-#ifdef SLICES
-            if (g.present)
-                atomicAdd(s_slice_covered[slice_of(g.position.z)], 1u);
-#endif
-        }
-    }
-    barrier();
-    uint covered = s_covered;
-    uint nlights = covered == 0u ? 0u : uint(u_light_count);
-    float tile_znear, tile_zfar;
-    tile_frustum(tile, size, tile_znear, tile_zfar);
-    g_znear = tile_znear;
-    g_zfar = tile_zfar;
 #ifndef SLICES
-    cull_cell(tile_index, covered, nlights, 0u, false);
     uint cell = tile_index;
 #else
-    cull_clusters(tile_index, covered, nlights, tile_znear, tile_zfar);
     uint cell = uint(slice_of(g.position.z)) * uint(TILES_X * TILES_Y) + tile_index;
 #endif
-#ifdef TLISTS
-    cull_translucent(tile, tile_index, size, covered, tile_zfar);
-#endif
-    memoryBarrierBuffer();
-    barrier();
     uvec4 list = b_tiles[cell];
     uint first = list.x, n = list.y;
 #else
@@ -113,6 +96,148 @@ void main()
             c += shade_light(l, g.position, g.normal, g.diffuse, g.gloss, g.shininess);
         }
     }
+    return c;
+}
+
+void main()
+{
+    uint me = gl_LocalInvocationIndex;
+    uvec2 tile = gl_WorkGroupID.xy;
+    uint tile_index = tile.y * uint(TILES_X) + tile.x;
+    ivec2 size = ivec2(f_viewport.xy);
+    ivec2 pixel = ivec2(gl_GlobalInvocationID.xy);
+    bool inside = all(lessThan(pixel, size));
+    g_frag_xy = vec2(pixel) + 0.5;
+    GSurface g = GSurface(false, vec3(0.0, 0.0, -1.0), vec3(0.0, 0.0, 1.0), vec3(0.0), 0.0, 1.0,
+                          vec3(0.0));
+    if (inside)
+        g = gbuffer_load();
+#ifdef MSAA_SAMPLES
+    if (me == 0u)
+        s_nedges = 0u;
+#endif
+#ifndef NO_GRID
+    if (me == 0u) {
+        s_min_depth = floatBitsToUint(1.0);
+        s_max_depth = 0u;
+        s_covered = 0u;
+    }
+#ifdef SLICES
+    if (me < uint(SLICES))
+        s_slice_covered[me] = 0u;
+#endif
+#endif
+#if !defined(NO_GRID) || defined(MSAA_SAMPLES)
+    barrier();
+#endif
+#ifdef MSAA_SAMPLES
+    // every sample: the depth range, the edge rule, (SLICES) the clusters they lie in
+    bool edge = false;
+    float d = 1.0, d_far = 0.0;   // the nearest and farthest sample with geometry
+    uvec2 slices_met = uvec2(0u);
+    if (inside) {
+        for (int i = 0; i < MSAA_SAMPLES; i++) {
+            float di = texelFetch(t_depth, pixel, i).r;
+            if (di < 1.0) {
+                d = min(d, di);
+                d_far = max(d_far, di);
+            }
+        }
+        gb_sample = 0;
+#ifdef EDGE_SAMPLE_XY
+        g_frag_xy = vec2(pixel) + u_sample_pos[0];
+#endif
+        GSurface g0 = gbuffer_load();
+        for (int i = 1; i < MSAA_SAMPLES; i++) {
+            gb_sample = i;
+            g_frag_xy = vec2(pixel) + 0.5;
+#ifdef EDGE_SAMPLE_XY
+            g_frag_xy = vec2(pixel) + u_sample_pos[i];
+#endif
+            GSurface gi = gbuffer_load();
+            if (edge_samples_differ(g0, gi))
+                edge = true;
+#ifdef SLICES
+            if (gi.present) {
+                int k = slice_of(gi.position.z);
+                slices_met[k >> 5] |= 1u << uint(k & 31);
+            }
+#endif
+        }
+        gb_sample = 0;
+        g_frag_xy = vec2(pixel) + 0.5;
+        if (edge)
+            s_edges[atomicAdd(s_nedges, 1u)] = me;
+    }
+#else
+    float d = inside ? texelFetch(t_depth, pixel, 0).r : 1.0, d_far = d;
+#endif
+#ifndef NO_GRID
+    if (inside) {
+        if (d < 1.0) {
+            atomicMin(s_min_depth, floatBitsToUint(d));
+            atomicMax(s_max_depth, floatBitsToUint(d_far));
+            atomicAdd(s_covered, 1u);
+#ifdef SLICES
+            if (g.present) {
+                int k0 = slice_of(g.position.z);
+                atomicAdd(s_slice_covered[k0], 1u);
+#ifdef MSAA_SAMPLES
+                slices_met[k0 >> 5] &= ~(1u << uint(k0 & 31));
+#endif
+            }
+#ifdef MSAA_SAMPLES
+            for (int k = 0; k < SLICES; k++)   // the other samples' clusters, once each
+                if ((slices_met[k >> 5] & (1u << uint(k & 31))) != 0u)
+                    atomicAdd(s_slice_covered[k], 1u);
+#endif
+#endif
+        }
+    }
+    barrier();
+    uint covered = s_covered;
+    uint nlights = covered == 0u ? 0u : uint(u_light_count);
+    float tile_znear, tile_zfar;
+    tile_frustum(tile, size, tile_znear, tile_zfar);
+    g_znear = tile_znear;
+    g_zfar = tile_zfar;
+#ifndef SLICES
+    cull_cell(tile_index, covered, nlights, 0u, false);
+#else
+    cull_clusters(tile_index, covered, nlights, tile_znear, tile_zfar);
+#endif
+#ifdef TLISTS
+    cull_translucent(tile, tile_index, size, covered, tile_zfar);
+#endif
+    memoryBarrierBuffer();
+    barrier();
+#elif defined(MSAA_SAMPLES)
+    barrier();   // the edge list complete
+#endif
+    vec3 c = shade_surface(g, tile_index);
+#ifndef MSAA_SAMPLES
     if (inside)
         imageStore(i_hdr, pixel, vec4(c, 1.0));
+#else
+    if (inside) {
+        imageStore(i_hdr, pixel, 0, vec4(c, 1.0));
+        if (!edge)   // one shading for the whole pixel
+            for (int i = 1; i < MSAA_SAMPLES; i++)
+                imageStore(i_hdr, pixel, i, vec4(c, 1.0));
+    }
+    // the edge pixels' samples 1..N-1, spread over the work group
+    uint nedges = s_nedges;
+    uint per = uint(MSAA_SAMPLES - 1);
+    for (uint k = me; k < nedges * per; k += uint(TILE_SIZE * TILE_SIZE)) {
+        uint local = s_edges[k / per];
+        int i = 1 + int(k % per);
+        ivec2 p = ivec2(tile) * TILE_SIZE + ivec2(int(local % uint(TILE_SIZE)),
+                                                  int(local / uint(TILE_SIZE)));
+        gb_sample = i;
+        g_frag_xy = vec2(p) + u_sample_pos[i];   // as a per-sample fragment's gl_FragCoord
+        imageStore(i_hdr, p, i, vec4(shade_surface(gbuffer_load(), tile_index), 1.0));
+    }
+    if (me == 0u && nedges > 0u)
+        atomicAdd(b_edges.edges, nedges);
+#endif
 }

@@ -14,7 +14,11 @@
  * pixels counted on the CPU from the
  * projected rectangle and the context's sample positions; the edge pass finds exactly
  * them, and the ambient and directional passes pass 4 samples per pixel, 4 x edges of
- * them from per-sample draws (so P + 3 E fragment runs). Any GL error fails. */
+ * them from per-sample draws (so P + 3 E fragment runs). tiled-deferred at msaa 4 (its one
+ * dispatch: a per-tile edge list, Lauritzen 2010's compute path) agrees with forward-spml
+ * by the same bounds, in one dispatch, finds the same edge pixels as deferred's edge pass
+ * (on the box face, exactly the counted ones) and counts P + 3 E samples shaded. Any GL
+ * error fails. */
 #include <setjmp.h>
 #include <stdarg.h>
 #include <stddef.h>
@@ -46,6 +50,7 @@ static bool g_sky_stencil, g_separate_specular;
 static gbuffer_position g_position = GBUFFER_POSITION_PRESET;
 static float g_fog;
 static aa_mode g_aa = AA_NONE;
+static bool g_clustered_deferred;
 
 static renderer_options options(int msaa)
 {
@@ -57,6 +62,7 @@ static renderer_options options(int msaa)
         .gbuffer = GBUFFER_REFERENCE, .msaa = msaa, .light_volumes = g_mode,
         .sky_stencil = g_sky_stencil, .gbuffer_position = g_position, .separate_specular = g_separate_specular,
         .fog_density = g_fog, .fog_color = {0.55f, 0.6f, 0.7f}, .aa = g_aa,
+        .clustered_deferred = g_clustered_deferred,
     };
 }
 
@@ -441,6 +447,95 @@ static void test_per_sample_exactly_on_edges(void **state)
     scene_destroy(s);
 }
 
+/* msaa 4: tiled-deferred's compute path (and clustered's with clustered.shading: deferred,
+ * the same shader with its depth slices) agrees with forward-spml, in one dispatch, and
+ * classifies the pixels as deferred's edge pass does (the same rule, edge_rule.inc);
+ * msaa 2 (llvmpipe gives 4) renders and finds the same edges too */
+static void test_tiled_deferred_agrees_msaa4(void **state)
+{
+    (void)state;
+    if (context_limit() < 4)
+        skip();
+    scene *s = build_lit(true);
+    assert_non_null(s);
+    image fwd = {0}, def = {0};
+    frame_stats fs;
+    assert_true(render("forward-spml", 4, s, &fwd, &fs, NULL));
+    assert_true(render("deferred", 4, s, &def, &fs, NULL));
+    const double deferred_edges = fs.edge_fraction;
+    image_free(&def);
+    for (int k = 0; k < 3; k++) {
+        const char *kind = k == 1 ? "clustered" : "tiled-deferred";
+        const int msaa = k == 2 ? 2 : 4;
+        g_clustered_deferred = k == 1;
+        image til = {0};
+        pass_plan plan;
+        assert_true(render(kind, msaa, s, &til, &fs, &plan));
+        g_clustered_deferred = false;
+        assert_int_equal(fs.total.dispatches, 1);
+        assert_null(find_pass(&fs, "edges"));
+        assert_non_null(find_pass(&fs, "msaa-resolve"));
+        const pass_plan_entry *pe = plan_pass(&plan, "edges");
+        assert_non_null(pe);
+        assert_false(pe->run);
+        print_message("%s msaa %d: edges %.4f (deferred msaa 4: %.4f)\n", kind, msaa,
+                      fs.edge_fraction, deferred_edges);
+        assert_true(fs.edge_fraction > 0.0 && fs.edge_fraction < 0.5);
+        if (fs.msaa == 4)
+            assert_true(fs.edge_fraction == deferred_edges);
+        const pass_stats *p = find_pass(&fs, "tiled");
+        assert_non_null(p);
+        const double P = (double)W * H, E = fs.edge_fraction * P;
+        assert_true(p->samples_shaded == P + (fs.msaa - 1) * E);
+        image_error e;
+        char err[256];
+        assert_true(image_compare(&fwd, &til, &e, err, sizeof err));
+        print_message("%s msaa %d vs forward-spml msaa 4: rmse %.3f/255, max %.0f/255, %.4f "
+                      "of the pixels > 1/255\n", kind, msaa, e.rmse * 255, e.max_abs * 255,
+                      e.frac_over_1_255);
+        assert_int_equal(e.nonfinite, 0);
+        if (fs.msaa == 4) {
+            assert_true(e.rmse < RMSE_MAX);
+            assert_true(e.frac_over_1_255 < 0.01);
+        }
+        image_free(&til);
+    }
+    image_free(&fwd);
+    scene_destroy(s);
+}
+
+/* The box face: tiled-deferred's edge list holds exactly the counted edge pixels (position
+ * stored and from depth), and its dispatch shades P + 3 E samples */
+static void test_tiled_deferred_exact_edges(void **state)
+{
+    (void)state;
+    if (context_limit() < 4)
+        skip();
+    scene *s = build_box_face();
+    assert_non_null(s);
+    const int edges = count_edge_pixels(21.5f, 42.5f, 13.5f, 34.5f);
+    assert_true(edges > 0);
+    for (int m = 0; m < 2; m++) {
+        g_position = m == 0 ? GBUFFER_POSITION_PRESET : GBUFFER_POSITION_DEPTH;
+        image img = {0};
+        frame_stats fs;
+        assert_true(render("tiled-deferred", 4, s, &img, &fs, NULL));
+        image_free(&img);
+        const double P = (double)W * H;
+        if (fs.edge_fraction != edges / P)
+            print_error("position %d: %.0f edge pixels, want %d\n", m, fs.edge_fraction * P,
+                        edges);
+        assert_true(fs.edge_fraction == edges / P);
+        const pass_stats *p = find_pass(&fs, "tiled");
+        assert_non_null(p);
+        assert_int_equal(p->dispatches, 1);
+        assert_true(p->per_sample_samples == 4.0 * edges);
+        assert_true(p->samples_shaded == (P - edges) + 4.0 * edges);
+    }
+    g_position = GBUFFER_POSITION_PRESET;
+    scene_destroy(s);
+}
+
 static int setup(void **state)
 {
     (void)state;
@@ -469,6 +564,8 @@ int main(void)
         cmocka_unit_test(test_edge_aa_after_msaa),
         cmocka_unit_test(test_deferred_agrees_msaa4),
         cmocka_unit_test(test_per_sample_exactly_on_edges),
+        cmocka_unit_test(test_tiled_deferred_agrees_msaa4),
+        cmocka_unit_test(test_tiled_deferred_exact_edges),
     };
     return cmocka_run_group_tests(tests, setup, teardown);
 }

@@ -7,7 +7,8 @@
  * sphere's rim, beyond the floor's far edge: samples off the pixel centres, and the
  * extrapolated centres of partly covered pixels) are lit the same, at msaa 2, 4 and 8
  * (where the context allows them); the draws and dispatches are those of msaa 1, plus
- * the pass msaa-resolve; clustered with clustered.shading: deferred refuses msaa > 1.
+ * the pass msaa-resolve (clustered with clustered.shading: deferred at msaa 4:
+ * tests/gl/test_msaa.c).
  * Debug contexts: any GL error fails. */
 #include <setjmp.h>
 #include <stdarg.h>
@@ -306,22 +307,6 @@ static void test_counts_at_msaa4(void **state)
     scene_destroy(s);
 }
 
-/* clustered.shading: deferred shades from the G-buffer in deferred.c's compute pass:
- * msaa > 1 is refused there, with a message naming the key and the way out. */
-static void test_clustered_deferred_refuses(void **state)
-{
-    (void)state;
-    renderer_options o = options(4);
-    o.clustered_deferred = true;
-    char err[512] = "";
-    renderer *r = renderer_create("clustered", &o, err, sizeof err);
-    assert_null(r);
-    assert_string_equal(err, "clustered: msaa 4: not supported with clustered.shading: "
-                             "deferred (use clustered.shading: forward, or msaa: 1)");
-    gl_context_poll_errors(ctx, "refusal");
-    assert_int_equal(gl_context_error_count(ctx), 0);
-}
-
 static int setup(void **state)
 {
     (void)state;
@@ -347,7 +332,6 @@ int main(void)
         cmocka_unit_test(test_agreement_cases),
         cmocka_unit_test(test_light_at_the_silhouette),
         cmocka_unit_test(test_counts_at_msaa4),
-        cmocka_unit_test(test_clustered_deferred_refuses),
     };
     return cmocka_run_group_tests(tests, setup, teardown);
 }
