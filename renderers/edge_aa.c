@@ -126,14 +126,12 @@ void edge_aa_describe_pass(const renderer_base *b, pass_plan *out)
 
 void edge_aa_describe_target(const renderer_base *b, pass_plan *out)
 {
-    const gl_target *t = &b->aa.out;
-    if (!t->texture || out->ntargets >= sizeof out->target / sizeof out->target[0])
-        return;
-    gl_target_describe(t, &out->target[out->ntargets++]);
-    out->target_bytes += t->bytes;
-    t = &b->aa.depth1;
-    if (!t->texture || out->ntargets >= sizeof out->target / sizeof out->target[0])
-        return;
-    gl_target_describe(t, &out->target[out->ntargets++]);
-    out->target_bytes += t->bytes;
+    const gl_target *const targets[] = {&b->aa.out, &b->aa.depth1};   /* depth1: msaa > 1 */
+    for (size_t i = 0; i < sizeof targets / sizeof targets[0]; i++) {
+        const gl_target *t = targets[i];
+        if (!t->texture || out->ntargets >= sizeof out->target / sizeof out->target[0])
+            return;
+        gl_target_describe(t, &out->target[out->ntargets++]);
+        out->target_bytes += t->bytes;
+    }
 }
