@@ -102,6 +102,8 @@ void renderer_base_begin_frame(renderer_base *b, frame_stats *out)
 void renderer_base_pass_begin(renderer_base *b, frame_stats *out, const char *name)
 {
     gl_state_begin_pass(b->st, name);
+    if (out->npasses < RENDERER_MAX_PASSES)
+        out->pass[out->npasses].single_sampled = false;
     if (b->queries)
         gl_pass_queries_begin(b->queries, out->npasses);
 }
@@ -128,6 +130,12 @@ void renderer_base_shading(renderer_base *b, bool on)
         gl_pass_queries_resume(b->queries);
     else
         gl_pass_queries_pause(b->queries);
+}
+
+void renderer_base_single_sampled(frame_stats *out)
+{
+    if (out->npasses < RENDERER_MAX_PASSES)
+        out->pass[out->npasses].single_sampled = true;
 }
 
 void renderer_base_per_sample(renderer_base *b, bool on)

@@ -38,8 +38,9 @@
  * the display resolve, is the pass "msaa-resolve": a blit of hdr into hdr_resolved,
  * i.e. the samples averaged in linear HDR (before the clamp to the display, so a bright
  * sample is not clipped before it is averaged). renderer_base_display (what
- * scene_gpu_resolve reads) and renderer_base_read_hdr use hdr_resolved; aa: edge is
- * refused with msaa > 1 (edge_aa reads single-sampled targets). At msaa 1
+ * scene_gpu_resolve reads) and renderer_base_read_hdr use hdr_resolved; aa: edge then
+ * runs after msaa-resolve, on hdr_resolved and a single-sampled copy of the depth
+ * (edge_aa.h). At msaa 1
  * none of this exists: no pass, no target, the same programs and images as before.
  *
  * Fog (seed 000 4.5.12, opts.fog_*): renderer_base_fog says whether it is on; each
@@ -120,6 +121,9 @@ void renderer_base_shading(renderer_base *b, bool on);
  * pixel (false, what every pass starts with); pass_stats.per_sample_samples counts the
  * former's samples apart. */
 void renderer_base_per_sample(renderer_base *b, bool on);
+/* Within a pass: it draws into single-sampled targets whatever opts.msaa (the display
+ * resolve, edge AA), so its samples are pixels (pass_stats.single_sampled). */
+void renderer_base_single_sampled(frame_stats *out);
 /* The state cache's counts of pass i of the last frame, or NULL past its passes. */
 const gls_counts *renderer_base_pass_counts(const renderer_base *b, size_t pass);
 

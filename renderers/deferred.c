@@ -1574,6 +1574,7 @@ sky:
 
     /* >>resolve */
     pass_begin(r, out, PASS_RESOLVE);
+    renderer_base_single_sampled(out);   /* the output */
     gl_state_blend(st, NULL);
     gl_state_stencil(st, NULL);
     gl_state_depth(st, NULL);

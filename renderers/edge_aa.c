@@ -82,6 +82,7 @@ void edge_aa_pass(renderer_base *b, frame_stats *out, const GLuint *gbuffer, int
         return;
     gl_state *st = b->st;
     renderer_base_pass_begin(b, out, "edge-aa");
+    renderer_base_single_sampled(out);   /* hdr.aa: one sample */
     /* its own target alone: nothing it samples is attached */
     gl_state_framebuffer(st, e->fb.fbo);
     gl_state_blend(st, NULL);

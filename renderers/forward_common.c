@@ -257,6 +257,7 @@ void forward_sky_pass(forward_common *fc, frame_stats *out)
 void forward_resolve_pass(forward_common *fc, frame_stats *out)
 {
     forward_pass_begin(fc, out, "resolve");
+    renderer_base_single_sampled(out);   /* the output */
     scene_gpu_resolve(fc->gpu, fc->b.st, renderer_base_display(&fc->b)->texture,
                       fc->b.output_fbo, fc->b.width, fc->b.height);
     forward_pass_end(fc, out);

@@ -94,7 +94,7 @@ void renderer_collect(renderer *r, frame_stats *out)
     for (size_t i = 0; i < out->npasses; i++) {
         pass_stats *p = &out->pass[i];
         /* a pixel shaded once covers n samples; a per-sample draw shades each */
-        p->samples_shaded = n == 1 ? p->samples
+        p->samples_shaded = n == 1 || p->single_sampled ? p->samples
                                    : (p->samples - p->per_sample_samples) / n +
                                          p->per_sample_samples;
         t.per_sample_samples += p->per_sample_samples;

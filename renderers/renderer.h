@@ -23,9 +23,13 @@ typedef struct pass_stats {
                                   stencil marks, shadow maps or depth pre-pass) */
     double per_sample_samples; /* msaa: of samples, those of draws shaded per sample (deferred's
                                   edge pixels); 0 elsewhere */
-    double samples_shaded;     /* fragment shader runs in samples: samples at msaa 1; with msaa
-                                  N, (samples - per_sample_samples) / N + per_sample_samples
-                                  (a pixel shaded once covers N samples) */
+    double samples_shaded;     /* fragment shader runs in samples: samples at msaa 1 and in a
+                                  single_sampled pass; with msaa N, (samples -
+                                  per_sample_samples) / N + per_sample_samples (a pixel
+                                  shaded once covers N samples) */
+    bool single_sampled;       /* the pass draws into single-sampled targets whatever the
+                                  run's msaa (the display resolve, edge AA): its samples are
+                                  pixels */
     double primitives;         /* GL_PRIMITIVES_SUBMITTED */
     double scissor_pixels;     /* light_volumes scissor: the pass's scissor rectangles'
                                   area, summed over its lights; NAN elsewhere */

@@ -205,6 +205,12 @@ static void test_forward_msaa4(void **state)
     assert_true(p->samples == 0.0);
     assert_string_equal(fs.pass[fs.npasses - 2].name, "msaa-resolve");
     assert_string_equal(fs.pass[fs.npasses - 1].name, "resolve");
+    /* the display resolve draws into the single-sampled output: one sample a pixel */
+    assert_true(fs.pass[fs.npasses - 1].single_sampled);
+    assert_true(fs.pass[fs.npasses - 1].samples_shaded == (double)W * H);
+    const pass_stats *shade = find_pass(&fs, "shade");
+    assert_non_null(shade);
+    const double shaded4 = shade->samples_shaded;
     assert_non_null(plan_pass(&plan, "msaa-resolve"));
     assert_int_equal(plan.ntargets, 3);
     assert_string_equal(plan.target[0].format, "rgba16f x4");
@@ -228,6 +234,13 @@ static void test_forward_msaa4(void **state)
     assert_true(render("forward-spml", 1, s, &single, &fs, &plan));
     assert_null(find_pass(&fs, "msaa-resolve"));
     assert_null(plan_pass(&plan, "msaa-resolve"));
+    /* forward shades once a pixel at any msaa: the samples shaded of msaa 4 (samples / 4)
+     * are msaa 1's, give or take the edge pixels two triangles share */
+    shade = find_pass(&fs, "shade");
+    assert_non_null(shade);
+    print_message("forward-spml shade: %.1f samples shaded at msaa 4, %.1f at 1\n", shaded4,
+                  shade->samples_shaded);
+    assert_true(fabs(shaded4 - shade->samples_shaded) < 0.1 * shade->samples_shaded);
     assert_true(image_compare(&spml, &single, &e, err, sizeof err));
     print_message("msaa 4 vs 1: %.4f of the pixels differ by > 1/255\n", e.frac_over_1_255);
     assert_true(e.frac_over_1_255 > 0.0);
@@ -262,6 +275,7 @@ static void test_edge_aa_after_msaa(void **state)
         assert_string_equal(fs.pass[fs.npasses - 2].name, "edge-aa");
         assert_string_equal(fs.pass[fs.npasses - 1].name, "resolve");
         assert_int_equal(fs.pass[fs.npasses - 2].draw_calls, 1);
+        assert_true(fs.pass[fs.npasses - 2].samples_shaded == (double)W * H);   /* hdr.aa */
         const pass_plan_entry *e = plan_pass(&plan, "edge-aa");
         assert_non_null(e);
         assert_true(e->run);
