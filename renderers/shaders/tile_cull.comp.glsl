@@ -104,8 +104,7 @@ void main()
     if (me == 0u)
         b_tile_depth[tile_index] = vec2(tile_znear, tile_zfar);
 #endif
-    g_znear = tile_znear;
-    g_zfar = tile_zfar;
+    cull_range(tile_znear, tile_zfar);
 #ifndef SLICES
     cull_cell(tile_index, covered, nlights, 0u, false);
 #else

@@ -39,7 +39,34 @@ vec4 plane_through_eye(vec3 a, vec3 b, vec3 inside)
 }
 
 vec4 g_planes[4];
+vec3 g_corners[4];       // the tile's corner rays, as points on the near plane (view space)
 float g_znear, g_zfar;   // view z of the range: g_znear >= z >= g_zfar (both negative)
+bool g_boxed;            // g_zfar is finite: g_box_lo .. g_box_hi bounds the range
+vec3 g_box_lo, g_box_hi;
+
+// The range being culled against: view z from znear down to zfar (-inf: no far bound),
+// and the view-space box around the tile's frustum between them (the corner rays at
+// both depths). The four planes pass a sphere that lies off a corner of the tile (in
+// reach of two planes' half-spaces but not of the frustum); the box test (the sphere's
+// distance to the box) takes most of those out, as Olsson et al.'s clusters are tested
+// against their boxes. Both tests are conservative: a light that meets the frustum
+// between znear and zfar passes both.
+void cull_range(float znear, float zfar)
+{
+    g_znear = znear;
+    g_zfar = zfar;
+    g_boxed = !isinf(zfar);
+    if (!g_boxed)
+        return;
+    g_box_lo = vec3(uintBitsToFloat(0x7f800000u));   // +inf
+    g_box_hi = -g_box_lo;
+    for (int i = 0; i < 4; i++) {
+        vec3 a = g_corners[i] * (znear / g_corners[i].z);
+        vec3 b = g_corners[i] * (zfar / g_corners[i].z);
+        g_box_lo = min(g_box_lo, min(a, b));
+        g_box_hi = max(g_box_hi, max(a, b));
+    }
+}
 
 bool sphere_passes(vec3 c, float r)
 {
@@ -48,6 +75,11 @@ bool sphere_passes(vec3 c, float r)
     for (int i = 0; i < 4; i++)
         if (dot(g_planes[i].xyz, c) < -r)
             return false;
+    if (g_boxed) {
+        vec3 d = max(max(g_box_lo - c, c - g_box_hi), vec3(0.0));
+        if (dot(d, d) > r * r)
+            return false;
+    }
     return true;
 }
 
@@ -94,7 +126,7 @@ float slice_start(int k)
 }
 #endif
 
-// The tile's four planes into g_planes, and its depth range (view z, widened by two
+// The tile's four planes into g_planes and its corner rays into g_corners, and its depth range (view z, widened by two
 // steps of the 24-bit depth buffer; -inf far when some pixel is at depth 1) from
 // s_min_depth and s_max_depth.
 void tile_frustum(uvec2 tile, ivec2 size, out float tile_znear, out float tile_zfar)
@@ -111,6 +143,10 @@ void tile_frustum(uvec2 tile, ivec2 size, out float tile_znear, out float tile_z
     g_planes[1] = plane_through_eye(c10, c11, inside);   // right
     g_planes[2] = plane_through_eye(c00, c10, inside);   // bottom
     g_planes[3] = plane_through_eye(c01, c11, inside);   // top
+    g_corners[0] = c00;
+    g_corners[1] = c10;
+    g_corners[2] = c11;
+    g_corners[3] = c01;
     tile_znear = view_z(dmin);
     tile_zfar = dmax >= 1.0 ? uintBitsToFloat(0xff800000u) : view_z(dmax);   // -inf
 }
@@ -225,9 +261,9 @@ void cull_clusters(uint tile_index, uint covered, uint nlights, float tile_znear
             b_tiles[k * ntiles + tile_index] = uvec4(0u);
     for (int k = kmin; k <= kmax; k++) {
         const float EPS = 1e-3;
-        g_znear = k == 0 ? tile_znear : min(tile_znear, -slice_start(k) * (1.0 - EPS));
-        g_zfar = k == SLICES - 1 ? tile_zfar
-                                 : max(tile_zfar, -slice_start(k + 1) * (1.0 + EPS));
+        cull_range(k == 0 ? tile_znear : min(tile_znear, -slice_start(k) * (1.0 - EPS)),
+                   k == SLICES - 1 ? tile_zfar
+                                   : max(tile_zfar, -slice_start(k + 1) * (1.0 + EPS)));
         cull_cell(uint(k) * ntiles + tile_index, s_slice_covered[k], n, src, true);
         barrier();
     }
@@ -249,8 +285,7 @@ void cull_translucent(uvec2 tile, uint tile_index, ivec2 size, uint covered, flo
     uvec2 lo = tile * uint(TILE_SIZE);
     uvec2 hi = min(lo + uint(TILE_SIZE), uvec2(size));
     uint pixels = (hi.x - lo.x) * (hi.y - lo.y);
-    g_znear = -f_clip.x;
-    g_zfar = covered == pixels ? tile_zfar : uintBitsToFloat(0xff800000u);   // -inf
+    cull_range(-f_clip.x, covered == pixels ? tile_zfar : uintBitsToFloat(0xff800000u));
     barrier();
     cull_cell(uint(TLISTS) + tile_index, covered, uint(u_light_count), 0u, false);
 }

@@ -296,11 +296,12 @@ static void test_counts_at_msaa4(void **state)
         assert_string_equal(four.plan.target[0].format, "rgba16f x4");
         assert_string_equal(four.plan.target[1].format, "depth24-stencil8 x4");
         /* the lists are those of every sample's depth: about msaa 1's (a list left
-         * empty would be hidden by forward_tiled.frag's fallback in the image) */
+         * empty would be hidden by forward_tiled.frag's fallback in the image); a
+         * little longer, as the samples widen a tile's depth range and so its box */
         print_message("%s: msaa 1 vs 4: %.3f vs %.3f light evaluations per pixel\n", KINDS[k],
                       one.fs.light_evals_per_pixel, four.fs.light_evals_per_pixel);
         assert_true(four.fs.light_evals_per_pixel > 0.9 * one.fs.light_evals_per_pixel);
-        assert_true(four.fs.light_evals_per_pixel < 1.1 * one.fs.light_evals_per_pixel);
+        assert_true(four.fs.light_evals_per_pixel < 1.25 * one.fs.light_evals_per_pixel);
         image_free(&one.img);
         image_free(&four.img);
     }
