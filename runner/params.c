@@ -46,6 +46,7 @@ static const char *const clustered_shading_names[] = {"forward", "deferred", NUL
 static const char *const hdr_names[] = {"rgba16f", "rgba32f", NULL};   /* hdr_format */
 static const char *const msaa_names[] = {"1", "2", "4", "8", NULL};   /* 1 << index */
 static const char *const aa_names[] = {"none", "edge", NULL};   /* aa_mode */
+static const char *const translucency_names[] = {"blend", "opaque", NULL};
 
 #define RP(f) .off = offsetof(run_params, f), .size = sizeof(((run_params *)0)->f)
 #define RP_SPAN(a, b)                                                                         \

@@ -64,6 +64,7 @@ typedef struct run_state {
     char err[512];
     scene_file_info scene_info; /* a file scene: what scene_file_check found */
     unsigned gbuffer_bpp;      /* the G-buffer's bytes per pixel, seed 002's model; 0: none */
+    uint32_t made_opaque;      /* translucency: opaque: the materials it made opaque */
 } run_state;
 
 static void utc_now(char *buf, size_t len)
@@ -725,6 +726,10 @@ static bool write_meta(run_state *st, char *err, size_t errlen)
     yo_map_end(y);
 
     const run_params *p = &st->s->p;
+    if (p->translucency == 1) {
+        yo_key(y, "made_opaque");   /* translucency: opaque */
+        yo_i64(y, st->made_opaque);
+    }
     if (p->scene_file[0]) {
         const scene_file_info *si = &st->scene_info;
         char hash[17];
@@ -743,8 +748,9 @@ static bool write_meta(run_state *st, char *err, size_t errlen)
         yo_key(y, "materials"); yo_i64(y, si->materials);
         yo_key(y, "materials_mask"); yo_i64(y, si->materials_mask);
         yo_key(y, "materials_blend"); yo_i64(y, si->materials_blend);
-        yo_key(y, "blend"); yo_str(y, si->materials_blend ? "translucent, in the translucent pass"
-                                                          : "none");
+        yo_key(y, "blend"); yo_str(y, !si->materials_blend ? "none"
+                                      : p->translucency == 1 ? "made opaque (translucency: opaque)"
+                                                             : "translucent, in the translucent pass");
         yo_key(y, "textures"); yo_i64(y, si->textures);
         yo_key(y, "lights"); yo_i64(y, si->lights);
         yo_key(y, "cameras"); yo_i64(y, si->cameras);
@@ -882,6 +888,8 @@ static bool run_setup(run_state *st)
         set_status(st, "scene");
         return false;
     }
+    if (p->translucency == 1)   /* opaque: the same scene without its translucent pass */
+        st->made_opaque = scene_make_opaque(st->sc);
     const gl_info *gi = gl_context_info(st->ctx);
     renderer_options ro = {
         .queries = true,

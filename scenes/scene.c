@@ -690,3 +690,17 @@ void scene_destroy(scene *s)
     free(s->lights);
     free(s);
 }
+
+uint32_t scene_make_opaque(scene *s)
+{
+    uint32_t n = 0;
+    for (uint32_t i = 0; i < s->nmaterials; i++) {
+        scene_material *m = &s->materials[i];
+        if (!scene_material_translucent(m))
+            continue;
+        m->alpha = MATERIAL_OPAQUE;
+        m->opacity = 1.0f;
+        n++;
+    }
+    return n;
+}

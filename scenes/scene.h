@@ -220,6 +220,11 @@ void scene_update(scene *s, double t);
  * scene with a scripted path (which has no orbit: they would be silently ignored). */
 bool scene_set_camera(scene *s, const camera_params *cp, char *err, size_t errlen);
 
+/* The manifest's `translucency: opaque`: every translucent material (MATERIAL_BLEND)
+ * becomes opaque with opacity 1, so that the renderers draw it in their opaque passes
+ * and build no translucent pass. Returns how many materials changed. */
+uint32_t scene_make_opaque(scene *s);
+
 /* Fraction of the screen's pixels (0..1) whose view ray, through the pixel's centre,
  * passes through light i's volume (point: its ball of `radius`; spot: its cone of half
  * angle spot_angle, clamped to [1e-4, pi/2 - 1e-3] as the renderers clamp it, capped by
