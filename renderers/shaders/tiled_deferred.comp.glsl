@@ -199,8 +199,7 @@ void main()
     uint nlights = covered == 0u ? 0u : uint(u_light_count);
     float tile_znear, tile_zfar;
     tile_frustum(tile, size, tile_znear, tile_zfar);
-    g_znear = tile_znear;
-    g_zfar = tile_zfar;
+    cull_range(tile_znear, tile_zfar);
 #ifndef SLICES
     cull_cell(tile_index, covered, nlights, 0u, false);
 #else
