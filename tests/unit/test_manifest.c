@@ -389,6 +389,7 @@ static void test_kv_canonical(void **state)
         {"fog.density", "0"},
         {"fog.colour", "0.5,0.5,0.5"},
         {"aa", "none"},
+        {"translucency", "blend"},
         {"camera.radius", "scene"},
         {"camera.height", "scene"},
         {"camera.period", "scene"},
@@ -452,6 +453,7 @@ static void test_kv_canonical(void **state)
         {"fog.density", "0"},
         {"fog.colour", "0.5,0.5,0.5"},
         {"aa", "none"},
+        {"translucency", "blend"},
         {"camera.radius", "40"},
         {"camera.height", "12.5"},
         {"camera.period", "30"},
@@ -574,7 +576,7 @@ static const bad_case bad_cases[] = {
     {"unknown_top_key.yaml",
      {"1:1: duration: expected {seconds: S} or {frames: N}, found nothing",
       "5:1: durtion: expected one of shadesweep, name, description, scene, renderers, "
-      "resolution, trials, warmup, duration, clock, step, sync, timeout, gbuffer, deferred, forward, tiles, clustered, shadows, hdr, msaa, fog, aa, camera, error, lights, outputs, debug, sweep, "
+      "resolution, trials, warmup, duration, clock, step, sync, timeout, gbuffer, deferred, forward, tiles, clustered, shadows, hdr, msaa, fog, aa, translucency, camera, error, lights, outputs, debug, sweep, "
       "found 'durtion'"}},
     {"unknown_nested_key.yaml",
      {"8:3: lights.cnt: expected one of placement, seed, rng, count, radius, overlap, color_max, "
@@ -693,7 +695,7 @@ static const bad_case bad_cases[] = {
        "deferred.sky_stencil, "
        "forward.illumination_sets, forward.directional_in_base, forward.light_buffer, tiles.size, "
       "tiles.max_lights_per_tile, clustered.slices, clustered.shading, shadows, hdr, msaa, fog.density, "
-      "fog.colour, aa, camera.radius, "
+      "fog.colour, aa, translucency, camera.radius, "
       "camera.height, camera.period, "
       "camera.target, camera.near, camera.far, camera.hold, lights.placement, lights.seed, "
       "lights.rng, lights.count, lights.radius, lights.overlap, lights.color_max, lights.attenuation, lights.quadratic.a, "
@@ -714,7 +716,7 @@ static const bad_case bad_cases[] = {
       "5:13: resolution: expected WxH with each side 1..32768, found '640x'",
       "6:9: trials: expected an integer 1..1000, found '0'",
       "7:1: durtion: expected one of shadesweep, name, description, scene, renderers, "
-      "resolution, trials, warmup, duration, clock, step, sync, timeout, gbuffer, deferred, forward, tiles, clustered, shadows, hdr, msaa, fog, aa, camera, error, lights, outputs, debug, sweep, "
+      "resolution, trials, warmup, duration, clock, step, sync, timeout, gbuffer, deferred, forward, tiles, clustered, shadows, hdr, msaa, fog, aa, translucency, camera, error, lights, outputs, debug, sweep, "
       "found 'durtion'",
       "8:19: warmup.seconds: expected a number >= 0 and <= 3600, found '-1'",
       "10:9: lights.seed: expected an integer 0..4294967295, found '-1'",
