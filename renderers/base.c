@@ -68,6 +68,7 @@ oom:
 void renderer_base_destroy(renderer_base *b)
 {
     renderer_base_release_targets(b);
+    renderer_base_release_scene(b);
     gl_pass_queries_destroy(b->queries);
     gl_program_cache_destroy(b->programs);
     gl_state_destroy(b->st);
@@ -89,7 +90,36 @@ bool renderer_base_size(renderer_base *b, const struct scene *s, char *err, size
     return true;
 }
 
-void renderer_base_begin_frame(renderer_base *b, frame_stats *out)
+bool renderer_base_scene(renderer_base *b, const struct scene *s, bool illumination_sets,
+                         char *err, size_t errlen)
+{
+    char why[512] = "";
+    renderer_base_release_scene(b);
+    shadow_maps_plan(&b->shadows, s, &b->opts);
+    if (!frontend_init(&b->fe, s, why, sizeof why)) {
+        snprintf(err, errlen, "%s: %s", b->name, why);
+        return false;
+    }
+    b->fe.no_shadows = !b->shadows.run;
+    b->fe.no_illumination = !illumination_sets;
+    b->gpu = scene_gpu_create(s, why, sizeof why);
+    if (!b->gpu) {
+        snprintf(err, errlen, "%s: %s", b->name, why);
+        return false;
+    }
+    return shadow_maps_create(&b->shadows, b->programs, b->name, err, errlen);
+}
+
+void renderer_base_release_scene(renderer_base *b)
+{
+    shadow_maps_destroy(&b->shadows);
+    scene_gpu_destroy(b->gpu);
+    b->gpu = NULL;
+    frontend_free(&b->fe);
+    memset(&b->fe, 0, sizeof b->fe);
+}
+
+void renderer_base_begin_frame(renderer_base *b, const struct scene *s, frame_stats *out)
 {
     out->npasses = 0;
     out->msaa = b->samples;
@@ -97,6 +127,20 @@ void renderer_base_begin_frame(renderer_base *b, frame_stats *out)
     /* Every frame starts from unknown state, so every frame counts alike: the first
      * set of each part of the state in a frame is a change. */
     gl_state_invalidate(b->st);
+    if (s && b->gpu) {
+        frontend_build(&b->fe, s);
+        scene_gpu_frame(b->gpu, s);
+    }
+}
+
+void renderer_base_shadow_pass(renderer_base *b, const struct scene *s, frame_stats *out)
+{
+    if (!b->shadows.run)
+        return;
+    renderer_base_pass_begin(b, out, "shadows");
+    renderer_base_shading(b, false);   /* depth only: no samples shaded */
+    shadow_maps_draw(&b->shadows, b->st, b->gpu, &b->fe, s);
+    renderer_base_pass_end(b, out);
 }
 
 void renderer_base_pass_begin(renderer_base *b, frame_stats *out, const char *name)

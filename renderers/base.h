@@ -10,8 +10,12 @@
  *                             opts.queries) max_passes pass queries
  *     renderer_base_size      at prepare: the output size (opts, or the scene's), refused
  *                             when the scene is posed for another size
+ *     renderer_base_scene     at prepare: the scene on the GPU, the frontend and the
+ *                             shadow maps (below), what every renderer draws from
  *     renderer_base_begin_frame   every frame: the state cache invalidated (every frame
- *                             counts alike), the frame's passes reset
+ *                             counts alike), the frame's passes reset, the frontend
+ *                             built and the Frame block uploaded for the scene's pose
+ *     renderer_base_shadow_pass   the "shadows" pass, when some light casts shadows
  *     renderer_base_pass_begin / _end   around each pass: the pass gets the next index
  *                             of frame_stats.pass, its queries and the cache's counts
  *                             (draws, dispatches, state changes); GPU time and fragments
@@ -50,12 +54,15 @@
 #include <stddef.h>
 
 #include "renderers/edge_aa.h"
+#include "renderers/frontend.h"
 #include "renderers/gl/loader.h"
 #include "renderers/gl/program.h"
 #include "renderers/gl/query.h"
 #include "renderers/gl/state.h"
 #include "renderers/gl/target.h"
 #include "renderers/renderer.h"
+#include "renderers/scene_gpu.h"
+#include "renderers/shadow.h"
 
 enum { RENDERER_BASE_MAX_PASSES = 16 };
 
@@ -89,6 +96,10 @@ typedef struct renderer_base {
     gl_program_cache *programs;
     gl_pass_queries *queries;        /* NULL without opts.queries */
     size_t max_passes;
+    /* >>made by renderer_base_scene at prepare */
+    scene_gpu *gpu;                  /* the scene's meshes, textures and Frame block */
+    frontend fe;                     /* per frame: visible objects, lights, their sets */
+    shadow_maps shadows;             /* the shadow-map plan, and the pool when it runs */
     /* >>made by renderer_base_targets at prepare */
     gl_target hdr;                   /* the light accumulation, opts.hdr's format */
     gl_target depth;                 /* depth24-stencil8 */
@@ -109,7 +120,22 @@ bool renderer_base_init(renderer_base *b, const char *name, const renderer_optio
 void renderer_base_destroy(renderer_base *b);
 /* Sets width and height; false with a message when s is posed for another size. */
 bool renderer_base_size(renderer_base *b, const struct scene *s, char *err, size_t errlen);
-void renderer_base_begin_frame(renderer_base *b, frame_stats *out);
+/* What every renderer needs of a scene, made at prepare: the shadow-map plan
+ * (shadow_maps_plan: which lights get maps, or why none), the frontend (frontend_init;
+ * illumination sets only when illumination_sets, i.e. forward-mpml; no shadow sets
+ * when no map is drawn), the scene on the GPU (scene_gpu_create) and, when the plan
+ * runs, the shadow pool and its depth program. False with "NAME: ..."; what it made
+ * is released by renderer_base_release_scene (a second call releases first). */
+bool renderer_base_scene(renderer_base *b, const struct scene *s, bool illumination_sets,
+                         char *err, size_t errlen);
+void renderer_base_release_scene(renderer_base *b);
+/* Every frame, first: the state cache invalidated (every frame counts alike), the
+ * frame's passes reset, and with a scene (s non-NULL, after renderer_base_scene) the
+ * frontend built for s's pose and the Frame block uploaded. */
+void renderer_base_begin_frame(renderer_base *b, const struct scene *s, frame_stats *out);
+/* The pass "shadows" when the plan runs it (renderers/shadow.h: one depth draw per
+ * object of each shadowed light's casting set, no samples counted); nothing otherwise. */
+void renderer_base_shadow_pass(renderer_base *b, const struct scene *s, frame_stats *out);
 void renderer_base_pass_begin(renderer_base *b, frame_stats *out, const char *name);
 void renderer_base_pass_end(renderer_base *b, frame_stats *out);
 void renderer_base_collect(renderer_base *b, frame_stats *out);

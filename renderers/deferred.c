@@ -266,15 +266,13 @@ typedef struct deferred_renderer {
     tiled_pass tp;
 
     /* >>made by prepare */
-    bool prepared;
-    scene_gpu *gpu;
-    frontend fe;
+    bool prepared;                   /* (the scene on the GPU, the frontend and the shadow
+                                        maps are the base's: renderer_base_scene) */
     deferred_needs needs;
     deferred_layout layout;
-    shadow_maps shadows;
     translucent_pass translucent;    /* MATERIAL_BLEND objects after the sky (translucent.h) */
     gl_target gbuf[DEFERRED_MAX_ATTACHMENTS];
-    gl_target light, specular, depth;
+    gl_target specular;              /* separate_specular: light.specular */
     gl_target depth_sampled;         /* position from depth: the G-buffer's depth, copied */
     gl_framebuffer fb_gbuffer, fb_light, fb_compose;
     gl_framebuffer fb_fog;           /* the light target alone (fog reads depth) */
@@ -401,11 +399,7 @@ static void release_prepared(deferred_renderer *r)
     renderer_base_release_targets(&r->b);
     gl_target_destroy(&r->specular);
     gl_target_destroy(&r->depth_sampled);
-    shadow_maps_destroy(&r->shadows);
-    scene_gpu_destroy(r->gpu);
-    r->gpu = NULL;
-    frontend_free(&r->fe);
-    memset(&r->fe, 0, sizeof r->fe);
+    renderer_base_release_scene(&r->b);
     r->prepared = false;
 }
 
@@ -603,7 +597,7 @@ static bool compile_programs(deferred_renderer *r, char *err, size_t errlen)
             extra[n++] = "NO_GRID";
         if (tp->ntlists)
             extra[n++] = tp->tlists_define;
-        n += (int)shadow_maps_defines(&r->shadows, extra + n);   /* any type: one program */
+        n += (int)shadow_maps_defines(&r->b.shadows, extra + n);   /* any type: one program */
         gl_program_desc d = {.name = tp->slices ? (tp->ntlists ? "clustered_deferred_translucent"
                                                                : "clustered_deferred")
                                                 : (tp->ntlists ? "tiled_deferred_translucent"
@@ -671,9 +665,9 @@ static bool compile_programs(deferred_renderer *r, char *err, size_t errlen)
             extra[n++] = unclipped;
         if (sep)
             extra[n++] = sep;
-        bool shadowed = shadow_maps_for_type(&r->shadows, t);
+        bool shadowed = shadow_maps_for_type(&r->b.shadows, t);
         if (shadowed)
-            n += (int)shadow_maps_defines(&r->shadows, extra + n);
+            n += (int)shadow_maps_defines(&r->b.shadows, extra + n);
         if (!build_msaa(r, shadowed ? display_shadowed[t] : display[t],
                         full ? fs_vert : "light_volume.vert", "deferred_light.frag", &ld, extra,
                         &r->light_program[t], &r->light_sample_program[t], err, errlen))
@@ -845,9 +839,13 @@ static bool deferred_prepare(void *self, const scene *s, char *err, size_t errle
     if (!deferred_layout_build(&r->b.opts, r->needs, &r->layout, err, errlen))
         return false;
 
+    /* >>the scene on the GPU, the frontend (light volumes, not object sets) and the shadow
+     * maps, whose plan the pass plan reads */
+    if (!renderer_base_scene(&r->b, s, false, err, errlen))
+        goto fail;
+
     /* >>the pass plan */
-    shadow_maps_plan(&r->shadows, s, &r->b.opts);
-    plan(r, PASS_SHADOWS, r->shadows.run, "%s", r->shadows.reason);
+    plan(r, PASS_SHADOWS, r->b.shadows.run, "%s", r->b.shadows.reason);
     plan(r, PASS_GBUFFER, true, "%u objects into %d attachments (%s preset, %u bytes/pixel)",
          s->nobjects, r->layout.nattachments, deferred_preset_name(r->b.opts.gbuffer),
          deferred_layout_bytes_per_pixel(&r->layout));
@@ -883,7 +881,7 @@ static bool deferred_prepare(void *self, const scene *s, char *err, size_t errle
                      "clustered.slices %u): at most 1024; raise near or lower clustered.slices",
                      r->b.name, tp->slices, (double)s->cam.znear, (double)s->cam.zfar,
                      tp->slice_ratio, tp->slices_y);
-            return false;
+            goto fail;
         }
         tp->ncells = tp->ntiles * (tp->slices ? tp->slices : 1u);
         tp->grid = count[LIGHT_POINT] + count[LIGHT_SPOT] > 0;
@@ -932,30 +930,18 @@ static bool deferred_prepare(void *self, const scene *s, char *err, size_t errle
     plan(r, PASS_MSAA, r->b.samples > 1, "the %d samples of the light averaged (a blit, "
          "linear HDR)", r->b.samples);
 
-    if (!frontend_init(&r->fe, s, why, sizeof why)) {
-        snprintf(err, errlen, "deferred: %s", why);
-        goto fail;
-    }
-    r->fe.no_shadows = !r->shadows.run;
-    r->fe.no_illumination = true;   /* light volumes, not object sets */
-    r->gpu = scene_gpu_create(s, why, sizeof why);
-    if (!r->gpu) {
-        snprintf(err, errlen, "deferred: %s", why);
-        goto fail;
-    }
     if (r->tiled && !make_tiled(r, s, err, errlen))
         goto fail;
     if (!make_targets(r, err, errlen) ||
-        !shadow_maps_create(&r->shadows, r->b.programs, "deferred", err, errlen) ||
         !compile_programs(r, err, errlen) || !compile_fog(r, err, errlen) ||
-        !translucent_prepare(&r->translucent, &r->b, s, &r->shadows, r->tiled, err, errlen) ||
+        !translucent_prepare(&r->translucent, &r->b, s, &r->b.shadows, r->tiled, err, errlen) ||
         !prepare_edge_aa(r, err, errlen))
         goto fail;
     if (r->tiled) {
         const translucent_grid tg = {{r->tp.tile_define, r->tp.tiles_x_define,
                                       r->tp.tlists_define},
                                      r->tp.lights, r->tp.tiles, r->tp.indices};
-        if (!translucent_compile(&r->translucent, &r->b, &r->shadows,
+        if (!translucent_compile(&r->translucent, &r->b, &r->b.shadows,
                                  r->tp.ntlists ? &tg : NULL, err, errlen))
             goto fail;
     }
@@ -1165,7 +1151,7 @@ static void draw_volume_light(deferred_renderer *r, const scene *s, int t, uint3
             gl_state_program(st, class_program(c, prog, sprog));
             set_light_uniform(s, li, layer);
             gl_state_stencil(st, class_stencil(r, c, false, &sbuf));
-            scene_gpu_draw_light_volume(r->gpu, st, s, li);
+            scene_gpu_draw_light_volume(r->b.gpu, st, s, li);
             r->shade_draws[t]++;
         }
         return;
@@ -1188,7 +1174,7 @@ static void draw_volume_light(deferred_renderer *r, const scene *s, int t, uint3
             gl_state_program(st, class_program(c, prog, sprog));
             set_light_uniform(s, li, layer);
             gl_state_stencil(st, class_stencil(r, c, false, &sbuf));
-            scene_gpu_draw_light_volume(r->gpu, st, s, li);
+            scene_gpu_draw_light_volume(r->b.gpu, st, s, li);
             r->shade_draws[t]++;
         }
         return;
@@ -1209,7 +1195,7 @@ static void draw_volume_light(deferred_renderer *r, const scene *s, int t, uint3
                                  .read_mask = volume_bits(r),
                                  .write_mask = volume_bits(r),
                              });
-        scene_gpu_draw_light_volume(r->gpu, st, s, li);
+        scene_gpu_draw_light_volume(r->b.gpu, st, s, li);
         r->mark_draws[t]++;
         renderer_base_shading(&r->b, true);
         gl_state_color_mask(st, GLS_COLOR_MASK_RGBA);
@@ -1233,7 +1219,7 @@ static void draw_volume_light(deferred_renderer *r, const scene *s, int t, uint3
                                                             (c == CLASS_EDGE ? EDGE_BIT : 0)),
                                      .write_mask = volume_bits(r),
                                  });
-            scene_gpu_draw_light_volume(r->gpu, st, s, li);
+            scene_gpu_draw_light_volume(r->b.gpu, st, s, li);
             r->shade_draws[t]++;
         }
         return;
@@ -1251,7 +1237,7 @@ static void draw_volume_light(deferred_renderer *r, const scene *s, int t, uint3
                                  .read_mask = volume_bits(r),
                                  .write_mask = volume_bits(r),
                              });
-        scene_gpu_draw_light_volume(r->gpu, st, s, li);
+        scene_gpu_draw_light_volume(r->b.gpu, st, s, li);
         gl_state_cull(st, GLS_CULL_FRONT);
         gl_state_stencil(st, &(gls_stencil){
                                  .enabled = true,
@@ -1260,7 +1246,7 @@ static void draw_volume_light(deferred_renderer *r, const scene *s, int t, uint3
                                  .read_mask = volume_bits(r),
                                  .write_mask = volume_bits(r),
                              });
-        scene_gpu_draw_light_volume(r->gpu, st, s, li);
+        scene_gpu_draw_light_volume(r->b.gpu, st, s, li);
         r->mark_draws[t] += 2;
         renderer_base_shading(&r->b, true);
         gl_state_color_mask(st, GLS_COLOR_MASK_RGBA);
@@ -1279,7 +1265,7 @@ static void draw_volume_light(deferred_renderer *r, const scene *s, int t, uint3
                                                             (c == CLASS_ALL ? 0 : EDGE_BIT)),
                                      .write_mask = volume_bits(r),
                                  });
-            scene_gpu_draw_light_volume(r->gpu, st, s, li);
+            scene_gpu_draw_light_volume(r->b.gpu, st, s, li);
             r->shade_draws[t]++;
         }
         return;
@@ -1309,10 +1295,10 @@ static void light_pass(deferred_renderer *r, const scene *s, frame_stats *out, p
     } else {
         gl.Enable(GL_DEPTH_CLAMP);
     }
-    if (shadow_maps_for_type(&r->shadows, type))
-        shadow_maps_bind(&r->shadows, st);
-    for (uint32_t k = 0; k < r->fe.nlights; k++) {
-        uint32_t li = r->fe.lights[k];
+    if (shadow_maps_for_type(&r->b.shadows, type))
+        shadow_maps_bind(&r->b.shadows, st);
+    for (uint32_t k = 0; k < r->b.fe.nlights; k++) {
+        uint32_t li = r->b.fe.lights[k];
         if ((int)s->lights[li].type != type)
             continue;
         if (type == LIGHT_DIRECTIONAL) {
@@ -1321,12 +1307,12 @@ static void light_pass(deferred_renderer *r, const scene *s, frame_stats *out, p
                 gl_state_stencil(st, full_screen_stencil(r, c, &sbuf));
                 gl_state_program(st, class_program(c, r->light_program[type],
                                                    r->light_sample_program[type]));
-                set_light_uniform(s, li, r->fe.shadow_layer[k]);
+                set_light_uniform(s, li, r->b.fe.shadow_layer[k]);
                 fullscreen(r);
                 r->shade_draws[type]++;
             }
         } else {
-            draw_volume_light(r, s, type, li, r->fe.shadow_layer[k]);
+            draw_volume_light(r, s, type, li, r->b.fe.shadow_layer[k]);
         }
         out->lights_drawn++;
     }
@@ -1347,7 +1333,7 @@ static void tiled_draw(deferred_renderer *r, const scene *s, frame_stats *out)
 {
     gl_state *st = r->b.st;
     tiled_pass *tp = &r->tp;
-    const frontend *fe = &r->fe;
+    const frontend *fe = &r->b.fe;
     uint32_t n = fe->nlights < tp->max_lights ? fe->nlights : tp->max_lights;
     for (uint32_t k = 0; k < n; k++) {
         shading_pack_light(&s->lights[fe->lights[k]], s->view, &tp->staging[k]);
@@ -1367,7 +1353,7 @@ static void tiled_draw(deferred_renderer *r, const scene *s, frame_stats *out)
     gl.Uniform1i(LOC_RENDERER, (GLint)n);
     bind_gbuffer_textures(r);
     gl_state_texture(st, DEFERRED_DEPTH_UNIT, r->b.depth.texture);
-    shadow_maps_bind(&r->shadows, st);
+    shadow_maps_bind(&r->b.shadows, st);
     gl_state_storage_buffer(st, BIND_SSBO_LIGHTS, tp->lights);
     gl_state_storage_buffer(st, BIND_SSBO_TILE_LISTS, tp->tiles);
     gl_state_storage_buffer(st, BIND_SSBO_TILE_INDICES, tp->indices);
@@ -1429,17 +1415,8 @@ static void deferred_draw(void *self, const scene *s, frame_stats *out)
     memset(r->shade_draws, 0, sizeof r->shade_draws);
     if (!r->prepared || !s)
         return;
-    renderer_base_begin_frame(&r->b, out);   /* every frame counted alike */
-    frontend_build(&r->fe, s);
-    scene_gpu_frame(r->gpu, s);
-
-    /* >>shadow maps, first: the light passes sample them */
-    if (r->run[PASS_SHADOWS]) {
-        pass_begin(r, out, PASS_SHADOWS);
-        renderer_base_shading(&r->b, false);   /* depth only: no samples shaded */
-        shadow_maps_draw(&r->shadows, st, r->gpu, &r->fe, s);
-        pass_end(r, out);
-    }
+    renderer_base_begin_frame(&r->b, s, out);   /* every frame counted alike */
+    renderer_base_shadow_pass(&r->b, s, out);      /* first: the light passes sample them */
 
     /* >>gbuffer */
     pass_begin(r, out, PASS_GBUFFER);
@@ -1452,11 +1429,11 @@ static void deferred_draw(void *self, const scene *s, frame_stats *out)
     gl_state_stencil(st, r->b.opts.sky_stencil ? &SURFACE_MARK : NULL);   /* the sky mask */
     gl_state_depth(st, &(gls_depth){.compare = GLS_COMPARE_LESS, .write = true});
     gl_state_cull(st, GLS_CULL_BACK);
-    for (uint32_t k = 0; k < r->fe.nvisible; k++) {
-        uint32_t o = r->fe.visible[k];
+    for (uint32_t k = 0; k < r->b.fe.nvisible; k++) {
+        uint32_t o = r->b.fe.visible[k];
         unsigned v = material_variant(&s->materials[s->objects[o].material]);
         gl_state_program(st, r->gbuffer_program[v]);
-        scene_gpu_draw_object(r->gpu, st, s, o);
+        scene_gpu_draw_object(r->b.gpu, st, s, o);
     }
     if (r->depth_sampled.texture) {   /* position from depth: what the light passes sample */
         GLenum target = r->b.samples > 1 ? GL_TEXTURE_2D_MULTISAMPLE : GL_TEXTURE_2D;
@@ -1555,13 +1532,13 @@ sky:
         gl_state_stencil(st, NULL);
         gl_state_cull(st, GLS_CULL_NONE);
         gl_state_depth(st, &(gls_depth){.compare = GLS_COMPARE_LEQUAL, .write = false});
-        scene_gpu_draw_sky(r->gpu, st);
+        scene_gpu_draw_sky(r->b.gpu, st);
         pass_end(r, out);
     }
 
     /* >>translucent: forward, over the opaque light and depth (seed 001 19.8.1) */
     if (r->run[PASS_TRANSLUCENT])
-        translucent_draw(&r->translucent, &r->b, r->gpu, &r->fe, s, &r->shadows, hdr_fbo, out);
+        translucent_draw(&r->translucent, &r->b, r->b.gpu, &r->b.fe, s, &r->b.shadows, hdr_fbo, out);
 
     /* >>resolve: msaa > 1, the samples averaged first (renderers/base.h) */
     renderer_base_msaa_resolve_pass(&r->b, out);
@@ -1579,7 +1556,7 @@ sky:
     gl_state_stencil(st, NULL);
     gl_state_depth(st, NULL);
     gl_state_cull(st, GLS_CULL_NONE);
-    scene_gpu_resolve(r->gpu, st, renderer_base_display(&r->b)->texture, r->b.output_fbo,
+    scene_gpu_resolve(r->b.gpu, st, renderer_base_display(&r->b)->texture, r->b.output_fbo,
                       r->b.width, r->b.height);
     pass_end(r, out);
 }
@@ -1658,7 +1635,7 @@ static void deferred_describe(const void *self, pass_plan *out)
         snprintf(e->reason, sizeof e->reason, "%s", r->reason[p]);
     }
     gl_program_cache_describe(r->b.programs, out);
-    scene_gpu_describe(r->gpu, out);
+    scene_gpu_describe(r->b.gpu, out);
     for (int i = 0; i < r->layout.nattachments; i++) {
         describe_target(&r->gbuf[i], out);
         out->gbuffer_bytes += r->gbuf[i].bytes;
@@ -1669,7 +1646,7 @@ static void deferred_describe(const void *self, pass_plan *out)
     describe_target(&r->depth_sampled, out);
     describe_target(&r->b.hdr_resolved, out);
     edge_aa_describe_target(&r->b, out);
-    shadow_maps_describe(&r->shadows, out);
+    shadow_maps_describe(&r->b.shadows, out);
 }
 
 static void deferred_destroy(void *self)

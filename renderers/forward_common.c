@@ -38,13 +38,9 @@ bool forward_common_init(forward_common *fc, const char *name, const renderer_op
 static void release_prepared(forward_common *fc)
 {
     translucent_release(&fc->translucent);
-    shadow_maps_destroy(&fc->shadows);
     gl_framebuffer_destroy(&fc->fb);
     renderer_base_release_targets(&fc->b);
-    scene_gpu_destroy(fc->gpu);
-    fc->gpu = NULL;
-    frontend_free(&fc->fe);
-    memset(&fc->fe, 0, sizeof fc->fe);
+    renderer_base_release_scene(&fc->b);
     fc->prepared = false;
 }
 
@@ -94,18 +90,8 @@ bool forward_common_prepare(forward_common *fc, const scene *s, char *err, size_
         fc->light_types |= 1u << t;
     }
 
-    shadow_maps_plan(&fc->shadows, s, &fc->b.opts);
-    if (!frontend_init(&fc->fe, s, why, sizeof why)) {
-        snprintf(err, errlen, "%s: %s", fc->b.name, why);
+    if (!renderer_base_scene(&fc->b, s, fc->illumination_sets, err, errlen))
         goto fail;
-    }
-    fc->fe.no_shadows = !fc->shadows.run;
-    fc->fe.no_illumination = !fc->illumination_sets;
-    fc->gpu = scene_gpu_create(s, why, sizeof why);
-    if (!fc->gpu) {
-        snprintf(err, errlen, "%s: %s", fc->b.name, why);
-        goto fail;
-    }
     if (!renderer_base_targets(&fc->b, "hdr", why, sizeof why) ||
         !gl_framebuffer_create(&fc->fb, &(gl_framebuffer_desc){.name = "forward",
                                                                .color = {&fc->b.hdr},
@@ -114,10 +100,9 @@ bool forward_common_prepare(forward_common *fc, const scene *s, char *err, size_
         snprintf(err, errlen, "%s: %s", fc->b.name, why);
         goto fail;
     }
-    if (!shadow_maps_create(&fc->shadows, fc->b.programs, fc->b.name, err, errlen) ||
-        !edge_aa_prepare(&fc->b, NULL, 0, err, errlen))   /* normals from depth */
+    if (!edge_aa_prepare(&fc->b, NULL, 0, err, errlen))   /* normals from depth */
         goto fail;
-    if (!translucent_prepare(&fc->translucent, &fc->b, s, &fc->shadows,
+    if (!translucent_prepare(&fc->translucent, &fc->b, s, &fc->b.shadows,
                              fc->translucent_later, err, errlen))
         goto fail;
     fc->prepared = true;
@@ -185,27 +170,15 @@ bool forward_compile_base(forward_common *fc, char *err, size_t errlen)
 
 void forward_begin_frame(forward_common *fc, const scene *s, frame_stats *out)
 {
-    renderer_base_begin_frame(&fc->b, out);
+    renderer_base_begin_frame(&fc->b, s, out);
     fc->frame_scene = s;
-    frontend_build(&fc->fe, s);
-    scene_gpu_frame(fc->gpu, s);
-}
-
-void forward_shadow_pass(forward_common *fc, const scene *s, frame_stats *out)
-{
-    if (!fc->shadows.run)
-        return;
-    forward_pass_begin(fc, out, "shadows");
-    renderer_base_shading(&fc->b, false);   /* depth only: no samples shaded */
-    shadow_maps_draw(&fc->shadows, fc->b.st, fc->gpu, &fc->fe, s);
-    forward_pass_end(fc, out);
 }
 
 unsigned forward_shadow_defines(const forward_common *fc, int type, const char *defs[2])
 {
-    if (type >= 0 && !shadow_maps_for_type(&fc->shadows, type))
+    if (type >= 0 && !shadow_maps_for_type(&fc->b.shadows, type))
         return 0;
-    return shadow_maps_defines(&fc->shadows, defs);
+    return shadow_maps_defines(&fc->b.shadows, defs);
 }
 
 void forward_pass_begin(forward_common *fc, frame_stats *out, const char *name)
@@ -242,7 +215,7 @@ void forward_draw_objects(forward_common *fc, const scene *s, const uint32_t *ob
         gl_state_program(fc->b.st, programs[v]);
         if (on_program)
             on_program(user, v, programs[v]);
-        scene_gpu_draw_object(fc->gpu, fc->b.st, s, o);
+        scene_gpu_draw_object(fc->b.gpu, fc->b.st, s, o);
     }
 }
 
@@ -250,7 +223,7 @@ void forward_sky_pass(forward_common *fc, frame_stats *out)
 {
     forward_pass_begin(fc, out, "sky");
     forward_bind_target(fc);
-    scene_gpu_draw_sky(fc->gpu, fc->b.st);   /* depth LEQUAL, no writes: where depth is 1 */
+    scene_gpu_draw_sky(fc->b.gpu, fc->b.st);   /* depth LEQUAL, no writes: where depth is 1 */
     forward_pass_end(fc, out);
 }
 
@@ -258,7 +231,7 @@ void forward_resolve_pass(forward_common *fc, frame_stats *out)
 {
     forward_pass_begin(fc, out, "resolve");
     renderer_base_single_sampled(out);   /* the output */
-    scene_gpu_resolve(fc->gpu, fc->b.st, renderer_base_display(&fc->b)->texture,
+    scene_gpu_resolve(fc->b.gpu, fc->b.st, renderer_base_display(&fc->b)->texture,
                       fc->b.output_fbo, fc->b.width, fc->b.height);
     forward_pass_end(fc, out);
 }
@@ -286,7 +259,7 @@ void forward_describe_pass(pass_plan *out, const char *name, bool run, const cha
 void forward_describe_resources(const forward_common *fc, pass_plan *out)
 {
     gl_program_cache_describe(fc->b.programs, out);
-    scene_gpu_describe(fc->gpu, out);   /* sky and resolve */
+    scene_gpu_describe(fc->b.gpu, out);   /* sky and resolve */
     out->ntargets = 0;
     out->target_bytes = 0;
     const gl_target *targets[] = {&fc->b.hdr, &fc->b.depth, &fc->b.hdr_resolved};
@@ -297,13 +270,13 @@ void forward_describe_resources(const forward_common *fc, pass_plan *out)
         out->target_bytes += targets[i]->bytes;
     }
     edge_aa_describe_target(&fc->b, out);
-    shadow_maps_describe(&fc->shadows, out);
+    shadow_maps_describe(&fc->b.shadows, out);
     out->gbuffer_bytes = 0;
 }
 
 void forward_describe_shadows(const forward_common *fc, pass_plan *out)
 {
-    const shadow_maps *sm = &fc->shadows;
+    const shadow_maps *sm = &fc->b.shadows;
     if (!fc->prepared ||
         sm->asking[LIGHT_POINT] + sm->asking[LIGHT_SPOT] + sm->asking[LIGHT_DIRECTIONAL] == 0)
         return;
@@ -350,15 +323,15 @@ void forward_end_frame(forward_common *fc, frame_stats *out, uint64_t light_draw
 {
     if (fc->sky)
         forward_sky_pass(fc, out);
-    uint64_t translucent_draws = translucent_draw(&fc->translucent, &fc->b, fc->gpu, &fc->fe,
-                                                  fc->frame_scene, &fc->shadows, fc->fb.fbo, out);
+    uint64_t translucent_draws = translucent_draw(&fc->translucent, &fc->b, fc->b.gpu, &fc->b.fe,
+                                                  fc->frame_scene, &fc->b.shadows, fc->fb.fbo, out);
     renderer_base_msaa_resolve_pass(&fc->b, out);   /* msaa > 1 only */
     edge_aa_pass(&fc->b, out, NULL, 0);   /* aa: edge */
     forward_resolve_pass(fc, out);
-    uint64_t shadow_draws = fc->shadows.run ? fc->fe.shadow_start[fc->fe.nlights] : 0u;
-    uint64_t expected = shadow_draws + (uint64_t)fc->fe.nvisible + light_draws +
+    uint64_t shadow_draws = fc->b.shadows.run ? fc->b.fe.shadow_start[fc->b.fe.nlights] : 0u;
+    uint64_t expected = shadow_draws + (uint64_t)fc->b.fe.nvisible + light_draws +
                         (fc->sky ? 1u : 0u) + translucent_draws + (fc->b.aa.run ? 1u : 0u) + 1u;
-    assert(translucent_draws == (fc->translucent.run ? fc->fe.ntranslucent : 0u));
+    assert(translucent_draws == (fc->translucent.run ? fc->b.fe.ntranslucent : 0u));
     uint64_t draws = 0;
     for (size_t i = 0; i < out->npasses; i++)
         draws += out->pass[i].draw_calls;

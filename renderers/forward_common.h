@@ -6,9 +6,9 @@
  *
  * Every frame of both renderers:
  *
- *     forward_begin_frame     cache invalidated (every frame counted alike),
- *                             frontend_build, scene_gpu_frame (the Frame block)
- *     forward_shadow_pass     when some spot or directional light casts shadows (and
+ *     forward_begin_frame     renderer_base_begin_frame: cache invalidated (every frame
+ *                             counted alike), frontend_build, scene_gpu_frame
+ *     renderer_base_shadow_pass   when some spot or directional light casts shadows (and
  *                             shadows are not off): "shadows", renderers/shadow.h, one
  *                             draw per object of each shadowed light's shadow-casting set
  *     ... the renderer's own passes into fc->fb (the base's "hdr", in the run's HDR
@@ -78,11 +78,9 @@ typedef struct forward_common {
                                         after init); the others leave it false */
 
     /* >>made by forward_common_prepare */
-    bool prepared;
-    scene_gpu *gpu;
-    frontend fe;
+    bool prepared;                   /* (the scene on the GPU, the frontend and the shadow
+                                        maps are the base's: renderer_base_scene) */
     gl_framebuffer fb;               /* the base's hdr and depth targets */
-    shadow_maps shadows;             /* the plan, and the pool when it runs */
     bool sky;                        /* the scene has a sky: the sky pass runs */
     unsigned variants;               /* bit v: some object's material is of variant v */
     unsigned light_types;            /* bit t: some light of the scene is of type t */
@@ -123,9 +121,6 @@ bool forward_compile_base(forward_common *fc, char *err, size_t errlen);
 
 void forward_begin_frame(forward_common *fc, const scene *s, frame_stats *out);
 
-/* The "shadows" pass when the plan runs it (renderers/shadow.h); nothing otherwise.
- * Call it first, right after forward_begin_frame. */
-void forward_shadow_pass(forward_common *fc, const scene *s, frame_stats *out);
 /* The SHADOWS defines for programs lighting type t ("SHADOWS", "MAX_SHADOWS n") into
  * defs, or nothing (shadow_maps_for_type); returns how many. type < 0: any type (a
  * program that lights every type, forward-spml), i.e. whether the pass runs. */

@@ -215,10 +215,10 @@ static void mpml_draw(void *self, const struct scene *s, frame_stats *out)
         return;
     }
     forward_begin_frame(c, s, out);
-    const frontend *fe = &c->fe;
+    const frontend *fe = &c->b.fe;
     const bool sets = !c->b.opts.no_illumination_sets;
 
-    forward_shadow_pass(c, s, out);
+    renderer_base_shadow_pass(&c->b, s, out);
 
     uint32_t lights_drawn = 0;
     if (r->fold) {
@@ -244,7 +244,7 @@ static void mpml_draw(void *self, const struct scene *s, frame_stats *out)
     forward_clear_target(c);
     gl_state_depth(c->b.st, &(gls_depth){.compare = GLS_COMPARE_LESS, .write = true});
     if (r->fold)
-        shadow_maps_bind(&c->shadows, c->b.st);
+        shadow_maps_bind(&c->b.shadows, c->b.st);
     forward_draw_objects(c, s, fe->visible, fe->nvisible, c->base_program,
                          r->fold ? base_on_program : NULL, r);
     forward_pass_end(c, out);
@@ -256,7 +256,7 @@ static void mpml_draw(void *self, const struct scene *s, frame_stats *out)
         gl_state_blend(c->b.st, &(gls_blend){.enabled = true, .src = GLS_BLEND_ONE,
                                            .dst = GLS_BLEND_ONE, .op = GLS_BLEND_OP_ADD});
         gl_state_depth(c->b.st, &(gls_depth){.compare = GLS_COMPARE_EQUAL, .write = false});
-        shadow_maps_bind(&c->shadows, c->b.st);
+        shadow_maps_bind(&c->b.shadows, c->b.st);
         for (uint32_t k = 0; k < fe->nlights; k++) {
             const uint32_t *objects = fe->visible;
             uint32_t n = fe->nvisible;

@@ -315,7 +315,7 @@ static bool plus_prepare(void *self, const struct scene *s, char *err, size_t er
         r->depth_ranges = make_buffer((size_t)r->ntiles * 2u * sizeof(float));
     const translucent_grid tg = {{r->tile_define, r->tiles_x_define, r->tlists_define},
                                  r->lights, r->tiles, r->indices};
-    if (!translucent_compile(&c->translucent, &c->b, &c->shadows, r->ntlists ? &tg : NULL,
+    if (!translucent_compile(&c->translucent, &c->b, &c->b.shadows, r->ntlists ? &tg : NULL,
                              err, errlen))
         goto fail;
     return true;
@@ -357,8 +357,8 @@ static void plus_draw(void *self, const struct scene *s, frame_stats *out)
         return;
     }
     forward_begin_frame(c, s, out);
-    const frontend *fe = &c->fe;
-    forward_shadow_pass(c, s, out);
+    const frontend *fe = &c->b.fe;
+    renderer_base_shadow_pass(&c->b, s, out);
 
     /* the frame's visible lights, as forward-spml packs them */
     uint32_t n = fe->nlights < r->max_lights ? fe->nlights : r->max_lights;
@@ -382,7 +382,7 @@ static void plus_draw(void *self, const struct scene *s, frame_stats *out)
     gl_state_cull(c->b.st, GLS_CULL_BACK);
     gl_state_program(c->b.st, r->depth_program);
     for (uint32_t k = 0; k < fe->nvisible; k++)
-        scene_gpu_draw_object_geometry(c->gpu, c->b.st, s, fe->visible[k]);
+        scene_gpu_draw_object_geometry(c->b.gpu, c->b.st, s, fe->visible[k]);
     forward_pass_end(c, out);
 
     if (r->grid) {
@@ -408,7 +408,7 @@ static void plus_draw(void *self, const struct scene *s, frame_stats *out)
     gl_state_color_mask(c->b.st, GLS_COLOR_MASK_RGBA);
     gl_state_depth(c->b.st, &(gls_depth){.compare = GLS_COMPARE_EQUAL, .write = false});
     bind_buffers(r);
-    shadow_maps_bind(&c->shadows, c->b.st);
+    shadow_maps_bind(&c->b.shadows, c->b.st);
     forward_draw_objects(c, s, fe->visible, fe->nvisible, r->program, plus_on_program, r);
     forward_pass_end(c, out);
 

@@ -163,9 +163,9 @@ static void spml_draw(void *self, const struct scene *s, frame_stats *out)
         return;
     }
     forward_begin_frame(c, s, out);
-    const frontend *fe = &c->fe;
+    const frontend *fe = &c->b.fe;
 
-    forward_shadow_pass(c, s, out);
+    renderer_base_shadow_pass(&c->b, s, out);
 
     forward_pass_begin(c, out, "shade");
     /* The frame's visible lights, packed in view space. The frontend's lights are
@@ -189,7 +189,7 @@ static void spml_draw(void *self, const struct scene *s, frame_stats *out)
     gl_state_stencil(c->b.st, NULL);
     forward_clear_target(c);
     gl_state_depth(c->b.st, &(gls_depth){.compare = GLS_COMPARE_LESS, .write = true});
-    shadow_maps_bind(&c->shadows, c->b.st);
+    shadow_maps_bind(&c->b.shadows, c->b.st);
     forward_draw_objects(c, s, fe->visible, fe->nvisible, r->program, spml_on_program, r);
     forward_pass_end(c, out);
 
