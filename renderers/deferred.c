@@ -761,8 +761,9 @@ static bool make_tiled(deferred_renderer *r, const scene *s, char *err, size_t e
     snprintf(tp->tlists_define, sizeof tp->tlists_define, "TLISTS %u", tp->ncells);
     if ((uint64_t)heads * 16u > (uint64_t)(max_block > 0 ? max_block : 0)) {
         snprintf(err, errlen, "%s: %u cells need %llu bytes of list heads, this context allows "
-                 "%d (GL_MAX_SHADER_STORAGE_BLOCK_SIZE)", r->b.name, heads,
-                 (unsigned long long)heads * 16u, max_block);
+                 "%d (GL_MAX_SHADER_STORAGE_BLOCK_SIZE); larger tiles.size%s or a smaller "
+                 "resolution fit", r->b.name, heads, (unsigned long long)heads * 16u, max_block,
+                 tp->slices ? ", fewer clustered.slices" : "");
         return false;
     }
     tp->staging = calloc(tp->max_lights, sizeof *tp->staging);

@@ -211,8 +211,10 @@ static bool plus_prepare(void *self, const struct scene *s, char *err, size_t er
     gl.GetIntegerv(GL_MAX_SHADER_STORAGE_BLOCK_SIZE, &max_block);
     if ((uint64_t)heads * 16u > (uint64_t)(max_block > 0 ? max_block : 0)) {
         snprintf(err, errlen, "%s: %u %s need %llu bytes of list heads, this context allows %d "
-                 "(GL_MAX_SHADER_STORAGE_BLOCK_SIZE)", r->name, heads,
-                 r->slices ? "clusters" : "tiles", (unsigned long long)heads * 16u, max_block);
+                 "(GL_MAX_SHADER_STORAGE_BLOCK_SIZE); larger tiles.size%s or a smaller "
+                 "resolution fit", r->name, heads, r->slices ? "clusters" : "tiles",
+                 (unsigned long long)heads * 16u, max_block,
+                 r->slices ? ", fewer clustered.slices" : "");
         goto fail;
     }
     uint64_t block_entries = max_block > 0 ? (uint64_t)max_block / 4u : 0u;

@@ -730,6 +730,65 @@ static void test_resolution_limits(void **state)
     need_context(W, H);
 }
 
+/* The tiled and clustered renderers at max x max (16384 x 16384 on llvmpipe: up to
+ * 19 GB resident with the test's own read-back, 6 minutes on two cores), only when
+ * SHADESWEEP_EXTREMES_MAX_TILED is set (never in CI; README's extremes section says when
+ * it last ran): one light, finite everywhere and no GL error, or refused at prepare,
+ * before anything renders, naming the limit it would exceed (clustered: a list head per
+ * cluster, 16384^2 / 16^2 tiles x its slices, beyond GL_MAX_SHADER_STORAGE_BLOCK_SIZE). */
+static void test_resolution_max_tiled(void **state)
+{
+    (void)state;
+    if (!getenv("SHADESWEEP_EXTREMES_MAX_TILED")) {
+        print_message("skip: the tiled renderers at the size limit "
+                      "(set SHADESWEEP_EXTREMES_MAX_TILED to run them)\n");
+        return;
+    }
+    need_context(W, H);
+    const gl_info *gi = gl_context_info(ctx);
+    int max = gi->max_renderbuffer_size;
+    if (gi->max_texture_size < max)
+        max = gi->max_texture_size;
+    if (gi->max_viewport_dims[0] < max)
+        max = gi->max_viewport_dims[0];
+    if (gi->max_viewport_dims[1] < max)
+        max = gi->max_viewport_dims[1];
+    char err[512] = "";
+    gl_context_destroy(ctx);
+    ctx = NULL;
+    ctx_w = ctx_h = 0;
+    if (!use_context(max, max, err, sizeof err))
+        fail_msg("a %dx%d context could not be created: %s", max, max, err);
+    scene_light l = point(0.0f, 6.0f, 4.0f, 40.0f, 1.0f, ATTENUATION_LINEAR_RANGE);
+    scene *s = build(&l, 1, &SIDE, max, max);
+    static const char *const tiled[] = {"forward-plus", "clustered", "tiled-deferred"};
+    for (size_t i = 0; i < NCONFIGS; i++)
+        for (size_t k = 0; k < 3; k++)
+            if (strcmp(CONFIGS[i].name, tiled[k]) == 0) {
+                renderer *pr = make(&CONFIGS[i], max, max, err, sizeof err);
+                if (!pr)
+                    fail_msg("%s: create: %s", CONFIGS[i].name, err);
+                bool ok = renderer_prepare(pr, s, err, sizeof err);
+                renderer_destroy(pr);
+                if (!ok) {
+                    print_message("%dx%d %s: refused: %s\n", max, max, CONFIGS[i].name, err);
+                    assert_non_null(strstr(err, "this context allows"));
+                    assert_non_null(strstr(err, "GL_MAX_SHADER_STORAGE_BLOCK_SIZE"));
+                    continue;
+                }
+                result r = render_finite(&CONFIGS[i], s, "the size limit", NULL);
+                print_message("%dx%d %s: finite, light sum %.4g\n", max, max, CONFIGS[i].name,
+                              r.sum);
+                assert_true(r.sum > 0.0);
+                result_free(&r);
+            }
+    scene_destroy(s);
+    gl_context_destroy(ctx);
+    ctx = NULL;
+    ctx_w = ctx_h = 0;
+    need_context(W, H);
+}
+
 static int teardown(void **state)
 {
     (void)state;
@@ -763,6 +822,7 @@ int main(void)
         cmocka_unit_test(test_degenerate_frames),
         cmocka_unit_test(test_resolution_1x1),
         cmocka_unit_test(test_resolution_limits),
+        cmocka_unit_test(test_resolution_max_tiled),
     };
     return cmocka_run_group_tests(tests, NULL, teardown);
 }
