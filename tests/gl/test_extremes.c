@@ -647,6 +647,20 @@ static bool has(const char *text, const char *part)
     return strstr(text, part) != NULL;
 }
 
+/* The largest square the context renders: its renderbuffer, texture and viewport
+ * limits' least. */
+static int size_limit(const gl_info *gi)
+{
+    int max = gi->max_renderbuffer_size;
+    if (gi->max_texture_size < max)
+        max = gi->max_texture_size;
+    if (gi->max_viewport_dims[0] < max)
+        max = gi->max_viewport_dims[0];
+    if (gi->max_viewport_dims[1] < max)
+        max = gi->max_viewport_dims[1];
+    return max;
+}
+
 /* Beyond the limit: refused with the limit named. At the limit: the null renderer
  * (an RGBA8 and a depth-stencil renderbuffer of max x max: 2 GB on llvmpipe at 16384),
  * skipped with a printed reason if the context cannot be had for memory. The forward
@@ -656,13 +670,7 @@ static void test_resolution_limits(void **state)
     (void)state;
     need_context(W, H);
     const gl_info *gi = gl_context_info(ctx);
-    int max = gi->max_renderbuffer_size;
-    if (gi->max_texture_size < max)
-        max = gi->max_texture_size;
-    if (gi->max_viewport_dims[0] < max)
-        max = gi->max_viewport_dims[0];
-    if (gi->max_viewport_dims[1] < max)
-        max = gi->max_viewport_dims[1];
+    int max = size_limit(gi);
     int rb = gi->max_renderbuffer_size;
     print_message("limits: renderbuffer %d, texture %d, viewport %dx%d\n", rb,
                   gi->max_texture_size, gi->max_viewport_dims[0], gi->max_viewport_dims[1]);
@@ -746,13 +754,7 @@ static void test_resolution_max_tiled(void **state)
     }
     need_context(W, H);
     const gl_info *gi = gl_context_info(ctx);
-    int max = gi->max_renderbuffer_size;
-    if (gi->max_texture_size < max)
-        max = gi->max_texture_size;
-    if (gi->max_viewport_dims[0] < max)
-        max = gi->max_viewport_dims[0];
-    if (gi->max_viewport_dims[1] < max)
-        max = gi->max_viewport_dims[1];
+    int max = size_limit(gi);
     char err[512] = "";
     gl_context_destroy(ctx);
     ctx = NULL;
