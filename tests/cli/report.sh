@@ -267,6 +267,8 @@ has "| deferred | - |"
 has "| glass | forward-spml | 1 | 100.0 ± 0.2 | 90.0 ± 0.2 | 10.0 ± 0.4 | x1.11 |"
 has "| glass | tiled-deferred | 4 | 60.0 ± 0.2 | 55.0 ± 0.2 | 5.0 ± 0.4 | x1.09 |"
 has "These runs have no error reference"
+has "No plot of frame time against edge error: these runs have no error reference."
+[ ! -e out/plots/aa-translucency_error_time.png ] || fail "an empty error-time plot was drawn"
 claim "glass: tiled forward faster than tiled deferred at 4x MSAA" no
 grep -q "^| aa-translucency | run | 12 | 1 no |" $R || fail "aa-translucency not in the summary: $(grep '^| aa-translucency' $R)"
 # the Pareto front: fat and curtis are on it, reference too (least error), compact is not

@@ -166,7 +166,11 @@ def section_aa_translucency(s):
             "is open then, so on it the difference above is the measure.\n")
         s.w(md_table(["scene", "renderer", "translucent pass ms", "of the frame"], rows))
     s.claims_table()
-    if s.plots.plt:
+    has_edge = any(v[3] is not None for sc in data.values() for rr in sc.values()
+                   for v in rr.values())
+    if not has_edge:
+        s.w("No plot of frame time against edge error: these runs have no error reference.\n")
+    elif s.plots.plt:
         plt = s.plots.plt
         scenes = sorted(data)
         fig, axes = plt.subplots(1, len(scenes), figsize=(6 * len(scenes), 4.6), squeeze=False)
