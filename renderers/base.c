@@ -338,6 +338,18 @@ void renderer_base_fog_uniform(const renderer_base *b, GLuint program)
                         b->opts.fog_color[2], b->opts.fog_density);
 }
 
+bool light_grid_heads_fit(const char *name, uint32_t heads, const char *what, bool slices,
+                          int max_block, char *err, size_t errlen)
+{
+    if ((uint64_t)heads * 16u <= (uint64_t)(max_block > 0 ? max_block : 0))
+        return true;
+    snprintf(err, errlen, "%s: %u %s need %llu bytes of list heads, this context allows %d "
+             "(GL_MAX_SHADER_STORAGE_BLOCK_SIZE); larger tiles.size%s or a smaller "
+             "resolution fit", name, heads, what, (unsigned long long)heads * 16u, max_block,
+             slices ? ", fewer clustered.slices" : "");
+    return false;
+}
+
 void light_grid_collect(const light_grid_readback *g, frame_stats *out)
 {
     uint32_t needed = 0;

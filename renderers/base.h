@@ -84,6 +84,12 @@ typedef struct light_grid_readback {
 } light_grid_readback;
 
 void light_grid_collect(const light_grid_readback *g, frame_stats *out);
+/* Whether `heads` list heads (16 bytes a cell) fit a storage block of max_block bytes
+ * (GL_MAX_SHADER_STORAGE_BLOCK_SIZE); false with "NAME: HEADS WHAT need ... bytes of list
+ * heads, this context allows ..." and what would fit (clustered.slices too when
+ * slices). */
+bool light_grid_heads_fit(const char *name, uint32_t heads, const char *what, bool slices,
+                          int max_block, char *err, size_t errlen);
 
 struct scene;
 

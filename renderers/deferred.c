@@ -759,13 +759,9 @@ static bool make_tiled(deferred_renderer *r, const scene *s, char *err, size_t e
     snprintf(tp->slices_define, sizeof tp->slices_define, "SLICES %u", tp->slices);
     snprintf(tp->slices_y_define, sizeof tp->slices_y_define, "SLICES_Y %u", tp->slices_y);
     snprintf(tp->tlists_define, sizeof tp->tlists_define, "TLISTS %u", tp->ncells);
-    if ((uint64_t)heads * 16u > (uint64_t)(max_block > 0 ? max_block : 0)) {
-        snprintf(err, errlen, "%s: %u cells need %llu bytes of list heads, this context allows "
-                 "%d (GL_MAX_SHADER_STORAGE_BLOCK_SIZE); larger tiles.size%s or a smaller "
-                 "resolution fit", r->b.name, heads, (unsigned long long)heads * 16u, max_block,
-                 tp->slices ? ", fewer clustered.slices" : "");
+    if (!light_grid_heads_fit(r->b.name, heads, "cells", tp->slices > 0, max_block, err,
+                              errlen))
         return false;
-    }
     tp->staging = calloc(tp->max_lights, sizeof *tp->staging);
     tp->readback = calloc((size_t)heads * 4u, sizeof *tp->readback);
     tp->counts = calloc(tp->ncells, sizeof *tp->counts);

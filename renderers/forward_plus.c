@@ -209,14 +209,9 @@ static bool plus_prepare(void *self, const struct scene *s, char *err, size_t er
 
     GLint max_block = 0;
     gl.GetIntegerv(GL_MAX_SHADER_STORAGE_BLOCK_SIZE, &max_block);
-    if ((uint64_t)heads * 16u > (uint64_t)(max_block > 0 ? max_block : 0)) {
-        snprintf(err, errlen, "%s: %u %s need %llu bytes of list heads, this context allows %d "
-                 "(GL_MAX_SHADER_STORAGE_BLOCK_SIZE); larger tiles.size%s or a smaller "
-                 "resolution fit", r->name, heads, r->slices ? "clusters" : "tiles",
-                 (unsigned long long)heads * 16u, max_block,
-                 r->slices ? ", fewer clustered.slices" : "");
+    if (!light_grid_heads_fit(r->name, heads, r->slices ? "clusters" : "tiles", r->slices > 0,
+                              max_block, err, errlen))
         goto fail;
-    }
     uint64_t block_entries = max_block > 0 ? (uint64_t)max_block / 4u : 0u;
     if ((uint64_t)r->max_lights * sizeof(gpu_light) > (uint64_t)(max_block > 0 ? max_block : 0)) {
         snprintf(err, errlen,
