@@ -22,10 +22,14 @@
 
 /* ---- the names shadesweep writes ------------------------------------------------- */
 
-static const char *const top_names[] = {"plan.csv", "summary.csv", "sweep.yaml"};
+/* sweep.yaml last: clear_folder removes the others and may keep it. Every file a sweep
+ * writes must be named here (or in is_run_file): a name missing is a file that --force
+ * and a rerun leave behind from an older sweep, whose killed write's ".tmp.<pid>" is
+ * never swept, and (in a run folder) that files.txt does not vouch for. */
+static const char *const top_names[] = {"plan.csv", "summary.csv", "summary.md", "sweep.yaml"};
 static const char *const run_names[] = {
     "frames.csv", "seconds.csv", "passes.csv", "convergence.csv", "errors.csv",
-    "coverage.csv", "summary.csv", "meta.yaml", "log.txt", "files.txt",
+    "coverage.csv", "lightgrid.csv", "summary.csv", "meta.yaml", "log.txt", "files.txt",
 };
 #define NAMES(a) (sizeof(a) / sizeof((a)[0]))
 
@@ -169,7 +173,7 @@ void folder_remove_temp(const char *dir)
 static bool clear_folder(const char *dir, bool keep_sweep, char *err, size_t errlen)
 {
     char path[4608];
-    for (size_t i = 0; i < 2; i++) {
+    for (size_t i = 0; i + 1 < NAMES(top_names); i++) {   /* all but sweep.yaml */
         pjoin(path, sizeof path, dir, top_names[i]);
         if (!remove_file(path, err, errlen))
             return false;

@@ -99,6 +99,12 @@ for f in $mine; do [ "$(cat $f)" = mine ] || fail "--force deleted $f"; done
 "$SHADESWEEP" run --resume -o a t.yaml 2>/dev/null || fail "--resume"
 for f in $mine; do [ "$(cat $f)" = mine ] || fail "--resume deleted $f"; done
 check_summary a 8
+# summary.md is shadesweep's: a write of it killed half-way is swept by the next resume
+# (cli-signals once found summary.md.tmp.<pid> left for good)
+echo half > a/summary.md.tmp.99
+"$SHADESWEEP" run --resume -o a t.yaml 2>/dev/null || fail "--resume over a temporary"
+[ ! -e a/summary.md.tmp.99 ] || fail "--resume left summary.md.tmp.99"
+[ -f a/summary.md ] || fail "no summary.md"
 
 # Empty output folders: -o "" is an error, and nothing is written (today: into /).
 mkdir empty-o && cd empty-o

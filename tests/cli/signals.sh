@@ -216,7 +216,8 @@ want = [(i, t) for i in plan("cc") for t in ("1", "2")]
 if [(r["run_id"], r["trial"]) for r in rows] != want or any(r["status"] != "ok" for r in rows):
     fail(f"after the kills: {[(r['run_id'], r['trial'], r['status']) for r in rows]}")
 for dp, dn, fn in os.walk("cc"):
-    if any(".tmp." in f for f in fn): fail(f"temporary files left in {dp}")
+    left = [f for f in fn if ".tmp." in f]
+    if left: fail(f"temporary files left in {dp}: {left}")
 if outside() != snapshot: fail("a file outside the output folder changed")
 print(f"signals: {interrupted} interrupts, {15 - completed} kills mid-sweep", file=sys.stderr)
 PY

@@ -76,6 +76,10 @@ for s in table("out/tiled/summary.csv"):
         if os.path.exists(grid):
             fail("forward-spml wrote lightgrid.csv")
         continue
+    # files.txt vouches for it (a name folder.c did not know was left out, and so
+    # survived --force and reruns from an older sweep)
+    if "lightgrid.csv" not in open(os.path.join(run, "files.txt")).read():
+        fail(f"{r}: files.txt does not list lightgrid.csv")
     if s["dispatches_mean"] != "1.000":
         fail(f"{r}: dispatches_mean {s['dispatches_mean']}")
     if not s["cell_lights_mean"] or not s["cell_lights_max"] or not s["light_evals_per_pixel"]:
