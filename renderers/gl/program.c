@@ -184,6 +184,8 @@ typedef struct variant {
 struct gl_program_cache {
     variant *v;
     size_t n, cap;
+    define common[GLP_MAX_COMMON_DEFINES];   /* sorted (gl_program_cache_set_common) */
+    size_t ncommon;
 };
 
 gl_program_cache *gl_program_cache_create(void)
@@ -203,6 +205,24 @@ void gl_program_cache_destroy(gl_program_cache *c)
     }
     free(c->v);
     free(c);
+}
+
+bool gl_program_cache_set_common(gl_program_cache *c, const char *const *defines, size_t n)
+{
+    define d[GLP_MAX_COMMON_DEFINES];
+    const char *why = NULL;
+    if (n > GLP_MAX_COMMON_DEFINES)
+        return false;
+    for (size_t i = 0; i < n; i++)
+        if (!parse_define(defines[i], &d[i], &why))
+            return false;
+    qsort(d, n, sizeof d[0], define_cmp);
+    for (size_t i = 1; i < n; i++)
+        if (strcmp(d[i - 1].name, d[i].name) == 0)
+            return false;
+    memcpy(c->common, d, n * sizeof d[0]);
+    c->ncommon = n;
+    return true;
 }
 
 size_t gl_program_cache_count(const gl_program_cache *c)
@@ -487,8 +507,9 @@ gl_program_err gl_program_get(gl_program_cache *c, const gl_program_desc *desc,
     if (errlen)
         err[0] = '\0';
 
-    /* Defines: parsed, sorted, no name twice. */
-    define defs[GLP_MAX_DEFINES];
+    /* Defines: parsed, sorted, no name twice; then the cache's common ones (in the
+     * key and the text, not in the name). */
+    define defs[GLP_MAX_DEFINES + GLP_MAX_COMMON_DEFINES];
     size_t ndefs = 0;
     gl_program_err e = GLP_OK;
     strbuf name = {0}, key = {0}, who = {0}, why = {0}, text = {0};
@@ -512,7 +533,21 @@ gl_program_err gl_program_get(gl_program_cache *c, const gl_program_desc *desc,
             e = GLP_ERR_DEFINE;
         }
 
+    for (size_t i = 0; i < c->ncommon && e == GLP_OK; i++)
+        for (size_t j = 0; j < ndefs; j++)
+            if (strcmp(defs[j].name, c->common[i].name) == 0) {
+                sb_printf(&why, "%s is one of the cache's common defines", defs[j].name);
+                e = GLP_ERR_DEFINE;
+            }
+
     describe_variant(desc, defs, e == GLP_OK ? ndefs : 0, &name, &key, &who);
+    if (e == GLP_OK) {
+        for (size_t i = 0; i < c->ncommon; i++) {
+            sb_printf(&key, "common %s %s\n", c->common[i].name, c->common[i].value);
+            defs[ndefs + i] = c->common[i];
+        }
+        ndefs += c->ncommon;
+    }
     if (name.oom || key.oom || who.oom) {
         e = GLP_ERR_MEMORY;
         goto out;

@@ -109,6 +109,18 @@ void gl_program_cache_destroy(gl_program_cache *c); /* deletes its programs; NUL
 gl_program_err gl_program_get(gl_program_cache *c, const gl_program_desc *desc,
                               GLuint *program, char *err, size_t errlen);
 
+/* Defines that every program of this cache is compiled with besides its desc's (at most
+ * GLP_MAX_COMMON_DEFINES; none replaces the last list): renderer_base_scene sets the
+ * light features of the scene's lights (lighting.inc's LIGHT_TYPES and
+ * LIGHT_ATTENUATIONS) before the renderer builds its programs. They are part of each
+ * variant's identity (a program built under other common defines is not reused) but
+ * not of its name: the variant names stay what the renderer asked for, and the pass
+ * plan says once what the common defines left out. A desc naming a common define is
+ * refused as GLP_ERR_DEFINE. False, and the cache unchanged, when one is malformed or
+ * repeated, or there are too many. */
+enum { GLP_MAX_COMMON_DEFINES = 4 };
+bool gl_program_cache_set_common(gl_program_cache *c, const char *const *defines, size_t n);
+
 /* Variants built so far (each compiled and linked once), in order of building. */
 size_t gl_program_cache_count(const gl_program_cache *c);
 const char *gl_program_cache_variant(const gl_program_cache *c, size_t i);   /* NULL past the end */

@@ -196,6 +196,9 @@ static void test_embedded_sources(void **state)
 
 // >>programs
 
+static const char *program_fails(gl_program_cache *pc, const gl_program_desc *d,
+                                 gl_program_err want);
+
 static void test_program_variants(void **state)
 {
     fixture *f = *state;
@@ -260,6 +263,41 @@ static void test_program_variants(void **state)
     GLint linked = 0;
     gl.GetProgramiv(b, GL_LINK_STATUS, &linked);
     assert_int_equal(linked, GL_TRUE);
+
+    /* Common defines: in every program built from now on and in its identity (the same
+     * desc is another program under them), not in its name; a desc that names one is
+     * refused; malformed or repeated ones are refused and change nothing. */
+    const char *common[] = {"OUTPUTS 2"};
+    assert_true(gl_program_cache_set_common(pc, common, 1));
+    GLuint ca = get_program(pc, &(gl_program_desc){.vertex = "fullscreen.vert",
+                                                   .fragment = "test_color.frag",
+                                                   .defines = {"FRAGCOORD"}});
+    assert_true(ca != a && ca != b);
+    assert_int_equal(gl_program_cache_count(pc), 6);
+    assert_string_equal(gl_program_cache_variant(pc, 5), "test_color+FRAGCOORD");
+    GLint outputs = 0;   /* OUTPUTS 2 made test_color.frag's o_color an array of 2 */
+    const GLenum array_size = GL_ARRAY_SIZE;
+    gl.GetProgramResourceiv(ca, GL_PROGRAM_OUTPUT, 0, 1, &array_size, 1, NULL, &outputs);
+    assert_int_equal(outputs, 2);
+    gl.GetProgramResourceiv(a, GL_PROGRAM_OUTPUT, 0, 1, &array_size, 1, NULL, &outputs);
+    assert_int_equal(outputs, 1);
+    const char *err = program_fails(pc, &(gl_program_desc){.vertex = "fullscreen.vert",
+                                                           .fragment = "test_color.frag",
+                                                           .defines = {"OUTPUTS 3"}},
+                                    GLP_ERR_DEFINE);
+    assert_non_null(strstr(err, "OUTPUTS is one of the cache's common defines"));
+    const char *bad[] = {"9X"}, *twice[] = {"A", "A 1"};
+    assert_false(gl_program_cache_set_common(pc, bad, 1));
+    assert_false(gl_program_cache_set_common(pc, twice, 2));
+    assert_int_equal(get_program(pc, &(gl_program_desc){.vertex = "fullscreen.vert",
+                                                        .fragment = "test_color.frag",
+                                                        .defines = {"FRAGCOORD"}}),
+                     ca);
+    assert_true(gl_program_cache_set_common(pc, NULL, 0));
+    assert_int_equal(get_program(pc, &(gl_program_desc){.vertex = "fullscreen.vert",
+                                                        .fragment = "test_color.frag",
+                                                        .defines = {"FRAGCOORD"}}),
+                     a);
     gl_program_cache_destroy(pc);
     gl_program_cache_destroy(NULL);
     assert_no_gl_errors(f);
