@@ -90,11 +90,56 @@ bool renderer_base_size(renderer_base *b, const struct scene *s, char *err, size
     return true;
 }
 
+/* The light features of the scene's lights as lighting.inc's common defines (every
+ * program of the base's cache is compiled for them) and the pass plan's `lighting`
+ * line: what is compiled in, and what is left out. Attenuation is a point and spot
+ * light's only (a directional light has none). */
+static bool set_lighting(renderer_base *b, const struct scene *s)
+{
+    static const char *const type_name[3] = {"point", "spot", "directional"};
+    static const char *const att_name[3] = {"inverse-square", "linear-range", "quadratic"};
+    unsigned types = 0, atts = 0;
+    for (uint32_t i = 0; s && i < s->nlights_total; i++) {
+        const scene_light *l = &s->lights[i];
+        if ((unsigned)l->type < 3)
+            types |= 1u << l->type;
+        if (l->type != LIGHT_DIRECTIONAL && (unsigned)l->attenuation < 3)
+            atts |= 1u << l->attenuation;
+    }
+    snprintf(b->light_types_define, sizeof b->light_types_define, "LIGHT_TYPES %u", types);
+    snprintf(b->attenuations_define, sizeof b->attenuations_define, "LIGHT_ATTENUATIONS %u",
+             atts);
+    const char *defs[2] = {b->light_types_define, b->attenuations_define};
+    char in[96] = "", out[96] = "";
+    size_t nin = 0, nout = 0;
+    for (int k = 0; k < 6; k++) {
+        bool has = k < 3 ? (types >> k) & 1u : (atts >> (k - 3)) & 1u;
+        const char *what = k < 3 ? type_name[k] : att_name[k - 3];
+        char *to = has ? in : out;
+        size_t *n = has ? &nin : &nout;
+        if (*n < sizeof in)
+            *n += (size_t)snprintf(to + *n, sizeof in - *n, "%s%s", *n ? ", " : "", what);
+    }
+    snprintf(b->lighting, sizeof b->lighting, "compiled for %s; left out: %s",
+             nin ? in : "no light", nout ? out : "nothing");
+    return gl_program_cache_set_common(b->programs, defs, 2);
+}
+
+void renderer_base_describe(const renderer_base *b, pass_plan *out)
+{
+    gl_program_cache_describe(b->programs, out);
+    snprintf(out->lighting, sizeof out->lighting, "%s", b->lighting);
+}
+
 bool renderer_base_scene(renderer_base *b, const struct scene *s, bool illumination_sets,
                          char *err, size_t errlen)
 {
     char why[512] = "";
     renderer_base_release_scene(b);
+    if (!set_lighting(b, s)) {
+        snprintf(err, errlen, "%s: bug: the lighting defines were refused", b->name);
+        return false;
+    }
     shadow_maps_plan(&b->shadows, s, &b->opts);
     if (!frontend_init(&b->fe, s, why, sizeof why)) {
         snprintf(err, errlen, "%s: %s", b->name, why);

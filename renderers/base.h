@@ -106,6 +106,9 @@ typedef struct renderer_base {
     scene_gpu *gpu;                  /* the scene's meshes, textures and Frame block */
     frontend fe;                     /* per frame: visible objects, lights, their sets */
     shadow_maps shadows;             /* the shadow-map plan, and the pool when it runs */
+    char light_types_define[32];     /* the programs' common defines (lighting.inc): the */
+    char attenuations_define[32];    /* scene's light types and attenuations */
+    char lighting[128];              /* the pass plan's line about them */
     /* >>made by renderer_base_targets at prepare */
     gl_target hdr;                   /* the light accumulation, opts.hdr's format */
     gl_target depth;                 /* depth24-stencil8 */
@@ -126,6 +129,8 @@ bool renderer_base_init(renderer_base *b, const char *name, const renderer_optio
 void renderer_base_destroy(renderer_base *b);
 /* Sets width and height; false with a message when s is posed for another size. */
 bool renderer_base_size(renderer_base *b, const struct scene *s, char *err, size_t errlen);
+/* The programs built (gl_program_cache_describe) and the lighting line into out. */
+void renderer_base_describe(const renderer_base *b, pass_plan *out);
 /* What every renderer needs of a scene, made at prepare: the shadow-map plan
  * (shadow_maps_plan: which lights get maps, or why none), the frontend (frontend_init;
  * illumination sets only when illumination_sets, i.e. forward-mpml; no shadow sets

@@ -1631,7 +1631,7 @@ static void deferred_describe(const void *self, pass_plan *out)
         e->run = r->run[p];
         snprintf(e->reason, sizeof e->reason, "%s", r->reason[p]);
     }
-    gl_program_cache_describe(r->b.programs, out);
+    renderer_base_describe(&r->b, out);
     scene_gpu_describe(r->b.gpu, out);
     for (int i = 0; i < r->layout.nattachments; i++) {
         describe_target(&r->gbuf[i], out);

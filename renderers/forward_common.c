@@ -258,7 +258,7 @@ void forward_describe_pass(pass_plan *out, const char *name, bool run, const cha
 
 void forward_describe_resources(const forward_common *fc, pass_plan *out)
 {
-    gl_program_cache_describe(fc->b.programs, out);
+    renderer_base_describe(&fc->b, out);
     scene_gpu_describe(fc->b.gpu, out);   /* sky and resolve */
     out->ntargets = 0;
     out->target_bytes = 0;

@@ -84,6 +84,8 @@ typedef struct pass_plan {
     char program[RENDERER_MAX_PASSES][64];
     size_t ntargets;
     target_plan_entry target[16];
+    char lighting[128];        /* the light features every program is compiled for, and
+                                  those left out (renderer_base_describe; "" for null) */
     uint64_t gbuffer_bytes;    /* bytes of G-buffer targets (0 for forward / null) */
     uint64_t target_bytes;     /* all targets the renderer allocated */
 } pass_plan;

@@ -822,6 +822,7 @@ static bool write_meta(run_state *st, char *err, size_t errlen)
     for (size_t i = 0; i < st->plan.nprograms; i++)
         yo_str(y, st->plan.program[i]);
     yo_seq_end(y);
+    yo_key(y, "lighting"); yo_str(y, st->plan.lighting);
     yo_key(y, "targets");
     yo_seq_begin(y);
     for (size_t i = 0; i < st->plan.ntargets; i++) {

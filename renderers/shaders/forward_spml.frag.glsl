@@ -39,7 +39,10 @@ void main()
     int n = min(u_light_count, MAX_LIGHTS);
     for (int i = 0; i < n; i++) {
         Light l = u_lights[i];
-        if (int(l.color_type.w) != LIGHT_DIRECTIONAL) {
+#if HAS_DIRECTIONAL
+        if (int(l.color_type.w) != LIGHT_DIRECTIONAL)
+#endif
+        {
             vec3 d = l.position_range.xyz - s.position;
             float r = l.position_range.w;
             if (dot(d, d) > r * r)

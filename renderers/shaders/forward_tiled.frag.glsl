@@ -58,19 +58,15 @@ void main()
 #endif
     for (uint k = 0u; k < n; k++) {
 #ifdef NO_GRID
-        Light l = b_lights[k];
+        uint i = k;
 #elif defined(TILE_DEPTH_RANGES)
-        Light l = b_lights[every ? k : b_indices[first + k]];
+        uint i = every ? k : b_indices[first + k];
 #else
-        Light l = b_lights[b_indices[first + k]];
+        uint i = b_indices[first + k];
 #endif
-        if (int(l.color_type.w) != LIGHT_DIRECTIONAL) {
-            vec3 d = l.position_range.xyz - s.position;
-            float r = l.position_range.w;
-            if (dot(d, d) > r * r)
-                continue;
-        }
-        c += shade_light(l, s.position, s.normal, s.diffuse, s.gloss, s.shininess);
+        if (!light_reaches(i, s.position))
+            continue;
+        c += shade_light(b_lights[i], s.position, s.normal, s.diffuse, s.gloss, s.shininess);
     }
 #ifdef FOG
     c = fog_apply(c, s.position.z);

@@ -24,6 +24,22 @@
 #define LIGHT_SPOT 1
 #define LIGHT_DIRECTIONAL 2
 
+// The light features the program is compiled for: LIGHT_TYPES, bit t for type t (1 point,
+// 2 spot, 4 directional), and LIGHT_ATTENUATIONS, bit k for attenuation k (1
+// inverse-square, 2 linear-range, 4 quadratic). Every program gets the scene's (the
+// program cache's common defines, renderers/base.c); the code of the others is left
+// out, so that a light costs only what its kind needs: on llvmpipe both sides of a
+// branch run, masked, for every light a loop visits, and the fields they read are
+// loaded. A light of a kind left out is never in the frame. Without them: everything.
+#ifndef LIGHT_TYPES
+#define LIGHT_TYPES 7
+#endif
+#ifndef LIGHT_ATTENUATIONS
+#define LIGHT_ATTENUATIONS 7
+#endif
+#define HAS_SPOT ((LIGHT_TYPES & 2) != 0)
+#define HAS_DIRECTIONAL ((LIGHT_TYPES & 4) != 0)
+
 // 1/d^2 at d = 0 (a light on the surface) is infinite: d^2 is clamped here, so the
 // light is as bright as at 1 cm and never Inf.
 const float ATTENUATION_MIN_D2 = 1e-4;
@@ -40,11 +56,15 @@ struct Light {
 // unit vector L towards it; zero beyond the light's range or outside its cone.
 vec3 light_incoming(Light l, vec3 P, vec3 N, out vec3 L)
 {
+#if HAS_SPOT || HAS_DIRECTIONAL
     int type = int(l.color_type.w);
+#endif
+#if HAS_DIRECTIONAL
     if (type == LIGHT_DIRECTIONAL) {
         L = -l.direction_cos.xyz;
         return l.color_type.rgb;
     }
+#endif
     vec3 d = l.position_range.xyz - P;
     float d2 = dot(d, d);
     float range = l.position_range.w;
@@ -55,18 +75,28 @@ vec3 light_incoming(Light l, vec3 P, vec3 N, out vec3 L)
     float dist = sqrt(d2);
     // A light exactly on the surface lights it head-on rather than from nowhere.
     L = dist > 0.0 ? d / dist : N;
-    int kind = int(l.params.y);
     float att;
+#if LIGHT_ATTENUATIONS == 1
+    att = 1.0 / max(d2, ATTENUATION_MIN_D2);
+#elif LIGHT_ATTENUATIONS == 2
+    att = max(0.0, 1.0 - dist / range);
+#elif LIGHT_ATTENUATIONS == 4
+    att = 1.0 / max(l.quadratic.x * d2 + l.quadratic.y * dist + l.quadratic.z, 1e-6);
+#else
+    int kind = int(l.params.y);
     if (kind == 0)
         att = 1.0 / max(d2, ATTENUATION_MIN_D2);
     else if (kind == 1)
         att = max(0.0, 1.0 - dist / range);
     else
         att = 1.0 / max(l.quadratic.x * d2 + l.quadratic.y * dist + l.quadratic.z, 1e-6);
+#endif
+#if HAS_SPOT
     if (type == LIGHT_SPOT) {
         float c = dot(-L, l.direction_cos.xyz);
         att *= c > l.direction_cos.w ? pow(c, l.params.x) : 0.0;
     }
+#endif
     return l.color_type.rgb * att;
 }
 

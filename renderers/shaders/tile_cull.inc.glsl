@@ -12,7 +12,7 @@ shared uint s_min_depth, s_max_depth, s_covered, s_count, s_offset;
 #ifdef SLICES
 shared uint s_slice_covered[SLICES];
 #endif
-const uint CHUNK = 8192u;                 // lights per bit mask
+const uint CHUNK = 65536u;                // lights per bit mask (8 KiB of shared memory)
 const uint WORDS = CHUNK / 32u;
 shared uint s_bits[WORDS];               // this chunk's passing lights, a bit each
 shared uint s_part[TILE_SIZE * TILE_SIZE];   // per invocation: its words' count, then
@@ -83,24 +83,43 @@ bool sphere_passes(vec3 c, float r)
     return true;
 }
 
-bool light_passes(uint i)
+// The sphere light i is culled as (false: a directional light, which passes every cell):
+// point lights as their sphere (radius = range), spots as the smaller of that sphere
+// and the cone's bounding sphere, a little larger than the range (conservative against
+// rounding).
+bool light_sphere(uint i, out vec3 c, out float r)
 {
     Light l = b_lights[i];
-    int type = int(l.color_type.w);
-    if (type == LIGHT_DIRECTIONAL)
-        return true;
-    vec3 p = l.position_range.xyz;
+    c = l.position_range.xyz;
     float range = l.position_range.w;
-    // conservative against rounding: a little larger than the range
-    float slack = 1e-4 * (range + length(p));
+    r = range;
+#if HAS_SPOT || HAS_DIRECTIONAL
+    int type = int(l.color_type.w);
+#endif
+#if HAS_DIRECTIONAL
+    if (type == LIGHT_DIRECTIONAL)
+        return false;
+#endif
+    float slack = 1e-4 * (range + length(c));
+#if HAS_SPOT
     if (type == LIGHT_SPOT) {
         float cosa = l.direction_cos.w;
         if (cosa >= 0.5) {
             float t = range / (2.0 * cosa);
-            return sphere_passes(p + l.direction_cos.xyz * t, t + slack);
+            c += l.direction_cos.xyz * t;
+            r = t;
         }
     }
-    return sphere_passes(p, range + slack);
+#endif
+    r += slack;
+    return true;
+}
+
+bool light_passes(uint i)
+{
+    vec3 c;
+    float r;
+    return !light_sphere(i, c, r) || sphere_passes(c, r);
 }
 
 #ifdef SLICES
@@ -151,13 +170,14 @@ void tile_frustum(uvec2 tile, ivec2 size, out float tile_znear, out float tile_z
     tile_zfar = dmax >= 1.0 ? uintBitsToFloat(0xff800000u) : view_z(dmax);   // -inf
 }
 
-// Culls every light against the planes and [g_zfar, g_znear] into cell `cell`'s list.
-// Called by the whole work group with the same arguments. First each invocation counts
-// its share of the lights (no barrier), the total takes its place in the index buffer;
-// then, CHUNK lights at a time, the passing lights set their bit in s_bits, each
-// invocation pops the bits of its run of words and writes them at its place (an
-// exclusive prefix of the runs' counts): the list in light order with a handful of
-// barriers per chunk (barriers are what a software rasterizer pays for).
+// Culls every light against the planes and [g_zfar, g_znear] into cell `cell`'s list,
+// in light order. Called by the whole work group with the same arguments. The passing
+// lights set their bit in s_bits; each invocation counts the bits of its run of words,
+// invocation 0 makes the exclusive prefix of the runs' counts and takes the list's
+// place in the index buffer with one atomicAdd (place_list), and each invocation pops
+// its words' bits and writes them at its place. Up to CHUNK candidates every light is
+// tested once, with four barriers (barriers are what a software rasterizer pays for);
+// beyond, the candidates are counted first and then written CHUNK at a time.
 // from_list: the candidates are b_indices[src .. src + nlights) (a list written
 // earlier in this dispatch by this work group: the tile's, for its clusters) rather
 // than the lights 0 .. nlights. cell NO_CELL: no b_tiles entry, the list's place and
@@ -169,9 +189,85 @@ uint candidate(uint e, uint src, bool from_list)
     return from_list ? b_indices[src + e] : e;
 }
 
+// Invocation 0: the place of a list of `count` lights in the index buffer (s_offset,
+// 0xffffffff when it does not fit; s_count) and cell's b_tiles entry.
+void place_list(uint cell, uint covered, uint count)
+{
+    uint offset = count == 0u ? 0u : atomicAdd(b_stats.next, count);
+    bool fits = offset <= b_stats.capacity && count <= b_stats.capacity - offset;
+    s_count = count;
+    s_offset = fits ? offset : 0xffffffffu;
+    if (cell != NO_CELL)
+        b_tiles[cell] = uvec4(fits ? offset : 0u, fits ? count : 0u, covered, count);
+}
+
+// Sets the bits of the candidates base .. end that pass (s_bits cleared up to `words`).
+void cull_bits(uint base, uint end, uint words, uint src, bool from_list)
+{
+    uint me = gl_LocalInvocationIndex;
+    for (uint w = me; w < words; w += N)
+        s_bits[w] = 0u;
+    barrier();
+    for (uint i = base + me; i < end; i += N)
+        if (light_passes(candidate(i, src, from_list)))
+            atomicOr(s_bits[(i - base) >> 5], 1u << ((i - base) & 31u));
+    barrier();
+}
+
+// Each invocation's run of the first `words` words of s_bits: s_part[me] = its count,
+// returned as [w0, w1); invocation 0 then turns s_part into an exclusive prefix over
+// the runs (only the runs that hold words) and returns the total in s_chunk.
+uvec2 count_runs(uint words)
+{
+    uint me = gl_LocalInvocationIndex;
+    uint per = (words + N - 1u) / N;   // words each invocation owns
+    uint w0 = min(me * per, words), w1 = min(w0 + per, words);
+    uint c = 0u;
+    for (uint w = w0; w < w1; w++)
+        c += uint(bitCount(s_bits[w]));
+    s_part[me] = c;
+    barrier();
+    if (me == 0u) {
+        uint runs = per == 0u ? 0u : (words + per - 1u) / per;
+        uint sum = 0u;
+        for (uint k = 0u; k < runs; k++) {
+            uint v = s_part[k];
+            s_part[k] = sum;
+            sum += v;
+        }
+        s_chunk = sum;
+    }
+    return uvec2(w0, w1);
+}
+
+// Writes the passing candidates of the invocation's run of words, from index pos on.
+void write_run(uvec2 run, uint base, uint pos, uint src, bool from_list)
+{
+    for (uint w = run.x; w < run.y; w++) {
+        uint b = s_bits[w];
+        while (b != 0u) {
+            int j = findLSB(b);
+            b &= b - 1u;
+            b_indices[pos++] = candidate(base + w * 32u + uint(j), src, from_list);
+        }
+    }
+}
+
 void cull_cell(uint cell, uint covered, uint nlights, uint src, bool from_list)
 {
     uint me = gl_LocalInvocationIndex;
+    barrier();   // s_bits and s_part may still be read by the last call
+    if (nlights <= CHUNK) {   // one test per candidate
+        uint words = (nlights + 31u) / 32u;
+        cull_bits(0u, nlights, words, src, from_list);
+        uvec2 run = count_runs(words);
+        if (me == 0u)
+            place_list(cell, covered, s_chunk);
+        barrier();
+        if (s_offset != 0xffffffffu && s_count > 0u)
+            write_run(run, 0u, s_offset + s_part[me], src, from_list);
+        return;
+    }
     if (me == 0u)
         s_count = 0u;
     barrier();
@@ -182,65 +278,40 @@ void cull_cell(uint cell, uint covered, uint nlights, uint src, bool from_list)
     if (mine > 0u)
         atomicAdd(s_count, mine);
     barrier();
-    uint count = s_count;
-    if (me == 0u) {
-        uint offset = count == 0u ? 0u : atomicAdd(b_stats.next, count);
-        bool fits = offset <= b_stats.capacity && count <= b_stats.capacity - offset;
-        s_offset = fits ? offset : 0xffffffffu;
-        if (cell != NO_CELL)
-            b_tiles[cell] = uvec4(fits ? offset : 0u, fits ? count : 0u, covered, count);
-    }
+    if (me == 0u)
+        place_list(cell, covered, s_count);
     barrier();
-    uint offset = s_offset;
+    uint offset = s_offset, count = s_count;
     if (offset == 0xffffffffu || count == 0u)
         return;   // uniform across the work group
-    const uint PER = (WORDS + N - 1u) / N;   // words each invocation owns
-    uint w0 = min(me * PER, WORDS), w1 = min(w0 + PER, WORDS);
     uint written = 0u;
     for (uint base = 0u; base < nlights; base += CHUNK) {
-        for (uint w = me; w < WORDS; w += N)
-            s_bits[w] = 0u;
+        cull_bits(base, min(base + CHUNK, nlights), WORDS, src, from_list);
+        uvec2 run = count_runs(WORDS);
         barrier();
-        uint end = min(base + CHUNK, nlights);
-        for (uint i = base + me; i < end; i += N)
-            if (light_passes(candidate(i, src, from_list)))
-                atomicOr(s_bits[(i - base) >> 5], 1u << ((i - base) & 31u));
-        barrier();
-        uint c = 0u;
-        for (uint w = w0; w < w1; w++)
-            c += uint(bitCount(s_bits[w]));
-        s_part[me] = c;
-        barrier();
-        if (me == 0u) {   // exclusive prefix over the invocations' runs
-            uint sum = 0u;
-            for (uint k = 0u; k < N; k++) {
-                uint v = s_part[k];
-                s_part[k] = sum;
-                sum += v;
-            }
-            s_chunk = sum;
-        }
-        barrier();
-        uint pos = offset + written + s_part[me];
-        for (uint w = w0; w < w1; w++) {
-            uint b = s_bits[w];
-            while (b != 0u) {
-                int j = findLSB(b);
-                b &= b - 1u;
-                b_indices[pos++] = candidate(base + w * 32u + uint(j), src, from_list);
-            }
-        }
+        write_run(run, base, offset + written + s_part[me], src, from_list);
         written += s_chunk;
         barrier();
     }
 }
 
 #ifdef SLICES
+shared float s_slice_near[SLICES], s_slice_far[SLICES];   // the ranges culled against
+shared uint s_cluster_count[SLICES], s_cluster_first[SLICES];
+
 // The tile's clusters: the tile's own list first (over every light, into the index
 // buffer, not a cell of its own), then each slice the tile's depth range meets (one
 // more on either side) culled from that list against the slice's depth range (widened
 // by 1e-3; the first slice open towards the near side, the last towards the far), the
 // others written empty. Cells are numbered k x TILES_X x TILES_Y + tile.
+// All the tile's slices are culled together, with a fixed number of barriers (not a
+// cull_cell per slice: on llvmpipe a barrier switches every SIMD group of the work
+// group, and a tile meets up to SLICES slices): each invocation takes a light of the
+// tile's list and tests it against every slice (a bit per slice and light in s_bits,
+// slice j's bits in words j x W .. j x W + W - 1, W = ceil(n / 32)); the slices'
+// counts, one place in the index buffer for all of them (place_clusters), and the
+// lists written word by word, each in the tile list's (light) order. A tile whose
+// slices' bits would not fit s_bits (n x slices > CHUNK) takes the slices one by one.
 void cull_clusters(uint tile_index, uint covered, uint nlights, float tile_znear,
                    float tile_zfar)
 {
@@ -256,16 +327,85 @@ void cull_clusters(uint tile_index, uint covered, uint nlights, float tile_znear
         kmin = max(slice_of(tile_znear) - 1, 0);
         kmax = isinf(tile_zfar) ? SLICES - 1 : min(slice_of(tile_zfar) + 1, SLICES - 1);
     }
-    for (uint k = me; k < uint(SLICES); k += N)
-        if (int(k) < kmin || int(k) > kmax)
+    for (uint k = me; k < uint(SLICES); k += N) {
+        if (int(k) < kmin || int(k) > kmax) {
             b_tiles[k * ntiles + tile_index] = uvec4(0u);
-    for (int k = kmin; k <= kmax; k++) {
+            continue;
+        }
         const float EPS = 1e-3;
-        cull_range(k == 0 ? tile_znear : min(tile_znear, -slice_start(k) * (1.0 - EPS)),
-                   k == SLICES - 1 ? tile_zfar
-                                   : max(tile_zfar, -slice_start(k + 1) * (1.0 + EPS)));
-        cull_cell(uint(k) * ntiles + tile_index, s_slice_covered[k], n, src, true);
-        barrier();
+        int i = int(k);
+        s_slice_near[k] = i == 0 ? tile_znear : min(tile_znear, -slice_start(i) * (1.0 - EPS));
+        s_slice_far[k] = i == SLICES - 1 ? tile_zfar
+                                         : max(tile_zfar, -slice_start(i + 1) * (1.0 + EPS));
+    }
+    barrier();
+    uint nslices = uint(kmax - kmin + 1);
+    uint per_slice = (n + 31u) / 32u;   // words of one slice's bits
+    uint words = nslices * per_slice;
+    if (words > WORDS) {
+        for (int k = kmin; k <= kmax; k++) {
+            cull_range(s_slice_near[k], s_slice_far[k]);
+            cull_cell(uint(k) * ntiles + tile_index, s_slice_covered[k], n, src, true);
+        }
+        return;
+    }
+    for (uint w = me; w < words; w += N)
+        s_bits[w] = 0u;
+    barrier();
+    for (uint e = me; e < n; e += N) {   // each light of the tile's list
+        vec3 c;
+        float r;
+        bool sphere = light_sphere(b_indices[src + e], c, r);
+        // the slices its depth extent meets, one more either side (a slice's range is
+        // widened by 1e-3, far less than a slice): no other slice's depth test passes
+        int lo = kmin, hi = kmax;
+        if (sphere) {
+            lo = c.z + r >= -f_clip.x ? kmin : max(kmin, slice_of(c.z + r) - 1);
+            hi = c.z - r >= -f_clip.x ? -1 : min(kmax, slice_of(c.z - r) + 1);
+        }
+        for (int k = lo; k <= hi; k++) {
+            cull_range(s_slice_near[k], s_slice_far[k]);
+            if (!sphere || sphere_passes(c, r))
+                atomicOr(s_bits[uint(k - kmin) * per_slice + (e >> 5)], 1u << (e & 31u));
+        }
+    }
+    barrier();
+    for (uint j = me; j < nslices; j += N) {
+        uint count = 0u;
+        for (uint w = j * per_slice; w < (j + 1u) * per_slice; w++)
+            count += uint(bitCount(s_bits[w]));
+        s_cluster_count[j] = count;
+    }
+    barrier();
+    if (me == 0u) {   // one place for the tile's clusters, each list after the last
+        uint total = 0u;
+        for (uint j = 0u; j < nslices; j++)
+            total += s_cluster_count[j];
+        uint offset = total == 0u ? 0u : atomicAdd(b_stats.next, total);
+        bool fits = offset <= b_stats.capacity && total <= b_stats.capacity - offset;
+        for (uint j = 0u; j < nslices; j++) {
+            uint k = uint(kmin) + j, count = s_cluster_count[j];
+            s_cluster_first[j] = offset;
+            b_tiles[k * ntiles + tile_index] = uvec4(fits ? offset : 0u, fits ? count : 0u,
+                                                     s_slice_covered[k], count);
+            offset += count;
+        }
+        s_offset = fits ? 0u : 0xffffffffu;
+    }
+    barrier();
+    if (s_offset == 0xffffffffu)
+        return;   // uniform: nothing written, the frame fails (b_stats.next > capacity)
+    for (uint w = me; w < words; w += N) {
+        uint j = w / per_slice, first = w - j * per_slice;   // first: the word in the slice
+        uint pos = s_cluster_first[j];
+        for (uint v = w - first; v < w; v++)
+            pos += uint(bitCount(s_bits[v]));
+        uint b = s_bits[w];
+        while (b != 0u) {
+            int bit = findLSB(b);
+            b &= b - 1u;
+            b_indices[pos++] = b_indices[src + first * 32u + uint(bit)];
+        }
     }
 }
 #endif

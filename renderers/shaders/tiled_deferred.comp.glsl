@@ -83,17 +83,13 @@ vec3 shade_surface(GSurface g, uint tile_index)
     if (g.present) {
         for (uint k = 0u; k < n; k++) {
 #ifdef NO_GRID
-            Light l = b_lights[k];
+            uint i = k;
 #else
-            Light l = b_lights[b_indices[first + k]];
+            uint i = b_indices[first + k];
 #endif
-            if (int(l.color_type.w) != LIGHT_DIRECTIONAL) {
-                vec3 dv = l.position_range.xyz - g.position;
-                float r = l.position_range.w;
-                if (dot(dv, dv) > r * r)
-                    continue;
-            }
-            c += shade_light(l, g.position, g.normal, g.diffuse, g.gloss, g.shininess);
+            if (!light_reaches(i, g.position))
+                continue;
+            c += shade_light(b_lights[i], g.position, g.normal, g.diffuse, g.gloss, g.shininess);
         }
     }
     return c;
