@@ -419,6 +419,7 @@ void light_grid_collect(const light_grid_readback *g, frame_stats *out)
     out->grid_lights_mean = g->ncells ? sum / g->ncells : NAN;
     out->grid_lights_max = max;
     out->light_evals_per_pixel = covered > 0 ? weighted / covered : 0.0;
+    out->grid_covered = (uint64_t)covered;
     double tsum = 0;
     uint32_t tmax = 0, tlongest = 0;
     for (uint32_t t = 0; t < g->ntranslucent; t++) {

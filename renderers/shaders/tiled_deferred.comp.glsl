@@ -119,8 +119,8 @@ void main()
         s_covered = 0u;
     }
 #ifdef SLICES
-    if (me < uint(SLICES))
-        s_slice_covered[me] = 0u;
+    for (uint k = me; k < uint(SLICES); k += uint(TILE_SIZE * TILE_SIZE))
+        s_slice_covered[k] = 0u;   // a tile may have fewer invocations than slices
 #endif
 #endif
 #if !defined(NO_GRID) || defined(MSAA_SAMPLES)

@@ -197,6 +197,14 @@ static void test_counts_and_tile_sizes(void **state)
                       sizes[k], td.fs.grid_lights_mean, t.fs.grid_lights_mean);
         assert_true(fabs(td.fs.grid_lights_mean - t.fs.grid_lights_mean) < 1e-9);
         assert_true(cl.fs.light_evals_per_pixel <= t.fs.light_evals_per_pixel);
+        /* each pixel with geometry counted in exactly one cluster, as in one tile (with
+         * more slices than a small tile has invocations, a slice's count was once left
+         * at what the last work group had there) */
+        print_message("%d px: %u slices, %llu covered pixels\n", sizes[k], K,
+                      (unsigned long long)t.fs.grid_covered);
+        assert_true(t.fs.grid_covered > 0);
+        assert_int_equal(cl.fs.grid_covered, t.fs.grid_covered);
+        assert_int_equal(td.fs.grid_covered, t.fs.grid_covered);
         assert_true(cl.fs.grid_lights_max <= t.fs.grid_lights_max);
         const char *names[] = {"depth", "cull", "shade", "sky", "resolve"};
         size_t np = s->sky ? 5 : 4;
