@@ -39,15 +39,8 @@ void main()
     int n = min(u_light_count, MAX_LIGHTS);
     for (int i = 0; i < n; i++) {
         Light l = u_lights[i];
-#if HAS_DIRECTIONAL
-        if (int(l.color_type.w) != LIGHT_DIRECTIONAL)
-#endif
-        {
-            vec3 d = l.position_range.xyz - s.position;
-            float r = l.position_range.w;
-            if (dot(d, d) > r * r)
-                continue;
-        }
+        if (!light_in_range(l, s.position))
+            continue;
         c += shade_light(l, s.position, s.normal, s.diffuse, s.gloss, s.shininess);
     }
 #ifdef FOG

@@ -52,6 +52,21 @@ struct Light {
     vec4 quadratic;
 };
 
+// Whether light l can reach view-space point P: a point or spot light within its range
+// (the squared-range rejection every light loop makes before shade_light, which would
+// give exactly zero beyond it), or a directional light. Reads only its position, range
+// and (with directional lights in the scene) type.
+bool light_in_range(Light l, vec3 P)
+{
+    vec3 d = l.position_range.xyz - P;
+    float r = l.position_range.w;
+#if HAS_DIRECTIONAL
+    return !(dot(d, d) > r * r) || int(l.color_type.w) == LIGHT_DIRECTIONAL;
+#else
+    return !(dot(d, d) > r * r);
+#endif
+}
+
 // Light arriving at view-space point P (attenuation and spot cone applied), and the
 // unit vector L towards it; zero beyond the light's range or outside its cone.
 vec3 light_incoming(Light l, vec3 P, vec3 N, out vec3 L)
