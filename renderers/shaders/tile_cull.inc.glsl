@@ -307,11 +307,12 @@ shared uint s_cluster_count[SLICES], s_cluster_first[SLICES];
 // All the tile's slices are culled together, with a fixed number of barriers (not a
 // cull_cell per slice: on llvmpipe a barrier switches every SIMD group of the work
 // group, and a tile meets up to SLICES slices): each invocation takes a light of the
-// tile's list and tests it against every slice (a bit per slice and light in s_bits,
-// slice j's bits in words j x W .. j x W + W - 1, W = ceil(n / 32)); the slices'
-// counts, one place in the index buffer for all of them (place_clusters), and the
-// lists written word by word, each in the tile list's (light) order. A tile whose
-// slices' bits would not fit s_bits (n x slices > CHUNK) takes the slices one by one.
+// tile's list and tests it against the slices its depth extent can meet (a bit per
+// slice and light in s_bits, slice j's bits in words j x W .. j x W + W - 1, W =
+// ceil(n / 32)); then the slices' counts, one place in the index buffer for all of
+// them (invocation 0), and the lists written word by word, each in the tile list's
+// (light) order. A tile whose slices' bits would not fit s_bits (n x slices > CHUNK)
+// takes the slices one by one.
 void cull_clusters(uint tile_index, uint covered, uint nlights, float tile_znear,
                    float tile_zfar)
 {
@@ -356,12 +357,16 @@ void cull_clusters(uint tile_index, uint covered, uint nlights, float tile_znear
         vec3 c;
         float r;
         bool sphere = light_sphere(b_indices[src + e], c, r);
-        // the slices its depth extent meets, one more either side (a slice's range is
-        // widened by 1e-3, far less than a slice): no other slice's depth test passes
+        // the slices its depth extent meets, its ends moved by the ranges' widening
+        // (1 +- 1e-3), one more either side against rounding, depths nearer than the
+        // near plane taken as on it (slice 0): no other slice's depth test can pass
         int lo = kmin, hi = kmax;
         if (sphere) {
-            lo = c.z + r >= -f_clip.x ? kmin : max(kmin, slice_of(c.z + r) - 1);
-            hi = c.z - r >= -f_clip.x ? -1 : min(kmax, slice_of(c.z - r) + 1);
+            const float EPS = 1e-3;
+            float zn = min((c.z + r) / (1.0 + EPS), -f_clip.x);
+            float zf = min((c.z - r) / (1.0 - EPS), -f_clip.x);
+            lo = max(kmin, slice_of(zn) - 1);
+            hi = min(kmax, slice_of(zf) + 1);
         }
         for (int k = lo; k <= hi; k++) {
             cull_range(s_slice_near[k], s_slice_far[k]);
