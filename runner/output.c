@@ -423,7 +423,7 @@ bool output_write_run_summary(const char *run_dir, const experiment *e, const ru
         else if (isnan(r->ci1pct_after_s))
             csv_str(w, "never");
         else
-            csv_f64(w, r->ci1pct_after_s, 3);
+            csv_f64(w, r->ci1pct_after_s, 6);   /* as convergence.csv's elapsed_s */
         csv_f64(w, r->dispatches_mean, 3);
         csv_f64(w, r->cell_lights_mean, 3);
         csv_f64(w, r->cell_lights_max, 0);
