@@ -12,8 +12,9 @@
  * Ratios are A / B of times: above 1, A is slower. They are estimated on logs
  * (geometric means), so that A / B and B / A give reciprocal intervals.
  *
- * Values that are not finite or not > 0 are left out everywhere (a failed trial;
- * log needs > 0); each function says which count it reports.
+ * A non-finite value (a failed trial) is left out everywhere, and the ratio
+ * functions also leave out values <= 0 (log needs > 0); each function says which
+ * count it reports.
  * Pure arithmetic: no I/O; verdict_outliers allocates a scratch copy. */
 #include <stdbool.h>
 #include <stddef.h>
