@@ -30,6 +30,8 @@ static const char usage_text[] =
     "      --resume               keep the complete runs of an existing output folder and\n"
     "                             run the others (a killed sweep goes on where it stopped)\n"
     "      --retry-failed         with --resume: run the failed runs again too\n"
+    "      --round K              only up to round K (trial K of every run), adding to\n"
+    "                             the folder's earlier rounds: what compare --exe runs\n"
     "      --backend egl|osmesa   GL backend (default: egl)\n"
     "      --device N             EGL device N instead of Mesa's surfaceless platform\n"
     "      --shard I/N            only the runs of shard I of N (1 <= I <= N)\n"
@@ -43,6 +45,10 @@ static const char usage_text[] =
     "  list [--shard I/N] [--smoke] [--scale S] MANIFEST  the expanded runs, one per line\n"
     "  info [--backend B] [--device N]  the GL context's vendor, renderer and limits\n"
     "  merge -o OUT [--force] DIR...  combine the output folders of a sweep's shards\n"
+    "  compare [OPTIONS] BASE NEW  a regression gate over two output folders\n"
+    "  compare --exe OTHER [OPTIONS] MANIFEST  the manifest with OTHER (BASE) and this\n"
+    "                             build (NEW) in interleaved rounds, compared paired\n"
+    "  report [OPTIONS] DIR...    the report over output folders (Python)\n"
     "  params [--markdown|--bash]  every manifest key: type, default, range, the renderers\n"
     "                             that read it (docs/manifest.md is --markdown)\n"
     "  --version, --help          (COMMAND --help: that command's options)\n"
@@ -81,10 +87,11 @@ typedef struct cli_opts {
     int device;
     unsigned shard, nshards;
     double scale;              /* 0: not given */
+    unsigned round;            /* --round K; 0: not given */
 } cli_opts;
 
 enum { OPT_FORCE = 1000, OPT_BACKEND, OPT_DEVICE, OPT_SHARD, OPT_DEBUG_GL, OPT_RESUME, OPT_SMOKE, OPT_SCALE,
-       OPT_RETRY_FAILED };
+       OPT_RETRY_FAILED, OPT_ROUND };
 
 /* Parses the options a command accepts; `allowed` lists their long names. Returns
  * the index of the first operand, or -1 after printing the problem. */
@@ -101,6 +108,7 @@ static int parse_opts(int argc, char **argv, const char *allowed, cli_opts *o)
         {"smoke", no_argument, NULL, OPT_SMOKE},
         {"scale", required_argument, NULL, OPT_SCALE},
         {"retry-failed", no_argument, NULL, OPT_RETRY_FAILED},
+        {"round", required_argument, NULL, OPT_ROUND},
         {NULL, 0, NULL, 0},
     };
     memset(o, 0, sizeof *o);
@@ -133,6 +141,18 @@ static int parse_opts(int argc, char **argv, const char *allowed, cli_opts *o)
         case OPT_RESUME: o->resume = true; break;
         case OPT_SMOKE: o->smoke = true; break;
         case OPT_RETRY_FAILED: o->retry_failed = true; break;
+        case OPT_ROUND: {
+            char *end;
+            errno = 0;
+            unsigned long v = strtoul(optarg, &end, 10);
+            if (errno || *end || end == optarg || v < 1 || v > 1000 || optarg[0] == '-') {
+                fprintf(stderr, "shadesweep: --round: expected a round 1..1000, found '%s'\n",
+                        optarg);
+                return -1;
+            }
+            o->round = (unsigned)v;
+            break;
+        }
         case OPT_SCALE: {
             char *end;
             errno = 0;
@@ -312,7 +332,7 @@ static void print_summary_table(const char *dir)
 static int cmd_run(int argc, char **argv)
 {
     cli_opts o;
-    int first = parse_opts(argc, argv, "out force resume retry-failed backend device shard debug-gl smoke scale", &o);
+    int first = parse_opts(argc, argv, "out force resume retry-failed round backend device shard debug-gl smoke scale", &o);
     if (first < 0)
         return 2;
     if (argc - first != 1) {
@@ -340,6 +360,7 @@ static int cmd_run(int argc, char **argv)
         .nshards = o.nshards,
         .resume = o.resume,
         .retry_failed = o.retry_failed,
+        .round = o.round,
     };
     int rc = run_sweep(e, &p, o.out, o.force, &ro);
     plan_free(&p);

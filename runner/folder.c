@@ -89,6 +89,17 @@ static bool is_run_file(const char *name, bool *temp)
            (ends_with(name, n, ".png") || ends_with(name, n, ".exr"));
 }
 
+/* runs/<id>/trial-<k>: one trial's files while its run is not complete (runner/trials.c). */
+bool folder_is_trial_dir(const char *name)
+{
+    if (strncmp(name, "trial-", 6) != 0 || !name[6])
+        return false;
+    for (const char *d = name + 6; *d; d++)
+        if (*d < '0' || *d > '9')
+            return false;
+    return strlen(name) <= 6 + 10;
+}
+
 static bool is_run_id(const char *name)
 {
     size_t n = 0;
@@ -136,6 +147,12 @@ bool folder_clear_run(const char *run_dir, char *err, size_t errlen)
     struct dirent *ent;
     while (ok && (ent = readdir(d))) {
         bool temp;
+        if (folder_is_trial_dir(ent->d_name)) {
+            pjoin(path, sizeof path, run_dir, ent->d_name);
+            if (is_dir_nofollow(path))
+                ok = folder_clear_run(path, err, errlen);
+            continue;
+        }
         if (!is_run_file(ent->d_name, &temp))
             continue;
         pjoin(path, sizeof path, run_dir, ent->d_name);
@@ -694,8 +711,10 @@ static bool check_summary(const char *path, const char *id, run_check *c, char *
             ok = false;
             break;
         }
-        if (strcmp(r.field[summary_ncolumns - 2], "ok") != 0)
+        if (strcmp(r.field[summary_ncolumns - 2], "ok") != 0 && !c->failed) {
             c->failed = true;
+            snprintf(c->status, sizeof c->status, "%s", r.field[summary_ncolumns - 2]);
+        }
         c->rows++;
     }
     if (ok && k < 0) {
@@ -711,12 +730,12 @@ static bool check_summary(const char *path, const char *id, run_check *c, char *
     return ok;
 }
 
-bool folder_check_run(const char *out_dir, const char *id, bool all_files, run_check *c,
+/* The check of folder_check_run on one folder: a run's, or one of its trials'. */
+static bool check_dir(const char *run_dir, const char *id, bool all_files, run_check *c,
                       char *why, size_t whylen)
 {
     memset(c, 0, sizeof *c);
-    char run_dir[4200], path[4608];
-    snprintf(run_dir, sizeof run_dir, "%s/runs/%s", out_dir, id);
+    char path[4608];
     snprintf(path, sizeof path, "%s/files.txt", run_dir);
     size_t len;
     int e;
@@ -780,6 +799,22 @@ bool folder_check_run(const char *out_dir, const char *id, bool all_files, run_c
     }
     snprintf(path, sizeof path, "%s/summary.csv", run_dir);
     return ok && check_summary(path, id, c, why, whylen);
+}
+
+bool folder_check_run(const char *out_dir, const char *id, bool all_files, run_check *c,
+                      char *why, size_t whylen)
+{
+    char run_dir[4200];
+    snprintf(run_dir, sizeof run_dir, "%s/runs/%s", out_dir, id);
+    return check_dir(run_dir, id, all_files, c, why, whylen);
+}
+
+bool folder_check_trial(const char *out_dir, const char *id, uint32_t trial, run_check *c,
+                        char *why, size_t whylen)
+{
+    char dir[4300];
+    snprintf(dir, sizeof dir, "%s/runs/%s/trial-%u", out_dir, id, trial);
+    return check_dir(dir, id, true, c, why, whylen);
 }
 
 /* ---- paths ----------------------------------------------------------------------- */

@@ -13,6 +13,7 @@
  *   parses with this version's header and column count. */
 #include <stdbool.h>
 #include <stddef.h>
+#include <stdint.h>
 #include "runner/output.h"
 
 #define FOLDER_FORMAT "shadesweep-output 1"
@@ -55,12 +56,20 @@ bool folder_write_run_files(const char *run_dir, char *err, size_t errlen);
 typedef struct run_check {
     size_t rows;               /* summary.csv's data rows */
     bool failed;               /* some row's status is not ok */
+    char status[96];           /* the first such row's status ("" when none failed) */
 } run_check;
 /* Whether OUT/runs/<id> is complete (see above); why says what is wrong when not.
  * all_files false: only summary.csv is checked against files.txt (the cheap check of
  * a run known to be whole). */
 bool folder_check_run(const char *out_dir, const char *id, bool all_files, run_check *c,
                       char *why, size_t whylen);
+
+/* Whether OUT/runs/<id>/trial-<k> holds a complete trial (the same rules as a run:
+ * its own files.txt, summary.csv with this run's rows, meta.yaml). */
+bool folder_check_trial(const char *out_dir, const char *id, uint32_t trial, run_check *c,
+                        char *why, size_t whylen);
+/* "trial-<digits>": a trial's folder inside a run's (folder_clear_run removes them). */
+bool folder_is_trial_dir(const char *name);
 
 /* st_dev/st_ino of two existing paths name one folder, or one lies inside the other. */
 bool folder_overlaps(const char *a, const char *b);

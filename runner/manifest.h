@@ -22,6 +22,15 @@ typedef struct span {          /* {seconds: x} or {frames: n} */
 
 typedef enum run_clock { RUN_CLOCK_WALL = 0, RUN_CLOCK_FIXED } run_clock;
 typedef enum run_sync { RUN_SYNC_FINISH = 0, RUN_SYNC_FENCE } run_sync;
+/* `schedule`: the trials of a sweep point's runs in rounds, or each run's back to back */
+typedef enum run_schedule { RUN_SCHEDULE_INTERLEAVED = 0, RUN_SCHEDULE_SEQUENTIAL } run_schedule;
+/* `measure.metric`: what ranks, compares and decides (runner/schedule.c resolves auto) */
+typedef enum run_metric {
+    RUN_METRIC_AUTO = 0, RUN_METRIC_WALL, RUN_METRIC_CPU, RUN_METRIC_GPU
+} run_metric;
+/* trials: auto: rounds until measure.precision or measure.budget, within these */
+#define TRIALS_AUTO_MIN 3
+#define TRIALS_AUTO_MAX 30
 
 #define MAX_SCREENSHOTS 16
 
@@ -54,7 +63,10 @@ typedef struct run_spec {
     size_t point;              /* its point of the sweep grid x renderers, from 0 */
     size_t folded;             /* other grid points that are this same run (see plan_expand) */
     char id[13];               /* 12 hex digits: stable hash of the resolved parameters */
-    unsigned shard;            /* 1..N for the --shard N given to plan_expand (1 without) */
+    size_t group;              /* its sweep point (plan.ngroups), from 0: the runs ranked
+                                * together and scheduled in rounds together */
+    unsigned shard;            /* 1..N for the --shard N given to plan_expand (1 without):
+                                * whole sweep points go to one shard */
     run_params p;
 } run_spec;
 
@@ -73,6 +85,7 @@ typedef struct plan {
     run_spec *runs;
     size_t nfolded;
     plan_fold *folds;
+    size_t ngroups;            /* sweep points (run_spec.group) */
 } plan;
 
 /* Parses and validates; on any error returns false with every problem in diags

@@ -150,6 +150,22 @@ static void check_lights(vctx *c)
 }
 
 
+/* trials: auto decides by rounds: a sequential schedule has none. */
+static void check_schedule(vctx *c)
+{
+    size_t it = (size_t)(param_find("trials") - params_table);
+    size_t is = (size_t)(param_find("schedule") - params_table);
+    bool auto_trials = c->e->base.trials == 0;
+    for (size_t a = 0; !auto_trials && a < c->e->naxes; a++)
+        for (size_t v = 0; v < c->e->axes[a].nvalues; v++)
+            auto_trials |= c->e->axes[a].off == offsetof(run_params, trials) &&
+                           c->e->axes[a].values[v].trials == 0;
+    if (auto_trials && c->e->base.schedule == RUN_SCHEDULE_SEQUENTIAL)
+        err(c, c->set_key[is] ? c->set_key[is] : c->set_key[it] ? c->set_key[it] : c->root,
+            "schedule", "expected interleaved with trials: auto (it adds rounds of trials "
+            "until the ranking is decided), found sequential");
+}
+
 void manifest_check(vctx *c)
 {
     check_required_and_swept(c);
@@ -157,4 +173,5 @@ void manifest_check(vctx *c)
         c->e->base.lights.placement = PLACEMENT_NONE;
     check_lights(c);
     check_error(c);
+    check_schedule(c);
 }

@@ -140,7 +140,10 @@ const char *expect(const param *pd, char *buf, size_t len)
     case PT_RENDERERS: sb_add(&b, "a non-empty sequence of renderer names"); break;
     case PT_RENDERER: list_renderers(&b); break;
     case PT_RESOLUTION: sb_add(&b, "WxH with each side 1..%d", MAX_SIDE); break;
-    case PT_UINT: sb_add(&b, "an integer %.0f..%.0f", pd->min, pd->max); break;
+    case PT_UINT:
+        sb_add(&b, "an integer %.0f..%.0f%s", pd->min, pd->max,
+               pd->flags & PF_AUTO ? ", or auto" : "");
+        break;
     case PT_NUMBER:
         range_number(&b, pd->min, pd->max, pd->flags & PF_MIN_OPEN);
         if (pd->flags & PF_SCENE_DEFAULT)

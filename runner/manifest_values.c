@@ -551,7 +551,13 @@ bool parse_value(vctx *c, const param *pd, const ynode *n, const char *key,
         return parse_resolution(c, pd, n, key, dst);
     case PT_UINT: {
         uint64_t v;
-        if (!parse_uint_in(c, n, key, (uint64_t)pd->min, (uint64_t)pd->max, "", &v))
+        if ((pd->flags & PF_AUTO) && ynode_plain(n) && strcmp(n->text, "auto") == 0) {
+            uint32_t zero = 0;
+            memcpy(at, &zero, sizeof zero);
+            return true;
+        }
+        if (!parse_uint_in(c, n, key, (uint64_t)pd->min, (uint64_t)pd->max,
+                           pd->flags & PF_AUTO ? ", or auto" : "", &v))
             return false;
         uint32_t u = (uint32_t)v;
         memcpy(at, &u, sizeof u);

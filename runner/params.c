@@ -22,6 +22,8 @@ _Static_assert(sizeof(gbuffer_preset) == sizeof(int), "enum size");
 _Static_assert(sizeof(gbuffer_position) == sizeof(int), "enum size");
 _Static_assert(sizeof(gbuffer_normal) == sizeof(int), "enum size");
 _Static_assert(sizeof(light_volume_mode) == sizeof(int), "enum size");
+_Static_assert(sizeof(run_schedule) == sizeof(int), "enum size");
+_Static_assert(sizeof(run_metric) == sizeof(int), "enum size");
 
 static const char *const clock_names[] = {"wall", "fixed", NULL};
 static const char *const sync_names[] = {"finish", "fence", NULL};
@@ -47,6 +49,8 @@ static const char *const hdr_names[] = {"rgba16f", "rgba32f", NULL};   /* hdr_fo
 static const char *const msaa_names[] = {"1", "2", "4", "8", NULL};   /* 1 << index */
 static const char *const aa_names[] = {"none", "edge", NULL};   /* aa_mode */
 static const char *const translucency_names[] = {"blend", "opaque", NULL};
+static const char *const schedule_names[] = {"interleaved", "sequential", NULL};
+static const char *const metric_names[] = {"auto", "wall", "cpu", "gpu", NULL};
 
 #define RP(f) .off = offsetof(run_params, f), .size = sizeof(((run_params *)0)->f)
 #define RP_SPAN(a, b)                                                                         \
@@ -157,7 +161,10 @@ void param_format(const param *pd, const run_params *p, char *out, size_t len)
     case PT_UINT: {
         uint32_t u;
         memcpy(&u, at, sizeof u);
-        snprintf(out, len, "%" PRIu32, u);
+        if (u == 0 && (pd->flags & PF_AUTO))
+            snprintf(out, len, "auto");
+        else
+            snprintf(out, len, "%" PRIu32, u);
         break;
     }
     case PT_NUMBER:

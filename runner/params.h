@@ -42,6 +42,7 @@ enum {
     PF_NOT_IN_ID = 1u << 4,    /* recorded, but changes no result: not part of the run id */
     PF_SCENE_DEFAULT = 1u << 5,/* PT_NUMBER (float), PT_VEC3: `scene` (stored as NAN) keeps
                                   the scene's own value */
+    PF_AUTO = 1u << 6,         /* PT_UINT: `auto` is a value too, stored as 0 */
 };
 
 typedef struct param {

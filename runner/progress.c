@@ -36,7 +36,7 @@ static void eta(const progress *pg, double now, char *buf, size_t len)
         return;
     }
     double per_run = (pg->run_t0 - pg->t0) / (double)pg->done;
-    double left = per_run * (double)(pg->total - pg->done) - (now - pg->run_t0);
+    double left = per_run * ((double)pg->total - (double)pg->done) - (now - pg->run_t0);
     fmt_duration(buf, len, left > 0 ? left : 0);
 }
 
@@ -50,11 +50,18 @@ void progress_init(progress *pg, size_t total, FILE *out)
 }
 
 void progress_run_begin(progress *pg, size_t k, const char *id, const char *renderer,
-                        int width, int height)
+                        int width, int height, unsigned trial, unsigned trials)
 {
     pg->run_t0 = progress_now();
-    snprintf(pg->label, sizeof pg->label, "run %zu of %zu %s %s %dx%d", k, pg->total, id,
-             renderer, width, height);
+    char of[32] = "";
+    if (trials != 1)
+        snprintf(of, sizeof of, trials ? " of %u" : " (auto)", trials);
+    if (trials == 1)
+        snprintf(pg->label, sizeof pg->label, "run %zu of %zu %s %s %dx%d", k, pg->total, id,
+                 renderer, width, height);
+    else
+        snprintf(pg->label, sizeof pg->label, "%zu of %zu: run %s %s %dx%d trial %u%s", k,
+                 pg->total, id, renderer, width, height, trial, of);
     pg->last_draw = 0;
     progress_tick(pg, 0, 0, 0);
 }
@@ -99,6 +106,17 @@ void progress_finish(progress *pg)
 {
     char el[32];
     fmt_duration(el, sizeof el, progress_now() - pg->t0);
-    fprintf(pg->out, "%zu run%s, %zu failed, in %s\n", pg->done, pg->done == 1 ? "" : "s",
-            pg->failed, el);
+    if (pg->runs_done == pg->done)
+        fprintf(pg->out, "%zu run%s, %zu failed, in %s\n", pg->runs_done,
+                pg->runs_done == 1 ? "" : "s", pg->runs_failed, el);
+    else
+        fprintf(pg->out, "%zu run%s, %zu failed (%zu trials), in %s\n", pg->runs_done,
+                pg->runs_done == 1 ? "" : "s", pg->runs_failed, pg->done, el);
+}
+
+void progress_run_complete(progress *pg, const char *status)
+{
+    pg->runs_done++;
+    if (strcmp(status, "ok") != 0)
+        pg->runs_failed++;
 }

@@ -32,7 +32,6 @@
 #include "runner/params.h"
 #include "runner/plan_check.h"
 #include "runner/progress.h"
-#include "runner/summary_md.h"
 #include "scenes/scene.h"
 
 /* A fence wait longer than this is a hung GPU: the run fails rather than waits forever. */
@@ -44,7 +43,8 @@ typedef struct run_state {
     const run_spec *s;
     const run_options *o;
     progress *pg;
-    char dir[4096];
+    uint32_t trial;            /* the trial this process runs, 1.. */
+    char dir[4300];            /* OUT/runs/<id>/trial-<k> */
     gl_context *ctx;
     scene *sc;
     renderer *r;
@@ -56,8 +56,9 @@ typedef struct run_state {
     trial_stream *stream;      /* the per-trial statistics, fed frame by frame */
     double prime_s;            /* prime_variants: wall time of the frames it drew */
     size_t prime_frames;
-    double paused_s;           /* measured clock paused (comparisons, screenshots), all trials */
-    trial_result *trials;
+    double paused_s;           /* measured clock paused (comparisons, screenshots) */
+    trial_result *trials;      /* ntrials of them; [trial - 1] is this one's */
+    uint32_t ntrials;
     char started[32], finished[32];
     char status[96];
     char message[1024];        /* why it failed, for summary.csv */
@@ -130,7 +131,7 @@ static bool read_output(run_state *st, image *img, char *err, size_t errlen)
 static bool screenshot(run_state *st, uint32_t trial, double at, char *err, size_t errlen)
 {
     image img;
-    char path[4200];
+    char path[4500];
     snprintf(path, sizeof path, "%s/screenshot-trial%u-t%g.png", st->dir, trial, at);
     bool ok = read_output(st, &img, err, errlen) && image_write(path, &img, err, errlen);
     image_free(&img);
@@ -158,12 +159,20 @@ static unsigned drop_implausible_gpu(frame_stats *fs, double frametime_us)
     return dropped;
 }
 
-/* debug.busy_us (testing regression gates): spins for us microseconds on the
- * monotonic clock, so a measured frame costs that much more. */
+/* debug.busy_us (testing regression gates): a fixed amount of work, not of time: spins
+ * until this thread has run us microseconds on its own CPU clock, so that every metric
+ * (wall, the process's CPU time) sees the same slowdown whatever else the machine does. */
+static double thread_cpu_s(void)
+{
+    struct timespec ts;
+    clock_gettime(CLOCK_THREAD_CPUTIME_ID, &ts);
+    return (double)ts.tv_sec + (double)ts.tv_nsec * 1e-9;
+}
+
 static void busy_wait_us(uint32_t us)
 {
-    double until = progress_now() + us * 1e-6;
-    while (progress_now() < until)
+    double until = thread_cpu_s() + us * 1e-6;
+    while (thread_cpu_s() < until)
         ;
 }
 
@@ -214,7 +223,7 @@ static bool save_heat_map(const image *a, const image *b, const char *base, char
         ((float *)f.pixels)[i] = (float)worst / 255.0f;
         ((uint8_t *)g.pixels)[i] = (uint8_t)(worst * 16 > 255 ? 255 : worst * 16);
     }
-    char path[4400];
+    char path[4500];
     if (ok) {
         snprintf(path, sizeof path, "%s-error.exr", base);
         ok = image_write(path, &f, err, errlen);
@@ -308,9 +317,9 @@ static bool measure_error(run_state *st, uint32_t trial, uint32_t frame, double 
         }
     }
     if (ok && p->error_save_images) {
-        char base[4300];
+        char base[4400];
         snprintf(base, sizeof base, "%s/error-trial%u-t%g", st->dir, trial, at);
-        char path[4400];
+        char path[4500];
         snprintf(path, sizeof path, "%s-run.png", base);
         ok = image_write(path, &run, err, errlen);
         snprintf(path, sizeof path, "%s-reference.png", base);
@@ -694,7 +703,7 @@ static int64_t vm_hwm_kb(void)
 
 static bool write_meta(run_state *st, char *err, size_t errlen)
 {
-    char path[4200];
+    char path[4500];
     snprintf(path, sizeof path, "%s/meta.yaml", st->dir);
     yaml_out *y = yo_open(path, err, errlen);
     if (!y)
@@ -1012,7 +1021,7 @@ static void run_teardown(run_state *st)
 /* Rows for trials that never ran, so that every run has one row per trial. */
 static void fill_missing_trials(run_state *st)
 {
-    for (uint32_t t = 0; t < st->s->p.trials; t++) {
+    for (uint32_t t = 0; t < st->ntrials; t++) {
         trial_result *tr = &st->trials[t];
         if (tr->trial != 0)
             continue;
@@ -1031,86 +1040,6 @@ static void fill_missing_trials(run_state *st)
         snprintf(tr->status, sizeof tr->status, "%s",
                  strcmp(st->status, "ok") ? st->status : "failed:not-run");
     }
-}
-
-/* meta.yaml, the run's summary.csv, then files.txt: written last, it lists the others
- * with their sizes and checksums, and a run is complete only when they match
- * (folder_check_run, what --resume and merge look for). */
-static void write_run_result(run_state *st)
-{
-    fill_missing_trials(st);
-    utc_now(st->finished, sizeof st->finished);
-    char err[512];
-    if (!fs_mkdirs(st->dir, err, sizeof err) || !write_meta(st, err, sizeof err) ||
-        !output_write_run_summary(st->dir, st->e, st->s, &st->plan, st->trials,
-                                  st->s->p.trials, st->message, err, sizeof err) ||
-        !folder_write_run_files(st->dir, err, sizeof err)) {
-        fprintf(stderr, "run %s: %s\n", st->s->id, err);
-        set_status(st, "output");
-    }
-}
-
-/* Runs one run_spec in this process; its status ends in st->status. */
-static void run_one(run_state *st)
-{
-    const run_params *p = &st->s->p;
-    if (run_setup(st) && prime_variants(st)) {
-        for (uint32_t t = 1; t <= p->trials; t++) {
-            trial_result *tr = &st->trials[t - 1];
-            run_trial(st, t, tr);
-            if (strcmp(tr->status, "ok") != 0) {
-                snprintf(st->status, sizeof st->status, "%s", tr->status);
-                /* Image error and non-finite light are verdicts on what was measured:
-                 * the other trials still measure. Anything else ends the run. */
-                if (strcmp(tr->status, "failed:error") != 0 &&
-                    strcmp(tr->status, "failed:nonfinite") != 0)
-                    break;
-            }
-        }
-        if (!run_files_commit(&st->files, st->err, sizeof st->err)) {
-            fprintf(stderr, "run %s: %s\n", st->s->id, st->err);
-            set_status(st, "output");
-        }
-    } else {
-        fprintf(stderr, "run %s: %s\n", st->s->id, st->err);
-    }
-    if (strcmp(st->status, "ok") != 0 && st->err[0])
-        snprintf(st->message, sizeof st->message, "%s", st->err);
-    write_run_result(st);
-}
-
-/* What a run's child tells the parent, through memory shared across the fork. */
-typedef struct run_report {
-    int done;                  /* set last: the fields below are complete */
-    char status[96];
-    char message[512];
-    double fps;
-} run_report;
-
-typedef struct child_args {
-    run_state *st;
-    run_report *report;
-} child_args;
-
-static int child_main(void *arg)
-{
-    child_args *a = arg;
-    run_one(a->st);
-    snprintf(a->report->status, sizeof a->report->status, "%s", a->st->status);
-    snprintf(a->report->message, sizeof a->report->message, "%.500s", a->st->message);
-    a->report->fps = a->st->trials[0].frames ? a->st->trials[0].fps_mean : 0;
-    a->report->done = 1;
-    run_teardown(a->st);
-    return strcmp(a->st->status, "ok") == 0 ? 0 : 1;
-}
-
-static double seconds_of(const span *sp) { return sp->kind == SPAN_SECONDS ? sp->seconds : 0; }
-
-double run_timeout_s(const run_params *p)
-{
-    if (p->timeout_s > 0)
-        return p->timeout_s;
-    return 600.0 + 3.0 * p->trials * (seconds_of(&p->warmup) + seconds_of(&p->duration));
 }
 
 static volatile sig_atomic_t stop_signal;
@@ -1138,10 +1067,177 @@ void run_catch_stop_signals(void)
 
 int run_stop_signal(void) { return stop_signal; }
 
-static const char *stop_name(int sig)
+const char *run_stop_name(int sig)
 {
     return sig == SIGINT ? "SIGINT" : sig == SIGTERM ? "SIGTERM" : "SIGHUP";
 }
+
+/* The trial's folder: meta.yaml, its summary.csv row, then files.txt: written last, it
+ * lists the others with their sizes and checksums, and a trial is complete only when
+ * they match (folder_check_trial, what resume looks for; runner/trials.c merges the
+ * trials into the run's files when its last trial is complete). */
+static void write_run_result(run_state *st)
+{
+    fill_missing_trials(st);
+    utc_now(st->finished, sizeof st->finished);
+    char err[512];
+    if (!fs_mkdirs(st->dir, err, sizeof err) || !write_meta(st, err, sizeof err) ||
+        !output_write_run_summary(st->dir, st->e, st->s, &st->plan, &st->trials[st->trial - 1],
+                                  1, st->message, err, sizeof err) ||
+        !folder_write_run_files(st->dir, err, sizeof err)) {
+        fprintf(stderr, "run %s: %s\n", st->s->id, err);
+        set_status(st, "output");
+    }
+}
+
+/* Runs trial st->trial of st->s in this process (a fresh one: context, scene,
+ * programs and priming are each trial's own); its status ends in st->status. */
+static void run_one(run_state *st)
+{
+    if (run_setup(st) && prime_variants(st)) {
+        trial_result *tr = &st->trials[st->trial - 1];
+        run_trial(st, st->trial, tr);
+        if (strcmp(tr->status, "ok") != 0)
+            snprintf(st->status, sizeof st->status, "%s", tr->status);
+        if (!run_files_commit(&st->files, st->err, sizeof st->err)) {
+            fprintf(stderr, "run %s: %s\n", st->s->id, st->err);
+            set_status(st, "output");
+        }
+    } else {
+        fprintf(stderr, "run %s: %s\n", st->s->id, st->err);
+    }
+    if (strcmp(st->status, "ok") != 0 && st->err[0])
+        snprintf(st->message, sizeof st->message, "%s", st->err);
+    write_run_result(st);
+}
+
+/* What a trial's child tells the parent, through memory shared across the fork. */
+typedef struct run_report {
+    int done;                  /* set last: the fields below are complete */
+    char status[96];
+    char message[512];
+    double fps;
+} run_report;
+
+typedef struct child_args {
+    run_state *st;
+    run_report *report;
+} child_args;
+
+static int child_main(void *arg)
+{
+    child_args *a = arg;
+    run_one(a->st);
+    const trial_result *tr = &a->st->trials[a->st->trial - 1];
+    snprintf(a->report->status, sizeof a->report->status, "%s", a->st->status);
+    snprintf(a->report->message, sizeof a->report->message, "%.500s", a->st->message);
+    a->report->fps = tr->frames ? tr->fps_mean : 0;
+    a->report->done = 1;
+    run_teardown(a->st);
+    return strcmp(a->st->status, "ok") == 0 ? 0 : 1;
+}
+
+bool run_trial_isolated(const experiment *e, const run_spec *s, const run_options *o,
+                        progress *pg, uint32_t trial, double timeout_s, trial_outcome *out)
+{
+    memset(out, 0, sizeof *out);
+    run_state st = {.e = e, .s = s, .o = o, .pg = pg, .trial = trial};
+    snprintf(st.status, sizeof st.status, "ok");
+    utc_now(st.started, sizeof st.started);
+    char run_dir[4096], log_path[4300], err[512];
+    snprintf(run_dir, sizeof run_dir, "%s/runs/%s", o->out_dir, s->id);
+    snprintf(st.dir, sizeof st.dir, "%s/trial-%u", run_dir, trial);
+    snprintf(log_path, sizeof log_path, "%s/log.txt", run_dir);
+    run_report *report = mmap(NULL, sizeof *report, PROT_READ | PROT_WRITE,
+                              MAP_SHARED | MAP_ANONYMOUS, -1, 0);
+    st.ntrials = s->p.trials > trial ? s->p.trials : trial;   /* trials: auto is 0 */
+    st.trials = calloc(st.ntrials, sizeof *st.trials);
+    if (report == MAP_FAILED || !st.trials || !folder_clear_run(st.dir, err, sizeof err) ||
+        !fs_mkdirs(st.dir, err, sizeof err)) {
+        fprintf(stderr, "shadesweep: run %s: %s\n", s->id,
+                st.trials && report != MAP_FAILED ? err : "out of memory");
+        if (report != MAP_FAILED)
+            munmap(report, sizeof *report);
+        free(st.trials);
+        return false;
+    }
+    child_args args = {.st = &st, .report = report};
+    isolate_result ir;
+    isolate_run(child_main, &args, timeout_s, log_path, &stop_signal, &ir);
+    out->seconds = ir.seconds;
+    if (ir.outcome == ISOLATE_INTERRUPTED && report->done) {
+        /* Interrupted after its files were complete (while tearing down): keep it. */
+        ir.outcome = ISOLATE_EXITED;
+        ir.exit_code = strcmp(report->status, "ok") == 0 ? 0 : 1;
+    }
+    if (ir.outcome == ISOLATE_INTERRUPTED) {
+        /* Discard the trial: resume runs it again (and its run, when it has no
+         * earlier trial: trials run in order, so 1..trial-1 are complete). */
+        folder_clear_run(trial == 1 ? run_dir : st.dir, err, sizeof err);
+        out->interrupted = true;
+        snprintf(out->status, sizeof out->status, "interrupted, discarded");
+    } else if (ir.outcome == ISOLATE_EXITED && report->done) {
+        snprintf(out->status, sizeof out->status, "%s", report->status);
+        snprintf(out->message, sizeof out->message, "%s", report->message);
+        out->fps = report->fps;
+    } else {
+        /* The child died or hung: the parent writes the trial's row. */
+        isolate_status(&ir, st.status, sizeof st.status);
+        char tail[200];
+        isolate_log_tail(log_path, 3, tail, sizeof tail);
+        snprintf(st.message, sizeof st.message, "%.80s after %.1f s%s%.200s",
+                 ir.oom_killed ? "killed by the kernel's OOM killer (the cgroup counted it)"
+                               : st.status + 7,
+                 ir.seconds, tail[0] ? ": " : "", tail);
+        folder_remove_temp(st.dir);
+        write_run_result(&st);
+        snprintf(out->status, sizeof out->status, "%s", st.status);
+        snprintf(out->message, sizeof out->message, "%.500s", st.message);
+    }
+    munmap(report, sizeof *report);
+    free(st.trials);
+    return true;
+}
+
+bool run_write_missing_trial(const experiment *e, const run_spec *s, const run_options *o,
+                             uint32_t trial, const char *status, const char *message)
+{
+    run_state st = {.e = e, .s = s, .o = o, .trial = trial};
+    snprintf(st.status, sizeof st.status, "%s", status);
+    snprintf(st.message, sizeof st.message, "%s", message);
+    utc_now(st.started, sizeof st.started);
+    snprintf(st.dir, sizeof st.dir, "%s/runs/%s/trial-%u", o->out_dir, s->id, trial);
+    char err[512];
+    st.ntrials = trial;
+    st.trials = calloc(st.ntrials, sizeof *st.trials);
+    if (!st.trials || !folder_clear_run(st.dir, err, sizeof err)) {
+        fprintf(stderr, "shadesweep: run %s: %s\n", s->id, st.trials ? err : "out of memory");
+        free(st.trials);
+        return false;
+    }
+    write_run_result(&st);
+    free(st.trials);
+    return strcmp(st.status, status) == 0;
+}
+
+bool run_status_ends_run(const char *status)
+{
+    /* Image error and non-finite light are verdicts on what was measured: the other
+     * trials still measure. Anything else ends the run. */
+    return strcmp(status, "ok") != 0 && strcmp(status, "failed:error") != 0 &&
+           strcmp(status, "failed:nonfinite") != 0;
+}
+
+static double seconds_of(const span *sp) { return sp->kind == SPAN_SECONDS ? sp->seconds : 0; }
+
+double run_timeout_s(const run_params *p)
+{
+    if (p->timeout_s > 0)
+        return p->timeout_s;
+    double trials = p->trials ? p->trials : TRIALS_AUTO_MAX;
+    return 600.0 + 3.0 * trials * (seconds_of(&p->warmup) + seconds_of(&p->duration));
+}
+
 
 /* EGL device N exists: asked in a child, so that the parent never loads a GL driver. */
 bool run_probe_device(int device, char *err, size_t errlen)
@@ -1196,199 +1292,4 @@ bool run_probe_device(int device, char *err, size_t errlen)
         return false;
     }
     return true;
-}
-
-int run_plan(const experiment *e, const plan *p, const run_options *o)
-{
-    char err[512];
-    run_catch_stop_signals();
-    int rc = 0;
-    FILE *progress_out = NULL;
-    if (!output_write_plan(o->out_dir, p, err, sizeof err)) {
-        fprintf(stderr, "shadesweep: %s\n", err);
-        rc = 2;
-        goto restore;
-    }
-    folder_remove_temp(o->out_dir);
-
-    /* What is complete already, verified (files.txt) when resuming. */
-    bool *keep = calloc(p->nruns ? p->nruns : 1, sizeof *keep);
-    if (!keep) {
-        fprintf(stderr, "shadesweep: out of memory\n");
-        rc = 2;
-        goto restore;
-    }
-    size_t selected = 0, skipped = 0, retried = 0;
-    for (size_t i = 0; i < p->nruns; i++) {
-        const run_spec *s = &p->runs[i];
-        if (o->shard && s->shard != o->shard)
-            continue;
-        selected++;
-        if (!o->resume)
-            continue;
-        char dir[4200], why[512];
-        snprintf(dir, sizeof dir, "%s/runs/%s", o->out_dir, s->id);
-        run_check c;
-        if (folder_check_run(o->out_dir, s->id, true, &c, why, sizeof why)) {
-            if (c.failed && o->retry_failed) {
-                retried++;
-                continue;
-            }
-            keep[i] = true;
-            skipped++;
-        } else if (fs_exists(dir)) {
-            fprintf(stderr, "resuming: run %s is incomplete (%s): running it again\n", s->id,
-                    why);
-        }
-    }
-    if (o->resume)
-        fprintf(stderr, "resuming: %zu of %zu runs already complete\n", skipped + retried,
-                selected);
-    if (retried)
-        fprintf(stderr, "retrying %zu failed run%s\n", retried, retried == 1 ? "" : "s");
-
-    /* Progress goes to the terminal (or log) the user sees; each child's own
-     * stderr goes to its run's log.txt. */
-    int fd = dup(STDERR_FILENO);
-    progress_out = fd >= 0 ? fdopen(fd, "w") : NULL;
-    if (!progress_out) {
-        if (fd >= 0)
-            close(fd);
-        fprintf(stderr, "shadesweep: cannot duplicate stderr\n");
-        free(keep);
-        rc = 2;
-        goto restore;
-    }
-    setvbuf(progress_out, NULL, _IOLBF, 0);
-
-    progress pg;
-    progress_init(&pg, selected - skipped, progress_out);
-    size_t k = 0;
-    for (size_t i = 0; i < p->nruns && !stop_signal; i++) {
-        const run_spec *s = &p->runs[i];
-        if ((o->shard && s->shard != o->shard) || keep[i])
-            continue;
-        progress_run_begin(&pg, ++k, s->id, s->p.renderer, s->p.width, s->p.height);
-        run_state st = {.e = e, .s = s, .o = o, .pg = &pg};
-        snprintf(st.status, sizeof st.status, "ok");
-        utc_now(st.started, sizeof st.started);
-        snprintf(st.dir, sizeof st.dir, "%s/runs/%s", o->out_dir, s->id);
-        char log_path[4300];
-        snprintf(log_path, sizeof log_path, "%s/log.txt", st.dir);
-        run_report *report = mmap(NULL, sizeof *report, PROT_READ | PROT_WRITE,
-                                  MAP_SHARED | MAP_ANONYMOUS, -1, 0);
-        st.trials = calloc(s->p.trials, sizeof *st.trials);
-        if (report == MAP_FAILED || !st.trials || !folder_clear_run(st.dir, err, sizeof err) ||
-            !fs_mkdirs(st.dir, err, sizeof err)) {
-            fprintf(stderr, "shadesweep: run %s: %s\n", s->id,
-                    st.trials && report != MAP_FAILED ? err : "out of memory");
-            if (report != MAP_FAILED)
-                munmap(report, sizeof *report);
-            free(st.trials);
-            rc = 2;
-            break;
-        }
-        child_args args = {.st = &st, .report = report};
-        isolate_result ir;
-        isolate_run(child_main, &args, run_timeout_s(&s->p), log_path, &stop_signal, &ir);
-        double fps = 0;
-        if (ir.outcome == ISOLATE_INTERRUPTED && report->done) {
-            /* Interrupted after its files were complete (while tearing down): keep it. */
-            ir.outcome = ISOLATE_EXITED;
-            ir.exit_code = strcmp(report->status, "ok") == 0 ? 0 : 1;
-        }
-        if (ir.outcome == ISOLATE_INTERRUPTED) {
-            /* Discard the run: resume reruns it. */
-            folder_clear_run(st.dir, err, sizeof err);
-            snprintf(st.status, sizeof st.status, "interrupted, discarded");
-        } else if (ir.outcome == ISOLATE_EXITED && report->done) {
-            snprintf(st.status, sizeof st.status, "%s", report->status);
-            fps = report->fps;
-            if (report->message[0])
-                fprintf(stderr, "run %s: %s\n", s->id, report->message);
-        } else {
-            /* The child died or hung: the parent writes the run's rows. */
-            isolate_status(&ir, st.status, sizeof st.status);
-            char tail[200];
-            isolate_log_tail(log_path, 3, tail, sizeof tail);
-            snprintf(st.message, sizeof st.message, "%.80s after %.1f s%s%.200s",
-                     ir.oom_killed ? "killed by the kernel's OOM killer (the cgroup counted it)"
-                                   : st.status + 7,
-                     ir.seconds, tail[0] ? ": " : "", tail);
-            fprintf(stderr, "run %s: %s\n", s->id, st.message);
-            folder_remove_temp(st.dir);
-            write_run_result(&st);
-        }
-        munmap(report, sizeof *report);
-        free(st.trials);
-        progress_run_end(&pg, st.status, fps);
-    }
-    free(keep);
-    progress_finish(&pg);
-
-    /* The exit status describes the folder as it stands, not this invocation's runs. */
-    size_t missing = 0, failed = 0;
-    if (!output_merge_summary(o->out_dir, p, o->shard, &missing, &failed, err, sizeof err)) {
-        fprintf(stderr, "shadesweep: %s\n", err);
-        rc = 2;
-        goto restore;
-    }
-    if (stop_signal) {
-        fprintf(stderr,
-                "interrupted by %s: %zu of %zu runs complete; to finish the others:\n"
-                "  shadesweep run --resume -o %s %s\n",
-                stop_name(stop_signal), selected - missing, selected, o->out_dir, e->path);
-        rc = 128 + stop_signal;
-    } else if (!rc) {
-        if (missing)
-            fprintf(stderr, "shadesweep: %zu of %zu runs are not complete\n", missing, selected);
-        rc = failed || missing ? 1 : 0;
-    }
-restore:
-    if (progress_out)
-        fclose(progress_out);
-    return rc;
-}
-
-int run_sweep(const experiment *e, const plan *p, const char *out, bool force, run_options *o)
-{
-    if (run_stop_signal()) {
-        fprintf(stderr, "shadesweep run: interrupted by signal %d before the sweep began; "
-                "nothing was written\n", run_stop_signal());
-        return 128 + run_stop_signal();
-    }
-    char dir[4096], err[4608];
-    if (out)
-        snprintf(dir, sizeof dir, "%s", out);
-    else if (e->name[0])
-        snprintf(dir, sizeof dir, "out/%s", e->name);
-    else
-        dir[0] = 0;   /* an empty name: refused by folder_open, never out/ itself */
-    if (o->device >= 0 && !run_probe_device(o->device, err, sizeof err)) {
-        fprintf(stderr, "shadesweep run: %s\n", err);
-        return 2;
-    }
-    sweep_meta sm;
-    output_sweep_meta_of(e, o->shard, o->nshards, p->nruns, &sm);
-    folder fo;
-    if (!folder_open(&fo, dir, force ? FOLDER_FORCE : o->resume ? FOLDER_RESUME : FOLDER_NEW,
-                     &sm, err, sizeof err)) {
-        fprintf(stderr, "shadesweep run: %s\n", err);
-        return 2;
-    }
-    o->out_dir = dir;
-    int rc = run_plan(e, p, o);
-    o->out_dir = NULL;
-    if (rc != 2) {
-        /* the answer (runner/summary_md.c): on stdout and as summary.md, written while
-         * the folder is still ours; a problem with it changes no exit status */
-        char terr[600];
-        fprintf(stderr, "results: %s/summary.csv\n", dir);
-        fflush(stderr);
-        if (!summary_table_write(dir, stdout, terr, sizeof terr))
-            fprintf(stderr, "shadesweep: no summary table: %s\n", terr);
-        fflush(stdout);
-    }
-    folder_close(&fo, rc == 2);
-    return rc;
 }

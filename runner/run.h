@@ -7,6 +7,7 @@
 #include <stdbool.h>
 #include "renderers/gl/context.h"
 #include "runner/manifest.h"
+#include "runner/progress.h"
 
 typedef struct run_options {
     const char *out_dir;       /* the experiment's output folder; exists */
@@ -16,13 +17,18 @@ typedef struct run_options {
     unsigned shard, nshards;   /* only runs of shard `shard` of `nshards` (0 = all) */
     bool resume;               /* skip runs whose files are complete */
     bool retry_failed;         /* with resume: complete runs with a failed row run again */
+    unsigned round;            /* run trials up to this round only (compare --exe); 0: all */
 } run_options;
 
-/* Each run executes in a child process (isolate.h) with the run's time limit; a
- * crash, hang or OOM kill fails that run and the sweep goes on. SIGINT/SIGTERM/SIGHUP
- * discard the current run, write the summary of the complete ones and return
- * 128 + the signal, after printing how to resume. The folder is open and locked
- * (folder.h) and has its sweep.yaml.
+/* The sweep (runner/schedule.c): the runs of each sweep point in rounds, round k
+ * running trial k of each of them in a seeded random order (schedule: interleaved) or
+ * each run's trials back to back (sequential), every trial in a child process of its own
+ * (isolate.h) with what is left of its run's time limit; a crash, hang or OOM kill fails
+ * that run and the sweep goes on. A run's files are merged from its trials' when its
+ * last trial is complete (runner/trials.c). SIGINT/SIGTERM/SIGHUP discard the trial in
+ * progress, write the summary of the complete runs and return 128 + the signal, after
+ * printing how to resume. The folder is open and locked (folder.h) and has its
+ * sweep.yaml.
  * 0: every run of the folder (this shard) is complete and ok; 1: some run failed or
  * is missing (its rows say why); 2: the sweep could not go on (message printed). */
 int run_plan(const experiment *e, const plan *p, const run_options *o);
@@ -32,6 +38,36 @@ int run_plan(const experiment *e, const plan *p, const run_options *o);
  * lock held throughout), --device checked up front, run_plan, the folder closed.
  * o->out_dir is set here. Returns run_plan's status, or 2 (message printed). */
 int run_sweep(const experiment *e, const plan *p, const char *out, bool force, run_options *o);
+
+/* What became of one trial run by run_trial_isolated. */
+typedef struct trial_outcome {
+    char status[96];           /* "ok", "failed:<reason>", or "interrupted, discarded" */
+    char message[512];         /* why it failed */
+    double fps;                /* its mean FPS (0: none) */
+    double seconds;            /* the child's wall time, start-up included */
+    bool interrupted;          /* a stop signal: its folder was removed */
+} trial_outcome;
+
+/* Trial `trial` (1..) of run s in a child process with a time limit: OUT/runs/<id>/
+ * trial-<k>/ ends complete (folder_check_trial), whatever became of the child (a child
+ * that died has its row written by the parent), or removed when a stop signal came.
+ * The child's stderr is appended to OUT/runs/<id>/log.txt. False (message printed)
+ * when the trial could not be started at all (no memory, no folder). */
+bool run_trial_isolated(const experiment *e, const run_spec *s, const run_options *o,
+                        progress *pg, uint32_t trial, double timeout_s, trial_outcome *out);
+
+/* The folder of a trial that will not run (its run ended at an earlier trial): its
+ * row with `status` (failed:not-run or the run's failure) and `message`, and nothing
+ * measured. */
+bool run_write_missing_trial(const experiment *e, const run_spec *s, const run_options *o,
+                             uint32_t trial, const char *status, const char *message);
+
+/* Whether a trial's status ends its run (no more trials): anything but ok, failed:error
+ * and failed:nonfinite (verdicts on what was measured). */
+bool run_status_ends_run(const char *status);
+
+/* "SIGINT", "SIGTERM" or "SIGHUP". */
+const char *run_stop_name(int sig);
 
 /* The run's time limit: its `timeout`, or 600 + 3 x trials x (warm-up + duration)
  * seconds (spans in frames count 0). */

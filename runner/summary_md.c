@@ -9,8 +9,17 @@
 #include "runner/params.h"
 
 typedef struct trial_cols {
-    int run_id, renderer, experiment, frames, mean, sd, ci95, p99, low1, rmse, status;
+    int run_id, renderer, experiment, trial, wall, p99, low1, rmse, status, metric, value;
 } trial_cols;
+
+void summary_free_runs(run_result *runs, size_t n)
+{
+    for (size_t i = 0; runs && i < n; i++) {
+        free(runs[i].value);
+        free(runs[i].wall);
+    }
+    free(runs);
+}
 
 bool summary_load_runs(const char *path, run_result **out, size_t *n, char *err,
                        size_t errlen)
@@ -22,28 +31,25 @@ bool summary_load_runs(const char *path, run_result **out, size_t *n, char *err,
         return false;
     trial_cols c = {
         csv_col(&t, "run_id"), csv_col(&t, "renderer"), csv_col(&t, "experiment"),
-        csv_col(&t, "frames"), csv_col(&t, "frametime_mean_us"), csv_col(&t, "frametime_sd_us"),
-        csv_col(&t, "frametime_ci95_us"), csv_col(&t, "frametime_p99_us"),
+        csv_col(&t, "trial"), csv_col(&t, "frametime_mean_us"), csv_col(&t, "frametime_p99_us"),
         csv_col(&t, "fps_1pct_low"), csv_col(&t, "image_rmse"), csv_col(&t, "status"),
+        csv_col(&t, "metric"), csv_col(&t, "metric_us"),
     };
-    if (c.run_id < 0 || c.frames < 0 || c.mean < 0 || c.ci95 < 0 || c.status < 0) {
-        snprintf(err, errlen, "%s: not a shadesweep summary.csv (no run_id, frames, "
-                 "frametime_mean_us, frametime_ci95_us or status column)", path);
+    if (c.run_id < 0 || c.trial < 0 || c.wall < 0 || c.status < 0) {
+        snprintf(err, errlen, "%s: not a shadesweep summary.csv (no run_id, trial, "
+                 "frametime_mean_us or status column)", path);
         csv_table_free(&t);
         return false;
     }
     run_result *runs = calloc(t.nrows ? t.nrows : 1, sizeof *runs);
-    /* per-row trial values, grouped by run below */
-    double *v = calloc(4 * (t.nrows ? t.nrows : 1), sizeof *v);
-    if (!runs || !v) {
-        free(runs);
-        free(v);
+    if (!runs) {
         csv_table_free(&t);
         snprintf(err, errlen, "out of memory");
         return false;
     }
     size_t nr = 0;
-    for (size_t r = 0; r < t.nrows; r++) {
+    bool ok = true;
+    for (size_t r = 0; ok && r < t.nrows; r++) {
         const char *id = csv_get(&t, r, c.run_id);
         size_t k = 0;
         while (k < nr && strcmp(runs[k].id, id) != 0)
@@ -54,11 +60,27 @@ bool summary_load_runs(const char *path, run_result **out, size_t *n, char *err,
         snprintf(x->id, sizeof x->id, "%s", id);
         snprintf(x->renderer, sizeof x->renderer, "%s", csv_get(&t, r, c.renderer));
         snprintf(x->experiment, sizeof x->experiment, "%s", csv_get(&t, r, c.experiment));
+        snprintf(x->metric, sizeof x->metric, "%s",
+                 c.metric >= 0 && *csv_get(&t, r, c.metric) ? csv_get(&t, r, c.metric) : "wall");
         snprintf(x->status, sizeof x->status, "ok");
-        /* every row of this run */
+        /* the largest trial number of this run */
+        for (size_t q = r; q < t.nrows; q++) {
+            double k1 = csv_num(&t, q, c.trial);
+            if (strcmp(csv_get(&t, q, c.run_id), id) == 0 && k1 >= 1 && k1 <= 1e6 &&
+                (size_t)k1 > x->nvalues)
+                x->nvalues = (size_t)k1;
+        }
+        size_t nv = x->nvalues ? x->nvalues : 1;
+        x->value = malloc(nv * sizeof *x->value);
+        x->wall = malloc(nv * sizeof *x->wall);
+        if (!x->value || !x->wall) {
+            ok = false;
+            break;
+        }
+        for (size_t i = 0; i < nv; i++)
+            x->value[i] = x->wall[i] = NAN;
         size_t m = 0;
-        double p99 = 0, low = 0, *fr = v, *mn = v + t.nrows, *sd = v + 2 * t.nrows,
-               *ci = v + 3 * t.nrows;
+        double p99 = 0, low = 0;
         x->rmse = NAN;
         for (size_t q = r; q < t.nrows; q++) {
             if (strcmp(csv_get(&t, q, c.run_id), id) != 0)
@@ -71,31 +93,44 @@ bool summary_load_runs(const char *path, run_result **out, size_t *n, char *err,
                 continue;
             }
             x->trials_ok++;
-            fr[m] = csv_num(&t, q, c.frames);
-            mn[m] = csv_num(&t, q, c.mean);
-            sd[m] = csv_num(&t, q, c.sd);
-            ci[m] = csv_num(&t, q, c.ci95);
+            double k1 = csv_num(&t, q, c.trial);
+            if (k1 >= 1 && k1 <= (double)x->nvalues) {
+                size_t i = (size_t)k1 - 1;
+                x->wall[i] = csv_num(&t, q, c.wall);
+                x->value[i] = c.value >= 0 ? csv_num(&t, q, c.value) : x->wall[i];
+            }
             m++;
-            double p = csv_num(&t, q, c.p99);
+            double p = c.p99 >= 0 ? csv_num(&t, q, c.p99) : NAN;
             double l = c.low1 >= 0 ? csv_num(&t, q, c.low1) : (p > 0 ? 1e6 / p : NAN);
             p99 += p;
             low += l;
-            double e = csv_num(&t, q, c.rmse);
+            double e = c.rmse >= 0 ? csv_num(&t, q, c.rmse) : NAN;
             if (isfinite(e) && !(e <= x->rmse))
                 x->rmse = e;
         }
         if (x->trials_ok && strcmp(x->status, "ok") != 0)
             snprintf(x->status, sizeof x->status, "ok");   /* some trials failed, not all */
-        stats_pool_trials(fr, mn, sd, ci, m, &x->ft);
+        verdict_mean_ci(x->value, x->nvalues, &x->mean, &x->half);
+        verdict_mean_ci(x->wall, x->nvalues, &x->wall_mean, &x->wall_half);
         x->p99_us = m ? p99 / (double)m : NAN;
         /* the run's 1% low is that of its mean p99, as the table shows them side by side */
         x->low1_fps = x->p99_us > 0 ? 1e6 / x->p99_us : m ? low / (double)m : NAN;
     }
-    free(v);
     csv_table_free(&t);
+    if (!ok) {
+        summary_free_runs(runs, nr);
+        snprintf(err, errlen, "out of memory");
+        return false;
+    }
     *out = runs;
     *n = nr;
     return true;
+}
+
+void summary_paired_ratio(const run_result *a, const run_result *b, ratio_ci *out)
+{
+    size_t n = a->nvalues < b->nvalues ? a->nvalues : b->nvalues;
+    verdict_paired_ratio(a->value, b->value, n, out);
 }
 
 /* ---- grouping by sweep point */
@@ -147,11 +182,11 @@ static const run_result *rank_base;
 static int by_frametime(const void *pa, const void *pb)
 {
     const run_result *a = &rank_base[*(const size_t *)pa], *b = &rank_base[*(const size_t *)pb];
-    bool oka = isfinite(a->ft.mean), okb = isfinite(b->ft.mean);
+    bool oka = isfinite(a->mean), okb = isfinite(b->mean);
     if (oka != okb)
         return oka ? -1 : 1;
-    if (oka && a->ft.mean != b->ft.mean)
-        return a->ft.mean < b->ft.mean ? -1 : 1;
+    if (oka && a->mean != b->mean)
+        return a->mean < b->mean ? -1 : 1;
     /* stable: pl order */
     size_t ia = *(const size_t *)pa, ib = *(const size_t *)pb;
     return ia < ib ? -1 : ia > ib;
@@ -225,32 +260,51 @@ static void fmt_ms(char *dst, size_t len, double us, int dec)
 }
 
 typedef struct cells {
-    char rank[24], mean[32], ci[32], ratio[24], sig[16], p99[32], low[32], rmse[32];
+    char rank[24], mean[32], ci[32], wall[64], ratio[48], sig[16], p99[32], low[32], rmse[32];
 } cells;
+
+/* `differs` from the paired ratio's interval (results/verdict.h, threshold 0). */
+static const char *differs_of(const ratio_ci *r)
+{
+    switch (verdict_of(r, 0)) {
+    case VERDICT_SLOWER:
+    case VERDICT_FASTER: return "yes";
+    case VERDICT_NONE: return "n/a";
+    default: return "no";
+    }
+}
 
 static void make_cells(const run_result *x, const run_result *fastest, size_t rank, cells *o)
 {
     memset(o, 0, sizeof *o);
-    bool ok = isfinite(x->ft.mean);
+    bool ok = isfinite(x->mean);
     snprintf(o->rank, sizeof o->rank, "%s", ok ? "" : "-");
     if (ok)
         snprintf(o->rank, sizeof o->rank, "%zu", rank);
-    int dec = decimals_for(x->ft.mean / 1000);
-    fmt_ms(o->mean, sizeof o->mean, x->ft.mean, dec);
-    double ci = x->ft.se * stats_t975_real(x->ft.dof);
-    fmt_ms(o->ci, sizeof o->ci, ci, dec);
-    if (ok && fastest && fastest->ft.mean > 0)
-        snprintf(o->ratio, sizeof o->ratio, "%.2fx", x->ft.mean / fastest->ft.mean);
-    else
+    int dec = decimals_for(x->mean / 1000);
+    fmt_ms(o->mean, sizeof o->mean, x->mean, dec);
+    fmt_ms(o->ci, sizeof o->ci, x->half, dec);
+    char wm[24], wc[24];
+    int wdec = decimals_for(x->wall_mean / 1000);
+    fmt_ms(wm, sizeof wm, x->wall_mean, wdec);
+    fmt_ms(wc, sizeof wc, x->wall_half, wdec);
+    snprintf(o->wall, sizeof o->wall, "%s ± %s", wm, wc);
+    if (!ok || !fastest) {
         snprintf(o->ratio, sizeof o->ratio, "-");
-    if (!ok || x == fastest) {
+        snprintf(o->sig, sizeof o->sig, "-");
+    } else if (x == fastest) {
+        snprintf(o->ratio, sizeof o->ratio, "1.00x");
         snprintf(o->sig, sizeof o->sig, "-");
     } else {
-        welch_result w;
-        if (stats_welch(&fastest->ft, &x->ft, &w))
-            snprintf(o->sig, sizeof o->sig, "%s", w.significant ? "yes" : "no");
+        ratio_ci r;
+        summary_paired_ratio(x, fastest, &r);
+        if (isfinite(r.lo))
+            snprintf(o->ratio, sizeof o->ratio, "%.2fx (%.2f-%.2f)", r.ratio, r.lo, r.hi);
+        else if (isfinite(r.ratio))
+            snprintf(o->ratio, sizeof o->ratio, "%.2fx", r.ratio);
         else
-            snprintf(o->sig, sizeof o->sig, "n/a");
+            snprintf(o->ratio, sizeof o->ratio, "%.2fx", x->mean / fastest->mean);
+        snprintf(o->sig, sizeof o->sig, "%s", differs_of(&r));
     }
     fmt_ms(o->p99, sizeof o->p99, x->p99_us, decimals_for(x->p99_us / 1000));
     if (isfinite(x->low1_fps))
@@ -266,11 +320,15 @@ static void make_cells(const run_result *x, const run_result *fastest, size_t ra
 static const char md_intro[] =
     "Per sweep point (the runs whose parameters are equal but for the renderer and the "
     "keys only some renderers read, whose values follow the renderer's name), the "
-    "configurations ranked by mean frame time over their ok trials, ± the half-width of its 95% "
-    "confidence interval (each trial's batch means, pooled over the trials); `x fastest` "
-    "is the ratio of means; `differs` says whether Welch's t-test on the batch means finds "
-    "the difference to the fastest significant at 5% (two-sided); p99 is the mean of the "
-    "trials' 99th-percentile frame time and `1% low` the FPS at that frame time "
+    "configurations ranked by the mean over their ok trials of the metric that decides "
+    "(named in each table: cpu is the process's CPU time per frame over all its threads, "
+    "wall the frame time, gpu GL_TIME_ELAPSED; measure.metric), ± the half-width of its "
+    "95% t interval over the trials (each trial is a process of its own: the unit of "
+    "replication). `x fastest` is the geometric mean of the per-round ratios to the "
+    "fastest (round k ran trial k of each configuration, back to back in a random order) "
+    "with its 95% interval; `differs` is yes when that interval excludes 1, n/a with "
+    "fewer than 3 paired trials. Wall frame time is shown beside the metric; p99 is the mean "
+    "of the trials' 99th-percentile frame time and `1% low` the FPS at that frame time "
     "(1e6 / p99 us: the slowest 1% of frames run at this rate or below); RMSE is the "
     "largest image error against the reference where the manifest measures it.\n";
 
@@ -286,13 +344,15 @@ static void tcell(FILE *fp, const char *s, int width)
 #define TERM_MAX_POINTS 8
 #define TERM_MAX_ROWS 12
 
-static void term_header(FILE *t, bool with_point, int cfg_width)
+static void term_header(FILE *t, bool with_point, int cfg_width, const char *metric)
 {
+    char m[32];
+    snprintf(m, sizeof m, "%s ms", metric);
     fputs("  ", t);
     tcell(t, "#", 4);
     tcell(t, "renderer", cfg_width);
-    tcell(t, "frame time ms", 20);
-    tcell(t, "x fastest", 10);
+    tcell(t, m, 20);
+    tcell(t, "x fastest", 24);
     tcell(t, "differs", 8);
     tcell(t, "p99 ms", 9);
     tcell(t, "1% low fps", 11);
@@ -313,7 +373,7 @@ bool summary_table_write(const char *out_dir, FILE *terminal, char *err, size_t 
     csv_table pl;
     snprintf(path, sizeof path, "%s/plan.csv", out_dir);
     if (!csv_read(path, &pl, err, errlen)) {
-        free(runs);
+        summary_free_runs(runs, nruns);
         return false;
     }
     size_t nalloc = nruns ? nruns : 1;
@@ -395,44 +455,48 @@ bool summary_table_write(const char *out_dir, FILE *terminal, char *err, size_t 
     fprintf(f.fp, "# %s: the renderers ranked per sweep point\n\n", *exp ? exp : out_dir);
     fputs(md_intro, f.fp);
     if (terminal)
-        fprintf(terminal, "\n%s: %zu run%s, %zu sweep point%s; frame time ms: mean ± 95%% CI\n",
-                *exp ? exp : out_dir, nruns, nruns == 1 ? "" : "s", npts, npts == 1 ? "" : "s");
+        fprintf(terminal, "\n%s: %zu run%s, %zu sweep point%s; %s time per frame, ms: mean ± "
+                "95%% CI over the trials\n", *exp ? exp : out_dir, nruns, nruns == 1 ? "" : "s",
+                npts, npts == 1 ? "" : "s", nruns ? runs[0].metric : "wall");
     if (!nruns)
         fputs("\nNo run has results yet.\n", f.fp);
     for (size_t k = 0; k < nshown; k++) {
         point *p = &shown[k];
         const run_result *fastest = &runs[p->runs[0]];
-        if (!isfinite(fastest->ft.mean))
+        if (!isfinite(fastest->mean))
             fastest = NULL;
+        const char *metric = runs[p->runs[0]].metric;
         fprintf(f.fp, "\n## %s\n\n", p->label);
-        fprintf(f.fp, "| rank | renderer |%s run | frame time (ms) | x fastest | differs | "
+        fprintf(f.fp, "Ranked by %s time per frame.\n\n", metric);
+        fprintf(f.fp, "| rank | renderer |%s run | %s (ms) | x fastest | differs | wall (ms) | "
                 "p99 (ms) | 1%% low (FPS) | RMSE | trials |\n"
-                "|---|---|%s---|---|---|---|---|---|---|---|\n", single ? " point |" : "",
-                single ? "---|" : "");
+                "|---|---|%s---|---|---|---|---|---|---|---|---|\n", single ? " point |" : "",
+                metric, single ? "---|" : "");
         bool term = terminal && k < TERM_MAX_POINTS;
         if (term) {
             fprintf(terminal, "%s\n", p->label);
-            term_header(terminal, single, cfg_width);
+            term_header(terminal, single, cfg_width, metric);
         }
         for (size_t i = 0; i < p->nruns; i++) {
             const run_result *x = &runs[p->runs[i]];
             cells c;
             make_cells(x, fastest, i + 1, &c);
             char ft[160], trials[64];
-            if (isfinite(x->ft.mean))
+            if (isfinite(x->mean))
                 snprintf(ft, sizeof ft, "%s ± %s", c.mean, c.ci);
             else
                 snprintf(ft, sizeof ft, "%s", x->status);
             snprintf(trials, sizeof trials, "%zu of %zu ok", x->trials_ok, x->trials);
-            fprintf(f.fp, "| %s | %s |%s%s%s %s | %s | %s | %s | %s | %s | %s | %s |\n", c.rank,
-                    rcfg[p->runs[i]], single ? " " : "", single ? rlabel[p->runs[i]] : "",
-                    single ? " |" : "", x->id, ft, c.ratio, c.sig, c.p99, c.low, c.rmse, trials);
+            fprintf(f.fp, "| %s | %s |%s%s%s %s | %s | %s | %s | %s | %s | %s | %s | %s |\n",
+                    c.rank, rcfg[p->runs[i]], single ? " " : "", single ? rlabel[p->runs[i]] : "",
+                    single ? " |" : "", x->id, ft, c.ratio, c.sig, c.wall, c.p99, c.low, c.rmse,
+                    trials);
             if (term && i < TERM_MAX_ROWS) {
                 fputs("  ", terminal);
                 tcell(terminal, c.rank, 4);
                 tcell(terminal, rcfg[p->runs[i]], cfg_width);
                 tcell(terminal, ft, 20);
-                tcell(terminal, c.ratio, 10);
+                tcell(terminal, c.ratio, 24);
                 tcell(terminal, c.sig, 8);
                 tcell(terminal, c.p99, 9);
                 tcell(terminal, c.low, 11);
@@ -463,6 +527,6 @@ out:
     free(prow);
     free(varies);
     csv_table_free(&pl);
-    free(runs);
+    summary_free_runs(runs, nruns);
     return ok;
 }

@@ -1,24 +1,34 @@
 #pragma once
 /* The answer at the end of a sweep (runner/summary_md.c): the runs of OUT/summary.csv,
  * grouped by sweep point (the runs whose plan.csv parameters are equal but for the
- * renderer), each point's renderers ranked by mean frame time with its 95% CI, the
- * ratio to the fastest, whether the difference to the fastest is significant (Welch's
- * t on the trials' batch means, stats_pool_trials), the worst image RMSE where
- * measured, p99 frame time and the 1% low FPS (1e6 / p99 frame time: the rate the
- * slowest 1% of frames run at or below). A compact table to a terminal and
- * OUT/summary.md. Shared with `compare` (runner/compare.c): the per-run loading. */
+ * renderer), each point's configurations ranked by the mean over their trials of the
+ * metric that decides (summary.csv `metric`, `metric_us`: measure.metric), with its
+ * 95% t interval over the trials; `x fastest` is the geometric mean of the per-round
+ * ratios to the fastest (paired: round k ran trial k of each, results/verdict.h) with
+ * its 95% interval, and `differs` says whether that interval excludes 1. The trial is
+ * the unit: nothing pools frames across trials, and fewer than 3 trials give no
+ * verdict. Wall time is shown beside the metric; the worst image RMSE where measured;
+ * p99 frame time and the 1% low FPS. A compact table to a terminal and OUT/summary.md.
+ * Shared with `compare` (runner/compare.c): the per-run loading. */
 #include <stdbool.h>
 #include <stddef.h>
 #include <stdio.h>
 #include "results/stats.h"
+#include "results/verdict.h"
 
-/* One run of a summary.csv: its ok trials pooled. */
+/* One run of a summary.csv: its trials' values. */
 typedef struct run_result {
     char id[13];
     char renderer[32];
     char experiment[64];
+    char metric[8];            /* what decides: "wall", "cpu", "gpu" (summary.csv `metric`;
+                                * "wall" for a folder written before the column) */
     size_t trials, trials_ok;
-    mean_estimate ft;          /* frame time, us, over the ok trials */
+    double *value;             /* value[k - 1]: trial k's metric_us; NAN: failed or absent */
+    double *wall;              /* wall[k - 1]: trial k's frametime_mean_us, the same way */
+    size_t nvalues;            /* the largest trial number */
+    double mean, half;         /* the metric over the ok trials, and its 95% t half-width */
+    double wall_mean, wall_half;   /* frame time, the same way */
     double p99_us;             /* mean of the ok trials' frametime_p99_us */
     double low1_fps;           /* 1e6 / p99_us (the trials' fps_1pct_low without a p99) */
     double rmse;               /* largest image_rmse of the ok trials; NAN: not measured */
@@ -26,9 +36,13 @@ typedef struct run_result {
 } run_result;
 
 /* The runs of DIR/summary.csv in the order they first appear (plan order). False
- * with a message when the file is missing or unreadable. *out is malloc'ed. */
+ * with a message when the file is missing or unreadable. Free with summary_free_runs. */
 bool summary_load_runs(const char *path, run_result **out, size_t *n, char *err,
                        size_t errlen);
+void summary_free_runs(run_result *runs, size_t n);
+
+/* a / b of two runs measured in the same rounds (trial k with trial k): paired */
+void summary_paired_ratio(const run_result *a, const run_result *b, ratio_ci *out);
 
 /* Writes OUT/summary.md and prints the compact table to `terminal` (NULL: none).
  * False with a message (nothing written) when summary.csv or plan.csv is unreadable. */

@@ -164,6 +164,72 @@ static int id_ref_cmp_first(const void *x, const void *y)
     return id_ref_cmp(x, y);
 }
 
+/* The sweep point of a run: the hash of the canonical text of every parameter that
+ * every run reads (params.def readers "*") but the renderer. Runs that share it differ
+ * only in their renderer and the keys only some renderers read: they are ranked
+ * together (runner/summary_md.c's rule), and the schedule runs them in rounds. */
+static uint64_t point_hash(const run_params *rp)
+{
+    uint64_t h = FNV1A64_OFFSET_BASIS;
+    char text[4096];
+    for (size_t i = 0; i < NPARAMS; i++) {
+        const param *pd = &params_table[i];
+        if (!pd->size || !pd->readers || strcmp(pd->readers, "*") != 0 ||
+            strcmp(pd->path, "renderers") == 0)
+            continue;
+        param_format(pd, rp, text, sizeof text);
+        h = fnv1a64_update(h, pd->path, strlen(pd->path) + 1);
+        h = fnv1a64_update(h, text, strlen(text) + 1);
+    }
+    return h;
+}
+
+typedef struct point_ref {
+    uint64_t h;
+    size_t k;
+} point_ref;
+
+static int point_ref_cmp(const void *x, const void *y)
+{
+    const point_ref *a = x, *b = y;
+    if (a->h != b->h)
+        return a->h < b->h ? -1 : 1;
+    return a->k < b->k ? -1 : a->k > b->k;
+}
+
+/* Numbers the sweep points in order of their first run (sorted by hash: n log n for
+ * the largest plans), and deals them to the shards: a shard holds whole points, so
+ * that the runs ranked together are measured together. */
+static bool assign_points(plan *p, unsigned nshards)
+{
+    size_t n = p->nruns ? p->nruns : 1;
+    point_ref *refs = malloc(n * sizeof *refs);
+    size_t *first = malloc(n * sizeof *first);
+    if (!refs || !first) {
+        free(refs);
+        free(first);
+        return false;
+    }
+    for (size_t k = 0; k < p->nruns; k++)
+        refs[k] = (point_ref){point_hash(&p->runs[k].p), k};
+    qsort(refs, p->nruns, sizeof *refs, point_ref_cmp);
+    for (size_t i = 0, g = 0; i < p->nruns; i++) {
+        if (refs[i].h != refs[g].h)
+            g = i;
+        first[refs[i].k] = refs[g].k;
+    }
+    size_t npoints = 0;
+    for (size_t k = 0; k < p->nruns; k++) {
+        run_spec *r = &p->runs[k];
+        r->group = first[k] == k ? npoints++ : p->runs[first[k]].group;
+        r->shard = (unsigned)(r->group % nshards) + 1;
+    }
+    p->ngroups = npoints;
+    free(refs);
+    free(first);
+    return true;
+}
+
 /* Resets what each run's renderer does not read to its default, then keeps the
  * first run of each id: the others are folded into it. Ids, indices and shards are
  * assigned to the runs that remain, in plan order. */
@@ -225,7 +291,6 @@ static bool fold(plan *p, unsigned nshards, diag_list *diags)
                 p->runs[n].index = n;
                 p->runs[n].point = k;
                 p->runs[n].folded = 0;
-                p->runs[n].shard = (unsigned)(n % nshards) + 1;
                 n++;
             } else {
                 size_t into = new_index[first_of[k]];
@@ -236,7 +301,9 @@ static bool fold(plan *p, unsigned nshards, diag_list *diags)
         p->nruns = n;
         p->nfolded = f;
         p->folds = folds;
-    } else {
+        ok = assign_points(p, nshards);
+    }
+    if (!ok) {
         free(folds);
         diag_add(diags, p->exp->path, 0, 0, "", "expected a plan that fits in memory, found no memory left");
     }

@@ -1,9 +1,11 @@
 #!/usr/bin/env bash
 # The end-of-run table and `compare`: two folders from the same tiny manifest, in the
-# second one renderer slowed by debug.busy_us (a known busy-wait in every measured
-# frame, not part of the run id). The run prints the ranked table and writes
+# second one renderer slowed by debug.busy_us (a fixed amount of CPU work in every
+# measured frame, not part of the run id). The run prints the ranked table and writes
 # summary.md with the slowed renderer behind; compare flags exactly the slowed run,
-# with the exit status a CI gate reads; bad input exits 2 with one line.
+# with the exit status a CI gate reads, from trial-level statistics (3 trials: the
+# fewest that give a verdict); compare --exe runs both sides in paired rounds; bad
+# input exits 2 with one line.
 . "$(dirname "$0")/lib.sh"
 need_gl
 cd "$T"
@@ -14,9 +16,9 @@ name: $1
 scene: shapes
 renderers: [deferred, forward-spml]
 resolution: 64x64
-trials: 2
+trials: 3
 warmup: {frames: 5}
-duration: {frames: 40}
+duration: {frames: 20}
 clock: fixed
 lights: {count: 4, radius: 4}
 outputs: {frames: false, seconds: false}
@@ -26,10 +28,10 @@ $2
 YAML
 }
 manifest cmp "" > base.yaml
-# 50 ms a frame on frames of a few ms at 64x64: the slowed runs take 5x-20x as long. On a
-# shared machine an unslowed run's mean moves by tens of percent between two runs, so the
-# gate's threshold here is 200%: past any such noise, far below the slowdown.
-manifest cmp "debug: {busy_us: 50000, busy_renderer: forward-spml}" > new.yaml
+# 20 ms of CPU a frame on frames of a few ms at 64x64: the slowed runs take 5x-20x as
+# long. On a shared machine an unslowed run's mean moves by tens of percent between two
+# runs, so the gate's threshold here is 200%: past any such noise, far below the slowdown.
+manifest cmp "debug: {busy_us: 20000, busy_renderer: forward-spml}" > new.yaml
 
 "$SHADESWEEP" run -o base base.yaml >base.out 2>base.err || fail "base run: $(cat base.err)"
 "$SHADESWEEP" run -o new new.yaml >new.out 2>new.err || fail "new run: $(cat new.err)"
@@ -42,7 +44,7 @@ slow=$(tail -n +2 new/plan.csv | awk -F, '$6 == "forward-spml" {print $2}' | sor
 [ "$(echo "$slow" | wc -l)" -eq 2 ] || fail "want two forward-spml runs: $slow"
 
 # the end-of-run table on stdout, and summary.md
-grep -q "^cmp: 4 runs, 2 sweep points; frame time ms: mean ± 95% CI$" new.out ||
+grep -q "^cmp: 4 runs, 2 sweep points; [a-z]* time per frame, ms: mean ± 95% CI over the trials$" new.out ||
   fail "no table header: $(cat new.out)"
 [ "$(grep -c '^lights.seed=' new.out)" -eq 2 ] || fail "want 2 points: $(cat new.out)"
 # per point: deferred first, forward-spml second and significantly slower
@@ -52,17 +54,25 @@ def fail(m): print("FAIL:", m, file=sys.stderr); sys.exit(1)
 out = open(sys.argv[1]).read().splitlines()
 rows = [l.split() for l in out if re.match(r"^  [12] ", l)]
 if len(rows) != 4: fail(f"terminal rows {rows}")
+def cells(r):   # rank renderer mean ± ci ratio [(lo-hi)] differs p99 low ...
+    rest = r[6:]
+    if rest[0].startswith("("): rest = rest[1:]
+    return r[5], rest[0], rest[1], rest[2]
 for i in (0, 2):
     a, b = rows[i], rows[i + 1]
     if a[1] != "deferred" or b[1] != "forward-spml": fail(f"ranking {a} {b}")
-    if a[5] != "1.00x" or a[6] != "-": fail(f"fastest row {a}")
-    if float(b[5].rstrip("x")) < 2 or b[6] != "yes": fail(f"slowed row {b}")
+    if cells(a)[:2] != ("1.00x", "-"): fail(f"fastest row {a}")
+    ratio, differs, p99, low = cells(b)
+    # the paired ratio's interval: 3 rounds, far from 1
+    if float(ratio.rstrip("x")) < 2 or differs != "yes" or not b[6].startswith("("):
+        fail(f"slowed row {b}")
     # p99 and 1% low: 1e6 / p99
-    if abs(float(b[8]) - 1000 / float(b[7])) > 0.1: fail(f"1% low of {b}")
+    if abs(float(low) - 1000 / float(p99)) > 0.1: fail(f"1% low of {b}")
 md = open(sys.argv[2]).read()
 if md.count("\n## lights.seed=") != 2: fail("summary.md points")
 body = [l for l in md.splitlines() if re.match(r"^\| [12] \|", l)]
-if len(body) != 4 or any("2 of 2 ok" not in l for l in body): fail(f"summary.md rows {body}")
+if len(body) != 4 or any("3 of 3 ok" not in l for l in body): fail(f"summary.md rows {body}")
+if md.count("Ranked by ") != 2: fail("summary.md does not say which metric ranks")
 if not all("| forward-spml |" in body[i] and "| yes |" in body[i] for i in (1, 3)):
     fail(f"summary.md significance {body}")
 PY
@@ -73,11 +83,12 @@ set +e
 set -e
 [ $rc -eq 1 ] || fail "compare base new: rc $rc $(cat cmp.err)"
 cmp -s cmp.out cmp.md || fail "--md differs from stdout"
-grep -q "4 runs in common: 2 slower, 0 faster, 2 same, 0 n/a" cmp.out || fail "counts: $(cat cmp.out)"
+grep -q "4 runs in common: 2 slower, 0 faster, 2 same, 0 undecided, 0 without a verdict" cmp.out ||
+  fail "counts: $(cat cmp.out)"
 flagged=$(tail -n +2 cmp.csv | awk -F, '$13 == "slower" {print $1}' | sort)
 [ "$flagged" = "$slow" ] || fail "slower runs: '$flagged', want '$slow'"
 [ "$(tail -n +2 cmp.csv | awk -F, '$13 == "same"' | wc -l)" -eq 2 ] || fail "same: $(cat cmp.csv)"
-head -1 cmp.csv | grep -qx "run_id,renderer,base_mean_us,base_ci95_us,new_mean_us,new_ci95_us,change_us,change_ci95_us,change_rel,change_ci95_rel,welch_dof,significant,verdict" ||
+head -1 cmp.csv | grep -qx "run_id,renderer,metric,base_mean_us,base_ci95_us,new_mean_us,new_ci95_us,ratio,ratio_lo,ratio_hi,paired,trials,verdict" ||
   fail "csv header: $(head -1 cmp.csv)"
 # the reverse: exactly those runs got faster (below BASE / 3), nothing slower: exit 0
 "$SHADESWEEP" compare new base --threshold=200% --csv rev.csv >rev.out 2>rev.err ||
@@ -85,12 +96,40 @@ head -1 cmp.csv | grep -qx "run_id,renderer,base_mean_us,base_ci95_us,new_mean_u
 grep -q "4 runs in common: 0 slower, 2 faster, 2 same" rev.out || fail "reverse: $(cat rev.out)"
 [ "$(tail -n +2 rev.csv | awk -F, '$13 == "faster" {print $1}' | sort)" = "$slow" ] ||
   fail "faster runs: $(cat rev.csv)"
-# a folder against itself: all the same
+# a folder against itself: nothing slower or faster (same, or undecided where 3 trials
+# cannot place the interval within 5%), exit 0
 "$SHADESWEEP" compare base base >self.out || fail "compare base base"
-grep -q "4 runs in common: 0 slower, 0 faster, 4 same" self.out || fail "self: $(cat self.out)"
+grep -q "4 runs in common: 0 slower, 0 faster, " self.out || fail "self: $(cat self.out)"
 # a threshold the slowdown does not reach: same, exit 0
 "$SHADESWEEP" compare --threshold 100000% base new >thr.out || fail "huge threshold"
 grep -q "0 slower, 0 faster, 4 same" thr.out || fail "threshold: $(cat thr.out)"
+
+# NEW lacks a run of BASE, or failed where BASE did not: the gate fails (exit 1) unless
+# told otherwise
+mkdir -p partial && head -n -3 new/summary.csv >partial/summary.csv
+gone=$(tail -n 1 new/summary.csv | cut -d, -f2)
+set +e
+"$SHADESWEEP" compare --threshold 100000% base partial >part.out 2>part.err; rc=$?
+set -e
+[ $rc -eq 1 ] && grep -q "run $gone (.*) of BASE is not in NEW" part.err || fail "missing run: rc $rc $(cat part.err)"
+"$SHADESWEEP" compare --allow-missing --threshold 100000% base partial >/dev/null 2>&1 ||
+  fail "--allow-missing still failed"
+
+# compare --exe: both sides measured in interleaved rounds by two builds (here the same
+# one, the slowdown in NEW's manifest), compared paired: the slowed runs are slower
+set +e
+"$SHADESWEEP" compare --exe "$SHADESWEEP" --base-manifest base.yaml -o exe \
+  --threshold 200% --csv exe.csv new.yaml >exe.out 2>exe.err; rc=$?
+set -e
+[ $rc -eq 1 ] || fail "compare --exe: rc $rc $(cat exe.err)"
+[ "$(grep -c '^compare: round [123] of 3: \(BASE\|NEW\) first$' exe.err)" -eq 3 ] ||
+  fail "compare --exe rounds: $(cat exe.err)"
+[ "$(tail -n +2 exe.csv | awk -F, '$13 == "slower" {print $1}' | sort)" = "$slow" ] ||
+  fail "compare --exe slower runs: $(cat exe.csv)"
+[ "$(tail -n +2 exe.csv | awk -F, '$11 == "1" && $12 == "3"' | wc -l)" -eq 4 ] ||
+  fail "compare --exe is not paired over 3 rounds: $(cat exe.csv)"
+# each side's runs ran trial k in round k: trial 1 of every run before any trial 2
+grep -q "^trials:" exe/new/runs/*/meta.yaml || fail "no trials in meta.yaml"
 
 # merge prints the table too
 "$SHADESWEEP" merge -o merged new >merge.out 2>/dev/null || fail "merge"
@@ -113,6 +152,6 @@ mkdir empty
 bad "shadesweep compare: empty: not a shadesweep output folder (no summary.csv)" empty new
 bad "--threshold: expected a percentage 0..1000000 (e.g. 5%), found 'x'" --threshold x base new
 bad "expected two output folders, BASE and NEW" base
-mkdir -p other && printf 'run_id,frames,frametime_mean_us,frametime_ci95_us,status\nffffffffffff,40,1,1,ok\n' >other/summary.csv
+mkdir -p other && printf 'run_id,trial,frames,frametime_mean_us,status\nffffffffffff,1,40,1,ok\n' >other/summary.csv
 bad "have no run in common" base other
 echo "compare: ok"

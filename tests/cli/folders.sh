@@ -178,7 +178,7 @@ for why in "${ids[0]} is incomplete (summary.csv: " "${ids[1]} is incomplete (su
            "${ids[2]} is incomplete (meta.yaml: " "${ids[3]} is incomplete (frames.csv: missing)"; do
   grep -qF "resuming: run $why" cmd.err || fail "resume did not say '$why': $(cat cmd.err)"
 done
-[ "$(grep -c '^run [0-9] of 4' cmd.err)" -eq 4 ] || fail "resume did not rerun the 4 runs"
+[ "$(grep -c '^[0-9] of 8: run ' cmd.err)" -eq 8 ] || fail "resume did not rerun the 4 runs' 8 trials"
 check_summary c 8
 # a run whose summary.csv has another header (another version's) is rerun up front
 id=${ids[1]}
@@ -201,7 +201,7 @@ for l in lines[1:]:
 open(f"{d}/files.txt", "w").write("\n".join(out) + "\n")
 PY
 expect 0 "resuming: run $id is incomplete (summary.csv: header differs" "$SHADESWEEP" run --resume -o c t.yaml
-[ "$(grep -c '^run [0-9] of 1' cmd.err)" -eq 1 ] || fail "the run with a bad header was not rerun"
+[ "$(grep -c '^[0-9] of 2: run ' cmd.err)" -eq 2 ] || fail "the run with a bad header was not rerun"
 check_summary c 8
 # merge takes no damaged run, says which and why, and writes only parsed rows
 damage c_copy

@@ -54,7 +54,8 @@ grep -qx "fold.yaml: ok, 10 runs (14 of 24 grid points folded: they differ only 
   || fail "validate: $(cat v.txt)"
 # options after the operand, as getopt_long permutes them
 "$SHADESWEEP" list fold.yaml --shard 1/2 >l.txt || fail "list MANIFEST --shard"
-[ "$(grep -vc '^#' l.txt)" -eq 5 ] || fail "list --shard 1/2 after the manifest: $(cat l.txt)"
+# one sweep point (only keys some renderers read vary): a shard holds it whole
+[ "$(grep -vc '^#' l.txt)" -eq 10 ] || fail "list --shard 1/2 after the manifest: $(cat l.txt)"
 "$SHADESWEEP" list fold.yaml >l.txt
 grep -q "^# 14 of 24 grid points folded" l.txt || fail "list names the folds: $(cat l.txt)"
 [ "$(grep -c ' -> ' l.txt)" -eq 14 ] || fail "list: a line per fold"

@@ -45,7 +45,11 @@ set -e
 [ $rc -eq 2 ] && grep -q -- "--resume" again.err || fail "rerun without --resume: rc $rc"
 "$SHADESWEEP" run --resume long.yaml 2>resume.err || fail "resume failed: $(cat resume.err)"
 grep -q "resuming: $n_before of 6 runs already complete" resume.err || fail "resume report: $(cat resume.err)"
-[ "$(grep -c '^run ' resume.err)" -eq $((6 - n_before)) ] || fail "resume ran complete runs again"
+# a progress line per trial run: the incomplete runs' trials, less those a killed run
+# had complete (resume keeps them, and says how many)
+kept=$(sed -n 's/.*: \([0-9]*\) of its trials kept.*/\1/p' resume.err | awk '{s += $1} END {print s + 0}')
+[ "$(grep -c '^[0-9]* of [0-9]*: run ' resume.err)" -eq $((2 * (6 - n_before) - kept)) ] ||
+  fail "resume ran complete runs or trials again: $(cat resume.err)"
 for f in $(cut -d' ' -f1 before.txt); do stat -c '%n %i %Y' "$f"; done | sort >after.txt
 cmp -s before.txt after.txt || fail "complete runs were rewritten by resume"
 

@@ -77,10 +77,18 @@ def run_dirs(d):
 def check_complete(d, trials):
     """Every run folder left is complete (files.txt) and its rows are in summary.csv."""
     rows = summary(d)
-    dirs = run_dirs(d)
-    for i in dirs:
-        if not os.path.exists(f"{d}/runs/{i}/files.txt"):
-            fail(f"{d}/runs/{i}: a run folder without files.txt was left (not discarded)")
+    dirs = []
+    for i in run_dirs(d):
+        if os.path.exists(f"{d}/runs/{i}/files.txt"):
+            dirs.append(i)
+            continue
+        # a run cut off between its trials keeps its complete trials (resume goes on
+        # from them): only its log and trial folders with their own files.txt
+        left = sorted(os.listdir(f"{d}/runs/{i}"))
+        trials_kept = [x for x in left if x.startswith("trial-")]
+        if not trials_kept or any(x not in ("log.txt",) and not x.startswith("trial-") for x in left) \
+                or any(not os.path.exists(f"{d}/runs/{i}/{x}/files.txt") for x in trials_kept):
+            fail(f"{d}/runs/{i}: a run folder without files.txt was left (not discarded): {left}")
     ids = sorted({r["run_id"] for r in rows})
     if ids != dirs: fail(f"{d}: summary has runs {ids}, folder has {dirs}")
     if len(rows) != trials * len(dirs): fail(f"{d}: {len(rows)} rows for {len(dirs)} runs")

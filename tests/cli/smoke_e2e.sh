@@ -5,7 +5,11 @@ need_gl
 cd "$T"
 "$SHADESWEEP" run --debug-gl "$SOURCE_ROOT/experiments/smoke.yaml" >run.out 2>run.err \
   || { cat run.err >&2; fail "smoke run exited $?"; }
-grep -q "run 16 of 16" run.err || fail "progress lines missing: $(cat run.err)"
+# two trials a run: a progress line per trial, the run's trials interleaved with the
+# other renderers' of its sweep point
+grep -q "^32 of 32: run [0-9a-f]\{12\} [a-z-]* [0-9]*x[0-9]* trial 2 of 2: ok" run.err ||
+  fail "progress lines missing: $(cat run.err)"
+grep -q "^16 runs, 0 failed (32 trials), in" run.err || fail "no closing count: $(cat run.err)"
 "$PYTHON" - out/smoke <<'PY'
 import csv, glob, math, os, struct, sys
 import yaml

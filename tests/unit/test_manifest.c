@@ -364,6 +364,11 @@ static void test_kv_canonical(void **state)
         {"renderer", ""},
         {"resolution", "640x360"},
         {"trials", "1"},
+        {"schedule", "interleaved"},
+        {"measure.metric", "auto"},
+        {"measure.precision", "0.03"},
+        {"measure.budget", "600"},
+        {"measure.seed", "1337"},
         {"warmup", "frames:0"},
         {"duration", "frames:10"},
         {"clock", "wall"},
@@ -428,6 +433,11 @@ static void test_kv_canonical(void **state)
         {"renderer", ""},
         {"resolution", "1280x720"},
         {"trials", "3"},
+        {"schedule", "interleaved"},
+        {"measure.metric", "auto"},
+        {"measure.precision", "0.03"},
+        {"measure.budget", "600"},
+        {"measure.seed", "1337"},
         {"warmup", "seconds:2.5"},
         {"duration", "seconds:60"},
         {"clock", "fixed"},
@@ -504,9 +514,12 @@ static void test_kv_canonical(void **state)
             assert_string_equal(kv[i].key, cases[c].kv[i][0]);
             assert_string_equal(kv[i].value, cases[c].kv[i][1]);
             /* a timeout changes no result, so it is not part of the run id; nor the
-             * debug keys (testing regression gates: a slowed run keeps its id). Keys at
-             * their default leave the id too (is_default), which test_params.c checks. */
+             * debug keys (testing regression gates: a slowed run keeps its id), nor how
+             * trials are scheduled and ranked (schedule, measure.*). Keys at their
+             * default leave the id too (is_default), which test_params.c checks. */
             assert_int_equal(kv[i].in_id, strcmp(kv[i].key, "timeout") != 0 &&
+                                              strcmp(kv[i].key, "schedule") != 0 &&
+                                              strncmp(kv[i].key, "measure.", 8) != 0 &&
                                               strncmp(kv[i].key, "debug.", 6) != 0);
         }
         /* away from its default, such a key is part of the id */
@@ -576,24 +589,24 @@ static const bad_case bad_cases[] = {
     {"unknown_top_key.yaml",
      {"1:1: duration: expected {seconds: S} or {frames: N}, found nothing",
       "5:1: durtion: expected one of shadesweep, name, description, scene, renderers, "
-      "resolution, trials, warmup, duration, clock, step, sync, timeout, gbuffer, deferred, forward, tiles, clustered, shadows, hdr, msaa, fog, aa, translucency, camera, error, lights, outputs, debug, sweep, "
+      "resolution, trials, schedule, measure, warmup, duration, clock, step, sync, timeout, gbuffer, deferred, forward, tiles, clustered, shadows, hdr, msaa, fog, aa, translucency, camera, error, lights, outputs, debug, sweep, "
       "found 'durtion'"}},
     {"unknown_nested_key.yaml",
      {"8:3: lights.cnt: expected one of placement, seed, rng, count, radius, overlap, color_max, "
       "attenuation, quadratic, found 'cnt'"}},
     {"duplicate_key.yaml",
      {"7:1: trials: expected a key used once, found a second 'trials' (first at 5:1)"}},
-    {"string_for_integer.yaml", {"6:9: trials: expected an integer 1..1000, found 'many'"}},
+    {"string_for_integer.yaml", {"6:9: trials: expected an integer 1..1000, or auto, found 'many'"}},
     {"sequence_for_mapping.yaml",
      {"5:11: duration: expected {seconds: S} or {frames: N}, found a sequence"}},
-    {"quoted_integer.yaml", {"6:9: trials: expected an integer 1..1000, found a string '3'"}},
+    {"quoted_integer.yaml", {"6:9: trials: expected an integer 1..1000, or auto, found a string '3'"}},
     {"nan.yaml", {"7:7: step: expected a finite number, found '.nan'"}},
     {"inf.yaml",
      {"7:11: lights.radius: expected a finite number, found '.inf'",
       "8:14: lights.color_max: expected a finite number, found '-.Inf'"}},
     {"overflow.yaml", {"5:21: duration.seconds: expected a finite number, found '1e999'"}},
-    {"negative_trials.yaml", {"6:9: trials: expected an integer 1..1000, found '-1'"}},
-    {"zero_trials.yaml", {"6:9: trials: expected an integer 1..1000, found '0'"}},
+    {"negative_trials.yaml", {"6:9: trials: expected an integer 1..1000, or auto, found '-1'"}},
+    {"zero_trials.yaml", {"6:9: trials: expected an integer 1..1000, or auto, found '0'"}},
     {"error_supersample_zero.yaml",
      {"8:52: error.reference.supersample: expected an integer 1..4, found '0'"}},
     {"error_supersample_five.yaml",
@@ -678,7 +691,7 @@ static const bad_case bad_cases[] = {
       "8:12: outputs.seconds: expected true or false, found a string 'true'"}},
     {"tagged.yaml",
      {"5:20: duration.frames: expected an integer 1..100000000, found '10' tagged !!int",
-      "6:9: trials: expected an integer 1..1000, found '3' tagged !custom"}},
+      "6:9: trials: expected an integer 1..1000, or auto, found '3' tagged !custom"}},
     {"placement_none_count.yaml",
      {"8:10: lights.count: expected 0 lights with lights.placement none, found 5 lights"}},
     {"growth_bad.yaml",
@@ -714,9 +727,9 @@ static const bad_case bad_cases[] = {
      {"1:1: duration: expected {seconds: S} or {frames: N}, found nothing",
       "3:8: scene: expected one of empty, shapes, curtis-scene1, curtis-scene2, curtis-scene3, canyon, interior, spot-coverage, two-spots-overlap, floating-spot, glass, or {file: PATH, scale, up, camera}, found 'castle'",
       "5:13: resolution: expected WxH with each side 1..32768, found '640x'",
-      "6:9: trials: expected an integer 1..1000, found '0'",
+      "6:9: trials: expected an integer 1..1000, or auto, found '0'",
       "7:1: durtion: expected one of shadesweep, name, description, scene, renderers, "
-      "resolution, trials, warmup, duration, clock, step, sync, timeout, gbuffer, deferred, forward, tiles, clustered, shadows, hdr, msaa, fog, aa, translucency, camera, error, lights, outputs, debug, sweep, "
+      "resolution, trials, schedule, measure, warmup, duration, clock, step, sync, timeout, gbuffer, deferred, forward, tiles, clustered, shadows, hdr, msaa, fog, aa, translucency, camera, error, lights, outputs, debug, sweep, "
       "found 'durtion'",
       "8:19: warmup.seconds: expected a number >= 0 and <= 3600, found '-1'",
       "10:9: lights.seed: expected an integer 0..4294967295, found '-1'",

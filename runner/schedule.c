@@ -1,0 +1,455 @@
+/* The sweep as rounds of trials (run.h run_plan; docs/architecture.md "Schedule"). */
+#include "runner/run.h"
+
+#include <errno.h>
+#include <math.h>
+#include <signal.h>
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+#include <unistd.h>
+
+#include "results/csvread.h"
+#include "results/fsutil.h"
+#include "results/verdict.h"
+#include "runner/folder.h"
+#include "runner/hash.h"
+#include "runner/output.h"
+#include "runner/summary_md.h"
+#include "runner/trials.h"
+
+/* Where each run of the plan stands. */
+typedef struct run_slot {
+    const run_spec *s;
+    bool selected;             /* in this shard */
+    bool complete;             /* its files are merged (or were, before a resume) */
+    bool ended;                /* a trial's status ended it: no more trials */
+    uint32_t done;             /* trials 1..done have complete folders */
+    uint32_t *order;           /* order[k - 1]: trial k's place in its round */
+    uint32_t norder;
+    char status[96];           /* the first failure among its trials, or "ok" */
+    char message[512];         /* ... and why, for the rows of the trials it did not run */
+    double used_s;             /* wall time of its trials' processes */
+} run_slot;
+
+/* ---- the order of a round */
+
+static uint64_t splitmix64(uint64_t *x)
+{
+    uint64_t z = (*x += UINT64_C(0x9e3779b97f4a7c15));
+    z = (z ^ (z >> 30)) * UINT64_C(0xbf58476d1ce4e5b9);
+    z = (z ^ (z >> 27)) * UINT64_C(0x94d049bb133111eb);
+    return z ^ (z >> 31);
+}
+
+/* A permutation of idx[0..n) for round `round` of sweep point `point`: Fisher-Yates
+ * from a generator seeded by (seed, point, round), so that a resumed sweep runs the
+ * same order and a round's order does not depend on which runs of it are left. */
+static void round_order(size_t *idx, size_t n, uint32_t seed, size_t point, uint32_t round)
+{
+    uint64_t key[3] = {seed, point, round};
+    uint64_t x = fnv1a64(key, sizeof key);
+    for (size_t i = n; i > 1; i--) {
+        size_t j = (size_t)(splitmix64(&x) % i);
+        size_t t = idx[i - 1];
+        idx[i - 1] = idx[j];
+        idx[j] = t;
+    }
+}
+
+static bool slot_order(run_slot *r, uint32_t trial, uint32_t place)
+{
+    if (trial > r->norder) {
+        uint32_t cap = r->norder ? r->norder * 2 : 8;
+        while (cap < trial)
+            cap *= 2;
+        uint32_t *o = realloc(r->order, cap * sizeof *o);
+        if (!o)
+            return false;
+        memset(o + r->norder, 0, (cap - r->norder) * sizeof *o);
+        r->order = o;
+        r->norder = cap;
+    }
+    r->order[trial - 1] = place;
+    return true;
+}
+
+/* ---- trial values, for trials: auto */
+
+/* The value that ranks (summary.csv `metric_us`) of trial k of a run, from its folder;
+ * NAN when it has none. */
+static double trial_value(const char *out_dir, const char *id, uint32_t k)
+{
+    char path[4400], err[256];
+    snprintf(path, sizeof path, "%s/runs/%s/trial-%u/summary.csv", out_dir, id, k);
+    csv_table t;
+    if (!csv_read(path, &t, err, sizeof err))
+        return NAN;
+    int c = csv_col(&t, "metric_us"), st = csv_col(&t, "status");
+    double v = NAN;
+    if (c >= 0 && st >= 0 && t.nrows == 1 && strcmp(csv_get(&t, 0, st), "ok") == 0)
+        v = csv_num(&t, 0, c);
+    csv_table_free(&t);
+    return v;
+}
+
+/* trials: auto: whether the point's verdicts are settled after `rounds` rounds: every
+ * pair of its runs that measured has a paired ratio that is precise enough or excludes
+ * 1 (verdict_all_decided). */
+static bool point_settled(const char *out_dir, run_slot *const *runs, size_t n,
+                          uint32_t rounds, double precision)
+{
+    if (rounds < TRIALS_AUTO_MIN)
+        return false;
+    if (n < 2)
+        return true;   /* nothing to rank: the minimum is enough */
+    double *v = malloc(n * rounds * sizeof *v);
+    ratio_ci *r = malloc(n * n * sizeof *r);
+    if (!v || !r) {
+        free(v);
+        free(r);
+        return true;   /* no memory to decide: stop adding rounds */
+    }
+    for (size_t i = 0; i < n; i++)
+        for (uint32_t k = 1; k <= rounds; k++)
+            v[i * rounds + k - 1] = runs[i]->done >= k && !runs[i]->ended
+                                        ? trial_value(out_dir, runs[i]->s->id, k)
+                                        : NAN;
+    size_t nr = 0;
+    for (size_t i = 0; i < n; i++) {
+        if (runs[i]->ended)
+            continue;
+        for (size_t j = i + 1; j < n; j++)
+            if (!runs[j]->ended)
+                verdict_paired_ratio(v + i * rounds, v + j * rounds, rounds, &r[nr++]);
+    }
+    bool settled = verdict_all_decided(r, nr, precision);
+    free(v);
+    free(r);
+    return settled;
+}
+
+/* ---- one trial, and a run's end */
+
+static const char *schedule_name(const run_params *p)
+{
+    return p->schedule == RUN_SCHEDULE_SEQUENTIAL ? "sequential" : "interleaved";
+}
+
+/* Runs trial k of r (place: its place in its round). False: the sweep cannot go on. */
+static bool run_one_trial(const experiment *e, const run_options *o, progress *pg, run_slot *r,
+                          uint32_t k, uint32_t place, size_t *nth)
+{
+    const run_spec *s = r->s;
+    if (!slot_order(r, k, place)) {
+        fprintf(stderr, "shadesweep: out of memory\n");
+        return false;
+    }
+    progress_run_begin(pg, ++*nth, s->id, s->p.renderer, s->p.width, s->p.height, k,
+                       s->p.trials);
+    double left = run_timeout_s(&s->p) - r->used_s;
+    trial_outcome out;
+    if (!run_trial_isolated(e, s, o, pg, k, left > 1 ? left : 1, &out))
+        return false;
+    r->used_s += out.seconds;
+    if (out.interrupted)
+        return true;
+    if (out.message[0])
+        fprintf(stderr, "run %s: trial %u: %s\n", s->id, k, out.message);
+    progress_run_end(pg, out.status, out.fps);
+    r->done = k;
+    if (strcmp(out.status, "ok") != 0 && strcmp(r->status, "ok") == 0) {
+        snprintf(r->status, sizeof r->status, "%s", out.status);
+        snprintf(r->message, sizeof r->message, "%s", out.message);
+    }
+    if (run_status_ends_run(out.status))
+        r->ended = true;
+    return true;
+}
+
+/* Rows for the trials a run will not run, then the run's files from its trials. */
+static bool finish_run(const experiment *e, const run_options *o, progress *pg, run_slot *r,
+                       uint32_t n)
+{
+    const run_spec *s = r->s;
+    for (uint32_t k = r->done + 1; k <= n; k++) {
+        if (!run_write_missing_trial(e, s, o, k,
+                                     strcmp(r->status, "ok") ? r->status : "failed:not-run",
+                                     r->message))
+            return false;
+        if (!slot_order(r, k, 0))
+            return false;
+    }
+    char err[600];
+    trials_schedule ts = {.mode = schedule_name(&s->p), .seed = s->p.schedule_seed,
+                          .point = s->group, .order = r->order};
+    if (!trials_merge(o->out_dir, s->id, n, r->status, &ts, err, sizeof err)) {
+        fprintf(stderr, "run %s: %s\n", s->id, err);
+        return false;
+    }
+    r->complete = true;
+    progress_run_complete(pg, r->status);
+    return true;
+}
+
+/* The runs of one sweep point, in rounds (or sequentially). False: the sweep cannot go
+ * on (a message was printed), or a stop signal came. */
+static bool run_point(const experiment *e, const run_options *o, progress *pg,
+                      run_slot **runs, size_t n, size_t *nth)
+{
+    const run_params *p = &runs[0]->s->p;
+    const bool adaptive = p->trials == 0;
+    const uint32_t max = adaptive ? TRIALS_AUTO_MAX : p->trials;
+    /* --round K: the rounds up to K only; the runs are merged with the last round */
+    const uint32_t upto = o->round && o->round < max ? o->round : max;
+    size_t *idx = malloc(n * sizeof *idx);
+    if (!idx) {
+        fprintf(stderr, "shadesweep: out of memory\n");
+        return false;
+    }
+    bool ok = true;
+    uint32_t rounds = 0;
+    if (p->schedule == RUN_SCHEDULE_SEQUENTIAL) {
+        for (size_t i = 0; ok && i < n && !run_stop_signal(); i++)
+            for (uint32_t k = runs[i]->done + 1; ok && k <= upto && !runs[i]->ended &&
+                                                 !run_stop_signal(); k++)
+                ok = run_one_trial(e, o, pg, runs[i], k, (uint32_t)i + 1, nth);
+        rounds = max;
+    } else {
+        double spent = 0;
+        for (uint32_t k = 1; ok && k <= upto && !run_stop_signal(); k++) {
+            for (size_t i = 0; i < n; i++)
+                idx[i] = i;
+            round_order(idx, n, p->schedule_seed, runs[0]->s->group, k);
+            for (size_t q = 0; ok && q < n && !run_stop_signal(); q++) {
+                run_slot *r = runs[idx[q]];
+                if (r->ended || r->done >= k) {
+                    ok = slot_order(r, k, (uint32_t)q + 1) || (fprintf(stderr, "shadesweep: out of memory\n"), false);
+                    continue;
+                }
+                double before = r->used_s;
+                ok = run_one_trial(e, o, pg, r, k, (uint32_t)q + 1, nth);
+                spent += r->used_s - before;
+            }
+            if (!ok || run_stop_signal())
+                break;
+            rounds = k;
+            if (adaptive && (point_settled(o->out_dir, runs, n, k, p->precision) ||
+                             spent >= p->budget_s)) {
+                if (!point_settled(o->out_dir, runs, n, k, p->precision))
+                    fprintf(stderr, "sweep point %zu: measure.budget (%g s) spent after %u "
+                            "rounds: its verdicts stay as they are\n",
+                            runs[0]->s->group, p->budget_s, k);
+                break;
+            }
+        }
+    }
+    free(idx);
+    if (!ok || run_stop_signal() || upto < max)
+        return ok;
+    for (size_t i = 0; ok && i < n; i++) {
+        uint32_t total = adaptive ? (rounds > runs[i]->done ? rounds : runs[i]->done) : max;
+        ok = finish_run(e, o, pg, runs[i], total);
+    }
+    return ok;
+}
+
+/* ---- resume */
+
+/* What a resumed sweep keeps of a run: the whole run when complete, else its leading
+ * complete trials (the later ones are removed: they run again). */
+static void resume_slot(const run_options *o, run_slot *r, size_t *kept, size_t *retried)
+{
+    const run_spec *s = r->s;
+    char dir[4200], why[512];
+    snprintf(dir, sizeof dir, "%s/runs/%s", o->out_dir, s->id);
+    run_check c;
+    if (folder_check_run(o->out_dir, s->id, true, &c, why, sizeof why)) {
+        if (c.failed && o->retry_failed) {
+            char err[512];
+            if (!folder_clear_run(dir, err, sizeof err))
+                fprintf(stderr, "shadesweep: %s\n", err);
+            (*retried)++;
+            return;
+        }
+        r->complete = true;
+        (*kept)++;
+        return;
+    }
+    if (!fs_exists(dir))
+        return;
+    uint32_t k = 1;
+    run_check tc;
+    char twhy[512];
+    while (folder_check_trial(o->out_dir, s->id, k, &tc, twhy, sizeof twhy)) {
+        r->done = k;
+        if (tc.failed && strcmp(r->status, "ok") == 0)
+            snprintf(r->status, sizeof r->status, "%s", tc.status);
+        if (tc.failed && run_status_ends_run(tc.status))
+            r->ended = true;
+        k++;
+    }
+    /* trial folders after the first incomplete one: removed, they run again */
+    for (uint32_t j = k; j < k + TRIALS_AUTO_MAX + 1000; j++) {
+        char tdir[4400], err[512];
+        snprintf(tdir, sizeof tdir, "%s/trial-%u", dir, j);
+        if (!fs_exists(tdir))
+            break;
+        folder_clear_run(tdir, err, sizeof err);
+    }
+    fprintf(stderr, "resuming: run %s is incomplete (%s): %u of its trials kept, the others "
+            "run again\n", s->id, why, r->done);
+}
+
+/* ---- the sweep */
+
+int run_plan(const experiment *e, const plan *p, const run_options *o)
+{
+    char err[512];
+    run_catch_stop_signals();
+    int rc = 0;
+    FILE *progress_out = NULL;
+    run_slot *slots = NULL;
+    run_slot **group = NULL;
+    if (!output_write_plan(o->out_dir, p, err, sizeof err)) {
+        fprintf(stderr, "shadesweep: %s\n", err);
+        return 2;
+    }
+    folder_remove_temp(o->out_dir);
+
+    for (size_t i = 0; o->round && i < p->nruns; i++)
+        if (p->runs[i].p.trials == 0) {
+            fprintf(stderr, "shadesweep run: --round: not with trials: auto (its rounds are "
+                    "decided as they are measured)\n");
+            return 2;
+        }
+    slots = calloc(p->nruns ? p->nruns : 1, sizeof *slots);
+    group = calloc(p->nruns ? p->nruns : 1, sizeof *group);
+    if (!slots || !group) {
+        fprintf(stderr, "shadesweep: out of memory\n");
+        rc = 2;
+        goto done;
+    }
+    size_t selected = 0, kept = 0, retried = 0, trials_left = 0;
+    for (size_t i = 0; i < p->nruns; i++) {
+        run_slot *r = &slots[i];
+        r->s = &p->runs[i];
+        snprintf(r->status, sizeof r->status, "ok");
+        if (o->shard && r->s->shard != o->shard)
+            continue;
+        r->selected = true;
+        selected++;
+        if (o->resume)
+            resume_slot(o, r, &kept, &retried);
+        if (!r->complete) {
+            uint32_t want = r->s->p.trials ? r->s->p.trials : TRIALS_AUTO_MIN;
+            trials_left += want > r->done ? want - r->done : 0;
+        }
+    }
+    if (o->resume)
+        fprintf(stderr, "resuming: %zu of %zu runs already complete\n", kept + retried,
+                selected);
+    if (retried)
+        fprintf(stderr, "retrying %zu failed run%s\n", retried, retried == 1 ? "" : "s");
+
+    /* Progress goes to the terminal (or log) the user sees; each child's own stderr
+     * goes to its run's log.txt. */
+    int fd = dup(STDERR_FILENO);
+    progress_out = fd >= 0 ? fdopen(fd, "w") : NULL;
+    if (!progress_out) {
+        if (fd >= 0)
+            close(fd);
+        fprintf(stderr, "shadesweep: cannot duplicate stderr\n");
+        rc = 2;
+        goto done;
+    }
+    setvbuf(progress_out, NULL, _IOLBF, 0);
+
+    progress pg;
+    progress_init(&pg, trials_left, progress_out);
+    size_t nth = 0;
+    /* the sweep points in plan order, each with its runs in plan order */
+    for (size_t g = 0; g < p->ngroups && !run_stop_signal(); g++) {
+        size_t n = 0;
+        for (size_t i = 0; i < p->nruns; i++)
+            if (slots[i].selected && !slots[i].complete && p->runs[i].group == g)
+                group[n++] = &slots[i];
+        if (n && !run_point(e, o, &pg, group, n, &nth) && !run_stop_signal()) {
+            rc = 2;
+            break;
+        }
+    }
+    progress_finish(&pg);
+
+    /* The exit status describes the folder as it stands, not this invocation's runs. */
+    size_t missing = 0, failed = 0;
+    if (!output_merge_summary(o->out_dir, p, o->shard, &missing, &failed, err, sizeof err)) {
+        fprintf(stderr, "shadesweep: %s\n", err);
+        rc = 2;
+        goto done;
+    }
+    if (run_stop_signal()) {
+        fprintf(stderr,
+                "interrupted by %s: %zu of %zu runs complete; to finish the others:\n"
+                "  shadesweep run --resume -o %s %s\n",
+                run_stop_name(run_stop_signal()), selected - missing, selected, o->out_dir,
+                e->path);
+        rc = 128 + run_stop_signal();
+    } else if (!rc) {
+        if (missing)
+            fprintf(stderr, "shadesweep: %zu of %zu runs are not complete\n", missing, selected);
+        rc = failed || missing ? 1 : 0;
+    }
+done:
+    if (progress_out)
+        fclose(progress_out);
+    if (slots)
+        for (size_t i = 0; i < p->nruns; i++)
+            free(slots[i].order);
+    free(slots);
+    free(group);
+    return rc;
+}
+
+int run_sweep(const experiment *e, const plan *p, const char *out, bool force, run_options *o)
+{
+    if (run_stop_signal()) {
+        fprintf(stderr, "shadesweep run: interrupted by signal %d before the sweep began; "
+                "nothing was written\n", run_stop_signal());
+        return 128 + run_stop_signal();
+    }
+    char dir[4096], err[4608];
+    if (out)
+        snprintf(dir, sizeof dir, "%s", out);
+    else if (e->name[0])
+        snprintf(dir, sizeof dir, "out/%s", e->name);
+    else
+        dir[0] = 0;   /* an empty name: refused by folder_open, never out/ itself */
+    if (o->device >= 0 && !run_probe_device(o->device, err, sizeof err)) {
+        fprintf(stderr, "shadesweep run: %s\n", err);
+        return 2;
+    }
+    sweep_meta sm;
+    output_sweep_meta_of(e, o->shard, o->nshards, p->nruns, &sm);
+    folder fo;
+    if (!folder_open(&fo, dir, force ? FOLDER_FORCE : o->resume ? FOLDER_RESUME : FOLDER_NEW,
+                     &sm, err, sizeof err)) {
+        fprintf(stderr, "shadesweep run: %s\n", err);
+        return 2;
+    }
+    o->out_dir = dir;
+    int rc = run_plan(e, p, o);
+    o->out_dir = NULL;
+    if (rc != 2 && !(o->round && rc != 0)) {
+        /* the answer (runner/summary_md.c): on stdout and as summary.md, written while
+         * the folder is still ours; a problem with it changes no exit status */
+        char terr[600];
+        fprintf(stderr, "results: %s/summary.csv\n", dir);
+        fflush(stderr);
+        if (!summary_table_write(dir, stdout, terr, sizeof terr))
+            fprintf(stderr, "shadesweep: no summary table: %s\n", terr);
+        fflush(stdout);
+    }
+    folder_close(&fo, rc == 2);
+    return rc;
+}

@@ -1,0 +1,260 @@
+/* A run's files merged from its trials' folders (trials.h). */
+#define _DEFAULT_SOURCE
+#include "runner/trials.h"
+
+#include <errno.h>
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+#include <unistd.h>
+
+#include "results/fsutil.h"
+#include "runner/folder.h"
+
+/* The CSVs a trial may have, merged by rows (summary.csv last: the other merges can fail
+ * first without a run that looks summarised). */
+static const char *const csv_parts[] = {
+    "frames.csv", "seconds.csv", "passes.csv", "convergence.csv", "errors.csv",
+    "coverage.csv", "lightgrid.csv", "summary.csv",
+};
+#define NPARTS (sizeof csv_parts / sizeof csv_parts[0])
+
+static void trial_path(char *dst, size_t len, const char *run_dir, uint32_t k, const char *name)
+{
+    snprintf(dst, len, "%s/trial-%u/%s", run_dir, k, name);
+}
+
+/* Copies in to out, without its first line when skip_header (our headers hold no
+ * quoted newline). */
+static bool copy_rows(FILE *in, FILE *out, bool skip_header)
+{
+    int c;
+    if (skip_header)
+        while ((c = getc(in)) != EOF && c != '\n')
+            ;
+    char buf[1 << 16];
+    size_t n;
+    while ((n = fread(buf, 1, sizeof buf, in)) > 0)
+        if (fwrite(buf, 1, n, out) != n)
+            return false;
+    return !ferror(in);
+}
+
+/* run_dir/name from the trials' copies, header once; nothing when no trial has one. */
+static bool merge_csv(const char *run_dir, const char *name, uint32_t n, char *err,
+                      size_t errlen)
+{
+    afile out = {0};
+    bool open = false;
+    char path[4600];
+    for (uint32_t k = 1; k <= n; k++) {
+        trial_path(path, sizeof path, run_dir, k, name);
+        FILE *in = fopen(path, "rb");
+        if (!in) {
+            if (errno == ENOENT)
+                continue;
+            snprintf(err, errlen, "%s: %s", path, strerror(errno));
+            if (open)
+                afile_abort(&out);
+            return false;
+        }
+        if (!open) {
+            char final[4400];
+            snprintf(final, sizeof final, "%s/%s", run_dir, name);
+            if (!afile_open(&out, final, err, errlen)) {
+                fclose(in);
+                return false;
+            }
+        }
+        bool ok = copy_rows(in, out.fp, open);
+        fclose(in);
+        open = true;
+        if (!ok) {
+            snprintf(err, errlen, "%s: cannot copy its rows into the run's %s", path, name);
+            afile_abort(&out);
+            return false;
+        }
+    }
+    return !open || afile_commit(&out, err, errlen);
+}
+
+static bool is_csv_part(const char *name)
+{
+    for (size_t i = 0; i < NPARTS; i++)
+        if (strcmp(name, csv_parts[i]) == 0)
+            return true;
+    return false;
+}
+
+/* The trial's other files (images) linked into the run's folder: the trial folder keeps
+ * its own, so that a merge cut off here can be done again. Their names carry the trial. */
+static bool link_files(const char *run_dir, uint32_t k, char *err, size_t errlen)
+{
+    char list[4600];
+    trial_path(list, sizeof list, run_dir, k, "files.txt");
+    size_t len;
+    int e;
+    char *text = fs_read_all(list, 0, &len, &e);
+    if (!text) {
+        snprintf(err, errlen, "%s: %s", list, strerror(e));
+        return false;
+    }
+    bool ok = true;
+    char *save = NULL;
+    for (char *line = strtok_r(text, "\n", &save); ok && line; line = strtok_r(NULL, "\n", &save)) {
+        char name[256];
+        if (line[0] == '#' || sscanf(line, "%255s", name) != 1 || is_csv_part(name) ||
+            strcmp(name, "meta.yaml") == 0)
+            continue;
+        char src[4600], dst[4600];
+        trial_path(src, sizeof src, run_dir, k, name);
+        snprintf(dst, sizeof dst, "%s/%s", run_dir, name);
+        if (link(src, dst) != 0 && !(errno == EEXIST && unlink(dst) == 0 && link(src, dst) == 0)) {
+            snprintf(err, errlen, "%s: cannot link it into the run's folder: %s", src,
+                     strerror(errno));
+            ok = false;
+        }
+    }
+    free(text);
+    return ok;
+}
+
+/* The value of a top-level `key: value` line of a meta.yaml text (as written, quotes and
+ * all), or "" when absent. */
+static void top_value(const char *text, const char *key, char *out, size_t len)
+{
+    size_t kl = strlen(key);
+    out[0] = 0;
+    for (const char *line = text; line && *line; line = strchr(line, '\n') ? strchr(line, '\n') + 1 : NULL) {
+        if (strncmp(line, key, kl) == 0 && line[kl] == ':' && line[kl + 1] == ' ') {
+            const char *v = line + kl + 2, *end = strchr(v, '\n');
+            size_t n = end ? (size_t)(end - v) : strlen(v);
+            snprintf(out, len, "%.*s", (int)(n < len ? n : len - 1), v);
+            return;
+        }
+    }
+}
+
+static char *read_meta(const char *run_dir, uint32_t k, char *err, size_t errlen)
+{
+    char path[4600];
+    trial_path(path, sizeof path, run_dir, k, "meta.yaml");
+    size_t len;
+    int e;
+    char *text = fs_read_all(path, 1u << 24, &len, &e);
+    if (!text)
+        snprintf(err, errlen, "%s: %s", path, strerror(e));
+    return text;
+}
+
+/* A double-quoted YAML scalar of s. */
+static void put_quoted(FILE *f, const char *s)
+{
+    fputc('"', f);
+    for (; *s; s++) {
+        unsigned char c = (unsigned char)*s;
+        if (c == '"' || c == '\\')
+            fprintf(f, "\\%c", c);
+        else if (c < 0x20)
+            fprintf(f, "\\x%02x", c);
+        else
+            fputc(c, f);
+    }
+    fputc('"', f);
+}
+
+/* meta.yaml: trial 1's with the run's status and the last trial's end, then how the
+ * trials were scheduled and what became of each. */
+static bool merge_meta(const char *run_dir, uint32_t n, const char *status,
+                       const trials_schedule *sched, char *err, size_t errlen)
+{
+    char *first = read_meta(run_dir, 1, err, errlen);
+    if (!first)
+        return false;
+    char *last = n > 1 ? read_meta(run_dir, n, err, errlen) : NULL;
+    if (n > 1 && !last) {
+        free(first);
+        return false;
+    }
+    char finished[128];
+    top_value(last ? last : first, "finished", finished, sizeof finished);
+    free(last);
+
+    char final[4400];
+    snprintf(final, sizeof final, "%s/meta.yaml", run_dir);
+    afile out;
+    if (!afile_open(&out, final, err, errlen)) {
+        free(first);
+        return false;
+    }
+    for (char *line = first; *line;) {
+        char *nl = strchr(line, '\n');
+        size_t len = nl ? (size_t)(nl - line) + 1 : strlen(line);
+        if (strncmp(line, "status: ", 8) == 0) {
+            fputs("status: ", out.fp);
+            put_quoted(out.fp, status);
+            fputc('\n', out.fp);
+        } else if (strncmp(line, "finished: ", 10) == 0 && finished[0]) {
+            fprintf(out.fp, "finished: %s\n", finished);
+        } else {
+            fwrite(line, 1, len, out.fp);
+        }
+        line += len;
+    }
+    free(first);
+    fprintf(out.fp, "schedule:\n  mode: %s\n  seed: %u\n  point: %zu\n", sched->mode,
+            sched->seed, sched->point);
+    fputs("trials:\n", out.fp);
+    bool ok = true;
+    for (uint32_t k = 1; ok && k <= n; k++) {
+        char *m = read_meta(run_dir, k, err, errlen);
+        if (!m) {
+            ok = false;
+            break;
+        }
+        char st[160], started[128], fin[128];
+        top_value(m, "status", st, sizeof st);
+        top_value(m, "started", started, sizeof started);
+        top_value(m, "finished", fin, sizeof fin);
+        free(m);
+        fprintf(out.fp, "  - trial: %u\n    order: %u\n    status: %s\n    started: %s\n"
+                "    finished: %s\n", k, sched->order ? sched->order[k - 1] : 0,
+                st[0] ? st : "\"\"", started[0] ? started : "\"\"", fin[0] ? fin : "\"\"");
+    }
+    if (!ok) {
+        afile_abort(&out);
+        return false;
+    }
+    return afile_commit(&out, err, errlen);
+}
+
+bool trials_merge(const char *out_dir, const char *id, uint32_t n, const char *status,
+                  const trials_schedule *sched, char *err, size_t errlen)
+{
+    char run_dir[4200];
+    snprintf(run_dir, sizeof run_dir, "%s/runs/%s", out_dir, id);
+    /* files.txt first: a run cut off while merging is never taken for complete */
+    char path[4400];
+    snprintf(path, sizeof path, "%s/files.txt", run_dir);
+    if (unlink(path) != 0 && errno != ENOENT) {
+        snprintf(err, errlen, "%s: %s", path, strerror(errno));
+        return false;
+    }
+    for (size_t i = 0; i < NPARTS; i++)
+        if (!merge_csv(run_dir, csv_parts[i], n, err, errlen))
+            return false;
+    for (uint32_t k = 1; k <= n; k++)
+        if (!link_files(run_dir, k, err, errlen))
+            return false;
+    if (!merge_meta(run_dir, n, status, sched, err, errlen) ||
+        !folder_write_run_files(run_dir, err, errlen))
+        return false;
+    /* complete: the trial folders are no longer needed (a failure to remove one is
+     * harmless: --force and a rerun remove them) */
+    for (uint32_t k = 1; k <= n; k++) {
+        char dir[4400], why[512];
+        snprintf(dir, sizeof dir, "%s/trial-%u", run_dir, k);
+        folder_clear_run(dir, why, sizeof why);
+    }
+    return true;
+}
