@@ -60,7 +60,7 @@ const metric_doc metric_docs[] = {
     {METRIC_CAT(METRIC_FRAMES_NAME_, frames)(#field), #trial, #slot,                          \
      METRIC_AGG_TEXT_##agg, unit, none, doc},
 #define FRAME_STAT(field, agg, with, trial, sprec, slot, unit, none, doc) \
-    {"", #trial, #slot, METRIC_AGG_TEXT_##agg " of " #field, unit, none, doc},
+    {"", #trial, #slot, METRIC_AGG_TEXT_##agg, unit, none, doc},
 #define FRAME_DERIVED(name, frames, fexpr, fprec, sexpr, sprec, slot, unit, none, doc) \
     {METRIC_CAT(METRIC_FRAMES_NAME_, frames)(#name), #name, #slot, "derived", unit, none, doc},
 #define TRIAL_METRIC(trial, sprec, from, slot, unit, none, doc) \

@@ -236,7 +236,7 @@ static void add_max_finite(metric_sum *s, double x, bool has)
         s->max = x;
 }
 
-static inline void add_p50(quantile_sketch *q, double x, bool has)
+static void add_p50(quantile_sketch *q, double x, bool has)
 {
     if (has)
         qs_add(q, x);
@@ -269,7 +269,7 @@ static double end_max_finite(metric_sum *s, size_t n)
     (void)n;
     return s->n ? s->max : NAN;
 }
-static inline double end_p50(quantile_sketch *q, size_t n)
+static double end_p50(quantile_sketch *q, size_t n)
 {
     (void)n;
     return qs_percentile(q, 50.0);

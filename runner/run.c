@@ -21,6 +21,7 @@
 #include "renderers/renderer.h"
 #include "results/fsutil.h"
 #include "results/image_io.h"
+#include "results/contention.h"
 #include "results/image_ref.h"
 #include "results/stats.h"
 #include "results/stream_stats.h"
@@ -494,10 +495,17 @@ static bool capture_is_due(const run_params *p, double t, const bool *shot_done,
 }
 
 /* A measured frame's quantities of results/metrics.def, each from its `from`. */
-static void frame_metrics_of(frame_record *r, const frame_stats *fs, const gbuffer_traffic *gt)
+static void frame_metrics_of(frame_record *r, const frame_stats *fs, const gbuffer_traffic *gt,
+                             const frame_cpu *cpu)
 {
-    (void)gt;
 #define FRAME_METRIC(field, type, frames, fprec, from, ...) r->field = (from);
+#include "results/metrics.def"
+}
+
+/* A trial's TRIAL_METRICs of results/metrics.def, each from its `from`. */
+static void trial_metrics_of(metric_totals *m, const contention_trial *ctn)
+{
+#define TRIAL_METRIC(trial, sprec, from, ...) m->trial = (from);
 #include "results/metrics.def"
 }
 
@@ -516,6 +524,9 @@ static void run_trial(run_state *st, uint32_t trial, trial_result *tr)
     tr->image_edge_rmse = tr->image_edge_pixels = NAN;
     metric_totals_none(&tr->m);
     snprintf(tr->status, sizeof tr->status, "ok");
+    /* how much of the machine the trial got (results/contention.h) */
+    double loadavg = contention_loadavg_1m();
+    unsigned ncpus = contention_usable_cpus();
 
     double w0 = progress_now();
     for (size_t k = 0; !span_done(&p->warmup, k, progress_now() - w0); k++) {
@@ -541,12 +552,17 @@ static void run_trial(run_state *st, uint32_t trial, trial_result *tr)
     double harness_s = 0, t_end = 0, start = 0, t_last = 0;
     size_t n = 0;
     measured_clock mc;
+    contention_sample c0, c1;
+    contention_sample_now(&c0);
+    /* the process CPU clock, read next to each frame's two ends (outside them) */
+    double cpu0 = contention_process_cpu_s();
     mclock_start(&mc);
     for (size_t k = 0;; k++) {
         double t = schedule_time(p, k, start);
         t_last = t;
         bool ok = draw_frame(st, t, &fs, true);
         double end = mclock_now(&mc);
+        double cpu1 = contention_process_cpu_s();
         if (!ok) {
             snprintf(tr->status, sizeof tr->status, "failed:sync");
             fprintf(stderr, "run %s: %s\n", st->s->id, st->err);
@@ -572,7 +588,8 @@ static void run_trial(run_state *st, uint32_t trial, trial_result *tr)
             .lights = st->sc->nlights_active,
             .frametime_us = (end - start) * 1e6,
         };
-        frame_metrics_of(&rec, &fs, &gt);
+        frame_cpu cpu = contention_frame_cpu(cpu0, cpu1, rec.frametime_us, ncpus);
+        frame_metrics_of(&rec, &fs, &gt, &cpu);
         t_end = end;
         n++;
         trial_stream_add(st->stream, &rec);
@@ -592,9 +609,11 @@ static void run_trial(run_state *st, uint32_t trial, trial_result *tr)
         progress_tick(st->pg, trial, rec.lights, (double)(k + 1) / end);
         if (span_done(&p->duration, k + 1, end))
             break;
+        cpu0 = contention_process_cpu_s();
         start = mclock_now(&mc);
         harness_s += start - end;
     }
+    contention_sample_now(&c1);
     st->paused_s += mc.paused;
 
     /* A time the trial never reached (a wall clock counting frames, a fixed clock
@@ -632,6 +651,9 @@ static void run_trial(run_state *st, uint32_t trial, trial_result *tr)
     tr->measured_s = t_end;
     tr->fps_mean = t_end > 0 ? (double)n / t_end : NAN;
     tr->m = tt.m;
+    contention_trial ctn;
+    contention_between(&c0, &c1, loadavg, &ctn);
+    trial_metrics_of(&tr->m, &ctn);
     tr->lights_max = tt.lights_max;
     tr->ci1pct_after_s = tt.ci_converged_after_s;
     tr->harness_us_mean = n ? harness_s * 1e6 / (double)n : NAN;
