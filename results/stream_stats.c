@@ -180,6 +180,115 @@ double bp_ci95(const batch_prefix *b, const moments *m)
     return stats_t975(STATS_BATCHES - 1) * sd / sqrt((double)STATS_BATCHES);
 }
 
+/* ---- the quantities of results/metrics.def ------------------------------------------ */
+
+/* One statistic's state, by its `agg`: a sum (MEAN, MEAN_FINITE), a maximum
+ * (MAX_FINITE), each with the frames counted; a quantile sketch (P50). */
+typedef struct metric_sum {
+    double sum, max;
+    size_t n;
+} metric_sum;
+
+#define METRIC_STATE_MEAN metric_sum
+#define METRIC_STATE_MEAN_FINITE metric_sum
+#define METRIC_STATE_MAX_FINITE metric_sum
+#define METRIC_STATE_P50 quantile_sketch
+
+typedef struct metric_acc {
+#define FRAME_METRIC(field, type, frames, fprec, from, agg, with, trial, ...) \
+    METRIC_STATE_##agg trial;
+#define FRAME_STAT(field, agg, with, trial, ...) METRIC_STATE_##agg trial;
+#include "results/metrics.def"
+} metric_acc;
+
+static void sum_reset(metric_sum *s) { *s = (metric_sum){0}; }
+#define METRIC_RESET_MEAN sum_reset
+#define METRIC_RESET_MEAN_FINITE sum_reset
+#define METRIC_RESET_MAX_FINITE sum_reset
+#define METRIC_RESET_P50 qs_reset
+
+static void metric_acc_reset(metric_acc *a)
+{
+#define FRAME_METRIC(field, type, frames, fprec, from, agg, with, trial, ...) \
+    METRIC_RESET_##agg(&a->trial);
+#define FRAME_STAT(field, agg, with, trial, ...) METRIC_RESET_##agg(&a->trial);
+#include "results/metrics.def"
+}
+
+/* x: the frame's value; has: whether the frame has one (it and `with` finite) */
+static void add_mean(metric_sum *s, double x, bool has)
+{
+    (void)has;
+    s->sum += x;
+}
+
+static void add_mean_finite(metric_sum *s, double x, bool has)
+{
+    if (has) {
+        s->sum += x;
+        s->n++;
+    }
+}
+
+static void add_max_finite(metric_sum *s, double x, bool has)
+{
+    if (has && (s->n++ == 0 || x > s->max))
+        s->max = x;
+}
+
+static void add_p50(quantile_sketch *q, double x, bool has)
+{
+    if (has)
+        qs_add(q, x);
+}
+#define METRIC_ADD_MEAN add_mean
+#define METRIC_ADD_MEAN_FINITE add_mean_finite
+#define METRIC_ADD_MAX_FINITE add_max_finite
+#define METRIC_ADD_P50 add_p50
+
+static void metric_acc_add(metric_acc *a, const frame_record *r)
+{
+#define FRAME_METRIC(field, type, frames, fprec, from, agg, with, trial, ...) \
+    METRIC_ADD_##agg(&a->trial, (double)r->field,                            \
+                     isfinite((double)r->field) && isfinite((double)r->with));
+#define FRAME_STAT(field, agg, with, trial, ...)                                         \
+    METRIC_ADD_##agg(&a->trial, (double)r->field, \
+                     isfinite((double)r->field) && isfinite((double)r->with));
+#include "results/metrics.def"
+}
+
+/* n: the trial's frames */
+static double end_mean(metric_sum *s, size_t n) { return n ? s->sum / (double)n : NAN; }
+static double end_mean_finite(metric_sum *s, size_t n)
+{
+    (void)n;
+    return s->n ? s->sum / (double)s->n : NAN;
+}
+static double end_max_finite(metric_sum *s, size_t n)
+{
+    (void)n;
+    return s->n ? s->max : NAN;
+}
+static double end_p50(quantile_sketch *q, size_t n)
+{
+    (void)n;
+    return qs_percentile(q, 50.0);
+}
+#define METRIC_END_MEAN end_mean
+#define METRIC_END_MEAN_FINITE end_mean_finite
+#define METRIC_END_MAX_FINITE end_max_finite
+#define METRIC_END_P50 end_p50
+
+/* The trial's values; the TRIAL_METRICs (the runner measures them) NAN. */
+static void metric_acc_end(metric_acc *a, size_t n, metric_totals *m)
+{
+    metric_totals_none(m);
+#define FRAME_METRIC(field, type, frames, fprec, from, agg, with, trial, ...) \
+    m->trial = METRIC_END_##agg(&a->trial, n);
+#define FRAME_STAT(field, agg, with, trial, ...) m->trial = METRIC_END_##agg(&a->trial, n);
+#include "results/metrics.def"
+}
+
 /* ---- a trial ------------------------------------------------------------------------ */
 
 /* Bins are not made beyond this second (as stats_bin_seconds refuses them). */
@@ -202,14 +311,7 @@ struct trial_stream {
     moments ft;
     quantile_sketch q;
     batch_prefix bp;
-    double gpu, dc, sc, frag, samp, disp;
-    double cmean, cmax, evals;   /* light grids */
-    size_t ngrid;
-    double gbw, gbr;             /* G-buffer bytes written / read (seed 002) */
-    size_t ngb;
-    double shaded, edges;        /* msaa: samples shaded; edge fractions */
-    size_t nedges;
-    size_t ngpu;
+    metric_acc acc;             /* results/metrics.def's frame quantities */
     unsigned lmax;
     double last_t;
 
@@ -285,14 +387,7 @@ void trial_stream_begin(trial_stream *ts, double rel, second_sink on_second,
     ts->ft = (moments){0};
     qs_reset(&ts->q);
     bp_reset(&ts->bp);
-    ts->gpu = ts->dc = ts->sc = ts->frag = ts->samp = ts->disp = 0;
-    ts->cmean = ts->cmax = ts->evals = 0;
-    ts->ngrid = 0;
-    ts->gbw = ts->gbr = 0;
-    ts->ngb = 0;
-    ts->shaded = ts->edges = 0;
-    ts->nedges = 0;
-    ts->ngpu = 0;
+    metric_acc_reset(&ts->acc);
     ts->lmax = 0;
     ts->last_t = 0;
     qs_reset(&ts->bin.q);
@@ -333,31 +428,7 @@ void trial_stream_add(trial_stream *ts, const frame_record *r)
     moments_add(&ts->ft, r->frametime_us);
     qs_add(&ts->q, r->frametime_us);
     bp_add(&ts->bp, r->frametime_us);
-    if (isfinite(r->gpu_us)) {
-        ts->gpu += r->gpu_us;
-        ts->ngpu++;
-    }
-    ts->dc += (double)r->draw_calls;
-    ts->sc += (double)r->state_changes;
-    ts->frag += r->fragments;
-    ts->samp += r->samples;
-    ts->shaded += r->samples_shaded;
-    if (isfinite(r->edge_fraction)) {
-        ts->edges += r->edge_fraction;
-        ts->nedges++;
-    }
-    ts->disp += (double)r->dispatches;
-    if (isfinite(r->cell_lights_mean)) {
-        ts->cmean += r->cell_lights_mean;
-        ts->evals += r->light_evals_per_pixel;
-        if (ts->ngrid++ == 0 || r->cell_lights_max > ts->cmax)
-            ts->cmax = r->cell_lights_max;
-    }
-    if (isfinite(r->gbuffer_write_bytes) && isfinite(r->gbuffer_read_bytes)) {
-        ts->gbw += r->gbuffer_write_bytes;
-        ts->gbr += r->gbuffer_read_bytes;
-        ts->ngb++;
-    }
+    metric_acc_add(&ts->acc, r);
     if (r->lights > ts->lmax)
         ts->lmax = r->lights;
     if (t > ts->last_t)
@@ -399,18 +470,6 @@ void trial_stream_end(trial_stream *ts, double t_end, trial_totals *out)
     out->ft.p99 = qs_percentile(&ts->q, 99.0);
     out->ft_ci95 = bp_ci95(&ts->bp, &ts->ft);
     out->ci_converged_after_s = n ? ts->converged_since : NAN;
-    out->gpu_mean_us = ts->ngpu ? ts->gpu / (double)ts->ngpu : NAN;
-    out->draw_calls_mean = n ? ts->dc / (double)n : NAN;
-    out->state_changes_mean = n ? ts->sc / (double)n : NAN;
-    out->fragments_mean = n ? ts->frag / (double)n : NAN;
-    out->samples_mean = n ? ts->samp / (double)n : NAN;
-    out->dispatches_mean = n ? ts->disp / (double)n : NAN;
-    out->cell_lights_mean = ts->ngrid ? ts->cmean / (double)ts->ngrid : NAN;
-    out->cell_lights_max = ts->ngrid ? ts->cmax : NAN;
-    out->light_evals_per_pixel_mean = ts->ngrid ? ts->evals / (double)ts->ngrid : NAN;
-    out->gbuffer_write_bytes_mean = ts->ngb ? ts->gbw / (double)ts->ngb : NAN;
-    out->gbuffer_read_bytes_mean = ts->ngb ? ts->gbr / (double)ts->ngb : NAN;
-    out->samples_shaded_mean = n ? ts->shaded / (double)n : NAN;
-    out->edge_fraction_mean = ts->nedges ? ts->edges / (double)ts->nedges : NAN;
+    metric_acc_end(&ts->acc, n, &out->m);
     out->lights_max = ts->lmax;
 }

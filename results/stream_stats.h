@@ -76,19 +76,8 @@ typedef struct trial_totals {
     sample_summary ft;          /* frame time, us */
     double ft_ci95;
     double ci_converged_after_s;   /* stats_converged_after(points, rel); NAN: never */
-    double gpu_mean_us;         /* over the frames that have one; NAN: none */
-    double draw_calls_mean, state_changes_mean, fragments_mean;   /* NAN with no frames */
-    double samples_mean;        /* GL_SAMPLES_PASSED of the shading draws; NAN as fragments */
-    double dispatches_mean;     /* compute dispatches; NAN with no frames */
-    /* the light grid of the tiled and clustered renderers, over the frames that built
-     * one (NAN: none): mean and largest list length, light evaluations per pixel */
-    double cell_lights_mean, cell_lights_max, light_evals_per_pixel_mean;
-    /* seed 002's G-buffer bytes per frame, written and read, over the frames that have
-     * them (NAN: none, i.e. no G-buffer) */
-    double gbuffer_write_bytes_mean, gbuffer_read_bytes_mean;
-    /* msaa: samples shaded per frame (NAN as fragments), and deferred's edge-pixel
-     * fraction over the frames that have one (NAN: none) */
-    double samples_shaded_mean, edge_fraction_mean;
+    metric_totals m;            /* results/metrics.def's summary columns: each entry's
+                                 * aggregate (its `agg`); TRIAL_METRICs NAN (the runner's) */
     unsigned lights_max;
 } trial_totals;
 

@@ -1,4 +1,5 @@
 #include "runner/cli.h"
+#include "runner/columns.h"
 #include "runner/commands.h"
 #include "runner/summary_md.h"
 
@@ -51,6 +52,8 @@ static const char usage_text[] =
     "  report [OPTIONS] DIR...    the report over output folders (Python)\n"
     "  params [--markdown|--bash]  every manifest key: type, default, range, the renderers\n"
     "                             that read it (docs/manifest.md is --markdown)\n"
+    "  columns [--markdown]       the columns of frames.csv and summary.csv and what each\n"
+    "                             measured one is (docs/columns.md is --markdown)\n"
     "  --version, --help          (COMMAND --help: that command's options)\n"
     "\n"
     "exit status: 0 all runs succeeded; 1 some run failed (summary.csv says which);\n"
@@ -392,6 +395,23 @@ static int cmd_params(int argc, char **argv)
     return 0;
 }
 
+/* `shadesweep columns [--markdown]`: the columns of results/metrics.def and around
+ * them (docs/columns.md is the markdown). */
+static int cmd_columns(int argc, char **argv)
+{
+    bool markdown = false;
+    for (int i = 1; i < argc; i++) {
+        if (strcmp(argv[i], "--markdown") == 0) {
+            markdown = true;
+        } else {
+            fprintf(stderr, "shadesweep columns: unexpected argument '%s'\n", argv[i]);
+            return 2;
+        }
+    }
+    columns_print(stdout, markdown);
+    return 0;
+}
+
 static int cmd_merge(int argc, char **argv)
 {
     cli_opts o;
@@ -444,6 +464,8 @@ int cli_main(int argc, char **argv)
         return cmd_merge(argc - 1, argv + 1);
     if (strcmp(cmd, "params") == 0)
         return cmd_params(argc - 1, argv + 1);
+    if (strcmp(cmd, "columns") == 0)
+        return cmd_columns(argc - 1, argv + 1);
     if (strcmp(cmd, "compare") == 0)
         return cmd_compare(argc - 1, argv + 1);
     if (strcmp(cmd, "report") == 0)

@@ -12,28 +12,32 @@
 #include "runner/folder.h"
 #include "runner/yamldoc.h"
 
+/* The columns of results/metrics.def go in three slots (metrics.def: S1, S2, S3). */
 const char *const summary_columns[] = {
     "experiment", "run_id", "renderer", "scene", "width", "height", "gbuffer",
     "lights_placement", "lights_rng", "lights_seed", "lights_count", "lights_radius",
     "trial", "frames", "measured_s", "fps_mean", "frametime_mean_us", "frametime_sd_us",
-    "frametime_ci95_us", "frametime_p50_us", "frametime_p99_us", "fps_1pct_low", "gpu_mean_us",
-    "draw_calls_mean", "state_changes_mean", "fragments_mean", "samples_mean",
+    "frametime_ci95_us", "frametime_p50_us", "frametime_p99_us", "fps_1pct_low",
+#define METRIC_WANT S1
+#include "results/metric_names.inc"
     "gbuffer_bytes",
     "image_rmse", "image_psnr_db", "image_max_abs", "nonfinite_pixels", "harness_us_mean",
-    "ci1pct_after_s", "dispatches_mean", "cell_lights_mean", "cell_lights_max",
-    "light_evals_per_pixel",
-    "gbuffer_bytes_per_frame", "gbuffer_write_bytes_mean", "gbuffer_read_bytes_mean",
+    "ci1pct_after_s",
+#define METRIC_WANT S2
+#include "results/metric_names.inc"
     "image_edge_rmse", "image_edge_pixels",
-    "samples_shaded_mean", "edge_fraction_mean",
+#define METRIC_WANT S3
+#include "results/metric_names.inc"
     "status", "message",
 };
 const size_t summary_ncolumns = sizeof summary_columns / sizeof summary_columns[0];
 
-static const char *const frames_columns[] = {
-    "run_id", "trial", "frame", "t_wall_s", "t_scene_s", "lights", "frametime_us", "gpu_us",
-    "draw_calls", "state_changes", "fragments", "samples",
-    "gbuffer_bytes_per_frame", "gbuffer_write_bytes", "gbuffer_read_bytes",
+const char *const frames_columns[] = {
+    "run_id", "trial", "frame", "t_wall_s", "t_scene_s", "lights", "frametime_us",
+#define METRIC_WANT_FRAMES
+#include "results/metric_names.inc"
 };
+const size_t frames_ncolumns = sizeof frames_columns / sizeof frames_columns[0];
 static const char *const seconds_columns[] = {
     "run_id", "trial", "second", "complete", "lights_min", "lights_max", "frames", "fps",
     "frametime_mean_us", "frametime_sd_us", "frametime_p50_us", "frametime_p99_us",
@@ -109,7 +113,7 @@ bool run_files_open(run_files *f, const char *run_dir, const run_params *p, char
 {
     memset(f, 0, sizeof *f);
     if (p->out_frames) {
-        if (!(f->frames = open_in(run_dir, "frames.csv", frames_columns, NCOLS(frames_columns),
+        if (!(f->frames = open_in(run_dir, "frames.csv", frames_columns, frames_ncolumns,
                                   err, errlen)) ||
             !(f->passes = open_in(run_dir, "passes.csv", passes_columns, NCOLS(passes_columns),
                                   err, errlen)))
@@ -141,15 +145,7 @@ void run_files_frame(run_files *f, const char *run_id, uint32_t trial, const fra
     csv_f64(w, r->t_scene_s, 6);
     csv_u64(w, r->lights);
     csv_f64(w, r->frametime_us, 3);
-    csv_f64(w, r->gpu_us, 3);
-    csv_u64(w, r->draw_calls);
-    csv_u64(w, r->state_changes);
-    csv_f64(w, r->fragments, 0);
-    csv_f64(w, r->samples, 0);
-    /* seed 002's G-buffer traffic: empty for renderers without a G-buffer */
-    csv_f64(w, r->gbuffer_write_bytes + r->gbuffer_read_bytes, 0);
-    csv_f64(w, r->gbuffer_write_bytes, 0);
-    csv_f64(w, r->gbuffer_read_bytes, 0);
+    metrics_write_frame(w, r);   /* results/metrics.def */
     csv_end_row(w);
 
     for (size_t i = 0; i < fs->npasses; i++) {
@@ -406,11 +402,7 @@ bool output_write_run_summary(const char *run_dir, const experiment *e, const ru
         csv_f64(w, r->ft.p99, 3);
         /* the "1% low": the rate of the slowest 1% of frames, 1e6 / p99 frame time */
         csv_f64(w, r->ft.p99 > 0 ? 1e6 / r->ft.p99 : NAN, 3);
-        csv_f64(w, r->gpu_mean_us, 3);
-        csv_f64(w, r->draw_calls_mean, 3);
-        csv_f64(w, r->state_changes_mean, 3);
-        csv_f64(w, r->fragments_mean, 1);
-        csv_f64(w, r->samples_mean, 1);
+        metrics_write_summary(w, &r->m, METRIC_SLOT_S1);
         csv_u64(w, pp->gbuffer_bytes);
         /* Image error: empty unless the manifest names a reference (error:). */
         csv_g(w, r->image_rmse);
@@ -424,17 +416,10 @@ bool output_write_run_summary(const char *run_dir, const experiment *e, const ru
             csv_str(w, "never");
         else
             csv_f64(w, r->ci1pct_after_s, 6);   /* as convergence.csv's elapsed_s */
-        csv_f64(w, r->dispatches_mean, 3);
-        csv_f64(w, r->cell_lights_mean, 3);
-        csv_f64(w, r->cell_lights_max, 0);
-        csv_f64(w, r->light_evals_per_pixel_mean, 3);
-        csv_f64(w, r->gbuffer_write_bytes_mean + r->gbuffer_read_bytes_mean, 1);
-        csv_f64(w, r->gbuffer_write_bytes_mean, 1);
-        csv_f64(w, r->gbuffer_read_bytes_mean, 1);
+        metrics_write_summary(w, &r->m, METRIC_SLOT_S2);
         csv_g(w, r->image_edge_rmse);
         csv_f64(w, r->image_edge_pixels, 0);
-        csv_f64(w, r->samples_shaded_mean, 1);
-        csv_f64(w, r->edge_fraction_mean, 6);
+        metrics_write_summary(w, &r->m, METRIC_SLOT_S3);
         csv_str(w, r->status);
         csv_str(w, strcmp(r->status, "ok") == 0 ? "" : message);
         csv_end_row(w);

@@ -12,6 +12,7 @@
 #include <stddef.h>
 #include "results/csv.h"
 #include "results/image_io.h"
+#include "results/metrics.h"
 #include "results/record.h"
 #include "results/stats.h"
 #include "renderers/renderer.h"
@@ -19,6 +20,8 @@
 
 extern const char *const summary_columns[];
 extern const size_t summary_ncolumns;
+extern const char *const frames_columns[];
+extern const size_t frames_ncolumns;
 
 bool output_write_plan(const char *out_dir, const plan *p, char *err, size_t errlen);
 
@@ -83,15 +86,7 @@ typedef struct trial_result {
     double fps_mean;           /* frames / measured_s */
     sample_summary ft;         /* frame time, us */
     double ft_ci95;            /* half-width, us (batch means) */
-    double gpu_mean_us, draw_calls_mean, state_changes_mean, fragments_mean, samples_mean;
-    /* compute dispatches per frame; over the frames, the mean of the mean and the
-     * largest light-list length per tile/cluster, the mean light evaluations per
-     * shaded pixel (NAN: the renderer has no light grid) */
-    double dispatches_mean, cell_lights_mean, cell_lights_max, light_evals_per_pixel_mean;
-    /* seed 002's G-buffer bytes per frame written and read (NAN: no G-buffer) */
-    double gbuffer_write_bytes_mean, gbuffer_read_bytes_mean;
-    /* msaa: samples shaded per frame; deferred's edge-pixel fraction (NAN: none) */
-    double samples_shaded_mean, edge_fraction_mean;
+    metric_totals m;           /* results/metrics.def's summary columns (NAN: empty) */
     double harness_us_mean;    /* runner bookkeeping between frames, us */
     double ci1pct_after_s;     /* the CI stayed within 1% of the mean from then on; NAN: never */
     unsigned gpu_dropped;      /* pass GPU times longer than their frame, made NAN (run.c) */

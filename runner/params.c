@@ -400,7 +400,7 @@ static void print_bash(FILE *out)
           "_shadesweep() {\n"
           "  local cur=${COMP_WORDS[COMP_CWORD]} cmd=${COMP_WORDS[1]}\n"
           "  local prev=${COMP_WORDS[COMP_CWORD-1]}\n"
-          "  local commands=\"run validate list info merge params report compare\"\n"
+          "  local commands=\"run validate list info merge params columns report compare\"\n"
           "  local keys=\"",
           out);
     for (size_t i = 0; i < NPARAMS; i++)
@@ -432,6 +432,7 @@ static void print_bash(FILE *out)
           "    validate) opts=\"--help\" ;;\n"
           "    params) opts=\"--markdown --bash --help\"\n"
           "      COMPREPLY=($(compgen -W \"$opts $keys\" -- \"$cur\")); return ;;\n"
+          "    columns) opts=\"--markdown --help\" ;;\n"
           "    compare) opts=\"--threshold --csv --md --help\" ;;\n"
           "    report) opts=\"--help\" ;;\n"
           "  esac\n"

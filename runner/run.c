@@ -19,6 +19,7 @@
 #include "renderers/deferred.h"
 #include "renderers/gl/loader.h"
 #include "renderers/renderer.h"
+#include "results/contention.h"
 #include "results/fsutil.h"
 #include "results/image_io.h"
 #include "results/image_ref.h"
@@ -502,6 +503,21 @@ static bool capture_is_due(const run_params *p, double t, const bool *shot_done,
     return false;
 }
 
+/* A measured frame's quantities of results/metrics.def, each from its `from`. */
+static void frame_metrics_of(frame_record *r, const frame_stats *fs, const gbuffer_traffic *gt,
+                             const frame_cpu *cpu)
+{
+#define FRAME_METRIC(field, type, frames, fprec, from, ...) r->field = (from);
+#include "results/metrics.def"
+}
+
+/* A trial's TRIAL_METRICs of results/metrics.def, each from its `from`. */
+static void trial_metrics_of(metric_totals *m, const contention_trial *ctn)
+{
+#define TRIAL_METRIC(trial, sprec, from, ...) m->trial = (from);
+#include "results/metrics.def"
+}
+
 /* One trial: warm-up (not recorded), then the measured frames. On the measured clock,
  * the time from one frame's end to the next one's start is the harness's (CSV rows,
  * GL error checks, statistics, progress), so measured_s = frames x (frametime_mean_us +
@@ -515,9 +531,11 @@ static void run_trial(run_state *st, uint32_t trial, trial_result *tr)
     tr->trial = trial;
     tr->image_rmse = tr->image_psnr_db = tr->image_max_abs = tr->nonfinite = NAN;
     tr->image_edge_rmse = tr->image_edge_pixels = NAN;
-    tr->gbuffer_write_bytes_mean = tr->gbuffer_read_bytes_mean = NAN;
-    tr->samples_shaded_mean = tr->edge_fraction_mean = NAN;
+    metric_totals_none(&tr->m);
     snprintf(tr->status, sizeof tr->status, "ok");
+    /* how much of the machine the trial got (results/contention.h) */
+    double loadavg = contention_loadavg_1m();
+    unsigned ncpus = contention_usable_cpus();
 
     double w0 = progress_now();
     for (size_t k = 0; !span_done(&p->warmup, k, progress_now() - w0); k++) {
@@ -543,12 +561,17 @@ static void run_trial(run_state *st, uint32_t trial, trial_result *tr)
     double harness_s = 0, t_end = 0, start = 0, t_last = 0;
     size_t n = 0;
     measured_clock mc;
+    contention_sample c0, c1;
+    contention_sample_now(&c0);
+    /* the process CPU clock, read next to each frame's two ends (outside them) */
+    double cpu0 = contention_process_cpu_s();
     mclock_start(&mc);
     for (size_t k = 0;; k++) {
         double t = schedule_time(p, k, start);
         t_last = t;
         bool ok = draw_frame(st, t, &fs, true);
         double end = mclock_now(&mc);
+        double cpu1 = contention_process_cpu_s();
         if (!ok) {
             snprintf(tr->status, sizeof tr->status, "failed:sync");
             fprintf(stderr, "run %s: %s\n", st->s->id, st->err);
@@ -573,20 +596,9 @@ static void run_trial(run_state *st, uint32_t trial, trial_result *tr)
             .t_scene_s = t,
             .lights = st->sc->nlights_active,
             .frametime_us = (end - start) * 1e6,
-            .gpu_us = fs.total.gpu_us,
-            .draw_calls = fs.total.draw_calls,
-            .state_changes = fs.total.state_changes,
-            .fragments = fs.total.fragments,
-            .samples = fs.total.samples,
-            .dispatches = fs.total.dispatches,
-            .cell_lights_mean = fs.grid_lights_mean,
-            .cell_lights_max = fs.grid_lights_max,
-            .light_evals_per_pixel = fs.light_evals_per_pixel,
-            .gbuffer_write_bytes = gt.write_bytes,
-            .gbuffer_read_bytes = gt.read_bytes,
-            .samples_shaded = fs.total.samples_shaded,
-            .edge_fraction = fs.edge_fraction,
         };
+        frame_cpu cpu = contention_frame_cpu(cpu0, cpu1, rec.frametime_us, ncpus);
+        frame_metrics_of(&rec, &fs, &gt, &cpu);
         t_end = end;
         n++;
         trial_stream_add(st->stream, &rec);
@@ -606,9 +618,11 @@ static void run_trial(run_state *st, uint32_t trial, trial_result *tr)
         progress_tick(st->pg, trial, rec.lights, (double)(k + 1) / end);
         if (span_done(&p->duration, k + 1, end))
             break;
+        cpu0 = contention_process_cpu_s();
         start = mclock_now(&mc);
         harness_s += start - end;
     }
+    contention_sample_now(&c1);
     st->paused_s += mc.paused;
 
     /* A time the trial never reached (a wall clock counting frames, a fixed clock
@@ -645,19 +659,10 @@ static void run_trial(run_state *st, uint32_t trial, trial_result *tr)
     tr->frames = n;
     tr->measured_s = t_end;
     tr->fps_mean = t_end > 0 ? (double)n / t_end : NAN;
-    tr->gpu_mean_us = tt.gpu_mean_us;
-    tr->draw_calls_mean = tt.draw_calls_mean;
-    tr->state_changes_mean = tt.state_changes_mean;
-    tr->fragments_mean = tt.fragments_mean;
-    tr->samples_mean = tt.samples_mean;
-    tr->dispatches_mean = tt.dispatches_mean;
-    tr->cell_lights_mean = tt.cell_lights_mean;
-    tr->cell_lights_max = tt.cell_lights_max;
-    tr->light_evals_per_pixel_mean = tt.light_evals_per_pixel_mean;
-    tr->gbuffer_write_bytes_mean = tt.gbuffer_write_bytes_mean;
-    tr->gbuffer_read_bytes_mean = tt.gbuffer_read_bytes_mean;
-    tr->samples_shaded_mean = tt.samples_shaded_mean;
-    tr->edge_fraction_mean = tt.edge_fraction_mean;
+    tr->m = tt.m;
+    contention_trial ctn;
+    contention_between(&c0, &c1, loadavg, &ctn);
+    trial_metrics_of(&tr->m, &ctn);
     tr->lights_max = tt.lights_max;
     tr->ci1pct_after_s = tt.ci_converged_after_s;
     tr->harness_us_mean = n ? harness_s * 1e6 / (double)n : NAN;
@@ -1028,13 +1033,8 @@ static void fill_missing_trials(run_state *st)
         tr->trial = t + 1;
         tr->ft.mean = tr->ft.sd = tr->ft.p50 = tr->ft.p99 = NAN;
         tr->ft_ci95 = tr->fps_mean = tr->measured_s = NAN;
-        tr->gpu_mean_us = tr->draw_calls_mean = tr->state_changes_mean = NAN;
-        tr->dispatches_mean = tr->cell_lights_mean = tr->cell_lights_max = NAN;
-        tr->light_evals_per_pixel_mean = NAN;
-        tr->fragments_mean = tr->harness_us_mean = tr->ci1pct_after_s = NAN;
-        tr->samples_mean = NAN;
-        tr->gbuffer_write_bytes_mean = tr->gbuffer_read_bytes_mean = NAN;
-        tr->samples_shaded_mean = tr->edge_fraction_mean = NAN;
+        tr->harness_us_mean = tr->ci1pct_after_s = NAN;
+        metric_totals_none(&tr->m);
         tr->image_rmse = tr->image_psnr_db = tr->image_max_abs = tr->nonfinite = NAN;
         tr->image_edge_rmse = tr->image_edge_pixels = NAN;
         snprintf(tr->status, sizeof tr->status, "%s",

@@ -4,7 +4,7 @@
 _shadesweep() {
   local cur=${COMP_WORDS[COMP_CWORD]} cmd=${COMP_WORDS[1]}
   local prev=${COMP_WORDS[COMP_CWORD-1]}
-  local commands="run validate list info merge params report compare"
+  local commands="run validate list info merge params columns report compare"
   local keys=" name description scene renderers resolution trials schedule measure measure.metric measure.precision measure.budget measure.seed warmup duration clock step sync timeout gbuffer gbuffer.preset gbuffer.position gbuffer.normal deferred deferred.light_volumes deferred.separate_specular deferred.sky_stencil forward forward.illumination_sets forward.directional_in_base forward.light_buffer tiles tiles.size tiles.max_lights_per_tile clustered clustered.slices clustered.shading shadows hdr msaa fog fog.density fog.colour aa translucency camera camera.radius camera.height camera.period camera.target camera.near camera.far camera.hold error error.reference error.reference.renderer error.reference.gbuffer error.reference.light_volumes error.reference.supersample error.reference.msaa error.at error.max_rmse error.save_images lights lights.placement lights.seed lights.rng lights.count lights.radius lights.overlap lights.color_max lights.attenuation lights.quadratic lights.quadratic.a lights.quadratic.b lights.quadratic.c outputs outputs.frames outputs.seconds outputs.screenshots debug debug.busy_us debug.busy_renderer sweep"
   local sweepable="scene resolution trials warmup duration clock step sync timeout gbuffer.preset gbuffer.position gbuffer.normal deferred.light_volumes deferred.separate_specular deferred.sky_stencil forward.illumination_sets forward.directional_in_base forward.light_buffer tiles.size tiles.max_lights_per_tile clustered.slices clustered.shading shadows hdr msaa fog.density fog.colour aa translucency camera.radius camera.height camera.period camera.target camera.near camera.far camera.hold lights.placement lights.seed lights.rng lights.count lights.radius lights.overlap lights.color_max lights.attenuation lights.quadratic.a lights.quadratic.b lights.quadratic.c"
   if [ "$COMP_CWORD" -eq 1 ]; then
@@ -23,6 +23,7 @@ _shadesweep() {
     validate) opts="--help" ;;
     params) opts="--markdown --bash --help"
       COMPREPLY=($(compgen -W "$opts $keys" -- "$cur")); return ;;
+    columns) opts="--markdown --help" ;;
     compare) opts="--threshold --csv --md --help" ;;
     report) opts="--help" ;;
   esac

@@ -31,10 +31,11 @@ summary_cols = ["experiment","run_id","renderer","scene","width","height","gbuff
   "nonfinite_pixels","harness_us_mean","ci1pct_after_s","dispatches_mean","cell_lights_mean",
   "cell_lights_max","light_evals_per_pixel","gbuffer_bytes_per_frame","gbuffer_write_bytes_mean",
   "gbuffer_read_bytes_mean","image_edge_rmse","image_edge_pixels","samples_shaded_mean",
-  "edge_fraction_mean","status","message"]
+  "edge_fraction_mean","cpu_mean_us","cpu_p50_us","cpu_share_mean","invol_csw","vol_csw",
+  "steal_frac","loadavg_1m","status","message"]
 frames_cols = ["run_id","trial","frame","t_wall_s","t_scene_s","lights","frametime_us",
   "gpu_us","draw_calls","state_changes","fragments","samples","gbuffer_bytes_per_frame",
-  "gbuffer_write_bytes","gbuffer_read_bytes"]
+  "gbuffer_write_bytes","gbuffer_read_bytes","cpu_us","cpu_share"]
 seconds_cols = ["run_id","trial","second","complete","lights_min","lights_max","frames","fps",
   "frametime_mean_us","frametime_sd_us","frametime_p50_us","frametime_p99_us","draw_calls_mean"]
 passes_cols = ["run_id","trial","frame","pass","gpu_us","cpu_us","draw_calls","state_changes",
@@ -87,6 +88,16 @@ for s, want_id in zip(summary, [i for i in ids for _ in (1, 2)]):
     if abs(float(s["fps_1pct_low"]) - 1e6 / p99) > 0.0005 + 1e-6 * 1e6 / p99:
         fail(f"fps_1pct_low {s['fps_1pct_low']} != 1e6 / p99 {p99}")
     if not math.isfinite(float(s["frametime_ci95_us"])): fail("ci95")
+    # how much of the machine the trial got (results/contention.c)
+    for k in ("cpu_mean_us", "cpu_p50_us", "cpu_share_mean"):
+        v = float(s[k])
+        if not (math.isfinite(v) and v > 0): fail(f"{k} = {s[k]}")
+    if not 0 < float(s["cpu_share_mean"]) <= 1.05: fail(f"cpu_share_mean {s['cpu_share_mean']}")
+    for k in ("invol_csw", "vol_csw"):
+        if not s[k].isdigit(): fail(f"{k} = {s[k]!r}")
+    if not float(s["loadavg_1m"]) >= 0: fail(f"loadavg_1m {s['loadavg_1m']!r}")
+    if s["steal_frac"] != "" and not 0 <= float(s["steal_frac"]) <= 1:
+        fail(f"steal_frac {s['steal_frac']}")
     # 30 frames in measured_s seconds
     if abs(float(s["fps_mean"]) - 30 / float(s["measured_s"])) > 0.01 * float(s["fps_mean"]) + 0.002:
         fail("fps_mean != frames / measured_s")
@@ -110,6 +121,10 @@ for p in plan:
         if r["samples"] == "" or (null and r["samples"] != "0") or \
                 (not null and int(r["samples"]) <= 0): fail(f"samples: {r}")
         if float(r["frametime_us"]) <= 0: fail("frame time")
+        # the process's CPU time over the frame, and its share of the usable CPUs
+        cpu, share = float(r["cpu_us"]), float(r["cpu_share"])
+        if not (math.isfinite(cpu) and cpu > 0): fail(f"cpu_us {r}")
+        if not 0 < share <= 1.05: fail(f"cpu_share {r}")
     # clock: fixed makes the work of frame k the same in both trials and both sync modes
     counts = [(r["lights"], r["draw_calls"], r["state_changes"], r["fragments"], r["samples"])
               for r in fr]

@@ -287,9 +287,9 @@ static void test_trial_totals(void **state)
         trial_stream_add(ts, &r[i]);
     trial_totals tt;
     trial_stream_end(ts, 0.3, &tt);
-    assert_true(tt.gbuffer_write_bytes_mean == 150 && tt.gbuffer_read_bytes_mean == 400);
-    assert_true(tt.gpu_mean_us == 50);   /* over the two frames that have one */
-    assert_true(tt.draw_calls_mean == 4 && tt.state_changes_mean == 7 && tt.fragments_mean == 32);
+    assert_true(tt.m.gbuffer_write_bytes_mean == 150 && tt.m.gbuffer_read_bytes_mean == 400);
+    assert_true(tt.m.gpu_mean_us == 50);   /* over the two frames that have one */
+    assert_true(tt.m.draw_calls_mean == 4 && tt.m.state_changes_mean == 7 && tt.m.fragments_mean == 32);
     assert_int_equal(tt.lights_max, 9);
     assert_true(tt.ft_ci95 == 0 && tt.ci_converged_after_s == 0.3);
     /* no frame with a G-buffer: NAN (an empty column) */
@@ -298,7 +298,7 @@ static void test_trial_totals(void **state)
                       .gbuffer_write_bytes = NAN, .gbuffer_read_bytes = NAN};
     trial_stream_add(ts, &f);
     trial_stream_end(ts, 0.1, &tt);
-    assert_true(isnan(tt.gbuffer_write_bytes_mean) && isnan(tt.gbuffer_read_bytes_mean));
+    assert_true(isnan(tt.m.gbuffer_write_bytes_mean) && isnan(tt.m.gbuffer_read_bytes_mean));
     trial_stream_free(ts);
 }
 
