@@ -221,7 +221,7 @@ static int compare_folders(const char *base, const char *new_, const compare_opt
                     ra[i].renderer);
             continue;
         }
-        if (strcmp(ra[i].metric, rb[j].metric) != 0) {
+        if (ra[i].metric[0] && rb[j].metric[0] && strcmp(ra[i].metric, rb[j].metric) != 0) {
             fprintf(stderr, "shadesweep compare: run %s: BASE was ranked by %s time, NEW by "
                     "%s: not comparable (measure.metric)\n", ra[i].id, ra[i].metric,
                     rb[j].metric);

@@ -28,6 +28,9 @@ const char *const summary_columns[] = {
     "image_edge_rmse", "image_edge_pixels",
 #define METRIC_WANT S3
 #include "results/metric_names.inc"
+    /* the schedule (runner/schedule.c): the trial's place in its round; what decides
+     * (measure.metric resolved) and the trial's value of it */
+    "order", "metric", "metric_us",
     "status", "message",
 };
 const size_t summary_ncolumns = sizeof summary_columns / sizeof summary_columns[0];
@@ -420,6 +423,12 @@ bool output_write_run_summary(const char *run_dir, const experiment *e, const ru
         csv_g(w, r->image_edge_rmse);
         csv_f64(w, r->image_edge_pixels, 0);
         metrics_write_summary(w, &r->m, METRIC_SLOT_S3);
+        if (r->order)
+            csv_u64(w, r->order);
+        else
+            csv_empty(w);
+        csv_str(w, r->metric);
+        csv_f64(w, r->metric_us, 3);
         csv_str(w, r->status);
         csv_str(w, strcmp(r->status, "ok") == 0 ? "" : message);
         csv_end_row(w);

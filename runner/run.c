@@ -45,6 +45,8 @@ typedef struct run_state {
     const run_options *o;
     progress *pg;
     uint32_t trial;            /* the trial this process runs, 1.. */
+    uint32_t order;            /* its place in its round (runner/schedule.c) */
+    char metric[8];            /* measure.metric resolved for this context ("": none yet) */
     char dir[4300];            /* OUT/runs/<id>/trial-<k> */
     gl_context *ctx;
     scene *sc;
@@ -857,6 +859,26 @@ static bool write_meta(run_state *st, char *err, size_t errlen)
     return yo_commit(y, err, errlen);
 }
 
+/* measure.metric for this context. auto: the process's CPU time on a software
+ * rasteriser (its threads are ours, and load that takes a core moves its wall time,
+ * not its work: docs/architecture.md "What decides"), the GPU timer on hardware that
+ * has one, else wall time. An explicit gpu needs timer queries. */
+static bool resolve_metric(run_metric m, const gl_info *gi, char *out, size_t len, char *err,
+                           size_t errlen)
+{
+    bool software = strstr(gi->renderer, "llvmpipe") || strstr(gi->renderer, "softpipe") ||
+                    strstr(gi->renderer, "swrast");
+    if (m == RUN_METRIC_GPU && !gi->timer_query) {
+        snprintf(err, errlen, "measure.metric: gpu, but %s has no timer queries", gi->renderer);
+        return false;
+    }
+    snprintf(out, len, "%s", m == RUN_METRIC_WALL ? "wall"
+                             : m == RUN_METRIC_CPU ? "cpu"
+                             : m == RUN_METRIC_GPU ? "gpu"
+                             : software ? "cpu" : gi->timer_query ? "gpu" : "wall");
+    return true;
+}
+
 /* Sets up one run; on failure st->status says why and st->err holds the message. */
 static bool run_setup(run_state *st)
 {
@@ -906,6 +928,10 @@ static bool run_setup(run_state *st)
     if (p->translucency == 1)   /* opaque: the same scene without its translucent pass */
         st->made_opaque = scene_make_opaque(st->sc);
     const gl_info *gi = gl_context_info(st->ctx);
+    if (!resolve_metric(p->metric, gi, st->metric, sizeof st->metric, st->err, sizeof st->err)) {
+        set_status(st, "metric");
+        return false;
+    }
     renderer_options ro = {
         .queries = true,
         .timer_query = gi->timer_query,
@@ -1076,9 +1102,25 @@ const char *run_stop_name(int sig)
  * lists the others with their sizes and checksums, and a trial is complete only when
  * they match (folder_check_trial, what resume looks for; runner/trials.c merges the
  * trials into the run's files when its last trial is complete). */
+/* The trial's value of the metric that decides; NAN when it has none. */
+static double metric_value(const trial_result *tr, const char *metric)
+{
+    if (strcmp(tr->status, "ok") != 0 || tr->frames == 0)
+        return NAN;
+    if (strcmp(metric, "cpu") == 0)
+        return tr->m.cpu_mean_us;
+    if (strcmp(metric, "gpu") == 0)
+        return tr->m.gpu_mean_us;
+    return strcmp(metric, "wall") == 0 ? tr->ft.mean : NAN;
+}
+
 static void write_run_result(run_state *st)
 {
     fill_missing_trials(st);
+    trial_result *tr = &st->trials[st->trial - 1];
+    tr->order = st->order;
+    snprintf(tr->metric, sizeof tr->metric, "%s", st->metric);
+    tr->metric_us = metric_value(tr, st->metric);
     utc_now(st->finished, sizeof st->finished);
     char err[512];
     if (!fs_mkdirs(st->dir, err, sizeof err) || !write_meta(st, err, sizeof err) ||
@@ -1138,10 +1180,11 @@ static int child_main(void *arg)
 }
 
 bool run_trial_isolated(const experiment *e, const run_spec *s, const run_options *o,
-                        progress *pg, uint32_t trial, double timeout_s, trial_outcome *out)
+                        progress *pg, uint32_t trial, uint32_t order, double timeout_s,
+                        trial_outcome *out)
 {
     memset(out, 0, sizeof *out);
-    run_state st = {.e = e, .s = s, .o = o, .pg = pg, .trial = trial};
+    run_state st = {.e = e, .s = s, .o = o, .pg = pg, .trial = trial, .order = order};
     snprintf(st.status, sizeof st.status, "ok");
     utc_now(st.started, sizeof st.started);
     char run_dir[4096], log_path[4300], err[512];
@@ -1200,9 +1243,10 @@ bool run_trial_isolated(const experiment *e, const run_spec *s, const run_option
 }
 
 bool run_write_missing_trial(const experiment *e, const run_spec *s, const run_options *o,
-                             uint32_t trial, const char *status, const char *message)
+                             uint32_t trial, uint32_t order, const char *status,
+                             const char *message)
 {
-    run_state st = {.e = e, .s = s, .o = o, .trial = trial};
+    run_state st = {.e = e, .s = s, .o = o, .trial = trial, .order = order};
     snprintf(st.status, sizeof st.status, "%s", status);
     snprintf(st.message, sizeof st.message, "%s", message);
     utc_now(st.started, sizeof st.started);

@@ -48,19 +48,21 @@ typedef struct trial_outcome {
     bool interrupted;          /* a stop signal: its folder was removed */
 } trial_outcome;
 
-/* Trial `trial` (1..) of run s in a child process with a time limit: OUT/runs/<id>/
+/* Trial `trial` (1..) of run s, `order`-th in its round, in a child process with a time limit: OUT/runs/<id>/
  * trial-<k>/ ends complete (folder_check_trial), whatever became of the child (a child
  * that died has its row written by the parent), or removed when a stop signal came.
  * The child's stderr is appended to OUT/runs/<id>/log.txt. False (message printed)
  * when the trial could not be started at all (no memory, no folder). */
 bool run_trial_isolated(const experiment *e, const run_spec *s, const run_options *o,
-                        progress *pg, uint32_t trial, double timeout_s, trial_outcome *out);
+                        progress *pg, uint32_t trial, uint32_t order, double timeout_s,
+                        trial_outcome *out);
 
 /* The folder of a trial that will not run (its run ended at an earlier trial): its
  * row with `status` (failed:not-run or the run's failure) and `message`, and nothing
  * measured. */
 bool run_write_missing_trial(const experiment *e, const run_spec *s, const run_options *o,
-                             uint32_t trial, const char *status, const char *message);
+                             uint32_t trial, uint32_t order, const char *status,
+                             const char *message);
 
 /* Whether a trial's status ends its run (no more trials): anything but ok, failed:error
  * and failed:nonfinite (verdicts on what was measured). */

@@ -149,7 +149,7 @@ static bool run_one_trial(const experiment *e, const run_options *o, progress *p
                        s->p.trials);
     double left = run_timeout_s(&s->p) - r->used_s;
     trial_outcome out;
-    if (!run_trial_isolated(e, s, o, pg, k, left > 1 ? left : 1, &out))
+    if (!run_trial_isolated(e, s, o, pg, k, place, left > 1 ? left : 1, &out))
         return false;
     r->used_s += out.seconds;
     if (out.interrupted)
@@ -173,7 +173,7 @@ static bool finish_run(const experiment *e, const run_options *o, progress *pg, 
 {
     const run_spec *s = r->s;
     for (uint32_t k = r->done + 1; k <= n; k++) {
-        if (!run_write_missing_trial(e, s, o, k,
+        if (!run_write_missing_trial(e, s, o, k, 0,
                                      strcmp(r->status, "ok") ? r->status : "failed:not-run",
                                      r->message))
             return false;

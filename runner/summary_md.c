@@ -10,6 +10,7 @@
 
 typedef struct trial_cols {
     int run_id, renderer, experiment, trial, wall, p99, low1, rmse, status, metric, value;
+    int share, steal;
 } trial_cols;
 
 void summary_free_runs(run_result *runs, size_t n)
@@ -17,6 +18,8 @@ void summary_free_runs(run_result *runs, size_t n)
     for (size_t i = 0; runs && i < n; i++) {
         free(runs[i].value);
         free(runs[i].wall);
+        free(runs[i].share);
+        free(runs[i].steal);
     }
     free(runs);
 }
@@ -33,7 +36,8 @@ bool summary_load_runs(const char *path, run_result **out, size_t *n, char *err,
         csv_col(&t, "run_id"), csv_col(&t, "renderer"), csv_col(&t, "experiment"),
         csv_col(&t, "trial"), csv_col(&t, "frametime_mean_us"), csv_col(&t, "frametime_p99_us"),
         csv_col(&t, "fps_1pct_low"), csv_col(&t, "image_rmse"), csv_col(&t, "status"),
-        csv_col(&t, "metric"), csv_col(&t, "metric_us"),
+        csv_col(&t, "metric"), csv_col(&t, "metric_us"), csv_col(&t, "cpu_share_mean"),
+        csv_col(&t, "steal_frac"),
     };
     if (c.run_id < 0 || c.trial < 0 || c.wall < 0 || c.status < 0) {
         snprintf(err, errlen, "%s: not a shadesweep summary.csv (no run_id, trial, "
@@ -60,8 +64,12 @@ bool summary_load_runs(const char *path, run_result **out, size_t *n, char *err,
         snprintf(x->id, sizeof x->id, "%s", id);
         snprintf(x->renderer, sizeof x->renderer, "%s", csv_get(&t, r, c.renderer));
         snprintf(x->experiment, sizeof x->experiment, "%s", csv_get(&t, r, c.experiment));
-        snprintf(x->metric, sizeof x->metric, "%s",
-                 c.metric >= 0 && *csv_get(&t, r, c.metric) ? csv_get(&t, r, c.metric) : "wall");
+        /* the first row that names it (a trial that never had a context does not);
+         * a folder written before the column was ranked by wall time */
+        snprintf(x->metric, sizeof x->metric, "%s", c.metric >= 0 ? "" : "wall");
+        for (size_t q = r; c.metric >= 0 && q < t.nrows && !x->metric[0]; q++)
+            if (strcmp(csv_get(&t, q, c.run_id), id) == 0)
+                snprintf(x->metric, sizeof x->metric, "%s", csv_get(&t, q, c.metric));
         snprintf(x->status, sizeof x->status, "ok");
         /* the largest trial number of this run */
         for (size_t q = r; q < t.nrows; q++) {
@@ -73,12 +81,14 @@ bool summary_load_runs(const char *path, run_result **out, size_t *n, char *err,
         size_t nv = x->nvalues ? x->nvalues : 1;
         x->value = malloc(nv * sizeof *x->value);
         x->wall = malloc(nv * sizeof *x->wall);
-        if (!x->value || !x->wall) {
+        x->share = malloc(nv * sizeof *x->share);
+        x->steal = malloc(nv * sizeof *x->steal);
+        if (!x->value || !x->wall || !x->share || !x->steal) {
             ok = false;
             break;
         }
         for (size_t i = 0; i < nv; i++)
-            x->value[i] = x->wall[i] = NAN;
+            x->value[i] = x->wall[i] = x->share[i] = x->steal[i] = NAN;
         size_t m = 0;
         double p99 = 0, low = 0;
         x->rmse = NAN;
@@ -98,6 +108,8 @@ bool summary_load_runs(const char *path, run_result **out, size_t *n, char *err,
                 size_t i = (size_t)k1 - 1;
                 x->wall[i] = csv_num(&t, q, c.wall);
                 x->value[i] = c.value >= 0 ? csv_num(&t, q, c.value) : x->wall[i];
+                x->share[i] = c.share >= 0 ? csv_num(&t, q, c.share) : NAN;
+                x->steal[i] = c.steal >= 0 ? csv_num(&t, q, c.steal) : NAN;
             }
             m++;
             double p = c.p99 >= 0 ? csv_num(&t, q, c.p99) : NAN;
@@ -125,6 +137,65 @@ bool summary_load_runs(const char *path, run_result **out, size_t *n, char *err,
     *out = runs;
     *n = nr;
     return true;
+}
+
+static int cmp_double(const void *a, const void *b)
+{
+    double x = *(const double *)a, y = *(const double *)b;
+    return x < y ? -1 : x > y;
+}
+
+size_t summary_warnings(const run_result *runs, size_t n, FILE *out, const char *prefix)
+{
+    size_t count = 0;
+    for (size_t r = 0; r < n; r++) {
+        const run_result *x = &runs[r];
+        if (!x->nvalues)
+            continue;
+        bool *flag = calloc(x->nvalues, sizeof *flag);
+        double *sorted = malloc(x->nvalues * sizeof *sorted);
+        if (!flag || !sorted) {
+            free(flag);
+            free(sorted);
+            continue;
+        }
+        verdict_outliers(x->value, x->nvalues, flag);
+        double med = NAN, shmed = NAN;
+        size_t m = 0;
+        for (size_t k = 0; k < x->nvalues; k++)
+            if (isfinite(x->value[k]))
+                sorted[m++] = x->value[k];
+        qsort(sorted, m, sizeof *sorted, cmp_double);
+        if (m)
+            med = m % 2 ? sorted[m / 2] : (sorted[m / 2 - 1] + sorted[m / 2]) / 2;
+        m = 0;
+        for (size_t k = 0; k < x->nvalues; k++)
+            if (isfinite(x->share[k]))
+                sorted[m++] = x->share[k];
+        qsort(sorted, m, sizeof *sorted, cmp_double);
+        if (m >= 3)
+            shmed = m % 2 ? sorted[m / 2] : (sorted[m / 2 - 1] + sorted[m / 2]) / 2;
+        for (size_t k = 0; k < x->nvalues; k++) {
+            if (flag[k]) {
+                fprintf(out, "%srun %s (%s) trial %zu is an outlier: %.4g ms of %s time a frame, "
+                        "the run's median %.4g ms\n", prefix, x->id, x->renderer, k + 1,
+                        x->value[k] / 1000, x->metric[0] ? x->metric : "wall", med / 1000);
+                count++;
+            }
+            bool starved = isfinite(shmed) && x->share[k] < 0.75 * shmed;
+            bool stolen = x->steal[k] > 0.05;
+            if (starved || stolen) {
+                fprintf(out, "%srun %s (%s) trial %zu ran on a busy machine: it got %.0f%% of the "
+                        "CPU it could use (the run's median %.0f%%), steal %.0f%%\n", prefix,
+                        x->id, x->renderer, k + 1, x->share[k] * 100, shmed * 100,
+                        isfinite(x->steal[k]) ? x->steal[k] * 100 : 0.0);
+                count++;
+            }
+        }
+        free(flag);
+        free(sorted);
+    }
+    return count;
 }
 
 void summary_paired_ratio(const run_result *a, const run_result *b, ratio_ci *out)
@@ -457,7 +528,7 @@ bool summary_table_write(const char *out_dir, FILE *terminal, char *err, size_t 
     if (terminal)
         fprintf(terminal, "\n%s: %zu run%s, %zu sweep point%s; %s time per frame, ms: mean ± "
                 "95%% CI over the trials\n", *exp ? exp : out_dir, nruns, nruns == 1 ? "" : "s",
-                npts, npts == 1 ? "" : "s", nruns ? runs[0].metric : "wall");
+                npts, npts == 1 ? "" : "s", nruns && runs[0].metric[0] ? runs[0].metric : "wall");
     if (!nruns)
         fputs("\nNo run has results yet.\n", f.fp);
     for (size_t k = 0; k < nshown; k++) {
@@ -465,7 +536,12 @@ bool summary_table_write(const char *out_dir, FILE *terminal, char *err, size_t 
         const run_result *fastest = &runs[p->runs[0]];
         if (!isfinite(fastest->mean))
             fastest = NULL;
-        const char *metric = runs[p->runs[0]].metric;
+        const char *metric = "wall";
+        for (size_t i = 0; i < p->nruns; i++)
+            if (runs[p->runs[i]].metric[0]) {
+                metric = runs[p->runs[i]].metric;
+                break;
+            }
         fprintf(f.fp, "\n## %s\n\n", p->label);
         fprintf(f.fp, "Ranked by %s time per frame.\n\n", metric);
         fprintf(f.fp, "| rank | renderer |%s run | %s (ms) | x fastest | differs | wall (ms) | "
@@ -509,6 +585,12 @@ bool summary_table_write(const char *out_dir, FILE *terminal, char *err, size_t 
     }
     if (terminal && nshown > TERM_MAX_POINTS)
         fprintf(terminal, "... %zu more sweep points\n", nshown - TERM_MAX_POINTS);
+    /* what makes these verdicts doubtful, named per trial */
+    fputs("\n## Warnings\n\n", f.fp);
+    if (!summary_warnings(runs, nruns, f.fp, "- "))
+        fputs("None: no trial is an outlier among its run's, none ran on a busy machine.\n", f.fp);
+    if (terminal)
+        summary_warnings(runs, nruns, terminal, "warning: ");
     ok = afile_commit(&f, err, errlen);
     if (ok && terminal)
         fprintf(terminal, "ranked: %s (the definitions are there)\n", mdpath);

@@ -22,10 +22,12 @@ typedef struct run_result {
     char renderer[32];
     char experiment[64];
     char metric[8];            /* what decides: "wall", "cpu", "gpu" (summary.csv `metric`;
-                                * "wall" for a folder written before the column) */
+                                * "wall" for a folder written before the column; "" when
+                                * no trial of the run had a context) */
     size_t trials, trials_ok;
     double *value;             /* value[k - 1]: trial k's metric_us; NAN: failed or absent */
     double *wall;              /* wall[k - 1]: trial k's frametime_mean_us, the same way */
+    double *share, *steal;     /* trial k's cpu_share_mean and steal_frac (NAN: none) */
     size_t nvalues;            /* the largest trial number */
     double mean, half;         /* the metric over the ok trials, and its 95% t half-width */
     double wall_mean, wall_half;   /* frame time, the same way */
@@ -40,6 +42,13 @@ typedef struct run_result {
 bool summary_load_runs(const char *path, run_result **out, size_t *n, char *err,
                        size_t errlen);
 void summary_free_runs(run_result *runs, size_t n);
+
+/* What makes a run's verdicts doubtful, a line per trial (hyperfine warns the same way):
+ * a trial whose value is an outlier among the run's (verdict_outliers: interference only
+ * adds time), and a trial that ran on a busy machine (it got under 3/4 of the CPU share
+ * its run's other trials got, or the hypervisor stole over 5% of the machine). Each line
+ * starts with `prefix`. Returns how many. */
+size_t summary_warnings(const run_result *runs, size_t n, FILE *out, const char *prefix);
 
 /* a / b of two runs measured in the same rounds (trial k with trial k): paired */
 void summary_paired_ratio(const run_result *a, const run_result *b, ratio_ci *out);

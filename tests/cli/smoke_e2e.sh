@@ -32,7 +32,7 @@ summary_cols = ["experiment","run_id","renderer","scene","width","height","gbuff
   "cell_lights_max","light_evals_per_pixel","gbuffer_bytes_per_frame","gbuffer_write_bytes_mean",
   "gbuffer_read_bytes_mean","image_edge_rmse","image_edge_pixels","samples_shaded_mean",
   "edge_fraction_mean","cpu_mean_us","cpu_p50_us","cpu_share_mean","invol_csw","vol_csw",
-  "steal_frac","loadavg_1m","status","message"]
+  "steal_frac","loadavg_1m","order","metric","metric_us","status","message"]
 frames_cols = ["run_id","trial","frame","t_wall_s","t_scene_s","lights","frametime_us",
   "gpu_us","draw_calls","state_changes","fragments","samples","gbuffer_bytes_per_frame",
   "gbuffer_write_bytes","gbuffer_read_bytes","cpu_us","cpu_share"]
@@ -98,9 +98,22 @@ for s, want_id in zip(summary, [i for i in ids for _ in (1, 2)]):
     if not float(s["loadavg_1m"]) >= 0: fail(f"loadavg_1m {s['loadavg_1m']!r}")
     if s["steal_frac"] != "" and not 0 <= float(s["steal_frac"]) <= 1:
         fail(f"steal_frac {s['steal_frac']}")
+    # what decides: the process's CPU time on llvmpipe (measure.metric: auto), and each
+    # trial's value of it
+    if s["metric"] != "cpu" or abs(float(s["metric_us"]) - float(s["cpu_mean_us"])) > 0.01:
+        fail(f"metric {s['metric']} {s['metric_us']} (cpu_mean_us {s['cpu_mean_us']})")
     # 30 frames in measured_s seconds
     if abs(float(s["fps_mean"]) - 30 / float(s["measured_s"])) > 0.01 * float(s["fps_mean"]) + 0.002:
         fail("fps_mean != frames / measured_s")
+# the schedule: each sweep point's runs in rounds, each round's order a permutation of
+# 1..runs of the point (4 renderers a point), recorded in `order`
+plan_rows = {p["run_id"]: p for p in csv.DictReader(open(os.path.join(out, "plan.csv")))}
+rounds = {}
+for s in summary:
+    p = plan_rows[s["run_id"]]
+    rounds.setdefault((p["resolution"], p["sync"], s["trial"]), []).append(int(s["order"]))
+if len(rounds) != 8 or any(sorted(v) != [1, 2, 3, 4] for v in rounds.values()):
+    fail(f"rounds are not permutations: {rounds}")
 
 work = {}   # (renderer, resolution) -> per-frame work counts, the same in every run
 for p in plan:
