@@ -234,13 +234,16 @@ static bool run_point(const experiment *e, const run_options *o, progress *pg,
             if (!ok || run_stop_signal())
                 break;
             rounds = k;
-            if (adaptive && (point_settled(o->out_dir, runs, n, k, p->precision) ||
-                             spent >= p->budget_s)) {
-                if (!point_settled(o->out_dir, runs, n, k, p->precision))
+            /* auto: at least TRIALS_AUTO_MIN rounds, then until decided or spent */
+            if (adaptive && k >= TRIALS_AUTO_MIN) {
+                bool settled = point_settled(o->out_dir, runs, n, k, p->precision);
+                if (!settled && spent >= p->budget_s)
                     fprintf(stderr, "sweep point %zu: measure.budget (%g s) spent after %u "
-                            "rounds: its verdicts stay as they are\n",
-                            runs[0]->s->group, p->budget_s, k);
-                break;
+                            "rounds: some of its ratios are still undecided (summary.md: "
+                            "differs no, intervals wider than measure.precision %g)\n",
+                            runs[0]->s->group, p->budget_s, k, p->precision);
+                if (settled || spent >= p->budget_s)
+                    break;
             }
         }
     }
