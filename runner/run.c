@@ -60,8 +60,7 @@ typedef struct run_state {
     double prime_s;            /* prime_variants: wall time of the frames it drew */
     size_t prime_frames;
     double paused_s;           /* measured clock paused (comparisons, screenshots) */
-    trial_result *trials;      /* ntrials of them; [trial - 1] is this one's */
-    uint32_t ntrials;
+    trial_result result;       /* this trial's row (result.trial 0: it never ran) */
     char started[32], finished[32];
     char status[96];
     char message[1024];        /* why it failed, for summary.csv */
@@ -1036,7 +1035,7 @@ static bool run_setup(run_state *st)
     return true;
 }
 
-/* Releases what run_setup and the trials made (not st->trials: the parent's). */
+/* Releases what run_setup and the trial made. */
 static void run_teardown(run_state *st)
 {
     run_files_abort(&st->files);
@@ -1049,14 +1048,13 @@ static void run_teardown(run_state *st)
     trial_stream_free(st->stream);
 }
 
-/* Rows for trials that never ran, so that every run has one row per trial. */
-static void fill_missing_trials(run_state *st)
+/* The row of a trial that never ran (setup failed, the child died, or its run ended
+ * before it), so that every run has one row per trial. */
+static void fill_missing_trial(run_state *st)
 {
-    for (uint32_t t = 0; t < st->ntrials; t++) {
-        trial_result *tr = &st->trials[t];
-        if (tr->trial != 0)
-            continue;
-        tr->trial = t + 1;
+    trial_result *tr = &st->result;
+    if (tr->trial == 0) {
+        tr->trial = st->trial;
         tr->ft.mean = tr->ft.sd = tr->ft.p50 = tr->ft.p99 = NAN;
         tr->ft_ci95 = tr->fps_mean = tr->measured_s = NAN;
         tr->harness_us_mean = tr->ci1pct_after_s = NAN;
@@ -1098,10 +1096,6 @@ const char *run_stop_name(int sig)
     return sig == SIGINT ? "SIGINT" : sig == SIGTERM ? "SIGTERM" : "SIGHUP";
 }
 
-/* The trial's folder: meta.yaml, its summary.csv row, then files.txt: written last, it
- * lists the others with their sizes and checksums, and a trial is complete only when
- * they match (folder_check_trial, what resume looks for; runner/trials.c merges the
- * trials into the run's files when its last trial is complete). */
 /* The trial's value of the metric that decides; NAN when it has none. */
 static double metric_value(const trial_result *tr, const char *metric)
 {
@@ -1114,18 +1108,22 @@ static double metric_value(const trial_result *tr, const char *metric)
     return strcmp(metric, "wall") == 0 ? tr->ft.mean : NAN;
 }
 
+/* The trial's folder: meta.yaml, its summary.csv row, then files.txt: written last, it
+ * lists the others with their sizes and checksums, and a trial is complete only when
+ * they match (folder_check_trial, what resume looks for; runner/trials.c merges the
+ * trials into the run's files when its last trial is complete). */
 static void write_run_result(run_state *st)
 {
-    fill_missing_trials(st);
-    trial_result *tr = &st->trials[st->trial - 1];
+    fill_missing_trial(st);
+    trial_result *tr = &st->result;
     tr->order = st->order;
     snprintf(tr->metric, sizeof tr->metric, "%s", st->metric);
     tr->metric_us = metric_value(tr, st->metric);
     utc_now(st->finished, sizeof st->finished);
     char err[512];
     if (!fs_mkdirs(st->dir, err, sizeof err) || !write_meta(st, err, sizeof err) ||
-        !output_write_run_summary(st->dir, st->e, st->s, &st->plan, &st->trials[st->trial - 1],
-                                  1, st->message, err, sizeof err) ||
+        !output_write_run_summary(st->dir, st->e, st->s, &st->plan, tr, 1, st->message, err,
+                                  sizeof err) ||
         !folder_write_run_files(st->dir, err, sizeof err)) {
         fprintf(stderr, "run %s: %s\n", st->s->id, err);
         set_status(st, "output");
@@ -1137,7 +1135,7 @@ static void write_run_result(run_state *st)
 static void run_one(run_state *st)
 {
     if (run_setup(st) && prime_variants(st)) {
-        trial_result *tr = &st->trials[st->trial - 1];
+        trial_result *tr = &st->result;
         run_trial(st, st->trial, tr);
         if (strcmp(tr->status, "ok") != 0)
             snprintf(st->status, sizeof st->status, "%s", tr->status);
@@ -1170,7 +1168,7 @@ static int child_main(void *arg)
 {
     child_args *a = arg;
     run_one(a->st);
-    const trial_result *tr = &a->st->trials[a->st->trial - 1];
+    const trial_result *tr = &a->st->result;
     snprintf(a->report->status, sizeof a->report->status, "%s", a->st->status);
     snprintf(a->report->message, sizeof a->report->message, "%.500s", a->st->message);
     a->report->fps = tr->frames ? tr->fps_mean : 0;
@@ -1193,15 +1191,12 @@ bool run_trial_isolated(const experiment *e, const run_spec *s, const run_option
     snprintf(log_path, sizeof log_path, "%s/log.txt", run_dir);
     run_report *report = mmap(NULL, sizeof *report, PROT_READ | PROT_WRITE,
                               MAP_SHARED | MAP_ANONYMOUS, -1, 0);
-    st.ntrials = s->p.trials > trial ? s->p.trials : trial;   /* trials: auto is 0 */
-    st.trials = calloc(st.ntrials, sizeof *st.trials);
-    if (report == MAP_FAILED || !st.trials || !folder_clear_run(st.dir, err, sizeof err) ||
+    if (report == MAP_FAILED || !folder_clear_run(st.dir, err, sizeof err) ||
         !fs_mkdirs(st.dir, err, sizeof err)) {
         fprintf(stderr, "shadesweep: run %s: %s\n", s->id,
-                st.trials && report != MAP_FAILED ? err : "out of memory");
+                report != MAP_FAILED ? err : "out of memory");
         if (report != MAP_FAILED)
             munmap(report, sizeof *report);
-        free(st.trials);
         return false;
     }
     child_args args = {.st = &st, .report = report};
@@ -1238,7 +1233,6 @@ bool run_trial_isolated(const experiment *e, const run_spec *s, const run_option
         snprintf(out->message, sizeof out->message, "%.500s", st.message);
     }
     munmap(report, sizeof *report);
-    free(st.trials);
     return true;
 }
 
@@ -1252,15 +1246,11 @@ bool run_write_missing_trial(const experiment *e, const run_spec *s, const run_o
     utc_now(st.started, sizeof st.started);
     snprintf(st.dir, sizeof st.dir, "%s/runs/%s/trial-%u", o->out_dir, s->id, trial);
     char err[512];
-    st.ntrials = trial;
-    st.trials = calloc(st.ntrials, sizeof *st.trials);
-    if (!st.trials || !folder_clear_run(st.dir, err, sizeof err)) {
-        fprintf(stderr, "shadesweep: run %s: %s\n", s->id, st.trials ? err : "out of memory");
-        free(st.trials);
+    if (!folder_clear_run(st.dir, err, sizeof err)) {
+        fprintf(stderr, "shadesweep: run %s: %s\n", s->id, err);
         return false;
     }
     write_run_result(&st);
-    free(st.trials);
     return strcmp(st.status, status) == 0;
 }
 
