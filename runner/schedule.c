@@ -26,7 +26,9 @@ typedef struct run_slot {
     bool ended;                /* a trial's status ended it: no more trials */
     uint32_t done;             /* trials 1..done have complete folders */
     uint32_t *order;           /* order[k - 1]: trial k's place in its round */
-    uint32_t norder;
+    double *value;             /* value[k - 1]: trial k's metric_us (trials: auto; NAN:
+                                * none), read once from its folder */
+    uint32_t cap;              /* of order and value */
     char status[96];           /* the first failure among its trials, or "ok" */
     char message[512];         /* ... and why, for the rows of the trials it did not run */
     double used_s;             /* wall time of its trials' processes */
@@ -57,19 +59,33 @@ static void round_order(size_t *idx, size_t n, uint32_t seed, size_t point, uint
     }
 }
 
+/* Room for trial `trial` in order and value (new places: 0 and NAN). */
+static bool slot_grow(run_slot *r, uint32_t trial)
+{
+    if (trial <= r->cap)
+        return true;
+    uint32_t cap = r->cap ? r->cap * 2 : 8;
+    while (cap < trial)
+        cap *= 2;
+    uint32_t *o = realloc(r->order, cap * sizeof *o);
+    if (o)
+        r->order = o;
+    double *v = o ? realloc(r->value, cap * sizeof *v) : NULL;
+    if (!v)
+        return false;
+    r->value = v;
+    for (uint32_t i = r->cap; i < cap; i++) {
+        o[i] = 0;
+        v[i] = NAN;
+    }
+    r->cap = cap;
+    return true;
+}
+
 static bool slot_order(run_slot *r, uint32_t trial, uint32_t place)
 {
-    if (trial > r->norder) {
-        uint32_t cap = r->norder ? r->norder * 2 : 8;
-        while (cap < trial)
-            cap *= 2;
-        uint32_t *o = realloc(r->order, cap * sizeof *o);
-        if (!o)
-            return false;
-        memset(o + r->norder, 0, (cap - r->norder) * sizeof *o);
-        r->order = o;
-        r->norder = cap;
-    }
+    if (!slot_grow(r, trial))
+        return false;
     r->order[trial - 1] = place;
     return true;
 }
@@ -93,38 +109,38 @@ static double trial_value(const char *out_dir, const char *id, uint32_t k)
     return v;
 }
 
+/* Keeps trial k's value for trials: auto (the trial is complete). */
+static bool slot_value(const char *out_dir, run_slot *r, uint32_t k)
+{
+    if (r->s->p.trials != 0)
+        return true;
+    if (!slot_grow(r, k))
+        return false;
+    r->value[k - 1] = trial_value(out_dir, r->s->id, k);
+    return true;
+}
+
 /* trials: auto: whether the point's verdicts are settled after `rounds` rounds: every
- * pair of its runs that measured has a paired ratio that is precise enough or excludes
- * 1 (verdict_all_decided). */
-static bool point_settled(const char *out_dir, run_slot *const *runs, size_t n,
-                          uint32_t rounds, double precision)
+ * pair of its runs that did not end has a paired ratio that is precise enough or
+ * excludes 1 (verdict_all_decided). */
+static bool point_settled(run_slot *const *runs, size_t n, uint32_t rounds, double precision)
 {
     if (rounds < TRIALS_AUTO_MIN)
         return false;
     if (n < 2)
         return true;   /* nothing to rank: the minimum is enough */
-    double *v = malloc(n * rounds * sizeof *v);
     ratio_ci *r = malloc(n * n * sizeof *r);
-    if (!v || !r) {
-        free(v);
-        free(r);
+    if (!r)
         return true;   /* no memory to decide: stop adding rounds */
-    }
-    for (size_t i = 0; i < n; i++)
-        for (uint32_t k = 1; k <= rounds; k++)
-            v[i * rounds + k - 1] = runs[i]->done >= k && !runs[i]->ended
-                                        ? trial_value(out_dir, runs[i]->s->id, k)
-                                        : NAN;
     size_t nr = 0;
     for (size_t i = 0; i < n; i++) {
-        if (runs[i]->ended)
+        if (runs[i]->ended || runs[i]->cap < rounds)
             continue;
         for (size_t j = i + 1; j < n; j++)
-            if (!runs[j]->ended)
-                verdict_paired_ratio(v + i * rounds, v + j * rounds, rounds, &r[nr++]);
+            if (!runs[j]->ended && runs[j]->cap >= rounds)
+                verdict_paired_ratio(runs[i]->value, runs[j]->value, rounds, &r[nr++]);
     }
     bool settled = verdict_all_decided(r, nr, precision);
-    free(v);
     free(r);
     return settled;
 }
@@ -158,6 +174,10 @@ static bool run_one_trial(const experiment *e, const run_options *o, progress *p
         fprintf(stderr, "run %s: trial %u: %s\n", s->id, k, out.message);
     progress_run_end(pg, out.status, out.fps);
     r->done = k;
+    if (!slot_value(o->out_dir, r, k)) {
+        fprintf(stderr, "shadesweep: out of memory\n");
+        return false;
+    }
     if (strcmp(out.status, "ok") != 0 && strcmp(r->status, "ok") == 0) {
         snprintf(r->status, sizeof r->status, "%s", out.status);
         snprintf(r->message, sizeof r->message, "%s", out.message);
@@ -236,7 +256,7 @@ static bool run_point(const experiment *e, const run_options *o, progress *pg,
             rounds = k;
             /* auto: at least TRIALS_AUTO_MIN rounds, then until decided or spent */
             if (adaptive && k >= TRIALS_AUTO_MIN) {
-                bool settled = point_settled(o->out_dir, runs, n, k, p->precision);
+                bool settled = point_settled(runs, n, k, p->precision);
                 if (!settled && spent >= p->budget_s)
                     fprintf(stderr, "sweep point %zu: measure.budget (%g s) spent after %u "
                             "rounds: some of its ratios are still undecided (summary.md: "
@@ -290,10 +310,13 @@ static void resume_slot(const run_options *o, run_slot *r, size_t *kept, size_t 
             snprintf(r->status, sizeof r->status, "%s", tc.status);
         if (tc.failed && run_status_ends_run(tc.status))
             r->ended = true;
+        /* without memory the value stays NAN: auto then sees one pair fewer */
+        (void)slot_value(o->out_dir, r, k);
         k++;
     }
-    /* trial folders after the first incomplete one: removed, they run again */
-    for (uint32_t j = k; j < k + TRIALS_AUTO_MAX + 1000; j++) {
+    /* trial folders after the first incomplete one: removed, they run again (trials
+     * run in order, so there are none past a missing one) */
+    for (uint32_t j = k;; j++) {
         char tdir[4400], err[512];
         snprintf(tdir, sizeof tdir, "%s/trial-%u", dir, j);
         if (!fs_exists(tdir))
@@ -406,9 +429,10 @@ int run_plan(const experiment *e, const plan *p, const run_options *o)
 done:
     if (progress_out)
         fclose(progress_out);
-    if (slots)
-        for (size_t i = 0; i < p->nruns; i++)
-            free(slots[i].order);
+    for (size_t i = 0; slots && i < p->nruns; i++) {
+        free(slots[i].order);
+        free(slots[i].value);
+    }
     free(slots);
     free(group);
     return rc;
