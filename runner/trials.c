@@ -163,30 +163,42 @@ static void put_quoted(FILE *f, const char *s)
     fputc('"', f);
 }
 
+/* What meta.yaml's `trials` list says of one trial: its top-level values as written. */
+typedef struct trial_meta {
+    char status[160], started[128], finished[128];
+} trial_meta;
+
 /* meta.yaml: trial 1's with the run's status and the last trial's end, then how the
- * trials were scheduled and what became of each. */
+ * trials were scheduled and what became of each. Each trial's meta.yaml is read once. */
 static bool merge_meta(const char *run_dir, uint32_t n, const char *status,
                        const trials_schedule *sched, char *err, size_t errlen)
 {
-    char *first = read_meta(run_dir, 1, err, errlen);
-    if (!first)
-        return false;
-    char *last = n > 1 ? read_meta(run_dir, n, err, errlen) : NULL;
-    if (n > 1 && !last) {
-        free(first);
-        return false;
+    char *first = NULL;
+    trial_meta *tm = calloc(n ? n : 1, sizeof *tm);
+    bool ok = tm != NULL;
+    if (!ok)
+        snprintf(err, errlen, "%s: out of memory", run_dir);
+    for (uint32_t k = 1; ok && k <= n; k++) {
+        char *m = read_meta(run_dir, k, err, errlen);
+        if (!(ok = m != NULL))
+            break;
+        top_value(m, "status", tm[k - 1].status, sizeof tm[k - 1].status);
+        top_value(m, "started", tm[k - 1].started, sizeof tm[k - 1].started);
+        top_value(m, "finished", tm[k - 1].finished, sizeof tm[k - 1].finished);
+        if (k == 1)
+            first = m;   /* the run's meta.yaml is made from it */
+        else
+            free(m);
     }
-    char finished[128];
-    top_value(last ? last : first, "finished", finished, sizeof finished);
-    free(last);
-
     char final[4400];
     snprintf(final, sizeof final, "%s/meta.yaml", run_dir);
     afile out;
-    if (!afile_open(&out, final, err, errlen)) {
+    if (!ok || !afile_open(&out, final, err, errlen)) {
         free(first);
+        free(tm);
         return false;
     }
+    const char *finished = tm[n - 1].finished;
     for (char *line = first; *line;) {
         char *nl = strchr(line, '\n');
         size_t len = nl ? (size_t)(nl - line) + 1 : strlen(line);
@@ -205,26 +217,14 @@ static bool merge_meta(const char *run_dir, uint32_t n, const char *status,
     fprintf(out.fp, "schedule:\n  mode: %s\n  seed: %u\n  point: %zu\n", sched->mode,
             sched->seed, sched->point);
     fputs("trials:\n", out.fp);
-    bool ok = true;
-    for (uint32_t k = 1; ok && k <= n; k++) {
-        char *m = read_meta(run_dir, k, err, errlen);
-        if (!m) {
-            ok = false;
-            break;
-        }
-        char st[160], started[128], fin[128];
-        top_value(m, "status", st, sizeof st);
-        top_value(m, "started", started, sizeof started);
-        top_value(m, "finished", fin, sizeof fin);
-        free(m);
+    for (uint32_t k = 1; k <= n; k++) {
+        const trial_meta *t = &tm[k - 1];
         fprintf(out.fp, "  - trial: %u\n    order: %u\n    status: %s\n    started: %s\n"
                 "    finished: %s\n", k, sched->order ? sched->order[k - 1] : 0,
-                st[0] ? st : "\"\"", started[0] ? started : "\"\"", fin[0] ? fin : "\"\"");
+                t->status[0] ? t->status : "\"\"", t->started[0] ? t->started : "\"\"",
+                t->finished[0] ? t->finished : "\"\"");
     }
-    if (!ok) {
-        afile_abort(&out);
-        return false;
-    }
+    free(tm);
     return afile_commit(&out, err, errlen);
 }
 
