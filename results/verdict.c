@@ -188,6 +188,16 @@ static double median_in_place(double *v, size_t n)
     return n % 2 ? v[n / 2] : 0.5 * (v[n / 2 - 1] + v[n / 2]);
 }
 
+size_t verdict_median(const double *x, size_t n, double *scratch, double *median)
+{
+    size_t k = 0;
+    for (size_t i = 0; i < n; i++)
+        if (isfinite(x[i]))
+            scratch[k++] = x[i];
+    *median = k ? median_in_place(scratch, k) : NAN;
+    return k;
+}
+
 size_t verdict_outliers(const double *x, size_t n, bool *out)
 {
     size_t k = 0;

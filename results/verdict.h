@@ -75,6 +75,11 @@ size_t verdict_mean_ci(const double *x, size_t n, double *mean, double *half);
  * nr == 0 gives true (nothing left to decide): the caller sets any minimum count. */
 bool verdict_all_decided(const ratio_ci *r, size_t nr, double precision);
 
+/* The median of the finite values of x[0..n) (an even count averages the middle two),
+ * into *median (NAN when there is none), with scratch (n values) as working space.
+ * Returns how many values it took. */
+size_t verdict_median(const double *x, size_t n, double *scratch, double *median);
+
 /* Outliers among trial values, a warning as hyperfine gives one: the modified
  * z-score of Iglewicz and Hoaglin, 0.6745 (x - median) / MAD > 3.5, with MAD the
  * median of |x - median| (medians of an even count average the middle two).

@@ -139,12 +139,6 @@ bool summary_load_runs(const char *path, run_result **out, size_t *n, char *err,
     return true;
 }
 
-static int cmp_double(const void *a, const void *b)
-{
-    double x = *(const double *)a, y = *(const double *)b;
-    return x < y ? -1 : x > y;
-}
-
 size_t summary_warnings(const run_result *runs, size_t n, FILE *out, const char *prefix)
 {
     size_t count = 0;
@@ -153,28 +147,17 @@ size_t summary_warnings(const run_result *runs, size_t n, FILE *out, const char 
         if (!x->nvalues)
             continue;
         bool *flag = calloc(x->nvalues, sizeof *flag);
-        double *sorted = malloc(x->nvalues * sizeof *sorted);
-        if (!flag || !sorted) {
+        double *scratch = malloc(x->nvalues * sizeof *scratch);
+        if (!flag || !scratch) {
             free(flag);
-            free(sorted);
+            free(scratch);
             continue;
         }
         verdict_outliers(x->value, x->nvalues, flag);
-        double med = NAN, shmed = NAN;
-        size_t m = 0;
-        for (size_t k = 0; k < x->nvalues; k++)
-            if (isfinite(x->value[k]))
-                sorted[m++] = x->value[k];
-        qsort(sorted, m, sizeof *sorted, cmp_double);
-        if (m)
-            med = m % 2 ? sorted[m / 2] : (sorted[m / 2 - 1] + sorted[m / 2]) / 2;
-        m = 0;
-        for (size_t k = 0; k < x->nvalues; k++)
-            if (isfinite(x->share[k]))
-                sorted[m++] = x->share[k];
-        qsort(sorted, m, sizeof *sorted, cmp_double);
-        if (m >= 3)
-            shmed = m % 2 ? sorted[m / 2] : (sorted[m / 2 - 1] + sorted[m / 2]) / 2;
+        double med, shmed;
+        verdict_median(x->value, x->nvalues, scratch, &med);
+        if (verdict_median(x->share, x->nvalues, scratch, &shmed) < 3)
+            shmed = NAN;   /* too few trials to call one of them starved */
         for (size_t k = 0; k < x->nvalues; k++) {
             if (flag[k]) {
                 fprintf(out, "%srun %s (%s) trial %zu is an outlier: %.4g ms of %s time a frame, "
@@ -193,7 +176,7 @@ size_t summary_warnings(const run_result *runs, size_t n, FILE *out, const char 
             }
         }
         free(flag);
-        free(sorted);
+        free(scratch);
     }
     return count;
 }

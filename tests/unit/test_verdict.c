@@ -343,6 +343,23 @@ static void test_mean_ci(void **state)
 
 /* >>outliers */
 
+/* The median of the finite values: odd count, even count (the middle two averaged),
+ * none. */
+static void test_median(void **state)
+{
+    (void)state;
+    double scratch[4], m;
+    const double odd[] = {3.0, NAN, 1.0, 2.0};
+    assert_int_equal(verdict_median(odd, 4, scratch, &m), 3);
+    assert_true(m == 2.0);
+    const double even[] = {4.0, 1.0, 3.0, 2.0};
+    assert_int_equal(verdict_median(even, 4, scratch, &m), 4);
+    assert_true(m == 2.5);
+    const double none[] = {NAN, INFINITY};
+    assert_int_equal(verdict_median(none, 2, scratch, &m), 0);
+    assert_true(isnan(m));
+}
+
 static void test_outliers_flagged(void **state)
 {
     (void)state;
@@ -515,6 +532,7 @@ int main(void)
 {
     const struct CMUnitTest tests[] = {
         cmocka_unit_test(test_paired_exact_ratio),
+        cmocka_unit_test(test_median),
         cmocka_unit_test(test_paired_equal_is_same),
         cmocka_unit_test(test_paired_unusable_pairs_left_out),
         cmocka_unit_test(test_paired_t_interval),
