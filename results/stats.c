@@ -294,77 +294,9 @@ double stats_converged_after(const convergence_point *p, size_t n, double rel)
     return since;
 }
 
-void stats_pool_trials(const double *frames, const double *mean, const double *sd,
-                       const double *ci95, size_t ntrials, mean_estimate *out)
-{
-    memset(out, 0, sizeof *out);
-    out->mean = out->se = out->dof = NAN;
-    double nb = 0, sum = 0;
-    /* first pass: the pooled mean */
-    for (size_t i = 0; i < ntrials; i++) {
-        if (!isfinite(mean[i]) || !(frames[i] >= 1))
-            continue;
-        double b = frames[i] >= 2.0 * STATS_BATCHES ? (double)STATS_BATCHES : floor(frames[i]);
-        nb += b;
-        sum += b * mean[i];
-        out->trials++;
-    }
-    if (out->trials == 0)
-        return;
-    out->batches = (size_t)nb;
-    out->mean = sum / nb;
-    if (nb < 2)
-        return;
-    double ss = 0;
-    for (size_t i = 0; i < ntrials; i++) {
-        if (!isfinite(mean[i]) || !(frames[i] >= 1))
-            continue;
-        double b, sdb;
-        if (frames[i] >= 2.0 * STATS_BATCHES) {
-            b = STATS_BATCHES;
-            sdb = ci95[i] * sqrt(b) / stats_t975(STATS_BATCHES - 1);
-        } else {
-            b = floor(frames[i]);
-            sdb = sd[i];
-        }
-        if (b >= 2) {
-            if (!isfinite(sdb))
-                return;   /* a trial without its spread: no standard error */
-            ss += (b - 1) * sdb * sdb;
-        }
-        double d = mean[i] - out->mean;
-        ss += b * d * d;
-    }
-    out->se = sqrt(ss / (nb - 1)) / sqrt(nb);
-    out->dof = nb - 1;
-}
-
 double stats_t975_real(double dof)
 {
     if (!(dof >= 1))
         return NAN;
     return stats_t975(dof > 1e9 ? (size_t)1e9 : (size_t)floor(dof));
-}
-
-bool stats_welch(const mean_estimate *a, const mean_estimate *b, welch_result *out)
-{
-    memset(out, 0, sizeof *out);
-    out->diff = b->mean - a->mean;
-    out->ci95 = out->t = out->dof = NAN;
-    if (!isfinite(a->se) || !isfinite(b->se) || !isfinite(out->diff))
-        return false;
-    double va = a->se * a->se, vb = b->se * b->se, v = va + vb;
-    if (v == 0) {
-        /* no spread at all: any difference is certain, none is none */
-        out->ci95 = 0;
-        out->dof = a->dof + b->dof;
-        out->t = out->diff == 0 ? 0 : copysign(INFINITY, out->diff);
-        out->significant = out->diff != 0;
-        return true;
-    }
-    out->dof = v * v / (va * va / a->dof + vb * vb / b->dof);
-    out->t = out->diff / sqrt(v);
-    out->ci95 = stats_t975_real(out->dof) * sqrt(v);
-    out->significant = fabs(out->diff) > out->ci95;
-    return true;
 }

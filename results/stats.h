@@ -66,38 +66,6 @@ bool stats_convergence(const frame_record *frames, size_t n, double t_end,
  * later point to the end; NAN when the last point is not within it (it never did). */
 double stats_converged_after(const convergence_point *p, size_t n, double rel);
 
-/* The mean frame time of a run and its standard error, recovered from what
- * summary.csv states of each trial (frames, mean, sd, frametime_ci95_us), for the
- * end-of-run table and `compare`. A trial of n >= 2 * STATS_BATCHES frames stands
- * for its STATS_BATCHES batch means, whose sd is ci95 * sqrt(B) / t(0.975, B-1)
- * (the inverse of stats_ci95_batch_means); a shorter one for its n frames (sd).
- * The trials' batch means are pooled: N = sum of B, mean = sum(B m) / N, and the
- * variance of the N batch means counts each trial's spread about its own mean and
- * the trials' spread about the pooled mean; se = sd / sqrt(N), dof = N - 1.
- * Trials with a NAN mean are skipped; n = 0 trials gives mean NAN. */
-typedef struct mean_estimate {
-    size_t trials;      /* trials that entered */
-    size_t batches;     /* N */
-    double mean;        /* NAN without a trial */
-    double se;          /* NAN with N < 2 */
-    double dof;         /* N - 1 */
-} mean_estimate;
-
-void stats_pool_trials(const double *frames, const double *mean, const double *sd,
-                       const double *ci95, size_t ntrials, mean_estimate *out);
-
 /* Two-sided 95% critical value for fractional degrees of freedom (Welch): the
  * value at floor(dof), which is conservative; NAN when dof < 1. */
 double stats_t975_real(double dof);
-
-/* Welch's t-test of b - a: the difference of the means, the half-width of its 95%
- * confidence interval with the Welch-Satterthwaite degrees of freedom, and whether
- * the interval excludes 0 (significant at 5%, two-sided). False (and *ci95 NAN)
- * when either estimate has no standard error. */
-typedef struct welch_result {
-    double diff;        /* b.mean - a.mean */
-    double ci95;        /* half-width; NAN without standard errors */
-    double t, dof;
-    bool significant;
-} welch_result;
-bool stats_welch(const mean_estimate *a, const mean_estimate *b, welch_result *out);

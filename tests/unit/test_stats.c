@@ -445,119 +445,6 @@ static void test_converged_after(void **state)
     free(f);
 }
 
-/* x[i] for a trial: a slow sine plus a deterministic wiggle (correlated frames) */
-static void trial_values(double *x, size_t n, double base, double amp)
-{
-    for (size_t i = 0; i < n; i++)
-        x[i] = base + amp * sin((double)i * 0.05) + 0.3 * amp * cos((double)i * 1.7);
-}
-
-static double mean_n(const double *x, size_t n)
-{
-    double s = 0;
-    for (size_t i = 0; i < n; i++)
-        s += x[i];
-    return s / (double)n;
-}
-
-/* One trial: the pooled estimate gives back the trial's own batch-means CI. */
-static void test_pool_one_trial_inverts_ci(void **state)
-{
-    (void)state;
-    double x[200];
-    trial_values(x, 200, 1000, 50);
-    sample_summary s;
-    stats_summarize(x, 200, &s);
-    double ci = stats_ci95_batch_means(x, 200);
-    double fr = 200;
-    mean_estimate m;
-    stats_pool_trials(&fr, &s.mean, &s.sd, &ci, 1, &m);
-    assert_int_equal(m.trials, 1);
-    assert_int_equal(m.batches, STATS_BATCHES);
-    assert_near(m.mean, s.mean, 1e-9);
-    assert_near(m.dof, STATS_BATCHES - 1, 0);
-    assert_near(m.se * stats_t975(STATS_BATCHES - 1), ci, 1e-9);
-}
-
-/* Two trials of 200 frames (batches of exactly 20): the pooled se is that of the 20
- * batch means taken directly. */
-static void test_pool_two_trials_matches_direct(void **state)
-{
-    (void)state;
-    double x[2][200], bm[20], fr[2] = {200, 200}, mn[2], sd[2], ci[2];
-    trial_values(x[0], 200, 1000, 50);
-    trial_values(x[1], 200, 1040, 30);
-    for (int t = 0; t < 2; t++) {
-        sample_summary s;
-        stats_summarize(x[t], 200, &s);
-        mn[t] = s.mean;
-        sd[t] = s.sd;
-        ci[t] = stats_ci95_batch_means(x[t], 200);
-        for (int b = 0; b < 10; b++)
-            bm[t * 10 + b] = mean_n(x[t] + b * 20, 20);
-    }
-    double m = mean_n(bm, 20), ss = 0;
-    for (int i = 0; i < 20; i++)
-        ss += (bm[i] - m) * (bm[i] - m);
-    double se = sqrt(ss / 19) / sqrt(20.0);
-    mean_estimate e;
-    stats_pool_trials(fr, mn, sd, ci, 2, &e);
-    assert_int_equal(e.batches, 20);
-    assert_near(e.mean, m, 1e-9);
-    assert_near(e.dof, 19, 0);
-    assert_near(e.se, se, 1e-9 * se);
-}
-
-/* A trial under 2 x STATS_BATCHES frames stands for its frames; NAN means are skipped;
- * no trial gives NANs. */
-static void test_pool_short_and_empty(void **state)
-{
-    (void)state;
-    double x[5] = {10, 12, 11, 13, 9};
-    sample_summary s;
-    stats_summarize(x, 5, &s);
-    double fr[2] = {5, 0}, mn[2] = {s.mean, NAN}, sd[2] = {s.sd, NAN}, ci[2] = {NAN, NAN};
-    mean_estimate e;
-    stats_pool_trials(fr, mn, sd, ci, 2, &e);
-    assert_int_equal(e.trials, 1);
-    assert_int_equal(e.batches, 5);
-    assert_near(e.mean, 11, 1e-12);
-    assert_near(e.se, s.sd / sqrt(5.0), 1e-12);
-    assert_near(e.dof, 4, 0);
-    stats_pool_trials(fr + 1, mn + 1, sd + 1, ci + 1, 1, &e);
-    assert_int_equal(e.trials, 0);
-    assert_true(isnan(e.mean) && isnan(e.se));
-}
-
-/* Welch: equal se 1 and 9 dof each: 18 dof, half-width t(18) x sqrt(2) = 2.9714; a
- * difference of 3 is significant, 2.9 is not; either side without se: no test. */
-static void test_welch_known(void **state)
-{
-    (void)state;
-    mean_estimate a = {.trials = 1, .batches = 10, .mean = 10, .se = 1, .dof = 9};
-    mean_estimate b = a;
-    b.mean = 13;
-    welch_result w;
-    assert_true(stats_welch(&a, &b, &w));
-    assert_near(w.diff, 3, 1e-12);
-    assert_near(w.dof, 18, 1e-9);
-    assert_near(w.ci95, 2.101 * sqrt(2.0), 1e-3);
-    assert_near(w.t, 3 / sqrt(2.0), 1e-12);
-    assert_true(w.significant);
-    b.mean = 12.9;
-    assert_true(stats_welch(&a, &b, &w));
-    assert_false(w.significant);
-    /* swapped: the same test, the sign of the difference flipped */
-    assert_true(stats_welch(&b, &a, &w));
-    assert_near(w.diff, -2.9, 1e-12);
-    assert_false(w.significant);
-    b.se = NAN;
-    assert_false(stats_welch(&a, &b, &w));
-    assert_true(isnan(w.ci95));
-    assert_near(stats_t975_real(18.7), stats_t975(18), 0);
-    assert_true(isnan(stats_t975_real(0.5)));
-}
-
 int main(void)
 {
     const struct CMUnitTest tests[] = {
@@ -575,10 +462,6 @@ int main(void)
         cmocka_unit_test(test_bins_long_frame),
         cmocka_unit_test(test_bins_complete_flag),
         cmocka_unit_test(test_bins_zero_frames),
-        cmocka_unit_test(test_pool_one_trial_inverts_ci),
-        cmocka_unit_test(test_pool_two_trials_matches_direct),
-        cmocka_unit_test(test_pool_short_and_empty),
-        cmocka_unit_test(test_welch_known),
     };
     return cmocka_run_group_tests(tests, NULL, NULL);
 }
