@@ -233,7 +233,10 @@ bool trials_merge(const char *out_dir, const char *id, uint32_t n, const char *s
 {
     char run_dir[4200];
     snprintf(run_dir, sizeof run_dir, "%s/runs/%s", out_dir, id);
-    /* files.txt first: a run cut off while merging is never taken for complete */
+    /* files.txt first: a run cut off while merging is never taken for complete; and the
+     * temporary twins an earlier merge left when it was killed (the folder's lock is
+     * ours, so no one else is writing them) */
+    folder_remove_temp(run_dir);
     char path[4400];
     snprintf(path, sizeof path, "%s/files.txt", run_dir);
     if (unlink(path) != 0 && errno != ENOENT) {
