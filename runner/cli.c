@@ -50,6 +50,8 @@ static const char usage_text[] =
     "  compare --exe OTHER [OPTIONS] MANIFEST  the manifest with OTHER (BASE) and this\n"
     "                             build (NEW) in interleaved rounds, compared paired\n"
     "  report [OPTIONS] DIR...    the report over output folders (Python)\n"
+    "  ratios < REQUESTS          trial-level ratios, intervals and crossovers for\n"
+    "                             scripts (the report's statistics; ratios --help)\n"
     "  params [--markdown|--bash]  every manifest key: type, default, range, the renderers\n"
     "                             that read it (docs/manifest.md is --markdown)\n"
     "  columns [--markdown]       the columns of frames.csv and summary.csv and what each\n"
@@ -466,6 +468,8 @@ int cli_main(int argc, char **argv)
         return cmd_params(argc - 1, argv + 1);
     if (strcmp(cmd, "columns") == 0)
         return cmd_columns(argc - 1, argv + 1);
+    if (strcmp(cmd, "ratios") == 0)
+        return cmd_ratios(argc - 1, argv + 1);
     if (strcmp(cmd, "compare") == 0)
         return cmd_compare(argc - 1, argv + 1);
     if (strcmp(cmd, "report") == 0)

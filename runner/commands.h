@@ -9,3 +9,7 @@ int cmd_compare(int argc, char **argv);
 /* `shadesweep report DIR...` (runner/report_cmd.c): runs the Python report
  * (shadesweep_report, installed beside the program) with python3. */
 int cmd_report(int argc, char **argv);
+
+/* `shadesweep ratios` (runner/ratios.c): results/verdict.c's ratios, intervals and
+ * crossovers for other programs (the Python report), requests on stdin, JSON lines out. */
+int cmd_ratios(int argc, char **argv);

@@ -232,6 +232,15 @@ static bool same_point(const csv_table *pl, long a, long b)
     return true;
 }
 
+bool summary_same_point(const csv_table *pl, const char *a, const char *b)
+{
+    int idcol = csv_col(pl, "run_id");
+    if (idcol < 0)
+        return false;
+    long ra = plan_row(pl, idcol, a), rb = plan_row(pl, idcol, b);
+    return ra >= 0 && rb >= 0 && same_point(pl, ra, rb);
+}
+
 static const run_result *rank_base;
 static int by_frametime(const void *pa, const void *pb)
 {
@@ -317,8 +326,7 @@ typedef struct cells {
     char rank[24], mean[32], ci[32], wall[64], ratio[48], sig[16], p99[32], low[32], rmse[32];
 } cells;
 
-/* `differs` from the paired ratio's interval (results/verdict.h, threshold 0). */
-static const char *differs_of(const ratio_ci *r)
+const char *summary_differs(const ratio_ci *r)
 {
     switch (verdict_of(r, 0)) {
     case VERDICT_SLOWER:
@@ -358,7 +366,7 @@ static void make_cells(const run_result *x, const run_result *fastest, size_t ra
             snprintf(o->ratio, sizeof o->ratio, "%.2fx", r.ratio);
         else
             snprintf(o->ratio, sizeof o->ratio, "%.2fx", x->mean / fastest->mean);
-        snprintf(o->sig, sizeof o->sig, "%s", differs_of(&r));
+        snprintf(o->sig, sizeof o->sig, "%s", summary_differs(&r));
     }
     fmt_ms(o->p99, sizeof o->p99, x->p99_us, decimals_for(x->p99_us / 1000));
     if (isfinite(x->low1_fps))

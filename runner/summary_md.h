@@ -13,6 +13,7 @@
 #include <stdbool.h>
 #include <stddef.h>
 #include <stdio.h>
+#include "results/csvread.h"
 #include "results/stats.h"
 #include "results/verdict.h"
 
@@ -52,6 +53,16 @@ size_t summary_warnings(const run_result *runs, size_t n, FILE *out, const char 
 
 /* a / b of two runs measured in the same rounds (trial k with trial k): paired */
 void summary_paired_ratio(const run_result *a, const run_result *b, ratio_ci *out);
+
+/* `differs` of a ratio's interval (results/verdict.h at threshold 0): "yes" when it
+ * excludes 1, "no" when it holds 1, "n/a" with fewer than 3 trials. */
+const char *summary_differs(const ratio_ci *r);
+
+/* Whether runs a and b (run ids) of a plan.csv belong to the same sweep point: their
+ * parameters are equal but for the renderer and the parameters only some renderers
+ * read. Their trials then ran in the same rounds, and their ratio is paired. False
+ * when either id is not in the plan. */
+bool summary_same_point(const csv_table *pl, const char *a, const char *b);
 
 /* Writes OUT/summary.md and prints the compact table to `terminal` (NULL: none).
  * False with a message (nothing written) when summary.csv or plan.csv is unreadable. */

@@ -1,46 +1,12 @@
 """Ours: the six renderers as lights grow (experiments/renderers-tiled.yaml): who is
 fastest at each light count and where two renderers change places."""
-import math
-
-from ..stats import mean, num, sd, t975
+from .. import verdicts
+from ..stats import mean, num
 from ..text import fmt, fmt_ci, md_table
-from .base import ci_overlap
 
 
 ORDER = ["deferred", "forward-mpml", "forward-spml", "forward-plus", "clustered", "tiled-deferred"]
 PLOT = "renderers-tiled_frametime_lights.png"
-
-
-def welch(a, b):
-    """Welch's t-test on two samples (the trial means): (t, df, significant at 5%, two-sided).
-    None with fewer than two values in either. Two samples without spread are significantly
-    different when their means differ."""
-    a = [x for x in a if x is not None]
-    b = [x for x in b if x is not None]
-    if len(a) < 2 or len(b) < 2:
-        return None
-    qa, qb = sd(a) ** 2 / len(a), sd(b) ** 2 / len(b)
-    diff = mean(a) - mean(b)
-    if qa + qb == 0:
-        return (math.inf if diff else 0.0), None, diff != 0
-    t = diff / math.sqrt(qa + qb)
-    den = (qa * qa / (len(a) - 1) if qa else 0.0) + (qb * qb / (len(b) - 1) if qb else 0.0)
-    df = (qa + qb) ** 2 / den
-    return t, df, abs(t) > t975(df)
-
-
-def welch_text(w):
-    if w is None:
-        return "cannot say (fewer than 2 trials)"
-    t, df, sig = w
-    return (f"{'yes' if sig else 'no'} (t = {fmt(abs(t), 2)}"
-            + (f", df = {fmt(df, 1)}" if df is not None else ", no spread") + ")")
-
-
-def sig(a, b):
-    """yes / no / ? for Welch's test of two samples of trial means."""
-    w = welch(a, b)
-    return "?" if w is None else ("yes" if w[2] else "no")
 
 
 def label(run, lvs):
@@ -57,20 +23,25 @@ def lights_of(run):
     return c
 
 
+METRIC_TEXT = {"wall": "frame time", "cpu": "CPU time per frame", "gpu": "GPU time per frame"}
+
+
 def table(e):
-    """{scene: {renderer label: {lights: (mean ms, ci ms, [trial means ms], n)}}}."""
+    """({scene: {renderer label: {lights: (mean ms, ci ms, run, n)}}}, metrics): each
+    run's value is what measure.metric chose (verdicts.values), the mean over its trials."""
     lvs = {r.param("deferred.light_volumes") for r in e.measured() if r.renderer == "deferred"}
-    out = {}
-    for r in e.measured():
-        c = lights_of(r)
-        if c is None:
+    runs = [r for r in e.measured() if lights_of(r) is not None]
+    vals = verdicts.values(runs)
+    out, metrics = {}, set()
+    for r in runs:
+        v = vals.get(r.id)
+        if not v or v["mean_us"] is None:
             continue
-        m, ci, n = r.frametime_ms()
-        if m is None:
-            continue
-        trials = [v / 1000 for v in r.col("frametime_mean_us") if v is not None]
-        out.setdefault(r.scene, {}).setdefault(label(r, lvs), {}).setdefault(c, (m, ci, trials, n))
-    return out
+        metrics.add(v["metric"])
+        ci = v["ci95_us"] / 1000 if v["ci95_us"] is not None else None
+        out.setdefault(r.scene, {}).setdefault(label(r, lvs), {}).setdefault(
+            lights_of(r), (v["mean_us"] / 1000, ci, r, v["trials"]))
+    return out, metrics
 
 
 def rank_key(name):
@@ -82,36 +53,46 @@ def lights_text(c):
     return f"{int(c)}" if c == int(c) else fmt(c, 1)
 
 
-def crossovers(by, a, b):
-    """Where a and b change places: [(c1, c2, faster before, faster after, est)] over the
-    light counts both ran, in order (equal means are skipped); est interpolates log frame
-    time linearly on log(lights) (on lights when c1 is 0)."""
-    counts = sorted(set(by[a]) & set(by[b]))
-    pts = [(c, by[a][c][0], by[b][c][0]) for c in counts if by[a][c][0] != by[b][c][0]]
+def crossovers(by, rens):
+    """Every pair of renderers whose order changes as the lights grow:
+    [(c1, c2, faster before, faster then, answer, crossing)], the crossing between light
+    counts c1 and c2 with the interval of where it lies (results/verdict.c's
+    verdict_crossover: log time ratio interpolated linearly in log lights, in lights from
+    a count of 0), and the pair's per-count ratios in answer."""
+    pairs, series = [], []
+    for i, a in enumerate(rens):
+        for b in rens[i + 1:]:
+            counts = sorted(set(by[a]) & set(by[b]))
+            if len(counts) >= 2:
+                pairs.append((a, b, counts))
+                series.append([(c, by[a][c][2], by[b][c][2]) for c in counts])
     out = []
-    for (c1, a1, b1), (c2, a2, b2) in zip(pts, pts[1:]):
-        if (a1 < b1) == (a2 < b2):
-            continue
-        d1, d2 = math.log(a1 / b1), math.log(a2 / b2)
-        f = d1 / (d1 - d2)
-        if c1 > 0:
-            est = math.exp(math.log(c1) + f * (math.log(c2) - math.log(c1)))
-        else:
-            est = c1 + f * (c2 - c1)
-        first, then = (a, b) if a1 < b1 else (b, a)
-        out.append((c1, c2, first, then, est))
+    for (a, b, counts), ans in zip(pairs, verdicts.crossovers(series)):
+        for x in ans.get("crossings", []):
+            first, then = (a, b) if x["dir"] > 0 else (b, a)
+            out.append((counts[x["i"]], counts[x["j"]], first, then, ans, x))
     return out
+
+
+def crossing_text(x):
+    est = f"~{fmt(x['x'], 0)}"
+    if x["lo"] is None or x["hi"] is None:
+        return est + " (interval: beyond the counts run)"
+    return est + f" (95%: {fmt(x['lo'], 0)}-{fmt(x['hi'], 0)})"
 
 
 def section_renderers_tiled(s):
     e = s.e
+    data, metrics = table(e)
+    what = " or ".join(sorted(METRIC_TEXT.get(m, m) for m in metrics)) or "frame time"
     s.w("No paper table: our own question, which of the renderers is fastest as the lights "
         "grow, and where two of them change places. Tiled and clustered shading as in Harada "
         "2012 (Forward+) and Olsson 2012 (clustered) are context only; no number of theirs is "
-        "compared. Frame time: mean over trials ± 95% CI (as everywhere in this report). "
-        "\"Significantly faster\": Welch's t-test on the trial means of the fastest and the "
-        "second fastest, two-sided at 5%; whether their 95% CIs overlap is shown beside it.\n")
-    data = table(e)
+        f"compared. Ranked by {what} (measure.metric): the mean over the trials ± 95% CI. "
+        "\"Differs\": the ratio of the second fastest to the fastest with its 95% interval, "
+        "from shadesweep's trial-level statistics (results/verdict.c, as the ranking and "
+        "compare): paired round by round within a sweep point; yes when the interval "
+        "excludes 1.\n")
     if not data:
         s.w("No run with a numeric lights.count and a frame time.\n")
         return
@@ -119,49 +100,50 @@ def section_renderers_tiled(s):
         by = data[scene]
         rens = sorted(by, key=rank_key)
         counts = sorted({c for r in rens for c in by[r]})
-        rows, wins = [], {}
+        rows, wins, asks = [], {}, []
+        for c in counts:
+            have = sorted((by[r][c][0], r) for r in rens if c in by[r])
+            if len(have) >= 2:
+                asks.append((by[have[1][1]][c][2], by[have[0][1]][c][2]))
+        answers = iter(verdicts.ratios(asks))
         for c in counts:
             have = sorted((by[r][c][0], r) for r in rens if c in by[r])
             cells = [fmt_ci(by[r][c][0], by[r][c][1], 3) if c in by[r] else "-" for r in rens]
+            r1 = have[0][1]
             if len(have) >= 2:
-                (m1, r1), (m2, r2) = have[0], have[1]
-                w = welch(by[r1][c][2], by[r2][c][2])
-                cis = (by[r1][c][1], by[r2][c][1])
-                ov = ("-" if None in cis else
-                      "yes" if ci_overlap((m1, cis[0]), (m2, cis[1])) else "no")
-                extra = [f"**{r1}**", f"{r2} (x{fmt(m2 / m1, 2)})", welch_text(w), ov]
+                r2 = have[1][1]
+                a = next(answers)
+                ratio = a.get("ratio") if "error" not in a else None
+                extra = [f"**{r1}**", f"{r2} (x{fmt(ratio, 2)})", verdicts.differs_text(a)]
             else:
-                r1 = have[0][1]
-                extra = [f"**{r1}**", "-", "-", "-"]
+                extra = [f"**{r1}**", "-", "-"]
             wins.setdefault(r1, []).append(c)
             rows.append([lights_text(c)] + cells + extra)
-        s.w(f"**{scene}** (frame time ms)\n")
+        s.w(f"**{scene}** ({what}, ms)\n")
         s.w(md_table(["lights"] + rens + ["fastest", "second (its time / fastest's)",
-                                          "significantly faster (Welch)", "CIs overlap"], rows))
+                                          "differs (95% interval)"], rows))
         s.w(f"Fastest on {scene}: " + "; ".join(
             f"{r} at {', '.join(lights_text(c) for c in wins[r])} lights"
             for r in sorted(wins, key=lambda r: min(wins[r]))) + ".\n")
         found = []
-        for i, a in enumerate(rens):
-            for b in rens[i + 1:]:
-                for c1, c2, first, then, est in crossovers(by, a, b):
-                    f1, t1 = by[first][c1], by[then][c1]
-                    f2, t2 = by[first][c2], by[then][c2]
-                    found.append([f"{first} -> {then}", f"{lights_text(c1)}-{lights_text(c2)}",
-                                  f"{fmt_ci(f1[0], f1[1], 3)} vs {fmt_ci(t1[0], t1[1], 3)}",
-                                  f"{fmt_ci(f2[0], f2[1], 3)} vs {fmt_ci(t2[0], t2[1], 3)}",
-                                  " / ".join(sig(by[first][c][2], by[then][c][2]) for c in (c1, c2)),
-                                  f"~{fmt(est, 0)}"])
+        for c1, c2, first, then, ans, x in crossovers(by, rens):
+            f1, t1 = by[first][c1], by[then][c1]
+            f2, t2 = by[first][c2], by[then][c2]
+            found.append([f"{first} -> {then}", f"{lights_text(c1)}-{lights_text(c2)}",
+                          f"{fmt_ci(f1[0], f1[1], 3)} vs {fmt_ci(t1[0], t1[1], 3)}",
+                          f"{fmt_ci(f2[0], f2[1], 3)} vs {fmt_ci(t2[0], t2[1], 3)}",
+                          " / ".join(ans["ratios"][k]["differs"] for k in (x["i"], x["j"])),
+                          crossing_text(x)])
         if found:
             s.w(f"Crossovers on {scene}: each pair whose order changes, between the last light "
                 "count where the first is faster and the next count where the second is (the "
-                "frame times ms, first vs second, at both counts); the crossing is an "
-                "interpolation of log frame time, linear in log(lights), between those two "
-                "counts, not a measurement.\n")
+                "times ms, first vs second, at both counts). The crossing interpolates the log "
+                "time ratio linearly in log(lights) between those two counts, an estimate, "
+                "not a measurement; its 95% interval is where the ratio's interval bounds "
+                "cross 1, interpolated the same way.\n")
             s.w(md_table(["faster first -> faster then", "between lights",
                           "at the lower count", "at the higher count",
-                          "significant at lower / higher (Welch)",
-                          "crossing (interpolated) lights"], found))
+                          "differs at lower / higher", "crossing (interpolated) lights"], found))
         else:
             s.w(f"Crossovers on {scene}: none; no two renderers change places over the light "
                 "counts run.\n")
@@ -174,7 +156,8 @@ def section_renderers_tiled(s):
         color = {r: cmap(i % 10) for i, r in enumerate(names)}
         for ax, scene in zip(axes[0], scenes):
             for r in sorted(data[scene], key=rank_key):
-                pts = sorted((c, v) for c, v in data[scene][r].items() if c > 0)
+                pts = sorted(((c, v) for c, v in data[scene][r].items() if c > 0),
+                             key=lambda p: p[0])
                 xs = [c for c, _ in pts]
                 m = [v[0] for _, v in pts]
                 ci = [v[1] or 0.0 for _, v in pts]
@@ -185,7 +168,7 @@ def section_renderers_tiled(s):
             ax.set_yscale("log")
             ax.set_title(scene)
             ax.set_xlabel("lights (log; a count of 0 is not drawn)")
-            ax.set_ylabel("frame time ms (log; band = 95% CI)")
+            ax.set_ylabel(f"{what} ms (log; band = 95% CI)")
             ax.grid(alpha=0.3, which="both")
             ax.legend(fontsize=7)
         s.w(s.plots.save(fig, PLOT))

@@ -1,6 +1,6 @@
 """Seed 000: spot-light coverage (5.4.1, 5.4.2)."""
 from ..loading import norm
-from .base import ci_overlap
+from .. import verdicts
 from ..text import fmt, fmt_ci, md_table
 
 
@@ -36,10 +36,10 @@ def section_s000_coverage(s, table, scene):
                 c = runs[0].coverage()
                 if c:
                     covs.append(f"{ren}: " + ", ".join(f"light {k} {fmt(v, 3)}" for k, v in sorted(c.items())))
-                got[(cov, pren)] = (p[1], m, ci)
+                got[(cov, pren)] = (p[1], m, ci, runs[0])
             else:
                 row.append("not run")
-                got[(cov, pren)] = (p[1], None, None)
+                got[(cov, pren)] = (p[1], None, None, None)
         row.append("; ".join(covs) if covs else "-")
         rows.append(row)
     s.w(f"**{table}** ({scene})\n")
@@ -54,9 +54,9 @@ def section_s000_coverage(s, table, scene):
         x, y = get(src, a, ra), get(src, b, rb)
         return f"{fmt(x, 2)} vs {fmt(y, 2)} ms" if x is not None and y is not None else "-"
 
-    def sig(a, b):
-        (_, ma, ca), (_, mb, cb) = got.get(a, (None,) * 3), got.get(b, (None,) * 3)
-        return " (within the 95% CIs)" if ci_overlap((ma, ca), (mb, cb)) else ""
+    def sig(a, b):   # a / b of two runs, results/verdict.c
+        ra, rb = got.get(a, (None,) * 4)[3], got.get(b, (None,) * 4)[3]
+        return "" if None in (ra, rb) else verdicts.within_text(verdicts.ratios([(ra, rb)])[0])
     od_s, od_l = get("ours", "small", "deferred"), get("ours", "large", "deferred")
     v = "n/a (not run)" if None in (od_s, od_l) else "yes" if od_l > od_s else "no"
     s.claim("deferred costs more with larger coverage (frame time small vs large)",
