@@ -85,17 +85,20 @@ set +e
 set -e
 [ $rc -eq 1 ] || fail "compare base new: rc $rc $(cat cmp.err)"
 cmp -s cmp.out cmp.md || fail "--md differs from stdout"
-grep -q "4 runs in common: 2 slower, 0 faster, 2 same, 0 undecided, 0 without a verdict" cmp.out ||
+# the unslowed runs are not flagged: same, or undecided where 3 trials on a loaded machine
+# leave the interval wider than the threshold (CI met 0.36 .. 2.06 under a full load)
+grep -q "4 runs in common: 2 slower, 0 faster, [0-2] same, [0-2] undecided, 0 without a verdict" cmp.out ||
   fail "counts: $(cat cmp.out)"
 flagged=$(tail -n +2 cmp.csv | awk -F, '$13 == "slower" {print $1}' | sort)
 [ "$flagged" = "$slow" ] || fail "slower runs: '$flagged', want '$slow'"
-[ "$(tail -n +2 cmp.csv | awk -F, '$13 == "same"' | wc -l)" -eq 2 ] || fail "same: $(cat cmp.csv)"
+[ "$(tail -n +2 cmp.csv | awk -F, '$13 == "same" || $13 == "undecided"' | wc -l)" -eq 2 ] ||
+  fail "same: $(cat cmp.csv)"
 head -1 cmp.csv | grep -qx "run_id,renderer,metric,base_mean_us,base_ci95_us,new_mean_us,new_ci95_us,ratio,ratio_lo,ratio_hi,paired,trials,verdict" ||
   fail "csv header: $(head -1 cmp.csv)"
 # the reverse: exactly those runs got faster (below BASE / 2), nothing slower: exit 0
 "$SHADESWEEP" compare new base --threshold=100% --csv rev.csv >rev.out 2>rev.err ||
   fail "compare new base: rc $? $(cat rev.err)"
-grep -q "4 runs in common: 0 slower, 2 faster, 2 same" rev.out || fail "reverse: $(cat rev.out)"
+grep -q "4 runs in common: 0 slower, 2 faster, " rev.out || fail "reverse: $(cat rev.out)"
 [ "$(tail -n +2 rev.csv | awk -F, '$13 == "faster" {print $1}' | sort)" = "$slow" ] ||
   fail "faster runs: $(cat rev.csv)"
 # a folder against itself: nothing slower or faster (same, or undecided where 3 trials
