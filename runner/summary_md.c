@@ -6,6 +6,7 @@
 
 #include "results/csvread.h"
 #include "results/fsutil.h"
+#include "runner/crossovers.h"
 #include "runner/params.h"
 
 typedef struct trial_cols {
@@ -576,6 +577,19 @@ bool summary_table_write(const char *out_dir, FILE *terminal, char *err, size_t 
     }
     if (terminal && nshown > TERM_MAX_POINTS)
         fprintf(terminal, "... %zu more sweep points\n", nshown - TERM_MAX_POINTS);
+    /* where two configurations change places along a numeric parameter */
+    crossover_list cx;
+    if (!crossovers_find(runs, nruns, &pl, prow, varies, rcfg, &cx)) {
+        crossovers_free(&cx);
+        afile_abort(&f);
+        snprintf(err, errlen, "out of memory");
+        ok = false;
+        goto out;
+    }
+    crossovers_write_md(f.fp, &cx);
+    if (terminal)
+        crossovers_print(terminal, &cx, TERM_MAX_POINTS);
+    crossovers_free(&cx);
     /* what makes these verdicts doubtful, named per trial */
     fputs("\n## Warnings\n\n", f.fp);
     if (!summary_warnings(runs, nruns, f.fp, "- "))

@@ -75,6 +75,8 @@ if md.count("\n## lights.seed=") != 2: fail("summary.md points")
 body = [l for l in md.splitlines() if re.match(r"^\| [12] \|", l)]
 if len(body) != 4 or any("3 of 3 ok" not in l for l in body): fail(f"summary.md rows {body}")
 if md.count("Ranked by ") != 2: fail("summary.md does not say which metric ranks")
+# the sweep varies only lights.seed: a label, nothing to find crossovers along
+if "## Crossovers\n\nNo numeric parameter varies" not in md: fail("summary.md crossovers")
 if not all("| forward-spml |" in body[i] and "| yes |" in body[i] for i in (1, 3)):
     fail(f"summary.md significance {body}")
 PY

@@ -1,0 +1,287 @@
+/* Where two configurations change places along the numeric parameters a sweep varies
+ * (runner/crossovers.h). */
+#include "runner/crossovers.h"
+
+#include <math.h>
+#include <stdlib.h>
+#include <string.h>
+
+/* The value of a plan cell on a numeric axis: a plain number, or a resolution WxH as
+ * its pixel count. False for anything else ("volume", "seconds:0.3", ""). */
+static bool axis_value(const char *s, double *out)
+{
+    char *end;
+    double v = strtod(s, &end);
+    if (end != s && isfinite(v)) {
+        if (*end == '\0') {
+            *out = v;
+            return true;
+        }
+        if (*end == 'x') {
+            char *end2;
+            double h = strtod(end + 1, &end2);
+            if (end2 != end + 1 && *end2 == '\0' && isfinite(h)) {
+                *out = v * h;
+                return true;
+            }
+        }
+    }
+    return false;
+}
+
+typedef struct entry {
+    const char *group;   /* the other varying parameters' values */
+    const char *cfg;     /* the configuration (renderer and its own keys) */
+    double x;
+    size_t run;
+} entry;
+
+static int by_group_cfg_x(const void *pa, const void *pb)
+{
+    const entry *a = pa, *b = pb;
+    int c = strcmp(a->group, b->group);
+    if (!c)
+        c = strcmp(a->cfg, b->cfg);
+    if (!c)
+        c = a->x < b->x ? -1 : a->x > b->x;
+    if (!c)
+        c = a->run < b->run ? -1 : a->run > b->run;
+    return c;
+}
+
+static bool push(crossover_list *l, const crossover_found *c)
+{
+    if (l->n == l->cap) {
+        size_t cap = l->cap ? 2 * l->cap : 16;
+        crossover_found *g = realloc(l->item, cap * sizeof *g);
+        if (!g)
+            return false;
+        l->item = g;
+        l->cap = cap;
+    }
+    l->item[l->n++] = *c;
+    return true;
+}
+
+/* "k=v, k=v" of the varying columns but `axis`, for one plan row. */
+static char *group_of(const csv_table *pl, long row, const bool *varies, size_t axis)
+{
+    size_t cap = 2;
+    for (size_t c = 0; row >= 0 && c < pl->ncols; c++)
+        if (varies[c] && c != axis)
+            cap += strlen(pl->header[c]) + strlen(pl->rows[row][c]) + 3;
+    char *s = malloc(cap);
+    if (!s)
+        return NULL;
+    size_t len = 0;
+    s[0] = '\0';
+    for (size_t c = 0; row >= 0 && c < pl->ncols; c++)
+        if (varies[c] && c != axis)
+            len += (size_t)snprintf(s + len, cap - len, "%s%s=%s", len ? ", " : "",
+                                    pl->header[c], pl->rows[row][c]);
+    return s;
+}
+
+/* The crossings of configurations a and b (entries e[a0..a1) and e[b0..b1), each
+ * ascending in x) at the x values both have. */
+static bool pair_crossings(const run_result *runs, const entry *e, size_t a0, size_t a1,
+                           size_t b0, size_t b1, const char *axis, crossover_list *out)
+{
+    size_t cap = (a1 - a0) < (b1 - b0) ? a1 - a0 : b1 - b0;
+    double *x = malloc((cap ? cap : 1) * sizeof *x);
+    ratio_ci *r = malloc((cap ? cap : 1) * sizeof *r);
+    bool ok = x && r;
+    size_t n = 0;
+    for (size_t i = a0, j = b0; ok && i < a1 && j < b1;) {
+        if (e[i].x < e[j].x) {
+            i++;
+        } else if (e[j].x < e[i].x) {
+            j++;
+        } else {
+            if (!n || e[i].x > x[n - 1]) {   /* the first run of a repeated x */
+                x[n] = e[i].x;
+                summary_paired_ratio(&runs[e[i].run], &runs[e[j].run], &r[n]);
+                n++;
+            }
+            i++;
+            j++;
+        }
+    }
+    ratio_crossover co;
+    for (size_t from = 0; ok && n >= 2 && verdict_crossover(x, r, n, from, &co); from = co.j) {
+        crossover_found f = {
+            .axis = axis, .group = e[a0].group,
+            /* a / b rises through 1: a is the faster below the crossing */
+            .below = co.dir > 0 ? e[a0].cfg : e[b0].cfg,
+            .above = co.dir > 0 ? e[b0].cfg : e[a0].cfg,
+            .x0 = x[co.i], .x1 = x[co.j], .x = co.x, .lo = co.lo, .hi = co.hi,
+            .differs0 = summary_differs(&r[co.i]), .differs1 = summary_differs(&r[co.j]),
+        };
+        ok = push(out, &f);
+    }
+    free(x);
+    free(r);
+    return ok;
+}
+
+static bool push_string(crossover_list *l, char *s);
+
+/* The crossings along one axis column. */
+static bool along(const run_result *runs, size_t nruns, const csv_table *pl, const long *prow,
+                  const bool *varies, char *const *rcfg, size_t axis, crossover_list *out)
+{
+    entry *e = malloc((nruns ? nruns : 1) * sizeof *e);
+    if (!e)
+        return false;
+    size_t n = 0;
+    bool ok = true;
+    for (size_t r = 0; ok && r < nruns; r++) {
+        double x;
+        if (prow[r] < 0 || !isfinite(runs[r].mean) ||
+            !axis_value(pl->rows[prow[r]][axis], &x))
+            continue;
+        char *g = group_of(pl, prow[r], varies, axis);
+        if (!g || !push_string(out, g)) {
+            free(g);
+            ok = false;
+            break;
+        }
+        e[n++] = (entry){out->strings[out->nstrings - 1], rcfg[r], x, r};
+    }
+    qsort(e, n, sizeof *e, by_group_cfg_x);
+    /* per group, each pair of configurations */
+    for (size_t g0 = 0, g1; ok && g0 < n; g0 = g1) {
+        for (g1 = g0; g1 < n && strcmp(e[g1].group, e[g0].group) == 0; g1++)
+            ;
+        for (size_t a0 = g0, a1; ok && a0 < g1; a0 = a1) {
+            for (a1 = a0; a1 < g1 && strcmp(e[a1].cfg, e[a0].cfg) == 0; a1++)
+                ;
+            for (size_t b0 = a1, b1; ok && b0 < g1; b0 = b1) {
+                for (b1 = b0; b1 < g1 && strcmp(e[b1].cfg, e[b0].cfg) == 0; b1++)
+                    ;
+                ok = pair_crossings(runs, e, a0, a1, b0, b1, pl->header[axis], out);
+            }
+        }
+    }
+    free(e);
+    return ok;
+}
+
+/* Keeps s (owned by l from here). */
+static bool push_string(crossover_list *l, char *s)
+{
+    if (l->nstrings == l->capstrings) {
+        size_t cap = l->capstrings ? 2 * l->capstrings : 16;
+        char **g = realloc(l->strings, cap * sizeof *g);
+        if (!g)
+            return false;
+        l->strings = g;
+        l->capstrings = cap;
+    }
+    l->strings[l->nstrings++] = s;
+    return true;
+}
+
+/* A seed names a random draw: a label, not a quantity to interpolate along. */
+static bool is_label(const char *name)
+{
+    size_t n = strlen(name);
+    return strcmp(name, "seed") == 0 || (n > 5 && strcmp(name + n - 5, ".seed") == 0);
+}
+
+bool crossovers_find(const run_result *runs, size_t nruns, const csv_table *pl,
+                     const long *prow, const bool *varies, char *const *rcfg,
+                     crossover_list *out)
+{
+    memset(out, 0, sizeof *out);
+    bool ok = true;
+    for (size_t c = 0; ok && c < pl->ncols; c++) {
+        if (!varies[c] || is_label(pl->header[c]))
+            continue;
+        /* an axis when every planned run's value on it is numeric */
+        bool numeric = true;
+        for (size_t r = 0; numeric && r < nruns; r++) {
+            double x;
+            numeric = prow[r] < 0 || axis_value(pl->rows[prow[r]][c], &x);
+        }
+        if (!numeric)
+            continue;
+        out->axes++;
+        ok = along(runs, nruns, pl, prow, varies, rcfg, c, out);
+    }
+    return ok;
+}
+
+void crossovers_free(crossover_list *l)
+{
+    for (size_t i = 0; i < l->nstrings; i++)
+        free(l->strings[i]);
+    free(l->strings);
+    free(l->item);
+    memset(l, 0, sizeof *l);
+}
+
+static void fmt_x(char *dst, size_t len, double v)
+{
+    if (!isfinite(v))
+        snprintf(dst, len, "?");
+    else if (fabs(v) >= 100 || v == floor(v))
+        snprintf(dst, len, "%.0f", v);
+    else
+        snprintf(dst, len, "%.3g", v);
+}
+
+void crossovers_write_md(FILE *fp, const crossover_list *l)
+{
+    fputs("\n## Crossovers\n\n", fp);
+    if (!l->axes) {
+        fputs("No numeric parameter varies across the sweep points (a resolution counts as "
+              "its pixels; a seed is a label): nothing to cross along.\n", fp);
+        return;
+    }
+    if (!l->n) {
+        fputs("None: along the numeric parameters the sweep varies, no two configurations "
+              "change places.\n", fp);
+        return;
+    }
+    fputs("Along each numeric parameter the sweep varies (the others held, as named), where "
+          "two configurations change places: the ratio of their paired trial values at each "
+          "value (as `x fastest`), its log interpolated linearly in the log of the parameter "
+          "between the last value where the first is faster and the next where the second "
+          "is (linearly from 0), to where it crosses 1; the 95% interval is where the "
+          "ratio's interval bounds cross 1, `?` where one does not within the values run. "
+          "`differs` at the two values says whether each ratio's interval excludes 1 there. "
+          "An estimate between measured values, not a measurement.\n\n", fp);
+    fputs("| along | where | faster below | faster above | between | crossing | 95% interval "
+          "| differs below / above |\n|---|---|---|---|---|---|---|---|\n", fp);
+    for (size_t i = 0; i < l->n; i++) {
+        const crossover_found *c = &l->item[i];
+        char x0[32], x1[32], x[32], lo[32], hi[32];
+        fmt_x(x0, sizeof x0, c->x0);
+        fmt_x(x1, sizeof x1, c->x1);
+        fmt_x(x, sizeof x, c->x);
+        fmt_x(lo, sizeof lo, c->lo);
+        fmt_x(hi, sizeof hi, c->hi);
+        fprintf(fp, "| %s | %s | %s | %s | %s-%s | ~%s | %s to %s | %s / %s |\n", c->axis,
+                c->group[0] ? c->group : "-", c->below, c->above, x0, x1, x, lo, hi,
+                c->differs0, c->differs1);
+    }
+}
+
+void crossovers_print(FILE *t, const crossover_list *l, size_t max)
+{
+    for (size_t i = 0; i < l->n && i < max; i++) {
+        const crossover_found *c = &l->item[i];
+        char x0[32], x1[32], x[32], lo[32], hi[32];
+        fmt_x(x0, sizeof x0, c->x0);
+        fmt_x(x1, sizeof x1, c->x1);
+        fmt_x(x, sizeof x, c->x);
+        fmt_x(lo, sizeof lo, c->lo);
+        fmt_x(hi, sizeof hi, c->hi);
+        fprintf(t, "crossover: %s is faster below %s ~%s (95%%: %s to %s), %s above%s%s%s\n",
+                c->below, c->axis, x, lo, hi, c->above, c->group[0] ? " (" : "",
+                c->group, c->group[0] ? ")" : "");
+    }
+    if (l->n > max)
+        fprintf(t, "... %zu more crossovers\n", l->n - max);
+}

@@ -1,0 +1,160 @@
+/* runner/crossovers.c on a plan and a summary.csv with known trial values: the crossings
+ * along a numeric parameter per group of the other varying parameters, where each lies
+ * (the log-log interpolation of the paired ratios, computed here independently), which
+ * configuration is faster on either side, and a resolution as an axis of pixels. */
+#define _DEFAULT_SOURCE
+#include <setjmp.h>
+#include <stdarg.h>
+#include <stddef.h>
+#include <stdint.h>
+#include <cmocka.h>
+#include <math.h>
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+#include <unistd.h>
+
+#include "runner/crossovers.h"
+
+static void write_tmp(char *path, const char *text)
+{
+    int fd = mkstemp(path);
+    assert_true(fd >= 0);
+    assert_int_equal(write(fd, text, strlen(text)), (ssize_t)strlen(text));
+    close(fd);
+}
+
+typedef struct fixture {
+    run_result *runs;
+    size_t n;
+    csv_table pl;
+    long prow[16];
+    bool varies[8];
+    char *cfg[16];
+} fixture;
+
+/* Loads summary and plan; every plan column but index, run_id and renderer varies. */
+static void load(fixture *f, const char *summary, const char *plan)
+{
+    char sp[] = "/tmp/test_crossovers_s_XXXXXX", pp[] = "/tmp/test_crossovers_p_XXXXXX";
+    write_tmp(sp, summary);
+    write_tmp(pp, plan);
+    char err[256];
+    assert_true(summary_load_runs(sp, &f->runs, &f->n, err, sizeof err));
+    assert_true(csv_read(pp, &f->pl, err, sizeof err));
+    unlink(sp);
+    unlink(pp);
+    assert_true(f->n <= 16 && f->pl.ncols <= 8);
+    int id = csv_col(&f->pl, "run_id");
+    for (size_t r = 0; r < f->n; r++) {
+        f->prow[r] = -1;
+        for (size_t q = 0; q < f->pl.nrows; q++)
+            if (strcmp(csv_get(&f->pl, q, id), f->runs[r].id) == 0)
+                f->prow[r] = (long)q;
+        f->cfg[r] = f->runs[r].renderer;
+    }
+    for (size_t c = 0; c < f->pl.ncols; c++)
+        f->varies[c] = strcmp(f->pl.header[c], "index") && strcmp(f->pl.header[c], "run_id") &&
+                       strcmp(f->pl.header[c], "renderer");
+}
+
+static void unload(fixture *f)
+{
+    summary_free_runs(f->runs, f->n);
+    csv_table_free(&f->pl);
+}
+
+/* exp(mean(log(a_i / b_i))): the paired ratio's point estimate */
+static double gratio(const double *a, const double *b)
+{
+    double s = 0;
+    for (int i = 0; i < 3; i++)
+        s += log(a[i] / b[i]);
+    return exp(s / 3);
+}
+
+static void test_crossing_per_group(void **state)
+{
+    (void)state;
+    /* scene a: fp faster at 1 and 16 lights, slower at 256; scene b: fp faster at all */
+    static const char summary[] =
+        "run_id,renderer,experiment,trial,frametime_mean_us,status,metric,metric_us\n"
+        "fpa001,fp,x,1,1,ok,cpu,1000\nfpa001,fp,x,2,1,ok,cpu,1100\nfpa001,fp,x,3,1,ok,cpu,1200\n"
+        "cla001,cl,x,1,1,ok,cpu,2000\ncla001,cl,x,2,1,ok,cpu,2300\ncla001,cl,x,3,1,ok,cpu,2300\n"
+        "fpa016,fp,x,1,1,ok,cpu,3000\nfpa016,fp,x,2,1,ok,cpu,3100\nfpa016,fp,x,3,1,ok,cpu,3300\n"
+        "cla016,cl,x,1,1,ok,cpu,4000\ncla016,cl,x,2,1,ok,cpu,4200\ncla016,cl,x,3,1,ok,cpu,4100\n"
+        "fpa256,fp,x,1,1,ok,cpu,9000\nfpa256,fp,x,2,1,ok,cpu,9500\nfpa256,fp,x,3,1,ok,cpu,9300\n"
+        "cla256,cl,x,1,1,ok,cpu,6000\ncla256,cl,x,2,1,ok,cpu,6100\ncla256,cl,x,3,1,ok,cpu,6300\n"
+        "fpb001,fp,x,1,1,ok,cpu,100\nfpb001,fp,x,2,1,ok,cpu,100\nfpb001,fp,x,3,1,ok,cpu,100\n"
+        "clb001,cl,x,1,1,ok,cpu,200\nclb001,cl,x,2,1,ok,cpu,200\nclb001,cl,x,3,1,ok,cpu,210\n"
+        "fpb256,fp,x,1,1,ok,cpu,300\nfpb256,fp,x,2,1,ok,cpu,300\nfpb256,fp,x,3,1,ok,cpu,300\n"
+        "clb256,cl,x,1,1,ok,cpu,400\nclb256,cl,x,2,1,ok,cpu,400\nclb256,cl,x,3,1,ok,cpu,420\n";
+    static const char plan[] =
+        "index,run_id,renderer,scene,lights.count\n"
+        "0,fpa001,fp,a,1\n1,cla001,cl,a,1\n2,fpa016,fp,a,16\n3,cla016,cl,a,16\n"
+        "4,fpa256,fp,a,256\n5,cla256,cl,a,256\n6,fpb001,fp,b,1\n7,clb001,cl,b,1\n"
+        "8,fpb256,fp,b,256\n9,clb256,cl,b,256\n";
+    fixture f;
+    load(&f, summary, plan);
+    crossover_list l;
+    assert_true(crossovers_find(f.runs, f.n, &f.pl, f.prow, f.varies, f.cfg, &l));
+    assert_int_equal(l.axes, 1);   /* scene is not numeric */
+    assert_int_equal(l.n, 1);
+    const crossover_found *c = &l.item[0];
+    assert_string_equal(c->axis, "lights.count");
+    assert_string_equal(c->group, "scene=a");
+    assert_string_equal(c->below, "fp");
+    assert_string_equal(c->above, "cl");
+    assert_true(c->x0 == 16 && c->x1 == 256);
+    /* cl / fp (the pair in name order: cl first) falls through 1 between 16 and 256 */
+    static const double fp16[] = {3000, 3100, 3300}, cl16[] = {4000, 4200, 4100};
+    static const double fp256[] = {9000, 9500, 9300}, cl256[] = {6000, 6100, 6300};
+    double l16 = log(gratio(cl16, fp16)), l256 = log(gratio(cl256, fp256));
+    double x = exp(log(16) + l16 / (l16 - l256) * (log(256) - log(16)));
+    assert_true(fabs(c->x - x) < 1e-9 * x);
+    assert_true(16 < c->lo && c->lo < c->x && c->x < c->hi && c->hi < 256);
+    assert_string_equal(c->differs0, "yes");
+    assert_string_equal(c->differs1, "yes");
+    crossovers_free(&l);
+    unload(&f);
+}
+
+static void test_resolution_is_an_axis_of_pixels(void **state)
+{
+    (void)state;
+    static const char summary[] =
+        "run_id,renderer,experiment,trial,frametime_mean_us,status,metric,metric_us\n"
+        "fp064,fp,x,1,1,ok,wall,100\nfp064,fp,x,2,1,ok,wall,100\nfp064,fp,x,3,1,ok,wall,100\n"
+        "df064,df,x,1,1,ok,wall,200\ndf064,df,x,2,1,ok,wall,200\ndf064,df,x,3,1,ok,wall,200\n"
+        "fp128,fp,x,1,1,ok,wall,800\nfp128,fp,x,2,1,ok,wall,800\nfp128,fp,x,3,1,ok,wall,800\n"
+        "df128,df,x,1,1,ok,wall,400\ndf128,df,x,2,1,ok,wall,400\ndf128,df,x,3,1,ok,wall,400\n";
+    static const char plan[] =
+        "index,run_id,renderer,resolution\n"
+        "0,fp064,fp,64x64\n1,df064,df,64x64\n2,fp128,fp,128x128\n3,df128,df,128x128\n";
+    fixture f;
+    load(&f, summary, plan);
+    crossover_list l;
+    assert_true(crossovers_find(f.runs, f.n, &f.pl, f.prow, f.varies, f.cfg, &l));
+    assert_int_equal(l.axes, 1);
+    assert_int_equal(l.n, 1);
+    const crossover_found *c = &l.item[0];
+    assert_true(c->x0 == 4096 && c->x1 == 16384);
+    assert_string_equal(c->below, "fp");
+    assert_string_equal(c->above, "df");
+    assert_string_equal(c->group, "");
+    /* df / fp: 2 at 4096 pixels, 1/2 at 16384: log-linear in log pixels crosses at the
+     * geometric middle, 8192; constant trials give an interval of no width */
+    assert_true(fabs(c->x - 8192) < 1e-6);
+    assert_true(fabs(c->lo - 8192) < 1e-6 && fabs(c->hi - 8192) < 1e-6);
+    crossovers_free(&l);
+    unload(&f);
+}
+
+int main(void)
+{
+    const struct CMUnitTest tests[] = {
+        cmocka_unit_test(test_crossing_per_group),
+        cmocka_unit_test(test_resolution_is_an_axis_of_pixels),
+    };
+    return cmocka_run_group_tests(tests, NULL, NULL);
+}
