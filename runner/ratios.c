@@ -29,6 +29,7 @@
 #include <string.h>
 
 #include "results/csvread.h"
+#include "results/jsonout.h"
 #include "results/verdict.h"
 #include "runner/commands.h"
 #include "runner/summary_md.h"
@@ -86,29 +87,6 @@ static void cache_free(cache *c)
     free(c->f);
 }
 
-static void json_num(double v)
-{
-    if (isfinite(v))
-        printf("%.9g", v);
-    else
-        fputs("null", stdout);
-}
-
-static void json_str(const char *s)
-{
-    putchar('"');
-    for (; *s; s++) {
-        unsigned char ch = (unsigned char)*s;
-        if (ch == '"' || ch == '\\')
-            printf("\\%c", ch);
-        else if (ch < 0x20)
-            printf("\\u%04x", ch);
-        else
-            putchar(ch);
-    }
-    putchar('"');
-}
-
 /* One run of one folder, or NULL with *why set. */
 static const run_result *find_run(cache *c, const char *folder, const char *id,
                                   folder_data **fd, char *why, size_t whylen)
@@ -160,29 +138,29 @@ static bool pair_of(cache *c, char **f, pair_result *out, char *why, size_t whyl
 static void print_error(const char *why)
 {
     fputs("{\"error\": ", stdout);
-    json_str(why);
+    json_string(stdout, why);
     fputs("}\n", stdout);
 }
 
 static void print_side(const char *k, const run_result *x)
 {
     printf(", \"%s_mean_us\": ", k);
-    json_num(x->mean);
+    json_number(stdout, x->mean);
     printf(", \"%s_ci95_us\": ", k);
-    json_num(x->half);
+    json_number(stdout, x->half);
     printf(", \"%s_trials\": %zu", k, x->trials_ok);
 }
 
 static void print_ratio_fields(const ratio_ci *r)
 {
     fputs("\"ratio\": ", stdout);
-    json_num(r->ratio);
+    json_number(stdout, r->ratio);
     fputs(", \"lo\": ", stdout);
-    json_num(r->lo);
+    json_number(stdout, r->lo);
     fputs(", \"hi\": ", stdout);
-    json_num(r->hi);
+    json_number(stdout, r->hi);
     fputs(", \"differs\": ", stdout);
-    json_str(summary_differs(r));
+    json_string(stdout, summary_differs(r));
 }
 
 static void answer_ratio(cache *c, char **f)
@@ -194,11 +172,11 @@ static void answer_ratio(cache *c, char **f)
         return;
     }
     fputs("{\"a\": ", stdout);
-    json_str(p.a->id);
+    json_string(stdout, p.a->id);
     fputs(", \"b\": ", stdout);
-    json_str(p.b->id);
+    json_string(stdout, p.b->id);
     fputs(", \"metric\": ", stdout);
-    json_str(p.a->metric);
+    json_string(stdout, p.a->metric);
     printf(", \"paired\": %s, \"n\": %zu, ", p.r.paired ? "true" : "false", p.r.n);
     print_ratio_fields(&p.r);
     print_side("a", p.a);
@@ -216,13 +194,13 @@ static void answer_run(cache *c, char **f)
         return;
     }
     fputs("{\"id\": ", stdout);
-    json_str(x->id);
+    json_string(stdout, x->id);
     fputs(", \"metric\": ", stdout);
-    json_str(x->metric);
+    json_string(stdout, x->metric);
     fputs(", \"mean_us\": ", stdout);
-    json_num(x->mean);
+    json_number(stdout, x->mean);
     fputs(", \"ci95_us\": ", stdout);
-    json_num(x->half);
+    json_number(stdout, x->half);
     printf(", \"trials\": %zu}\n", x->trials_ok);
 }
 
@@ -263,11 +241,11 @@ static void answer_crossover(cache *c, char **f, size_t npts)
     for (bool first = true; verdict_crossover(x, r, npts, from, &co); first = false) {
         printf("%s{\"i\": %zu, \"j\": %zu, \"dir\": %d, \"x\": ", first ? "" : ", ", co.i,
                co.j, co.dir);
-        json_num(co.x);
+        json_number(stdout, co.x);
         fputs(", \"lo\": ", stdout);
-        json_num(co.lo);
+        json_number(stdout, co.lo);
         fputs(", \"hi\": ", stdout);
-        json_num(co.hi);
+        json_number(stdout, co.hi);
         fputs("}", stdout);
         from = co.j;
     }

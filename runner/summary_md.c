@@ -7,6 +7,7 @@
 #include "results/csvread.h"
 #include "results/fsutil.h"
 #include "runner/crossovers.h"
+#include "runner/summary_json.h"
 #include "runner/params.h"
 
 typedef struct trial_cols {
@@ -207,11 +208,7 @@ static const param *config_column(const char *name)
     return pd && pd->size && pd->readers && strcmp(pd->readers, "*") != 0 ? pd : NULL;
 }
 
-typedef struct point {
-    char *label;               /* "k=v, k=v" of the parameters that vary; "all runs" */
-    size_t *runs;              /* indices into the run array, ranked */
-    size_t nruns;
-} point;
+typedef summary_point point;
 
 /* The pl row of a run id, or -1. */
 static long plan_row(const csv_table *pl, int idcol, const char *id)
@@ -589,6 +586,14 @@ bool summary_table_write(const char *out_dir, FILE *terminal, char *err, size_t 
     crossovers_write_md(f.fp, &cx);
     if (terminal)
         crossovers_print(terminal, &cx, TERM_MAX_POINTS);
+    /* the same for scripts */
+    summary_view view = {exp, runs, nruns, &pl, prow, varies, rcfg, shown, nshown, &cx};
+    if (!summary_json_write(out_dir, &view, err, errlen)) {
+        crossovers_free(&cx);
+        afile_abort(&f);
+        ok = false;
+        goto out;
+    }
     crossovers_free(&cx);
     /* what makes these verdicts doubtful, named per trial */
     fputs("\n## Warnings\n\n", f.fp);

@@ -64,6 +64,13 @@ const char *summary_differs(const ratio_ci *r);
  * when either id is not in the plan. */
 bool summary_same_point(const csv_table *pl, const char *a, const char *b);
 
+/* One sweep point of the ranked table: its label and its runs, ranked. */
+typedef struct summary_point {
+    char *label;               /* "k=v, k=v" of the parameters that vary; "all runs" */
+    size_t *runs;              /* indices into the run array, ranked */
+    size_t nruns;
+} summary_point;
+
 /* Writes OUT/summary.md and prints the compact table to `terminal` (NULL: none).
  * False with a message (nothing written) when summary.csv or plan.csv is unreadable. */
 bool summary_table_write(const char *out_dir, FILE *terminal, char *err, size_t errlen);

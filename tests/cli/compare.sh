@@ -77,6 +77,25 @@ if len(body) != 4 or any("3 of 3 ok" not in l for l in body): fail(f"summary.md 
 if md.count("Ranked by ") != 2: fail("summary.md does not say which metric ranks")
 # the sweep varies only lights.seed: a label, nothing to find crossovers along
 if "## Crossovers\n\nNo numeric parameter varies" not in md: fail("summary.md crossovers")
+# summary.json: the same ranking for scripts (docs/summary-json.md)
+import json, os
+d = json.load(open(os.path.join(os.path.dirname(sys.argv[2]), "summary.json")))
+if (d["schema"], d["version"], d["experiment"], d["metric"]) != ("shadesweep-summary", 1, "cmp", "cpu"):
+    fail(f"summary.json head {d['schema']} {d['version']} {d['experiment']} {d['metric']}")
+if [p["parameters"] for p in d["points"]] != [{"lights.seed": 1}, {"lights.seed": 2}]:
+    fail(f"summary.json points {[p['parameters'] for p in d['points']]}")
+for p in d["points"]:
+    a, b = p["runs"]
+    if (a["rank"], a["renderer"], a["x_fastest"], a["differs"]) != (1, "deferred", 1, None):
+        fail(f"summary.json fastest {a}")
+    if b["rank"] != 2 or b["renderer"] != "forward-spml" or b["differs"] != "yes" or \
+            not 2 < b["x_fastest_lo"] <= b["x_fastest"] <= b["x_fastest_hi"]:
+        fail(f"summary.json second {b}")
+    if b["parameters"]["lights.count"] != 4 or b["trials"] != 3 or b["trials_ok"] != 3:
+        fail(f"summary.json run parameters {b['parameters']}")
+    if abs(b["mean_us"] / a["mean_us"] - b["x_fastest"]) > 0.5 * b["x_fastest"]:
+        fail("summary.json x_fastest far from the ratio of means")
+if d["crossovers"] != []: fail(f"summary.json crossovers {d['crossovers']}")
 if not all("| forward-spml |" in body[i] and "| yes |" in body[i] for i in (1, 3)):
     fail(f"summary.md significance {body}")
 PY
