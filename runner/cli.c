@@ -56,7 +56,8 @@ static const char usage_text[] =
     "                             that read it (docs/manifest.md is --markdown)\n"
     "  columns [--markdown]       the columns of frames.csv and summary.csv and what each\n"
     "                             measured one is (docs/columns.md is --markdown)\n"
-    "  --version, --help          (COMMAND --help: that command's options)\n"
+    "  version, -V, --version     the version and the commit it was built from\n"
+    "  help, -h, --help           this (COMMAND --help: that command's options)\n"
     "\n"
     "exit status: 0 all runs succeeded; 1 some run failed (summary.csv says which);\n"
     "2 bad input or a fatal error.\n";
@@ -441,7 +442,7 @@ int cli_main(int argc, char **argv)
         fputs(usage_text, stdout);
         return 0;
     }
-    if (strcmp(cmd, "--version") == 0) {
+    if (strcmp(cmd, "--version") == 0 || strcmp(cmd, "-V") == 0 || strcmp(cmd, "version") == 0) {
         printf("shadesweep %s (%s)\n", SHADESWEEP_VERSION, SHADESWEEP_COMMIT);
         return 0;
     }

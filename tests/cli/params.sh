@@ -35,6 +35,13 @@ for c in run validate list info merge params; do
   "$SHADESWEEP" "$c" --help >help.txt 2>err.txt || fail "$c --help: exit $?: $(cat err.txt)"
   grep -q "^usage: shadesweep $c" help.txt || fail "$c --help: $(cat help.txt)"
 done
+# the top-level help lists every command; the version answers to its three spellings
+"$SHADESWEEP" --help >top.txt || fail "--help"
+for c in run validate list info merge compare report ratios params columns version help; do
+  grep -q "^  $c[ ,]" top.txt || fail "--help does not list $c"
+done
+v=$("$SHADESWEEP" --version) && [ "$("$SHADESWEEP" -V)" = "$v" ] && [ "$("$SHADESWEEP" version)" = "$v" ] &&
+  echo "$v" | grep -q "^shadesweep [0-9]" || fail "version: '$v'"
 "$SHADESWEEP" run some.yaml -o x --help >help.txt || fail "run ... --help"
 grep -q -- "--resume" help.txt || fail "run --help lists --resume"
 
