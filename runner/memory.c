@@ -144,6 +144,10 @@ void memory_estimate_run(const run_params *p, const scene *sc, memory_estimate *
     int n = snprintf(out->what, sizeof out->what, "targets %s at %dx%d", t, w, h);
     if (p->msaa && n > 0 && (size_t)n < sizeof out->what)
         n += snprintf(out->what + n, sizeof out->what - (size_t)n, " x %dx MSAA", 1 << p->msaa);
+    if (p->error_renderer[0] && n > 0 && (size_t)n < sizeof out->what)
+        n += snprintf(out->what + n, sizeof out->what - (size_t)n, " and the reference's at %" PRIu64 "x%" PRIu64,
+                      (uint64_t)w * (p->error_supersample ? p->error_supersample : 1),
+                      (uint64_t)h * (p->error_supersample ? p->error_supersample : 1));
     if (n > 0 && (size_t)n < sizeof out->what)
         snprintf(out->what + n, sizeof out->what - (size_t)n,
                  ", light lists %s, scene %s, read-back %s", l, s, r);
