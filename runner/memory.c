@@ -41,10 +41,36 @@ void memory_format(uint64_t b, char *buf, size_t len)
 
 static bool is(const char *a, const char *b) { return strcmp(a, b) == 0; }
 
+/* What the estimate takes from a built scene (so that the parent can keep it without
+ * the scene): the materials' G-buffer needs, shadow maps, lights, its bytes, and the
+ * depth slices of its camera for every clustered.slices. */
+typedef struct scene_facts {
+    deferred_needs needs;
+    uint32_t shadow_layers, nlights;
+    uint64_t bytes;
+    uint32_t slices[65];
+} scene_facts;
+
+static uint64_t scene_of(const scene *sc);
+
+static void facts_of(const scene *sc, scene_facts *f)
+{
+    memset(f, 0, sizeof *f);
+    f->needs = deferred_needs_of(sc);
+    f->nlights = sc->nlights_total;
+    for (uint32_t i = 0; i < sc->nlights_total; i++)
+        f->shadow_layers += sc->lights[i].shadows && sc->lights[i].type != LIGHT_POINT;
+    f->bytes = scene_of(sc);
+    for (int k = 1; k <= 64; k++) {
+        double ratio;
+        f->slices[k] = shading_cluster_slices(sc, k, &ratio);
+    }
+}
+
 /* Bytes of the targets renderer `kind` (options of q) allocates at w x h, beyond the
  * context's own framebuffer. */
 static uint64_t targets_of(const char *kind, const run_params *q, int w, int h, int msaa_log2,
-                           const scene *sc)
+                           const scene_facts *sc)
 {
     if (!kind[0] || is(kind, "null"))
         return 0;
@@ -55,7 +81,11 @@ static uint64_t targets_of(const char *kind, const run_params *q, int w, int h, 
     params_to_renderer_options(q, &ro);
     ro.msaa = (int)s;
     if (deferred_uses_gbuffer(kind, &ro)) {
-        unsigned bpp = deferred_gbuffer_bytes_per_pixel_of(kind, &ro, sc);
+        deferred_layout l;
+        char err[160];
+        deferred_needs all = {true, true};
+        unsigned bpp = deferred_layout_build(&ro, sc ? sc->needs : all, &l, err, sizeof err)
+                           ? deferred_layout_bytes_per_pixel(&l) : 0;
         if (!bpp)
             bpp = 64;   /* no scene: the widest preset's bound */
         b += (uint64_t)bpp * s * px;
@@ -66,29 +96,26 @@ static uint64_t targets_of(const char *kind, const run_params *q, int w, int h, 
     }
     if (q->aa == 1)
         b += (hdr + depth) * px;   /* edge AA's output and single-sample depth */
-    if (sc && q->shadows != 1) {
-        uint64_t layers = 0;
-        for (uint32_t i = 0; i < sc->nlights_total; i++)
-            layers += sc->lights[i].shadows && sc->lights[i].type != LIGHT_POINT;
-        b += layers * (uint64_t)SHADOW_DEFAULT_SIZE * SHADOW_DEFAULT_SIZE * depth;
-    }
+    if (sc && q->shadows != 1)
+        b += (uint64_t)sc->shadow_layers * SHADOW_DEFAULT_SIZE * SHADOW_DEFAULT_SIZE * depth;
     return b;
 }
 
 /* The light lists of the tiled and clustered renderers at w x h: heads (offset and
  * count) and indices, as forward_plus.c sizes them, on the GPU and read back. */
-static uint64_t lists_of(const char *kind, const run_params *q, int w, int h, const scene *sc)
+static uint64_t lists_of(const char *kind, const run_params *q, int w, int h,
+                         const scene_facts *sc)
 {
     if (!is(kind, "forward-plus") && !is(kind, "tiled-deferred") && !is(kind, "clustered"))
         return 0;
     const uint64_t tile = 8u << q->tile_size;
     uint64_t cells = ((uint64_t)w + tile - 1) / tile * (((uint64_t)h + tile - 1) / tile);
     if (is(kind, "clustered")) {
-        double ratio;
-        uint32_t slices = sc ? shading_cluster_slices(sc, (int)q->clustered_slices, &ratio) : 0;
+        uint32_t k = q->clustered_slices >= 1 && q->clustered_slices <= 64 ? q->clustered_slices : 24;
+        uint32_t slices = sc ? sc->slices[k] : 0;
         cells *= slices ? slices : 1024;
     }
-    uint64_t n = sc ? sc->nlights_total : MAX_LIGHTS;
+    uint64_t n = sc ? sc->nlights : MAX_LIGHTS;
     uint64_t heads = 2 * cells;   /* opaque cells, then the translucent lists */
     uint64_t cap = heads * (q->max_lights_per_tile ? q->max_lights_per_tile : (n ? n : 1));
     if (cap > INDEX_CAP)
@@ -110,14 +137,14 @@ static uint64_t scene_of(const scene *sc)
     return b;
 }
 
-void memory_estimate_run(const run_params *p, const scene *sc, memory_estimate *out)
+static void estimate(const run_params *p, const scene_facts *sc, memory_estimate *out)
 {
     memset(out, 0, sizeof *out);
     const int w = p->width, h = p->height;
     const uint64_t px = (uint64_t)w * (uint64_t)h;
     out->targets = 8 * px + targets_of(p->renderer, p, w, h, p->msaa, sc);
     out->lists = lists_of(p->renderer, p, w, h, sc);
-    out->scene = scene_of(sc);
+    out->scene = sc ? sc->bytes : 0;
     /* screenshots and error images: RGBA8 and float RGBA copies of the frame */
     if (p->nscreenshots || p->error_renderer[0])
         out->readback = px * (4 + 16);
@@ -151,6 +178,14 @@ void memory_estimate_run(const run_params *p, const scene *sc, memory_estimate *
     if (n > 0 && (size_t)n < sizeof out->what)
         snprintf(out->what + n, sizeof out->what - (size_t)n,
                  ", light lists %s, scene %s, read-back %s", l, s, r);
+}
+
+void memory_estimate_run(const run_params *p, const scene *sc, memory_estimate *out)
+{
+    scene_facts f;
+    if (sc)
+        facts_of(sc, &f);
+    estimate(p, sc ? &f : NULL, out);
 }
 
 /* ---- limits */
@@ -275,23 +310,57 @@ static uint64_t meminfo_kb(const char *field)
     return kb;
 }
 
-bool memory_check_run(const run_params *p, char *msg, size_t len)
+/* Two runs build the same scene and camera when these agree (plan_check.c's same_scene). */
+static bool same_scene(const run_params *a, const run_params *b)
 {
-    const char *env = getenv("SHADESWEEP_MEMORY_CHECK");
-    if (env && strcmp(env, "off") == 0)
-        return true;
+    return strcmp(a->scene, b->scene) == 0 && strcmp(a->scene_file, b->scene_file) == 0 &&
+           a->scene_scale == b->scene_scale && a->scene_up == b->scene_up &&
+           strcmp(a->scene_camera, b->scene_camera) == 0 && a->width == b->width &&
+           a->height == b->height &&
+           memcmp(&a->lights, &b->lights, sizeof a->lights) == 0 &&
+           memcmp(&a->camera, &b->camera, sizeof a->camera) == 0;
+}
+
+/* The facts of p's scene, built without GL in this process once per scene and camera
+ * (a sweep's trials and renderers share them: canyon takes a second to build); NULL when
+ * it does not build. */
+static const scene_facts *cached_facts(const run_params *p)
+{
+    enum { SLOTS = 8 };
+    static struct {
+        bool used, built;
+        run_params key;
+        scene_facts facts;
+    } cache[SLOTS];
+    static unsigned next;
+    for (unsigned i = 0; i < SLOTS; i++)
+        if (cache[i].used && same_scene(&cache[i].key, p))
+            return cache[i].built ? &cache[i].facts : NULL;
+    unsigned i = next++ % SLOTS;
     char err[512];
     scene_file_options fo;
     scene_source src;
     run_params_scene(p, &fo, &src);
     scene *sc = scene_build_source(&src, &p->lights, p->width, p->height, err, sizeof err);
-    if (!sc || !scene_set_camera(sc, &p->camera, err, sizeof err)) {
-        scene_destroy(sc);
-        return true;   /* the trial says why */
-    }
-    memory_estimate e;
-    memory_estimate_run(p, sc, &e);
+    cache[i].used = true;
+    cache[i].key = *p;
+    cache[i].built = sc && scene_set_camera(sc, &p->camera, err, sizeof err);
+    if (cache[i].built)
+        facts_of(sc, &cache[i].facts);
     scene_destroy(sc);
+    return cache[i].built ? &cache[i].facts : NULL;
+}
+
+bool memory_check_run(const run_params *p, char *msg, size_t len)
+{
+    const char *env = getenv("SHADESWEEP_MEMORY_CHECK");
+    if (env && strcmp(env, "off") == 0)
+        return true;
+    const scene_facts *f = cached_facts(p);
+    if (!f)
+        return true;   /* the scene does not build: the trial says why */
+    memory_estimate e;
+    estimate(p, f, &e);
 
     char need[32], room[32], src_text[200] = "";
     struct rlimit rl;
