@@ -1,3 +1,4 @@
+#define _DEFAULT_SOURCE   /* wait4 */
 #include "runner/isolate.h"
 
 #include <errno.h>
@@ -7,9 +8,12 @@
 #include <stdlib.h>
 #include <string.h>
 #include <sys/prctl.h>
+#include <sys/resource.h>
 #include <sys/wait.h>
 #include <time.h>
 #include <unistd.h>
+
+#include "runner/memory.h"
 
 static double now_s(void)
 {
@@ -112,6 +116,7 @@ bool isolate_run(int (*fn)(void *), void *arg, double timeout_s, const char *log
                  volatile const int *stop, isolate_result *out)
 {
     memset(out, 0, sizeof *out);
+    out->peak_rss_kb = out->peak_vm_kb = -1;
     long oom_before = isolate_oom_kills();
     fflush(NULL);   /* or the child would write the parent's buffered output again */
     double t0 = now_s();
@@ -143,10 +148,18 @@ bool isolate_run(int (*fn)(void *), void *arg, double timeout_s, const char *log
     }
 
     int st = 0;
-    for (;;) {
-        pid_t r = waitpid(pid, &st, WNOHANG);
-        if (r == pid)
+    struct rusage ru;
+    for (unsigned polls = 0;; polls++) {
+        pid_t r = wait4(pid, &st, WNOHANG, &ru);
+        if (r == pid) {
+            out->peak_rss_kb = ru.ru_maxrss;
             break;
+        }
+        if (polls % 20 == 0) {   /* VmPeak only grows: its last sample is nearly the peak */
+            long vm = memory_proc_kb(pid, "VmPeak");
+            if (vm > out->peak_vm_kb)
+                out->peak_vm_kb = vm;
+        }
         if (r < 0 && errno != EINTR) {
             st = kill_and_reap(pid);
             break;

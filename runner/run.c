@@ -29,6 +29,7 @@
 #include "runner/hash.h"
 #include "runner/folder.h"
 #include "runner/isolate.h"
+#include "runner/memory.h"
 #include "runner/output.h"
 #include "runner/params.h"
 #include "runner/plan_check.h"
@@ -820,6 +821,17 @@ static bool write_meta(run_state *st, char *err, size_t errlen)
     yo_key(y, "vm_hwm_kb"); yo_i64(y, vm_hwm_kb());
     yo_map_end(y);
 
+    /* runner/memory.h's estimate (with the built scene when there is one) next to what
+     * this process held at its peak (-1: written by the parent for a child that died) */
+    memory_estimate me;
+    memory_estimate_run(&st->s->p, st->sc, &me);
+    int64_t hwm = st->sc ? vm_hwm_kb() : -1;
+    yo_key(y, "memory");
+    yo_map_begin(y);
+    yo_key(y, "estimate_mb"); yo_i64(y, (int64_t)((me.resident + (1u << 19)) >> 20));
+    yo_key(y, "peak_rss_mb"); yo_i64(y, hwm < 0 ? -1 : (hwm + 512) / 1024);
+    yo_map_end(y);
+
     yo_key(y, "pass_plan");
     yo_map_begin(y);
     yo_key(y, "passes");
@@ -1148,6 +1160,15 @@ static void run_one(run_state *st)
     }
     if (strcmp(st->status, "ok") != 0 && st->err[0])
         snprintf(st->message, sizeof st->message, "%s", st->err);
+    /* a target the driver could not allocate, an allocation that failed, near this
+     * process's limit: the message says memory first, with the numbers */
+    char note[240];
+    if (memory_explain(st->status, st->message, memory_proc_kb(0, "VmPeak"),
+                       memory_proc_kb(0, "VmHWM"), note, sizeof note)) {
+        char m[sizeof st->message];
+        snprintf(m, sizeof m, "%s; %.260s", note, st->message);
+        snprintf(st->message, sizeof st->message, "%s", m);
+    }
     write_run_result(st);
 }
 
@@ -1199,6 +1220,16 @@ bool run_trial_isolated(const experiment *e, const run_spec *s, const run_option
             munmap(report, sizeof *report);
         return false;
     }
+    /* A run that would not fit the memory this process may use is refused here, in
+     * the parent, before any child starts (runner/memory.h). */
+    if (!memory_check_run(&s->p, st.message, sizeof st.message)) {
+        snprintf(st.status, sizeof st.status, "failed:memory");
+        write_run_result(&st);
+        snprintf(out->status, sizeof out->status, "%s", st.status);
+        snprintf(out->message, sizeof out->message, "%.500s", st.message);
+        munmap(report, sizeof *report);
+        return true;
+    }
     child_args args = {.st = &st, .report = report};
     isolate_result ir;
     isolate_run(child_main, &args, timeout_s, log_path, &stop_signal, &ir);
@@ -1227,6 +1258,12 @@ bool run_trial_isolated(const experiment *e, const run_spec *s, const run_option
                  ir.oom_killed ? "killed by the kernel's OOM killer (the cgroup counted it)"
                                : st.status + 7,
                  ir.seconds, tail[0] ? ": " : "", tail);
+        char note[240];
+        if (memory_explain(st.status, tail, ir.peak_vm_kb, ir.peak_rss_kb, note, sizeof note)) {
+            char m[sizeof st.message];
+            snprintf(m, sizeof m, "%s; %.260s", note, st.message);
+            snprintf(st.message, sizeof st.message, "%s", m);
+        }
         folder_remove_temp(st.dir);
         write_run_result(&st);
         snprintf(out->status, sizeof out->status, "%s", st.status);
