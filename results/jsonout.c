@@ -25,3 +25,26 @@ void json_number(FILE *fp, double v)
     else
         fputs("null", fp);
 }
+
+void json_key(FILE *fp, bool *first, const char *key)
+{
+    fputs(*first ? "" : ", ", fp);
+    *first = false;
+    json_string(fp, key);
+    fputs(": ", fp);
+}
+
+void json_member_string(FILE *fp, bool *first, const char *key, const char *v)
+{
+    json_key(fp, first, key);
+    if (v)
+        json_string(fp, v);
+    else
+        fputs("null", fp);
+}
+
+void json_member_number(FILE *fp, bool *first, const char *key, double v)
+{
+    json_key(fp, first, key);
+    json_number(fp, v);
+}

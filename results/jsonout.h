@@ -3,7 +3,14 @@
  * string, escaped (quotes, backslashes, control characters as \u00XX; other bytes as
  * they are: our strings are UTF-8), and a number, %.9g, or null when not finite (JSON has
  * no NaN). */
+#include <stdbool.h>
 #include <stdio.h>
 
 void json_string(FILE *fp, const char *s);
 void json_number(FILE *fp, double v);
+
+/* Members of an object: `"key": ` (after ", " unless *first, which it clears), then the
+ * value; a NULL string is null. */
+void json_key(FILE *fp, bool *first, const char *key);
+void json_member_string(FILE *fp, bool *first, const char *key, const char *v);
+void json_member_number(FILE *fp, bool *first, const char *key, double v);

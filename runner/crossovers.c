@@ -231,6 +231,19 @@ static void fmt_x(char *dst, size_t len, double v)
         snprintf(dst, len, "%.3g", v);
 }
 
+typedef struct xtext {
+    char x0[32], x1[32], x[32], lo[32], hi[32];
+} xtext;
+
+static void texts(const crossover_found *c, xtext *t)
+{
+    fmt_x(t->x0, sizeof t->x0, c->x0);
+    fmt_x(t->x1, sizeof t->x1, c->x1);
+    fmt_x(t->x, sizeof t->x, c->x);
+    fmt_x(t->lo, sizeof t->lo, c->lo);
+    fmt_x(t->hi, sizeof t->hi, c->hi);
+}
+
 void crossovers_write_md(FILE *fp, const crossover_list *l)
 {
     fputs("\n## Crossovers\n\n", fp);
@@ -256,32 +269,24 @@ void crossovers_write_md(FILE *fp, const crossover_list *l)
           "| differs below / above |\n|---|---|---|---|---|---|---|---|\n", fp);
     for (size_t i = 0; i < l->n; i++) {
         const crossover_found *c = &l->item[i];
-        char x0[32], x1[32], x[32], lo[32], hi[32];
-        fmt_x(x0, sizeof x0, c->x0);
-        fmt_x(x1, sizeof x1, c->x1);
-        fmt_x(x, sizeof x, c->x);
-        fmt_x(lo, sizeof lo, c->lo);
-        fmt_x(hi, sizeof hi, c->hi);
+        xtext t;
+        texts(c, &t);
         fprintf(fp, "| %s | %s | %s | %s | %s-%s | ~%s | %s to %s | %s / %s |\n", c->axis,
-                c->group[0] ? c->group : "-", c->below, c->above, x0, x1, x, lo, hi,
+                c->group[0] ? c->group : "-", c->below, c->above, t.x0, t.x1, t.x, t.lo, t.hi,
                 c->differs0, c->differs1);
     }
 }
 
-void crossovers_print(FILE *t, const crossover_list *l, size_t max)
+void crossovers_print(FILE *out, const crossover_list *l, size_t max)
 {
     for (size_t i = 0; i < l->n && i < max; i++) {
         const crossover_found *c = &l->item[i];
-        char x0[32], x1[32], x[32], lo[32], hi[32];
-        fmt_x(x0, sizeof x0, c->x0);
-        fmt_x(x1, sizeof x1, c->x1);
-        fmt_x(x, sizeof x, c->x);
-        fmt_x(lo, sizeof lo, c->lo);
-        fmt_x(hi, sizeof hi, c->hi);
-        fprintf(t, "crossover: %s is faster below %s ~%s (95%%: %s to %s), %s above%s%s%s\n",
-                c->below, c->axis, x, lo, hi, c->above, c->group[0] ? " (" : "",
+        xtext t;
+        texts(c, &t);
+        fprintf(out, "crossover: %s is faster below %s ~%s (95%%: %s to %s), %s above%s%s%s\n",
+                c->below, c->axis, t.x, t.lo, t.hi, c->above, c->group[0] ? " (" : "",
                 c->group, c->group[0] ? ")" : "");
     }
     if (l->n > max)
-        fprintf(t, "... %zu more crossovers\n", l->n - max);
+        fprintf(out, "... %zu more crossovers\n", l->n - max);
 }

@@ -142,25 +142,23 @@ static void print_error(const char *why)
     fputs("}\n", stdout);
 }
 
-static void print_side(const char *k, const run_result *x)
+static void print_side(const char *k, const run_result *x, bool *first)
 {
-    printf(", \"%s_mean_us\": ", k);
-    json_number(stdout, x->mean);
-    printf(", \"%s_ci95_us\": ", k);
-    json_number(stdout, x->half);
-    printf(", \"%s_trials\": %zu", k, x->trials_ok);
+    char name[16];
+    snprintf(name, sizeof name, "%s_mean_us", k);
+    json_member_number(stdout, first, name, x->mean);
+    snprintf(name, sizeof name, "%s_ci95_us", k);
+    json_member_number(stdout, first, name, x->half);
+    snprintf(name, sizeof name, "%s_trials", k);
+    json_member_number(stdout, first, name, (double)x->trials_ok);
 }
 
-static void print_ratio_fields(const ratio_ci *r)
+static void print_ratio_fields(const ratio_ci *r, bool *first)
 {
-    fputs("\"ratio\": ", stdout);
-    json_number(stdout, r->ratio);
-    fputs(", \"lo\": ", stdout);
-    json_number(stdout, r->lo);
-    fputs(", \"hi\": ", stdout);
-    json_number(stdout, r->hi);
-    fputs(", \"differs\": ", stdout);
-    json_string(stdout, summary_differs(r));
+    json_member_number(stdout, first, "ratio", r->ratio);
+    json_member_number(stdout, first, "lo", r->lo);
+    json_member_number(stdout, first, "hi", r->hi);
+    json_member_string(stdout, first, "differs", summary_differs(r));
 }
 
 static void answer_ratio(cache *c, char **f)
@@ -171,16 +169,17 @@ static void answer_ratio(cache *c, char **f)
         print_error(why);
         return;
     }
-    fputs("{\"a\": ", stdout);
-    json_string(stdout, p.a->id);
-    fputs(", \"b\": ", stdout);
-    json_string(stdout, p.b->id);
-    fputs(", \"metric\": ", stdout);
-    json_string(stdout, p.a->metric);
-    printf(", \"paired\": %s, \"n\": %zu, ", p.r.paired ? "true" : "false", p.r.n);
-    print_ratio_fields(&p.r);
-    print_side("a", p.a);
-    print_side("b", p.b);
+    bool first = true;
+    fputs("{", stdout);
+    json_member_string(stdout, &first, "a", p.a->id);
+    json_member_string(stdout, &first, "b", p.b->id);
+    json_member_string(stdout, &first, "metric", p.a->metric);
+    json_key(stdout, &first, "paired");
+    fputs(p.r.paired ? "true" : "false", stdout);
+    json_member_number(stdout, &first, "n", (double)p.r.n);
+    print_ratio_fields(&p.r, &first);
+    print_side("a", p.a, &first);
+    print_side("b", p.b, &first);
     fputs("}\n", stdout);
 }
 
@@ -193,15 +192,14 @@ static void answer_run(cache *c, char **f)
         print_error(why);
         return;
     }
-    fputs("{\"id\": ", stdout);
-    json_string(stdout, x->id);
-    fputs(", \"metric\": ", stdout);
-    json_string(stdout, x->metric);
-    fputs(", \"mean_us\": ", stdout);
-    json_number(stdout, x->mean);
-    fputs(", \"ci95_us\": ", stdout);
-    json_number(stdout, x->half);
-    printf(", \"trials\": %zu}\n", x->trials_ok);
+    bool first = true;
+    fputs("{", stdout);
+    json_member_string(stdout, &first, "id", x->id);
+    json_member_string(stdout, &first, "metric", x->metric);
+    json_member_number(stdout, &first, "mean_us", x->mean);
+    json_member_number(stdout, &first, "ci95_us", x->half);
+    json_member_number(stdout, &first, "trials", (double)x->trials_ok);
+    fputs("}\n", stdout);
 }
 
 static void answer_crossover(cache *c, char **f, size_t npts)
@@ -251,8 +249,9 @@ static void answer_crossover(cache *c, char **f, size_t npts)
     }
     fputs("], \"ratios\": [", stdout);
     for (size_t k = 0; k < npts; k++) {
+        bool first = true;
         fputs(k ? ", {" : "{", stdout);
-        print_ratio_fields(&r[k]);
+        print_ratio_fields(&r[k], &first);
         fputs("}", stdout);
     }
     fputs("]}\n", stdout);

@@ -31,29 +31,6 @@ static bool bookkeeping(const char *name)
            strcmp(name, "shard") == 0 || strcmp(name, "folded") == 0;
 }
 
-static void key(FILE *fp, const char *k, bool *first)
-{
-    fputs(*first ? "" : ", ", fp);
-    *first = false;
-    json_string(fp, k);
-    fputs(": ", fp);
-}
-
-static void num_field(FILE *fp, const char *k, double v, bool *first)
-{
-    key(fp, k, first);
-    json_number(fp, v);
-}
-
-static void str_field(FILE *fp, const char *k, const char *v, bool *first)
-{
-    key(fp, k, first);
-    if (v)
-        json_string(fp, v);
-    else
-        fputs("null", fp);
-}
-
 static void run_object(FILE *fp, const summary_view *v, const summary_point *p, size_t i)
 {
     const run_result *x = &v->runs[p->runs[i]];
@@ -61,18 +38,18 @@ static void run_object(FILE *fp, const summary_view *v, const summary_point *p, 
     bool ok = isfinite(x->mean), fok = isfinite(fastest->mean);
     bool first = true;
     fputs("{", fp);
-    key(fp, "rank", &first);
+    json_key(fp, &first, "rank");
     if (ok)
         fprintf(fp, "%zu", i + 1);
     else
         fputs("null", fp);
-    str_field(fp, "run_id", x->id, &first);
-    str_field(fp, "renderer", x->renderer, &first);
-    str_field(fp, "configuration", v->rcfg[p->runs[i]], &first);
-    str_field(fp, "status", x->status, &first);
-    str_field(fp, "metric", x->metric[0] ? x->metric : NULL, &first);
-    num_field(fp, "mean_us", x->mean, &first);
-    num_field(fp, "ci95_us", x->half, &first);
+    json_member_string(fp, &first, "run_id", x->id);
+    json_member_string(fp, &first, "renderer", x->renderer);
+    json_member_string(fp, &first, "configuration", v->rcfg[p->runs[i]]);
+    json_member_string(fp, &first, "status", x->status);
+    json_member_string(fp, &first, "metric", x->metric[0] ? x->metric : NULL);
+    json_member_number(fp, &first, "mean_us", x->mean);
+    json_member_number(fp, &first, "ci95_us", x->half);
     ratio_ci r = {NAN, NAN, NAN, 0, true};
     const char *differs = NULL;
     if (ok && fok && x != fastest) {
@@ -81,27 +58,27 @@ static void run_object(FILE *fp, const summary_view *v, const summary_point *p, 
     } else if (ok && x == fastest) {
         r.ratio = 1;
     }
-    num_field(fp, "x_fastest", r.ratio, &first);
-    num_field(fp, "x_fastest_lo", r.lo, &first);
-    num_field(fp, "x_fastest_hi", r.hi, &first);
-    str_field(fp, "differs", differs, &first);
-    num_field(fp, "wall_mean_us", x->wall_mean, &first);
-    num_field(fp, "wall_ci95_us", x->wall_half, &first);
-    num_field(fp, "p99_us", x->p99_us, &first);
-    num_field(fp, "fps_1pct_low", x->low1_fps, &first);
-    num_field(fp, "image_rmse", x->rmse, &first);
-    key(fp, "trials", &first);
+    json_member_number(fp, &first, "x_fastest", r.ratio);
+    json_member_number(fp, &first, "x_fastest_lo", r.lo);
+    json_member_number(fp, &first, "x_fastest_hi", r.hi);
+    json_member_string(fp, &first, "differs", differs);
+    json_member_number(fp, &first, "wall_mean_us", x->wall_mean);
+    json_member_number(fp, &first, "wall_ci95_us", x->wall_half);
+    json_member_number(fp, &first, "p99_us", x->p99_us);
+    json_member_number(fp, &first, "fps_1pct_low", x->low1_fps);
+    json_member_number(fp, &first, "image_rmse", x->rmse);
+    json_key(fp, &first, "trials");
     fprintf(fp, "%zu", x->trials);
-    key(fp, "trials_ok", &first);
+    json_key(fp, &first, "trials_ok");
     fprintf(fp, "%zu", x->trials_ok);
-    key(fp, "parameters", &first);
+    json_key(fp, &first, "parameters");
     fputs("{", fp);
     long row = v->prow[p->runs[i]];
     bool pf = true;
     for (size_t c = 0; row >= 0 && c < v->pl->ncols; c++) {
         if (bookkeeping(v->pl->header[c]))
             continue;
-        key(fp, v->pl->header[c], &pf);
+        json_key(fp, &pf, v->pl->header[c]);
         cell(fp, v->pl->rows[row][c]);
     }
     fputs("}}", fp);
@@ -116,7 +93,7 @@ static void point_object(FILE *fp, const summary_view *v, const summary_point *p
     bool first = true;
     for (size_t c = 0; row >= 0 && c < v->pl->ncols; c++)
         if (v->varies[c]) {
-            key(fp, v->pl->header[c], &first);
+            json_key(fp, &first, v->pl->header[c]);
             cell(fp, v->pl->rows[row][c]);
         }
     fputs("}, \"runs\": [", fp);
@@ -131,17 +108,17 @@ static void crossover_object(FILE *fp, const crossover_found *c)
 {
     bool first = true;
     fputs("{", fp);
-    str_field(fp, "along", c->axis, &first);
-    str_field(fp, "where", c->group, &first);
-    str_field(fp, "faster_below", c->below, &first);
-    str_field(fp, "faster_above", c->above, &first);
-    num_field(fp, "between_lo", c->x0, &first);
-    num_field(fp, "between_hi", c->x1, &first);
-    num_field(fp, "x", c->x, &first);
-    num_field(fp, "x_lo", c->lo, &first);
-    num_field(fp, "x_hi", c->hi, &first);
-    str_field(fp, "differs_below", c->differs0, &first);
-    str_field(fp, "differs_above", c->differs1, &first);
+    json_member_string(fp, &first, "along", c->axis);
+    json_member_string(fp, &first, "where", c->group);
+    json_member_string(fp, &first, "faster_below", c->below);
+    json_member_string(fp, &first, "faster_above", c->above);
+    json_member_number(fp, &first, "between_lo", c->x0);
+    json_member_number(fp, &first, "between_hi", c->x1);
+    json_member_number(fp, &first, "x", c->x);
+    json_member_number(fp, &first, "x_lo", c->lo);
+    json_member_number(fp, &first, "x_hi", c->hi);
+    json_member_string(fp, &first, "differs_below", c->differs0);
+    json_member_string(fp, &first, "differs_above", c->differs1);
     fputs("}", fp);
 }
 
