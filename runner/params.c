@@ -98,32 +98,75 @@ const char *param_column(const param *pd)
 
 /* >>text */
 
+/* fmt_double and fmt_float are pure and called for every number of every run of a
+ * plan (ids, sweep points), 17 and 9 snprintf/strtod pairs each: a small cache of
+ * recent values, keyed by the value's bits, makes a large plan's repeated values
+ * (most of them: the base's) cost a lookup. Per thread, so that no caller shares it. */
+typedef struct fmt_memo {
+    uint64_t bits;
+    bool used, found;
+    char text[40];
+} fmt_memo;
+
+#define FMT_MEMO_N 512
+
+static fmt_memo *fmt_memo_slot(fmt_memo *memo, uint64_t bits, bool *hit)
+{
+    uint64_t h = (bits ^ (bits >> 29)) * UINT64_C(0xbf58476d1ce4e5b9);
+    fmt_memo *m = &memo[(h >> 40) % FMT_MEMO_N];
+    *hit = m->used && m->bits == bits;
+    return m;
+}
+
 /* The shortest %.*g text that reads back as the same value (10 is "10", not
- * "1e+01"; 1e9 is "1e+09"; 0.1 is "0.1"). */
+ * "1e+01"; 1e9 is "1e+09"; 0.1 is "0.1"). A value no text reads back as (NaN)
+ * leaves out as it was. */
 void fmt_double(double v, char *out, size_t len)
 {
-    char t[40];
-    size_t best = SIZE_MAX;
-    for (int prec = 1; prec <= 17; prec++) {
-        snprintf(t, sizeof t, "%.*g", prec, v);
-        if (strtod(t, NULL) == v && strlen(t) < best) {
-            best = strlen(t);
-            snprintf(out, len, "%s", t);
+    static _Thread_local fmt_memo memo[FMT_MEMO_N];
+    uint64_t bits;
+    memcpy(&bits, &v, sizeof bits);
+    bool hit;
+    fmt_memo *m = fmt_memo_slot(memo, bits, &hit);
+    if (!hit) {
+        char t[40];
+        size_t best = SIZE_MAX;
+        *m = (fmt_memo){.bits = bits, .used = true};
+        for (int prec = 1; prec <= 17; prec++) {
+            snprintf(t, sizeof t, "%.*g", prec, v);
+            if (strtod(t, NULL) == v && strlen(t) < best) {
+                best = strlen(t);
+                snprintf(m->text, sizeof m->text, "%s", t);
+                m->found = true;
+            }
         }
     }
+    if (m->found)
+        snprintf(out, len, "%s", m->text);
 }
 
 void fmt_float(float v, char *out, size_t len)
 {
-    char t[40];
-    size_t best = SIZE_MAX;
-    for (int prec = 1; prec <= 9; prec++) {
-        snprintf(t, sizeof t, "%.*g", prec, (double)v);
-        if (strtof(t, NULL) == v && strlen(t) < best) {
-            best = strlen(t);
-            snprintf(out, len, "%s", t);
+    static _Thread_local fmt_memo memo[FMT_MEMO_N];
+    uint32_t b32;
+    memcpy(&b32, &v, sizeof b32);
+    bool hit;
+    fmt_memo *m = fmt_memo_slot(memo, b32, &hit);
+    if (!hit) {
+        char t[40];
+        size_t best = SIZE_MAX;
+        *m = (fmt_memo){.bits = b32, .used = true};
+        for (int prec = 1; prec <= 9; prec++) {
+            snprintf(t, sizeof t, "%.*g", prec, (double)v);
+            if (strtof(t, NULL) == v && strlen(t) < best) {
+                best = strlen(t);
+                snprintf(m->text, sizeof m->text, "%s", t);
+                m->found = true;
+            }
         }
     }
+    if (m->found)
+        snprintf(out, len, "%s", m->text);
 }
 
 /* >>kv */

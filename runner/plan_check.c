@@ -12,6 +12,7 @@
 #include <stdlib.h>
 #include <string.h>
 
+#include "runner/hash.h"
 #include "runner/params.h"
 #include "scenes/scene.h"
 
@@ -66,15 +67,91 @@ void run_params_scene(const run_params *p, scene_file_options *fo, scene_source 
     *src = (scene_source){.name = p->scene, .file = p->scene_file[0] ? fo : NULL};
 }
 
-/* Two runs build the same scene and camera when these agree. */
-static bool same_scene(const run_params *a, const run_params *b)
+static uint64_t hash_str(uint64_t h, const char *s)
+{
+    return fnv1a64_update(h, s, strlen(s) + 1);
+}
+
+/* Two runs build their scenes from one source when these agree (what scene_probe_build
+ * takes), and the same scene and camera when same_scene also holds; each key's hash
+ * agrees where the comparison does. */
+static bool same_source(const run_params *a, const run_params *b)
 {
     return strcmp(a->scene, b->scene) == 0 && strcmp(a->scene_file, b->scene_file) == 0 &&
            a->scene_scale == b->scene_scale && a->scene_up == b->scene_up &&
-           strcmp(a->scene_camera, b->scene_camera) == 0 && a->width == b->width &&
-           a->height == b->height &&
+           strcmp(a->scene_camera, b->scene_camera) == 0;
+}
+
+static uint64_t source_hash(const run_params *a)
+{
+    uint64_t h = hash_str(FNV1A64_OFFSET_BASIS, a->scene);
+    h = hash_str(h, a->scene_file);
+    float scale = a->scene_scale == 0 ? 0.0f : a->scene_scale;   /* -0 == 0 */
+    h = fnv1a64_update(h, &scale, sizeof scale);
+    h = fnv1a64_update(h, &a->scene_up, sizeof a->scene_up);
+    return hash_str(h, a->scene_camera);
+}
+
+static bool same_scene(const run_params *a, const run_params *b)
+{
+    return same_source(a, b) && a->width == b->width && a->height == b->height &&
            memcmp(&a->lights, &b->lights, sizeof a->lights) == 0 &&
            memcmp(&a->camera, &b->camera, sizeof a->camera) == 0;
+}
+
+static uint64_t scene_hash(const run_params *a)
+{
+    uint64_t h = source_hash(a);
+    h = fnv1a64_update(h, &a->width, sizeof a->width);
+    h = fnv1a64_update(h, &a->height, sizeof a->height);
+    h = fnv1a64_update(h, &a->lights, sizeof a->lights);
+    return fnv1a64_update(h, &a->camera, sizeof a->camera);
+}
+
+typedef struct key_ref {
+    uint64_t h;
+    size_t k;
+} key_ref;
+
+static int key_ref_cmp(const void *x, const void *y)
+{
+    const key_ref *a = x, *b = y;
+    if (a->h != b->h)
+        return a->h < b->h ? -1 : 1;
+    return a->k < b->k ? -1 : a->k > b->k;
+}
+
+/* first[k]: the first run of the plan whose key equals run k's (k itself when none
+ * before it does). Sorted by hash, n log n; runs of one hash are told apart by `same`
+ * against the few distinct keys of that hash. False when out of memory. */
+static bool first_of_key(const plan *p, uint64_t (*hash)(const run_params *),
+                         bool (*same)(const run_params *, const run_params *), size_t *first)
+{
+    size_t n = p->nruns ? p->nruns : 1;
+    key_ref *refs = malloc(n * sizeof *refs);
+    size_t *reps = malloc(n * sizeof *reps);   /* the distinct keys of the current hash */
+    if (!refs || !reps) {
+        free(refs);
+        free(reps);
+        return false;
+    }
+    for (size_t k = 0; k < p->nruns; k++)
+        refs[k] = (key_ref){hash(&p->runs[k].p), k};
+    qsort(refs, p->nruns, sizeof *refs, key_ref_cmp);
+    size_t nreps = 0;
+    for (size_t i = 0; i < p->nruns; i++) {
+        if (i == 0 || refs[i].h != refs[i - 1].h)
+            nreps = 0;
+        size_t k = refs[i].k, r = 0;
+        while (r < nreps && !same(&p->runs[reps[r]].p, &p->runs[k].p))
+            r++;
+        if (r == nreps)
+            reps[nreps++] = k;   /* in index order within the hash: k is the first */
+        first[k] = reps[r];
+    }
+    free(refs);
+    free(reps);
+    return true;
 }
 
 bool plan_check(const experiment *e, const plan *p, diag_list *d)
@@ -91,25 +168,60 @@ bool plan_check(const experiment *e, const plan *p, diag_list *d)
                      "expected a, b and c not all 0 (1/(a d^2 + b d + c) would be infinite), "
                      "found all 0 in run %s", r->id);
     }
-    /* every distinct scene and camera of the plan, built without GL (the lights are
-     * placed too, so a radius that makes grid neighbours overlap fails here) */
+    if (d->n - nerr >= 8 || p->nruns == 0)
+        return d->n == nerr;
+    /* every distinct scene and camera of the plan, as the runs would build them without
+     * GL (the lights are placed too, so a radius that makes grid neighbours overlap
+     * fails here): each source is built once (a probe), and each distinct set of lights
+     * and camera is checked against its source's probe, with the messages
+     * scene_build_source and scene_set_camera give */
+    size_t *scene_first = malloc(p->nruns * sizeof *scene_first);
+    size_t *source_first = malloc(p->nruns * sizeof *source_first);
+    scene_probe **probes = calloc(p->nruns, sizeof *probes);   /* at a source's first run */
+    char (*probe_err)[512] = NULL;
+    bool ok = scene_first && source_first && probes &&
+              first_of_key(p, scene_hash, same_scene, scene_first) &&
+              first_of_key(p, source_hash, same_source, source_first);
+    if (!ok) {
+        diag_add(d, e->path, 0, 0, "", "expected a plan that fits in memory, found no memory left");
+        goto done;
+    }
     for (size_t k = 0; k < p->nruns && d->n - nerr < 8; k++) {
-        const run_params *q = &p->runs[k].p;
-        bool seen = false;
-        for (size_t j = 0; j < k && !seen; j++)
-            seen = same_scene(&p->runs[j].p, q);
-        if (seen)
+        if (scene_first[k] != k)
             continue;
+        const run_params *q = &p->runs[k].p;
+        size_t s = source_first[k];
         char err[512] = "";
-        scene_file_options fo;
-        scene_source src;
-        run_params_scene(q, &fo, &src);
-        scene *sc = scene_build_source(&src, &q->lights, q->width, q->height, err, sizeof err);
-        bool ok = sc && scene_set_camera(sc, &q->camera, err, sizeof err);
-        scene_destroy(sc);
-        if (!ok)
+        if (s == k) {
+            scene_file_options fo;
+            scene_source src;
+            run_params_scene(q, &fo, &src);
+            probes[k] = scene_probe_build(&src, err, sizeof err);
+            if (!probes[k]) {
+                /* kept for this source's other runs: the message each would get */
+                if (!probe_err && !(probe_err = calloc(p->nruns, sizeof *probe_err))) {
+                    diag_add(d, e->path, 0, 0, "", "expected a plan that fits in memory, "
+                             "found no memory left");
+                    goto done;
+                }
+                snprintf(probe_err[k], sizeof probe_err[k], "%s", err);
+            }
+        }
+        bool built = probes[s] != NULL;
+        if (!built)
+            snprintf(err, sizeof err, "%s", probe_err[s]);
+        if (!built || !scene_probe_check(probes[s], &q->lights, &q->camera, q->width,
+                                         q->height, err, sizeof err))
             diag_add(d, e->path, 0, 0, "scene", "expected a scene the runs can render, found: %s "
                      "(run %s)", err, p->runs[k].id);
     }
+done:
+    if (probes)
+        for (size_t k = 0; k < p->nruns; k++)
+            scene_probe_destroy(probes[k]);
+    free(probes);
+    free(probe_err);
+    free(scene_first);
+    free(source_first);
     return d->n == nerr;
 }

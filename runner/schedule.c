@@ -15,6 +15,7 @@
 #include "runner/folder.h"
 #include "runner/hash.h"
 #include "runner/output.h"
+#include "runner/resume_plan.h"
 #include "runner/summary_md.h"
 #include "runner/trials.h"
 
@@ -462,6 +463,13 @@ int run_sweep(const experiment *e, const plan *p, const char *out, bool force, r
     if (!folder_open(&fo, dir, force ? FOLDER_FORCE : o->resume ? FOLDER_RESUME : FOLDER_NEW,
                      &sm, err, sizeof err)) {
         fprintf(stderr, "shadesweep run: %s\n", err);
+        return 2;
+    }
+    /* under the lock, before plan.csv is rewritten: a plan of other ids would orphan
+     * the folder's runs */
+    if (o->resume && !resume_plan_check(dir, p, err, sizeof err)) {
+        fprintf(stderr, "shadesweep run: %s\n", err);
+        folder_close(&fo, false);
         return 2;
     }
     o->out_dir = dir;

@@ -241,12 +241,17 @@ static bool fold(plan *p, unsigned nshards, diag_list *diags)
         run_spec *r = &p->runs[k];
         r->index = k;   /* scratch: the raw run it came from */
         run_params raw = r->p;
+        bool reset = false;
         for (size_t i = 0; i < NPARAMS; i++) {
             const param *pd = &params_table[i];
-            if (pd->size && !param_read_by_run(pd, &raw))
+            if (pd->size && !param_read_by_run(pd, &raw) &&
+                memcmp((char *)&r->p + pd->off, (const char *)&d + pd->off, pd->size) != 0) {
                 memcpy((char *)&r->p + pd->off, (const char *)&d + pd->off, pd->size);
+                reset = true;
+            }
         }
-        run_id(&r->p, r->id);
+        if (reset)   /* else the id plan_expand gave it, of these same parameters */
+            run_id(&r->p, r->id);
     }
     id_ref *refs = malloc((p->nruns ? p->nruns : 1) * sizeof *refs);
     size_t *first_of = malloc((p->nruns ? p->nruns : 1) * sizeof *first_of);

@@ -2,7 +2,7 @@
  * registry below; scenes/scene_*.c); the run's lights are then placed from the manifest's
  * light parameters; scene_update poses everything from schedule time alone.
  *
- * Sections: >>registry >>placement >>build >>posing >>camera-overrides >>coverage */
+ * Sections: >>registry >>placement >>build >>probe >>posing >>camera-overrides >>coverage */
 #include "scenes/scene.h"
 
 #include <math.h>
@@ -167,27 +167,40 @@ static grid_layout grid_plan(uint32_t n, const double e[3])
     return best;
 }
 
-/* Grid placement: the layout is planned for the schedule's largest count (grid_plan),
- * and light k takes cell k in row order (x fastest, then z, then the layer), at the
- * cell's centre: growth adds lights without moving earlier ones. Colours r, g, b uniform
- * in [0, color_max] from the seeded generator, per light in order. Fails when the
+/* Whether grid placement fits: the layout for the schedule's largest count (grid_plan)
+ * in the light bounds' extents e, and the radius; false with the message when the
  * radius exceeds half the spacing (neighbouring spheres would overlap). */
-static bool place_grid(scene *s, const light_params *lp, char *err, size_t errlen)
+static bool grid_fits(const scene *s, const light_params *lp, double e[3], grid_layout *g,
+                      float *radius, char *err, size_t errlen)
 {
-    double e[3];
     for (int k = 0; k < 3; k++)
         e[k] = fmax(0.0, (double)s->light_bounds_max[k] - (double)s->light_bounds_min[k]);
-    grid_layout g = grid_plan(s->nlights_total, e);
-    float radius = placement_radius(s, lp);
-    if ((double)radius > g.spacing / 2.0) {
+    *g = grid_plan(s->nlights_total, e);
+    *radius = placement_radius(s, lp);
+    if ((double)*radius > g->spacing / 2.0) {
         snprintf(err, errlen,
                  "scene '%s': grid placement of %u lights in %u x %u x %u cells (x, y, z) "
                  "of the light bounds puts neighbours %.6g apart: radius %.6g makes them "
                  "overlap; the largest radius allowed is %.6g",
-                 s->name, s->nlights_total, g.n[0], g.n[1], g.n[2], g.spacing,
-                 (double)radius, g.spacing / 2.0);
+                 s->name, s->nlights_total, g->n[0], g->n[1], g->n[2], g->spacing,
+                 (double)*radius, g->spacing / 2.0);
         return false;
     }
+    return true;
+}
+
+/* Grid placement: the layout is planned for the schedule's largest count (grid_plan),
+ * and light k takes cell k in row order (x fastest, then z, then the layer), at the
+ * cell's centre: growth adds lights without moving earlier ones. Colours r, g, b uniform
+ * in [0, color_max] from the seeded generator, per light in order. Fails when the
+ * radius exceeds half the spacing (grid_fits). */
+static bool place_grid(scene *s, const light_params *lp, char *err, size_t errlen)
+{
+    double e[3];
+    grid_layout g;
+    float radius;
+    if (!grid_fits(s, lp, e, &g, &radius, err, errlen))
+        return false;
     rng r;
     rng_seed(&r, lp->rng, lp->seed);
     uint32_t per_layer = g.n[0] * g.n[2];
@@ -204,6 +217,62 @@ static bool place_grid(scene *s, const light_params *lp, char *err, size_t errle
     return true;
 }
 
+/* The run's lights on a built scene: the authored ones (placement scene) or placed from
+ * lp. With `check`, only whether they can be: the same failures and messages, but no
+ * light is placed and s->lights is left NULL (what a plan check asks of many runs). */
+static bool place_lights(scene *s, const scene_light *authored, uint32_t nauthored,
+                         uint32_t ncoverage, const light_params *lp, bool check, char *err,
+                         size_t errlen)
+{
+    const char *name = s->name;
+    s->count = lp->count;
+    uint32_t most = light_count_max(&lp->count);
+    switch (lp->placement) {
+    case PLACEMENT_NONE:
+        s->nlights_total = 0;
+        break;
+    case PLACEMENT_SCENE:
+        /* the authored lights in their order; the count caps how many are ever on */
+        if (nauthored == 0) {
+            snprintf(err, errlen, "scene '%s' has no authored lights", name);
+            return false;
+        }
+        s->nlights_total = most < nauthored ? most : nauthored;
+        s->ncoverage_lights = ncoverage < s->nlights_total ? ncoverage : s->nlights_total;
+        break;
+    case PLACEMENT_RANDOM:
+    case PLACEMENT_GRID:
+        s->nlights_total = most;
+        break;
+    default:
+        snprintf(err, errlen, "bug: light placement %d", (int)lp->placement);
+        return false;
+    }
+    if (!s->nlights_total)
+        return true;
+    s->lights = calloc(s->nlights_total, sizeof *s->lights);
+    if (!s->lights) {
+        snprintf(err, errlen, "out of memory building scene '%s' with %u lights", name,
+                 s->nlights_total);
+        return false;
+    }
+    if (check) {
+        free(s->lights);
+        s->lights = NULL;
+        double e[3];
+        grid_layout g;
+        float radius;
+        return lp->placement != PLACEMENT_GRID || grid_fits(s, lp, e, &g, &radius, err, errlen);
+    }
+    if (lp->placement == PLACEMENT_SCENE)
+        memcpy(s->lights, authored, s->nlights_total * sizeof *s->lights);
+    else if (lp->placement == PLACEMENT_RANDOM)
+        place_random(s, lp);
+    else if (!place_grid(s, lp, err, errlen))
+        return false;
+    return true;
+}
+
 // >>build
 
 scene *scene_build(const char *name, const light_params *lp, int width, int height,
@@ -213,9 +282,13 @@ scene *scene_build(const char *name, const light_params *lp, int width, int heig
     return scene_build_source(&src, lp, width, height, err, errlen);
 }
 
-scene *scene_build_source(const scene_source *src, const light_params *lp, int width,
-                          int height, char *err, size_t errlen)
+/* The scene from its builder, without the run's lights (nlights_total 0), at t = 0; the
+ * builder's authored lights are left in *bout's authored (the caller frees *bout and its
+ * authored). NULL with the message on failure. */
+static scene *build_unlit(const scene_source *src, int width, int height, scene_builder **bout,
+                          char *err, size_t errlen)
 {
+    *bout = NULL;
     source_plan plan;
     if (!plan_source(src, &plan, err, errlen))
         return NULL;
@@ -242,56 +315,89 @@ scene *scene_build_source(const scene_source *src, const light_params *lp, int w
     b->errlen = sizeof why;
     if (!plan.build(b, plan.arg) || b->failed) {
         snprintf(err, errlen, "scene '%s': %s", name, why);
-        goto fail;
+        free(b->authored);
+        free(b);
+        scene_destroy(s);
+        return NULL;
     }
     s->fault = plan.fault;
+    *bout = b;
+    return s;
+}
 
-    s->count = lp->count;
-    uint32_t most = light_count_max(&lp->count);
-    switch (lp->placement) {
-    case PLACEMENT_NONE:
-        s->nlights_total = 0;
-        break;
-    case PLACEMENT_SCENE:
-        /* the authored lights in their order; the count caps how many are ever on */
-        if (b->nauthored == 0) {
-            snprintf(err, errlen, "scene '%s' has no authored lights", name);
-            goto fail;
-        }
-        s->nlights_total = most < b->nauthored ? most : b->nauthored;
-        s->ncoverage_lights = b->ncoverage < s->nlights_total ? b->ncoverage : s->nlights_total;
-        break;
-    case PLACEMENT_RANDOM:
-    case PLACEMENT_GRID:
-        s->nlights_total = most;
-        break;
-    default:
-        snprintf(err, errlen, "bug: light placement %d", (int)lp->placement);
-        goto fail;
-    }
-    if (s->nlights_total) {
-        s->lights = calloc(s->nlights_total, sizeof *s->lights);
-        if (!s->lights) {
-            snprintf(err, errlen, "out of memory building scene '%s' with %u lights", name,
-                     s->nlights_total);
-            goto fail;
-        }
-        if (lp->placement == PLACEMENT_SCENE)
-            memcpy(s->lights, b->authored, s->nlights_total * sizeof *s->lights);
-        else if (lp->placement == PLACEMENT_RANDOM)
-            place_random(s, lp);
-        else if (!place_grid(s, lp, err, errlen))
-            goto fail;
-    }
+scene *scene_build_source(const scene_source *src, const light_params *lp, int width,
+                          int height, char *err, size_t errlen)
+{
+    scene_builder *b;
+    scene *s = build_unlit(src, width, height, &b, err, errlen);
+    if (!s)
+        return NULL;
+    bool ok = place_lights(s, b->authored, b->nauthored, b->ncoverage, lp, false, err, errlen);
     free(b->authored);
     free(b);
+    if (!ok) {
+        scene_destroy(s);
+        return NULL;
+    }
     scene_update(s, 0.0);
     return s;
-fail:
+}
+
+// >>probe
+
+struct scene_probe {
+    scene *s;                  /* built without lights, at t = 0 */
+    uint32_t nauthored, ncoverage;
+};
+
+scene_probe *scene_probe_build(const scene_source *src, char *err, size_t errlen)
+{
+    scene_probe *p = calloc(1, sizeof *p);
+    if (!p) {
+        snprintf(err, errlen, "out of memory building scene '%s'",
+                 src->file ? (src->file->path ? src->file->path : "") : src->name);
+        return NULL;
+    }
+    scene_builder *b;
+    p->s = build_unlit(src, 1, 1, &b, err, errlen);
+    if (!p->s) {
+        free(p);
+        return NULL;
+    }
+    p->nauthored = b->nauthored;
+    p->ncoverage = b->ncoverage;
     free(b->authored);
     free(b);
-    scene_destroy(s);
-    return NULL;
+    scene_update(p->s, 0.0);
+    return p;
+}
+
+bool scene_probe_check(const scene_probe *p, const light_params *lp, const camera_params *cp,
+                       int width, int height, char *err, size_t errlen)
+{
+    if (width <= 0 || height <= 0) {
+        snprintf(err, errlen, "bug: scene '%s' built for a %dx%d target", p->s->name, width,
+                 height);
+        return false;
+    }
+    /* a copy of the probe's values: place_lights in check mode and scene_set_camera
+     * change only values, and the copy's pointers stay the probe's */
+    scene t = *p->s;
+    t.width = width;
+    t.height = height;
+    t.lights = NULL;
+    if (!place_lights(&t, NULL, p->nauthored, p->ncoverage, lp, true, err, errlen))
+        return false;
+    t.count = lp->count;
+    return !cp || scene_set_camera(&t, cp, err, errlen);
+}
+
+void scene_probe_destroy(scene_probe *p)
+{
+    if (!p)
+        return;
+    scene_destroy(p->s);
+    free(p);
 }
 
 // >>posing

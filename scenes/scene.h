@@ -210,6 +210,19 @@ scene *scene_build(const char *name, const light_params *lp, int width, int heig
                    char *err, size_t errlen);
 void scene_update(scene *s, double t);
 
+/* What a plan check asks of many runs' scenes without building each (runner/plan_check.c):
+ * a source built once, without lights (maps and meshes included: a file whose texture
+ * does not decode fails here), against which each run's lights and camera are checked
+ * with no further building. scene_probe_build: NULL with scene_build_source's message when
+ * the source cannot be built. scene_probe_check: true when scene_build_source with lp at
+ * width x height, then scene_set_camera with cp (NULL: none), would succeed; else false
+ * with the message the first of them would give. */
+typedef struct scene_probe scene_probe;
+scene_probe *scene_probe_build(const scene_source *src, char *err, size_t errlen);
+bool scene_probe_check(const scene_probe *p, const light_params *lp, const camera_params *cp,
+                       int width, int height, char *err, size_t errlen);
+void scene_probe_destroy(scene_probe *p);   /* NULL is fine */
+
 /* Applies a manifest's camera overrides (call after scene_build, before the run; it
  * re-poses at the scene's current t). False with a message naming the manifest key
  * ("camera.near: expected a finite number > 0, found -1"; znear and zfar are the

@@ -100,7 +100,10 @@ def main(argv):
             die(f"{d}: not a folder")
     if os.path.exists(outdir) and not os.path.isdir(outdir):
         die(f"{outdir}: not a folder")
-    os.makedirs(outdir, exist_ok=True)
+    try:
+        os.makedirs(outdir, exist_ok=True)
+    except OSError as e:
+        die(f"{outdir}: cannot make the folder ({e.strerror or e}; report.md goes there)")
     if not os.access(outdir, os.W_OK):
         die(f"{outdir}: not writable (report.md goes there)")
     ref = Reference(reference_dir())
@@ -198,9 +201,16 @@ def main(argv):
     lines += body
     path = os.path.join(outdir, "report.md")
     tmp = path + f".tmp.{os.getpid()}"
-    with open(tmp, "w", encoding="utf-8") as f:
-        f.write("\n".join(lines).rstrip() + "\n")
-    os.replace(tmp, path)
+    try:
+        with open(tmp, "w", encoding="utf-8") as f:
+            f.write("\n".join(lines).rstrip() + "\n")
+        os.replace(tmp, path)
+    except OSError as e:
+        try:
+            os.remove(tmp)
+        except OSError:
+            pass
+        die(f"{path}: cannot write: {e.strerror or e}")
     ran = [n for n in KNOWN if n in exps]
     print(f"{ME}: wrote {path}: {len(ran)} of {len(KNOWN)} experiments "
           f"({', '.join(ran) if ran else 'none recognised'}), {len(plots.made)} plot(s)"

@@ -1,5 +1,6 @@
 """Reading shadesweep output folders: plan.csv, summary.csv, sweep.yaml, runs/<id>/{meta.yaml,seconds.csv,passes.csv,errors.csv,coverage.csv}."""
 import csv
+import io
 import math
 import os
 import re
@@ -54,10 +55,39 @@ def die(msg):
 # ---- reading our outputs
 
 def read_csv(path):
+    """The rows of a CSV as dicts, None when there is no such file. A file shadesweep
+    did not write whole (not UTF-8, empty, a last line without its line end, a row of
+    another width than the header, an unclosed quote) ends the report with one line
+    naming it and exit 2: its numbers cannot be trusted, and a half-read table would
+    fail later with a traceback or, worse, report what is not there."""
     if not os.path.isfile(path):
         return None
-    with open(path, newline="") as f:
-        return list(csv.DictReader(f))
+    try:
+        with open(path, newline="", encoding="utf-8") as f:
+            text = f.read()
+    except UnicodeDecodeError as e:
+        die(f"{path}: not UTF-8 text (byte 0x{e.object[e.start]:02x} at offset {e.start}); "
+            "not a file shadesweep wrote")
+    except OSError as e:
+        die(f"{path}: cannot read: {e.strerror or e}")
+    if not text:
+        die(f"{path}: empty (no header line): cut off or damaged")
+    if not text.endswith("\n"):
+        die(f"{path}: cut off (its last line has no line end)")
+    reader = csv.reader(io.StringIO(text, newline=""), strict=True)
+    rows = []
+    try:
+        header = next(reader)
+        for row in reader:
+            if not row:
+                continue
+            if len(row) != len(header):
+                die(f"{path}:{reader.line_num}: {len(row)} fields, the header has {len(header)} "
+                    "(a cut-off or damaged file)")
+            rows.append(dict(zip(header, row)))
+    except csv.Error as e:
+        die(f"{path}:{reader.line_num}: not CSV ({e})")
+    return rows
 
 
 def _scalar(s):
@@ -76,12 +106,17 @@ def read_yaml(path):
         return {}
     try:
         import yaml
-        d = yaml.safe_load(text)
-        return d if isinstance(d, dict) else {}
     except ImportError:
-        pass
-    except Exception:
-        return {}
+        yaml = None
+    if yaml is not None:
+        try:
+            d = yaml.safe_load(text)
+        except yaml.YAMLError as e:
+            mark = getattr(e, "problem_mark", None)
+            where = f"line {mark.line + 1}: " if mark is not None else ""
+            what = getattr(e, "problem", None) or str(e).splitlines()[0]
+            die(f"{path}: not valid YAML ({where}{what}); not a file shadesweep wrote")
+        return d if isinstance(d, dict) else {}
     root = {}
     stack = [(-1, root)]
     for line in text.splitlines():
@@ -213,20 +248,19 @@ class Run:
                 ok = {r.get("trial") for r in self.ok_rows}
                 acc = {}
                 frames = set()
-                with open(path, newline="") as f:
-                    for r in csv.DictReader(f):
-                        if r.get("trial") not in ok:
-                            continue
-                        frames.add((r["trial"], r["frame"]))
-                        a = acc.setdefault(r["pass"], [[], None, 0.0, 0])
-                        g = num(r.get("gpu_us"))
-                        if g is not None:
-                            a[0].append(g)
-                        smp = num(r.get("samples"))
-                        if smp is not None:
-                            a[1] = (a[1] or 0.0) + smp
-                        a[2] += num(r.get("draw_calls")) or 0.0
-                        a[3] += 1
+                for r in read_csv(path) or []:
+                    if r.get("trial") not in ok:
+                        continue
+                    frames.add((r["trial"], r["frame"]))
+                    a = acc.setdefault(r["pass"], [[], None, 0.0, 0])
+                    g = num(r.get("gpu_us"))
+                    if g is not None:
+                        a[0].append(g)
+                    smp = num(r.get("samples"))
+                    if smp is not None:
+                        a[1] = (a[1] or 0.0) + smp
+                    a[2] += num(r.get("draw_calls")) or 0.0
+                    a[3] += 1
                 nf = len(frames)
                 out = {p: {"gpu_us": median(a[0]),
                            "draw_calls": a[2] / nf if nf else None,

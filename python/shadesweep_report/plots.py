@@ -18,10 +18,14 @@ class Plots:
             self.error = f"matplotlib could not be loaded ({e.__class__.__name__}: {e})"
 
     def save(self, fig, name):
-        os.makedirs(self.folder, exist_ok=True)
         path = os.path.join(self.folder, name)
         fig.tight_layout()
-        fig.savefig(path, dpi=110)
+        try:
+            os.makedirs(self.folder, exist_ok=True)
+            fig.savefig(path, dpi=110)
+        except OSError as e:
+            from .loading import die
+            die(f"{path}: cannot write the plot: {e.strerror or e}")
         self.plt.close(fig)
         self.made.append(name)
         return f"![{name}](plots/{name})\n"

@@ -354,6 +354,44 @@ set +e
 set -e
 [ $rc -eq 2 ] && [ "$(cat bad.err)" = "report: several folders: say where the report goes with -o OUTDIR" ] ||
   fail "several folders without -o: rc $rc $(cat bad.err)"
+# Bad input and unwritable output: one line naming the file and what is wrong, exit 2,
+# never a traceback (through `shadesweep report`, as users run it)
+refused() {  # refused WANT ARGS...: exit 2, exactly one line on stderr: "report: WANT"
+  local want=$1; shift
+  set +e
+  "$SHADESWEEP" report "$@" >ref.out 2>ref.err; rc=$?
+  set -e
+  [ $rc -eq 2 ] && [ "$(wc -l <ref.err)" -eq 1 ] && [ "$(cat ref.err)" = "report: $want" ] ||
+    fail "report $*: rc $rc, want 'report: $want': $(cat ref.err)"
+}
+fresh() { rm -rf "$1"; cp -r out/exp1 "$1"; }
+run0=$(ls out/exp1/runs | head -1)
+fresh b1; printf 'experiment,run_id\n\xff\xfe,1\n' >b1/summary.csv
+refused "b1/summary.csv: not UTF-8 text (byte 0xff at offset 18); not a file shadesweep wrote" b1
+fresh b2; head -c 300 out/exp1/summary.csv >b2/summary.csv
+refused "b2/summary.csv: cut off (its last line has no line end)" b2
+fresh b3; head -n 2 out/exp1/plan.csv >b3/plan.csv; sed -n 3p out/exp1/plan.csv | cut -d, -f1-4 >>b3/plan.csv
+refused "b3/plan.csv:3: 4 fields, the header has $(head -n 1 out/exp1/plan.csv | tr ',' '\n' | wc -l) (a cut-off or damaged file)" b3
+fresh b4; printf 'run_id: [unclosed\n  : :\n' >"b4/runs/$run0/meta.yaml"
+refused "b4/runs/$run0/meta.yaml: not valid YAML (line 2: expected ',' or ']', but got ':'); not a file shadesweep wrote" b4
+fresh b5; printf 'experiment,run_id\n"mine,1\n' >b5/summary.csv
+refused "b5/summary.csv:2: not CSV (unexpected end of data)" b5
+refused "gone: no such folder" gone
+touch afile
+refused "afile/x: cannot make the folder (Not a directory; report.md goes there)" -o afile/x out/exp1
+fresh b6; mkdir b6/report.md
+refused "b6/report.md: cannot write: Is a directory" b6
+rm -rf b7; cp -r out/exp2 b7; rm -rf b7/plots; touch b7/plots
+set +e
+"$SHADESWEEP" report b7 >ref.out 2>ref.err; rc=$?
+set -e
+[ $rc -eq 2 ] && [ "$(wc -l <ref.err)" -eq 1 ] &&
+  grep -qx "report: b7/plots/s003-exp2_[a-z_]*\.png: cannot write the plot: File exists" ref.err ||
+  fail "report b7 (plots a file): rc $rc: $(cat ref.err)"
+if [ "$(id -u)" != 0 ]; then   # root writes anywhere
+  mkdir ro && chmod 555 ro
+  refused "ro/x: cannot make the folder (Permission denied; report.md goes there)" -o ro/x out/exp1
+fi
 # Every committed reproduction (docs/results/*/ with data/ and report.md): the report over
 # its data, from the source root as it was written, is the committed report.md again,
 # byte for byte (its "Report written" time fed back through SOURCE_DATE_EPOCH)
