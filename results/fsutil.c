@@ -1,7 +1,7 @@
 /* Files that appear under their final name only when complete, and small
  * directory helpers (mkdir -p, rm -rf). See fsutil.h. */
-/* nftw() and FTW_DEPTH/FTW_PHYS are XSI: glibc hides them under plain POSIX. */
-#define _XOPEN_SOURCE 700
+/* nftw() and FTW_DEPTH/FTW_PHYS are XSI, fopencookie() is glibc's: _GNU_SOURCE has both. */
+#define _GNU_SOURCE
 
 #include "results/fsutil.h"
 
@@ -66,13 +66,68 @@ char *fs_read_all(const char *path, size_t max, size_t *len, int *err)
     return buf;
 }
 
+static const char *errno_hint(int e)
+{
+    return e == ENOSPC ? " (the disk is full)"
+           : e == EDQUOT ? " (the disk quota is exhausted)"
+           : e == EROFS ? " (the file system is read-only)"
+           : e == EIO ? " (the device reported an I/O error)"
+           : "";
+}
+
+void fs_error_message(char *err, size_t errlen, const char *path, int e)
+{
+    snprintf(err, errlen, "%s: %s%s", path, strerror(e), errno_hint(e));
+}
+
+/* What the stream of an afile writes through: every write(2) checked, the first error
+ * kept, the bytes that reached the file counted (afile_commit compares the file's size). */
+struct afile_sink {
+    int fd;
+    int err;                   /* the first write error's errno; 0: none */
+    uint64_t written;
+};
+
+static ssize_t sink_write(void *cookie, const char *buf, size_t size)
+{
+    afile_sink *k = cookie;
+    if (k->err)
+        return 0;   /* the file is lost already: nothing more goes to it */
+    size_t done = 0;
+    while (done < size) {
+        ssize_t w = write(k->fd, buf + done, size - done);
+        if (w < 0 && errno == EINTR)
+            continue;
+        if (w <= 0) {
+            k->err = w < 0 ? errno : EIO;   /* a write of 0 bytes: nothing will come */
+            errno = k->err;
+            return 0;   /* fopencookie: 0 is an error, and the stream's error flag is set */
+        }
+        done += (size_t)w;
+        k->written += (uint64_t)w;
+    }
+    return (ssize_t)size;
+}
+
+static int sink_close(void *cookie)
+{
+    afile_sink *k = cookie;
+    int rc = close(k->fd);
+    k->fd = -1;
+    if (rc != 0 && !k->err)
+        k->err = errno;
+    return rc;
+}
+
 static void afile_clear(afile *f)
 {
     free(f->final_path);
     free(f->tmp_path);
+    free(f->sink);
     f->fp = NULL;
     f->final_path = NULL;
     f->tmp_path = NULL;
+    f->sink = NULL;
 }
 
 bool afile_open(afile *f, const char *final_path, char *err, size_t errlen)
@@ -80,6 +135,7 @@ bool afile_open(afile *f, const char *final_path, char *err, size_t errlen)
     f->fp = NULL;
     f->final_path = NULL;
     f->tmp_path = NULL;
+    f->sink = NULL;
 
     if (final_path == NULL || final_path[0] == '\0') {
         snprintf(err, errlen, "cannot create file: empty path");
@@ -89,7 +145,8 @@ bool afile_open(afile *f, const char *final_path, char *err, size_t errlen)
     int len = snprintf(NULL, 0, "%s.tmp.%ld", final_path, pid);
     f->final_path = dup_str(final_path);
     f->tmp_path = len > 0 ? malloc((size_t)len + 1) : NULL;
-    if (f->final_path == NULL || f->tmp_path == NULL) {
+    f->sink = calloc(1, sizeof *f->sink);
+    if (f->final_path == NULL || f->tmp_path == NULL || f->sink == NULL) {
         snprintf(err, errlen, "%s: out of memory", final_path);
         goto fail;
     }
@@ -97,10 +154,14 @@ bool afile_open(afile *f, const char *final_path, char *err, size_t errlen)
 
     int fd = open(f->tmp_path, O_WRONLY | O_CREAT | O_EXCL | O_CLOEXEC, 0666);
     if (fd < 0) {
-        snprintf(err, errlen, "%s: cannot create: %s", f->tmp_path, strerror(errno));
+        int e = errno;
+        snprintf(err, errlen, "%s: cannot create: %s%s", f->tmp_path, strerror(e),
+                 errno_hint(e));
         goto fail;
     }
-    f->fp = fdopen(fd, "w");
+    f->sink->fd = fd;
+    cookie_io_functions_t io = {.write = sink_write, .close = sink_close};
+    f->fp = fopencookie(f->sink, "w", io);
     if (f->fp == NULL) {
         int e = errno;
         close(fd);
@@ -115,53 +176,67 @@ fail:
     return false;
 }
 
+bool afile_write(afile *f, const void *data, size_t n)
+{
+    if (f->fp == NULL || f->sink == NULL)
+        return false;
+    if (n && fwrite(data, 1, n, f->fp) != n)
+        return false;
+    return !ferror(f->fp) && f->sink->err == 0;
+}
+
 bool afile_commit(afile *f, char *err, size_t errlen)
 {
-    if (f->fp == NULL || f->tmp_path == NULL || f->final_path == NULL) {
+    if (f->fp == NULL || f->tmp_path == NULL || f->final_path == NULL || f->sink == NULL) {
         snprintf(err, errlen, "bug: afile_commit on a file that is not open");
-        afile_clear(f);
+        afile_abort(f);
         return false;
     }
-    bool ok = true;
+    afile_sink *k = f->sink;
     int e = 0;
     const char *what = "";
 
-    /* The first error wins; every step still runs so that the stream is closed. */
-    if (fflush(f->fp) != 0) {
+    /* The first error wins (a write's, kept by the sink); every step still runs so that
+     * the stream is closed. */
+    if (fflush(f->fp) != 0 || ferror(f->fp) || k->err) {
+        e = k->err ? k->err : errno ? errno : EIO;
+    } else if (fsync(k->fd) != 0) {
         e = errno;
-        what = "write";
-        ok = false;
-    } else if (ferror(f->fp)) { /* an earlier buffered write failed */
-        e = EIO;
-        what = "write";
-        ok = false;
+        what = "fsync: ";
+    } else {
+        /* Every byte the writer gave is in the file, and nothing else. */
+        struct stat st;
+        if (fstat(k->fd, &st) != 0) {
+            e = errno;
+            what = "fstat: ";
+        } else if ((uint64_t)st.st_size != k->written) {
+            snprintf(err, errlen, "%s: %lld bytes on disk after writing %llu", f->final_path,
+                     (long long)st.st_size, (unsigned long long)k->written);
+            e = -1;
+        }
     }
-    if (ok && fsync(fileno(f->fp)) != 0) {
-        e = errno;
-        what = "fsync";
-        ok = false;
-    }
-    if (fclose(f->fp) != 0 && ok) {
-        e = errno;
-        what = "close";
-        ok = false;
+    if (fclose(f->fp) != 0 && !e) {
+        e = k->err ? k->err : errno ? errno : EIO;
+        what = "close: ";
     }
     f->fp = NULL;
-    if (ok && rename(f->tmp_path, f->final_path) != 0) {
+    if (!e && rename(f->tmp_path, f->final_path) != 0) {
         e = errno;
-        snprintf(err, errlen, "%s: cannot rename to %s: %s", f->tmp_path, f->final_path,
-                 strerror(e));
+        snprintf(err, errlen, "%s: cannot rename %s: %s%s", f->final_path, f->tmp_path,
+                 strerror(e), errno_hint(e));
         unlink(f->tmp_path);
         afile_clear(f);
         return false;
     }
-    if (!ok) {
+    if (e) {
         /* Name the file the user knows; the temporary one is gone. */
-        snprintf(err, errlen, "%s: %s failed: %s", f->final_path, what, strerror(e));
+        if (e > 0)
+            snprintf(err, errlen, "%s: %s%s%s", f->final_path, what, strerror(e),
+                     errno_hint(e));
         unlink(f->tmp_path);
     }
     afile_clear(f);
-    return ok;
+    return e == 0;
 }
 
 void afile_abort(afile *f)
@@ -170,6 +245,8 @@ void afile_abort(afile *f)
         return;
     if (f->fp != NULL)
         fclose(f->fp);
+    else if (f->sink != NULL && f->sink->fd > 0)
+        close(f->sink->fd);
     if (f->tmp_path != NULL)
         unlink(f->tmp_path);
     afile_clear(f);

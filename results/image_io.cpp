@@ -3,6 +3,7 @@
 // No C++ exception crosses into C: every entry point catches everything and turns
 // it into false with a message (or a neutral value where the function cannot fail).
 #include "results/image_io.h"
+#include "results/fsutil.h"
 
 #include <OpenImageIO/filesystem.h>
 #include <OpenImageIO/imageio.h>
@@ -17,6 +18,7 @@
 #include <limits>
 #include <memory>
 #include <string>
+#include <vector>
 
 #include <unistd.h>
 
@@ -103,17 +105,49 @@ bool stores_float(const std::string &ext)
            ext == "pfm" || ext == "hdr";
 }
 
-// "<dir>/.<base>.tmp.<pid>.<ext>" for "<dir>/<base>.<ext>": same directory (rename
-// stays on one file system), same extension (OIIO picks the writer by it).
-std::string temp_name(const std::string &path)
+// The image encoded into bytes in memory (IOVecOutput): OIIO's writers then never touch
+// the disk, and the bytes go through afile (results/fsutil.h), which checks every write,
+// the flush, fsync and the file's size before the rename. A format whose writer cannot
+// write to a proxy is refused (PNG and EXR, what this program writes, can).
+bool encode(const std::string &final_path, const std::string &ext, const image *img,
+            std::vector<unsigned char> &bytes, std::string &why)
 {
-    size_t slash = path.find_last_of('/');
-    std::string dir = slash == std::string::npos ? std::string() : path.substr(0, slash + 1);
-    std::string file = slash == std::string::npos ? path : path.substr(slash + 1);
-    size_t dot = file.find_last_of('.');
-    std::string base = dot == std::string::npos || dot == 0 ? file : file.substr(0, dot);
-    std::string ext = dot == std::string::npos || dot == 0 ? std::string() : file.substr(dot);
-    return dir + "." + base + ".tmp." + std::to_string((long)getpid()) + ext;
+    auto out = ImageOutput::create(final_path);
+    if (!out) {
+        why = "cannot write ." + ext + " images: " + one_line(OIIO::geterror());
+        return false;
+    }
+    if (!out->supports("ioproxy")) {
+        why = std::string("OpenImageIO's ") + out->format_name() +
+              " writer cannot write to memory, so its writes could not be checked";
+        return false;
+    }
+    TypeDesc file_type = type_desc(img->type);
+    if (img->type == IMAGE_F32 && !stores_float(ext))
+        file_type = TypeDesc::UINT8; // OIIO converts: clamp to [0,1], scale, round
+    ImageSpec spec(img->width, img->height, img->channels, file_type);
+    // Pixels are written as they are: an alpha channel is never (un)premultiplied.
+    spec.attribute("oiio:UnassociatedAlpha", 1);
+
+    OIIO::Filesystem::IOVecOutput vec(bytes);
+    bool ok = out->set_ioproxy(&vec) && out->open(final_path, spec);
+    if (!ok) {
+        why = one_line(out->geterror());
+    } else {
+        ok = out->write_image(type_desc(img->type), img->pixels);
+        if (!ok)
+            why = one_line(out->geterror());
+        // close() writes the rest of the file; it must succeed too.
+        if (!out->close() && ok) {
+            ok = false;
+            why = one_line(out->geterror());
+        }
+    }
+    if (ok && bytes.empty()) {
+        why = "the encoder produced no bytes";
+        ok = false;
+    }
+    return ok;
 }
 
 bool write_impl(const char *path, const image *img, char *err, size_t errlen)
@@ -130,60 +164,17 @@ bool write_impl(const char *path, const image *img, char *err, size_t errlen)
         set_err(err, errlen, final_path + ": no extension to choose an image format by");
         return false;
     }
-    const std::string tmp = temp_name(final_path);
-    // Removes the temporary file on every way out (an exception included) but success.
-    struct remove_guard {
-        const std::string &name;
-        bool keep = false;
-        ~remove_guard()
-        {
-            if (!keep)
-                std::remove(name.c_str()); // ENOENT is fine
-        }
-    } guard{tmp};
-
-    auto out = ImageOutput::create(tmp);
-    if (!out) {
-        set_err(err, errlen,
-                final_path + ": cannot write ." + ext + " images: " + one_line(OIIO::geterror()));
+    std::vector<unsigned char> bytes;
+    std::string why;
+    if (!encode(final_path, ext, img, bytes, why)) {
+        set_err(err, errlen, final_path + ": cannot write image: " + why);
         return false;
     }
-    TypeDesc file_type = type_desc(img->type);
-    if (img->type == IMAGE_F32 && !stores_float(ext))
-        file_type = TypeDesc::UINT8; // OIIO converts: clamp to [0,1], scale, round
-    ImageSpec spec(img->width, img->height, img->channels, file_type);
-    // Pixels are written as they are: an alpha channel is never (un)premultiplied.
-    spec.attribute("oiio:UnassociatedAlpha", 1);
-
-    errno = 0;
-    bool ok = out->open(tmp, spec);
-    std::string why;
-    if (!ok) {
-        // Some writers do not say why the file could not be created; errno does.
-        int e = errno;
-        why = one_line(out->geterror());
-        if (e != 0 && why.find(std::strerror(e)) == std::string::npos)
-            why += std::string(" (") + std::strerror(e) + ")";
-    } else {
-        ok = out->write_image(type_desc(img->type), img->pixels);
-        if (!ok)
-            why = one_line(out->geterror());
-        // close() writes the rest of the file; it must succeed too.
-        if (!out->close() && ok) {
-            ok = false;
-            why = one_line(out->geterror());
-        }
-    }
-    out.reset();
-    if (ok && std::rename(tmp.c_str(), final_path.c_str()) != 0) {
-        why = "cannot rename " + tmp + ": " + std::strerror(errno);
-        ok = false;
-    }
-    guard.keep = ok;
-    if (!ok) {
-        set_err(err, errlen, final_path + ": cannot write image: " + why);
-    }
-    return ok;
+    afile f;
+    if (!afile_open(&f, path, err, errlen))
+        return false;
+    afile_write(&f, bytes.data(), bytes.size()); // afile_commit reports its error
+    return afile_commit(&f, err, errlen);
 }
 
 // From a file (mem == nullptr) or from size bytes at mem, which `path` names in messages

@@ -716,6 +716,8 @@ static bool check_summary(const char *path, const char *id, run_check *c, char *
             c->failed = true;
             snprintf(c->status, sizeof c->status, "%s", r.field[summary_ncolumns - 2]);
         }
+        if (strcmp(r.field[summary_ncolumns - 2], RUN_STATUS_WRITE) == 0)
+            c->unwritten = true;
         c->rows++;
     }
     if (ok && k < 0) {

@@ -53,9 +53,15 @@ void folder_remove_temp(const char *dir);
 /* runs/<id>/files.txt: every file of the run folder but log.txt, with size and checksum. */
 bool folder_write_run_files(const char *run_dir, char *err, size_t errlen);
 
+/* The status of a trial that could not write one of its files (a full disk, a
+ * read-only or failing device): the run is not complete, whatever else it measured, and
+ * --resume runs it again (without --retry-failed). */
+#define RUN_STATUS_WRITE "failed:write"
+
 typedef struct run_check {
     size_t rows;               /* summary.csv's data rows */
     bool failed;               /* some row's status is not ok */
+    bool unwritten;            /* some row's status is RUN_STATUS_WRITE */
     char status[96];           /* the first such row's status ("" when none failed) */
 } run_check;
 /* Whether OUT/runs/<id> is complete (see above); why says what is wrong when not.

@@ -131,12 +131,16 @@ static bool read_output(run_state *st, image *img, char *err, size_t errlen)
     return gl_context_read_rgba8(st->ctx, img->pixels, err, errlen);
 }
 
-static bool screenshot(run_state *st, uint32_t trial, double at, char *err, size_t errlen)
+/* *unwritten: the image was read but could not be written (the file is not there). */
+static bool screenshot(run_state *st, uint32_t trial, double at, bool *unwritten, char *err,
+                       size_t errlen)
 {
     image img;
     char path[4500];
     snprintf(path, sizeof path, "%s/screenshot-trial%u-t%g.png", st->dir, trial, at);
-    bool ok = read_output(st, &img, err, errlen) && image_write(path, &img, err, errlen);
+    bool ok = read_output(st, &img, err, errlen);
+    if (ok && !(ok = image_write(path, &img, err, errlen)))
+        *unwritten = true;
     image_free(&img);
     return ok;
 }
@@ -205,11 +209,23 @@ static void set_status(run_state *st, const char *reason)
         snprintf(st->status, sizeof st->status, "failed:%s", reason);
 }
 
+/* A file of the trial could not be written: whatever else the trial's status said, it
+ * is now RUN_STATUS_WRITE (the run is not complete: --resume runs it again), and the
+ * message names the file (the first such). */
+static void set_unwritten(char *status, size_t len, char *msg, size_t msglen, const char *why)
+{
+    if (strcmp(status, RUN_STATUS_WRITE) == 0)
+        return;
+    snprintf(status, len, "%s", RUN_STATUS_WRITE);
+    snprintf(msg, msglen, "%s", why);
+}
+
 
 /* The per-pixel largest channel error: EXR with the exact values, PNG at x16 gain
- * (1/255 off shows as 16/255; 1/16 and more is white). */
-static bool save_heat_map(const image *a, const image *b, const char *base, char *err,
-                          size_t errlen)
+ * (1/255 off shows as 16/255; 1/16 and more is white). *unwritten: an image could not be
+ * written. */
+static bool save_heat_map(const image *a, const image *b, const char *base, bool *unwritten,
+                          char *err, size_t errlen)
 {
     size_t n = (size_t)a->width * (size_t)a->height;
     image f = {.width = a->width, .height = a->height, .channels = 1, .type = IMAGE_F32};
@@ -229,13 +245,13 @@ static bool save_heat_map(const image *a, const image *b, const char *base, char
     char path[4500];
     if (ok) {
         snprintf(path, sizeof path, "%s-error.exr", base);
-        ok = image_write(path, &f, err, errlen);
+        *unwritten = !(ok = image_write(path, &f, err, errlen));
     } else {
         snprintf(err, errlen, "out of memory for a heat map");
     }
     if (ok) {
         snprintf(path, sizeof path, "%s-error.png", base);
-        ok = image_write(path, &g, err, errlen);
+        *unwritten = !(ok = image_write(path, &g, err, errlen));
     }
     free(f.pixels);
     free(g.pixels);
@@ -274,7 +290,7 @@ static bool read_reference_supersampled(run_state *st, image *img, char *err, si
  * error.reference.supersample K > 1 the reference's is its box-filtered HDR image as
  * the resolve would display it (read_reference_supersampled). */
 static bool measure_error(run_state *st, uint32_t trial, uint32_t frame, double at,
-                          trial_result *tr, char *err, size_t errlen)
+                          trial_result *tr, bool *unwritten, char *err, size_t errlen)
 {
     const run_params *p = &st->s->p;
     image run = {0}, ref = {0};
@@ -324,10 +340,11 @@ static bool measure_error(run_state *st, uint32_t trial, uint32_t frame, double 
         snprintf(base, sizeof base, "%s/error-trial%u-t%g", st->dir, trial, at);
         char path[4500];
         snprintf(path, sizeof path, "%s-run.png", base);
-        ok = image_write(path, &run, err, errlen);
+        *unwritten = !(ok = image_write(path, &run, err, errlen));
         snprintf(path, sizeof path, "%s-reference.png", base);
-        ok = ok && image_write(path, &ref, err, errlen);
-        ok = ok && save_heat_map(&run, &ref, base, err, errlen);
+        if (ok)
+            *unwritten = !(ok = image_write(path, &ref, err, errlen));
+        ok = ok && save_heat_map(&run, &ref, base, unwritten, err, errlen);
     }
     image_free(&run);
     image_free(&ref);
@@ -471,9 +488,13 @@ static void capture_due(run_state *st, uint32_t trial, uint32_t frame, double t,
             continue;
         shot_done[i] = true;
         char err[512];
-        if (!screenshot(st, trial, p->screenshots[i], err, sizeof err)) {
+        bool unwritten = false;
+        if (!screenshot(st, trial, p->screenshots[i], &unwritten, err, sizeof err)) {
             fprintf(stderr, "run %s: screenshot: %s\n", st->s->id, err);
-            snprintf(tr->status, sizeof tr->status, "failed:screenshot");
+            if (unwritten)
+                set_unwritten(tr->status, sizeof tr->status, st->err, sizeof st->err, err);
+            else if (strcmp(tr->status, RUN_STATUS_WRITE) != 0)
+                snprintf(tr->status, sizeof tr->status, "failed:screenshot");
         }
         /* the light lists of the screenshot's frame, as a histogram (lightgrid.csv) */
         size_t ncells = 0;
@@ -486,9 +507,13 @@ static void capture_due(run_state *st, uint32_t trial, uint32_t frame, double t,
             continue;
         error_done[i] = true;
         char err[512];
-        if (!measure_error(st, trial, frame, p->error_at[i], tr, err, sizeof err)) {
+        bool unwritten = false;
+        if (!measure_error(st, trial, frame, p->error_at[i], tr, &unwritten, err, sizeof err)) {
             fprintf(stderr, "run %s: error against the reference: %s\n", st->s->id, err);
-            snprintf(tr->status, sizeof tr->status, "failed:error");
+            if (unwritten)
+                set_unwritten(tr->status, sizeof tr->status, st->err, sizeof st->err, err);
+            else if (strcmp(tr->status, RUN_STATUS_WRITE) != 0)
+                snprintf(tr->status, sizeof tr->status, "failed:error");
         }
     }
 }
@@ -1124,10 +1149,13 @@ static double metric_value(const trial_result *tr, const char *metric)
  * lists the others with their sizes and checksums, and a trial is complete only when
  * they match (folder_check_trial, what resume looks for; runner/trials.c merges the
  * trials into the run's files when its last trial is complete). */
-static void write_run_result(run_state *st)
+static bool write_run_result(run_state *st)
 {
     fill_missing_trial(st);
     trial_result *tr = &st->result;
+    /* a failure after the trial measured (its files could not be written) is its row's */
+    if (strcmp(st->status, "ok") != 0 && strcmp(tr->status, "ok") == 0)
+        snprintf(tr->status, sizeof tr->status, "%s", st->status);
     tr->order = st->order;
     snprintf(tr->metric, sizeof tr->metric, "%s", st->metric);
     tr->metric_us = metric_value(tr, st->metric);
@@ -1137,9 +1165,13 @@ static void write_run_result(run_state *st)
         !output_write_run_summary(st->dir, st->e, st->s, &st->plan, tr, 1, st->message, err,
                                   sizeof err) ||
         !folder_write_run_files(st->dir, err, sizeof err)) {
+        /* files.txt is not there: the trial is not complete (the parent writes its row
+         * again, runner/schedule.c, or --resume runs it) */
         fprintf(stderr, "run %s: %s\n", st->s->id, err);
-        set_status(st, "output");
+        set_unwritten(st->status, sizeof st->status, st->message, sizeof st->message, err);
+        return false;
     }
+    return true;
 }
 
 /* Runs trial st->trial of st->s in this process (a fresh one: context, scene,
@@ -1151,9 +1183,10 @@ static void run_one(run_state *st)
         run_trial(st, st->trial, tr);
         if (strcmp(tr->status, "ok") != 0)
             snprintf(st->status, sizeof st->status, "%s", tr->status);
-        if (!run_files_commit(&st->files, st->err, sizeof st->err)) {
-            fprintf(stderr, "run %s: %s\n", st->s->id, st->err);
-            set_status(st, "output");
+        char err[512];
+        if (!run_files_commit(&st->files, err, sizeof err)) {
+            fprintf(stderr, "run %s: %s\n", st->s->id, err);
+            set_unwritten(st->status, sizeof st->status, st->err, sizeof st->err, err);
         }
     } else {
         fprintf(stderr, "run %s: %s\n", st->s->id, st->err);
@@ -1287,8 +1320,7 @@ bool run_write_missing_trial(const experiment *e, const run_spec *s, const run_o
         fprintf(stderr, "shadesweep: run %s: %s\n", s->id, err);
         return false;
     }
-    write_run_result(&st);
-    return strcmp(st.status, status) == 0;
+    return write_run_result(&st);
 }
 
 bool run_status_ends_run(const char *status)

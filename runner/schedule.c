@@ -173,6 +173,14 @@ static bool run_one_trial(const experiment *e, const run_options *o, progress *p
         return true;
     if (out.message[0])
         fprintf(stderr, "run %s: trial %u: %s\n", s->id, k, out.message);
+    /* A trial that could not write its files may have no files.txt either: its row is
+     * written again here (on a full disk this fails too, and the sweep stops). */
+    run_check tc;
+    char why[512];
+    if (strcmp(out.status, RUN_STATUS_WRITE) == 0 &&
+        !folder_check_trial(o->out_dir, s->id, k, &tc, why, sizeof why) &&
+        !run_write_missing_trial(e, s, o, k, place, out.status, out.message))
+        return false;
     progress_run_end(pg, out.status, out.fps);
     r->done = k;
     if (!slot_value(o->out_dir, r, k)) {
@@ -289,6 +297,15 @@ static void resume_slot(const run_options *o, run_slot *r, size_t *kept, size_t 
     snprintf(dir, sizeof dir, "%s/runs/%s", o->out_dir, s->id);
     run_check c;
     if (folder_check_run(o->out_dir, s->id, true, &c, why, sizeof why)) {
+        /* a run that could not write a file is not complete: it runs again */
+        if (c.unwritten) {
+            char err[512];
+            fprintf(stderr, "resuming: run %s could not write its files (%s): it runs again\n",
+                    s->id, RUN_STATUS_WRITE);
+            if (!folder_clear_run(dir, err, sizeof err))
+                fprintf(stderr, "shadesweep: %s\n", err);
+            return;
+        }
         if (c.failed && o->retry_failed) {
             char err[512];
             if (!folder_clear_run(dir, err, sizeof err))
@@ -305,7 +322,7 @@ static void resume_slot(const run_options *o, run_slot *r, size_t *kept, size_t 
     uint32_t k = 1;
     run_check tc;
     char twhy[512];
-    while (folder_check_trial(o->out_dir, s->id, k, &tc, twhy, sizeof twhy)) {
+    while (folder_check_trial(o->out_dir, s->id, k, &tc, twhy, sizeof twhy) && !tc.unwritten) {
         r->done = k;
         if (tc.failed && strcmp(r->status, "ok") == 0)
             snprintf(r->status, sizeof r->status, "%s", tc.status);
