@@ -130,3 +130,20 @@ for f in s/deep200.gltf s/small.gltf; do
   manifest "{file: $f}"
   "$SHADESWEEP" validate m.yaml >v.txt 2>&1 || fail "$f: $(cat v.txt)"
 done
+
+# scene.allow_outside: true lets a file reference what lies outside its folder (the id
+# is the content's either way: the key does not change it); anything but a boolean is
+# refused
+manifest "{file: s/ok.gltf}"
+"$SHADESWEEP" list m.yaml >ids1.txt
+manifest "{file: s/ok.gltf, allow_outside: true}"
+"$SHADESWEEP" list m.yaml >ids2.txt
+cmp -s ids1.txt ids2.txt || fail "allow_outside changed the id: $(cat ids1.txt ids2.txt)"
+for f in s/up.gltf s/sym.gltf s/upmtl.obj; do
+  manifest "{file: $f, allow_outside: true}"
+  "$SHADESWEEP" validate m.yaml >v.txt 2>&1 || fail "$f with allow_outside: $(cat v.txt)"
+done
+manifest "{file: s/up.gltf, allow_outside: yes}"
+rc=0; "$SHADESWEEP" validate m.yaml >out.txt 2>err.txt || rc=$?
+[ $rc -eq 2 ] && grep -qx "m.yaml:3:41: scene.allow_outside: expected one of false, true, found 'yes'" err.txt ||
+  fail "allow_outside: yes: exit $rc: $(cat err.txt)"
