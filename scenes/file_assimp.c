@@ -143,8 +143,13 @@ static const read_file *file_get(file_set *fs, const char *path)
             errno = EACCES;
             return NULL;
         }
-        if (!realpath(path, real))
-            return NULL;   /* errno: ENOENT for a missing file, else an error below */
+        if (!realpath(path, real)) {
+            if (errno != ENOENT) {
+                snprintf(fs->err, sizeof fs->err, "%s: cannot open: %s", path, strerror(errno));
+                errno = EIO;
+            }
+            return NULL;   /* errno ENOENT: a missing file */
+        }
         size_t n = strlen(fs->root);
         if (!fs->allow_outside && !(strncmp(real, fs->root, n) == 0 &&
                                     (real[n] == '/' || (n == 1 && fs->root[0] == '/')))) {
@@ -608,6 +613,31 @@ out:
     return best;
 }
 
+/* The deepest nesting of arrays and objects anywhere in the JSON, whatever its shape
+ * (js_gltf stops at the first thing it does not expect; assimp's parser would go on). */
+static uint32_t js_max_nesting(const char *p, size_t n)
+{
+    uint32_t d = 0, best = 0;
+    bool str = false;
+    for (size_t i = 0; i < n; i++) {
+        char c = p[i];
+        if (str) {
+            if (c == '\\')
+                i++;
+            else if (c == '"')
+                str = false;
+        } else if (c == '"') {
+            str = true;
+        } else if (c == '{' || c == '[') {
+            if (++d > best)
+                best = d;
+        } else if ((c == '}' || c == ']') && d > 0) {
+            d--;
+        }
+    }
+    return best;
+}
+
 /* The JSON of a .gltf, or of a .glb's first chunk; false if the bytes are neither. */
 static bool gltf_json(const read_file *f, const char **json, size_t *n)
 {
@@ -642,9 +672,10 @@ static bool prescan_gltf(const char *path, const read_file *f, char *err, size_t
         return true;
     jscan j = {json, json + n, false};
     node_graph g = {0};
-    bool parsed = js_gltf(&j, &g);
+    bool deep = js_max_nesting(json, n) > JSON_MAX_NESTING;
+    bool parsed = !deep && js_gltf(&j, &g);
     bool ok = true;
-    if (g.deep) {
+    if (deep || g.deep) {
         ok = fail(err, errlen, "%s: JSON nested more than %u deep", path, JSON_MAX_NESTING);
     } else if (g.url[0]) {
         ok = fail(err, errlen, "%s: uri '%s' is a URL: only local files are read", path, g.url);

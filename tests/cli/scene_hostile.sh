@@ -118,8 +118,8 @@ refuse s/huge.gltf "s/huge.gltf: texture 'huge.png' is 100000x100000, more than 
 gen big s/big.gltf 4000000000
 refuse s/big.gltf "s/big.gltf: cannot load: GLTF: buffer \"buffers[0]\", expected 4000000000 bytes, but found 48"
 $PYTHON - <<'PY'
-n = 100000   # JSON nested deeper than assimp's recursive parser should go
-open("s/nest.gltf", "w").write('{"asset": {"version": "2.0"}, "extras": ' + "[" * n + "]" * n + "}")
+n = 100000   # JSON nested deeper than assimp's recursive parser should go, where nodes go
+open("s/nest.gltf", "w").write('{"asset": {"version": "2.0"}, "nodes": ' + "[" * n + "]" * n + "}")
 PY
 refuse s/nest.gltf "s/nest.gltf: JSON nested more than 64 deep"
 # the limits let through what they should: a chain of 200 nodes, a 4x4 texture
