@@ -638,13 +638,17 @@ static uint32_t js_max_nesting(const char *p, size_t n)
     return best;
 }
 
+static uint32_t le32(const unsigned char *p)
+{
+    return (uint32_t)p[0] | (uint32_t)p[1] << 8 | (uint32_t)p[2] << 16 | (uint32_t)p[3] << 24;
+}
+
 /* The JSON of a .gltf, or of a .glb's first chunk; false if the bytes are neither. */
 static bool gltf_json(const read_file *f, const char **json, size_t *n)
 {
     const unsigned char *d = f->data;
     if (f->size >= 20 && memcmp(d, "glTF", 4) == 0) {
-        uint32_t len = (uint32_t)d[12] | (uint32_t)d[13] << 8 | (uint32_t)d[14] << 16 |
-                       (uint32_t)d[15] << 24;
+        uint32_t len = le32(d + 12);
         if (memcmp(d + 16, "JSON", 4) != 0)
             return false;
         *json = (const char *)d + 20;
@@ -663,11 +667,35 @@ static bool gltf_json(const read_file *f, const char **json, size_t *n)
     return true;
 }
 
+/* A .glb's header and chunk lengths against the file's size: assimp allocates (and
+ * clears) what they claim before it finds the file shorter. */
+static bool glb_lengths(const char *path, const read_file *f, char *err, size_t errlen)
+{
+    const unsigned char *d = f->data;
+    if (f->size < 12 || memcmp(d, "glTF", 4) != 0)
+        return true;
+    uint32_t total = le32(d + 8);
+    if (total > f->size)
+        return fail(err, errlen, "%s: the GLB header claims %u bytes, the file has %zu", path,
+                    total, f->size);
+    size_t at = 12;
+    for (int k = 0; k < 2 && at + 8 <= f->size; k++) {
+        uint64_t len = le32(d + at);
+        if (len > f->size - at - 8)
+            return fail(err, errlen, "%s: GLB chunk %d claims %llu bytes, %zu follow it", path,
+                        k, (unsigned long long)len, f->size - at - 8);
+        at += 8 + (size_t)((len + 3) & ~(uint64_t)3);
+    }
+    return true;
+}
+
 /* False with a message naming the file when its glTF JSON asks for what would hurt. */
 static bool prescan_gltf(const char *path, const read_file *f, char *err, size_t errlen)
 {
     const char *json;
     size_t n;
+    if (!glb_lengths(path, f, err, errlen))
+        return false;
     if (!gltf_json(f, &json, &n))
         return true;
     jscan j = {json, json + n, false};

@@ -122,6 +122,12 @@ n = 100000   # JSON nested deeper than assimp's recursive parser should go, wher
 open("s/nest.gltf", "w").write('{"asset": {"version": "2.0"}, "nodes": ' + "[" * n + "]" * n + "}")
 PY
 refuse s/nest.gltf "s/nest.gltf: JSON nested more than 64 deep"
+$PYTHON - <<'PY'
+import struct   # a .glb whose JSON chunk claims 128 MiB (assimp cleared that much first)
+body = struct.pack('<I', 1 << 27) + b'JSON' + b'{}  '
+open("s/claims.glb", "wb").write(b'glTF' + struct.pack('<II', 2, 12 + len(body)) + body)
+PY
+refuse s/claims.glb "s/claims.glb: GLB chunk 0 claims 134217728 bytes, 4 follow it"
 # the limits let through what they should: a chain of 200 nodes, a 4x4 texture
 gen deep s/deep200.gltf 200
 gen png s/small.png 4

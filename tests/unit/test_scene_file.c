@@ -431,8 +431,11 @@ static void test_generated_broken_files_refused(void **state)
         unsigned char *glb = read_all(MODELS "/BoxTextured-glTF-Binary/BoxTextured.glb", &n);
         snprintf(path, sizeof path, "%s/truncated.glb", dir);
         write_file(path, glb, n / 2);
-        expect_refused(path, "cannot load: ");
         free(glb);
+        char why[128];   /* refused before assimp allocates what the header claims */
+        snprintf(why, sizeof why, "the GLB header claims %zu bytes, the file has %zu", n,
+                 n / 2);
+        expect_refused(path, why);
 
         /* an image that is not one, and a missing image */
         snprintf(src, sizeof src, "%s/BoxTextured-glTF/BoxTextured.gltf", MODELS);
