@@ -18,7 +18,9 @@
  *   emissive   the emissive factor times the emissive map (mask alpha = 1)
  *   alpha      MASK -> MATERIAL_MASK with the cutoff; BLEND -> MATERIAL_BLEND (translucent,
  *              opacity: assimp's opacity, else the base colour's alpha)
- * Sections: >>io >>load >>check >>materials >>nodes >>build */
+ * Untrusted input: only regular files are opened, references stay in the scene file's
+ * folder (unless allow_outside), and glTF JSON is pre-scanned before assimp (>>prescan).
+ * Sections: >>io >>prescan >>load >>check >>materials >>nodes >>build */
 #define _DEFAULT_SOURCE   /* realpath */
 #include "scenes/scene.h"
 
