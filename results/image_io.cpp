@@ -379,6 +379,44 @@ bool image_decode(const void *data, size_t size, const char *name, image_type wa
     return false;
 }
 
+bool image_probe(const void *data, size_t size, const char *name, int *width, int *height,
+                 char *err, size_t errlen)
+{
+    const char *what = name && name[0] ? name : "embedded image";
+    try {
+        if (data == nullptr || size == 0) {
+            set_err(err, errlen, std::string(what) + ": cannot read image: no bytes");
+            return false;
+        }
+        // the format as read_impl picks it, the header only: no pixel is decoded
+        OIIO::Filesystem::IOMemReader proxy(data, size);
+        std::string fmt = what;
+        const unsigned char *b = static_cast<const unsigned char *>(data);
+        if (size >= 8 && std::memcmp(b, "\x89PNG", 4) == 0)
+            fmt = "embedded.png";
+        else if (size >= 3 && b[0] == 0xFF && b[1] == 0xD8 && b[2] == 0xFF)
+            fmt = "embedded.jpg";
+        ImageSpec config;
+        void *ptr = &proxy;
+        config.attribute("oiio:ioproxy", TypeDesc::PTR, &ptr);
+        auto in = ImageInput::open(fmt, &config, &proxy);
+        if (!in) {
+            set_err(err, errlen, std::string(what) + ": cannot read image: " +
+                                     one_line(OIIO::geterror()));
+            return false;
+        }
+        *width = in->spec().width;
+        *height = in->spec().height;
+        in->close();
+        return true;
+    } catch (const std::exception &e) {
+        set_err(err, errlen, std::string(what) + ": cannot read image: " + e.what());
+    } catch (...) {
+        set_err(err, errlen, std::string(what) + ": cannot read image: unknown exception");
+    }
+    return false;
+}
+
 void image_free(image *img)
 {
     if (img == nullptr)

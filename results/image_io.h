@@ -25,6 +25,10 @@ bool image_read(const char *path, image_type want, image *out, char *err, size_t
  * PNG or JPEG signature, picks the format. */
 bool image_decode(const void *data, size_t size, const char *name, image_type want, image *out,
                   char *err, size_t errlen);
+/* The size image_decode would give, from the header alone (no pixel decoded): to refuse
+ * an image too large before paying for it. */
+bool image_probe(const void *data, size_t size, const char *name, int *width, int *height,
+                 char *err, size_t errlen);
 void image_free(image *img);
 
 /* Non-finite values in a float image (0 for IMAGE_U8). */

@@ -442,11 +442,11 @@ static void parse_sweep(vctx *c, const param *pd, const ynode *map);
 static bool parse_scene_file(vctx *c, const param *pd, const ynode *n, const char *key,
                              run_params *dst)
 {
-    static const char *const names[] = {"file", "scale", "up", "camera"};
-    const ynode *keys[4], *vals[4];
-    bool ok = map_keys(c, n, key, names, 4, keys, vals);
-    char sub[4][160], f[128];
-    for (size_t i = 0; i < 4; i++)
+    static const char *const names[] = {"file", "scale", "up", "camera", "allow_outside"};
+    const ynode *keys[5], *vals[5];
+    bool ok = map_keys(c, n, key, names, 5, keys, vals);
+    char sub[5][160], f[128];
+    for (size_t i = 0; i < 5; i++)
         snprintf(sub[i], sizeof sub[i], "%s.%s", key, names[i]);
     if (!vals[0]) {
         err(c, n, sub[0], "expected a path to a glTF 2.0 (.gltf, .glb) or OBJ file, found nothing");
@@ -483,6 +483,18 @@ static bool parse_scene_file(vctx *c, const param *pd, const ynode *n, const cha
             camera = vals[3]->text;
         }
     }
+    /* files the scene references may lie outside its folder: not part of the id (the
+     * content hash is) */
+    bool outside = false;
+    if (vals[4]) {
+        if (ynode_plain(vals[4]) && strcmp(vals[4]->text, "true") == 0)
+            outside = true;
+        else if (!(ynode_plain(vals[4]) && strcmp(vals[4]->text, "false") == 0)) {
+            err(c, vals[4], sub[4], "expected one of false, true, found %s",
+                found(vals[4], true, f, sizeof f));
+            ok = false;
+        }
+    }
     if (!ok)
         return false;
     /* relative to the manifest's folder */
@@ -499,7 +511,7 @@ static bool parse_scene_file(vctx *c, const param *pd, const ynode *n, const cha
         return false;
     }
     scene_file_options o = {.path = dst->scene_file, .scale = (float)scale, .up = (scene_up)up,
-                            .camera = camera};
+                            .camera = camera, .allow_outside = outside};
     scene_file_info info;
     char msg[1024];
     if (!scene_file_check(&o, &info, msg, sizeof msg)) {
@@ -512,6 +524,7 @@ static bool parse_scene_file(vctx *c, const param *pd, const ynode *n, const cha
     dst->scene_scale = (float)scale;
     dst->scene_up = up;
     snprintf(dst->scene_camera, sizeof dst->scene_camera, "%s", camera);
+    dst->scene_outside = outside;
     hash_hex(info.hash, 16, dst->scene_hash);
     return true;
 }

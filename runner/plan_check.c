@@ -63,7 +63,8 @@ static bool check_times(const experiment *e, const run_spec *r, const char *key,
 void run_params_scene(const run_params *p, scene_file_options *fo, scene_source *src)
 {
     *fo = (scene_file_options){.path = p->scene_file, .scale = p->scene_scale,
-                               .up = (scene_up)p->scene_up, .camera = p->scene_camera};
+                               .up = (scene_up)p->scene_up, .camera = p->scene_camera,
+                               .allow_outside = p->scene_outside};
     *src = (scene_source){.name = p->scene, .file = p->scene_file[0] ? fo : NULL};
 }
 

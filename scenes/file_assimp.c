@@ -18,7 +18,10 @@
  *   emissive   the emissive factor times the emissive map (mask alpha = 1)
  *   alpha      MASK -> MATERIAL_MASK with the cutoff; BLEND -> MATERIAL_BLEND (translucent,
  *              opacity: assimp's opacity, else the base colour's alpha)
- * Sections: >>io >>load >>check >>materials >>nodes >>build */
+ * Untrusted input: only regular files are opened, references stay in the scene file's
+ * folder (unless allow_outside), and glTF JSON is pre-scanned before assimp (>>prescan).
+ * Sections: >>io >>prescan >>load >>check >>materials >>nodes >>build */
+#define _DEFAULT_SOURCE   /* realpath */
 #include "scenes/scene.h"
 
 #include <assimp/GltfMaterial.h>
@@ -28,13 +31,18 @@
 #include <assimp/postprocess.h>
 #include <assimp/scene.h>
 
+#include <ctype.h>
 #include <errno.h>
+#include <fcntl.h>
+#include <limits.h>
 #include <math.h>
 #include <stdarg.h>
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
 #include <strings.h>
+#include <sys/stat.h>
+#include <unistd.h>
 
 #include "results/image_io.h"
 #include "scenes/scene_build.h"
@@ -75,7 +83,14 @@ typedef struct read_file {
 typedef struct file_set {
     read_file *files;
     uint32_t n, cap;
-    char err[512];             /* the first read failure that is not "no such file" */
+    char err[3 * PATH_MAX + 256]; /* the first read failure that is not "no such file" */
+    char missing[PATH_MAX];         /* the first referenced file that does not exist */
+    char root[PATH_MAX];       /* referenced files must resolve inside it; "" while the
+                                * scene file itself is read */
+    bool allow_outside;        /* scene.allow_outside: no containment */
+    struct aiFile **open;      /* assimp's files not closed yet (an importer that
+                                * throws forgets its streams) */
+    uint32_t nopen, cap_open;
 } file_set;
 
 static void file_set_free(file_set *fs)
@@ -85,38 +100,102 @@ static void file_set_free(file_set *fs)
         free(fs->files[i].data);
     }
     free(fs->files);
+    for (uint32_t i = 0; i < fs->nopen; i++) {
+        free(fs->open[i]->UserData);
+        free(fs->open[i]);
+    }
+    free(fs->open);
     memset(fs, 0, sizeof *fs);
 }
 
+static const char *file_kind(mode_t m)
+{
+    return S_ISDIR(m) ? "a directory" : S_ISFIFO(m) ? "a FIFO" : S_ISSOCK(m) ? "a socket"
+         : S_ISCHR(m) ? "a character device" : S_ISBLK(m) ? "a block device"
+         : "not a regular file";
+}
+
+/* A reference that names a URL (scheme://...): only local files are read. */
+static bool is_url(const char *p)
+{
+    const char *c = strstr(p, "://");
+    if (!c || c == p)
+        return false;
+    for (const char *q = p; q < c; q++)
+        if (!(isalnum((unsigned char)*q) || *q == '+' || *q == '-' || *q == '.'))
+            return false;
+    return true;
+}
+
 /* The file's bytes (read once, then served from memory), or NULL with fs->err set for
- * anything but a file that does not exist (errno ENOENT then). */
+ * anything but a file that does not exist (errno ENOENT then). Only regular files are
+ * opened (a FIFO would block, a device never end); a file the scene references must
+ * resolve (symlinks, "..") inside fs->root unless fs->allow_outside. */
 static const read_file *file_get(file_set *fs, const char *path)
 {
     for (uint32_t i = 0; i < fs->n; i++)
         if (strcmp(fs->files[i].path, path) == 0)
             return &fs->files[i];
-    FILE *f = fopen(path, "rb");
-    if (!f)
+    const char *open_path = path;
+    char real[PATH_MAX];
+    if (fs->root[0]) {
+        /* a URL inside a path: assimp prefixes the scene's folder */
+        if (strstr(path, "://")) {
+            snprintf(fs->err, sizeof fs->err, "%s: a URL: only local files are read", path);
+            errno = EACCES;
+            return NULL;
+        }
+        if (!realpath(path, real)) {
+            if (errno != ENOENT) {
+                snprintf(fs->err, sizeof fs->err, "%s: cannot open: %s", path, strerror(errno));
+                errno = EIO;
+            }
+            return NULL;   /* errno ENOENT: a missing file */
+        }
+        size_t n = strlen(fs->root);
+        if (!fs->allow_outside && !(strncmp(real, fs->root, n) == 0 &&
+                                    (real[n] == '/' || (n == 1 && fs->root[0] == '/')))) {
+            snprintf(fs->err, sizeof fs->err, "%s: resolves to %s, outside the scene file's "
+                     "folder %s (scene.allow_outside: true permits it)", path, real, fs->root);
+            errno = EACCES;
+            return NULL;
+        }
+        open_path = real;
+    }
+    struct stat st, fst;
+    if (stat(open_path, &st) != 0)
         return NULL;
-    read_file r = {0};
-    long end = -1;
-    if (fseek(f, 0, SEEK_END) == 0)
-        end = ftell(f);
-    if (end < 0 || fseek(f, 0, SEEK_SET) != 0) {
-        snprintf(fs->err, sizeof fs->err, "%s: cannot read: %s", path, strerror(errno));
-        fclose(f);
+    if (!S_ISREG(st.st_mode)) {
+        snprintf(fs->err, sizeof fs->err, "%s: %s, not a regular file", path,
+                 file_kind(st.st_mode));
+        errno = EINVAL;
+        return NULL;
+    }
+    int fd = open(open_path, O_RDONLY | O_NONBLOCK | O_NOCTTY | O_CLOEXEC |
+                                 (fs->root[0] ? O_NOFOLLOW : 0));
+    if (fd < 0) {
+        snprintf(fs->err, sizeof fs->err, "%s: cannot open: %s", path, strerror(errno));
         errno = EIO;
         return NULL;
     }
-    if ((unsigned long)end > FILE_MAX_BYTES) {
-        snprintf(fs->err, sizeof fs->err, "%s: %ld bytes, more than the 2 GiB a file may have",
-                 path, end);
-        fclose(f);
+    if (fstat(fd, &fst) != 0 || !S_ISREG(fst.st_mode) || fst.st_dev != st.st_dev ||
+        fst.st_ino != st.st_ino) {
+        snprintf(fs->err, sizeof fs->err, "%s: changed while opened (now %s)", path,
+                 file_kind(fst.st_mode));
+        close(fd);
+        errno = EIO;
+        return NULL;
+    }
+    if ((uint64_t)fst.st_size > FILE_MAX_BYTES) {
+        snprintf(fs->err, sizeof fs->err, "%s: %lld bytes, more than the 2 GiB a file may have",
+                 path, (long long)fst.st_size);
+        close(fd);
         errno = EFBIG;
         return NULL;
     }
-    r.size = (size_t)end;
-    r.data = malloc(r.size ? r.size : 1);
+    read_file r = {0};
+    r.size = (size_t)fst.st_size;
+    r.data = malloc(r.size + 1);   /* NUL-terminated: the JSON scan may use strtoul */
     r.path = strdup(path);
     read_file *grown = NULL;
     if (r.data && r.path && fs->n == fs->cap) {
@@ -131,20 +210,28 @@ static const read_file *file_get(file_set *fs, const char *path)
         snprintf(fs->err, sizeof fs->err, "%s: out of memory reading %zu bytes", path, r.size);
         free(r.data);
         free(r.path);
-        fclose(f);
+        close(fd);
         errno = ENOMEM;
         return NULL;
     }
-    if (fread(r.data, 1, r.size, f) != r.size) {
-        snprintf(fs->err, sizeof fs->err, "%s: cannot read: %s", path,
-                 ferror(f) ? strerror(errno) : "file shrank while read");
-        free(r.data);
-        free(r.path);
-        fclose(f);
-        errno = EIO;
-        return NULL;
+    size_t got = 0;
+    while (got < r.size) {
+        ssize_t k = read(fd, r.data + got, r.size - got);
+        if (k < 0 && errno == EINTR)
+            continue;
+        if (k <= 0) {
+            snprintf(fs->err, sizeof fs->err, "%s: cannot read: %s", path,
+                     k < 0 ? strerror(errno) : "file shrank while read");
+            free(r.data);
+            free(r.path);
+            close(fd);
+            errno = EIO;
+            return NULL;
+        }
+        got += (size_t)k;
     }
-    fclose(f);
+    close(fd);
+    r.data[r.size] = '\0';
     fs->files[fs->n] = r;
     return &fs->files[fs->n++];
 }
@@ -191,11 +278,24 @@ static enum aiReturn io_seek(struct aiFile *af, size_t off, enum aiOrigin origin
 
 static struct aiFile *io_open(struct aiFileIO *io, const char *path, const char *mode)
 {
+    file_set *fs = (file_set *)io->UserData;
     if (strchr(mode, 'w') || strchr(mode, 'a'))
         return NULL;
-    const read_file *f = file_get((file_set *)io->UserData, path);
-    if (!f)
+    errno = 0;
+    const read_file *f = file_get(fs, path);
+    if (!f) {
+        if (!fs->err[0] && !fs->missing[0] && fs->n > 0)
+            snprintf(fs->missing, sizeof fs->missing, "%s", path);
         return NULL;
+    }
+    if (fs->nopen == fs->cap_open) {
+        uint32_t cap = fs->cap_open ? fs->cap_open * 2 : 8;
+        struct aiFile **g = realloc(fs->open, cap * sizeof *g);
+        if (!g)
+            return NULL;
+        fs->open = g;
+        fs->cap_open = cap;
+    }
     struct aiFile *af = calloc(1, sizeof *af);
     open_file *o = calloc(1, sizeof *o);
     if (!af || !o) {
@@ -211,15 +311,423 @@ static struct aiFile *io_open(struct aiFileIO *io, const char *path, const char 
     af->SeekProc = io_seek;
     af->FlushProc = io_flush;
     af->UserData = (char *)o;
+    fs->open[fs->nopen++] = af;
     return af;
 }
 
 static void io_close(struct aiFileIO *io, struct aiFile *af)
 {
-    if (af) {
-        free(af->UserData);
-        free(af);
+    file_set *fs = (file_set *)io->UserData;
+    if (!af)
+        return;
+    for (uint32_t i = 0; i < fs->nopen; i++)
+        if (fs->open[i] == af) {
+            fs->open[i] = fs->open[--fs->nopen];
+            break;
+        }
+    free(af->UserData);
+    free(af);
+}
+
+// >>prescan
+
+static bool fail(char *err, size_t errlen, const char *fmt, ...)
+    __attribute__((format(printf, 3, 4)));
+static bool fail(char *err, size_t errlen, const char *fmt, ...)
+{
+    va_list ap;
+    va_start(ap, fmt);
+    if (err && errlen)
+        vsnprintf(err, errlen, fmt, ap);
+    va_end(ap);
+    return false;
+}
+
+
+/* glTF's JSON read before assimp sees it, for what would hurt inside the importer:
+ * nesting deeper than its recursive parser's stack (JSON_MAX_NESTING), a node hierarchy
+ * deeper than FILE_MAX_NODE_DEPTH or recursing (assimp recurses per level before our
+ * check_nodes could run), and URLs as buffer or image uris (assimp would read a local
+ * file of the same name). Malformed JSON is left to assimp to report. Iterative: no
+ * input can make this recurse. */
+#define JSON_MAX_NESTING 64u
+
+typedef struct jscan {
+    const char *p, *end;
+    bool bad;                  /* malformed: stop, assimp reports it */
+} jscan;
+
+static void js_ws(jscan *j)
+{
+    while (j->p < j->end && (*j->p == ' ' || *j->p == '\t' || *j->p == '\n' || *j->p == '\r'))
+        j->p++;
+}
+
+static bool js_lit(jscan *j, char c)
+{
+    js_ws(j);
+    if (j->p < j->end && *j->p == c) {
+        j->p++;
+        return true;
     }
+    return false;
+}
+
+/* A string's raw bytes (escapes left in), *s and *n; false if not a string. */
+static bool js_string(jscan *j, const char **s, size_t *n)
+{
+    js_ws(j);
+    if (j->p >= j->end || *j->p != '"')
+        return j->bad = true, false;
+    const char *b = ++j->p;
+    while (j->p < j->end && *j->p != '"')
+        j->p += *j->p == '\\' ? 2 : 1;
+    if (j->p >= j->end)
+        return j->bad = true, false;
+    *s = b;
+    *n = (size_t)(j->p - b);
+    j->p++;
+    return true;
+}
+
+/* Skips one value of any kind; false when malformed or nested too deep (*deep). */
+static bool js_skip(jscan *j, unsigned depth, bool *deep)
+{
+    js_ws(j);
+    unsigned d = 0;
+    do {
+        js_ws(j);
+        if (j->p >= j->end)
+            return j->bad = true, false;
+        char c = *j->p;
+        if (c == '"') {
+            const char *s;
+            size_t n;
+            if (!js_string(j, &s, &n))
+                return false;
+        } else if (c == '{' || c == '[') {
+            if (depth + ++d > JSON_MAX_NESTING)
+                return *deep = true, false;
+            j->p++;
+            continue;
+        } else if (c == '}' || c == ']') {
+            if (d == 0)
+                return j->bad = true, false;
+            d--;
+            j->p++;
+        } else if (c == ',' || c == ':') {
+            j->p++;
+            continue;
+        } else {
+            const char *b = j->p;
+            while (j->p < j->end && !strchr(",:]}\" \t\r\n{[", *j->p))
+                j->p++;
+            if (j->p == b)
+                return j->bad = true, false;
+        }
+        /* a complete value at level d: inside a container, go on with its next item */
+    } while (d > 0);
+    return true;
+}
+
+static bool key_is(const char *s, size_t n, const char *k)
+{
+    return n == strlen(k) && memcmp(s, k, n) == 0;
+}
+
+typedef struct node_graph {
+    uint32_t nnodes;
+    uint32_t *edge_from, *edge_to;
+    size_t nedges, cap;
+    char url[256];             /* the first buffer or image uri that is a URL */
+    char absolute[256];        /* the first that is an absolute path */
+    bool deep;                 /* JSON nested deeper than JSON_MAX_NESTING */
+} node_graph;
+
+static bool ng_edge(node_graph *g, uint32_t from, uint32_t to)
+{
+    if (g->nedges == g->cap) {
+        size_t cap = g->cap ? g->cap * 2 : 64;
+        uint32_t *a = realloc(g->edge_from, cap * sizeof *a);
+        if (a)
+            g->edge_from = a;
+        uint32_t *b = realloc(g->edge_to, cap * sizeof *b);
+        if (b)
+            g->edge_to = b;
+        if (!a || !b)
+            return false;
+        g->cap = cap;
+    }
+    g->edge_from[g->nedges] = from;
+    g->edge_to[g->nedges++] = to;
+    return true;
+}
+
+/* Top-level "nodes" (children lists), "buffers" and "images" (uris); the rest skipped. */
+static bool js_gltf(jscan *j, node_graph *g)
+{
+    if (!js_lit(j, '{'))
+        return false;
+    if (js_lit(j, '}'))
+        return true;
+    do {
+        const char *k;
+        size_t kn;
+        if (!js_string(j, &k, &kn) || !js_lit(j, ':'))
+            return false;
+        bool nodes = key_is(k, kn, "nodes");
+        bool uris = key_is(k, kn, "buffers") || key_is(k, kn, "images");
+        if (!nodes && !uris) {
+            if (!js_skip(j, 1, &g->deep))
+                return false;
+            continue;
+        }
+        if (!js_lit(j, '['))
+            return false;
+        if (js_lit(j, ']'))
+            continue;
+        do {   /* one node, buffer or image */
+            uint32_t self = g->nnodes;
+            if (nodes)
+                g->nnodes++;
+            if (!js_lit(j, '{'))
+                return false;
+            if (js_lit(j, '}'))
+                continue;
+            do {
+                const char *f;
+                size_t fn;
+                if (!js_string(j, &f, &fn) || !js_lit(j, ':'))
+                    return false;
+                if (nodes && key_is(f, fn, "children")) {
+                    if (!js_lit(j, '['))
+                        return false;
+                    if (js_lit(j, ']'))
+                        continue;
+                    do {
+                        js_ws(j);
+                        char *e;
+                        unsigned long c = strtoul(j->p, &e, 10);
+                        if (e == j->p || e > j->end || c > UINT32_MAX)
+                            return false;   /* assimp says what is wrong */
+                        j->p = e;
+                        if (!ng_edge(g, self, (uint32_t)c))
+                            return false;
+                    } while (js_lit(j, ','));
+                    if (!js_lit(j, ']'))
+                        return false;
+                } else if (uris && key_is(f, fn, "uri")) {
+                    const char *u;
+                    size_t un;
+                    if (!js_string(j, &u, &un))
+                        return false;
+                    char buf[256];
+                    snprintf(buf, sizeof buf, "%.*s", (int)(un < 255 ? un : 255), u);
+                    if (!g->url[0] && is_url(buf))
+                        snprintf(g->url, sizeof g->url, "%s", buf);
+                    if (!g->absolute[0] && buf[0] == '/')
+                        snprintf(g->absolute, sizeof g->absolute, "%s", buf);
+                } else if (!js_skip(j, 3, &g->deep)) {
+                    return false;
+                }
+            } while (js_lit(j, ','));
+            if (!js_lit(j, '}'))
+                return false;
+        } while (js_lit(j, ','));
+        if (!js_lit(j, ']'))
+            return false;
+    } while (js_lit(j, ','));
+    return js_lit(j, '}');
+}
+
+/* Longest chain of nodes below any node (1 for a leaf), iteratively; UINT32_MAX if the
+ * hierarchy recurses (*cycle: a node on it). */
+static uint32_t ng_height(const node_graph *g, uint32_t *cycle, bool *oom)
+{
+    uint32_t n = g->nnodes, best = 0;
+    uint32_t *first = calloc((size_t)n + 1, sizeof *first);
+    uint32_t *adj = malloc((g->nedges ? g->nedges : 1) * sizeof *adj);
+    uint32_t *height = calloc(n ? n : 1, sizeof *height);
+    unsigned char *state = calloc(n ? n : 1, 1);   /* 0 new, 1 on the path, 2 done */
+    uint32_t *stack = malloc((n ? n : 1) * sizeof *stack);
+    uint32_t *next = malloc((n ? n : 1) * sizeof *next);
+    if (!first || !adj || !height || !state || !stack || !next) {
+        *oom = true;
+        goto out;
+    }
+    for (size_t e = 0; e < g->nedges; e++)
+        if (g->edge_from[e] < n && g->edge_to[e] < n)
+            first[g->edge_from[e] + 1]++;
+    for (uint32_t i = 0; i < n; i++)
+        first[i + 1] += first[i];
+    uint32_t *fill = calloc(n ? n : 1, sizeof *fill);
+    if (!fill) {
+        *oom = true;
+        goto out;
+    }
+    for (size_t e = 0; e < g->nedges; e++) {
+        uint32_t a = g->edge_from[e], b = g->edge_to[e];
+        if (a < n && b < n)
+            adj[first[a] + fill[a]++] = b;
+    }
+    free(fill);
+    for (uint32_t r = 0; r < n && best != UINT32_MAX; r++) {
+        if (state[r])
+            continue;
+        uint32_t sp = 0;
+        stack[sp] = r;
+        next[sp++] = first[r];
+        state[r] = 1;
+        while (sp > 0) {
+            uint32_t v = stack[sp - 1];
+            if (next[sp - 1] < first[v + 1]) {
+                uint32_t c = adj[next[sp - 1]++];
+                if (state[c] == 1) {
+                    *cycle = c;
+                    best = UINT32_MAX;
+                    break;
+                }
+                if (state[c] == 0) {
+                    state[c] = 1;
+                    stack[sp] = c;
+                    next[sp++] = first[c];
+                }
+                continue;
+            }
+            uint32_t h = 0;
+            for (uint32_t e = first[v]; e < first[v + 1]; e++)
+                if (height[adj[e]] > h)
+                    h = height[adj[e]];
+            height[v] = h + 1;
+            if (height[v] > best)
+                best = height[v];
+            state[v] = 2;
+            sp--;
+        }
+    }
+out:
+    free(first);
+    free(adj);
+    free(height);
+    free(state);
+    free(stack);
+    free(next);
+    return best;
+}
+
+/* The deepest nesting of arrays and objects anywhere in the JSON, whatever its shape
+ * (js_gltf stops at the first thing it does not expect; assimp's parser would go on). */
+static uint32_t js_max_nesting(const char *p, size_t n)
+{
+    uint32_t d = 0, best = 0;
+    bool str = false;
+    for (size_t i = 0; i < n; i++) {
+        char c = p[i];
+        if (str) {
+            if (c == '\\')
+                i++;
+            else if (c == '"')
+                str = false;
+        } else if (c == '"') {
+            str = true;
+        } else if (c == '{' || c == '[') {
+            if (++d > best)
+                best = d;
+        } else if ((c == '}' || c == ']') && d > 0) {
+            d--;
+        }
+    }
+    return best;
+}
+
+static uint32_t le32(const unsigned char *p)
+{
+    return (uint32_t)p[0] | (uint32_t)p[1] << 8 | (uint32_t)p[2] << 16 | (uint32_t)p[3] << 24;
+}
+
+/* The JSON of a .gltf, or of a .glb's first chunk; false if the bytes are neither. */
+static bool gltf_json(const read_file *f, const char **json, size_t *n)
+{
+    const unsigned char *d = f->data;
+    if (f->size >= 20 && memcmp(d, "glTF", 4) == 0) {
+        uint32_t len = le32(d + 12);
+        if (memcmp(d + 16, "JSON", 4) != 0)
+            return false;
+        *json = (const char *)d + 20;
+        *n = len < f->size - 20 ? len : f->size - 20;
+        return true;
+    }
+    size_t i = 0;
+    if (f->size >= 3 && memcmp(d, "\xEF\xBB\xBF", 3) == 0)
+        i = 3;   /* a UTF-8 byte order mark */
+    while (i < f->size && strchr(" \t\r\n", d[i]) && d[i])
+        i++;
+    if (i >= f->size || d[i] != '{')
+        return false;
+    *json = (const char *)d + i;
+    *n = f->size - i;
+    return true;
+}
+
+/* A .glb's header and chunk lengths against the file's size: assimp allocates (and
+ * clears) what they claim before it finds the file shorter. */
+static bool glb_lengths(const char *path, const read_file *f, char *err, size_t errlen)
+{
+    const unsigned char *d = f->data;
+    if (f->size < 12 || memcmp(d, "glTF", 4) != 0)
+        return true;
+    uint32_t total = le32(d + 8);
+    if (total > f->size)
+        return fail(err, errlen, "%s: the GLB header claims %u bytes, the file has %zu", path,
+                    total, f->size);
+    size_t at = 12;
+    for (int k = 0; k < 2 && at + 8 <= f->size; k++) {
+        uint64_t len = le32(d + at);
+        if (len > f->size - at - 8)
+            return fail(err, errlen, "%s: GLB chunk %d claims %llu bytes, %zu follow it", path,
+                        k, (unsigned long long)len, f->size - at - 8);
+        at += 8 + (size_t)((len + 3) & ~(uint64_t)3);
+    }
+    return true;
+}
+
+/* False with a message naming the file when its glTF JSON asks for what would hurt. */
+static bool prescan_gltf(const char *path, const read_file *f, char *err, size_t errlen)
+{
+    const char *json;
+    size_t n;
+    if (!glb_lengths(path, f, err, errlen))
+        return false;
+    if (!gltf_json(f, &json, &n))
+        return true;
+    jscan j = {json, json + n, false};
+    node_graph g = {0};
+    bool deep = js_max_nesting(json, n) > JSON_MAX_NESTING;
+    bool parsed = !deep && js_gltf(&j, &g);
+    bool ok = true;
+    if (deep || g.deep) {
+        ok = fail(err, errlen, "%s: JSON nested more than %u deep", path, JSON_MAX_NESTING);
+    } else if (g.url[0]) {
+        ok = fail(err, errlen, "%s: uri '%s' is a URL: only local files are read", path, g.url);
+    } else if (g.absolute[0]) {
+        ok = fail(err, errlen, "%s: uri '%s' is an absolute path: a uri is relative to the "
+                  "file's folder", path, g.absolute);
+    } else if (parsed) {
+        uint32_t cycle = 0;
+        bool oom = false;
+        uint32_t h = ng_height(&g, &cycle, &oom);
+        if (oom)
+            ok = fail(err, errlen, "%s: out of memory checking %u nodes", path, g.nnodes);
+        else if (h == UINT32_MAX)
+            ok = fail(err, errlen, "%s: node %u contains itself: the hierarchy recurses", path,
+                      cycle);
+        else if (h >= FILE_MAX_NODE_DEPTH)
+            ok = fail(err, errlen, "%s: the node hierarchy is %u deep, more than %u", path, h,
+                      FILE_MAX_NODE_DEPTH - 1);
+    }
+    free(g.edge_from);
+    free(g.edge_to);
+    return ok;
 }
 
 // >>load
@@ -251,18 +759,6 @@ static void loaded_free(loaded *l)
     free(l->images);
     file_set_free(&l->files);
     memset(l, 0, sizeof *l);
-}
-
-static bool fail(char *err, size_t errlen, const char *fmt, ...)
-    __attribute__((format(printf, 3, 4)));
-static bool fail(char *err, size_t errlen, const char *fmt, ...)
-{
-    va_list ap;
-    va_start(ap, fmt);
-    if (err && errlen)
-        vsnprintf(err, errlen, fmt, ap);
-    va_end(ap);
-    return false;
 }
 
 /* Percent-decodes a URI path (glTF image URIs may escape spaces and such). */
@@ -346,7 +842,7 @@ static int load_image(loaded *l, const char *ref, char *err, size_t errlen)
             const read_file *f = file_get(&l->files, name);
             if (!f) {
                 if (l->files.err[0])
-                    fail(err, errlen, "%s", l->files.err);
+                    fail(err, errlen, "%s: %s", l->path, l->files.err);
                 else
                     fail(err, errlen, "%s: image '%s' is missing (%s: %s)", l->path, ref, name,
                          strerror(errno ? errno : ENOENT));
@@ -354,6 +850,16 @@ static int load_image(loaded *l, const char *ref, char *err, size_t errlen)
             }
             bytes = f->data;
             size = f->size;
+        }
+        int w = 0, h = 0;
+        if (!image_probe(bytes, size, name, &w, &h, why, sizeof why)) {
+            fail(err, errlen, "%s: texture '%s' does not decode: %s", l->path, ref, why);
+            return -1;
+        }
+        if (w > (int)TEXTURE_MAX_SIZE || h > (int)TEXTURE_MAX_SIZE) {
+            fail(err, errlen, "%s: texture '%s' is %dx%d, more than %u texels a side", l->path,
+                 ref, w, h, TEXTURE_MAX_SIZE);
+            return -1;
         }
         image raw;
         if (!image_decode(bytes, size, name, IMAGE_U8, &raw, why, sizeof why)) {
@@ -385,9 +891,9 @@ static int load_image(loaded *l, const char *ref, char *err, size_t errlen)
         image_free(&raw);
     }
     if (img.width > (int)TEXTURE_MAX_SIZE || img.height > (int)TEXTURE_MAX_SIZE) {
-        image_free(&img);
         fail(err, errlen, "%s: texture '%s' is %dx%d, more than %u texels a side", l->path, ref,
              img.width, img.height, TEXTURE_MAX_SIZE);
+        image_free(&img);
         return -1;
     }
     if (l->nimages == l->cap_images) {
@@ -511,6 +1017,17 @@ static bool load(const scene_file_options *o, loaded *l, char *err, size_t errle
         loaded_free(l);
         return false;
     }
+    /* what the file references is read from inside its folder */
+    if (!realpath(l->dir[0] ? l->dir : ".", l->files.root)) {
+        fail(err, errlen, "%s: cannot resolve its folder: %s", o->path, strerror(errno));
+        loaded_free(l);
+        return false;
+    }
+    l->files.allow_outside = o->allow_outside;
+    if (!prescan_gltf(o->path, &l->files.files[0], err, errlen)) {
+        loaded_free(l);
+        return false;
+    }
     struct aiFileIO io = {io_open, io_close, (char *)&l->files};
     struct aiPropertyStore *props = aiCreatePropertyStore();
     /* drop points and lines after triangulation: shadesweep draws triangles */
@@ -527,6 +1044,15 @@ static bool load(const scene_file_options *o, loaded *l, char *err, size_t errle
     aiReleasePropertyStore(props);
     bool ok = false;
     const struct aiScene *ai = l->ai;
+    if (l->files.err[0]) {   /* a refused file, even where the importer went on */
+        fail(err, errlen, "%s: %s", o->path, l->files.err);
+        goto out;
+    }
+    if (l->files.missing[0]) {
+        fail(err, errlen, "%s: references %s, which does not exist", o->path,
+             l->files.missing);
+        goto out;
+    }
     if (ai && import_warning[0]) {
         fail(err, errlen, "%s: indices out of range: %s", o->path, import_warning);
         goto out;

@@ -170,6 +170,7 @@ typedef struct scene_file_options {
     scene_up up;               /* the file's up axis; z: rotated so that +Z becomes +Y */
     const char *camera;        /* NULL, "" or "orbit": an orbit about the bounds; otherwise
                                 * the name of one of the file's cameras */
+    bool allow_outside;        /* files it references may lie outside its folder */
 } scene_file_options;
 
 /* What scene_file_check found (also what meta.yaml records). */

@@ -1,14 +1,16 @@
 #!/usr/bin/env bash
-# Fuzzes the manifest parser (tests/fuzz/fuzz_manifest.c) with libFuzzer for a
-# bounded time, on one core.
+# Fuzzes the manifest parser (tests/fuzz/fuzz_manifest.c) and then the scene-file
+# loader (tests/fuzz/fuzz_scene.c) with libFuzzer for a bounded time, on one core.
 #
-#   scripts/fuzz.sh [SECONDS]        default 60
+#   scripts/fuzz.sh [SECONDS]        default 60: the manifest parser SECONDS, the
+#                                    scene loader half that (FUZZ_SCENE_SECONDS)
 #
 # Builds with clang in its own folder (FUZZ_BUILD, default build-fuzz): ASan +
 # UBSan (any report aborts), coverage instrumentation on all C code, the target
 # linked with -fsanitize=fuzzer. Seeds: every file under tests/data/ and
 # experiments/ (read in place), plus what earlier runs found, kept in
-# FUZZ_BUILD/corpus. Dictionary: tests/fuzz/yaml.dict.
+# FUZZ_BUILD/corpus (scenes: tests/fuzz/scene_seeds/ and FUZZ_BUILD/corpus-scene).
+# Dictionary: tests/fuzz/yaml.dict.
 #
 # Exit status: 0 nothing found; 1 a finding (crash, sanitizer report, leak,
 # timeout, out of memory, broken contract): the input is saved under
@@ -53,42 +55,52 @@ if [ ! -f "$build/build.ninja" ]; then
   fi
   rm -f "$setup_log"
 fi
-if ! ninja -C "$build" tests/fuzz/fuzz_manifest >"$build/fuzz-build.log" 2>&1; then
+if ! ninja -C "$build" tests/fuzz/fuzz_manifest tests/fuzz/fuzz_scene >"$build/fuzz-build.log" 2>&1; then
   cat "$build/fuzz-build.log" >&2
   echo "fuzz: build failed" >&2
   exit 2
 fi
 
-corpus="$build/corpus"
+scene_secs=${FUZZ_SCENE_SECONDS:-$((secs / 2))}
+case $scene_secs in '' | *[!0-9]*) echo "fuzz: FUZZ_SCENE_SECONDS: not a number" >&2; exit 2 ;; esac
 findings="$build/findings"
-mkdir -p "$corpus" "$findings"
-stamp="$build/fuzz.started"
-touch "$stamp"
+mkdir -p "$build/corpus" "$build/corpus-scene" "$findings"
 
 export ASAN_OPTIONS=${ASAN_OPTIONS:-detect_leaks=1:abort_on_error=0:strict_string_checks=1}
 export UBSAN_OPTIONS=${UBSAN_OPTIONS:-halt_on_error=1:print_stacktrace=1}
 # Libraries linked in but never used by the target (Mesa, LLVM) may leak at exit.
 export LSAN_OPTIONS=${LSAN_OPTIONS:-suppressions=$root/tests/lsan.supp:print_suppressions=0}
 
-echo "fuzz: fuzz_manifest for ${secs}s, one core, ${rss_mb} MB, ${per_input}s per input" >&2
-log="$build/fuzz.log"
-set +e
-# shellcheck disable=SC2086  # FUZZ_ARGS is a list of flags
-"$build/tests/fuzz/fuzz_manifest" \
-  -max_total_time="$secs" -rss_limit_mb="$rss_mb" -malloc_limit_mb="$rss_mb" \
-  -timeout="$per_input" -error_exitcode=1 -timeout_exitcode=1 \
-  -dict=tests/fuzz/yaml.dict -artifact_prefix="$findings/" -print_final_stats=1 \
-  ${FUZZ_ARGS:-} \
-  "$corpus" tests/data experiments 2>&1 | tee "$log" | grep -E --line-buffered \
-  '^(INFO: seed corpus|#[0-9]+[[:space:]]+(INITED|DONE|pulse)|stat::|==[0-9]+==|SUMMARY|fuzz_manifest:|artifact_prefix|Test unit written|Done [0-9]+ runs)' >&2
-rc=${PIPESTATUS[0]}
-set -e
+# fuzz TARGET SECONDS CORPUS [SEEDS / FLAGS...]: 0, or 1 on a finding
+fuzz() {
+  local target=$1 t=$2 corpus=$3 stamp="$build/fuzz.started" log="$build/$1.log" rc
+  shift 3
+  [ "$t" -gt 0 ] || return 0
+  touch "$stamp"
+  echo "fuzz: $target for ${t}s, one core, ${rss_mb} MB, ${per_input}s per input" >&2
+  set +e
+  # shellcheck disable=SC2086  # FUZZ_ARGS is a list of flags
+  "$build/tests/fuzz/$target" \
+    -max_total_time="$t" -rss_limit_mb="$rss_mb" -malloc_limit_mb="$rss_mb" \
+    -timeout="$per_input" -error_exitcode=1 -timeout_exitcode=1 \
+    -artifact_prefix="$findings/$target-" -print_final_stats=1 \
+    ${FUZZ_ARGS:-} \
+    "$corpus" "$@" 2>&1 | tee "$log" | grep -E --line-buffered \
+    '^(INFO: seed corpus|#[0-9]+[[:space:]]+(INITED|DONE|pulse)|stat::|==[0-9]+==|SUMMARY|fuzz_(manifest|scene):|artifact_prefix|Test unit written|Done [0-9]+ runs)' >&2
+  rc=${PIPESTATUS[0]}
+  set -e
+  if [ "$rc" -ne 0 ]; then
+    echo "fuzz: FINDING in $target (libFuzzer exit $rc); full log: $log" >&2
+    find "$findings" -type f -newer "$stamp" | while read -r f; do
+      echo "fuzz: reproduce with: $build/tests/fuzz/$target $f" >&2
+    done
+    return 1
+  fi
+  echo "fuzz: $target: nothing found; corpus $(find "$corpus" -type f | wc -l) files in $corpus" >&2
+}
 
-if [ "$rc" -ne 0 ]; then
-  echo "fuzz: FINDING (libFuzzer exit $rc); full log: $log" >&2
-  find "$findings" -type f -newer "$stamp" | while read -r f; do
-    echo "fuzz: reproduce with: $build/tests/fuzz/fuzz_manifest $f" >&2
-  done
-  exit 1
-fi
-echo "fuzz: nothing found; corpus $(find "$corpus" -type f | wc -l) files in $corpus" >&2
+status=0
+fuzz fuzz_manifest "$secs" "$build/corpus" -dict=tests/fuzz/yaml.dict tests/data experiments ||
+  status=1
+fuzz fuzz_scene "$scene_secs" "$build/corpus-scene" tests/fuzz/scene_seeds || status=1
+exit $status

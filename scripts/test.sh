@@ -38,8 +38,9 @@ logs+=("build/meson-logs/testlog.json")
 ) || status=1
 logs+=("build-asan/meson-logs/testlog.json")
 
-# The manifest parser under libFuzzer for a bounded time (scripts/fuzz.sh; the
-# README's reliability section has the long run). Counted as one test.
+# The manifest parser, then the scene loader (half that time), under libFuzzer for a
+# bounded time (scripts/fuzz.sh; the README's reliability section has the long run).
+# Counted as one test.
 mkdir -p build-fuzz
 fuzz_log=build-fuzz/ci-result.json
 if scripts/fuzz.sh "${SHADESWEEP_FUZZ_SECONDS:-30}" >&2; then
