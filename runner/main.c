@@ -1,5 +1,6 @@
 #include "runner/cli.h"
 #include "runner/folder.h"
+#include "runner/provenance.h"
 
 #ifdef __GLIBC__
 #include <malloc.h>
@@ -26,5 +27,6 @@ int main(int argc, char **argv)
 {
     folder_std_fds();   /* a closed stderr must not become the first file opened */
     allocator_fixed();
+    provenance_set_command(argc, argv);
     return cli_main(argc, argv);
 }

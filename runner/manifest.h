@@ -49,6 +49,7 @@ typedef struct experiment {
     char name[64];             /* [a-z0-9-]+ */
     char *description;         /* "" if absent */
     char hash[17];             /* FNV-1a 64 of the manifest's bytes, hex */
+    char *text;                /* the manifest's bytes, NUL-terminated (meta.yaml keeps them) */
     double scale;              /* run --scale (1 when not given) */
     bool smoke;                /* run --smoke: experiment_make_smoke applied */
     run_params base;           /* the manifest's values with defaults, renderer = "" */

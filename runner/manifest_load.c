@@ -29,6 +29,7 @@ void experiment_free(experiment *e)
     free(e->axes);
     free(e->renderers);
     free(e->description);
+    free(e->text);
     free(e->path);
     free(e);
 }
@@ -128,6 +129,12 @@ bool manifest_load_mem(const char *name, const char *data, size_t len, experimen
     if (!data)
         data = "";   /* libyaml wants a buffer even for no bytes */
     hash_hex(fnv1a64(data, len), 16, e->hash);
+    if (!(e->text = malloc(len + 1))) {
+        diag_add(diags, name, 0, 0, "", "expected to load the manifest, found no memory left");
+        goto done;
+    }
+    memcpy(e->text, data, len);
+    e->text[len] = '\0';
     e->scale = 1;
     if (!apply_defaults(&c, &e->base))
         goto done;

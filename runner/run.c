@@ -32,6 +32,7 @@
 #include "runner/memory.h"
 #include "runner/output.h"
 #include "runner/params.h"
+#include "runner/provenance.h"
 #include "runner/plan_check.h"
 #include "runner/progress.h"
 #include "scenes/scene.h"
@@ -63,6 +64,7 @@ typedef struct run_state {
     double paused_s;           /* measured clock paused (comparisons, screenshots) */
     trial_result result;       /* this trial's row (result.trial 0: it never ran) */
     char started[32], finished[32];
+    provenance_start prov;     /* the machine's load and memory at the trial's start */
     char status[96];
     char message[1024];        /* why it failed, for summary.csv */
     char err[512];
@@ -749,12 +751,16 @@ static bool write_meta(run_state *st, char *err, size_t errlen)
     yo_map_begin(y);
     yo_key(y, "path"); yo_str(y, e->path);
     yo_key(y, "hash"); yo_str(y, e->hash);
+    yo_key(y, "description"); yo_str(y, e->description);
+    yo_key(y, "text"); yo_str(y, e->text);   /* verbatim: what the hash is of */
     yo_map_end(y);
     yo_key(y, "shadesweep");
     yo_map_begin(y);
     yo_key(y, "version"); yo_str(y, SHADESWEEP_VERSION);
     yo_key(y, "commit"); yo_str(y, SHADESWEEP_COMMIT);
+    yo_key(y, "dirty"); yo_bool(y, strstr(SHADESWEEP_COMMIT, "-dirty") != NULL);
     yo_map_end(y);
+    provenance_write_invocation(y);
 
     yo_key(y, "parameters");
     yo_map_begin(y);
@@ -830,6 +836,7 @@ static bool write_meta(run_state *st, char *err, size_t errlen)
     yo_key(y, "cpu"); yo_str(y, cpu);
     yo_key(y, "threads"); yo_i64(y, sysconf(_SC_NPROCESSORS_ONLN));
     yo_key(y, "hostname"); yo_str(y, host);
+    provenance_write_host(y, &st->prov);
     yo_map_end(y);
     yo_key(y, "started"); yo_str(y, st->started);
     yo_key(y, "finished"); yo_str(y, st->finished);
@@ -1239,6 +1246,7 @@ bool run_trial_isolated(const experiment *e, const run_spec *s, const run_option
     run_state st = {.e = e, .s = s, .o = o, .pg = pg, .trial = trial, .order = order};
     snprintf(st.status, sizeof st.status, "ok");
     utc_now(st.started, sizeof st.started);
+    provenance_sample(&st.prov);
     char run_dir[4096], log_path[4300], err[512];
     snprintf(run_dir, sizeof run_dir, "%s/runs/%s", o->out_dir, s->id);
     snprintf(st.dir, sizeof st.dir, "%s/trial-%u", run_dir, trial);
@@ -1314,6 +1322,7 @@ bool run_write_missing_trial(const experiment *e, const run_spec *s, const run_o
     snprintf(st.status, sizeof st.status, "%s", status);
     snprintf(st.message, sizeof st.message, "%s", message);
     utc_now(st.started, sizeof st.started);
+    provenance_sample(&st.prov);
     snprintf(st.dir, sizeof st.dir, "%s/runs/%s/trial-%u", o->out_dir, s->id, trial);
     char err[512];
     if (!folder_clear_run(st.dir, err, sizeof err)) {

@@ -216,6 +216,24 @@ for p in plan:
         fail(f"meta parameters differ from plan.csv: {meta['parameters']}")
     for k in ("started", "finished"):
         if not str(meta[k]).endswith("Z"): fail(f"meta {k}")
+    # provenance: the manifest verbatim, the command line, the environment that matters,
+    # the kernel, the machine's load and memory when the trial started
+    src = os.path.join(os.environ["SOURCE_ROOT"], "experiments", "smoke.yaml")
+    if meta["manifest"]["text"] != open(src).read(): fail("meta manifest text")
+    if meta["manifest"]["description"] != yaml.safe_load(open(src)).get("description", ""):
+        fail(f"meta manifest description {meta['manifest']['description']!r}")
+    inv = meta["invocation"]
+    if not inv["command"].endswith(" run --debug-gl " + src) or inv["cwd"] != os.getcwd():
+        fail(f"meta invocation {inv}")
+    if meta["environment"].get("SHADESWEEP_GL_DEBUG") != os.environ.get("SHADESWEEP_GL_DEBUG") \
+            or "PATH" in meta["environment"] or "HOME" in meta["environment"]:
+        fail(f"meta environment {meta['environment']}")
+    host = meta["host"]
+    if host["kernel"] != os.uname().release or host["cpus_usable"] != ncpus or \
+            not host["load_1m_at_start"] >= 0 or \
+            not 0 < host["mem_available_mb_at_start"] <= host["mem_total_mb"]:
+        fail(f"meta host {host}")
+    if not isinstance(meta["shadesweep"]["dirty"], bool): fail("meta shadesweep.dirty")
     pp = meta["pass_plan"]
     if null:
         if pp["passes"] != [{"name": "clear", "run": True, "reason": "clears the output framebuffer"}]:
