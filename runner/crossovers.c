@@ -212,6 +212,159 @@ bool crossovers_find(const run_result *runs, size_t nruns, const csv_table *pl,
     return ok;
 }
 
+/* ---- lights that grow over time within a run */
+
+/* A run's metric per trial and light count: mean[level * ntrials + (trial - 1)], the
+ * mean of the metric's frames.csv column over the frames drawn at that count. */
+typedef struct levels {
+    double *lights;   /* ascending, distinct */
+    size_t n, ntrials;
+    double *mean;
+} levels;
+
+static int by_double(const void *pa, const void *pb)
+{
+    double a = *(const double *)pa, b = *(const double *)pb;
+    return a < b ? -1 : a > b;
+}
+
+static const char *frame_column(const char *metric)
+{
+    return strcmp(metric, "cpu") == 0 ? "cpu_us" : strcmp(metric, "gpu") == 0 ? "gpu_us"
+                                                                              : "frametime_us";
+}
+
+/* False when the run has no frames.csv with the columns (outputs.frames: false). */
+static bool read_levels(const char *out_dir, const run_result *x, levels *lv)
+{
+    memset(lv, 0, sizeof *lv);
+    char path[4200], err[300];
+    snprintf(path, sizeof path, "%s/runs/%s/frames.csv", out_dir, x->id);
+    csv_table t;
+    if (!x->nvalues || !csv_read(path, &t, err, sizeof err))
+        return false;
+    int ct = csv_col(&t, "trial"), cl = csv_col(&t, "lights");
+    int cv = csv_col(&t, frame_column(x->metric));
+    bool ok = ct >= 0 && cl >= 0 && cv >= 0 && t.nrows > 0;
+    double *all = ok ? malloc(t.nrows * sizeof *all) : NULL;
+    ok = ok && all;
+    size_t n = 0;
+    for (size_t r = 0; ok && r < t.nrows; r++) {
+        double L = csv_num(&t, r, cl);
+        if (isfinite(L))
+            all[n++] = L;
+    }
+    if (ok && n) {
+        qsort(all, n, sizeof *all, by_double);
+        size_t u = 1;
+        for (size_t i = 1; i < n; i++)
+            if (all[i] != all[u - 1])
+                all[u++] = all[i];
+        lv->lights = all;
+        lv->n = u;
+        lv->ntrials = x->nvalues;
+        lv->mean = calloc(u * lv->ntrials, sizeof *lv->mean);
+        size_t *cnt = calloc(u * lv->ntrials, sizeof *cnt);
+        ok = lv->mean && cnt;
+        for (size_t r = 0; ok && r < t.nrows; r++) {
+            double L = csv_num(&t, r, cl), k = csv_num(&t, r, ct), v = csv_num(&t, r, cv);
+            if (!isfinite(L) || !isfinite(v) || !(k >= 1 && k <= (double)lv->ntrials))
+                continue;
+            const double *at = bsearch(&L, lv->lights, u, sizeof *lv->lights, by_double);
+            size_t i = (size_t)(at - lv->lights) * lv->ntrials + (size_t)k - 1;
+            lv->mean[i] += v;
+            cnt[i]++;
+        }
+        for (size_t i = 0; ok && i < u * lv->ntrials; i++)
+            lv->mean[i] = cnt[i] ? lv->mean[i] / (double)cnt[i] : NAN;
+        free(cnt);
+    } else {
+        free(all);   /* lv holds nothing yet */
+        ok = false;
+    }
+    csv_table_free(&t);
+    if (!ok) {
+        free(lv->lights);   /* `all`, when lv took it */
+        free(lv->mean);
+        memset(lv, 0, sizeof *lv);
+    }
+    return ok;
+}
+
+/* The crossings of a against b along the light counts both drew. */
+static bool growth_pair(const levels *a, const levels *b, const char *ca, const char *cb,
+                        const char *group, crossover_list *out)
+{
+    size_t cap = a->n < b->n ? a->n : b->n, nt = a->ntrials < b->ntrials ? a->ntrials
+                                                                          : b->ntrials;
+    double *x = malloc((cap ? cap : 1) * sizeof *x);
+    ratio_ci *r = malloc((cap ? cap : 1) * sizeof *r);
+    bool ok = x && r;
+    size_t n = 0;
+    for (size_t i = 0, j = 0; ok && i < a->n && j < b->n;) {
+        if (a->lights[i] < b->lights[j]) {
+            i++;
+        } else if (b->lights[j] < a->lights[i]) {
+            j++;
+        } else {
+            x[n] = a->lights[i];
+            verdict_paired_ratio(a->mean + i * a->ntrials, b->mean + j * b->ntrials, nt, &r[n]);
+            n += isfinite(r[n].ratio);
+            i++;
+            j++;
+        }
+    }
+    ratio_crossover co;
+    for (size_t from = 0; ok && n >= 2 && verdict_crossover(x, r, n, from, &co); from = co.j) {
+        crossover_found f = {
+            .axis = "lights (growing over time)", .group = group,
+            .below = co.dir > 0 ? ca : cb, .above = co.dir > 0 ? cb : ca,
+            .x0 = x[co.i], .x1 = x[co.j], .x = co.x, .lo = co.lo, .hi = co.hi,
+            .differs0 = summary_differs(&r[co.i]), .differs1 = summary_differs(&r[co.j]),
+        };
+        ok = push(out, &f);
+    }
+    free(x);
+    free(r);
+    return ok;
+}
+
+bool crossovers_growth(const char *out_dir, const run_result *runs, const summary_point *pts,
+                       size_t npts, const csv_table *pl, const long *prow,
+                       char *const *rcfg, crossover_list *out)
+{
+    int cc = csv_col(pl, "lights.count");
+    bool ok = true;
+    for (size_t k = 0; ok && cc >= 0 && k < npts; k++) {
+        const summary_point *p = &pts[k];
+        if (p->nruns < 2 || prow[p->runs[0]] < 0 ||
+            strncmp(pl->rows[prow[p->runs[0]]][cc], "start:", 6) != 0)
+            continue;   /* a fixed light count: nothing grows */
+        levels *lv = calloc(p->nruns, sizeof *lv);
+        bool *have = calloc(p->nruns, sizeof *have);
+        ok = lv && have;
+        for (size_t i = 0; ok && i < p->nruns; i++)
+            have[i] = isfinite(runs[p->runs[i]].mean) &&
+                      read_levels(out_dir, &runs[p->runs[i]], &lv[i]);
+        out->axes += ok;
+        const char *group = strcmp(p->label, "all runs") == 0 ? "" : p->label;
+        /* pairs in name order, as along a swept key */
+        for (size_t i = 0; ok && i < p->nruns; i++)
+            for (size_t j = 0; ok && j < p->nruns; j++) {
+                const char *ci = rcfg[p->runs[i]], *cj = rcfg[p->runs[j]];
+                if (have[i] && have[j] && strcmp(ci, cj) < 0)
+                    ok = growth_pair(&lv[i], &lv[j], ci, cj, group, out);
+            }
+        for (size_t i = 0; lv && i < p->nruns; i++) {
+            free(lv[i].lights);
+            free(lv[i].mean);
+        }
+        free(lv);
+        free(have);
+    }
+    return ok;
+}
+
 void crossovers_free(crossover_list *l)
 {
     for (size_t i = 0; i < l->nstrings; i++)
@@ -249,7 +402,8 @@ void crossovers_write_md(FILE *fp, const crossover_list *l)
     fputs("\n## Crossovers\n\n", fp);
     if (!l->axes) {
         fputs("No numeric parameter varies across the sweep points (a resolution counts as "
-              "its pixels; a seed is a label): nothing to cross along.\n", fp);
+              "its pixels; a seed is a label), and no light count grows within a run: "
+              "nothing to cross along.\n", fp);
         return;
     }
     if (!l->n) {
@@ -257,8 +411,10 @@ void crossovers_write_md(FILE *fp, const crossover_list *l)
               "change places.\n", fp);
         return;
     }
-    fputs("Along each numeric parameter the sweep varies (the others held, as named), where "
-          "two configurations change places: the ratio of their paired trial values at each "
+    fputs("Along each numeric parameter the sweep varies (the others held, as named), and "
+          "along the light count where it grows within a run (`lights (growing over "
+          "time)`: per trial, the mean of the metric over the frames drawn at each count; "
+          "needs frames.csv), where two configurations change places: the ratio of their paired trial values at each "
           "value (as `x fastest`), its log interpolated linearly in the log of the parameter "
           "between the last value where the first is faster and the next where the second "
           "is (linearly from 0), to where it crosses 1; the 95% interval is where the "
@@ -283,8 +439,14 @@ void crossovers_print(FILE *out, const crossover_list *l, size_t max)
         const crossover_found *c = &l->item[i];
         xtext t;
         texts(c, &t);
-        fprintf(out, "crossover: %s is faster below %s ~%s (95%%: %s to %s), %s above%s%s%s\n",
-                c->below, c->axis, t.x, t.lo, t.hi, c->above, c->group[0] ? " (" : "",
+        char ci[96];
+        if (isfinite(c->lo) || isfinite(c->hi))
+            snprintf(ci, sizeof ci, "95%%: %s to %s", t.lo, t.hi);
+        else
+            snprintf(ci, sizeof ci, "no interval: %s", strcmp(c->differs0, "n/a") == 0
+                     ? "fewer than 3 trials" : "the bounds do not cross within the values run");
+        fprintf(out, "crossover: %s is faster below %s ~%s (%s), %s above%s%s%s\n",
+                c->below, c->axis, t.x, ci, c->above, c->group[0] ? " (" : "",
                 c->group, c->group[0] ? ")" : "");
     }
     if (l->n > max)

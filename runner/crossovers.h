@@ -39,6 +39,15 @@ typedef struct crossover_list {
 bool crossovers_find(const run_result *runs, size_t nruns, const csv_table *pl,
                      const long *prow, const bool *varies, char *const *rcfg,
                      crossover_list *out);
+/* Appends the crossings along a light count that grows over time (lights.count
+ * {start, step, ...}) within each sweep point of two configurations or more: per run,
+ * per trial, the mean of its metric's frames.csv column (cpu_us, gpu_us, frametime_us)
+ * over the frames drawn at each count; per pair, the paired ratio at each count both
+ * drew, and verdict_crossover. A run without frames.csv is left out. False when out of
+ * memory. */
+bool crossovers_growth(const char *out_dir, const run_result *runs, const summary_point *pts,
+                       size_t npts, const csv_table *pl, const long *prow,
+                       char *const *rcfg, crossover_list *out);
 void crossovers_free(crossover_list *l);
 
 /* The "## Crossovers" section of summary.md. */

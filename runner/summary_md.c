@@ -576,7 +576,8 @@ bool summary_table_write(const char *out_dir, FILE *terminal, char *err, size_t 
         fprintf(terminal, "... %zu more sweep points\n", nshown - TERM_MAX_POINTS);
     /* where two configurations change places along a numeric parameter */
     crossover_list cx;
-    if (!crossovers_find(runs, nruns, &pl, prow, varies, rcfg, &cx)) {
+    if (!crossovers_find(runs, nruns, &pl, prow, varies, rcfg, &cx) ||
+        !crossovers_growth(out_dir, runs, pts, npts, &pl, prow, rcfg, &cx)) {
         crossovers_free(&cx);
         afile_abort(&f);
         snprintf(err, errlen, "out of memory");

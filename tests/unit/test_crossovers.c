@@ -12,6 +12,7 @@
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
+#include <sys/stat.h>
 #include <unistd.h>
 
 #include "runner/crossovers.h"
@@ -150,11 +151,89 @@ static void test_resolution_is_an_axis_of_pixels(void **state)
     unload(&f);
 }
 
+/* Writes dir/runs/ID/frames.csv: per trial 1..3, two frames at each light count, the
+ * metric's column (cpu_us) at ms[level] milliseconds. */
+static void write_frames(const char *dir, const char *id, const double *ms, size_t nlevels)
+{
+    char path[512];
+    snprintf(path, sizeof path, "%s/runs", dir);
+    mkdir(path, 0700);
+    snprintf(path, sizeof path, "%s/runs/%s", dir, id);
+    mkdir(path, 0700);
+    snprintf(path, sizeof path, "%s/runs/%s/frames.csv", dir, id);
+    FILE *fp = fopen(path, "w");
+    assert_non_null(fp);
+    fputs("run_id,trial,frame,lights,frametime_us,cpu_us\n", fp);
+    for (int t = 1; t <= 3; t++)
+        for (size_t l = 0; l < nlevels; l++)
+            for (int f = 0; f < 2; f++)   /* two frames: their mean is ms[l] */
+                fprintf(fp, "%s,%d,%zu,%zu,1,%g\n", id, t, 2 * l + (size_t)f, 10 * l,
+                        1000 * ms[l] + (f ? 50 : -50));
+    fclose(fp);
+}
+
+static void test_growth_over_time(void **state)
+{
+    (void)state;
+    char dir[] = "/tmp/test_crossovers_g_XXXXXX";
+    assert_non_null(mkdtemp(dir));
+    /* A at 0, 10, 20 lights: 1, 4, 9 ms; B: 2, 3, 4 ms. A / B = 1/2, 4/3, 9/4: A is
+     * faster below the crossing between 0 and 10 lights, linear in lights from 0 */
+    static const double a[] = {1, 4, 9}, b[] = {2, 3, 4};
+    write_frames(dir, "aaaa", a, 3);
+    write_frames(dir, "bbbb", b, 3);
+    static const char summary[] =
+        "run_id,renderer,experiment,trial,frametime_mean_us,status,metric,metric_us\n"
+        "aaaa,fa,x,1,1,ok,cpu,4000\naaaa,fa,x,2,1,ok,cpu,4000\naaaa,fa,x,3,1,ok,cpu,4000\n"
+        "bbbb,fb,x,1,1,ok,cpu,3000\nbbbb,fb,x,2,1,ok,cpu,3000\nbbbb,fb,x,3,1,ok,cpu,3000\n";
+    static const char plan[] =
+        "index,run_id,renderer,lights.count\n"
+        "0,aaaa,fa,\"start:0,step:10,every:1,max:590\"\n"
+        "1,bbbb,fb,\"start:0,step:10,every:1,max:590\"\n";
+    fixture f;
+    load(&f, summary, plan);
+    size_t ranked[] = {1, 0};
+    summary_point p = {.label = "all runs", .runs = ranked, .nruns = 2};
+    crossover_list l = {0};
+    assert_true(crossovers_growth(dir, f.runs, &p, 1, &f.pl, f.prow, f.cfg, &l));
+    assert_int_equal(l.axes, 1);
+    assert_int_equal(l.n, 1);
+    const crossover_found *c = &l.item[0];
+    assert_string_equal(c->axis, "lights (growing over time)");
+    assert_string_equal(c->group, "");
+    assert_string_equal(c->below, "fa");
+    assert_string_equal(c->above, "fb");
+    assert_true(c->x0 == 0 && c->x1 == 10);
+    double l0 = log(0.5), l1 = log(4.0 / 3);
+    assert_true(fabs(c->x - 10 * l0 / (l0 - l1)) < 1e-9);
+    assert_true(fabs(c->lo - c->x) < 1e-9 && fabs(c->hi - c->x) < 1e-9);   /* no spread */
+    /* without frames.csv (outputs.frames: false) the run is left out: nothing found */
+    char path[512];
+    snprintf(path, sizeof path, "%s/runs/bbbb/frames.csv", dir);
+    unlink(path);
+    crossovers_free(&l);
+    assert_true(crossovers_growth(dir, f.runs, &p, 1, &f.pl, f.prow, f.cfg, &l));
+    assert_int_equal(l.n, 0);
+    crossovers_free(&l);
+    unlink(path);
+    snprintf(path, sizeof path, "%s/runs/aaaa/frames.csv", dir);
+    unlink(path);
+    snprintf(path, sizeof path, "%s/runs/aaaa", dir);
+    rmdir(path);
+    snprintf(path, sizeof path, "%s/runs/bbbb", dir);
+    rmdir(path);
+    snprintf(path, sizeof path, "%s/runs", dir);
+    rmdir(path);
+    rmdir(dir);
+    unload(&f);
+}
+
 int main(void)
 {
     const struct CMUnitTest tests[] = {
         cmocka_unit_test(test_crossing_per_group),
         cmocka_unit_test(test_resolution_is_an_axis_of_pixels),
+        cmocka_unit_test(test_growth_over_time),
     };
     return cmocka_run_group_tests(tests, NULL, NULL);
 }
