@@ -117,33 +117,49 @@ def main(argv):
             os.remove(os.path.join(outdir, "plots", name))
         except OSError:
             pass
-    gl, cpu, commits, times = gather_meta(exps)
+    # the experiments of no paper: read like the others, their meta.yaml included
+    others = {}
+    for raw, folders in sorted(unknown.items()):
+        e = Experiment(raw, [raw])
+        for f in folders:
+            e.add_folder(f, read_csv(os.path.join(f, "summary.csv")) or [],
+                         read_csv(os.path.join(f, "plan.csv")))
+        others[raw] = e
+    gl, cpu, commits, times = gather_meta({**exps, **others})
     now = report_time()
-    head = ["# shadesweep against the papers\n",
+    papers = bool(exps)
+    title = ("shadesweep against the papers" if papers
+             else ", ".join(sorted(others)) + ": shadesweep report")
+    head = [f"# {title}\n",
             f"- Report written: {now} by shadesweep report from "
             + ", ".join(f"`{d}`" for d in dirs),
             f"- Runs: {times[0]} to {times[-1]}" if times else "- Runs: times unknown (no meta.yaml)",
             "- GL renderer: " + ("; ".join(sorted(gl)) if gl else "unknown (no meta.yaml)"),
             "- CPU: " + ("; ".join(sorted(cpu)) if cpu else "unknown"),
-            "- shadesweep commit: " + (", ".join(sorted(commits)) if commits else "unknown"),
-            "- The papers: seed 000 measured on a GeForce 6800 (Direct3D 9, NVPerfHUD), seed 003 "
-            "on a GeForce GTX 870M (Direct3D 11, Intel GPA). Absolute numbers do not transfer "
-            "between machines; the claims (which renderer wins, by what ratio, where the lines "
-            "cross) are what is compared."]
+            "- shadesweep commit: " + (", ".join(sorted(commits)) if commits else "unknown")]
+    if papers:
+        head.append("- The papers: seed 000 measured on a GeForce 6800 (Direct3D 9, NVPerfHUD), seed "
+                    "003 on a GeForce GTX 870M (Direct3D 11, Intel GPA). Absolute numbers do not "
+                    "transfer between machines; the claims (which renderer wins, by what ratio, "
+                    "where the lines cross) are what is compared.")
     soft = any(re.search(r"llvmpipe|softpipe|swrast|lavapipe", g, re.I) for g in gl)
     if soft:
         head.append("- **Software rendering.** These runs used a CPU rasteriser (llvmpipe), which "
-                    "shades pixels far slower than the papers' GPUs, so runs on it may be scaled down "
+                    "shades pixels far slower than " + ("the papers' GPUs" if papers else "a GPU")
+                    + ", so runs on it may be scaled down "
                     "(`run --scale`, `--smoke`); each section says the resolution and duration used.")
     head.append("- Our numbers: the mean over a run's trials; \"± x\" is the half-width of the 95% "
                 "confidence interval of that mean: over the trial means (Student t) with three or "
                 "more trials, else the mean of the trials' `frametime_ci95_us` from summary.csv "
                 "(batch means over each trial's frames). SDs are named where given.")
-    head.append("- Verdicts: **yes** the claim holds for ours as the paper states it, **partly** "
-                "the direction holds but not the size or place (each claim says its rule), **no** "
-                "it does not; n/a where ours was not run.\n")
+    if papers:
+        head.append("- Verdicts: **yes** the claim holds for ours as the paper states it, **partly** "
+                    "the direction holds but not the size or place (each claim says its rule), "
+                    "**no** it does not; n/a where ours was not run.\n")
+    else:
+        head[-1] += "\n"
     body, summary = [], []
-    for name, title, src in EXPERIMENTS:
+    for name, title, src in (EXPERIMENTS if papers else []):
         e = exps.get(name)
         body.append(f"## {name}: {title}\n")
         if src != "ours":
@@ -179,23 +195,25 @@ def main(argv):
             counts[k] = counts.get(k, 0) + 1
         summary.append([name, "run", nok,
                         ", ".join(f"{counts[k]} {k}" for k in ("yes", "partly", "no", "n/a") if k in counts) or "-"])
-    for raw, folders in sorted(unknown.items()):
-        summary.append([raw, "not recognised (no paper table)", "-", "-"])
-        e = Experiment(raw, [raw])
-        for f in folders:
-            e.add_folder(f, read_csv(os.path.join(f, "summary.csv")) or [],
-                         read_csv(os.path.join(f, "plan.csv")))
+    for raw, e in others.items():
+        summary.append([raw, "not recognised (no paper table)" if papers else "run",
+                        len(e.measured()) if not papers else "-", "-"])
         sec = Section(e, ref, plots)
         if e.measured():
             section_generic(sec)
-        if sec.out:
-            body.append(f"## {raw}: not a paper experiment\n")
+        if sec.out or not papers:
+            body.append(f"## {raw}" + (": not a paper experiment\n" if papers else "\n"))
             body.append(f"Output: {', '.join('`' + f + '`' for f in e.folders)}.\n")
+            body.append(f"Used: {setup_text(e)}.\n")
+            nrun, nok, nfail = len(e.runs), len(e.measured()), len(e.failed())
+            body.append(f"Runs: {nrun} planned, {nok} with measured trials, {nfail} failed.\n")
             body.append(sec.text())
     if broken:
         summary.append([", ".join(broken), "unreadable summary.csv", "-", "-"])
     lines = head + ["## Summary\n",
-                    md_table(["experiment", "status", "runs measured", "claims reproduced"], summary)]
+                    md_table(["experiment", "status", "runs measured"]
+                             + (["claims reproduced"] if papers else []),
+                             [row if papers else row[:3] for row in summary])]
     if plots.error:
         lines.append(f"Plots not made: {plots.error}.\n")
     lines += body

@@ -37,3 +37,30 @@ PLOT_NAMES = ["s003-exp2_fps_time.png", "s003-exp2_frametime_time.png",
               "gbuffer-error_bandwidth.png", "renderers-tiled_frametime_lights.png",
               "aa-translucency_error_time.png"]
 COLORS = {"deferred": "tab:blue", "forward-spml": "tab:orange", "forward-mpml": "tab:red"}
+# One colour and marker per renderer, the same in every plot; a renderer not named here
+# (a new one) and every further line get the next unused pair, in name order.
+STYLES = {"deferred": ("tab:blue", "o"), "forward-spml": ("tab:orange", "s"),
+          "forward-mpml": ("tab:red", "^"), "forward-plus": ("tab:green", "D"),
+          "clustered": ("tab:purple", "v"), "tiled-deferred": ("tab:brown", "P"),
+          "null": ("tab:gray", "x")}
+_SPARE = [("tab:pink", "*"), ("tab:olive", "h"), ("tab:cyan", "<"), ("black", ">"),
+          ("gold", "p"), ("navy", "d"), ("lime", "8"), ("maroon", "H")]
+
+
+def styles(labels, renderer_of):
+    """{label: (colour, marker)}, distinct for every label: a label of one renderer alone
+    takes the renderer's pair; the others the spare pairs in order (cycling, with dashes
+    past the spares)."""
+    out, used, spare = {}, set(), 0
+    by_ren = {}
+    for lab in labels:
+        by_ren.setdefault(renderer_of(lab), []).append(lab)
+    for lab in sorted(labels):
+        ren = renderer_of(lab)
+        pair = STYLES.get(ren) if len(by_ren[ren]) == 1 else None
+        if pair is None or pair in used:
+            pair = _SPARE[spare % len(_SPARE)]
+            spare += 1
+        used.add(pair)
+        out[lab] = pair + ("-" if spare <= len(_SPARE) else "--",)
+    return out

@@ -249,6 +249,24 @@ has "trial 4: failed:timeout"
 grep -q "^| s000-stencil | not run |" $R || fail "s000-stencil not listed as not run"
 grep -q "^| s000-resolution | not run |" $R || fail "s000-resolution not listed as not run"
 grep -q "^| my-own-sweep | not recognised" $R || fail "unknown experiment not listed"
+# a report of a manifest of no paper: titled by the experiment, its meta.yaml read, no
+# paper table or verdicts
+"$REPORT" -o own out/other >own.out 2>&1 || fail "report of my-own-sweep: $(cat own.out)"
+head -1 own/report.md | grep -qx "# my-own-sweep: shadesweep report" || fail "title: $(head -1 own/report.md)"
+grep -q "^- GL renderer: llvmpipe (LLVM 15.0.6, 256 bits)" own/report.md || fail "meta.yaml not read"
+grep -q "papers\|claims reproduced" own/report.md && fail "a paper line in a report of no paper"
+grep -q "^| my-own-sweep | run | 1 |$" own/report.md || fail "summary row: $(grep my-own own/report.md)"
+# every renderer, and a new one, gets its own colour and marker in the plots
+PYTHONPATH="$SOURCE_ROOT/python" "$PYTHON" - <<'PY' || fail "plot styles"
+from shadesweep_report.plots import styles
+names = ["deferred", "forward-spml", "forward-mpml", "forward-plus", "clustered",
+         "tiled-deferred", "null", "visibility-buffer"]
+st = styles(names, lambda n: n)
+assert len({v[:2] for v in st.values()}) == len(names), st
+# two lines of one renderer (a swept key) are told apart too
+st = styles(["deferred fat", "deferred curtis", "forward-plus"], lambda n: n.split()[0])
+assert len({v[:2] for v in st.values()}) == 3, st
+PY
 has "(experiment s000-drawcalls-smoke)"
 # renderers-tiled: the fastest per light count, the significance, the one crossover
 # (x2: the per-round ratios 3900/1900, 4000/2000, 4100/2100: log mean 0.6937, sd 0.02505,
