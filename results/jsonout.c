@@ -2,6 +2,8 @@
 #include "results/jsonout.h"
 
 #include <math.h>
+#include <stdlib.h>
+#include <string.h>
 
 void json_string(FILE *fp, const char *s)
 {
@@ -47,4 +49,18 @@ void json_member_number(FILE *fp, bool *first, const char *key, double v)
 {
     json_key(fp, first, key);
     json_number(fp, v);
+}
+
+void json_typed(FILE *fp, const char *s)
+{
+    if (strcmp(s, "true") == 0 || strcmp(s, "false") == 0) {
+        fputs(s, fp);
+        return;
+    }
+    char *end;
+    double v = strtod(s, &end);
+    if (*s && end != s && *end == '\0' && isfinite(v))
+        json_number(fp, v);
+    else
+        json_string(fp, s);
 }

@@ -9,6 +9,10 @@
 void json_string(FILE *fp, const char *s);
 void json_number(FILE *fp, double v);
 
+/* A text as the JSON value it reads as: a number when the whole text is one (finite),
+ * true or false, else a string. For parameters written as text (plan.csv, meta.yaml). */
+void json_typed(FILE *fp, const char *s);
+
 /* Members of an object: `"key": ` (after ", " unless *first, which it clears), then the
  * value; a NULL string is null. */
 void json_key(FILE *fp, bool *first, const char *key);

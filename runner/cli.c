@@ -43,7 +43,8 @@ static const char usage_text[] =
     "      --smoke                the manifest's smoke variant: 160x120, one trial, no\n"
     "                             warm-up, at most 2 s a run; out/<name>-smoke\n"
     "  validate MANIFEST...       check manifests; print every error\n"
-    "  list [--shard I/N] [--smoke] [--scale S] MANIFEST  the expanded runs, one per line\n"
+    "  list [--shard I/N] [--smoke] [--scale S] [--json] MANIFEST  the expanded runs, one\n"
+    "                             per line (--json: every run's every parameter, typed)\n"
     "  info [--backend B] [--device N]  the GL context's vendor, renderer and limits\n"
     "  merge -o OUT [--force] DIR...  combine the output folders of a sweep's shards\n"
     "  compare [OPTIONS] BASE NEW  a regression gate over two output folders\n"
@@ -88,7 +89,7 @@ static bool print_command_help(const char *name)
 
 typedef struct cli_opts {
     const char *out;
-    bool force, resume, debug_gl, smoke, retry_failed;
+    bool force, resume, debug_gl, smoke, retry_failed, json;
     gl_backend backend;
     int device;
     unsigned shard, nshards;
@@ -97,7 +98,7 @@ typedef struct cli_opts {
 } cli_opts;
 
 enum { OPT_FORCE = 1000, OPT_BACKEND, OPT_DEVICE, OPT_SHARD, OPT_DEBUG_GL, OPT_RESUME, OPT_SMOKE, OPT_SCALE,
-       OPT_RETRY_FAILED, OPT_ROUND };
+       OPT_RETRY_FAILED, OPT_ROUND, OPT_JSON };
 
 /* Parses the options a command accepts; `allowed` lists their long names. Returns
  * the index of the first operand, or -1 after printing the problem. */
@@ -115,6 +116,7 @@ static int parse_opts(int argc, char **argv, const char *allowed, cli_opts *o)
         {"scale", required_argument, NULL, OPT_SCALE},
         {"retry-failed", no_argument, NULL, OPT_RETRY_FAILED},
         {"round", required_argument, NULL, OPT_ROUND},
+        {"json", no_argument, NULL, OPT_JSON},
         {NULL, 0, NULL, 0},
     };
     memset(o, 0, sizeof *o);
@@ -131,8 +133,9 @@ static int parse_opts(int argc, char **argv, const char *allowed, cli_opts *o)
         const char *name = NULL;
         if (c == 'o')
             name = "out";
-        else if (c >= OPT_FORCE)
-            name = longopts[c - OPT_FORCE + 1].name;
+        for (size_t k = 1; c >= OPT_FORCE && longopts[k].name; k++)
+            if (longopts[k].val == c)
+                name = longopts[k].name;
         if (c == '?' || c == ':' || (name && !strstr(allowed, name))) {
             const char *bad = argv[optind - 1];
             fprintf(stderr, "shadesweep %s: %s: %s\n", argv[0], bad,
@@ -146,6 +149,7 @@ static int parse_opts(int argc, char **argv, const char *allowed, cli_opts *o)
         case OPT_DEBUG_GL: o->debug_gl = true; break;
         case OPT_RESUME: o->resume = true; break;
         case OPT_SMOKE: o->smoke = true; break;
+        case OPT_JSON: o->json = true; break;
         case OPT_RETRY_FAILED: o->retry_failed = true; break;
         case OPT_ROUND: {
             char *end;
@@ -269,7 +273,7 @@ static int cmd_validate(int argc, char **argv)
 static int cmd_list(int argc, char **argv)
 {
     cli_opts o;
-    int first = parse_opts(argc, argv, "shard smoke scale", &o);
+    int first = parse_opts(argc, argv, "shard smoke scale json", &o);
     if (first < 0)
         return 2;
     if (argc - first != 1) {
@@ -280,7 +284,10 @@ static int cmd_list(int argc, char **argv)
     plan p;
     if (!load_plan(argv[first], &o, &e, &p))
         return 2;
-    plan_print(&p, o.shard, stdout);
+    if (o.json)
+        plan_print_json(&p, o.shard, stdout);
+    else
+        plan_print(&p, o.shard, stdout);
     plan_free(&p);
     experiment_free(e);
     return 0;

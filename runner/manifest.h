@@ -148,3 +148,6 @@ bool parse_shard(const char *s, unsigned *i, unsigned *n, char *err, size_t errl
 /* `shadesweep list`: one line per run: id, then key=value for the renderer and each
  * swept parameter. Only runs of shard i (0 = all). */
 void plan_print(const plan *p, unsigned shard, FILE *out);
+/* `shadesweep list --json`: {"experiment", "runs": [{"run_id", "index", "shard", "point",
+ * "parameters": {every key: its value, typed}}], "folded": [{"into", "parameters"}]}. */
+void plan_print_json(const plan *p, unsigned shard, FILE *out);

@@ -10,21 +10,6 @@
 #include "results/fsutil.h"
 #include "results/jsonout.h"
 
-/* A plan cell as JSON: a number when the whole cell is one, true / false, else a string. */
-static void cell(FILE *fp, const char *s)
-{
-    if (strcmp(s, "true") == 0 || strcmp(s, "false") == 0) {
-        fputs(s, fp);
-        return;
-    }
-    char *end;
-    double v = strtod(s, &end);
-    if (*s && end != s && *end == '\0' && isfinite(v))
-        json_number(fp, v);
-    else
-        json_string(fp, s);
-}
-
 static bool bookkeeping(const char *name)
 {
     return strcmp(name, "index") == 0 || strcmp(name, "run_id") == 0 ||
@@ -79,7 +64,7 @@ static void run_object(FILE *fp, const summary_view *v, const summary_point *p, 
         if (bookkeeping(v->pl->header[c]))
             continue;
         json_key(fp, &pf, v->pl->header[c]);
-        cell(fp, v->pl->rows[row][c]);
+        json_typed(fp, v->pl->rows[row][c]);
     }
     fputs("}}", fp);
 }
@@ -94,7 +79,7 @@ static void point_object(FILE *fp, const summary_view *v, const summary_point *p
     for (size_t c = 0; row >= 0 && c < v->pl->ncols; c++)
         if (v->varies[c]) {
             json_key(fp, &first, v->pl->header[c]);
-            cell(fp, v->pl->rows[row][c]);
+            json_typed(fp, v->pl->rows[row][c]);
         }
     fputs("}, \"runs\": [", fp);
     for (size_t i = 0; i < p->nruns; i++) {

@@ -5,6 +5,7 @@
 #include <stdlib.h>
 #include <string.h>
 
+#include "results/jsonout.h"
 #include "runner/hash.h"
 #include "runner/manifest.h"
 #include "runner/params.h"
@@ -439,6 +440,50 @@ static void print_point(const experiment *e, const run_params *p, FILE *out)
         for (size_t i = 0; i < n; i++)
             if (strcmp(kv[i].key, e->axes[a].path) == 0)
                 fprintf(out, " %s=%s", kv[i].key, kv[i].value);
+}
+
+static void json_params(const run_params *rp, FILE *out)
+{
+    param_kv kv[PARAM_KV_MAX];
+    size_t n = run_params_kv(rp, kv, PARAM_KV_MAX);
+    bool first = true;
+    fputc('{', out);
+    for (size_t i = 0; i < n; i++) {
+        json_key(out, &first, kv[i].key);
+        json_typed(out, kv[i].value);
+    }
+    fputc('}', out);
+}
+
+void plan_print_json(const plan *p, unsigned shard, FILE *out)
+{
+    fputs("{\"experiment\": ", out);
+    json_string(out, p->exp->name);
+    fputs(", \"runs\": [", out);
+    bool any = false;
+    for (size_t k = 0; k < p->nruns; k++) {
+        const run_spec *r = &p->runs[k];
+        if (shard != 0 && r->shard != shard)
+            continue;
+        fprintf(out, "%s\n  {\"run_id\": \"%s\", \"index\": %zu, \"shard\": %u, "
+                "\"point\": %zu, \"parameters\": ", any ? "," : "", r->id, r->index, r->shard,
+                r->group);
+        json_params(&r->p, out);
+        fputc('}', out);
+        any = true;
+    }
+    fputs(any ? "\n], \"folded\": [" : "], \"folded\": [", out);
+    any = false;
+    for (size_t f = 0; f < p->nfolded; f++) {
+        const run_spec *r = &p->runs[p->folds[f].into];
+        if (shard != 0 && r->shard != shard)
+            continue;
+        fprintf(out, "%s\n  {\"into\": \"%s\", \"parameters\": ", any ? "," : "", r->id);
+        json_params(&p->folds[f].p, out);
+        fputc('}', out);
+        any = true;
+    }
+    fputs(any ? "\n]}\n" : "]}\n", out);
 }
 
 void plan_print(const plan *p, unsigned shard, FILE *out)

@@ -13,6 +13,25 @@ for n in 1 2 3 5; do
   cmp -s a.sorted u.sorted || fail "shards of $n: union != plan"
   [ "$(sort -u union.txt | wc -l)" -eq "$(wc -l <union.txt)" ] || fail "shards of $n overlap"
 done
+# --json: the same runs, each with every parameter typed (numbers as numbers), and a shard
+# of them the same way
+"$SHADESWEEP" list --json "$M" >all.json || fail "list --json"
+"$SHADESWEEP" list --json --shard 2/3 "$M" >s2.json || fail "list --json --shard"
+"$SHADESWEEP" list --shard 2/3 "$M" >s2.txt
+"$PYTHON" - <<'PY' || fail "list --json: $(head -c 400 all.json)"
+import json
+d = json.load(open("all.json"))
+ids = [l.split()[0] for l in open("all.txt")]
+assert d["experiment"] == "smoke" and [r["run_id"] for r in d["runs"]] == ids, d["runs"][:2]
+assert [r["index"] for r in d["runs"]] == list(range(16))
+p = d["runs"][0]["parameters"]
+assert p["resolution"] == "64x64" and p["trials"] == 2 and isinstance(p["lights.seed"], (int, float)), p
+assert all(set(r["parameters"]) == set(p) for r in d["runs"])   # every key, every run
+assert d["folded"] == []
+s2 = json.load(open("s2.json"))
+assert [r["run_id"] for r in s2["runs"]] == [l.split()[0] for l in open("s2.txt")]
+assert all(r["shard"] == 2 for r in s2["runs"])
+PY
 # Same manifest, same ids: a second listing is identical.
 "$SHADESWEEP" list "$M" | cmp -s - all.txt || fail "ids not stable"
 # --scale and --smoke change the listed resolutions and the ids; a bad scale is refused
