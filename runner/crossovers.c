@@ -63,6 +63,26 @@ static bool push(crossover_list *l, const crossover_found *c)
     return true;
 }
 
+/* Every crossing of a / b (ratios r at x[0..n), ascending) through 1, named: a / b
+ * rising through 1 makes a the faster below the crossing. */
+static bool push_crossings(const double *x, const ratio_ci *r, size_t n, const char *axis,
+                           const char *group, const char *a, const char *b,
+                           crossover_list *out)
+{
+    ratio_crossover co;
+    for (size_t from = 0; n >= 2 && verdict_crossover(x, r, n, from, &co); from = co.j) {
+        crossover_found f = {
+            .axis = axis, .group = group,
+            .below = co.dir > 0 ? a : b, .above = co.dir > 0 ? b : a,
+            .x0 = x[co.i], .x1 = x[co.j], .x = co.x, .lo = co.lo, .hi = co.hi,
+            .differs0 = summary_differs(&r[co.i]), .differs1 = summary_differs(&r[co.j]),
+        };
+        if (!push(out, &f))
+            return false;
+    }
+    return true;
+}
+
 /* "k=v, k=v" of the varying columns but `axis`, for one plan row. */
 static char *group_of(const csv_table *pl, long row, const bool *varies, size_t axis)
 {
@@ -107,18 +127,7 @@ static bool pair_crossings(const run_result *runs, const entry *e, size_t a0, si
             j++;
         }
     }
-    ratio_crossover co;
-    for (size_t from = 0; ok && n >= 2 && verdict_crossover(x, r, n, from, &co); from = co.j) {
-        crossover_found f = {
-            .axis = axis, .group = e[a0].group,
-            /* a / b rises through 1: a is the faster below the crossing */
-            .below = co.dir > 0 ? e[a0].cfg : e[b0].cfg,
-            .above = co.dir > 0 ? e[b0].cfg : e[a0].cfg,
-            .x0 = x[co.i], .x1 = x[co.j], .x = co.x, .lo = co.lo, .hi = co.hi,
-            .differs0 = summary_differs(&r[co.i]), .differs1 = summary_differs(&r[co.j]),
-        };
-        ok = push(out, &f);
-    }
+    ok = ok && push_crossings(x, r, n, axis, e[a0].group, e[a0].cfg, e[b0].cfg, out);
     free(x);
     free(r);
     return ok;
@@ -314,16 +323,7 @@ static bool growth_pair(const levels *a, const levels *b, const char *ca, const 
             j++;
         }
     }
-    ratio_crossover co;
-    for (size_t from = 0; ok && n >= 2 && verdict_crossover(x, r, n, from, &co); from = co.j) {
-        crossover_found f = {
-            .axis = "lights (growing over time)", .group = group,
-            .below = co.dir > 0 ? ca : cb, .above = co.dir > 0 ? cb : ca,
-            .x0 = x[co.i], .x1 = x[co.j], .x = co.x, .lo = co.lo, .hi = co.hi,
-            .differs0 = summary_differs(&r[co.i]), .differs1 = summary_differs(&r[co.j]),
-        };
-        ok = push(out, &f);
-    }
+    ok = ok && push_crossings(x, r, n, "lights (growing over time)", group, ca, cb, out);
     free(x);
     free(r);
     return ok;

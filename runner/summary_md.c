@@ -7,8 +7,8 @@
 #include "results/csvread.h"
 #include "results/fsutil.h"
 #include "runner/crossovers.h"
-#include "runner/summary_json.h"
 #include "runner/params.h"
+#include "runner/summary_json.h"
 
 typedef struct trial_cols {
     int run_id, renderer, experiment, trial, wall, p99, low1, rmse, status, metric, value;
