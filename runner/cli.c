@@ -1,3 +1,4 @@
+#define _DEFAULT_SOURCE   /* open_memstream, strtok_r */
 #include "runner/cli.h"
 #include "runner/columns.h"
 #include "runner/commands.h"
@@ -10,6 +11,7 @@
 #include <string.h>
 
 #include "config.h"
+#include "results/jsonout.h"
 #include "version.h"
 #include "renderers/forward_common.h"
 #include "renderers/gl/context.h"
@@ -45,16 +47,18 @@ static const char usage_text[] =
     "  validate MANIFEST...       check manifests; print every error\n"
     "  list [--shard I/N] [--smoke] [--scale S] [--json] MANIFEST  the expanded runs, one\n"
     "                             per line (--json: every run's every parameter, typed)\n"
-    "  info [--backend B] [--device N]  the GL context's vendor, renderer and limits\n"
+    "  info [--backend B] [--device N] [--json]  the GL context's vendor, renderer and\n"
+    "                             limits, the renderers and scenes (--json: one object)\n"
     "  merge -o OUT [--force] DIR...  combine the output folders of a sweep's shards\n"
-    "  compare [OPTIONS] BASE NEW  a regression gate over two output folders\n"
+    "  compare [OPTIONS] BASE NEW  a regression gate over two output folders (--json:\n"
+    "                             the verdicts as JSON)\n"
     "  compare --exe OTHER [OPTIONS] MANIFEST  the manifest with OTHER (BASE) and this\n"
     "                             build (NEW) in interleaved rounds, compared paired\n"
     "  report [OPTIONS] DIR...    the report over output folders (Python)\n"
     "  ratios < REQUESTS          trial-level ratios, intervals and crossovers for\n"
     "                             scripts (the report's statistics; ratios --help)\n"
-    "  params [--markdown|--bash]  every manifest key: type, default, range, the renderers\n"
-    "                             that read it (docs/manifest.md is --markdown)\n"
+    "  params [--markdown|--bash|--json]  every manifest key: type, default, range, the\n"
+    "                             renderers that read it (docs/manifest.md is --markdown)\n"
     "  columns [--markdown]       the columns of frames.csv and summary.csv and what each\n"
     "                             measured one is (docs/columns.md is --markdown)\n"
     "  version, -V, --version     the version and the commit it was built from\n"
@@ -293,42 +297,115 @@ static int cmd_list(int argc, char **argv)
     return 0;
 }
 
+static bool in_names(const char *const *names, const char *s)
+{
+    for (; *names; names++)
+        if (strcmp(*names, s) == 0)
+            return true;
+    return false;
+}
+
+/* `key: value` lines as one JSON object, each value typed (json_typed; yes and no as
+ * booleans); the keys in `lists` hold space-separated names and become arrays, those
+ * in `strings` stay strings (a version "4.50" is not the number 4.5). */
+static void info_lines_to_json(const char *text, const char *const *lists,
+                               const char *const *strings, FILE *out)
+{
+    bool first = true;
+    fputs("{", out);
+    for (const char *l = text; *l;) {
+        const char *nl = strchr(l, '\n');
+        size_t len = nl ? (size_t)(nl - l) : strlen(l);
+        char line[1024];
+        snprintf(line, sizeof line, "%.*s", (int)len, l);
+        l += len + (nl ? 1 : 0);
+        char *colon = strstr(line, ": ");
+        if (!colon)
+            continue;
+        *colon = '\0';
+        const char *v = colon + 2;
+        json_key(out, &first, line);
+        if (in_names(strings, line)) {
+            json_string(out, v);
+            continue;
+        }
+        if (strcmp(v, "yes") == 0 || strcmp(v, "no") == 0) {
+            fputs(v[0] == 'y' ? "true" : "false", out);
+            continue;
+        }
+        if (!in_names(lists, line)) {
+            json_typed(out, v);
+            continue;
+        }
+        fputs("[", out);
+        char names[1024];
+        snprintf(names, sizeof names, "%s", v);
+        bool f = true;
+        for (char *sv, *t = strtok_r(names, " ", &sv); t; t = strtok_r(NULL, " ", &sv)) {
+            fputs(f ? "" : ", ", out);
+            f = false;
+            json_string(out, t);
+        }
+        fputs("]", out);
+    }
+    fputs("}\n", out);
+}
+
 static int cmd_info(int argc, char **argv)
 {
     cli_opts o;
-    int first = parse_opts(argc, argv, "backend device debug-gl", &o);
+    int first = parse_opts(argc, argv, "backend device debug-gl json", &o);
     if (first < 0)
         return 2;
     if (first != argc) {
         fprintf(stderr, "shadesweep info: unexpected argument '%s'\n", argv[first]);
         return 2;
     }
+    /* the lines are written once; --json reads them back as an object */
+    char *text = NULL;
+    size_t text_len = 0;
+    FILE *out = o.json ? open_memstream(&text, &text_len) : stdout;
+    if (!out) {
+        fprintf(stderr, "shadesweep info: out of memory\n");
+        return 2;
+    }
     char err[512];
+    int rc = 0;
     if (o.backend == GL_BACKEND_EGL) {
         int n = gl_egl_device_count(err, sizeof err);
         if (n >= 0)
-            printf("egl_devices: %d\n", n);
+            fprintf(out, "egl_devices: %d\n", n);
         else
-            printf("egl_devices: none (%s)\n", err);
+            fprintf(out, "egl_devices: none (%s)\n", err);
     }
     gl_context_desc d = {.backend = o.backend, .device = o.device, .debug = o.debug_gl};
     gl_context *ctx = gl_context_create(&d, err, sizeof err);
     if (!ctx) {
         fprintf(stderr, "shadesweep info: %s\n", err);
-        return 2;
+        rc = 2;
+        goto done;
     }
-    gl_context_print_info(ctx, stdout);
-    printf("forward_spml_max_lights: %u\n",
-           (unsigned)forward_spml_max_lights(gl_context_info(ctx)->max_uniform_block_size));
+    gl_context_print_info(ctx, out);
+    fprintf(out, "forward_spml_max_lights: %u\n",
+            (unsigned)forward_spml_max_lights(gl_context_info(ctx)->max_uniform_block_size));
     gl_context_destroy(ctx);
-    printf("renderers:");
+    fprintf(out, "renderers:");
     for (size_t i = 0; i < renderer_kind_count(); i++)
-        printf(" %s", renderer_kind_at(i)->name);
-    printf("\nscenes:");
+        fprintf(out, " %s", renderer_kind_at(i)->name);
+    fprintf(out, "\nscenes:");
     for (size_t i = 0; i < scene_catalog_count(); i++)
-        printf(" %s", scene_catalog_at(i)->name);
-    printf("\n");
-    return 0;
+        fprintf(out, " %s", scene_catalog_at(i)->name);
+    fprintf(out, "\n");
+done:
+    if (o.json) {
+        fclose(out);
+        static const char *const lists[] = {"renderers", "scenes", NULL};
+        static const char *const strings[] = {"version", "glsl", NULL};
+        if (rc == 0)
+            info_lines_to_json(text, lists, strings, stdout);
+        free(text);
+    }
+    return rc;
 }
 
 /* The end-of-run table (runner/summary_md.c) on stdout and OUT/summary.md; a
@@ -392,6 +469,8 @@ static int cmd_params(int argc, char **argv)
             f = PARAMS_MARKDOWN;
         else if (strcmp(argv[i], "--bash") == 0)
             f = PARAMS_BASH;
+        else if (strcmp(argv[i], "--json") == 0)
+            f = PARAMS_JSON;
         else {
             fprintf(stderr, "shadesweep params: %s: unknown option here\n", argv[i]);
             return 2;

@@ -34,6 +34,7 @@
 
 #include "results/csv.h"
 #include "results/fsutil.h"
+#include "results/jsonout.h"
 #include "runner/diag.h"
 #include "runner/hash.h"
 #include "runner/manifest.h"
@@ -51,6 +52,8 @@ static const char compare_usage[] =
     "  --allow-missing     a BASE run missing or failed in NEW does not fail the gate\n"
     "  --csv FILE          also write one CSV row per run\n"
     "  --md FILE           also write the markdown table to FILE\n"
+    "  --json              JSON on stdout instead of the markdown (schema\n"
+    "                      shadesweep-compare, version 1: docs/summary-json.md)\n"
     "  --exe OTHER         run MANIFEST with the shadesweep OTHER (BASE) and with this\n"
     "                      build (NEW) in interleaved rounds, then compare them paired\n"
     "  --base-manifest M   with --exe: OTHER runs M (its run ids must be MANIFEST's)\n"
@@ -141,6 +144,55 @@ static void write_md(FILE *fp, const char *base, const char *new_, double thr, b
             only_new);
 }
 
+/* The table as JSON (--json): what write_md says, for scripts; docs/summary-json.md. */
+static void write_json(FILE *fp, const char *base, const char *new_, double thr, bool paired,
+                       const pair *p, size_t np, size_t only_base, size_t only_new)
+{
+    size_t count[NVERDICTS] = {0};
+    for (size_t i = 0; i < np; i++)
+        count[p[i].v]++;
+    bool first = true;
+    fputs("{", fp);
+    json_member_string(fp, &first, "schema", "shadesweep-compare");
+    json_member_number(fp, &first, "version", 1);
+    json_member_string(fp, &first, "base", base);
+    json_member_string(fp, &first, "new", new_);
+    json_member_string(fp, &first, "metric", np ? p[0].a->metric : "wall");
+    json_member_number(fp, &first, "threshold", thr);
+    json_key(fp, &first, "paired");
+    fputs(paired ? "true" : "false", fp);
+    json_key(fp, &first, "runs");
+    fputs("[", fp);
+    for (size_t i = 0; i < np; i++) {
+        bool f = true;
+        fputs(i ? ",\n  {" : "\n  {", fp);
+        json_member_string(fp, &f, "run_id", p[i].a->id);
+        json_member_string(fp, &f, "renderer", p[i].a->renderer);
+        json_member_string(fp, &f, "base_status", p[i].a->status);
+        json_member_string(fp, &f, "new_status", p[i].b->status);
+        json_member_number(fp, &f, "base_mean_us", p[i].a->mean);
+        json_member_number(fp, &f, "base_ci95_us", p[i].a->half);
+        json_member_number(fp, &f, "new_mean_us", p[i].b->mean);
+        json_member_number(fp, &f, "new_ci95_us", p[i].b->half);
+        json_member_number(fp, &f, "ratio", p[i].r.ratio);
+        json_member_number(fp, &f, "ratio_lo", p[i].r.lo);
+        json_member_number(fp, &f, "ratio_hi", p[i].r.hi);
+        json_member_number(fp, &f, "trials", (double)p[i].r.n);
+        json_member_string(fp, &f, "verdict", verdict_name(p[i].v));
+        fputs("}", fp);
+    }
+    fputs("]", fp);
+    json_key(fp, &first, "counts");
+    fputs("{", fp);
+    bool f = true;
+    for (int v = 0; v < NVERDICTS; v++)
+        json_member_number(fp, &f, verdict_name((verdict)v), (double)count[v]);
+    fputs("}", fp);
+    json_member_number(fp, &first, "only_base", (double)only_base);
+    json_member_number(fp, &first, "only_new", (double)only_new);
+    fputs("}\n", fp);
+}
+
 static bool write_csv(const char *path, const pair *p, size_t np, char *err, size_t errlen)
 {
     static const char *const cols[] = {
@@ -193,7 +245,7 @@ static bool load(const char *dir, run_result **runs, size_t *n)
 
 typedef struct compare_opts {
     double thr;
-    bool paired, allow_missing;
+    bool paired, allow_missing, json;
     const char *csv_path, *md_path;
 } compare_opts;
 
@@ -264,7 +316,8 @@ static int compare_folders(const char *base, const char *new_, const compare_opt
             goto done;
         }
     }
-    write_md(stdout, base, new_, co->thr, co->paired, p, np, missing, nb - np);
+    (co->json ? write_json : write_md)(stdout, base, new_, co->thr, co->paired, p, np, missing,
+                                       nb - np);
     rc = 0;
     for (size_t i = 0; i < np; i++)
         if (p[i].v == VERDICT_SLOWER)
@@ -413,7 +466,7 @@ static int compare_exe(const char *other, const char *base_manifest, const char 
 int cmd_compare(int argc, char **argv)
 {
     enum { OPT_THRESHOLD = 1000, OPT_CSV, OPT_MD, OPT_HELP, OPT_EXE, OPT_BASE_MANIFEST,
-           OPT_FORCE, OPT_ALLOW_MISSING };
+           OPT_FORCE, OPT_ALLOW_MISSING, OPT_JSON };
     static const struct option longopts[] = {
         {"threshold", required_argument, NULL, OPT_THRESHOLD},
         {"csv", required_argument, NULL, OPT_CSV},
@@ -423,6 +476,7 @@ int cmd_compare(int argc, char **argv)
         {"base-manifest", required_argument, NULL, OPT_BASE_MANIFEST},
         {"force", no_argument, NULL, OPT_FORCE},
         {"allow-missing", no_argument, NULL, OPT_ALLOW_MISSING},
+        {"json", no_argument, NULL, OPT_JSON},
         {NULL, 0, NULL, 0},
     };
     compare_opts co = {.thr = 0.05};
@@ -446,6 +500,7 @@ int cmd_compare(int argc, char **argv)
         case OPT_BASE_MANIFEST: base_manifest = optarg; break;
         case OPT_FORCE: force = true; break;
         case OPT_ALLOW_MISSING: co.allow_missing = true; break;
+        case OPT_JSON: co.json = true; break;
         case 'o': out = optarg; break;
         case 'h':
         case OPT_HELP: fputs(compare_usage, stdout); return 0;

@@ -9,6 +9,7 @@
 #include <stdlib.h>
 #include <string.h>
 
+#include "results/jsonout.h"
 #include "runner/hash.h"
 #include "runner/manifest_internal.h"
 
@@ -492,6 +493,41 @@ static void print_bash(FILE *out)
           out);
 }
 
+/* One key of `params --json`: the text's fields; the default typed (null when none),
+ * the readers an array (["*"]: every run). */
+static void print_json_key(FILE *out, const param *pd, bool first_key, const char *def,
+                           const char *accepts, const char *readers, const char *ref)
+{
+    bool first = true;
+    fputs(first_key ? "\n  {" : ",\n  {", out);
+    json_member_string(out, &first, "key", pd->path);
+    json_member_string(out, &first, "type", type_name(pd));
+    json_key(out, &first, "default");
+    if (pd->size && pd->def)
+        json_typed(out, def);
+    else
+        fputs("null", out);
+    json_key(out, &first, "required");
+    fputs(pd->flags & PF_REQUIRED ? "true" : "false", out);
+    json_member_string(out, &first, "accepts", accepts);
+    json_key(out, &first, "sweep");
+    fputs(pd->flags & PF_SWEEP ? "true" : "false", out);
+    json_key(out, &first, "read_by");
+    fputs("[", out);
+    for (const char *r = readers; *r;) {
+        size_t n = strcspn(r, " ");
+        char name[64];
+        snprintf(name, sizeof name, "%.*s", (int)n, r);
+        fputs(r == readers ? "" : ", ", out);
+        json_string(out, name);
+        r += n + strspn(r + n, " ");
+    }
+    fputs("]", out);
+    json_member_string(out, &first, "reference", *ref ? ref : NULL);
+    json_member_string(out, &first, "description", pd->description);
+    fputs("}", out);
+}
+
 void params_print(FILE *out, params_format f)
 {
     if (f == PARAMS_BASH) {
@@ -512,6 +548,8 @@ void params_print(FILE *out, params_format f)
               "| key | type | default | accepts | sweep | read by | reference | description |\n"
               "|---|---|---|---|---|---|---|---|\n",
               out);
+    if (f == PARAMS_JSON)
+        fputs("{\"schema\": \"shadesweep-params\", \"version\": 1, \"keys\": [", out);
     for (size_t i = 0; i < NPARAMS; i++) {
         const param *pd = &params_table[i];
         char accepts[1024];
@@ -521,7 +559,9 @@ void params_print(FILE *out, params_format f)
         const char *readers = pd->size ? (pd->readers ? pd->readers : "*") : "";
         const char *ref = pd->size && pd->ref ? pd->ref : "";
         bool sweep = pd->flags & PF_SWEEP;
-        if (f == PARAMS_MARKDOWN) {
+        if (f == PARAMS_JSON) {
+            print_json_key(out, pd, i == 0, def, accepts, readers, ref);
+        } else if (f == PARAMS_MARKDOWN) {
             fputs("| `", out);
             md_cell(out, pd->path);
             fprintf(out, "` | %s | ", type_name(pd));
@@ -547,4 +587,6 @@ void params_print(FILE *out, params_format f)
             fprintf(out, "    %s\n\n", pd->description);
         }
     }
+    if (f == PARAMS_JSON)
+        fputs("\n]}\n", out);
 }

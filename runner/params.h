@@ -98,7 +98,7 @@ void params_reference(const run_params *p, run_params *ref);
  * the caller's). */
 void params_to_renderer_options(const run_params *p, renderer_options *o);
 
-/* `shadesweep params`: every key, as a table (text), as markdown (docs/manifest.md)
- * or as a bash completion script. */
-typedef enum params_format { PARAMS_TEXT, PARAMS_MARKDOWN, PARAMS_BASH } params_format;
+/* `shadesweep params`: every key, as a table (text), as markdown (docs/manifest.md),
+ * as a bash completion script or as JSON (the text's fields, typed). */
+typedef enum params_format { PARAMS_TEXT, PARAMS_MARKDOWN, PARAMS_BASH, PARAMS_JSON } params_format;
 void params_print(FILE *out, params_format f);

@@ -9,6 +9,20 @@ for key in backend vendor renderer version glsl max_draw_buffers max_samples \
   grep -q "^$key: " info.txt || fail "info lacks '$key': $(cat info.txt)"
 done
 grep -q "^backend: egl-surfaceless" info.txt || fail "default backend"
+# --json: the same keys and values, typed, the renderer and scene lists as arrays
+"$SHADESWEEP" info >info-text.txt 2>/dev/null && "$SHADESWEEP" info --json >info.json 2>/dev/null ||
+  fail "info --json"
+"$PYTHON" - info-text.txt info.json <<'PY' || fail "info --json: $(cat info.json)"
+import json, sys
+text = dict(l.rstrip("\n").split(": ", 1) for l in open(sys.argv[1]) if ": " in l)
+d = json.load(open(sys.argv[2]))
+assert set(d) == set(text), (set(d) ^ set(text))
+assert d["max_uniform_block_size"] == int(text["max_uniform_block_size"]) >= 16384
+assert d["forward_spml_max_lights"] == d["max_uniform_block_size"] // 80
+assert d["glsl"] == text["glsl"] and d["renderer"] == text["renderer"]
+assert d["timer_query"] is (text["timer_query"] == "yes")
+assert d["renderers"] == text["renderers"].split() and "deferred" in d["renderers"]
+PY
 set +e
 "$SHADESWEEP" info --device 99 >out.txt 2>err.txt; rc=$?
 set -e

@@ -116,6 +116,23 @@ flagged=$(tail -n +2 cmp.csv | awk -F, '$13 == "slower" {print $1}' | sort)
   fail "same: $(cat cmp.csv)"
 head -1 cmp.csv | grep -qx "run_id,renderer,metric,base_mean_us,base_ci95_us,new_mean_us,new_ci95_us,ratio,ratio_lo,ratio_hi,paired,trials,verdict" ||
   fail "csv header: $(head -1 cmp.csv)"
+# --json: the same verdicts for scripts, the same exit status
+set +e
+"$SHADESWEEP" compare base new --threshold 100% --json >cmp.json 2>/dev/null; rc=$?
+set -e
+[ $rc -eq 1 ] || fail "compare --json: rc $rc"
+"$PYTHON" - cmp.json cmp.csv <<'PY' || fail "compare --json: $(head -c 600 cmp.json)"
+import csv, json, sys
+d = json.load(open(sys.argv[1]))
+rows = list(csv.DictReader(open(sys.argv[2])))
+assert (d["schema"], d["version"], d["threshold"], d["paired"]) == ("shadesweep-compare", 1, 1, False), d
+assert [(r["run_id"], r["verdict"]) for r in d["runs"]] == [(r["run_id"], r["verdict"]) for r in rows]
+assert d["counts"]["slower"] == 2 and sum(d["counts"].values()) == 4, d["counts"]
+for j, c in zip(d["runs"], rows):
+    assert abs(j["ratio"] - float(c["ratio"])) <= 1e-5 * j["ratio"], (j, c)
+    assert j["base_status"] == j["new_status"] == "ok" and j["trials"] == 3
+assert d["only_base"] == d["only_new"] == 0
+PY
 # the reverse: exactly those runs got faster (below BASE / 2), nothing slower: exit 0
 "$SHADESWEEP" compare new base --threshold=100% --csv rev.csv >rev.out 2>rev.err ||
   fail "compare new base: rc $? $(cat rev.err)"

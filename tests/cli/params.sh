@@ -30,6 +30,19 @@ grep -A4 "^deferred.light_volumes " params.txt | grep -q "read by:   deferred" \
   || fail "params: readers of deferred.light_volumes"
 grep -A2 "^lights.seed " params.txt | grep -q "default:   1337" || fail "params: default of lights.seed"
 
+# --json: every key of the text listing, typed
+"$SHADESWEEP" params --json >params.json || fail "params --json"
+"$PYTHON" - params.txt params.json <<'PY' || fail "params --json: $(head -c 400 params.json)"
+import json, re, sys
+keys = [m.group(1) for m in re.finditer(r"^(\S+)  \(", open(sys.argv[1]).read(), re.M)]
+d = json.load(open(sys.argv[2]))
+assert (d["schema"], d["version"]) == ("shadesweep-params", 1)
+k = {x["key"]: x for x in d["keys"]}
+assert [x["key"] for x in d["keys"]] == keys, set(keys) ^ set(k)
+assert k["lights.seed"]["default"] == 1337 and k["lights.seed"]["sweep"] is True
+assert k["deferred.light_volumes"]["read_by"] == ["deferred"], k["deferred.light_volumes"]
+assert k["shadesweep"]["required"] is True and k["shadesweep"]["default"] is None
+PY
 # every command has --help (stdout, exit 0), wherever it stands
 for c in run validate list info merge params; do
   "$SHADESWEEP" "$c" --help >help.txt 2>err.txt || fail "$c --help: exit $?: $(cat err.txt)"
