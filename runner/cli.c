@@ -236,6 +236,8 @@ static bool load_plan(const char *path, const cli_opts *o, experiment **e, plan 
         plan_free(p);
         ok = false;
     }
+    if (ok)
+        plan_warnings(*e, p, stderr);
     diag_print(&d, stderr);
     diag_free(&d);
     if (!ok) {

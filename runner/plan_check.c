@@ -12,6 +12,7 @@
 #include <stdlib.h>
 #include <string.h>
 
+#include "renderers/forward_common.h"
 #include "runner/hash.h"
 #include "runner/params.h"
 #include "scenes/scene.h"
@@ -225,4 +226,37 @@ done:
     free(scene_first);
     free(source_first);
     return d->n == nerr;
+}
+
+/* The least GL_MAX_UNIFORM_BLOCK_SIZE any GL 3.1+ context has (OpenGL 4.5 core
+ * specification, table 23.64, "Implementation dependent values": minimum 16384). */
+#define GL_GUARANTEED_UNIFORM_BLOCK_BYTES 16384
+
+void plan_warnings(const experiment *e, const plan *p, FILE *out)
+{
+    /* forward-spml with forward.light_buffer: uniform holds max_uniform_block_size / 80
+     * lights: beyond what every GL guarantees, its runs fail where the context's limit
+     * is lower (llvmpipe's 65536 bytes hold 819) */
+    const uint32_t sure = forward_spml_max_lights(GL_GUARANTEED_UNIFORM_BLOCK_BYTES);
+    size_t n = 0;
+    uint32_t most = 0;
+    const char *first = NULL;
+    for (size_t k = 0; k < p->nruns; k++) {
+        const run_params *q = &p->runs[k].p;
+        if (strcmp(q->renderer, "forward-spml") != 0 || q->light_buffer != 0 ||
+            q->lights.placement == PLACEMENT_SCENE || q->lights.count.max <= sure)
+            continue;
+        if (!n++)
+            first = p->runs[k].id;
+        if (q->lights.count.max > most)
+            most = q->lights.count.max;
+    }
+    if (n)
+        fprintf(out, "%s: warning: forward.light_buffer: %zu forward-spml run%s (%s%s) ask%s for "
+                "up to %" PRIu32 " lights in a uniform block; any GL holds %" PRIu32 " (its "
+                "guaranteed %d bytes), this machine's the forward_spml_max_lights of "
+                "`shadesweep info` (llvmpipe: 819); a run past its GL's limit fails "
+                "(forward.light_buffer: storage has no such limit)\n", e->path, n,
+                n == 1 ? "" : "s", first, n > 1 ? ", ..." : "", n == 1 ? "s" : "", most, sure,
+                GL_GUARANTEED_UNIFORM_BLOCK_BYTES);
 }

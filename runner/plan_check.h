@@ -1,5 +1,6 @@
 #pragma once
 #include <stdbool.h>
+#include <stdio.h>
 #include "runner/diag.h"
 #include "runner/manifest.h"
 #include "scenes/scene.h"
@@ -7,6 +8,11 @@
 /* Refuses a plan some of whose runs would fail, or mean nothing, for reasons known
  * before any GL: every problem in d (at most a few), false if any. */
 bool plan_check(const experiment *e, const plan *p, diag_list *d);
+
+/* Prints (one line each) what may make runs fail on some GL but not on others, known
+ * before any GL: forward-spml's uniform block beyond the size every GL guarantees.
+ * validate, list and run print them; they refuse nothing. */
+void plan_warnings(const experiment *e, const plan *p, FILE *out);
 
 /* Where run p's scene comes from: the catalog, or its file (fo is filled and
  * src->file points at it; both must outlive src). */
