@@ -451,4 +451,7 @@ void crossovers_print(FILE *out, const crossover_list *l, size_t max)
     }
     if (l->n > max)
         fprintf(out, "... %zu more crossovers\n", l->n - max);
+    if (l->axes && !l->n)
+        fprintf(out, "crossovers: none: along the numeric parameters the sweep varies, no two "
+                "configurations change places\n");
 }

@@ -52,5 +52,6 @@ void crossovers_free(crossover_list *l);
 
 /* The "## Crossovers" section of summary.md. */
 void crossovers_write_md(FILE *fp, const crossover_list *l);
-/* One line a crossing, at most max, for the terminal. */
+/* One line a crossing, at most max, for the terminal; one line saying there is none
+ * where numeric axes were searched. */
 void crossovers_print(FILE *t, const crossover_list *l, size_t max);

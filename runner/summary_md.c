@@ -585,8 +585,6 @@ bool summary_table_write(const char *out_dir, FILE *terminal, char *err, size_t 
         goto out;
     }
     crossovers_write_md(f.fp, &cx);
-    if (terminal)
-        crossovers_print(terminal, &cx, TERM_MAX_POINTS);
     /* the same for scripts */
     summary_view view = {exp, runs, nruns, &pl, prow, varies, rcfg, shown, nshown, &cx};
     if (!summary_json_write(out_dir, &view, err, errlen)) {
@@ -595,7 +593,6 @@ bool summary_table_write(const char *out_dir, FILE *terminal, char *err, size_t 
         ok = false;
         goto out;
     }
-    crossovers_free(&cx);
     /* what makes these verdicts doubtful, named per trial */
     fputs("\n## Warnings\n\n", f.fp);
     if (!summary_warnings(runs, nruns, f.fp, "- "))
@@ -603,8 +600,12 @@ bool summary_table_write(const char *out_dir, FILE *terminal, char *err, size_t 
     if (terminal)
         summary_warnings(runs, nruns, terminal, "warning: ");
     ok = afile_commit(&f, err, errlen);
-    if (ok && terminal)
+    if (ok && terminal) {
         fprintf(terminal, "ranked: %s (the definitions are there)\n", mdpath);
+        /* the answer along the swept axes, last */
+        crossovers_print(terminal, &cx, TERM_MAX_POINTS);
+    }
+    crossovers_free(&cx);
 out:
     for (size_t r = 0; rlabel && r < nruns; r++)
         free(rlabel[r]);

@@ -12,13 +12,17 @@ if [ $# -eq 0 ]; then
   # are comparable across machines.
   export LIBGL_ALWAYS_SOFTWARE=1
   cd "$root"
-  # the run ends with the renderers ranked (also out/quickstart/summary.md); the report
-  # adds the plot of frame time against lights per renderer
+  # the run ends with the renderers ranked (also out/quickstart/summary.md) and where
+  # they change places as the lights grow; the report adds the plot of frame time
+  # against lights per renderer; the last words are the answer, the crossover again
   rc=0
-  "$exe" run --force experiments/quickstart.yaml || rc=$?
+  log=$(mktemp)
+  trap 'rm -f "$log"' EXIT
+  "$exe" run --force experiments/quickstart.yaml | tee "$log" || rc=${PIPESTATUS[0]}
   [ $rc -eq 2 ] && exit 2
   "$exe" report out/quickstart >&2 &&
     echo "plot: out/quickstart/plots/quickstart_frametime_lights.png (in out/quickstart/report.md)"
+  grep -E '^crossovers?: ' "$log" || true
   exit $rc
 fi
 exec "$exe" "$@"
