@@ -252,11 +252,11 @@ void plan_warnings(const experiment *e, const plan *p, FILE *out)
             most = q->lights.count.max;
     }
     if (n)
-        fprintf(out, "%s: warning: forward.light_buffer: %zu forward-spml run%s (%s%s) ask%s for "
-                "up to %" PRIu32 " lights in a uniform block; any GL holds %" PRIu32 " (its "
-                "guaranteed %d bytes), this machine's the forward_spml_max_lights of "
-                "`shadesweep info` (llvmpipe: 819); a run past its GL's limit fails "
-                "(forward.light_buffer: storage has no such limit)\n", e->path, n,
-                n == 1 ? "" : "s", first, n > 1 ? ", ..." : "", n == 1 ? "s" : "", most, sure,
-                GL_GUARANTEED_UNIFORM_BLOCK_BYTES);
+        fprintf(out, "%s: warning: forward.light_buffer: forward-spml holds its lights in a "
+                "uniform block: %zu run%s (%s%s) ask%s for up to %" PRIu32 " lights, past the "
+                "%" PRIu32 " of the %d bytes every GL has; %s where the GL holds fewer "
+                "(`shadesweep info`: forward_spml_max_lights; llvmpipe: 819), or set "
+                "forward.light_buffer: storage\n", e->path, n, n == 1 ? "" : "s", first,
+                n > 1 ? ", ..." : "", n == 1 ? "s" : "", most, sure,
+                GL_GUARANTEED_UNIFORM_BLOCK_BYTES, n == 1 ? "it fails" : "they fail");
 }
