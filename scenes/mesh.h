@@ -54,7 +54,7 @@
 #include <stdbool.h>
 #include <stddef.h>
 #include <stdint.h>
-#include "scenes/math.h"
+#include "scenes/sm_bounds.h"
 
 /* Limits on what one generator builds (48 bytes a vertex, 4 an index). */
 #define MESH_MAX_VERTICES (1u << 26)

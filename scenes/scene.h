@@ -5,7 +5,7 @@
 #include <stdbool.h>
 #include <stddef.h>
 #include <stdint.h>
-#include "scenes/math.h"
+#include "scenes/sm_bounds.h"
 #include "scenes/lights.h"
 #include "scenes/mesh.h"
 #include "scenes/texture_gen.h"
