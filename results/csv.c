@@ -283,8 +283,8 @@ void csv_g(csv_writer *w, double v)
 {
     if (!begin_field(w) || put_nonfinite(w, v))
         return;
-    char s[40];
-    num_shortest(v, s, sizeof s);
+    char s[340];   /* any finite double in plain decimals (num_plain) */
+    num_plain(v, s, sizeof s);
     put(w, s, strlen(s));
 }
 

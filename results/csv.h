@@ -21,7 +21,8 @@ void csv_str(csv_writer *w, const char *s);        /* quoted only when needed */
 void csv_i64(csv_writer *w, int64_t v);
 void csv_u64(csv_writer *w, uint64_t v);
 void csv_f64(csv_writer *w, double v, int decimals); /* %.{decimals}f; NAN -> empty */
-void csv_g(csv_writer *w, double v);                 /* shortest round-trip (%.17g trimmed) */
+void csv_g(csv_writer *w, double v);                 /* shortest round-trip, never an
+                                                      * exponent (num_plain) */
 void csv_empty(csv_writer *w);
 bool csv_end_row(csv_writer *w);
 bool csv_commit(csv_writer *w, char *err, size_t errlen); /* frees w */

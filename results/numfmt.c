@@ -1,6 +1,7 @@
 #include "results/numfmt.h"
 
 #include <locale.h>
+#include <math.h>
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
@@ -39,12 +40,42 @@ void num_shortest(double v, char *s, size_t cap)
     num_c_decimal_point(s);
 }
 
-void num_shortest_float(float v, char *s, size_t cap)
+/* v with `prec` significant digits, in %f form: %f to the place of the last digit
+ * rounds the exact binary value to that place, as %e to prec digits does: the same
+ * digits. */
+static void plain_digits(double v, int prec, char *s, size_t cap)
 {
-    for (int prec = 1; prec <= 9; prec++) {
-        snprintf(s, cap, "%.*g", prec, (double)v);
-        if (strtof(s, NULL) == v)
+    if (!isfinite(v)) {
+        snprintf(s, cap, "%s", isnan(v) ? "nan" : v > 0 ? "inf" : "-inf");
+        return;
+    }
+    char e[40];
+    snprintf(e, sizeof e, "%.*e", prec - 1, v);
+    int decimals = prec - 1 - atoi(strchr(e, 'e') + 1);
+    snprintf(s, cap, "%.*f", decimals > 0 ? decimals : 0, v);
+    num_c_decimal_point(s);
+}
+
+void num_plain(double v, char *s, size_t cap)
+{
+    char e[40];
+    int prec = 1;
+    for (; prec < 17; prec++) {
+        snprintf(e, sizeof e, "%.*e", prec - 1, v);
+        if (strtod(e, NULL) == v)
             break;
     }
-    num_c_decimal_point(s);
+    plain_digits(v, prec, s, cap);
+}
+
+void num_plain_float(float v, char *s, size_t cap)
+{
+    char e[40];
+    int prec = 1;
+    for (; prec < 9; prec++) {
+        snprintf(e, sizeof e, "%.*e", prec - 1, (double)v);
+        if (strtof(e, NULL) == v)
+            break;
+    }
+    plain_digits(v, prec, s, cap);
 }

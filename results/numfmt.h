@@ -8,9 +8,14 @@
  * ("100"). The decimal separator is always '.'. cap >= 32. */
 void num_shortest(double v, char *s, size_t cap);
 
-/* The same for a float: the shortest text that reads back (strtof) as v, so that
- * 1e-4f prints as "0.0001", not as the double it widens to. */
-void num_shortest_float(float v, char *s, size_t cap);
+/* The same digits as num_shortest (the shortest text that reads back as v), never in
+ * exponent form: 1e+06 -> "1000000", 2.5e-05 -> "0.000025". For tables that scripts
+ * and spreadsheets read as plain decimals. cap >= 340 holds any finite double
+ * (5e-324 has 323 zeros after the point); a smaller cap truncates. */
+void num_plain(double v, char *s, size_t cap);
+/* The same for a float: the shortest digits that read back (strtof) as v, so that
+ * 0.1f prints as "0.1", not as the double it widens to; 10 as "10", not "1e+01". */
+void num_plain_float(float v, char *s, size_t cap);
 
 /* Replaces a locale decimal separator other than '.' in s by '.'. */
 void num_c_decimal_point(char *s);

@@ -26,8 +26,8 @@
  * writes must be named here (or in is_run_file): a name missing is a file that --force
  * and a rerun leave behind from an older sweep, whose killed write's ".tmp.<pid>" is
  * never swept, and (in a run folder) that files.txt does not vouch for. */
-static const char *const top_names[] = {"plan.csv", "summary.csv", "summary.md", "summary.json",
-                                         "sweep.yaml"};
+static const char *const top_names[] = {"plan.csv",     "summary.csv",      "summary.md",
+                                         "summary.json", "summary_long.csv", "sweep.yaml"};
 static const char *const run_names[] = {
     "frames.csv", "seconds.csv", "passes.csv", "convergence.csv", "errors.csv",
     "coverage.csv", "lightgrid.csv", "summary.csv", "meta.yaml", "log.txt", "files.txt",

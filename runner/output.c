@@ -35,6 +35,30 @@ const char *const summary_columns[] = {
 };
 const size_t summary_ncolumns = sizeof summary_columns / sizeof summary_columns[0];
 
+/* The units of the measured columns above that results/metrics.def does not describe. */
+static const struct {
+    const char *column, *unit;
+} summary_units[] = {
+    {"lights_count", "lights"},  {"frames", "frames"},           {"measured_s", "s"},
+    {"fps_mean", "1/s"},         {"frametime_mean_us", "us"},    {"frametime_sd_us", "us"},
+    {"frametime_ci95_us", "us"}, {"frametime_p50_us", "us"},     {"frametime_p99_us", "us"},
+    {"fps_1pct_low", "1/s"},     {"gbuffer_bytes", "bytes"},     {"image_rmse", "1"},
+    {"image_psnr_db", "dB"},     {"image_max_abs", "1"},         {"nonfinite_pixels", "pixels"},
+    {"harness_us_mean", "us"},   {"ci1pct_after_s", "s"},        {"image_edge_rmse", "1"},
+    {"image_edge_pixels", "pixels"}, {"metric_us", "us"},
+};
+
+const char *summary_column_unit(const char *column)
+{
+    for (size_t i = 0; i < sizeof summary_units / sizeof summary_units[0]; i++)
+        if (strcmp(summary_units[i].column, column) == 0)
+            return summary_units[i].unit;
+    for (size_t i = 0; i < metric_ndocs; i++)
+        if (strcmp(metric_docs[i].summary, column) == 0)
+            return metric_docs[i].unit;
+    return NULL;
+}
+
 const char *const frames_columns[] = {
     "run_id", "trial", "frame", "t_wall_s", "t_scene_s", "lights", "frametime_us",
 #define METRIC_WANT_FRAMES
@@ -392,7 +416,7 @@ bool output_write_run_summary(const char *run_dir, const experiment *e, const ru
         /* the most lights measured; the planned most when nothing was measured */
         csv_u64(w, r->frames ? r->lights_max : light_count_max(&p->lights.count));
         char radius[32];
-        num_shortest_float(p->lights.radius, radius, sizeof radius);
+        num_plain_float(p->lights.radius, radius, sizeof radius);
         csv_str(w, radius);
         csv_u64(w, r->trial);
         csv_u64(w, r->frames);
@@ -413,12 +437,9 @@ bool output_write_run_summary(const char *run_dir, const experiment *e, const ru
         csv_g(w, r->image_max_abs);
         csv_f64(w, r->nonfinite, 0);
         csv_f64(w, r->harness_us_mean, 3);
-        if (r->frames == 0)
-            csv_empty(w);
-        else if (isnan(r->ci1pct_after_s))
-            csv_str(w, "never");
-        else
-            csv_f64(w, r->ci1pct_after_s, 6);   /* as convergence.csv's elapsed_s */
+        /* as convergence.csv's elapsed_s; empty when the interval never stayed within
+         * 1% of the mean, or nothing was measured */
+        csv_f64(w, r->frames ? r->ci1pct_after_s : NAN, 6);
         metrics_write_summary(w, &r->m, METRIC_SLOT_S2);
         csv_g(w, r->image_edge_rmse);
         csv_f64(w, r->image_edge_pixels, 0);

@@ -2,6 +2,7 @@
 /* The experiment's files (DESIGN.md "Output files"):
  *   OUT/plan.csv                 every run of the manifest, in plan order
  *   OUT/summary.csv              one row per run x trial (merged from the runs)
+ *   OUT/summary_long.csv         one row per run x trial x measure (runner/summary_long.c)
  *   OUT/runs/<id>/frames.csv     one row per measured frame
  *   OUT/runs/<id>/seconds.csv    one row per second bin
  *   OUT/runs/<id>/passes.csv     one row per frame x pass
@@ -20,6 +21,9 @@
 
 extern const char *const summary_columns[];
 extern const size_t summary_ncolumns;
+/* The unit of a measured column of summary.csv ("us", "bytes", "1": a ratio, ...);
+ * NULL for the others (identity, parameters, trial, order, metric, status, message). */
+const char *summary_column_unit(const char *column);
 extern const char *const frames_columns[];
 extern const size_t frames_ncolumns;
 

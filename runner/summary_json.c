@@ -9,6 +9,8 @@
 
 #include "results/fsutil.h"
 #include "results/jsonout.h"
+#include "runner/output.h"
+#include "runner/summary_long.h"
 
 static bool bookkeeping(const char *name)
 {
@@ -16,7 +18,39 @@ static bool bookkeeping(const char *name)
            strcmp(name, "shard") == 0 || strcmp(name, "folded") == 0;
 }
 
-static void run_object(FILE *fp, const summary_view *v, const summary_point *p, size_t i)
+/* Each trial of run `id`, in summary.csv's order: {"trial", "status", "measures": {every
+ * measured column of summary.csv that has a value: its number}}. */
+static void trial_results(FILE *fp, const csv_table *sm, const row_index *ix, const char *id)
+{
+    size_t first, n = row_index_find(ix, id, &first);
+    int tcol = csv_col(sm, "trial"), scol = csv_col(sm, "status");
+    fputs("[", fp);
+    for (size_t k = 0; k < n; k++) {
+        size_t r = ix->item[first + k].row;
+        char *end;
+        long trial = strtol(csv_get(sm, r, tcol), &end, 10);
+        fputs(k ? ", {\"trial\": " : "{\"trial\": ", fp);
+        if (*end == '\0' && end != csv_get(sm, r, tcol))
+            fprintf(fp, "%ld", trial);
+        else
+            fputs("null", fp);
+        fputs(", \"status\": ", fp);
+        json_string(fp, csv_get(sm, r, scol));
+        fputs(", \"measures\": {", fp);
+        bool mf = true;
+        for (size_t c = 0; c < sm->ncols; c++) {
+            double x = strtod(sm->rows[r][c], &end);
+            if (summary_column_unit(sm->header[c]) && *sm->rows[r][c] && *end == '\0' &&
+                isfinite(x))
+                json_member_number(fp, &mf, sm->header[c], x);
+        }
+        fputs("}}", fp);
+    }
+    fputs("]", fp);
+}
+
+static void run_object(FILE *fp, const summary_view *v, const row_index *ix,
+                       const summary_point *p, size_t i)
 {
     const run_result *x = &v->runs[p->runs[i]];
     const run_result *fastest = &v->runs[p->runs[0]];
@@ -66,10 +100,13 @@ static void run_object(FILE *fp, const summary_view *v, const summary_point *p, 
         json_key(fp, &pf, v->pl->header[c]);
         json_typed(fp, v->pl->rows[row][c]);
     }
-    fputs("}}", fp);
+    fputs("}, \"trial_results\": ", fp);
+    trial_results(fp, v->sm, ix, x->id);
+    fputs("}", fp);
 }
 
-static void point_object(FILE *fp, const summary_view *v, const summary_point *p)
+static void point_object(FILE *fp, const summary_view *v, const row_index *ix,
+                         const summary_point *p)
 {
     fputs("{\"label\": ", fp);
     json_string(fp, p->label);
@@ -84,7 +121,7 @@ static void point_object(FILE *fp, const summary_view *v, const summary_point *p
     fputs("}, \"runs\": [", fp);
     for (size_t i = 0; i < p->nruns; i++) {
         fputs(i ? ",\n      " : "\n      ", fp);
-        run_object(fp, v, p, i);
+        run_object(fp, v, ix, p, i);
     }
     fputs("]}", fp);
 }
@@ -139,19 +176,31 @@ bool summary_json_write(const char *out_dir, const summary_view *v, char *err, s
 {
     char path[4200];
     snprintf(path, sizeof path, "%s/summary.json", out_dir);
-    afile f;
-    if (!afile_open(&f, path, err, errlen))
+    row_index ix;
+    if (!row_index_build(&ix, v->sm, "run_id")) {
+        snprintf(err, errlen, "out of memory");
         return false;
+    }
+    afile f;
+    if (!afile_open(&f, path, err, errlen)) {
+        row_index_free(&ix);
+        return false;
+    }
     FILE *fp = f.fp;
     fprintf(fp, "{\"schema\": \"shadesweep-summary\", \"version\": %d,\n  \"experiment\": ",
             SUMMARY_JSON_VERSION);
     json_string(fp, v->experiment);
     fputs(",\n  \"metric\": ", fp);
     json_string(fp, v->nruns && v->runs[0].metric[0] ? v->runs[0].metric : "wall");
-    fputs(",\n  \"points\": [", fp);
+    fputs(",\n  \"units\": {", fp);   /* of the measures of trial_results */
+    bool uf = true;
+    for (size_t c = 0; c < v->sm->ncols; c++)
+        if (summary_column_unit(v->sm->header[c]))
+            json_member_string(fp, &uf, v->sm->header[c], summary_column_unit(v->sm->header[c]));
+    fputs("},\n  \"points\": [", fp);
     for (size_t k = 0; k < v->npoints; k++) {
         fputs(k ? ",\n    " : "\n    ", fp);
-        point_object(fp, v, &v->points[k]);
+        point_object(fp, v, &ix, &v->points[k]);
     }
     fputs(v->npoints ? "\n  ],\n  \"crossovers\": [" : "],\n  \"crossovers\": [", fp);
     for (size_t i = 0; i < v->cx->n; i++) {
@@ -159,6 +208,7 @@ bool summary_json_write(const char *out_dir, const summary_view *v, char *err, s
         crossover_object(fp, &v->cx->item[i]);
     }
     fputs(v->cx->n ? "\n  ],\n  \"warnings\": " : "],\n  \"warnings\": ", fp);
+    row_index_free(&ix);
     if (!warnings_array(fp, v)) {
         afile_abort(&f);
         snprintf(err, errlen, "out of memory");

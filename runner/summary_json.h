@@ -17,6 +17,7 @@ typedef struct summary_view {
     const run_result *runs;
     size_t nruns;
     const csv_table *pl;
+    const csv_table *sm;          /* summary.csv as text: the trials' measured values */
     const long *prow;             /* each run's plan row; -1: not in the plan */
     const bool *varies;           /* plan columns that vary across sweep points */
     char *const *rcfg;            /* each run's configuration label */

@@ -9,6 +9,7 @@
 #include "runner/crossovers.h"
 #include "runner/params.h"
 #include "runner/summary_json.h"
+#include "runner/summary_long.h"
 
 typedef struct trial_cols {
     int run_id, renderer, experiment, trial, wall, p99, low1, rmse, status, metric, value;
@@ -430,9 +431,14 @@ bool summary_table_write(const char *out_dir, FILE *terminal, char *err, size_t 
     size_t nruns = 0;
     if (!summary_load_runs(path, &runs, &nruns, err, errlen))
         return false;
-    csv_table pl;
+    csv_table pl, sm;   /* plan.csv; summary.csv as text, for the files for scripts */
+    if (!csv_read(path, &sm, err, errlen)) {
+        summary_free_runs(runs, nruns);
+        return false;
+    }
     snprintf(path, sizeof path, "%s/plan.csv", out_dir);
     if (!csv_read(path, &pl, err, errlen)) {
+        csv_table_free(&sm);
         summary_free_runs(runs, nruns);
         return false;
     }
@@ -586,8 +592,9 @@ bool summary_table_write(const char *out_dir, FILE *terminal, char *err, size_t 
     }
     crossovers_write_md(f.fp, &cx);
     /* the same for scripts */
-    summary_view view = {exp, runs, nruns, &pl, prow, varies, rcfg, shown, nshown, &cx};
-    if (!summary_json_write(out_dir, &view, err, errlen)) {
+    summary_view view = {exp, runs, nruns, &pl, &sm, prow, varies, rcfg, shown, nshown, &cx};
+    if (!summary_json_write(out_dir, &view, err, errlen) ||
+        !summary_long_write(out_dir, &pl, &sm, err, errlen)) {
         crossovers_free(&cx);
         afile_abort(&f);
         ok = false;
@@ -621,6 +628,7 @@ out:
     free(prow);
     free(varies);
     csv_table_free(&pl);
+    csv_table_free(&sm);
     summary_free_runs(runs, nruns);
     return ok;
 }

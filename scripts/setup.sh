@@ -12,6 +12,7 @@ packages=(
   libcmocka-dev libcglm-dev                           # tests; cglm is the math oracle
   python3 python3-yaml python3-matplotlib             # end-to-end test checks; scripts/report
   python3-numpy                                       # the independent shading-model check
+  python3-pandas                                      # tests/cli/tidy_pandas.sh: the files for scripts
   clang libclang-rt-14-dev                            # the manifest fuzzer (libFuzzer)
   valgrind                                            # meson test --setup=valgrind
 )

@@ -201,7 +201,7 @@ for p in plan:
            pts[-1]["frametime_ci95_us"] != srow["frametime_ci95_us"]:
             fail(f"convergence end {pts[-1]} vs summary {srow}")
         after = srow["ci1pct_after_s"]
-        if after != "never" and not (0 < float(after) <= float(pts[-1]["elapsed_s"])):
+        if after != "" and not (0 < float(after) <= float(pts[-1]["elapsed_s"])):
             fail(f"ci1pct_after_s {after}")
     rs = rows(os.path.join(d, "summary.csv"), summary_cols)
     if len(rs) != 2: fail("per-run summary")

@@ -1,0 +1,37 @@
+#pragma once
+/* OUT/summary_long.csv: summary.csv in long ("tidy") form for scripts
+ * (runner/summary_long.c), one row per run x trial x measured value:
+ *
+ *   experiment, run_id, renderer, scene, KEY..., trial, status, measure, unit, value
+ *
+ * KEY... are the plan.csv parameters that vary across the plan's runs (renderer and
+ * scene aside), one typed column each, named by its manifest key: numbers in plain
+ * decimals, true/false, or text; a span (warmup, duration) as KEY_frames and KEY_s, one
+ * of them empty; a resolution also as width_px and height_px. `measure` is the
+ * summary.csv column, `unit` its unit (output.h summary_column_unit), `value` a plain
+ * decimal; a value summary.csv leaves empty has no row. Written by the end-of-sweep step
+ * (summary_table_write) of run, run --resume and merge. */
+#include <stdbool.h>
+#include <stddef.h>
+
+#include "results/csvread.h"
+
+/* The rows of a table sorted by one column's text, for look-ups by id. */
+typedef struct row_index {
+    struct row_key {
+        const char *key;
+        size_t row;
+    } *item;
+    size_t n;
+} row_index;
+
+/* False when out of memory. A table without the column gives an empty index. */
+bool row_index_build(row_index *ix, const csv_table *t, const char *column);
+/* The rows whose column is `key`, in file order: *first indexes ix->item; returns how
+ * many (0: none). */
+size_t row_index_find(const row_index *ix, const char *key, size_t *first);
+void row_index_free(row_index *ix);
+
+/* Writes OUT/summary_long.csv atomically from plan.csv (pl) and summary.csv (sm). */
+bool summary_long_write(const char *out_dir, const csv_table *pl, const csv_table *sm,
+                        char *err, size_t errlen);
