@@ -44,9 +44,21 @@ static const char usage_text[] =
     "                             at a size llvmpipe renders in time)\n"
     "      --smoke                the manifest's smoke variant: 160x120, one trial, no\n"
     "                             warm-up, at most 2 s a run; out/<name>-smoke\n"
-    "  validate MANIFEST...       check manifests; print every error\n"
-    "  list [--shard I/N] [--smoke] [--scale S] [--json] MANIFEST  the expanded runs, one\n"
-    "                             per line (--json: every run's every parameter, typed)\n"
+    "      --set KEY=VALUE        KEY: VALUE as if written in the manifest, checked the\n"
+    "                             same way (repeatable; VALUE is YAML, KEY as in\n"
+    "                             docs/manifest.md). It replaces KEY wherever the manifest\n"
+    "                             has it: a swept KEY becomes that one value, and\n"
+    "                             --set 'sweep.KEY=[A, B]' sweeps KEY instead of a value\n"
+    "                             set in place\n"
+    "      --renderer R[,R...]    only the runs of the named renderers: as if the manifest's\n"
+    "                             renderers: listed only those of its own (in its order).\n"
+    "                             --set and --renderer are part of the manifest hash\n"
+    "                             (--resume, merge) and recorded in each run's meta.yaml\n"
+    "  validate [--set KEY=VALUE] [--renderer R[,R...]] MANIFEST...  check manifests\n"
+    "                             (with run's --set and --renderer); print every error\n"
+    "  list [--shard I/N] [--smoke] [--scale S] [--set KEY=VALUE] [--renderer R[,R...]]\n"
+    "      [--json] MANIFEST      the expanded runs, one per line (--json: every run's\n"
+    "                             every parameter, typed); options as run's\n"
     "  info [--backend B] [--device N] [--json]  the GL context's vendor, renderer and\n"
     "                             limits, the renderers and scenes (--json: one object)\n"
     "  merge -o OUT [--force] DIR...  combine the output folders of a sweep's shards\n"
@@ -99,10 +111,12 @@ typedef struct cli_opts {
     unsigned shard, nshards;
     double scale;              /* 0: not given */
     unsigned round;            /* --round K; 0: not given */
+    const char *sets[64];      /* --set KEY=VALUE, in order */
+    manifest_overrides ov;     /* the --set and --renderer that load_plan applies */
 } cli_opts;
 
 enum { OPT_FORCE = 1000, OPT_BACKEND, OPT_DEVICE, OPT_SHARD, OPT_DEBUG_GL, OPT_RESUME, OPT_SMOKE, OPT_SCALE,
-       OPT_RETRY_FAILED, OPT_ROUND, OPT_JSON };
+       OPT_RETRY_FAILED, OPT_ROUND, OPT_JSON, OPT_SET, OPT_RENDERER };
 
 /* Parses the options a command accepts; `allowed` lists their long names. Returns
  * the index of the first operand, or -1 after printing the problem. */
@@ -121,9 +135,12 @@ static int parse_opts(int argc, char **argv, const char *allowed, cli_opts *o)
         {"retry-failed", no_argument, NULL, OPT_RETRY_FAILED},
         {"round", required_argument, NULL, OPT_ROUND},
         {"json", no_argument, NULL, OPT_JSON},
+        {"set", required_argument, NULL, OPT_SET},
+        {"renderer", required_argument, NULL, OPT_RENDERER},
         {NULL, 0, NULL, 0},
     };
     memset(o, 0, sizeof *o);
+    o->ov.sets = o->sets;
     o->device = -1;
     o->nshards = 1;
     const char *env = getenv("SHADESWEEP_GL_DEBUG");
@@ -141,12 +158,14 @@ static int parse_opts(int argc, char **argv, const char *allowed, cli_opts *o)
             if (longopts[k].val == c)
                 name = longopts[k].name;
         if (c == '?' || c == ':' || (name && !strstr(allowed, name))) {
-            const char *bad = argv[optind - 1];
-            fprintf(stderr, "shadesweep %s: %s: %s\n", argv[0], bad,
+            /* a known option by its name: argv[optind - 1] may be its value */
+            char known[40];
+            snprintf(known, sizeof known, c == 'o' ? "-o" : "--%s", name ? name : "");
+            fprintf(stderr, "shadesweep %s: %s: %s\n", argv[0], name ? known : argv[optind - 1],
                     c == ':' ? "option needs a value" : "unknown option here");
             return -1;
         }
-        char err[256];
+        char err[512];
         switch (c) {
         case 'o': o->out = optarg; break;
         case OPT_FORCE: o->force = true; break;
@@ -202,6 +221,30 @@ static int parse_opts(int argc, char **argv, const char *allowed, cli_opts *o)
             o->device = (int)v;
             break;
         }
+        case OPT_SET:
+            if (!override_check_set(optarg, err, sizeof err)) {
+                fprintf(stderr, "shadesweep: %s\n", err);
+                return -1;
+            }
+            if (o->ov.nsets == sizeof o->sets / sizeof *o->sets) {
+                fprintf(stderr, "shadesweep: --set: expected at most %zu, found more\n",
+                        sizeof o->sets / sizeof *o->sets);
+                return -1;
+            }
+            o->sets[o->ov.nsets++] = optarg;
+            break;
+        case OPT_RENDERER:
+            if (o->ov.renderers) {
+                fprintf(stderr, "shadesweep: --renderer: given twice; name every renderer in "
+                        "one, separated by commas\n");
+                return -1;
+            }
+            if (!override_check_renderers(optarg, err, sizeof err)) {
+                fprintf(stderr, "shadesweep: %s\n", err);
+                return -1;
+            }
+            o->ov.renderers = optarg;
+            break;
         case OPT_SHARD:
             if (!parse_shard(optarg, &o->shard, &o->nshards, err, sizeof err)) {
                 fprintf(stderr, "shadesweep: %s\n", err);
@@ -223,7 +266,7 @@ static bool load_plan(const char *path, const cli_opts *o, experiment **e, plan 
     diag_list d = {0};
     *e = NULL;
     memset(p, 0, sizeof *p);
-    bool ok = manifest_load(path, e, &d);
+    bool ok = manifest_load_with(path, &o->ov, e, &d);
     char err[256];
     if (ok && o->scale > 0 && !experiment_scale_resolution(*e, o->scale, err, sizeof err)) {
         diag_add(&d, path, 0, 0, "", "%s", err);
@@ -250,7 +293,7 @@ static bool load_plan(const char *path, const cli_opts *o, experiment **e, plan 
 static int cmd_validate(int argc, char **argv)
 {
     cli_opts o;
-    int first = parse_opts(argc, argv, "", &o);
+    int first = parse_opts(argc, argv, "set renderer", &o);
     if (first < 0)
         return 2;
     if (first >= argc) {
@@ -279,7 +322,7 @@ static int cmd_validate(int argc, char **argv)
 static int cmd_list(int argc, char **argv)
 {
     cli_opts o;
-    int first = parse_opts(argc, argv, "shard smoke scale json", &o);
+    int first = parse_opts(argc, argv, "shard smoke scale json set renderer", &o);
     if (first < 0)
         return 2;
     if (argc - first != 1) {
@@ -424,7 +467,8 @@ static void print_summary_table(const char *dir)
 static int cmd_run(int argc, char **argv)
 {
     cli_opts o;
-    int first = parse_opts(argc, argv, "out force resume retry-failed round backend device shard debug-gl smoke scale", &o);
+    int first = parse_opts(argc, argv, "out force resume retry-failed round backend device shard debug-gl "
+                           "smoke scale set renderer", &o);
     if (first < 0)
         return 2;
     if (argc - first != 1) {

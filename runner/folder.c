@@ -384,7 +384,9 @@ static bool same_meta(const char *dir, const sweep_meta *have, const sweep_meta 
     if (strcmp(have->manifest_hash, want->manifest_hash) != 0) {
         snprintf(err, errlen,
                  "--resume: %s was made from manifest %.1000s (hash %s), this is %.1000s "
-                 "(hash %s): not the same sweep; use --force to replace it, or another -o",
+                 "(hash %s): not the same sweep (the hash is of the manifest's text and "
+                 "any --set, --renderer, --smoke, --scale); use --force to replace it, or "
+                 "another -o",
                  dir, have->manifest_path, have->manifest_hash, want->manifest_path,
                  want->manifest_hash);
         return false;

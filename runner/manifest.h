@@ -10,6 +10,7 @@
 #include <stdio.h>
 #include "renderers/renderer.h"
 #include "runner/diag.h"
+#include "runner/overrides.h"
 #include "scenes/lights.h"
 #include "scenes/scene.h"
 
@@ -48,8 +49,12 @@ typedef struct experiment {
     char *path;                /* as given */
     char name[64];             /* [a-z0-9-]+ */
     char *description;         /* "" if absent */
-    char hash[17];             /* FNV-1a 64 of the manifest's bytes, hex */
+    char hash[17];             /* FNV-1a 64 of the manifest's bytes, hex (and of --set,
+                                * --renderer, --smoke and --scale where given) */
     char *text;                /* the manifest's bytes, NUL-terminated (meta.yaml keeps them) */
+    size_t nsets;
+    char **sets;               /* --set KEY=VALUE, verbatim, in order (runner/overrides.h) */
+    char *renderer_filter;     /* --renderer's list, verbatim; NULL: none */
     double scale;              /* run --scale (1 when not given) */
     bool smoke;                /* run --smoke: experiment_make_smoke applied */
     run_params base;           /* the manifest's values with defaults, renderer = "" */
@@ -97,6 +102,10 @@ bool manifest_load(const char *path, experiment **out, diag_list *diags);
  * in messages and in experiment.path. manifest_load reads the file and calls it. */
 bool manifest_load_mem(const char *name, const char *data, size_t len, experiment **out,
                        diag_list *diags);
+/* manifest_load with the command line's --set and --renderer (runner/overrides.h);
+ * ov NULL: none. */
+bool manifest_load_with(const char *path, const manifest_overrides *ov, experiment **out,
+                        diag_list *diags);
 void experiment_free(experiment *e);   /* NULL is fine */
 
 /* The smoke variant of a manifest (`run --smoke`), for CI and for a quick look before

@@ -99,7 +99,7 @@ static void check_count_all(vctx *c)
             if (ax->values[j].lights.count.max == LIGHT_COUNT_ALL) {
                 char key[160];
                 snprintf(key, sizeof key, "sweep.lights.count[%zu]", j);
-                diag_add(c->d, c->file, ax->line[j], ax->col[j], key, "%s", msg);
+                overrides_diag(c->d, c->e, c->file, ax->line[j], ax->col[j], key, "%s", msg);
                 c->nerr++;
             }
     } else if (c->set_val[ic] && e->base.lights.count.max == LIGHT_COUNT_ALL) {
@@ -136,9 +136,9 @@ static void check_lights(vctx *c)
             if (m != 0) {
                 char key[160];
                 snprintf(key, sizeof key, "sweep.lights.count[%zu]", j);
-                diag_add(c->d, c->file, ax->line[j], ax->col[j], key,
-                         "expected 0 lights with lights.placement none, found %s%" PRIu32
-                         " lights", ax->values[j].lights.count.growth ? "up to " : "", m);
+                overrides_diag(c->d, c->e, c->file, ax->line[j], ax->col[j], key,
+                               "expected 0 lights with lights.placement none, found %s%" PRIu32
+                               " lights", ax->values[j].lights.count.growth ? "up to " : "", m);
                 c->nerr++;
             }
         }

@@ -66,3 +66,17 @@ void parse_group(vctx *c, const char *prefix, const ynode *map, run_params *dst)
 
 /* manifest_check.c: every rule that needs the whole manifest, after parse_group */
 void manifest_check(vctx *c);
+
+/* overrides.c: --set and --renderer (overrides.h) */
+/* Copies ov into c->e (sets, renderer_filter) and adds them to its hash; false (a
+ * diag) when out of memory. */
+bool overrides_keep(vctx *c, const manifest_overrides *ov);
+/* Grafts c->e's --set values onto doc (a mapping at its root), each key replaced
+ * wherever it is; false with the diags of a value that is not one YAML document. */
+bool overrides_apply(vctx *c, ydoc *doc);
+/* --renderer: keeps those of c->e->renderers that it names; a diag when none is left. */
+void overrides_filter(vctx *c);
+/* diag_add about a node at (line, col) of e's manifest `file`, or of e's k-th --set
+ * (line -k): that one is "FILE: --set KEY=VALUE", with no line or column. */
+void overrides_diag(diag_list *d, const experiment *e, const char *file, int line, int col,
+                    const char *key, const char *fmt, ...) __attribute__((format(printf, 7, 8)));

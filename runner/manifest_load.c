@@ -27,6 +27,10 @@ void experiment_free(experiment *e)
         free(e->axes[i].col);
     }
     free(e->axes);
+    for (size_t i = 0; i < e->nsets; i++)
+        free(e->sets[i]);
+    free(e->sets);
+    free(e->renderer_filter);
     free(e->renderers);
     free(e->description);
     free(e->text);
@@ -106,8 +110,8 @@ static void sort_diags(diag_list *d, size_t from)
     free(t);
 }
 
-bool manifest_load_mem(const char *name, const char *data, size_t len, experiment **out,
-                       diag_list *diags)
+static bool load_mem(const char *name, const char *data, size_t len,
+                     const manifest_overrides *ov, experiment **out, diag_list *diags)
 {
     *out = NULL;
     size_t from = diags->n;
@@ -129,6 +133,8 @@ bool manifest_load_mem(const char *name, const char *data, size_t len, experimen
     if (!data)
         data = "";   /* libyaml wants a buffer even for no bytes */
     hash_hex(fnv1a64(data, len), 16, e->hash);
+    if (!overrides_keep(&c, ov))
+        goto done;
     if (!(e->text = malloc(len + 1))) {
         diag_add(diags, name, 0, 0, "", "expected to load the manifest, found no memory left");
         goto done;
@@ -147,8 +153,13 @@ bool manifest_load_mem(const char *name, const char *data, size_t len, experimen
         err(&c, doc->root, "", "expected a mapping, found %s", found(doc->root, false, f, sizeof f));
         goto done;
     }
+    if (!overrides_apply(&c, doc))
+        goto done;
+    c.root = doc->root;
     parse_group(&c, "", doc->root, &e->base);
     manifest_check(&c);
+    if (c.nerr == 0)
+        overrides_filter(&c);
     ok = c.nerr == 0;
 
 done:
@@ -161,14 +172,26 @@ done:
     return ok;
 }
 
+bool manifest_load_mem(const char *name, const char *data, size_t len, experiment **out,
+                       diag_list *diags)
+{
+    return load_mem(name, data, len, NULL, out, diags);
+}
+
 bool manifest_load(const char *path, experiment **out, diag_list *diags)
+{
+    return manifest_load_with(path, NULL, out, diags);
+}
+
+bool manifest_load_with(const char *path, const manifest_overrides *ov, experiment **out,
+                        diag_list *diags)
 {
     *out = NULL;
     unsigned char *buf = NULL;
     size_t len = 0;
     if (!read_file(path, &buf, &len, diags))
         return false;
-    bool ok = manifest_load_mem(path, (const char *)buf, len, out, diags);
+    bool ok = load_mem(path, (const char *)buf, len, ov, out, diags);
     free(buf);
     return ok;
 }

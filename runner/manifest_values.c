@@ -119,7 +119,7 @@ void err(vctx *c, const ynode *at, const char *key, const char *fmt, ...)
     va_start(ap, fmt);
     vsnprintf(msg, sizeof msg, fmt, ap);
     va_end(ap);
-    diag_add(c->d, c->file, at->line, at->col, key, "%s", msg);
+    overrides_diag(c->d, c->e, c->file, at->line, at->col, key, "%s", msg);
     c->nerr++;
 }
 

@@ -459,21 +459,28 @@ static void print_bash(FILE *out)
             first = false;
         }
     fputs("\"\n"
+          "  local renderers=\"", out);
+    for (size_t i = 0; i < renderer_kind_count(); i++)
+        fprintf(out, "%s%s", i ? " " : "", renderer_kind_at(i)->name);
+    fputs("\"\n"
           "  if [ \"$COMP_CWORD\" -eq 1 ]; then\n"
           "    COMPREPLY=($(compgen -W \"$commands --help --version\" -- \"$cur\")); return\n"
           "  fi\n"
           "  case $prev in\n"
           "    -o|--out) COMPREPLY=($(compgen -d -- \"$cur\")); return ;;\n"
           "    --backend) COMPREPLY=($(compgen -W \"egl osmesa\" -- \"$cur\")); return ;;\n"
+          "    --set) compopt -o nospace 2>/dev/null\n"
+          "      COMPREPLY=($(compgen -S = -W \"$keys $(printf 'sweep.%s ' $sweepable)\" -- \"$cur\")); return ;;\n"
+          "    --renderer) COMPREPLY=($(compgen -W \"$renderers\" -- \"$cur\")); return ;;\n"
           "  esac\n"
           "  local opts\n"
           "  case $cmd in\n"
           "    run) opts=\"-o --out --force --resume --retry-failed --backend --device --shard "
-          "--debug-gl --scale --smoke --help\" ;;\n"
-          "    list) opts=\"--shard --smoke --scale --help\" ;;\n"
+          "--debug-gl --scale --smoke --set --renderer --help\" ;;\n"
+          "    list) opts=\"--shard --smoke --scale --set --renderer --json --help\" ;;\n"
           "    info) opts=\"--backend --device --help\" ;;\n"
           "    merge) opts=\"-o --out --force --help\" ;;\n"
-          "    validate) opts=\"--help\" ;;\n"
+          "    validate) opts=\"--set --renderer --help\" ;;\n"
           "    params) opts=\"--markdown --bash --help\"\n"
           "      COMPREPLY=($(compgen -W \"$opts $keys\" -- \"$cur\")); return ;;\n"
           "    columns) opts=\"--markdown --help\" ;;\n"
@@ -544,7 +551,10 @@ void params_print(FILE *out, params_format f)
               "(`*`: every run); a sweep folds runs that differ only in keys their "
               "renderer does not read. *Reference* says what the error reference does "
               "with it: renders with the run's value (inherit), with the default, or "
-              "takes this key as its own value of another.\n\n"
+              "takes this key as its own value of another. `run`, `list` and `validate` "
+              "take `--set KEY=VALUE` to set a key as if written in the manifest (VALUE "
+              "is YAML; `--set 'sweep.KEY=[A, B]'` sweeps it) and `--renderer R[,R...]` to "
+              "keep only those renderers; see `shadesweep run --help`.\n\n"
               "| key | type | default | accepts | sweep | read by | reference | description |\n"
               "|---|---|---|---|---|---|---|---|\n",
               out);

@@ -752,7 +752,13 @@ static bool write_meta(run_state *st, char *err, size_t errlen)
     yo_key(y, "path"); yo_str(y, e->path);
     yo_key(y, "hash"); yo_str(y, e->hash);
     yo_key(y, "description"); yo_str(y, e->description);
-    yo_key(y, "text"); yo_str(y, e->text);   /* verbatim: what the hash is of */
+    yo_key(y, "text"); yo_str(y, e->text);   /* verbatim: what the hash is of, with: */
+    yo_key(y, "set");   /* run --set KEY=VALUE, verbatim, in order: applied over the text */
+    yo_seq_begin(y);
+    for (size_t i = 0; i < e->nsets; i++)
+        yo_str(y, e->sets[i]);
+    yo_seq_end(y);
+    yo_key(y, "renderer_filter"); yo_str(y, e->renderer_filter);   /* run --renderer; null */
     yo_map_end(y);
     yo_key(y, "shadesweep");
     yo_map_begin(y);

@@ -7,8 +7,7 @@
 
 #include "results/jsonout.h"
 #include "runner/hash.h"
-#include "runner/manifest.h"
-#include "runner/params.h"
+#include "runner/manifest_internal.h"
 #include "runner/sweep_axis.h"
 
 #define PLAN_MAX_RUNS 100000u
@@ -115,9 +114,9 @@ static bool check_duplicates(const experiment *e, const plan *p, diag_list *diag
             const struct sweep_axis *ax = &e->axes[a];
             char key[160];
             snprintf(key, sizeof key, "sweep.%s[%zu]", ax->path, v);
-            diag_add(diags, e->path, ax->line[v], ax->col[v], key,
-                     "expected a distinct sweep point, found run %zu the same as run %zu (id %s)",
-                     again, first, dups[i].id);
+            overrides_diag(diags, e, e->path, ax->line[v], ax->col[v], key,
+                           "expected a distinct sweep point, found run %zu the same as run "
+                           "%zu (id %s)", again, first, dups[i].id);
         }
     }
 done:
@@ -152,9 +151,10 @@ static bool check_axes_read(const experiment *e, diag_list *diags)
             len += (size_t)snprintf(list + len, len < sizeof list ? sizeof list - len : 0, "%s%s",
                                     r ? ", " : "", e->renderers[r]);
         snprintf(key, sizeof key, "sweep.%s", ax->path);
-        diag_add(diags, e->path, ax->line ? ax->line[0] : 0, ax->col ? ax->col[0] : 0, key,
-                 "expected a key one of the renderers reads (%s is read by %s), found none of %s",
-                 ax->path, pd->readers, list);
+        overrides_diag(diags, e, e->path, ax->line ? ax->line[0] : 0,
+                       ax->col ? ax->col[0] : 0, key, "expected a key one of the renderers "
+                       "reads (%s is read by %s), found none of %s", ax->path, pd->readers,
+                       list);
         ok = false;
     }
     return ok;
@@ -334,10 +334,10 @@ bool plan_expand(const experiment *e, unsigned nshards, plan *out, diag_list *di
     size_t total = e->nrenderers;
     for (size_t a = 0; a < e->naxes; a++) {
         if (e->axes[a].nvalues == 0 || total > PLAN_MAX_RUNS / e->axes[a].nvalues) {
-            diag_add(diags, e->path, e->axes[a].line ? e->axes[a].line[0] : 0,
-                     e->axes[a].col ? e->axes[a].col[0] : 0, "sweep",
-                     "expected at most %u runs, found more at axis %s", PLAN_MAX_RUNS,
-                     e->axes[a].path);
+            overrides_diag(diags, e, e->path, e->axes[a].line ? e->axes[a].line[0] : 0,
+                           e->axes[a].col ? e->axes[a].col[0] : 0, "sweep",
+                           "expected at most %u runs, found more at axis %s", PLAN_MAX_RUNS,
+                           e->axes[a].path);
             return false;
         }
         total *= e->axes[a].nvalues;

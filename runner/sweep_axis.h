@@ -14,5 +14,6 @@ struct sweep_axis {
     size_t off, size;          /* the parameter's bytes in run_params */
     size_t nvalues;            /* >= 1 */
     run_params *values;
-    int *line, *col;           /* where each value is in the manifest */
+    int *line, *col;           /* where each value is in the manifest (line -k: in the
+                                * k-th --set, runner/overrides.c) */
 };

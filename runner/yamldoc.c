@@ -61,6 +61,33 @@ void ydoc_free(ydoc *doc)
     free(doc);
 }
 
+ynode *ydoc_node(ydoc *doc, ynode_kind kind, int line, int col)
+{
+    ynode *n = node_new(doc, kind, (yaml_mark_t){0}, NULL);
+    if (n) {
+        n->line = line;
+        n->col = col;
+    }
+    return n;
+}
+
+bool ydoc_take(ydoc *doc, ydoc *from)
+{
+    if (doc->capall - doc->nall < from->nall) {
+        size_t cap = doc->nall + from->nall;
+        ynode **all = realloc(doc->all, cap * sizeof *all);
+        if (!all)
+            return false;
+        doc->all = all;
+        doc->capall = cap;
+    }
+    memcpy(doc->all + doc->nall, from->all, from->nall * sizeof *from->all);
+    doc->nall += from->nall;
+    free(from->all);
+    free(from);
+    return true;
+}
+
 bool ynode_plain(const ynode *n)
 {
     return n && n->kind == YNODE_SCALAR && n->style == YSTYLE_PLAIN && !n->tag;

@@ -70,5 +70,12 @@ typedef struct ydoc {
 bool ydoc_load(const char *file, const void *buf, size_t len, ydoc **out, diag_list *d);
 void ydoc_free(ydoc *doc);
 
+/* Building on a loaded tree (run --set, runner/overrides.c): a new node of doc at
+ * (line, col), freed with it (NULL: no memory); and every node of `from` moved into
+ * doc, which then frees them with its own (`from` itself is freed; false: no memory,
+ * nothing moved). */
+ynode *ydoc_node(ydoc *doc, ynode_kind kind, int line, int col);
+bool ydoc_take(ydoc *doc, ydoc *from);
+
 bool ynode_plain(const ynode *n);
 bool ynode_empty(const ynode *n);

@@ -7,20 +7,24 @@ _shadesweep() {
   local commands="run validate list info merge params columns report compare"
   local keys=" name description scene renderers resolution trials schedule measure measure.metric measure.precision measure.budget measure.seed warmup duration clock step sync timeout gbuffer gbuffer.preset gbuffer.position gbuffer.normal deferred deferred.light_volumes deferred.separate_specular deferred.sky_stencil forward forward.illumination_sets forward.directional_in_base forward.light_buffer tiles tiles.size tiles.max_lights_per_tile clustered clustered.slices clustered.shading shadows hdr msaa fog fog.density fog.colour aa translucency camera camera.radius camera.height camera.period camera.target camera.near camera.far camera.hold error error.reference error.reference.renderer error.reference.gbuffer error.reference.light_volumes error.reference.supersample error.reference.msaa error.at error.max_rmse error.save_images lights lights.placement lights.seed lights.rng lights.count lights.radius lights.overlap lights.color_max lights.attenuation lights.quadratic lights.quadratic.a lights.quadratic.b lights.quadratic.c outputs outputs.frames outputs.seconds outputs.screenshots debug debug.busy_us debug.busy_renderer sweep"
   local sweepable="scene resolution trials warmup duration clock step sync timeout gbuffer.preset gbuffer.position gbuffer.normal deferred.light_volumes deferred.separate_specular deferred.sky_stencil forward.illumination_sets forward.directional_in_base forward.light_buffer tiles.size tiles.max_lights_per_tile clustered.slices clustered.shading shadows hdr msaa fog.density fog.colour aa translucency camera.radius camera.height camera.period camera.target camera.near camera.far camera.hold lights.placement lights.seed lights.rng lights.count lights.radius lights.overlap lights.color_max lights.attenuation lights.quadratic.a lights.quadratic.b lights.quadratic.c"
+  local renderers="null deferred forward-mpml forward-spml forward-plus clustered tiled-deferred"
   if [ "$COMP_CWORD" -eq 1 ]; then
     COMPREPLY=($(compgen -W "$commands --help --version" -- "$cur")); return
   fi
   case $prev in
     -o|--out) COMPREPLY=($(compgen -d -- "$cur")); return ;;
     --backend) COMPREPLY=($(compgen -W "egl osmesa" -- "$cur")); return ;;
+    --set) compopt -o nospace 2>/dev/null
+      COMPREPLY=($(compgen -S = -W "$keys $(printf 'sweep.%s ' $sweepable)" -- "$cur")); return ;;
+    --renderer) COMPREPLY=($(compgen -W "$renderers" -- "$cur")); return ;;
   esac
   local opts
   case $cmd in
-    run) opts="-o --out --force --resume --retry-failed --backend --device --shard --debug-gl --scale --smoke --help" ;;
-    list) opts="--shard --smoke --scale --help" ;;
+    run) opts="-o --out --force --resume --retry-failed --backend --device --shard --debug-gl --scale --smoke --set --renderer --help" ;;
+    list) opts="--shard --smoke --scale --set --renderer --json --help" ;;
     info) opts="--backend --device --help" ;;
     merge) opts="-o --out --force --help" ;;
-    validate) opts="--help" ;;
+    validate) opts="--set --renderer --help" ;;
     params) opts="--markdown --bash --help"
       COMPREPLY=($(compgen -W "$opts $keys" -- "$cur")); return ;;
     columns) opts="--markdown --help" ;;

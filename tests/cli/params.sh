@@ -21,7 +21,13 @@ gbuffer.position" ] || fail "completion of 'params gbuffer.p': $out"
 out=$(bash -c '. ./completion.bash; COMP_WORDS=(shadesweep run --re); COMP_CWORD=2;
   _shadesweep; printf "%s\n" "${COMPREPLY[@]}"')
 [ "$out" = "--resume
---retry-failed" ] || fail "completion of 'run --re': $out"
+--retry-failed
+--renderer" ] || fail "completion of 'run --re': $out"
+# after --set, the keys (sweep.KEY too) with their '='
+out=$(bash -c '. ./completion.bash; COMP_WORDS=(shadesweep list --set sweep.lights.co); COMP_CWORD=3;
+  _shadesweep; printf "%s\n" "${COMPREPLY[@]}"')
+[ "$out" = "sweep.lights.count=
+sweep.lights.color_max=" ] || fail "completion of 'list --set sweep.lights.co': $out"
 
 # every key in the text listing, with its default and readers
 "$SHADESWEEP" params >params.txt
