@@ -228,35 +228,82 @@ done:
     return d->n == nerr;
 }
 
-/* The least GL_MAX_UNIFORM_BLOCK_SIZE any GL 3.1+ context has (OpenGL 4.5 core
- * specification, table 23.64, "Implementation dependent values": minimum 16384). */
+/* What every GL 4.5 core context has at least (the specification's table 23.64,
+ * "Implementation dependent values"): GL_MAX_UNIFORM_BLOCK_SIZE 16384 bytes,
+ * GL_MAX_SAMPLES 4, GL_MAX_RENDERBUFFER_SIZE and GL_MAX_TEXTURE_SIZE 16384. */
 #define GL_GUARANTEED_UNIFORM_BLOCK_BYTES 16384
+#define GL_GUARANTEED_SAMPLES 4
+#define GL_GUARANTEED_SIZE 16384
+
+/* The runs past one guarantee: how many, the first's id, the largest value asked. */
+typedef struct beyond {
+    size_t n;
+    const char *first;
+    uint64_t most;
+} beyond;
+
+static void note_beyond(beyond *b, const run_spec *r, uint64_t v)
+{
+    if (!b->n++)
+        b->first = r->id;
+    if (v > b->most)
+        b->most = v;
+}
+
+/* "N runs (ID, ...) ask" */
+static void print_runs(FILE *out, const beyond *b)
+{
+    fprintf(out, "%zu run%s (%s%s) ask%s", b->n, b->n == 1 ? "" : "s", b->first,
+            b->n > 1 ? ", ..." : "", b->n == 1 ? "s" : "");
+}
 
 void plan_warnings(const experiment *e, const plan *p, FILE *out)
 {
     /* forward-spml with forward.light_buffer: uniform holds max_uniform_block_size / 80
-     * lights: beyond what every GL guarantees, its runs fail where the context's limit
-     * is lower (llvmpipe's 65536 bytes hold 819) */
+     * lights (llvmpipe's 65536 bytes hold 819); samples and sizes past the guarantees
+     * fail where the context's limits are the least (llvmpipe: 4 samples, 16384) */
     const uint32_t sure = forward_spml_max_lights(GL_GUARANTEED_UNIFORM_BLOCK_BYTES);
-    size_t n = 0;
-    uint32_t most = 0;
-    const char *first = NULL;
+    beyond lights = {0}, samples = {0}, size = {0};
     for (size_t k = 0; k < p->nruns; k++) {
-        const run_params *q = &p->runs[k].p;
-        if (strcmp(q->renderer, "forward-spml") != 0 || q->light_buffer != 0 ||
-            q->lights.placement == PLACEMENT_SCENE || q->lights.count.max <= sure)
-            continue;
-        if (!n++)
-            first = p->runs[k].id;
-        if (q->lights.count.max > most)
-            most = q->lights.count.max;
+        const run_spec *r = &p->runs[k];
+        const run_params *q = &r->p;
+        if (strcmp(q->renderer, "forward-spml") == 0 && q->light_buffer == 0 &&
+            q->lights.placement != PLACEMENT_SCENE && q->lights.count.max > sure)
+            note_beyond(&lights, r, q->lights.count.max);
+        unsigned msaa = 1u << q->msaa, ref_msaa = q->error_renderer[0] ? 1u << q->error_msaa : 1;
+        unsigned most_msaa = msaa > ref_msaa ? msaa : ref_msaa;
+        if (strcmp(q->renderer, "null") != 0 && most_msaa > GL_GUARANTEED_SAMPLES)
+            note_beyond(&samples, r, most_msaa);
+        uint64_t k_ref = q->error_renderer[0] ? q->error_supersample : 1;
+        uint64_t side = (uint64_t)(q->width > q->height ? q->width : q->height) *
+                        (k_ref > 1 ? k_ref : 1);
+        if (side > GL_GUARANTEED_SIZE)
+            note_beyond(&size, r, side);
     }
-    if (n)
+    if (lights.n) {
         fprintf(out, "%s: warning: forward.light_buffer: forward-spml holds its lights in a "
-                "uniform block: %zu run%s (%s%s) ask%s for up to %" PRIu32 " lights, past the "
-                "%" PRIu32 " of the %d bytes every GL has; %s where the GL holds fewer "
-                "(`shadesweep info`: forward_spml_max_lights; llvmpipe: 819), or set "
-                "forward.light_buffer: storage\n", e->path, n, n == 1 ? "" : "s", first,
-                n > 1 ? ", ..." : "", n == 1 ? "s" : "", most, sure,
-                GL_GUARANTEED_UNIFORM_BLOCK_BYTES, n == 1 ? "it fails" : "they fail");
+                "uniform block: ", e->path);
+        print_runs(out, &lights);
+        fprintf(out, " for up to %" PRIu64 " lights, past the %" PRIu32 " of the %d bytes every "
+                "GL has; %s where the GL holds fewer (`shadesweep info`: "
+                "forward_spml_max_lights; llvmpipe: 819), or set forward.light_buffer: "
+                "storage\n", lights.most, sure, GL_GUARANTEED_UNIFORM_BLOCK_BYTES,
+                lights.n == 1 ? "it fails" : "they fail");
+    }
+    if (samples.n) {
+        fprintf(out, "%s: warning: msaa: ", e->path);
+        print_runs(out, &samples);
+        fprintf(out, " for %" PRIu64 " samples a pixel (or their error reference does), past "
+                "the %d every GL has; %s where the GL has fewer (`shadesweep info`: "
+                "max_samples; llvmpipe: 4)\n", samples.most, GL_GUARANTEED_SAMPLES,
+                samples.n == 1 ? "it fails" : "they fail");
+    }
+    if (size.n) {
+        fprintf(out, "%s: warning: resolution: ", e->path);
+        print_runs(out, &size);
+        fprintf(out, " for a framebuffer %" PRIu64 " pixels a side (error.reference.supersample "
+                "included), past the %d every GL has; %s where the GL has less (`shadesweep "
+                "info`: max_renderbuffer_size; llvmpipe: 16384)\n", size.most,
+                GL_GUARANTEED_SIZE, size.n == 1 ? "it fails" : "they fail");
+    }
 }

@@ -3,7 +3,8 @@
 # `validate` and `run` before anything is written (exit 2, the reason named):
 # times past the run's end, placement scene without authored lights, near not
 # below far, quadratic attenuation with a = b = c = 0, an empty name. What fails on some
-# GL only (forward-spml's uniform block) is a warning that validate, list and run print.
+# GL only (forward-spml's uniform block, 8 samples, a side past 16384) is a warning that
+# validate, list and run print.
 . "$(dirname "$0")/lib.sh"
 cd "$T"
 base='shadesweep: 1
@@ -53,6 +54,16 @@ grep -qF "spml.yaml: warning: forward.light_buffer: forward-spml holds its light
   fail "validate spml.yaml: no warning: $(cat err.txt)"
 "$SHADESWEEP" list spml.yaml >/dev/null 2>err.txt && grep -qF "warning: forward.light_buffer" err.txt ||
   fail "list spml.yaml: no warning"
+# 8 samples and a 20000-pixel side (or 5000 with a 4x supersampled reference): past the
+# 4 samples and 16384 pixels every GL has, named the same way
+"$SHADESWEEP" validate --set msaa=8 spml.yaml >/dev/null 2>err.txt &&
+  grep -qF "spml.yaml: warning: msaa: 6 runs (" err.txt &&
+  grep -qF "ask for 8 samples a pixel (or their error reference does), past the 4 every GL has" err.txt ||
+  fail "msaa 8: $(cat err.txt)"
+"$SHADESWEEP" validate --set resolution=5000x16 --set 'error={reference: {renderer: forward-spml, supersample: 4}, at: [0]}' \
+  spml.yaml >/dev/null 2>err.txt &&
+  grep -qF "ask for a framebuffer 20000 pixels a side (error.reference.supersample included), past the 16384 every GL has" err.txt ||
+  fail "20000 pixels: $(cat err.txt)"
 printf '%s\nsweep: {lights.count: [204, 300]}\nforward: {light_buffer: storage}\n' "$spml" >st.yaml
 printf '%s\nlights: {count: 204}\n' "$spml" >fits.yaml
 for f in st fits; do
