@@ -1,0 +1,223 @@
+/* A trial's meta.yaml (runner/run_internal.h). */
+#define _DEFAULT_SOURCE
+#include "runner/run_internal.h"
+
+#include <stdio.h>
+#include <string.h>
+#include <unistd.h>
+
+#include "config.h"
+#include "version.h"
+#include "runner/hash.h"
+#include "runner/memory.h"
+
+static void cpu_model(char *buf, size_t len)
+{
+    snprintf(buf, len, "unknown");
+    FILE *f = fopen("/proc/cpuinfo", "r");
+    if (!f)
+        return;
+    char line[512];
+    while (fgets(line, sizeof line, f)) {
+        if (strncmp(line, "model name", 10) == 0) {
+            char *colon = strchr(line, ':');
+            if (colon) {
+                colon++;
+                while (*colon == ' ' || *colon == '\t')
+                    colon++;
+                colon[strcspn(colon, "\n")] = 0;
+                snprintf(buf, len, "%s", colon);
+            }
+            break;
+        }
+    }
+    fclose(f);
+}
+
+/* The process's peak resident size (VmHWM in /proc/self/status), kB; -1 unknown. */
+static int64_t vm_hwm_kb(void)
+{
+    FILE *f = fopen("/proc/self/status", "r");
+    if (!f)
+        return -1;
+    char line[256];
+    long long kb = -1;
+    while (fgets(line, sizeof line, f))
+        if (sscanf(line, "VmHWM: %lld kB", &kb) == 1)
+            break;
+    fclose(f);
+    return kb;
+}
+
+bool run_write_meta(run_state *st, char *err, size_t errlen)
+{
+    char path[4500];
+    snprintf(path, sizeof path, "%s/meta.yaml", st->dir);
+    yaml_out *y = yo_open(path, err, errlen);
+    if (!y)
+        return false;
+    const experiment *e = st->e;
+    yo_map_begin(y);
+    yo_key(y, "run_id"); yo_str(y, st->s->id);
+    yo_key(y, "experiment"); yo_str(y, e->name);
+    yo_key(y, "status"); yo_str(y, st->status);
+    yo_key(y, "manifest");
+    yo_map_begin(y);
+    yo_key(y, "path"); yo_str(y, e->path);
+    yo_key(y, "hash"); yo_str(y, e->hash);
+    yo_key(y, "description"); yo_str(y, e->description);
+    yo_key(y, "text"); yo_str(y, e->text);   /* verbatim: what the hash is of, with: */
+    yo_key(y, "set");   /* run --set KEY=VALUE, verbatim, in order: applied over the text */
+    yo_seq_begin(y);
+    for (size_t i = 0; i < e->nsets; i++)
+        yo_str(y, e->sets[i]);
+    yo_seq_end(y);
+    yo_key(y, "renderer_filter"); yo_str(y, e->renderer_filter);   /* run --renderer; null */
+    yo_map_end(y);
+    yo_key(y, "shadesweep");
+    yo_map_begin(y);
+    yo_key(y, "version"); yo_str(y, SHADESWEEP_VERSION);
+    yo_key(y, "commit"); yo_str(y, SHADESWEEP_COMMIT);
+    yo_key(y, "dirty"); yo_bool(y, strstr(SHADESWEEP_COMMIT, "-dirty") != NULL);
+    yo_map_end(y);
+    provenance_write_invocation(y);
+
+    yo_key(y, "parameters");
+    yo_map_begin(y);
+    param_kv kv[PARAM_KV_MAX];
+    size_t nkv = run_params_kv(&st->s->p, kv, PARAM_KV_MAX);
+    for (size_t i = 0; i < nkv; i++) {
+        yo_key(y, kv[i].key);
+        yo_str(y, kv[i].value);
+    }
+    yo_map_end(y);
+
+    const run_params *p = &st->s->p;
+    if (p->translucency == 1) {
+        yo_key(y, "made_opaque");   /* translucency: opaque */
+        yo_i64(y, st->made_opaque);
+    }
+    if (p->scene_file[0]) {
+        const scene_file_info *si = &st->scene_info;
+        char hash[17];
+        hash_hex(si->hash, 16, hash);
+        yo_key(y, "scene_file");
+        yo_map_begin(y);
+        yo_key(y, "path"); yo_str(y, p->scene_file);
+        yo_key(y, "hash"); yo_str(y, hash);
+        yo_key(y, "scale"); yo_f64(y, p->scene_scale);
+        yo_key(y, "up"); yo_str(y, p->scene_up == SCENE_UP_Z ? "z" : "y");
+        yo_key(y, "camera"); yo_str(y, p->scene_camera);
+        yo_key(y, "files"); yo_i64(y, si->files);
+        yo_key(y, "meshes"); yo_i64(y, si->meshes);
+        yo_key(y, "triangles"); yo_i64(y, (int64_t)si->triangles);
+        yo_key(y, "objects"); yo_i64(y, si->objects);
+        yo_key(y, "materials"); yo_i64(y, si->materials);
+        yo_key(y, "materials_mask"); yo_i64(y, si->materials_mask);
+        yo_key(y, "materials_blend"); yo_i64(y, si->materials_blend);
+        yo_key(y, "blend"); yo_str(y, !si->materials_blend ? "none"
+                                      : p->translucency == 1 ? "made opaque (translucency: opaque)"
+                                                             : "translucent, in the translucent pass");
+        yo_key(y, "textures"); yo_i64(y, si->textures);
+        yo_key(y, "lights"); yo_i64(y, si->lights);
+        yo_key(y, "cameras"); yo_i64(y, si->cameras);
+        yo_key(y, "bounds_min");
+        yo_seq_begin(y);
+        for (int i = 0; i < 3; i++)
+            yo_f64(y, si->bounds_min[i]);
+        yo_seq_end(y);
+        yo_key(y, "bounds_max");
+        yo_seq_begin(y);
+        for (int i = 0; i < 3; i++)
+            yo_f64(y, si->bounds_max[i]);
+        yo_seq_end(y);
+        yo_map_end(y);
+    }
+
+    yo_key(y, "gl");
+    yo_map_begin(y);
+    const gl_info *gi = st->ctx ? gl_context_info(st->ctx) : NULL;
+    yo_key(y, "backend"); yo_str(y, gi ? gi->backend : NULL);
+    yo_key(y, "device"); yo_str(y, gi ? gi->device : NULL);
+    yo_key(y, "vendor"); yo_str(y, gi ? gi->vendor : NULL);
+    yo_key(y, "renderer"); yo_str(y, gi ? gi->renderer : NULL);
+    yo_key(y, "version"); yo_str(y, gi ? gi->version : NULL);
+    yo_key(y, "glsl"); yo_str(y, gi ? gi->glsl_version : NULL);
+    yo_key(y, "debug_context"); yo_bool(y, gi && gi->debug_context);
+    yo_key(y, "timer_query"); yo_bool(y, gi && gi->timer_query);
+    yo_key(y, "pipeline_statistics"); yo_bool(y, gi && gi->pipeline_statistics);
+    yo_map_end(y);
+
+    char cpu[256], host[256] = "unknown";
+    cpu_model(cpu, sizeof cpu);
+    gethostname(host, sizeof host - 1);
+    yo_key(y, "host");
+    yo_map_begin(y);
+    yo_key(y, "cpu"); yo_str(y, cpu);
+    yo_key(y, "threads"); yo_i64(y, sysconf(_SC_NPROCESSORS_ONLN));
+    yo_key(y, "hostname"); yo_str(y, host);
+    provenance_write_host(y, &st->prov);
+    yo_map_end(y);
+    yo_key(y, "started"); yo_str(y, st->started);
+    yo_key(y, "finished"); yo_str(y, st->finished);
+
+    yo_key(y, "timing");
+    yo_map_begin(y);
+    yo_key(y, "clock_source"); yo_str(y, "CLOCK_MONOTONIC");
+    yo_key(y, "frame_end"); yo_str(y, st->s->p.sync == RUN_SYNC_FINISH ? "glFinish" : "fence");
+    yo_key(y, "ci95_method"); yo_str(y, "batch means, 10 batches, Student t");
+    yo_key(y, "percentiles"); yo_str(y, "nearest rank; exact up to 1024 frames, then a log histogram within 0.5%");
+    yo_key(y, "prime_frames"); yo_i64(y, (int64_t)st->prime_frames);
+    yo_key(y, "prime_s"); yo_f64(y, st->prime_s);
+    yo_key(y, "paused_s"); yo_f64(y, st->paused_s);
+    yo_key(y, "vm_hwm_kb"); yo_i64(y, vm_hwm_kb());
+    yo_map_end(y);
+
+    /* runner/memory.h's estimate (with the built scene when there is one) next to what
+     * this process held at its peak (-1: written by the parent for a child that died) */
+    memory_estimate me;
+    memory_estimate_run(&st->s->p, st->sc, &me);
+    int64_t hwm = st->sc ? vm_hwm_kb() : -1;
+    yo_key(y, "memory");
+    yo_map_begin(y);
+    yo_key(y, "estimate_mb"); yo_i64(y, (int64_t)((me.resident + (1u << 19)) >> 20));
+    yo_key(y, "peak_rss_mb"); yo_i64(y, hwm < 0 ? -1 : (hwm + 512) / 1024);
+    yo_map_end(y);
+
+    yo_key(y, "pass_plan");
+    yo_map_begin(y);
+    yo_key(y, "passes");
+    yo_seq_begin(y);
+    for (size_t i = 0; i < st->plan.npasses; i++) {
+        yo_map_begin(y);
+        yo_key(y, "name"); yo_str(y, st->plan.pass[i].name);
+        yo_key(y, "run"); yo_bool(y, st->plan.pass[i].run);
+        yo_key(y, "reason"); yo_str(y, st->plan.pass[i].reason);
+        yo_map_end(y);
+    }
+    yo_seq_end(y);
+    yo_key(y, "programs");
+    yo_seq_begin(y);
+    for (size_t i = 0; i < st->plan.nprograms; i++)
+        yo_str(y, st->plan.program[i]);
+    yo_seq_end(y);
+    yo_key(y, "lighting"); yo_str(y, st->plan.lighting);
+    yo_key(y, "targets");
+    yo_seq_begin(y);
+    for (size_t i = 0; i < st->plan.ntargets; i++) {
+        const target_plan_entry *t = &st->plan.target[i];
+        yo_map_begin(y);
+        yo_key(y, "name"); yo_str(y, t->name);
+        yo_key(y, "format"); yo_str(y, t->format);
+        yo_key(y, "width"); yo_i64(y, t->width);
+        yo_key(y, "height"); yo_i64(y, t->height);
+        yo_key(y, "bytes"); yo_i64(y, (int64_t)t->bytes);
+        yo_map_end(y);
+    }
+    yo_seq_end(y);
+    yo_key(y, "gbuffer_bytes"); yo_i64(y, (int64_t)st->plan.gbuffer_bytes);
+    yo_key(y, "target_bytes"); yo_i64(y, (int64_t)st->plan.target_bytes);
+    yo_map_end(y);
+    yo_map_end(y);
+    return yo_commit(y, err, errlen);
+}
