@@ -36,7 +36,6 @@
 #include <fcntl.h>
 #include <limits.h>
 #include <math.h>
-#include <stdarg.h>
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
@@ -46,6 +45,7 @@
 
 #include "results/image_io.h"
 #include "scenes/scene_build.h"
+#include "scenes/scene_fail.h"
 
 /* Limits on what a file may ask for before anything is allocated for it. */
 #define FILE_MAX_BYTES ((size_t)1 << 31)      /* one file, buffer or image: 2 GiB */
@@ -330,18 +330,6 @@ static void io_close(struct aiFileIO *io, struct aiFile *af)
 }
 
 // >>prescan
-
-static bool fail(char *err, size_t errlen, const char *fmt, ...)
-    __attribute__((format(printf, 3, 4)));
-static bool fail(char *err, size_t errlen, const char *fmt, ...)
-{
-    va_list ap;
-    va_start(ap, fmt);
-    if (err && errlen)
-        vsnprintf(err, errlen, fmt, ap);
-    va_end(ap);
-    return false;
-}
 
 
 /* glTF's JSON read before assimp sees it, for what would hurt inside the importer:
@@ -678,14 +666,14 @@ static bool glb_lengths(const char *path, const read_file *f, char *err, size_t 
         return true;
     uint32_t total = le32(d + 8);
     if (total > f->size)
-        return fail(err, errlen, "%s: the GLB header claims %u bytes, the file has %zu", path,
-                    total, f->size);
+        return scene_fail(err, errlen, "%s: the GLB header claims %u bytes, the file has %zu", path,
+                          total, f->size);
     size_t at = 12;
     for (int k = 0; k < 2 && at + 8 <= f->size; k++) {
         uint64_t len = le32(d + at);
         if (len > f->size - at - 8)
-            return fail(err, errlen, "%s: GLB chunk %d claims %llu bytes, %zu follow it", path,
-                        k, (unsigned long long)len, f->size - at - 8);
+            return scene_fail(err, errlen, "%s: GLB chunk %d claims %llu bytes, %zu follow it",
+                              path, k, (unsigned long long)len, f->size - at - 8);
         at += 8 + (size_t)((len + 3) & ~(uint64_t)3);
     }
     return true;
@@ -706,24 +694,25 @@ static bool prescan_gltf(const char *path, const read_file *f, char *err, size_t
     bool parsed = !deep && js_gltf(&j, &g);
     bool ok = true;
     if (deep || g.deep) {
-        ok = fail(err, errlen, "%s: JSON nested more than %u deep", path, JSON_MAX_NESTING);
+        ok = scene_fail(err, errlen, "%s: JSON nested more than %u deep", path, JSON_MAX_NESTING);
     } else if (g.url[0]) {
-        ok = fail(err, errlen, "%s: uri '%s' is a URL: only local files are read", path, g.url);
+        ok = scene_fail(err, errlen, "%s: uri '%s' is a URL: only local files are read", path,
+                        g.url);
     } else if (g.absolute[0]) {
-        ok = fail(err, errlen, "%s: uri '%s' is an absolute path: a uri is relative to the "
-                  "file's folder", path, g.absolute);
+        ok = scene_fail(err, errlen, "%s: uri '%s' is an absolute path: a uri is relative to the "
+                        "file's folder", path, g.absolute);
     } else if (parsed) {
         uint32_t cycle = 0;
         bool oom = false;
         uint32_t h = ng_height(&g, &cycle, &oom);
         if (oom)
-            ok = fail(err, errlen, "%s: out of memory checking %u nodes", path, g.nnodes);
+            ok = scene_fail(err, errlen, "%s: out of memory checking %u nodes", path, g.nnodes);
         else if (h == UINT32_MAX)
-            ok = fail(err, errlen, "%s: node %u contains itself: the hierarchy recurses", path,
-                      cycle);
+            ok = scene_fail(err, errlen, "%s: node %u contains itself: the hierarchy recurses",
+                            path, cycle);
         else if (h >= FILE_MAX_NODE_DEPTH)
-            ok = fail(err, errlen, "%s: the node hierarchy is %u deep, more than %u", path, h,
-                      FILE_MAX_NODE_DEPTH - 1);
+            ok = scene_fail(err, errlen, "%s: the node hierarchy is %u deep, more than %u", path, h,
+                            FILE_MAX_NODE_DEPTH - 1);
     }
     free(g.edge_from);
     free(g.edge_to);
@@ -792,7 +781,7 @@ static int load_image(loaded *l, const char *ref, char *err, size_t errlen)
         char *end;
         unsigned long k = strtoul(ref + 1, &end, 10);
         if (*end || k >= ai->mNumTextures) {
-            fail(err, errlen, "%s: texture '%s': no such embedded image", l->path, ref);
+            scene_fail(err, errlen, "%s: texture '%s': no such embedded image", l->path, ref);
             return -1;
         }
         emb = ai->mTextures[k];
@@ -807,8 +796,8 @@ static int load_image(loaded *l, const char *ref, char *err, size_t errlen)
         /* already decoded by assimp: BGRA texels */
         uint64_t n = (uint64_t)emb->mWidth * emb->mHeight;
         if (n > FILE_MAX_BYTES / 4) {
-            fail(err, errlen, "%s: embedded texture '%s' of %ux%u texels is too large", l->path,
-                 ref, emb->mWidth, emb->mHeight);
+            scene_fail(err, errlen, "%s: embedded texture '%s' of %ux%u texels is too large",
+                       l->path, ref, emb->mWidth, emb->mHeight);
             return -1;
         }
         img.width = (int)emb->mWidth;
@@ -817,7 +806,7 @@ static int load_image(loaded *l, const char *ref, char *err, size_t errlen)
         img.type = IMAGE_U8;
         img.pixels = malloc((size_t)n * 4);
         if (!img.pixels) {
-            fail(err, errlen, "%s: out of memory for texture '%s'", l->path, ref);
+            scene_fail(err, errlen, "%s: out of memory for texture '%s'", l->path, ref);
             return -1;
         }
         unsigned char *p = img.pixels;
@@ -842,10 +831,10 @@ static int load_image(loaded *l, const char *ref, char *err, size_t errlen)
             const read_file *f = file_get(&l->files, name);
             if (!f) {
                 if (l->files.err[0])
-                    fail(err, errlen, "%s: %s", l->path, l->files.err);
+                    scene_fail(err, errlen, "%s: %s", l->path, l->files.err);
                 else
-                    fail(err, errlen, "%s: image '%s' is missing (%s: %s)", l->path, ref, name,
-                         strerror(errno ? errno : ENOENT));
+                    scene_fail(err, errlen, "%s: image '%s' is missing (%s: %s)", l->path, ref,
+                               name, strerror(errno ? errno : ENOENT));
                 return -1;
             }
             bytes = f->data;
@@ -853,17 +842,17 @@ static int load_image(loaded *l, const char *ref, char *err, size_t errlen)
         }
         int w = 0, h = 0;
         if (!image_probe(bytes, size, name, &w, &h, why, sizeof why)) {
-            fail(err, errlen, "%s: texture '%s' does not decode: %s", l->path, ref, why);
+            scene_fail(err, errlen, "%s: texture '%s' does not decode: %s", l->path, ref, why);
             return -1;
         }
         if (w > (int)TEXTURE_MAX_SIZE || h > (int)TEXTURE_MAX_SIZE) {
-            fail(err, errlen, "%s: texture '%s' is %dx%d, more than %u texels a side", l->path,
-                 ref, w, h, TEXTURE_MAX_SIZE);
+            scene_fail(err, errlen, "%s: texture '%s' is %dx%d, more than %u texels a side",
+                       l->path, ref, w, h, TEXTURE_MAX_SIZE);
             return -1;
         }
         image raw;
         if (!image_decode(bytes, size, name, IMAGE_U8, &raw, why, sizeof why)) {
-            fail(err, errlen, "%s: texture '%s' does not decode: %s", l->path, ref, why);
+            scene_fail(err, errlen, "%s: texture '%s' does not decode: %s", l->path, ref, why);
             return -1;
         }
         /* to RGBA: grey -> rgb, no alpha -> 255 */
@@ -875,7 +864,7 @@ static int load_image(loaded *l, const char *ref, char *err, size_t errlen)
         img.pixels = malloc(n * 4);
         if (!img.pixels) {
             image_free(&raw);
-            fail(err, errlen, "%s: out of memory for texture '%s'", l->path, ref);
+            scene_fail(err, errlen, "%s: out of memory for texture '%s'", l->path, ref);
             return -1;
         }
         const unsigned char *s = raw.pixels;
@@ -891,8 +880,8 @@ static int load_image(loaded *l, const char *ref, char *err, size_t errlen)
         image_free(&raw);
     }
     if (img.width > (int)TEXTURE_MAX_SIZE || img.height > (int)TEXTURE_MAX_SIZE) {
-        fail(err, errlen, "%s: texture '%s' is %dx%d, more than %u texels a side", l->path, ref,
-             img.width, img.height, TEXTURE_MAX_SIZE);
+        scene_fail(err, errlen, "%s: texture '%s' is %dx%d, more than %u texels a side", l->path,
+                   ref, img.width, img.height, TEXTURE_MAX_SIZE);
         image_free(&img);
         return -1;
     }
@@ -901,7 +890,7 @@ static int load_image(loaded *l, const char *ref, char *err, size_t errlen)
         loaded_image *g = realloc(l->images, cap * sizeof *g);
         if (!g) {
             image_free(&img);
-            fail(err, errlen, "%s: out of memory", l->path);
+            scene_fail(err, errlen, "%s: out of memory", l->path);
             return -1;
         }
         l->images = g;
@@ -911,7 +900,7 @@ static int load_image(loaded *l, const char *ref, char *err, size_t errlen)
     l->images[l->nimages].img = img;
     if (!l->images[l->nimages].ref) {
         image_free(&img);
-        fail(err, errlen, "%s: out of memory", l->path);
+        scene_fail(err, errlen, "%s: out of memory", l->path);
         return -1;
     }
     return (int)l->nimages++;
@@ -958,17 +947,17 @@ static bool check_nodes(const loaded *l, const struct aiNode *n, unsigned depth,
                         const struct aiNode **path, char *err, size_t errlen)
 {
     if (depth >= FILE_MAX_NODE_DEPTH)
-        return fail(err, errlen, "%s: the node hierarchy is more than %u deep (recursive?)",
-                    l->path, FILE_MAX_NODE_DEPTH);
+        return scene_fail(err, errlen, "%s: the node hierarchy is more than %u deep (recursive?)",
+                          l->path, FILE_MAX_NODE_DEPTH);
     for (unsigned i = 0; i < depth; i++)
         if (path[i] == n)
-            return fail(err, errlen, "%s: node '%s' contains itself: the hierarchy recurses",
-                        l->path, n->mName.data);
+            return scene_fail(err, errlen, "%s: node '%s' contains itself: the hierarchy recurses",
+                              l->path, n->mName.data);
     path[depth] = n;
     for (unsigned i = 0; i < n->mNumMeshes; i++)
         if (n->mMeshes[i] >= l->ai->mNumMeshes)
-            return fail(err, errlen, "%s: node '%s' names mesh %u of %u", l->path,
-                        n->mName.data, n->mMeshes[i], l->ai->mNumMeshes);
+            return scene_fail(err, errlen, "%s: node '%s' names mesh %u of %u", l->path,
+                              n->mName.data, n->mMeshes[i], l->ai->mNumMeshes);
     for (unsigned i = 0; i < n->mNumChildren; i++)
         if (!check_nodes(l, n->mChildren[i], depth + 1, path, err, errlen))
             return false;
@@ -995,31 +984,32 @@ static bool load(const scene_file_options *o, loaded *l, char *err, size_t errle
 {
     memset(l, 0, sizeof *l);
     if (!o || !o->path || !o->path[0])
-        return fail(err, errlen, "scene file: no path");
+        return scene_fail(err, errlen, "scene file: no path");
     l->path = o->path;
     if (!(o->scale == 0.0f || (isfinite(o->scale) && o->scale > 0.0f)))
-        return fail(err, errlen, "%s: scale %g: expected a finite number > 0", o->path,
-                    (double)o->scale);
+        return scene_fail(err, errlen, "%s: scale %g: expected a finite number > 0", o->path,
+                          (double)o->scale);
     const char *slash = strrchr(o->path, '/');
     if (slash) {
         size_t n = (size_t)(slash - o->path) + 1;
         if (n >= sizeof l->dir)
-            return fail(err, errlen, "%s: path too long", o->path);
+            return scene_fail(err, errlen, "%s: path too long", o->path);
         memcpy(l->dir, o->path, n);
         l->dir[n] = '\0';
     }
     errno = 0;
     if (!file_get(&l->files, o->path)) {
         if (l->files.err[0])
-            fail(err, errlen, "%s", l->files.err);
+            scene_fail(err, errlen, "%s", l->files.err);
         else
-            fail(err, errlen, "%s: cannot open: %s", o->path, strerror(errno ? errno : ENOENT));
+            scene_fail(err, errlen, "%s: cannot open: %s", o->path,
+                       strerror(errno ? errno : ENOENT));
         loaded_free(l);
         return false;
     }
     /* what the file references is read from inside its folder */
     if (!realpath(l->dir[0] ? l->dir : ".", l->files.root)) {
-        fail(err, errlen, "%s: cannot resolve its folder: %s", o->path, strerror(errno));
+        scene_fail(err, errlen, "%s: cannot resolve its folder: %s", o->path, strerror(errno));
         loaded_free(l);
         return false;
     }
@@ -1045,32 +1035,33 @@ static bool load(const scene_file_options *o, loaded *l, char *err, size_t errle
     bool ok = false;
     const struct aiScene *ai = l->ai;
     if (l->files.err[0]) {   /* a refused file, even where the importer went on */
-        fail(err, errlen, "%s: %s", o->path, l->files.err);
+        scene_fail(err, errlen, "%s: %s", o->path, l->files.err);
         goto out;
     }
     if (l->files.missing[0]) {
-        fail(err, errlen, "%s: references %s, which does not exist", o->path,
-             l->files.missing);
+        scene_fail(err, errlen, "%s: references %s, which does not exist", o->path,
+                   l->files.missing);
         goto out;
     }
     if (ai && import_warning[0]) {
-        fail(err, errlen, "%s: indices out of range: %s", o->path, import_warning);
+        scene_fail(err, errlen, "%s: indices out of range: %s", o->path, import_warning);
         goto out;
     }
     if (!ai) {
         const char *why = aiGetErrorString();
         if (l->files.err[0])
-            fail(err, errlen, "%s", l->files.err);
+            scene_fail(err, errlen, "%s", l->files.err);
         else
-            fail(err, errlen, "%s: cannot load: %s", o->path, why && why[0] ? why : "unknown error");
+            scene_fail(err, errlen, "%s: cannot load: %s", o->path,
+                       why && why[0] ? why : "unknown error");
         goto out;
     }
     if (ai->mFlags & AI_SCENE_FLAGS_INCOMPLETE) {
-        fail(err, errlen, "%s: incomplete scene (assimp could not read all of it)", o->path);
+        scene_fail(err, errlen, "%s: incomplete scene (assimp could not read all of it)", o->path);
         goto out;
     }
     if (!ai->mRootNode || ai->mNumMeshes == 0) {
-        fail(err, errlen, "%s: empty scene: no triangle meshes", o->path);
+        scene_fail(err, errlen, "%s: empty scene: no triangle meshes", o->path);
         goto out;
     }
     const struct aiNode *path[FILE_MAX_NODE_DEPTH];
@@ -1079,40 +1070,41 @@ static bool load(const scene_file_options *o, loaded *l, char *err, size_t errle
     for (unsigned i = 0; i < ai->mNumMeshes; i++) {
         const struct aiMesh *m = ai->mMeshes[i];
         if (!m->mVertices || m->mNumVertices == 0 || m->mNumFaces == 0) {
-            fail(err, errlen, "%s: mesh %u ('%s') has no triangles", o->path, i, m->mName.data);
+            scene_fail(err, errlen, "%s: mesh %u ('%s') has no triangles", o->path, i,
+                       m->mName.data);
             goto out;
         }
         if (m->mNumVertices > MESH_MAX_VERTICES || m->mNumFaces > MESH_MAX_INDICES / 3) {
-            fail(err, errlen, "%s: mesh %u has %u vertices and %u triangles (at most %u and %u)",
-                 o->path, i, m->mNumVertices, m->mNumFaces, MESH_MAX_VERTICES,
-                 MESH_MAX_INDICES / 3);
+            scene_fail(err, errlen,
+                       "%s: mesh %u has %u vertices and %u triangles (at most %u and %u)", o->path,
+                       i, m->mNumVertices, m->mNumFaces, MESH_MAX_VERTICES, MESH_MAX_INDICES / 3);
             goto out;
         }
         for (unsigned v = 0; v < m->mNumVertices; v++)
             if (!finite3(&m->mVertices[v])) {
-                fail(err, errlen, "%s: mesh %u ('%s'): vertex %u has a position that is not "
-                     "finite (%g, %g, %g)", o->path, i, m->mName.data, v,
-                     (double)m->mVertices[v].x, (double)m->mVertices[v].y,
-                     (double)m->mVertices[v].z);
+                scene_fail(err, errlen, "%s: mesh %u ('%s'): vertex %u has a position that is not "
+                           "finite (%g, %g, %g)", o->path, i, m->mName.data, v,
+                           (double)m->mVertices[v].x, (double)m->mVertices[v].y,
+                           (double)m->mVertices[v].z);
                 goto out;
             }
         for (unsigned f = 0; f < m->mNumFaces; f++) {
             const struct aiFace *fc = &m->mFaces[f];
             if (fc->mNumIndices != 3) {
-                fail(err, errlen, "%s: mesh %u: face %u has %u corners after triangulation",
-                     o->path, i, f, fc->mNumIndices);
+                scene_fail(err, errlen, "%s: mesh %u: face %u has %u corners after triangulation",
+                           o->path, i, f, fc->mNumIndices);
                 goto out;
             }
             for (unsigned k = 0; k < 3; k++)
                 if (fc->mIndices[k] >= m->mNumVertices) {
-                    fail(err, errlen, "%s: mesh %u: index %u out of range (%u vertices)",
-                         o->path, i, fc->mIndices[k], m->mNumVertices);
+                    scene_fail(err, errlen, "%s: mesh %u: index %u out of range (%u vertices)",
+                               o->path, i, fc->mIndices[k], m->mNumVertices);
                     goto out;
                 }
         }
         if (m->mMaterialIndex >= ai->mNumMaterials) {
-            fail(err, errlen, "%s: mesh %u uses material %u of %u", o->path, i,
-                 m->mMaterialIndex, ai->mNumMaterials);
+            scene_fail(err, errlen, "%s: mesh %u uses material %u of %u", o->path, i,
+                       m->mMaterialIndex, ai->mNumMaterials);
             goto out;
         }
     }
@@ -1134,8 +1126,8 @@ static bool load(const scene_file_options *o, loaded *l, char *err, size_t errle
             for (unsigned i = 0; i < ai->mNumCameras && k + 4 < sizeof names; i++)
                 k += (size_t)snprintf(names + k, sizeof names - k, "%s'%s'", i ? ", " : "",
                                       ai->mCameras[i]->mName.data);
-            fail(err, errlen, "%s: no camera named '%s' (the file has %s%s)", o->path,
-                 o->camera, ai->mNumCameras ? "" : "none", names);
+            scene_fail(err, errlen, "%s: no camera named '%s' (the file has %s%s)", o->path,
+                       o->camera, ai->mNumCameras ? "" : "none", names);
             goto out;
         }
     }
@@ -1304,11 +1296,11 @@ bool scene_file_check(const scene_file_options *o, scene_file_info *info, char *
     counts_of(o, &l, &c);
     bool ok = true;
     if (c.objects == 0 || !(c.lo[0] <= c.hi[0])) {
-        ok = fail(err, errlen, "%s: empty scene: no node draws a mesh", o->path);
+        ok = scene_fail(err, errlen, "%s: empty scene: no node draws a mesh", o->path);
     } else if (!(isfinite(c.lo[0]) && isfinite(c.lo[1]) && isfinite(c.lo[2]) &&
                  isfinite(c.hi[0]) && isfinite(c.hi[1]) && isfinite(c.hi[2]))) {
-        ok = fail(err, errlen, "%s: node transforms put vertices at non-finite positions",
-                  o->path);
+        ok = scene_fail(err, errlen, "%s: node transforms put vertices at non-finite positions",
+                        o->path);
     }
     if (ok && info) {
         memset(info, 0, sizeof *info);

@@ -5,30 +5,17 @@
 #include "scenes/mesh.h"
 
 #include <math.h>
-#include <stdarg.h>
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
 
+#include "scenes/scene_fail.h"
 #include "scenes/texture_gen.h"
 
 /* >>helpers ---------------------------------------------------------------------------- */
 
 #define PI_D 3.14159265358979323846264338327950288
 #define TWO_PI (2.0 * PI_D)
-
-static void fail(char *err, size_t errlen, const char *fmt, ...)
-    __attribute__((format(printf, 3, 4)));
-
-static void fail(char *err, size_t errlen, const char *fmt, ...)
-{
-    if (!err || !errlen)
-        return;
-    va_list ap;
-    va_start(ap, fmt);
-    vsnprintf(err, errlen, fmt, ap);
-    va_end(ap);
-}
 
 static bool positive(float x) { return isfinite(x) && x > 0.0f; }
 
@@ -37,18 +24,16 @@ static bool mesh_alloc(mesh *m, uint64_t nv, uint64_t ni, const char *who, char 
                        size_t errlen)
 {
     memset(m, 0, sizeof *m);
-    if (nv > MESH_MAX_VERTICES || ni > MESH_MAX_INDICES) {
-        fail(err, errlen, "%s: %llu vertices and %llu indices are more than the limit "
-             "(%u, %u)", who, (unsigned long long)nv, (unsigned long long)ni,
-             MESH_MAX_VERTICES, MESH_MAX_INDICES);
-        return false;
-    }
+    if (nv > MESH_MAX_VERTICES || ni > MESH_MAX_INDICES)
+        return scene_fail(err, errlen, "%s: %llu vertices and %llu indices are more than the limit "
+                          "(%u, %u)", who, (unsigned long long)nv, (unsigned long long)ni,
+                          MESH_MAX_VERTICES, MESH_MAX_INDICES);
     m->vertices = calloc(nv ? nv : 1, sizeof *m->vertices);
     m->indices = calloc(ni ? ni : 1, sizeof *m->indices);
     if (!m->vertices || !m->indices) {
         mesh_free(m);
-        fail(err, errlen, "%s: out of memory for %llu vertices", who, (unsigned long long)nv);
-        return false;
+        return scene_fail(err, errlen, "%s: out of memory for %llu vertices", who,
+                          (unsigned long long)nv);
     }
     m->nvertices = (uint32_t)nv;
     m->nindices = (uint32_t)ni;
@@ -198,16 +183,13 @@ bool mesh_sphere(float radius, uint32_t slices, uint32_t stacks, mesh *out,
                  char *err, size_t errlen)
 {
     memset(out, 0, sizeof *out);
-    if (!positive(radius)) {
-        fail(err, errlen, "mesh_sphere: radius must be positive and finite (got %g)",
-             (double)radius);
-        return false;
-    }
-    if (slices < 3 || stacks < 2) {
-        fail(err, errlen, "mesh_sphere: needs slices >= 3 and stacks >= 2 (got %u, %u)",
-             slices, stacks);
-        return false;
-    }
+    if (!positive(radius))
+        return scene_fail(err, errlen, "mesh_sphere: radius must be positive and finite (got %g)",
+                          (double)radius);
+    if (slices < 3 || stacks < 2)
+        return scene_fail(err, errlen,
+                          "mesh_sphere: needs slices >= 3 and stacks >= 2 (got %u, %u)", slices,
+                          stacks);
     uint64_t S = slices, T = stacks;
     if (!mesh_alloc(out, (T - 1) * (S + 1) + 2 * S, 6 * S * (T - 1), "mesh_sphere", err,
                     errlen))
@@ -312,15 +294,13 @@ static size_t ico_slot(const ico_face *fc, uint32_t i, uint32_t j, int32_t *la, 
 bool mesh_icosphere(float radius, uint32_t subdivisions, mesh *out, char *err, size_t errlen)
 {
     memset(out, 0, sizeof *out);
-    if (!positive(radius)) {
-        fail(err, errlen, "mesh_icosphere: radius must be positive and finite (got %g)",
-             (double)radius);
-        return false;
-    }
-    if (subdivisions > 8) {
-        fail(err, errlen, "mesh_icosphere: at most 8 subdivisions (got %u)", subdivisions);
-        return false;
-    }
+    if (!positive(radius))
+        return scene_fail(err, errlen,
+                          "mesh_icosphere: radius must be positive and finite (got %g)",
+                          (double)radius);
+    if (subdivisions > 8)
+        return scene_fail(err, errlen, "mesh_icosphere: at most 8 subdivisions (got %u)",
+                          subdivisions);
     uint32_t f = 1u << subdivisions;
     uint64_t F = f;
     if (!mesh_alloc(out, (F + 1) * (10 * F + 1), 60 * F * F, "mesh_icosphere", err, errlen))
@@ -332,8 +312,7 @@ bool mesh_icosphere(float radius, uint32_t subdivisions, mesh *out, char *err, s
     int32_t *slot = malloc((size_t)na * nb * sizeof *slot);
     if (!slot) {
         mesh_free(out);
-        fail(err, errlen, "mesh_icosphere: out of memory");
-        return false;
+        return scene_fail(err, errlen, "mesh_icosphere: out of memory");
     }
     for (size_t i = 0; i < (size_t)na * nb; i++)
         slot[i] = -1;
@@ -394,15 +373,14 @@ bool mesh_icosphere(float radius, uint32_t subdivisions, mesh *out, char *err, s
     }
     free(slot);
     if (nv != out->nvertices || (uint32_t)(ip - out->indices) != out->nindices) {
-        fail(err, errlen, "bug: mesh_icosphere made %u vertices and %u indices, not %u, %u",
-             nv, (uint32_t)(ip - out->indices), out->nvertices, out->nindices);
+        scene_fail(err, errlen, "bug: mesh_icosphere made %u vertices and %u indices, not %u, %u",
+                   nv, (uint32_t)(ip - out->indices), out->nvertices, out->nindices);
         mesh_free(out);
         return false;
     }
     if (!mesh_compute_tangents(out)) {
         mesh_free(out);
-        fail(err, errlen, "mesh_icosphere: out of memory");
-        return false;
+        return scene_fail(err, errlen, "mesh_icosphere: out of memory");
     }
     mesh_compute_bounds(out);
     return true;
@@ -414,15 +392,11 @@ bool mesh_cone(float radius, float height, uint32_t segments, bool capped, mesh 
                char *err, size_t errlen)
 {
     memset(out, 0, sizeof *out);
-    if (!positive(radius) || !positive(height)) {
-        fail(err, errlen, "mesh_cone: radius and height must be positive and finite "
-             "(got %g, %g)", (double)radius, (double)height);
-        return false;
-    }
-    if (segments < 3) {
-        fail(err, errlen, "mesh_cone: needs segments >= 3 (got %u)", segments);
-        return false;
-    }
+    if (!positive(radius) || !positive(height))
+        return scene_fail(err, errlen, "mesh_cone: radius and height must be positive and finite "
+                          "(got %g, %g)", (double)radius, (double)height);
+    if (segments < 3)
+        return scene_fail(err, errlen, "mesh_cone: needs segments >= 3 (got %u)", segments);
     uint64_t S = segments;
     if (!mesh_alloc(out, capped ? 3 * S + 2 : 2 * S + 1, capped ? 6 * S : 3 * S, "mesh_cone",
                     err, errlen))
@@ -537,21 +511,19 @@ static void box_faces(mesh *m, const sm_vec3 h, unsigned mask, bool inward, floa
 
 static bool check_half(const sm_vec3 half, const char *who, char *err, size_t errlen)
 {
-    if (!half || !positive(half[0]) || !positive(half[1]) || !positive(half[2])) {
-        fail(err, errlen, "%s: half extents must be positive and finite (got %g, %g, %g)",
-             who, half ? (double)half[0] : 0.0, half ? (double)half[1] : 0.0,
-             half ? (double)half[2] : 0.0);
-        return false;
-    }
+    if (!half || !positive(half[0]) || !positive(half[1]) || !positive(half[2]))
+        return scene_fail(err, errlen,
+                          "%s: half extents must be positive and finite (got %g, %g, %g)", who,
+                          half ? (double)half[0] : 0.0, half ? (double)half[1] : 0.0,
+                          half ? (double)half[2] : 0.0);
     return true;
 }
 
 static bool check_uv_scale(float s, const char *who, char *err, size_t errlen)
 {
-    if (!(isfinite(s) && s >= 0.0f)) {
-        fail(err, errlen, "%s: uv_scale must be >= 0 and finite (got %g)", who, (double)s);
-        return false;
-    }
+    if (!(isfinite(s) && s >= 0.0f))
+        return scene_fail(err, errlen, "%s: uv_scale must be >= 0 and finite (got %g)", who,
+                          (double)s);
     return true;
 }
 
@@ -584,11 +556,10 @@ bool mesh_corridor(float width, float height, float length, float uv_scale, mesh
     memset(out, 0, sizeof *out);
     sm_vec3 half = {0.5f * width, 0.5f * height, 0.5f * length};
     if (!positive(width) || !positive(height) || !positive(length) || !positive(half[0]) ||
-        !positive(half[1]) || !positive(half[2])) {
-        fail(err, errlen, "mesh_corridor: width, height and length must be positive and "
-             "finite (got %g, %g, %g)", (double)width, (double)height, (double)length);
-        return false;
-    }
+        !positive(half[1]) || !positive(half[2]))
+        return scene_fail(err, errlen,
+                          "mesh_corridor: width, height and length must be positive and "
+                          "finite (got %g, %g, %g)", (double)width, (double)height, (double)length);
     if (!check_uv_scale(uv_scale, "mesh_corridor", err, errlen) ||
         !mesh_alloc(out, 16, 24, "mesh_corridor", err, errlen))
         return false;
@@ -603,39 +574,34 @@ bool mesh_lathe(const sm_vec2 *profile, uint32_t npoints, uint32_t segments, mes
                 char *err, size_t errlen)
 {
     memset(out, 0, sizeof *out);
-    if (!profile || npoints < 2 || segments < 3) {
-        fail(err, errlen, "mesh_lathe: needs a profile of >= 2 points and segments >= 3 "
-             "(got %u points, %u segments)", profile ? npoints : 0, segments);
-        return false;
-    }
+    if (!profile || npoints < 2 || segments < 3)
+        return scene_fail(err, errlen,
+                          "mesh_lathe: needs a profile of >= 2 points and segments >= 3 "
+                          "(got %u points, %u segments)", profile ? npoints : 0, segments);
     uint64_t nv = 0, ni = 0, S = segments;
     double total = 0.0;
     for (uint32_t k = 0; k < npoints; k++) {
         const float *p = profile[k];
-        if (!isfinite(p[0]) || !isfinite(p[1]) || p[0] < 0.0f) {
-            fail(err, errlen, "mesh_lathe: profile point %u (%g, %g) must be finite with "
-                 "r >= 0", k, (double)p[0], (double)p[1]);
-            return false;
-        }
+        if (!isfinite(p[0]) || !isfinite(p[1]) || p[0] < 0.0f)
+            return scene_fail(err, errlen,
+                              "mesh_lathe: profile point %u (%g, %g) must be finite with " "r >= 0",
+                              k, (double)p[0], (double)p[1]);
         if (k == 0)
             continue;
         const float *q = profile[k - 1];
         double dr = (double)p[0] - q[0], dy = (double)p[1] - q[1];
         double len = sqrt(dr * dr + dy * dy);
-        if (!(len > 0.0) || !isfinite(len) || (p[0] == 0.0f && q[0] == 0.0f)) {
-            fail(err, errlen, "mesh_lathe: profile segment %u..%u is empty or lies on the "
-                 "axis", k - 1, k);
-            return false;
-        }
+        if (!(len > 0.0) || !isfinite(len) || (p[0] == 0.0f && q[0] == 0.0f))
+            return scene_fail(err, errlen,
+                              "mesh_lathe: profile segment %u..%u is empty or lies on the " "axis",
+                              k - 1, k);
         total += len;
         bool axis = p[0] == 0.0f || q[0] == 0.0f;
         nv += axis ? 2 * S + 1 : 2 * (S + 1);
         ni += axis ? 3 * S : 6 * S;
     }
-    if (!isfinite(total)) {
-        fail(err, errlen, "mesh_lathe: profile too long");
-        return false;
-    }
+    if (!isfinite(total))
+        return scene_fail(err, errlen, "mesh_lathe: profile too long");
     if (!mesh_alloc(out, nv, ni, "mesh_lathe", err, errlen))
         return false;
     uint32_t base = 0, *ip = out->indices;
@@ -690,11 +656,10 @@ bool mesh_cylinder(float radius, float height, uint32_t segments, mesh *out,
 {
     memset(out, 0, sizeof *out);
     float h = 0.5f * height;
-    if (!positive(radius) || !positive(height) || !positive(h)) {
-        fail(err, errlen, "mesh_cylinder: radius and height must be positive and finite "
-             "(got %g, %g)", (double)radius, (double)height);
-        return false;
-    }
+    if (!positive(radius) || !positive(height) || !positive(h))
+        return scene_fail(err, errlen,
+                          "mesh_cylinder: radius and height must be positive and finite "
+                          "(got %g, %g)", (double)radius, (double)height);
     const sm_vec2 prof[4] = {{0.0f, -h}, {radius, -h}, {radius, h}, {0.0f, h}};
     return mesh_lathe(prof, 4, segments, out, err, errlen);
 }
@@ -704,11 +669,9 @@ bool mesh_pillar(float radius, float height, uint32_t segments, mesh *out,
 {
     memset(out, 0, sizeof *out);
     float h = 0.5f * height, R = 1.4f * radius;
-    if (!positive(radius) || !positive(height) || !positive(R) || !positive(h)) {
-        fail(err, errlen, "mesh_pillar: radius and height must be positive and finite "
-             "(got %g, %g)", (double)radius, (double)height);
-        return false;
-    }
+    if (!positive(radius) || !positive(height) || !positive(R) || !positive(h))
+        return scene_fail(err, errlen, "mesh_pillar: radius and height must be positive and finite "
+                          "(got %g, %g)", (double)radius, (double)height);
     const float a = 0.06f * height, b = 0.10f * height;
     const sm_vec2 prof[8] = {
         {0.0f, -h}, {R, -h}, {R, -h + a}, {radius, -h + b},
@@ -778,21 +741,17 @@ bool mesh_torus_knot(uint32_t p, uint32_t q, float radius, float tube_radius,
                      uint32_t segments, uint32_t sides, mesh *out, char *err, size_t errlen)
 {
     memset(out, 0, sizeof *out);
-    if (p < 1 || q < 1 || gcd_u32(p, q) != 1 || p > 1000 || q > 1000) {
-        fail(err, errlen, "mesh_torus_knot: p and q must be coprime, 1..1000 (got %u, %u)",
-             p, q);
-        return false;
-    }
-    if (!positive(radius) || !positive(tube_radius) || !(tube_radius < radius / 3.0f)) {
-        fail(err, errlen, "mesh_torus_knot: needs 0 < tube_radius < radius / 3, finite "
-             "(got radius %g, tube_radius %g)", (double)radius, (double)tube_radius);
-        return false;
-    }
-    if (segments < 3 || sides < 3) {
-        fail(err, errlen, "mesh_torus_knot: needs segments >= 3 and sides >= 3 (got %u, %u)",
-             segments, sides);
-        return false;
-    }
+    if (p < 1 || q < 1 || gcd_u32(p, q) != 1 || p > 1000 || q > 1000)
+        return scene_fail(err, errlen,
+                          "mesh_torus_knot: p and q must be coprime, 1..1000 (got %u, %u)", p, q);
+    if (!positive(radius) || !positive(tube_radius) || !(tube_radius < radius / 3.0f))
+        return scene_fail(err, errlen,
+                          "mesh_torus_knot: needs 0 < tube_radius < radius / 3, finite "
+                          "(got radius %g, tube_radius %g)", (double)radius, (double)tube_radius);
+    if (segments < 3 || sides < 3)
+        return scene_fail(err, errlen,
+                          "mesh_torus_knot: needs segments >= 3 and sides >= 3 (got %u, %u)",
+                          segments, sides);
     uint64_t S = segments, N = sides;
     if (!mesh_alloc(out, (S + 1) * (N + 1), 6 * S * N, "mesh_torus_knot", err, errlen))
         return false;
@@ -893,16 +852,15 @@ bool mesh_heightfield_fn(float size_x, float size_z, uint32_t cells_x, uint32_t 
                          mesh_height_fn fn, void *user, mesh *out, char *err, size_t errlen)
 {
     memset(out, 0, sizeof *out);
-    if (!positive(size_x) || !positive(size_z) || !fn) {
-        fail(err, errlen, "mesh_heightfield: sizes must be positive and finite (got %g, %g)%s",
-             (double)size_x, (double)size_z, fn ? "" : ", and a height function is needed");
-        return false;
-    }
-    if (cells_x < 1 || cells_z < 1) {
-        fail(err, errlen, "mesh_heightfield: needs at least 1 cell each way (got %u x %u)",
-             cells_x, cells_z);
-        return false;
-    }
+    if (!positive(size_x) || !positive(size_z) || !fn)
+        return scene_fail(err, errlen,
+                          "mesh_heightfield: sizes must be positive and finite (got %g, %g)%s",
+                          (double)size_x, (double)size_z,
+                          fn ? "" : ", and a height function is needed");
+    if (cells_x < 1 || cells_z < 1)
+        return scene_fail(err, errlen,
+                          "mesh_heightfield: needs at least 1 cell each way (got %u x %u)", cells_x,
+                          cells_z);
     uint64_t cx = cells_x, cz = cells_z;
     if (!mesh_alloc(out, (cx + 1) * (cz + 1), 6 * cx * cz, "mesh_heightfield", err, errlen))
         return false;
@@ -912,8 +870,7 @@ bool mesh_heightfield_fn(float size_x, float size_z, uint32_t cells_x, uint32_t 
     float *hg = malloc((size_t)gw * (cells_z + 3) * sizeof *hg);
     if (!hg) {
         mesh_free(out);
-        fail(err, errlen, "mesh_heightfield: out of memory");
-        return false;
+        return scene_fail(err, errlen, "mesh_heightfield: out of memory");
     }
     for (uint32_t k = 0; k < cells_z + 3; k++) {
         for (uint32_t i = 0; i < gw; i++) {
@@ -922,8 +879,8 @@ bool mesh_heightfield_fn(float size_x, float size_z, uint32_t cells_x, uint32_t 
             float x = size_x * (u - 0.5f), z = size_z * (0.5f - w);
             float h = fn(x, z, user);
             if (!isfinite(h)) {
-                fail(err, errlen, "mesh_heightfield: the height function returned %g at "
-                     "(%g, %g)", (double)h, (double)x, (double)z);
+                scene_fail(err, errlen, "mesh_heightfield: the height function returned %g at "
+                           "(%g, %g)", (double)h, (double)x, (double)z);
                 free(hg);
                 mesh_free(out);
                 return false;
@@ -975,11 +932,10 @@ bool mesh_heightfield(float size_x, float size_z, uint32_t cells_x, uint32_t cel
                       float height_scale, uint32_t seed, mesh *out, char *err, size_t errlen)
 {
     memset(out, 0, sizeof *out);
-    if (!(isfinite(height_scale) && height_scale >= 0.0f)) {
-        fail(err, errlen, "mesh_heightfield: height_scale must be >= 0 and finite (got %g)",
-             (double)height_scale);
-        return false;
-    }
+    if (!(isfinite(height_scale) && height_scale >= 0.0f))
+        return scene_fail(err, errlen,
+                          "mesh_heightfield: height_scale must be >= 0 and finite (got %g)",
+                          (double)height_scale);
     mesh_terrain t;
     mesh_terrain_init(&t, size_x, size_z, height_scale, seed);
     return mesh_heightfield_fn(size_x, size_z, cells_x, cells_z, mesh_terrain_height, &t, out,
@@ -1017,11 +973,10 @@ static double min_face_distance(const mesh *m, double scale)
 bool mesh_light_sphere(uint32_t slices, uint32_t stacks, mesh *out, char *err, size_t errlen)
 {
     memset(out, 0, sizeof *out);
-    if (slices < 3 || stacks < 2) {
-        fail(err, errlen, "mesh_light_sphere: needs slices >= 3 and stacks >= 2 (got %u, %u)",
-             slices, stacks);
-        return false;
-    }
+    if (slices < 3 || stacks < 2)
+        return scene_fail(err, errlen,
+                          "mesh_light_sphere: needs slices >= 3 and stacks >= 2 (got %u, %u)",
+                          slices, stacks);
     if (!mesh_sphere(1.0f, slices, stacks, out, err, errlen))
         return false;
     /* Scale so that every face plane is at least 1 + margin out, checking the rounded
@@ -1040,15 +995,12 @@ bool mesh_light_sphere(uint32_t slices, uint32_t stacks, mesh *out, char *err, s
 bool mesh_light_cone(float half_angle, uint32_t segments, mesh *out, char *err, size_t errlen)
 {
     memset(out, 0, sizeof *out);
-    if (!(isfinite(half_angle) && half_angle > 0.0f && half_angle < SM_PI_2)) {
-        fail(err, errlen, "mesh_light_cone: half_angle must be in (0, pi/2) radians (got %g)",
-             (double)half_angle);
-        return false;
-    }
-    if (segments < 3) {
-        fail(err, errlen, "mesh_light_cone: needs segments >= 3 (got %u)", segments);
-        return false;
-    }
+    if (!(isfinite(half_angle) && half_angle > 0.0f && half_angle < SM_PI_2))
+        return scene_fail(err, errlen,
+                          "mesh_light_cone: half_angle must be in (0, pi/2) radians (got %g)",
+                          (double)half_angle);
+    if (segments < 3)
+        return scene_fail(err, errlen, "mesh_light_cone: needs segments >= 3 (got %u)", segments);
     /* The pyramid with its apex m behind the origin and its base m beyond z = -1,
      * inradius tan(half_angle) (1 + 2m) there: at z = -1 its inradius is
      * tan(half_angle) (1 + m), so apex and base circle of the true cone, and with them
@@ -1057,11 +1009,9 @@ bool mesh_light_cone(float half_angle, uint32_t segments, mesh *out, char *err, 
     double m = LIGHT_VOLUME_MARGIN;
     double r = tan((double)half_angle) * (1.0 + 2.0 * m) / cos(PI_D / (double)segments);
     float radius = (float)r, height = (float)(1.0 + 2.0 * m);
-    if (!positive(radius)) {
-        fail(err, errlen, "mesh_light_cone: half_angle %g too close to pi/2",
-             (double)half_angle);
-        return false;
-    }
+    if (!positive(radius))
+        return scene_fail(err, errlen, "mesh_light_cone: half_angle %g too close to pi/2",
+                          (double)half_angle);
     if (!mesh_cone(radius, height, segments, true, out, err, errlen))
         return false;
     for (uint32_t i = 0; i < out->nvertices; i++)
@@ -1157,10 +1107,8 @@ static void transform_vertices(mesh_vertex *v, uint32_t n, const sm_mat4 mat)
 bool mesh_transform(mesh *m, const sm_mat4 mat, char *err, size_t errlen)
 {
     float det3;
-    if (!mat || !mat_ok(mat, &det3)) {
-        fail(err, errlen, "mesh_transform: the matrix is singular or not finite");
-        return false;
-    }
+    if (!mat || !mat_ok(mat, &det3))
+        return scene_fail(err, errlen, "mesh_transform: the matrix is singular or not finite");
     transform_vertices(m->vertices, m->nvertices, mat);
     if (det3 < 0.0f)
         for (uint32_t t = 0; t + 2 < m->nindices; t += 3) {
@@ -1175,26 +1123,22 @@ bool mesh_transform(mesh *m, const sm_mat4 mat, char *err, size_t errlen)
 bool mesh_append(mesh *dst, const mesh *src, const sm_mat4 mat, char *err, size_t errlen)
 {
     float det3 = 1.0f;
-    if (mat && !mat_ok(mat, &det3)) {
-        fail(err, errlen, "mesh_append: the matrix is singular or not finite");
-        return false;
-    }
+    if (mat && !mat_ok(mat, &det3))
+        return scene_fail(err, errlen, "mesh_append: the matrix is singular or not finite");
     uint64_t nv = (uint64_t)dst->nvertices + src->nvertices;
     uint64_t ni = (uint64_t)dst->nindices + src->nindices;
-    if (nv > MESH_MAX_VERTICES || ni > MESH_MAX_INDICES) {
-        fail(err, errlen, "mesh_append: %llu vertices and %llu indices are more than the "
-             "limit (%u, %u)", (unsigned long long)nv, (unsigned long long)ni,
-             MESH_MAX_VERTICES, MESH_MAX_INDICES);
-        return false;
-    }
+    if (nv > MESH_MAX_VERTICES || ni > MESH_MAX_INDICES)
+        return scene_fail(err, errlen,
+                          "mesh_append: %llu vertices and %llu indices are more than the "
+                          "limit (%u, %u)", (unsigned long long)nv, (unsigned long long)ni,
+                          MESH_MAX_VERTICES, MESH_MAX_INDICES);
     mesh_vertex *v = malloc((size_t)(nv ? nv : 1) * sizeof *v);
     uint32_t *ix = malloc((size_t)(ni ? ni : 1) * sizeof *ix);
     if (!v || !ix) {
         free(v);
         free(ix);
-        fail(err, errlen, "mesh_append: out of memory for %llu vertices",
-             (unsigned long long)nv);
-        return false;
+        return scene_fail(err, errlen, "mesh_append: out of memory for %llu vertices",
+                          (unsigned long long)nv);
     }
     if (dst->nvertices)
         memcpy(v, dst->vertices, (size_t)dst->nvertices * sizeof *v);
