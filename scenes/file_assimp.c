@@ -43,6 +43,7 @@
 #include <sys/stat.h>
 #include <unistd.h>
 
+#include "results/grow.h"
 #include "results/image_io.h"
 #include "scenes/scene_build.h"
 #include "scenes/scene_fail.h"
@@ -82,7 +83,8 @@ typedef struct read_file {
 /* Every file read for one load, in first-read order, each once. */
 typedef struct file_set {
     read_file *files;
-    uint32_t n, cap;
+    uint32_t n;
+    size_t cap;
     char err[3 * PATH_MAX + 256]; /* the first read failure that is not "no such file" */
     char missing[PATH_MAX];         /* the first referenced file that does not exist */
     char root[PATH_MAX];       /* referenced files must resolve inside it; "" while the
@@ -90,7 +92,8 @@ typedef struct file_set {
     bool allow_outside;        /* scene.allow_outside: no containment */
     struct aiFile **open;      /* assimp's files not closed yet (an importer that
                                 * throws forgets its streams) */
-    uint32_t nopen, cap_open;
+    uint32_t nopen;
+    size_t cap_open;
 } file_set;
 
 static void file_set_free(file_set *fs)
@@ -197,16 +200,7 @@ static const read_file *file_get(file_set *fs, const char *path)
     r.size = (size_t)fst.st_size;
     r.data = malloc(r.size + 1);   /* NUL-terminated: the JSON scan may use strtoul */
     r.path = strdup(path);
-    read_file *grown = NULL;
-    if (r.data && r.path && fs->n == fs->cap) {
-        uint32_t cap = fs->cap ? fs->cap * 2 : 8;
-        grown = realloc(fs->files, cap * sizeof *grown);
-        if (grown) {
-            fs->files = grown;
-            fs->cap = cap;
-        }
-    }
-    if (!r.data || !r.path || fs->n == fs->cap) {
+    if (!r.data || !r.path || !GROW(fs->files, fs->cap, (size_t)fs->n + 1, 8)) {
         snprintf(fs->err, sizeof fs->err, "%s: out of memory reading %zu bytes", path, r.size);
         free(r.data);
         free(r.path);
@@ -288,14 +282,8 @@ static struct aiFile *io_open(struct aiFileIO *io, const char *path, const char 
             snprintf(fs->missing, sizeof fs->missing, "%s", path);
         return NULL;
     }
-    if (fs->nopen == fs->cap_open) {
-        uint32_t cap = fs->cap_open ? fs->cap_open * 2 : 8;
-        struct aiFile **g = realloc(fs->open, cap * sizeof *g);
-        if (!g)
-            return NULL;
-        fs->open = g;
-        fs->cap_open = cap;
-    }
+    if (!GROW(fs->open, fs->cap_open, (size_t)fs->nopen + 1, 8))
+        return NULL;
     struct aiFile *af = calloc(1, sizeof *af);
     open_file *o = calloc(1, sizeof *o);
     if (!af || !o) {
@@ -426,7 +414,7 @@ static bool key_is(const char *s, size_t n, const char *k)
 typedef struct node_graph {
     uint32_t nnodes;
     uint32_t *edge_from, *edge_to;
-    size_t nedges, cap;
+    size_t nedges, cap_from, cap_to;
     char url[256];             /* the first buffer or image uri that is a URL */
     char absolute[256];        /* the first that is an absolute path */
     bool deep;                 /* JSON nested deeper than JSON_MAX_NESTING */
@@ -434,18 +422,9 @@ typedef struct node_graph {
 
 static bool ng_edge(node_graph *g, uint32_t from, uint32_t to)
 {
-    if (g->nedges == g->cap) {
-        size_t cap = g->cap ? g->cap * 2 : 64;
-        uint32_t *a = realloc(g->edge_from, cap * sizeof *a);
-        if (a)
-            g->edge_from = a;
-        uint32_t *b = realloc(g->edge_to, cap * sizeof *b);
-        if (b)
-            g->edge_to = b;
-        if (!a || !b)
-            return false;
-        g->cap = cap;
-    }
+    if (!GROW(g->edge_from, g->cap_from, g->nedges + 1, 64) ||
+        !GROW(g->edge_to, g->cap_to, g->nedges + 1, 64))
+        return false;
     g->edge_from[g->nedges] = from;
     g->edge_to[g->nedges++] = to;
     return true;
@@ -732,7 +711,8 @@ typedef struct loaded {
     const struct aiScene *ai;
     file_set files;
     loaded_image *images;
-    uint32_t nimages, cap_images;
+    uint32_t nimages;
+    size_t cap_images;
     char dir[4096];            /* the file's folder, with a trailing '/', or "" */
     const char *path;
 } loaded;
@@ -885,16 +865,10 @@ static int load_image(loaded *l, const char *ref, char *err, size_t errlen)
         image_free(&img);
         return -1;
     }
-    if (l->nimages == l->cap_images) {
-        uint32_t cap = l->cap_images ? l->cap_images * 2 : 8;
-        loaded_image *g = realloc(l->images, cap * sizeof *g);
-        if (!g) {
-            image_free(&img);
-            scene_fail(err, errlen, "%s: out of memory", l->path);
-            return -1;
-        }
-        l->images = g;
-        l->cap_images = cap;
+    if (!GROW(l->images, l->cap_images, (size_t)l->nimages + 1, 8)) {
+        image_free(&img);
+        scene_fail(err, errlen, "%s: out of memory", l->path);
+        return -1;
     }
     l->images[l->nimages].ref = strdup(ref);
     l->images[l->nimages].img = img;
