@@ -7,6 +7,8 @@
 #include <stdlib.h>
 #include <string.h>
 
+#include "results/grow.h"
+
 // >>setup
 
 bool sb_fail(scene_builder *b, const char *fmt, ...)
@@ -23,7 +25,7 @@ bool sb_fail(scene_builder *b, const char *fmt, ...)
     return false;
 }
 
-bool sb_reserve(scene_builder *b, void **items, uint32_t *cap, uint32_t n, uint32_t more,
+bool sb_reserve(scene_builder *b, void **items, size_t *cap, uint32_t n, uint32_t more,
                 size_t size, const char *what)
 {
     if (b->failed)
@@ -31,23 +33,14 @@ bool sb_reserve(scene_builder *b, void **items, uint32_t *cap, uint32_t n, uint3
     if (more > UINT32_MAX - n)
         return sb_fail(b, "too many %s (%u + %u)", what, n, more);
     uint32_t need = n + more;
-    if (need <= *cap && *items)
-        return true;
-    uint64_t c = *cap ? *cap : 8;
-    while (c < need)
-        c *= 2;
-    if (c > UINT32_MAX)
-        c = UINT32_MAX;
-    if (c > SIZE_MAX / size)
+    if (need > SIZE_MAX / size)
         return sb_fail(b, "too many %s (%u)", what, need);
-    void *p = realloc(*items, (size_t)c * size);
-    if (!p)
+    size_t old = *cap;
+    if (!grow_array(items, cap, need, size, 8))
         return sb_fail(b, "out of memory for %u %s (%.0f MiB)", need, what,
-                       (double)c * (double)size / 1048576.0);
+                       (double)need * (double)size / 1048576.0);
     /* the new slots start zeroed, as calloc'ed tables did */
-    memset((char *)p + (size_t)*cap * size, 0, ((size_t)c - *cap) * size);
-    *items = p;
-    *cap = (uint32_t)c;
+    memset((char *)*items + old * size, 0, (*cap - old) * size);
     return true;
 }
 

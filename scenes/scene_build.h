@@ -32,9 +32,10 @@ typedef struct scene_builder {
     char *err;
     size_t errlen;
     bool failed;
-    uint32_t cap_meshes, cap_textures, cap_materials, cap_objects;   /* allocated slots */
+    size_t cap_meshes, cap_textures, cap_materials, cap_objects;   /* allocated slots */
     scene_light *authored;         /* the scene's authored lights (freed by scene_build) */
-    uint32_t nauthored, cap_authored;
+    uint32_t nauthored;
+    size_t cap_authored;
     uint32_t ncoverage;            /* the first ncoverage authored lights are the ones a
                                     * run records the screen coverage of */
     scene_object scratch_object;   /* what sb_object returns after a failure */
@@ -58,7 +59,7 @@ bool sb_begin(scene_builder *b, uint32_t nobjects);
 
 /* Makes room for `more` entries past *n in the array *items of *cap entries of `size`
  * bytes (doubling); false with "too many WHAT (N)" or "out of memory for N WHAT". */
-bool sb_reserve(scene_builder *b, void **items, uint32_t *cap, uint32_t n, uint32_t more,
+bool sb_reserve(scene_builder *b, void **items, size_t *cap, uint32_t n, uint32_t more,
                 size_t size, const char *what);
 
 /* >>meshes: each builds one mesh with the mesh_gen.c generator of the same name (see

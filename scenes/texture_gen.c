@@ -4,25 +4,12 @@
 #include "scenes/texture_gen.h"
 
 #include <math.h>
-#include <stdarg.h>
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
 
 #include "scenes/rng.h"
-
-static void fail(char *err, size_t errlen, const char *fmt, ...)
-    __attribute__((format(printf, 3, 4)));
-
-static void fail(char *err, size_t errlen, const char *fmt, ...)
-{
-    if (!err || !errlen)
-        return;
-    va_list ap;
-    va_start(ap, fmt);
-    vsnprintf(err, errlen, fmt, ap);
-    va_end(ap);
-}
+#include "scenes/scene_fail.h"
 
 /* >>noise ------------------------------------------------------------------------------ */
 
@@ -178,34 +165,25 @@ bool texture_desc_resolve(const texture_desc *in, texture_desc *out, char *err, 
         d.emissive_color[0] = d.emissive_color[1] = d.emissive_color[2] = 1.0f;
 
     if (!pow2(d.width) || !pow2(d.height) || d.width > TEXTURE_MAX_SIZE ||
-        d.height > TEXTURE_MAX_SIZE) {
-        fail(err, errlen, "texture: size %ux%u must be powers of two up to %u", d.width,
-             d.height, TEXTURE_MAX_SIZE);
-        return false;
-    }
-    if ((unsigned)d.pattern >= TEXTURE_PATTERN_COUNT) {
-        fail(err, errlen, "texture: unknown pattern %d", (int)d.pattern);
-        return false;
-    }
+        d.height > TEXTURE_MAX_SIZE)
+        return scene_fail(err, errlen, "texture: size %ux%u must be powers of two up to %u",
+                          d.width, d.height, TEXTURE_MAX_SIZE);
+    if ((unsigned)d.pattern >= TEXTURE_PATTERN_COUNT)
+        return scene_fail(err, errlen, "texture: unknown pattern %d", (int)d.pattern);
     uint32_t side = d.width < d.height ? d.width : d.height;
-    if (d.cells > side || (d.pattern == TEXTURE_BRICKS && (d.cells % 2))) {
-        fail(err, errlen, "texture: %s needs cells in 1..%u%s (got %u)",
-             pattern_names[d.pattern], side,
-             d.pattern == TEXTURE_BRICKS ? ", even" : "", d.cells);
-        return false;
-    }
+    if (d.cells > side || (d.pattern == TEXTURE_BRICKS && (d.cells % 2)))
+        return scene_fail(err, errlen, "texture: %s needs cells in 1..%u%s (got %u)",
+                          pattern_names[d.pattern], side,
+                          d.pattern == TEXTURE_BRICKS ? ", even" : "", d.cells);
     float g[2] = {d.gloss_a, d.gloss_b}, f[2] = {d.noise, d.emissive_fraction};
     if (!unit_range(d.color_a, 3) || !unit_range(d.color_b, 3) || !unit_range(g, 2) ||
-        !unit_range(f, 2) || !unit_range(d.emissive_color, 3)) {
-        fail(err, errlen, "texture: colours, gloss, noise and emissive_fraction must be "
-             "in 0..1");
-        return false;
-    }
-    if (!(isfinite(d.bump) && d.bump > 0.0f && d.bump <= 1e4f)) {
-        fail(err, errlen, "texture: bump must be in (0, 10000] texels (got %g)",
-             (double)d.bump);
-        return false;
-    }
+        !unit_range(f, 2) || !unit_range(d.emissive_color, 3))
+        return scene_fail(err, errlen,
+                          "texture: colours, gloss, noise and emissive_fraction must be "
+                          "in 0..1");
+    if (!(isfinite(d.bump) && d.bump > 0.0f && d.bump <= 1e4f))
+        return scene_fail(err, errlen, "texture: bump must be in (0, 10000] texels (got %g)",
+                          (double)d.bump);
     *out = d;
     return true;
 }
@@ -339,17 +317,13 @@ static bool image_alloc(const texture_desc *in, texture_desc *d, uint32_t channe
                         texture_image *out, const char *who, char *err, size_t errlen)
 {
     memset(out, 0, sizeof *out);
-    if (!in) {
-        fail(err, errlen, "%s: no desc", who);
-        return false;
-    }
+    if (!in)
+        return scene_fail(err, errlen, "%s: no desc", who);
     if (!texture_desc_resolve(in, d, err, errlen))
         return false;
     out->data = malloc((size_t)d->width * d->height * channels);
-    if (!out->data) {
-        fail(err, errlen, "%s: out of memory for %ux%u", who, d->width, d->height);
-        return false;
-    }
+    if (!out->data)
+        return scene_fail(err, errlen, "%s: out of memory for %ux%u", who, d->width, d->height);
     out->width = d->width;
     out->height = d->height;
     out->channels = channels;
@@ -410,8 +384,7 @@ bool texture_normal_map(const texture_desc *in, texture_image *out, char *err, s
     float *h = malloc(n * sizeof *h);
     if (!h) {
         texture_free(out);
-        fail(err, errlen, "texture_normal_map: out of memory");
-        return false;
+        return scene_fail(err, errlen, "texture_normal_map: out of memory");
     }
     uint32_t keys[NKEYS];
     texture_noise_keys(d.seed, keys, NKEYS);
@@ -450,8 +423,7 @@ bool texture_emissive(const texture_desc *in, texture_image *out, char *err, siz
     float *lit = malloc(n * sizeof *lit);
     if (!lit) {
         texture_free(out);
-        fail(err, errlen, "texture_emissive: out of memory");
-        return false;
+        return scene_fail(err, errlen, "texture_emissive: out of memory");
     }
     for (uint32_t y = 0; y < d.height; y++)
         for (uint32_t x = 0; x < d.width; x++)
@@ -464,8 +436,7 @@ bool texture_emissive(const texture_desc *in, texture_image *out, char *err, siz
         if (!hist) {
             free(lit);
             texture_free(out);
-            fail(err, errlen, "texture_emissive: out of memory");
-            return false;
+            return scene_fail(err, errlen, "texture_emissive: out of memory");
         }
         for (size_t i = 0; i < n; i++)
             hist[(uint32_t)(lit[i] * (BINS - 1))]++;

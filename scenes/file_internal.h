@@ -1,0 +1,104 @@
+#pragma once
+/* What the pieces of the file-scene loader share (scenes/file_*.c); not part of the
+ * scenes interface (nothing outside scenes/ includes it).
+ *   file_io.c        every byte assimp reads: each file read whole, once (file_set)
+ *   file_prescan.c   glTF JSON and GLB lengths checked before assimp sees them
+ *   file_load.c      the import, its checks and the decoded images (loaded)
+ *   file_materials.c assimp's materials onto the Phong model
+ *   file_assimp.c    the node walk, scene_file_check and scene_build_file */
+#include <limits.h>
+#include <math.h>
+#include <stdbool.h>
+#include <stddef.h>
+#include <stdint.h>
+
+#include <assimp/cfileio.h>
+#include <assimp/material.h>
+#include <assimp/scene.h>
+
+#include "results/image_io.h"
+#include "scenes/scene.h"
+#include "scenes/scene_build.h"
+
+/* Limits on what a file may ask for before anything is allocated for it. */
+#define FILE_MAX_BYTES ((size_t)1 << 31)      /* one file, buffer or image: 2 GiB */
+#define FILE_MAX_NODE_DEPTH 256u
+
+/* >>io (file_io.c) */
+typedef struct read_file {
+    char *path;
+    unsigned char *data;
+    size_t size;
+} read_file;
+
+/* Every file read for one load, in first-read order, each once. */
+typedef struct file_set {
+    read_file *files;
+    uint32_t n;
+    size_t cap;
+    char err[3 * PATH_MAX + 256]; /* the first read failure that is not "no such file" */
+    char missing[PATH_MAX];         /* the first referenced file that does not exist */
+    char root[PATH_MAX];       /* referenced files must resolve inside it; "" while the
+                                * scene file itself is read */
+    bool allow_outside;        /* scene.allow_outside: no containment */
+    struct aiFile **open;      /* assimp's files not closed yet (an importer that
+                                * throws forgets its streams) */
+    uint32_t nopen;
+    size_t cap_open;
+} file_set;
+
+void file_set_free(file_set *fs);
+/* The file's bytes (read once, then served from memory), or NULL with fs->err set for
+ * anything but a file that does not exist (errno ENOENT then). */
+const read_file *file_set_get(file_set *fs, const char *path);
+/* A reference that names a URL (scheme://...): only local files are read. */
+bool file_is_url(const char *p);
+/* assimp's file callbacks over a file_set (aiFileIO's UserData). */
+struct aiFile *file_io_open(struct aiFileIO *io, const char *path, const char *mode);
+void file_io_close(struct aiFileIO *io, struct aiFile *af);
+
+/* >>prescan (file_prescan.c): false with a message naming the file when its glTF JSON
+ * (or a GLB's lengths) asks for what would hurt inside assimp. */
+bool file_prescan_gltf(const char *path, const read_file *f, char *err, size_t errlen);
+
+/* >>load (file_load.c) */
+/* One loaded file: assimp's scene, the files read, the decoded images (one per distinct
+ * texture reference, in first-use order) and the world transforms of the mesh nodes. */
+typedef struct loaded_image {
+    char *ref;                 /* the material's texture path ("*N": embedded) */
+    image img;                 /* RGBA8 */
+} loaded_image;
+
+typedef struct loaded {
+    const struct aiScene *ai;
+    file_set files;
+    loaded_image *images;
+    uint32_t nimages;
+    size_t cap_images;
+    char dir[4096];            /* the file's folder, with a trailing '/', or "" */
+    const char *path;
+} loaded;
+
+/* Which of a material's maps exist: diffuse, normal, emissive references, "" if none. */
+typedef struct material_refs {
+    char diffuse[1024], normal[1024], emissive[1024];
+} material_refs;
+
+/* Imports and checks everything; on success l holds the scene and every texture. */
+bool file_load(const scene_file_options *o, loaded *l, char *err, size_t errlen);
+void file_loaded_free(loaded *l);
+/* The image a material references, decoded (once per reference), or -1 with a message. */
+int file_load_image(loaded *l, const char *ref, char *err, size_t errlen);
+void file_material_refs(const struct aiMaterial *m, material_refs *r);
+
+static inline bool file_finite3(const struct aiVector3D *v)
+{
+    return isfinite(v->x) && isfinite(v->y) && isfinite(v->z);
+}
+
+/* >>materials (file_materials.c) */
+/* A material's alpha mode (glTF alphaMode; OBJ: d < 1 is translucent) and cutoff. */
+material_alpha file_alpha_mode(const struct aiMaterial *am, float *cutoff);
+/* One material of the file as a scene material, its maps as scene textures (map: file
+ * image -> scene texture, -1 where not made yet). */
+void file_add_material(scene_builder *b, loaded *l, const struct aiMaterial *am, int *map);

@@ -1,0 +1,401 @@
+/* File scenes, >>load: the import through assimp and everything checked on what it gives,
+ * the referenced images decoded (see scenes/file_assimp.c). scene_file_check and the
+ * builder share it, so what validate accepts is exactly what a run builds. */
+#define _DEFAULT_SOURCE   /* realpath */
+#include "scenes/file_internal.h"
+
+#include <assimp/cimport.h>
+#include <assimp/postprocess.h>
+
+#include <errno.h>
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+
+#include "results/grow.h"
+#include "scenes/scene_fail.h"
+
+void file_loaded_free(loaded *l)
+{
+    if (l->ai)
+        aiReleaseImport(l->ai);
+    for (uint32_t i = 0; i < l->nimages; i++) {
+        free(l->images[i].ref);
+        image_free(&l->images[i].img);
+    }
+    free(l->images);
+    file_set_free(&l->files);
+    memset(l, 0, sizeof *l);
+}
+
+/* Percent-decodes a URI path (glTF image URIs may escape spaces and such). */
+static void uri_decode(const char *in, char *out, size_t outlen)
+{
+    size_t k = 0;
+    for (size_t i = 0; in[i] && k + 1 < outlen; i++) {
+        unsigned v;
+        if (in[i] == '%' && in[i + 1] && in[i + 2] && sscanf(in + i + 1, "%2x", &v) == 1) {
+            out[k++] = (char)v;
+            i += 2;
+        } else {
+            out[k++] = in[i];
+        }
+    }
+    out[k] = '\0';
+}
+
+/* The image a material references, decoded (once per reference), or -1 with a message. */
+int file_load_image(loaded *l, const char *ref, char *err, size_t errlen)
+{
+    for (uint32_t i = 0; i < l->nimages; i++)
+        if (strcmp(l->images[i].ref, ref) == 0)
+            return (int)i;
+    const struct aiScene *ai = l->ai;
+    const void *bytes = NULL;
+    size_t size = 0;
+    char name[8300];
+    const struct aiTexture *emb = NULL;
+    if (ref[0] == '*') {
+        char *end;
+        unsigned long k = strtoul(ref + 1, &end, 10);
+        if (*end || k >= ai->mNumTextures) {
+            scene_fail(err, errlen, "%s: texture '%s': no such embedded image", l->path, ref);
+            return -1;
+        }
+        emb = ai->mTextures[k];
+    } else {
+        for (unsigned k = 0; k < ai->mNumTextures && !emb; k++)
+            if (strcmp(ai->mTextures[k]->mFilename.data, ref) == 0)
+                emb = ai->mTextures[k];
+    }
+    image img = {0};
+    char why[512] = "";
+    if (emb && emb->mHeight != 0) {
+        /* already decoded by assimp: BGRA texels */
+        uint64_t n = (uint64_t)emb->mWidth * emb->mHeight;
+        if (n > FILE_MAX_BYTES / 4) {
+            scene_fail(err, errlen, "%s: embedded texture '%s' of %ux%u texels is too large",
+                       l->path, ref, emb->mWidth, emb->mHeight);
+            return -1;
+        }
+        img.width = (int)emb->mWidth;
+        img.height = (int)emb->mHeight;
+        img.channels = 4;
+        img.type = IMAGE_U8;
+        img.pixels = malloc((size_t)n * 4);
+        if (!img.pixels) {
+            scene_fail(err, errlen, "%s: out of memory for texture '%s'", l->path, ref);
+            return -1;
+        }
+        unsigned char *p = img.pixels;
+        for (uint64_t i = 0; i < n; i++) {
+            p[4 * i + 0] = emb->pcData[i].r;
+            p[4 * i + 1] = emb->pcData[i].g;
+            p[4 * i + 2] = emb->pcData[i].b;
+            p[4 * i + 3] = emb->pcData[i].a;
+        }
+        snprintf(name, sizeof name, "%s", ref);
+    } else {
+        if (emb) {
+            bytes = emb->pcData;
+            size = emb->mWidth;
+            snprintf(name, sizeof name, "%s: embedded image %s", l->path, ref);
+            /* embedded bytes are part of the file already hashed */
+        } else {
+            char rel[4096];
+            uri_decode(ref, rel, sizeof rel);
+            snprintf(name, sizeof name, "%s%s", rel[0] == '/' ? "" : l->dir, rel);
+            errno = 0;
+            const read_file *f = file_set_get(&l->files, name);
+            if (!f) {
+                if (l->files.err[0])
+                    scene_fail(err, errlen, "%s: %s", l->path, l->files.err);
+                else
+                    scene_fail(err, errlen, "%s: image '%s' is missing (%s: %s)", l->path, ref,
+                               name, strerror(errno ? errno : ENOENT));
+                return -1;
+            }
+            bytes = f->data;
+            size = f->size;
+        }
+        int w = 0, h = 0;
+        if (!image_probe(bytes, size, name, &w, &h, why, sizeof why)) {
+            scene_fail(err, errlen, "%s: texture '%s' does not decode: %s", l->path, ref, why);
+            return -1;
+        }
+        if (w > (int)TEXTURE_MAX_SIZE || h > (int)TEXTURE_MAX_SIZE) {
+            scene_fail(err, errlen, "%s: texture '%s' is %dx%d, more than %u texels a side",
+                       l->path, ref, w, h, TEXTURE_MAX_SIZE);
+            return -1;
+        }
+        image raw;
+        if (!image_decode(bytes, size, name, IMAGE_U8, &raw, why, sizeof why)) {
+            scene_fail(err, errlen, "%s: texture '%s' does not decode: %s", l->path, ref, why);
+            return -1;
+        }
+        /* to RGBA: grey -> rgb, no alpha -> 255 */
+        size_t n = (size_t)raw.width * (size_t)raw.height;
+        img.width = raw.width;
+        img.height = raw.height;
+        img.channels = 4;
+        img.type = IMAGE_U8;
+        img.pixels = malloc(n * 4);
+        if (!img.pixels) {
+            image_free(&raw);
+            scene_fail(err, errlen, "%s: out of memory for texture '%s'", l->path, ref);
+            return -1;
+        }
+        const unsigned char *s = raw.pixels;
+        unsigned char *d = img.pixels;
+        int c = raw.channels;
+        for (size_t i = 0; i < n; i++) {
+            const unsigned char *t = s + i * (size_t)c;
+            d[4 * i + 0] = t[0];
+            d[4 * i + 1] = c >= 3 ? t[1] : t[0];
+            d[4 * i + 2] = c >= 3 ? t[2] : t[0];
+            d[4 * i + 3] = c == 4 ? t[3] : c == 2 ? t[1] : 255;
+        }
+        image_free(&raw);
+    }
+    if (img.width > (int)TEXTURE_MAX_SIZE || img.height > (int)TEXTURE_MAX_SIZE) {
+        scene_fail(err, errlen, "%s: texture '%s' is %dx%d, more than %u texels a side", l->path,
+                   ref, img.width, img.height, TEXTURE_MAX_SIZE);
+        image_free(&img);
+        return -1;
+    }
+    if (!GROW(l->images, l->cap_images, (size_t)l->nimages + 1, 8)) {
+        image_free(&img);
+        scene_fail(err, errlen, "%s: out of memory", l->path);
+        return -1;
+    }
+    l->images[l->nimages].ref = strdup(ref);
+    l->images[l->nimages].img = img;
+    if (!l->images[l->nimages].ref) {
+        image_free(&img);
+        scene_fail(err, errlen, "%s: out of memory", l->path);
+        return -1;
+    }
+    return (int)l->nimages++;
+}
+
+/* The texture types a material may use, as scene_material's maps take them. */
+static const enum aiTextureType base_types[] = {aiTextureType_BASE_COLOR, aiTextureType_DIFFUSE};
+
+static bool material_texture(const struct aiMaterial *m, enum aiTextureType t, char *out,
+                             size_t outlen)
+{
+    struct aiString p;
+    if (aiGetMaterialTextureCount(m, t) == 0 ||
+        aiGetMaterialTexture(m, t, 0, &p, NULL, NULL, NULL, NULL, NULL, NULL) != aiReturn_SUCCESS)
+        return false;
+    snprintf(out, outlen, "%s", p.data);
+    return out[0] != '\0';
+}
+
+void file_material_refs(const struct aiMaterial *m, material_refs *r)
+{
+    r->diffuse[0] = r->normal[0] = r->emissive[0] = '\0';
+    for (size_t k = 0; k < 2; k++)
+        if (material_texture(m, base_types[k], r->diffuse, sizeof r->diffuse))
+            break;
+    if (!material_texture(m, aiTextureType_NORMALS, r->normal, sizeof r->normal))
+        r->normal[0] = '\0';
+    if (!material_texture(m, aiTextureType_EMISSIVE, r->emissive, sizeof r->emissive))
+        r->emissive[0] = '\0';
+}
+
+/* Node hierarchy: depth bounded and no node met twice (a hierarchy that recurses). */
+static bool check_nodes(const loaded *l, const struct aiNode *n, unsigned depth,
+                        const struct aiNode **path, char *err, size_t errlen)
+{
+    if (depth >= FILE_MAX_NODE_DEPTH)
+        return scene_fail(err, errlen, "%s: the node hierarchy is more than %u deep (recursive?)",
+                          l->path, FILE_MAX_NODE_DEPTH);
+    for (unsigned i = 0; i < depth; i++)
+        if (path[i] == n)
+            return scene_fail(err, errlen, "%s: node '%s' contains itself: the hierarchy recurses",
+                              l->path, n->mName.data);
+    path[depth] = n;
+    for (unsigned i = 0; i < n->mNumMeshes; i++)
+        if (n->mMeshes[i] >= l->ai->mNumMeshes)
+            return scene_fail(err, errlen, "%s: node '%s' names mesh %u of %u", l->path,
+                              n->mName.data, n->mMeshes[i], l->ai->mNumMeshes);
+    for (unsigned i = 0; i < n->mNumChildren; i++)
+        if (!check_nodes(l, n->mChildren[i], depth + 1, path, err, errlen))
+            return false;
+    return true;
+}
+
+/* assimp reports some defects only as warnings and repairs them (faces with indices out
+ * of range are dropped): a log stream catches those during an import. */
+static char import_warning[512];
+
+static void log_fn(const char *msg, char *user)
+{
+    if (!import_warning[0] && strstr(msg, "out-of-range indices")) {
+        const char *m = strstr(msg, ": ");
+        snprintf(import_warning, sizeof import_warning, "%s", m ? m + 2 : msg);
+        size_t n = strlen(import_warning);
+        while (n && (import_warning[n - 1] == '\n' || import_warning[n - 1] == ' '))
+            import_warning[--n] = '\0';
+    }
+}
+
+/* Imports and checks everything; on success l holds the scene and every texture. */
+bool file_load(const scene_file_options *o, loaded *l, char *err, size_t errlen)
+{
+    memset(l, 0, sizeof *l);
+    if (!o || !o->path || !o->path[0])
+        return scene_fail(err, errlen, "scene file: no path");
+    l->path = o->path;
+    if (!(o->scale == 0.0f || (isfinite(o->scale) && o->scale > 0.0f)))
+        return scene_fail(err, errlen, "%s: scale %g: expected a finite number > 0", o->path,
+                          (double)o->scale);
+    const char *slash = strrchr(o->path, '/');
+    if (slash) {
+        size_t n = (size_t)(slash - o->path) + 1;
+        if (n >= sizeof l->dir)
+            return scene_fail(err, errlen, "%s: path too long", o->path);
+        memcpy(l->dir, o->path, n);
+        l->dir[n] = '\0';
+    }
+    errno = 0;
+    if (!file_set_get(&l->files, o->path)) {
+        if (l->files.err[0])
+            scene_fail(err, errlen, "%s", l->files.err);
+        else
+            scene_fail(err, errlen, "%s: cannot open: %s", o->path,
+                       strerror(errno ? errno : ENOENT));
+        file_loaded_free(l);
+        return false;
+    }
+    /* what the file references is read from inside its folder */
+    if (!realpath(l->dir[0] ? l->dir : ".", l->files.root)) {
+        scene_fail(err, errlen, "%s: cannot resolve its folder: %s", o->path, strerror(errno));
+        file_loaded_free(l);
+        return false;
+    }
+    l->files.allow_outside = o->allow_outside;
+    if (!file_prescan_gltf(o->path, &l->files.files[0], err, errlen)) {
+        file_loaded_free(l);
+        return false;
+    }
+    struct aiFileIO io = {file_io_open, file_io_close, (char *)&l->files};
+    struct aiPropertyStore *props = aiCreatePropertyStore();
+    /* drop points and lines after triangulation: shadesweep draws triangles */
+    aiSetImportPropertyInteger(props, AI_CONFIG_PP_SBP_REMOVE,
+                               aiPrimitiveType_POINT | aiPrimitiveType_LINE);
+    unsigned flags = aiProcess_Triangulate | aiProcess_JoinIdenticalVertices |
+                     aiProcess_GenSmoothNormals | aiProcess_SortByPType |
+                     aiProcess_ValidateDataStructure | aiProcess_FindDegenerates;
+    import_warning[0] = '\0';
+    struct aiLogStream stream = {log_fn, NULL};
+    aiAttachLogStream(&stream);
+    l->ai = aiImportFileExWithProperties(o->path, flags, &io, props);
+    aiDetachLogStream(&stream);
+    aiReleasePropertyStore(props);
+    bool ok = false;
+    const struct aiScene *ai = l->ai;
+    if (l->files.err[0]) {   /* a refused file, even where the importer went on */
+        scene_fail(err, errlen, "%s: %s", o->path, l->files.err);
+        goto out;
+    }
+    if (l->files.missing[0]) {
+        scene_fail(err, errlen, "%s: references %s, which does not exist", o->path,
+                   l->files.missing);
+        goto out;
+    }
+    if (ai && import_warning[0]) {
+        scene_fail(err, errlen, "%s: indices out of range: %s", o->path, import_warning);
+        goto out;
+    }
+    if (!ai) {
+        const char *why = aiGetErrorString();
+        if (l->files.err[0])
+            scene_fail(err, errlen, "%s", l->files.err);
+        else
+            scene_fail(err, errlen, "%s: cannot load: %s", o->path,
+                       why && why[0] ? why : "unknown error");
+        goto out;
+    }
+    if (ai->mFlags & AI_SCENE_FLAGS_INCOMPLETE) {
+        scene_fail(err, errlen, "%s: incomplete scene (assimp could not read all of it)", o->path);
+        goto out;
+    }
+    if (!ai->mRootNode || ai->mNumMeshes == 0) {
+        scene_fail(err, errlen, "%s: empty scene: no triangle meshes", o->path);
+        goto out;
+    }
+    const struct aiNode *path[FILE_MAX_NODE_DEPTH];
+    if (!check_nodes(l, ai->mRootNode, 0, path, err, errlen))
+        goto out;
+    for (unsigned i = 0; i < ai->mNumMeshes; i++) {
+        const struct aiMesh *m = ai->mMeshes[i];
+        if (!m->mVertices || m->mNumVertices == 0 || m->mNumFaces == 0) {
+            scene_fail(err, errlen, "%s: mesh %u ('%s') has no triangles", o->path, i,
+                       m->mName.data);
+            goto out;
+        }
+        if (m->mNumVertices > MESH_MAX_VERTICES || m->mNumFaces > MESH_MAX_INDICES / 3) {
+            scene_fail(err, errlen,
+                       "%s: mesh %u has %u vertices and %u triangles (at most %u and %u)", o->path,
+                       i, m->mNumVertices, m->mNumFaces, MESH_MAX_VERTICES, MESH_MAX_INDICES / 3);
+            goto out;
+        }
+        for (unsigned v = 0; v < m->mNumVertices; v++)
+            if (!file_finite3(&m->mVertices[v])) {
+                scene_fail(err, errlen, "%s: mesh %u ('%s'): vertex %u has a position that is not "
+                           "finite (%g, %g, %g)", o->path, i, m->mName.data, v,
+                           (double)m->mVertices[v].x, (double)m->mVertices[v].y,
+                           (double)m->mVertices[v].z);
+                goto out;
+            }
+        for (unsigned f = 0; f < m->mNumFaces; f++) {
+            const struct aiFace *fc = &m->mFaces[f];
+            if (fc->mNumIndices != 3) {
+                scene_fail(err, errlen, "%s: mesh %u: face %u has %u corners after triangulation",
+                           o->path, i, f, fc->mNumIndices);
+                goto out;
+            }
+            for (unsigned k = 0; k < 3; k++)
+                if (fc->mIndices[k] >= m->mNumVertices) {
+                    scene_fail(err, errlen, "%s: mesh %u: index %u out of range (%u vertices)",
+                               o->path, i, fc->mIndices[k], m->mNumVertices);
+                    goto out;
+                }
+        }
+        if (m->mMaterialIndex >= ai->mNumMaterials) {
+            scene_fail(err, errlen, "%s: mesh %u uses material %u of %u", o->path, i,
+                       m->mMaterialIndex, ai->mNumMaterials);
+            goto out;
+        }
+    }
+    for (unsigned i = 0; i < ai->mNumMaterials; i++) {
+        material_refs r;
+        file_material_refs(ai->mMaterials[i], &r);
+        const char *refs[3] = {r.diffuse, r.normal, r.emissive};
+        for (int k = 0; k < 3; k++)
+            if (refs[k][0] && file_load_image(l, refs[k], err, errlen) < 0)
+                goto out;
+    }
+    if (o->camera && o->camera[0] && strcmp(o->camera, "orbit") != 0) {
+        bool found = false;
+        for (unsigned i = 0; i < ai->mNumCameras && !found; i++)
+            found = strcmp(ai->mCameras[i]->mName.data, o->camera) == 0;
+        if (!found) {
+            char names[512] = "";
+            size_t k = 0;
+            for (unsigned i = 0; i < ai->mNumCameras && k + 4 < sizeof names; i++)
+                k += (size_t)snprintf(names + k, sizeof names - k, "%s'%s'", i ? ", " : "",
+                                      ai->mCameras[i]->mName.data);
+            scene_fail(err, errlen, "%s: no camera named '%s' (the file has %s%s)", o->path,
+                       o->camera, ai->mNumCameras ? "" : "none", names);
+            goto out;
+        }
+    }
+    ok = true;
+out:
+    if (!ok)
+        file_loaded_free(l);
+    return ok;
+}

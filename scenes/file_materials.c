@@ -1,0 +1,142 @@
+/* File scenes, >>materials: assimp's materials onto the Phong model, as the mapping in
+ * scenes/file_assimp.c's opening comment says. */
+#include "scenes/file_internal.h"
+
+#include <assimp/GltfMaterial.h>
+
+#include <stdlib.h>
+#include <string.h>
+
+/* assimp's aiGetMaterialFloat is a C99 `inline` function with no external definition: an
+ * unoptimised build (the sanitizer suite's -O0) would not link. The array form is a real
+ * export. */
+static enum aiReturn mat_float(const struct aiMaterial *m, const char *key, unsigned type,
+                               unsigned index, float *out)
+{
+    return aiGetMaterialFloatArray(m, key, type, index, out, NULL);
+}
+
+/* A material's alpha mode (glTF alphaMode; OBJ: d < 1 is translucent) and cutoff. */
+material_alpha file_alpha_mode(const struct aiMaterial *am, float *cutoff)
+{
+    struct aiString mode;
+    float opacity = 1.0f;
+    if (aiGetMaterialString(am, AI_MATKEY_GLTF_ALPHAMODE, &mode) == aiReturn_SUCCESS) {
+        if (strcmp(mode.data, "MASK") == 0) {
+            float c = 0.5f;
+            mat_float(am, AI_MATKEY_GLTF_ALPHACUTOFF, &c);
+            if (cutoff)
+                *cutoff = c;
+            return MATERIAL_MASK;
+        }
+        return strcmp(mode.data, "BLEND") == 0 ? MATERIAL_BLEND : MATERIAL_OPAQUE;
+    }
+    mat_float(am, AI_MATKEY_OPACITY, &opacity);
+    return opacity < 1.0f ? MATERIAL_BLEND : MATERIAL_OPAQUE;
+}
+
+static float luminance(const struct aiColor4D *c)
+{
+    return 0.2126f * c->r + 0.7152f * c->g + 0.0722f * c->b;
+}
+
+/* Blinn-Phong exponent for a roughness: GGX alpha = r^2, n = 2 / alpha^2 - 2. */
+static float shininess_of_roughness(float r)
+{
+    r = sm_clamp(r, 0.0f, 1.0f);
+    float a = r * r;
+    float n = a > 0.0f ? 2.0f / (a * a) - 2.0f : 2048.0f;
+    return sm_clamp(n, 1.0f, 2048.0f);
+}
+
+/* A texture of the file as a scene texture; its index, or -1 for none. */
+static int scene_texture(scene_builder *b, loaded *l, const char *ref, int *map, bool emissive)
+{
+    if (!ref[0] || b->failed)
+        return -1;
+    int i = file_load_image(l, ref, b->err, b->errlen);
+    if (i < 0) {
+        b->failed = true;
+        return -1;
+    }
+    if (map[i] >= 0 && !emissive)
+        return map[i];
+    scene *s = b->s;
+    if (!sb_reserve(b, (void **)&s->textures, &b->cap_textures, s->ntextures, 1,
+                    sizeof *s->textures, "textures"))
+        return -1;
+    const image *img = &l->images[i].img;
+    texture_image *t = &s->textures[s->ntextures];
+    size_t n = (size_t)img->width * (size_t)img->height * 4;
+    t->data = malloc(n);
+    if (!t->data) {
+        sb_fail(b, "%s: out of memory for a %dx%d texture", l->path, img->width, img->height);
+        return -1;
+    }
+    memcpy(t->data, img->pixels, n);
+    t->width = (uint32_t)img->width;
+    t->height = (uint32_t)img->height;
+    t->channels = 4;
+    if (emissive)   /* the emissive mask: the whole texel */
+        for (size_t k = 3; k < n; k += 4)
+            t->data[k] = 255;
+    else
+        map[i] = (int)s->ntextures;
+    return (int)s->ntextures++;
+}
+
+void file_add_material(scene_builder *b, loaded *l, const struct aiMaterial *am, int *map)
+{
+    struct aiColor4D base = {1, 1, 1, 1}, spec = {0, 0, 0, 1}, emis = {0, 0, 0, 1};
+    if (aiGetMaterialColor(am, AI_MATKEY_BASE_COLOR, &base) != aiReturn_SUCCESS)
+        aiGetMaterialColor(am, AI_MATKEY_COLOR_DIFFUSE, &base);
+    aiGetMaterialColor(am, AI_MATKEY_COLOR_EMISSIVE, &emis);
+    float metallic = 0.0f, roughness = 1.0f, gloss = 0.0f, shininess = 0.0f;
+    float specular, exponent;
+    if (mat_float(am, AI_MATKEY_ROUGHNESS_FACTOR, &roughness) == aiReturn_SUCCESS &&
+        mat_float(am, AI_MATKEY_GLOSSINESS_FACTOR, &gloss) != aiReturn_SUCCESS) {
+        mat_float(am, AI_MATKEY_METALLIC_FACTOR, &metallic);
+        metallic = sm_clamp(metallic, 0.0f, 1.0f);
+        specular = 0.04f * (1.0f - metallic) + luminance(&base) * metallic;
+        exponent = shininess_of_roughness(roughness);
+    } else if (mat_float(am, AI_MATKEY_GLOSSINESS_FACTOR, &gloss) == aiReturn_SUCCESS) {
+        aiGetMaterialColor(am, AI_MATKEY_COLOR_SPECULAR, &spec);
+        specular = luminance(&spec);
+        exponent = shininess_of_roughness(1.0f - gloss);
+    } else {
+        aiGetMaterialColor(am, AI_MATKEY_COLOR_SPECULAR, &spec);
+        mat_float(am, AI_MATKEY_SHININESS, &shininess);
+        specular = luminance(&spec);
+        exponent = sm_clamp(shininess, 1.0f, 2048.0f);
+    }
+    uint32_t mi = sb_material(b, base.r, base.g, base.b, sm_clamp(specular, 0.0f, 1.0f),
+                              exponent);
+    if (b->failed)
+        return;
+    material_refs r;
+    file_material_refs(am, &r);
+    int d = scene_texture(b, l, r.diffuse, map, false);
+    int nm = scene_texture(b, l, r.normal, map, false);
+    int em = scene_texture(b, l, r.emissive, map, true);
+    if (b->failed)
+        return;
+    scene_material *m = &b->s->materials[mi];
+    m->diffuse_map = d;
+    m->normal_map = nm;
+    m->emissive_map = em;
+    sm_vec3_make(emis.r, emis.g, emis.b, m->emissive);
+    if (em >= 0 && emis.r == 0.0f && emis.g == 0.0f && emis.b == 0.0f)
+        sm_vec3_make(1.0f, 1.0f, 1.0f, m->emissive);   /* OBJ: map_Ke without Ke */
+    float cutoff = 0.5f;
+    m->alpha = file_alpha_mode(am, &cutoff);
+    if (m->alpha == MATERIAL_MASK)
+        m->alpha_cutoff = cutoff;
+    if (m->alpha == MATERIAL_BLEND) {
+        /* glTF: the base colour factor's alpha (the map's alpha multiplies it in the
+         * shader); OBJ: d (assimp's opacity) */
+        float opacity = base.a;
+        if (mat_float(am, AI_MATKEY_OPACITY, &opacity) != aiReturn_SUCCESS)
+            opacity = base.a;
+        m->opacity = isfinite(opacity) ? sm_clamp(opacity, 0.0f, 1.0f) : 1.0f;
+    }
+}

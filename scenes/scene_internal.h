@@ -1,0 +1,16 @@
+#pragma once
+/* What scenes/scene.c shares with the other pieces of scene construction; not part of
+ * the scenes interface (nothing outside scenes/ includes it). */
+#include <stdbool.h>
+#include <stddef.h>
+#include <stdint.h>
+
+#include "scenes/scene.h"
+
+/* The run's lights on a built scene (scene_place.c): the authored ones (placement scene)
+ * or placed from lp. With `check`, only whether they can be: the same failures and
+ * messages, but no light is placed and s->lights is left NULL (what a plan check asks of
+ * many runs). */
+bool scene_place_lights(scene *s, const scene_light *authored, uint32_t nauthored,
+                        uint32_t ncoverage, const light_params *lp, bool check, char *err,
+                        size_t errlen);

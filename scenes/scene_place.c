@@ -1,0 +1,229 @@
+/* The run's lights placed on a built scene (>>placement): authored, random or on a grid,
+ * from the manifest's light parameters. See scenes/scene.c. */
+#include "scenes/scene_internal.h"
+
+#include <math.h>
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+
+// >>placement
+
+static void point_light_from_params(scene_light *l, const light_params *lp, float radius)
+{
+    l->type = LIGHT_POINT;
+    l->radius = radius;
+    l->attenuation = (attenuation_kind)lp->attenuation;
+    l->att_a = lp->quadratic[0];
+    l->att_b = lp->quadratic[1];
+    l->att_c = lp->quadratic[2];
+    sm_vec3_make(0.0f, -1.0f, 0.0f, l->direction);
+}
+
+/* The run's point-light radius: lp->radius, or with lp->overlap > 0 the radius at which
+ * the schedule's largest count reaches `overlap` lights per point of the light bounds
+ * (lights_overlap_radius). */
+static float placement_radius(const scene *s, const light_params *lp)
+{
+    if (lp->overlap > 0.0f)
+        return lights_overlap_radius(s->nlights_total, lp->overlap, s->light_bounds_min,
+                                     s->light_bounds_max);
+    return lp->radius;
+}
+
+/* Random placement: for each light in order, x, y, z uniform in the scene's light
+ * bounds, then r, g, b uniform in [0, color_max]. Lights are generated up to the
+ * schedule's maximum once, so growth adds lights without moving earlier ones. */
+static void place_random(scene *s, const light_params *lp)
+{
+    rng g;
+    rng_seed(&g, lp->rng, lp->seed);
+    float radius = placement_radius(s, lp);
+    for (uint32_t i = 0; i < s->nlights_total; i++) {
+        scene_light *l = &s->lights[i];
+        for (int k = 0; k < 3; k++) {
+            float u = rng_unit(&g);
+            l->position[k] = s->light_bounds_min[k] +
+                             u * (s->light_bounds_max[k] - s->light_bounds_min[k]);
+        }
+        for (int k = 0; k < 3; k++)
+            l->color[k] = rng_unit(&g) * lp->color_max;
+        point_light_from_params(l, lp, radius);
+    }
+}
+
+/* A grid: n[] cells along x, y, z; the nearest neighbours are `spacing` apart. */
+typedef struct grid_layout {
+    uint32_t n[3];
+    double spacing;
+} grid_layout;
+
+/* Distance between neighbouring cell centres along an axis; no neighbour: infinite. */
+static double axis_spacing(uint32_t cells, double extent)
+{
+    return cells > 1 ? extent / (double)cells : INFINITY;
+}
+
+/* m lights in one layer of x-z cells, as square as the extents allow: nx near
+ * sqrt(m ex / ez) (cells of side sqrt(ex ez / m)), the floor or ceiling of it, whichever
+ * spaces them further apart (the smaller on a tie), and nz = ceil(m / nx) rows. A flat
+ * extent gets one cell that way. */
+static void grid_layer(uint32_t m, double ex, double ez, uint32_t *nx, uint32_t *nz,
+                       double *spacing)
+{
+    *nx = *nz = 1;
+    if (m > 1) {
+        if (ex > 0 && ez > 0) {
+            double r = sqrt((double)m * ex / ez);
+            double cand[2] = {floor(r), ceil(r)};
+            double best = -1.0;
+            for (int c = 0; c < 2; c++) {
+                uint32_t x = (uint32_t)fmin(fmax(cand[c], 1.0), (double)m);
+                uint32_t z = (m + x - 1) / x;
+                double sp = fmin(axis_spacing(x, ex), axis_spacing(z, ez));
+                if (sp > best) {
+                    best = sp;
+                    *nx = x;
+                    *nz = z;
+                }
+            }
+        } else if (ez > 0) {
+            *nz = m;
+        } else {
+            *nx = m;   /* along x, or all in one point when both are flat */
+        }
+    }
+    *spacing = fmin(axis_spacing(*nx, ex), axis_spacing(*nz, ez));
+}
+
+/* The grid for n lights in extents e[3] with the largest nearest-neighbour spacing:
+ * ny layers (one at mid-height unless the bounds are tall enough that more layers
+ * space the lights further apart), each holding ceil(n / ny) lights as grid_layer
+ * lays them out. Ties keep the fewer layers. */
+static grid_layout grid_plan(uint32_t n, const double e[3])
+{
+    grid_layout best = {{1, 1, 1}, -1.0};
+    uint32_t most = n < 4096 ? n : 4096;
+    for (uint32_t ny = 1; ny <= most || ny == 1; ny++) {
+        double sy = axis_spacing(ny, e[1]);
+        if (sy <= best.spacing)
+            break;   /* more layers only bring them closer */
+        uint32_t m = n ? (n + ny - 1) / ny : 0, nx, nz;
+        double sxz;
+        grid_layer(m, e[0], e[2], &nx, &nz, &sxz);
+        double sp = fmin(sy, sxz);
+        if (sp > best.spacing) {
+            best.n[0] = nx;
+            best.n[1] = ny;
+            best.n[2] = nz;
+            best.spacing = sp;
+        }
+    }
+    return best;
+}
+
+/* Whether grid placement fits: the layout for the schedule's largest count (grid_plan)
+ * in the light bounds' extents e, and the radius; false with the message when the
+ * radius exceeds half the spacing (neighbouring spheres would overlap). */
+static bool grid_fits(const scene *s, const light_params *lp, double e[3], grid_layout *g,
+                      float *radius, char *err, size_t errlen)
+{
+    for (int k = 0; k < 3; k++)
+        e[k] = fmax(0.0, (double)s->light_bounds_max[k] - (double)s->light_bounds_min[k]);
+    *g = grid_plan(s->nlights_total, e);
+    *radius = placement_radius(s, lp);
+    if ((double)*radius > g->spacing / 2.0) {
+        snprintf(err, errlen,
+                 "scene '%s': grid placement of %u lights in %u x %u x %u cells (x, y, z) "
+                 "of the light bounds puts neighbours %.6g apart: radius %.6g makes them "
+                 "overlap; the largest radius allowed is %.6g",
+                 s->name, s->nlights_total, g->n[0], g->n[1], g->n[2], g->spacing,
+                 (double)*radius, g->spacing / 2.0);
+        return false;
+    }
+    return true;
+}
+
+/* Grid placement: the layout is planned for the schedule's largest count (grid_plan),
+ * and light k takes cell k in row order (x fastest, then z, then the layer), at the
+ * cell's centre: growth adds lights without moving earlier ones. Colours r, g, b uniform
+ * in [0, color_max] from the seeded generator, per light in order. Fails when the
+ * radius exceeds half the spacing (grid_fits). */
+static bool place_grid(scene *s, const light_params *lp, char *err, size_t errlen)
+{
+    double e[3];
+    grid_layout g;
+    float radius;
+    if (!grid_fits(s, lp, e, &g, &radius, err, errlen))
+        return false;
+    rng r;
+    rng_seed(&r, lp->rng, lp->seed);
+    uint32_t per_layer = g.n[0] * g.n[2];
+    for (uint32_t i = 0; i < s->nlights_total; i++) {
+        scene_light *l = &s->lights[i];
+        uint32_t cell[3] = {i % per_layer % g.n[0], i / per_layer, i % per_layer / g.n[0]};
+        for (int k = 0; k < 3; k++)
+            l->position[k] = (float)((double)s->light_bounds_min[k] +
+                                     ((double)cell[k] + 0.5) * e[k] / (double)g.n[k]);
+        for (int k = 0; k < 3; k++)
+            l->color[k] = rng_unit(&r) * lp->color_max;
+        point_light_from_params(l, lp, radius);
+    }
+    return true;
+}
+
+/* The run's lights on a built scene: the authored ones (placement scene) or placed from
+ * lp. With `check`, only whether they can be: the same failures and messages, but no
+ * light is placed and s->lights is left NULL (what a plan check asks of many runs). */
+bool scene_place_lights(scene *s, const scene_light *authored, uint32_t nauthored,
+                        uint32_t ncoverage, const light_params *lp, bool check, char *err,
+                        size_t errlen)
+{
+    const char *name = s->name;
+    s->count = lp->count;
+    uint32_t most = light_count_max(&lp->count);
+    switch (lp->placement) {
+    case PLACEMENT_NONE:
+        s->nlights_total = 0;
+        break;
+    case PLACEMENT_SCENE:
+        /* the authored lights in their order; the count caps how many are ever on */
+        if (nauthored == 0) {
+            snprintf(err, errlen, "scene '%s' has no authored lights", name);
+            return false;
+        }
+        s->nlights_total = most < nauthored ? most : nauthored;
+        s->ncoverage_lights = ncoverage < s->nlights_total ? ncoverage : s->nlights_total;
+        break;
+    case PLACEMENT_RANDOM:
+    case PLACEMENT_GRID:
+        s->nlights_total = most;
+        break;
+    default:
+        snprintf(err, errlen, "bug: light placement %d", (int)lp->placement);
+        return false;
+    }
+    if (!s->nlights_total)
+        return true;
+    s->lights = calloc(s->nlights_total, sizeof *s->lights);
+    if (!s->lights) {
+        snprintf(err, errlen, "out of memory building scene '%s' with %u lights", name,
+                 s->nlights_total);
+        return false;
+    }
+    if (check) {
+        free(s->lights);
+        s->lights = NULL;
+        double e[3];
+        grid_layout g;
+        float radius;
+        return lp->placement != PLACEMENT_GRID || grid_fits(s, lp, e, &g, &radius, err, errlen);
+    }
+    if (lp->placement == PLACEMENT_SCENE)
+        memcpy(s->lights, authored, s->nlights_total * sizeof *s->lights);
+    else if (lp->placement == PLACEMENT_RANDOM)
+        place_random(s, lp);
+    else if (!place_grid(s, lp, err, errlen))
+        return false;
+    return true;
+}
