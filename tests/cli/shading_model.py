@@ -20,7 +20,7 @@ Written from the paper's formulas (seed 000 appendix D), not from our shaders:
 
 What is taken from the project (its mapping of files and manifests onto that model,
 and how the image is produced), each read from the code named:
-  scenes/file_assimp.c  glTF pbrMetallicRoughness -> Phong: Kd = baseColorFactor;
+  scenes/file_materials.c glTF pbrMetallicRoughness -> Phong: Kd = baseColorFactor;
                         g = 0.04 (1 - metallic) + luminance(baseColor) metallic, with
                         luminance = 0.2126 r + 0.7152 g + 0.0722 b; n = 2 / r^4 - 2 for
                         roughness r (the Blinn-Phong exponent of GGX alpha = r^2).
@@ -29,7 +29,7 @@ and how the image is produced), each read from the code named:
                         `range`; spot: c = outerConeAngle, f = 1 (innerConeAngle is not
                         used). Cameras: at the node, looking down -Z, yfov, the run's
                         aspect. The ambient light of a file scene is 0.1 (grey).
-  scenes/scene.c        lights.placement grid with one light: at the centre of the light
+  scenes/scene_place.c  lights.placement grid with one light: at the centre of the light
                         bounds (a file scene's are its mesh bounds); colour r, g, b =
                         rand() / RAND_MAX x color_max in that order, from Visual C++'s
                         rand (holdrand = holdrand * 214013 + 2531011, rand = holdrand >> 16

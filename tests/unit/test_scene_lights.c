@@ -1,4 +1,4 @@
-/* Light placement (scenes/lights.h, scenes/scene.c): recorded random lights, the overlap
+/* Light placement (scenes/lights.h, scenes/scene_place.c): recorded random lights, the overlap
  * radius (formula and a Monte-Carlo check), grid placement, and the scenes' authored
  * lights (placement scene). */
 #include <setjmp.h>
