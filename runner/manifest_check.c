@@ -25,12 +25,12 @@ static void check_required_and_swept(vctx *c)
         const param *pd = &params_table[i];
         if ((pd->flags & PF_REQUIRED) && !c->set_key[i] && !c->swept[i]) {
             char e[512];
-            err(c, c->root, pd->path, "expected %s, found nothing", expect(pd, e, sizeof e));
+            mf_err(c, c->root, pd->path, "expected %s, found nothing", mf_expect(pd, e, sizeof e));
         }
         if (c->set_key[i] && c->swept[i]) {
             char key[160];
             snprintf(key, sizeof key, "sweep.%s", pd->path);
-            err(c, c->swept[i], key,
+            mf_err(c, c->swept[i], key,
                 "expected %s either set or swept, found both (set at %d:%d)", pd->path,
                 c->set_key[i]->line, c->set_key[i]->col);
         }
@@ -53,21 +53,21 @@ static void check_error(vctx *c)
     size_t ia = (size_t)(param_find("error.at") - params_table);
     bool named = b->error_renderer[0] || c->set_key[ir];   /* set, even if invalid */
     if (b->error_renderer[0] && b->nerror_at == 0)
-        err(c, c->set_key[ir], "error.at",
+        mf_err(c, c->set_key[ir], "error.at",
             "expected at least one time to compare at, found none");
     for (size_t i = 0; i < NPARAMS; i++) {
         if (named || !c->set_key[i] || i == ia ||
             strncmp(params_table[i].path, "error.", 6) != 0 || params_table[i].type == PT_GROUP)
             continue;
         char e[512];
-        err(c, c->set_key[i], "error.reference.renderer", "expected %s, found nothing",
-            expect(&params_table[ir], e, sizeof e));
+        mf_err(c, c->set_key[i], "error.reference.renderer", "expected %s, found nothing",
+            mf_expect(&params_table[ir], e, sizeof e));
         break;
     }
     if (c->set_key[ia] && b->nerror_at > 0 && !named) {
         char e[512];
-        err(c, c->set_key[ia], "error.reference.renderer", "expected %s, found nothing",
-            expect(&params_table[ir], e, sizeof e));
+        mf_err(c, c->set_key[ia], "error.reference.renderer", "expected %s, found nothing",
+            mf_expect(&params_table[ir], e, sizeof e));
     }
 }
 
@@ -103,7 +103,7 @@ static void check_count_all(vctx *c)
                 c->nerr++;
             }
     } else if (c->set_val[ic] && e->base.lights.count.max == LIGHT_COUNT_ALL) {
-        err(c, c->set_val[ic], "lights.count", "%s", msg);
+        mf_err(c, c->set_val[ic], "lights.count", "%s", msg);
     }
 }
 
@@ -143,7 +143,7 @@ static void check_lights(vctx *c)
             }
         }
     } else if (e->base.lights.count.max != 0 && c->set_val[ic]) {
-        err(c, c->set_val[ic], "lights.count",
+        mf_err(c, c->set_val[ic], "lights.count",
             "expected 0 lights with lights.placement none, found %s%" PRIu32 " lights",
             e->base.lights.count.growth ? "up to " : "", e->base.lights.count.max);
     }
@@ -161,7 +161,7 @@ static void check_schedule(vctx *c)
             auto_trials |= c->e->axes[a].off == offsetof(run_params, trials) &&
                            c->e->axes[a].values[v].trials == 0;
     if (auto_trials && c->e->base.schedule == RUN_SCHEDULE_SEQUENTIAL)
-        err(c, c->set_key[is] ? c->set_key[is] : c->set_key[it] ? c->set_key[it] : c->root,
+        mf_err(c, c->set_key[is] ? c->set_key[is] : c->set_key[it] ? c->set_key[it] : c->root,
             "schedule", "expected interleaved with trials: auto (it adds rounds of trials "
             "until the ranking is decided), found sequential");
 }

@@ -17,20 +17,20 @@ typedef struct sbuf {
     char *s;
     size_t cap, len;
 } sbuf;
-void sb_add(sbuf *b, const char *fmt, ...) __attribute__((format(printf, 2, 3)));
+void mf_sb_add(sbuf *b, const char *fmt, ...) __attribute__((format(printf, 2, 3)));
 
 /* manifest_text.c: scalar text for a one-line message (escaped, cut at 60 bytes) */
-void escape_text(sbuf *b, const char *s, size_t len);
-bool tag_ok(const ynode *n);
+void mf_escape_text(sbuf *b, const char *s, size_t len);
+bool mf_tag_ok(const ynode *n);
 /* what a node is, for "found ..." */
-const char *found(const ynode *n, bool want_string, char *buf, size_t len);
-void list_enum(sbuf *b, const char *const *names);
-void list_scenes(sbuf *b);
-void list_renderers(sbuf *b);
-void range_number(sbuf *b, double min, double max, bool min_open);
+const char *mf_found(const ynode *n, bool want_string, char *buf, size_t len);
+void mf_list_enum(sbuf *b, const char *const *names);
+void mf_list_scenes(sbuf *b);
+void mf_list_renderers(sbuf *b);
+void mf_range_number(sbuf *b, double min, double max, bool min_open);
 /* what a parameter expects, as the "expected ..." of its messages */
-const char *expect(const param *pd, char *buf, size_t len);
-bool wants_string(const param *pd);
+const char *mf_expect(const param *pd, char *buf, size_t len);
+bool mf_wants_string(const param *pd);
 
 /* The validation of one manifest. */
 typedef struct vctx {
@@ -46,23 +46,26 @@ typedef struct vctx {
 } vctx;
 
 /* manifest_values.c */
-bool stringish(const ynode *n);
-bool get_uint(const ynode *n, uint64_t *out);
-bool get_number(const ynode *n, double *out, bool *finite);
-void err(vctx *c, const ynode *at, const char *key, const char *fmt, ...)
+bool mf_stringish(const ynode *n);
+bool mf_get_uint(const ynode *n, uint64_t *out);
+bool mf_get_number(const ynode *n, double *out, bool *finite);
+void mf_err(vctx *c, const ynode *at, const char *key, const char *fmt, ...)
     __attribute__((format(printf, 4, 5)));
-bool bad(vctx *c, const param *pd, const ynode *n, const char *key);
-bool parse_uint_in(vctx *c, const ynode *n, const char *key, uint64_t min, uint64_t max,
+bool mf_bad(vctx *c, const param *pd, const ynode *n, const char *key);
+bool mf_parse_uint_in(vctx *c, const ynode *n, const char *key, uint64_t min, uint64_t max,
                    const char *note, uint64_t *out);
-bool parse_number_in(vctx *c, const ynode *n, const char *key, double min, double max,
+bool mf_parse_number_in(vctx *c, const ynode *n, const char *key, double min, double max,
                      unsigned flags, double *out);
-bool map_keys(vctx *c, const ynode *map, const char *prefix, const char *const *names,
+bool mf_map_keys(vctx *c, const ynode *map, const char *prefix, const char *const *names,
               size_t nnames, const ynode **keys, const ynode **vals);
 /* Validates n as parameter pd; a run parameter's value goes into dst (at pd->off),
  * the experiment's own (name, renderers...) into c->e. */
-bool parse_value(vctx *c, const param *pd, const ynode *n, const char *key, run_params *dst);
+bool mf_parse_value(vctx *c, const param *pd, const ynode *n, const char *key, run_params *dst);
+/* The table's defaults into dst, each through mf_parse_value (runner/params.c); false
+ * (with a "bug:" diagnostic) when one does not validate. */
+bool params_apply_defaults(vctx *c, run_params *dst);
 /* A mapping whose keys are the table's parameters under `prefix` ("" at the top). */
-void parse_group(vctx *c, const char *prefix, const ynode *map, run_params *dst);
+void mf_parse_group(vctx *c, const char *prefix, const ynode *map, run_params *dst);
 
 /* manifest_check.c: every rule that needs the whole manifest, after parse_group */
 void manifest_check(vctx *c);

@@ -54,29 +54,6 @@ static bool read_file(const char *path, unsigned char **out, size_t *outlen, dia
     return false;
 }
 
-/* The table's defaults go through the same validation as any value: a default
- * that fails its own parameter is a bug, caught by every load. */
-static bool apply_defaults(vctx *c, run_params *dst)
-{
-    bool ok = true;
-    for (size_t i = 0; i < NPARAMS && ok; i++) {
-        const param *pd = &params_table[i];
-        if (!pd->def)
-            continue;
-        diag_list scratch = {0};
-        ydoc *doc = NULL;
-        vctx dc = {.file = "<default>", .d = &scratch, .e = c->e};
-        ok = ydoc_load(dc.file, pd->def, strlen(pd->def), &doc, &scratch) &&
-             parse_value(&dc, pd, doc->root, pd->path, dst) && dc.nerr == 0;
-        if (!ok)
-            diag_add(c->d, c->file, 0, 0, "", "bug: the default of %s (%s) does not validate",
-                     pd->path, pd->def);
-        ydoc_free(doc);
-        diag_free(&scratch);
-    }
-    return ok;
-}
-
 typedef struct diag_seq {
     diag g;
     size_t seq;
@@ -142,7 +119,7 @@ static bool load_mem(const char *name, const char *data, size_t len,
     memcpy(e->text, data, len);
     e->text[len] = '\0';
     e->scale = 1;
-    if (!apply_defaults(&c, &e->base))
+    if (!params_apply_defaults(&c, &e->base))
         goto done;
     if (!ydoc_load(name, data, len, &doc, diags))
         goto done;
@@ -150,13 +127,13 @@ static bool load_mem(const char *name, const char *data, size_t len,
     c.root = doc->root;
     if (doc->root->kind != YNODE_MAPPING) {
         char f[128];
-        err(&c, doc->root, "", "expected a mapping, found %s", found(doc->root, false, f, sizeof f));
+        mf_err(&c, doc->root, "", "expected a mapping, found %s", mf_found(doc->root, false, f, sizeof f));
         goto done;
     }
     if (!overrides_apply(&c, doc))
         goto done;
     c.root = doc->root;
-    parse_group(&c, "", doc->root, &e->base);
+    mf_parse_group(&c, "", doc->root, &e->base);
     manifest_check(&c);
     if (c.nerr == 0)
         overrides_filter(&c);
@@ -194,23 +171,4 @@ bool manifest_load_with(const char *path, const manifest_overrides *ov, experime
     bool ok = load_mem(path, (const char *)buf, len, ov, out, diags);
     free(buf);
     return ok;
-}
-
-
-bool params_defaults(run_params *out)
-{
-    static run_params d;
-    static int state;   /* 0: not yet, 1: made, -1: a default does not validate (a bug) */
-    if (state == 0) {
-        diag_list scratch = {0};
-        experiment e = {0};
-        vctx c = {.file = "<default>", .d = &scratch, .e = &e};
-        memset(&d, 0, sizeof d);
-        state = apply_defaults(&c, &d) ? 1 : -1;
-        free(e.renderers);
-        free(e.description);
-        diag_free(&scratch);
-    }
-    *out = d;
-    return state == 1;
 }

@@ -14,7 +14,7 @@
 #include "scenes/scene.h"
 
 
-void sb_add(sbuf *b, const char *fmt, ...)
+void mf_sb_add(sbuf *b, const char *fmt, ...)
 {
     if (b->len + 1 >= b->cap)
         return;
@@ -27,7 +27,7 @@ void sb_add(sbuf *b, const char *fmt, ...)
 }
 
 /* Scalar text for a one-line message: escapes, truncated at a character boundary. */
-void escape_text(sbuf *b, const char *s, size_t len)
+void mf_escape_text(sbuf *b, const char *s, size_t len)
 {
     size_t shown = len;
     if (shown > 60) {
@@ -38,25 +38,25 @@ void escape_text(sbuf *b, const char *s, size_t len)
     for (size_t i = 0; i < shown; i++) {
         unsigned char ch = (unsigned char)s[i];
         if (ch == '\'' || ch == '\\')
-            sb_add(b, "\\%c", ch);
+            mf_sb_add(b, "\\%c", ch);
         else if (ch == '\n')
-            sb_add(b, "\\n");
+            mf_sb_add(b, "\\n");
         else if (ch == '\t')
-            sb_add(b, "\\t");
+            mf_sb_add(b, "\\t");
         else if (ch < 0x20 || ch == 0x7f)
-            sb_add(b, "\\x%02x", ch);
+            mf_sb_add(b, "\\x%02x", ch);
         else
-            sb_add(b, "%c", ch);
+            mf_sb_add(b, "%c", ch);
     }
     if (shown < len)
-        sb_add(b, "...");
+        mf_sb_add(b, "...");
 }
 
 #define STR_TAG "tag:yaml.org,2002:str"
 #define CORE_TAG_PREFIX "tag:yaml.org,2002:"
 
 /* Explicit tags other than the string ones are not part of the schema. */
-bool tag_ok(const ynode *n)
+bool mf_tag_ok(const ynode *n)
 {
     return !n->tag || strcmp(n->tag, "!") == 0 || strcmp(n->tag, STR_TAG) == 0;
 }
@@ -64,117 +64,117 @@ bool tag_ok(const ynode *n)
 /* What a node is, for "found ...": 'text' for a scalar (with `want_string` false a
  * quoted one is "a string 'text'", since its quotes are what makes it wrong),
  * "nothing" for an empty plain scalar, else the kind of node. */
-const char *found(const ynode *n, bool want_string, char *buf, size_t len)
+const char *mf_found(const ynode *n, bool want_string, char *buf, size_t len)
 {
     sbuf b = {buf, len, 0};
     buf[0] = '\0';
     if (!n) {
-        sb_add(&b, "nothing");
+        mf_sb_add(&b, "nothing");
     } else if (n->kind == YNODE_MAPPING) {
-        sb_add(&b, n->n ? "a mapping" : "an empty mapping");
+        mf_sb_add(&b, n->n ? "a mapping" : "an empty mapping");
     } else if (n->kind == YNODE_SEQUENCE) {
-        sb_add(&b, n->n ? "a sequence" : "an empty sequence");
-    } else if (!tag_ok(n)) {
+        mf_sb_add(&b, n->n ? "a sequence" : "an empty sequence");
+    } else if (!mf_tag_ok(n)) {
         const char *t = n->tag;
         bool core = strncmp(t, CORE_TAG_PREFIX, strlen(CORE_TAG_PREFIX)) == 0;
-        sb_add(&b, "'");
-        escape_text(&b, n->text, n->len);
-        sb_add(&b, "' tagged %s%s", core ? "!!" : "", core ? t + strlen(CORE_TAG_PREFIX) : t);
+        mf_sb_add(&b, "'");
+        mf_escape_text(&b, n->text, n->len);
+        mf_sb_add(&b, "' tagged %s%s", core ? "!!" : "", core ? t + strlen(CORE_TAG_PREFIX) : t);
     } else if (ynode_empty(n)) {
-        sb_add(&b, "nothing");
+        mf_sb_add(&b, "nothing");
     } else {
         bool quoted = n->style != YSTYLE_PLAIN || n->tag;
-        sb_add(&b, "%s'", quoted && !want_string ? "a string " : "");
-        escape_text(&b, n->text, n->len);
-        sb_add(&b, "'");
+        mf_sb_add(&b, "%s'", quoted && !want_string ? "a string " : "");
+        mf_escape_text(&b, n->text, n->len);
+        mf_sb_add(&b, "'");
     }
     return buf;
 }
 
 /* "one of a, b, c" */
-void list_enum(sbuf *b, const char *const *names)
+void mf_list_enum(sbuf *b, const char *const *names)
 {
-    sb_add(b, "one of ");
+    mf_sb_add(b, "one of ");
     for (size_t i = 0; names[i]; i++)
-        sb_add(b, "%s%s", i ? ", " : "", names[i]);
+        mf_sb_add(b, "%s%s", i ? ", " : "", names[i]);
 }
 
-void list_scenes(sbuf *b)
+void mf_list_scenes(sbuf *b)
 {
-    sb_add(b, "one of ");
+    mf_sb_add(b, "one of ");
     for (size_t i = 0; i < scene_catalog_count(); i++)
-        sb_add(b, "%s%s", i ? ", " : "", scene_catalog_at(i)->name);
+        mf_sb_add(b, "%s%s", i ? ", " : "", scene_catalog_at(i)->name);
 }
 
-void list_renderers(sbuf *b)
+void mf_list_renderers(sbuf *b)
 {
-    sb_add(b, "one of ");
+    mf_sb_add(b, "one of ");
     for (size_t i = 0; i < renderer_kind_count(); i++)
-        sb_add(b, "%s%s", i ? ", " : "", renderer_kind_at(i)->name);
+        mf_sb_add(b, "%s%s", i ? ", " : "", renderer_kind_at(i)->name);
 }
 
-void range_number(sbuf *b, double min, double max, bool min_open)
+void mf_range_number(sbuf *b, double min, double max, bool min_open)
 {
     char lo[32], hi[32];
-    fmt_double(min, lo, sizeof lo);
-    sb_add(b, "a number %s %s", min_open ? ">" : ">=", lo);
+    params_fmt_double(min, lo, sizeof lo);
+    mf_sb_add(b, "a number %s %s", min_open ? ">" : ">=", lo);
     if (isfinite(max)) {
-        fmt_double(max, hi, sizeof hi);
-        sb_add(b, " and <= %s", hi);
+        params_fmt_double(max, hi, sizeof hi);
+        mf_sb_add(b, " and <= %s", hi);
     }
 }
 
 /* What a parameter expects, as the "expected ..." of its messages. */
-const char *expect(const param *pd, char *buf, size_t len)
+const char *mf_expect(const param *pd, char *buf, size_t len)
 {
     sbuf b = {buf, len, 0};
     buf[0] = '\0';
     switch (pd->type) {
-    case PT_SCHEMA: sb_add(&b, "1"); break;
-    case PT_NAME: sb_add(&b, "a name of 1..63 characters from a-z, 0-9 and -"); break;
-    case PT_TEXT: sb_add(&b, "a string"); break;
+    case PT_SCHEMA: mf_sb_add(&b, "1"); break;
+    case PT_NAME: mf_sb_add(&b, "a name of 1..63 characters from a-z, 0-9 and -"); break;
+    case PT_TEXT: mf_sb_add(&b, "a string"); break;
     case PT_SCENE:
-        list_scenes(&b);
-        sb_add(&b, ", or {file: PATH, scale, up, camera}");
+        mf_list_scenes(&b);
+        mf_sb_add(&b, ", or {file: PATH, scale, up, camera}");
         break;
-    case PT_RENDERERS: sb_add(&b, "a non-empty sequence of renderer names"); break;
-    case PT_RENDERER: list_renderers(&b); break;
-    case PT_RESOLUTION: sb_add(&b, "WxH with each side 1..%d", MAX_SIDE); break;
+    case PT_RENDERERS: mf_sb_add(&b, "a non-empty sequence of renderer names"); break;
+    case PT_RENDERER: mf_list_renderers(&b); break;
+    case PT_RESOLUTION: mf_sb_add(&b, "WxH with each side 1..%d", MAX_SIDE); break;
     case PT_UINT:
-        sb_add(&b, "an integer %.0f..%.0f%s", pd->min, pd->max,
+        mf_sb_add(&b, "an integer %.0f..%.0f%s", pd->min, pd->max,
                pd->flags & PF_AUTO ? ", or auto" : "");
         break;
     case PT_NUMBER:
-        range_number(&b, pd->min, pd->max, pd->flags & PF_MIN_OPEN);
+        mf_range_number(&b, pd->min, pd->max, pd->flags & PF_MIN_OPEN);
         if (pd->flags & PF_SCENE_DEFAULT)
-            sb_add(&b, ", or scene");
+            mf_sb_add(&b, ", or scene");
         break;
     case PT_VEC3:
-        sb_add(&b, "[x, y, z] (finite numbers)");
+        mf_sb_add(&b, "[x, y, z] (finite numbers)");
         if (pd->flags & PF_SCENE_DEFAULT)
-            sb_add(&b, " or scene");
+            mf_sb_add(&b, " or scene");
         break;
-    case PT_ENUM: list_enum(&b, pd->values); break;
-    case PT_BOOL: sb_add(&b, "true or false"); break;
-    case PT_SPAN: sb_add(&b, "{seconds: S} or {frames: N}"); break;
+    case PT_ENUM: mf_list_enum(&b, pd->values); break;
+    case PT_BOOL: mf_sb_add(&b, "true or false"); break;
+    case PT_SPAN: mf_sb_add(&b, "{seconds: S} or {frames: N}"); break;
     case PT_COUNT:
-        sb_add(&b, "an integer 0..%u, all, or {start, step, every, max}", MAX_LIGHTS);
+        mf_sb_add(&b, "an integer 0..%u, all, or {start, step, every, max}", MAX_LIGHTS);
         break;
-    case PT_TIMES: sb_add(&b, "a sequence of at most %d times in seconds", MAX_SCREENSHOTS); break;
+    case PT_TIMES: mf_sb_add(&b, "a sequence of at most %d times in seconds", MAX_SCREENSHOTS); break;
     case PT_GROUP:
         if (pd->shorthand) {
-            list_enum(&b, param_find(pd->shorthand)->values);
-            sb_add(&b, " or a mapping");
+            mf_list_enum(&b, param_find(pd->shorthand)->values);
+            mf_sb_add(&b, " or a mapping");
         } else {
-            sb_add(&b, "a mapping");
+            mf_sb_add(&b, "a mapping");
         }
         break;
-    case PT_SWEEP: sb_add(&b, "a mapping from parameters to sequences of values"); break;
+    case PT_SWEEP: mf_sb_add(&b, "a mapping from parameters to sequences of values"); break;
     }
     return buf;
 }
 
-bool wants_string(const param *pd)
+bool mf_wants_string(const param *pd)
 {
     return pd->type == PT_NAME || pd->type == PT_TEXT || pd->type == PT_SCENE ||
            pd->type == PT_RESOLUTION || pd->type == PT_ENUM;

@@ -19,15 +19,15 @@
 
 /* Text a string parameter can take: any non-empty scalar without a non-string
  * tag and without NUL bytes. */
-bool stringish(const ynode *n)
+bool mf_stringish(const ynode *n)
 {
-    return n && n->kind == YNODE_SCALAR && tag_ok(n) && !ynode_empty(n) &&
+    return n && n->kind == YNODE_SCALAR && mf_tag_ok(n) && !ynode_empty(n) &&
            strlen(n->text) == n->len;
 }
 
 /* A plain scalar that is a decimal integer: [-+]?[0-9]+. Negative or too large
  * for 64 bits is out of every range here, so those read as "not an integer". */
-bool get_uint(const ynode *n, uint64_t *out)
+bool mf_get_uint(const ynode *n, uint64_t *out)
 {
     if (!ynode_plain(n))
         return false;
@@ -65,7 +65,7 @@ static bool all_digits(const char *s, const char *end)
 /* A plain scalar that is a YAML 1.2 core-schema number:
  * [-+]?(\.[0-9]+|[0-9]+(\.[0-9]*)?)([eE][-+]?[0-9]+)?, or [-+]?.inf or .nan in
  * their three spellings. *finite is false for those and for overflow (1e999). */
-bool get_number(const ynode *n, double *out, bool *finite)
+bool mf_get_number(const ynode *n, double *out, bool *finite)
 {
     if (!ynode_plain(n))
         return false;
@@ -112,7 +112,7 @@ bool get_number(const ynode *n, double *out, bool *finite)
 /* >>values */
 
 
-void err(vctx *c, const ynode *at, const char *key, const char *fmt, ...)
+void mf_err(vctx *c, const ynode *at, const char *key, const char *fmt, ...)
 {
     char msg[2048];
     va_list ap;
@@ -124,50 +124,50 @@ void err(vctx *c, const ynode *at, const char *key, const char *fmt, ...)
 }
 
 /* The usual message: "expected <what the parameter takes>, found <the node>". */
-bool bad(vctx *c, const param *pd, const ynode *n, const char *key)
+bool mf_bad(vctx *c, const param *pd, const ynode *n, const char *key)
 {
     char e[512], f[128];
-    err(c, n, key, "expected %s, found %s", expect(pd, e, sizeof e),
-        found(n, wants_string(pd), f, sizeof f));
+    mf_err(c, n, key, "expected %s, found %s", mf_expect(pd, e, sizeof e),
+        mf_found(n, mf_wants_string(pd), f, sizeof f));
     return false;
 }
 
-bool parse_uint_in(vctx *c, const ynode *n, const char *key, uint64_t min, uint64_t max,
+bool mf_parse_uint_in(vctx *c, const ynode *n, const char *key, uint64_t min, uint64_t max,
                           const char *note, uint64_t *out)
 {
     uint64_t v;
-    if (!get_uint(n, &v) || v < min || v > max) {
+    if (!mf_get_uint(n, &v) || v < min || v > max) {
         char f[128];
-        err(c, n, key, "expected an integer %" PRIu64 "..%" PRIu64 "%s, found %s", min, max, note,
-            found(n, false, f, sizeof f));
+        mf_err(c, n, key, "expected an integer %" PRIu64 "..%" PRIu64 "%s, found %s", min, max, note,
+            mf_found(n, false, f, sizeof f));
         return false;
     }
     *out = v;
     return true;
 }
 
-bool parse_number_in(vctx *c, const ynode *n, const char *key, double min, double max,
+bool mf_parse_number_in(vctx *c, const ynode *n, const char *key, double min, double max,
                             unsigned flags, double *out)
 {
     double v;
     bool finite;
     char e[128], f[128];
     sbuf b = {e, sizeof e, 0};
-    range_number(&b, min, max, flags & PF_MIN_OPEN);
+    mf_range_number(&b, min, max, flags & PF_MIN_OPEN);
     if (flags & PF_SCENE_DEFAULT)
-        sb_add(&b, ", or scene");
-    if (!get_number(n, &v, &finite)) {
-        err(c, n, key, "expected %s, found %s", e, found(n, false, f, sizeof f));
+        mf_sb_add(&b, ", or scene");
+    if (!mf_get_number(n, &v, &finite)) {
+        mf_err(c, n, key, "expected %s, found %s", e, mf_found(n, false, f, sizeof f));
         return false;
     }
     if (!finite) {
-        err(c, n, key, "expected a finite number, found %s", found(n, false, f, sizeof f));
+        mf_err(c, n, key, "expected a finite number, found %s", mf_found(n, false, f, sizeof f));
         return false;
     }
     if (flags & PF_FLOAT)
         v = (double)(float)v;  /* what will be stored is what is checked */
     if (((flags & PF_MIN_OPEN) ? v <= min : v < min) || v > max) {
-        err(c, n, key, "expected %s, found %s", e, found(n, false, f, sizeof f));
+        mf_err(c, n, key, "expected %s, found %s", e, mf_found(n, false, f, sizeof f));
         return false;
     }
     *out = v;
@@ -178,7 +178,7 @@ bool parse_number_in(vctx *c, const ynode *n, const char *key, double min, doubl
  * that is not a scalar and a second occurrence are errors. vals[i] (and keys[i])
  * get the first occurrence of names[i], NULL if absent. Returns false if any key
  * was wrong. */
-bool map_keys(vctx *c, const ynode *map, const char *prefix, const char *const *names,
+bool mf_map_keys(vctx *c, const ynode *map, const char *prefix, const char *const *names,
                      size_t nnames, const ynode **keys, const ynode **vals)
 {
     bool ok = true;
@@ -188,7 +188,7 @@ bool map_keys(vctx *c, const ynode *map, const char *prefix, const char *const *
         const ynode *k = map->pairs[p].key;
         char f[128];
         if (k->kind != YNODE_SCALAR) {
-            err(c, k, prefix, "expected a key, found %s", found(k, true, f, sizeof f));
+            mf_err(c, k, prefix, "expected a key, found %s", mf_found(k, true, f, sizeof f));
             ok = false;
             continue;
         }
@@ -197,18 +197,18 @@ bool map_keys(vctx *c, const ynode *map, const char *prefix, const char *const *
             i++;
         char path[256];
         sbuf pb = {path, sizeof path, 0};
-        sb_add(&pb, "%s%s", prefix, prefix[0] ? "." : "");
-        escape_text(&pb, k->text, k->len);
+        mf_sb_add(&pb, "%s%s", prefix, prefix[0] ? "." : "");
+        mf_escape_text(&pb, k->text, k->len);
         if (i == nnames) {
             char list[1024];
             sbuf lb = {list, sizeof list, 0};
             list[0] = '\0';
             for (size_t j = 0; j < nnames; j++)
-                sb_add(&lb, "%s%s", j ? ", " : "", names[j]);
-            err(c, k, path, "expected one of %s, found %s", list, found(k, true, f, sizeof f));
+                mf_sb_add(&lb, "%s%s", j ? ", " : "", names[j]);
+            mf_err(c, k, path, "expected one of %s, found %s", list, mf_found(k, true, f, sizeof f));
             ok = false;
         } else if (keys[i]) {
-            err(c, k, path, "expected a key used once, found a second '%s' (first at %d:%d)",
+            mf_err(c, k, path, "expected a key used once, found a second '%s' (first at %d:%d)",
                 names[i], keys[i]->line, keys[i]->col);
             ok = false;
         } else {
@@ -220,7 +220,7 @@ bool map_keys(vctx *c, const ynode *map, const char *prefix, const char *const *
 }
 
 /* A mapping whose keys are the table's parameters under `prefix` ("" at the top). */
-void parse_group(vctx *c, const char *prefix, const ynode *map, run_params *dst)
+void mf_parse_group(vctx *c, const char *prefix, const ynode *map, run_params *dst)
 {
     size_t idx[NPARAMS], nk = 0;
     const char *names[NPARAMS];
@@ -230,43 +230,43 @@ void parse_group(vctx *c, const char *prefix, const ynode *map, run_params *dst)
             names[nk++] = path_leaf(params_table[i].path);
         }
     const ynode *keys[NPARAMS], *vals[NPARAMS];
-    map_keys(c, map, prefix, names, nk, keys, vals);
+    mf_map_keys(c, map, prefix, names, nk, keys, vals);
     for (size_t j = 0; j < nk; j++) {
         if (!keys[j])
             continue;
         c->set_key[idx[j]] = keys[j];
         c->set_val[idx[j]] = vals[j];
-        parse_value(c, &params_table[idx[j]], vals[j], params_table[idx[j]].path, dst);
+        mf_parse_value(c, &params_table[idx[j]], vals[j], params_table[idx[j]].path, dst);
     }
 }
 
 static bool parse_span(vctx *c, const param *pd, const ynode *n, const char *key, span *out)
 {
     if (n->kind != YNODE_MAPPING)
-        return bad(c, pd, n, key);
+        return mf_bad(c, pd, n, key);
     static const char *const names[] = {"seconds", "frames"};
     const ynode *keys[2], *vals[2];
-    bool keys_ok = map_keys(c, n, key, names, 2, keys, vals);
+    bool keys_ok = mf_map_keys(c, n, key, names, 2, keys, vals);
     char e[64], sub[160];
     if (vals[0] && vals[1]) {
-        err(c, n, key, "expected %s, found both seconds and frames", expect(pd, e, sizeof e));
+        mf_err(c, n, key, "expected %s, found both seconds and frames", mf_expect(pd, e, sizeof e));
         return false;
     }
     if (!vals[0] && !vals[1]) {
         if (keys_ok)
-            bad(c, pd, n, key);
+            mf_bad(c, pd, n, key);
         return false;
     }
     if (vals[0]) {
         double v;
         snprintf(sub, sizeof sub, "%s.seconds", key);
-        if (!parse_number_in(c, vals[0], sub, pd->min, pd->max, pd->flags, &v))
+        if (!mf_parse_number_in(c, vals[0], sub, pd->min, pd->max, pd->flags, &v))
             return false;
         *out = (span){.kind = SPAN_SECONDS, .seconds = v};
     } else {
         uint64_t v;
         snprintf(sub, sizeof sub, "%s.frames", key);
-        if (!parse_uint_in(c, vals[1], sub, (uint64_t)pd->fmin, (uint64_t)pd->fmax, "", &v))
+        if (!mf_parse_uint_in(c, vals[1], sub, (uint64_t)pd->fmin, (uint64_t)pd->fmax, "", &v))
             return false;
         *out = (span){.kind = SPAN_FRAMES, .frames = (uint32_t)v};
     }
@@ -283,35 +283,35 @@ static bool parse_count(vctx *c, const param *pd, const ynode *n, const char *ke
                                  .max = LIGHT_COUNT_ALL};
             return true;
         }
-        if (!get_uint(n, &v) || v > MAX_LIGHTS)
-            return bad(c, pd, n, key);
+        if (!mf_get_uint(n, &v) || v > MAX_LIGHTS)
+            return mf_bad(c, pd, n, key);
         *out = (light_count){.growth = false, .start = (uint32_t)v, .max = (uint32_t)v};
         return true;
     }
     if (n->kind != YNODE_MAPPING)
-        return bad(c, pd, n, key);
+        return mf_bad(c, pd, n, key);
 
     static const char *const names[] = {"start", "step", "every", "max"};
     const ynode *keys[4], *vals[4];
-    bool ok = map_keys(c, n, key, names, 4, keys, vals);
+    bool ok = mf_map_keys(c, n, key, names, 4, keys, vals);
     char sub[4][160];
     for (size_t i = 0; i < 4; i++) {
         snprintf(sub[i], sizeof sub[i], "%s.%s", key, names[i]);
         if (!vals[i]) {
-            err(c, n, sub[i], "expected %s, found nothing",
+            mf_err(c, n, sub[i], "expected %s, found nothing",
                 i == 2 ? "a number > 0 and <= 604800" : "an integer 0..1000000");
             ok = false;
         }
     }
     uint64_t start = 0, step = 0, max = 0;
     double every = 0;
-    bool have_start = vals[0] && parse_uint_in(c, vals[0], sub[0], 0, MAX_LIGHTS, "", &start);
-    if (vals[1] && !parse_uint_in(c, vals[1], sub[1], 0, MAX_LIGHTS, "", &step))
+    bool have_start = vals[0] && mf_parse_uint_in(c, vals[0], sub[0], 0, MAX_LIGHTS, "", &start);
+    if (vals[1] && !mf_parse_uint_in(c, vals[1], sub[1], 0, MAX_LIGHTS, "", &step))
         ok = false;
-    if (vals[2] && !parse_number_in(c, vals[2], sub[2], 0, MAX_EVERY, PF_MIN_OPEN, &every))
+    if (vals[2] && !mf_parse_number_in(c, vals[2], sub[2], 0, MAX_EVERY, PF_MIN_OPEN, &every))
         ok = false;
     if (vals[3] &&
-        !parse_uint_in(c, vals[3], sub[3], have_start ? start : 0, MAX_LIGHTS,
+        !mf_parse_uint_in(c, vals[3], sub[3], have_start ? start : 0, MAX_LIGHTS,
                        have_start ? " (at least start)" : "", &max))
         ok = false;
     if (!ok || !have_start)
@@ -325,10 +325,10 @@ static bool parse_times(vctx *c, const param *pd, const ynode *n, const char *ke
                         run_params *dst)
 {
     if (n->kind != YNODE_SEQUENCE)
-        return bad(c, pd, n, key);
+        return mf_bad(c, pd, n, key);
     if (n->n > MAX_SCREENSHOTS) {
         char e[128];
-        err(c, n, key, "expected %s, found %zu times", expect(pd, e, sizeof e), n->n);
+        mf_err(c, n, key, "expected %s, found %zu times", mf_expect(pd, e, sizeof e), n->n);
         return false;
     }
     /* a size_t count followed by MAX_SCREENSHOTS doubles at pd->off (RP_SPAN) */
@@ -338,7 +338,7 @@ static bool parse_times(vctx *c, const param *pd, const ynode *n, const char *ke
     for (size_t i = 0; i < n->n; i++) {
         char sub[160];
         snprintf(sub, sizeof sub, "%s[%zu]", key, i);
-        if (!parse_number_in(c, n->items[i], sub, pd->min, pd->max, 0, &times[i]))
+        if (!mf_parse_number_in(c, n->items[i], sub, pd->min, pd->max, 0, &times[i]))
             ok = false;
     }
     if (ok)
@@ -349,13 +349,13 @@ static bool parse_times(vctx *c, const param *pd, const ynode *n, const char *ke
 static bool parse_renderers(vctx *c, const param *pd, const ynode *n, const char *key)
 {
     if (n->kind != YNODE_SEQUENCE || n->n == 0)
-        return bad(c, pd, n, key);
+        return mf_bad(c, pd, n, key);
     experiment *e = c->e;
     free(e->renderers);
     e->nrenderers = 0;
     e->renderers = calloc(n->n, sizeof *e->renderers);
     if (!e->renderers) {
-        err(c, n, key, "expected a sequence that fits in memory, found no memory left");
+        mf_err(c, n, key, "expected a sequence that fits in memory, found no memory left");
         return false;
     }
     bool ok = true;
@@ -363,12 +363,12 @@ static bool parse_renderers(vctx *c, const param *pd, const ynode *n, const char
         const ynode *it = n->items[i];
         char sub[160], f[128];
         snprintf(sub, sizeof sub, "%s[%zu]", key, i);
-        const renderer_impl *impl = stringish(it) ? renderer_kind_find(it->text) : NULL;
+        const renderer_impl *impl = mf_stringish(it) ? renderer_kind_find(it->text) : NULL;
         if (!impl || strlen(impl->name) >= sizeof e->renderers[0]) {
             char list[512];
             sbuf lb = {list, sizeof list, 0};
-            list_renderers(&lb);
-            err(c, it, sub, "expected %s, found %s", list, found(it, true, f, sizeof f));
+            mf_list_renderers(&lb);
+            mf_err(c, it, sub, "expected %s, found %s", list, mf_found(it, true, f, sizeof f));
             ok = false;
             continue;
         }
@@ -377,7 +377,7 @@ static bool parse_renderers(vctx *c, const param *pd, const ynode *n, const char
             if (n->items[j]->kind == YNODE_SCALAR && strcmp(n->items[j]->text, it->text) == 0)
                 first = n->items[j];
         if (first) {
-            err(c, it, sub, "expected a renderer listed once, found a second '%s' (first at %d:%d)",
+            mf_err(c, it, sub, "expected a renderer listed once, found a second '%s' (first at %d:%d)",
                 impl->name, first->line, first->col);
             ok = false;
             continue;
@@ -390,15 +390,15 @@ static bool parse_renderers(vctx *c, const param *pd, const ynode *n, const char
 static bool parse_resolution(vctx *c, const param *pd, const ynode *n, const char *key,
                              run_params *dst)
 {
-    if (!stringish(n))
-        return bad(c, pd, n, key);
+    if (!mf_stringish(n))
+        return mf_bad(c, pd, n, key);
     const char *s = n->text, *x = strchr(s, 'x');
     if (!x || !all_digits(s, x) || !all_digits(x + 1, s + n->len) || x - s > 9 ||
         (s + n->len) - (x + 1) > 9)
-        return bad(c, pd, n, key);
+        return mf_bad(c, pd, n, key);
     long w = strtol(s, NULL, 10), h = strtol(x + 1, NULL, 10);
     if (w < 1 || w > MAX_SIDE || h < 1 || h > MAX_SIDE)
-        return bad(c, pd, n, key);
+        return mf_bad(c, pd, n, key);
     dst->width = (int)w;
     dst->height = (int)h;
     return true;
@@ -406,11 +406,11 @@ static bool parse_resolution(vctx *c, const param *pd, const ynode *n, const cha
 
 static bool parse_name(vctx *c, const param *pd, const ynode *n, const char *key)
 {
-    if (!stringish(n) || n->len == 0 || n->len > 63)
-        return bad(c, pd, n, key);
+    if (!mf_stringish(n) || n->len == 0 || n->len > 63)
+        return mf_bad(c, pd, n, key);
     for (const char *s = n->text; *s; s++)
         if (!((*s >= 'a' && *s <= 'z') || (*s >= '0' && *s <= '9') || *s == '-'))
-            return bad(c, pd, n, key);
+            return mf_bad(c, pd, n, key);
     strcpy(c->e->name, n->text);
     return true;
 }
@@ -419,11 +419,11 @@ static bool parse_text(vctx *c, const param *pd, const ynode *n, const char *key
 {
     /* an explicitly empty string ("") is a string too */
     bool empty_quoted = n->kind == YNODE_SCALAR && n->len == 0 && n->style != YSTYLE_PLAIN;
-    if (!stringish(n) && !empty_quoted)
-        return bad(c, pd, n, key);
+    if (!mf_stringish(n) && !empty_quoted)
+        return mf_bad(c, pd, n, key);
     char *d = strdup(n->text);
     if (!d) {
-        err(c, n, key, "expected a string that fits in memory, found no memory left");
+        mf_err(c, n, key, "expected a string that fits in memory, found no memory left");
         return false;
     }
     free(c->e->description);
@@ -444,21 +444,21 @@ static bool parse_scene_file(vctx *c, const param *pd, const ynode *n, const cha
 {
     static const char *const names[] = {"file", "scale", "up", "camera", "allow_outside"};
     const ynode *keys[5], *vals[5];
-    bool ok = map_keys(c, n, key, names, 5, keys, vals);
+    bool ok = mf_map_keys(c, n, key, names, 5, keys, vals);
     char sub[5][160], f[128];
     for (size_t i = 0; i < 5; i++)
         snprintf(sub[i], sizeof sub[i], "%s.%s", key, names[i]);
     if (!vals[0]) {
-        err(c, n, sub[0], "expected a path to a glTF 2.0 (.gltf, .glb) or OBJ file, found nothing");
+        mf_err(c, n, sub[0], "expected a path to a glTF 2.0 (.gltf, .glb) or OBJ file, found nothing");
         return false;
     }
-    if (!stringish(vals[0])) {
-        err(c, vals[0], sub[0], "expected a path to a glTF 2.0 (.gltf, .glb) or OBJ file, found %s",
-            found(vals[0], true, f, sizeof f));
+    if (!mf_stringish(vals[0])) {
+        mf_err(c, vals[0], sub[0], "expected a path to a glTF 2.0 (.gltf, .glb) or OBJ file, found %s",
+            mf_found(vals[0], true, f, sizeof f));
         return false;
     }
     double scale = 1;
-    if (vals[1] && !parse_number_in(c, vals[1], sub[1], 0, 1e9, PF_MIN_OPEN | PF_FLOAT, &scale))
+    if (vals[1] && !mf_parse_number_in(c, vals[1], sub[1], 0, 1e9, PF_MIN_OPEN | PF_FLOAT, &scale))
         ok = false;
     int up = SCENE_UP_Y;
     if (vals[2]) {
@@ -467,17 +467,17 @@ static bool parse_scene_file(vctx *c, const param *pd, const ynode *n, const cha
         else if (ynode_plain(vals[2]) && strcmp(vals[2]->text, "z") == 0)
             up = SCENE_UP_Z;
         else {
-            err(c, vals[2], sub[2], "expected one of y, z, found %s",
-                found(vals[2], true, f, sizeof f));
+            mf_err(c, vals[2], sub[2], "expected one of y, z, found %s",
+                mf_found(vals[2], true, f, sizeof f));
             ok = false;
         }
     }
     const char *camera = "orbit";
     if (vals[3]) {
-        if (!stringish(vals[3]) || vals[3]->len >= sizeof dst->scene_camera) {
-            err(c, vals[3], sub[3], "expected orbit or the name of one of the file's cameras "
+        if (!mf_stringish(vals[3]) || vals[3]->len >= sizeof dst->scene_camera) {
+            mf_err(c, vals[3], sub[3], "expected orbit or the name of one of the file's cameras "
                 "(at most %zu bytes), found %s", sizeof dst->scene_camera - 1,
-                found(vals[3], true, f, sizeof f));
+                mf_found(vals[3], true, f, sizeof f));
             ok = false;
         } else {
             camera = vals[3]->text;
@@ -490,8 +490,8 @@ static bool parse_scene_file(vctx *c, const param *pd, const ynode *n, const cha
         if (ynode_plain(vals[4]) && strcmp(vals[4]->text, "true") == 0)
             outside = true;
         else if (!(ynode_plain(vals[4]) && strcmp(vals[4]->text, "false") == 0)) {
-            err(c, vals[4], sub[4], "expected one of false, true, found %s",
-                found(vals[4], true, f, sizeof f));
+            mf_err(c, vals[4], sub[4], "expected one of false, true, found %s",
+                mf_found(vals[4], true, f, sizeof f));
             ok = false;
         }
     }
@@ -505,7 +505,7 @@ static bool parse_scene_file(vctx *c, const param *pd, const ynode *n, const cha
                                  c->file, given)
                       : snprintf(dst->scene_file, sizeof dst->scene_file, "%s", given);
     if (need < 0 || (size_t)need >= sizeof dst->scene_file) {
-        err(c, vals[0], sub[0], "expected a path of at most %zu bytes, found %d",
+        mf_err(c, vals[0], sub[0], "expected a path of at most %zu bytes, found %d",
             sizeof dst->scene_file - 1, need);
         dst->scene_file[0] = '\0';
         return false;
@@ -515,7 +515,7 @@ static bool parse_scene_file(vctx *c, const param *pd, const ynode *n, const cha
     scene_file_info info;
     char msg[1024];
     if (!scene_file_check(&o, &info, msg, sizeof msg)) {
-        err(c, vals[0], sub[0], "expected a scene file that loads, found %s", msg);
+        mf_err(c, vals[0], sub[0], "expected a scene file that loads, found %s", msg);
         dst->scene_file[0] = '\0';
         return false;
     }
@@ -529,17 +529,17 @@ static bool parse_scene_file(vctx *c, const param *pd, const ynode *n, const cha
     return true;
 }
 
-bool parse_value(vctx *c, const param *pd, const ynode *n, const char *key,
+bool mf_parse_value(vctx *c, const param *pd, const ynode *n, const char *key,
                         run_params *dst)
 {
     char *at = (char *)dst + pd->off;
-    if (n->kind == YNODE_SCALAR && !tag_ok(n))
-        return bad(c, pd, n, key);
+    if (n->kind == YNODE_SCALAR && !mf_tag_ok(n))
+        return mf_bad(c, pd, n, key);
     switch (pd->type) {
     case PT_SCHEMA: {
         uint64_t v;
-        if (!get_uint(n, &v) || v != 1)
-            return bad(c, pd, n, key);
+        if (!mf_get_uint(n, &v) || v != 1)
+            return mf_bad(c, pd, n, key);
         return true;
     }
     case PT_NAME:
@@ -549,15 +549,15 @@ bool parse_value(vctx *c, const param *pd, const ynode *n, const char *key,
     case PT_SCENE:
         if (n->kind == YNODE_MAPPING)
             return parse_scene_file(c, pd, n, key, dst);
-        if (!stringish(n) || !scene_catalog_find(n->text) || n->len >= sizeof dst->scene)
-            return bad(c, pd, n, key);
+        if (!mf_stringish(n) || !scene_catalog_find(n->text) || n->len >= sizeof dst->scene)
+            return mf_bad(c, pd, n, key);
         strcpy(dst->scene, n->text);
         return true;
     case PT_RENDERERS:
         return parse_renderers(c, pd, n, key);
     case PT_RENDERER:
-        if (!stringish(n) || !renderer_kind_find(n->text) || n->len >= 32)
-            return bad(c, pd, n, key);
+        if (!mf_stringish(n) || !renderer_kind_find(n->text) || n->len >= 32)
+            return mf_bad(c, pd, n, key);
         memcpy(at, n->text, n->len + 1);
         return true;
     case PT_RESOLUTION:
@@ -569,7 +569,7 @@ bool parse_value(vctx *c, const param *pd, const ynode *n, const char *key,
             memcpy(at, &zero, sizeof zero);
             return true;
         }
-        if (!parse_uint_in(c, n, key, (uint64_t)pd->min, (uint64_t)pd->max,
+        if (!mf_parse_uint_in(c, n, key, (uint64_t)pd->min, (uint64_t)pd->max,
                            pd->flags & PF_AUTO ? ", or auto" : "", &v))
             return false;
         uint32_t u = (uint32_t)v;
@@ -583,7 +583,7 @@ bool parse_value(vctx *c, const param *pd, const ynode *n, const char *key,
             memcpy(at, &f, sizeof f);
             return true;
         }
-        if (!parse_number_in(c, n, key, pd->min, pd->max, pd->flags, &v))
+        if (!mf_parse_number_in(c, n, key, pd->min, pd->max, pd->flags, &v))
             return false;
         if (pd->flags & PF_FLOAT) {
             float f = (float)v;
@@ -600,12 +600,12 @@ bool parse_value(vctx *c, const param *pd, const ynode *n, const char *key,
             return true;
         }
         if (n->kind != YNODE_SEQUENCE || n->n != 3)
-            return bad(c, pd, n, key);
+            return mf_bad(c, pd, n, key);
         for (size_t i = 0; i < 3; i++) {
             char k[160];
             double d;
             snprintf(k, sizeof k, "%s[%zu]", key, i);
-            if (!parse_number_in(c, n->items[i], k, pd->min, pd->max, PF_FLOAT, &d))
+            if (!mf_parse_number_in(c, n->items[i], k, pd->min, pd->max, PF_FLOAT, &d))
                 return false;
             v[i] = (float)d;
         }
@@ -613,18 +613,18 @@ bool parse_value(vctx *c, const param *pd, const ynode *n, const char *key,
         return true;
     }
     case PT_ENUM:
-        if (stringish(n))
+        if (mf_stringish(n))
             for (int i = 0; pd->values[i]; i++)
                 if (strcmp(pd->values[i], n->text) == 0) {
                     memcpy(at, &i, sizeof i);
                     return true;
                 }
-        return bad(c, pd, n, key);
+        return mf_bad(c, pd, n, key);
     case PT_BOOL: {
         bool t = ynode_plain(n) && strcmp(n->text, "true") == 0;
         bool f = ynode_plain(n) && strcmp(n->text, "false") == 0;
         if (!t && !f)
-            return bad(c, pd, n, key);
+            return mf_bad(c, pd, n, key);
         memcpy(at, &t, sizeof t);
         return true;
     }
@@ -647,15 +647,15 @@ bool parse_value(vctx *c, const param *pd, const ynode *n, const char *key,
     case PT_GROUP:
         if (n->kind == YNODE_SCALAR && pd->shorthand) {
             const param *member = param_find(pd->shorthand);
-            return parse_value(c, member, n, key, dst);
+            return mf_parse_value(c, member, n, key, dst);
         }
         if (n->kind != YNODE_MAPPING)
-            return bad(c, pd, n, key);
-        parse_group(c, pd->path, n, dst);
+            return mf_bad(c, pd, n, key);
+        mf_parse_group(c, pd->path, n, dst);
         return true;
     case PT_SWEEP:
         if (n->kind != YNODE_MAPPING)
-            return bad(c, pd, n, key);
+            return mf_bad(c, pd, n, key);
         parse_sweep(c, pd, n);
         return true;
     }
@@ -667,7 +667,7 @@ static void list_sweepable(sbuf *b)
     bool first = true;
     for (size_t i = 0; i < NPARAMS; i++)
         if (params_table[i].flags & PF_SWEEP) {
-            sb_add(b, "%s%s", first ? "" : ", ", params_table[i].path);
+            mf_sb_add(b, "%s%s", first ? "" : ", ", params_table[i].path);
             first = false;
         }
 }
@@ -677,19 +677,19 @@ static void parse_sweep(vctx *c, const param *pd, const ynode *map)
     experiment *e = c->e;
     e->axes = calloc(map->n ? map->n : 1, sizeof *e->axes);
     if (!e->axes) {
-        err(c, map, pd->path, "expected a sweep that fits in memory, found no memory left");
+        mf_err(c, map, pd->path, "expected a sweep that fits in memory, found no memory left");
         return;
     }
     for (size_t p = 0; p < map->n; p++) {
         const ynode *k = map->pairs[p].key, *v = map->pairs[p].value;
         char f[128], key[256];
         if (k->kind != YNODE_SCALAR) {
-            err(c, k, pd->path, "expected a parameter, found %s", found(k, true, f, sizeof f));
+            mf_err(c, k, pd->path, "expected a parameter, found %s", mf_found(k, true, f, sizeof f));
             continue;
         }
         sbuf kb = {key, sizeof key, 0};
-        sb_add(&kb, "%s.", pd->path);
-        escape_text(&kb, k->text, k->len);
+        mf_sb_add(&kb, "%s.", pd->path);
+        mf_escape_text(&kb, k->text, k->len);
         const param *sp = param_find(k->text);
         if (sp && sp->type == PT_GROUP && sp->shorthand)
             sp = param_find(sp->shorthand);   /* `gbuffer: [fat, curtis]` as in place */
@@ -697,24 +697,24 @@ static void parse_sweep(vctx *c, const param *pd, const ynode *map)
             char list[1024];
             sbuf lb = {list, sizeof list, 0};
             list_sweepable(&lb);
-            err(c, k, key, "expected a sweepable parameter (one of %s), found %s", list,
-                found(k, true, f, sizeof f));
+            mf_err(c, k, key, "expected a sweepable parameter (one of %s), found %s", list,
+                mf_found(k, true, f, sizeof f));
             continue;
         }
         size_t idx = (size_t)(sp - params_table);
         if (c->swept[idx]) {
-            err(c, k, key, "expected a key used once, found a second '%s' (first at %d:%d)",
+            mf_err(c, k, key, "expected a key used once, found a second '%s' (first at %d:%d)",
                 sp->path, c->swept[idx]->line, c->swept[idx]->col);
             continue;
         }
         c->swept[idx] = k;
         if (v->kind != YNODE_SEQUENCE || v->n == 0) {
-            err(c, v, key, "expected a non-empty sequence of values, found %s",
-                found(v, false, f, sizeof f));
+            mf_err(c, v, key, "expected a non-empty sequence of values, found %s",
+                mf_found(v, false, f, sizeof f));
             continue;
         }
         if (v->n > MAX_AXIS_VALUES) {
-            err(c, v, key, "expected at most %d values, found %zu", MAX_AXIS_VALUES, v->n);
+            mf_err(c, v, key, "expected at most %d values, found %zu", MAX_AXIS_VALUES, v->n);
             continue;
         }
         struct sweep_axis *ax = &e->axes[e->naxes];
@@ -729,7 +729,7 @@ static void parse_sweep(vctx *c, const param *pd, const ynode *map)
             free(ax->line);
             free(ax->col);
             *ax = (struct sweep_axis){0};
-            err(c, v, key, "expected a sweep that fits in memory, found no memory left");
+            mf_err(c, v, key, "expected a sweep that fits in memory, found no memory left");
             continue;
         }
         ax->nvalues = v->n;
@@ -740,7 +740,7 @@ static void parse_sweep(vctx *c, const param *pd, const ynode *map)
             snprintf(sub, sizeof sub, "%s[%zu]", key, j);
             ax->line[j] = v->items[j]->line;
             ax->col[j] = v->items[j]->col;
-            parse_value(c, sp, v->items[j], sub, &ax->values[j]);
+            mf_parse_value(c, sp, v->items[j], sub, &ax->values[j]);
         }
     }
 }

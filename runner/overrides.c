@@ -72,7 +72,7 @@ bool override_check_renderers(const char *list, char *err, size_t errlen)
         if (k == 0 || k >= sizeof name || !renderer_kind_find(name)) {
             char all[512];
             sbuf b = {all, sizeof all, 0};
-            list_renderers(&b);
+            mf_list_renderers(&b);
             snprintf(err, errlen, "--renderer: expected renderer names separated by commas "
                      "(each %s), found '%.*s'", all, (int)(k < 100 ? k : 100), s);
             return false;
@@ -406,7 +406,7 @@ void overrides_filter(vctx *c)
     sbuf b = {list, sizeof list, 0};
     list[0] = '\0';
     for (size_t i = 0; i < e->nrenderers; i++)
-        sb_add(&b, "%s%s", i ? ", " : "", e->renderers[i]);
+        mf_sb_add(&b, "%s%s", i ? ", " : "", e->renderers[i]);
     snprintf(where, sizeof where, "%s: --renderer %s", c->file, e->renderer_filter);
     diag_add(c->d, where, 0, 0, "renderers", "expected one or more of the manifest's "
              "renderers (%s), found none of them", list);

@@ -122,7 +122,7 @@ static fmt_memo *fmt_memo_slot(fmt_memo *memo, uint64_t bits, bool *hit)
 /* The shortest %.*g text that reads back as the same value (10 is "10", not
  * "1e+01"; 1e9 is "1e+09"; 0.1 is "0.1"). A value no text reads back as (NaN)
  * leaves out as it was. */
-void fmt_double(double v, char *out, size_t len)
+void params_fmt_double(double v, char *out, size_t len)
 {
     static _Thread_local fmt_memo memo[FMT_MEMO_N];
     uint64_t bits;
@@ -146,7 +146,7 @@ void fmt_double(double v, char *out, size_t len)
         snprintf(out, len, "%s", m->text);
 }
 
-void fmt_float(float v, char *out, size_t len)
+void params_fmt_float(float v, char *out, size_t len)
 {
     static _Thread_local fmt_memo memo[FMT_MEMO_N];
     uint32_t b32;
@@ -186,7 +186,7 @@ void param_format(const param *pd, const run_params *p, char *out, size_t len)
              * an edited file a new one */
             char sc[32] = "";
             if (p->scene_scale != 1)
-                fmt_float(p->scene_scale, sc, sizeof sc);
+                params_fmt_float(p->scene_scale, sc, sizeof sc);
             bool cam = strcmp(p->scene_camera, "orbit") != 0;
             snprintf(out, len, "file:%s%s%s%s%s%s", p->scene_hash, sc[0] ? ",scale:" : "", sc,
                      p->scene_up == SCENE_UP_Z ? ",up:z" : "", cam ? ",camera:" : "",
@@ -218,11 +218,11 @@ void param_format(const param *pd, const run_params *p, char *out, size_t len)
             if (isnan(f))
                 snprintf(out, len, "scene");   /* PF_SCENE_DEFAULT */
             else
-                fmt_float(f, out, len);
+                params_fmt_float(f, out, len);
         } else {
             double v;
             memcpy(&v, at, sizeof v);
-            fmt_double(v, out, len);
+            params_fmt_double(v, out, len);
         }
         break;
     case PT_VEC3: {
@@ -232,9 +232,9 @@ void param_format(const param *pd, const run_params *p, char *out, size_t len)
         if (isnan(v[0])) {
             snprintf(out, len, "scene");
         } else {
-            fmt_float(v[0], a, sizeof a);
-            fmt_float(v[1], y, sizeof y);
-            fmt_float(v[2], z, sizeof z);
+            params_fmt_float(v[0], a, sizeof a);
+            params_fmt_float(v[1], y, sizeof y);
+            params_fmt_float(v[2], z, sizeof z);
             snprintf(out, len, "%s,%s,%s", a, y, z);
         }
         break;
@@ -260,7 +260,7 @@ void param_format(const param *pd, const run_params *p, char *out, size_t len)
         if (s.kind == SPAN_FRAMES) {
             snprintf(out, len, "frames:%" PRIu32, s.frames);
         } else {
-            fmt_double(s.seconds, a, sizeof a);
+            params_fmt_double(s.seconds, a, sizeof a);
             snprintf(out, len, "seconds:%s", a);
         }
         break;
@@ -271,7 +271,7 @@ void param_format(const param *pd, const run_params *p, char *out, size_t len)
         if (!lc.growth && lc.start == LIGHT_COUNT_ALL) {
             snprintf(out, len, "all");
         } else if (lc.growth) {
-            fmt_double(lc.every, a, sizeof a);
+            params_fmt_double(lc.every, a, sizeof a);
             snprintf(out, len, "start:%" PRIu32 ",step:%" PRIu32 ",every:%s,max:%" PRIu32,
                      lc.start, lc.step, a, lc.max);
         } else {
@@ -290,8 +290,8 @@ void param_format(const param *pd, const run_params *p, char *out, size_t len)
         const double *times = (const double *)(at + sizeof(size_t));
         size_t n = count < MAX_SCREENSHOTS ? count : MAX_SCREENSHOTS;
         for (size_t i = 0; i < n; i++) {
-            fmt_double(times[i], a, sizeof a);
-            sb_add(&b, "%s%s", i ? "," : "", a);
+            params_fmt_double(times[i], a, sizeof a);
+            mf_sb_add(&b, "%s%s", i ? "," : "", a);
         }
         if (b.len < len) {
             snprintf(out, len, "%s", all);
@@ -563,7 +563,7 @@ void params_print(FILE *out, params_format f)
     for (size_t i = 0; i < NPARAMS; i++) {
         const param *pd = &params_table[i];
         char accepts[1024];
-        expect(pd, accepts, sizeof accepts);
+        mf_expect(pd, accepts, sizeof accepts);
         const char *def = pd->size && pd->def ? defaults[i]
                           : (pd->flags & PF_REQUIRED) ? "(required)" : "";
         const char *readers = pd->size ? (pd->readers ? pd->readers : "*") : "";
@@ -599,4 +599,45 @@ void params_print(FILE *out, params_format f)
     }
     if (f == PARAMS_JSON)
         fputs("\n]}\n", out);
+}
+
+/* The table's defaults go through the same validation as any value: a default
+ * that fails its own parameter is a bug, caught by every load. */
+bool params_apply_defaults(vctx *c, run_params *dst)
+{
+    bool ok = true;
+    for (size_t i = 0; i < NPARAMS && ok; i++) {
+        const param *pd = &params_table[i];
+        if (!pd->def)
+            continue;
+        diag_list scratch = {0};
+        ydoc *doc = NULL;
+        vctx dc = {.file = "<default>", .d = &scratch, .e = c->e};
+        ok = ydoc_load(dc.file, pd->def, strlen(pd->def), &doc, &scratch) &&
+             mf_parse_value(&dc, pd, doc->root, pd->path, dst) && dc.nerr == 0;
+        if (!ok)
+            diag_add(c->d, c->file, 0, 0, "", "bug: the default of %s (%s) does not validate",
+                     pd->path, pd->def);
+        ydoc_free(doc);
+        diag_free(&scratch);
+    }
+    return ok;
+}
+
+bool params_defaults(run_params *out)
+{
+    static run_params d;
+    static int state;   /* 0: not yet, 1: made, -1: a default does not validate (a bug) */
+    if (state == 0) {
+        diag_list scratch = {0};
+        experiment e = {0};
+        vctx c = {.file = "<default>", .d = &scratch, .e = &e};
+        memset(&d, 0, sizeof d);
+        state = params_apply_defaults(&c, &d) ? 1 : -1;
+        free(e.renderers);
+        free(e.description);
+        diag_free(&scratch);
+    }
+    *out = d;
+    return state == 1;
 }

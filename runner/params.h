@@ -77,8 +77,8 @@ bool path_parent_is(const char *path, const char *parent);
 const char *path_leaf(const char *path);
 
 /* Canonical numbers: the shortest %g text that reads back as the same value. */
-void fmt_double(double v, char *out, size_t len);
-void fmt_float(float v, char *out, size_t len);
+void params_fmt_double(double v, char *out, size_t len);
+void params_fmt_float(float v, char *out, size_t len);
 /* The canonical text of a run parameter (what run ids hash and plan.csv holds). */
 void param_format(const param *pd, const run_params *p, char *out, size_t len);
 /* The column a parameter has in plan.csv and run_params_kv. */
