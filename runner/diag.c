@@ -5,6 +5,8 @@
 #include <stdlib.h>
 #include <string.h>
 
+#include "results/grow.h"
+
 /* Diagnostics are what tells the user why nothing ran: losing one to a failed
  * allocation would turn a bad manifest into a silent one, so that aborts. */
 static char *xstrdup(const char *s)
@@ -20,15 +22,9 @@ static char *xstrdup(const char *s)
 void diag_add(diag_list *d, const char *file, int line, int col, const char *key,
               const char *fmt, ...)
 {
-    if (d->n == d->cap) {
-        size_t cap = d->cap ? d->cap * 2 : 16;
-        diag *v = realloc(d->v, cap * sizeof *v);
-        if (!v) {
-            fputs("shadesweep: out of memory while reporting an error\n", stderr);
-            abort();
-        }
-        d->v = v;
-        d->cap = cap;
+    if (!GROW(d->v, d->cap, d->n + 1, 16)) {
+        fputs("shadesweep: out of memory while reporting an error\n", stderr);
+        abort();
     }
 
     va_list ap;

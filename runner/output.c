@@ -462,32 +462,10 @@ bool output_write_run_summary(const char *run_dir, const experiment *e, const ru
  * does not parse. */
 static bool append_rows(csv_writer *w, const char *path, const char *id, bool *failed)
 {
-    FILE *in = fopen(path, "rb");
-    if (!in)
-        return false;
-    char *text = NULL;
-    size_t len = 0, cap = 0;
-    char buf[65536];
-    size_t got;
-    bool ok = true;
-    while ((got = fread(buf, 1, sizeof buf, in)) > 0) {
-        if (len + got + 1 > cap) {
-            size_t nc = cap ? cap * 2 : 65536;
-            while (nc < len + got + 1)
-                nc *= 2;
-            char *nt = realloc(text, nc);
-            if (!nt) {
-                ok = false;
-                break;
-            }
-            text = nt;
-            cap = nc;
-        }
-        memcpy(text + len, buf, got);
-        len += got;
-    }
-    ok = ok && !ferror(in) && text;
-    fclose(in);
+    size_t len = 0;
+    int e;
+    char *text = fs_read_all(path, 0, &len, &e);
+    bool ok = text != NULL;
     /* parse everything first: a run goes in whole or not at all */
     csv_record r = {0};
     size_t pos = 0, rows = 0;

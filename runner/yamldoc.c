@@ -10,20 +10,15 @@
 #include <string.h>
 #include <yaml.h>
 
+#include "results/grow.h"
 #include "runner/hash.h"
 
 /* >>nodes */
 
 static ynode *node_new(ydoc *doc, ynode_kind kind, yaml_mark_t mark, const yaml_char_t *tag)
 {
-    if (doc->nall == doc->capall) {
-        size_t cap = doc->capall ? doc->capall * 2 : 64;
-        ynode **all = realloc(doc->all, cap * sizeof *all);
-        if (!all)
-            return NULL;
-        doc->all = all;
-        doc->capall = cap;
-    }
+    if (!GROW(doc->all, doc->capall, doc->nall + 1, 64))
+        return NULL;
     ynode *n = calloc(1, sizeof *n);
     if (!n)
         return NULL;
@@ -262,14 +257,8 @@ static bool attach(loader *L, const ynode *n)
     ynode *p = f->node;
     p->expanded = add_sat(p->expanded, n->expanded);
     if (p->kind == YNODE_SEQUENCE) {
-        if (p->n == f->cap) {
-            size_t cap = f->cap ? f->cap * 2 : 4;
-            const ynode **items = realloc(p->items, cap * sizeof *items);
-            if (!items)
-                return oom(L);
-            p->items = items;
-            f->cap = cap;
-        }
+        if (!GROW(p->items, f->cap, p->n + 1, 4))
+            return oom(L);
         p->items[p->n++] = n;
         return true;
     }
@@ -278,14 +267,8 @@ static bool attach(loader *L, const ynode *n)
         f->want_value = false;
         return true;
     }
-    if (p->n == f->cap) {
-        size_t cap = f->cap ? f->cap * 2 : 4;
-        ypair *pairs = realloc(p->pairs, cap * sizeof *pairs);
-        if (!pairs)
-            return oom(L);
-        p->pairs = pairs;
-        f->cap = cap;
-    }
+    if (!GROW(p->pairs, f->cap, p->n + 1, 4))
+        return oom(L);
     p->pairs[p->n++] = (ypair){.key = n, .value = NULL};
     f->want_value = true;
     return true;
