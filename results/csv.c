@@ -19,6 +19,7 @@
 #include <errno.h>
 
 #include "results/fsutil.h"
+#include "results/grow.h"
 #include "results/numfmt.h"
 
 #define CSV_BUF_SIZE (64 * 1024)
@@ -345,27 +346,7 @@ void csv_abort(csv_writer *w)
 
 static bool rec_reserve(csv_record *r, size_t nbytes, size_t nfields)
 {
-    if (nbytes > r->bufcap) {
-        size_t cap = r->bufcap ? r->bufcap : 256;
-        while (cap < nbytes)
-            cap *= 2;
-        char *b = realloc(r->buf, cap);
-        if (!b)
-            return false;
-        r->buf = b;
-        r->bufcap = cap;
-    }
-    if (nfields > r->cap) {
-        size_t cap = r->cap ? r->cap * 2 : 16;
-        while (cap < nfields)
-            cap *= 2;
-        char **f = realloc(r->field, cap * sizeof *f);
-        if (!f)
-            return false;
-        r->field = f;
-        r->cap = cap;
-    }
-    return true;
+    return GROW(r->buf, r->bufcap, nbytes, 256) && GROW(r->field, r->cap, nfields, 16);
 }
 
 int csv_next_record(const char *text, size_t len, size_t *pos, csv_record *r)
@@ -391,15 +372,9 @@ int csv_next_record(const char *text, size_t len, size_t *pos, csv_record *r)
     size_t *starts = NULL, cap = 0;
     int rc = 1;
     for (;;) {
-        if (nf == cap) {
-            size_t nc = cap ? cap * 2 : 16;
-            size_t *ns = realloc(starts, nc * sizeof *ns);
-            if (!ns) {
-                rc = -1;
-                break;
-            }
-            starts = ns;
-            cap = nc;
+        if (!GROW(starts, cap, nf + 1, 16)) {
+            rc = -1;
+            break;
         }
         starts[nf++] = o;
         if (i < end && text[i] == '"') {

@@ -2,6 +2,7 @@
 
 #include "results/csv.h"
 #include "results/fsutil.h"
+#include "results/grow.h"
 
 #include <errno.h>
 #include <math.h>
@@ -46,15 +47,9 @@ bool csv_read(const char *path, csv_table *t, char *err, size_t errlen)
         } else if (r.n != t->ncols) {
             why = "a row whose field count differs from the header's";
         } else {
-            if (t->nrows == cap) {
-                size_t c = cap ? cap * 2 : 64;
-                char ***rows = realloc(t->rows, c * sizeof *rows);
-                if (!rows) {
-                    why = "out of memory";
-                    break;
-                }
-                t->rows = rows;
-                cap = c;
+            if (!GROW(t->rows, cap, t->nrows + 1, 64)) {
+                why = "out of memory";
+                break;
             }
             if (!(t->rows[t->nrows] = copy_fields(&r)))
                 why = "out of memory";

@@ -16,6 +16,7 @@
 
 #include "results/csv.h"
 #include "results/fsutil.h"
+#include "results/grow.h"
 #include "runner/hash.h"
 
 #define RUN_FILES_HEADER "# shadesweep run files 1"
@@ -72,14 +73,9 @@ bool folder_write_run_files(const char *run_dir, char *err, size_t errlen)
         if (!folder_is_run_file(ent->d_name, &temp) || temp || strcmp(ent->d_name, "log.txt") == 0 ||
             strcmp(ent->d_name, "files.txt") == 0)
             continue;
-        if (n == cap) {
-            cap = cap ? cap * 2 : 16;
-            char **nv = realloc(names, cap * sizeof *nv);
-            if (!nv) {
-                ok = false;
-                break;
-            }
-            names = nv;
+        if (!GROW(names, cap, n + 1, 16)) {
+            ok = false;
+            break;
         }
         if (!(names[n] = strdup(ent->d_name))) {
             ok = false;
