@@ -15,6 +15,7 @@
  * output is enabled on a plain core context and gl_info.debug_context is false. */
 #include "renderers/gl/internal.h"
 #include "renderers/gl/loader.h"
+#include "renderers/gl/target.h"
 
 #include <inttypes.h>
 #include <limits.h>
@@ -211,22 +212,10 @@ static bool check_size(const gl_context *ctx, int w, int h, char *err, size_t er
            check_limit(w, h, h, i->max_viewport_dims[1], "GL_MAX_VIEWPORT_DIMS", err, errlen);
 }
 
+/* glCheckFramebufferStatus's result for a message. */
 static const char *framebuffer_status_name(GLenum s)
 {
-    switch (s) {
-    case GL_FRAMEBUFFER_UNDEFINED: return "GL_FRAMEBUFFER_UNDEFINED";
-    case GL_FRAMEBUFFER_INCOMPLETE_ATTACHMENT: return "GL_FRAMEBUFFER_INCOMPLETE_ATTACHMENT";
-    case GL_FRAMEBUFFER_INCOMPLETE_MISSING_ATTACHMENT:
-        return "GL_FRAMEBUFFER_INCOMPLETE_MISSING_ATTACHMENT";
-    case GL_FRAMEBUFFER_INCOMPLETE_DRAW_BUFFER: return "GL_FRAMEBUFFER_INCOMPLETE_DRAW_BUFFER";
-    case GL_FRAMEBUFFER_INCOMPLETE_READ_BUFFER: return "GL_FRAMEBUFFER_INCOMPLETE_READ_BUFFER";
-    case GL_FRAMEBUFFER_UNSUPPORTED: return "GL_FRAMEBUFFER_UNSUPPORTED";
-    case GL_FRAMEBUFFER_INCOMPLETE_MULTISAMPLE: return "GL_FRAMEBUFFER_INCOMPLETE_MULTISAMPLE";
-    case GL_FRAMEBUFFER_INCOMPLETE_LAYER_TARGETS:
-        return "GL_FRAMEBUFFER_INCOMPLETE_LAYER_TARGETS";
-    case 0: return "error in glCheckFramebufferStatus";
-    default: return "unknown status";
-    }
+    return gl_framebuffer_status_name(s, "error in glCheckFramebufferStatus", "unknown status");
 }
 
 static void label(const gl_context *ctx, GLenum kind, GLuint name, const char *text)
