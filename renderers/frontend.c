@@ -1,6 +1,7 @@
 /* The frontend: visible objects, lights, illumination sets and eye-inside flags of
  * one frame, decided once for every renderer (frontend.h says what each means). */
 #include "renderers/frontend.h"
+#include "results/grow.h"
 
 #include <math.h>
 #include <stdio.h>
@@ -141,15 +142,11 @@ void frontend_light_volume_bound(const frontend *f, const scene_light *l, sm_vec
  * halves); light arrays (lights, eye_inside) cap_lights and illum_start cap_lights + 1. */
 static bool reserve_objects(frontend *f, size_t n)
 {
-    if (n <= f->cap_objects && f->visible && f->translucent && f->sort)
-        return true;
-    size_t cap = f->cap_objects ? f->cap_objects : 16;
-    while (cap < n)
-        cap *= 2;
-    uint32_t *v = realloc(f->visible, cap * sizeof *v);
-    if (!v)
+    size_t cap = f->cap_objects;   /* 0 until every array is allocated */
+    if (!GROW(f->visible, cap, n ? n : 1, 16))
         return false;
-    f->visible = v;
+    if (cap == f->cap_objects)
+        return true;
     uint32_t *t = realloc(f->translucent, cap * sizeof *t);
     if (!t)
         return false;
@@ -164,16 +161,11 @@ static bool reserve_objects(frontend *f, size_t n)
 
 static bool reserve_lights(frontend *f, size_t n)
 {
-    if (n <= f->cap_lights && f->lights && f->eye_inside && f->illum_start &&
-        f->shadow_layer && f->shadow_start && f->shadow_viewproj)
-        return true;
-    size_t cap = f->cap_lights ? f->cap_lights : 16;
-    while (cap < n)
-        cap *= 2;
-    uint32_t *a = realloc(f->lights, cap * sizeof *a);
-    if (!a)
+    size_t cap = f->cap_lights;   /* 0 until every array is allocated */
+    if (!GROW(f->lights, cap, n ? n : 1, 16))
         return false;
-    f->lights = a;
+    if (cap == f->cap_lights)
+        return true;
     uint32_t *b = realloc(f->eye_inside, cap * sizeof *b);
     if (!b)
         return false;
@@ -200,32 +192,12 @@ static bool reserve_lights(frontend *f, size_t n)
 
 static bool reserve_illum(frontend *f, size_t n)
 {
-    if (n <= f->cap_illum && f->illum)
-        return true;
-    size_t cap = f->cap_illum ? f->cap_illum : 16;
-    while (cap < n)
-        cap *= 2;
-    uint32_t *p = realloc(f->illum, cap * sizeof *p);
-    if (!p)
-        return false;
-    f->illum = p;
-    f->cap_illum = cap;
-    return true;
+    return GROW(f->illum, f->cap_illum, n ? n : 1, 16);
 }
 
 static bool reserve_shadow(frontend *f, size_t n)
 {
-    if (n <= f->cap_shadow && f->shadow)
-        return true;
-    size_t cap = f->cap_shadow ? f->cap_shadow : 16;
-    while (cap < n)
-        cap *= 2;
-    uint32_t *p = realloc(f->shadow, cap * sizeof *p);
-    if (!p)
-        return false;
-    f->shadow = p;
-    f->cap_shadow = cap;
-    return true;
+    return GROW(f->shadow, f->cap_shadow, n ? n : 1, 16);
 }
 
 bool frontend_init(frontend *f, const scene *s, char *err, size_t errlen)
