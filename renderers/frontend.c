@@ -138,8 +138,22 @@ void frontend_light_volume_bound(const frontend *f, const scene_light *l, sm_vec
 
 // >>init and free
 
+/* *pp (any T *) reallocated to `bytes`; false, *pp unchanged, when out of memory. */
+static bool resize(void *pp, size_t bytes)
+{
+    void *old;
+    memcpy(&old, pp, sizeof old);
+    void *p = realloc(old, bytes);
+    if (!p)
+        return false;
+    memcpy(pp, &p, sizeof p);
+    return true;
+}
+
 /* Object arrays: visible holds cap_objects, sort twice that (the merge sort's two
- * halves); light arrays (lights, eye_inside) cap_lights and illum_start cap_lights + 1. */
+ * halves); light arrays (lights, eye_inside) cap_lights and illum_start cap_lights + 1.
+ * The first array of each group grows (GROW); the others follow its capacity, which the
+ * group's cap takes once every array has it. */
 static bool reserve_objects(frontend *f, size_t n)
 {
     size_t cap = f->cap_objects;   /* 0 until every array is allocated */
@@ -147,14 +161,9 @@ static bool reserve_objects(frontend *f, size_t n)
         return false;
     if (cap == f->cap_objects)
         return true;
-    uint32_t *t = realloc(f->translucent, cap * sizeof *t);
-    if (!t)
+    if (!resize(&f->translucent, cap * sizeof *f->translucent) ||
+        !resize(&f->sort, 2 * cap * sizeof *f->sort))
         return false;
-    f->translucent = t;
-    frontend_sort_item *s = realloc(f->sort, 2 * cap * sizeof *s);
-    if (!s)
-        return false;
-    f->sort = s;
     f->cap_objects = cap;
     return true;
 }
@@ -166,26 +175,12 @@ static bool reserve_lights(frontend *f, size_t n)
         return false;
     if (cap == f->cap_lights)
         return true;
-    uint32_t *b = realloc(f->eye_inside, cap * sizeof *b);
-    if (!b)
+    if (!resize(&f->eye_inside, cap * sizeof *f->eye_inside) ||
+        !resize(&f->illum_start, (cap + 1) * sizeof *f->illum_start) ||
+        !resize(&f->shadow_layer, cap * sizeof *f->shadow_layer) ||
+        !resize(&f->shadow_start, (cap + 1) * sizeof *f->shadow_start) ||
+        !resize(&f->shadow_viewproj, cap * sizeof *f->shadow_viewproj))
         return false;
-    f->eye_inside = b;
-    uint32_t *c = realloc(f->illum_start, (cap + 1) * sizeof *c);
-    if (!c)
-        return false;
-    f->illum_start = c;
-    uint32_t *d = realloc(f->shadow_layer, cap * sizeof *d);
-    if (!d)
-        return false;
-    f->shadow_layer = d;
-    uint32_t *e = realloc(f->shadow_start, (cap + 1) * sizeof *e);
-    if (!e)
-        return false;
-    f->shadow_start = e;
-    sm_mat4 *m = realloc(f->shadow_viewproj, cap * sizeof *m);
-    if (!m)
-        return false;
-    f->shadow_viewproj = m;
     f->cap_lights = cap;
     return true;
 }
