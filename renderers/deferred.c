@@ -53,12 +53,8 @@
  *                frontend's translucent objects, back to front, shaded by the forward
  *                single-pass program with every visible light and blended over the light
  *                target, testing (not writing) the G-buffer pass's depth
- *                (renderers/translucent.h); one draw each. Skipped, no program, otherwise.
- *                tiled-deferred and clustered deferred with point or spot lights: each
- *                fragment loops its tile's translucent list instead, which the tiled
- *                dispatch builds after the tile's opaque list (TLISTS, tile_cull.inc: near
- *                plane to the tile's max depth; same index buffer and overflow rule, heads
- *                after the opaque cells); the plan's "translucent-lists" says whether
+ *                (renderers/translucent.h); one draw each. Skipped, no program, otherwise
+ *                (tiled-deferred: its tiles' translucent lists, tiled/tiled_deferred.c)
  *   edge-aa      (aa: edge; renderers/edge_aa.h) seed 001 19.5.2's edge blur of the light
  *                target into "hdr.aa", its normals from the G-buffer (gbuffer.inc)
  *   resolve      scene_gpu_resolve: the light target (or "hdr.aa") clamped into the output
@@ -73,11 +69,8 @@
  * (GB_SAMPLE gl_SampleID) where EDGE_BIT is set, the per-pixel one (sample 0) where it is
  * clear (class_begin, class_stencil; the draw counts above double for those passes). Fog
  * runs per sample everywhere. `msaa-resolve` (renderers/base.h) averages the light
- * before resolve. tiled-deferred and clustered deferred shading have no stencil pass: their
- * one dispatch classifies the pixels by the same rule (edge_rule.inc), shades sample 0 of
- * every pixel into all its samples off the edges and, from a per-tile edge list in shared
- * memory, the other samples of the edge pixels (Lauritzen 2010's compute path); the edge
- * pixels are counted into a small storage buffer (BIND_SSBO_EDGES), read back by collect.
+ * before resolve. (tiled-deferred classifies the pixels by the same rule in its dispatch:
+ * tiled/tiled_deferred.c.)
  *
  * Sky mask (renderer_options.sky_stencil, deferred.sky_stencil; seed 001 section 19.7.2,
  * "Stencil Masking": the opaque geometry marks, at no extra draw, the pixels that deferred
@@ -95,10 +88,8 @@
  * framebuffer has no stencil; it leaves depth-1 pixels alone anyway). The ambient pass
  * no longer writes the sky's pixels, so with no sky pass to draw them the light
  * target is cleared to (0, 0, 0, 1) first (the ambient pass's value there); with one,
- * the sky covers exactly the unmarked pixels (depth 1). Not in tiled-deferred or
- * clustered deferred shading: their shading is one compute dispatch, which no stencil
- * test masks, and it already skips pixels without a surface (create refuses the
- * option there).
+ * the sky covers exactly the unmarked pixels (depth 1). Not in tiled-deferred (its
+ * create refuses the option: no stencil test masks a dispatch).
  *
  * Draw calls per frame (V visible objects, D / P / S visible directional / point / spot
  * lights this frame, frontend_build; [x] = 1 when the pass runs, else 0; C(l) the
@@ -158,11 +149,16 @@
  * expected texels, a GPU need not). So the G-buffer pass ends, after its draws, with one
  * glCopyImageSubData of the depth-stencil target into "depth.sampled" (the same format;
  * no draw, counted in the G-buffer pass's GPU time), and the light passes sample that.
- * tiled-deferred needs no copy: its one dispatch is the only reader, and the output
- * framebuffer (no texture attached) is bound for it, as forward-plus does for its cull.
+ * tiled-deferred needs no copy (tiled/tiled_deferred.c).
  * Shadow maps do not touch it (they have their own depth targets). The state cache's
  * feedback-loop check (state.h) fails any draw or dispatch that samples an attached
  * texture in debug contexts (every test).
+ *
+ * The light-volume modes are one table (MODES below) of what differs per mode: full
+ * screen or the volume's mesh, the scissor rectangle, the marking draws, the shading
+ * draw's cull, depth test and stencil test; the code that draws a light reads it.
+ * What deferred shares with tiled-deferred (the G-buffer pass, targets, fog, sky,
+ * translucent, edge-aa, resolve, describe) is renderers/deferred_core.c.
  *
  * Targets: the G-buffer attachments ("gbuffer.<slots>"), "light" (the run's HDR format,
  * RGBA16F or RGBA32F, renderers/base.h; with
