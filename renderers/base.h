@@ -66,31 +66,6 @@
 
 enum { RENDERER_BASE_MAX_PASSES = 16 };
 
-/* The light lists of the tiled and clustered renderers (forward-plus, clustered,
- * tiled-deferred) as their cull pass leaves them: per cell a 16-byte record whose last
- * two words are the cell's shaded pixels and its list length, and a stats buffer whose
- * first word is the indices the lists needed. light_grid_collect reads both back into
- * the frame's counters (mean and maximum list length, light evaluations per shaded
- * pixel), keeps the lengths in counts (lightgrid.csv), and writes the overflow message
- * naming the longest cell when the index buffer (capacity) was too small. */
-typedef struct light_grid_readback {
-    const char *name;                /* the renderer, first word of the message */
-    GLuint cells, stats;             /* the buffers */
-    uint32_t ncells, ntiles, tiles_x; /* cells = tiles x slices */
-    uint32_t slices;                 /* 0: tiles only */
-    uint32_t capacity;               /* entries of the index buffer */
-    uint32_t *readback, *counts;     /* (ncells + ntranslucent) x 4 and ncells, the caller's */
-    uint32_t ntranslucent;           /* translucent lists (one a tile) after the cells; 0: none */
-} light_grid_readback;
-
-void light_grid_collect(const light_grid_readback *g, frame_stats *out);
-/* Whether `heads` list heads (16 bytes a cell) fit a storage block of max_block bytes
- * (GL_MAX_SHADER_STORAGE_BLOCK_SIZE); false with "NAME: HEADS WHAT need ... bytes of list
- * heads, this context allows ..." and what would fit (clustered.slices too when
- * slices). */
-bool light_grid_heads_fit(const char *name, uint32_t heads, const char *what, bool slices,
-                          int max_block, char *err, size_t errlen);
-
 struct scene;
 
 typedef struct renderer_base {

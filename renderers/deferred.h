@@ -154,11 +154,6 @@ typedef struct deferred_layout_defs {
 } deferred_layout_defs;
 void deferred_layout_defines(const deferred_layout *l, deferred_layout_defs *d);
 
-/* clustered with clustered.shading: deferred (forward_plus.c's "clustered" hands its
- * calls to renderer_tiled_deferred_impl's entries with this object): tiled-deferred's
- * pass, its tiles cut into clustered.slices depth slices. NULL with a message. */
-void *deferred_clustered_create(const renderer_options *opts, char *err, size_t errlen);
-
 // >>for tests: self is what renderer_deferred_impl.create returned
 
 /* The layout renderer_prepare chose (NULL before a successful prepare). */

@@ -30,6 +30,7 @@
  * prepare, before anything is drawn. Each frame uploads the frontend's visible
  * lights only; their number goes to u_light_count. lights_drawn is that number. */
 #include "renderers/forward_common.h"
+#include "renderers/light_buffer.h"
 #include "renderers/shading.h"
 
 #include <assert.h>
@@ -43,9 +44,8 @@ typedef struct forward_spml {
     uint32_t max_lights;     /* MAX_LIGHTS of the programs */
     char max_lights_define[32];
     GLuint program[FORWARD_VARIANTS];
-    GLuint ubo;              /* the uniform block, or the storage buffer */
+    light_buffer lights;     /* the uniform block, or the storage buffer: max_lights */
     bool storage;            /* lights from the storage buffer (forward.light_buffer) */
-    gpu_light *staging;      /* max_lights */
     /* u_light_count is set once per (frame, program): a serial per frame. */
     uint64_t frame;
     uint64_t program_frame[FORWARD_VARIANTS];
@@ -70,11 +70,7 @@ static void *spml_create(const renderer_options *opts, char *err, size_t errlen)
 
 static void release_lights(forward_spml *r)
 {
-    if (r->ubo)
-        gl.DeleteBuffers(1, &r->ubo);
-    r->ubo = 0;
-    free(r->staging);
-    r->staging = NULL;
+    light_buffer_release(&r->lights);
 }
 
 /* The array size for n lights: a power of two >= n (at least 16), at most the capacity. */
@@ -126,14 +122,10 @@ static bool spml_prepare(void *self, const struct scene *s, char *err, size_t er
                              &r->program[v], err, errlen))
             goto fail;
 
-    r->staging = calloc(r->max_lights, sizeof *r->staging);
-    if (!r->staging) {
+    if (!light_buffer_create(&r->lights, r->max_lights)) {
         snprintf(err, errlen, "forward-spml: out of memory for %u lights", r->max_lights);
         goto fail;
     }
-    gl.CreateBuffers(1, &r->ubo);
-    gl.NamedBufferStorage(r->ubo, (GLsizeiptr)(r->max_lights * sizeof(gpu_light)), NULL,
-                          GL_DYNAMIC_STORAGE_BIT);
     return true;
 fail:
     release_lights(r);
@@ -170,19 +162,13 @@ static void spml_draw(void *self, const struct scene *s, frame_stats *out)
     forward_pass_begin(c, out, "shade");
     /* The frame's visible lights, packed in view space. The frontend's lights are
      * at most the run's lights, which prepare made sure fit. */
-    uint32_t n = fe->nlights < r->max_lights ? fe->nlights : r->max_lights;
-    for (uint32_t k = 0; k < n; k++) {
-        shading_pack_light(&s->lights[fe->lights[k]], s->view, &r->staging[k]);
-        shading_set_shadow_layer(&r->staging[k], fe->shadow_layer[k]);
-    }
+    uint32_t n = light_buffer_update(&r->lights, s, fe);
     r->count = (int)n;
     r->frame++;
-    if (n)   /* only what is used */
-        gl.NamedBufferSubData(r->ubo, 0, (GLsizeiptr)(n * sizeof(gpu_light)), r->staging);
     if (r->storage)
-        gl_state_storage_buffer(c->b.st, BIND_SSBO_LIGHTS, r->ubo);
+        gl_state_storage_buffer(c->b.st, BIND_SSBO_LIGHTS, r->lights.buffer);
     else
-        gl.BindBufferBase(GL_UNIFORM_BUFFER, FORWARD_LIGHTS_BINDING, r->ubo);
+        gl.BindBufferBase(GL_UNIFORM_BUFFER, FORWARD_LIGHTS_BINDING, r->lights.buffer);
 
     forward_bind_target(c);
     gl_state_blend(c->b.st, NULL);

@@ -1,6 +1,7 @@
 /* The frontend: visible objects, lights, illumination sets and eye-inside flags of
  * one frame, decided once for every renderer (frontend.h says what each means). */
 #include "renderers/frontend.h"
+#include "results/grow.h"
 
 #include <math.h>
 #include <stdio.h>
@@ -137,95 +138,61 @@ void frontend_light_volume_bound(const frontend *f, const scene_light *l, sm_vec
 
 // >>init and free
 
+/* *pp (any T *) reallocated to `bytes`; false, *pp unchanged, when out of memory. */
+static bool resize(void *pp, size_t bytes)
+{
+    void *old;
+    memcpy(&old, pp, sizeof old);
+    void *p = realloc(old, bytes);
+    if (!p)
+        return false;
+    memcpy(pp, &p, sizeof p);
+    return true;
+}
+
 /* Object arrays: visible holds cap_objects, sort twice that (the merge sort's two
- * halves); light arrays (lights, eye_inside) cap_lights and illum_start cap_lights + 1. */
+ * halves); light arrays (lights, eye_inside) cap_lights and illum_start cap_lights + 1.
+ * The first array of each group grows (GROW); the others follow its capacity, which the
+ * group's cap takes once every array has it. */
 static bool reserve_objects(frontend *f, size_t n)
 {
-    if (n <= f->cap_objects && f->visible && f->translucent && f->sort)
+    size_t cap = f->cap_objects;   /* 0 until every array is allocated */
+    if (!GROW(f->visible, cap, n ? n : 1, 16))
+        return false;
+    if (cap == f->cap_objects)
         return true;
-    size_t cap = f->cap_objects ? f->cap_objects : 16;
-    while (cap < n)
-        cap *= 2;
-    uint32_t *v = realloc(f->visible, cap * sizeof *v);
-    if (!v)
+    if (!resize(&f->translucent, cap * sizeof *f->translucent) ||
+        !resize(&f->sort, 2 * cap * sizeof *f->sort))
         return false;
-    f->visible = v;
-    uint32_t *t = realloc(f->translucent, cap * sizeof *t);
-    if (!t)
-        return false;
-    f->translucent = t;
-    frontend_sort_item *s = realloc(f->sort, 2 * cap * sizeof *s);
-    if (!s)
-        return false;
-    f->sort = s;
     f->cap_objects = cap;
     return true;
 }
 
 static bool reserve_lights(frontend *f, size_t n)
 {
-    if (n <= f->cap_lights && f->lights && f->eye_inside && f->illum_start &&
-        f->shadow_layer && f->shadow_start && f->shadow_viewproj)
+    size_t cap = f->cap_lights;   /* 0 until every array is allocated */
+    if (!GROW(f->lights, cap, n ? n : 1, 16))
+        return false;
+    if (cap == f->cap_lights)
         return true;
-    size_t cap = f->cap_lights ? f->cap_lights : 16;
-    while (cap < n)
-        cap *= 2;
-    uint32_t *a = realloc(f->lights, cap * sizeof *a);
-    if (!a)
+    if (!resize(&f->eye_inside, cap * sizeof *f->eye_inside) ||
+        !resize(&f->illum_start, (cap + 1) * sizeof *f->illum_start) ||
+        !resize(&f->shadow_layer, cap * sizeof *f->shadow_layer) ||
+        !resize(&f->shadow_start, (cap + 1) * sizeof *f->shadow_start) ||
+        !resize(&f->shadow_viewproj, cap * sizeof *f->shadow_viewproj))
         return false;
-    f->lights = a;
-    uint32_t *b = realloc(f->eye_inside, cap * sizeof *b);
-    if (!b)
-        return false;
-    f->eye_inside = b;
-    uint32_t *c = realloc(f->illum_start, (cap + 1) * sizeof *c);
-    if (!c)
-        return false;
-    f->illum_start = c;
-    uint32_t *d = realloc(f->shadow_layer, cap * sizeof *d);
-    if (!d)
-        return false;
-    f->shadow_layer = d;
-    uint32_t *e = realloc(f->shadow_start, (cap + 1) * sizeof *e);
-    if (!e)
-        return false;
-    f->shadow_start = e;
-    sm_mat4 *m = realloc(f->shadow_viewproj, cap * sizeof *m);
-    if (!m)
-        return false;
-    f->shadow_viewproj = m;
     f->cap_lights = cap;
     return true;
 }
 
 static bool reserve_illum(frontend *f, size_t n)
 {
-    if (n <= f->cap_illum && f->illum)
-        return true;
-    size_t cap = f->cap_illum ? f->cap_illum : 16;
-    while (cap < n)
-        cap *= 2;
-    uint32_t *p = realloc(f->illum, cap * sizeof *p);
-    if (!p)
-        return false;
-    f->illum = p;
-    f->cap_illum = cap;
-    return true;
+    return GROW(f->illum, f->cap_illum, n ? n : 1, 16);
 }
 
 static bool reserve_shadow(frontend *f, size_t n)
 {
-    if (n <= f->cap_shadow && f->shadow)
-        return true;
-    size_t cap = f->cap_shadow ? f->cap_shadow : 16;
-    while (cap < n)
-        cap *= 2;
-    uint32_t *p = realloc(f->shadow, cap * sizeof *p);
-    if (!p)
-        return false;
-    f->shadow = p;
-    f->cap_shadow = cap;
-    return true;
+    return GROW(f->shadow, f->cap_shadow, n ? n : 1, 16);
 }
 
 bool frontend_init(frontend *f, const scene *s, char *err, size_t errlen)

@@ -15,9 +15,7 @@ unsigned translucent_variant(const scene_material *m)
 
 void translucent_release(translucent_pass *t)
 {
-    if (t->lights)
-        gl.DeleteBuffers(1, &t->lights);
-    free(t->staging);
+    light_buffer_release(&t->lights);
     memset(t, 0, sizeof *t);   /* programs belong to the renderer's cache */
 }
 
@@ -75,14 +73,10 @@ bool translucent_prepare(translucent_pass *t, renderer_base *b, const scene *s,
         if ((t->variants & (1u << v)) && !compile(t, b, v, sm, NULL, err, errlen))
             goto fail;
     t->capacity = s->nlights_total ? s->nlights_total : 1u;
-    t->staging = calloc(t->capacity, sizeof *t->staging);
-    if (!t->staging) {
+    if (!light_buffer_create(&t->lights, t->capacity)) {
         snprintf(err, errlen, "%s: out of memory for %u lights", b->name, t->capacity);
         goto fail;
     }
-    gl.CreateBuffers(1, &t->lights);
-    gl.NamedBufferStorage(t->lights, (GLsizeiptr)(t->capacity * sizeof(gpu_light)), NULL,
-                          GL_DYNAMIC_STORAGE_BIT);
     return true;
 fail:
     translucent_release(t);
@@ -99,11 +93,7 @@ bool translucent_compile(translucent_pass *t, renderer_base *b, const shadow_map
             return false;
     if (!g)
         return true;
-    if (t->lights)
-        gl.DeleteBuffers(1, &t->lights);
-    t->lights = 0;
-    free(t->staging);   /* the renderer packs the lights */
-    t->staging = NULL;
+    light_buffer_release(&t->lights);   /* the renderer packs the lights */
     t->gridded = true;
     t->grid = *g;
     return true;
@@ -124,15 +114,13 @@ uint64_t translucent_draw(translucent_pass *t, renderer_base *b, scene_gpu *gpu,
         return 0;
     gl_state *st = b->st;
     uint32_t n = fe->nlights < t->capacity ? fe->nlights : t->capacity;
-    for (uint32_t k = 0; !t->gridded && k < n; k++) {
-        shading_pack_light(&s->lights[fe->lights[k]], s->view, &t->staging[k]);
-        shading_set_shadow_layer(&t->staging[k], fe->shadow_layer[k]);
-    }
+    if (!t->gridded)
+        light_buffer_pack(&t->lights, s, fe);   /* n of them: the same capacity */
     t->count = (int)n;
     t->frame++;
     renderer_base_pass_begin(b, out, "translucent");
-    if (n && !t->gridded)
-        gl.NamedBufferSubData(t->lights, 0, (GLsizeiptr)(n * sizeof(gpu_light)), t->staging);
+    if (!t->gridded)
+        light_buffer_upload(&t->lights);
     gl_state_framebuffer(st, fbo);
     gl_state_viewport(st, 0, 0, b->width, b->height);
     gl_state_color_mask(st, GLS_COLOR_MASK_RGBA);
@@ -145,7 +133,7 @@ uint64_t translucent_draw(translucent_pass *t, renderer_base *b, scene_gpu *gpu,
         gl_state_storage_buffer(st, BIND_SSBO_TILE_LISTS, t->grid.tiles);
         gl_state_storage_buffer(st, BIND_SSBO_TILE_INDICES, t->grid.indices);
     } else {
-        gl_state_storage_buffer(st, BIND_SSBO_LIGHTS, t->lights);
+        gl_state_storage_buffer(st, BIND_SSBO_LIGHTS, t->lights.buffer);
     }
     if (sm->run)
         shadow_maps_bind(sm, st);

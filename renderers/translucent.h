@@ -33,6 +33,7 @@
 
 #include "renderers/base.h"
 #include "renderers/frontend.h"
+#include "renderers/light_buffer.h"
 #include "renderers/scene_gpu.h"
 #include "renderers/shading.h"
 #include "renderers/shadow.h"
@@ -51,9 +52,8 @@ typedef struct translucent_pass {
     uint32_t nobjects;               /* the scene's translucent objects */
     unsigned variants;               /* bit v: some translucent object is of variant v */
     GLuint program[TRANSLUCENT_VARIANTS];
-    GLuint lights;                   /* storage buffer: the frame's visible lights */
-    gpu_light *staging;
-    uint32_t capacity;               /* lights the buffer holds (the run's lights) */
+    light_buffer lights;             /* storage buffer: the frame's visible lights */
+    uint32_t capacity;               /* lights a frame draws with (the run's lights) */
     int count;                       /* lights uploaded this frame */
     uint64_t frame, program_frame[TRANSLUCENT_VARIANTS];
     uint64_t last_draws;             /* the last frame's draws (for tests) */

@@ -15,6 +15,7 @@
  * output is enabled on a plain core context and gl_info.debug_context is false. */
 #include "renderers/gl/internal.h"
 #include "renderers/gl/loader.h"
+#include "renderers/gl/target.h"
 
 #include <inttypes.h>
 #include <limits.h>
@@ -211,22 +212,10 @@ static bool check_size(const gl_context *ctx, int w, int h, char *err, size_t er
            check_limit(w, h, h, i->max_viewport_dims[1], "GL_MAX_VIEWPORT_DIMS", err, errlen);
 }
 
+/* glCheckFramebufferStatus's result for a message. */
 static const char *framebuffer_status_name(GLenum s)
 {
-    switch (s) {
-    case GL_FRAMEBUFFER_UNDEFINED: return "GL_FRAMEBUFFER_UNDEFINED";
-    case GL_FRAMEBUFFER_INCOMPLETE_ATTACHMENT: return "GL_FRAMEBUFFER_INCOMPLETE_ATTACHMENT";
-    case GL_FRAMEBUFFER_INCOMPLETE_MISSING_ATTACHMENT:
-        return "GL_FRAMEBUFFER_INCOMPLETE_MISSING_ATTACHMENT";
-    case GL_FRAMEBUFFER_INCOMPLETE_DRAW_BUFFER: return "GL_FRAMEBUFFER_INCOMPLETE_DRAW_BUFFER";
-    case GL_FRAMEBUFFER_INCOMPLETE_READ_BUFFER: return "GL_FRAMEBUFFER_INCOMPLETE_READ_BUFFER";
-    case GL_FRAMEBUFFER_UNSUPPORTED: return "GL_FRAMEBUFFER_UNSUPPORTED";
-    case GL_FRAMEBUFFER_INCOMPLETE_MULTISAMPLE: return "GL_FRAMEBUFFER_INCOMPLETE_MULTISAMPLE";
-    case GL_FRAMEBUFFER_INCOMPLETE_LAYER_TARGETS:
-        return "GL_FRAMEBUFFER_INCOMPLETE_LAYER_TARGETS";
-    case 0: return "error in glCheckFramebufferStatus";
-    default: return "unknown status";
-    }
+    return gl_framebuffer_status_name(s, "error in glCheckFramebufferStatus", "unknown status");
 }
 
 static void label(const gl_context *ctx, GLenum kind, GLuint name, const char *text)
@@ -235,40 +224,59 @@ static void label(const gl_context *ctx, GLenum kind, GLuint name, const char *t
         gl.ObjectLabel(kind, name, -1, text);
 }
 
-static bool create_framebuffer(gl_context *ctx, char *err, size_t errlen)
+/* An RGBA8 colour and a depth24-stencil8 renderbuffer of w x h attached to a new
+ * framebuffer, left bound as both draw and read framebuffer, reading and drawing colour
+ * 0. Labelled "shadesweep WHO colour (RGBA8)", "shadesweep WHO depth-stencil" and
+ * fbo_label; messages name it "the WxH WHAT framebuffer". */
+static bool renderbuffer_framebuffer(gl_context *ctx, int w, int h, const char *who,
+                                     const char *fbo_label, const char *what, GLuint *color,
+                                     GLuint *depth_stencil, GLuint *fbo, char *err,
+                                     size_t errlen)
 {
-    int w = ctx->width, h = ctx->height;
-    gl.GenRenderbuffers(1, &ctx->color_rb);
-    gl.BindRenderbuffer(GL_RENDERBUFFER, ctx->color_rb);
+    char text[96];
+    gl.GenRenderbuffers(1, color);
+    gl.BindRenderbuffer(GL_RENDERBUFFER, *color);
     gl.RenderbufferStorage(GL_RENDERBUFFER, GL_RGBA8, w, h);
-    label(ctx, GL_RENDERBUFFER, ctx->color_rb, "shadesweep output colour (RGBA8)");
-    gl.GenRenderbuffers(1, &ctx->depth_stencil_rb);
-    gl.BindRenderbuffer(GL_RENDERBUFFER, ctx->depth_stencil_rb);
+    snprintf(text, sizeof text, "shadesweep %s colour (RGBA8)", who);
+    label(ctx, GL_RENDERBUFFER, *color, text);
+    gl.GenRenderbuffers(1, depth_stencil);
+    gl.BindRenderbuffer(GL_RENDERBUFFER, *depth_stencil);
     gl.RenderbufferStorage(GL_RENDERBUFFER, GL_DEPTH24_STENCIL8, w, h);
-    label(ctx, GL_RENDERBUFFER, ctx->depth_stencil_rb, "shadesweep output depth-stencil");
+    snprintf(text, sizeof text, "shadesweep %s depth-stencil", who);
+    label(ctx, GL_RENDERBUFFER, *depth_stencil, text);
     gl.BindRenderbuffer(GL_RENDERBUFFER, 0);
 
-    gl.GenFramebuffers(1, &ctx->fbo);
-    gl.BindFramebuffer(GL_FRAMEBUFFER, ctx->fbo);
-    label(ctx, GL_FRAMEBUFFER, ctx->fbo, "shadesweep output");
-    gl.FramebufferRenderbuffer(GL_FRAMEBUFFER, GL_COLOR_ATTACHMENT0, GL_RENDERBUFFER,
-                               ctx->color_rb);
+    gl.GenFramebuffers(1, fbo);
+    gl.BindFramebuffer(GL_FRAMEBUFFER, *fbo);
+    label(ctx, GL_FRAMEBUFFER, *fbo, fbo_label);
+    gl.FramebufferRenderbuffer(GL_FRAMEBUFFER, GL_COLOR_ATTACHMENT0, GL_RENDERBUFFER, *color);
     gl.FramebufferRenderbuffer(GL_FRAMEBUFFER, GL_DEPTH_STENCIL_ATTACHMENT, GL_RENDERBUFFER,
-                               ctx->depth_stencil_rb);
-    if (gl_context_poll_errors(ctx, "creating the off-screen framebuffer") > 0) {
-        snprintf(err, errlen, "GL: creating the %dx%d off-screen framebuffer raised GL errors", w,
-                 h);
+                               *depth_stencil);
+    snprintf(text, sizeof text, "creating the %s framebuffer", what);
+    if (gl_context_poll_errors(ctx, text) > 0) {
+        snprintf(err, errlen, "GL: creating the %dx%d %s framebuffer raised GL errors", w, h,
+                 what);
         return false;
     }
     GLenum status = gl.CheckFramebufferStatus(GL_FRAMEBUFFER);
     if (status != GL_FRAMEBUFFER_COMPLETE) {
-        snprintf(err, errlen, "GL: the %dx%d off-screen framebuffer is incomplete (%s)", w, h,
+        snprintf(err, errlen, "GL: the %dx%d %s framebuffer is incomplete (%s)", w, h, what,
                  framebuffer_status_name(status));
         return false;
     }
     /* GL_FRAMEBUFFER bound it as both the draw and the read framebuffer. */
     gl.DrawBuffer(GL_COLOR_ATTACHMENT0);
     gl.ReadBuffer(GL_COLOR_ATTACHMENT0);
+    return true;
+}
+
+static bool create_framebuffer(gl_context *ctx, char *err, size_t errlen)
+{
+    int w = ctx->width, h = ctx->height;
+    if (!renderbuffer_framebuffer(ctx, w, h, "output", "shadesweep output", "off-screen",
+                                  &ctx->color_rb, &ctx->depth_stencil_rb, &ctx->fbo, err,
+                                  errlen))
+        return false;
     gl.Viewport(0, 0, w, h);
     return true;
 }
@@ -488,36 +496,9 @@ bool gl_offscreen_create(gl_context *ctx, int width, int height, gl_offscreen *o
     }
     if (!check_size(ctx, width, height, err, errlen))
         return false;
-    gl.GenRenderbuffers(1, &o->color_rb);
-    gl.BindRenderbuffer(GL_RENDERBUFFER, o->color_rb);
-    gl.RenderbufferStorage(GL_RENDERBUFFER, GL_RGBA8, width, height);
-    label(ctx, GL_RENDERBUFFER, o->color_rb, "shadesweep reference colour (RGBA8)");
-    gl.GenRenderbuffers(1, &o->depth_stencil_rb);
-    gl.BindRenderbuffer(GL_RENDERBUFFER, o->depth_stencil_rb);
-    gl.RenderbufferStorage(GL_RENDERBUFFER, GL_DEPTH24_STENCIL8, width, height);
-    label(ctx, GL_RENDERBUFFER, o->depth_stencil_rb, "shadesweep reference depth-stencil");
-    gl.BindRenderbuffer(GL_RENDERBUFFER, 0);
-    gl.GenFramebuffers(1, &o->fbo);
-    gl.BindFramebuffer(GL_FRAMEBUFFER, o->fbo);
-    label(ctx, GL_FRAMEBUFFER, o->fbo, "shadesweep reference output");
-    gl.FramebufferRenderbuffer(GL_FRAMEBUFFER, GL_COLOR_ATTACHMENT0, GL_RENDERBUFFER,
-                               o->color_rb);
-    gl.FramebufferRenderbuffer(GL_FRAMEBUFFER, GL_DEPTH_STENCIL_ATTACHMENT, GL_RENDERBUFFER,
-                               o->depth_stencil_rb);
-    if (gl_context_poll_errors(ctx, "creating the reference framebuffer") > 0) {
-        snprintf(err, errlen, "GL: creating the %dx%d reference framebuffer raised GL errors",
-                 width, height);
-        return false;
-    }
-    GLenum status = gl.CheckFramebufferStatus(GL_FRAMEBUFFER);
-    if (status != GL_FRAMEBUFFER_COMPLETE) {
-        snprintf(err, errlen, "GL: the %dx%d reference framebuffer is incomplete (%s)", width,
-                 height, framebuffer_status_name(status));
-        return false;
-    }
-    gl.DrawBuffer(GL_COLOR_ATTACHMENT0);
-    gl.ReadBuffer(GL_COLOR_ATTACHMENT0);
-    return true;
+    return renderbuffer_framebuffer(ctx, width, height, "reference", "shadesweep reference output",
+                                    "reference", &o->color_rb, &o->depth_stencil_rb, &o->fbo,
+                                    err, errlen);
 }
 
 void gl_offscreen_destroy(gl_offscreen *o)

@@ -17,6 +17,8 @@
  * name, an input that cannot be read, a NUL byte in an input, and an input that
  * is not text ending in a newline. Built natively and run by renderers/meson.build;
  * it uses nothing but the C library. */
+#include "results/grow.h"
+
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
@@ -49,16 +51,11 @@ static int read_input(input *in)
         return 0;
     }
     for (;;) {
-        if (len == cap) {
-            unsigned char *bigger = realloc(buf, cap * 2);
-            if (!bigger) {
-                free(buf);
-                fclose(f);
-                fprintf(stderr, "embed: %s: out of memory\n", in->path);
-                return 0;
-            }
-            buf = bigger;
-            cap *= 2;
+        if (!GROW(buf, cap, len + 1, 4096)) {   /* doubles when full */
+            free(buf);
+            fclose(f);
+            fprintf(stderr, "embed: %s: out of memory\n", in->path);
+            return 0;
         }
         size_t n = fread(buf + len, 1, cap - len, f);
         len += n;

@@ -2,6 +2,7 @@
 #include "renderers/gl/program.h"
 
 #include "renderers/gl/shaders.h"
+#include "results/grow.h"
 
 #include <stdarg.h>
 #include <stdint.h>
@@ -37,17 +38,9 @@ static void sb_add(strbuf *b, const char *s, size_t n)
 {
     if (b->oom)
         return;
-    if (b->len + n + 1 > b->cap) {
-        size_t cap = b->cap ? b->cap : 256;
-        while (b->len + n + 1 > cap)
-            cap *= 2;
-        char *p = realloc(b->s, cap);
-        if (!p) {
-            b->oom = true;
-            return;
-        }
-        b->s = p;
-        b->cap = cap;
+    if (!GROW(b->s, b->cap, b->len + n + 1, 256)) {
+        b->oom = true;
+        return;
     }
     memcpy(b->s + b->len, s, n);
     b->len += n;
@@ -616,15 +609,9 @@ gl_program_err gl_program_get(gl_program_cache *c, const gl_program_desc *desc,
         goto out;
     }
 
-    if (c->n == c->cap) {
-        size_t cap = c->cap ? c->cap * 2 : 16;
-        variant *v = realloc(c->v, cap * sizeof *v);
-        if (!v) {
-            e = GLP_ERR_MEMORY;
-            goto out;
-        }
-        c->v = v;
-        c->cap = cap;
+    if (!GROW(c->v, c->cap, c->n + 1, 16)) {
+        e = GLP_ERR_MEMORY;
+        goto out;
     }
     variant v = {dup_string(key.s), dup_string(name.s), prog};
     if (!v.key || !v.name) {

@@ -2,6 +2,7 @@
 #include "renderers/gl/query.h"
 
 #include "renderers/gl/loader.h"
+#include "results/grow.h"
 
 #include <math.h>
 #include <stdio.h>
@@ -101,18 +102,15 @@ static void samples_start(gl_pass_queries *q)
 {
     sample_segments *sg = &q->samples[q->frame * q->max_passes + q->active_pass];
     if (sg->n == sg->cap) {
-        size_t cap = sg->cap ? 2 * sg->cap : 4;
-        GLuint *ids = realloc(sg->ids, cap * sizeof *ids);
-        if (ids)
-            sg->ids = ids;
-        bool *ps = ids ? realloc(sg->per_sample, cap * sizeof *ps) : NULL;
-        if (!ids || !ps) {
+        size_t cap = sg->cap;   /* sg->cap: once both arrays and the queries are there */
+        bool grown = GROW(sg->ids, cap, sg->n + 1, 4);
+        bool *ps = grown ? realloc(sg->per_sample, cap * sizeof *ps) : NULL;
+        if (!grown || !ps) {
             fprintf(stderr, "gl_pass_queries: out of memory for sample queries\n");
             return;
         }
         sg->per_sample = ps;
-        gl.GenQueries((GLsizei)(cap - sg->cap), ids + sg->cap);
-        sg->ids = ids;
+        gl.GenQueries((GLsizei)(cap - sg->cap), sg->ids + sg->cap);
         sg->cap = cap;
     }
     sg->per_sample[sg->n] = q->per_sample;

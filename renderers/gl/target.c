@@ -145,9 +145,9 @@ void gl_target_describe(const gl_target *t, target_plan_entry *out)
 
 // >>framebuffers
 
-static const char *status_name(GLenum s)
+const char *gl_framebuffer_status_name(GLenum status, const char *failed, const char *unknown)
 {
-    switch (s) {
+    switch (status) {
     case GL_FRAMEBUFFER_COMPLETE: return "GL_FRAMEBUFFER_COMPLETE";
     case GL_FRAMEBUFFER_UNDEFINED: return "GL_FRAMEBUFFER_UNDEFINED";
     case GL_FRAMEBUFFER_INCOMPLETE_ATTACHMENT: return "GL_FRAMEBUFFER_INCOMPLETE_ATTACHMENT";
@@ -159,8 +159,8 @@ static const char *status_name(GLenum s)
     case GL_FRAMEBUFFER_INCOMPLETE_MULTISAMPLE: return "GL_FRAMEBUFFER_INCOMPLETE_MULTISAMPLE";
     case GL_FRAMEBUFFER_INCOMPLETE_LAYER_TARGETS:
         return "GL_FRAMEBUFFER_INCOMPLETE_LAYER_TARGETS";
-    case 0: return "an error while checking";
-    default: return "an unknown status";
+    case 0: return failed;
+    default: return unknown;
     }
 }
 
@@ -290,7 +290,8 @@ bool gl_framebuffer_create(gl_framebuffer *fb, const gl_framebuffer_desc *desc, 
     GLenum status = gl.CheckNamedFramebufferStatus(fbo, GL_FRAMEBUFFER);
     if (status != GL_FRAMEBUFFER_COMPLETE) {
         snprintf(err, errlen, "framebuffer %s is not complete: %s (%s)", name,
-                 status_name(status), list);
+                 gl_framebuffer_status_name(status, "an error while checking", "an unknown status"),
+                 list);
         gl.DeleteFramebuffers(1, &fbo);
         return false;
     }

@@ -113,6 +113,11 @@ void gl_target_describe(const gl_target *t, target_plan_entry *out);
 
 // >>framebuffers
 
+/* The name of a glCheckFramebufferStatus result ("GL_FRAMEBUFFER_UNSUPPORTED", ...): the one
+ * table of them (gl_framebuffer_create's and the contexts' messages); `failed` for 0 (the
+ * check itself failed), `unknown` for a value GL does not define. */
+const char *gl_framebuffer_status_name(GLenum status, const char *failed, const char *unknown);
+
 enum { GLT_MAX_COLOR = 8 };
 
 typedef struct gl_framebuffer_desc {

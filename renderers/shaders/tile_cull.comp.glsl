@@ -61,15 +61,7 @@ void main()
     uint tile_index = tile.y * uint(TILES_X) + tile.x;
     ivec2 size = ivec2(f_viewport.xy);
     ivec2 pixel = ivec2(gl_GlobalInvocationID.xy);
-    if (me == 0u) {
-        s_min_depth = floatBitsToUint(1.0);
-        s_max_depth = 0u;
-        s_covered = 0u;
-    }
-#ifdef SLICES
-    for (uint k = me; k < uint(SLICES); k += uint(TILE_SIZE * TILE_SIZE))
-        s_slice_covered[k] = 0u;   // a tile may have fewer invocations than slices
-#endif
+    tile_reset(me);
     barrier();
     if (all(lessThan(pixel, size))) {
 #ifdef MSAA_SAMPLES
@@ -85,9 +77,7 @@ void main()
         float d = texelFetch(t_depth, pixel, 0).r, d_far = d;
 #endif
         if (d < 1.0) {
-            atomicMin(s_min_depth, floatBitsToUint(d));
-            atomicMax(s_max_depth, floatBitsToUint(d_far));
-            atomicAdd(s_covered, 1u);
+            tile_cover(d, d_far);
 #ifdef SLICES
             atomicAdd(s_slice_covered[slice_of(view_z(d))], 1u);
 #endif

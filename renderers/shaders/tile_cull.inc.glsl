@@ -1,6 +1,6 @@
 // The light culling of the tiled renderers (tile_cull.comp's steps 2-4, see there),
-// shared with tiled_deferred.comp: the shared memory, the tile's planes and depth
-// range, the sphere tests, and cull_cell(), which counts, places and writes one
+// shared with tiled_deferred.comp: the shared memory (tile_reset, tile_cover: step 1's
+// counting), the tile's planes and depth range, the sphere tests, and cull_cell(), which counts, places and writes one
 // tile's (or cluster's) list, and cull_translucent() (TLISTS). Needs bindings.h,
 // frame.inc, lighting.inc, lights.inc, tiles.inc and TILE_SIZE, TILES_X (SLICES, TILES_Y,
 // TLISTS).
@@ -23,6 +23,30 @@ vec3 view_at(vec2 ndc_xy, float ndc_z)
 {
     vec4 v = f_inv_proj * vec4(ndc_xy, ndc_z, 1.0);
     return v.xyz / v.w;
+}
+
+// Before the tile's pixels are counted (every invocation, before a barrier): its depth
+// range empty, no pixel covered, (SLICES) no pixel in any slice.
+void tile_reset(uint me)
+{
+    if (me == 0u) {
+        s_min_depth = floatBitsToUint(1.0);
+        s_max_depth = 0u;
+        s_covered = 0u;
+    }
+#ifdef SLICES
+    for (uint k = me; k < uint(SLICES); k += uint(TILE_SIZE * TILE_SIZE))
+        s_slice_covered[k] = 0u;   // a tile may have fewer invocations than slices
+#endif
+}
+
+// A pixel with geometry, its nearest and farthest sample at depths d and d_far, into the
+// tile's depth range and covered count.
+void tile_cover(float d, float d_far)
+{
+    atomicMin(s_min_depth, floatBitsToUint(d));
+    atomicMax(s_max_depth, floatBitsToUint(d_far));
+    atomicAdd(s_covered, 1u);
 }
 
 float view_z(float depth)

@@ -113,15 +113,7 @@ void main()
         s_nedges = 0u;
 #endif
 #ifndef NO_GRID
-    if (me == 0u) {
-        s_min_depth = floatBitsToUint(1.0);
-        s_max_depth = 0u;
-        s_covered = 0u;
-    }
-#ifdef SLICES
-    for (uint k = me; k < uint(SLICES); k += uint(TILE_SIZE * TILE_SIZE))
-        s_slice_covered[k] = 0u;   // a tile may have fewer invocations than slices
-#endif
+    tile_reset(me);
 #endif
 #if !defined(NO_GRID) || defined(MSAA_SAMPLES)
     barrier();
@@ -171,9 +163,7 @@ void main()
 #ifndef NO_GRID
     if (inside) {
         if (d < 1.0) {
-            atomicMin(s_min_depth, floatBitsToUint(d));
-            atomicMax(s_max_depth, floatBitsToUint(d_far));
-            atomicAdd(s_covered, 1u);
+            tile_cover(d, d_far);
 #ifdef SLICES
             if (g.present) {
                 int k0 = slice_of(g.position.z);

@@ -1,0 +1,252 @@
+/* The light grid (grid.h). */
+#include "renderers/tiled/grid.h"
+
+#include <math.h>
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+
+#include "renderers/bindings.h"
+#include "renderers/shading.h"
+
+bool light_grid_tile_option(light_grid *g, const char *name, const renderer_options *o,
+                            char *err, size_t errlen)
+{
+    g->name = name;
+    g->tile = o->tile_size ? o->tile_size : 16;
+    if (g->tile != 8 && g->tile != 16 && g->tile != 32) {
+        snprintf(err, errlen, "%s: tiles.size %d: expected 8, 16 or 32", name, g->tile);
+        return false;
+    }
+    return true;
+}
+
+bool light_grid_slices_option(light_grid *g, const char *name, const renderer_options *o,
+                              char *err, size_t errlen)
+{
+    g->name = name;
+    int k = o->clustered_slices ? o->clustered_slices : 24;
+    if (k < 1 || k > 64) {
+        snprintf(err, errlen, "%s: clustered.slices %d: expected 1 to 64", name, k);
+        return false;
+    }
+    g->slices_y = (uint32_t)k;
+    return true;
+}
+
+bool light_grid_size(light_grid *g, const scene *s, int width, int height, bool cull,
+                     bool translucency, char *err, size_t errlen)
+{
+    g->tiles_x = (uint32_t)((width + g->tile - 1) / g->tile);
+    g->tiles_y = (uint32_t)((height + g->tile - 1) / g->tile);
+    g->ntiles = g->tiles_x * g->tiles_y;
+    g->slices = g->slices_y ? shading_cluster_slices(s, (int)g->slices_y, &g->slice_ratio) : 0u;
+    if (g->slices > 1024) {
+        snprintf(err, errlen,
+                 "%s: %u depth slices from near %g to far %g (each %.4g times deeper, "
+                 "clustered.slices %u): at most 1024; raise near or lower clustered.slices",
+                 g->name, g->slices, (double)s->cam.znear, (double)s->cam.zfar,
+                 g->slice_ratio, g->slices_y);
+        return false;
+    }
+    g->ncells = g->ntiles * (g->slices ? g->slices : 1u);
+    g->cull = cull;
+    g->ntlists = cull && translucency ? g->ntiles : 0u;
+    g->max_lights = s->nlights_total ? s->nlights_total : 1u;
+    return true;
+}
+
+int light_grid_max_block(void)
+{
+    GLint max_block = 0;
+    gl.GetIntegerv(GL_MAX_SHADER_STORAGE_BLOCK_SIZE, &max_block);
+    return max_block;
+}
+
+bool light_grid_heads_fit(const light_grid *g, const char *what, int max_block, char *err,
+                          size_t errlen)
+{
+    uint32_t heads = g->ncells + g->ntlists;   /* opaque cells, then translucent lists */
+    if ((uint64_t)heads * 16u <= (uint64_t)(max_block > 0 ? max_block : 0))
+        return true;
+    snprintf(err, errlen, "%s: %u %s need %llu bytes of list heads, this context allows %d "
+             "(GL_MAX_SHADER_STORAGE_BLOCK_SIZE); larger tiles.size%s or a smaller "
+             "resolution fit", g->name, heads, what, (unsigned long long)heads * 16u, max_block,
+             g->slices > 0 ? ", fewer clustered.slices" : "");
+    return false;
+}
+
+bool light_grid_lights_fit(const light_grid *g, uint32_t nlights, int max_block, char *err,
+                           size_t errlen)
+{
+    if ((uint64_t)g->max_lights * sizeof(gpu_light) <= (uint64_t)(max_block > 0 ? max_block : 0))
+        return true;
+    snprintf(err, errlen,
+             "%s: %u lights need %llu bytes of storage buffer, this context "
+             "allows %d (GL_MAX_SHADER_STORAGE_BLOCK_SIZE)",
+             g->name, nlights, (unsigned long long)g->max_lights * sizeof(gpu_light), max_block);
+    return false;
+}
+
+void light_grid_capacity(light_grid *g, uint32_t max_lights_per_tile, int max_block)
+{
+    uint64_t heads = g->ncells + g->ntlists;
+    uint64_t want = max_lights_per_tile ? heads * max_lights_per_tile : heads * g->max_lights;
+    uint64_t block_entries = max_block > 0 ? (uint64_t)max_block / 4u : 0u;
+    if (want > block_entries)
+        want = block_entries;
+    if (want > LIGHT_GRID_INDEX_CAP)
+        want = LIGHT_GRID_INDEX_CAP;
+    g->capacity = (uint32_t)(want ? want : 1u);
+}
+
+void light_grid_defines(light_grid *g)
+{
+    snprintf(g->tile_define, sizeof g->tile_define, "TILE_SIZE %d", g->tile);
+    snprintf(g->tiles_x_define, sizeof g->tiles_x_define, "TILES_X %u", g->tiles_x);
+    snprintf(g->tiles_y_define, sizeof g->tiles_y_define, "TILES_Y %u", g->tiles_y);
+    snprintf(g->slices_define, sizeof g->slices_define, "SLICES %u", g->slices);
+    snprintf(g->slices_y_define, sizeof g->slices_y_define, "SLICES_Y %u", g->slices_y);
+    snprintf(g->tlists_define, sizeof g->tlists_define, "TLISTS %u", g->ncells);
+}
+
+static GLuint make_buffer(size_t bytes)
+{
+    GLuint b = 0;
+    gl.CreateBuffers(1, &b);
+    gl.NamedBufferStorage(b, (GLsizeiptr)bytes, NULL, GL_DYNAMIC_STORAGE_BIT);
+    return b;
+}
+
+bool light_grid_alloc(light_grid *g)
+{
+    size_t heads = (size_t)g->ncells + g->ntlists;
+    if (!light_buffer_create(&g->lights, g->max_lights))
+        return false;
+    g->readback = calloc(heads * 4u, sizeof *g->readback);
+    g->counts = calloc(g->ncells, sizeof *g->counts);
+    if (!g->readback || !g->counts)
+        return false;
+    g->tiles = make_buffer(heads * 16u);
+    g->indices = make_buffer((size_t)g->capacity * 4u);
+    g->stats = make_buffer(2 * sizeof(uint32_t));
+    return true;
+}
+
+void light_grid_release(light_grid *g)
+{
+    light_buffer_release(&g->lights);
+    GLuint b[3] = {g->tiles, g->indices, g->stats};
+    for (int i = 0; i < 3; i++)
+        if (b[i])
+            gl.DeleteBuffers(1, &b[i]);
+    g->tiles = g->indices = g->stats = 0;
+    free(g->readback);
+    free(g->counts);
+    g->readback = g->counts = NULL;
+    g->counted = false;
+}
+
+translucent_grid light_grid_translucent(const light_grid *g)
+{
+    return (translucent_grid){{g->tile_define, g->tiles_x_define, g->tlists_define},
+                              g->lights.buffer, g->tiles, g->indices};
+}
+
+// >>per frame
+
+uint32_t light_grid_upload_lights(light_grid *g, const scene *s, const frontend *fe)
+{
+    return light_buffer_update(&g->lights, s, fe);
+}
+
+void light_grid_reset(const light_grid *g)
+{
+    const uint32_t reset[2] = {0, g->capacity};   /* b_stats: next, capacity */
+    gl.NamedBufferSubData(g->stats, 0, sizeof reset, reset);
+}
+
+void light_grid_bind_lights(const light_grid *g, gl_state *st)
+{
+    gl_state_storage_buffer(st, BIND_SSBO_LIGHTS, g->lights.buffer);
+}
+
+void light_grid_bind_lists(const light_grid *g, gl_state *st)
+{
+    gl_state_storage_buffer(st, BIND_SSBO_TILE_LISTS, g->tiles);
+    gl_state_storage_buffer(st, BIND_SSBO_TILE_INDICES, g->indices);
+    gl_state_storage_buffer(st, BIND_SSBO_TILE_STATS, g->stats);
+}
+
+void light_grid_dispatch(const light_grid *g, gl_state *st)
+{
+    gl_state_dispatch(st, g->tiles_x, g->tiles_y, 1);
+}
+
+void light_grid_collect(light_grid *g, frame_stats *out)
+{
+    uint32_t needed = 0, ntr = g->ntlists;
+    gl.GetNamedBufferSubData(g->stats, 0, sizeof needed, &needed);
+    gl.GetNamedBufferSubData(g->tiles, 0, (GLsizeiptr)(((size_t)g->ncells + ntr) * 16u),
+                             g->readback);
+    double sum = 0, weighted = 0, covered = 0;
+    uint32_t max = 0, longest = 0;
+    for (uint32_t t = 0; t < g->ncells; t++) {
+        uint32_t len = g->readback[4 * t + 3], px = g->readback[4 * t + 2];
+        g->counts[t] = len;
+        sum += len;
+        weighted += (double)len * px;
+        covered += px;
+        if (len > max) {
+            max = len;
+            longest = t;
+        }
+    }
+    out->grid_cells = g->ncells;
+    out->grid_lights_mean = g->ncells ? sum / g->ncells : NAN;
+    out->grid_lights_max = max;
+    out->light_evals_per_pixel = covered > 0 ? weighted / covered : 0.0;
+    out->grid_covered = (uint64_t)covered;
+    double tsum = 0;
+    uint32_t tmax = 0, tlongest = 0;
+    for (uint32_t t = 0; t < ntr; t++) {
+        uint32_t len = g->readback[4 * ((size_t)g->ncells + t) + 3];
+        tsum += len;
+        if (len > tmax) {
+            tmax = len;
+            tlongest = t;
+        }
+    }
+    if (ntr) {
+        out->translucent_lists = ntr;
+        out->translucent_lights_mean = tsum / ntr;
+        out->translucent_lights_max = tmax;
+    }
+    /* the lengths are the lists' true lengths, written or not; which lists were left
+     * empty depends on the order the cells ran in, so the message names the longest */
+    uint32_t tl = longest % g->ntiles;
+    if (needed > g->capacity && tmax > max)
+        snprintf(out->overflow, sizeof out->overflow,
+                 "%s: the light lists need %u indices, the index buffer holds %u; tile %u "
+                 "(%u, %u)'s translucent list alone needs %u",
+                 g->name, needed, g->capacity, tlongest, tlongest % g->tiles_x,
+                 tlongest / g->tiles_x, tmax);
+    else if (needed > g->capacity && g->slices)
+        snprintf(out->overflow, sizeof out->overflow,
+                 "%s: the clusters' light lists need %u indices, the index buffer holds %u; "
+                 "cluster %u (tile %u, %u, slice %u) alone needs %u",
+                 g->name, needed, g->capacity, longest, tl % g->tiles_x, tl / g->tiles_x,
+                 longest / g->ntiles, max);
+    else if (needed > g->capacity)
+        snprintf(out->overflow, sizeof out->overflow,
+                 "%s: the tiles' light lists need %u indices, the index buffer holds %u; "
+                 "tile %u (%u, %u) alone needs %u",
+                 g->name, needed, g->capacity, longest, tl % g->tiles_x, tl / g->tiles_x, max);
+    g->counted = true;
+}
+
+const uint32_t *light_grid_counts(const light_grid *g, size_t *n)
+{
+    *n = g->counted ? g->ncells : 0;
+    return g->counted ? g->counts : NULL;
+}
