@@ -784,6 +784,7 @@ const renderer_impl renderer_deferred_impl = {
     .name = "deferred",
     .description = "G-buffer pass, then ambient, directional and light-volume passes "
                    "(fullscreen | volume | stencil | stencil-two-pass), sky last",
+    .reads = "gbuffer deferred hdr msaa fog aa",
     .create = create,
     .prepare = prepare,
     .draw = draw,

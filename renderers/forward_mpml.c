@@ -341,6 +341,7 @@ const renderer_impl renderer_forward_mpml_impl = {
     .description = "multi-pass multi-light forward (seed 000 4.6): a depth, ambient and "
                    "emissive pass, then an additive depth-EQUAL pass per visible light "
                    "over its illumination set",
+    .reads = "forward.illumination_sets forward.directional_in_base hdr msaa fog aa",
     .create = mpml_create,
     .prepare = mpml_prepare,
     .draw = mpml_draw,

@@ -222,6 +222,7 @@ const renderer_impl renderer_forward_spml_impl = {
     .name = "forward-spml",
     .description = "single-pass multi-light forward (seed 003 4.1): every visible light "
                    "from a uniform buffer, looped in the fragment shader",
+    .reads = "forward.light_buffer hdr msaa fog aa",
     .create = spml_create,
     .prepare = spml_prepare,
     .draw = spml_draw,

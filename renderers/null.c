@@ -132,6 +132,7 @@ const renderer_impl renderer_null_impl = {
     .name = "null",
     .description = "clears the output once per frame and draws nothing: the harness's "
                    "own overhead",
+    .reads = "",
     .create = null_create,
     .prepare = null_prepare,
     .draw = null_draw,

@@ -207,6 +207,11 @@ typedef struct renderer_options {
 typedef struct renderer_impl {
     const char *name;
     const char *description;
+    /* The manifest keys whose value changes its output beyond those every run reads
+     * (runner/params.def readers "*"), space-separated; a group name stands for its keys
+     * ("gbuffer": gbuffer.*). A sweep folds the runs of a renderer that differ only in
+     * keys it does not read; docs/manifest.md's "read by" is made from these. */
+    const char *reads;
     void *(*create)(const renderer_options *opts, char *err, size_t errlen);
     bool (*prepare)(void *self, const struct scene *s, char *err, size_t errlen);
     void (*draw)(void *self, const struct scene *s, frame_stats *out);

@@ -101,16 +101,17 @@ static uint64_t targets_of(const char *kind, const run_params *q, int w, int h, 
     return b;
 }
 
-/* The light lists of the tiled and clustered renderers at w x h: heads (offset and
- * count) and indices, as forward_plus.c sizes them, on the GPU and read back. */
+/* The light lists of the renderers with a light grid (those that read tiles.*) at
+ * w x h: heads (offset and count) and indices, as tiled/grid.c sizes them, on the GPU
+ * and read back; clustered (reads clustered.*) per cluster. */
 static uint64_t lists_of(const char *kind, const run_params *q, int w, int h,
                          const scene_facts *sc)
 {
-    if (!is(kind, "forward-plus") && !is(kind, "tiled-deferred") && !is(kind, "clustered"))
+    if (!param_read_by(param_find("tiles.size"), kind))
         return 0;
     const uint64_t tile = 8u << q->tile_size;
     uint64_t cells = ((uint64_t)w + tile - 1) / tile * (((uint64_t)h + tile - 1) / tile);
-    if (is(kind, "clustered")) {
+    if (param_read_by(param_find("clustered.slices"), kind)) {
         uint32_t k = q->clustered_slices >= 1 && q->clustered_slices <= 64 ? q->clustered_slices : 24;
         uint32_t slices = sc ? sc->slices[k] : 0;
         cells *= slices ? slices : 1024;

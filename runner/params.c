@@ -9,6 +9,7 @@
 #include <stdlib.h>
 #include <string.h>
 
+#include "renderers/renderer.h"
 #include "results/jsonout.h"
 #include "runner/hash.h"
 #include "runner/manifest_internal.h"
@@ -348,19 +349,45 @@ size_t run_params_kv(const run_params *p, param_kv *out, size_t max)
 
 /* >>readers */
 
-bool param_read_by(const param *pd, const char *name)
+bool param_every_run_reads(const param *pd)
 {
-    if (!pd->readers || strcmp(pd->readers, "*") == 0)
-        return true;
-    size_t n = strlen(name);
-    for (const char *s = pd->readers; *s;) {
+    return pd->readers && strcmp(pd->readers, "*") == 0;
+}
+
+/* Whether the renderer's space-separated `reads` names path or a group above it. */
+static bool reads_names(const char *reads, const char *path)
+{
+    for (const char *s = reads ? reads : ""; *s;) {
         size_t len = strcspn(s, " ");
-        if (len == n && strncmp(s, name, n) == 0)
+        if (strncmp(s, path, len) == 0 && (path[len] == '\0' || path[len] == '.'))
             return true;
         s += len;
         s += strspn(s, " ");
     }
     return false;
+}
+
+bool param_read_by(const param *pd, const char *name)
+{
+    if (param_every_run_reads(pd))
+        return true;
+    const renderer_impl *r = renderer_kind_find(name);
+    return r && reads_names(r->reads, pd->path);
+}
+
+void param_readers_text(const param *pd, char *out, size_t len)
+{
+    size_t n = 0;
+    out[0] = '\0';
+    if (param_every_run_reads(pd)) {
+        snprintf(out, len, "*");
+        return;
+    }
+    for (size_t i = 0; i < renderer_kind_count() && n < len; i++) {
+        const renderer_impl *r = renderer_kind_at(i);
+        if (reads_names(r->reads, pd->path))
+            n += (size_t)snprintf(out + n, len - n, "%s%s", n ? " " : "", r->name);
+    }
 }
 
 bool param_read_by_run(const param *pd, const run_params *p)
@@ -566,7 +593,9 @@ void params_print(FILE *out, params_format f)
         mf_expect(pd, accepts, sizeof accepts);
         const char *def = pd->size && pd->def ? defaults[i]
                           : (pd->flags & PF_REQUIRED) ? "(required)" : "";
-        const char *readers = pd->size ? (pd->readers ? pd->readers : "*") : "";
+        char readers[256] = "";
+        if (pd->size)
+            param_readers_text(pd, readers, sizeof readers);
         const char *ref = pd->size && pd->ref ? pd->ref : "";
         bool sweep = pd->flags & PF_SWEEP;
         if (f == PARAMS_JSON) {

@@ -89,6 +89,10 @@ const char *param_column(const param *pd);
 bool params_defaults(run_params *out);
 /* Whether the output of a run with this renderer depends on the parameter. */
 bool param_read_by(const param *pd, const char *name);
+/* The key is read by every run (params.def readers "*"). */
+bool param_every_run_reads(const param *pd);
+/* "*", or the renderers that read the key, space-separated in registry order ("": none). */
+void param_readers_text(const param *pd, char *out, size_t len);
 /* Whether run p reads the parameter: its renderer does, or its error reference
  * does and inherits the run's value. */
 bool param_read_by_run(const param *pd, const run_params *p);

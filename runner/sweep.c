@@ -145,7 +145,8 @@ static bool check_axes_read(const experiment *e, diag_list *diags)
         }
         if (read)
             continue;
-        char key[160], list[512] = "";
+        char key[160], list[512] = "", readers[256];
+        param_readers_text(pd, readers, sizeof readers);
         size_t len = 0;
         for (size_t r = 0; r < e->nrenderers; r++)
             len += (size_t)snprintf(list + len, len < sizeof list ? sizeof list - len : 0, "%s%s",
@@ -153,7 +154,7 @@ static bool check_axes_read(const experiment *e, diag_list *diags)
         snprintf(key, sizeof key, "sweep.%s", ax->path);
         overrides_diag(diags, e, e->path, ax->line ? ax->line[0] : 0,
                        ax->col ? ax->col[0] : 0, key, "expected a key one of the renderers "
-                       "reads (%s is read by %s), found none of %s", ax->path, pd->readers,
+                       "reads (%s is read by %s), found none of %s", ax->path, readers,
                        list);
         ok = false;
     }
@@ -175,7 +176,7 @@ static uint64_t point_hash(const run_params *rp)
     char text[4096];
     for (size_t i = 0; i < NPARAMS; i++) {
         const param *pd = &params_table[i];
-        if (!pd->size || !pd->readers || strcmp(pd->readers, "*") != 0 ||
+        if (!pd->size || !param_every_run_reads(pd) ||
             strcmp(pd->path, "renderers") == 0)
             continue;
         param_format(pd, rp, text, sizeof text);

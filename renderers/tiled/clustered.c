@@ -86,6 +86,7 @@ const renderer_impl renderer_clustered_impl = {
     .description = "clustered (Olsson et al. 2012): lights culled per cluster (screen tile x "
                    "exponential depth slice) by a compute pass; forward: depth pre-pass, each "
                    "pixel shaded with its cluster's lights; deferred: from the G-buffer",
+    .reads = "gbuffer tiles clustered hdr msaa fog aa",
     .create = cl_create,
     .prepare = cl_prepare,
     .draw = cl_draw,

@@ -376,6 +376,7 @@ const renderer_impl renderer_forward_plus_impl = {
     .name = "forward-plus",
     .description = "tiled forward (Harada et al. 2012): depth pre-pass, lights culled per "
                    "screen tile by a compute pass, each pixel shaded with its tile's lights",
+    .reads = "tiles hdr msaa fog aa",
     .create = plus_create,
     .prepare = forward_tiled_prepare,
     .draw = forward_tiled_draw,

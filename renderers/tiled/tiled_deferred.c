@@ -317,6 +317,7 @@ const renderer_impl renderer_tiled_deferred_impl = {
     .description = "G-buffer pass (every preset and override of deferred), then one compute "
                    "pass that culls lights per screen tile and shades ambient, directional "
                    "and local lights into the HDR target by image store; sky last",
+    .reads = "gbuffer tiles hdr msaa fog aa",
     .create = tiled_deferred_create,
     .prepare = tiled_deferred_prepare,
     .draw = tiled_deferred_draw,
