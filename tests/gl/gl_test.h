@@ -9,7 +9,11 @@
  *                            off-screen framebuffer at w x h that most tests draw in.
  *   find_pass()              a frame's pass by name, or NULL.
  *   plan_pass()              a renderer's planned pass (renderer_describe) by name, or NULL.
- *   total_draws()            a frame's draw calls over all its passes. */
+ *   total_draws()            a frame's draw calls over all its passes.
+ *   GL_TEST_SKIP_WITHOUT_EGL()  in main: exit 77 (skipped) with the reason when there is
+ *                            no EGL display.
+ *   gl_test_expect_agree()   two images agree within the test's tolerances, no pixel
+ *                            non-finite; the numbers printed when not (or always). */
 #include <EGL/egl.h>
 #include <EGL/eglext.h>
 #include <stdbool.h>
@@ -24,6 +28,16 @@
 
 #include "renderers/gl/context.h"
 #include "renderers/renderer.h"
+#include "results/image_ref.h"
+
+#define GL_TEST_SKIP_WITHOUT_EGL()                                                         \
+    do {                                                                                   \
+        char why_[256];                                                                    \
+        if (!egl_display_available(why_, sizeof why_)) {                                   \
+            fprintf(stderr, "SKIP: %s\n", why_);                                           \
+            return 77;                                                                     \
+        }                                                                                  \
+    } while (0)
 
 static inline bool egl_display_available(char *why, size_t len)
 {
@@ -78,4 +92,21 @@ static inline const pass_plan_entry *plan_pass(const pass_plan *p, const char *n
         if (strcmp(p->pass[i].name, name) == 0)
             return &p->pass[i];
     return NULL;
+}
+
+/* a and b agree: RMSE below rmse_max and no channel off by more than max_abs (both in
+ * 0..1), no non-finite pixel; the numbers are printed when they do not (always with
+ * verbose, for the test's log). */
+static inline void gl_test_expect_agree(const char *what, const image *a, const image *b,
+                                        double rmse_max, double max_abs, bool verbose)
+{
+    image_error e;
+    char err[256];
+    assert_true(image_compare(a, b, &e, err, sizeof err));
+    if (verbose || e.rmse >= rmse_max || e.max_abs > max_abs)
+        print_message("%s: rmse %.3f/255, max %.1f/255, %.4f of pixels off by > 1/255\n", what,
+                      e.rmse * 255, e.max_abs * 255, e.frac_over_1_255);
+    assert_true(e.rmse < rmse_max);
+    assert_true(e.max_abs <= max_abs);
+    assert_int_equal(e.nonfinite, 0);
 }

@@ -489,11 +489,7 @@ static void test_backends_alternate(void **state)
 
 int main(void)
 {
-    char why[256];
-    if (!egl_display_available(why, sizeof why)) {
-        printf("skip: %s\n", why);
-        return 77;
-    }
+    GL_TEST_SKIP_WITHOUT_EGL();
     const struct CMUnitTest tests[] = {
         cmocka_unit_test(test_loader),
         cmocka_unit_test(test_create_destroy_many),

@@ -1257,11 +1257,7 @@ static void test_layouts(void **state)
 
 int main(void)
 {
-    char why[256];
-    if (!egl_display_available(why, sizeof why)) {
-        printf("skip: %s\n", why);
-        return 77;
-    }
+    GL_TEST_SKIP_WITHOUT_EGL();
     char err[512] = "";
     gl_context_desc desc = {.backend = GL_BACKEND_EGL, .device = -1, .debug = true,
                             .width = W, .height = H};

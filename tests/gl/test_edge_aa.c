@@ -253,11 +253,7 @@ static void test_edge_aa(void **state)
 
 int main(void)
 {
-    char why[256];
-    if (!egl_display_available(why, sizeof why)) {
-        printf("skip: %s\n", why);
-        return 77;
-    }
+    GL_TEST_SKIP_WITHOUT_EGL();
     ctx = gl_test_context(WS, HS);
     if (!ctx)
         return 1;

@@ -272,11 +272,7 @@ static void test_renderers_have_no_loop(void **state)
 
 int main(void)
 {
-    char why[256];
-    if (!egl_display_available(why, sizeof why)) {
-        printf("skip: %s\n", why);
-        return 77;
-    }
+    GL_TEST_SKIP_WITHOUT_EGL();
     ctx = gl_test_context(W, H);
     if (!ctx)
         return 1;

@@ -265,11 +265,7 @@ static int teardown(void **state)
 
 int main(void)
 {
-    char why[256];
-    if (!egl_display_available(why, sizeof why)) {
-        fprintf(stderr, "SKIP: %s\n", why);
-        return 77;
-    }
+    GL_TEST_SKIP_WITHOUT_EGL();
     const struct CMUnitTest tests[] = {
         cmocka_unit_test(test_engine),
         cmocka_unit_test(test_textured_box),

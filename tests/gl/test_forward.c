@@ -890,11 +890,7 @@ static int teardown(void **state)
 
 int main(void)
 {
-    char why[256];
-    if (!egl_display_available(why, sizeof why)) {
-        printf("skip: %s\n", why);
-        return 77;
-    }
+    GL_TEST_SKIP_WITHOUT_EGL();
     const struct CMUnitTest tests[] = {
         cmocka_unit_test(test_mpml_draw_calls),
         cmocka_unit_test(test_mpml_draw_calls_without_sets),

@@ -1117,11 +1117,7 @@ static void test_two_sided_stencil(void **state)
 
 int main(void)
 {
-    char why[256];
-    if (!egl_display_available(why, sizeof why)) {
-        printf("skip: %s\n", why);
-        return 77;
-    }
+    GL_TEST_SKIP_WITHOUT_EGL();
     const struct CMUnitTest tests[] = {
         cmocka_unit_test_setup_teardown(test_embedded_sources, setup, teardown),
         cmocka_unit_test_setup_teardown(test_program_variants, setup, teardown),

@@ -566,11 +566,7 @@ static int teardown(void **state)
 
 int main(void)
 {
-    char why[256];
-    if (!egl_display_available(why, sizeof why)) {
-        fprintf(stderr, "SKIP: %s\n", why);
-        return 77;
-    }
+    GL_TEST_SKIP_WITHOUT_EGL();
     const struct CMUnitTest tests[] = {
         cmocka_unit_test(test_refusal_on_given_limits),
         cmocka_unit_test(test_refusal_on_the_context),

@@ -383,15 +383,7 @@ static void test_directional_occluder(void **state)
 
 static void expect_agree(const char *what, const image *a, const image *b)
 {
-    image_error e;
-    char err[256];
-    assert_true(image_compare(a, b, &e, err, sizeof err));
-    if (e.rmse >= RMSE_MAX || e.max_abs > MAX_ABS_MAX)
-        print_error("%s: rmse %.3f/255, max %.1f/255, %.4f of pixels off by > 1/255\n", what,
-                    e.rmse * 255, e.max_abs * 255, e.frac_over_1_255);
-    assert_true(e.rmse < RMSE_MAX);
-    assert_true(e.max_abs <= MAX_ABS_MAX);
-    assert_int_equal(e.nonfinite, 0);
+    gl_test_expect_agree(what, a, b, RMSE_MAX, MAX_ABS_MAX, false);
 }
 
 static const float EYE[3] = {0.0f, 12.0f, 28.0f}, TARGET[3] = {0.0f, 1.0f, 0.0f};
@@ -1130,11 +1122,7 @@ static int teardown(void **state)
 
 int main(void)
 {
-    char why[256];
-    if (!egl_display_available(why, sizeof why)) {
-        fprintf(stderr, "SKIP: %s\n", why);
-        return 77;
-    }
+    GL_TEST_SKIP_WITHOUT_EGL();
     const struct CMUnitTest tests[] = {
         cmocka_unit_test(test_spot_occluder),
         cmocka_unit_test(test_directional_occluder),

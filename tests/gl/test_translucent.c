@@ -137,13 +137,7 @@ static bool render(const char *kind, light_volume_mode mode, scene *s, image *ou
 
 static void expect_agree(const char *what, const image *a, const image *b)
 {
-    image_error e;
-    char err[256];
-    assert_true(image_compare(a, b, &e, err, sizeof err));
-    print_message("%s: rmse %.3f/255, max %.0f/255\n", what, e.rmse * 255, e.max_abs * 255);
-    assert_true(e.rmse < RMSE_MAX);
-    assert_true(e.max_abs <= MAX_ABS_MAX);
-    assert_int_equal(e.nonfinite, 0);
+    gl_test_expect_agree(what, a, b, RMSE_MAX, MAX_ABS_MAX, true);
 }
 
 /* The translucent objects whose bounding sphere is in the frustum of s's pose. */
@@ -606,11 +600,7 @@ static int teardown(void **state)
 
 int main(void)
 {
-    char why[256];
-    if (!egl_display_available(why, sizeof why)) {
-        fprintf(stderr, "SKIP: %s\n", why);
-        return 77;
-    }
+    GL_TEST_SKIP_WITHOUT_EGL();
     const struct CMUnitTest tests[] = {
         cmocka_unit_test(test_glass_agreement),
         cmocka_unit_test(test_pane_in_front_of_light_volume),
