@@ -250,11 +250,20 @@ static void note_beyond(beyond *b, const run_spec *r, uint64_t v)
         b->most = v;
 }
 
-/* "N runs (ID, ...) ask" */
-static void print_runs(FILE *out, const beyond *b)
+/* One warning: "PATH: warning: KEY: N runs (ID, ...) ask for BEFORE<most>AFTER, past the
+ * GUARANTEE every GL has; they fail where the GL has less (`shadesweep info`: INFO;
+ * llvmpipe: LLVMPIPE)" and the way out, if any. Nothing when no run is beyond. */
+static void warn_beyond(FILE *out, const char *path, const char *key, const beyond *b,
+                        const char *before, const char *after, const char *guarantee,
+                        const char *info, const char *llvmpipe, const char *way_out)
 {
-    fprintf(out, "%zu run%s (%s%s) ask%s", b->n, b->n == 1 ? "" : "s", b->first,
-            b->n > 1 ? ", ..." : "", b->n == 1 ? "s" : "");
+    if (!b->n)
+        return;
+    fprintf(out, "%s: warning: %s: %zu run%s (%s%s) ask%s for %s%" PRIu64 "%s, past the %s "
+            "every GL has; %s where the GL has less (`shadesweep info`: %s; llvmpipe: %s)%s\n",
+            path, key, b->n, b->n == 1 ? "" : "s", b->first, b->n > 1 ? ", ..." : "",
+            b->n == 1 ? "s" : "", before, b->most, after, guarantee,
+            b->n == 1 ? "it fails" : "they fail", info, llvmpipe, way_out);
 }
 
 void plan_warnings(const experiment *e, const plan *p, FILE *out)
@@ -280,30 +289,15 @@ void plan_warnings(const experiment *e, const plan *p, FILE *out)
         if (side > GL_GUARANTEED_SIZE)
             note_beyond(&size, r, side);
     }
-    if (lights.n) {
-        fprintf(out, "%s: warning: forward.light_buffer: forward-spml holds its lights in a "
-                "uniform block: ", e->path);
-        print_runs(out, &lights);
-        fprintf(out, " for up to %" PRIu64 " lights, past the %" PRIu32 " of the %d bytes every "
-                "GL has; %s where the GL holds fewer (`shadesweep info`: "
-                "forward_spml_max_lights; llvmpipe: 819), or set forward.light_buffer: "
-                "storage\n", lights.most, sure, GL_GUARANTEED_UNIFORM_BLOCK_BYTES,
-                lights.n == 1 ? "it fails" : "they fail");
-    }
-    if (samples.n) {
-        fprintf(out, "%s: warning: msaa: ", e->path);
-        print_runs(out, &samples);
-        fprintf(out, " for %" PRIu64 " samples a pixel (or their error reference does), past "
-                "the %d every GL has; %s where the GL has fewer (`shadesweep info`: "
-                "max_samples; llvmpipe: 4)\n", samples.most, GL_GUARANTEED_SAMPLES,
-                samples.n == 1 ? "it fails" : "they fail");
-    }
-    if (size.n) {
-        fprintf(out, "%s: warning: resolution: ", e->path);
-        print_runs(out, &size);
-        fprintf(out, " for a framebuffer %" PRIu64 " pixels a side (error.reference.supersample "
-                "included), past the %d every GL has; %s where the GL has less (`shadesweep "
-                "info`: max_renderbuffer_size; llvmpipe: 16384)\n", size.most,
-                GL_GUARANTEED_SIZE, size.n == 1 ? "it fails" : "they fail");
-    }
+    char held[96];
+    snprintf(held, sizeof held, "%" PRIu32 " lights of the %d bytes", sure,
+             GL_GUARANTEED_UNIFORM_BLOCK_BYTES);
+    warn_beyond(out, e->path, "forward.light_buffer", &lights, "up to ",
+                " lights in forward-spml's uniform block", held, "forward_spml_max_lights",
+                "819", "; or set forward.light_buffer: storage");
+    warn_beyond(out, e->path, "msaa", &samples, "", " samples a pixel (or their error "
+                "reference does)", "4 samples", "max_samples", "4", "");
+    warn_beyond(out, e->path, "resolution", &size, "a framebuffer ", " pixels a side "
+                "(error.reference.supersample included)", "16384 pixels",
+                "max_renderbuffer_size", "16384", "");
 }
