@@ -206,7 +206,7 @@ static bool meta_column(const char *name)
 static const param *config_column(const char *name)
 {
     const param *pd = param_find(name);
-    return pd && pd->size && pd->readers && strcmp(pd->readers, "*") != 0 ? pd : NULL;
+    return pd && pd->size && !param_every_run_reads(pd) ? pd : NULL;
 }
 
 typedef summary_point point;
