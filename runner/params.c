@@ -548,13 +548,13 @@ static void print_json_key(FILE *out, const param *pd, bool first_key, const cha
     fputs(pd->flags & PF_SWEEP ? "true" : "false", out);
     json_key(out, &first, "read_by");
     fputs("[", out);
-    for (const char *r = readers; *r;) {
-        size_t n = strcspn(r, " ");
-        char name[64];
-        snprintf(name, sizeof name, "%.*s", (int)n, r);
-        fputs(r == readers ? "" : ", ", out);
-        json_string(out, name);
-        r += n + strspn(r + n, " ");
+    char names[256];
+    snprintf(names, sizeof names, "%s", readers);
+    bool first_name = true;
+    for (char *sv, *t = strtok_r(names, " ", &sv); t; t = strtok_r(NULL, " ", &sv)) {
+        fputs(first_name ? "" : ", ", out);
+        first_name = false;
+        json_string(out, t);
     }
     fputs("]", out);
     json_member_string(out, &first, "reference", *ref ? ref : NULL);
