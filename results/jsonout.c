@@ -5,10 +5,11 @@
 #include <stdlib.h>
 #include <string.h>
 
-void json_string(FILE *fp, const char *s)
+/* The n bytes at s as a JSON string. */
+static void string_n(FILE *fp, const char *s, size_t n)
 {
     fputc('"', fp);
-    for (; *s; s++) {
+    for (const char *e = s + n; s < e; s++) {
         unsigned char ch = (unsigned char)*s;
         if (ch == '"' || ch == '\\')
             fprintf(fp, "\\%c", ch);
@@ -18,6 +19,25 @@ void json_string(FILE *fp, const char *s)
             fputc(ch, fp);
     }
     fputc('"', fp);
+}
+
+void json_string(FILE *fp, const char *s)
+{
+    string_n(fp, s, strlen(s));
+}
+
+void json_words(FILE *fp, const char *words)
+{
+    fputc('[', fp);
+    bool first = true;
+    for (const char *w = words + strspn(words, " "); *w; w += strspn(w, " ")) {
+        size_t n = strcspn(w, " ");
+        fputs(first ? "" : ", ", fp);
+        first = false;
+        string_n(fp, w, n);
+        w += n;
+    }
+    fputc(']', fp);
 }
 
 void json_number(FILE *fp, double v)

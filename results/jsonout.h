@@ -7,6 +7,8 @@
 #include <stdio.h>
 
 void json_string(FILE *fp, const char *s);
+/* Space-separated words (a list of names) as an array of strings; "" is []. */
+void json_words(FILE *fp, const char *words);
 void json_number(FILE *fp, double v);
 
 /* A text as the JSON value it reads as: a number when the whole text is one (finite),

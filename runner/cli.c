@@ -1,4 +1,4 @@
-#define _DEFAULT_SOURCE   /* open_memstream, strtok_r */
+#define _DEFAULT_SOURCE   /* open_memstream */
 #include "runner/cli.h"
 #include "runner/columns.h"
 #include "runner/commands.h"
@@ -382,16 +382,7 @@ static void info_lines_to_json(const char *text, const char *const *lists,
             json_typed(out, v);
             continue;
         }
-        fputs("[", out);
-        char names[1024];
-        snprintf(names, sizeof names, "%s", v);
-        bool f = true;
-        for (char *sv, *t = strtok_r(names, " ", &sv); t; t = strtok_r(NULL, " ", &sv)) {
-            fputs(f ? "" : ", ", out);
-            f = false;
-            json_string(out, t);
-        }
-        fputs("]", out);
+        json_words(out, v);
     }
     fputs("}\n", out);
 }

@@ -547,16 +547,7 @@ static void print_json_key(FILE *out, const param *pd, bool first_key, const cha
     json_key(out, &first, "sweep");
     fputs(pd->flags & PF_SWEEP ? "true" : "false", out);
     json_key(out, &first, "read_by");
-    fputs("[", out);
-    char names[256];
-    snprintf(names, sizeof names, "%s", readers);
-    bool first_name = true;
-    for (char *sv, *t = strtok_r(names, " ", &sv); t; t = strtok_r(NULL, " ", &sv)) {
-        fputs(first_name ? "" : ", ", out);
-        first_name = false;
-        json_string(out, t);
-    }
-    fputs("]", out);
+    json_words(out, readers);
     json_member_string(out, &first, "reference", *ref ? ref : NULL);
     json_member_string(out, &first, "description", pd->description);
     fputs("}", out);
