@@ -116,3 +116,47 @@ double csv_num(const csv_table *t, size_t r, int c)
         return NAN;
     return v;
 }
+
+static int by_key(const void *a, const void *b)
+{
+    const struct csv_index_key *x = a, *y = b;
+    int c = strcmp(x->key, y->key);
+    return c ? c : (x->row > y->row) - (x->row < y->row);
+}
+
+bool csv_index_build(csv_index *ix, const csv_table *t, const char *column)
+{
+    int c = csv_col(t, column);
+    ix->n = c >= 0 ? t->nrows : 0;
+    ix->item = malloc((ix->n ? ix->n : 1) * sizeof *ix->item);
+    if (!ix->item)
+        return false;
+    for (size_t r = 0; r < ix->n; r++)
+        ix->item[r] = (struct csv_index_key){t->rows[r][c], r};
+    qsort(ix->item, ix->n, sizeof *ix->item, by_key);
+    return true;
+}
+
+size_t csv_index_find(const csv_index *ix, const char *key, size_t *first)
+{
+    size_t lo = 0, hi = ix->n;   /* the first item whose key is not below `key` */
+    while (lo < hi) {
+        size_t mid = lo + (hi - lo) / 2;
+        if (strcmp(ix->item[mid].key, key) < 0)
+            lo = mid + 1;
+        else
+            hi = mid;
+    }
+    *first = lo;
+    size_t n = 0;
+    while (lo + n < ix->n && strcmp(ix->item[lo + n].key, key) == 0)
+        n++;
+    return n;
+}
+
+void csv_index_free(csv_index *ix)
+{
+    free(ix->item);
+    ix->item = NULL;
+    ix->n = 0;
+}

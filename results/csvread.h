@@ -21,3 +21,20 @@ int csv_col(const csv_table *t, const char *name);
 const char *csv_get(const csv_table *t, size_t r, int c);
 /* The field as a number; NAN when empty or not a number. */
 double csv_num(const csv_table *t, size_t r, int c);
+
+/* The rows of a table sorted by one column's text, for look-ups by id. */
+typedef struct csv_index {
+    struct csv_index_key {
+        const char *key;
+        size_t row;
+    } *item;
+    size_t n;
+} csv_index;
+
+/* False when out of memory. A table without the column gives an empty index. */
+bool csv_index_build(csv_index *ix, const csv_table *t, const char *column);
+/* The rows whose column is `key`, in file order: *first indexes ix->item; returns how
+ * many (0: none). */
+size_t csv_index_find(const csv_index *ix, const char *key, size_t *first);
+void csv_index_free(csv_index *ix);
+

@@ -10,7 +10,6 @@
 #include "results/fsutil.h"
 #include "results/jsonout.h"
 #include "runner/output.h"
-#include "runner/summary_long.h"
 
 static bool bookkeeping(const char *name)
 {
@@ -20,9 +19,9 @@ static bool bookkeeping(const char *name)
 
 /* Each trial of run `id`, in summary.csv's order: {"trial", "status", "measures": {every
  * measured column of summary.csv that has a value: its number}}. */
-static void trial_results(FILE *fp, const csv_table *sm, const row_index *ix, const char *id)
+static void trial_results(FILE *fp, const csv_table *sm, const csv_index *ix, const char *id)
 {
-    size_t first, n = row_index_find(ix, id, &first);
+    size_t first, n = csv_index_find(ix, id, &first);
     int tcol = csv_col(sm, "trial"), scol = csv_col(sm, "status");
     fputs("[", fp);
     for (size_t k = 0; k < n; k++) {
@@ -49,7 +48,7 @@ static void trial_results(FILE *fp, const csv_table *sm, const row_index *ix, co
     fputs("]", fp);
 }
 
-static void run_object(FILE *fp, const summary_view *v, const row_index *ix,
+static void run_object(FILE *fp, const summary_view *v, const csv_index *ix,
                        const summary_point *p, size_t i)
 {
     const run_result *x = &v->runs[p->runs[i]];
@@ -105,7 +104,7 @@ static void run_object(FILE *fp, const summary_view *v, const row_index *ix,
     fputs("}", fp);
 }
 
-static void point_object(FILE *fp, const summary_view *v, const row_index *ix,
+static void point_object(FILE *fp, const summary_view *v, const csv_index *ix,
                          const summary_point *p)
 {
     fputs("{\"label\": ", fp);
@@ -176,14 +175,14 @@ bool summary_json_write(const char *out_dir, const summary_view *v, char *err, s
 {
     char path[4200];
     snprintf(path, sizeof path, "%s/summary.json", out_dir);
-    row_index ix;
-    if (!row_index_build(&ix, v->sm, "run_id")) {
+    csv_index ix;
+    if (!csv_index_build(&ix, v->sm, "run_id")) {
         snprintf(err, errlen, "out of memory");
         return false;
     }
     afile f;
     if (!afile_open(&f, path, err, errlen)) {
-        row_index_free(&ix);
+        csv_index_free(&ix);
         return false;
     }
     FILE *fp = f.fp;
@@ -208,7 +207,7 @@ bool summary_json_write(const char *out_dir, const summary_view *v, char *err, s
         crossover_object(fp, &v->cx->item[i]);
     }
     fputs(v->cx->n ? "\n  ],\n  \"warnings\": " : "],\n  \"warnings\": ", fp);
-    row_index_free(&ix);
+    csv_index_free(&ix);
     if (!warnings_array(fp, v)) {
         afile_abort(&f);
         snprintf(err, errlen, "out of memory");

@@ -10,52 +10,6 @@
 #include "results/csv.h"
 #include "runner/output.h"
 
-/* ---- the rows of a table by id ----------------------------------------------------- */
-
-static int by_key(const void *a, const void *b)
-{
-    const struct row_key *x = a, *y = b;
-    int c = strcmp(x->key, y->key);
-    return c ? c : (x->row > y->row) - (x->row < y->row);
-}
-
-bool row_index_build(row_index *ix, const csv_table *t, const char *column)
-{
-    int c = csv_col(t, column);
-    ix->n = c >= 0 ? t->nrows : 0;
-    ix->item = malloc((ix->n ? ix->n : 1) * sizeof *ix->item);
-    if (!ix->item)
-        return false;
-    for (size_t r = 0; r < ix->n; r++)
-        ix->item[r] = (struct row_key){t->rows[r][c], r};
-    qsort(ix->item, ix->n, sizeof *ix->item, by_key);
-    return true;
-}
-
-size_t row_index_find(const row_index *ix, const char *key, size_t *first)
-{
-    size_t lo = 0, hi = ix->n;   /* the first item whose key is not below `key` */
-    while (lo < hi) {
-        size_t mid = lo + (hi - lo) / 2;
-        if (strcmp(ix->item[mid].key, key) < 0)
-            lo = mid + 1;
-        else
-            hi = mid;
-    }
-    *first = lo;
-    size_t n = 0;
-    while (lo + n < ix->n && strcmp(ix->item[lo + n].key, key) == 0)
-        n++;
-    return n;
-}
-
-void row_index_free(row_index *ix)
-{
-    free(ix->item);
-    ix->item = NULL;
-    ix->n = 0;
-}
-
 /* ---- typed cells --------------------------------------------------------------------- */
 
 /* The whole of s is one number (finite unless `inf_ok`). */
@@ -257,10 +211,10 @@ bool summary_long_write(const char *out_dir, const csv_table *pl, const csv_tabl
     size_t cap = 9 + 3 * pl->ncols;
     key_col *keys = malloc((pl->ncols ? pl->ncols : 1) * sizeof *keys);
     char **names = calloc(cap, sizeof *names);
-    row_index ix = {0};
+    csv_index ix = {0};
     size_t nkeys = 0, nnames = 0;
     bool ok = keys && names && layout(pl, keys, &nkeys, names, &nnames) &&
-              row_index_build(&ix, pl, "run_id");
+              csv_index_build(&ix, pl, "run_id");
     if (!ok) {
         snprintf(err, errlen, "out of memory");
     } else {
@@ -275,13 +229,13 @@ bool summary_long_write(const char *out_dir, const csv_table *pl, const csv_tabl
         for (size_t r = 0; w && r < sm->nrows; r++) {
             size_t first;
             long prow = -1;
-            if (row_index_find(&ix, csv_get(sm, r, idcol), &first))
+            if (csv_index_find(&ix, csv_get(sm, r, idcol), &first))
                 prow = (long)ix.item[first].row;
             trial_rows(w, pl, sm, r, own, prow, keys, nkeys);
         }
         ok = w && csv_commit(w, err, errlen);
     }
-    row_index_free(&ix);
+    csv_index_free(&ix);
     for (size_t i = 0; names && i < cap; i++)
         free(names[i]);
     free(names);

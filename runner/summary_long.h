@@ -16,22 +16,6 @@
 
 #include "results/csvread.h"
 
-/* The rows of a table sorted by one column's text, for look-ups by id. */
-typedef struct row_index {
-    struct row_key {
-        const char *key;
-        size_t row;
-    } *item;
-    size_t n;
-} row_index;
-
-/* False when out of memory. A table without the column gives an empty index. */
-bool row_index_build(row_index *ix, const csv_table *t, const char *column);
-/* The rows whose column is `key`, in file order: *first indexes ix->item; returns how
- * many (0: none). */
-size_t row_index_find(const row_index *ix, const char *key, size_t *first);
-void row_index_free(row_index *ix);
-
 /* Writes OUT/summary_long.csv atomically from plan.csv (pl) and summary.csv (sm). */
 bool summary_long_write(const char *out_dir, const csv_table *pl, const csv_table *sm,
                         char *err, size_t errlen);

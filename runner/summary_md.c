@@ -443,7 +443,6 @@ bool summary_table_write(const char *out_dir, FILE *terminal, char *err, size_t 
         return false;
     }
     size_t nalloc = nruns ? nruns : 1;
-    int idcol = csv_col(&pl, "run_id");
     bool *varies = calloc(pl.ncols ? pl.ncols : 1, sizeof *varies);
     long *prow = calloc(nalloc, sizeof *prow);
     point *pts = calloc(nalloc, sizeof *pts);
@@ -451,9 +450,14 @@ bool summary_table_write(const char *out_dir, FILE *terminal, char *err, size_t 
     char **rlabel = calloc(nalloc, sizeof *rlabel);
     bool *done = calloc(nalloc, sizeof *done);
     size_t npts = 0;
-    bool ok = varies && prow && pts && idx && all && rlabel && done;
-    for (size_t r = 0; ok && r < nruns; r++)
-        prow[r] = idcol >= 0 ? plan_row(&pl, idcol, runs[r].id) : -1;
+    csv_index pix = {0};   /* plan rows by run id: a look-up each, not a scan */
+    bool ok = varies && prow && pts && idx && all && rlabel && done &&
+              csv_index_build(&pix, &pl, "run_id");
+    for (size_t r = 0; ok && r < nruns; r++) {
+        size_t first;
+        prow[r] = csv_index_find(&pix, runs[r].id, &first) ? (long)pix.item[first].row : -1;
+    }
+    csv_index_free(&pix);
     /* a parameter varies when two runs of this summary differ in it */
     bool *cvaries = calloc(pl.ncols ? pl.ncols : 1, sizeof *cvaries);
     char **rcfg = calloc(nalloc, sizeof *rcfg);

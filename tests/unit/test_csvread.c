@@ -90,6 +90,32 @@ static void test_crlf(void **state)
     csv_table_free(&t);
 }
 
+/* csv_index: the rows of a key in file order, none for an absent key, and an empty
+ * index for an absent column. */
+static void test_index(void **state)
+{
+    (void)state;
+    write_file("id,v\nb,0\na,1\nb,2\nc,3\nb,4\n");
+    csv_table t;
+    char err[256];
+    assert_true(csv_read(path, &t, err, sizeof err));
+    csv_index ix;
+    assert_true(csv_index_build(&ix, &t, "id"));
+    size_t first;
+    assert_int_equal(csv_index_find(&ix, "b", &first), 3);
+    for (size_t k = 0; k < 3; k++)
+        assert_int_equal(ix.item[first + k].row, 2 * k);   /* rows 0, 2, 4 */
+    assert_int_equal(csv_index_find(&ix, "a", &first), 1);
+    assert_int_equal(ix.item[first].row, 1);
+    assert_int_equal(csv_index_find(&ix, "bb", &first), 0);
+    assert_int_equal(csv_index_find(&ix, "", &first), 0);
+    csv_index_free(&ix);
+    assert_true(csv_index_build(&ix, &t, "no-such-column"));
+    assert_int_equal(csv_index_find(&ix, "b", &first), 0);
+    csv_index_free(&ix);
+    csv_table_free(&t);
+}
+
 static void expect_error(const char *text, const char *want)
 {
     write_file(text);
@@ -125,6 +151,7 @@ int main(void)
     const struct CMUnitTest tests[] = {
         cmocka_unit_test_setup_teardown(test_quoting_round_trip, setup, teardown),
         cmocka_unit_test_setup_teardown(test_crlf, setup, teardown),
+        cmocka_unit_test_setup_teardown(test_index, setup, teardown),
         cmocka_unit_test_setup_teardown(test_errors, setup, teardown),
     };
     return cmocka_run_group_tests(tests, NULL, NULL);
