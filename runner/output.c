@@ -59,6 +59,14 @@ const char *summary_column_unit(const char *column)
     return NULL;
 }
 
+const char **summary_units_of(const csv_table *t)
+{
+    const char **unit = malloc((t->ncols ? t->ncols : 1) * sizeof *unit);
+    for (size_t c = 0; unit && c < t->ncols; c++)
+        unit[c] = summary_column_unit(t->header[c]);
+    return unit;
+}
+
 const char *const frames_columns[] = {
     "run_id", "trial", "frame", "t_wall_s", "t_scene_s", "lights", "frametime_us",
 #define METRIC_WANT_FRAMES

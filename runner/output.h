@@ -12,6 +12,7 @@
 #include <stdbool.h>
 #include <stddef.h>
 #include "results/csv.h"
+#include "results/csvread.h"
 #include "results/image_io.h"
 #include "results/metrics.h"
 #include "results/record.h"
@@ -24,6 +25,9 @@ extern const size_t summary_ncolumns;
 /* The unit of a measured column of summary.csv ("us", "bytes", "1": a ratio, ...);
  * NULL for the others (identity, parameters, trial, order, metric, status, message). */
 const char *summary_column_unit(const char *column);
+/* summary_column_unit of each column of t, in order (NULL: not a measure); free() the
+ * array. NULL when out of memory. */
+const char **summary_units_of(const csv_table *t);
 extern const char *const frames_columns[];
 extern const size_t frames_ncolumns;
 

@@ -17,10 +17,18 @@ static bool bookkeeping(const char *name)
            strcmp(name, "shard") == 0 || strcmp(name, "folded") == 0;
 }
 
+/* summary.csv's rows by run id, and the unit of each of its columns (NULL: not a
+ * measure), made once for every run's trial_results. */
+typedef struct trial_rows {
+    csv_index ix;
+    const char **unit;
+} trial_rows;
+
 /* Each trial of run `id`, in summary.csv's order: {"trial", "status", "measures": {every
  * measured column of summary.csv that has a value: its number}}. */
-static void trial_results(FILE *fp, const csv_table *sm, const csv_index *ix, const char *id)
+static void trial_results(FILE *fp, const csv_table *sm, const trial_rows *tr, const char *id)
 {
+    const csv_index *ix = &tr->ix;
     size_t first, n = csv_index_find(ix, id, &first);
     int tcol = csv_col(sm, "trial"), scol = csv_col(sm, "status");
     fputs("[", fp);
@@ -39,7 +47,7 @@ static void trial_results(FILE *fp, const csv_table *sm, const csv_index *ix, co
         bool mf = true;
         for (size_t c = 0; c < sm->ncols; c++) {
             double x = strtod(sm->rows[r][c], &end);
-            if (summary_column_unit(sm->header[c]) && *sm->rows[r][c] && *end == '\0' &&
+            if (tr->unit[c] && *sm->rows[r][c] && *end == '\0' &&
                 isfinite(x))
                 json_member_number(fp, &mf, sm->header[c], x);
         }
@@ -48,7 +56,7 @@ static void trial_results(FILE *fp, const csv_table *sm, const csv_index *ix, co
     fputs("]", fp);
 }
 
-static void run_object(FILE *fp, const summary_view *v, const csv_index *ix,
+static void run_object(FILE *fp, const summary_view *v, const trial_rows *tr,
                        const summary_point *p, size_t i)
 {
     const run_result *x = &v->runs[p->runs[i]];
@@ -100,11 +108,11 @@ static void run_object(FILE *fp, const summary_view *v, const csv_index *ix,
         json_typed(fp, v->pl->rows[row][c]);
     }
     fputs("}, \"trial_results\": ", fp);
-    trial_results(fp, v->sm, ix, x->id);
+    trial_results(fp, v->sm, tr, x->id);
     fputs("}", fp);
 }
 
-static void point_object(FILE *fp, const summary_view *v, const csv_index *ix,
+static void point_object(FILE *fp, const summary_view *v, const trial_rows *tr,
                          const summary_point *p)
 {
     fputs("{\"label\": ", fp);
@@ -120,7 +128,7 @@ static void point_object(FILE *fp, const summary_view *v, const csv_index *ix,
     fputs("}, \"runs\": [", fp);
     for (size_t i = 0; i < p->nruns; i++) {
         fputs(i ? ",\n      " : "\n      ", fp);
-        run_object(fp, v, ix, p, i);
+        run_object(fp, v, tr, p, i);
     }
     fputs("]}", fp);
 }
@@ -175,14 +183,16 @@ bool summary_json_write(const char *out_dir, const summary_view *v, char *err, s
 {
     char path[4200];
     snprintf(path, sizeof path, "%s/summary.json", out_dir);
-    csv_index ix;
-    if (!csv_index_build(&ix, v->sm, "run_id")) {
+    trial_rows tr = {.unit = summary_units_of(v->sm)};
+    if (!tr.unit || !csv_index_build(&tr.ix, v->sm, "run_id")) {
+        free(tr.unit);
         snprintf(err, errlen, "out of memory");
         return false;
     }
     afile f;
     if (!afile_open(&f, path, err, errlen)) {
-        csv_index_free(&ix);
+        csv_index_free(&tr.ix);
+        free(tr.unit);
         return false;
     }
     FILE *fp = f.fp;
@@ -194,12 +204,12 @@ bool summary_json_write(const char *out_dir, const summary_view *v, char *err, s
     fputs(",\n  \"units\": {", fp);   /* of the measures of trial_results */
     bool uf = true;
     for (size_t c = 0; c < v->sm->ncols; c++)
-        if (summary_column_unit(v->sm->header[c]))
-            json_member_string(fp, &uf, v->sm->header[c], summary_column_unit(v->sm->header[c]));
+        if (tr.unit[c])
+            json_member_string(fp, &uf, v->sm->header[c], tr.unit[c]);
     fputs("},\n  \"points\": [", fp);
     for (size_t k = 0; k < v->npoints; k++) {
         fputs(k ? ",\n    " : "\n    ", fp);
-        point_object(fp, v, &ix, &v->points[k]);
+        point_object(fp, v, &tr, &v->points[k]);
     }
     fputs(v->npoints ? "\n  ],\n  \"crossovers\": [" : "],\n  \"crossovers\": [", fp);
     for (size_t i = 0; i < v->cx->n; i++) {
@@ -207,7 +217,8 @@ bool summary_json_write(const char *out_dir, const summary_view *v, char *err, s
         crossover_object(fp, &v->cx->item[i]);
     }
     fputs(v->cx->n ? "\n  ],\n  \"warnings\": " : "],\n  \"warnings\": ", fp);
-    csv_index_free(&ix);
+    csv_index_free(&tr.ix);
+    free(tr.unit);
     if (!warnings_array(fp, v)) {
         afile_abort(&f);
         snprintf(err, errlen, "out of memory");

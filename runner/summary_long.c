@@ -183,12 +183,14 @@ static bool layout(const csv_table *pl, key_col *keys, size_t *nkeys, char **nam
 }
 
 /* One trial's rows: a row per measured value of summary.csv row r; own[] are
- * summary.csv's columns of head[], then of trial and status. */
+ * summary.csv's columns of head[], then of trial and status; unit[] its columns' units
+ * (NULL: not a measure). */
 static void trial_rows(csv_writer *w, const csv_table *pl, const csv_table *sm, size_t r,
-                       const int *own, long prow, const key_col *keys, size_t nkeys)
+                       const int *own, const char *const *unit_of, long prow,
+                       const key_col *keys, size_t nkeys)
 {
     for (size_t c = 0; c < sm->ncols; c++) {
-        const char *unit = summary_column_unit(sm->header[c]);
+        const char *unit = unit_of[c];
         double v;
         if (!unit || !number_of(sm->rows[r][c], true, &v))
             continue;
@@ -211,9 +213,10 @@ bool summary_long_write(const char *out_dir, const csv_table *pl, const csv_tabl
     size_t cap = 9 + 3 * pl->ncols;
     key_col *keys = malloc((pl->ncols ? pl->ncols : 1) * sizeof *keys);
     char **names = calloc(cap, sizeof *names);
+    const char **unit = summary_units_of(sm);
     csv_index ix = {0};
     size_t nkeys = 0, nnames = 0;
-    bool ok = keys && names && layout(pl, keys, &nkeys, names, &nnames) &&
+    bool ok = keys && names && unit && layout(pl, keys, &nkeys, names, &nnames) &&
               csv_index_build(&ix, pl, "run_id");
     if (!ok) {
         snprintf(err, errlen, "out of memory");
@@ -231,7 +234,7 @@ bool summary_long_write(const char *out_dir, const csv_table *pl, const csv_tabl
             long prow = -1;
             if (csv_index_find(&ix, csv_get(sm, r, idcol), &first))
                 prow = (long)ix.item[first].row;
-            trial_rows(w, pl, sm, r, own, prow, keys, nkeys);
+            trial_rows(w, pl, sm, r, own, unit, prow, keys, nkeys);
         }
         ok = w && csv_commit(w, err, errlen);
     }
@@ -240,5 +243,6 @@ bool summary_long_write(const char *out_dir, const csv_table *pl, const csv_tabl
         free(names[i]);
     free(names);
     free(keys);
+    free(unit);
     return ok;
 }
