@@ -785,11 +785,7 @@ const renderer_impl renderer_deferred_impl = {
     .description = "G-buffer pass, then ambient, directional and light-volume passes "
                    "(fullscreen | volume | stencil | stencil-two-pass), sky last",
     .reads = "gbuffer deferred hdr msaa fog aa",
-    .create = create,
-    .prepare = prepare,
-    .draw = draw,
-    .collect = collect,
-    .describe = deferred_describe,
-    .destroy = destroy,
+    RENDERER_ENTRY_POINTS(create, prepare, draw, collect,
+                          deferred_describe, destroy),
     .read_hdr = deferred_read_hdr,
 };

@@ -342,11 +342,7 @@ const renderer_impl renderer_forward_mpml_impl = {
                    "emissive pass, then an additive depth-EQUAL pass per visible light "
                    "over its illumination set",
     .reads = "forward.illumination_sets forward.directional_in_base hdr msaa fog aa",
-    .create = mpml_create,
-    .prepare = mpml_prepare,
-    .draw = mpml_draw,
-    .collect = mpml_collect,
-    .describe = mpml_describe,
-    .destroy = mpml_destroy,
+    RENDERER_ENTRY_POINTS(mpml_create, mpml_prepare, mpml_draw, mpml_collect,
+                          mpml_describe, mpml_destroy),
     .read_hdr = forward_read_hdr,
 };

@@ -223,11 +223,7 @@ const renderer_impl renderer_forward_spml_impl = {
     .description = "single-pass multi-light forward (seed 003 4.1): every visible light "
                    "from a uniform buffer, looped in the fragment shader",
     .reads = "forward.light_buffer hdr msaa fog aa",
-    .create = spml_create,
-    .prepare = spml_prepare,
-    .draw = spml_draw,
-    .collect = spml_collect,
-    .describe = spml_describe,
-    .destroy = spml_destroy,
+    RENDERER_ENTRY_POINTS(spml_create, spml_prepare, spml_draw, spml_collect,
+                          spml_describe, spml_destroy),
     .read_hdr = forward_read_hdr,
 };

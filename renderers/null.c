@@ -133,11 +133,7 @@ const renderer_impl renderer_null_impl = {
     .description = "clears the output once per frame and draws nothing: the harness's "
                    "own overhead",
     .reads = "",
-    .create = null_create,
-    .prepare = null_prepare,
-    .draw = null_draw,
-    .collect = null_collect,
-    .describe = null_describe,
-    .destroy = null_destroy,
+    RENDERER_ENTRY_POINTS(null_create, null_prepare, null_draw, null_collect,
+                          null_describe, null_destroy),
     .read_hdr = NULL,         /* no float target: renderer_read_hdr says false */
 };

@@ -52,7 +52,9 @@ renderer *renderer_create(const char *kind, const renderer_options *opts, char *
         snprintf(err, errlen, "unknown renderer '%s'", kind);
         return NULL;
     }
-    if (!impl->create || !impl->prepare || !impl->draw || !impl->collect || !impl->describe ||
+    if (impl->variant)
+        impl = impl->variant(opts);
+    if (!impl || !impl->create || !impl->prepare || !impl->draw || !impl->collect || !impl->describe ||
         !impl->destroy) {
         snprintf(err, errlen, "bug: renderer '%s' lacks an entry point", kind);
         return NULL;

@@ -226,7 +226,24 @@ typedef struct renderer_impl {
     /* Optional (NULL: no light grid): after collect, the light-list length of every
      * tile (or cluster) of the last frame collected, *n of them (lightgrid.csv). */
     const uint32_t *(*light_grid)(const void *self, size_t *n);
+    /* Optional (NULL: the entries above serve): a renderer that is one of two designs
+     * chosen by an option (clustered: forward or deferred shading over the same cluster
+     * lists) returns the implementation whose entry points serve an object made with
+     * opts; the registry's entry keeps the name, description and reads. */
+    const struct renderer_impl *(*variant)(const renderer_options *opts);
 } renderer_impl;
+
+/* The six entry points every renderer has, in renderer_impl's order (each has its own
+ * type, so a swapped pair does not compile):
+ *     const renderer_impl renderer_x_impl = {
+ *         .name = "x", .description = "...", .reads = "...",
+ *         RENDERER_ENTRY_POINTS(x_create, x_prepare, x_draw, x_collect, x_describe,
+ *                               x_destroy),
+ *         .read_hdr = ...,
+ *     }; */
+#define RENDERER_ENTRY_POINTS(create_, prepare_, draw_, collect_, describe_, destroy_) \
+    .create = create_, .prepare = prepare_, .draw = draw_, .collect = collect_,          \
+    .describe = describe_, .destroy = destroy_
 
 typedef struct renderer renderer;
 

@@ -4,81 +4,38 @@
  * pre-pass, one cull dispatch, shade). With clustered.shading: deferred: tiled_deferred.c's
  * G-buffer and one clustered compute pass, the same cluster lists.
  *
- * The object create makes is the one of those two renderers, nothing around it: each
- * entry below calls that renderer's own, chosen by the options the object was made with
- * (renderer_base.opts.clustered_deferred; both objects start with their base). */
-#include "renderers/base.h"
+ * The registry's entry only names the renderer; renderer_create asks `variant` which of
+ * the two designs serves an object made with the run's options, and dispatches every
+ * call to that design's own functions. */
 #include "renderers/deferred_core.h"
 #include "renderers/forward_common.h"
 #include "renderers/tiled/tiled.h"
 
-#include <stddef.h>
-
-_Static_assert(offsetof(forward_common, b) == 0, "a forward object starts with its base");
-_Static_assert(offsetof(deferred_renderer, b) == 0, "a deferred object starts with its base");
-
-/* Whether self (either renderer's object) shades deferred. */
-static bool deferred_shading(const void *self)
+static void *forward_create(const renderer_options *opts, char *err, size_t errlen)
 {
-    return ((const renderer_base *)self)->opts.clustered_deferred;
+    return forward_tiled_create("clustered", true, opts, err, errlen);
 }
 
-static void *cl_create(const renderer_options *opts, char *err, size_t errlen)
-{
-    return opts->clustered_deferred ? tiled_deferred_clustered_create(opts, err, errlen)
-                                    : forward_tiled_create("clustered", true, opts, err, errlen);
-}
+static const renderer_impl clustered_forward = {
+    .name = "clustered",
+    RENDERER_ENTRY_POINTS(forward_create, forward_tiled_prepare, forward_tiled_draw,
+                          forward_tiled_collect, forward_tiled_describe, forward_tiled_destroy),
+    .read_hdr = forward_read_hdr,
+    .light_grid = forward_tiled_light_grid,
+};
 
-static bool cl_prepare(void *self, const struct scene *s, char *err, size_t errlen)
-{
-    return deferred_shading(self) ? tiled_deferred_prepare(self, s, err, errlen)
-                                  : forward_tiled_prepare(self, s, err, errlen);
-}
+static const renderer_impl clustered_deferred = {
+    .name = "clustered",
+    RENDERER_ENTRY_POINTS(tiled_deferred_clustered_create, tiled_deferred_prepare,
+                          tiled_deferred_draw, tiled_deferred_collect, deferred_describe,
+                          tiled_deferred_destroy),
+    .read_hdr = deferred_read_hdr,
+    .light_grid = tiled_deferred_light_grid,
+};
 
-static void cl_draw(void *self, const struct scene *s, frame_stats *out)
+static const renderer_impl *variant(const renderer_options *opts)
 {
-    if (deferred_shading(self))
-        tiled_deferred_draw(self, s, out);
-    else
-        forward_tiled_draw(self, s, out);
-}
-
-static void cl_collect(void *self, frame_stats *out)
-{
-    if (deferred_shading(self))
-        tiled_deferred_collect(self, out);
-    else
-        forward_tiled_collect(self, out);
-}
-
-static void cl_describe(const void *self, pass_plan *out)
-{
-    if (deferred_shading(self))
-        deferred_describe(self, out);
-    else
-        forward_tiled_describe(self, out);
-}
-
-static void cl_destroy(void *self)
-{
-    if (!self)
-        return;
-    if (deferred_shading(self))
-        tiled_deferred_destroy(self);
-    else
-        forward_tiled_destroy(self);
-}
-
-static bool cl_read_hdr(void *self, float *rgba, int width, int height)
-{
-    return deferred_shading(self) ? deferred_read_hdr(self, rgba, width, height)
-                                  : forward_read_hdr(self, rgba, width, height);
-}
-
-static const uint32_t *cl_light_grid(const void *self, size_t *n)
-{
-    return deferred_shading(self) ? tiled_deferred_light_grid(self, n)
-                                  : forward_tiled_light_grid(self, n);
+    return opts->clustered_deferred ? &clustered_deferred : &clustered_forward;
 }
 
 const renderer_impl renderer_clustered_impl = {
@@ -87,12 +44,5 @@ const renderer_impl renderer_clustered_impl = {
                    "exponential depth slice) by a compute pass; forward: depth pre-pass, each "
                    "pixel shaded with its cluster's lights; deferred: from the G-buffer",
     .reads = "gbuffer tiles clustered hdr msaa fog aa",
-    .create = cl_create,
-    .prepare = cl_prepare,
-    .draw = cl_draw,
-    .collect = cl_collect,
-    .describe = cl_describe,
-    .destroy = cl_destroy,
-    .read_hdr = cl_read_hdr,
-    .light_grid = cl_light_grid,
+    .variant = variant,
 };

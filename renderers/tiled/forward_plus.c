@@ -377,12 +377,8 @@ const renderer_impl renderer_forward_plus_impl = {
     .description = "tiled forward (Harada et al. 2012): depth pre-pass, lights culled per "
                    "screen tile by a compute pass, each pixel shaded with its tile's lights",
     .reads = "tiles hdr msaa fog aa",
-    .create = plus_create,
-    .prepare = forward_tiled_prepare,
-    .draw = forward_tiled_draw,
-    .collect = forward_tiled_collect,
-    .describe = forward_tiled_describe,
-    .destroy = forward_tiled_destroy,
+    RENDERER_ENTRY_POINTS(plus_create, forward_tiled_prepare, forward_tiled_draw,
+                          forward_tiled_collect, forward_tiled_describe, forward_tiled_destroy),
     .read_hdr = forward_read_hdr,
     .light_grid = forward_tiled_light_grid,
 };

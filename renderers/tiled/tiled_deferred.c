@@ -318,12 +318,8 @@ const renderer_impl renderer_tiled_deferred_impl = {
                    "pass that culls lights per screen tile and shades ambient, directional "
                    "and local lights into the HDR target by image store; sky last",
     .reads = "gbuffer tiles hdr msaa fog aa",
-    .create = tiled_deferred_create,
-    .prepare = tiled_deferred_prepare,
-    .draw = tiled_deferred_draw,
-    .collect = tiled_deferred_collect,
-    .describe = deferred_describe,
-    .destroy = tiled_deferred_destroy,
+    RENDERER_ENTRY_POINTS(tiled_deferred_create, tiled_deferred_prepare, tiled_deferred_draw, tiled_deferred_collect,
+                          deferred_describe, tiled_deferred_destroy),
     .read_hdr = deferred_read_hdr,
     .light_grid = tiled_deferred_light_grid,
 };

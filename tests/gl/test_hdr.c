@@ -384,7 +384,10 @@ static void test_rgba32f_every_renderer(void **state)
         /* every registered renderer, then clustered once more with deferred shading */
         bool again = i == renderer_kind_count();
         const renderer_impl *k = again ? renderer_kind_find("clustered") : renderer_kind_at(i);
-        if (!k->read_hdr)
+        /* the design that serves the object (clustered: forward, or deferred again) */
+        const renderer_impl *design =
+            k->variant ? k->variant(&(renderer_options){.clustered_deferred = again}) : k;
+        if (!design->read_hdr)
             continue;   /* null: no float target */
         kinds++;
         for (int fogged = 0; fogged < 2; fogged++) {
