@@ -87,13 +87,6 @@ typedef struct deferred_attachment {
     deferred_slot slot[DEFERRED_MAX_SLOTS];
 } deferred_attachment;
 
-/* What the scene's materials write (deferred_needs_of). */
-typedef struct deferred_needs {
-    bool gloss;                        /* some object's material has specular > 0: gloss and
-                                          shininess (a gloss map only scales it) */
-    bool emissive;                     /* some object's material has an emissive colour > 0 */
-} deferred_needs;
-
 typedef struct deferred_layout {
     int nattachments;
     deferred_attachment att[DEFERRED_MAX_ATTACHMENTS];
@@ -108,10 +101,6 @@ const char *deferred_slot_name(deferred_slot_kind k);
 /* "fat", "curtis", "compact", "spheremap", "reference"; "unknown" out of range. */
 const char *deferred_preset_name(gbuffer_preset p);
 
-/* What objects' materials of s write (opaque and alpha-tested ones: translucent objects
- * never reach the G-buffer, renderers/translucent.h). */
-deferred_needs deferred_needs_of(const struct scene *s);
-
 /* The layout of preset (with the field-by-field overrides of o) for a scene that needs
  * `needs`: the preset's attachments as seed 000/002/003/004 give them, each allocated
  * only when one of its slots is needed; an override (position, normal) that differs
@@ -124,26 +113,6 @@ bool deferred_layout_build(const renderer_options *o, deferred_needs needs,
 
 /* Bytes per pixel of the layout's attachments. */
 unsigned deferred_layout_bytes_per_pixel(const deferred_layout *l);
-
-/* >>seed 002's G-buffer traffic (results/bandwidth.h, equations 4 and 5's MRT terms) */
-
-/* Whether the renderer `kind` with options o shades from a G-buffer: deferred,
- * tiled-deferred, and clustered with clustered.shading: deferred. */
-bool deferred_uses_gbuffer(const char *kind, const renderer_options *o);
-/* The bytes per pixel of the G-buffer such a renderer builds for scene s (the layout of
- * o's preset and overrides for what s's materials need, as renderer_prepare builds it);
- * 0 for any other renderer or a layout that does not build. */
-unsigned deferred_gbuffer_bytes_per_pixel_of(const char *kind, const renderer_options *o,
-                                             const struct scene *s);
-/* One collected frame of such a renderer at width x height: writes = bytes_per_pixel x
- * the samples of the pass named "gbuffer"; reads = bytes_per_pixel x (the samples of
- * "ambient", "directional", "point" and "spot", the passes that fetch the G-buffer per
- * shaded sample, + width x height for each "tiled" pass: a compute pass counts no
- * samples, and tiled_deferred.comp loads the surface of every pixel of the screen once).
- * Other passes (shadows, compose, sky, resolve) touch no G-buffer attachment. NAN for
- * both when bytes_per_pixel is 0 (no G-buffer), NAN for one whose samples are NAN. */
-gbuffer_traffic deferred_gbuffer_traffic(unsigned bytes_per_pixel, int width, int height,
-                                         const frame_stats *fs);
 
 /* The layout as gbuffer.inc.glsl's defines ("GB_DIFFUSE gb2.xyz", "GB_NORMAL_ENC 2",
  * ...), what every program reading or writing the G-buffer is compiled with. */

@@ -176,11 +176,6 @@ void forward_describe_tail(const forward_common *fc, pass_plan *out);
 
 // >>forward-spml's light limit
 
-/* The most lights forward-spml can hold in one uniform block of the context:
- * max_uniform_block_size / sizeof(gpu_light) (80 bytes: 5 vec4s, std140), 0 for a
- * size <= 0. `shadesweep info` reports it. */
-uint32_t forward_spml_max_lights(int max_uniform_block_size);
-
 // >>for tests: self is what the renderer_impl's create returned
 
 /* The state cache's counts of pass i of the last frame drawn, or NULL past its passes. */

@@ -359,23 +359,19 @@ unsigned deferred_layout_bytes_per_pixel(const deferred_layout *l)
     return b;
 }
 
-bool deferred_uses_gbuffer(const char *kind, const renderer_options *o)
+unsigned deferred_gbuffer_bytes_per_pixel(const renderer_options *o, deferred_needs needs)
 {
-    if (!kind)
-        return false;
-    return strcmp(kind, "deferred") == 0 || strcmp(kind, "tiled-deferred") == 0 ||
-           (strcmp(kind, "clustered") == 0 && o && o->clustered_deferred);
+    deferred_layout l;
+    char err[160];
+    return o && deferred_layout_build(o, needs, &l, err, sizeof err)
+               ? deferred_layout_bytes_per_pixel(&l) : 0;
 }
 
 unsigned deferred_gbuffer_bytes_per_pixel_of(const char *kind, const renderer_options *o,
                                              const scene *s)
 {
-    deferred_layout l;
-    char err[160];
-    if (!o || !deferred_uses_gbuffer(kind, o) ||
-        !deferred_layout_build(o, deferred_needs_of(s), &l, err, sizeof err))
-        return 0;
-    return deferred_layout_bytes_per_pixel(&l);
+    return deferred_uses_gbuffer(kind, o) ? deferred_gbuffer_bytes_per_pixel(o, deferred_needs_of(s))
+                                          : 0;
 }
 
 gbuffer_traffic deferred_gbuffer_traffic(unsigned bytes_per_pixel, int width, int height,

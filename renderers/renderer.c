@@ -157,3 +157,25 @@ bool renderer_read_hdr(renderer *r, float *rgba, int w, int h, size_t *nonfinite
     }
     return true;
 }
+
+/* Whether the space-separated list `words` has `word`. */
+static bool has_word(const char *words, const char *word)
+{
+    const size_t n = strlen(word);
+    for (const char *w = words; w && *w;) {
+        w += strspn(w, " ");
+        const size_t k = strcspn(w, " ");
+        if (k == n && strncmp(w, word, n) == 0)
+            return true;
+        w += k;
+    }
+    return false;
+}
+
+bool deferred_uses_gbuffer(const char *kind, const renderer_options *o)
+{
+    const renderer_impl *impl = kind ? renderer_kind_find(kind) : NULL;
+    if (impl && impl->variant)
+        impl = o ? impl->variant(o) : NULL;
+    return impl && has_word(impl->reads, "gbuffer");
+}

@@ -6,6 +6,8 @@
 #include <stddef.h>
 #include <stdint.h>
 
+#include "results/bandwidth.h"
+
 struct scene;
 
 #define RENDERER_MAX_PASSES 32
@@ -274,3 +276,42 @@ bool renderer_has_light_grid(const renderer *r);
  * with direct state access: no binding the renderer's state cache keeps is touched
  * (pixel-pack state is restored). Before the first frame the contents are undefined. */
 bool renderer_read_hdr(renderer *r, float *rgba, int w, int h, size_t *nonfinite);
+
+/* >>models the runner asks of the renderers without making one (the memory estimate,
+ * seed 002's bandwidth columns, `info` and the plan's warnings) */
+
+/* What a scene's materials make a G-buffer hold (deferred_needs_of). */
+typedef struct deferred_needs {
+    bool gloss;                        /* some object's material has specular > 0: gloss and
+                                          shininess (a gloss map only scales it) */
+    bool emissive;                     /* some object's material has an emissive colour > 0 */
+} deferred_needs;
+
+/* What objects' materials of s write (opaque and alpha-tested ones: translucent objects
+ * never reach the G-buffer, renderers/translucent.h). */
+deferred_needs deferred_needs_of(const struct scene *s);
+
+/* Whether the renderer `kind` with options o shades from a G-buffer: whether the design
+ * that serves it (renderer_impl.variant) reads the gbuffer keys. */
+bool deferred_uses_gbuffer(const char *kind, const renderer_options *o);
+/* The bytes per pixel of the G-buffer of o's preset and overrides for a scene that needs
+ * `needs` (as renderer_prepare builds it); 0 for a layout that does not build. */
+unsigned deferred_gbuffer_bytes_per_pixel(const renderer_options *o, deferred_needs needs);
+/* The same for the renderer `kind` and scene s; 0 for a renderer without a G-buffer. */
+unsigned deferred_gbuffer_bytes_per_pixel_of(const char *kind, const renderer_options *o,
+                                             const struct scene *s);
+/* seed 002's G-buffer traffic (results/bandwidth.h, equations 4 and 5's MRT terms) of one
+ * collected frame of such a renderer at width x height: writes = bytes_per_pixel x
+ * the samples of the pass named "gbuffer"; reads = bytes_per_pixel x (the samples of
+ * "ambient", "directional", "point" and "spot", the passes that fetch the G-buffer per
+ * shaded sample, + width x height for each "tiled" pass: a compute pass counts no
+ * samples, and tiled_deferred.comp loads the surface of every pixel of the screen once).
+ * Other passes (shadows, compose, sky, resolve) touch no G-buffer attachment. NAN for
+ * both when bytes_per_pixel is 0 (no G-buffer), NAN for one whose samples are NAN. */
+gbuffer_traffic deferred_gbuffer_traffic(unsigned bytes_per_pixel, int width, int height,
+                                         const frame_stats *fs);
+
+/* The most lights forward-spml can hold in one uniform block of the context:
+ * max_uniform_block_size / sizeof(gpu_light) (80 bytes: 5 vec4s, std140), 0 for a
+ * size <= 0. `shadesweep info` reports it. */
+uint32_t forward_spml_max_lights(int max_uniform_block_size);

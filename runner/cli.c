@@ -13,7 +13,6 @@
 #include "config.h"
 #include "results/jsonout.h"
 #include "version.h"
-#include "renderers/forward_common.h"
 #include "renderers/gl/context.h"
 #include "renderers/renderer.h"
 #include "runner/manifest.h"

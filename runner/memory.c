@@ -10,7 +10,7 @@
 #include <sys/resource.h>
 #include <unistd.h>
 
-#include "renderers/deferred.h"
+#include "renderers/renderer.h"
 #include "renderers/shading.h"
 #include "renderers/shadow.h"
 #include "runner/params.h"
@@ -81,11 +81,8 @@ static uint64_t targets_of(const char *kind, const run_params *q, int w, int h, 
     params_to_renderer_options(q, &ro);
     ro.msaa = (int)s;
     if (deferred_uses_gbuffer(kind, &ro)) {
-        deferred_layout l;
-        char err[160];
-        deferred_needs all = {true, true};
-        unsigned bpp = deferred_layout_build(&ro, sc ? sc->needs : all, &l, err, sizeof err)
-                           ? deferred_layout_bytes_per_pixel(&l) : 0;
+        unsigned bpp = deferred_gbuffer_bytes_per_pixel(
+            &ro, sc ? sc->needs : (deferred_needs){.gloss = true, .emissive = true});
         if (!bpp)
             bpp = 64;   /* no scene: the widest preset's bound */
         b += (uint64_t)bpp * s * px;

@@ -12,7 +12,7 @@
 #include <stdlib.h>
 #include <string.h>
 
-#include "renderers/forward_common.h"
+#include "renderers/renderer.h"
 #include "runner/hash.h"
 #include "runner/params.h"
 #include "scenes/scene.h"

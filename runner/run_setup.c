@@ -6,7 +6,8 @@
 #include <stdlib.h>
 #include <string.h>
 
-#include "renderers/deferred.h"
+#include "renderers/gl/loader.h"
+#include "renderers/renderer.h"
 #include "results/fsutil.h"
 #include "runner/hash.h"
 #include "runner/params.h"

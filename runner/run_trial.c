@@ -9,7 +9,8 @@
 #include <time.h>
 #include <unistd.h>
 
-#include "renderers/deferred.h"
+#include "renderers/gl/loader.h"
+#include "renderers/renderer.h"
 #include "results/contention.h"
 #include "results/image_ref.h"
 #include "runner/folder.h"

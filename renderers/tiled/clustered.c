@@ -16,8 +16,10 @@ static void *forward_create(const renderer_options *opts, char *err, size_t errl
     return forward_tiled_create("clustered", true, opts, err, errlen);
 }
 
+/* Each design reads what it shades with: deferred_uses_gbuffer asks its `reads`. */
 static const renderer_impl clustered_forward = {
     .name = "clustered",
+    .reads = "tiles clustered hdr msaa fog aa",
     RENDERER_ENTRY_POINTS(forward_create, forward_tiled_prepare, forward_tiled_draw,
                           forward_tiled_collect, forward_tiled_describe, forward_tiled_destroy),
     .read_hdr = forward_read_hdr,
@@ -26,6 +28,7 @@ static const renderer_impl clustered_forward = {
 
 static const renderer_impl clustered_deferred = {
     .name = "clustered",
+    .reads = "gbuffer tiles clustered hdr msaa fog aa",
     RENDERER_ENTRY_POINTS(tiled_deferred_clustered_create, tiled_deferred_prepare,
                           tiled_deferred_draw, tiled_deferred_collect, deferred_describe,
                           tiled_deferred_destroy),
