@@ -28,3 +28,18 @@ vec3 fog_apply(vec3 light, float view_z)
     return light * f + u_fog.rgb * (1.0 - f);
 }
 #endif
+
+// What a one-pass forward shader (forward-spml, forward-plus, clustered) writes for the
+// light c of a surface at view depth view_z: fogged with FOG, and premultiplied by the
+// surface's alpha in the translucent pass (TRANSLUCENT); opaque otherwise.
+vec4 forward_output(vec3 c, float view_z, float alpha)
+{
+#ifdef FOG
+    c = fog_apply(c, view_z);
+#endif
+#ifdef TRANSLUCENT
+    return vec4(c * alpha, alpha);
+#else
+    return vec4(c, 1.0);
+#endif
+}

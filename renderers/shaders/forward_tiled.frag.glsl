@@ -68,12 +68,5 @@ void main()
             continue;
         c += shade_light(b_lights[i], s.position, s.normal, s.diffuse, s.gloss, s.shininess);
     }
-#ifdef FOG
-    c = fog_apply(c, s.position.z);
-#endif
-#ifdef TRANSLUCENT
-    o_color = vec4(c * s.alpha, s.alpha);
-#else
-    o_color = vec4(c, 1.0);
-#endif
+    o_color = forward_output(c, s.position.z, s.alpha);
 }
