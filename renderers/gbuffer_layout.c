@@ -34,6 +34,7 @@ const char *deferred_preset_name(gbuffer_preset p)
     case GBUFFER_COMPACT: return "compact";
     case GBUFFER_SPHEREMAP: return "spheremap";
     case GBUFFER_REFERENCE: return "reference";
+    case GBUFFER_UNSET: return "unset";
     }
     return "unknown";
 }

@@ -45,11 +45,31 @@ const renderer_impl *renderer_kind_find(const char *name)
     return NULL;
 }
 
+/* The first field of o that is unset (its zero), by its manifest key; NULL if none. */
+static const char *unset_option(const renderer_options *o)
+{
+    return o->gbuffer == GBUFFER_UNSET                ? "gbuffer.preset"
+           : o->light_volumes == LIGHT_VOLUMES_UNSET ? "deferred.light_volumes"
+           : o->light_buffer == LIGHT_BUFFER_UNSET   ? "forward.light_buffer"
+           : o->tile_size == 0                       ? "tiles.size"
+           : o->clustered_slices == 0                ? "clustered.slices"
+           : o->hdr == HDR_UNSET                     ? "hdr"
+           : o->aa == AA_UNSET                       ? "aa"
+                                                     : NULL;
+}
+
 renderer *renderer_create(const char *kind, const renderer_options *opts, char *err, size_t errlen)
 {
     const renderer_impl *impl = renderer_kind_find(kind);
     if (!impl) {
         snprintf(err, errlen, "unknown renderer '%s'", kind);
+        return NULL;
+    }
+    const char *unset = unset_option(opts);
+    if (unset) {
+        snprintf(err, errlen,
+                 "%s: the option %s is unset (runner/params.def gives every option its default)",
+                 kind, unset);
         return NULL;
     }
     if (impl->variant)

@@ -101,15 +101,20 @@ typedef struct pass_plan {
  *   spheremap  seed 004: view-space normal in two 8-bit channels (Lambert azimuthal),
  *              position from linear depth and frustum-corner rays
  *   reference  RGBA32F, position stored: the G-buffer that loses (almost) nothing */
+/* Every enum of renderer_options begins with an UNSET zero, and sizes are 0 when unset: a
+ * zeroed renderer_options chooses nothing, and renderer_create refuses it, naming the
+ * field. The runner sets every field from runner/params.def (params_to_renderer_options),
+ * the one place that says what the defaults are. */
 typedef enum gbuffer_preset {
-    GBUFFER_CURTIS = 0,
+    GBUFFER_UNSET = 0,
+    GBUFFER_CURTIS,
     GBUFFER_FAT,
     GBUFFER_COMPACT,
     GBUFFER_SPHEREMAP,
     GBUFFER_REFERENCE,
 } gbuffer_preset;
 
-/* Field by field over the preset (0: as the preset has it). */
+/* Field by field over the preset (0: no override, as the preset has it). */
 typedef enum gbuffer_position {
     GBUFFER_POSITION_PRESET = 0,
     GBUFFER_POSITION_STORED16,     /* view-space xyz in RGBA16F */
@@ -128,7 +133,8 @@ typedef enum gbuffer_normal {
 
 /* How deferred light passes find their pixels. */
 typedef enum light_volume_mode {
-    LIGHT_VOLUMES_STENCIL = 0,     /* seed 003: one two-sided stencil pass (inc/dec on depth
+    LIGHT_VOLUMES_UNSET = 0,
+    LIGHT_VOLUMES_STENCIL,         /* seed 003: one two-sided stencil pass (inc/dec on depth
                                       fail), then the light on non-zero, and reset */
     LIGHT_VOLUMES_FULLSCREEN,      /* a full-screen pass per light */
     LIGHT_VOLUMES_VOLUME,          /* back faces, depth test GREATER, no stencil */
@@ -142,7 +148,8 @@ typedef enum light_volume_mode {
 
 /* Where forward-spml reads its lights from. */
 typedef enum light_buffer_kind {
-    LIGHT_BUFFER_UNIFORM = 0,      /* seed 003's uniform block: GL_MAX_UNIFORM_BLOCK_SIZE / 80 */
+    LIGHT_BUFFER_UNSET = 0,
+    LIGHT_BUFFER_UNIFORM,          /* seed 003's uniform block: GL_MAX_UNIFORM_BLOCK_SIZE / 80 */
     LIGHT_BUFFER_STORAGE,          /* one shader storage buffer: no limit of its own */
     LIGHT_BUFFER_AUTO,             /* uniform when the run's lights fit, storage beyond
                                       (what an error reference uses) */
@@ -151,13 +158,15 @@ typedef enum light_buffer_kind {
 /* The float light accumulation's format (the manifest's `hdr`): every renderer that
  * draws accumulates into one target of it (renderers/base.h). */
 typedef enum hdr_format {
-    HDR_RGBA16F = 0,               /* the default: 16-bit floats (seed 000 4.5.12's FP16 HDR) */
+    HDR_UNSET = 0,
+    HDR_RGBA16F,                   /* 16-bit floats (seed 000 4.5.12's FP16 HDR) */
     HDR_RGBA32F,                   /* 32-bit floats: no rounding of additive passes to 11 bits */
 } hdr_format;
 
 /* Anti-aliasing after the lighting (the manifest's `aa`): every renderer that draws. */
 typedef enum aa_mode {
-    AA_NONE = 0,                   /* the default: no pass */
+    AA_UNSET = 0,
+    AA_NONE,                       /* no pass */
     AA_EDGE,                       /* seed 001 19.5.2's edge-detect blur (renderers/edge_aa.h) */
 } aa_mode;
 
@@ -184,12 +193,12 @@ typedef struct renderer_options {
                                   passes of their own (forward.directional_in_base) */
     /* forward-spml's light buffer (forward.light_buffer) */
     light_buffer_kind light_buffer;
-    /* forward-plus (tiles.*): tile side in pixels (8, 16 or 32; 0: 16); the index
+    /* forward-plus (tiles.*): tile side in pixels (8, 16 or 32); the index
      * buffer's capacity in entries per tile on average (0: enough for every light in
      * every tile, i.e. no list can overflow) */
     int tile_size;
     uint32_t max_lights_per_tile;   /* clustered: per cluster */
-    /* clustered: exponential depth slices (clustered.slices; 0: 24), and shading from the
+    /* clustered: exponential depth slices (clustered.slices, 1 to 64), and shading from the
      * G-buffer (clustered.shading: deferred; every deferred G-buffer option applies) */
     int clustered_slices;
     bool clustered_deferred;

@@ -13,7 +13,7 @@ bool light_grid_tile_option(light_grid *g, const char *name, const renderer_opti
                             char *err, size_t errlen)
 {
     g->name = name;
-    g->tile = o->tile_size ? o->tile_size : 16;
+    g->tile = o->tile_size;
     if (g->tile != 8 && g->tile != 16 && g->tile != 32) {
         snprintf(err, errlen, "%s: tiles.size %d: expected 8, 16 or 32", name, g->tile);
         return false;
@@ -25,7 +25,7 @@ bool light_grid_slices_option(light_grid *g, const char *name, const renderer_op
                               char *err, size_t errlen)
 {
     g->name = name;
-    int k = o->clustered_slices ? o->clustered_slices : 24;
+    int k = o->clustered_slices;
     if (k < 1 || k > 64) {
         snprintf(err, errlen, "%s: clustered.slices %d: expected 1 to 64", name, k);
         return false;

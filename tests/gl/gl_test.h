@@ -13,7 +13,9 @@
  *   GL_TEST_SKIP_WITHOUT_EGL()  in main: exit 77 (skipped) with the reason when there is
  *                            no EGL display.
  *   gl_test_expect_agree()   two images agree within the test's tolerances, no pixel
- *                            non-finite; the numbers printed when not (or always). */
+ *                            non-finite; the numbers printed when not (or always).
+ *   test_renderer_create()   (tests/test_options.h) renderer_create with the options the
+ *                            test left unset at runner/params.def's defaults. */
 #include <EGL/egl.h>
 #include <EGL/eglext.h>
 #include <stdbool.h>
@@ -29,6 +31,7 @@
 #include "renderers/gl/context.h"
 #include "renderers/renderer.h"
 #include "results/image_ref.h"
+#include "tests/test_options.h"
 
 #define GL_TEST_SKIP_WITHOUT_EGL()                                                         \
     do {                                                                                   \

@@ -113,7 +113,7 @@ static bool render_with(const char *kind, light_volume_mode mode, bool storage, 
         .hdr = g_hdr, .fog_density = g_fog_density, .fog_color = {0.55f, 0.6f, 0.7f},
         .msaa = g_msaa,
     };
-    renderer *r = renderer_create(kind, &o, err, sizeof err);
+    renderer *r = test_renderer_create(kind, &o, err, sizeof err);
     if (!r || !renderer_prepare(r, s, err, sizeof err)) {
         print_error("%s: %s\n", kind, err);
         renderer_destroy(r);

@@ -132,11 +132,13 @@ static scene *build(const char *name, const scene_light *lights, uint32_t n)
 static renderer_options options(light_volume_mode mode, gbuffer_preset preset)
 {
     const gl_info *i = gl_context_info(ctx);
-    return (renderer_options){.width = W, .height = H, .queries = true,
-                              .timer_query = i->timer_query,
-                              .pipeline_statistics = i->pipeline_statistics,
-                              .max_uniform_block_size = i->max_uniform_block_size,
-                              .gbuffer = preset, .light_volumes = mode};
+    renderer_options o = {.width = W, .height = H, .queries = true,
+                          .timer_query = i->timer_query,
+                          .pipeline_statistics = i->pipeline_statistics,
+                          .max_uniform_block_size = i->max_uniform_block_size,
+                          .gbuffer = preset, .light_volumes = mode};
+    test_options_complete(&o);   /* the renderer's own create is called: no renderer_create */
+    return o;
 }
 
 static void *make(const scene *s, const renderer_options *o)
@@ -1244,7 +1246,7 @@ static void test_layouts(void **state)
     renderer_options bad = {.gbuffer = (gbuffer_preset)99};
     assert_false(deferred_layout_build(&bad, all, &l, err, sizeof err));
     assert_string_equal(err, "deferred: unknown G-buffer preset 99");
-    bad = (renderer_options){.gbuffer_normal = (gbuffer_normal)42};
+    bad = (renderer_options){.gbuffer = GBUFFER_CURTIS, .gbuffer_normal = (gbuffer_normal)42};
     assert_false(deferred_layout_build(&bad, all, &l, err, sizeof err));
     assert_string_equal(err, "deferred: unknown G-buffer normal 42");
     bad = options((light_volume_mode)7, GBUFFER_CURTIS);

@@ -114,7 +114,7 @@ static result render(const config *c, aa_mode aa, const scene *s, int w, int h)
                           .max_uniform_block_size = i->max_uniform_block_size,
                           .clustered_deferred = c->clustered_deferred, .aa = aa};
     gl.BindFramebuffer(GL_FRAMEBUFFER, gl_context_framebuffer(ctx));
-    renderer *r = renderer_create(c->kind, &o, err, sizeof err);
+    renderer *r = test_renderer_create(c->kind, &o, err, sizeof err);
     if (!r || !renderer_prepare(r, s, err, sizeof err))
         fail_msg("%s (aa %d): %s", c->kind, (int)aa, err);
     result res;

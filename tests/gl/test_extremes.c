@@ -177,7 +177,7 @@ static renderer *make(const config *c, int w, int h, char *err, size_t errlen)
                           .gbuffer = c->gbuffer, .light_volumes = c->mode,
                           .light_buffer = c->light_buffer};
     gl.BindFramebuffer(GL_FRAMEBUFFER, gl_context_framebuffer(ctx));
-    return renderer_create(c->kind, &o, err, errlen);
+    return test_renderer_create(c->kind, &o, err, errlen);
 }
 
 /* One frame of s with c at the context's size. Asserts no GL error, a readable float
@@ -713,7 +713,7 @@ static void test_resolution_limits(void **state)
     } else {
         scene *s = build(&l, 1, &SIDE, max, max);
         renderer_options o = {.width = max, .height = max};
-        renderer *r = renderer_create("null", &o, err, sizeof err);
+        renderer *r = test_renderer_create("null", &o, err, sizeof err);
         if (!r)
             fail_msg("null at %dx%d: %s", max, max, err);
         if (!renderer_prepare(r, s, err, sizeof err))

@@ -216,7 +216,7 @@ static void run_one(const char *kind, renderer_options o, const scene *s)
     gl.BindFramebuffer(GL_FRAMEBUFFER, gl_context_framebuffer(ctx));
     gl_context_poll_errors(ctx, "before");
     const uint64_t before = gl_context_error_count(ctx);   /* test_check_fires' own */
-    renderer *r = renderer_create(kind, &o, err, sizeof err);
+    renderer *r = test_renderer_create(kind, &o, err, sizeof err);
     if (!r || !renderer_prepare(r, s, err, sizeof err))
         fail_msg("%s: %s", kind, err);
     for (int f = 0; f < 2; f++) {
@@ -247,11 +247,12 @@ static void test_renderers_have_no_loop(void **state)
         run_one(renderer_kind_at(i)->name, (renderer_options){0}, s);
     run_one("clustered", (renderer_options){.clustered_deferred = true}, s);
     /* deferred: every mode with position from depth, the sky mask and separate specular */
-    for (int m = 0; m <= (int)LIGHT_VOLUMES_SCISSOR; m++)
+    for (int m = LIGHT_VOLUMES_STENCIL; m <= (int)LIGHT_VOLUMES_SCISSOR; m++)
         run_one("deferred",
                 (renderer_options){.light_volumes = (light_volume_mode)m,
                                    .gbuffer_position = GBUFFER_POSITION_DEPTH,
-                                   .sky_stencil = true, .separate_specular = m == 1},
+                                   .sky_stencil = true,
+                                   .separate_specular = m == LIGHT_VOLUMES_FULLSCREEN},
                 s);
     /* fog (it samples depth too) and the 32-bit light target, every renderer */
     for (size_t i = 0; i < renderer_kind_count(); i++)

@@ -40,7 +40,7 @@ static bool render(const char *kind, scene *s, image *out)
         .max_uniform_block_size = gi->max_uniform_block_size,
         .gbuffer = GBUFFER_REFERENCE, .light_volumes = LIGHT_VOLUMES_STENCIL,
     };
-    renderer *r = renderer_create(kind, &o, err, sizeof err);
+    renderer *r = test_renderer_create(kind, &o, err, sizeof err);
     if (!r || !renderer_prepare(r, s, err, sizeof err)) {
         print_error("%s: %s\n", kind, err);
         renderer_destroy(r);

@@ -127,11 +127,13 @@ typedef struct fwd {
 static renderer_options options(bool sets)
 {
     const gl_info *i = gl_context_info(ctx);
-    return (renderer_options){.width = W, .height = H, .queries = true,
-                              .timer_query = i->timer_query,
-                              .pipeline_statistics = i->pipeline_statistics,
-                              .max_uniform_block_size = i->max_uniform_block_size,
-                              .no_illumination_sets = !sets};
+    renderer_options o = {.width = W, .height = H, .queries = true,
+                          .timer_query = i->timer_query,
+                          .pipeline_statistics = i->pipeline_statistics,
+                          .max_uniform_block_size = i->max_uniform_block_size,
+                          .no_illumination_sets = !sets};
+    test_options_complete(&o);   /* the renderers' own create is called: no renderer_create */
+    return o;
 }
 
 static fwd make(const renderer_impl *impl, const scene *s, bool sets)

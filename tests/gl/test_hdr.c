@@ -117,7 +117,7 @@ static renderer *make(const config *c, const scene *s)
                           .max_uniform_block_size = i->max_uniform_block_size,
                           .separate_specular = c->separate_specular};
     gl.BindFramebuffer(GL_FRAMEBUFFER, gl_context_framebuffer(ctx));
-    renderer *r = renderer_create(c->kind, &o, err, sizeof err);
+    renderer *r = test_renderer_create(c->kind, &o, err, sizeof err);
     if (!r)
         fail_msg("%s: create: %s", c->kind, err);
     if (s && !renderer_prepare(r, s, err, sizeof err))
@@ -338,6 +338,7 @@ static renderer_options options32(const char *kind, hdr_format hdr, float fog)
                           .gbuffer = GBUFFER_REFERENCE, .hdr = hdr, .fog_density = fog,
                           .fog_color = {0.6f, 0.5f, 0.4f}};
     (void)kind;
+    test_options_complete(&o);   /* some are made through their implementations */
     return o;
 }
 
@@ -354,7 +355,7 @@ static void render32(const char *kind, bool clustered_deferred, hdr_format fmt, 
     renderer_options o = options32(kind, fmt, fog);
     o.clustered_deferred = clustered_deferred;
     gl.BindFramebuffer(GL_FRAMEBUFFER, gl_context_framebuffer(ctx));
-    renderer *r = renderer_create(kind, &o, err, sizeof err);
+    renderer *r = test_renderer_create(kind, &o, err, sizeof err);
     if (!r || !renderer_prepare(r, s, err, sizeof err))
         fail_msg("%s (%s, fog %g): %s", kind, fmt == HDR_RGBA32F ? "rgba32f" : "rgba16f",
                  (double)fog, err);

@@ -124,7 +124,7 @@ static bool render(const char *kind, int msaa, scene *s, image *out, frame_stats
 {
     char err[512];
     renderer_options o = options(msaa);
-    renderer *r = renderer_create(kind, &o, err, sizeof err);
+    renderer *r = test_renderer_create(kind, &o, err, sizeof err);
     if (!r || !renderer_prepare(r, s, err, sizeof err)) {
         print_error("%s: %s\n", kind, err);
         renderer_destroy(r);
@@ -174,7 +174,7 @@ static void test_refusal_on_the_context(void **state)
                                         "forward-plus", "tiled-deferred"};
     for (size_t k = 0; k < sizeof kinds / sizeof kinds[0]; k++) {
         renderer_options o = options(over);
-        renderer *r = renderer_create(kinds[k], &o, err, sizeof err);
+        renderer *r = test_renderer_create(kinds[k], &o, err, sizeof err);
         assert_null(r);
         char want[64];
         snprintf(want, sizeof want, "%s: msaa %d: ", kinds[k], over);

@@ -72,7 +72,7 @@ static void render(const char *kind, int msaa, scene *s, shot *out)
     char err[512];
     memset(out, 0, sizeof *out);
     renderer_options o = options(msaa);
-    renderer *r = renderer_create(kind, &o, err, sizeof err);
+    renderer *r = test_renderer_create(kind, &o, err, sizeof err);
     if (!r || !renderer_prepare(r, s, err, sizeof err))
         fail_msg("%s msaa %d: %s", kind, msaa, err);
     renderer_draw(r, s, &out->fs);

@@ -59,9 +59,9 @@ static renderer_options options(const gl_context *ctx, bool queries)
 static renderer *create_null(const renderer_options *opts)
 {
     char err[256] = "";
-    renderer *r = renderer_create("null", opts, err, sizeof err);
+    renderer *r = test_renderer_create("null", opts, err, sizeof err);
     if (!r)
-        fail_msg("renderer_create(\"null\"): %s", err);
+        fail_msg("test_renderer_create(\"null\"): %s", err);
     assert_true(renderer_prepare(r, NULL, err, sizeof err));
     return r;
 }

@@ -197,7 +197,7 @@ static void render(const char *kind, const renderer_options *o, const scene *s, 
     char err[512] = "";
     memset(out, 0, sizeof *out);
     gl.BindFramebuffer(GL_FRAMEBUFFER, gl_context_framebuffer(ctx));
-    renderer *r = renderer_create(kind, o, err, sizeof err);
+    renderer *r = test_renderer_create(kind, o, err, sizeof err);
     if (!r || !renderer_prepare(r, s, err, sizeof err)) {
         renderer_destroy(r);
         fail_msg("%s: %s", kind, err);
@@ -899,7 +899,7 @@ static void test_directional_in_base(void **state)
     o.directional_in_base = true;
     char msg[512] = "";
     gl.BindFramebuffer(GL_FRAMEBUFFER, gl_context_framebuffer(ctx));
-    renderer *r = renderer_create("forward-mpml", &o, msg, sizeof msg);
+    renderer *r = test_renderer_create("forward-mpml", &o, msg, sizeof msg);
     assert_non_null(r);
     assert_false(renderer_prepare(r, s, msg, sizeof msg));
     assert_string_equal(msg, "forward-mpml: forward.directional_in_base shades at most 8 "

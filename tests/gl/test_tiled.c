@@ -61,7 +61,7 @@ static void render(const char *kind, const renderer_options *o, scene *s, shot *
 {
     char err[512];
     memset(out, 0, sizeof *out);
-    renderer *r = renderer_create(kind, o, err, sizeof err);
+    renderer *r = test_renderer_create(kind, o, err, sizeof err);
     if (!r || !renderer_prepare(r, s, err, sizeof err))
         fail_msg("%s: %s", kind, err);
     renderer_draw(r, s, &out->fs);
@@ -259,7 +259,7 @@ static void test_4096_lights(void **state)
 
     /* the uniform block cannot hold them: refused with the numbers, storage named */
     o.light_buffer = LIGHT_BUFFER_UNIFORM;
-    renderer *r = renderer_create("forward-spml", &o, err, sizeof err);
+    renderer *r = test_renderer_create("forward-spml", &o, err, sizeof err);
     assert_non_null(r);
     assert_false(renderer_prepare(r, s, err, sizeof err));
     assert_non_null(strstr(err, "4096 lights requested"));
@@ -453,7 +453,7 @@ static void test_tiled_deferred_gbuffers(void **state)
     renderer_options o = options();
     o.separate_specular = true;
     char err[256];
-    assert_null(renderer_create("tiled-deferred", &o, err, sizeof err));
+    assert_null(test_renderer_create("tiled-deferred", &o, err, sizeof err));
     assert_non_null(strstr(err, "tiled-deferred: deferred.separate_specular: "));
     scene_destroy(s);
 }

@@ -107,7 +107,7 @@ static bool render(const char *kind, light_volume_mode mode, scene *s, image *ou
         .fog_density = g_fog_density, .fog_color = {0.55f, 0.6f, 0.7f},
         .max_lights_per_tile = g_max_lights_per_tile,
     };
-    renderer *r = renderer_create(kind, &o, err, sizeof err);
+    renderer *r = test_renderer_create(kind, &o, err, sizeof err);
     if (!r || !renderer_prepare(r, s, err, sizeof err)) {
         print_error("%s: %s\n", kind, err);
         renderer_destroy(r);

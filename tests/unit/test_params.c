@@ -14,9 +14,52 @@
 #include <cmocka.h>
 
 #include "renderers/renderer.h"
+#include "tests/test_options.h"
 #include "runner/diag.h"
 #include "runner/manifest.h"
 #include "runner/params.h"
+
+
+/* The renderer options a run's parameters give (params.def's apply column). */
+static renderer_options options_of(const run_params *p)
+{
+    renderer_options o = {0};
+    params_to_renderer_options(p, &o);
+    return o;
+}
+
+/* No renderer option is left unset by the defaults, and what the tests mean by an unset
+ * one (tests/test_options.h) is the default; a zeroed option is refused by name. */
+static void test_renderer_option_defaults(void **state)
+{
+    (void)state;
+    run_params d;
+    assert_true(params_defaults(&d));
+    renderer_options fromdef = options_of(&d), completed = {0};
+    test_options_complete(&completed);
+    assert_int_equal(fromdef.gbuffer, completed.gbuffer);
+    assert_int_equal(fromdef.gbuffer_position, completed.gbuffer_position);
+    assert_int_equal(fromdef.gbuffer_normal, completed.gbuffer_normal);
+    assert_int_equal(fromdef.light_volumes, completed.light_volumes);
+    assert_int_equal(fromdef.light_buffer, completed.light_buffer);
+    assert_int_equal(fromdef.tile_size, completed.tile_size);
+    assert_int_equal(fromdef.clustered_slices, completed.clustered_slices);
+    assert_int_equal(fromdef.hdr, completed.hdr);
+    assert_int_equal(fromdef.aa, completed.aa);
+    char err[256] = "";
+    for (size_t i = 0; i < renderer_kind_count(); i++) {
+        const char *kind = renderer_kind_at(i)->name;
+        assert_null(renderer_create(kind, &(renderer_options){0}, err, sizeof err));
+        char want[256];
+        snprintf(want, sizeof want, "%s: the option gbuffer.preset is unset "
+                 "(runner/params.def gives every option its default)", kind);
+        assert_string_equal(err, want);
+    }
+    renderer_options noaa = completed;
+    noaa.aa = AA_UNSET;
+    assert_null(renderer_create("forward-plus", &noaa, err, sizeof err));
+    assert_non_null(strstr(err, "the option aa is unset"));
+}
 
 static experiment *load_text(const char *yaml, diag_list *d)
 {
@@ -125,8 +168,8 @@ static void test_fold(void **state)
         } else {
             /* each forward renderer: one run standing for its 8 points */
             assert_int_equal(r->folded, 7);
-            assert_int_equal(r->p.gbuffer, GBUFFER_CURTIS);
-            assert_int_equal(r->p.light_volumes, LIGHT_VOLUMES_STENCIL);
+            assert_int_equal(options_of(&r->p).gbuffer, GBUFFER_CURTIS);
+            assert_int_equal(options_of(&r->p).light_volumes, LIGHT_VOLUMES_STENCIL);
         }
         folded += r->folded;
     }
@@ -161,7 +204,7 @@ static void test_fold_with_reference(void **state)
     assert_string_equal(p.runs[0].p.renderer, "null");
     assert_int_equal(p.runs[0].folded, 1);
     assert_int_equal(p.folds[0].point, 2);
-    assert_int_equal(p.folds[0].p.gbuffer, GBUFFER_FAT);
+    assert_int_equal(options_of(&p.folds[0].p).gbuffer, GBUFFER_FAT);
     plan_free(&p);
     experiment_free(e);
     diag_free(&d);
@@ -259,9 +302,9 @@ static void test_reference_params(void **state)
     assert_string_equal(r.renderer, "forward-spml");
     assert_int_equal(r.width, 64);
     assert_int_equal(r.shadows, 1);
-    assert_int_equal(r.gbuffer, GBUFFER_REFERENCE);
-    assert_int_equal(r.gbuffer_position, GBUFFER_POSITION_PRESET);
-    assert_int_equal(r.light_volumes, LIGHT_VOLUMES_FULLSCREEN);
+    assert_int_equal(options_of(&r).gbuffer, GBUFFER_REFERENCE);
+    assert_int_equal(options_of(&r).gbuffer_position, GBUFFER_POSITION_PRESET);
+    assert_int_equal(options_of(&r).light_volumes, LIGHT_VOLUMES_FULLSCREEN);
     assert_false(r.separate_specular);
     assert_string_equal(r.error_renderer, "");
     renderer_options o = {0};
@@ -278,6 +321,7 @@ int main(void)
 {
     const struct CMUnitTest tests[] = {
         cmocka_unit_test(test_pinned_ids),
+        cmocka_unit_test(test_renderer_option_defaults),
         cmocka_unit_test(test_fold),
         cmocka_unit_test(test_fold_with_reference),
         cmocka_unit_test(test_sweep_key_nobody_reads),
