@@ -44,11 +44,7 @@ struct yaml_out {
 
 static void fail(yaml_out *y, const char *what)
 {
-    if (y->failed)
-        return;
-    y->failed = true;
-    snprintf(y->msg, sizeof y->msg, "%s: %s", y->file.final_path ? y->file.final_path : "yaml",
-             what);
+    afile_fail_once(&y->file, "yaml", &y->failed, y->msg, sizeof y->msg, what);
 }
 
 static void fail_emitter(yaml_out *y)
