@@ -322,12 +322,7 @@ bool csv_commit(csv_writer *w, char *err, size_t errlen)
         fail(w, m);
     }
     flush_buf(w);
-    if (w->failed) {
-        snprintf(err, errlen, "%s", w->msg);
-        csv_abort(w);
-        return false;
-    }
-    bool ok = afile_commit(&w->file, err, errlen);
+    bool ok = afile_finish(&w->file, w->failed, w->msg, err, errlen);
     free(w);
     return ok;
 }

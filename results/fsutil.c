@@ -75,6 +75,15 @@ void afile_fail_once(const afile *f, const char *fallback, bool *failed, char *m
     snprintf(msg, msglen, "%s: %s", f->final_path ? f->final_path : fallback, what);
 }
 
+bool afile_finish(afile *f, bool failed, const char *msg, char *err, size_t errlen)
+{
+    if (!failed)
+        return afile_commit(f, err, errlen);
+    snprintf(err, errlen, "%s", msg);
+    afile_abort(f);
+    return false;
+}
+
 void fs_error_message(char *err, size_t errlen, const char *path, int e)
 {
     snprintf(err, errlen, "%s: %s%s", path, strerror(e), errno_hint(e));

@@ -41,6 +41,10 @@ void afile_abort(afile *f);
 void afile_fail_once(const afile *f, const char *fallback, bool *failed, char *msg,
                      size_t msglen, const char *what);
 
+/* A writer's end: afile_commit, or when the writer failed, afile_abort with its message
+ * msg in err (false). */
+bool afile_finish(afile *f, bool failed, const char *msg, char *err, size_t errlen);
+
 /* "path: <strerror(e)>", with what it means for the errors of a full or broken device:
  * ENOSPC "(the disk is full)", EDQUOT "(the disk quota is exhausted)", EROFS "(the file
  * system is read-only)", EIO "(the device reported an I/O error)". */

@@ -367,13 +367,8 @@ bool yo_commit(yaml_out *y, char *err, size_t errlen)
         if (!y->failed && !yaml_emitter_flush(&y->emitter))
             fail_emitter(y);
     }
-    if (y->failed) {
-        snprintf(err, errlen, "%s", y->msg);
-        yo_abort(y);
-        return false;
-    }
     yaml_emitter_delete(&y->emitter);
-    bool ok = afile_commit(&y->file, err, errlen);
+    bool ok = afile_finish(&y->file, y->failed, y->msg, err, errlen);
     free(y);
     return ok;
 }
