@@ -40,22 +40,23 @@ struct csv_writer {
 
 static void fail(csv_writer *w, const char *what)
 {
-    if (w->failed)
-        return;
-    w->failed = true;
-    snprintf(w->msg, sizeof w->msg, "%s: %s", w->file.final_path ? w->file.final_path : "csv",
-             what);
+    afile_fail_once(&w->file, "csv", &w->failed, w->msg, sizeof w->msg, what);
+}
+
+/* a write to the stream failed: errno says why */
+static void fail_write(csv_writer *w)
+{
+    char m[160];
+    snprintf(m, sizeof m, "write failed: %s", strerror(errno ? errno : EIO));
+    fail(w, m);
 }
 
 static void flush_buf(csv_writer *w)
 {
     if (w->len == 0 || w->failed)
         return;
-    if (fwrite(w->buf, 1, w->len, w->file.fp) != w->len) {
-        char m[160];
-        snprintf(m, sizeof m, "write failed: %s", strerror(errno ? errno : EIO));
-        fail(w, m);
-    }
+    if (fwrite(w->buf, 1, w->len, w->file.fp) != w->len)
+        fail_write(w);
     w->len = 0;
 }
 
@@ -66,11 +67,8 @@ static void put(csv_writer *w, const char *p, size_t n)
         if (w->failed)
             return;
         if (n > sizeof w->buf) {
-            if (fwrite(p, 1, n, w->file.fp) != n) {
-                char m[160];
-                snprintf(m, sizeof m, "write failed: %s", strerror(errno ? errno : EIO));
-                fail(w, m);
-            }
+            if (fwrite(p, 1, n, w->file.fp) != n)
+                fail_write(w);
             return;
         }
     }
@@ -324,12 +322,7 @@ bool csv_commit(csv_writer *w, char *err, size_t errlen)
         fail(w, m);
     }
     flush_buf(w);
-    if (w->failed) {
-        snprintf(err, errlen, "%s", w->msg);
-        csv_abort(w);
-        return false;
-    }
-    bool ok = afile_commit(&w->file, err, errlen);
+    bool ok = afile_finish(&w->file, w->failed, w->msg, err, errlen);
     free(w);
     return ok;
 }

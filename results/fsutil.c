@@ -14,15 +14,6 @@
 #include <sys/types.h>
 #include <unistd.h>
 
-static char *dup_str(const char *s)
-{
-    size_t n = strlen(s) + 1;
-    char *d = malloc(n);
-    if (d)
-        memcpy(d, s, n);
-    return d;
-}
-
 char *fs_read_all(const char *path, size_t max, size_t *len, int *err)
 {
     FILE *f = fopen(path, "rb");
@@ -75,6 +66,24 @@ static const char *errno_hint(int e)
            : "";
 }
 
+void afile_fail_once(const afile *f, const char *fallback, bool *failed, char *msg,
+                     size_t msglen, const char *what)
+{
+    if (*failed)
+        return;
+    *failed = true;
+    snprintf(msg, msglen, "%s: %s", f->final_path ? f->final_path : fallback, what);
+}
+
+bool afile_finish(afile *f, bool failed, const char *msg, char *err, size_t errlen)
+{
+    if (!failed)
+        return afile_commit(f, err, errlen);
+    snprintf(err, errlen, "%s", msg);
+    afile_abort(f);
+    return false;
+}
+
 void fs_error_message(char *err, size_t errlen, const char *path, int e)
 {
     snprintf(err, errlen, "%s: %s%s", path, strerror(e), errno_hint(e));
@@ -124,18 +133,12 @@ static void afile_clear(afile *f)
     free(f->final_path);
     free(f->tmp_path);
     free(f->sink);
-    f->fp = NULL;
-    f->final_path = NULL;
-    f->tmp_path = NULL;
-    f->sink = NULL;
+    *f = (afile){0};
 }
 
 bool afile_open(afile *f, const char *final_path, char *err, size_t errlen)
 {
-    f->fp = NULL;
-    f->final_path = NULL;
-    f->tmp_path = NULL;
-    f->sink = NULL;
+    *f = (afile){0};
 
     if (final_path == NULL || final_path[0] == '\0') {
         snprintf(err, errlen, "cannot create file: empty path");
@@ -143,7 +146,7 @@ bool afile_open(afile *f, const char *final_path, char *err, size_t errlen)
     }
     long pid = (long)getpid();
     int len = snprintf(NULL, 0, "%s.tmp.%ld", final_path, pid);
-    f->final_path = dup_str(final_path);
+    f->final_path = strdup(final_path);
     f->tmp_path = len > 0 ? malloc((size_t)len + 1) : NULL;
     f->sink = calloc(1, sizeof *f->sink);
     if (f->final_path == NULL || f->tmp_path == NULL || f->sink == NULL) {
@@ -264,7 +267,7 @@ bool fs_mkdirs(const char *path, char *err, size_t errlen)
         snprintf(err, errlen, "cannot create directory: empty path");
         return false;
     }
-    char *p = dup_str(path);
+    char *p = strdup(path);
     if (p == NULL) {
         snprintf(err, errlen, "%s: out of memory", path);
         return false;

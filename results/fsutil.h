@@ -36,6 +36,15 @@ bool afile_write(afile *f, const void *data, size_t n);
 bool afile_commit(afile *f, char *err, size_t errlen);
 void afile_abort(afile *f);
 
+/* A writer's sticky failure: the first call sets *failed and writes "PATH: what" into msg
+ * (PATH: f's final path, or `fallback` when it has none); later calls do nothing. */
+void afile_fail_once(const afile *f, const char *fallback, bool *failed, char *msg,
+                     size_t msglen, const char *what);
+
+/* A writer's end: afile_commit, or when the writer failed, afile_abort with its message
+ * msg in err (false). */
+bool afile_finish(afile *f, bool failed, const char *msg, char *err, size_t errlen);
+
 /* "path: <strerror(e)>", with what it means for the errors of a full or broken device:
  * ENOSPC "(the disk is full)", EDQUOT "(the disk quota is exhausted)", EROFS "(the file
  * system is read-only)", EIO "(the device reported an I/O error)". */

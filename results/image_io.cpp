@@ -327,43 +327,42 @@ bool compare_impl(const image *a, const image *b, image_error *out, char *err, s
     return true;
 }
 
+// body() for the C interface: an exception becomes "WHAT: cannot VERB image: why" and false.
+template <typename Body>
+bool guarded(const char *what, const char *verb, char *err, size_t errlen, Body body)
+{
+    try {
+        return body();
+    } catch (const std::exception &e) {
+        set_err(err, errlen, std::string(what) + ": cannot " + verb + " image: " + e.what());
+    } catch (...) {
+        set_err(err, errlen,
+                std::string(what) + ": cannot " + verb + " image: unknown exception");
+    }
+    return false;
+}
+
 } // namespace
 
 extern "C" {
 
 bool image_write(const char *path, const image *img, char *err, size_t errlen)
 {
-    try {
-        return write_impl(path, img, err, errlen);
-    } catch (const std::exception &e) {
-        set_err(err, errlen, std::string(path ? path : "image") + ": cannot write image: " +
-                                 e.what());
-    } catch (...) {
-        set_err(err, errlen, std::string(path ? path : "image") +
-                                 ": cannot write image: unknown exception");
-    }
-    return false;
+    return guarded(path ? path : "image", "write", err, errlen,
+                   [&] { return write_impl(path, img, err, errlen); });
 }
 
 bool image_read(const char *path, image_type want, image *out, char *err, size_t errlen)
 {
-    try {
-        return read_impl(path, want, out, err, errlen);
-    } catch (const std::exception &e) {
-        set_err(err, errlen, std::string(path ? path : "image") + ": cannot read image: " +
-                                 e.what());
-    } catch (...) {
-        set_err(err, errlen, std::string(path ? path : "image") +
-                                 ": cannot read image: unknown exception");
-    }
-    return false;
+    return guarded(path ? path : "image", "read", err, errlen,
+                   [&] { return read_impl(path, want, out, err, errlen); });
 }
 
 bool image_decode(const void *data, size_t size, const char *name, image_type want, image *out,
                   char *err, size_t errlen)
 {
     const char *what = name && name[0] ? name : "embedded image";
-    try {
+    return guarded(what, "read", err, errlen, [&] {
         if (data == nullptr || size == 0) {
             if (out != nullptr)
                 *out = image{};
@@ -371,12 +370,7 @@ bool image_decode(const void *data, size_t size, const char *name, image_type wa
             return false;
         }
         return read_impl(what, want, out, err, errlen, data, size);
-    } catch (const std::exception &e) {
-        set_err(err, errlen, std::string(what) + ": cannot read image: " + e.what());
-    } catch (...) {
-        set_err(err, errlen, std::string(what) + ": cannot read image: unknown exception");
-    }
-    return false;
+    });
 }
 
 bool image_probe(const void *data, size_t size, const char *name, int *width, int *height,

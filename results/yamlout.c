@@ -44,11 +44,7 @@ struct yaml_out {
 
 static void fail(yaml_out *y, const char *what)
 {
-    if (y->failed)
-        return;
-    y->failed = true;
-    snprintf(y->msg, sizeof y->msg, "%s: %s", y->file.final_path ? y->file.final_path : "yaml",
-             what);
+    afile_fail_once(&y->file, "yaml", &y->failed, y->msg, sizeof y->msg, what);
 }
 
 static void fail_emitter(yaml_out *y)
@@ -371,13 +367,8 @@ bool yo_commit(yaml_out *y, char *err, size_t errlen)
         if (!y->failed && !yaml_emitter_flush(&y->emitter))
             fail_emitter(y);
     }
-    if (y->failed) {
-        snprintf(err, errlen, "%s", y->msg);
-        yo_abort(y);
-        return false;
-    }
     yaml_emitter_delete(&y->emitter);
-    bool ok = afile_commit(&y->file, err, errlen);
+    bool ok = afile_finish(&y->file, y->failed, y->msg, err, errlen);
     free(y);
     return ok;
 }

@@ -39,17 +39,14 @@ bool scene_build_shapes(scene_builder *b, const void *arg)
     if (b->failed)
         return false;
 
-    uint32_t floor = sb_material(b, 1, 1, 1, 0.2f, 16);
-    s->materials[floor].diffuse_map = t_ground;
+    /* maps: diffuse, gloss, normal, emissive */
+    sb_map_set ground_maps = {t_ground, -1, -1, -1};
+    sb_map_set checker_maps = {t_checker, t_checker_gloss, -1, -1};
+    sb_map_set brick_maps = {t_bricks, -1, t_bricks_normal, t_bricks_emissive};
+    uint32_t floor = sb_material_maps(b, &ground_maps, 0.2f, 16, 0.0f);
     sb_material(b, 0.8f, 0.8f, 0.85f, 0.6f, 32);                    /* 1: plain */
-    uint32_t glossy = sb_material(b, 1, 1, 1, 1.0f, 64);            /* 2: checker + gloss */
-    s->materials[glossy].diffuse_map = t_checker;
-    s->materials[glossy].gloss_map = t_checker_gloss;
-    uint32_t brick = sb_material(b, 1, 1, 1, 0.3f, 24);             /* 3: bricks */
-    s->materials[brick].diffuse_map = t_bricks;
-    s->materials[brick].normal_map = t_bricks_normal;
-    s->materials[brick].emissive_map = t_bricks_emissive;
-    sm_vec3_make(1.0f, 1.0f, 1.0f, s->materials[brick].emissive);
+    sb_material_maps(b, &checker_maps, 1.0f, 64, 0.0f);             /* 2: checker + gloss */
+    sb_material_maps(b, &brick_maps, 0.3f, 24, 1.0f);               /* 3: bricks */
 
     int floor_mesh = sb_box(b, 40.0f, 0.5f, 40.0f);
     sb_sphere(b, 2.0f, 32, 16);

@@ -19,6 +19,8 @@
 
 #include <math.h>
 
+#define C_PERIOD 60.0f   /* the camera "rotated around a scene for sixty seconds" */
+
 /* The models' and the spheres' maps: a noise "stone" for the models, bevelled checker
  * tiles for the spheres; each with diffuse, gloss and normal maps. */
 static void curtis_materials(scene_builder *b, uint32_t *model, uint32_t *tiles)
@@ -37,10 +39,18 @@ static void curtis_materials(scene_builder *b, uint32_t *model, uint32_t *tiles)
     }
 }
 
-static void curtis_common(scene_builder *b)
+/* What every Curtis scene ends with: ambient 0.05 and no sky, the light bounds lo..hi,
+ * the camera orbiting (0, target_y, 0) at `radius`, `height` above it, once in 60 s, with
+ * a 60-degree fovy from 0.1 to zfar. */
+static bool curtis_finish(scene_builder *b, const float lo[3], const float hi[3],
+                          float target_y, float radius, float height, float zfar)
 {
     sm_vec3_make(0.05f, 0.05f, 0.05f, b->s->ambient);
     b->s->sky = false;
+    sb_set_bounds(b, lo[0], lo[1], lo[2], hi[0], hi[1], hi[2]);
+    sb_set_orbit(b, 0.0f, target_y, 0.0f, radius, height, C_PERIOD);
+    sb_set_projection(b, 60.0f, 0.1f, zfar);
+    return !b->failed;
 }
 
 /* curtis-scene1: one model, a (2, 3) torus knot 7 units across (8192 triangles), turning
@@ -57,17 +67,13 @@ bool scene_build_curtis1(scene_builder *b, const void *arg)
     int knot = sb_torus_knot(b, 2, 3, 3.0f, 0.55f, 256, 16);
     scene_object *o = sb_object(b, knot, model, 0.0f, 0.0f, 0.0f, 1.0f);
     o->spin_rate = 0.25f;
-    curtis_common(b);
-    sb_set_bounds(b, -5.0f, -3.0f, -5.0f, 5.0f, 3.0f, 5.0f);
-    sb_set_orbit(b, 0.0f, 0.0f, 0.0f, 10.0f, 4.0f, 60.0f);
-    sb_set_projection(b, 60.0f, 0.1f, 100.0f);
-    return !b->failed;
+    return curtis_finish(b, (const float[3]){-5.0f, -3.0f, -5.0f},
+                         (const float[3]){5.0f, 3.0f, 5.0f}, 0.0f, 10.0f, 4.0f, 100.0f);
 }
 
 /* The orbit of curtis-scene2, and where its big icosahedron sits on it. */
 #define C2_RADIUS 16.0f
 #define C2_HEIGHT 4.0f
-#define C2_PERIOD 60.0f
 #define C2_BIG_AT 20.0     /* schedule time (s) at which the camera is nearest the ball */
 #define C2_BIG_RADIUS 5.0f
 #define C2_BIG_EYE_DISTANCE 5.6f   /* from the eye to the ball's centre at C2_BIG_AT */
@@ -105,16 +111,13 @@ bool scene_build_curtis2(scene_builder *b, const void *arg)
     sb_object(b, small, tiles, 0.0f, 0.0f, 4.5f, 1.0f);
     /* the eye at C2_BIG_AT (the orbit of scene.c: angle 2 pi t / period from +X towards
      * +Z), and the ball's centre on its line of sight */
-    double ang = 2.0 * SM_PI * C2_BIG_AT / C2_PERIOD;
+    double ang = 2.0 * SM_PI * C2_BIG_AT / C_PERIOD;
     double eye[3] = {C2_RADIUS * cos(ang), C2_HEIGHT, C2_RADIUS * sin(ang)};
     double dist = sqrt(eye[0] * eye[0] + eye[1] * eye[1] + eye[2] * eye[2]);
     double f = 1.0 - C2_BIG_EYE_DISTANCE / dist;
     sb_object(b, big, tiles, (float)(eye[0] * f), (float)(eye[1] * f), (float)(eye[2] * f), 1.0f);
-    curtis_common(b);
-    sb_set_bounds(b, -8.0f, -3.0f, -8.0f, 8.0f, 4.0f, 8.0f);
-    sb_set_orbit(b, 0.0f, 0.0f, 0.0f, C2_RADIUS, C2_HEIGHT, C2_PERIOD);
-    sb_set_projection(b, 60.0f, 0.1f, 100.0f);
-    return !b->failed;
+    return curtis_finish(b, (const float[3]){-8.0f, -3.0f, -8.0f},
+                         (const float[3]){8.0f, 4.0f, 8.0f}, 0.0f, C2_RADIUS, C2_HEIGHT, 100.0f);
 }
 
 /* curtis-scene3: a hundred spheres (radius 0.9, 16 x 8: 224 triangles each) on a 10 x 10
@@ -141,9 +144,6 @@ bool scene_build_curtis3(scene_builder *b, const void *arg)
         sm_vec3_copy(axes[k], o->spin_axis);
         o->spin_rate = 0.4f;
     }
-    curtis_common(b);
-    sb_set_bounds(b, -15.0f, -1.5f, -15.0f, 15.0f, 6.0f, 15.0f);
-    sb_set_orbit(b, 0.0f, 1.0f, 0.0f, 30.0f, 14.0f, 60.0f);
-    sb_set_projection(b, 60.0f, 0.1f, 200.0f);
-    return !b->failed;
+    return curtis_finish(b, (const float[3]){-15.0f, -1.5f, -15.0f},
+                         (const float[3]){15.0f, 6.0f, 15.0f}, 1.0f, 30.0f, 14.0f, 200.0f);
 }

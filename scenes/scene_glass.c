@@ -38,9 +38,8 @@ bool scene_build_glass(scene_builder *b, const void *arg)
     if (b->failed)
         return false;
 
-    uint32_t floor = sb_material(b, 1, 1, 1, 0.4f, 32);
-    s->materials[floor].diffuse_map = t_floor;
-    s->materials[floor].gloss_map = t_floor_gloss;
+    sb_map_set floor_maps = {t_floor, t_floor_gloss, -1, -1};
+    uint32_t floor = sb_material_maps(b, &floor_maps, 0.4f, 32, 0.0f);
     uint32_t stone = sb_material(b, 0.6f, 0.55f, 0.5f, 0.2f, 16);
     static const float pane_color[GLASS_PANES][4] = {
         {0.9f, 0.15f, 0.1f, 0.5f},    /* red, half covering */

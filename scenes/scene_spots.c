@@ -49,6 +49,30 @@ static void spot_room(scene_builder *b, bool wall)
     sb_set_projection(b, 60.0f, 0.05f, 100.0f);
 }
 
+/* One spot test: its room, its spots (all of one angle, range and colour; exponent 4, no
+ * shadows), and the scripted camera's two key poses, from hold 0 to hold 1. */
+typedef struct spot_test {
+    bool wall;
+    uint32_t nspots;
+    float pos[2][3], at[2][3];
+    float half_angle_deg, range;
+    float color[3];
+    float eyes[2][3], targets[2][3];
+} spot_test;
+
+static bool spot_build(scene_builder *b, const spot_test *t)
+{
+    if (!sb_begin(b, t->wall ? 5 : 4))
+        return false;
+    spot_room(b, t->wall);
+    for (uint32_t k = 0; k < t->nspots; k++)
+        sb_spot(b, t->pos[k], t->at[k], t->half_angle_deg, 4.0f, t->range, t->color, false);
+    b->ncoverage = t->nspots;
+    sb_set_keys(b, 2, t->eyes, t->targets, SPOT_PATH_SECONDS);
+    sb_set_bounds(b, -10.0f, 0.5f, -10.0f, 10.0f, 6.0f, 10.0f);
+    return !b->failed;
+}
+
 /* spot-coverage (seed 000 section 5.4.1: "The spotlight is framed in the camera so that it
  * is occupying roughly half of the screen. The camera is then moved forward so that it is
  * completely enclosed in the spotlight"): one spot 6 above the floor's centre, straight
@@ -58,17 +82,13 @@ static void spot_room(scene_builder *b, bool wall)
  * floor: coverage 1 (from hold 0.5 on at 4:3), and every visible pixel is lit. */
 bool scene_build_spot_coverage(scene_builder *b, const void *arg)
 {
-    if (!sb_begin(b, 4))
-        return false;
-    spot_room(b, false);
-    sm_vec3 pos = {0.0f, 6.0f, 0.0f}, at = {0.0f, 0.0f, 0.0f}, white = {3.0f, 2.9f, 2.7f};
-    sb_spot(b, pos, at, 35.0f, 4.0f, 9.0f, white, false);
-    b->ncoverage = 1;
-    static const float eyes[2][3] = {{0.0f, 3.0f, 6.6f}, {0.0f, 3.0f, 0.4f}};
-    static const float targets[2][3] = {{0.0f, 2.5f, 0.0f}, {0.0f, 0.0f, -0.6f}};
-    sb_set_keys(b, 2, eyes, targets, SPOT_PATH_SECONDS);
-    sb_set_bounds(b, -10.0f, 0.5f, -10.0f, 10.0f, 6.0f, 10.0f);
-    return !b->failed;
+    static const spot_test t = {
+        .nspots = 1, .pos = {{0.0f, 6.0f, 0.0f}}, .at = {{0.0f, 0.0f, 0.0f}},
+        .half_angle_deg = 35.0f, .range = 9.0f, .color = {3.0f, 2.9f, 2.7f},
+        .eyes = {{0.0f, 3.0f, 6.6f}, {0.0f, 3.0f, 0.4f}},
+        .targets = {{0.0f, 2.5f, 0.0f}, {0.0f, 0.0f, -0.6f}},
+    };
+    return spot_build(b, &t);
 }
 
 /* two-spots-overlap (seed 000 section 5.4.2: "The two spotlights are viewed from above,
@@ -83,21 +103,14 @@ bool scene_build_spot_coverage(scene_builder *b, const void *arg)
  * both footprints. */
 bool scene_build_two_spots(scene_builder *b, const void *arg)
 {
-    if (!sb_begin(b, 4))
-        return false;
-    spot_room(b, false);
-    sm_vec3 white = {2.4f, 2.3f, 2.1f};
-    for (int k = 0; k < 2; k++) {
-        float z = k ? 1.5f : -1.5f;
-        sm_vec3 pos = {0.0f, 6.0f, z}, at = {0.0f, 0.0f, z};
-        sb_spot(b, pos, at, 30.0f, 4.0f, 9.0f, white, false);
-    }
-    b->ncoverage = 2;
-    static const float eyes[2][3] = {{0.0f, 20.0f, 1.4f}, {0.0f, 2.0f, 0.14f}};
-    static const float targets[2][3] = {{0.0f, 0.0f, 0.0f}, {0.0f, 0.0f, 0.0f}};
-    sb_set_keys(b, 2, eyes, targets, SPOT_PATH_SECONDS);
-    sb_set_bounds(b, -10.0f, 0.5f, -10.0f, 10.0f, 6.0f, 10.0f);
-    return !b->failed;
+    static const spot_test t = {
+        .nspots = 2, .pos = {{0.0f, 6.0f, -1.5f}, {0.0f, 6.0f, 1.5f}},
+        .at = {{0.0f, 0.0f, -1.5f}, {0.0f, 0.0f, 1.5f}},
+        .half_angle_deg = 30.0f, .range = 9.0f, .color = {2.4f, 2.3f, 2.1f},
+        .eyes = {{0.0f, 20.0f, 1.4f}, {0.0f, 2.0f, 0.14f}},
+        .targets = {{0.0f, 0.0f, 0.0f}, {0.0f, 0.0f, 0.0f}},
+    };
+    return spot_build(b, &t);
 }
 
 /* floating-spot (seed 000 section 5.5: "the camera was placed such that a 'floating'
@@ -112,15 +125,11 @@ bool scene_build_two_spots(scene_builder *b, const void *arg)
  * deferred shading's stencil test then rejects them all. */
 bool scene_build_floating_spot(scene_builder *b, const void *arg)
 {
-    if (!sb_begin(b, 5))
-        return false;
-    spot_room(b, true);
-    sm_vec3 pos = {0.0f, 2.0f, 0.0f}, at = {0.0f, 5.0f, 0.0f}, white = {1.5f, 1.45f, 1.35f};
-    sb_spot(b, pos, at, 40.0f, 4.0f, 2.5f, white, false);
-    b->ncoverage = 1;
-    static const float eyes[2][3] = {{0.0f, 2.5f, 14.0f}, {0.0f, 3.3f, 1.8f}};
-    static const float targets[2][3] = {{0.0f, 3.0f, 0.0f}, {0.0f, 3.2f, 0.0f}};
-    sb_set_keys(b, 2, eyes, targets, SPOT_PATH_SECONDS);
-    sb_set_bounds(b, -10.0f, 0.5f, -10.0f, 10.0f, 6.0f, 10.0f);
-    return !b->failed;
+    static const spot_test t = {
+        .wall = true, .nspots = 1, .pos = {{0.0f, 2.0f, 0.0f}}, .at = {{0.0f, 5.0f, 0.0f}},
+        .half_angle_deg = 40.0f, .range = 2.5f, .color = {1.5f, 1.45f, 1.35f},
+        .eyes = {{0.0f, 2.5f, 14.0f}, {0.0f, 3.3f, 1.8f}},
+        .targets = {{0.0f, 3.0f, 0.0f}, {0.0f, 3.2f, 0.0f}},
+    };
+    return spot_build(b, &t);
 }

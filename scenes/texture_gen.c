@@ -313,8 +313,10 @@ static uint8_t to8(float x)
     return (uint8_t)(x * 255.0f + 0.5f);
 }
 
-static bool image_alloc(const texture_desc *in, texture_desc *d, uint32_t channels,
-                        texture_image *out, const char *who, char *err, size_t errlen)
+/* Resolves *in into *d, allocates out (channels a texel) and makes the noise keys. */
+static bool image_alloc(const texture_desc *in, texture_desc *d, uint32_t *keys,
+                        uint32_t channels, texture_image *out, const char *who, char *err,
+                        size_t errlen)
 {
     memset(out, 0, sizeof *out);
     if (!in)
@@ -327,70 +329,93 @@ static bool image_alloc(const texture_desc *in, texture_desc *d, uint32_t channe
     out->width = d->width;
     out->height = d->height;
     out->channels = channels;
+    texture_noise_keys(d->seed, keys, NKEYS);
     return true;
 }
 
-#define TEXEL_U(x) (((float)(x) + 0.5f) / (float)d.width)
-#define TEXEL_V(y) (((float)(y) + 0.5f) / (float)d.height)
+/* the centre of texel i of n, in 0..1 */
+static float texel_centre(uint32_t i, uint32_t n) { return ((float)i + 0.5f) / (float)n; }
+
+/* Writes the texel at (u, v) (its centre) to p, out->channels bytes. */
+typedef void texel_paint(const texture_desc *d, const uint32_t *keys, float u, float v,
+                         uint8_t *p);
+
+/* A map whose every texel depends on its centre alone. */
+static bool paint_map(const texture_desc *in, texture_image *out, uint32_t channels,
+                      texel_paint *paint, const char *who, char *err, size_t errlen)
+{
+    texture_desc d;
+    uint32_t keys[NKEYS];
+    if (!image_alloc(in, &d, keys, channels, out, who, err, errlen))
+        return false;
+    for (uint32_t y = 0; y < d.height; y++)
+        for (uint32_t x = 0; x < d.width; x++)
+            paint(&d, keys, texel_centre(x, d.width), texel_centre(y, d.height),
+                  &out->data[((size_t)y * d.width + x) * channels]);
+    return true;
+}
+
+/* A value at (u, v), as height_at. */
+typedef float texel_value(const texture_desc *d, const uint32_t *keys, float u, float v);
+
+/* The value at every texel centre, row by row, in an array the caller frees; NULL after
+ * freeing out when out of memory. */
+static float *texel_field(const texture_desc *d, const uint32_t *keys, texel_value *value,
+                          texture_image *out, const char *who, char *err, size_t errlen)
+{
+    float *f = malloc((size_t)d->width * d->height * sizeof *f);
+    if (!f) {
+        texture_free(out);
+        scene_fail(err, errlen, "%s: out of memory", who);
+        return NULL;
+    }
+    for (uint32_t y = 0; y < d->height; y++)
+        for (uint32_t x = 0; x < d->width; x++)
+            f[(size_t)y * d->width + x] =
+                value(d, keys, texel_centre(x, d->width), texel_centre(y, d->height));
+    return f;
+}
+
+static void diffuse_texel(const texture_desc *d, const uint32_t *keys, float u, float v,
+                          uint8_t *p)
+{
+    sample s = pattern_at(d, keys, u, v);
+    float k = s.tint * (1.0f + 0.5f * d->noise * detail_at(d, keys, u, v));
+    for (int c = 0; c < 3; c++)
+        p[c] = to8(k * (d->color_a[c] + s.t * (d->color_b[c] - d->color_a[c])));
+    p[3] = 255;
+}
 
 bool texture_diffuse(const texture_desc *in, texture_image *out, char *err, size_t errlen)
 {
-    texture_desc d;
-    if (!image_alloc(in, &d, 4, out, "texture_diffuse", err, errlen))
-        return false;
-    uint32_t keys[NKEYS];
-    texture_noise_keys(d.seed, keys, NKEYS);
-    for (uint32_t y = 0; y < d.height; y++) {
-        for (uint32_t x = 0; x < d.width; x++) {
-            float u = TEXEL_U(x), v = TEXEL_V(y);
-            sample s = pattern_at(&d, keys, u, v);
-            float k = s.tint * (1.0f + 0.5f * d.noise * detail_at(&d, keys, u, v));
-            uint8_t *p = &out->data[((size_t)y * d.width + x) * 4];
-            for (int c = 0; c < 3; c++)
-                p[c] = to8(k * (d.color_a[c] + s.t * (d.color_b[c] - d.color_a[c])));
-            p[3] = 255;
-        }
-    }
-    return true;
+    return paint_map(in, out, 4, diffuse_texel, "texture_diffuse", err, errlen);
+}
+
+static void gloss_texel(const texture_desc *d, const uint32_t *keys, float u, float v,
+                        uint8_t *p)
+{
+    sample s = pattern_at(d, keys, u, v);
+    float g = d->gloss_a + s.t * (d->gloss_b - d->gloss_a);
+    g += 0.2f * d->noise * detail_at(d, keys, u, v);
+    *p = to8(g);
 }
 
 bool texture_gloss(const texture_desc *in, texture_image *out, char *err, size_t errlen)
 {
-    texture_desc d;
-    if (!image_alloc(in, &d, 1, out, "texture_gloss", err, errlen))
-        return false;
-    uint32_t keys[NKEYS];
-    texture_noise_keys(d.seed, keys, NKEYS);
-    for (uint32_t y = 0; y < d.height; y++) {
-        for (uint32_t x = 0; x < d.width; x++) {
-            float u = TEXEL_U(x), v = TEXEL_V(y);
-            sample s = pattern_at(&d, keys, u, v);
-            float g = d.gloss_a + s.t * (d.gloss_b - d.gloss_a);
-            g += 0.2f * d.noise * detail_at(&d, keys, u, v);
-            out->data[(size_t)y * d.width + x] = to8(g);
-        }
-    }
-    return true;
+    return paint_map(in, out, 1, gloss_texel, "texture_gloss", err, errlen);
 }
 
 bool texture_normal_map(const texture_desc *in, texture_image *out, char *err, size_t errlen)
 {
     texture_desc d;
-    if (!image_alloc(in, &d, 4, out, "texture_normal_map", err, errlen))
+    uint32_t keys[NKEYS];
+    if (!image_alloc(in, &d, keys, 4, out, "texture_normal_map", err, errlen))
         return false;
     /* heights at every texel centre once; the pattern is periodic, so the differences
      * wrap around the edges */
-    size_t n = (size_t)d.width * d.height;
-    float *h = malloc(n * sizeof *h);
-    if (!h) {
-        texture_free(out);
-        return scene_fail(err, errlen, "texture_normal_map: out of memory");
-    }
-    uint32_t keys[NKEYS];
-    texture_noise_keys(d.seed, keys, NKEYS);
-    for (uint32_t y = 0; y < d.height; y++)
-        for (uint32_t x = 0; x < d.width; x++)
-            h[(size_t)y * d.width + x] = height_at(&d, keys, TEXEL_U(x), TEXEL_V(y));
+    float *h = texel_field(&d, keys, height_at, out, "texture_normal_map", err, errlen);
+    if (!h)
+        return false;
     for (uint32_t y = 0; y < d.height; y++) {
         uint32_t y0 = (y + d.height - 1) % d.height, y1 = (y + 1) % d.height;
         for (uint32_t x = 0; x < d.width; x++) {
@@ -412,22 +437,21 @@ bool texture_normal_map(const texture_desc *in, texture_image *out, char *err, s
     return true;
 }
 
+static float lit_at(const texture_desc *d, const uint32_t *keys, float u, float v)
+{
+    return pattern_at(d, keys, u, v).lit;
+}
+
 bool texture_emissive(const texture_desc *in, texture_image *out, char *err, size_t errlen)
 {
     texture_desc d;
-    if (!image_alloc(in, &d, 4, out, "texture_emissive", err, errlen))
-        return false;
     uint32_t keys[NKEYS];
-    texture_noise_keys(d.seed, keys, NKEYS);
+    if (!image_alloc(in, &d, keys, 4, out, "texture_emissive", err, errlen))
+        return false;
     size_t n = (size_t)d.width * d.height;
-    float *lit = malloc(n * sizeof *lit);
-    if (!lit) {
-        texture_free(out);
-        return scene_fail(err, errlen, "texture_emissive: out of memory");
-    }
-    for (uint32_t y = 0; y < d.height; y++)
-        for (uint32_t x = 0; x < d.width; x++)
-            lit[(size_t)y * d.width + x] = pattern_at(&d, keys, TEXEL_U(x), TEXEL_V(y)).lit;
+    float *lit = texel_field(&d, keys, lit_at, out, "texture_emissive", err, errlen);
+    if (!lit)
+        return false;
     if (d.pattern == TEXTURE_NOISE) {
         /* light the highest emissive_fraction of the texels: the threshold from a
          * histogram of the heights, then a soft edge 1/256 wide below it */

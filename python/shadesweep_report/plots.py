@@ -31,6 +31,17 @@ class Plots:
         return f"![{name}](plots/{name})\n"
 
 
+def paper_vs_ours(axes, paper_title, ours_title, xlabel, ylabel):
+    """Titles, axis labels, grid and legend of a (paper, ours) pair of axes."""
+    axes[0].set_title(paper_title)
+    axes[1].set_title(ours_title)
+    for ax in axes:
+        ax.set_xlabel(xlabel)
+        ax.set_ylabel(ylabel)
+        ax.grid(alpha=0.3)
+        ax.legend(fontsize=8)
+
+
 PLOT_NAMES = ["s003-exp2_fps_time.png", "s003-exp2_frametime_time.png",
               "s003-exp2_frametime_lights.png", "s000-resolution_frametime.png",
               "s000-drawcalls.png", "gbuffer-error_pareto.png",

@@ -1,5 +1,5 @@
 """Seed 000: frame time against resolution (5.3.1, 5.3.2)."""
-from ..plots import COLORS
+from ..plots import COLORS, paper_vs_ours
 from ..stats import linfit, num
 from ..text import fmt, fmt_ci, md_table, nan, ratio
 
@@ -156,11 +156,6 @@ def section_s000_resolution(s):
                     axes[1].errorbar([x[0] / 1e6 for x in o], [nan(x[2]) for x in o],
                                      yerr=[x[3] or 0 for x in o], fmt=ls + "o", color=COLORS[pren],
                                      capsize=3, label=f"{scene} {pren if pren == 'deferred' else fwd}")
-        axes[0].set_title("paper (seed 000, GeForce 6800)")
-        axes[1].set_title("ours (error bars: 95% CI)")
-        for ax in axes:
-            ax.set_xlabel("megapixels")
-            ax.set_ylabel("frame time (ms)")
-            ax.grid(alpha=0.3)
-            ax.legend(fontsize=8)
+        paper_vs_ours(axes, "paper (seed 000, GeForce 6800)", "ours (error bars: 95% CI)",
+                      "megapixels", "frame time (ms)")
         s.w(s.plots.save(fig, "s000-resolution_frametime.png"))

@@ -1,7 +1,7 @@
 """Seed 003, experiment 2: lights growing 10 a second."""
 import math
 
-from ..plots import COLORS
+from ..plots import COLORS, paper_vs_ours
 from ..stats import hinge_fit, linfit, mean, num, sd
 from ..text import fmt, md_table, nan, ratio
 
@@ -216,13 +216,8 @@ def section_s003_exp2(s):
                     axes[1].fill_between(xs, [a - b for a, b in zip(m, sdv)],
                                          [a + b for a, b in zip(m, sdv)], color=COLORS[ren],
                                          alpha=0.25, label=f"{lab} ± SD over trials")
-            axes[0].set_title("paper (seed 003 appendix 10.2, GTX 870M)")
-            axes[1].set_title(f"ours ({ntr} trial(s))")
-            for ax in axes:
-                ax.set_xlabel("time (s)")
-                ax.set_ylabel(ylabel)
-                ax.grid(alpha=0.3)
-                ax.legend(fontsize=8)
+            paper_vs_ours(axes, "paper (seed 003 appendix 10.2, GTX 870M)", f"ours ({ntr} trial(s))",
+                          "time (s)", ylabel)
             s.w(s.plots.save(fig, fname))
         fig, axes = plt.subplots(1, 2, figsize=(11, 4))
         for ren in ("deferred", "forward-spml"):
@@ -236,11 +231,7 @@ def section_s003_exp2(s):
                 axes[1].plot(xs, m, color=COLORS[ren], marker=".", label=ren if ren == "deferred" else fwd)
                 axes[1].fill_between(xs, [a - b for a, b in zip(m, sdv)], [a + b for a, b in zip(m, sdv)],
                                      color=COLORS[ren], alpha=0.25)
-        axes[0].set_title("paper (lights = 10 x second)")
-        axes[1].set_title("ours (mean lights in the second; band ± SD over trials)")
-        for ax in axes:
-            ax.set_xlabel("lights")
-            ax.set_ylabel("frame time (µs)")
-            ax.grid(alpha=0.3)
-            ax.legend(fontsize=8)
+        paper_vs_ours(axes, "paper (lights = 10 x second)",
+                      "ours (mean lights in the second; band ± SD over trials)",
+                      "lights", "frame time (µs)")
         s.w(s.plots.save(fig, "s003-exp2_frametime_lights.png"))
