@@ -225,50 +225,44 @@ void run_files_frame(run_files *f, const char *run_id, uint32_t trial, const fra
     }
 }
 
-void run_files_seconds(run_files *f, const char *run_id, uint32_t trial,
-                       const second_bin *bins, size_t nbins)
+void run_files_second(run_files *f, const char *run_id, uint32_t trial, const second_bin *b)
 {
-    if (!f->seconds)
-        return;
     csv_writer *w = f->seconds;
-    for (size_t i = 0; i < nbins; i++) {
-        const second_bin *b = &bins[i];
-        row_start(w, run_id, trial);
-        csv_u64(w, b->second);
-        csv_u64(w, b->complete ? 1 : 0);
-        if (b->frames) {
-            csv_u64(w, b->lights_min);
-            csv_u64(w, b->lights_max);
-        } else {
-            csv_empty(w);
-            csv_empty(w);
-        }
-        csv_u64(w, b->frames);
-        csv_u64(w, b->frames);  /* FPS of a second is the number of frames that ended in it */
-        csv_f64(w, b->frametime_mean_us, 3);
-        csv_f64(w, b->frametime_sd_us, 3);
-        csv_f64(w, b->frametime_p50_us, 3);
-        csv_f64(w, b->frametime_p99_us, 3);
-        csv_f64(w, b->draw_calls_mean, 3);
-        csv_end_row(w);
+    if (!w)
+        return;
+    row_start(w, run_id, trial);
+    csv_u64(w, b->second);
+    csv_u64(w, b->complete ? 1 : 0);
+    if (b->frames) {
+        csv_u64(w, b->lights_min);
+        csv_u64(w, b->lights_max);
+    } else {
+        csv_empty(w);
+        csv_empty(w);
     }
+    csv_u64(w, b->frames);
+    csv_u64(w, b->frames);  /* FPS of a second is the number of frames that ended in it */
+    csv_f64(w, b->frametime_mean_us, 3);
+    csv_f64(w, b->frametime_sd_us, 3);
+    csv_f64(w, b->frametime_p50_us, 3);
+    csv_f64(w, b->frametime_p99_us, 3);
+    csv_f64(w, b->draw_calls_mean, 3);
+    csv_end_row(w);
 }
 
 void run_files_convergence(run_files *f, const char *run_id, uint32_t trial,
-                           const convergence_point *p, size_t np)
+                           const convergence_point *p)
 {
-    if (!f->convergence)
-        return;
     csv_writer *w = f->convergence;
-    for (size_t i = 0; i < np; i++) {
-        row_start(w, run_id, trial);
-        csv_f64(w, p[i].elapsed_s, 6);
-        csv_u64(w, p[i].frames);
-        csv_f64(w, p[i].mean_us, 3);
-        csv_f64(w, p[i].ci95_us, 3);
-        csv_f64(w, p[i].mean_us > 0 ? p[i].ci95_us / p[i].mean_us : NAN, 6);
-        csv_end_row(w);
-    }
+    if (!w)
+        return;
+    row_start(w, run_id, trial);
+    csv_f64(w, p->elapsed_s, 6);
+    csv_u64(w, p->frames);
+    csv_f64(w, p->mean_us, 3);
+    csv_f64(w, p->ci95_us, 3);
+    csv_f64(w, p->mean_us > 0 ? p->ci95_us / p->mean_us : NAN, 6);
+    csv_end_row(w);
 }
 
 bool run_files_open_errors(run_files *f, const char *run_dir, char *err, size_t errlen)

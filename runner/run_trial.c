@@ -410,13 +410,13 @@ typedef struct trial_sink {
 static void sink_second(void *ctx, const second_bin *b)
 {
     trial_sink *k = ctx;
-    run_files_seconds(&k->st->files, k->st->s->id, k->trial, b, 1);
+    run_files_second(&k->st->files, k->st->s->id, k->trial, b);
 }
 
 static void sink_point(void *ctx, const convergence_point *p)
 {
     trial_sink *k = ctx;
-    run_files_convergence(&k->st->files, k->st->s->id, k->trial, p, 1);
+    run_files_convergence(&k->st->files, k->st->s->id, k->trial, p);
 }
 
 /* The screenshots and comparisons due at schedule time t (each once per trial); the
