@@ -5,8 +5,7 @@
 #include <stdlib.h>
 #include <string.h>
 
-/* The n bytes at s as a JSON string. */
-static void string_n(FILE *fp, const char *s, size_t n)
+void json_quoted(FILE *fp, const char *s, size_t n, bool yaml)
 {
     fputc('"', fp);
     for (const char *e = s + n; s < e; s++) {
@@ -14,7 +13,7 @@ static void string_n(FILE *fp, const char *s, size_t n)
         if (ch == '"' || ch == '\\')
             fprintf(fp, "\\%c", ch);
         else if (ch < 0x20)
-            fprintf(fp, "\\u%04x", ch);
+            fprintf(fp, yaml ? "\\x%02x" : "\\u%04x", ch);
         else
             fputc(ch, fp);
     }
@@ -23,7 +22,7 @@ static void string_n(FILE *fp, const char *s, size_t n)
 
 void json_string(FILE *fp, const char *s)
 {
-    string_n(fp, s, strlen(s));
+    json_quoted(fp, s, strlen(s), false);
 }
 
 void json_words(FILE *fp, const char *words)
@@ -34,7 +33,7 @@ void json_words(FILE *fp, const char *words)
         size_t n = strcspn(w, " ");
         fputs(first ? "" : ", ", fp);
         first = false;
-        string_n(fp, w, n);
+        json_quoted(fp, w, n, false);
         w += n;
     }
     fputc(']', fp);

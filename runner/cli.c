@@ -576,27 +576,19 @@ int cli_main(int argc, char **argv)
                 return 0;
             break;
         }
+    static const struct {
+        const char *name;
+        int (*fn)(int, char **);
+    } commands[] = {
+        {"run", cmd_run},         {"validate", cmd_validate}, {"list", cmd_list},
+        {"info", cmd_info},       {"merge", cmd_merge},       {"params", cmd_params},
+        {"columns", cmd_columns}, {"ratios", cmd_ratios},     {"compare", cmd_compare},
+        {"report", cmd_report},
+    };
     /* Each command parses argv[1..]: its name plays argv[0]. */
-    if (strcmp(cmd, "run") == 0)
-        return cmd_run(argc - 1, argv + 1);
-    if (strcmp(cmd, "validate") == 0)
-        return cmd_validate(argc - 1, argv + 1);
-    if (strcmp(cmd, "list") == 0)
-        return cmd_list(argc - 1, argv + 1);
-    if (strcmp(cmd, "info") == 0)
-        return cmd_info(argc - 1, argv + 1);
-    if (strcmp(cmd, "merge") == 0)
-        return cmd_merge(argc - 1, argv + 1);
-    if (strcmp(cmd, "params") == 0)
-        return cmd_params(argc - 1, argv + 1);
-    if (strcmp(cmd, "columns") == 0)
-        return cmd_columns(argc - 1, argv + 1);
-    if (strcmp(cmd, "ratios") == 0)
-        return cmd_ratios(argc - 1, argv + 1);
-    if (strcmp(cmd, "compare") == 0)
-        return cmd_compare(argc - 1, argv + 1);
-    if (strcmp(cmd, "report") == 0)
-        return cmd_report(argc - 1, argv + 1);
+    for (size_t i = 0; i < sizeof commands / sizeof commands[0]; i++)
+        if (strcmp(cmd, commands[i].name) == 0)
+            return commands[i].fn(argc - 1, argv + 1);
     fprintf(stderr, "shadesweep: unknown command '%s'\n\n%s", cmd, usage_text);
     return 2;
 }

@@ -6,6 +6,8 @@
 #include <stdlib.h>
 #include <string.h>
 
+#include "results/grow.h"
+
 /* The value of a plan cell on a numeric axis: a plain number, or a resolution WxH as
  * its pixel count. False for anything else ("volume", "seconds:0.3", ""). */
 static bool axis_value(const char *s, double *out)
@@ -51,14 +53,8 @@ static int by_group_cfg_x(const void *pa, const void *pb)
 
 static bool push(crossover_list *l, const crossover_found *c)
 {
-    if (l->n == l->cap) {
-        size_t cap = l->cap ? 2 * l->cap : 16;
-        crossover_found *g = realloc(l->item, cap * sizeof *g);
-        if (!g)
-            return false;
-        l->item = g;
-        l->cap = cap;
-    }
+    if (!GROW(l->item, l->cap, l->n + 1, 16))
+        return false;
     l->item[l->n++] = *c;
     return true;
 }
@@ -179,14 +175,8 @@ static bool along(const run_result *runs, size_t nruns, const csv_table *pl, con
 /* Keeps s (owned by l from here). */
 static bool push_string(crossover_list *l, char *s)
 {
-    if (l->nstrings == l->capstrings) {
-        size_t cap = l->capstrings ? 2 * l->capstrings : 16;
-        char **g = realloc(l->strings, cap * sizeof *g);
-        if (!g)
-            return false;
-        l->strings = g;
-        l->capstrings = cap;
-    }
+    if (!GROW(l->strings, l->capstrings, l->nstrings + 1, 16))
+        return false;
     l->strings[l->nstrings++] = s;
     return true;
 }

@@ -126,40 +126,49 @@ static bool is_dir_nofollow(const char *path)
     return lstat(path, &st) == 0 && S_ISDIR(st.st_mode);
 }
 
+bool folder_each(const char *dir, folder_entry_fn each, void *ctx, char *err, size_t errlen)
+{
+    DIR *d = opendir(dir);
+    if (!d) {
+        snprintf(err, errlen, "%s: %s", dir, strerror(errno));
+        return false;
+    }
+    bool ok = true;
+    struct dirent *ent;
+    char path[4608];
+    while (ok && (ent = readdir(d))) {
+        folder_path_join(path, sizeof path, dir, ent->d_name);
+        ok = each(path, ent->d_name, ctx, err, errlen);
+    }
+    closedir(d);
+    return ok;
+}
+
+/* folder_clear_run's part of one entry of a run folder: a trial's folder is cleared
+ * the same way, a file of shadesweep's removed. */
+static bool clear_run_entry(const char *path, const char *name, void *ctx, char *err,
+                            size_t errlen)
+{
+    bool temp;
+    if (folder_is_trial_dir(name))
+        return !is_dir_nofollow(path) || folder_clear_run(path, err, errlen);
+    return !folder_is_run_file(name, &temp) || remove_file(path, err, errlen);
+}
+
 bool folder_clear_run(const char *run_dir, char *err, size_t errlen)
 {
     if (!is_dir_nofollow(run_dir))
         return true;
     char path[4608];
     snprintf(path, sizeof path, "%s/files.txt", run_dir);
-    if (!remove_file(path, err, errlen))
+    if (!remove_file(path, err, errlen) ||
+        !folder_each(run_dir, clear_run_entry, NULL, err, errlen))
         return false;
-    DIR *d = opendir(run_dir);
-    if (!d) {
-        snprintf(err, errlen, "%s: %s", run_dir, strerror(errno));
-        return false;
-    }
-    bool ok = true;
-    struct dirent *ent;
-    while (ok && (ent = readdir(d))) {
-        bool temp;
-        if (folder_is_trial_dir(ent->d_name)) {
-            folder_path_join(path, sizeof path, run_dir, ent->d_name);
-            if (is_dir_nofollow(path))
-                ok = folder_clear_run(path, err, errlen);
-            continue;
-        }
-        if (!folder_is_run_file(ent->d_name, &temp))
-            continue;
-        folder_path_join(path, sizeof path, run_dir, ent->d_name);
-        ok = remove_file(path, err, errlen);
-    }
-    closedir(d);
-    if (ok && rmdir(run_dir) != 0 && errno != ENOTEMPTY && errno != EEXIST && errno != ENOENT) {
+    if (rmdir(run_dir) != 0 && errno != ENOTEMPTY && errno != EEXIST && errno != ENOENT) {
         snprintf(err, errlen, "%s: cannot remove: %s", run_dir, strerror(errno));
-        ok = false;
+        return false;
     }
-    return ok;
+    return true;
 }
 
 void folder_remove_temp(const char *dir)
@@ -180,6 +189,13 @@ void folder_remove_temp(const char *dir)
     closedir(d);
 }
 
+/* clear_folder's part of one entry of runs/: a run's folder is cleared. */
+static bool clear_runs_entry(const char *path, const char *name, void *ctx, char *err,
+                             size_t errlen)
+{
+    return !is_run_id(name) || folder_clear_run(path, err, errlen);
+}
+
 /* Removes shadesweep's files of an output folder (not the lock, not anyone else's).
  * keep_sweep: sweep.yaml stays (it is replaced next, atomically), so that a process
  * killed half-way leaves a folder that still says it is shadesweep's. */
@@ -194,24 +210,8 @@ static bool clear_folder(const char *dir, bool keep_sweep, char *err, size_t err
     folder_remove_temp(dir);
     char runs[4200];
     snprintf(runs, sizeof runs, "%s/runs", dir);
-    if (is_dir_nofollow(runs)) {
-        DIR *d = opendir(runs);
-        if (!d) {
-            snprintf(err, errlen, "%s: %s", runs, strerror(errno));
-            return false;
-        }
-        bool ok = true;
-        struct dirent *ent;
-        while (ok && (ent = readdir(d))) {
-            if (!is_run_id(ent->d_name))
-                continue;
-            folder_path_join(path, sizeof path, runs, ent->d_name);
-            ok = folder_clear_run(path, err, errlen);
-        }
-        closedir(d);
-        if (!ok)
-            return false;
-    }
+    if (is_dir_nofollow(runs) && !folder_each(runs, clear_runs_entry, NULL, err, errlen))
+        return false;
     if (keep_sweep)
         return true;
     snprintf(path, sizeof path, "%s/sweep.yaml", dir);

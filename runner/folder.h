@@ -47,6 +47,12 @@ void folder_close(folder *f, bool abandon);
  * off while being removed is never taken for complete); keeps anything else, and the
  * folder when something else is in it. */
 bool folder_clear_run(const char *run_dir, char *err, size_t errlen);
+/* Calls each(dir/name, name, ctx, err, errlen) for every entry of dir ("." and ".."
+ * too), in readdir's order, until one returns false; false then, or with "DIR: why"
+ * when dir cannot be read. */
+typedef bool (*folder_entry_fn)(const char *path, const char *name, void *ctx, char *err,
+                                size_t errlen);
+bool folder_each(const char *dir, folder_entry_fn each, void *ctx, char *err, size_t errlen);
 /* Removes the temporary twins ("NAME.tmp.PID") of shadesweep's files in dir. */
 void folder_remove_temp(const char *dir);
 

@@ -529,6 +529,13 @@ static bool parse_scene_file(vctx *c, const param *pd, const ynode *n, const cha
     return true;
 }
 
+/* A parsed value into its parameter's bytes: true. */
+static bool store(char *at, const void *v, size_t size)
+{
+    memcpy(at, v, size);
+    return true;
+}
+
 bool mf_parse_value(vctx *c, const param *pd, const ynode *n, const char *key,
                         run_params *dst)
 {
@@ -558,30 +565,26 @@ bool mf_parse_value(vctx *c, const param *pd, const ynode *n, const char *key,
     case PT_RENDERER:
         if (!mf_stringish(n) || !renderer_kind_find(n->text) || n->len >= 32)
             return mf_bad(c, pd, n, key);
-        memcpy(at, n->text, n->len + 1);
-        return true;
+        return store(at, n->text, n->len + 1);
     case PT_RESOLUTION:
         return parse_resolution(c, pd, n, key, dst);
     case PT_UINT: {
         uint64_t v;
         if ((pd->flags & PF_AUTO) && ynode_plain(n) && strcmp(n->text, "auto") == 0) {
             uint32_t zero = 0;
-            memcpy(at, &zero, sizeof zero);
-            return true;
+            return store(at, &zero, sizeof zero);
         }
         if (!mf_parse_uint_in(c, n, key, (uint64_t)pd->min, (uint64_t)pd->max,
                            pd->flags & PF_AUTO ? ", or auto" : "", &v))
             return false;
         uint32_t u = (uint32_t)v;
-        memcpy(at, &u, sizeof u);
-        return true;
+        return store(at, &u, sizeof u);
     }
     case PT_NUMBER: {
         double v;
         if ((pd->flags & PF_SCENE_DEFAULT) && ynode_plain(n) && strcmp(n->text, "scene") == 0) {
             float f = NAN;   /* PF_SCENE_DEFAULT numbers are floats */
-            memcpy(at, &f, sizeof f);
-            return true;
+            return store(at, &f, sizeof f);
         }
         if (!mf_parse_number_in(c, n, key, pd->min, pd->max, pd->flags, &v))
             return false;
@@ -595,10 +598,8 @@ bool mf_parse_value(vctx *c, const param *pd, const ynode *n, const char *key,
     }
     case PT_VEC3: {
         float v[3] = {NAN, NAN, NAN};
-        if ((pd->flags & PF_SCENE_DEFAULT) && ynode_plain(n) && strcmp(n->text, "scene") == 0) {
-            memcpy(at, v, sizeof v);
-            return true;
-        }
+        if ((pd->flags & PF_SCENE_DEFAULT) && ynode_plain(n) && strcmp(n->text, "scene") == 0)
+            return store(at, v, sizeof v);
         if (n->kind != YNODE_SEQUENCE || n->n != 3)
             return mf_bad(c, pd, n, key);
         for (size_t i = 0; i < 3; i++) {
@@ -609,38 +610,28 @@ bool mf_parse_value(vctx *c, const param *pd, const ynode *n, const char *key,
                 return false;
             v[i] = (float)d;
         }
-        memcpy(at, v, sizeof v);
-        return true;
+        return store(at, v, sizeof v);
     }
     case PT_ENUM:
         if (mf_stringish(n))
             for (int i = 0; pd->values[i]; i++)
-                if (strcmp(pd->values[i], n->text) == 0) {
-                    memcpy(at, &i, sizeof i);
-                    return true;
-                }
+                if (strcmp(pd->values[i], n->text) == 0)
+                    return store(at, &i, sizeof i);
         return mf_bad(c, pd, n, key);
     case PT_BOOL: {
         bool t = ynode_plain(n) && strcmp(n->text, "true") == 0;
         bool f = ynode_plain(n) && strcmp(n->text, "false") == 0;
         if (!t && !f)
             return mf_bad(c, pd, n, key);
-        memcpy(at, &t, sizeof t);
-        return true;
+        return store(at, &t, sizeof t);
     }
     case PT_SPAN: {
         span s;
-        if (!parse_span(c, pd, n, key, &s))
-            return false;
-        memcpy(at, &s, sizeof s);
-        return true;
+        return parse_span(c, pd, n, key, &s) && store(at, &s, sizeof s);
     }
     case PT_COUNT: {
         light_count lc;
-        if (!parse_count(c, pd, n, key, &lc))
-            return false;
-        memcpy(at, &lc, sizeof lc);
-        return true;
+        return parse_count(c, pd, n, key, &lc) && store(at, &lc, sizeof lc);
     }
     case PT_TIMES:
         return parse_times(c, pd, n, key, dst);

@@ -188,6 +188,22 @@ void memory_estimate_run(const run_params *p, const scene *sc, memory_estimate *
 
 /* ---- limits */
 
+/* What follows "FIELD:" on the first line of a /proc file (status, meminfo) that
+ * starts so, read into line (len bytes); NULL when there is none or no such file. */
+static const char *field_text(const char *path, const char *field, char *line, size_t len)
+{
+    FILE *f = fopen(path, "re");
+    if (!f)
+        return NULL;
+    const char *v = NULL;
+    size_t fl = strlen(field);
+    while (!v && fgets(line, (int)len, f))
+        if (strncmp(line, field, fl) == 0 && line[fl] == ':')
+            v = line + fl + 1;
+    fclose(f);
+    return v;
+}
+
 long memory_proc_kb(int pid, const char *field)
 {
     char path[64];
@@ -195,19 +211,9 @@ long memory_proc_kb(int pid, const char *field)
         snprintf(path, sizeof path, "/proc/%d/status", pid);
     else
         snprintf(path, sizeof path, "/proc/self/status");
-    FILE *f = fopen(path, "re");
-    if (!f)
-        return -1;
     char line[256];
-    long kb = -1;
-    size_t fl = strlen(field);
-    while (fgets(line, sizeof line, f))
-        if (strncmp(line, field, fl) == 0 && line[fl] == ':') {
-            kb = strtol(line + fl + 1, NULL, 10);
-            break;
-        }
-    fclose(f);
-    return kb;
+    const char *v = field_text(path, field, line, sizeof line);
+    return v ? strtol(v, NULL, 10) : -1;
 }
 
 /* A cgroup limit file's value: a number of bytes; "max" or v1's "no limit" (page
@@ -293,19 +299,9 @@ static uint64_t cgroup_room(char *which, size_t len)
 
 static uint64_t meminfo_kb(const char *field)
 {
-    FILE *f = fopen("/proc/meminfo", "re");
-    if (!f)
-        return UINT64_MAX;
     char line[256];
-    uint64_t kb = UINT64_MAX;
-    size_t fl = strlen(field);
-    while (fgets(line, sizeof line, f))
-        if (strncmp(line, field, fl) == 0 && line[fl] == ':') {
-            kb = strtoull(line + fl + 1, NULL, 10);
-            break;
-        }
-    fclose(f);
-    return kb;
+    const char *v = field_text("/proc/meminfo", field, line, sizeof line);
+    return v ? strtoull(v, NULL, 10) : UINT64_MAX;
 }
 
 /* Two runs build the same scene and camera when these agree (plan_check.c's same_scene). */

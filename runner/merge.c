@@ -1,6 +1,5 @@
 #include "runner/merge.h"
 
-#include <dirent.h>
 #include <errno.h>
 #include <stdio.h>
 #include <stdlib.h>
@@ -80,29 +79,21 @@ static bool copy_file(const char *from, const char *to, char *err, size_t errlen
     return ok;
 }
 
+/* copy_run's part of one entry: a regular file is copied into the folder ctx names. */
+static bool copy_entry(const char *src, const char *name, void *ctx, char *err, size_t errlen)
+{
+    char dst[4608];
+    snprintf(dst, sizeof dst, "%s/%s", (const char *)ctx, name);
+    struct stat stt;
+    if (strstr(name, ".tmp.") || lstat(src, &stt) != 0 || !S_ISREG(stt.st_mode))
+        return true;
+    return copy_file(src, dst, err, errlen);
+}
+
 /* Copies the regular files of one run folder. */
 static bool copy_run(const char *from, const char *to, char *err, size_t errlen)
 {
-    if (!fs_mkdirs(to, err, errlen))
-        return false;
-    DIR *d = opendir(from);
-    if (!d) {
-        snprintf(err, errlen, "%s: %s", from, strerror(errno));
-        return false;
-    }
-    bool ok = true;
-    struct dirent *ent;
-    while (ok && (ent = readdir(d))) {
-        char src[4608], dst[4608];
-        snprintf(src, sizeof src, "%s/%s", from, ent->d_name);
-        snprintf(dst, sizeof dst, "%s/%s", to, ent->d_name);
-        struct stat stt;
-        if (strstr(ent->d_name, ".tmp.") || lstat(src, &stt) != 0 || !S_ISREG(stt.st_mode))
-            continue;
-        ok = copy_file(src, dst, err, errlen);
-    }
-    closedir(d);
-    return ok;
+    return fs_mkdirs(to, err, errlen) && folder_each(from, copy_entry, (void *)to, err, errlen);
 }
 
 int merge_main(const char *out, bool force, int ndirs, char **dirs)

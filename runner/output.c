@@ -143,6 +143,22 @@ static csv_writer *open_in(const char *run_dir, const char *name, const char *co
     return csv_open(path, columns, ncolumns, err, errlen);
 }
 
+/* The cells every row of a run's per-trial files starts with: run_id, trial. */
+static void row_start(csv_writer *w, const char *run_id, uint32_t trial)
+{
+    csv_str(w, run_id);
+    csv_u64(w, trial);
+}
+
+/* ... and those of errors.csv, coverage.csv and lightgrid.csv: then frame, t_scene_s. */
+static void frame_row_start(csv_writer *w, const char *run_id, uint32_t trial, uint32_t frame,
+                            double t_scene)
+{
+    row_start(w, run_id, trial);
+    csv_u64(w, frame);
+    csv_f64(w, t_scene, 6);
+}
+
 bool run_files_open(run_files *f, const char *run_dir, const run_params *p, char *err,
                     size_t errlen)
 {
@@ -173,8 +189,7 @@ void run_files_frame(run_files *f, const char *run_id, uint32_t trial, const fra
     if (!f->frames)
         return;
     csv_writer *w = f->frames;
-    csv_str(w, run_id);
-    csv_u64(w, trial);
+    row_start(w, run_id, trial);
     csv_u64(w, r->frame);
     csv_f64(w, r->t_wall_s, 6);
     csv_f64(w, r->t_scene_s, 6);
@@ -186,8 +201,7 @@ void run_files_frame(run_files *f, const char *run_id, uint32_t trial, const fra
     for (size_t i = 0; i < fs->npasses; i++) {
         const pass_stats *ps = &fs->pass[i];
         w = f->passes;
-        csv_str(w, run_id);
-        csv_u64(w, trial);
+        row_start(w, run_id, trial);
         csv_u64(w, r->frame);
         csv_str(w, ps->name);
         csv_f64(w, ps->gpu_us, 3);
@@ -211,52 +225,44 @@ void run_files_frame(run_files *f, const char *run_id, uint32_t trial, const fra
     }
 }
 
-void run_files_seconds(run_files *f, const char *run_id, uint32_t trial,
-                       const second_bin *bins, size_t nbins)
+void run_files_second(run_files *f, const char *run_id, uint32_t trial, const second_bin *b)
 {
-    if (!f->seconds)
-        return;
     csv_writer *w = f->seconds;
-    for (size_t i = 0; i < nbins; i++) {
-        const second_bin *b = &bins[i];
-        csv_str(w, run_id);
-        csv_u64(w, trial);
-        csv_u64(w, b->second);
-        csv_u64(w, b->complete ? 1 : 0);
-        if (b->frames) {
-            csv_u64(w, b->lights_min);
-            csv_u64(w, b->lights_max);
-        } else {
-            csv_empty(w);
-            csv_empty(w);
-        }
-        csv_u64(w, b->frames);
-        csv_u64(w, b->frames);  /* FPS of a second is the number of frames that ended in it */
-        csv_f64(w, b->frametime_mean_us, 3);
-        csv_f64(w, b->frametime_sd_us, 3);
-        csv_f64(w, b->frametime_p50_us, 3);
-        csv_f64(w, b->frametime_p99_us, 3);
-        csv_f64(w, b->draw_calls_mean, 3);
-        csv_end_row(w);
+    if (!w)
+        return;
+    row_start(w, run_id, trial);
+    csv_u64(w, b->second);
+    csv_u64(w, b->complete ? 1 : 0);
+    if (b->frames) {
+        csv_u64(w, b->lights_min);
+        csv_u64(w, b->lights_max);
+    } else {
+        csv_empty(w);
+        csv_empty(w);
     }
+    csv_u64(w, b->frames);
+    csv_u64(w, b->frames);  /* FPS of a second is the number of frames that ended in it */
+    csv_f64(w, b->frametime_mean_us, 3);
+    csv_f64(w, b->frametime_sd_us, 3);
+    csv_f64(w, b->frametime_p50_us, 3);
+    csv_f64(w, b->frametime_p99_us, 3);
+    csv_f64(w, b->draw_calls_mean, 3);
+    csv_end_row(w);
 }
 
 void run_files_convergence(run_files *f, const char *run_id, uint32_t trial,
-                           const convergence_point *p, size_t np)
+                           const convergence_point *p)
 {
-    if (!f->convergence)
-        return;
     csv_writer *w = f->convergence;
-    for (size_t i = 0; i < np; i++) {
-        csv_str(w, run_id);
-        csv_u64(w, trial);
-        csv_f64(w, p[i].elapsed_s, 6);
-        csv_u64(w, p[i].frames);
-        csv_f64(w, p[i].mean_us, 3);
-        csv_f64(w, p[i].ci95_us, 3);
-        csv_f64(w, p[i].mean_us > 0 ? p[i].ci95_us / p[i].mean_us : NAN, 6);
-        csv_end_row(w);
-    }
+    if (!w)
+        return;
+    row_start(w, run_id, trial);
+    csv_f64(w, p->elapsed_s, 6);
+    csv_u64(w, p->frames);
+    csv_f64(w, p->mean_us, 3);
+    csv_f64(w, p->ci95_us, 3);
+    csv_f64(w, p->mean_us > 0 ? p->ci95_us / p->mean_us : NAN, 6);
+    csv_end_row(w);
 }
 
 bool run_files_open_errors(run_files *f, const char *run_dir, char *err, size_t errlen)
@@ -279,10 +285,7 @@ void run_files_coverage(run_files *f, const char *run_id, uint32_t trial, uint32
     csv_writer *w = f->coverage;
     if (!w)
         return;
-    csv_str(w, run_id);
-    csv_u64(w, trial);
-    csv_u64(w, frame);
-    csv_f64(w, t_scene, 6);
+    frame_row_start(w, run_id, trial, frame, t_scene);
     csv_u64(w, light);
     csv_f64(w, coverage, 6);
     csv_end_row(w);
@@ -316,10 +319,7 @@ bool run_files_lightgrid(run_files *f, const char *run_id, uint32_t trial, uint3
         size_t j = i;
         while (j < n && v[j] == v[i])
             j++;
-        csv_str(w, run_id);
-        csv_u64(w, trial);
-        csv_u64(w, frame);
-        csv_f64(w, t_scene, 6);
+        frame_row_start(w, run_id, trial, frame, t_scene);
         csv_u64(w, v[i]);
         csv_u64(w, j - i);
         csv_end_row(w);
@@ -335,10 +335,7 @@ void run_files_error(run_files *f, const char *run_id, uint32_t trial, uint32_t 
     csv_writer *w = f->errors;
     if (!w)
         return;
-    csv_str(w, run_id);
-    csv_u64(w, trial);
-    csv_u64(w, frame);
-    csv_f64(w, t_scene, 6);
+    frame_row_start(w, run_id, trial, frame, t_scene);
     csv_g(w, e->rmse);
     csv_g(w, e->psnr_db);
     csv_g(w, e->max_abs);
@@ -349,10 +346,14 @@ void run_files_error(run_files *f, const char *run_id, uint32_t trial, uint32_t 
     csv_end_row(w);
 }
 
+/* Every file a run_files may hold, in the order they commit. */
+#define RUN_FILES_ALL(f)                                                                   \
+    {&(f)->frames, &(f)->passes, &(f)->seconds, &(f)->convergence, &(f)->errors,           \
+     &(f)->coverage, &(f)->lightgrid}
+
 bool run_files_commit(run_files *f, char *err, size_t errlen)
 {
-    csv_writer **all[] = {&f->frames, &f->passes, &f->seconds, &f->convergence, &f->errors,
-                          &f->coverage, &f->lightgrid};
+    csv_writer **all[] = RUN_FILES_ALL(f);
     bool ok = true;
     for (size_t i = 0; i < NCOLS(all); i++) {
         if (!*all[i])
@@ -368,13 +369,9 @@ bool run_files_commit(run_files *f, char *err, size_t errlen)
 
 void run_files_abort(run_files *f)
 {
-    csv_abort(f->frames);
-    csv_abort(f->passes);
-    csv_abort(f->seconds);
-    csv_abort(f->convergence);
-    csv_abort(f->errors);
-    csv_abort(f->coverage);
-    csv_abort(f->lightgrid);
+    csv_writer **all[] = RUN_FILES_ALL(f);
+    for (size_t i = 0; i < NCOLS(all); i++)
+        csv_abort(*all[i]);
     memset(f, 0, sizeof *f);
 }
 

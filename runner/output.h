@@ -62,10 +62,10 @@ bool run_files_open(run_files *f, const char *run_dir, const run_params *p, char
                     size_t errlen);
 void run_files_frame(run_files *f, const char *run_id, uint32_t trial, const frame_record *r,
                      const frame_stats *fs);
-void run_files_seconds(run_files *f, const char *run_id, uint32_t trial,
-                       const second_bin *bins, size_t nbins);
+/* One row of seconds.csv, of convergence.csv (when the run writes them). */
+void run_files_second(run_files *f, const char *run_id, uint32_t trial, const second_bin *b);
 void run_files_convergence(run_files *f, const char *run_id, uint32_t trial,
-                           const convergence_point *p, size_t np);
+                           const convergence_point *p);
 
 /* One comparison with the reference: errors.csv, opened when the run has one. */
 bool run_files_open_errors(run_files *f, const char *run_dir, char *err, size_t errlen);

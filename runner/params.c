@@ -119,23 +119,31 @@ static fmt_memo *fmt_memo_slot(fmt_memo *memo, uint64_t bits, bool *hit)
     return m;
 }
 
-/* The shortest %.*g text that reads back as the same value (10 is "10", not
- * "1e+01"; 1e9 is "1e+09"; 0.1 is "0.1"). A value no text reads back as (NaN)
- * leaves out as it was. */
-void params_fmt_double(double v, char *out, size_t len)
+static bool reads_back_double(const char *t, double v)
 {
-    static _Thread_local fmt_memo memo[FMT_MEMO_N];
-    uint64_t bits;
-    memcpy(&bits, &v, sizeof bits);
+    return strtod(t, NULL) == v;
+}
+
+static bool reads_back_float(const char *t, double v)
+{
+    return strtof(t, NULL) == (float)v;
+}
+
+/* The shortest %.*g text, up to max_prec digits, that reads_back as the same
+ * value, memoised in memo by the value's bits. A value no text reads back as
+ * (NaN) leaves out as it was. */
+static void fmt_shortest(fmt_memo *memo, uint64_t bits, double v, int max_prec,
+                         bool (*reads_back)(const char *, double), char *out, size_t len)
+{
     bool hit;
     fmt_memo *m = fmt_memo_slot(memo, bits, &hit);
     if (!hit) {
         char t[40];
         size_t best = SIZE_MAX;
         *m = (fmt_memo){.bits = bits, .used = true};
-        for (int prec = 1; prec <= 17; prec++) {
+        for (int prec = 1; prec <= max_prec; prec++) {
             snprintf(t, sizeof t, "%.*g", prec, v);
-            if (strtod(t, NULL) == v && strlen(t) < best) {
+            if (reads_back(t, v) && strlen(t) < best) {
                 best = strlen(t);
                 snprintf(m->text, sizeof m->text, "%s", t);
                 m->found = true;
@@ -146,28 +154,23 @@ void params_fmt_double(double v, char *out, size_t len)
         snprintf(out, len, "%s", m->text);
 }
 
+/* The shortest %.*g text that reads back as the same value (10 is "10", not
+ * "1e+01"; 1e9 is "1e+09"; 0.1 is "0.1"). A value no text reads back as (NaN)
+ * leaves out as it was. */
+void params_fmt_double(double v, char *out, size_t len)
+{
+    static _Thread_local fmt_memo memo[FMT_MEMO_N];
+    uint64_t bits;
+    memcpy(&bits, &v, sizeof bits);
+    fmt_shortest(memo, bits, v, 17, reads_back_double, out, len);
+}
+
 void params_fmt_float(float v, char *out, size_t len)
 {
     static _Thread_local fmt_memo memo[FMT_MEMO_N];
     uint32_t b32;
     memcpy(&b32, &v, sizeof b32);
-    bool hit;
-    fmt_memo *m = fmt_memo_slot(memo, b32, &hit);
-    if (!hit) {
-        char t[40];
-        size_t best = SIZE_MAX;
-        *m = (fmt_memo){.bits = b32, .used = true};
-        for (int prec = 1; prec <= 9; prec++) {
-            snprintf(t, sizeof t, "%.*g", prec, (double)v);
-            if (strtof(t, NULL) == v && strlen(t) < best) {
-                best = strlen(t);
-                snprintf(m->text, sizeof m->text, "%s", t);
-                m->found = true;
-            }
-        }
-    }
-    if (m->found)
-        snprintf(out, len, "%s", m->text);
+    fmt_shortest(memo, b32, (double)v, 9, reads_back_float, out, len);
 }
 
 /* >>kv */

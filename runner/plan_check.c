@@ -123,11 +123,8 @@ static int key_ref_cmp(const void *x, const void *y)
     return a->k < b->k ? -1 : a->k > b->k;
 }
 
-/* first[k]: the first run of the plan whose key equals run k's (k itself when none
- * before it does). Sorted by hash, n log n; runs of one hash are told apart by `same`
- * against the few distinct keys of that hash. False when out of memory. */
-static bool first_of_key(const plan *p, uint64_t (*hash)(const run_params *),
-                         bool (*same)(const run_params *, const run_params *), size_t *first)
+bool plan_first_of_key(const plan *p, uint64_t (*hash)(const run_params *),
+                       bool (*same)(const run_params *, const run_params *), size_t *first)
 {
     size_t n = p->nruns ? p->nruns : 1;
     key_ref *refs = malloc(n * sizeof *refs);
@@ -145,7 +142,7 @@ static bool first_of_key(const plan *p, uint64_t (*hash)(const run_params *),
         if (i == 0 || refs[i].h != refs[i - 1].h)
             nreps = 0;
         size_t k = refs[i].k, r = 0;
-        while (r < nreps && !same(&p->runs[reps[r]].p, &p->runs[k].p))
+        while (r < nreps && same && !same(&p->runs[reps[r]].p, &p->runs[k].p))
             r++;
         if (r == nreps)
             reps[nreps++] = k;   /* in index order within the hash: k is the first */
@@ -182,8 +179,8 @@ bool plan_check(const experiment *e, const plan *p, diag_list *d)
     scene_probe **probes = calloc(p->nruns, sizeof *probes);   /* at a source's first run */
     char (*probe_err)[512] = NULL;
     bool ok = scene_first && source_first && probes &&
-              first_of_key(p, scene_hash, same_scene, scene_first) &&
-              first_of_key(p, source_hash, same_source, source_first);
+              plan_first_of_key(p, scene_hash, same_scene, scene_first) &&
+              plan_first_of_key(p, source_hash, same_source, source_first);
     if (!ok) {
         diag_add(d, e->path, 0, 0, "", "expected a plan that fits in memory, found no memory left");
         goto done;

@@ -1,5 +1,7 @@
 #pragma once
 #include <stdbool.h>
+#include <stddef.h>
+#include <stdint.h>
 #include <stdio.h>
 #include "runner/diag.h"
 #include "runner/manifest.h"
@@ -8,6 +10,13 @@
 /* Refuses a plan some of whose runs would fail, or mean nothing, for reasons known
  * before any GL: every problem in d (at most a few), false if any. */
 bool plan_check(const experiment *e, const plan *p, diag_list *d);
+
+/* first[k]: the first run of the plan whose key equals run k's (k itself when none
+ * before it does). Sorted by hash, n log n; runs of one hash are told apart by `same`
+ * against the few distinct keys of that hash (a NULL same: by the hash alone). False
+ * when out of memory. */
+bool plan_first_of_key(const plan *p, uint64_t (*hash)(const run_params *),
+                       bool (*same)(const run_params *, const run_params *), size_t *first);
 
 /* Prints (one line each) what may make runs fail on some GL but not on others, known
  * before any GL: forward-spml's uniform block beyond the size every GL guarantees.

@@ -29,6 +29,7 @@
 #include <string.h>
 
 #include "results/csvread.h"
+#include "results/grow.h"
 #include "results/jsonout.h"
 #include "results/verdict.h"
 #include "runner/commands.h"
@@ -54,14 +55,8 @@ static folder_data *folder_get(cache *c, const char *path)
     for (size_t i = 0; i < c->n; i++)
         if (strcmp(c->f[i].path, path) == 0)
             return &c->f[i];
-    if (c->n == c->cap) {
-        size_t cap = c->cap ? 2 * c->cap : 8;
-        folder_data *g = realloc(c->f, cap * sizeof *g);
-        if (!g)
-            return NULL;
-        c->f = g;
-        c->cap = cap;
-    }
+    if (!GROW(c->f, c->cap, c->n + 1, 8))
+        return NULL;
     folder_data *d = &c->f[c->n];
     memset(d, 0, sizeof *d);
     if (!(d->path = strdup(path)))
@@ -299,16 +294,10 @@ int cmd_ratios(int argc, char **argv)
             continue;
         size_t nf = 0;
         for (char *s = line;; nf++) {
-            if (nf == fcap) {
-                size_t ncap = fcap ? 2 * fcap : 16;
-                char **g = realloc(f, ncap * sizeof *g);
-                if (!g) {
-                    fprintf(stderr, "shadesweep ratios: out of memory\n");
-                    status = 2;
-                    break;
-                }
-                f = g;
-                fcap = ncap;
+            if (!GROW(f, fcap, nf + 1, 16)) {
+                fprintf(stderr, "shadesweep ratios: out of memory\n");
+                status = 2;
+                break;
             }
             f[nf] = s;
             char *tab = strchr(s, '\t');

@@ -411,13 +411,35 @@ typedef struct trial_sink {
 static void sink_second(void *ctx, const second_bin *b)
 {
     trial_sink *k = ctx;
-    run_files_seconds(&k->st->files, k->st->s->id, k->trial, b, 1);
+    run_files_second(&k->st->files, k->st->s->id, k->trial, b);
 }
 
 static void sink_point(void *ctx, const convergence_point *p)
 {
     trial_sink *k = ctx;
-    run_files_convergence(&k->st->files, k->st->s->id, k->trial, p, 1);
+    run_files_convergence(&k->st->files, k->st->s->id, k->trial, p);
+}
+
+/* A capture (what) that failed with err, said on stderr: the trial's status becomes
+ * RUN_STATUS_WRITE when a file could not be written (unwritten), else failed:<status>,
+ * unless it is RUN_STATUS_WRITE already. */
+static void capture_failed(run_state *st, trial_result *tr, const char *what,
+                           const char *status, bool unwritten, const char *err)
+{
+    fprintf(stderr, "run %s: %s: %s\n", st->s->id, what, err);
+    if (unwritten)
+        run_set_unwritten(tr->status, sizeof tr->status, st->err, sizeof st->err, err);
+    else if (strcmp(tr->status, RUN_STATUS_WRITE) != 0)
+        snprintf(tr->status, sizeof tr->status, "failed:%s", status);
+}
+
+/* The first of times[from..n) that is due at schedule time t (t >= it) and not done;
+ * n when none is. */
+static size_t next_due(const double *times, size_t n, const bool *done, double t, size_t from)
+{
+    while (from < n && (done[from] || !(t >= times[from])))
+        from++;
+    return from;
 }
 
 /* The screenshots and comparisons due at schedule time t (each once per trial); the
@@ -426,51 +448,33 @@ static void capture_due(run_state *st, uint32_t trial, uint32_t frame, double t,
                         bool *error_done, trial_result *tr)
 {
     const run_params *p = &st->s->p;
-    for (size_t i = 0; i < p->nscreenshots; i++) {
-        if (shot_done[i] || t < p->screenshots[i])
-            continue;
+    size_t ns = p->nscreenshots, ne = p->nerror_at;
+    for (size_t i = 0; (i = next_due(p->screenshots, ns, shot_done, t, i)) < ns; i++) {
         shot_done[i] = true;
         char err[512];
         bool unwritten = false;
-        if (!screenshot(st, trial, p->screenshots[i], &unwritten, err, sizeof err)) {
-            fprintf(stderr, "run %s: screenshot: %s\n", st->s->id, err);
-            if (unwritten)
-                run_set_unwritten(tr->status, sizeof tr->status, st->err, sizeof st->err, err);
-            else if (strcmp(tr->status, RUN_STATUS_WRITE) != 0)
-                snprintf(tr->status, sizeof tr->status, "failed:screenshot");
-        }
+        if (!screenshot(st, trial, p->screenshots[i], &unwritten, err, sizeof err))
+            capture_failed(st, tr, "screenshot", "screenshot", unwritten, err);
         /* the light lists of the screenshot's frame, as a histogram (lightgrid.csv) */
         size_t ncells = 0;
         const uint32_t *grid = renderer_light_grid(st->r, &ncells);
         if (!run_files_lightgrid(&st->files, st->s->id, trial, frame, t, grid, ncells))
             snprintf(tr->status, sizeof tr->status, "failed:oom");
     }
-    for (size_t i = 0; i < p->nerror_at; i++) {
-        if (error_done[i] || t < p->error_at[i])
-            continue;
+    for (size_t i = 0; (i = next_due(p->error_at, ne, error_done, t, i)) < ne; i++) {
         error_done[i] = true;
         char err[512];
         bool unwritten = false;
-        if (!measure_error(st, trial, frame, p->error_at[i], tr, &unwritten, err, sizeof err)) {
-            fprintf(stderr, "run %s: error against the reference: %s\n", st->s->id, err);
-            if (unwritten)
-                run_set_unwritten(tr->status, sizeof tr->status, st->err, sizeof st->err, err);
-            else if (strcmp(tr->status, RUN_STATUS_WRITE) != 0)
-                snprintf(tr->status, sizeof tr->status, "failed:error");
-        }
+        if (!measure_error(st, trial, frame, p->error_at[i], tr, &unwritten, err, sizeof err))
+            capture_failed(st, tr, "error against the reference", "error", unwritten, err);
     }
 }
 
 static bool capture_is_due(const run_params *p, double t, const bool *shot_done,
                            const bool *error_done)
 {
-    for (size_t i = 0; i < p->nscreenshots; i++)
-        if (!shot_done[i] && t >= p->screenshots[i])
-            return true;
-    for (size_t i = 0; i < p->nerror_at; i++)
-        if (!error_done[i] && t >= p->error_at[i])
-            return true;
-    return false;
+    return next_due(p->screenshots, p->nscreenshots, shot_done, t, 0) < p->nscreenshots ||
+           next_due(p->error_at, p->nerror_at, error_done, t, 0) < p->nerror_at;
 }
 
 /* A measured frame's quantities of results/metrics.def, each from its `from`. */

@@ -8,6 +8,7 @@
 #include "results/jsonout.h"
 #include "runner/hash.h"
 #include "runner/manifest_internal.h"
+#include "runner/plan_check.h"
 #include "runner/sweep_axis.h"
 
 #define PLAN_MAX_RUNS 100000u
@@ -186,39 +187,15 @@ static uint64_t point_hash(const run_params *rp)
     return h;
 }
 
-typedef struct point_ref {
-    uint64_t h;
-    size_t k;
-} point_ref;
-
-static int point_ref_cmp(const void *x, const void *y)
-{
-    const point_ref *a = x, *b = y;
-    if (a->h != b->h)
-        return a->h < b->h ? -1 : 1;
-    return a->k < b->k ? -1 : a->k > b->k;
-}
-
 /* Numbers the sweep points in order of their first run (sorted by hash: n log n for
  * the largest plans), and deals them to the shards: a shard holds whole points, so
  * that the runs ranked together are measured together. */
 static bool assign_points(plan *p, unsigned nshards)
 {
-    size_t n = p->nruns ? p->nruns : 1;
-    point_ref *refs = malloc(n * sizeof *refs);
-    size_t *first = malloc(n * sizeof *first);
-    if (!refs || !first) {
-        free(refs);
+    size_t *first = malloc((p->nruns ? p->nruns : 1) * sizeof *first);
+    if (!first || !plan_first_of_key(p, point_hash, NULL, first)) {
         free(first);
         return false;
-    }
-    for (size_t k = 0; k < p->nruns; k++)
-        refs[k] = (point_ref){point_hash(&p->runs[k].p), k};
-    qsort(refs, p->nruns, sizeof *refs, point_ref_cmp);
-    for (size_t i = 0, g = 0; i < p->nruns; i++) {
-        if (refs[i].h != refs[g].h)
-            g = i;
-        first[refs[i].k] = refs[g].k;
     }
     size_t npoints = 0;
     for (size_t k = 0; k < p->nruns; k++) {
@@ -227,7 +204,6 @@ static bool assign_points(plan *p, unsigned nshards)
         r->shard = (unsigned)(r->group % nshards) + 1;
     }
     p->ngroups = npoints;
-    free(refs);
     free(first);
     return true;
 }

@@ -9,6 +9,7 @@
 #include <unistd.h>
 
 #include "results/fsutil.h"
+#include "results/jsonout.h"
 #include "runner/folder.h"
 
 /* The CSVs a trial may have, merged by rows (summary.csv last: the other merges can fail
@@ -147,22 +148,6 @@ static char *read_meta(const char *run_dir, uint32_t k, char *err, size_t errlen
     return text;
 }
 
-/* A double-quoted YAML scalar of s. */
-static void put_quoted(FILE *f, const char *s)
-{
-    fputc('"', f);
-    for (; *s; s++) {
-        unsigned char c = (unsigned char)*s;
-        if (c == '"' || c == '\\')
-            fprintf(f, "\\%c", c);
-        else if (c < 0x20)
-            fprintf(f, "\\x%02x", c);
-        else
-            fputc(c, f);
-    }
-    fputc('"', f);
-}
-
 /* What meta.yaml's `trials` list says of one trial: its top-level values as written. */
 typedef struct trial_meta {
     char status[160], started[128], finished[128];
@@ -204,7 +189,7 @@ static bool merge_meta(const char *run_dir, uint32_t n, const char *status,
         size_t len = nl ? (size_t)(nl - line) + 1 : strlen(line);
         if (strncmp(line, "status: ", 8) == 0) {
             fputs("status: ", out.fp);
-            put_quoted(out.fp, status);
+            json_quoted(out.fp, status, strlen(status), true);
             fputc('\n', out.fp);
         } else if (strncmp(line, "finished: ", 10) == 0 && finished[0]) {
             fprintf(out.fp, "finished: %s\n", finished);
