@@ -529,7 +529,7 @@ static void light_pass(deferred *r, const scene *s, frame_stats *out, deferred_p
 
 // >>create and prepare
 
-static void *create(const renderer_options *opts, char *err, size_t errlen)
+static void *deferred_create(const renderer_options *opts, char *err, size_t errlen)
 {
     return deferred_core_create("deferred", sizeof(deferred), false, opts, err, errlen);
 }
@@ -615,7 +615,7 @@ static bool compile_lighting(deferred *r, char *err, size_t errlen)
     return true;
 }
 
-static bool prepare(void *self, const scene *s, char *err, size_t errlen)
+static bool deferred_prepare(void *self, const scene *s, char *err, size_t errlen)
 {
     deferred *r = self;
     deferred_renderer *d = &r->d;
@@ -700,7 +700,7 @@ static void fullscreen_classes(deferred *r, GLuint pixel, GLuint sample)
     }
 }
 
-static void draw(void *self, const scene *s, frame_stats *out)
+static void deferred_draw(void *self, const scene *s, frame_stats *out)
 {
     deferred *r = self;
     deferred_renderer *d = &r->d;
@@ -751,7 +751,7 @@ static void draw(void *self, const scene *s, frame_stats *out)
     deferred_frame_end(d, s, out, hdr_fbo);
 }
 
-static void collect(void *self, frame_stats *out)
+static void deferred_collect(void *self, frame_stats *out)
 {
     deferred *r = self;
     renderer_base_collect(&r->d.b, out);
@@ -761,7 +761,7 @@ static void collect(void *self, frame_stats *out)
                              ((double)r->d.b.width * r->d.b.height);
 }
 
-static void destroy(void *self)
+static void deferred_destroy(void *self)
 {
     deferred_core_destroy(self);
 }
@@ -780,12 +780,8 @@ uint64_t deferred_last_shade_draws(const void *self, int type)
     return r && type >= 0 && type < DEFERRED_LIGHT_TYPES ? r->shade_draws[type] : 0;
 }
 
-const renderer_impl renderer_deferred_impl = {
-    .name = "deferred",
-    .description = "G-buffer pass, then ambient, directional and light-volume passes "
-                   "(fullscreen | volume | stencil | stencil-two-pass), sky last",
-    .reads = "gbuffer deferred hdr msaa fog aa",
-    RENDERER_ENTRY_POINTS(create, prepare, draw, collect,
-                          deferred_describe, destroy),
-    .read_hdr = deferred_read_hdr,
-};
+const renderer_impl renderer_deferred_impl = RENDERER_IMPL(
+    deferred, "deferred", "gbuffer deferred hdr msaa fog aa",
+    "G-buffer pass, then ambient, directional and light-volume passes "
+    "(fullscreen | volume | stencil | stencil-two-pass), sky last",
+    .read_hdr = deferred_read_hdr);

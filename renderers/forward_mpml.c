@@ -336,13 +336,9 @@ static void mpml_destroy(void *self)
     free(r);
 }
 
-const renderer_impl renderer_forward_mpml_impl = {
-    .name = "forward-mpml",
-    .description = "multi-pass multi-light forward (seed 000 4.6): a depth, ambient and "
-                   "emissive pass, then an additive depth-EQUAL pass per visible light "
-                   "over its illumination set",
-    .reads = "forward.illumination_sets forward.directional_in_base hdr msaa fog aa",
-    RENDERER_ENTRY_POINTS(mpml_create, mpml_prepare, mpml_draw, mpml_collect,
-                          mpml_describe, mpml_destroy),
-    .read_hdr = forward_read_hdr,
-};
+const renderer_impl renderer_forward_mpml_impl = RENDERER_IMPL(
+    mpml, "forward-mpml", "forward.illumination_sets forward.directional_in_base hdr msaa fog aa",
+    "multi-pass multi-light forward (seed 000 4.6): a depth, ambient and "
+    "emissive pass, then an additive depth-EQUAL pass per visible light "
+    "over its illumination set",
+    .read_hdr = forward_read_hdr);

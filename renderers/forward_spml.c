@@ -218,12 +218,8 @@ static void spml_destroy(void *self)
     free(r);
 }
 
-const renderer_impl renderer_forward_spml_impl = {
-    .name = "forward-spml",
-    .description = "single-pass multi-light forward (seed 003 4.1): every visible light "
-                   "from a uniform buffer, looped in the fragment shader",
-    .reads = "forward.light_buffer hdr msaa fog aa",
-    RENDERER_ENTRY_POINTS(spml_create, spml_prepare, spml_draw, spml_collect,
-                          spml_describe, spml_destroy),
-    .read_hdr = forward_read_hdr,
-};
+const renderer_impl renderer_forward_spml_impl = RENDERER_IMPL(
+    spml, "forward-spml", "forward.light_buffer hdr msaa fog aa",
+    "single-pass multi-light forward (seed 003 4.1): every visible light "
+    "from a uniform buffer, looped in the fragment shader",
+    .read_hdr = forward_read_hdr);

@@ -128,12 +128,8 @@ static void null_destroy(void *self)
     free(r);
 }
 
-const renderer_impl renderer_null_impl = {
-    .name = "null",
-    .description = "clears the output once per frame and draws nothing: the harness's "
-                   "own overhead",
-    .reads = "",
-    RENDERER_ENTRY_POINTS(null_create, null_prepare, null_draw, null_collect,
-                          null_describe, null_destroy),
-    .read_hdr = NULL,         /* no float target: renderer_read_hdr says false */
-};
+const renderer_impl renderer_null_impl = RENDERER_IMPL(
+    null, "null", "",
+    "clears the output once per frame and draws nothing: the harness's "
+    "own overhead",
+    .read_hdr = NULL);   /* no float target: renderer_read_hdr says false */

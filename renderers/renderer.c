@@ -72,10 +72,11 @@ renderer *renderer_create(const char *kind, const renderer_options *opts, char *
                  kind, unset);
         return NULL;
     }
-    if (impl->variant)
-        impl = impl->variant(opts);
-    if (!impl || !impl->create || !impl->prepare || !impl->draw || !impl->collect || !impl->describe ||
-        !impl->destroy) {
+    const renderer_impl *design = impl->variant ? impl->variant(opts) : impl;
+    void *(*create)(const renderer_options *, char *, size_t) =
+        impl->create ? impl->create : design ? design->create : NULL;
+    if (!design || !create || !design->prepare || !design->draw || !design->collect ||
+        !design->describe || !design->destroy) {
         snprintf(err, errlen, "bug: renderer '%s' lacks an entry point", kind);
         return NULL;
     }
@@ -84,8 +85,8 @@ renderer *renderer_create(const char *kind, const renderer_options *opts, char *
         snprintf(err, errlen, "out of memory");
         return NULL;
     }
-    r->impl = impl;
-    r->self = impl->create(opts, err, errlen);
+    r->impl = design;
+    r->self = create(opts, err, errlen);
     if (!r->self) {
         free(r);
         return NULL;

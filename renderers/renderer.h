@@ -239,22 +239,23 @@ typedef struct renderer_impl {
     const uint32_t *(*light_grid)(const void *self, size_t *n);
     /* Optional (NULL: the entries above serve): a renderer that is one of two designs
      * chosen by an option (clustered: forward or deferred shading over the same cluster
-     * lists) returns the implementation whose entry points serve an object made with
-     * opts; the registry's entry keeps the name, description and reads. */
+     * lists) returns the registered renderer whose entry points serve an object made with
+     * opts; its own create (when it has one) makes the object, the design does the rest.
+     * The registry's entry keeps the name, description and reads. */
     const struct renderer_impl *(*variant)(const renderer_options *opts);
 } renderer_impl;
 
-/* The six entry points every renderer has, in renderer_impl's order (each has its own
- * type, so a swapped pair does not compile):
- *     const renderer_impl renderer_x_impl = {
- *         .name = "x", .description = "...", .reads = "...",
- *         RENDERER_ENTRY_POINTS(x_create, x_prepare, x_draw, x_collect, x_describe,
- *                               x_destroy),
- *         .read_hdr = ...,
- *     }; */
-#define RENDERER_ENTRY_POINTS(create_, prepare_, draw_, collect_, describe_, destroy_) \
-    .create = create_, .prepare = prepare_, .draw = draw_, .collect = collect_,          \
-    .describe = describe_, .destroy = destroy_
+/* A renderer_impl whose six entry points are P_create, P_prepare, P_draw, P_collect,
+ * P_describe and P_destroy (each has its own type, so a wrong one does not compile); the
+ * optional entries follow as designated initializers:
+ *     const renderer_impl renderer_x_impl = RENDERER_IMPL(
+ *         x, "x", "keys it reads", "description", .read_hdr = x_read_hdr); */
+#define RENDERER_IMPL(P, NAME, READS, DESCRIPTION, ...)                                    \
+    {                                                                                      \
+        .name = NAME, .description = DESCRIPTION, .reads = READS, .create = P##_create,    \
+        .prepare = P##_prepare, .draw = P##_draw, .collect = P##_collect,                  \
+        .describe = P##_describe, .destroy = P##_destroy, __VA_ARGS__                      \
+    }
 
 typedef struct renderer renderer;
 

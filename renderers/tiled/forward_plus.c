@@ -86,7 +86,7 @@ typedef struct forward_plus {
     int count;               /* lights uploaded this frame */
 } forward_plus;
 
-void *forward_tiled_create(const char *name, bool clustered, const renderer_options *opts,
+void *forward_tiled_new(const char *name, bool clustered, const renderer_options *opts,
                            char *err, size_t errlen)
 {
     forward_plus *r = calloc(1, sizeof *r);
@@ -109,9 +109,9 @@ fail:
     return NULL;
 }
 
-static void *plus_create(const renderer_options *opts, char *err, size_t errlen)
+static void *forward_tiled_create(const renderer_options *opts, char *err, size_t errlen)
 {
-    return forward_tiled_create("forward-plus", false, opts, err, errlen);
+    return forward_tiled_new("forward-plus", false, opts, err, errlen);
 }
 
 static void release_buffers(forward_plus *r)
@@ -122,7 +122,7 @@ static void release_buffers(forward_plus *r)
     r->depth_ranges = 0;
 }
 
-bool forward_tiled_prepare(void *self, const struct scene *s, char *err, size_t errlen)
+static bool forward_tiled_prepare(void *self, const struct scene *s, char *err, size_t errlen)
 {
     forward_plus *r = self;
     release_buffers(r);
@@ -246,7 +246,7 @@ static void bind_buffers(forward_plus *r)
     }
 }
 
-void forward_tiled_draw(void *self, const struct scene *s, frame_stats *out)
+static void forward_tiled_draw(void *self, const struct scene *s, frame_stats *out)
 {
     forward_plus *r = self;
     forward_common *c = &r->c;
@@ -308,7 +308,7 @@ void forward_tiled_draw(void *self, const struct scene *s, frame_stats *out)
     forward_end_frame(c, out, fe->nvisible);
 }
 
-void forward_tiled_collect(void *self, frame_stats *out)
+static void forward_tiled_collect(void *self, frame_stats *out)
 {
     forward_plus *r = self;
     forward_collect(&r->c, out);
@@ -316,13 +316,13 @@ void forward_tiled_collect(void *self, frame_stats *out)
         light_grid_collect(&r->g, out);
 }
 
-const uint32_t *forward_tiled_light_grid(const void *self, size_t *n)
+static const uint32_t *forward_tiled_light_grid(const void *self, size_t *n)
 {
     const forward_plus *r = self;
     return light_grid_counts(&r->g, n);
 }
 
-void forward_tiled_describe(const void *self, pass_plan *out)
+static void forward_tiled_describe(const void *self, pass_plan *out)
 {
     const forward_plus *r = self;
     const forward_common *c = &r->c;
@@ -362,7 +362,7 @@ void forward_tiled_describe(const void *self, pass_plan *out)
     forward_describe_tail(c, out);
 }
 
-void forward_tiled_destroy(void *self)
+static void forward_tiled_destroy(void *self)
 {
     forward_plus *r = self;
     if (!r)
@@ -372,13 +372,8 @@ void forward_tiled_destroy(void *self)
     free(r);
 }
 
-const renderer_impl renderer_forward_plus_impl = {
-    .name = "forward-plus",
-    .description = "tiled forward (Harada et al. 2012): depth pre-pass, lights culled per "
-                   "screen tile by a compute pass, each pixel shaded with its tile's lights",
-    .reads = "tiles hdr msaa fog aa",
-    RENDERER_ENTRY_POINTS(plus_create, forward_tiled_prepare, forward_tiled_draw,
-                          forward_tiled_collect, forward_tiled_describe, forward_tiled_destroy),
-    .read_hdr = forward_read_hdr,
-    .light_grid = forward_tiled_light_grid,
-};
+const renderer_impl renderer_forward_plus_impl = RENDERER_IMPL(
+    forward_tiled, "forward-plus", "tiles hdr msaa fog aa",
+    "tiled forward (Harada et al. 2012): depth pre-pass, lights culled per "
+    "screen tile by a compute pass, each pixel shaded with its tile's lights",
+    .read_hdr = forward_read_hdr, .light_grid = forward_tiled_light_grid);

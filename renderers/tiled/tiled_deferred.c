@@ -199,7 +199,7 @@ static bool compile_tiled(tiled_deferred *r, char *err, size_t errlen)
     return true;
 }
 
-bool tiled_deferred_prepare(void *self, const scene *s, char *err, size_t errlen)
+static bool tiled_deferred_prepare(void *self, const scene *s, char *err, size_t errlen)
 {
     tiled_deferred *r = self;
     deferred_renderer *d = &r->d;
@@ -268,7 +268,7 @@ static void tiled_pass(tiled_deferred *r, const scene *s, frame_stats *out)
     out->lights_drawn = n;
 }
 
-void tiled_deferred_draw(void *self, const scene *s, frame_stats *out)
+static void tiled_deferred_draw(void *self, const scene *s, frame_stats *out)
 {
     tiled_deferred *r = self;
     r->tiled_index = 0;
@@ -278,7 +278,7 @@ void tiled_deferred_draw(void *self, const scene *s, frame_stats *out)
     deferred_frame_end(&r->d, s, out, r->d.fb_light.fbo);
 }
 
-void tiled_deferred_collect(void *self, frame_stats *out)
+static void tiled_deferred_collect(void *self, frame_stats *out)
 {
     tiled_deferred *r = self;
     if (r->d.prepared && r->g.cull)
@@ -297,13 +297,13 @@ void tiled_deferred_collect(void *self, frame_stats *out)
     }
 }
 
-const uint32_t *tiled_deferred_light_grid(const void *self, size_t *n)
+static const uint32_t *tiled_deferred_light_grid(const void *self, size_t *n)
 {
     const tiled_deferred *r = self;
     return light_grid_counts(&r->g, n);
 }
 
-void tiled_deferred_destroy(void *self)
+static void tiled_deferred_destroy(void *self)
 {
     tiled_deferred *r = self;
     if (!r)
@@ -312,14 +312,15 @@ void tiled_deferred_destroy(void *self)
     deferred_core_destroy(&r->d);
 }
 
-const renderer_impl renderer_tiled_deferred_impl = {
-    .name = "tiled-deferred",
-    .description = "G-buffer pass (every preset and override of deferred), then one compute "
-                   "pass that culls lights per screen tile and shades ambient, directional "
-                   "and local lights into the HDR target by image store; sky last",
-    .reads = "gbuffer tiles hdr msaa fog aa",
-    RENDERER_ENTRY_POINTS(tiled_deferred_create, tiled_deferred_prepare, tiled_deferred_draw, tiled_deferred_collect,
-                          deferred_describe, tiled_deferred_destroy),
-    .read_hdr = deferred_read_hdr,
-    .light_grid = tiled_deferred_light_grid,
-};
+/* The plan is deferred's: the same G-buffer, with the cull-and-shade pass among its passes. */
+static void tiled_deferred_describe(const void *self, pass_plan *out)
+{
+    deferred_describe(self, out);
+}
+
+const renderer_impl renderer_tiled_deferred_impl = RENDERER_IMPL(
+    tiled_deferred, "tiled-deferred", "gbuffer tiles hdr msaa fog aa",
+    "G-buffer pass (every preset and override of deferred), then one compute "
+    "pass that culls lights per screen tile and shades ambient, directional "
+    "and local lights into the HDR target by image store; sky last",
+    .read_hdr = deferred_read_hdr, .light_grid = tiled_deferred_light_grid);
