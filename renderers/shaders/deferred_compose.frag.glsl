@@ -3,14 +3,8 @@
 // Full screen (fullscreen.vert).
 #include "bindings.h"
 // MSAA (GB_MSAA): the specular target is multisampled, GB_SAMPLE the sample read.
-#ifndef GB_SAMPLE
-#define GB_SAMPLE 0
-#endif
-#ifdef GB_MSAA
-layout(binding = BIND_TEX_SPECULAR) uniform sampler2DMS t_specular;
-#else
-layout(binding = BIND_TEX_SPECULAR) uniform sampler2D t_specular;
-#endif
+#include "msaa.inc"
+layout(binding = BIND_TEX_SPECULAR) uniform GB_SAMPLER t_specular;
 
 layout(location = 0) out vec4 o_light;
 

@@ -17,14 +17,8 @@
 #endif
 
 // MSAA (GB_MSAA): depth is multisampled; the pass runs per sample (GB_SAMPLE gl_SampleID).
-#ifndef GB_SAMPLE
-#define GB_SAMPLE 0
-#endif
-#ifdef GB_MSAA
-layout(binding = BIND_TEX_DEPTH) uniform sampler2DMS t_depth;
-#else
-layout(binding = BIND_TEX_DEPTH) uniform sampler2D t_depth;
-#endif
+#include "msaa.inc"
+layout(binding = BIND_TEX_DEPTH) uniform GB_SAMPLER t_depth;
 
 layout(location = 0) out vec4 o_fog;
 

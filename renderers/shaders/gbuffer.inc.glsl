@@ -104,18 +104,8 @@ void gbuffer_store(Surface s)
 #define GB_FRAG_XY gl_FragCoord.xy
 #endif
 
-// MSAA (GB_MSAA, renderers/deferred.c): the attachments are multisampled and GB_SAMPLE
-// is the sample read: 0 (per pixel: sample 0), gl_SampleID (per-sample shading of edge
-// pixels) or a variable (edge_mark.frag). Single-sampled, GB_SAMPLE is texelFetch's
-// level, 0.
-#ifndef GB_SAMPLE
-#define GB_SAMPLE 0
-#endif
-#ifdef GB_MSAA
-#define GB_SAMPLER sampler2DMS
-#else
-#define GB_SAMPLER sampler2D
-#endif
+// MSAA (GB_MSAA): the attachments are multisampled (msaa.inc).
+#include "msaa.inc"
 layout(binding = BIND_TEX_GBUFFER0 + 0) uniform GB_SAMPLER t_gb0;
 layout(binding = BIND_TEX_GBUFFER0 + 1) uniform GB_SAMPLER t_gb1;
 layout(binding = BIND_TEX_GBUFFER0 + 2) uniform GB_SAMPLER t_gb2;
