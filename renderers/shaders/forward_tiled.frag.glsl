@@ -57,12 +57,10 @@ void main()
 #endif
 #endif
     for (uint k = 0u; k < n; k++) {
-#ifdef NO_GRID
-        uint i = k;
-#elif defined(TILE_DEPTH_RANGES)
-        uint i = every ? k : b_indices[first + k];
+#if defined(TILE_DEPTH_RANGES) && !defined(NO_GRID)
+        uint i = every ? k : tile_light(first, k);
 #else
-        uint i = b_indices[first + k];
+        uint i = tile_light(first, k);
 #endif
         if (!light_reaches(i, s.position))
             continue;

@@ -82,11 +82,7 @@ vec3 shade_surface(GSurface g, uint tile_index)
     vec3 c = f_ambient.rgb * g.diffuse + g.emissive;
     if (g.present) {
         for (uint k = 0u; k < n; k++) {
-#ifdef NO_GRID
-            uint i = k;
-#else
-            uint i = b_indices[first + k];
-#endif
+            uint i = tile_light(first, k);
             if (!light_reaches(i, g.position))
                 continue;
             c += shade_light(b_lights[i], g.position, g.normal, g.diffuse, g.gloss, g.shininess);

@@ -31,3 +31,14 @@ layout(std430, binding = BIND_SSBO_TILE_DEPTH) buffer TileDepth {
     vec2 b_tile_depth[];
 };
 #endif
+
+// The k-th light of the list that starts at b_indices[first]; with NO_GRID (no cull
+// pass ran: no point or spot light) every light, in order.
+uint tile_light(uint first, uint k)
+{
+#ifdef NO_GRID
+    return k;
+#else
+    return b_indices[first + k];
+#endif
+}
