@@ -2,6 +2,7 @@
  * (EGL_EXT_device_enumeration + EGL_EXT_platform_device); a GL 4.5 core context
  * made current without a surface (EGL_KHR_surfaceless_context). */
 #include "renderers/gl/internal.h"
+#include "renderers/gl/loader.h"
 
 #include <EGL/egl.h>
 #include <EGL/eglext.h>
@@ -62,14 +63,10 @@ static bool has_ext(const char *list, const char *name)
     return false;
 }
 
-/* eglGetProcAddress as a void * (see loader.c on the conversion). */
+/* eglGetProcAddress as a void * (gl_proc_pointer). */
 static void *egl_getproc(const char *name)
 {
-    __eglMustCastToProperFunctionPointerType f = eglGetProcAddress(name);
-    void *p;
-    _Static_assert(sizeof p == sizeof f, "function and object pointers differ in size");
-    memcpy(&p, &f, sizeof p);
-    return p;
+    return gl_proc_pointer(eglGetProcAddress(name));
 }
 
 /* Client extensions (EGL_EXT_client_extensions); NULL when there are none. */

@@ -5,6 +5,7 @@
  * No GL or EGL types may come in here from elsewhere: <GL/osmesa.h> includes
  * <GL/gl.h>, which does not mix with <GL/glcorearb.h>. */
 #include "renderers/gl/internal.h"
+#include "renderers/gl/loader.h"
 
 #include <GL/osmesa.h>
 #include <stdio.h>
@@ -18,14 +19,10 @@ typedef struct osmesa_state {
     unsigned char buffer[OSMESA_BUFFER_SIZE * OSMESA_BUFFER_SIZE * 4];
 } osmesa_state;
 
-/* OSMesaGetProcAddress as a void * (see loader.c on the conversion). */
+/* OSMesaGetProcAddress as a void * (gl_proc_pointer). */
 static void *osmesa_getproc(const char *name)
 {
-    OSMESAproc f = OSMesaGetProcAddress(name);
-    void *p;
-    _Static_assert(sizeof p == sizeof f, "function and object pointers differ in size");
-    memcpy(&p, &f, sizeof p);
-    return p;
+    return gl_proc_pointer(OSMesaGetProcAddress(name));
 }
 
 void gl_osmesa_close(void *native)

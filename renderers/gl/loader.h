@@ -12,6 +12,7 @@
 #include <GL/glcorearb.h>
 #include <stdbool.h>
 #include <stddef.h>
+#include <string.h>
 
 struct gl_api {
 #define GL_FUNC(ret, name, params) ret (APIENTRY *name) params;
@@ -29,6 +30,17 @@ extern struct gl_api gl;
  * Mesa (and glvnd) hand out dispatch stubs for any "gl*" name. Check the
  * context's version or extensions before calling anything beyond it. */
 bool gl_load(void *(*getproc)(const char *name), char *err, size_t errlen);
+
+/* An entry point that eglGetProcAddress or OSMesaGetProcAddress returned, as the void *
+ * a getproc gives gl_load: ISO C converts no function pointer to an object pointer, so
+ * the bytes are copied (POSIX guarantees both have the same representation). */
+static inline void *gl_proc_pointer(void (*f)(void))
+{
+    void *p;
+    _Static_assert(sizeof p == sizeof f, "function and object pointers differ in size");
+    memcpy(&p, &f, sizeof p);
+    return p;
+}
 
 /* Clears the table (every member NULL), so that a call after the context is
  * gone fails loudly instead of dispatching into a dead context. */
