@@ -65,14 +65,8 @@ void main()
     barrier();
     if (all(lessThan(pixel, size))) {
 #ifdef MSAA_SAMPLES
-        float d = 1.0, d_far = 0.0;   // the nearest and farthest sample with geometry
-        for (int i = 0; i < MSAA_SAMPLES; i++) {
-            float di = texelFetch(t_depth, pixel, i).r;
-            if (di < 1.0) {
-                d = min(d, di);
-                d_far = max(d_far, di);
-            }
-        }
+        float d, d_far;
+        pixel_depth_range(pixel, d, d_far);
 #else
         float d = texelFetch(t_depth, pixel, 0).r, d_far = d;
 #endif
@@ -84,23 +78,5 @@ void main()
         }
     }
     barrier();
-    uint covered = s_covered;
-    uint nlights = covered == 0u ? 0u : uint(u_light_count);
-
-    float tile_znear, tile_zfar;
-    tile_frustum(tile, size, tile_znear, tile_zfar);
-
-#ifdef TILE_DEPTH_RANGES
-    if (me == 0u)
-        b_tile_depth[tile_index] = vec2(tile_znear, tile_zfar);
-#endif
-    cull_range(tile_znear, tile_zfar);
-#ifndef SLICES
-    cull_cell(tile_index, covered, nlights, 0u, false);
-#else
-    cull_clusters(tile_index, covered, nlights, tile_znear, tile_zfar);
-#endif
-#ifdef TLISTS
-    cull_translucent(tile, tile_index, size, covered, tile_zfar);
-#endif
+    cull_tile(tile, tile_index, size);
 }

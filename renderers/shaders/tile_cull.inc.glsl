@@ -459,3 +459,45 @@ void cull_translucent(uvec2 tile, uint tile_index, ivec2 size, uint covered, flo
     cull_cell(uint(TLISTS) + tile_index, covered, uint(u_light_count), 0u, false);
 }
 #endif
+
+#ifdef MSAA_SAMPLES
+// The nearest (d) and farthest (d_far) depth of the pixel's samples that have geometry;
+// 1 and 0 when none has (t_depth: the multisampled depth target).
+void pixel_depth_range(ivec2 pixel, out float d, out float d_far)
+{
+    d = 1.0;
+    d_far = 0.0;
+    for (int i = 0; i < MSAA_SAMPLES; i++) {
+        float di = texelFetch(t_depth, pixel, i).r;
+        if (di < 1.0) {
+            d = min(d, di);
+            d_far = max(d_far, di);
+        }
+    }
+}
+#endif
+
+// Once the work group has covered the tile (tile_cover, then a barrier): its frustum, and
+// the light lists of its cell or its clusters (SLICES) and its translucent list (TLISTS),
+// culled by the whole work group. TILE_DEPTH_RANGES keeps the range culled against for
+// the shading pass's fallback.
+void cull_tile(uvec2 tile, uint tile_index, ivec2 size)
+{
+    uint covered = s_covered;
+    uint nlights = covered == 0u ? 0u : uint(u_light_count);
+    float tile_znear, tile_zfar;
+    tile_frustum(tile, size, tile_znear, tile_zfar);
+#ifdef TILE_DEPTH_RANGES
+    if (gl_LocalInvocationIndex == 0u)
+        b_tile_depth[tile_index] = vec2(tile_znear, tile_zfar);
+#endif
+    cull_range(tile_znear, tile_zfar);
+#ifndef SLICES
+    cull_cell(tile_index, covered, nlights, 0u, false);
+#else
+    cull_clusters(tile_index, covered, nlights, tile_znear, tile_zfar);
+#endif
+#ifdef TLISTS
+    cull_translucent(tile, tile_index, size, covered, tile_zfar);
+#endif
+}

@@ -120,13 +120,7 @@ void main()
     float d = 1.0, d_far = 0.0;   // the nearest and farthest sample with geometry
     uvec2 slices_met = uvec2(0u);
     if (inside) {
-        for (int i = 0; i < MSAA_SAMPLES; i++) {
-            float di = texelFetch(t_depth, pixel, i).r;
-            if (di < 1.0) {
-                d = min(d, di);
-                d_far = max(d_far, di);
-            }
-        }
+        pixel_depth_range(pixel, d, d_far);
         gb_sample = 0;
 #ifdef EDGE_SAMPLE_XY
         g_frag_xy = vec2(pixel) + u_sample_pos[0];
@@ -177,19 +171,7 @@ void main()
         }
     }
     barrier();
-    uint covered = s_covered;
-    uint nlights = covered == 0u ? 0u : uint(u_light_count);
-    float tile_znear, tile_zfar;
-    tile_frustum(tile, size, tile_znear, tile_zfar);
-    cull_range(tile_znear, tile_zfar);
-#ifndef SLICES
-    cull_cell(tile_index, covered, nlights, 0u, false);
-#else
-    cull_clusters(tile_index, covered, nlights, tile_znear, tile_zfar);
-#endif
-#ifdef TLISTS
-    cull_translucent(tile, tile_index, size, covered, tile_zfar);
-#endif
+    cull_tile(tile, tile_index, size);
     memoryBarrierBuffer();
     barrier();
 #elif defined(MSAA_SAMPLES)
