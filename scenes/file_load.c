@@ -107,6 +107,16 @@ int file_load_image(loaded *l, const char *ref, char *err, size_t errlen)
             snprintf(name, sizeof name, "%s%s", rel[0] == '/' ? "" : l->dir, rel);
             errno = 0;
             const read_file *f = file_set_get(&l->files, name);
+            if (!f && !l->files.err[0] && strchr(rel, '\\')) {
+                /* a path written on Windows (an MTL's ".\wall.jpg"), where no file has
+                 * that name: its backslashes are separators */
+                for (char *c = rel; *c; c++)
+                    if (*c == '\\')
+                        *c = '/';
+                snprintf(name, sizeof name, "%s%s", rel[0] == '/' ? "" : l->dir, rel);
+                errno = 0;
+                f = file_set_get(&l->files, name);
+            }
             if (!f) {
                 if (l->files.err[0])
                     scene_fail(err, errlen, "%s: %s", l->path, l->files.err);
@@ -242,6 +252,60 @@ static void log_fn(const char *msg, char *user)
 }
 
 /* Imports and checks everything; on success l holds the scene and every texture. */
+/* Why an import gave no triangle mesh, where the cause can be named (issue 25): a text
+ * encoding assimp does not read (it reads text formats as ASCII or UTF-8), or a file whose
+ * primitives are only points and lines (shadesweep draws triangles). The main file is
+ * read again, where assimp's error is about meshes (error; NULL: a scene without any),
+ * without the post-processing that drops points and lines. false: neither. */
+static bool why_no_triangles(loaded *l, const char *path, struct aiFileIO *io,
+                             const char *error, char *why, size_t n)
+{
+    const read_file *f = l->files.n ? &l->files.files[0] : NULL;
+    static const struct {
+        unsigned char bom[4];
+        size_t len;
+        const char *name;
+    } boms[] = {
+        {{0x00, 0x00, 0xfe, 0xff}, 4, "UTF-32 (big-endian)"},
+        {{0xff, 0xfe, 0x00, 0x00}, 4, "UTF-32 (little-endian)"},
+        {{0xfe, 0xff}, 2, "UTF-16 (big-endian)"},
+        {{0xff, 0xfe}, 2, "UTF-16 (little-endian)"},
+    };
+    for (size_t i = 0; f && i < sizeof boms / sizeof boms[0]; i++)
+        if (f->size >= boms[i].len && memcmp(f->data, boms[i].bom, boms[i].len) == 0) {
+            snprintf(why, n, "the file is %s text (its byte-order mark says so), which assimp "
+                     "does not read: save it as UTF-8 (iconv -f %.6s -t UTF-8)", boms[i].name,
+                     boms[i].name);
+            return true;
+        }
+    /* only where assimp's error is about meshes: "No meshes remaining", "Mesh contains
+     * no faces", "mNumMeshes is 0" (NULL: the import gave a scene without meshes) */
+    if (error && !strstr(error, "esh"))
+        return false;
+    const struct aiScene *raw = aiImportFileEx(path, 0, io);
+    if (!raw)
+        return false;
+    unsigned points = 0, lines = 0, triangles = 0;
+    for (unsigned i = 0; raw->mMeshes && i < raw->mNumMeshes; i++) {
+        const struct aiMesh *m = raw->mMeshes[i];
+        if (!m)
+            continue;
+        unsigned t = m->mPrimitiveTypes;
+        if (t & (aiPrimitiveType_TRIANGLE | aiPrimitiveType_POLYGON))
+            triangles++;
+        else if (t & aiPrimitiveType_LINE)
+            lines++;
+        else if (m->mNumVertices > 0)
+            points++;   /* points, or vertices with no face at all */
+    }
+    aiReleaseImport(raw);
+    if (triangles || points + lines == 0)
+        return false;
+    snprintf(why, n, "it has only points and lines (%u mesh%s of points, %u of lines), and "
+             "shadesweep draws triangles", points, points == 1 ? "" : "es", lines);
+    return true;
+}
+
 bool file_load(const scene_file_options *o, loaded *l, char *err, size_t errlen)
 {
     memset(l, 0, sizeof *l);
@@ -309,10 +373,13 @@ bool file_load(const scene_file_options *o, loaded *l, char *err, size_t errlen)
         scene_fail(err, errlen, "%s: indices out of range: %s", o->path, import_warning);
         goto out;
     }
+    char cause[256];
     if (!ai) {
         const char *why = aiGetErrorString();
         if (l->files.err[0])
             scene_fail(err, errlen, "%s", l->files.err);
+        else if (why_no_triangles(l, o->path, &io, why ? why : "", cause, sizeof cause))
+            scene_fail(err, errlen, "%s: cannot load: %s", o->path, cause);
         else
             scene_fail(err, errlen, "%s: cannot load: %s", o->path,
                        why && why[0] ? why : "unknown error");
@@ -323,7 +390,10 @@ bool file_load(const scene_file_options *o, loaded *l, char *err, size_t errlen)
         goto out;
     }
     if (!ai->mRootNode || ai->mNumMeshes == 0) {
-        scene_fail(err, errlen, "%s: empty scene: no triangle meshes", o->path);
+        if (why_no_triangles(l, o->path, &io, NULL, cause, sizeof cause))
+            scene_fail(err, errlen, "%s: cannot load: %s", o->path, cause);
+        else
+            scene_fail(err, errlen, "%s: empty scene: no triangle meshes", o->path);
         goto out;
     }
     const struct aiNode *path[FILE_MAX_NODE_DEPTH];

@@ -107,6 +107,25 @@ refuse s/nomtl.obj "s/nomtl.obj: references s/nothere.mtl, which does not exist"
 gen buf s/miss.gltf nothere.bin
 refuse s/miss.gltf "s/miss.gltf: references s/nothere.bin, which does not exist"
 
+# refusals that name their cause (issue 25): a file of points, of lines or of bare
+# vertices, and a text encoding assimp does not read; an MTL path written with Windows
+# separators (".\wall.png", the file beside it) loads
+printf 'v 0 0 0\nv 1 0 0\nv 0 1 0\np 1 2 3\n' >s/points.obj
+refuse s/points.obj "s/points.obj: cannot load: it has only points and lines (1 mesh of points, 0 of lines), and shadesweep draws triangles"
+printf 'v 0 0 0\nv 1 0 0\nv 0 1 0\nl 1 2 3\n' >s/lines.obj
+refuse s/lines.obj "s/lines.obj: cannot load: it has only points and lines (0 meshes of points, 1 of lines), and shadesweep draws triangles"
+printf 'v 0 0 0\nv 1 0 0\nv 0 1 0\n' >s/cloud.obj
+refuse s/cloud.obj "s/cloud.obj: cannot load: it has only points and lines (1 mesh of points, 0 of lines), and shadesweep draws triangles"
+$PYTHON -c "open('s/utf16.obj', 'wb').write(b'\xff\xfe' + 'v 0 0 0\nv 1 0 0\nv 0 1 0\nf 1 2 3\n'.encode('utf-16-le'))"
+refuse s/utf16.obj "s/utf16.obj: cannot load: the file is UTF-16 (little-endian) text (its byte-order mark says so), which assimp does not read: save it as UTF-8 (iconv -f UTF-16 -t UTF-8)"
+mkdir -p s/win
+gen png s/win/wall.png 4
+printf 'mtllib win.mtl\nv 0 0 0\nv 1 0 0\nv 0 1 0\nvt 0 0\nvt 1 0\nvt 0 1\nusemtl a\nf 1/1 2/2 3/3\n' >s/win/win.obj
+printf 'newmtl a\nKd 1 1 1\nmap_Kd .\\wall.png\n' >s/win/win.mtl
+grep -qF '.\wall.png' s/win/win.mtl || fail "the test's MTL lost its backslash: $(cat s/win/win.mtl)"
+manifest "{file: s/win/win.obj}"
+"$SHADESWEEP" validate m.yaml >v.txt 2>&1 || fail "an MTL path with backslashes: $(cat v.txt)"
+
 # limits before the work: a 100000-deep node chain (assimp's recursion overflowed the
 # stack), a PNG whose header says 100000x100000 (decoded in full before), a byteLength
 # of 4 GB (its refusal leaked the importer's stream)
