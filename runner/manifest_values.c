@@ -519,6 +519,12 @@ static bool parse_scene_file(vctx *c, const param *pd, const ynode *n, const cha
         dst->scene_file[0] = '\0';
         return false;
     }
+    if (info.nnot_rendered) {   /* once a file, where the manifest is read */
+        fprintf(stderr, "%s: warning: scene.file: %s: read but not rendered:", c->file, given);
+        for (uint32_t i = 0; i < info.nnot_rendered; i++)
+            fprintf(stderr, "%s %s", i ? ";" : "", info.not_rendered[i]);
+        fputc('\n', stderr);
+    }
     const char *base = strrchr(given, '/');
     snprintf(dst->scene, sizeof dst->scene, "%.63s", base ? base + 1 : given);
     dst->scene_scale = (float)scale;

@@ -121,6 +121,11 @@ bool run_write_meta(run_state *st, char *err, size_t errlen)
         yo_key(y, "textures"); yo_i64(y, si->textures);
         yo_key(y, "lights"); yo_i64(y, si->lights);
         yo_key(y, "cameras"); yo_i64(y, si->cameras);
+        yo_key(y, "not_rendered");   /* read from the file, drawn by no renderer */
+        yo_seq_begin(y);
+        for (uint32_t i = 0; i < si->nnot_rendered; i++)
+            yo_str(y, si->not_rendered[i]);
+        yo_seq_end(y);
         yo_key(y, "bounds_min");
         yo_seq_begin(y);
         for (int i = 0; i < 3; i++)

@@ -26,6 +26,7 @@
 #include "scenes/file_internal.h"
 
 #include <math.h>
+#include <stdarg.h>
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
@@ -171,6 +172,94 @@ static void counts_of(const scene_file_options *o, const loaded *l, count_nodes 
     walk(l->ai->mRootNode, root, count_fn, c, 0);
 }
 
+/* One phrase of info->not_rendered (the list keeps its first SCENE_FILE_MAX_NOT_RENDERED). */
+static void not_rendered(scene_file_info *info, const char *fmt, ...)
+    __attribute__((format(printf, 2, 3)));
+static void not_rendered(scene_file_info *info, const char *fmt, ...)
+{
+    if (info->nnot_rendered >= SCENE_FILE_MAX_NOT_RENDERED)
+        return;
+    va_list ap;
+    va_start(ap, fmt);
+    vsnprintf(info->not_rendered[info->nnot_rendered++], sizeof info->not_rendered[0], fmt, ap);
+    va_end(ap);
+}
+
+/* The first place of key (n bytes) in the n_data bytes at data, or NULL. */
+static const char *find_bytes(const unsigned char *data, size_t n_data, const char *key, size_t n)
+{
+    for (size_t i = 0; n <= n_data && i <= n_data - n; i++)
+        if (data[i] == (unsigned char)key[0] && memcmp(data + i, key, n) == 0)
+            return (const char *)data + i;
+    return NULL;
+}
+
+/* The glTF extensions the file says it uses (its JSON's "extensionsUsed", in a .gltf or a
+ * .glb's JSON chunk) that shadesweep does not implement: all but the lights
+ * (lights.placement: scene), mesh quantization (assimp decodes it) and specular-glossiness
+ * (mapped onto Phong like metallic-roughness). */
+static void gltf_extensions(const read_file *f, scene_file_info *info)
+{
+    static const char *const implemented[] = {"KHR_lights_punctual", "KHR_mesh_quantization",
+                                              "KHR_materials_pbrSpecularGlossiness"};
+    const char *end = (const char *)f->data + f->size;
+    const char *at = find_bytes(f->data, f->size, "\"extensionsUsed\"", 16);
+    if (!at || !(at = memchr(at, '[', (size_t)(end - at))))
+        return;
+    for (at++; at < end && *at != ']';) {
+        if (*at != '"') {
+            at++;
+            continue;
+        }
+        const char *name = ++at;
+        while (at < end && *at != '"')
+            at++;
+        size_t n = (size_t)(at - name);
+        bool known = false;
+        for (size_t i = 0; i < sizeof implemented / sizeof implemented[0]; i++)
+            known |= strlen(implemented[i]) == n && strncmp(implemented[i], name, n) == 0;
+        if (!known && n < 48) {
+            char ext[48];
+            memcpy(ext, name, n);
+            ext[n] = '\0';
+            not_rendered(info, "glTF extension %s", ext);
+        }
+        at++;
+    }
+}
+
+/* What the file has that no renderer draws (scene_file_info.not_rendered). */
+static void not_rendered_of(const loaded *l, scene_file_info *info)
+{
+    const struct aiScene *ai = l->ai;
+    unsigned skinned = 0, morphed = 0, coloured = 0, uv2 = 0, ortho = 0;
+    for (unsigned i = 0; i < ai->mNumMeshes; i++) {
+        const struct aiMesh *m = ai->mMeshes[i];
+        skinned += m->mNumBones > 0;
+        morphed += m->mNumAnimMeshes > 0;
+        coloured += m->mColors[0] != NULL;
+        uv2 += m->mTextureCoords[1] != NULL;
+    }
+    for (unsigned i = 0; i < ai->mNumCameras; i++)
+        ortho += ai->mCameras[i]->mOrthographicWidth > 0.0f;
+    if (skinned)
+        not_rendered(info, "skins (%u mesh%s, drawn in the bind pose)", skinned,
+                     skinned == 1 ? "" : "es");
+    if (morphed)
+        not_rendered(info, "morph targets (%u mesh%s, drawn in the base shape)", morphed,
+                     morphed == 1 ? "" : "es");
+    if (ai->mNumAnimations)
+        not_rendered(info, "animations (%u, not played)", ai->mNumAnimations);
+    if (coloured)
+        not_rendered(info, "vertex colours (%u mesh%s)", coloured, coloured == 1 ? "" : "es");
+    if (uv2)
+        not_rendered(info, "a second UV set (%u mesh%s)", uv2, uv2 == 1 ? "" : "es");
+    if (ortho)
+        not_rendered(info, "orthographic cameras (%u)", ortho);
+    if (l->files.n)
+        gltf_extensions(&l->files.files[0], info);
+}
+
 // >>check
 
 bool scene_file_check(const scene_file_options *o, scene_file_info *info, char *err,
@@ -217,6 +306,7 @@ bool scene_file_check(const scene_file_options *o, scene_file_info *info, char *
         info->hash = h;
         sm_vec3_copy(c.lo, info->bounds_min);
         sm_vec3_copy(c.hi, info->bounds_max);
+        not_rendered_of(&l, info);
     }
     file_loaded_free(&l);
     return ok;

@@ -173,6 +173,8 @@ typedef struct scene_file_options {
     bool allow_outside;        /* files it references may lie outside its folder */
 } scene_file_options;
 
+enum { SCENE_FILE_MAX_NOT_RENDERED = 16 };
+
 /* What scene_file_check found (also what meta.yaml records). */
 typedef struct scene_file_info {
     uint32_t meshes;           /* after post-processing (one per primitive) */
@@ -185,6 +187,12 @@ typedef struct scene_file_info {
     uint32_t files;            /* the file and every buffer and image it pulled in */
     uint64_t hash;             /* FNV-1a 64 over those files' bytes, in the order read */
     sm_vec3 bounds_min, bounds_max;   /* world bounds after scale and up */
+    /* What the file has that shadesweep reads but does not render (skins, morph targets,
+     * animations, vertex colours, a second UV set, orthographic cameras, glTF extensions
+     * of extensionsUsed it does not implement), one phrase each: meta.yaml lists them and
+     * validate, list and run warn of them. */
+    uint32_t nnot_rendered;
+    char not_rendered[SCENE_FILE_MAX_NOT_RENDERED][72];
 } scene_file_info;
 
 /* Opens the file and everything it references and checks it all, without GL: a missing

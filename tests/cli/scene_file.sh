@@ -10,6 +10,7 @@ G=/usr/share/assimp/models/glTF2
 mkdir -p scenes
 cp -r "$G/BoxTextured-glTF" scenes/box
 cp "$G/BoxTextured-glTF-Binary/BoxTextured.glb" scenes/box.glb
+cp -r "$G/simple_skin" scenes/skin
 manifest() {   # scene block -> m.yaml
   cat >m.yaml <<YAML
 shadesweep: 1
@@ -67,13 +68,22 @@ refuse "{file: scenes/garbage.glb}" "garbage.glb"
 head -c 2000 scenes/box.glb >scenes/cut.glb
 refuse "{file: scenes/cut.glb}" "cut.glb"
 refuse "{file: $G/MissingBin/BoxTextured.gltf}" "MissingBin"
+# a glTF extension the file uses and shadesweep does not implement is named: validate
+# warns and accepts the file
+manifest "{file: $G/ClearCoat-glTF/ClearCoatTest.gltf}"
+"$SHADESWEEP" validate m.yaml >v.txt 2>w.txt || fail "validate ClearCoat: $(cat v.txt w.txt)"
+grep -qxF "m.yaml: warning: scene.file: $G/ClearCoat-glTF/ClearCoatTest.gltf: read but not rendered: glTF extension KHR_materials_clearcoat" w.txt ||
+  fail "the clearcoat warning: $(cat w.txt)"
+
 refuse "{file: $G/RecursiveNodes/RecursiveNodes.gltf}" "RecursiveNodes"
 refuse "{file: $G/IndexOutOfRange/IndexOutOfRange.gltf}" "IndexOutOfRange"
 manifest "{file: scenes/box.glb, up: x}"
 set +e; "$SHADESWEEP" validate m.yaml >out.txt 2>err.txt; rc=$?; set -e
 [ $rc -eq 2 ] && grep -q "scene.up: expected one of y, z, found 'x'" err.txt || fail "up: x: $(cat err.txt)"
 
-# a sweep over two files, rendered: each run's meta.yaml names its file and counts
+# a sweep over three files, rendered: each run's meta.yaml names its file and counts, and
+# lists what the file has that is not rendered (simple_skin: its skin and animation),
+# which the run also warns of on stderr, once
 cat >s.yaml <<'YAML'
 shadesweep: 1
 name: file-sweep
@@ -83,15 +93,18 @@ duration: {frames: 3}
 clock: fixed
 lights: {placement: random, count: 4, radius: 2}
 sweep:
-  scene: [{file: scenes/box.glb}, {file: scenes/box/BoxTextured.gltf}, shapes]
+  scene: [{file: scenes/box.glb}, {file: scenes/box/BoxTextured.gltf}, {file: scenes/skin/simple_skin.gltf}, shapes]
 YAML
 need_gl
 "$SHADESWEEP" run s.yaml -o out >run.txt 2>&1 || fail "run s.yaml: $(tail -5 run.txt)"
+want="s.yaml: warning: scene.file: scenes/skin/simple_skin.gltf: read but not rendered: skins (1 mesh, drawn in the bind pose); animations (1, not played)"
+[ "$(grep -c "warning: scene.file" run.txt)" = 1 ] && grep -qxF "$want" run.txt ||
+  fail "the not-rendered warning: $(grep warning run.txt)"
 $PYTHON - out <<'PY'
 import csv, sys, yaml, glob
 d = sys.argv[1]
 summ = list(csv.DictReader(open(f"{d}/summary.csv")))
-if [r["scene"] for r in summ] != ["box.glb", "BoxTextured.gltf", "shapes"]:
+if [r["scene"] for r in summ] != ["box.glb", "BoxTextured.gltf", "simple_skin.gltf", "shapes"]:
     sys.exit(f"FAIL: scenes {[r['scene'] for r in summ]}")
 if any(r["status"] != "ok" for r in summ): sys.exit(f"FAIL: {summ}")
 for r, files in zip(summ[:2], (1, 3)):   # the .glb alone; the .gltf, its .bin and its .png
@@ -102,6 +115,10 @@ for r, files in zip(summ[:2], (1, 3)):   # the .glb alone; the .gltf, its .bin a
         sys.exit(f"FAIL: meta scene_file {sf}")
     if not m["parameters"]["scene"].startswith("file:" + sf["hash"]):
         sys.exit(f"FAIL: the id text names the content: {m['parameters']['scene']}")
-m = yaml.safe_load(open(f"{d}/runs/{summ[2]['run_id']}/meta.yaml"))
+    if sf["not_rendered"] != []: sys.exit(f"FAIL: the box has nothing left out: {sf}")
+skin = yaml.safe_load(open(f"{d}/runs/{summ[2]['run_id']}/meta.yaml"))["scene_file"]
+if skin["not_rendered"] != ["skins (1 mesh, drawn in the bind pose)", "animations (1, not played)"]:
+    sys.exit(f"FAIL: simple_skin's not_rendered: {skin['not_rendered']}")
+m = yaml.safe_load(open(f"{d}/runs/{summ[3]['run_id']}/meta.yaml"))
 if "scene_file" in m: sys.exit("FAIL: a catalog scene has no scene_file block")
 PY
