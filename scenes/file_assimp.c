@@ -242,6 +242,13 @@ static void not_rendered_of(const loaded *l, scene_file_info *info)
     }
     for (unsigned i = 0; i < ai->mNumCameras; i++)
         ortho += ai->mCameras[i]->mOrthographicWidth > 0.0f;
+    unsigned two_sided = 0;
+    for (unsigned i = 0; i < ai->mNumMaterials; i++) {
+        int on = 0;
+        unsigned max = 1;
+        two_sided += aiGetMaterialIntegerArray(ai->mMaterials[i], AI_MATKEY_TWOSIDED, &on,
+                                               &max) == AI_SUCCESS && on;
+    }
     if (skinned)
         not_rendered(info, "skins (%u mesh%s, drawn in the bind pose)", skinned,
                      skinned == 1 ? "" : "es");
@@ -256,6 +263,8 @@ static void not_rendered_of(const loaded *l, scene_file_info *info)
         not_rendered(info, "a second UV set (%u mesh%s)", uv2, uv2 == 1 ? "" : "es");
     if (ortho)
         not_rendered(info, "orthographic cameras (%u)", ortho);
+    if (two_sided)
+        not_rendered(info, "double-sided materials (%u, back faces culled)", two_sided);
     if (l->files.n)
         gltf_extensions(&l->files.files[0], info);
 }
