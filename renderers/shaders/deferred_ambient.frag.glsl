@@ -6,10 +6,7 @@
 #include "frame.inc"
 #include "gbuffer.inc"
 
-layout(location = 0) out vec4 o_light;
-#ifdef SEPARATE_SPECULAR
-layout(location = 1) out vec4 o_specular;
-#endif
+#include "light_out.inc"
 
 void main()
 {

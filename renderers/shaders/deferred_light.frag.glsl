@@ -15,10 +15,7 @@
 
 layout(location = LOC_RENDERER) uniform vec4 u_light[5];
 
-layout(location = 0) out vec4 o_light;
-#ifdef SEPARATE_SPECULAR
-layout(location = 1) out vec4 o_specular;
-#endif
+#include "light_out.inc"
 
 void main()
 {
