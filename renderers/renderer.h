@@ -93,6 +93,11 @@ typedef struct pass_plan {
     uint64_t target_bytes;     /* all targets the renderer allocated */
 } pass_plan;
 
+/* Every enum of renderer_options begins with an UNSET zero, and sizes are 0 when unset: a
+ * zeroed renderer_options chooses nothing, and renderer_create refuses it, naming the
+ * field. The runner sets every field from runner/params.def (params_to_renderer_options),
+ * the one place that says what the defaults are. */
+
 /* G-buffer layouts (the deferred renderer; renderers/deferred.c documents each):
  *   fat        seed 000: three RGBA16F, view-space position, normal + emissive, diffuse + gloss
  *   curtis     seed 003: four RGBA16F, normal + depth, diffuse + specular, specular colour,
@@ -101,10 +106,6 @@ typedef struct pass_plan {
  *   spheremap  seed 004: view-space normal in two 8-bit channels (Lambert azimuthal),
  *              position from linear depth and frustum-corner rays
  *   reference  RGBA32F, position stored: the G-buffer that loses (almost) nothing */
-/* Every enum of renderer_options begins with an UNSET zero, and sizes are 0 when unset: a
- * zeroed renderer_options chooses nothing, and renderer_create refuses it, naming the
- * field. The runner sets every field from runner/params.def (params_to_renderer_options),
- * the one place that says what the defaults are. */
 typedef enum gbuffer_preset {
     GBUFFER_UNSET = 0,
     GBUFFER_CURTIS,
