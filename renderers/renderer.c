@@ -179,16 +179,14 @@ bool renderer_read_hdr(renderer *r, float *rgba, int w, int h, size_t *nonfinite
     return true;
 }
 
-/* Whether the space-separated list `words` has `word`. */
-static bool has_word(const char *words, const char *word)
+bool renderer_reads(const char *reads, const char *path)
 {
-    const size_t n = strlen(word);
-    for (const char *w = words; w && *w;) {
-        w += strspn(w, " ");
-        const size_t k = strcspn(w, " ");
-        if (k == n && strncmp(w, word, n) == 0)
+    for (const char *s = reads ? reads : ""; *s;) {
+        size_t len = strcspn(s, " ");
+        if (strncmp(s, path, len) == 0 && (path[len] == '\0' || path[len] == '.'))
             return true;
-        w += k;
+        s += len;
+        s += strspn(s, " ");
     }
     return false;
 }
@@ -198,5 +196,5 @@ bool deferred_uses_gbuffer(const char *kind, const renderer_options *o)
     const renderer_impl *impl = kind ? renderer_kind_find(kind) : NULL;
     if (impl && impl->variant)
         impl = o ? impl->variant(o) : NULL;
-    return impl && has_word(impl->reads, "gbuffer");
+    return impl && renderer_reads(impl->reads, "gbuffer");
 }

@@ -263,6 +263,9 @@ typedef struct renderer renderer;
 size_t renderer_kind_count(void);
 const renderer_impl *renderer_kind_at(size_t i);
 const renderer_impl *renderer_kind_find(const char *name);   /* NULL if unknown */
+/* Whether a renderer_impl.reads list names the manifest key path, or a group above it
+ * ("gbuffer" names gbuffer.preset). */
+bool renderer_reads(const char *reads, const char *path);
 
 renderer *renderer_create(const char *kind, const renderer_options *opts, char *err, size_t errlen);
 bool renderer_prepare(renderer *r, const struct scene *s, char *err, size_t errlen);

@@ -356,25 +356,12 @@ bool param_every_run_reads(const param *pd)
     return pd->readers && strcmp(pd->readers, "*") == 0;
 }
 
-/* Whether the renderer's space-separated `reads` names path or a group above it. */
-static bool reads_names(const char *reads, const char *path)
-{
-    for (const char *s = reads ? reads : ""; *s;) {
-        size_t len = strcspn(s, " ");
-        if (strncmp(s, path, len) == 0 && (path[len] == '\0' || path[len] == '.'))
-            return true;
-        s += len;
-        s += strspn(s, " ");
-    }
-    return false;
-}
-
 bool param_read_by(const param *pd, const char *name)
 {
     if (param_every_run_reads(pd))
         return true;
     const renderer_impl *r = renderer_kind_find(name);
-    return r && reads_names(r->reads, pd->path);
+    return r && renderer_reads(r->reads, pd->path);
 }
 
 void param_readers_text(const param *pd, char *out, size_t len)
@@ -387,7 +374,7 @@ void param_readers_text(const param *pd, char *out, size_t len)
     }
     for (size_t i = 0; i < renderer_kind_count() && n < len; i++) {
         const renderer_impl *r = renderer_kind_at(i);
-        if (reads_names(r->reads, pd->path))
+        if (renderer_reads(r->reads, pd->path))
             n += (size_t)snprintf(out + n, len - n, "%s%s", n ? " " : "", r->name);
     }
 }
