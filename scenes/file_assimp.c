@@ -202,8 +202,22 @@ static void gltf_extensions(const read_file *f, scene_file_info *info)
 {
     static const char *const implemented[] = {"KHR_lights_punctual", "KHR_mesh_quantization",
                                               "KHR_materials_pbrSpecularGlossiness"};
-    const char *end = (const char *)f->data + f->size;
-    const char *at = find_bytes(f->data, f->size, "\"extensionsUsed\"", 16);
+    /* the JSON only: a .glb's first chunk (its length at byte 12, validated by the
+     * pre-scan), a .gltf whole; an OBJ or a binary chunk is not searched */
+    size_t json = 0, start = 0;
+    while (start < f->size && (f->data[start] == ' ' || f->data[start] == '\t' ||
+                               f->data[start] == '\r' || f->data[start] == '\n'))
+        start++;
+    if (f->size >= 20 && memcmp(f->data, "glTF", 4) == 0) {
+        start = 20;
+        json = (size_t)f->data[12] | (size_t)f->data[13] << 8 | (size_t)f->data[14] << 16 |
+               (size_t)f->data[15] << 24;
+        json = json < f->size - start ? json : f->size - start;
+    } else if (start < f->size && f->data[start] == '{') {
+        json = f->size - start;
+    }
+    const char *end = (const char *)f->data + start + json;
+    const char *at = find_bytes(f->data + start, json, "\"extensionsUsed\"", 16);
     if (!at || !(at = memchr(at, '[', (size_t)(end - at))))
         return;
     for (at++; at < end && *at != ']';) {
