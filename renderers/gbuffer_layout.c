@@ -26,17 +26,82 @@ const char *deferred_slot_name(deferred_slot_kind k)
     return (unsigned)k < DEFERRED_SLOT_COUNT ? slot_names[k] : "unknown";
 }
 
+/* >>presets: the seeds' layouts as data. Each attachment: its channel type, its format
+ * and its slots in channel order (a zero count ends the list); then what the preset
+ * itself stores, in the override enums' terms, so that an override asking for the same
+ * leaves it alone. */
+typedef struct preset_slot {
+    deferred_slot_kind kind;
+    uint8_t count;
+} preset_slot;
+
+typedef struct preset_att {
+    deferred_channel_type channels;
+    gl_format format;
+    preset_slot slot[DEFERRED_MAX_SLOTS];
+} preset_att;
+
+typedef struct preset_def {
+    const char *name;
+    preset_att att[DEFERRED_MAX_ATTACHMENTS];   /* a zero format ends the list */
+    gbuffer_position own_position;
+    gbuffer_normal own_normal;
+    bool spheremap, emissive_intensity;
+} preset_def;
+
+/* Short names of the channel types, here and in the overrides below. */
+#define F16 DEFERRED_CHANNELS_FLOAT16
+#define F32 DEFERRED_CHANNELS_FLOAT32
+#define U8 DEFERRED_CHANNELS_UNORM8
+#define S(kind, n) {DEFERRED_SLOT_##kind, n}
+static const preset_def presets[] = {
+    [GBUFFER_UNSET] = {.name = "unset"},
+    [GBUFFER_CURTIS] = {"curtis",
+                        {{F16, GLT_FORMAT_RGBA16F, {S(NORMAL_XY, 2), S(NORMAL_Z, 1), S(DEPTH, 1)}},
+                         {F16, GLT_FORMAT_RGBA16F, {S(DIFFUSE, 3), S(GLOSS, 1)}},
+                         {F16, GLT_FORMAT_RGBA16F, {S(SHININESS, 1)}},
+                         {F16, GLT_FORMAT_RGBA16F, {S(EMISSIVE, 3)}}},
+                        GBUFFER_POSITION_PRESET, GBUFFER_NORMAL_FLOAT16, false, false},
+    [GBUFFER_FAT] = {"fat",
+                     {{F16, GLT_FORMAT_RGBA16F,
+                       {S(POSITION_XY, 2), S(POSITION_Z, 1), S(SHININESS, 1)}},
+                      {F16, GLT_FORMAT_RGBA16F, {S(NORMAL_XY, 2), S(NORMAL_Z, 1), S(EMISSIVE, 1)}},
+                      {F16, GLT_FORMAT_RGBA16F, {S(DIFFUSE, 3), S(GLOSS, 1)}}},
+                     GBUFFER_POSITION_STORED16, GBUFFER_NORMAL_FLOAT16, false, true},
+    [GBUFFER_COMPACT] = {"compact",
+                         {{F16, GLT_FORMAT_RG16F, {S(POSITION_XY, 2)}},
+                          {F16, GLT_FORMAT_R16F, {S(POSITION_Z, 1)}},
+                          {U8, GLT_FORMAT_RGBA8, {S(DIFFUSE, 3), S(NORMAL_Z, 1)}},
+                          {U8, GLT_FORMAT_RG8, {S(NORMAL_XY, 2)}},
+                          {U8, GLT_FORMAT_RG8, {S(GLOSS, 1), S(SHININESS, 1)}},
+                          {U8, GLT_FORMAT_RGBA8, {S(EMISSIVE, 3)}}},
+                         GBUFFER_POSITION_STORED16, GBUFFER_NORMAL_PRESET, false, false},
+    [GBUFFER_SPHEREMAP] = {"spheremap",
+                           {{U8, GLT_FORMAT_RG8, {S(NORMAL_XY, 2)}},
+                            {F16, GLT_FORMAT_RGBA16F, {S(DEPTH, 1), S(GLOSS, 1), S(SHININESS, 1)}},
+                            {U8, GLT_FORMAT_RGBA8, {S(DIFFUSE, 3)}},
+                            {U8, GLT_FORMAT_RGBA8, {S(EMISSIVE, 3)}}},
+                           GBUFFER_POSITION_PRESET, GBUFFER_NORMAL_SPHEREMAP8, true, false},
+    [GBUFFER_REFERENCE] = {"reference",
+                           {{F32, GLT_FORMAT_RGBA32F,
+                             {S(POSITION_XY, 2), S(POSITION_Z, 1), S(SHININESS, 1)}},
+                            {F32, GLT_FORMAT_RGBA32F,
+                             {S(NORMAL_XY, 2), S(NORMAL_Z, 1), S(GLOSS, 1)}},
+                            {F32, GLT_FORMAT_RGBA32F, {S(DIFFUSE, 3)}},
+                            {F32, GLT_FORMAT_RGBA32F, {S(EMISSIVE, 3)}}},
+                           GBUFFER_POSITION_STORED32, GBUFFER_NORMAL_FLOAT32, false, false},
+};
+#undef S
+
+static const preset_def *preset_get(gbuffer_preset p)
+{
+    return p > GBUFFER_UNSET && (size_t)p < sizeof presets / sizeof presets[0] ? &presets[p]
+                                                                                : NULL;
+}
+
 const char *deferred_preset_name(gbuffer_preset p)
 {
-    switch (p) {
-    case GBUFFER_CURTIS: return "curtis";
-    case GBUFFER_FAT: return "fat";
-    case GBUFFER_COMPACT: return "compact";
-    case GBUFFER_SPHEREMAP: return "spheremap";
-    case GBUFFER_REFERENCE: return "reference";
-    case GBUFFER_UNSET: return "unset";
-    }
-    return "unknown";
+    return (unsigned)p < sizeof presets / sizeof presets[0] ? presets[p].name : "unknown";
 }
 
 deferred_needs deferred_needs_of(const scene *s)
@@ -157,96 +222,23 @@ bool deferred_layout_build(const renderer_options *o, deferred_needs needs,
 {
     draft d;
     memset(&d, 0, sizeof d);
-    const deferred_channel_type F16 = DEFERRED_CHANNELS_FLOAT16, F32 = DEFERRED_CHANNELS_FLOAT32,
-                                U8 = DEFERRED_CHANNELS_UNORM8;
-    /* What the preset itself stores, in the override enums' terms (PRESET: none of them). */
-    gbuffer_position own_position = GBUFFER_POSITION_PRESET;
-    gbuffer_normal own_normal = GBUFFER_NORMAL_PRESET;
-    bool spheremap = false;
     int a;
 
-    switch (o->gbuffer) {
-    case GBUFFER_FAT:
-        a = draft_att(&d, F16, GLT_FORMAT_RGBA16F, false);
-        draft_slot(&d, a, DEFERRED_SLOT_POSITION_XY, 2);
-        draft_slot(&d, a, DEFERRED_SLOT_POSITION_Z, 1);
-        draft_slot(&d, a, DEFERRED_SLOT_SHININESS, 1);
-        a = draft_att(&d, F16, GLT_FORMAT_RGBA16F, false);
-        draft_slot(&d, a, DEFERRED_SLOT_NORMAL_XY, 2);
-        draft_slot(&d, a, DEFERRED_SLOT_NORMAL_Z, 1);
-        draft_slot(&d, a, DEFERRED_SLOT_EMISSIVE, 1);
-        d.emissive_intensity = true;
-        a = draft_att(&d, F16, GLT_FORMAT_RGBA16F, false);
-        draft_slot(&d, a, DEFERRED_SLOT_DIFFUSE, 3);
-        draft_slot(&d, a, DEFERRED_SLOT_GLOSS, 1);
-        own_position = GBUFFER_POSITION_STORED16;
-        own_normal = GBUFFER_NORMAL_FLOAT16;
-        break;
-    case GBUFFER_CURTIS:
-        a = draft_att(&d, F16, GLT_FORMAT_RGBA16F, false);
-        draft_slot(&d, a, DEFERRED_SLOT_NORMAL_XY, 2);
-        draft_slot(&d, a, DEFERRED_SLOT_NORMAL_Z, 1);
-        draft_slot(&d, a, DEFERRED_SLOT_DEPTH, 1);
-        a = draft_att(&d, F16, GLT_FORMAT_RGBA16F, false);
-        draft_slot(&d, a, DEFERRED_SLOT_DIFFUSE, 3);
-        draft_slot(&d, a, DEFERRED_SLOT_GLOSS, 1);
-        a = draft_att(&d, F16, GLT_FORMAT_RGBA16F, false);
-        draft_slot(&d, a, DEFERRED_SLOT_SHININESS, 1);
-        a = draft_att(&d, F16, GLT_FORMAT_RGBA16F, false);
-        draft_slot(&d, a, DEFERRED_SLOT_EMISSIVE, 3);
-        own_normal = GBUFFER_NORMAL_FLOAT16;
-        break;
-    case GBUFFER_COMPACT:
-        a = draft_att(&d, F16, GLT_FORMAT_RG16F, false);
-        draft_slot(&d, a, DEFERRED_SLOT_POSITION_XY, 2);
-        a = draft_att(&d, F16, GLT_FORMAT_R16F, false);
-        draft_slot(&d, a, DEFERRED_SLOT_POSITION_Z, 1);
-        a = draft_att(&d, U8, GLT_FORMAT_RGBA8, false);
-        draft_slot(&d, a, DEFERRED_SLOT_DIFFUSE, 3);
-        draft_slot(&d, a, DEFERRED_SLOT_NORMAL_Z, 1);
-        a = draft_att(&d, U8, GLT_FORMAT_RG8, false);
-        draft_slot(&d, a, DEFERRED_SLOT_NORMAL_XY, 2);
-        a = draft_att(&d, U8, GLT_FORMAT_RG8, false);
-        draft_slot(&d, a, DEFERRED_SLOT_GLOSS, 1);
-        draft_slot(&d, a, DEFERRED_SLOT_SHININESS, 1);
-        a = draft_att(&d, U8, GLT_FORMAT_RGBA8, false);
-        draft_slot(&d, a, DEFERRED_SLOT_EMISSIVE, 3);
-        own_position = GBUFFER_POSITION_STORED16;
-        break;
-    case GBUFFER_SPHEREMAP:
-        a = draft_att(&d, U8, GLT_FORMAT_RG8, false);
-        draft_slot(&d, a, DEFERRED_SLOT_NORMAL_XY, 2);
-        a = draft_att(&d, F16, GLT_FORMAT_RGBA16F, false);
-        draft_slot(&d, a, DEFERRED_SLOT_DEPTH, 1);
-        draft_slot(&d, a, DEFERRED_SLOT_GLOSS, 1);
-        draft_slot(&d, a, DEFERRED_SLOT_SHININESS, 1);
-        a = draft_att(&d, U8, GLT_FORMAT_RGBA8, false);
-        draft_slot(&d, a, DEFERRED_SLOT_DIFFUSE, 3);
-        a = draft_att(&d, U8, GLT_FORMAT_RGBA8, false);
-        draft_slot(&d, a, DEFERRED_SLOT_EMISSIVE, 3);
-        own_normal = GBUFFER_NORMAL_SPHEREMAP8;
-        spheremap = true;
-        break;
-    case GBUFFER_REFERENCE:
-        a = draft_att(&d, F32, GLT_FORMAT_RGBA32F, false);
-        draft_slot(&d, a, DEFERRED_SLOT_POSITION_XY, 2);
-        draft_slot(&d, a, DEFERRED_SLOT_POSITION_Z, 1);
-        draft_slot(&d, a, DEFERRED_SLOT_SHININESS, 1);
-        a = draft_att(&d, F32, GLT_FORMAT_RGBA32F, false);
-        draft_slot(&d, a, DEFERRED_SLOT_NORMAL_XY, 2);
-        draft_slot(&d, a, DEFERRED_SLOT_NORMAL_Z, 1);
-        draft_slot(&d, a, DEFERRED_SLOT_GLOSS, 1);
-        a = draft_att(&d, F32, GLT_FORMAT_RGBA32F, false);
-        draft_slot(&d, a, DEFERRED_SLOT_DIFFUSE, 3);
-        a = draft_att(&d, F32, GLT_FORMAT_RGBA32F, false);
-        draft_slot(&d, a, DEFERRED_SLOT_EMISSIVE, 3);
-        own_position = GBUFFER_POSITION_STORED32;
-        own_normal = GBUFFER_NORMAL_FLOAT32;
-        break;
-    default:
+    const preset_def *pd = preset_get(o->gbuffer);
+    if (!pd) {
         snprintf(err, errlen, "deferred: unknown G-buffer preset %d", (int)o->gbuffer);
         return false;
     }
+    for (int i = 0; i < DEFERRED_MAX_ATTACHMENTS && pd->att[i].format != GLT_FORMAT_NONE; i++) {
+        const preset_att *pa = &pd->att[i];
+        a = draft_att(&d, pa->channels, pa->format, false);
+        for (int k = 0; k < DEFERRED_MAX_SLOTS && pa->slot[k].count; k++)
+            draft_slot(&d, a, pa->slot[k].kind, pa->slot[k].count);
+    }
+    gbuffer_position own_position = pd->own_position;
+    gbuffer_normal own_normal = pd->own_normal;
+    bool spheremap = pd->spheremap;
+    d.emissive_intensity = pd->emissive_intensity;
 
     /* >>overrides: the field gets an attachment of its own */
     gbuffer_position pos = o->gbuffer_position;
