@@ -150,39 +150,47 @@ static bool resize(void *pp, size_t bytes)
     return true;
 }
 
-/* Object arrays: visible holds cap_objects, sort twice that (the merge sort's two
- * halves); light arrays (lights, eye_inside) cap_lights and illum_start cap_lights + 1.
- * The first array of each group grows (GROW); the others follow its capacity, which the
- * group's cap takes once every array has it. */
+/* One array of a group: `per` elements a unit of the group's capacity plus `extra`. */
+typedef struct group_array {
+    void *pp;   /* a T ** */
+    size_t elem, per, extra;
+} group_array;
+#define GROUP_ARRAY(p, per, extra) {&(p), sizeof *(p), (per), (extra)}
+
+/* The arrays of a group (the objects: visible, translucent, and sort twice that for the
+ * merge sort's two halves; the lights: lights, eye_inside, shadow_layer and
+ * shadow_viewproj, with illum_start and shadow_start one more) hold what *cap says. The
+ * first array grows (GROW); the others follow its capacity, which *cap takes once every
+ * array has it (0 until then). */
+static bool reserve_group(size_t *cap, size_t n, const group_array *a, size_t narrays)
+{
+    size_t c = *cap;
+    if (!grow_array(a[0].pp, &c, n ? n : 1, a[0].elem, 16))
+        return false;
+    if (c == *cap)
+        return true;
+    for (size_t i = 1; i < narrays; i++)
+        if (!resize(a[i].pp, (a[i].per * c + a[i].extra) * a[i].elem))
+            return false;
+    *cap = c;
+    return true;
+}
+
 static bool reserve_objects(frontend *f, size_t n)
 {
-    size_t cap = f->cap_objects;   /* 0 until every array is allocated */
-    if (!GROW(f->visible, cap, n ? n : 1, 16))
-        return false;
-    if (cap == f->cap_objects)
-        return true;
-    if (!resize(&f->translucent, cap * sizeof *f->translucent) ||
-        !resize(&f->sort, 2 * cap * sizeof *f->sort))
-        return false;
-    f->cap_objects = cap;
-    return true;
+    const group_array a[] = {GROUP_ARRAY(f->visible, 1, 0), GROUP_ARRAY(f->translucent, 1, 0),
+                             GROUP_ARRAY(f->sort, 2, 0)};
+    return reserve_group(&f->cap_objects, n, a, sizeof a / sizeof a[0]);
 }
 
 static bool reserve_lights(frontend *f, size_t n)
 {
-    size_t cap = f->cap_lights;   /* 0 until every array is allocated */
-    if (!GROW(f->lights, cap, n ? n : 1, 16))
-        return false;
-    if (cap == f->cap_lights)
-        return true;
-    if (!resize(&f->eye_inside, cap * sizeof *f->eye_inside) ||
-        !resize(&f->illum_start, (cap + 1) * sizeof *f->illum_start) ||
-        !resize(&f->shadow_layer, cap * sizeof *f->shadow_layer) ||
-        !resize(&f->shadow_start, (cap + 1) * sizeof *f->shadow_start) ||
-        !resize(&f->shadow_viewproj, cap * sizeof *f->shadow_viewproj))
-        return false;
-    f->cap_lights = cap;
-    return true;
+    const group_array a[] = {
+        GROUP_ARRAY(f->lights, 1, 0),          GROUP_ARRAY(f->eye_inside, 1, 0),
+        GROUP_ARRAY(f->illum_start, 1, 1),     GROUP_ARRAY(f->shadow_layer, 1, 0),
+        GROUP_ARRAY(f->shadow_start, 1, 1),    GROUP_ARRAY(f->shadow_viewproj, 1, 0),
+    };
+    return reserve_group(&f->cap_lights, n, a, sizeof a / sizeof a[0]);
 }
 
 static bool reserve_illum(frontend *f, size_t n)
@@ -331,22 +339,25 @@ static bool volume_holds_eye(const frontend *f, const scene_light *l)
     return !(d > b[3]);   /* a NaN (degenerate matrices) counts as inside */
 }
 
-static bool light_visible(const frontend *f, const scene_light *l)
+/* The sphere that bounds a point light's range or a spot light's cone. */
+static void light_bound(const scene_light *l, sm_vec4 b)
 {
-    sm_vec4 b;
-    switch (l->type) {
-    case LIGHT_DIRECTIONAL:
-        return true;
-    case LIGHT_SPOT: {
+    if (l->type == LIGHT_SPOT) {
         sm_vec3 dir;
         unit_direction(l, dir);
         frontend_spot_cone_bound(l->position, dir, l->spot_angle, l->radius, b);
-        return sm_sphere_in_frustum(f->planes, b);
-    }
-    default:
+    } else {
         sm_vec4_from_vec3(l->position, l->radius, b);
-        return sm_sphere_in_frustum(f->planes, b);
     }
+}
+
+static bool light_visible(const frontend *f, const scene_light *l)
+{
+    if (l->type == LIGHT_DIRECTIONAL)
+        return true;
+    sm_vec4 b;
+    light_bound(l, b);
+    return sm_sphere_in_frustum(f->planes, b);
 }
 
 static bool light_reaches(const scene_light *l, const sm_vec4 bsphere)
