@@ -56,14 +56,10 @@ layout(binding = BIND_TEX_DEPTH) uniform sampler2D t_depth;
 
 void main()
 {
-    uint me = gl_LocalInvocationIndex;
-    uvec2 tile = gl_WorkGroupID.xy;
-    uint tile_index = tile.y * uint(TILES_X) + tile.x;
-    ivec2 size = ivec2(f_viewport.xy);
     ivec2 pixel = ivec2(gl_GlobalInvocationID.xy);
-    tile_reset(me);
+    tile_reset(gl_LocalInvocationIndex);
     barrier();
-    if (all(lessThan(pixel, size))) {
+    if (all(lessThan(pixel, ivec2(f_viewport.xy)))) {
 #ifdef MSAA_SAMPLES
         float d, d_far;
         pixel_depth_range(pixel, d, d_far);
@@ -78,5 +74,5 @@ void main()
         }
     }
     barrier();
-    cull_tile(tile, tile_index, size);
+    cull_tile();
 }

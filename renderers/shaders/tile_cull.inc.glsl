@@ -481,8 +481,11 @@ void pixel_depth_range(ivec2 pixel, out float d, out float d_far)
 // the light lists of its cell or its clusters (SLICES) and its translucent list (TLISTS),
 // culled by the whole work group. TILE_DEPTH_RANGES keeps the range culled against for
 // the shading pass's fallback.
-void cull_tile(uvec2 tile, uint tile_index, ivec2 size)
+void cull_tile()
 {
+    uvec2 tile = gl_WorkGroupID.xy;
+    uint tile_index = tile.y * uint(TILES_X) + tile.x;
+    ivec2 size = ivec2(f_viewport.xy);
     uint covered = s_covered;
     uint nlights = covered == 0u ? 0u : uint(u_light_count);
     float tile_znear, tile_zfar;

@@ -171,7 +171,7 @@ void main()
         }
     }
     barrier();
-    cull_tile(tile, tile_index, size);
+    cull_tile();
     memoryBarrierBuffer();
     barrier();
 #elif defined(MSAA_SAMPLES)
