@@ -28,11 +28,19 @@ unsigned forward_material_variant(const scene_material *m)
 
 // >>creation and preparation
 
-bool forward_common_init(forward_common *fc, const char *name, const renderer_options *opts,
+void *forward_common_new(size_t size, const char *name, const renderer_options *opts,
                          char *err, size_t errlen)
 {
-    memset(fc, 0, sizeof *fc);
-    return renderer_base_init(&fc->b, name, opts, FORWARD_MAX_PASSES, err, errlen);
+    forward_common *fc = size >= sizeof *fc ? calloc(1, size) : NULL;
+    if (!fc) {
+        snprintf(err, errlen, "%s: out of memory", name);
+        return NULL;
+    }
+    if (!renderer_base_init(&fc->b, name, opts, FORWARD_MAX_PASSES, err, errlen)) {
+        forward_common_free(fc);
+        return NULL;
+    }
+    return fc;
 }
 
 static void release_prepared(forward_common *fc)
@@ -44,10 +52,13 @@ static void release_prepared(forward_common *fc)
     fc->prepared = false;
 }
 
-void forward_common_destroy(forward_common *fc)
+void forward_common_free(forward_common *fc)
 {
+    if (!fc)
+        return;
     release_prepared(fc);
     renderer_base_destroy(&fc->b);
+    free(fc);
 }
 
 bool forward_common_prepare(forward_common *fc, const scene *s, char *err, size_t errlen)
@@ -234,11 +245,6 @@ void forward_resolve_pass(forward_common *fc, frame_stats *out)
     scene_gpu_resolve(fc->b.gpu, fc->b.st, renderer_base_display(&fc->b)->texture,
                       fc->b.output_fbo, fc->b.width, fc->b.height);
     forward_pass_end(fc, out);
-}
-
-void forward_collect(forward_common *fc, frame_stats *out)
-{
-    renderer_base_collect(&fc->b, out);
 }
 
 // >>describe

@@ -90,17 +90,21 @@ typedef struct forward_common {
     bool translucent_later;          /* the renderer calls translucent_compile itself (tiled) */
     const scene *frame_scene;        /* the scene forward_begin_frame was given */
 } forward_common;
+_Static_assert(offsetof(forward_common, b) == 0,
+               "a forward renderer's object is read as its renderer_base (renderer_impl.collect)");
 
 /* The variant of a material (FORWARD_VARIANT_* bits). */
 unsigned forward_material_variant(const scene_material *m);
 
-/* Creation: records the output framebuffer (the draw framebuffer bound now), makes
+/* Creation of a forward renderer's object: `size` zeroed bytes that begin with its
+ * forward_common; records the output framebuffer (the draw framebuffer bound now), makes
  * the state cache, the program cache and (opts->queries) FORWARD_MAX_PASSES pass
- * queries. False with a message; forward_common_destroy is then still right. */
-bool forward_common_init(forward_common *fc, const char *name, const renderer_options *opts,
+ * queries. NULL with a message. */
+void *forward_common_new(size_t size, const char *name, const renderer_options *opts,
                          char *err, size_t errlen);
-/* Everything init and prepare made; a zeroed or destroyed fc is fine. */
-void forward_common_destroy(forward_common *fc);
+/* Everything new and prepare made, and the object itself (NULL is fine); the renderer
+ * releases what it made of its own first. */
+void forward_common_free(forward_common *fc);
 
 /* What both renderers need of a scene: the frontend, the scene on the GPU, the HDR
  * target and depth, the variants and light types present, the shadow-map plan and,
@@ -157,7 +161,6 @@ void forward_resolve_pass(forward_common *fc, frame_stats *out);
 void forward_end_frame(forward_common *fc, frame_stats *out, uint64_t light_draws);
 
 /* Fills GPU times and fragment counts after the frame's sync point (NAN without queries). */
-void forward_collect(forward_common *fc, frame_stats *out);
 
 // >>describe
 

@@ -56,7 +56,7 @@
 #define MPML_BASE_DIRECTIONAL_MAX 8
 
 typedef struct forward_mpml {
-    forward_common c;        /* first: forward_last_pass_counts() reads self as this */
+    forward_common c;   /* first: forward_common_new makes the object; read as it */
     bool lights_pass;        /* the scene has lights */
     GLuint light_program[FORWARD_LIGHT_TYPES][FORWARD_VARIANTS];
     /* The light each program's u_light holds: a serial per light drawn, never reused,
@@ -75,6 +75,7 @@ typedef struct forward_mpml {
     uint64_t frame;
     uint64_t base_frame[FORWARD_VARIANTS];
 } forward_mpml;
+_Static_assert(offsetof(forward_mpml, c) == 0, "forward_common_new: the object begins with c");
 
 static const char *const light_type_define[FORWARD_LIGHT_TYPES] = {
     [LIGHT_POINT] = "LIGHT_TYPE LIGHT_POINT",
@@ -126,17 +127,9 @@ static bool compile_folded_base(forward_mpml *r, const scene *s, char *err, size
 
 static void *mpml_create(const renderer_options *opts, char *err, size_t errlen)
 {
-    forward_mpml *r = calloc(1, sizeof *r);
-    if (!r) {
-        snprintf(err, errlen, "forward-mpml: out of memory");
-        return NULL;
-    }
-    if (!forward_common_init(&r->c, "forward-mpml", opts, err, errlen)) {
-        forward_common_destroy(&r->c);
-        free(r);
-        return NULL;
-    }
-    r->c.illumination_sets = true;   /* the one renderer that draws them */
+    forward_mpml *r = forward_common_new(sizeof *r, "forward-mpml", opts, err, errlen);
+    if (r)
+        r->c.illumination_sets = true;   /* the one renderer that draws them */
     return r;
 }
 
@@ -209,11 +202,6 @@ static void mpml_draw(void *self, const struct scene *s, frame_stats *out)
 {
     forward_mpml *r = self;
     forward_common *c = &r->c;
-    if (!c->prepared) {
-        fprintf(stderr, "bug: forward-mpml: draw before a successful prepare\n");
-        out->npasses = 0;
-        return;
-    }
     forward_begin_frame(c, s, out);
     const frontend *fe = &c->b.fe;
     const bool sets = !c->b.opts.no_illumination_sets;
@@ -282,12 +270,6 @@ static void mpml_draw(void *self, const struct scene *s, frame_stats *out)
     forward_end_frame(c, out, light_draws);
 }
 
-static void mpml_collect(void *self, frame_stats *out)
-{
-    forward_mpml *r = self;
-    forward_collect(&r->c, out);
-}
-
 static void mpml_describe(const void *self, pass_plan *out)
 {
     const forward_mpml *r = self;
@@ -329,11 +311,7 @@ static void mpml_describe(const void *self, pass_plan *out)
 
 static void mpml_destroy(void *self)
 {
-    forward_mpml *r = self;
-    if (!r)
-        return;
-    forward_common_destroy(&r->c);
-    free(r);
+    forward_common_free(self);
 }
 
 const renderer_impl renderer_forward_mpml_impl = RENDERER_IMPL(

@@ -39,7 +39,7 @@
 #include <string.h>
 
 typedef struct forward_spml {
-    forward_common c;        /* first: forward_last_pass_counts() reads self as this */
+    forward_common c;   /* first: forward_common_new makes the object; read as it */
     uint32_t capacity;       /* lights one uniform block of the context holds */
     uint32_t max_lights;     /* MAX_LIGHTS of the programs */
     char max_lights_define[32];
@@ -51,20 +51,13 @@ typedef struct forward_spml {
     uint64_t program_frame[FORWARD_VARIANTS];
     int count;               /* lights uploaded this frame */
 } forward_spml;
+_Static_assert(offsetof(forward_spml, c) == 0, "forward_common_new: the object begins with c");
 
 static void *spml_create(const renderer_options *opts, char *err, size_t errlen)
 {
-    forward_spml *r = calloc(1, sizeof *r);
-    if (!r) {
-        snprintf(err, errlen, "forward-spml: out of memory");
-        return NULL;
-    }
-    if (!forward_common_init(&r->c, "forward-spml", opts, err, errlen)) {
-        forward_common_destroy(&r->c);
-        free(r);
-        return NULL;
-    }
-    r->capacity = forward_spml_max_lights(r->c.b.opts.max_uniform_block_size);
+    forward_spml *r = forward_common_new(sizeof *r, "forward-spml", opts, err, errlen);
+    if (r)
+        r->capacity = forward_spml_max_lights(r->c.b.opts.max_uniform_block_size);
     return r;
 }
 
@@ -149,11 +142,6 @@ static void spml_draw(void *self, const struct scene *s, frame_stats *out)
 {
     forward_spml *r = self;
     forward_common *c = &r->c;
-    if (!c->prepared) {
-        fprintf(stderr, "bug: forward-spml: draw before a successful prepare\n");
-        out->npasses = 0;
-        return;
-    }
     forward_begin_frame(c, s, out);
     const frontend *fe = &c->b.fe;
 
@@ -183,12 +171,6 @@ static void spml_draw(void *self, const struct scene *s, frame_stats *out)
     forward_end_frame(c, out, 0);
 }
 
-static void spml_collect(void *self, frame_stats *out)
-{
-    forward_spml *r = self;
-    forward_collect(&r->c, out);
-}
-
 static void spml_describe(const void *self, pass_plan *out)
 {
     const forward_spml *r = self;
@@ -214,8 +196,7 @@ static void spml_destroy(void *self)
     if (!r)
         return;
     release_lights(r);
-    forward_common_destroy(&r->c);
-    free(r);
+    forward_common_free(&r->c);
 }
 
 const renderer_impl renderer_forward_spml_impl = RENDERER_IMPL(

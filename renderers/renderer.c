@@ -1,6 +1,8 @@
 /* The renderer registry and the thin dispatch over renderer_impl. */
 #include "renderers/renderer.h"
 
+#include "renderers/base.h"
+
 #include <math.h>
 #include <stdio.h>
 #include <stdlib.h>
@@ -26,8 +28,10 @@ static const renderer_impl *const registry[] = {
 };
 
 struct renderer {
-    const renderer_impl *impl;
+    const renderer_impl *impl;   /* the design whose entry points serve self */
+    const char *kind;            /* the registry's name ("clustered" for its variants) */
     void *self;
+    bool prepared;               /* the last prepare succeeded: draw may run */
 };
 
 size_t renderer_kind_count(void) { return sizeof registry / sizeof registry[0]; }
@@ -75,8 +79,8 @@ renderer *renderer_create(const char *kind, const renderer_options *opts, char *
     const renderer_impl *design = impl->variant ? impl->variant(opts) : impl;
     void *(*create)(const renderer_options *, char *, size_t) =
         impl->create ? impl->create : design ? design->create : NULL;
-    if (!design || !create || !design->prepare || !design->draw || !design->collect ||
-        !design->describe || !design->destroy) {
+    if (!design || !create || !design->prepare || !design->draw || !design->describe ||
+        !design->destroy) {
         snprintf(err, errlen, "bug: renderer '%s' lacks an entry point", kind);
         return NULL;
     }
@@ -86,6 +90,7 @@ renderer *renderer_create(const char *kind, const renderer_options *opts, char *
         return NULL;
     }
     r->impl = design;
+    r->kind = impl->name;
     r->self = create(opts, err, errlen);
     if (!r->self) {
         free(r);
@@ -96,7 +101,8 @@ renderer *renderer_create(const char *kind, const renderer_options *opts, char *
 
 bool renderer_prepare(renderer *r, const struct scene *s, char *err, size_t errlen)
 {
-    return r->impl->prepare(r->self, s, err, errlen);
+    r->prepared = r->impl->prepare(r->self, s, err, errlen);
+    return r->prepared;
 }
 
 void renderer_draw(renderer *r, const struct scene *s, frame_stats *out)
@@ -105,13 +111,25 @@ void renderer_draw(renderer *r, const struct scene *s, frame_stats *out)
     out->grid_lights_mean = out->grid_lights_max = out->light_evals_per_pixel = NAN;
     out->edge_fraction = NAN;
     out->translucent_lights_mean = out->translucent_lights_max = NAN;
+    if (!r->prepared) {   /* a caller's bug: say so, and leave the frame empty */
+        fprintf(stderr, "bug: %s: draw before a successful prepare\n", r->kind);
+        return;
+    }
     r->impl->draw(r->self, s, out);
+}
+
+void renderer_impl_collect(const renderer_impl *impl, void *self, frame_stats *out)
+{
+    if (impl->collect)
+        impl->collect(self, out);
+    else
+        renderer_base_collect(self, out);   /* renderer_impl.collect: the base first */
 }
 
 /* NAN in any pass makes the total NAN: a partial sum would pass for a measurement. */
 void renderer_collect(renderer *r, frame_stats *out)
 {
-    r->impl->collect(r->self, out);
+    renderer_impl_collect(r->impl, r->self, out);
     pass_stats t = {.name = "total", .scissor_pixels = NAN};
     double n = out->msaa > 1 ? out->msaa : 1;
     for (size_t i = 0; i < out->npasses; i++) {

@@ -227,7 +227,9 @@ typedef struct renderer_impl {
     void *(*create)(const renderer_options *opts, char *err, size_t errlen);
     bool (*prepare)(void *self, const struct scene *s, char *err, size_t errlen);
     void (*draw)(void *self, const struct scene *s, frame_stats *out);
-    /* After the frame's sync point: fills GPU times and query counts of that frame. */
+    /* After the frame's sync point: fills GPU times and query counts of that frame.
+     * Optional (NULL: the object begins with a renderer_base, renderers/base.h, and its
+     * counters are all the renderer collects). */
     void (*collect)(void *self, frame_stats *out);
     void (*describe)(const void *self, pass_plan *out);
     void (*destroy)(void *self);
@@ -246,16 +248,16 @@ typedef struct renderer_impl {
     const struct renderer_impl *(*variant)(const renderer_options *opts);
 } renderer_impl;
 
-/* A renderer_impl whose six entry points are P_create, P_prepare, P_draw, P_collect,
+/* A renderer_impl whose five required entry points are P_create, P_prepare, P_draw,
  * P_describe and P_destroy (each has its own type, so a wrong one does not compile); the
- * optional entries follow as designated initializers:
+ * optional entries (collect among them) follow as designated initializers:
  *     const renderer_impl renderer_x_impl = RENDERER_IMPL(
  *         x, "x", "keys it reads", "description", .read_hdr = x_read_hdr); */
 #define RENDERER_IMPL(P, NAME, READS, DESCRIPTION, ...)                                    \
     {                                                                                      \
         .name = NAME, .description = DESCRIPTION, .reads = READS, .create = P##_create,    \
-        .prepare = P##_prepare, .draw = P##_draw, .collect = P##_collect,                  \
-        .describe = P##_describe, .destroy = P##_destroy, __VA_ARGS__                      \
+        .prepare = P##_prepare, .draw = P##_draw, .describe = P##_describe,                \
+        .destroy = P##_destroy, __VA_ARGS__                                                \
     }
 
 typedef struct renderer renderer;
@@ -271,6 +273,9 @@ renderer *renderer_create(const char *kind, const renderer_options *opts, char *
 bool renderer_prepare(renderer *r, const struct scene *s, char *err, size_t errlen);
 void renderer_draw(renderer *r, const struct scene *s, frame_stats *out);
 void renderer_collect(renderer *r, frame_stats *out);   /* also computes out->total */
+/* An object's collect as renderer_collect calls it (renderer_impl.collect, or the
+ * base's when that is NULL), without the totals: for tests that drive an impl. */
+void renderer_impl_collect(const renderer_impl *impl, void *self, frame_stats *out);
 void renderer_describe(const renderer *r, pass_plan *out);
 void renderer_destroy(renderer *r);                     /* NULL is fine */
 /* The light-list lengths of the last frame collected (renderer_impl.light_grid), or

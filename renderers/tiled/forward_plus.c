@@ -74,7 +74,7 @@
 #include <string.h>
 
 typedef struct forward_plus {
-    forward_common c;        /* first: forward_last_pass_counts() reads self as this */
+    forward_common c;   /* first: forward_common_new makes the object; read as it */
     const char *name;        /* "forward-plus" or "clustered" */
     light_grid g;            /* tiles, or clusters (g.slices_y) */
     GLuint depth_program, cull_program;
@@ -85,18 +85,15 @@ typedef struct forward_plus {
     uint64_t program_frame[FORWARD_VARIANTS];
     int count;               /* lights uploaded this frame */
 } forward_plus;
+_Static_assert(offsetof(forward_plus, c) == 0, "forward_common_new: the object begins with c");
 
 void *forward_tiled_new(const char *name, bool clustered, const renderer_options *opts,
                            char *err, size_t errlen)
 {
-    forward_plus *r = calloc(1, sizeof *r);
-    if (!r) {
-        snprintf(err, errlen, "%s: out of memory", name);
+    forward_plus *r = forward_common_new(sizeof *r, name, opts, err, errlen);
+    if (!r)
         return NULL;
-    }
     r->name = name;
-    if (!forward_common_init(&r->c, name, opts, err, errlen))
-        goto fail;
     r->c.translucent_later = true;   /* forward_tiled_prepare: over the tile lists or not */
     if (!light_grid_tile_option(&r->g, name, opts, err, errlen))
         goto fail;
@@ -104,8 +101,7 @@ void *forward_tiled_new(const char *name, bool clustered, const renderer_options
         goto fail;
     return r;
 fail:
-    forward_common_destroy(&r->c);
-    free(r);
+    forward_common_free(&r->c);
     return NULL;
 }
 
@@ -250,11 +246,6 @@ static void forward_tiled_draw(void *self, const struct scene *s, frame_stats *o
 {
     forward_plus *r = self;
     forward_common *c = &r->c;
-    if (!c->prepared) {
-        fprintf(stderr, "bug: %s: draw before a successful prepare\n", r->name);
-        out->npasses = 0;
-        return;
-    }
     forward_begin_frame(c, s, out);
     const frontend *fe = &c->b.fe;
     renderer_base_shadow_pass(&c->b, s, out);
@@ -311,7 +302,7 @@ static void forward_tiled_draw(void *self, const struct scene *s, frame_stats *o
 static void forward_tiled_collect(void *self, frame_stats *out)
 {
     forward_plus *r = self;
-    forward_collect(&r->c, out);
+    renderer_base_collect(&r->c.b, out);
     if (r->c.prepared && r->g.cull)
         light_grid_collect(&r->g, out);
 }
@@ -368,12 +359,12 @@ static void forward_tiled_destroy(void *self)
     if (!r)
         return;
     release_buffers(r);
-    forward_common_destroy(&r->c);
-    free(r);
+    forward_common_free(&r->c);
 }
 
 const renderer_impl renderer_forward_plus_impl = RENDERER_IMPL(
     forward_tiled, "forward-plus", "tiles hdr msaa fog aa",
     "tiled forward (Harada et al. 2012): depth pre-pass, lights culled per "
     "screen tile by a compute pass, each pixel shaded with its tile's lights",
-    .read_hdr = forward_read_hdr, .light_grid = forward_tiled_light_grid);
+    .collect = forward_tiled_collect, .read_hdr = forward_read_hdr,
+    .light_grid = forward_tiled_light_grid);

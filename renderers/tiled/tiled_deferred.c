@@ -323,4 +323,5 @@ const renderer_impl renderer_tiled_deferred_impl = RENDERER_IMPL(
     "G-buffer pass (every preset and override of deferred), then one compute "
     "pass that culls lights per screen tile and shades ambient, directional "
     "and local lights into the HDR target by image store; sky last",
-    .read_hdr = deferred_read_hdr, .light_grid = tiled_deferred_light_grid);
+    .collect = tiled_deferred_collect, .read_hdr = deferred_read_hdr,
+    .light_grid = tiled_deferred_light_grid);

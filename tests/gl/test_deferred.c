@@ -158,7 +158,7 @@ static void frame(void *self, const scene *s, frame_stats *fs)
     memset(fs, 0, sizeof *fs);
     IMPL->draw(self, s, fs);
     gl.Finish();
-    IMPL->collect(self, fs);
+    renderer_impl_collect(IMPL, self, fs);
     assert_int_equal(gl_context_poll_errors(ctx, "deferred frame"), 0);
     assert_int_equal(gl_context_error_count(ctx), 0);
 }

@@ -163,7 +163,7 @@ static void frame(fwd *f, const scene *s, frame_stats *fs)
     memset(fs, 0, sizeof *fs);
     f->impl->draw(f->self, s, fs);
     gl.Finish();
-    f->impl->collect(f->self, fs);
+    renderer_impl_collect(f->impl, f->self, fs);
     assert_int_equal(gl_context_error_count(ctx), 0);
 }
 
@@ -857,7 +857,7 @@ static void test_queries_and_misuse(void **state)
     memset(&nq, 0, sizeof nq);
     MPML->draw(self, s, &nq);
     gl.Finish();
-    MPML->collect(self, &nq);
+    renderer_impl_collect(MPML, self, &nq);
     for (size_t i = 0; i < nq.npasses; i++) {
         assert_true(isnan(nq.pass[i].gpu_us) && isnan(nq.pass[i].fragments));
         assert_int_equal(nq.pass[i].draw_calls, fs.pass[i].draw_calls);
@@ -867,7 +867,7 @@ static void test_queries_and_misuse(void **state)
     assert_true(MPML->prepare(self, s, err, sizeof err));
     MPML->draw(self, s, &nq);
     gl.Finish();
-    MPML->collect(self, &nq);
+    renderer_impl_collect(MPML, self, &nq);
     assert_int_equal(total_draws(&nq), total_draws(&fs));
     MPML->destroy(self);
     MPML->destroy(NULL);

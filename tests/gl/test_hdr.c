@@ -476,7 +476,7 @@ static void test_rgba32f_internal_format(void **state)
             frame_stats fs;
             k->draw(self, s, &fs);
             gl.Finish();
-            k->collect(self, &fs);
+            renderer_impl_collect(k, self, &fs);
             const gl_target *t = i == 0 ? forward_hdr_target(self) : deferred_hdr_target(self);
             assert_non_null(t);
             assert_int_equal(internal_format(t->texture), f ? GL_RGBA32F : GL_RGBA16F);
@@ -499,7 +499,7 @@ static double *view_depth(const scene *s, float density)
     frame_stats fs;
     k->draw(self, s, &fs);
     gl.Finish();
-    k->collect(self, &fs);
+    renderer_impl_collect(k, self, &fs);
     const gl_target *t = forward_depth_target(self);
     float *d = malloc((size_t)W * H * sizeof *d);
     double *z = malloc((size_t)W * H * sizeof *z);
