@@ -142,7 +142,9 @@ def section_s003_exp2(s):
         if c.get("ahead_from_start"):
             return "deferred ahead from the first second"
         if c.get("cross_s") is None:
-            return f"deferred never stays ahead (first ahead at second {c.get('first_overtake_s')})"
+            if c.get("first_overtake_s") is None:
+                return "deferred is never ahead"
+            return f"deferred never stays ahead (first ahead at second {c['first_overtake_s']})"
         return f"deferred ahead from second {c['cross_s']} ({fmt(c['cross_lights'], 0)} lights) on"
     if not have:
         v = na
