@@ -173,12 +173,18 @@ static bool need(gl_state *s, unsigned k, bool differs)
     return apply;
 }
 
-static void set_enabled(GLenum cap, bool on)
+/* glEnable or glDisable of cap through the cache (*cached, under key k); true if it
+ * was applied. */
+static bool apply_enabled(gl_state *s, unsigned k, bool *cached, GLenum cap, bool on)
 {
+    if (!need(s, k, *cached != on))
+        return false;
+    *cached = on;
     if (on)
         gl.Enable(cap);
     else
         gl.Disable(cap);
+    return true;
 }
 
 // >>setters
@@ -221,12 +227,7 @@ void gl_state_blend(gl_state *s, const gls_blend *blend)
 {
     static const gls_blend off;
     const gls_blend *b = blend ? blend : &off;
-    bool changed = false;
-    if (need(s, K_BLEND_ON, s->gl.blend_on != b->enabled)) {
-        s->gl.blend_on = b->enabled;
-        set_enabled(GL_BLEND, b->enabled);
-        changed = true;
-    }
+    bool changed = apply_enabled(s, K_BLEND_ON, &s->gl.blend_on, GL_BLEND, b->enabled);
     if (b->enabled) {
         GLenum src = factor(b->src, GL_ONE);
         GLenum dst = factor(b->dst, GL_ZERO);
@@ -280,12 +281,7 @@ void gl_state_depth(gl_state *s, const gls_depth *depth)
     const gls_depth *d = depth ? depth : &off;
     GLenum func = LOOKUP(compare_gl, d->compare, "depth compare");
     bool on = !(func == GL_ALWAYS && !d->write);
-    bool changed = false;
-    if (need(s, K_DEPTH_ON, s->gl.depth_on != on)) {
-        s->gl.depth_on = on;
-        set_enabled(GL_DEPTH_TEST, on);
-        changed = true;
-    }
+    bool changed = apply_enabled(s, K_DEPTH_ON, &s->gl.depth_on, GL_DEPTH_TEST, on);
     if (on) {
         if (need(s, K_DEPTH_FUNC, s->gl.depth_func != func)) {
             s->gl.depth_func = func;
@@ -312,12 +308,8 @@ void gl_state_stencil(gl_state *s, const gls_stencil *stencil)
 {
     static const gls_stencil off;
     const gls_stencil *st = stencil ? stencil : &off;
-    bool changed = false;
-    if (need(s, K_STENCIL_ON, s->gl.stencil_on != st->enabled)) {
-        s->gl.stencil_on = st->enabled;
-        set_enabled(GL_STENCIL_TEST, st->enabled);
-        changed = true;
-    }
+    bool changed =
+        apply_enabled(s, K_STENCIL_ON, &s->gl.stencil_on, GL_STENCIL_TEST, st->enabled);
     if (st->enabled) {
         GLuint read = st->read_mask ? st->read_mask : 0xffu;
         GLuint write = st->write_mask ? st->write_mask : 0xffu;
@@ -358,12 +350,7 @@ void gl_state_cull(gl_state *s, gls_cull cull)
         cull = GLS_CULL_NONE;
     }
     bool on = cull != GLS_CULL_NONE;
-    bool changed = false;
-    if (need(s, K_CULL_ON, s->gl.cull_on != on)) {
-        s->gl.cull_on = on;
-        set_enabled(GL_CULL_FACE, on);
-        changed = true;
-    }
+    bool changed = apply_enabled(s, K_CULL_ON, &s->gl.cull_on, GL_CULL_FACE, on);
     if (on) {
         GLenum face = cull == GLS_CULL_FRONT ? GL_FRONT : GL_BACK;
         if (need(s, K_CULL_FACE, s->gl.cull_face != face)) {
