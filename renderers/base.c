@@ -69,6 +69,9 @@ void renderer_base_destroy(renderer_base *b)
 {
     renderer_base_release_targets(b);
     renderer_base_release_scene(b);
+    if (b->coverage_buffer && gl.DeleteBuffers)
+        gl.DeleteBuffers(1, &b->coverage_buffer);
+    b->coverage_buffer = 0;
     gl_pass_queries_destroy(b->queries);
     gl_program_cache_destroy(b->programs);
     gl_state_destroy(b->st);
@@ -351,6 +354,45 @@ bool renderer_base_read_hdr(const renderer_base *b, float *rgba, int width, int 
     if (!t->texture || width != t->width || height != t->height)
         return false;
     gl_texture_read_float(t->texture, width, height, rgba);
+    return true;
+}
+
+bool renderer_base_coverage(renderer_base *b, uint64_t *covered, char *err, size_t errlen)
+{
+    *covered = 0;
+    if (!b->depth.texture) {
+        snprintf(err, errlen, "%s: coverage: no depth target (not prepared)", b->name);
+        return false;
+    }
+    char samples[32], why[512];
+    snprintf(samples, sizeof samples, "MSAA_SAMPLES %d", b->samples);
+    GLuint program = 0;
+    if (gl_program_get(b->programs,
+                       &(gl_program_desc){.name = b->samples > 1 ? "coverage_msaa" : "coverage",
+                                          .compute = "coverage.comp",
+                                          .defines = {b->samples > 1 ? samples : NULL}},
+                       &program, why, sizeof why) != GLP_OK) {
+        snprintf(err, errlen, "%s: coverage: %s", b->name, why);
+        return false;
+    }
+    if (!b->coverage_buffer) {
+        gl.CreateBuffers(1, &b->coverage_buffer);
+        gl.NamedBufferStorage(b->coverage_buffer, sizeof(GLuint), NULL, GL_DYNAMIC_STORAGE_BIT);
+    }
+    const GLuint zero = 0;
+    gl.NamedBufferSubData(b->coverage_buffer, 0, sizeof zero, &zero);
+    gl.UseProgram(program);
+    gl.BindTextureUnit(BIND_TEX_DEPTH, b->depth.texture);
+    gl.BindBufferBase(GL_SHADER_STORAGE_BUFFER, BIND_SSBO_COVERAGE, b->coverage_buffer);
+    gl.DispatchCompute(((GLuint)b->width + 7u) / 8u, ((GLuint)b->height + 7u) / 8u, 1);
+    gl.MemoryBarrier(GL_BUFFER_UPDATE_BARRIER_BIT);
+    GLuint n = 0;
+    gl.GetNamedBufferSubData(b->coverage_buffer, 0, sizeof n, &n);
+    gl.BindTextureUnit(BIND_TEX_DEPTH, 0);
+    gl.BindBufferBase(GL_SHADER_STORAGE_BUFFER, BIND_SSBO_COVERAGE, 0);
+    gl.UseProgram(0);
+    gl_state_invalidate(b->st);
+    *covered = n;
     return true;
 }
 

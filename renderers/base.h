@@ -76,6 +76,7 @@ typedef struct renderer_base {
     gl_state *st;
     gl_program_cache *programs;
     gl_pass_queries *queries;        /* NULL without opts.queries */
+    GLuint coverage_buffer;          /* renderer_base_coverage's counter, made at first use */
     size_t max_passes;
     /* >>made by renderer_base_scene at prepare */
     scene_gpu *gpu;                  /* the scene's meshes, textures and Frame block */
@@ -170,6 +171,11 @@ const gl_target *renderer_base_display(const renderer_base *b);
  * frame as RGBA floats, row 0 at the bottom; false when there is none or it is not
  * width x height. */
 bool renderer_base_read_hdr(const renderer_base *b, float *rgba, int width, int height);
+/* The pixels of the last frame drawn where any sample of the depth target is nearer
+ * than the far plane (coverage.comp: a dispatch and a read-back of one word, between
+ * frames). False with a message when there is no depth target (not prepared) or the
+ * program cannot be made. The state cache is invalidated: its next use sets again. */
+bool renderer_base_coverage(renderer_base *b, uint64_t *covered, char *err, size_t errlen);
 /* samples > 1: the pass "msaa-resolve" (a blit of hdr into hdr_resolved, in the HDR
  * format); nothing at all when single-sampled. After the last pass that shades into hdr,
  * before the display resolve. */

@@ -16,6 +16,7 @@
 #define BIND_SSBO_TILE_STATS 3      /* tiles.inc: the index allocator and overflow record */
 #define BIND_SSBO_TILE_DEPTH 4      /* tiles.inc (msaa > 1): per tile the depth range culled */
 #define BIND_SSBO_EDGES 5           /* tiled_deferred.comp (msaa > 1): edge pixels counted */
+#define BIND_SSBO_COVERAGE 6        /* coverage.comp: the covered pixels counted */
 /* Texture units */
 #define BIND_TEX_DIFFUSE 0          /* surface.inc's material maps */
 #define BIND_TEX_GLOSS 1

@@ -132,4 +132,4 @@ const renderer_impl renderer_null_impl = RENDERER_IMPL(
     null, "null", "",
     "clears the output once per frame and draws nothing: the harness's "
     "own overhead",
-    .collect = null_collect, .read_hdr = NULL);   /* no float target: renderer_read_hdr says false */
+    .collect = null_collect, .no_base = true, .read_hdr = NULL);   /* no float target: renderer_read_hdr says false */

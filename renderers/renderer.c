@@ -118,6 +118,22 @@ void renderer_draw(renderer *r, const struct scene *s, frame_stats *out)
     r->impl->draw(r->self, s, out);
 }
 
+bool renderer_has_coverage(const renderer *r)
+{
+    return !r->impl->no_base;
+}
+
+bool renderer_coverage(renderer *r, uint64_t *covered, char *err, size_t errlen)
+{
+    *covered = 0;
+    if (r->impl->no_base || !r->prepared) {
+        snprintf(err, errlen, "%s: no depth target to count coverage in%s", r->kind,
+                 r->prepared ? "" : " (not prepared)");
+        return false;
+    }
+    return renderer_base_coverage(r->self, covered, err, errlen);
+}
+
 void renderer_impl_collect(const renderer_impl *impl, void *self, frame_stats *out)
 {
     if (impl->collect)

@@ -230,6 +230,8 @@ typedef struct renderer_impl {
     /* After the frame's sync point: fills GPU times and query counts of that frame.
      * Optional (NULL: the object begins with a renderer_base, renderers/base.h, and its
      * counters are all the renderer collects). */
+    bool no_base;   /* the object does not begin with a renderer_base (null): it has
+                       neither the base's counters nor its depth target */
     void (*collect)(void *self, frame_stats *out);
     void (*describe)(const void *self, pass_plan *out);
     void (*destroy)(void *self);
@@ -273,6 +275,12 @@ renderer *renderer_create(const char *kind, const renderer_options *opts, char *
 bool renderer_prepare(renderer *r, const struct scene *s, char *err, size_t errlen);
 void renderer_draw(renderer *r, const struct scene *s, frame_stats *out);
 void renderer_collect(renderer *r, frame_stats *out);   /* also computes out->total */
+/* Whether renderer_coverage can count (every renderer but null, which draws nothing). */
+bool renderer_has_coverage(const renderer *r);
+/* The pixels the last frame drawn covers: any sample nearer than the far plane
+ * (renderer_base_coverage; between frames, never inside a measured one). False with
+ * a message when the renderer has no depth target or is not prepared. */
+bool renderer_coverage(renderer *r, uint64_t *covered, char *err, size_t errlen);
 /* An object's collect as renderer_collect calls it (renderer_impl.collect, or the
  * base's when that is NULL), without the totals: for tests that drive an impl. */
 void renderer_impl_collect(const renderer_impl *impl, void *self, frame_stats *out);

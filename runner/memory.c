@@ -410,7 +410,7 @@ bool memory_explain(const char *status, const char *message, long peak_vm_kb,
         return false;
     const char *why = status + 7;
     if (is(why, "oom") || is(why, "memory") || is(why, "timeout") || is(why, "interrupted") ||
-        is(why, "error") || is(why, "nonfinite") || is(why, "overflow"))
+        is(why, "error") || is(why, "nonfinite") || is(why, "overflow") || is(why, "empty"))
         return false;
     char peaks[160] = "", a[32], b[32];
     uint64_t vm = peak_vm_kb > 0 ? (uint64_t)peak_vm_kb * 1024 : 0;

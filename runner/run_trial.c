@@ -485,8 +485,62 @@ static void frame_metrics_of(frame_record *r, const frame_stats *fs, const gbuff
 #include "results/metrics.def"
 }
 
+/* What the trial's first measured frame shows: results/metrics.def's `shown`. */
+typedef struct frame_shown {
+    double coverage;   /* covered pixels / pixels; NAN: not counted */
+} frame_shown;
+
+/* The trial's first measured frame, between frames (the caller has paused the measured
+ * clock): the fraction of the screen its scene covers, and its brightest channel as
+ * displayed. A frame of a scene with objects that shows nothing (no pixel covered, or
+ * black) fails the trial as failed:empty unless allow_empty: its frame time would rank a
+ * view of nothing. False when the trial ends here. */
+static bool check_shown(run_state *st, double t, frame_shown *shown, trial_result *tr)
+{
+    const run_params *p = &st->s->p;
+    shown->coverage = NAN;
+    if (!renderer_has_coverage(st->r))
+        return true;   /* null: draws nothing by design */
+    uint64_t covered = 0;
+    image img = {0};
+    if (!renderer_coverage(st->r, &covered, st->err, sizeof st->err) ||
+        !read_output(st, &img, st->err, sizeof st->err)) {
+        image_free(&img);
+        snprintf(tr->status, sizeof tr->status, "failed:coverage");
+        return false;
+    }
+    const double pixels = (double)p->width * (double)p->height;
+    shown->coverage = (double)covered / pixels;
+    unsigned brightest = 0;
+    const uint8_t *px = img.pixels;
+    for (size_t i = 0; i < (size_t)pixels * 4u; i += 4)
+        for (size_t c = 0; c < 3; c++)
+            brightest = px[i + c] > brightest ? px[i + c] : brightest;
+    image_free(&img);
+    if (p->allow_empty || st->sc->nobjects == 0)
+        return true;
+    if (covered == 0)
+        snprintf(st->err, sizeof st->err,
+                 "the scene covers no pixel of the first measured frame (schedule time %g s): "
+                 "the camera sees none of its %u object%s; allow_empty: true measures it "
+                 "anyway",
+                 t, st->sc->nobjects, st->sc->nobjects == 1 ? "" : "s");
+    else if (brightest <= 1)
+        snprintf(st->err, sizeof st->err,
+                 "the first measured frame (schedule time %g s) is black: no channel of any "
+                 "pixel above 1 of 255, with %.3g%% of the screen covered; allow_empty: true "
+                 "measures it anyway",
+                 t, 100.0 * shown->coverage);
+    else
+        return true;
+    snprintf(tr->status, sizeof tr->status, "failed:empty");
+    fprintf(stderr, "run %s: %s\n", st->s->id, st->err);
+    return false;
+}
+
 /* A trial's TRIAL_METRICs of results/metrics.def, each from its `from`. */
-static void trial_metrics_of(metric_totals *m, const contention_trial *ctn)
+static void trial_metrics_of(metric_totals *m, const contention_trial *ctn,
+                             const frame_shown *shown)
 {
 #define TRIAL_METRIC(trial, sprec, from, ...) m->trial = (from);
 #include "results/metrics.def"
@@ -532,6 +586,7 @@ void run_one_trial(run_state *st, uint32_t trial, trial_result *tr)
     trial_sink sink = {.st = st, .trial = trial};
     trial_stream_begin(st->stream, 0.01, sink_second, sink_point, &sink);
     bool shot_done[MAX_SCREENSHOTS] = {false}, error_done[MAX_SCREENSHOTS] = {false};
+    frame_shown shown = {.coverage = NAN};
     double harness_s = 0, t_end = 0, start = 0, t_last = 0;
     size_t n = 0;
     measured_clock mc;
@@ -583,6 +638,13 @@ void run_one_trial(run_state *st, uint32_t trial, trial_result *tr)
         if (!run_gl_clean(st, "frame")) {
             snprintf(tr->status, sizeof tr->status, "failed:gl-error");
             break;
+        }
+        if (k == 0) {   /* what the trial measures must show something */
+            mclock_pause(&mc);
+            bool shows = check_shown(st, t, &shown, tr);
+            mclock_resume(&mc);
+            if (!shows)
+                break;
         }
         if (capture_is_due(p, t, shot_done, error_done)) {
             mclock_pause(&mc);
@@ -636,7 +698,7 @@ void run_one_trial(run_state *st, uint32_t trial, trial_result *tr)
     tr->m = tt.m;
     contention_trial ctn;
     contention_between(&c0, &c1, loadavg, &ctn);
-    trial_metrics_of(&tr->m, &ctn);
+    trial_metrics_of(&tr->m, &ctn, &shown);
     tr->lights_max = tt.lights_max;
     tr->ci1pct_after_s = tt.ci_converged_after_s;
     tr->harness_us_mean = n ? harness_s * 1e6 / (double)n : NAN;

@@ -92,6 +92,7 @@ resolution: 48x32
 duration: {frames: 3}
 clock: fixed
 lights: {placement: random, count: 4, radius: 2}
+allow_empty: true   # simple_skin's orbit sees its flat strip edge-on: no pixel at t = 0
 sweep:
   scene: [{file: scenes/box.glb}, {file: scenes/box/BoxTextured.gltf}, {file: scenes/skin/simple_skin.gltf}, shapes]
 YAML

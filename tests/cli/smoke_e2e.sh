@@ -33,7 +33,7 @@ summary_cols = ["experiment","run_id","renderer","scene","width","height","gbuff
   "cell_lights_max","light_evals_per_pixel","gbuffer_bytes_per_frame","gbuffer_write_bytes_mean",
   "gbuffer_read_bytes_mean","image_edge_rmse","image_edge_pixels","samples_shaded_mean",
   "edge_fraction_mean","cpu_mean_us","cpu_p50_us","cpu_share_mean","invol_csw","vol_csw",
-  "steal_frac","loadavg_1m","order","metric","metric_us","status","message"]
+  "steal_frac","loadavg_1m","coverage","order","metric","metric_us","status","message"]
 frames_cols = ["run_id","trial","frame","t_wall_s","t_scene_s","lights","frametime_us",
   "gpu_us","draw_calls","state_changes","fragments","samples","gbuffer_bytes_per_frame",
   "gbuffer_write_bytes","gbuffer_read_bytes","cpu_us","cpu_share"]
@@ -96,6 +96,10 @@ for s, want_id in zip(summary, [i for i in ids for _ in (1, 2)]):
     for k in ("invol_csw", "vol_csw"):
         if not s[k].isdigit(): fail(f"{k} = {s[k]!r}")
     if not float(s["loadavg_1m"]) >= 0: fail(f"loadavg_1m {s['loadavg_1m']!r}")
+    # the scene covers part of the screen; null has no depth target (empty_frame.sh)
+    if (s["coverage"] == "") != (s["renderer"] == "null") or \
+            (s["coverage"] != "" and not 0 < float(s["coverage"]) <= 1):
+        fail(f"coverage {s['coverage']!r} of {s['renderer']}")
     if s["steal_frac"] != "" and not 0 <= float(s["steal_frac"]) <= 1:
         fail(f"steal_frac {s['steal_frac']}")
     # what decides: the process's CPU time on llvmpipe (measure.metric: auto), and each

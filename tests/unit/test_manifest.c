@@ -426,6 +426,7 @@ static void test_kv_canonical(void **state)
         {"outputs.frames", "true"},
         {"outputs.seconds", "true"},
         {"outputs.screenshots", ""},
+        {"allow_empty", "false"},
         {"debug.busy_us", "0"},
         {"debug.busy_renderer", ""},
         {NULL, NULL},
@@ -495,6 +496,7 @@ static void test_kv_canonical(void **state)
         {"outputs.frames", "false"},
         {"outputs.seconds", "false"},
         {"outputs.screenshots", "0,10,30.5"},
+        {"allow_empty", "false"},
         {"debug.busy_us", "0"},
         {"debug.busy_renderer", ""},
         {NULL, NULL},
@@ -591,7 +593,7 @@ static const bad_case bad_cases[] = {
     {"unknown_top_key.yaml",
      {"1:1: duration: expected {seconds: S} or {frames: N}, found nothing",
       "5:1: durtion: expected one of shadesweep, name, description, scene, renderers, "
-      "resolution, trials, schedule, measure, warmup, duration, clock, step, sync, timeout, gbuffer, deferred, forward, tiles, clustered, shadows, hdr, msaa, fog, aa, translucency, camera, error, lights, outputs, debug, sweep, "
+      "resolution, trials, schedule, measure, warmup, duration, clock, step, sync, timeout, gbuffer, deferred, forward, tiles, clustered, shadows, hdr, msaa, fog, aa, translucency, camera, error, lights, outputs, allow_empty, debug, sweep, "
       "found 'durtion'"}},
     {"unknown_nested_key.yaml",
      {"8:3: lights.cnt: expected one of placement, seed, rng, count, radius, overlap, color_max, "
