@@ -143,9 +143,14 @@ static void estimate(const run_params *p, const scene_facts *sc, memory_estimate
     out->targets = 8 * px + targets_of(p->renderer, p, w, h, p->msaa, sc);
     out->lists = lists_of(p->renderer, p, w, h, sc);
     out->scene = sc ? sc->bytes : 0;
-    /* screenshots and error images: RGBA8 and float RGBA copies of the frame */
+    /* screenshots and error images: RGBA8 and float RGBA copies of the frame; else the
+     * first measured frame's check (run_trial.c's check_shown) reads an RGBA8 copy, in
+     * every renderer with a depth target */
+    const renderer_impl *ri = renderer_kind_find(p->renderer);
     if (p->nscreenshots || p->error_renderer[0])
         out->readback = px * (4 + 16);
+    else if (ri && !ri->no_base)
+        out->readback = px * 4;
     if (p->error_renderer[0]) {
         run_params rp;
         params_reference(p, &rp);
