@@ -333,12 +333,9 @@ bool renderer_base_targets(renderer_base *b, const char *hdr_name, char *err, si
 
 void renderer_base_release_targets(renderer_base *b)
 {
-    gl_framebuffer_destroy(&b->msaa_read);
-    gl_framebuffer_destroy(&b->msaa_draw);
-    gl_target_destroy(&b->hdr_resolved);
+    GL_FRAMEBUFFERS_DESTROY(&b->msaa_read, &b->msaa_draw);
     edge_aa_release(&b->aa);
-    gl_target_destroy(&b->hdr);
-    gl_target_destroy(&b->depth);
+    GL_TARGETS_DESTROY(&b->hdr_resolved, &b->hdr, &b->depth);
 }
 
 const gl_target *renderer_base_display(const renderer_base *b)

@@ -65,15 +65,11 @@ deferred_renderer *deferred_core_create(const char *name, size_t size, bool tile
 void deferred_core_release(deferred_renderer *r)
 {
     translucent_release(&r->translucent);
-    gl_framebuffer_destroy(&r->fb_gbuffer);
-    gl_framebuffer_destroy(&r->fb_light);
-    gl_framebuffer_destroy(&r->fb_compose);
-    gl_framebuffer_destroy(&r->fb_fog);
+    GL_FRAMEBUFFERS_DESTROY(&r->fb_gbuffer, &r->fb_light, &r->fb_compose, &r->fb_fog);
     for (int i = 0; i < DEFERRED_MAX_ATTACHMENTS; i++)
         gl_target_destroy(&r->gbuf[i]);
     renderer_base_release_targets(&r->b);
-    gl_target_destroy(&r->specular);
-    gl_target_destroy(&r->depth_sampled);
+    GL_TARGETS_DESTROY(&r->specular, &r->depth_sampled);
     renderer_base_release_scene(&r->b);
     r->prepared = false;
 }

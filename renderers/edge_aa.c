@@ -11,11 +11,8 @@
 
 void edge_aa_release(edge_aa *e)
 {
-    gl_framebuffer_destroy(&e->fb);
-    gl_target_destroy(&e->out);
-    gl_framebuffer_destroy(&e->depth_read);
-    gl_framebuffer_destroy(&e->depth_draw);
-    gl_target_destroy(&e->depth1);
+    GL_FRAMEBUFFERS_DESTROY(&e->fb, &e->depth_read, &e->depth_draw);
+    GL_TARGETS_DESTROY(&e->out, &e->depth1);
     e->program = 0;   /* the base's cache owns it */
     e->run = false;
 }

@@ -8,6 +8,7 @@
 #include <unistd.h>
 
 #include "results/fsutil.h"
+#include "results/grow.h"
 #include "runner/folder.h"
 #include "runner/output.h"
 
@@ -24,34 +25,24 @@ static char *slurp(const char *path, size_t *len, char *err, size_t errlen)
 /* Run ids in plan order: the second field of each data row (ids are hex: no quoting). */
 static bool plan_ids(const char *plan_text, char (**ids)[13], size_t *n, char *err, size_t errlen)
 {
-    size_t cap = 64;
+    size_t cap = 0;
     *n = 0;
-    *ids = malloc(cap * sizeof **ids);
-    const char *line = strchr(plan_text, '\n');
-    while (*ids && line && line[1]) {
-        line++;
-        const char *c1 = strchr(line, ',');
+    *ids = NULL;
+    for (const char *line = strchr(plan_text, '\n'); line && line[1];
+         line = strchr(line + 1, '\n')) {
+        const char *c1 = strchr(line + 1, ',');
         const char *c2 = c1 ? strchr(c1 + 1, ',') : NULL;
-        if (!c2 || c2 - c1 - 1 != 12) {
-            snprintf(err, errlen, "plan.csv: a row without a run id");
+        const char *why = !c2 || c2 - c1 - 1 != 12 ? "plan.csv: a row without a run id"
+                          : !GROW(*ids, cap, *n + 1, 64) ? "out of memory"
+                                                         : NULL;
+        if (why) {   /* never a part of the plan: merge would miss the rest */
+            snprintf(err, errlen, "%s", why);
             free(*ids);
             *ids = NULL;
             return false;
         }
-        if (*n == cap) {
-            char(*nv)[13] = realloc(*ids, 2 * cap * sizeof **ids);
-            if (!nv)
-                break;
-            *ids = nv;
-            cap *= 2;
-        }
         memcpy((*ids)[*n], c1 + 1, 12);
         (*ids)[(*n)++][12] = 0;
-        line = strchr(line, '\n');
-    }
-    if (!*ids) {
-        snprintf(err, errlen, "out of memory");
-        return false;
     }
     return true;
 }

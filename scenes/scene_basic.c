@@ -72,8 +72,7 @@ bool scene_build_shapes(scene_builder *b, const void *arg)
     }
     sb_set_bounds(b, -20.0f, 0.5f, -20.0f, 20.0f, 8.0f, 20.0f);
     sm_vec3_make(0.05f, 0.05f, 0.06f, s->ambient);
-    s->sky = true;
-    sm_vec3_make(0.45f, 0.6f, 0.8f, s->sky_color);
+    sb_set_sky(b, 0.45f, 0.6f, 0.8f);
     sb_set_orbit(b, 0.0f, 0.0f, 0.0f, 35.0f, 18.0f, 30.0f);
     sb_set_projection(b, 60.0f, 0.5f, 200.0f);
     return !b->failed;

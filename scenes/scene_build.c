@@ -378,3 +378,9 @@ void sb_set_projection(scene_builder *b, float fovy_deg, float znear, float zfar
     b->s->znear = znear;
     b->s->zfar = zfar;
 }
+
+void sb_set_sky(scene_builder *b, float r, float g, float bl)
+{
+    b->s->sky = true;
+    sm_vec3_make(r, g, bl, b->s->sky_color);
+}

@@ -18,7 +18,7 @@
  *   materials  sb_material, sb_material_maps
  *   objects    sb_object
  *   lights     sb_point, sb_spot, sb_directional
- *   scene      sb_set_bounds, sb_set_orbit, sb_set_keys, sb_set_projection */
+ *   scene      sb_set_bounds, sb_set_orbit, sb_set_keys, sb_set_projection, sb_set_sky */
 #include <stdbool.h>
 #include <stddef.h>
 #include <stdint.h>
@@ -125,6 +125,8 @@ void sb_set_orbit(scene_builder *b, float tx, float ty, float tz, float radius, 
 void sb_set_keys(scene_builder *b, uint32_t n, const float (*eyes)[3], const float (*targets)[3],
                  float period);
 void sb_set_projection(scene_builder *b, float fovy_deg, float znear, float zfar);
+/* A sky of colour (r, g, bl) where no object covers the frame (without it: black). */
+void sb_set_sky(scene_builder *b, float r, float g, float bl);
 
 /* >>the builders (catalog.c's table) */
 bool scene_build_empty(scene_builder *b, const void *arg);

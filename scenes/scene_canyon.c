@@ -90,8 +90,7 @@ bool scene_build_canyon(scene_builder *b, const void *arg)
     sm_vec3 sun_dir = {0.55f, -0.6f, 0.35f}, sun = {1.0f, 0.93f, 0.8f};
     sb_directional(b, sun_dir, sun, false);
     sm_vec3_make(0.22f, 0.24f, 0.28f, s->ambient);
-    s->sky = true;
-    sm_vec3_make(0.55f, 0.7f, 0.9f, s->sky_color);
+    sb_set_sky(b, 0.55f, 0.7f, 0.9f);
     sb_set_bounds(b, -750.0f, 0.0f, -4000.0f, 750.0f, 500.0f, 4000.0f);
     sb_set_orbit(b, 0.0f, 400.0f, 0.0f, 3000.0f, 1300.0f, 60.0f);
     sb_set_projection(b, 60.0f, 1.0f, 8192.0f);

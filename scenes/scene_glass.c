@@ -74,6 +74,8 @@ bool scene_build_glass(scene_builder *b, const void *arg)
     if (b->failed)
         return false;
 
+    sm_vec3_make(0.05f, 0.05f, 0.05f, s->ambient);
+    sb_set_sky(b, 0.4f, 0.55f, 0.75f);
     sb_object(b, floor_mesh, floor, 0.0f, -0.5f, 0.0f, 1.0f);
     sb_object(b, pillar_mesh, stone, -1.0f, 0.0f, -5.0f, 1.0f);
     /* staggered: each pane 1.5 further from the camera at t = 0 (on +x) and 1.8 to the
@@ -93,9 +95,6 @@ bool scene_build_glass(scene_builder *b, const void *arg)
                  c == 0 ? 1.0f : 0.4f, c == 1 ? 1.0f : 0.4f, c == 2 ? 1.0f : 0.4f);
     }
     sb_set_bounds(b, -10.0f, 0.5f, -10.0f, 10.0f, 5.0f, 10.0f);
-    sm_vec3_make(0.05f, 0.05f, 0.05f, s->ambient);
-    s->sky = true;
-    sm_vec3_make(0.4f, 0.55f, 0.75f, s->sky_color);
     sb_set_orbit(b, 0.0f, 1.5f, 0.0f, 14.0f, 5.0f, 30.0f);
     sb_set_projection(b, 60.0f, 0.1f, 100.0f);
     return !b->failed;

@@ -131,9 +131,7 @@ static inline void sm_vec3_make(float x, float y, float z, sm_vec3 dest)
 
 static inline void sm_vec3_copy(const sm_vec3 a, sm_vec3 dest)
 {
-    dest[0] = a[0];
-    dest[1] = a[1];
-    dest[2] = a[2];
+    sm_vec3_make(a[0], a[1], a[2], dest);
 }
 
 static inline void sm_vec3_zero(sm_vec3 v) { v[0] = v[1] = v[2] = 0.0f; }
@@ -238,10 +236,7 @@ static inline void sm_vec4_make(float x, float y, float z, float w, sm_vec4 dest
 
 static inline void sm_vec4_copy(const sm_vec4 a, sm_vec4 dest)
 {
-    dest[0] = a[0];
-    dest[1] = a[1];
-    dest[2] = a[2];
-    dest[3] = a[3];
+    sm_vec4_make(a[0], a[1], a[2], a[3], dest);
 }
 
 /* (v.xyz, w) */

@@ -10,53 +10,33 @@ set -euo pipefail
 root=$(cd "$(dirname "$0")/.." && pwd)
 out=${1:-$root/out/bench-tiled}
 shift || true
-"$root/scripts/setup.sh"
-"$root/scripts/build.sh" "$root/build"
-export LIBGL_ALWAYS_SOFTWARE=${LIBGL_ALWAYS_SOFTWARE-1}
+. "$root/scripts/bench-common.sh"
 for m in tiled tiled-volumes; do
   # a failed run (a renderer refusing, a timeout) is a row of the table, not an abort
   "$root/build/runner/shadesweep" run --force "$@" -o "$out/$m" \
     "$root/experiments/renderers-$m.yaml" || true
 done
-/usr/bin/python3 - "$out" <<'PY'
-import csv, glob, math, os, statistics, sys
-import yaml
+bench_table "$out" <<'PY'
+import math, sys
+from shadesweep_report.bench import grouped, load, mean_ci, print_header, print_machine
 out = sys.argv[1]
-T975 = {1: 12.706, 2: 4.303, 3: 3.182, 4: 2.776}
-rows, plans = [], {}
-for m in ("tiled", "tiled-volumes"):
-    p = os.path.join(out, m, "summary.csv")
-    if not os.path.exists(p):
-        continue
-    rows += list(csv.DictReader(open(p)))
-    plans.update({r["run_id"]: r for r in csv.DictReader(open(os.path.join(out, m, "plan.csv")))})
-metas = glob.glob(os.path.join(out, "*", "runs", "*", "meta.yaml"))
-if metas:
-    meta = yaml.safe_load(open(metas[0]))
-    print(f"GL renderer: {meta['gl']['renderer']}; CPU: {meta['host']['cpu']}, "
-          f"{meta['host']['threads']} threads; shadesweep {meta['shadesweep']['commit']}")
-    print()
-print("| scene | lights | renderer | frame time ms | draws | dispatches | lights/cell | evals/pixel | RMSE vs spml |")
-print("|---|---|---|---|---|---|---|---|---|")
+rows, plans = load(out, ("tiled", "tiled-volumes"))
+print_machine(out)
+print_header("scene", "lights", "renderer", "frame time ms", "draws", "dispatches",
+             "lights/cell", "evals/pixel", "RMSE vs spml")
 def key(r):
     p = plans[r["run_id"]]
     name = r["renderer"]
     if name == "deferred":
         name += " " + p["deferred.light_volumes"]
     return (p["scene"], int(p["lights.count"]), name)
-groups = {}
-for r in rows:
-    groups.setdefault(key(r), []).append(r)
 def num(s, fmt):
     return format(float(s), fmt) if s not in ("", None) else "-"
-for k in sorted(groups):
-    rs = [r for r in groups[k] if r["status"] == "ok"]
+for k, rs, status in grouped(rows, key):
     if not rs:
-        print(f"| {k[0]} | {k[1]} | {k[2]} | {groups[k][0]['status']} | | | | | |")
+        print(f"| {k[0]} | {k[1]} | {k[2]} | {status} | | | | | |")
         continue
-    ft = [float(r["frametime_mean_us"]) / 1000 for r in rs]
-    m = statistics.mean(ft)
-    ci = T975.get(len(ft) - 1, 2.0) * statistics.stdev(ft) / math.sqrt(len(ft)) if len(ft) > 1 else float("nan")
+    m, ci = mean_ci(float(r["frametime_mean_us"]) / 1000 for r in rs)
     r0 = rs[0]
     rmse = max((float(r["image_rmse"]) for r in rs if r["image_rmse"]), default=float("nan"))
     print(f"| {k[0]} | {k[1]} | {k[2]} | {m:.1f} ± {ci:.1f} | {num(r0['draw_calls_mean'], '.0f')} | "

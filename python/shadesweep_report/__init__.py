@@ -9,5 +9,6 @@ OUTDIR/plots/. The papers' numbers come from results/reference/*.csv.
 
 Modules: stats (numbers and statistics), text (markdown), reference (the papers'
 tables), loading (output folders: CSVs, meta.yaml, sweep.yaml), plots, sections (one
-module per paper section), cli (the command line and the report's frame).
+module per paper section), cli (the command line and the report's frame); bench holds
+what the README's benchmark scripts (scripts/bench-*.sh) share and is not the report's.
 """

@@ -129,6 +129,12 @@ void gl_target_destroy(gl_target *t)
     memset(t, 0, sizeof *t);
 }
 
+void gl_targets_destroy(gl_target *const *list)
+{
+    for (; *list; list++)
+        gl_target_destroy(*list);
+}
+
 void gl_target_describe(const gl_target *t, target_plan_entry *out)
 {
     memset(out, 0, sizeof *out);
@@ -312,6 +318,12 @@ void gl_framebuffer_destroy(gl_framebuffer *fb)
     if (fb->fbo && gl.DeleteFramebuffers)
         gl.DeleteFramebuffers(1, &fb->fbo);
     memset(fb, 0, sizeof *fb);
+}
+
+void gl_framebuffers_destroy(gl_framebuffer *const *list)
+{
+    for (; *list; list++)
+        gl_framebuffer_destroy(*list);
 }
 
 /* Reads a float colour texture (RGBA16F, RGBA32F...) of w x h as RGBA floats, row 0 at the bottom, tightly

@@ -106,6 +106,9 @@ typedef struct gl_target {
  * *t is zeroed on failure. */
 bool gl_target_create(gl_target *t, const gl_target_desc *desc, char *err, size_t errlen);
 void gl_target_destroy(gl_target *t);
+/* Destroys each target of a NULL-ended list; GL_TARGETS_DESTROY(&a, &b) ends it. */
+void gl_targets_destroy(gl_target *const *list);
+#define GL_TARGETS_DESTROY(...) gl_targets_destroy((gl_target *const[]){__VA_ARGS__, NULL})
 
 /* The pass_plan row of t: name, format name ("rgba16f", "rgba16f x4" when
  * multisampled), size, bytes. */
@@ -148,6 +151,10 @@ typedef struct gl_framebuffer {
 bool gl_framebuffer_create(gl_framebuffer *fb, const gl_framebuffer_desc *desc, char *err,
                            size_t errlen);
 void gl_framebuffer_destroy(gl_framebuffer *fb);
+/* Destroys each framebuffer of a NULL-ended list; GL_FRAMEBUFFERS_DESTROY(&a, &b) ends it. */
+void gl_framebuffers_destroy(gl_framebuffer *const *list);
+#define GL_FRAMEBUFFERS_DESTROY(...) \
+    gl_framebuffers_destroy((gl_framebuffer *const[]){__VA_ARGS__, NULL})
 
 /* Reads level 0 of a colour texture of w x h as RGBA floats, row 0 at the bottom,
  * tightly packed, without changing any binding the state cache knows (direct state
