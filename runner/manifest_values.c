@@ -472,10 +472,10 @@ static bool parse_scene_file(vctx *c, const param *pd, const ynode *n, const cha
             ok = false;
         }
     }
-    const char *camera = "orbit";
+    const char *camera = "auto";
     if (vals[3]) {
         if (!mf_stringish(vals[3]) || vals[3]->len >= sizeof dst->scene_camera) {
-            mf_err(c, vals[3], sub[3], "expected orbit or the name of one of the file's cameras "
+            mf_err(c, vals[3], sub[3], "expected auto, orbit or the name of one of the file's cameras "
                 "(at most %zu bytes), found %s", sizeof dst->scene_camera - 1,
                 mf_found(vals[3], true, f, sizeof f));
             ok = false;

@@ -190,6 +190,9 @@ void param_format(const param *pd, const run_params *p, char *out, size_t len)
             char sc[32] = "";
             if (p->scene_scale != 1)
                 params_fmt_float(p->scene_scale, sc, sizeof sc);
+            /* orbit, the camera file scenes had before auto, stays out of the text so
+             * that their ids hold; auto, the default now, is written, so a run of it
+             * never takes the id of an orbit's results */
             bool cam = strcmp(p->scene_camera, "orbit") != 0;
             snprintf(out, len, "file:%s%s%s%s%s%s", p->scene_hash, sc[0] ? ",scale:" : "", sc,
                      p->scene_up == SCENE_UP_Z ? ",up:z" : "", cam ? ",camera:" : "",

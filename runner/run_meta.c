@@ -108,6 +108,7 @@ bool run_write_meta(run_state *st, char *err, size_t errlen)
         yo_key(y, "scale"); yo_f64(y, p->scene_scale);
         yo_key(y, "up"); yo_str(y, p->scene_up == SCENE_UP_Z ? "z" : "y");
         yo_key(y, "camera"); yo_str(y, p->scene_camera);
+        yo_key(y, "view"); yo_str(y, si->view);
         yo_key(y, "files"); yo_i64(y, si->files);
         yo_key(y, "meshes"); yo_i64(y, si->meshes);
         yo_key(y, "triangles"); yo_i64(y, (int64_t)si->triangles);

@@ -285,6 +285,22 @@ static void not_rendered_of(const loaded *l, scene_file_info *info)
 
 // >>check
 
+/* The file's camera a run looks through: the one named, or with camera auto (the
+ * default) the first perspective one; NULL for orbit and for auto without one. */
+static const struct aiCamera *chosen_camera(const struct aiScene *ai, const char *camera)
+{
+    if (file_camera_is(camera, "orbit"))
+        return NULL;
+    bool any = file_camera_is(camera, "auto");
+    for (unsigned i = 0; i < ai->mNumCameras; i++) {
+        const struct aiCamera *cam = ai->mCameras[i];
+        if (any ? cam->mOrthographicWidth <= 0.0f : strcmp(cam->mName.data, camera) == 0)
+            return cam;
+    }
+    return NULL;
+}
+
+
 bool scene_file_check(const scene_file_options *o, scene_file_info *info, char *err,
                       size_t errlen)
 {
@@ -330,6 +346,14 @@ bool scene_file_check(const scene_file_options *o, scene_file_info *info, char *
         sm_vec3_copy(c.lo, info->bounds_min);
         sm_vec3_copy(c.hi, info->bounds_max);
         not_rendered_of(&l, info);
+        const struct aiCamera *cam = chosen_camera(l.ai, o->camera);
+        if (cam)
+            snprintf(info->view, sizeof info->view, "the file's camera '%.60s'", cam->mName.data);
+        else
+            snprintf(info->view, sizeof info->view, "%s",
+                     file_camera_is(o->camera, "orbit") ? "an orbit about the bounds"
+                                                        : "the bounds framed from above and "
+                                                          "to the side");
     }
     file_loaded_free(&l);
     return ok;
@@ -478,6 +502,94 @@ static void add_light(scene_builder *b, const struct aiLight *al, const sm_mat4 
     l->attenuation = ATTENUATION_INVERSE_SQUARE;
 }
 
+/* The camera's node pose and lens, held for the whole run. */
+static void use_file_camera(scene_builder *b, const scene_file_options *o,
+                            const struct aiScene *ai, const struct aiCamera *cam,
+                            const sm_mat4 root, float size)
+{
+    find_node f = {cam->mName.data, false, {{0}}, NULL};
+    walk(ai->mRootNode, root, find_fn, &f, 0);
+    if (!f.found)
+        sm_mat4_copy(root, f.world);
+    bool gltf = is_gltf(o->path);
+    /* glTF: the camera sits at its node's origin looking down -Z (assimp also copies the
+     * node's translation into mPosition, which would count it twice) */
+    sm_vec3 p = {cam->mPosition.x, cam->mPosition.y, cam->mPosition.z};
+    if (gltf)
+        sm_vec3_make(0.0f, 0.0f, 0.0f, p);
+    sm_vec3 at = {p[0] + cam->mLookAt.x, p[1] + cam->mLookAt.y, p[2] + cam->mLookAt.z};
+    float eye[1][3], target[1][3];
+    sm_mat4_mulv3(f.world, p, 1.0f, eye[0]);
+    sm_mat4_mulv3(f.world, at, 1.0f, target[0]);
+    sb_set_keys(b, 1, (const float (*)[3])eye, (const float (*)[3])target, 60.0f);
+    /* assimp documents mHorizontalFOV as half the horizontal angle; its glTF importer
+     * stores yfov x aspect instead */
+    float aspect = cam->mAspect > 0.0f ? cam->mAspect : 1.0f;
+    float fovy = gltf ? cam->mHorizontalFOV / aspect
+                      : 2.0f * atanf(tanf(cam->mHorizontalFOV) / aspect);
+    float zn = cam->mClipPlaneNear > 0.0f ? cam->mClipPlaneNear : size * 1e-3f;
+    float zf = cam->mClipPlaneFar > zn ? cam->mClipPlaneFar : size * 10.0f;
+    sb_set_projection(b, sm_rad2deg(fovy), zn, zf);
+    b->s->fovy = fovy;   /* exactly, not through degrees */
+}
+
+/* camera auto without a perspective camera: the side to look from. Eight directions
+ * from the centre, 30 degrees above or below the horizon, halfway between the axes
+ * (above first, glTF's front +Z first); each scores the area of the front faces it
+ * sees (sum of max(0, n.d) over the triangles, n their world-space area normals: a
+ * mirrored node's copy has its winding flipped already). The first within 1% of the
+ * best wins: a closed model keeps the first, a flat or single-sided one is seen from
+ * the side its faces face, not edge-on or from behind. */
+static void facing_side(const scene *s, sm_vec3 dir)
+{
+    enum { SIDES = 8 };
+    sm_vec3 d[SIDES];
+    double score[SIDES] = {0};
+    static const float azimuth[4] = {45.0f, 315.0f, 135.0f, 225.0f};
+    for (int k = 0; k < SIDES; k++) {
+        float el = sm_deg2rad(k < 4 ? 30.0f : -30.0f), az = sm_deg2rad(azimuth[k % 4]);
+        sm_vec3_make(cosf(el) * sinf(az), sinf(el), cosf(el) * cosf(az), d[k]);
+    }
+    for (uint32_t i = 0; i < s->nobjects; i++) {
+        const scene_object *o = &s->objects[i];
+        const mesh *m = &s->meshes[o->mesh];
+        for (uint32_t t = 0; t + 2 < m->nindices; t += 3) {
+            sm_vec3 w[3], e1, e2, n;
+            for (int c = 0; c < 3; c++) {
+                sm_mat4_mulv3(o->transform, m->vertices[m->indices[t + c]].position, 1.0f, w[c]);
+                sm_vec3_scale(w[c], o->scale, w[c]);
+            }
+            sm_vec3_sub(w[1], w[0], e1);
+            sm_vec3_sub(w[2], w[0], e2);
+            sm_vec3_cross(e1, e2, n);
+            for (int k = 0; k < SIDES; k++)
+                score[k] += fmax(0.0, (double)sm_vec3_dot(n, d[k]));
+        }
+    }
+    int best = 0;
+    for (int k = 1; k < SIDES; k++)
+        best = score[k] > score[best] ? k : best;
+    int pick = 0;
+    while (score[pick] < 0.99 * score[best])
+        pick++;
+    sm_vec3_copy(d[pick], dir);
+}
+
+/* camera auto without a perspective camera in the file: a fixed view of the bounding
+ * sphere (centre, radius) from facing_side's direction, at the distance where the
+ * sphere fills the vertical field of view (at an aspect below 1 its sides may be cut).
+ * Unlike an orbit, it never turns to a flat model's edge or a single-sided one's back. */
+static void frame_bounds(scene_builder *b, const sm_vec3 centre, float radius)
+{
+    sm_vec3 dir;
+    facing_side(b->s, dir);
+    float dist = radius / sinf(0.5f * b->s->fovy);
+    float eye[1][3], target[1][3] = {{centre[0], centre[1], centre[2]}};
+    for (int k = 0; k < 3; k++)
+        eye[0][k] = centre[k] + dist * dir[k];
+    sb_set_keys(b, 1, (const float (*)[3])eye, (const float (*)[3])target, 60.0f);
+}
+
 bool scene_build_file(scene_builder *b, const void *arg)
 {
     const scene_file_options *o = arg;
@@ -536,39 +648,13 @@ bool scene_build_file(scene_builder *b, const void *arg)
     sb_set_bounds(b, c.lo[0], c.lo[1], c.lo[2], c.hi[0], c.hi[1], c.hi[2]);
     sm_vec3_make(0.1f, 0.1f, 0.1f, s->ambient);
     sb_set_projection(b, 60.0f, size * 1e-3f, size * 10.0f);
-    sb_set_orbit(b, centre[0], centre[1], centre[2], size, 0.35f * size, 60.0f);
-    if (o->camera && o->camera[0] && strcmp(o->camera, "orbit") != 0) {
-        for (unsigned i = 0; i < ai->mNumCameras; i++) {
-            const struct aiCamera *cam = ai->mCameras[i];
-            if (strcmp(cam->mName.data, o->camera) != 0)
-                continue;
-            find_node f = {cam->mName.data, false, {{0}}, NULL};
-            walk(ai->mRootNode, root, find_fn, &f, 0);
-            if (!f.found)
-                sm_mat4_copy(root, f.world);
-            bool gltf = is_gltf(o->path);
-            /* glTF: the camera sits at its node's origin looking down -Z (assimp also
-             * copies the node's translation into mPosition, which would count it twice) */
-            sm_vec3 p = {cam->mPosition.x, cam->mPosition.y, cam->mPosition.z};
-            if (gltf)
-                sm_vec3_make(0.0f, 0.0f, 0.0f, p);
-            sm_vec3 at = {p[0] + cam->mLookAt.x, p[1] + cam->mLookAt.y, p[2] + cam->mLookAt.z};
-            float eye[1][3], target[1][3];
-            sm_mat4_mulv3(f.world, p, 1.0f, eye[0]);
-            sm_mat4_mulv3(f.world, at, 1.0f, target[0]);
-            sb_set_keys(b, 1, (const float (*)[3])eye, (const float (*)[3])target, 60.0f);
-            /* assimp documents mHorizontalFOV as half the horizontal angle; its glTF
-             * importer stores yfov x aspect instead */
-            float aspect = cam->mAspect > 0.0f ? cam->mAspect : 1.0f;
-            float fovy = gltf ? cam->mHorizontalFOV / aspect
-                              : 2.0f * atanf(tanf(cam->mHorizontalFOV) / aspect);
-            float zn = cam->mClipPlaneNear > 0.0f ? cam->mClipPlaneNear : size * 1e-3f;
-            float zf = cam->mClipPlaneFar > zn ? cam->mClipPlaneFar : size * 10.0f;
-            sb_set_projection(b, sm_rad2deg(fovy), zn, zf);
-            s->fovy = fovy;   /* exactly, not through degrees */
-            break;
-        }
-    }
+    const struct aiCamera *cam = chosen_camera(ai, o->camera);
+    if (cam)
+        use_file_camera(b, o, ai, cam, root, size);
+    else if (file_camera_is(o->camera, "orbit"))
+        sb_set_orbit(b, centre[0], centre[1], centre[2], size, 0.35f * size, 60.0f);
+    else
+        frame_bounds(b, centre, 0.5f * size);
 out:
     free(mesh_index);
     free(mirror);

@@ -11,6 +11,7 @@
 #include <stdbool.h>
 #include <stddef.h>
 #include <stdint.h>
+#include <string.h>
 
 #include <assimp/cfileio.h>
 #include <assimp/material.h>
@@ -90,6 +91,12 @@ void file_loaded_free(loaded *l);
 /* The image a material references, decoded (once per reference), or -1 with a message. */
 int file_load_image(loaded *l, const char *ref, char *err, size_t errlen);
 void file_material_refs(const struct aiMaterial *m, material_refs *r);
+
+/* Whether the scene's camera option is the word (auto, orbit); NULL and "" are auto. */
+static inline bool file_camera_is(const char *camera, const char *word)
+{
+    return strcmp(camera && camera[0] ? camera : "auto", word) == 0;
+}
 
 static inline bool file_finite3(const struct aiVector3D *v)
 {

@@ -257,6 +257,27 @@ static void log_fn(const char *msg, char *user)
  * primitives are only points and lines (shadesweep draws triangles). The main file is
  * read again, where assimp's error is about meshes (error; NULL: a scene without any),
  * without the post-processing that drops points and lines. false: neither. */
+/* Whether some triangle of some mesh has an area (assimp's FindDegenerates removes
+ * repeated corners, not corners on a line). Indices are checked already. */
+static bool any_area(const struct aiScene *ai)
+{
+    for (unsigned i = 0; i < ai->mNumMeshes; i++) {
+        const struct aiMesh *m = ai->mMeshes[i];
+        for (unsigned f = 0; f < m->mNumFaces; f++) {
+            const unsigned *x = m->mFaces[f].mIndices;
+            const struct aiVector3D *a = &m->mVertices[x[0]], *b = &m->mVertices[x[1]],
+                                    *c = &m->mVertices[x[2]];
+            double e1[3] = {b->x - a->x, b->y - a->y, b->z - a->z};
+            double e2[3] = {c->x - a->x, c->y - a->y, c->z - a->z};
+            double n[3] = {e1[1] * e2[2] - e1[2] * e2[1], e1[2] * e2[0] - e1[0] * e2[2],
+                           e1[0] * e2[1] - e1[1] * e2[0]};
+            if (n[0] * n[0] + n[1] * n[1] + n[2] * n[2] > 0.0)
+                return true;
+        }
+    }
+    return false;
+}
+
 static bool why_no_triangles(loaded *l, const char *path, struct aiFileIO *io,
                              const char *error, char *why, size_t n)
 {
@@ -440,6 +461,11 @@ bool file_load(const scene_file_options *o, loaded *l, char *err, size_t errlen)
             goto out;
         }
     }
+    if (!any_area(ai)) {
+        scene_fail(err, errlen, "%s: every triangle has zero area (its corners coincide or lie "
+                   "on a line): nothing to draw", o->path);
+        goto out;
+    }
     for (unsigned i = 0; i < ai->mNumMaterials; i++) {
         material_refs r;
         file_material_refs(ai->mMaterials[i], &r);
@@ -448,7 +474,7 @@ bool file_load(const scene_file_options *o, loaded *l, char *err, size_t errlen)
             if (refs[k][0] && file_load_image(l, refs[k], err, errlen) < 0)
                 goto out;
     }
-    if (o->camera && o->camera[0] && strcmp(o->camera, "orbit") != 0) {
+    if (!file_camera_is(o->camera, "orbit") && !file_camera_is(o->camera, "auto")) {
         bool found = false;
         for (unsigned i = 0; i < ai->mNumCameras && !found; i++)
             found = strcmp(ai->mCameras[i]->mName.data, o->camera) == 0;

@@ -168,8 +168,10 @@ typedef struct scene_file_options {
     const char *path;          /* the file (the caller resolves it against the manifest) */
     float scale;               /* uniform scale of the whole file; 0 counts as 1 */
     scene_up up;               /* the file's up axis; z: rotated so that +Z becomes +Y */
-    const char *camera;        /* NULL, "" or "orbit": an orbit about the bounds; otherwise
-                                * the name of one of the file's cameras */
+    const char *camera;        /* NULL, "" or "auto": the file's first perspective camera,
+                                * else a fixed view of the bounds from above and to the
+                                * side; "orbit": an orbit about the bounds; otherwise the
+                                * name of one of the file's cameras */
     bool allow_outside;        /* files it references may lie outside its folder */
 } scene_file_options;
 
@@ -181,6 +183,9 @@ typedef struct scene_file_info {
     uint64_t triangles;        /* drawn: each node's meshes once per instance */
     uint32_t objects;          /* mesh instances */
     uint32_t materials, textures, lights, cameras;
+    char view[96];             /* what the run looks through: "the file's camera 'NAME'",
+                                * "an orbit about the bounds" or "the bounds framed from
+                                * above and to the side" */
     uint32_t materials_mask;   /* alphaMode MASK: alpha tested */
     uint32_t materials_blend;  /* alphaMode BLEND (or OBJ d < 1): translucent, drawn in the
                                 * renderers' translucent pass */

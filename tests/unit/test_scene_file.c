@@ -279,6 +279,61 @@ static void test_lights_and_camera_arrive_exactly(void **state)
     assert_non_null(s);
     assert_int_equal(s->path, CAMERA_ORBIT);
     scene_destroy(s);
+    /* auto (the default) looks through the file's first perspective camera */
+    o.camera = NULL;
+    s = scene_build_source(&src, &lp, 96, 64, err, sizeof err);
+    assert_non_null(s);
+    assert_true(s->cam.eye[0] == 0.0f && s->cam.eye[1] == 0.0f && s->cam.eye[2] == 5.0f);
+    assert_true(s->cam.fovy == 0.8f);
+    scene_destroy(s);
+    remove_dir(dir);
+}
+
+/* camera auto in a file without a camera: a fixed view of the bounding sphere from 30
+ * degrees above, at the distance where it fills the 60-degree field of view, from the
+ * side the single-sided triangle faces (+Z as written; -Z turned about Y), never from
+ * behind it. */
+static void test_auto_camera(void **state)
+{
+    (void)state;
+    char dir[128], path[512], text[4096], err[1024] = "";
+    assert_int_equal(temp_dir_make(dir, sizeof dir, "scene_file"), 0);
+    write_lights_scene(dir, "lights.gltf", "3");   /* for tri.bin: (0,0,0) (1,0,0) (0,1,0) */
+    for (int turned = 0; turned < 2; turned++) {
+        snprintf(text, sizeof text,
+                 "{\"asset\":{\"version\":\"2.0\"},\"scene\":0,\"scenes\":[{\"nodes\":[0]}],"
+                 "\"nodes\":[{\"mesh\":0%s}],"
+                 "\"meshes\":[{\"primitives\":[{\"attributes\":{\"POSITION\":0},\"indices\":1}]}],"
+                 "\"buffers\":[{\"byteLength\":44,\"uri\":\"tri.bin\"}],"
+                 "\"bufferViews\":[{\"buffer\":0,\"byteOffset\":0,\"byteLength\":36},"
+                 "{\"buffer\":0,\"byteOffset\":36,\"byteLength\":6}],"
+                 "\"accessors\":[{\"bufferView\":0,\"componentType\":5126,\"count\":3,"
+                 "\"type\":\"VEC3\",\"min\":[0,0,0],\"max\":[1,1,0]},"
+                 "{\"bufferView\":1,\"componentType\":5123,\"count\":3,\"type\":\"SCALAR\"}]}",
+                 turned ? ",\"rotation\":[0,1,0,0]" : "");
+        snprintf(path, sizeof path, "%s/tri%d.gltf", dir, turned);
+        write_file(path, text, strlen(text));
+        scene_file_options o = {.path = path};
+        scene_file_info info;
+        assert_true(scene_file_check(&o, &info, err, sizeof err));
+        assert_string_equal(info.view, "the bounds framed from above and to the side");
+        scene_source src = {.file = &o};
+        light_params lp = {.placement = PLACEMENT_NONE};
+        scene *s = scene_build_source(&src, &lp, 64, 64, err, sizeof err);
+        if (!s)
+            fail_msg("%s", err);
+        assert_int_equal(s->path, CAMERA_SCRIPTED);
+        /* the bounds: x 0..1 (turned: -1..0), y 0..1, z 0; centre and radius sqrt(2)/2 */
+        const float cx = turned ? -0.5f : 0.5f, r = sqrtf(2.0f) / 2.0f;
+        assert_true(fabsf(s->cam.target[0] - cx) < 1e-6f && fabsf(s->cam.target[1] - 0.5f) < 1e-6f);
+        sm_vec3 c = {cx, 0.5f, 0.0f}, d;
+        sm_vec3_sub(s->cam.eye, c, d);
+        float dist = sqrtf(sm_vec3_dot(d, d));
+        assert_true(fabsf(dist - r / sinf(sm_deg2rad(30.0f))) < 1e-5f);
+        assert_true(fabsf(d[1] / dist - 0.5f) < 1e-5f);   /* sin 30: from above */
+        assert_true(turned ? d[2] < 0.0f : d[2] > 0.0f);  /* the side it faces */
+        scene_destroy(s);
+    }
     remove_dir(dir);
 }
 
@@ -569,6 +624,7 @@ int main(void)
         cmocka_unit_test(test_sample_builds),
         cmocka_unit_test(test_lights_and_camera_arrive_exactly),
         cmocka_unit_test(test_mirrored_node),
+        cmocka_unit_test(test_auto_camera),
         cmocka_unit_test(test_broken_samples_refused),
         cmocka_unit_test(test_generated_broken_files_refused),
         cmocka_unit_test(test_hash_follows_content_not_names),
