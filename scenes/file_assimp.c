@@ -196,12 +196,14 @@ static const char *find_bytes(const unsigned char *data, size_t n_data, const ch
 
 /* The glTF extensions the file says it uses (its JSON's "extensionsUsed", in a .gltf or a
  * .glb's JSON chunk) that shadesweep does not implement: all but the lights
- * (lights.placement: scene), mesh quantization (assimp decodes it) and specular-glossiness
- * (mapped onto Phong like metallic-roughness). */
+ * (lights.placement: scene), mesh quantization (assimp decodes it), specular-glossiness
+ * (mapped onto Phong like metallic-roughness) and texture transforms (baked into the uv;
+ * where one material's maps differ, not_rendered_of says so). */
 static void gltf_extensions(const read_file *f, scene_file_info *info)
 {
     static const char *const implemented[] = {"KHR_lights_punctual", "KHR_mesh_quantization",
-                                              "KHR_materials_pbrSpecularGlossiness"};
+                                              "KHR_materials_pbrSpecularGlossiness",
+                                              "KHR_texture_transform"};
     /* the JSON only: a .glb's first chunk (its length at byte 12, validated by the
      * pre-scan), a .gltf whole; an OBJ or a binary chunk is not searched */
     size_t json = 0, start = 0;
@@ -256,8 +258,10 @@ static void not_rendered_of(const loaded *l, scene_file_info *info)
     }
     for (unsigned i = 0; i < ai->mNumCameras; i++)
         ortho += ai->mCameras[i]->mOrthographicWidth > 0.0f;
-    unsigned two_sided = 0;
+    unsigned two_sided = 0, uv_differ = 0;
     for (unsigned i = 0; i < ai->mNumMaterials; i++) {
+        float uvt[2][3];
+        uv_differ += file_uv_transform(ai->mMaterials[i], uvt) < 0;
         int on = 0;
         unsigned max = 1;
         two_sided += aiGetMaterialIntegerArray(ai->mMaterials[i], AI_MATKEY_TWOSIDED, &on,
@@ -277,6 +281,9 @@ static void not_rendered_of(const loaded *l, scene_file_info *info)
         not_rendered(info, "a second UV set (%u mesh%s)", uv2, uv2 == 1 ? "" : "es");
     if (ortho)
         not_rendered(info, "orthographic cameras (%u)", ortho);
+    if (uv_differ)
+        not_rendered(info, "per-map texture transforms (%u material%s: the base colour's used)",
+                     uv_differ, uv_differ == 1 ? "" : "s");
     if (two_sided)
         not_rendered(info, "double-sided materials (%u, back faces culled)", two_sided);
     if (l->files.n)
@@ -371,7 +378,10 @@ typedef struct build_nodes {
 
 /* A mesh of the file as a scene mesh: uv v flipped (assimp gives GL's bottom-up v; ours
  * is the image's first row at v = 0), tangents computed. Index or -1. */
-static int add_mesh(scene_builder *b, const char *path, const struct aiMesh *am)
+/* uvt: the material's texture transform baked into the mesh's uv (an affine map commutes
+ * with interpolation, and tangents follow the transformed uv), or NULL. */
+static int add_mesh(scene_builder *b, const char *path, const struct aiMesh *am,
+                    const float (*uvt)[3])
 {
     scene *s = b->s;
     if (!sb_reserve(b, (void **)&s->meshes, &b->cap_meshes, s->nmeshes, 1, sizeof *s->meshes,
@@ -405,6 +415,11 @@ static int add_mesh(scene_builder *b, const char *path, const struct aiMesh *am)
         if (am->mTextureCoords[0]) {
             mv->uv[0] = am->mTextureCoords[0][v].x;
             mv->uv[1] = 1.0f - am->mTextureCoords[0][v].y;
+            if (uvt) {
+                float u = mv->uv[0], w = mv->uv[1];
+                mv->uv[0] = uvt[0][0] * u + uvt[0][1] * w + uvt[0][2];
+                mv->uv[1] = uvt[1][0] * u + uvt[1][1] * w + uvt[1][2];
+            }
             if (!isfinite(mv->uv[0]) || !isfinite(mv->uv[1]))
                 mv->uv[0] = mv->uv[1] = 0.0f;
         }
@@ -617,7 +632,10 @@ bool scene_build_file(scene_builder *b, const void *arg)
     for (unsigned i = 0; i < ai->mNumMaterials && !b->failed; i++)
         file_add_material(b, &l, ai->mMaterials[i], map);
     for (unsigned i = 0; i < ai->mNumMeshes && !b->failed; i++) {
-        int m = add_mesh(b, o->path, ai->mMeshes[i]);
+        float uvt[2][3];
+        const struct aiMesh *am = ai->mMeshes[i];
+        bool transformed = file_uv_transform(ai->mMaterials[am->mMaterialIndex], uvt) != 0;
+        int m = add_mesh(b, o->path, am, transformed ? (const float (*)[3])uvt : NULL);
         mesh_index[i] = m < 0 ? 0 : (uint32_t)m;
     }
     sm_mat4 root;

@@ -109,3 +109,7 @@ material_alpha file_alpha_mode(const struct aiMaterial *am, float *cutoff);
 /* One material of the file as a scene material, its maps as scene textures (map: file
  * image -> scene texture, -1 where not made yet). */
 void file_add_material(scene_builder *b, loaded *l, const struct aiMaterial *am, int *map);
+/* The material's KHR_texture_transform as uv' = out x (u, v, 1) in our uv: 1 when its maps
+ * have one and agree on it, 0 when they have none (out: identity or untouched), -1 when
+ * they differ (out: the base colour map's, else the first map's; one uv set carries one). */
+int file_uv_transform(const struct aiMaterial *am, float out[2][3]);

@@ -140,3 +140,52 @@ void file_add_material(scene_builder *b, loaded *l, const struct aiMaterial *am,
         m->opacity = isfinite(opacity) ? sm_clamp(opacity, 0.0f, 1.0f) : 1.0f;
     }
 }
+
+/* One map's KHR_texture_transform, as glTF defines it (offset, rotation, scale: uv' =
+ * T(offset) R(rotation) S(scale) uv, R = [cos sin; -sin cos], in glTF's uv, whose v runs
+ * down the image as ours does). assimp 5.2's glTF importer stores it as an aiUVTransform
+ * for its own bottom-up v and a rotation about the centre: translation (tx, ty), scaling
+ * (sx, sy), rotation -r, with tx = 0.5 sx (1 - cos r + sin r) + offset.x and ty =
+ * 0.5 sy (sin r + cos r - 1) + 1 - sy - offset.y; those are inverted here (checked on
+ * the Khronos TextureTransformTest: tests/unit/test_scene_file.c). False: no transform. */
+static bool map_transform(const struct aiMaterial *am, enum aiTextureType type,
+                          float out[2][3])
+{
+    struct aiUVTransform t;
+    unsigned n = sizeof t / sizeof(ai_real);
+    if (aiGetMaterialTextureCount(am, type) == 0 ||
+        aiGetMaterialFloatArray(am, _AI_MATKEY_UVTRANSFORM_BASE, type, 0, (ai_real *)&t, &n) !=
+            aiReturn_SUCCESS ||
+        n != sizeof t / sizeof(ai_real))
+        return false;
+    float r = -t.mRotation, c = cosf(r), s = sinf(r), sx = t.mScaling.x, sy = t.mScaling.y;
+    float ox = t.mTranslation.x - 0.5f * sx * (1.0f - c + s);
+    float oy = 0.5f * sy * (s + c - 1.0f) + 1.0f - sy - t.mTranslation.y;
+    const float m[2][3] = {{c * sx, s * sy, ox}, {-s * sx, c * sy, oy}};
+    memcpy(out, m, sizeof m);
+    return isfinite(ox) && isfinite(oy) && isfinite(c * sx) && isfinite(c * sy);
+}
+
+int file_uv_transform(const struct aiMaterial *am, float out[2][3])
+{
+    /* the base colour first (assimp gives glTF's under both types) */
+    static const enum aiTextureType types[] = {aiTextureType_BASE_COLOR, aiTextureType_DIFFUSE,
+                                               aiTextureType_NORMALS, aiTextureType_EMISSIVE};
+    static const float identity[2][3] = {{1, 0, 0}, {0, 1, 0}};
+    bool have = false, differ = false;
+    for (size_t k = 0; k < sizeof types / sizeof types[0]; k++) {
+        float m[2][3];
+        if (aiGetMaterialTextureCount(am, types[k]) == 0)
+            continue;
+        if (!map_transform(am, types[k], m))
+            memcpy(m, identity, sizeof m);
+        if (!have)
+            memcpy(out, m, sizeof m);
+        else
+            differ |= memcmp(out, m, sizeof m) != 0;
+        have = true;
+    }
+    if (!have)
+        return 0;
+    return differ ? -1 : memcmp(out, identity, sizeof identity) != 0;
+}

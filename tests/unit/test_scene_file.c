@@ -520,6 +520,74 @@ static uint64_t hash_of(const char *path)
     return info.hash;
 }
 
+/* KHR_texture_transform is baked into the mesh's uv as glTF defines it: uv' = T(offset)
+ * R(rotation) S(scale) uv with R = [cos sin; -sin cos], in glTF's uv (v down the image, as
+ * ours). A quad whose corners carry the uv (0,1) (1,1) (1,0) (0,0), offset (0.25, 0.5),
+ * rotation pi/2 and scale (2, 3): u' = 3 v + 0.25, v' = 0.5 - 2 u. The extension is not
+ * listed as read but not rendered. */
+static void test_texture_transform(void **state)
+{
+    (void)state;
+    NEED_MODELS();
+    char dir[128], path[512], bin[512], png[512], text[4096], err[1024] = "";
+    assert_int_equal(temp_dir_make(dir, sizeof dir, "scene_file"), 0);
+    snprintf(bin, sizeof bin, "%s/quad.bin", dir);
+    snprintf(png, sizeof png, "%s/CesiumLogoFlat.png", dir);
+    copy_file(MODELS "/BoxTextured-glTF/CesiumLogoFlat.png", png);
+    static const float pos[12] = {0, 0, 0, 1, 0, 0, 1, 1, 0, 0, 1, 0};
+    static const float uv[8] = {0, 1, 1, 1, 1, 0, 0, 0};
+    static const uint16_t idx[6] = {0, 1, 2, 0, 2, 3};
+    unsigned char data[92];
+    memcpy(data, pos, sizeof pos);
+    memcpy(data + 48, uv, sizeof uv);
+    memcpy(data + 80, idx, sizeof idx);
+    write_file(bin, data, sizeof data);
+    snprintf(text, sizeof text,
+             "{\"asset\":{\"version\":\"2.0\"},\"extensionsUsed\":[\"KHR_texture_transform\"],"
+             "\"scene\":0,\"scenes\":[{\"nodes\":[0]}],\"nodes\":[{\"mesh\":0}],"
+             "\"meshes\":[{\"primitives\":[{\"attributes\":{\"POSITION\":0,\"TEXCOORD_0\":1},"
+             "\"indices\":2,\"material\":0}]}],"
+             "\"materials\":[{\"pbrMetallicRoughness\":{\"baseColorTexture\":{\"index\":0,"
+             "\"extensions\":{\"KHR_texture_transform\":{\"offset\":[0.25,0.5],"
+             "\"rotation\":1.5707963,\"scale\":[2,3]}}}}}],"
+             "\"textures\":[{\"source\":0}],\"images\":[{\"uri\":\"CesiumLogoFlat.png\"}],"
+             "\"buffers\":[{\"byteLength\":92,\"uri\":\"quad.bin\"}],"
+             "\"bufferViews\":[{\"buffer\":0,\"byteOffset\":0,\"byteLength\":48},"
+             "{\"buffer\":0,\"byteOffset\":48,\"byteLength\":32},"
+             "{\"buffer\":0,\"byteOffset\":80,\"byteLength\":12}],"
+             "\"accessors\":[{\"bufferView\":0,\"componentType\":5126,\"count\":4,"
+             "\"type\":\"VEC3\",\"min\":[0,0,0],\"max\":[1,1,0]},"
+             "{\"bufferView\":1,\"componentType\":5126,\"count\":4,\"type\":\"VEC2\"},"
+             "{\"bufferView\":2,\"componentType\":5123,\"count\":6,\"type\":\"SCALAR\"}]}");
+    snprintf(path, sizeof path, "%s/quad.gltf", dir);
+    write_file(path, text, strlen(text));
+    scene_file_options o = {.path = path};
+    scene_file_info info;
+    assert_true(scene_file_check(&o, &info, err, sizeof err));
+    assert_int_equal(info.nnot_rendered, 0);
+    scene_source src = {.file = &o};
+    light_params lp = {.placement = PLACEMENT_NONE};
+    scene *s = scene_build_source(&src, &lp, 64, 64, err, sizeof err);
+    if (!s)
+        fail_msg("%s", err);
+    assert_int_equal(s->nmeshes, 1);
+    const mesh *m = &s->meshes[0];
+    assert_int_equal(m->nvertices, 4);
+    for (uint32_t v = 0; v < 4; v++) {
+        const mesh_vertex *mv = &m->vertices[v];
+        int k = 0;   /* the corner it was written as, by position */
+        while (k < 4 && !(pos[3 * k] == mv->position[0] && pos[3 * k + 1] == mv->position[1]))
+            k++;
+        assert_true(k < 4);
+        float want_u = 3.0f * uv[2 * k + 1] + 0.25f, want_v = 0.5f - 2.0f * uv[2 * k];
+        if (fabsf(mv->uv[0] - want_u) > 1e-5f || fabsf(mv->uv[1] - want_v) > 1e-5f)
+            fail_msg("corner %d: uv (%g, %g), want (%g, %g)", k, mv->uv[0], mv->uv[1], want_u,
+                     want_v);
+    }
+    scene_destroy(s);
+    remove_dir(dir);
+}
+
 static void test_hash_follows_content_not_names(void **state)
 {
     (void)state;
@@ -625,6 +693,7 @@ int main(void)
         cmocka_unit_test(test_lights_and_camera_arrive_exactly),
         cmocka_unit_test(test_mirrored_node),
         cmocka_unit_test(test_auto_camera),
+        cmocka_unit_test(test_texture_transform),
         cmocka_unit_test(test_broken_samples_refused),
         cmocka_unit_test(test_generated_broken_files_refused),
         cmocka_unit_test(test_hash_follows_content_not_names),
