@@ -375,11 +375,6 @@ void run_files_abort(run_files *f)
     memset(f, 0, sizeof *f);
 }
 
-static const char *placement_name(light_placement p)
-{
-    return p == PLACEMENT_RANDOM ? "random" : "none";
-}
-
 bool output_write_run_summary(const char *run_dir, const experiment *e, const run_spec *s,
                               const pass_plan *pp, const trial_result *t, size_t ntrials,
                               const char *message, char *err, size_t errlen)
@@ -415,7 +410,7 @@ bool output_write_run_summary(const char *run_dir, const experiment *e, const ru
         csv_i64(w, p->width);
         csv_i64(w, p->height);
         csv_str(w, gbuffer);
-        csv_str(w, placement_name(p->lights.placement));
+        csv_str(w, light_placement_name(p->lights.placement));
         csv_str(w, rng_kind_name(p->lights.rng));
         csv_u64(w, p->lights.seed);
         /* the most lights measured; the planned most when nothing was measured */

@@ -27,8 +27,7 @@ _Static_assert(sizeof(run_metric) == sizeof(int), "enum size");
 
 static const char *const clock_names[] = {"wall", "fixed", NULL};
 static const char *const sync_names[] = {"finish", "fence", NULL};
-/* In the order of light_placement (scenes/lights.h). */
-static const char *const placement_names[] = {"random", "none", "grid", "scene", NULL};
+/* light placements: light_placement_names of scenes/lights.h */
 static const char *const shadows_names[] = {"auto", "off", NULL};
 static const char *const rng_names[] = {"msvc", "pcg32", "mt19937", NULL};
 static const char *const attenuation_names[] = {"inverse-square", "linear-range", "quadratic",

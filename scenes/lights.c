@@ -1,6 +1,7 @@
 #include "scenes/lights.h"
 
 #include <math.h>
+#include <stddef.h>
 
 #define PI_D 3.14159265358979323846
 
@@ -18,6 +19,14 @@ uint32_t light_count_at(const light_count *c, double t)
     double steps = floor(t / c->every);
     double n = (double)c->start + (double)c->step * steps;
     return n >= (double)c->max ? c->max : (uint32_t)n;
+}
+
+const char *const light_placement_names[] = {"random", "none", "grid", "scene", "surface",
+                                             NULL};
+
+const char *light_placement_name(light_placement p)
+{
+    return (unsigned)p <= PLACEMENT_SURFACE ? light_placement_names[p] : "?";
 }
 
 /* Each light's share of the box's measure (volume, area or length: the box's positive

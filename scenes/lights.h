@@ -16,13 +16,25 @@
  * scene: the scene's authored lights, in the order scene_*.c lists them; the count caps
  *   how many are ever on (growth turns them on in that order). They keep their own
  *   type, range, colour, attenuation and shadows: seed, rng, radius, overlap, color_max
- *   and attenuation do not apply. A scene without authored lights fails scene_build. */
+ *   and attenuation do not apply. A scene without authored lights fails scene_build;
+ * surface: near the scene's surfaces as they stand at schedule time 0, in the space in
+ *   front of them (never inside a closed mesh, where random placement puts many of a
+ *   file scene's lights): per light, a triangle of any object with probability in
+ *   proportion to its area, a point uniform on it, then a quarter of the light's radius
+ *   along the triangle's front-face normal; colours as random. With overlap > 0 the
+ *   radius is the one at which a point of the surfaces is reached by `overlap` lights on
+ *   average (n pi r^2 / area = overlap). A scene without triangle area fails scene_build. */
 typedef enum light_placement {
     PLACEMENT_RANDOM = 0,
     PLACEMENT_NONE,
     PLACEMENT_GRID,
     PLACEMENT_SCENE,
+    PLACEMENT_SURFACE,
 } light_placement;
+
+/* The manifest's names of the placements, in enum order, NULL-ended. */
+extern const char *const light_placement_names[];
+const char *light_placement_name(light_placement p);
 
 /* count `all` (manifest): every authored light of the scene (placement scene only). */
 #define LIGHT_COUNT_ALL UINT32_MAX

@@ -20,11 +20,51 @@ static void point_light_from_params(scene_light *l, const light_params *lp, floa
     sm_vec3_make(0.0f, -1.0f, 0.0f, l->direction);
 }
 
+/* A world-space corner of object o's triangle at schedule time 0 (no spin yet:
+ * translate(position) x scale x transform, as scene_pose.c poses it). */
+static void corner_at_0(const scene_object *o, const mesh *m, uint32_t index, sm_vec3 out)
+{
+    sm_mat4_mulv3(o->transform, m->vertices[index].position, 1.0f, out);
+    for (int k = 0; k < 3; k++)
+        out[k] = o->position[k] + o->scale * out[k];
+}
+
+/* Triangle t (of 3 x t in the mesh's indices) of object o at time 0: its corners and its
+ * area normal (length twice the area, towards the front face: counter-clockwise). */
+static double triangle_at_0(const scene *s, const scene_object *o, uint32_t t, sm_vec3 w[3],
+                            sm_vec3 n)
+{
+    const mesh *m = &s->meshes[o->mesh];
+    for (int c = 0; c < 3; c++)
+        corner_at_0(o, m, m->indices[3 * t + c], w[c]);
+    sm_vec3 e1, e2;
+    sm_vec3_sub(w[1], w[0], e1);
+    sm_vec3_sub(w[2], w[0], e2);
+    sm_vec3_cross(e1, e2, n);
+    double a = 0.5 * sqrt((double)sm_vec3_dot(n, n));
+    return isfinite(a) ? a : 0.0;
+}
+
+/* The surface area of every object's triangles at time 0 (surface placement). */
+static double surface_area(const scene *s)
+{
+    double area = 0.0;
+    sm_vec3 w[3], n;
+    for (uint32_t i = 0; i < s->nobjects; i++)
+        for (uint32_t t = 0; t < s->meshes[s->objects[i].mesh].nindices / 3; t++)
+            area += triangle_at_0(s, &s->objects[i], t, w, n);
+    return area;
+}
+
 /* The run's point-light radius: lp->radius, or with lp->overlap > 0 the radius at which
  * the schedule's largest count reaches `overlap` lights per point of the light bounds
- * (lights_overlap_radius). */
+ * (lights_overlap_radius), or, placed near surfaces, per point of the surfaces. */
 static float placement_radius(const scene *s, const light_params *lp)
 {
+    if (lp->overlap > 0.0f && lp->placement == PLACEMENT_SURFACE)
+        return s->nlights_total ? (float)sqrt((double)lp->overlap * surface_area(s) /
+                                              ((double)SM_PI * (double)s->nlights_total))
+                                : 0.0f;
     if (lp->overlap > 0.0f)
         return lights_overlap_radius(s->nlights_total, lp->overlap, s->light_bounds_min,
                                      s->light_bounds_max);
@@ -50,6 +90,135 @@ static void place_random(scene *s, const light_params *lp)
             l->color[k] = rng_unit(&g) * lp->color_max;
         point_light_from_params(l, lp, radius);
     }
+}
+
+/* Whether the ray from p along d crosses triangle w (Moller-Trumbore), at t > 0. */
+static bool ray_crosses(const sm_vec3 p, const sm_vec3 d, sm_vec3 w[3])
+{
+    sm_vec3 e1, e2, h, q, sv;
+    sm_vec3_sub(w[1], w[0], e1);
+    sm_vec3_sub(w[2], w[0], e2);
+    sm_vec3_cross(d, e2, h);
+    double a = sm_vec3_dot(e1, h);
+    if (fabs(a) < 1e-12)
+        return false;
+    sm_vec3_sub(p, w[0], sv);
+    double u = sm_vec3_dot(sv, h) / a;
+    if (u < 0.0 || u > 1.0)
+        return false;
+    sm_vec3_cross(sv, e1, q);
+    double v = sm_vec3_dot(d, q) / a;
+    if (v < 0.0 || u + v > 1.0)
+        return false;
+    return sm_vec3_dot(e2, q) / a > 0.0;
+}
+
+/* Whether p lies inside a closed mesh: an odd number of an object's triangles crossed
+ * by a ray from p in a direction no axis-aligned face is parallel to, for any object
+ * whose time-0 box (lo, hi: 3 floats an object) holds p. */
+static bool inside_an_object(const scene *s, const float *lo, const float *hi, const sm_vec3 p)
+{
+    static const sm_vec3 d = {0.5773f, 0.5774f, 0.5775f};
+    for (uint32_t o = 0; o < s->nobjects; o++) {
+        if (p[0] < lo[3 * o] || p[1] < lo[3 * o + 1] || p[2] < lo[3 * o + 2] ||
+            p[0] > hi[3 * o] || p[1] > hi[3 * o + 1] || p[2] > hi[3 * o + 2])
+            continue;
+        unsigned crossings = 0;
+        sm_vec3 w[3], n;
+        for (uint32_t t = 0; t < s->meshes[s->objects[o].mesh].nindices / 3; t++) {
+            triangle_at_0(s, &s->objects[o], t, w, n);
+            crossings += ray_crosses(p, d, w);
+        }
+        if (crossings & 1u)
+            return true;
+    }
+    return false;
+}
+
+/* Surface placement (scenes/lights.h): per light in order, u0 picks a triangle by area
+ * (a binary search of the running sum over objects and their triangles, in order), u1
+ * and u2 a point on it uniformly (barycentrics 1 - sqrt(u1), sqrt(u1)(1 - u2),
+ * sqrt(u1) u2), and the light stands a quarter of its radius in front of it; a spot
+ * inside a closed mesh (a floor under a pillar: the pillar's inside) is drawn again, up
+ * to 16 times; then r, g, b as random. False with a message when the scene has no
+ * triangle area or memory runs out. */
+static bool place_surface(scene *s, const light_params *lp, char *err, size_t errlen)
+{
+    size_t ntri = 0;
+    for (uint32_t o = 0; o < s->nobjects; o++)
+        ntri += s->meshes[s->objects[o].mesh].nindices / 3;
+    double *sum = malloc((ntri ? ntri : 1) * sizeof *sum);
+    uint32_t(*which)[2] = malloc((ntri ? ntri : 1) * sizeof *which);   /* object, triangle */
+    float *lo = malloc((s->nobjects ? s->nobjects : 1) * 6 * sizeof *lo), *hi = lo;
+    if (!sum || !which || !lo) {
+        free(sum);
+        free(which);
+        free(lo);
+        snprintf(err, errlen, "out of memory placing lights near the %zu triangles of scene "
+                 "'%s'", ntri, s->name);
+        return false;
+    }
+    hi = lo + 3 * s->nobjects;
+    size_t n = 0;
+    double area = 0.0;
+    sm_vec3 w[3], nrm;
+    for (uint32_t o = 0; o < s->nobjects; o++) {
+        for (int k = 0; k < 3; k++) {
+            lo[3 * o + k] = INFINITY;
+            hi[3 * o + k] = -INFINITY;
+        }
+        for (uint32_t t = 0; t < s->meshes[s->objects[o].mesh].nindices / 3; t++) {
+            double a = triangle_at_0(s, &s->objects[o], t, w, nrm);
+            for (int c = 0; c < 3; c++)
+                for (int k = 0; k < 3; k++) {
+                    lo[3 * o + k] = fminf(lo[3 * o + k], w[c][k]);
+                    hi[3 * o + k] = fmaxf(hi[3 * o + k], w[c][k]);
+                }
+            if (!(a > 0.0))
+                continue;
+            area += a;
+            sum[n] = area;
+            which[n][0] = o;
+            which[n++][1] = t;
+        }
+    }
+    bool ok = n > 0;
+    if (!ok)
+        snprintf(err, errlen, "scene '%s' has no surface to place lights near (placement "
+                 "surface): its triangles have no area", s->name);
+    rng g;
+    rng_seed(&g, lp->rng, lp->seed);
+    float radius = ok ? placement_radius(s, lp) : 0.0f;
+    for (uint32_t i = 0; ok && i < s->nlights_total; i++) {
+        scene_light *l = &s->lights[i];
+        for (int attempt = 0; attempt < 16; attempt++) {
+            double want = (double)rng_unit(&g) * area;
+            float u1 = rng_unit(&g), u2 = rng_unit(&g);
+            size_t a = 0, b = n - 1;   /* the first running sum >= want */
+            while (a < b) {
+                size_t mid = a + (b - a) / 2;
+                if (sum[mid] >= want)
+                    b = mid;
+                else
+                    a = mid + 1;
+            }
+            triangle_at_0(s, &s->objects[which[a][0]], which[a][1], w, nrm);
+            sm_vec3_normalize(nrm);
+            float r1 = sqrtf(u1), bc[3] = {1.0f - r1, r1 * (1.0f - u2), r1 * u2};
+            for (int k = 0; k < 3; k++)
+                l->position[k] = bc[0] * w[0][k] + bc[1] * w[1][k] + bc[2] * w[2][k] +
+                                 0.25f * radius * nrm[k];
+            if (!inside_an_object(s, lo, hi, l->position))
+                break;
+        }
+        for (int k = 0; k < 3; k++)
+            l->color[k] = rng_unit(&g) * lp->color_max;
+        point_light_from_params(l, lp, radius);
+    }
+    free(sum);
+    free(which);
+    free(lo);
+    return ok;
 }
 
 /* A grid: n[] cells along x, y, z; the nearest neighbours are `spacing` apart. */
@@ -197,6 +366,7 @@ bool scene_place_lights(scene *s, const scene_light *authored, uint32_t nauthore
         break;
     case PLACEMENT_RANDOM:
     case PLACEMENT_GRID:
+    case PLACEMENT_SURFACE:
         s->nlights_total = most;
         break;
     default:
@@ -217,12 +387,19 @@ bool scene_place_lights(scene *s, const scene_light *authored, uint32_t nauthore
         double e[3];
         grid_layout g;
         float radius;
+        if (lp->placement == PLACEMENT_SURFACE && !(surface_area(s) > 0.0)) {
+            snprintf(err, errlen, "scene '%s' has no surface to place lights near (placement "
+                     "surface): its triangles have no area", name);
+            return false;
+        }
         return lp->placement != PLACEMENT_GRID || grid_fits(s, lp, e, &g, &radius, err, errlen);
     }
     if (lp->placement == PLACEMENT_SCENE)
         memcpy(s->lights, authored, s->nlights_total * sizeof *s->lights);
     else if (lp->placement == PLACEMENT_RANDOM)
         place_random(s, lp);
+    else if (lp->placement == PLACEMENT_SURFACE)
+        return place_surface(s, lp, err, errlen);
     else if (!place_grid(s, lp, err, errlen))
         return false;
     return true;

@@ -588,6 +588,55 @@ static void test_texture_transform(void **state)
     remove_dir(dir);
 }
 
+/* lights.placement surface on a closed box (BoxTextured): every light stands a quarter
+ * of its radius in front of a face, so outside the box by exactly that along the nearest
+ * axis (random placement puts them all inside its bounds, where they light no face);
+ * with overlap k the radius is sqrt(k area / (pi n)); a scene without triangles is
+ * refused with the reason. */
+static void test_surface_placement(void **state)
+{
+    (void)state;
+    NEED_MODELS();
+    char err[1024] = "";
+    scene_file_options o = {.path = MODELS "/BoxTextured-glTF/BoxTextured.gltf"};
+    scene_file_info info;
+    assert_true(scene_file_check(&o, &info, err, sizeof err));
+    scene_source src = {.file = &o};
+    light_params lp = {.placement = PLACEMENT_SURFACE, .seed = 1337, .rng = RNG_PCG32,
+                       .count = {.start = 64, .max = 64}, .radius = 0.2f, .color_max = 0.3f};
+    scene *s = scene_build_source(&src, &lp, 64, 64, err, sizeof err);
+    if (!s)
+        fail_msg("%s", err);
+    assert_int_equal(s->nlights_total, 64);
+    for (uint32_t i = 0; i < 64; i++) {
+        const float *p = s->lights[i].position;
+        float outside = -INFINITY;   /* the largest distance out of the box along an axis */
+        for (int k = 0; k < 3; k++)
+            outside = fmaxf(outside, fmaxf(info.bounds_min[k] - p[k], p[k] - info.bounds_max[k]));
+        if (fabsf(outside - 0.25f * 0.2f) > 1e-5f)
+            fail_msg("light %u at (%g, %g, %g) is %g out of the box, want 0.05", i, p[0], p[1],
+                     p[2], outside);
+        assert_true(s->lights[i].radius == 0.2f);
+    }
+    scene_destroy(s);
+    /* the radius from overlap: 64 lights reach each point of the 6 unit faces twice */
+    lp.overlap = 2.0f;
+    s = scene_build_source(&src, &lp, 64, 64, err, sizeof err);
+    assert_non_null(s);
+    float area = 1.0f;
+    for (int k = 0; k < 3; k++)
+        area *= info.bounds_max[k] - info.bounds_min[k];
+    assert_true(fabsf(area - 1.0f) < 1e-5f);   /* the unit cube */
+    assert_true(fabsf(s->lights[0].radius - sqrtf(2.0f * 6.0f / (SM_PI * 64.0f))) < 1e-5f);
+    scene_destroy(s);
+    /* nothing to stand in front of */
+    lp.overlap = 0.0f;
+    src = (scene_source){.name = "empty"};
+    assert_null(scene_build_source(&src, &lp, 64, 64, err, sizeof err));
+    assert_string_equal(err, "scene 'empty' has no surface to place lights near (placement "
+                             "surface): its triangles have no area");
+}
+
 static void test_hash_follows_content_not_names(void **state)
 {
     (void)state;
@@ -694,6 +743,7 @@ int main(void)
         cmocka_unit_test(test_mirrored_node),
         cmocka_unit_test(test_auto_camera),
         cmocka_unit_test(test_texture_transform),
+        cmocka_unit_test(test_surface_placement),
         cmocka_unit_test(test_broken_samples_refused),
         cmocka_unit_test(test_generated_broken_files_refused),
         cmocka_unit_test(test_hash_follows_content_not_names),
