@@ -258,10 +258,23 @@ static void not_rendered_of(const loaded *l, scene_file_info *info)
     }
     for (unsigned i = 0; i < ai->mNumCameras; i++)
         ortho += ai->mCameras[i]->mOrthographicWidth > 0.0f;
-    unsigned two_sided = 0, uv_differ = 0;
+    unsigned two_sided = 0, uv_differ = 0, mr_maps = 0, occlusion = 0, used = 0;
     for (unsigned i = 0; i < ai->mNumMaterials; i++) {
+        const struct aiMaterial *am = ai->mMaterials[i];
+        bool drawn = false;   /* not assimp's default material, where no mesh uses it */
+        for (unsigned k = 0; k < ai->mNumMeshes && !drawn; k++)
+            drawn = ai->mMeshes[k]->mMaterialIndex == i;
+        if (!drawn)
+            continue;
+        used++;
         float uvt[2][3];
-        uv_differ += file_uv_transform(ai->mMaterials[i], uvt) < 0;
+        uv_differ += file_uv_transform(am, uvt) < 0;
+        /* assimp 5.2's glTF importer: metallicRoughnessTexture under METALNESS (and
+         * UNKNOWN), occlusionTexture under LIGHTMAP */
+        mr_maps += aiGetMaterialTextureCount(am, aiTextureType_METALNESS) +
+                       aiGetMaterialTextureCount(am, aiTextureType_UNKNOWN) > 0;
+        occlusion += aiGetMaterialTextureCount(am, aiTextureType_LIGHTMAP) +
+                         aiGetMaterialTextureCount(am, aiTextureType_AMBIENT_OCCLUSION) > 0;
         int on = 0;
         unsigned max = 1;
         two_sided += aiGetMaterialIntegerArray(ai->mMaterials[i], AI_MATKEY_TWOSIDED, &on,
@@ -281,6 +294,14 @@ static void not_rendered_of(const loaded *l, scene_file_info *info)
         not_rendered(info, "a second UV set (%u mesh%s)", uv2, uv2 == 1 ? "" : "es");
     if (ortho)
         not_rendered(info, "orthographic cameras (%u)", ortho);
+    if (is_gltf(l->path) && used)
+        not_rendered(info, "metallic-roughness shading (%u material%s, as Phong)", used,
+                     used == 1 ? "" : "s");
+    if (mr_maps)
+        not_rendered(info, "metallic-roughness maps (%u material%s)", mr_maps,
+                     mr_maps == 1 ? "" : "s");
+    if (occlusion)
+        not_rendered(info, "occlusion maps (%u material%s)", occlusion, occlusion == 1 ? "" : "s");
     if (uv_differ)
         not_rendered(info, "per-map texture transforms (%u material%s: the base colour's used)",
                      uv_differ, uv_differ == 1 ? "" : "s");

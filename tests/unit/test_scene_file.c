@@ -564,7 +564,9 @@ static void test_texture_transform(void **state)
     scene_file_options o = {.path = path};
     scene_file_info info;
     assert_true(scene_file_check(&o, &info, err, sizeof err));
-    assert_int_equal(info.nnot_rendered, 0);
+    /* only the shading model: the transform is rendered */
+    assert_int_equal(info.nnot_rendered, 1);
+    assert_string_equal(info.not_rendered[0], "metallic-roughness shading (1 material, as Phong)");
     scene_source src = {.file = &o};
     light_params lp = {.placement = PLACEMENT_NONE};
     scene *s = scene_build_source(&src, &lp, 64, 64, err, sizeof err);
