@@ -1,0 +1,26 @@
+// deferred-lighting's material pass (the light pre-pass's second geometry pass, Engel
+// 2008): each visible opaque object drawn again (mesh.vert, depth EQUAL against the
+// G-buffer pass's depth, no writes) with its material, reading the light buffer at its
+// own pixel:
+//   colour = ambient x diffuse + emissive + diffuse x L_diffuse + gloss x L_specular
+// where L_diffuse = sum of incoming x max(N.L, 0) and L_specular = sum of incoming x
+// spec over the lights (deferred_light.frag with LIGHT_PREPASS), which is lighting.inc's
+// sum of shade_light factored. Defines: the material's maps (surface.inc).
+#include "bindings.h"
+#include "frame.inc"
+#include "surface.inc"
+
+layout(binding = BIND_TEX_LIGHT_DIFFUSE) uniform sampler2D t_light_diffuse;
+layout(binding = BIND_TEX_LIGHT_SPECULAR) uniform sampler2D t_light_specular;
+
+layout(location = 0) out vec4 o_color;
+
+void main()
+{
+    Surface s = surface_get();
+    ivec2 px = ivec2(gl_FragCoord.xy);
+    vec3 ld = texelFetch(t_light_diffuse, px, 0).rgb;
+    vec3 ls = texelFetch(t_light_specular, px, 0).rgb;
+    vec3 c = f_ambient.rgb * s.diffuse + s.emissive + s.diffuse * ld + s.gloss * ls;
+    o_color = vec4(c, 1.0);
+}
