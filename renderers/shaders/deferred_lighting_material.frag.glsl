@@ -21,6 +21,10 @@ void main()
     ivec2 px = ivec2(gl_FragCoord.xy);
     vec3 ld = texelFetch(t_light_diffuse, px, 0).rgb;
     vec3 ls = texelFetch(t_light_specular, px, 0).rgb;
-    vec3 c = f_ambient.rgb * s.diffuse + s.emissive + s.diffuse * ld + s.gloss * ls;
+    // A light buffer that overflowed (RGBA16F beyond 65504) holds Inf: a material channel
+    // of 0 takes none of it (0 x Inf would be NaN), as forward's 0 x light is 0.
+    vec3 c = f_ambient.rgb * s.diffuse + s.emissive +
+             mix(s.diffuse * ld, vec3(0.0), equal(s.diffuse, vec3(0.0))) +
+             (s.gloss > 0.0 ? s.gloss * ls : vec3(0.0));
     o_color = vec4(c, 1.0);
 }

@@ -46,7 +46,7 @@ assert (d["schema"], d["version"]) == ("shadesweep-params", 1)
 k = {x["key"]: x for x in d["keys"]}
 assert [x["key"] for x in d["keys"]] == keys, set(keys) ^ set(k)
 assert k["lights.seed"]["default"] == 1337 and k["lights.seed"]["sweep"] is True
-assert k["deferred.light_volumes"]["read_by"] == ["deferred"], k["deferred.light_volumes"]
+assert k["deferred.light_volumes"]["read_by"] == ["deferred", "deferred-lighting"], k["deferred.light_volumes"]
 assert k["shadesweep"]["required"] is True and k["shadesweep"]["default"] is None
 PY
 # every command has --help (stdout, exit 0), wherever it stands
