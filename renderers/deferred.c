@@ -892,8 +892,8 @@ static bool deferred_lighting_prepare(void *self, const scene *s, char *err, siz
     plan_lights(r);
     deferred_plan(d, PASS_COMPOSE, false, "the material pass combines the light buffer's "
                   "diffuse and specular light");
-    deferred_plan(d, PASS_MATERIAL, true, "%u objects again, depth EQUAL: ambient x diffuse + "
-                  "emissive + diffuse x Ld + gloss x Ls (light buffer %s)", s->nobjects,
+    deferred_plan(d, PASS_MATERIAL, true, "%u objects again, depth EQUAL, their materials "
+                  "over the light buffer (%s)", s->nobjects,
                   d->b.opts.lpp_light_buffer == LPP_LIGHT_BUFFER_RGBA8 ? "rgba8" : "rgba16f");
     if (!deferred_make_targets(d, err, errlen) || !deferred_compile_gbuffer(d, err, errlen) ||
         !compile_lighting(r, err, errlen) || !compile_material(r, err, errlen) ||
