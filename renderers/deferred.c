@@ -822,7 +822,13 @@ static void deferred_destroy(void *self)
  * Draw calls: Sh + 2 V + (the light draws as deferred's, same mode) + [fog] + [sky] +
  * [translucent objects] + [aa] + 1. deferred.separate_specular and deferred.sky_stencil
  * are not read (its light buffer is always split; no full-screen ambient pass to mask),
- * nor gbuffer.* (the layout is fixed); msaa > 1 is refused at prepare. */
+ * nor gbuffer.* (the layout is fixed).
+ *
+ * MSAA (msaa > 1): the G-buffer, light buffer, light target and depth multisampled;
+ * deferred's `edges` pass after the G-buffer, and its two classes in every light pass
+ * (per sample on edge pixels, per pixel elsewhere: the light draws double as deferred's);
+ * the material pass runs per sample everywhere (it reads the light buffer at gl_SampleID,
+ * so that each sample takes the light of the surface it holds), then `msaa-resolve`. */
 
 static void deferred_lighting_describe(const void *self, pass_plan *out)
 {
@@ -863,8 +869,14 @@ static bool compile_material(deferred *r, char *err, size_t errlen)
         scene_material m = {.diffuse_map = (v & 1u) ? 0 : -1, .gloss_map = (v & 2u) ? 0 : -1,
                             .normal_map = (v & 4u) ? 0 : -1, .emissive_map = (v & 8u) ? 0 : -1,
                             .alpha = (v & 16u) ? MATERIAL_MASK : MATERIAL_OPAQUE};
-        const char *defs[SHADING_MATERIAL_DEFINES + 1] = {NULL};
-        shading_material_defines(&m, defs);
+        const char *defs[SHADING_MATERIAL_DEFINES + 3] = {NULL};
+        unsigned n = shading_material_defines(&m, defs);
+        if (r->d.b.samples > 1) {
+            /* msaa: the light buffer per sample, and so every fragment per sample: where
+             * two surfaces share a pixel each sample takes its own surface's light */
+            defs[n++] = "GB_MSAA";
+            defs[n++] = "GB_SAMPLE gl_SampleID";
+        }
         if (!deferred_build_program(&r->d, "deferred_lighting_material", "mesh.vert",
                                     "deferred_lighting_material.frag", NULL, defs,
                                     &r->material_program[v], err, errlen))
@@ -879,15 +891,11 @@ static bool deferred_lighting_prepare(void *self, const scene *s, char *err, siz
     deferred_renderer *d = &r->d;
     deferred_core_release(d);
     forget_programs(r);
-    if (d->b.samples > 1) {
-        /* the material pass would need the light buffer per sample, and the light passes
-         * deferred's edge classes: not built */
-        snprintf(err, errlen, "deferred-lighting: msaa %d is not supported (msaa: 1 only; "
-                 "aa: edge is)", d->b.samples);
-        return false;
-    }
     if (!deferred_prepare_scene(d, s, err, errlen))
         goto fail;
+    deferred_plan(d, PASS_EDGES, d->b.samples > 1,
+                  "msaa %d: as deferred's, for the light passes; the material pass shades "
+                  "per sample", d->b.samples);
     deferred_plan(d, PASS_AMBIENT, false, "ambient and emissive are the material pass's");
     plan_lights(r);
     deferred_plan(d, PASS_COMPOSE, false, "the material pass combines the light buffer's "
@@ -930,12 +938,14 @@ static void material_pass(deferred *r, const scene *s, frame_stats *out)
     gl_state_cull(st, GLS_CULL_BACK);   /* as the G-buffer pass: the same fragments */
     gl_state_texture(st, BIND_TEX_LIGHT_DIFFUSE, d->lbuf_diffuse.texture);
     gl_state_texture(st, BIND_TEX_LIGHT_SPECULAR, d->lbuf_specular.texture);
+    renderer_base_per_sample(&d->b, d->b.samples > 1);   /* msaa: per sample everywhere */
     for (uint32_t k = 0; k < d->b.fe.nvisible; k++) {
         uint32_t o = d->b.fe.visible[k];
         unsigned v = deferred_material_variant(&s->materials[s->objects[o].material]);
         gl_state_program(st, r->material_program[v]);
         scene_gpu_draw_object(d->b.gpu, st, s, o);
     }
+    renderer_base_per_sample(&d->b, false);
     /* drawn into by the next frame's light passes: not bound for sampling meanwhile */
     gl_state_texture(st, BIND_TEX_LIGHT_DIFFUSE, 0);
     gl_state_texture(st, BIND_TEX_LIGHT_SPECULAR, 0);
@@ -952,6 +962,8 @@ static void deferred_lighting_draw(void *self, const scene *s, frame_stats *out)
     r->lbuf_cleared = false;
     if (!deferred_frame_begin(d, s, out))
         return;
+    if (d->run[PASS_EDGES])
+        edges_pass(r, out);
     deferred_bind_gbuffer_textures(d);   /* the normal, shininess and depth.sampled */
     if (d->run[PASS_DIRECTIONAL])
         light_pass(r, s, out, PASS_DIRECTIONAL, LIGHT_DIRECTIONAL);

@@ -93,7 +93,7 @@ static uint64_t targets_of(const char *kind, const run_params *q, int w, int h, 
     }
     if (is(kind, "deferred-lighting")) {
         /* its fixed G-buffer (normal + shininess, RGBA16F), depth.sampled and the light
-         * buffer's two targets (deferred_lighting.light_buffer); msaa is refused */
+         * buffer's two targets (deferred_lighting.light_buffer), every one per sample */
         const uint64_t lbuf = q->lpp_light_buffer == 1 ? 4 : 8;
         b += (8 + depth + 2 * lbuf) * s * px;
     }

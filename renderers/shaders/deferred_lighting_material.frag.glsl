@@ -5,13 +5,16 @@
 //   colour = ambient x diffuse + emissive + diffuse x L_diffuse + gloss x L_specular
 // where L_diffuse = sum of incoming x max(N.L, 0) and L_specular = sum of incoming x
 // spec over the lights (deferred_light.frag with LIGHT_PREPASS), which is lighting.inc's
-// sum of shade_light factored. Defines: the material's maps (surface.inc).
+// sum of shade_light factored. Defines: the material's maps (surface.inc); msaa > 1:
+// GB_MSAA and GB_SAMPLE gl_SampleID (msaa.inc), the light buffer multisampled and read
+// at the fragment's own sample, which makes the pass run per sample.
 #include "bindings.h"
 #include "frame.inc"
 #include "surface.inc"
 
-layout(binding = BIND_TEX_LIGHT_DIFFUSE) uniform sampler2D t_light_diffuse;
-layout(binding = BIND_TEX_LIGHT_SPECULAR) uniform sampler2D t_light_specular;
+#include "msaa.inc"
+layout(binding = BIND_TEX_LIGHT_DIFFUSE) uniform GB_SAMPLER t_light_diffuse;
+layout(binding = BIND_TEX_LIGHT_SPECULAR) uniform GB_SAMPLER t_light_specular;
 
 layout(location = 0) out vec4 o_color;
 
@@ -19,8 +22,8 @@ void main()
 {
     Surface s = surface_get();
     ivec2 px = ivec2(gl_FragCoord.xy);
-    vec3 ld = texelFetch(t_light_diffuse, px, 0).rgb;
-    vec3 ls = texelFetch(t_light_specular, px, 0).rgb;
+    vec3 ld = texelFetch(t_light_diffuse, px, GB_SAMPLE).rgb;
+    vec3 ls = texelFetch(t_light_specular, px, GB_SAMPLE).rgb;
     // A light buffer that overflowed (RGBA16F beyond 65504) holds Inf: a material channel
     // of 0 takes none of it (0 x Inf would be NaN), as forward's 0 x light is 0.
     vec3 c = f_ambient.rgb * s.diffuse + s.emissive +

@@ -7,8 +7,9 @@
  * normal + shininess G-buffer and the light buffer in the format asked for); the 8-bit
  * light buffer clamping a light above 1 (darker, finite, never brighter beyond its
  * rounding); the keys it does not read (separate specular, the sky mask, the G-buffer
- * preset) leaving its image alone; msaa > 1 refused at prepare with a message. Any GL
- * error fails. Exits 77 (skip) when no EGL display can be created at all. */
+ * preset) leaving its image alone; at msaa 4 deferred's edge pass and classes in its light
+ * passes and its material pass per sample (gl-agreement compares its image); an unknown
+ * light buffer format refused. Any GL error fails. Exits 77 (skip) when no EGL display can be created at all. */
 #include <setjmp.h>
 #include <stdarg.h>
 #include <stddef.h>
@@ -405,19 +406,56 @@ static void test_unread_keys(void **state)
     scene_destroy(s);
 }
 
-static void test_msaa_refused(void **state)
+/* msaa 4: deferred's edge pass and classes in the light passes (a shading draw per class),
+ * the material pass per sample everywhere; an unknown light buffer format is refused. */
+static void test_msaa(void **state)
 {
     (void)state;
-    scene *s = build("shapes", NULL, 0);
+    scene_light lights[] = {point(0.0f, 4.0f, 10.0f, 9.0f, 1.0f, 1.0f, 1.0f),
+                            point(-10.0f, 3.0f, -10.0f, 8.0f, 1.0f, 0.8f, 0.6f)};
+    scene *s = build("shapes", lights, 2);
+    visible v = count_visible(s);
     renderer_options o = options(LIGHT_VOLUMES_STENCIL, LPP_LIGHT_BUFFER_RGBA16F);
     o.msaa = 4;
+    void *self = make(s, &o);
+    pass_plan p;
+    IMPL->describe(self, &p);
+    assert_true(plan_pass(&p, "edges")->run);
+    assert_true(plan_pass(&p, "msaa-resolve")->run);
+    const target_plan_entry *lb = target_named(&p, "lightbuffer.diffuse");
+    assert_non_null(lb);
+    assert_int_equal(lb->bytes, (uint64_t)W * H * 8 * 4);   /* 4 samples of RGBA16F */
+    for (int f = 0; f < 2; f++) {
+        frame_stats fs;
+        frame(self, s, &fs);
+        static const char *const want[] = {"gbuffer", "edges", "point", "material", "sky",
+                                           "msaa-resolve", "resolve"};
+        assert_int_equal(fs.npasses, sizeof want / sizeof want[0]);
+        for (size_t i = 0; i < fs.npasses; i++)
+            assert_string_equal(fs.pass[i].name, want[i]);
+        assert_int_equal(find_pass(&fs, "gbuffer")->draw_calls, v.objects);
+        assert_int_equal(find_pass(&fs, "material")->draw_calls, v.objects);
+        /* per light: one mark, then a shading draw for the edge samples and one for the
+         * other pixels */
+        assert_int_equal(find_pass(&fs, "point")->draw_calls, 3 * v.lights[LIGHT_POINT]);
+        assert_int_equal(deferred_last_shade_draws(self, LIGHT_POINT),
+                         2 * v.lights[LIGHT_POINT]);
+        const pass_stats *mat = find_pass(&fs, "material");
+        if (!isnan(mat->samples)) {   /* every sample it passes is shaded on its own */
+            assert_true(mat->samples > 0.0);
+            assert_true(mat->per_sample_samples == mat->samples);
+        }
+        assert_true(fs.edge_fraction > 0.0 && fs.edge_fraction < 1.0);
+    }
+    float *hdr = malloc(sizeof(float) * W * H * 4);
+    assert_non_null(hdr);
+    assert_true(IMPL->read_hdr(self, hdr, W, H));
+    for (size_t i = 0; i < (size_t)W * H * 4; i++)
+        assert_true(isfinite(hdr[i]));
+    free(hdr);
+    IMPL->destroy(self);
+
     char err[512] = "";
-    renderer *r = renderer_create("deferred-lighting", &o, err, sizeof err);
-    assert_non_null(r);
-    assert_false(renderer_prepare(r, s, err, sizeof err));
-    assert_string_equal(err, "deferred-lighting: msaa 4 is not supported (msaa: 1 only; "
-                             "aa: edge is)");
-    renderer_destroy(r);
     o.msaa = 1;
     o.lpp_light_buffer = (lpp_light_buffer_format)7;
     assert_null(renderer_create("deferred-lighting", &o, err, sizeof err));
@@ -446,7 +484,7 @@ int main(void)
         cmocka_unit_test(test_plan),
         cmocka_unit_test(test_rgba8_clamps),
         cmocka_unit_test(test_unread_keys),
-        cmocka_unit_test(test_msaa_refused),
+        cmocka_unit_test(test_msaa),
     };
     int rc = cmocka_run_group_tests(tests, NULL, NULL);
     gl_context_destroy(ctx);
