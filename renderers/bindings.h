@@ -27,6 +27,8 @@
 #define BIND_TEX_DEPTH 10           /* the depth-stencil target, sampled */
 #define BIND_TEX_SPECULAR 11        /* deferred's separate specular target (compose) */
 #define BIND_TEX_SHADOW 12          /* the shadow-map pool (sampler2DArrayShadow) */
+#define BIND_TEX_LIGHT_DIFFUSE 13   /* deferred-lighting's light buffer: diffuse light */
+#define BIND_TEX_LIGHT_SPECULAR 14  /* and specular light (the material pass reads both) */
 /* Image units */
 #define BIND_IMAGE_HDR 0            /* tiled-deferred writes the HDR target */
 /* Uniform locations: surface.inc's alpha cutoff of a MASK material (file scenes) */

@@ -191,6 +191,9 @@ typedef struct deferred {
     /* msaa > 1: the per-sample variants (edge pixels) and the edge-mark program */
     GLuint ambient_sample_program, compose_sample_program, edge_program;
     GLuint light_sample_program[DEFERRED_LIGHT_TYPES];
+    /* deferred-lighting: the material pass's programs, per map variant */
+    GLuint material_program[DEFERRED_VARIANTS];
+    bool lbuf_cleared;               /* deferred-lighting: the light buffer cleared this frame */
 
     /* >>the last frame, for tests */
     uint64_t mark_draws[DEFERRED_LIGHT_TYPES], shade_draws[DEFERRED_LIGHT_TYPES];
@@ -483,13 +486,24 @@ int64_t deferred_scissor_rect(const scene *s, uint32_t light, int w, int h, int 
 
 static const gls_blend BLEND_ADD = {.enabled = true, .src = GLS_BLEND_ONE, .dst = GLS_BLEND_ONE};
 
-/* The pass of the lights of one type: directional full screen, point and spot by the mode. */
+/* deferred-lighting: the light buffer (bound) starts the frame at zero: the first light
+ * pass that runs clears it, or the material pass when none does. */
+static void clear_light_buffer(deferred *r)
+{
+    gl_state_clear(r->d.b.st, GL_COLOR_BUFFER_BIT, NULL, 1.0, 0);
+    r->lbuf_cleared = true;
+}
+
+/* The pass of the lights of one type: directional full screen, point and spot by the mode.
+ * Into the light target, or deferred-lighting's light buffer. */
 static void light_pass(deferred *r, const scene *s, frame_stats *out, deferred_pass p, int type)
 {
     gl_state *st = r->d.b.st;
     const volume_mode *m = mode_of(r);
     deferred_pass_begin(&r->d, out, p);
-    gl_state_framebuffer(st, r->d.fb_light.fbo);
+    gl_state_framebuffer(st, r->d.lpp ? r->d.fb_lbuf.fbo : r->d.fb_light.fbo);
+    if (r->d.lpp && !r->lbuf_cleared)
+        clear_light_buffer(r);   /* before the scissor test is on: all of it */
     gl_state_color_mask(st, GLS_COLOR_MASK_RGBA);
     gl_state_blend(st, &BLEND_ADD);
     bool volumes = type != LIGHT_DIRECTIONAL && !m->full_screen;
@@ -531,7 +545,7 @@ static void light_pass(deferred *r, const scene *s, frame_stats *out, deferred_p
 
 static void *deferred_create(const renderer_options *opts, char *err, size_t errlen)
 {
-    return deferred_core_create("deferred", sizeof(deferred), false, opts, err, errlen);
+    return deferred_core_create("deferred", sizeof(deferred), false, false, opts, err, errlen);
 }
 
 /* The lighting programs: ambient, edges (msaa), one per light type that runs (its
@@ -543,8 +557,9 @@ static bool compile_lighting(deferred *r, char *err, size_t errlen)
     deferred_layout_defines(&d->layout, &ld);
     const char *fs_vert = "fullscreen.vert";
     const char *unclipped = d->unclipped ? "FULLSCREEN_UNCLIPPED" : NULL;
-    const char *sep = d->b.opts.separate_specular ? "SEPARATE_SPECULAR" : NULL;
-    {
+    /* deferred-lighting's light buffer: diffuse and specular light in two targets */
+    const char *sep = d->b.opts.separate_specular || d->lpp ? "SEPARATE_SPECULAR" : NULL;
+    if (!d->lpp) {   /* deferred-lighting: ambient and emissive in the material pass */
         const char *extra[3] = {NULL, NULL, NULL};
         int n = 0;
         if (unclipped)
@@ -584,12 +599,14 @@ static bool compile_lighting(deferred *r, char *err, size_t errlen)
         if (!d->run[light_pass_of[t]])
             continue;
         bool full = t == LIGHT_DIRECTIONAL || mode_of(r)->full_screen;
-        const char *extra[6] = {type_define[t], NULL, NULL, NULL, NULL, NULL};
+        const char *extra[7] = {type_define[t], NULL, NULL, NULL, NULL, NULL, NULL};
         int n = 1;
         if (full && unclipped)
             extra[n++] = unclipped;
         if (sep)
             extra[n++] = sep;
+        if (d->lpp)
+            extra[n++] = "LIGHT_PREPASS";
         bool shadowed = shadow_maps_for_type(&d->b.shadows, t);
         if (shadowed)
             n += (int)shadow_maps_defines(&d->b.shadows, extra + n);
@@ -615,15 +632,42 @@ static bool compile_lighting(deferred *r, char *err, size_t errlen)
     return true;
 }
 
+/* The plan's light passes: a pass per light type the scene has. */
+static void plan_lights(deferred *r)
+{
+    deferred_renderer *d = &r->d;
+    const char *into = d->lpp ? ", into the light buffer" : "";
+    if (d->count[LIGHT_DIRECTIONAL])
+        deferred_plan(d, PASS_DIRECTIONAL, true, "%u directional lights, full screen each%s",
+                      d->count[LIGHT_DIRECTIONAL], into);
+    else
+        deferred_plan(d, PASS_DIRECTIONAL, false, "no directional light in the scene");
+    for (int t = LIGHT_POINT; t <= LIGHT_SPOT; t++) {
+        deferred_pass p = t == LIGHT_POINT ? PASS_POINT : PASS_SPOT;
+        if (d->count[t])
+            deferred_plan(d, p, true, "%u %s lights, light volumes: %s%s", d->count[t],
+                          light_type_name(t), mode_of(r)->name, into);
+        else
+            deferred_plan(d, p, false, "no %s light in the scene", light_type_name(t));
+    }
+}
+
+/* The programs prepare made, forgotten (the cache that owns them is remade). */
+static void forget_programs(deferred *r)
+{
+    memset(r->light_program, 0, sizeof r->light_program);
+    memset(r->light_sample_program, 0, sizeof r->light_sample_program);
+    memset(r->material_program, 0, sizeof r->material_program);
+    r->ambient_program = r->compose_program = r->mark_program = 0;
+    r->ambient_sample_program = r->compose_sample_program = r->edge_program = 0;
+}
+
 static bool deferred_prepare(void *self, const scene *s, char *err, size_t errlen)
 {
     deferred *r = self;
     deferred_renderer *d = &r->d;
     deferred_core_release(d);
-    memset(r->light_program, 0, sizeof r->light_program);
-    memset(r->light_sample_program, 0, sizeof r->light_sample_program);
-    r->ambient_program = r->compose_program = r->mark_program = 0;
-    r->ambient_sample_program = r->compose_sample_program = r->edge_program = 0;
+    forget_programs(r);
     if (!deferred_prepare_scene(d, s, err, errlen))
         goto fail;
     deferred_plan(d, PASS_AMBIENT, true, "%s%s",
@@ -631,19 +675,7 @@ static bool deferred_prepare(void *self, const scene *s, char *err, size_t errle
                                     : "ambient x diffuse, full screen (no material is emissive)",
                   d->b.opts.sky_stencil ? "; the full-screen passes skip the sky by the stencil"
                                         : "");
-    if (d->count[LIGHT_DIRECTIONAL])
-        deferred_plan(d, PASS_DIRECTIONAL, true, "%u directional lights, full screen each",
-                      d->count[LIGHT_DIRECTIONAL]);
-    else
-        deferred_plan(d, PASS_DIRECTIONAL, false, "no directional light in the scene");
-    for (int t = LIGHT_POINT; t <= LIGHT_SPOT; t++) {
-        deferred_pass p = t == LIGHT_POINT ? PASS_POINT : PASS_SPOT;
-        if (d->count[t])
-            deferred_plan(d, p, true, "%u %s lights, light volumes: %s", d->count[t],
-                          light_type_name(t), mode_of(r)->name);
-        else
-            deferred_plan(d, p, false, "no %s light in the scene", light_type_name(t));
-    }
+    plan_lights(r);
     deferred_plan(d, PASS_TILED, false, "deferred shades with light volumes, not tiles");
     deferred_plan(d, PASS_EDGES, d->b.samples > 1,
                   "msaa %d: pixels whose samples differ (off the plane > 1%% of depth, normal > "
@@ -766,6 +798,183 @@ static void deferred_destroy(void *self)
     deferred_core_destroy(self);
 }
 
+// >>deferred-lighting (the light pre-pass)
+
+/* deferred-lighting (Engel 2008, Lauritzen 2010): this file's light passes over a minimal
+ * G-buffer (gbuffer_layout.c's deferred_layout_light_prepass) into a light buffer, then
+ * a second geometry pass that applies the materials. docs/architecture.md has the design.
+ *
+ *   shadows, gbuffer   deferred_frame_begin, the G-buffer holding the normal and the
+ *                      shininess only
+ *   directional, point, spot
+ *                      as deferred's, every light_volumes mode, blend ONE + ONE into the
+ *                      light buffer (lightbuffer.diffuse: incoming x max(N.L, 0),
+ *                      lightbuffer.specular: incoming x spec; deferred_light.frag with
+ *                      LIGHT_PREPASS); the first that runs clears the light buffer
+ *   material           the visible opaque objects again (frontend order, one draw each),
+ *                      mesh.vert + deferred_lighting_material.frag in the material's map
+ *                      variant, depth EQUAL without writes, back faces culled, into the
+ *                      light target cleared to (0, 0, 0, 1): ambient x diffuse + emissive
+ *                      + diffuse x L_diffuse + gloss x L_specular
+ *   fog, sky, translucent, edge-aa, resolve
+ *                      deferred_frame_end, as deferred
+ *
+ * Draw calls: Sh + 2 V + (the light draws as deferred's, same mode) + [fog] + [sky] +
+ * [translucent objects] + [aa] + 1. deferred.separate_specular and deferred.sky_stencil
+ * are not read (its light buffer is always split; no full-screen ambient pass to mask),
+ * nor gbuffer.* (the layout is fixed).
+ *
+ * MSAA (msaa > 1): the G-buffer, light buffer, light target and depth multisampled;
+ * deferred's `edges` pass after the G-buffer, and its two classes in every light pass
+ * (per sample on edge pixels, per pixel elsewhere: the light draws double as deferred's);
+ * the material pass runs per sample everywhere (it reads the light buffer at gl_SampleID,
+ * so that each sample takes the light of the surface it holds), then `msaa-resolve`. */
+
+static void deferred_lighting_describe(const void *self, pass_plan *out)
+{
+    deferred_describe(self, out);
+}
+
+static void deferred_lighting_destroy(void *self)
+{
+    deferred_core_destroy(self);
+}
+
+static void *deferred_lighting_create(const renderer_options *opts, char *err, size_t errlen)
+{
+    if ((unsigned)opts->lpp_light_buffer - 1u > 1u) {
+        snprintf(err, errlen, "deferred-lighting: unknown light buffer format %d",
+                 (int)opts->lpp_light_buffer);
+        return NULL;
+    }
+    /* What the renderer does not read (its reads) must not change what it draws: the
+     * runner folds runs that differ only there. */
+    renderer_options o = *opts;
+    o.separate_specular = false;
+    o.sky_stencil = false;
+    o.gbuffer = GBUFFER_CURTIS;
+    o.gbuffer_position = GBUFFER_POSITION_PRESET;
+    o.gbuffer_normal = GBUFFER_NORMAL_PRESET;
+    return deferred_core_create("deferred-lighting", sizeof(deferred), false, true, &o, err,
+                                errlen);
+}
+
+/* The material pass's programs: mesh.vert + deferred_lighting_material.frag in every map
+ * variant a visible opaque object may have. */
+static bool compile_material(deferred *r, char *err, size_t errlen)
+{
+    for (unsigned v = 0; v < DEFERRED_VARIANTS; v++) {
+        if (!(r->d.variants & (1u << v)))
+            continue;
+        scene_material m = {.diffuse_map = (v & 1u) ? 0 : -1, .gloss_map = (v & 2u) ? 0 : -1,
+                            .normal_map = (v & 4u) ? 0 : -1, .emissive_map = (v & 8u) ? 0 : -1,
+                            .alpha = (v & 16u) ? MATERIAL_MASK : MATERIAL_OPAQUE};
+        const char *defs[SHADING_MATERIAL_DEFINES + 3] = {NULL};
+        unsigned n = shading_material_defines(&m, defs);
+        if (r->d.b.samples > 1) {
+            /* msaa: the light buffer per sample, and so every fragment per sample: where
+             * two surfaces share a pixel each sample takes its own surface's light */
+            defs[n++] = "GB_MSAA";
+            defs[n++] = "GB_SAMPLE gl_SampleID";
+        }
+        if (!deferred_build_program(&r->d, "deferred_lighting_material", "mesh.vert",
+                                    "deferred_lighting_material.frag", NULL, defs,
+                                    &r->material_program[v], err, errlen))
+            return false;
+    }
+    return true;
+}
+
+static bool deferred_lighting_prepare(void *self, const scene *s, char *err, size_t errlen)
+{
+    deferred *r = self;
+    deferred_renderer *d = &r->d;
+    deferred_core_release(d);
+    forget_programs(r);
+    if (!deferred_prepare_scene(d, s, err, errlen))
+        goto fail;
+    deferred_plan(d, PASS_EDGES, d->b.samples > 1,
+                  "msaa %d: as deferred's, for the light passes; the material pass shades "
+                  "per sample", d->b.samples);
+    deferred_plan(d, PASS_AMBIENT, false, "ambient and emissive are the material pass's");
+    plan_lights(r);
+    deferred_plan(d, PASS_COMPOSE, false, "the material pass combines the light buffer's "
+                  "diffuse and specular light");
+    deferred_plan(d, PASS_MATERIAL, true, "%u objects again, depth EQUAL, their materials "
+                  "over the light buffer (%s)", s->nobjects,
+                  d->b.opts.lpp_light_buffer == LPP_LIGHT_BUFFER_RGBA8 ? "rgba8" : "rgba16f");
+    if (!deferred_make_targets(d, err, errlen) || !deferred_compile_gbuffer(d, err, errlen) ||
+        !compile_lighting(r, err, errlen) || !compile_material(r, err, errlen) ||
+        !deferred_compile_fog(d, err, errlen) ||
+        !translucent_prepare(&d->translucent, &d->b, s, &d->b.shadows, false, err, errlen) ||
+        !deferred_prepare_edge_aa(d, err, errlen))
+        goto fail;
+    deferred_prepare_end(d);
+    return true;
+fail:
+    deferred_core_release(d);
+    return false;
+}
+
+/* The second geometry pass: each visible opaque object's material over its own light. */
+static void material_pass(deferred *r, const scene *s, frame_stats *out)
+{
+    deferred_renderer *d = &r->d;
+    gl_state *st = d->b.st;
+    deferred_pass_begin(d, out, PASS_MATERIAL);
+    if (!r->lbuf_cleared) {   /* no light pass ran: no light */
+        gl_state_framebuffer(st, d->fb_lbuf.fbo);
+        clear_light_buffer(r);
+    }
+    gl_state_framebuffer(st, d->fb_light.fbo);
+    gl_state_viewport(st, 0, 0, d->b.width, d->b.height);
+    /* what deferred's ambient pass leaves where no surface is (the sky draws there) */
+    static const float black[4] = {0.0f, 0.0f, 0.0f, 1.0f};
+    gl_state_clear(st, GL_COLOR_BUFFER_BIT, black, 1.0, 0);
+    gl_state_color_mask(st, GLS_COLOR_MASK_RGBA);
+    gl_state_blend(st, NULL);
+    gl_state_stencil(st, NULL);
+    gl_state_depth(st, &(gls_depth){.compare = GLS_COMPARE_EQUAL, .write = false});
+    gl_state_cull(st, GLS_CULL_BACK);   /* as the G-buffer pass: the same fragments */
+    gl_state_texture(st, BIND_TEX_LIGHT_DIFFUSE, d->lbuf_diffuse.texture);
+    gl_state_texture(st, BIND_TEX_LIGHT_SPECULAR, d->lbuf_specular.texture);
+    renderer_base_per_sample(&d->b, d->b.samples > 1);   /* msaa: per sample everywhere */
+    for (uint32_t k = 0; k < d->b.fe.nvisible; k++) {
+        uint32_t o = d->b.fe.visible[k];
+        unsigned v = deferred_material_variant(&s->materials[s->objects[o].material]);
+        gl_state_program(st, r->material_program[v]);
+        scene_gpu_draw_object(d->b.gpu, st, s, o);
+    }
+    renderer_base_per_sample(&d->b, false);
+    /* drawn into by the next frame's light passes: not bound for sampling meanwhile */
+    gl_state_texture(st, BIND_TEX_LIGHT_DIFFUSE, 0);
+    gl_state_texture(st, BIND_TEX_LIGHT_SPECULAR, 0);
+    deferred_pass_end(d, out);
+}
+
+static void deferred_lighting_draw(void *self, const scene *s, frame_stats *out)
+{
+    deferred *r = self;
+    deferred_renderer *d = &r->d;
+    memset(r->mark_draws, 0, sizeof r->mark_draws);
+    memset(r->shade_draws, 0, sizeof r->shade_draws);
+    r->edges_pass = 0;
+    r->lbuf_cleared = false;
+    if (!deferred_frame_begin(d, s, out))
+        return;
+    if (d->run[PASS_EDGES])
+        edges_pass(r, out);
+    deferred_bind_gbuffer_textures(d);   /* the normal, shininess and depth.sampled */
+    if (d->run[PASS_DIRECTIONAL])
+        light_pass(r, s, out, PASS_DIRECTIONAL, LIGHT_DIRECTIONAL);
+    if (d->run[PASS_POINT])
+        light_pass(r, s, out, PASS_POINT, LIGHT_POINT);
+    if (d->run[PASS_SPOT])
+        light_pass(r, s, out, PASS_SPOT, LIGHT_SPOT);
+    material_pass(r, s, out);
+    deferred_frame_end(d, s, out, d->fb_light.fbo);
+}
+
 // >>for tests
 
 uint64_t deferred_last_mark_draws(const void *self, int type)
@@ -784,4 +993,12 @@ const renderer_impl renderer_deferred_impl = RENDERER_IMPL(
     deferred, "deferred", "gbuffer deferred hdr msaa fog aa",
     "G-buffer pass, then ambient, directional and light-volume passes "
     "(fullscreen | volume | stencil | stencil-two-pass), sky last",
+    .collect = deferred_collect, .read_hdr = deferred_read_hdr);
+
+const renderer_impl renderer_deferred_lighting_impl = RENDERER_IMPL(
+    deferred_lighting, "deferred-lighting",
+    "deferred.light_volumes deferred_lighting hdr msaa fog aa",
+    "light pre-pass (Engel 2008): normal + shininess G-buffer, diffuse and specular light "
+    "into a light buffer by deferred's light volumes, then the objects again with their "
+    "materials (depth EQUAL)",
     .collect = deferred_collect, .read_hdr = deferred_read_hdr);

@@ -112,6 +112,11 @@ const char *deferred_preset_name(gbuffer_preset p);
 bool deferred_layout_build(const renderer_options *o, deferred_needs needs,
                            deferred_layout *out, char *err, size_t errlen);
 
+/* deferred-lighting's G-buffer (Engel 2008's light pre-pass), whatever the gbuffer keys
+ * say: one RGBA16F attachment, normal.xy + normal.z + shininess (RGBA16F, shininess
+ * left out when no material has specular), the position from the depth buffer. */
+void deferred_layout_light_prepass(deferred_needs needs, deferred_layout *out);
+
 /* Bytes per pixel of the layout's attachments. */
 unsigned deferred_layout_bytes_per_pixel(const deferred_layout *l);
 

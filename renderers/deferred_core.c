@@ -17,24 +17,24 @@
 
 static const char *const pass_names[PASS_COUNT] = {
     "shadows", "gbuffer", "ambient", "directional", "point", "spot", "compose", "sky", "resolve",
-    "tiled", "fog", "translucent", "edges", "msaa-resolve", "translucent-lists",
+    "tiled", "fog", "translucent", "edges", "msaa-resolve", "translucent-lists", "material",
 };
 
 /* The order describe lists them in (tiled-deferred's "tiled" after the G-buffer). */
 static const deferred_pass describe_order[PASS_COUNT] = {
     PASS_SHADOWS, PASS_GBUFFER, PASS_EDGES, PASS_TILED, PASS_TLISTS, PASS_AMBIENT,
-    PASS_DIRECTIONAL, PASS_POINT, PASS_SPOT, PASS_COMPOSE, PASS_FOG, PASS_SKY,
+    PASS_DIRECTIONAL, PASS_POINT, PASS_SPOT, PASS_MATERIAL, PASS_COMPOSE, PASS_FOG, PASS_SKY,
     PASS_TRANSLUCENT, PASS_MSAA, PASS_RESOLVE,
 };
 
-static unsigned material_variant(const scene_material *m)
+unsigned deferred_material_variant(const scene_material *m)
 {
     return (m->diffuse_map >= 0 ? 1u : 0u) | (m->gloss_map >= 0 ? 2u : 0u) |
            (m->normal_map >= 0 ? 4u : 0u) | (m->emissive_map >= 0 ? 8u : 0u) |
            (m->alpha == MATERIAL_MASK ? 16u : 0u);
 }
 
-deferred_renderer *deferred_core_create(const char *name, size_t size, bool tiled,
+deferred_renderer *deferred_core_create(const char *name, size_t size, bool tiled, bool lpp,
                                         const renderer_options *opts, char *err, size_t errlen)
 {
     deferred_renderer *r = calloc(1, size);
@@ -43,6 +43,7 @@ deferred_renderer *deferred_core_create(const char *name, size_t size, bool tile
         return NULL;
     }
     r->tiled = tiled;
+    r->lpp = lpp;
     /* Options are checked here, before any scene: a bad value never becomes a default. */
     deferred_layout probe;
     if (!deferred_layout_build(opts, (deferred_needs){true, true}, &probe, err, errlen)) {
@@ -65,11 +66,12 @@ deferred_renderer *deferred_core_create(const char *name, size_t size, bool tile
 void deferred_core_release(deferred_renderer *r)
 {
     translucent_release(&r->translucent);
-    GL_FRAMEBUFFERS_DESTROY(&r->fb_gbuffer, &r->fb_light, &r->fb_compose, &r->fb_fog);
+    GL_FRAMEBUFFERS_DESTROY(&r->fb_gbuffer, &r->fb_light, &r->fb_compose, &r->fb_fog,
+                            &r->fb_lbuf);
     for (int i = 0; i < DEFERRED_MAX_ATTACHMENTS; i++)
         gl_target_destroy(&r->gbuf[i]);
     renderer_base_release_targets(&r->b);
-    GL_TARGETS_DESTROY(&r->specular, &r->depth_sampled);
+    GL_TARGETS_DESTROY(&r->specular, &r->depth_sampled, &r->lbuf_diffuse, &r->lbuf_specular);
     renderer_base_release_scene(&r->b);
     r->prepared = false;
 }
@@ -150,6 +152,27 @@ void deferred_plan(deferred_renderer *r, deferred_pass p, bool run, const char *
     va_end(ap);
 }
 
+/* deferred-lighting's light buffer: diffuse and specular light in the format
+ * deferred_lighting.light_buffer names, and their framebuffer with the shared depth (the
+ * light volumes test against the scene's depth, as deferred's do). */
+static bool make_light_buffer(deferred_renderer *r, char *why, size_t len)
+{
+    gl_format f = r->b.opts.lpp_light_buffer == LPP_LIGHT_BUFFER_RGBA8 ? GLT_FORMAT_RGBA8
+                                                                      : GLT_FORMAT_RGBA16F;
+    gl_target_desc d = {.name = "lightbuffer.diffuse", .format = f, .width = r->b.width,
+                        .height = r->b.height, .samples = r->b.samples};
+    if (!gl_target_create(&r->lbuf_diffuse, &d, why, len))
+        return false;
+    d.name = "lightbuffer.specular";
+    return gl_target_create(&r->lbuf_specular, &d, why, len) &&
+           gl_framebuffer_create(&r->fb_lbuf,
+                                 &(gl_framebuffer_desc){.name = "lightbuffer",
+                                                        .color = {&r->lbuf_diffuse,
+                                                                  &r->lbuf_specular},
+                                                        .depth_stencil = &r->b.depth},
+                                 why, len);
+}
+
 bool deferred_make_targets(deferred_renderer *r, char *err, size_t errlen)
 {
     char why[512] = "";
@@ -192,6 +215,8 @@ bool deferred_make_targets(deferred_renderer *r, char *err, size_t errlen)
                                                              .color = {&r->b.hdr},
                                                              .depth_stencil = &r->b.depth},
                                       why, sizeof why))
+        goto fail;
+    if (r->lpp && !make_light_buffer(r, why, sizeof why))
         goto fail;
     if (r->run[PASS_FOG] &&
         !gl_framebuffer_create(&r->fb_fog, &(gl_framebuffer_desc){.name = "fog",
@@ -287,7 +312,7 @@ bool deferred_prepare_scene(deferred_renderer *r, const scene *s, char *err, siz
             return false;
         }
         if (!scene_material_translucent(&s->materials[m]))   /* translucent.h's */
-            r->variants |= 1u << material_variant(&s->materials[m]);
+            r->variants |= 1u << deferred_material_variant(&s->materials[m]);
         else
             r->translucency = true;
     }
@@ -303,7 +328,9 @@ bool deferred_prepare_scene(deferred_renderer *r, const scene *s, char *err, siz
         r->count[t]++;
     }
     r->needs = deferred_needs_of(s);
-    if (!deferred_layout_build(&r->b.opts, r->needs, &r->layout, err, errlen))
+    if (r->lpp)
+        deferred_layout_light_prepass(r->needs, &r->layout);
+    else if (!deferred_layout_build(&r->b.opts, r->needs, &r->layout, err, errlen))
         return false;
 
     /* >>the scene on the GPU, the frontend (light volumes, not object sets) and the shadow
@@ -314,8 +341,10 @@ bool deferred_prepare_scene(deferred_renderer *r, const scene *s, char *err, siz
     /* >>the pass plan's common entries (the renderer adds its lighting's) */
     deferred_plan(r, PASS_SHADOWS, r->b.shadows.run, "%s", r->b.shadows.reason);
     deferred_plan(r, PASS_GBUFFER, true,
-                  "%u objects into %d attachments (%s preset, %u bytes/pixel)", s->nobjects,
-                  r->layout.nattachments, deferred_preset_name(r->b.opts.gbuffer),
+                  "%u objects into %d attachments (%s, %u bytes/pixel)", s->nobjects,
+                  r->layout.nattachments,
+                  r->lpp ? "light pre-pass: normal, shininess"
+                         : deferred_preset_name(r->b.opts.gbuffer),
                   deferred_layout_bytes_per_pixel(&r->layout));
     deferred_plan(r, PASS_COMPOSE, r->b.opts.separate_specular, "%s",
                   r->b.opts.separate_specular ? "specular light added into the diffuse light"
@@ -397,7 +426,7 @@ bool deferred_frame_begin(deferred_renderer *r, const scene *s, frame_stats *out
     gl_state_cull(st, GLS_CULL_BACK);
     for (uint32_t k = 0; k < r->b.fe.nvisible; k++) {
         uint32_t o = r->b.fe.visible[k];
-        unsigned v = material_variant(&s->materials[s->objects[o].material]);
+        unsigned v = deferred_material_variant(&s->materials[s->objects[o].material]);
         gl_state_program(st, r->gbuffer_program[v]);
         scene_gpu_draw_object(r->b.gpu, st, s, o);
     }
@@ -500,6 +529,8 @@ void deferred_describe(const void *self, pass_plan *out)
         deferred_pass p = describe_order[i];
         if ((p == PASS_TILED || p == PASS_TLISTS) && !r->tiled)
             continue;   /* deferred's plan is what it always was */
+        if (p == PASS_MATERIAL && !r->lpp)
+            continue;
         if ((p == PASS_EDGES || p == PASS_MSAA) && r->b.samples <= 1)
             continue;   /* single-sampled: the plan is what it always was */
         if (p == PASS_RESOLVE)
@@ -519,6 +550,8 @@ void deferred_describe(const void *self, pass_plan *out)
     }
     describe_target(&r->b.hdr, out);
     describe_target(&r->specular, out);
+    describe_target(&r->lbuf_diffuse, out);
+    describe_target(&r->lbuf_specular, out);
     describe_target(&r->b.depth, out);
     describe_target(&r->depth_sampled, out);
     describe_target(&r->b.hdr_resolved, out);

@@ -50,6 +50,7 @@ typedef enum deferred_pass {
     PASS_EDGES,                      /* msaa > 1: edge_mark.frag sets EDGE_BIT */
     PASS_MSAA,                       /* msaa > 1: renderer_base_msaa_resolve_pass */
     PASS_TLISTS,                     /* not a pass: the tiled pass's translucent lists */
+    PASS_MATERIAL,                   /* deferred-lighting: the second geometry pass */
     PASS_COUNT
 } deferred_pass;
 
@@ -57,6 +58,8 @@ typedef struct deferred_renderer {
     renderer_base b;                 /* first: name ("deferred", "tiled-deferred",
                                         "clustered"), options, size, caches, queries */
     bool tiled;                      /* tiled-deferred: PASS_TILED instead of the light passes */
+    bool lpp;                        /* deferred-lighting (deferred.c): the light pre-pass's
+                                        G-buffer and light buffer, and PASS_MATERIAL */
 
     /* >>made by prepare */
     bool prepared;                   /* (the scene on the GPU, the frontend and the shadow
@@ -70,6 +73,10 @@ typedef struct deferred_renderer {
     gl_target depth_sampled;         /* position from depth: the G-buffer's depth, copied */
     gl_framebuffer fb_gbuffer, fb_light, fb_compose;
     gl_framebuffer fb_fog;           /* the light target alone (fog reads depth) */
+    /* deferred-lighting: the light buffer (deferred_lighting.light_buffer's format), the
+     * light passes' framebuffer (both + depth); fb_light is the material pass's */
+    gl_target lbuf_diffuse, lbuf_specular;
+    gl_framebuffer fb_lbuf;
     GLuint fog_program;
     bool unclipped;                  /* full-screen passes draw the unclipped triangle */
     unsigned variants;               /* bit v: some object's material is of map variant v */
@@ -84,8 +91,9 @@ typedef struct deferred_renderer {
 // >>create and release
 
 /* calloc(size) (the renderer's object, which starts with a deferred_renderer), the
- * G-buffer options and light_volumes checked, the base initialised. NULL with a message. */
-deferred_renderer *deferred_core_create(const char *name, size_t size, bool tiled,
+ * G-buffer options and light_volumes checked, the base initialised. NULL with a message.
+ * lpp: deferred-lighting's object (set before anything reads it). */
+deferred_renderer *deferred_core_create(const char *name, size_t size, bool tiled, bool lpp,
                                         const renderer_options *opts, char *err, size_t errlen);
 /* What prepare made (the common part); a zeroed object is fine. */
 void deferred_core_release(deferred_renderer *r);
@@ -133,6 +141,9 @@ void deferred_prepare_end(deferred_renderer *r);
 
 void deferred_pass_begin(deferred_renderer *r, frame_stats *out, deferred_pass p);
 void deferred_pass_end(deferred_renderer *r, frame_stats *out);
+/* The map variant (bit 0 diffuse, 1 gloss, 2 normal, 3 emissive map, 4 alpha test) of a
+ * material: the index of gbuffer_program (and deferred-lighting's material programs). */
+unsigned deferred_material_variant(const scene_material *m);
 /* The G-buffer attachments (and the depth to sample, for position from depth) bound. */
 void deferred_bind_gbuffer_textures(deferred_renderer *r);
 /* One full-screen draw. */

@@ -342,6 +342,28 @@ bool deferred_layout_build(const renderer_options *o, deferred_needs needs,
     return true;
 }
 
+void deferred_layout_light_prepass(deferred_needs needs, deferred_layout *out)
+{
+    /* Engel 2008's minimal G-buffer: the normal and the specular power beside the depth
+     * buffer (the position is unprojected from it); no albedo, which the material pass
+     * reads from the material. 16-bit floats: the normal as deferred's curtis stores it. */
+    draft d = {0};
+    int a = draft_att(&d, DEFERRED_CHANNELS_FLOAT16, GLT_FORMAT_NONE, false);
+    draft_slot(&d, a, DEFERRED_SLOT_NORMAL_XY, 2);
+    draft_slot(&d, a, DEFERRED_SLOT_NORMAL_Z, 1);
+    if (needs.gloss)   /* no specular material: no highlight to shape */
+        draft_slot(&d, a, DEFERRED_SLOT_SHININESS, 1);
+    memset(out, 0, sizeof *out);
+    deferred_attachment at = d.att[a];
+    at.format = narrowest(at.channels, needs.gloss ? 4u : 3u);
+    name_attachment(&at, false);
+    for (int k = 0; k < at.nslots; k++)
+        out->has[at.slot[k].kind] = true;
+    out->att[out->nattachments++] = at;
+    out->position = DEFERRED_POSITION_DEPTH_BUFFER;
+    out->normal = DEFERRED_NORMAL_XYZ_FLOAT;
+}
+
 unsigned deferred_layout_bytes_per_pixel(const deferred_layout *l)
 {
     unsigned b = 0;
@@ -363,6 +385,11 @@ unsigned deferred_gbuffer_bytes_per_pixel(const renderer_options *o, deferred_ne
 unsigned deferred_gbuffer_bytes_per_pixel_of(const char *kind, const renderer_options *o,
                                              const scene *s)
 {
+    if (kind && strcmp(kind, "deferred-lighting") == 0) {   /* its own fixed layout */
+        deferred_layout l;
+        deferred_layout_light_prepass(deferred_needs_of(s), &l);
+        return deferred_layout_bytes_per_pixel(&l);
+    }
     return deferred_uses_gbuffer(kind, o) ? deferred_gbuffer_bytes_per_pixel(o, deferred_needs_of(s))
                                           : 0;
 }

@@ -15,6 +15,7 @@ extern const renderer_impl renderer_forward_spml_impl;
 extern const renderer_impl renderer_forward_plus_impl;
 extern const renderer_impl renderer_clustered_impl;
 extern const renderer_impl renderer_tiled_deferred_impl;
+extern const renderer_impl renderer_deferred_lighting_impl;
 
 /* Every renderer the program knows, in the order `info` and errors list them. */
 static const renderer_impl *const registry[] = {
@@ -25,6 +26,7 @@ static const renderer_impl *const registry[] = {
     &renderer_forward_plus_impl,
     &renderer_clustered_impl,
     &renderer_tiled_deferred_impl,
+    &renderer_deferred_lighting_impl,
 };
 
 struct renderer {
@@ -59,6 +61,7 @@ static const char *unset_option(const renderer_options *o)
            : o->clustered_slices == 0                ? "clustered.slices"
            : o->hdr == HDR_UNSET                     ? "hdr"
            : o->aa == AA_UNSET                       ? "aa"
+           : o->lpp_light_buffer == LPP_LIGHT_BUFFER_UNSET ? "deferred_lighting.light_buffer"
                                                      : NULL;
 }
 

@@ -164,6 +164,15 @@ typedef enum hdr_format {
     HDR_RGBA32F,                   /* 32-bit floats: no rounding of additive passes to 11 bits */
 } hdr_format;
 
+/* deferred-lighting's light buffer (deferred_lighting.light_buffer): the format of its
+ * diffuse and specular light targets. RGBA8 is Engel 2008's 8-bit buffer: light above
+ * 1.0 clamps there, and the image shows it. */
+typedef enum lpp_light_buffer_format {
+    LPP_LIGHT_BUFFER_UNSET = 0,
+    LPP_LIGHT_BUFFER_RGBA16F,
+    LPP_LIGHT_BUFFER_RGBA8,
+} lpp_light_buffer_format;
+
 /* Anti-aliasing after the lighting (the manifest's `aa`): every renderer that draws. */
 typedef enum aa_mode {
     AA_UNSET = 0,
@@ -203,6 +212,8 @@ typedef struct renderer_options {
      * G-buffer (clustered.shading: deferred; every deferred G-buffer option applies) */
     int clustered_slices;
     bool clustered_deferred;
+    /* deferred-lighting (deferred_lighting.light_buffer) */
+    lpp_light_buffer_format lpp_light_buffer;
     /* every renderer that draws: the light accumulation's format (hdr), and seed 000
      * 4.5.12's fog from depth (fog.*): off while fog_density is 0; on, a surface at view
      * depth z keeps exp(-fog_density z) of its light and takes the rest from fog_color */

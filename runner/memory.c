@@ -91,6 +91,12 @@ static uint64_t targets_of(const char *kind, const run_params *q, int w, int h, 
         if (q->separate_specular)
             b += hdr * s * px;
     }
+    if (is(kind, "deferred-lighting")) {
+        /* its fixed G-buffer (normal + shininess, RGBA16F), depth.sampled and the light
+         * buffer's two targets (deferred_lighting.light_buffer), every one per sample */
+        const uint64_t lbuf = q->lpp_light_buffer == 1 ? 4 : 8;
+        b += (8 + depth + 2 * lbuf) * s * px;
+    }
     if (q->aa == 1)
         b += (hdr + depth) * px;   /* edge AA's output and single-sample depth */
     if (sc && q->shadows != 1)

@@ -21,6 +21,8 @@ static inline void test_options_complete(renderer_options *o)
         o->hdr = HDR_RGBA16F;
     if (o->aa == AA_UNSET)
         o->aa = AA_NONE;
+    if (o->lpp_light_buffer == LPP_LIGHT_BUFFER_UNSET)
+        o->lpp_light_buffer = LPP_LIGHT_BUFFER_RGBA16F;
 }
 
 /* renderer_create with o's unset options completed. */

@@ -53,7 +53,7 @@ COLORS = {"deferred": "tab:blue", "forward-spml": "tab:orange", "forward-mpml": 
 STYLES = {"deferred": ("tab:blue", "o"), "forward-spml": ("tab:orange", "s"),
           "forward-mpml": ("tab:red", "^"), "forward-plus": ("tab:green", "D"),
           "clustered": ("tab:purple", "v"), "tiled-deferred": ("tab:brown", "P"),
-          "null": ("tab:gray", "x")}
+          "deferred-lighting": ("teal", "X"), "null": ("tab:gray", "x")}
 _SPARE = [("tab:pink", "*"), ("tab:olive", "h"), ("tab:cyan", "<"), ("black", ">"),
           ("gold", "p"), ("navy", "d"), ("lime", "8"), ("maroon", "H")]
 

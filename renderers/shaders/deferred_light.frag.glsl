@@ -7,7 +7,9 @@
 // DEFERRED_LIGHT_TYPE: 0 point, 1 spot, 2 directional (only documents the variant:
 // the light's own type field drives shade_light). SEPARATE_SPECULAR (seed 001):
 // diffuse and specular go to two targets, shade_light evaluated once with gloss 0 and
-// once with a black diffuse (it is linear in both).
+// once with a black diffuse (it is linear in both). LIGHT_PREPASS (deferred-lighting,
+// compiled with SEPARATE_SPECULAR for the two outputs): the same two evaluations with a
+// white diffuse and a gloss of 1, the light buffer's diffuse and specular light.
 #include "bindings.h"
 #include "frame.inc"
 #include "lighting.inc"
@@ -21,7 +23,18 @@ void main()
 {
     GSurface g = gbuffer_load();
     Light l = light_from(u_light);
-#ifdef SEPARATE_SPECULAR
+#if defined(LIGHT_PREPASS)
+    // deferred-lighting's light buffer: the light alone, without the material, so that
+    // shade_light = diffuse x (incoming ndl) + gloss x (incoming spec) sums exactly over
+    // the lights in the material pass (deferred_lighting_material.frag)
+    vec3 d = vec3(0.0), s = vec3(0.0);
+    if (g.present) {
+        d = shade_light(l, g.position, g.normal, vec3(1.0), 0.0, g.shininess);
+        s = shade_light(l, g.position, g.normal, vec3(0.0), 1.0, g.shininess);
+    }
+    o_light = vec4(d, 0.0);
+    o_specular = vec4(s, 0.0);
+#elif defined(SEPARATE_SPECULAR)
     vec3 d = vec3(0.0), s = vec3(0.0);
     if (g.present) {
         d = shade_light(l, g.position, g.normal, g.diffuse, 0.0, g.shininess);

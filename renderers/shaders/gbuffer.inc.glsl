@@ -10,7 +10,8 @@
 //   GB_NORMAL_XY, GB_NORMAL_Z       the normal; GB_NORMAL_ENC says how it is coded:
 //                                   0 float xyz, 1 unorm xyz (n * 0.5 + 0.5),
 //                                   2 spheremap in GB_NORMAL_XY alone (seed 004)
-//   GB_DIFFUSE                      rgb
+//   GB_DIFFUSE                      rgb; absent in deferred-lighting's G-buffer (its
+//                                   material pass reads the albedo from the material)
 //   GB_GLOSS, GB_SHININESS          absent: no material has specular (gloss 0);
 //                                   GB_SHININESS_UNORM: stored as n / 255
 //   GB_EMISSIVE                     rgb; or GB_EMISSIVE_INTENSITY: e, emissive = e * diffuse
@@ -78,7 +79,9 @@ void gbuffer_store(Surface s)
     GB_NORMAL_XY = s.normal.xy;
     GB_NORMAL_Z = s.normal.z;
 #endif
+#ifdef GB_DIFFUSE
     GB_DIFFUSE = s.diffuse;
+#endif
 #ifdef GB_GLOSS
     GB_GLOSS = s.gloss;
 #endif
@@ -169,7 +172,11 @@ GSurface gbuffer_load()
     vec4 p = f_inv_proj * vec4(ndc, d * 2.0 - 1.0, 1.0);
     g.position = p.xyz / p.w;
 #endif
+#ifdef GB_DIFFUSE
     g.diffuse = GB_DIFFUSE;
+#else
+    g.diffuse = vec3(0.0);   // deferred-lighting's G-buffer holds no albedo
+#endif
 #ifdef GB_GLOSS
     g.gloss = GB_GLOSS;
 #else

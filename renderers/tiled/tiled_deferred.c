@@ -64,7 +64,7 @@ static void *create(const char *name, bool clustered, const renderer_options *op
     if (!light_grid_tile_option(&g, name, opts, err, errlen))
         return NULL;
     tiled_deferred *r =
-        (tiled_deferred *)deferred_core_create(name, sizeof *r, true, opts, err, errlen);
+        (tiled_deferred *)deferred_core_create(name, sizeof *r, true, false, opts, err, errlen);
     if (r)
         r->g = g;
     return r;

@@ -11,7 +11,8 @@ cat >interior.yaml <<'YAML'
 shadesweep: 1
 name: det-interior
 scene: interior
-renderers: [deferred, forward-mpml, forward-spml, forward-plus, clustered, tiled-deferred]
+renderers: [deferred, forward-mpml, forward-spml, forward-plus, clustered, tiled-deferred,
+            deferred-lighting]
 resolution: 160x120
 trials: 2
 warmup: {frames: 1}
@@ -25,7 +26,8 @@ cat >growth.yaml <<'YAML'
 shadesweep: 1
 name: det-growth
 scene: curtis-scene3
-renderers: [deferred, forward-mpml, forward-spml, forward-plus, clustered, tiled-deferred]
+renderers: [deferred, forward-mpml, forward-spml, forward-plus, clustered, tiled-deferred,
+            deferred-lighting]
 resolution: 160x120
 trials: 2
 warmup: {frames: 1}
@@ -59,7 +61,7 @@ WORK = {"frames.csv": ["trial", "frame", "t_scene_s", "lights", "draw_calls", "s
 for m in ("interior", "growth"):
     a, b = f"a-{m}", f"b-{m}"
     ids = sorted(os.listdir(os.path.join(a, "runs")))
-    if len(ids) != 6 or ids != sorted(os.listdir(os.path.join(b, "runs"))):
+    if len(ids) != 7 or ids != sorted(os.listdir(os.path.join(b, "runs"))):
         fail(f"{m}: runs {ids}")
     for s in table(os.path.join(a, "summary.csv")) + table(os.path.join(b, "summary.csv")):
         if s["status"] != "ok":

@@ -46,7 +46,7 @@ assert (d["schema"], d["version"]) == ("shadesweep-params", 1)
 k = {x["key"]: x for x in d["keys"]}
 assert [x["key"] for x in d["keys"]] == keys, set(keys) ^ set(k)
 assert k["lights.seed"]["default"] == 1337 and k["lights.seed"]["sweep"] is True
-assert k["deferred.light_volumes"]["read_by"] == ["deferred"], k["deferred.light_volumes"]
+assert k["deferred.light_volumes"]["read_by"] == ["deferred", "deferred-lighting"], k["deferred.light_volumes"]
 assert k["shadesweep"]["required"] is True and k["shadesweep"]["default"] is None
 PY
 # every command has --help (stdout, exit 0), wherever it stands
@@ -78,6 +78,22 @@ YAML
 "$SHADESWEEP" validate fold.yaml >v.txt || fail "validate fold.yaml"
 grep -qx "fold.yaml: ok, 10 runs (14 of 24 grid points folded: they differ only in keys their renderer does not read)" v.txt \
   || fail "validate: $(cat v.txt)"
+# deferred-lighting reads deferred_lighting.light_buffer and not deferred.separate_specular,
+# deferred the other way round: each keeps two of the four points
+cat >lpp.yaml <<'YAML'
+shadesweep: 1
+name: lpp
+scene: shapes
+renderers: [deferred, deferred-lighting]
+duration: {frames: 2}
+resolution: 32x32
+sweep:
+  deferred_lighting.light_buffer: [rgba16f, rgba8]
+  deferred.separate_specular: [false, true]
+YAML
+"$SHADESWEEP" validate lpp.yaml >v.txt || fail "validate lpp.yaml"
+grep -qx "lpp.yaml: ok, 4 runs (4 of 8 grid points folded: they differ only in keys their renderer does not read)" v.txt \
+  || fail "validate lpp.yaml: $(cat v.txt)"
 # options after the operand, as getopt_long permutes them
 "$SHADESWEEP" list fold.yaml --shard 1/2 >l.txt || fail "list MANIFEST --shard"
 # one sweep point (only keys some renderers read vary): a shard holds it whole

@@ -48,7 +48,9 @@ the plane (N.L > 0 everywhere, so the project's gating of S by N.L > 0 does not 
 The G-buffer renderers (deferred, tiled-deferred) run with
 `gbuffer: reference` (RGBA32F, position stored): with the default preset (curtis) the
 point light's highlight misses by one more level at one pixel (1.015/255), which is the
-G-buffer's precision, not the shading model.
+G-buffer's precision, not the shading model. deferred-lighting reads no gbuffer key: its
+own G-buffer (the normal and shininess in RGBA16F, the position from depth) and its
+RGBA16F light buffer stay within the same tolerance (0.8/255 at most).
 
 Tolerance: per case and renderer, over every pixel, the largest channel difference
 between the screenshot (u8 / 255) and the model (clamped to [0, 1]) at most 1/255 (the
@@ -70,7 +72,7 @@ import numpy as np
 
 W, H = 80, 60
 RENDERERS = ["deferred", "forward-spml", "forward-mpml", "forward-plus", "tiled-deferred",
-             "clustered"]
+             "clustered", "deferred-lighting"]
 HALF = 20.0              # the plane: y = 0, x and z in [-HALF, HALF], normal +Y
 TOP = 4.0                # a small triangle at this height behind the camera: it puts
                          # the light bounds' centre (a grid light) at (0, TOP / 2, 0)

@@ -1,7 +1,8 @@
 /* Extreme inputs (issue 5): for each case, each of deferred (curtis and reference
  * G-buffers, stencil light volumes; also fullscreen volumes where volumes matter),
  * forward-mpml, forward-spml (uniform block and storage buffer), forward-plus,
- * clustered and tiled-deferred (curtis G-buffer) renders one frame of "shapes" (64x48 unless the case says otherwise)
+ * clustered, tiled-deferred (curtis G-buffer) and deferred-lighting (stencil; also
+ * fullscreen where volumes matter) renders one frame of "shapes" (64x48 unless the case says otherwise)
  * with lights and camera set by hand, in a debug context. Each ends with no GL error, zero non-finite values in the float light accumulation
  * (renderer_read_hdr) and a readable RGBA8 output, or with a clear message before
  * anything renders:
@@ -72,6 +73,10 @@ static const config CONFIGS[] = {
      LIGHT_BUFFER_UNIFORM},
     {"tiled-deferred", "tiled-deferred", GBUFFER_CURTIS, LIGHT_VOLUMES_STENCIL, false,
      LIGHT_BUFFER_UNIFORM},
+    {"deferred-lighting stencil", "deferred-lighting", GBUFFER_CURTIS, LIGHT_VOLUMES_STENCIL,
+     false, LIGHT_BUFFER_UNIFORM},
+    {"deferred-lighting fullscreen", "deferred-lighting", GBUFFER_CURTIS,
+     LIGHT_VOLUMES_FULLSCREEN, true, LIGHT_BUFFER_UNIFORM},
 };
 enum { SPML_UNIFORM = 5 };   /* CONFIGS' forward-spml with its uniform block */
 enum { NCONFIGS = sizeof CONFIGS / sizeof CONFIGS[0] };

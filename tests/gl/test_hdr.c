@@ -401,7 +401,8 @@ static void test_rgba32f_every_renderer(void **state)
             /* the passes: deferred shading adds one pass of one full-screen draw (every
              * pixel shaded once), forward fogs in its shaders and draws what it did */
             bool deferred = again || strcmp(k->name, "deferred") == 0 ||
-                            strcmp(k->name, "tiled-deferred") == 0;
+                            strcmp(k->name, "tiled-deferred") == 0 ||
+                            strcmp(k->name, "deferred-lighting") == 0;
             const pass_stats *fp = find_pass(&last_fs, "fog");
             if (!fogged) {
                 draws_without_fog = total_draws(&last_fs);
@@ -446,7 +447,8 @@ static void test_rgba32f_every_renderer(void **state)
             free(hdr32);
         }
     }
-    assert_int_equal(kinds, 7);   /* deferred, the forward three, tiled-deferred, clustered x 2 */
+    /* deferred, the forward three, tiled-deferred, clustered x 2, deferred-lighting */
+    assert_int_equal(kinds, 8);
     scene_destroy(s);
 }
 
@@ -526,7 +528,8 @@ static void test_fog_formula(void **state)
         const char *kind;
         bool clustered_deferred;
     } kinds[] = {{"forward-spml", false}, {"forward-mpml", false}, {"forward-plus", false},
-                 {"deferred", false},     {"tiled-deferred", false}, {"clustered", true}};
+                 {"deferred", false},     {"tiled-deferred", false}, {"clustered", true},
+                 {"deferred-lighting", false}};
     for (size_t i = 0; i < sizeof kinds / sizeof kinds[0]; i++) {
         uint8_t *out0, *out1;
         float *clear, *fogged;

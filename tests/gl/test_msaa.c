@@ -171,7 +171,7 @@ static void test_refusal_on_the_context(void **state)
     int over = limit < 8 ? (limit < 4 ? (limit < 2 ? 2 : 4) : 8) : 16;
     char err[512] = "";
     static const char *const kinds[] = {"forward-spml", "forward-mpml", "deferred",
-                                        "forward-plus", "tiled-deferred"};
+                                        "forward-plus", "tiled-deferred", "deferred-lighting"};
     for (size_t k = 0; k < sizeof kinds / sizeof kinds[0]; k++) {
         renderer_options o = options(over);
         renderer *r = test_renderer_create(kinds[k], &o, err, sizeof err);

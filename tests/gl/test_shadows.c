@@ -365,6 +365,11 @@ static void run_occluder(const occluder_case *c)
                    "deferred (spheremap, volume)");
     check_occluder(c, "forward-mpml", LIGHT_VOLUMES_STENCIL, GBUFFER_CURTIS, "forward-mpml");
     check_occluder(c, "forward-spml", LIGHT_VOLUMES_STENCIL, GBUFFER_CURTIS, "forward-spml");
+    /* the light pre-pass's light passes are deferred's, SHADOWS variant included */
+    check_occluder(c, "deferred-lighting", LIGHT_VOLUMES_STENCIL, GBUFFER_CURTIS,
+                   "deferred-lighting (stencil)");
+    check_occluder(c, "deferred-lighting", LIGHT_VOLUMES_FULLSCREEN, GBUFFER_CURTIS,
+                   "deferred-lighting (fullscreen)");
 }
 
 static void test_spot_occluder(void **state)
@@ -685,6 +690,10 @@ static set_check check_draws(const scene *s, bool no_shadows)
         {"forward-mpml", LIGHT_VOLUMES_STENCIL, sh + c.visible + c.illum + sky + 1, false},
         {"forward-mpml", LIGHT_VOLUMES_STENCIL, sh + c.visible + c.illum - dv + sky + 1, true},
         {"forward-spml", LIGHT_VOLUMES_STENCIL, sh + c.visible + sky + 1, false},
+        /* the light pre-pass: both geometry passes, deferred's light draws, no ambient */
+        {"deferred-lighting", LIGHT_VOLUMES_STENCIL,
+         sh + 2 * (uint64_t)c.visible + c.lights[LIGHT_DIRECTIONAL] +
+             2 * (c.lights[LIGHT_POINT] + c.lights[LIGHT_SPOT]) + sky + 1, false},
     };
     for (size_t i = 0; i < sizeof cases / sizeof cases[0]; i++) {
         renderer_options o = options(cases[i].mode, GBUFFER_CURTIS, no_shadows);

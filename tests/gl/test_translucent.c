@@ -68,8 +68,9 @@ static const uint8_t *px(const image *im)
     return im->pixels;
 }
 
-static const char *const kinds[] = {"forward-spml", "forward-mpml", "forward-plus",
-                                    "clustered",    "deferred",     "tiled-deferred"};
+static const char *const kinds[] = {"forward-spml", "forward-mpml",   "forward-plus",
+                                    "clustered",    "deferred",       "tiled-deferred",
+                                    "deferred-lighting"};
 
 static scene *build_glass(light_placement p)
 {

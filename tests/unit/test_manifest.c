@@ -390,6 +390,7 @@ static void test_kv_canonical(void **state)
         {"tiles.max_lights_per_tile", "0"},
         {"clustered.slices", "24"},
         {"clustered.shading", "forward"},
+        {"deferred_lighting.light_buffer", "rgba16f"},
         {"shadows", "auto"},
         {"hdr", "rgba16f"},
         {"msaa", "1"},
@@ -460,6 +461,7 @@ static void test_kv_canonical(void **state)
         {"tiles.max_lights_per_tile", "0"},
         {"clustered.slices", "24"},
         {"clustered.shading", "forward"},
+        {"deferred_lighting.light_buffer", "rgba16f"},
         {"shadows", "off"},
         {"hdr", "rgba16f"},
         {"msaa", "1"},
@@ -593,7 +595,7 @@ static const bad_case bad_cases[] = {
     {"unknown_top_key.yaml",
      {"1:1: duration: expected {seconds: S} or {frames: N}, found nothing",
       "5:1: durtion: expected one of shadesweep, name, description, scene, renderers, "
-      "resolution, trials, schedule, measure, warmup, duration, clock, step, sync, timeout, gbuffer, deferred, forward, tiles, clustered, shadows, hdr, msaa, fog, aa, translucency, camera, error, lights, outputs, allow_empty, debug, sweep, "
+      "resolution, trials, schedule, measure, warmup, duration, clock, step, sync, timeout, gbuffer, deferred, forward, tiles, clustered, deferred_lighting, shadows, hdr, msaa, fog, aa, translucency, camera, error, lights, outputs, allow_empty, debug, sweep, "
       "found 'durtion'"}},
     {"unknown_nested_key.yaml",
      {"8:3: lights.cnt: expected one of placement, seed, rng, count, radius, overlap, color_max, "
@@ -709,7 +711,8 @@ static const bad_case bad_cases[] = {
       "gbuffer.normal, deferred.light_volumes, deferred.separate_specular, "
        "deferred.sky_stencil, "
        "forward.illumination_sets, forward.directional_in_base, forward.light_buffer, tiles.size, "
-      "tiles.max_lights_per_tile, clustered.slices, clustered.shading, shadows, hdr, msaa, fog.density, "
+      "tiles.max_lights_per_tile, clustered.slices, clustered.shading, "
+      "deferred_lighting.light_buffer, shadows, hdr, msaa, fog.density, "
       "fog.colour, aa, translucency, camera.radius, "
       "camera.height, camera.period, "
       "camera.target, camera.near, camera.far, camera.hold, lights.placement, lights.seed, "

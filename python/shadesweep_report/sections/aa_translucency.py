@@ -9,13 +9,13 @@ from ..stats import mean, num
 from ..text import fmt, fmt_ci, md_table
 
 
-ORDER = ["forward-spml", "forward-mpml", "deferred", "forward-plus", "clustered",
-         "tiled-deferred"]
+ORDER = ["forward-spml", "forward-mpml", "deferred", "deferred-lighting", "forward-plus",
+         "clustered", "tiled-deferred"]
 # seed 000 6.5 and seed 003 section 2 name AA as deferred's cost; Olsson and Assarsson's
 # tiled study (ANCHORS.md) split tiled shading into forward and deferred
 FAMILY = {"forward-spml": "forward", "forward-mpml": "forward", "deferred": "deferred",
           "forward-plus": "tiled forward", "clustered": "tiled forward",
-          "tiled-deferred": "tiled deferred"}
+          "tiled-deferred": "tiled deferred", "deferred-lighting": "deferred"}
 FAMILIES = ["forward", "deferred", "tiled forward", "tiled deferred"]
 PLOT = "aa-translucency_error_time.png"
 

@@ -5,7 +5,8 @@ from ..stats import mean, num
 from ..text import fmt, fmt_ci, md_table
 
 
-ORDER = ["deferred", "forward-mpml", "forward-spml", "forward-plus", "clustered", "tiled-deferred"]
+ORDER = ["deferred", "forward-mpml", "forward-spml", "forward-plus", "clustered", "tiled-deferred",
+         "deferred-lighting"]
 PLOT = "renderers-tiled_frametime_lights.png"
 
 
