@@ -1,4 +1,4 @@
-/* deferred-lighting (the light pre-pass, renderers/deferred.c's second renderer) in a debug
+/* deferred-lighting (the light pre-pass, renderers/deferred_lighting.c) in a debug
  * context: the passes of a frame in order and their draw calls against the formula of
  * its header in every light-volume mode (the two geometry passes draw exactly the visible
  * opaque objects each, the light passes what deferred's do), two frames running; the

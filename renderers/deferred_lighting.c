@@ -1,0 +1,179 @@
+/* deferred-lighting, the light pre-pass (Engel 2008; one of the six schemes of
+ * Lauritzen 2010): deferred's light passes (renderers/deferred_lights.c) into a light
+ * buffer, then the scene's materials in a second geometry pass. */
+#include "renderers/deferred_lights.h"
+
+#include "renderers/frontend.h"
+#include "renderers/gl/loader.h"
+#include "renderers/gl/program.h"
+#include "renderers/gl/state.h"
+#include "renderers/scene_gpu.h"
+#include "renderers/shading.h"
+#include "renderers/shadow.h"
+#include "scenes/scene.h"
+
+#include <math.h>
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+
+/* deferred-lighting (Engel 2008, Lauritzen 2010): deferred's light passes over a minimal
+ * G-buffer (gbuffer_layout.c's deferred_layout_light_prepass) into a light buffer, then
+ * a second geometry pass that applies the materials. docs/architecture.md has the design.
+ *
+ *   shadows, gbuffer   deferred_frame_begin, the G-buffer holding the normal and the
+ *                      shininess only
+ *   directional, point, spot
+ *                      as deferred's, every light_volumes mode, blend ONE + ONE into the
+ *                      light buffer (lightbuffer.diffuse: incoming x max(N.L, 0),
+ *                      lightbuffer.specular: incoming x spec; deferred_light.frag with
+ *                      LIGHT_PREPASS); the first that runs clears the light buffer
+ *   material           the visible opaque objects again (frontend order, one draw each),
+ *                      mesh.vert + deferred_lighting_material.frag in the material's map
+ *                      variant, depth EQUAL without writes, back faces culled, into the
+ *                      light target cleared to (0, 0, 0, 1): ambient x diffuse + emissive
+ *                      + diffuse x L_diffuse + gloss x L_specular
+ *   fog, sky, translucent, edge-aa, resolve
+ *                      deferred_frame_end, as deferred
+ *
+ * Draw calls: Sh + 2 V + (the light draws as deferred's, same mode) + [fog] + [sky] +
+ * [translucent objects] + [aa] + 1. deferred.separate_specular and deferred.sky_stencil
+ * are not read (its light buffer is always split; no full-screen ambient pass to mask),
+ * nor gbuffer.* (the layout is fixed).
+ *
+ * MSAA (msaa > 1): the G-buffer, light buffer, light target and depth multisampled;
+ * deferred's `edges` pass after the G-buffer, and its two classes in every light pass
+ * (per sample on edge pixels, per pixel elsewhere: the light draws double as deferred's);
+ * the material pass runs per sample everywhere (it reads the light buffer at gl_SampleID,
+ * so that each sample takes the light of the surface it holds), then `msaa-resolve`. */
+
+static void deferred_lighting_describe(const void *self, pass_plan *out)
+{
+    deferred_describe(self, out);
+}
+
+static void deferred_lighting_destroy(void *self)
+{
+    deferred_core_destroy(self);
+}
+
+static void *deferred_lighting_create(const renderer_options *opts, char *err, size_t errlen)
+{
+    if ((unsigned)opts->lpp_light_buffer - 1u > 1u) {
+        snprintf(err, errlen, "deferred-lighting: unknown light buffer format %d",
+                 (int)opts->lpp_light_buffer);
+        return NULL;
+    }
+    /* What the renderer does not read (its reads) must not change what it draws: the
+     * runner folds runs that differ only there. */
+    renderer_options o = *opts;
+    o.separate_specular = false;
+    o.sky_stencil = false;
+    o.gbuffer = GBUFFER_CURTIS;
+    o.gbuffer_position = GBUFFER_POSITION_PRESET;
+    o.gbuffer_normal = GBUFFER_NORMAL_PRESET;
+    return deferred_core_create("deferred-lighting", sizeof(deferred), false, true, &o, err,
+                                errlen);
+}
+
+/* The material pass's programs: mesh.vert + deferred_lighting_material.frag in every map
+ * variant a visible opaque object may have. */
+static bool compile_material(deferred *r, char *err, size_t errlen)
+{
+    for (unsigned v = 0; v < DEFERRED_VARIANTS; v++) {
+        if (!(r->d.variants & (1u << v)))
+            continue;
+        scene_material m = {.diffuse_map = (v & 1u) ? 0 : -1, .gloss_map = (v & 2u) ? 0 : -1,
+                            .normal_map = (v & 4u) ? 0 : -1, .emissive_map = (v & 8u) ? 0 : -1,
+                            .alpha = (v & 16u) ? MATERIAL_MASK : MATERIAL_OPAQUE};
+        const char *defs[SHADING_MATERIAL_DEFINES + 3] = {NULL};
+        unsigned n = shading_material_defines(&m, defs);
+        if (r->d.b.samples > 1) {
+            /* msaa: the light buffer per sample, and so every fragment per sample: where
+             * two surfaces share a pixel each sample takes its own surface's light */
+            defs[n++] = "GB_MSAA";
+            defs[n++] = "GB_SAMPLE gl_SampleID";
+        }
+        if (!deferred_build_program(&r->d, "deferred_lighting_material", "mesh.vert",
+                                    "deferred_lighting_material.frag", NULL, defs,
+                                    &r->material_program[v], err, errlen))
+            return false;
+    }
+    return true;
+}
+
+static bool deferred_lighting_prepare(void *self, const scene *s, char *err, size_t errlen)
+{
+    deferred *r = self;
+    deferred_renderer *d = &r->d;
+    if (!deferred_lights_prepare_begin(r, s, err, errlen))
+        return false;
+    deferred_plan(d, PASS_EDGES, d->b.samples > 1,
+                  "msaa %d: as deferred's, for the light passes; the material pass shades "
+                  "per sample", d->b.samples);
+    deferred_plan(d, PASS_AMBIENT, false, "ambient and emissive are the material pass's");
+    deferred_plan_lights(r);
+    deferred_plan(d, PASS_COMPOSE, false, "the material pass combines the light buffer's "
+                  "diffuse and specular light");
+    deferred_plan(d, PASS_MATERIAL, true, "%u objects again, depth EQUAL, their materials "
+                  "over the light buffer (%s)", s->nobjects,
+                  d->b.opts.lpp_light_buffer == LPP_LIGHT_BUFFER_RGBA8 ? "rgba8" : "rgba16f");
+    return deferred_lights_prepare_end(r, s, compile_material, err, errlen);
+}
+
+/* The second geometry pass: each visible opaque object's material over its own light. */
+static void material_pass(deferred *r, const scene *s, frame_stats *out)
+{
+    deferred_renderer *d = &r->d;
+    gl_state *st = d->b.st;
+    deferred_pass_begin(d, out, PASS_MATERIAL);
+    if (!r->lbuf_cleared) {   /* no light pass ran: no light */
+        gl_state_framebuffer(st, d->fb_lbuf.fbo);
+        deferred_clear_light_buffer(r);
+    }
+    gl_state_framebuffer(st, d->fb_light.fbo);
+    gl_state_viewport(st, 0, 0, d->b.width, d->b.height);
+    /* what deferred's ambient pass leaves where no surface is (the sky draws there) */
+    static const float black[4] = {0.0f, 0.0f, 0.0f, 1.0f};
+    gl_state_clear(st, GL_COLOR_BUFFER_BIT, black, 1.0, 0);
+    gl_state_color_mask(st, GLS_COLOR_MASK_RGBA);
+    gl_state_blend(st, NULL);
+    gl_state_stencil(st, NULL);
+    gl_state_depth(st, &(gls_depth){.compare = GLS_COMPARE_EQUAL, .write = false});
+    gl_state_cull(st, GLS_CULL_BACK);   /* as the G-buffer pass: the same fragments */
+    gl_state_texture(st, BIND_TEX_LIGHT_DIFFUSE, d->lbuf_diffuse.texture);
+    gl_state_texture(st, BIND_TEX_LIGHT_SPECULAR, d->lbuf_specular.texture);
+    renderer_base_per_sample(&d->b, d->b.samples > 1);   /* msaa: per sample everywhere */
+    for (uint32_t k = 0; k < d->b.fe.nvisible; k++) {
+        uint32_t o = d->b.fe.visible[k];
+        unsigned v = deferred_material_variant(&s->materials[s->objects[o].material]);
+        gl_state_program(st, r->material_program[v]);
+        scene_gpu_draw_object(d->b.gpu, st, s, o);
+    }
+    renderer_base_per_sample(&d->b, false);
+    /* drawn into by the next frame's light passes: not bound for sampling meanwhile */
+    gl_state_texture(st, BIND_TEX_LIGHT_DIFFUSE, 0);
+    gl_state_texture(st, BIND_TEX_LIGHT_SPECULAR, 0);
+    deferred_pass_end(d, out);
+}
+
+static void deferred_lighting_draw(void *self, const scene *s, frame_stats *out)
+{
+    deferred *r = self;
+    deferred_renderer *d = &r->d;
+    r->lbuf_cleared = false;
+    if (!deferred_lights_frame_begin(r, s, out))
+        return;
+    deferred_bind_gbuffer_textures(d);   /* the normal, shininess and depth.sampled */
+    deferred_light_passes(r, s, out);
+    material_pass(r, s, out);
+    deferred_frame_end(d, s, out, d->fb_light.fbo);
+}
+
+const renderer_impl renderer_deferred_lighting_impl = RENDERER_IMPL(
+    deferred_lighting, "deferred-lighting",
+    "deferred.light_volumes deferred_lighting hdr msaa fog aa",
+    "light pre-pass (Engel 2008): normal + shininess G-buffer, diffuse and specular light "
+    "into a light buffer by deferred's light volumes, then the objects again with their "
+    "materials (depth EQUAL)",
+    .collect = deferred_collect, .read_hdr = deferred_read_hdr);
