@@ -1,0 +1,178 @@
+// The visibility renderer's shading pass (Burns and Hunt 2013; derivatives as Schied and
+// Dachsbacher 2015): a work group per TILE_SIZE x TILE_SIZE tile (the light grid of
+// tile_cull.comp, renderers/tiled/grid.h), an invocation per pixel. Each pixel reads its
+// id from the visibility target, and when its draw is in this dispatch's range [u_draw_first, u_draw_end)
+// (one dispatch per run of visible draws whose materials bind the same maps) fetches
+// the triangle's three vertices from the geometry buffers, transforms them with the
+// draw's model-view and the frame's projection, and takes the perspective-correct
+// barycentrics of the pixel centre in closed form from the clip-space positions (2D
+// homogeneous: with M the columns (x, y, w) of the three clip positions, lambda is
+// M^-1 (p, 1) normalised to sum 1; no division by w, so vertices behind the eye need no
+// care). Their screen-space derivatives are the same closed form one pixel to the right
+// and one up, minus lambda: the differences a fragment quad takes of the triangle's
+// plane, so textureGrad gets the uv derivatives texture() gets in the forward passes.
+// Position, normal, tangent and uv are interpolated with lambda, the surface is made as
+// surface.inc makes it (the same operations, textureGrad for texture), then ambient x
+// diffuse + emissive and the tile's lights (shade_light, forward_tiled.frag's loop), fog
+// (forward_output), stored into the HDR target (image unit BIND_IMAGE_HDR).
+// Defines: TILE_SIZE, TILES_X, VIS_TRI_BITS, NO_GRID (no point or spot light: every
+// light of the frame looped), the material's map defines (DIFFUSE_MAP, GLOSS_MAP,
+// NORMAL_MAP, EMISSIVE_MAP), FOG, SHADOWS, HDR_RGBA32F.
+#include "bindings.h"
+#include "frame.inc"
+#include "lighting.inc"
+#include "lights.inc"
+#include "tiles.inc"
+#include "fog.inc"
+
+layout(local_size_x = TILE_SIZE, local_size_y = TILE_SIZE) in;
+#ifdef HDR_RGBA32F
+layout(binding = BIND_IMAGE_HDR, rgba32f) writeonly uniform image2D i_hdr;
+#else
+layout(binding = BIND_IMAGE_HDR, rgba16f) writeonly uniform image2D i_hdr;
+#endif
+layout(binding = BIND_TEX_VISIBILITY) uniform usampler2D t_visibility;
+layout(binding = BIND_TEX_DIFFUSE) uniform sampler2D t_diffuse;
+layout(binding = BIND_TEX_GLOSS) uniform sampler2D t_gloss;
+layout(binding = BIND_TEX_NORMAL) uniform sampler2D t_normal;
+layout(binding = BIND_TEX_EMISSIVE) uniform sampler2D t_emissive;
+
+layout(location = LOC_RENDERER) uniform int u_light_count;   // lights in b_lights
+layout(location = LOC_RENDERER + 1) uniform int u_draw_first;   // this dispatch's draws:
+layout(location = LOC_RENDERER + 2) uniform int u_draw_end;     // [first, end)
+
+// One visible draw (visibility.c's vis_draw, std430, 160 bytes).
+struct Draw {
+    mat4 model_view;
+    vec4 normal_matrix[3];       // mat3 columns
+    vec4 diffuse_specular;       // rgb diffuse, a specular
+    vec4 emissive_shininess;     // rgb emissive, a shininess
+    uvec4 geometry;              // x: first index, y: base vertex
+};
+layout(std430, binding = BIND_SSBO_VIS_DRAWS) readonly buffer Draws {
+    Draw b_draws[];
+};
+// Every mesh of the scene, concatenated: 12 floats a vertex (mesh_vertex: position,
+// normal, tangent, uv) and 32-bit indices.
+layout(std430, binding = BIND_SSBO_VIS_VERTICES) readonly buffer Vertices {
+    float b_vertices[];
+};
+layout(std430, binding = BIND_SSBO_VIS_INDICES) readonly buffer Indices {
+    uint b_mesh_indices[];
+};
+
+const uint VIS_EMPTY = 0xffffffffu;
+
+// surface.inc's safe_normalize (that file declares fragment inputs: not includable here)
+vec3 vis_safe_normalize(vec3 n, vec3 fallback)
+{
+    float len2 = dot(n, n);
+    return len2 > 1e-20 ? n * inversesqrt(len2) : fallback;
+}
+
+// The perspective-correct barycentrics of NDC point p: m_inv is the inverse of the
+// matrix of the clip positions' (x, y, w) columns.
+vec3 barycentrics(mat3 m_inv, vec2 p)
+{
+    vec3 l = m_inv * vec3(p, 1.0);
+    return l / (l.x + l.y + l.z);
+}
+
+vec3 vertex_attr3(uint v, uint offset)
+{
+    uint b = v * 12u + offset;
+    return vec3(b_vertices[b], b_vertices[b + 1u], b_vertices[b + 2u]);
+}
+
+void main()
+{
+    ivec2 px = ivec2(gl_GlobalInvocationID.xy);
+    if (px.x >= int(f_viewport.x) || px.y >= int(f_viewport.y))
+        return;
+    uint id = texelFetch(t_visibility, px, 0).r;
+    if (id == VIS_EMPTY)
+        return;
+    uint draw = id >> uint(VIS_TRI_BITS);
+    if (draw < uint(u_draw_first) || draw >= uint(u_draw_end))
+        return;
+    uint tri = id & ((1u << uint(VIS_TRI_BITS)) - 1u);
+    Draw d = b_draws[draw];
+
+    vec3 vpos[3], nrm[3];
+    vec4 tan[3], clip[3];
+    vec2 uv[3];
+    for (uint k = 0u; k < 3u; k++) {
+        uint v = d.geometry.y + b_mesh_indices[d.geometry.x + 3u * tri + k];
+        vec4 p = d.model_view * vec4(vertex_attr3(v, 0u), 1.0);
+        vpos[k] = p.xyz;
+        clip[k] = f_proj * p;
+        nrm[k] = vertex_attr3(v, 3u);
+        uint b = v * 12u;
+        tan[k] = vec4(b_vertices[b + 6u], b_vertices[b + 7u], b_vertices[b + 8u],
+                      b_vertices[b + 9u]);
+        uv[k] = vec2(b_vertices[b + 10u], b_vertices[b + 11u]);
+    }
+    mat3 m = mat3(clip[0].xyw, clip[1].xyw, clip[2].xyw);
+    // counter-clockwise in window coordinates (GL's front face) when det > 0
+    bool front = determinant(m) > 0.0;
+    mat3 m_inv = inverse(m);
+    vec2 step = 2.0 * f_viewport.zw;   // one pixel in NDC
+    vec2 p = (vec2(px) + 0.5) * step - 1.0;
+    vec3 l = barycentrics(m_inv, p);
+    vec3 lx = barycentrics(m_inv, p + vec2(step.x, 0.0)) - l;
+    vec3 ly = barycentrics(m_inv, p + vec2(0.0, step.y)) - l;
+
+    vec3 P = l.x * vpos[0] + l.y * vpos[1] + l.z * vpos[2];
+    mat3 nm = mat3(d.normal_matrix[0].xyz, d.normal_matrix[1].xyz, d.normal_matrix[2].xyz);
+    vec3 N = nm * (l.x * nrm[0] + l.y * nrm[1] + l.z * nrm[2]);
+    vec2 UV = l.x * uv[0] + l.y * uv[1] + l.z * uv[2];
+    vec2 uv_dx = lx.x * uv[0] + lx.y * uv[1] + lx.z * uv[2];
+    vec2 uv_dy = ly.x * uv[0] + ly.y * uv[1] + ly.z * uv[2];
+
+    // surface.inc's surface_get, from the interpolated values
+    vec3 n = vis_safe_normalize(N, vis_safe_normalize(-P, vec3(0.0, 0.0, 1.0)));
+    if (!front)
+        n = -n;
+#ifdef NORMAL_MAP
+    vec4 T = l.x * tan[0] + l.y * tan[1] + l.z * tan[2];
+    T.xyz = mat3(d.model_view) * T.xyz;
+    vec3 t = T.xyz - n * dot(n, T.xyz);
+    float tl2 = dot(t, t);
+    if (tl2 > 1e-20) {
+        t *= inversesqrt(tl2);
+        vec3 bt = cross(n, t) * T.w;
+        vec3 mn = textureGrad(t_normal, UV, uv_dx, uv_dy).xyz * 2.0 - 1.0;
+        n = vis_safe_normalize(t * mn.x + bt * mn.y + n * mn.z, n);
+    }
+#endif
+    vec3 diffuse = d.diffuse_specular.rgb;
+#ifdef DIFFUSE_MAP
+    diffuse *= textureGrad(t_diffuse, UV, uv_dx, uv_dy).rgb;
+#endif
+    float gloss = d.diffuse_specular.a;
+#ifdef GLOSS_MAP
+    gloss *= textureGrad(t_gloss, UV, uv_dx, uv_dy).r;
+#endif
+    float shininess = d.emissive_shininess.a;
+    vec3 emissive = d.emissive_shininess.rgb;
+#ifdef EMISSIVE_MAP
+    vec4 e = textureGrad(t_emissive, UV, uv_dx, uv_dy);   // rgb: colour, a: mask
+    emissive *= e.rgb * e.a;
+#endif
+
+    vec3 c = f_ambient.rgb * diffuse + emissive;
+#ifdef NO_GRID
+    uint first = 0u, count = uint(u_light_count);
+#else
+    uvec2 tile = uvec2(px) / uint(TILE_SIZE);
+    uvec4 list = b_tiles[tile.y * uint(TILES_X) + tile.x];
+    uint first = list.x, count = list.y;
+#endif
+    for (uint k = 0u; k < count; k++) {
+        uint i = tile_light(first, k);
+        if (!light_reaches(i, P))
+            continue;
+        c += shade_light(b_lights[i], P, n, diffuse, gloss, shininess);
+    }
+    imageStore(i_hdr, px, forward_output(c, P.z, 1.0));
+}
