@@ -5,10 +5,11 @@
 // material work, except ALPHA_TEST (a MASK material): surface.inc's discard, the same
 // test the other renderers make, so the same pixels are covered. Defines: VIS_TRI_BITS,
 // and ALPHA_TEST with DIFFUSE_MAP for the masked materials' program.
+// (bindings.h first: the loader includes a file once, #ifdef or not)
+#include "bindings.h"
 #ifdef ALPHA_TEST
 #include "surface.inc"
 #endif
-#include "bindings.h"
 
 layout(location = LOC_RENDERER) uniform int u_draw;
 

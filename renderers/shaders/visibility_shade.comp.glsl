@@ -1,16 +1,19 @@
 // The visibility renderer's shading pass (Burns and Hunt 2013; derivatives as Schied and
 // Dachsbacher 2015): a work group per TILE_SIZE x TILE_SIZE tile (the light grid of
 // tile_cull.comp, renderers/tiled/grid.h), an invocation per pixel. Each pixel reads its
-// id from the visibility target, and when its draw is in this dispatch's range [u_draw_first, u_draw_end)
-// (one dispatch per run of visible draws whose materials bind the same maps) fetches
-// the triangle's three vertices from the geometry buffers, transforms them with the
-// draw's model-view and the frame's projection, and takes the perspective-correct
-// barycentrics of the pixel centre in closed form from the clip-space positions (2D
-// homogeneous: with M the columns (x, y, w) of the three clip positions, lambda is
-// M^-1 (p, 1) normalised to sum 1; no division by w, so vertices behind the eye need no
-// care). Their screen-space derivatives are the same closed form one pixel to the right
-// and one up, minus lambda: the differences a fragment quad takes of the triangle's
-// plane, so textureGrad gets the uv derivatives texture() gets in the forward passes.
+// id from the visibility target and, when its draw is in this dispatch's range
+// [u_draw_first, u_draw_end) (one dispatch per run of visible draws whose materials bind
+// the same maps), fetches the triangle's three vertices from the geometry buffers,
+// transforms them with the draw's model-view and the frame's projection, and takes the
+// perspective-correct barycentrics of the pixel centre in closed form from the clip
+// positions (2D homogeneous: with M the columns (x, y, w) of the three clip positions,
+// lambda is M^-1 (p, 1) normalised to sum 1; no division by w, so vertices behind the eye
+// need no care). Their screen-space derivatives: the same closed form at the right and
+// upper neighbours of the first pixel of the pixel's 2x2 quad, minus at that pixel: the
+// coarse differences a fragment quad takes of the triangle's plane (its helper
+// invocations extrapolate it), so textureGrad gets the uv derivatives texture() gets in
+// the forward passes (one-pixel differences at the pixel itself gave 9/255 on a few
+// pixels of the agreement test where the mip level changes within a quad; these, 0).
 // Position, normal, tangent and uv are interpolated with lambda, the surface is made as
 // surface.inc makes it (the same operations, textureGrad for texture), then ambient x
 // diffuse + emissive and the tile's lights (shade_light, forward_tiled.frag's loop), fog
@@ -119,8 +122,12 @@ void main()
     vec2 step = 2.0 * f_viewport.zw;   // one pixel in NDC
     vec2 p = (vec2(px) + 0.5) * step - 1.0;
     vec3 l = barycentrics(m_inv, p);
-    vec3 lx = barycentrics(m_inv, p + vec2(step.x, 0.0)) - l;
-    vec3 ly = barycentrics(m_inv, p + vec2(0.0, step.y)) - l;
+    // the derivatives a fragment's 2x2 quad takes (coarse, as texture() gets them): the
+    // quad's first pixel against its right and upper neighbours, on this triangle's plane
+    vec2 q = (vec2(px & ~1) + 0.5) * step - 1.0;
+    vec3 lq = barycentrics(m_inv, q);
+    vec3 lx = barycentrics(m_inv, q + vec2(step.x, 0.0)) - lq;
+    vec3 ly = barycentrics(m_inv, q + vec2(0.0, step.y)) - lq;
 
     vec3 P = l.x * vpos[0] + l.y * vpos[1] + l.z * vpos[2];
     mat3 nm = mat3(d.normal_matrix[0].xyz, d.normal_matrix[1].xyz, d.normal_matrix[2].xyz);
