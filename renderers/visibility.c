@@ -535,7 +535,7 @@ static void visibility_destroy(void *self)
 }
 
 const renderer_impl renderer_visibility_impl = RENDERER_IMPL(
-    visibility, "visibility", "tiles hdr fog aa",
+    visibility, "visibility", "tiles hdr msaa fog aa",
     "visibility buffer (Burns and Hunt 2013): draw and triangle ids into an R32UI "
     "target, lights culled per tile, then a compute pass that refetches each pixel's "
     "triangle and shades it with analytic derivatives",
