@@ -69,7 +69,8 @@ static const uint8_t *px(const image *im)
 }
 
 static const char *const kinds[] = {"forward-spml", "forward-mpml", "forward-plus",
-                                    "clustered",    "deferred",     "tiled-deferred"};
+                                    "clustered",    "deferred",     "tiled-deferred",
+                                    "visibility"};
 
 static scene *build_glass(light_placement p)
 {
