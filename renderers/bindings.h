@@ -17,11 +17,11 @@
 #define BIND_SSBO_TILE_DEPTH 4      /* tiles.inc (msaa > 1): per tile the depth range culled */
 #define BIND_SSBO_EDGES 5           /* tiled_deferred.comp (msaa > 1): edge pixels counted */
 #define BIND_SSBO_COVERAGE 6        /* coverage.comp: the covered pixels counted */
-/* visibility_shade.comp: its draws, and the scene's vertices and indices (slots 4-6 again:
- * no msaa edges or coverage count in that dispatch, and 8 is the GL minimum of slots) */
-#define BIND_SSBO_VIS_DRAWS 4
-#define BIND_SSBO_VIS_VERTICES 5
-#define BIND_SSBO_VIS_INDICES 6
+/* visibility_shade.comp: its draws, and the scene's vertices and indices (slots 5-7: no
+ * edge or coverage count in that dispatch, and 8 slots is GL's minimum) */
+#define BIND_SSBO_VIS_DRAWS 5
+#define BIND_SSBO_VIS_VERTICES 6
+#define BIND_SSBO_VIS_INDICES 7
 /* Texture units */
 #define BIND_TEX_DIFFUSE 0          /* surface.inc's material maps */
 #define BIND_TEX_GLOSS 1

@@ -27,8 +27,21 @@
  *
  * Draws: shadows + V + sky + T + [edge-aa] + 1; dispatches: [1 cull] + R, R the runs.
  *
- * Refused at prepare: msaa > 1 (no per-sample shading yet: the message says so), and a
- * scene whose opaque objects or largest mesh do not fit the id (visibility_split). */
+ * MSAA (msaa > 1): the ids, the depth and the HDR target are multisampled (the visibility
+ * pass writes each sample the id of the triangle covering it). The cull reads every sample
+ * (tile_cull.comp's MSAA_SAMPLES) and writes each tile's range (TILE_DEPTH_RANGES, as
+ * forward-plus). The shading reads a pixel's N ids and shades each distinct one once, at
+ * the pixel centre, storing it into the samples that hold it: a pixel inside one triangle
+ * is shaded once, a pixel on an edge once per surface on it (the edge rule here is "the
+ * ids differ", exact for ids, where deferred's edge_rule.inc compares G-buffer positions
+ * and normals, which this renderer has none of). That is what forward-spml shades at msaa
+ * N (a fragment per covering triangle, at the centre), so the images agree; a centre
+ * outside its tile's culled range loops every light, as forward_tiled.frag. Then the
+ * base's msaa-resolve. Not counted: the per-sample work (the dispatch counts no samples;
+ * edge_fraction stays NAN).
+ *
+ * Refused at prepare: a scene whose opaque objects or largest mesh do not fit the id
+ * (visibility_split), or whose vertices or indices do not fit one storage block. */
 #include "renderers/visibility.h"
 
 #include "renderers/forward_common.h"
@@ -68,6 +81,8 @@ typedef struct visibility {
     GLuint cull_program;
     GLuint shade_program[VIS_MAP_VARIANTS];
     GLuint draws, vertices, indices; /* storage buffers */
+    GLuint depth_ranges;             /* msaa > 1 with the cull pass: per tile its range */
+    char samples_define[24];
     uint64_t geometry_bytes;         /* the vertex and index copies */
     uint32_t *first_index, *base_vertex;   /* per scene mesh */
     vis_draw *draw_data;             /* nobjects */
@@ -117,11 +132,11 @@ static void release(visibility *r)
     light_grid_release(&r->g);
     gl_framebuffer_destroy(&r->fb);
     gl_target_destroy(&r->target);
-    GLuint buffers[3] = {r->draws, r->vertices, r->indices};
-    for (int i = 0; i < 3; i++)
+    GLuint buffers[4] = {r->draws, r->vertices, r->indices, r->depth_ranges};
+    for (int i = 0; i < 4; i++)
         if (buffers[i])
             gl.DeleteBuffers(1, &buffers[i]);
-    r->draws = r->vertices = r->indices = 0;
+    r->draws = r->vertices = r->indices = r->depth_ranges = 0;
     free(r->first_index);
     free(r->base_vertex);
     free(r->draw_data);
@@ -255,9 +270,14 @@ static bool compile(visibility *r, char *err, size_t errlen)
         if (!program(r, &m, false, &r->vis_masked_program[dm], err, errlen))
             return false;
     }
+    bool ms = c->b.samples > 1;
+    snprintf(r->samples_define, sizeof r->samples_define, "MSAA_SAMPLES %d", c->b.samples);
     if (g->cull) {
+        /* msaa: every sample's depth, and the tiles' ranges for the shading's fallback */
         gl_program_desc k = {.name = "tile_cull", .compute = "tile_cull.comp",
-                             .defines = {g->tile_define, g->tiles_x_define}};
+                             .defines = {g->tile_define, g->tiles_x_define,
+                                         ms ? r->samples_define : NULL,
+                                         ms ? "TILE_DEPTH_RANGES" : NULL}};
         if (!program(r, &k, false, &r->cull_program, err, errlen))
             return false;
     }
@@ -276,6 +296,11 @@ static bool compile(visibility *r, char *err, size_t errlen)
             s.defines[n++] = g->tile_define;
             s.defines[n++] = "NO_GRID";
         }
+        if (ms) {
+            s.defines[n++] = r->samples_define;
+            if (g->cull)
+                s.defines[n++] = "TILE_DEPTH_RANGES";
+        }
         if (fog)
             s.defines[n++] = "FOG";
         if (renderer_base_hdr_define(&c->b))
@@ -292,11 +317,6 @@ static bool visibility_prepare(void *self, const scene *s, char *err, size_t err
     visibility *r = self;
     forward_common *c = &r->c;
     release(r);
-    if (c->b.opts.msaa > 1) {
-        snprintf(err, errlen, "visibility: msaa %d: not supported (the shading pass shades "
-                 "one sample a pixel; use msaa 1)", c->b.opts.msaa);
-        return false;
-    }
     if (!forward_common_prepare(c, s, err, errlen))
         return false;
     light_grid *g = &r->g;
@@ -321,7 +341,8 @@ static bool visibility_prepare(void *self, const scene *s, char *err, size_t err
         goto fail;
     if (!gl_target_create(&r->target,
                           &(gl_target_desc){.name = "visibility", .format = GLT_FORMAT_R32UI,
-                                            .width = c->b.width, .height = c->b.height},
+                                            .width = c->b.width, .height = c->b.height,
+                                            .samples = c->b.samples},
                           why, sizeof why) ||
         !gl_framebuffer_create(&r->fb, &(gl_framebuffer_desc){.name = "visibility",
                                                               .color = {&r->target},
@@ -329,6 +350,12 @@ static bool visibility_prepare(void *self, const scene *s, char *err, size_t err
                                why, sizeof why)) {
         snprintf(err, errlen, "visibility: %s", why);
         goto fail;
+    }
+    if (c->b.samples > 1 && g->cull) {
+        gl.CreateBuffers(1, &r->depth_ranges);
+        gl.NamedBufferStorage(r->depth_ranges,
+                              (GLsizeiptr)((size_t)g->ntiles * 2u * sizeof(float)), NULL,
+                              GL_DYNAMIC_STORAGE_BIT);
     }
     if (!compile(r, err, errlen))
         goto fail;
@@ -423,6 +450,8 @@ static void shade_pass(visibility *r, frame_stats *out, uint32_t nlights)
     light_grid_bind_lights(&r->g, st);
     if (r->g.cull)
         light_grid_bind_lists(&r->g, st);
+    if (r->depth_ranges)
+        gl_state_storage_buffer(st, BIND_SSBO_TILE_DEPTH, r->depth_ranges);
     gl_state_storage_buffer(st, BIND_SSBO_VIS_DRAWS, r->draws);
     gl_state_storage_buffer(st, BIND_SSBO_VIS_VERTICES, r->vertices);
     gl_state_storage_buffer(st, BIND_SSBO_VIS_INDICES, r->indices);
@@ -474,6 +503,8 @@ static void visibility_draw(void *self, const scene *s, frame_stats *out)
         gl_state_texture(c->b.st, BIND_TEX_DEPTH, c->b.depth.texture);
         light_grid_bind_lights(&r->g, c->b.st);
         light_grid_bind_lists(&r->g, c->b.st);
+        if (r->depth_ranges)
+            gl_state_storage_buffer(c->b.st, BIND_SSBO_TILE_DEPTH, r->depth_ranges);
         light_grid_dispatch(&r->g, c->b.st);
         gl_state_barrier(c->b.st, GL_SHADER_STORAGE_BARRIER_BIT);
         gl_state_texture(c->b.st, BIND_TEX_DEPTH, 0);   /* drawn to next (sky) */

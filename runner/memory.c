@@ -92,7 +92,7 @@ static uint64_t targets_of(const char *kind, const run_params *q, int w, int h, 
             b += hdr * s * px;
     }
     if (is(kind, "visibility"))   /* its R32UI ids; the meshes' copies at most the scene's */
-        b += 4u * px + (sc ? sc->bytes : 0);
+        b += 4u * s * px + (sc ? sc->bytes : 0);
     if (q->aa == 1)
         b += (hdr + depth) * px;   /* edge AA's output and single-sample depth */
     if (sc && q->shadows != 1)

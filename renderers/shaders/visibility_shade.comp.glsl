@@ -18,9 +18,15 @@
 // surface.inc makes it (the same operations, textureGrad for texture), then ambient x
 // diffuse + emissive and the tile's lights (shade_light, forward_tiled.frag's loop), fog
 // (forward_output), stored into the HDR target (image unit BIND_IMAGE_HDR).
+// MSAA_SAMPLES (msaa > 1): the ids and the HDR target are multisampled; each distinct id
+// among a pixel's samples is shaded once, at the pixel centre as a forward pass shades
+// every triangle that covers a sample (so an edge pixel is shaded once per surface on
+// it, an inner pixel once), and stored into the samples holding it. TILE_DEPTH_RANGES
+// (with it, when lights are culled): a centre outside the depth range its tile was
+// culled against loops every light, as forward_tiled.frag does.
 // Defines: TILE_SIZE, TILES_X, VIS_TRI_BITS, NO_GRID (no point or spot light: every
 // light of the frame looped), the material's map defines (DIFFUSE_MAP, GLOSS_MAP,
-// NORMAL_MAP, EMISSIVE_MAP), FOG, SHADOWS, HDR_RGBA32F.
+// NORMAL_MAP, EMISSIVE_MAP), FOG, SHADOWS, HDR_RGBA32F, MSAA_SAMPLES, TILE_DEPTH_RANGES.
 #include "bindings.h"
 #include "frame.inc"
 #include "lighting.inc"
@@ -29,12 +35,18 @@
 #include "fog.inc"
 
 layout(local_size_x = TILE_SIZE, local_size_y = TILE_SIZE) in;
-#ifdef HDR_RGBA32F
-layout(binding = BIND_IMAGE_HDR, rgba32f) writeonly uniform image2D i_hdr;
+#ifdef MSAA_SAMPLES
+#define HDR_IMAGE image2DMS
+layout(binding = BIND_TEX_VISIBILITY) uniform usampler2DMS t_visibility;
 #else
-layout(binding = BIND_IMAGE_HDR, rgba16f) writeonly uniform image2D i_hdr;
-#endif
+#define HDR_IMAGE image2D
 layout(binding = BIND_TEX_VISIBILITY) uniform usampler2D t_visibility;
+#endif
+#ifdef HDR_RGBA32F
+layout(binding = BIND_IMAGE_HDR, rgba32f) writeonly uniform HDR_IMAGE i_hdr;
+#else
+layout(binding = BIND_IMAGE_HDR, rgba16f) writeonly uniform HDR_IMAGE i_hdr;
+#endif
 layout(binding = BIND_TEX_DIFFUSE) uniform sampler2D t_diffuse;
 layout(binding = BIND_TEX_GLOSS) uniform sampler2D t_gloss;
 layout(binding = BIND_TEX_NORMAL) uniform sampler2D t_normal;
@@ -87,17 +99,17 @@ vec3 vertex_attr3(uint v, uint offset)
     return vec3(b_vertices[b], b_vertices[b + 1u], b_vertices[b + 2u]);
 }
 
-void main()
+// Whether id (not empty) is one of this dispatch's draws.
+bool in_run(uint id)
 {
-    ivec2 px = ivec2(gl_GlobalInvocationID.xy);
-    if (px.x >= int(f_viewport.x) || px.y >= int(f_viewport.y))
-        return;
-    uint id = texelFetch(t_visibility, px, 0).r;
-    if (id == VIS_EMPTY)
-        return;
     uint draw = id >> uint(VIS_TRI_BITS);
-    if (draw < uint(u_draw_first) || draw >= uint(u_draw_end))
-        return;
+    return id != VIS_EMPTY && draw >= uint(u_draw_first) && draw < uint(u_draw_end);
+}
+
+// The light of surface id (in_run) at pixel px's centre.
+vec4 shade_id(uint id, ivec2 px)
+{
+    uint draw = id >> uint(VIS_TRI_BITS);
     uint tri = id & ((1u << uint(VIS_TRI_BITS)) - 1u);
     Draw d = b_draws[draw];
 
@@ -174,12 +186,57 @@ void main()
     uvec2 tile = uvec2(px) / uint(TILE_SIZE);
     uvec4 list = b_tiles[tile.y * uint(TILES_X) + tile.x];
     uint first = list.x, count = list.y;
+#ifdef TILE_DEPTH_RANGES
+    // msaa: a sample's triangle taken at the pixel centre (as forward shades it) may lie
+    // outside the depth range its tile was culled against: every light then, in order
+    vec2 range = b_tile_depth[tile.y * uint(TILES_X) + tile.x];
+    bool every = P.z > range.x || P.z < range.y;
+    if (every)
+        count = uint(u_light_count);
+#endif
 #endif
     for (uint k = 0u; k < count; k++) {
+#if defined(TILE_DEPTH_RANGES) && !defined(NO_GRID)
+        uint i = every ? k : tile_light(first, k);
+#else
         uint i = tile_light(first, k);
+#endif
         if (!light_reaches(i, P))
             continue;
         c += shade_light(b_lights[i], P, n, diffuse, gloss, shininess);
     }
-    imageStore(i_hdr, px, forward_output(c, P.z, 1.0));
+    return forward_output(c, P.z, 1.0);
+}
+
+void main()
+{
+    ivec2 px = ivec2(gl_GlobalInvocationID.xy);
+    if (px.x >= int(f_viewport.x) || px.y >= int(f_viewport.y))
+        return;
+#ifdef MSAA_SAMPLES
+    // each distinct id of the pixel's samples shaded once at the pixel centre (what a
+    // forward pass shades for each triangle covering some sample) and stored into the
+    // samples that hold it: one shading for a pixel inside a triangle, one per surface
+    // on its edges
+    uint ids[MSAA_SAMPLES];
+    for (int k = 0; k < MSAA_SAMPLES; k++)
+        ids[k] = texelFetch(t_visibility, px, k).r;
+    for (int k = 0; k < MSAA_SAMPLES; k++) {
+        if (!in_run(ids[k]))
+            continue;
+        bool done = false;
+        for (int j = 0; j < k; j++)
+            done = done || ids[j] == ids[k];
+        if (done)
+            continue;
+        vec4 c = shade_id(ids[k], px);
+        for (int j = k; j < MSAA_SAMPLES; j++)
+            if (ids[j] == ids[k])
+                imageStore(i_hdr, px, j, c);
+    }
+#else
+    uint id = texelFetch(t_visibility, px, 0).r;
+    if (in_run(id))
+        imageStore(i_hdr, px, shade_id(id, px));
+#endif
 }

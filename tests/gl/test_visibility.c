@@ -4,8 +4,8 @@
  * opaque object (the visibility pass), one cull dispatch with point lights and none
  * without, and one shading dispatch per run of the visible list whose materials bind
  * the same maps (counted here from the frontend's own list); its image agrees with
- * forward-spml within RMSE 1/255 (max 4/255); msaa 4 is refused at prepare with its
- * message; and the id split (visibility_split) takes the fewest triangle bits and
+ * forward-spml within RMSE 1/255 (max 4/255), and at msaa 4 too (per distinct id of a
+ * pixel's samples); and the id split (visibility_split) takes the fewest triangle bits and
  * refuses, naming the numbers, what does not fit. Every frame runs in a debug context;
  * any GL error fails the test. */
 #include <setjmp.h>
@@ -211,23 +211,47 @@ static void test_no_cull_without_local_lights(void **state)
     scene_destroy(s);
 }
 
-/* msaa > 1 is refused at prepare, with the message the run fails with. */
-static void test_msaa_refused(void **state)
+/* msaa 4: the multisampled ids, each distinct id of a pixel shaded once at its centre
+ * (as forward-spml shades each triangle covering a sample): within RMSE 1/255 of
+ * forward-spml at msaa 4, fewer than 1 % of the pixels off by more than 1/255 (the
+ * tolerance of gl-agreement's msaa cases); the same draws and dispatches plus the
+ * msaa-resolve pass, and the target's samples in the plan's bytes. */
+static void test_msaa4(void **state)
 {
     (void)state;
-    scene_light l = point(0.0f, 6.0f, 4.0f, 14.0f);
-    scene *s = shapes(&l, 1);
+    scene_light l[16];
+    for (int i = 0; i < 16; i++)
+        l[i] = point((float)(i % 4) * 8.0f - 12.0f, 3.0f, (float)(i / 4) * 8.0f - 12.0f, 7.0f);
+    scene *s = shapes(l, 16);
+    uint32_t v = 0, runs = 0;
+    visible_runs(s, &v, &runs);
     renderer_options o = options();
     o.msaa = 4;
-    char err[512] = "";
-    renderer *r = test_renderer_create("visibility", &o, err, sizeof err);
-    assert_non_null(r);
-    assert_false(renderer_prepare(r, s, err, sizeof err));
-    assert_string_equal(err, "visibility: msaa 4: not supported (the shading pass shades "
-                             "one sample a pixel; use msaa 1)");
-    renderer_destroy(r);
-    gl_context_poll_errors(ctx, "msaa refused");
-    assert_int_equal(gl_context_error_count(ctx), 0);
+    shot ref, vis;
+    render("forward-spml", &o, s, &ref);
+    render("visibility", &o, s, &vis);
+    assert_int_equal(vis.fs.msaa, 4);
+    assert_int_equal(find_pass(&vis.fs, "visibility")->draw_calls, v);
+    assert_int_equal(find_pass(&vis.fs, "shade")->dispatches, runs);
+    assert_non_null(find_pass(&vis.fs, "msaa-resolve"));
+    assert_int_equal(vis.fs.total.dispatches, 1u + runs);
+    bool found = false;
+    for (size_t t = 0; t < vis.plan.ntargets; t++)
+        if (strcmp(vis.plan.target[t].name, "visibility") == 0) {
+            assert_int_equal(vis.plan.target[t].bytes, (uint64_t)W * H * 4 * 4);
+            found = true;
+        }
+    assert_true(found);
+    image_error e;
+    char err[256];
+    assert_true(image_compare(&vis.img, &ref.img, &e, err, sizeof err));
+    print_message("msaa 4: visibility vs forward-spml: rmse %.3f/255, max %.1f/255, %.4f of "
+                  "pixels off by > 1/255\n", e.rmse * 255, e.max_abs * 255, e.frac_over_1_255);
+    assert_true(e.rmse < 1.0 / 255.0);
+    assert_true(e.frac_over_1_255 < 0.01);
+    assert_int_equal(e.nonfinite, 0);
+    image_free(&ref.img);
+    image_free(&vis.img);
     scene_destroy(s);
 }
 
@@ -282,7 +306,7 @@ int main(void)
         cmocka_unit_test(test_split),
         cmocka_unit_test(test_counts_and_target),
         cmocka_unit_test(test_no_cull_without_local_lights),
-        cmocka_unit_test(test_msaa_refused),
+        cmocka_unit_test(test_msaa4),
     };
     return cmocka_run_group_tests(tests, setup, teardown);
 }
