@@ -17,6 +17,11 @@
 #define BIND_SSBO_TILE_DEPTH 4      /* tiles.inc (msaa > 1): per tile the depth range culled */
 #define BIND_SSBO_EDGES 5           /* tiled_deferred.comp (msaa > 1): edge pixels counted */
 #define BIND_SSBO_COVERAGE 6        /* coverage.comp: the covered pixels counted */
+/* visibility_shade.comp: its draws, and the scene's vertices and indices (slots 5-7: no
+ * edge or coverage count in that dispatch, and 8 slots is GL's minimum) */
+#define BIND_SSBO_VIS_DRAWS 5
+#define BIND_SSBO_VIS_VERTICES 6
+#define BIND_SSBO_VIS_INDICES 7
 /* Texture units */
 #define BIND_TEX_DIFFUSE 0          /* surface.inc's material maps */
 #define BIND_TEX_GLOSS 1
@@ -29,6 +34,7 @@
 #define BIND_TEX_SHADOW 12          /* the shadow-map pool (sampler2DArrayShadow) */
 #define BIND_TEX_LIGHT_DIFFUSE 13   /* deferred-lighting's light buffer: diffuse light */
 #define BIND_TEX_LIGHT_SPECULAR 14  /* and specular light (the material pass reads both) */
+#define BIND_TEX_VISIBILITY 4       /* visibility_shade.comp: the id target (no G-buffer there) */
 /* Image units */
 #define BIND_IMAGE_HDR 0            /* tiled-deferred writes the HDR target */
 /* Uniform locations: surface.inc's alpha cutoff of a MASK material (file scenes) */

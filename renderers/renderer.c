@@ -16,6 +16,7 @@ extern const renderer_impl renderer_forward_plus_impl;
 extern const renderer_impl renderer_clustered_impl;
 extern const renderer_impl renderer_tiled_deferred_impl;
 extern const renderer_impl renderer_deferred_lighting_impl;
+extern const renderer_impl renderer_visibility_impl;
 
 /* Every renderer the program knows, in the order `info` and errors list them. */
 static const renderer_impl *const registry[] = {
@@ -27,6 +28,7 @@ static const renderer_impl *const registry[] = {
     &renderer_clustered_impl,
     &renderer_tiled_deferred_impl,
     &renderer_deferred_lighting_impl,
+    &renderer_visibility_impl,
 };
 
 struct renderer {

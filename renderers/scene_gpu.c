@@ -210,6 +210,11 @@ fail:
     return NULL;
 }
 
+unsigned scene_gpu_texture(const scene_gpu *g, int index)
+{
+    return g && index >= 0 && (uint32_t)index < g->ntextures ? g->textures[index] : 0u;
+}
+
 void scene_gpu_destroy(scene_gpu *g)
 {
     if (!g)

@@ -91,6 +91,10 @@ void scene_gpu_draw_sky(scene_gpu *g, gl_state *st);
 void scene_gpu_resolve(scene_gpu *g, gl_state *st, unsigned hdr_texture, unsigned output_fbo,
                        int width, int height);
 
+/* The GL texture of scene texture `index` (0 when out of range): for passes that bind a
+ * material's maps themselves (visibility.c's shading dispatches). */
+unsigned scene_gpu_texture(const scene_gpu *g, int index);
+
 /* Bytes of vertex, index and texture data on the GPU (textures with their whole mip
  * chain; the light volumes and the Frame block included), for renderer_describe. */
 uint64_t scene_gpu_bytes(const scene_gpu *g);

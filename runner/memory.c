@@ -97,6 +97,8 @@ static uint64_t targets_of(const char *kind, const run_params *q, int w, int h, 
         const uint64_t lbuf = q->lpp_light_buffer == 1 ? 4 : 8;
         b += (8 + depth + 2 * lbuf) * s * px;
     }
+    if (is(kind, "visibility"))   /* its R32UI ids; the meshes' copies at most the scene's */
+        b += 4u * s * px + (sc ? sc->bytes : 0);
     if (q->aa == 1)
         b += (hdr + depth) * px;   /* edge AA's output and single-sample depth */
     if (sc && q->shadows != 1)

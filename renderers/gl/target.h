@@ -46,6 +46,8 @@
     X(GLT_FORMAT_R16F, "r16f", GL_R16F, GL_RED, GL_HALF_FLOAT, 2, true, false, false)            \
     X(GLT_FORMAT_RGBA32F, "rgba32f", GL_RGBA32F, GL_RGBA, GL_FLOAT, 16, true, false, false)      \
     X(GLT_FORMAT_R32F, "r32f", GL_R32F, GL_RED, GL_FLOAT, 4, true, false, false)                 \
+    X(GLT_FORMAT_R32UI, "r32ui", GL_R32UI, GL_RED_INTEGER, GL_UNSIGNED_INT, 4, true, false,        \
+      false)                                                                                       \
     X(GLT_FORMAT_DEPTH24_STENCIL8, "depth24-stencil8", GL_DEPTH24_STENCIL8, GL_DEPTH_STENCIL,    \
       GL_UNSIGNED_INT_24_8, 4, false, true, true)                                                \
     X(GLT_FORMAT_DEPTH32F_STENCIL8, "depth32f-stencil8", GL_DEPTH32F_STENCIL8, GL_DEPTH_STENCIL, \

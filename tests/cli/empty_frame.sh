@@ -25,7 +25,7 @@ shadesweep: 1
 name: cov
 scene: shapes
 renderers: [null, deferred, forward-mpml, forward-spml, forward-plus, clustered, tiled-deferred,
-            deferred-lighting]
+            deferred-lighting, visibility]
 resolution: 64x48
 warmup: {frames: 0}
 duration: {frames: 1}
@@ -35,7 +35,7 @@ sweep:
 EOF
 "$SHADESWEEP" run -o out/cov cov.yaml >cov.log 2>&1 || { cat cov.log; fail "the coverage sweep failed"; }
 rows out/cov >cov.txt
-[ "$(grep -c ',ok,' cov.txt)" = 15 ] || { cat cov.txt; fail "expected 15 ok trials (null reads no msaa: one run)"; }
+[ "$(grep -c ',ok,' cov.txt)" = 17 ] || { cat cov.txt; fail "expected 17 ok trials (null reads no msaa: one run)"; }
 grep -q '^null,[0-9]*,ok,$' cov.txt || { cat cov.txt; fail "null has no depth target: coverage empty"; }
 for m in 1 4; do
   vals=$(grep -v '^null,' cov.txt | awk -F, -v m="$m" '$2 == m {print $4}' | sort -u)

@@ -72,7 +72,7 @@ import numpy as np
 
 W, H = 80, 60
 RENDERERS = ["deferred", "forward-spml", "forward-mpml", "forward-plus", "tiled-deferred",
-             "clustered", "deferred-lighting"]
+             "clustered", "deferred-lighting", "visibility"]
 HALF = 20.0              # the plane: y = 0, x and z in [-HALF, HALF], normal +Y
 TOP = 4.0                # a small triangle at this height behind the camera: it puts
                          # the light bounds' centre (a grid light) at (0, TOP / 2, 0)

@@ -229,7 +229,8 @@ static void run_case(const light_case *c)
     assert_true(render_with("forward-spml", LIGHT_VOLUMES_STENCIL, true, s, &stored));
     snprintf(what, sizeof what, "%s: forward-spml storage vs uniform", c->name);
     expect_agree(what, &stored, &ref);
-    static const char *const tiled[] = {"forward-plus", "clustered", "tiled-deferred"};
+    static const char *const tiled[] = {"forward-plus", "clustered", "tiled-deferred",
+                                        "visibility"};
     for (size_t k = 0; k < sizeof tiled / sizeof tiled[0]; k++) {
         assert_true(render(tiled[k], LIGHT_VOLUMES_STENCIL, s, &img));
         snprintf(what, sizeof what, "%s: %s vs forward-spml (storage)", c->name, tiled[k]);

@@ -89,7 +89,7 @@ typedef struct config {
 static const config CONFIGS[] = {
     {"forward-spml", false}, {"forward-mpml", false},   {"forward-plus", false},
     {"deferred", false},     {"tiled-deferred", false}, {"clustered", false},
-    {"clustered", true},
+    {"clustered", true},     {"visibility", false},
 };
 
 typedef struct result {

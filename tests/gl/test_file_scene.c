@@ -104,8 +104,9 @@ static void run_file(const char *path, double cover_lo, double cover_hi)
     double c = covered(&ref);
     fprintf(stderr, "%s: %.4f of the pixels show the model\n", path, c);
     assert_true(c >= cover_lo && c <= cover_hi);
-    static const char *const others[] = {"forward-mpml", "deferred", "deferred-lighting"};
-    for (int i = 0; i < 3; i++) {
+    static const char *const others[] = {"forward-mpml", "deferred", "deferred-lighting",
+                                         "visibility"};
+    for (size_t i = 0; i < sizeof others / sizeof others[0]; i++) {
         assert_true(render(others[i], s, &img));
         image_error e;
         assert_true(image_compare(&img, &ref, &e, err, sizeof err));
@@ -196,8 +197,9 @@ static double quad_coverage(const char *dir, const char *mode)
         assert_true(s->materials[s->objects[0].material].opacity == 1.0f);
     image ref = {0}, img = {0};
     assert_true(render("forward-spml", s, &ref));
-    static const char *const others[] = {"forward-mpml", "deferred", "deferred-lighting"};
-    for (int i = 0; i < 3; i++) {
+    static const char *const others[] = {"forward-mpml", "deferred", "deferred-lighting",
+                                         "visibility"};
+    for (size_t i = 0; i < sizeof others / sizeof others[0]; i++) {
         assert_true(render(others[i], s, &img));
         image_error e;
         assert_true(image_compare(&img, &ref, &e, err, sizeof err));

@@ -431,6 +431,7 @@ static const struct {
     {"r16f", GLT_FORMAT_R16F, 2, GL_R16F, false},
     {"rgba32f", GLT_FORMAT_RGBA32F, 16, GL_RGBA32F, false},
     {"r32f", GLT_FORMAT_R32F, 4, GL_R32F, false},
+    {"r32ui", GLT_FORMAT_R32UI, 4, GL_R32UI, false},
     {"depth24-stencil8", GLT_FORMAT_DEPTH24_STENCIL8, 4, GL_DEPTH24_STENCIL8, true},
     {"depth32f-stencil8", GLT_FORMAT_DEPTH32F_STENCIL8, 8, GL_DEPTH32F_STENCIL8, true},
     {NULL, GLT_FORMAT_NONE, 0, 0, false},

@@ -400,6 +400,11 @@ static void agree_on(scene *s, const char *name)
     renderer_options o = options(LIGHT_VOLUMES_STENCIL, GBUFFER_REFERENCE, false);
     render("forward-spml", &o, s, &ref);
     assert_non_null(find_pass(&ref.fs, "shadows"));
+    render("visibility", &o, s, &img);   /* shade_light's shadows in a compute pass */
+    assert_non_null(find_pass(&img.fs, "shadows"));
+    snprintf(what, sizeof what, "%s: visibility vs forward-spml", name);
+    expect_agree(what, &img.rgba8, &ref.rgba8);
+    frame_out_free(&img);
 
     /* the shadows show: the same frame without them differs */
     o.no_shadows = true;

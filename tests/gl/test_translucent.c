@@ -70,7 +70,7 @@ static const uint8_t *px(const image *im)
 
 static const char *const kinds[] = {"forward-spml", "forward-mpml",   "forward-plus",
                                     "clustered",    "deferred",       "tiled-deferred",
-                                    "deferred-lighting"};
+                                    "deferred-lighting", "visibility"};
 
 static scene *build_glass(light_placement p)
 {

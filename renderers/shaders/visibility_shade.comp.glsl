@@ -1,0 +1,242 @@
+// The visibility renderer's shading pass (Burns and Hunt 2013; derivatives as Schied and
+// Dachsbacher 2015): a work group per TILE_SIZE x TILE_SIZE tile (the light grid of
+// tile_cull.comp, renderers/tiled/grid.h), an invocation per pixel. Each pixel reads its
+// id from the visibility target and, when its draw is in this dispatch's range
+// [u_draw_first, u_draw_end) (one dispatch per run of visible draws whose materials bind
+// the same maps), fetches the triangle's three vertices from the geometry buffers,
+// transforms them with the draw's model-view and the frame's projection, and takes the
+// perspective-correct barycentrics of the pixel centre in closed form from the clip
+// positions (2D homogeneous: with M the columns (x, y, w) of the three clip positions,
+// lambda is M^-1 (p, 1) normalised to sum 1; no division by w, so vertices behind the eye
+// need no care). Their screen-space derivatives: the same closed form at the right and
+// upper neighbours of the first pixel of the pixel's 2x2 quad, minus at that pixel: the
+// coarse differences a fragment quad takes of the triangle's plane (its helper
+// invocations extrapolate it), so textureGrad gets the uv derivatives texture() gets in
+// the forward passes (one-pixel differences at the pixel itself gave 9/255 on a few
+// pixels of the agreement test where the mip level changes within a quad; these, 0).
+// Position, normal, tangent and uv are interpolated with lambda, the surface is made as
+// surface.inc makes it (the same operations, textureGrad for texture), then ambient x
+// diffuse + emissive and the tile's lights (shade_light, forward_tiled.frag's loop), fog
+// (forward_output), stored into the HDR target (image unit BIND_IMAGE_HDR).
+// MSAA_SAMPLES (msaa > 1): the ids and the HDR target are multisampled; each distinct id
+// among a pixel's samples is shaded once, at the pixel centre as a forward pass shades
+// every triangle that covers a sample (so an edge pixel is shaded once per surface on
+// it, an inner pixel once), and stored into the samples holding it. TILE_DEPTH_RANGES
+// (with it, when lights are culled): a centre outside the depth range its tile was
+// culled against loops every light, as forward_tiled.frag does.
+// Defines: TILE_SIZE, TILES_X, VIS_TRI_BITS, NO_GRID (no point or spot light: every
+// light of the frame looped), the material's map defines (DIFFUSE_MAP, GLOSS_MAP,
+// NORMAL_MAP, EMISSIVE_MAP), FOG, SHADOWS, HDR_RGBA32F, MSAA_SAMPLES, TILE_DEPTH_RANGES.
+#include "bindings.h"
+#include "frame.inc"
+#include "lighting.inc"
+#include "lights.inc"
+#include "tiles.inc"
+#include "fog.inc"
+
+layout(local_size_x = TILE_SIZE, local_size_y = TILE_SIZE) in;
+#ifdef MSAA_SAMPLES
+#define HDR_IMAGE image2DMS
+layout(binding = BIND_TEX_VISIBILITY) uniform usampler2DMS t_visibility;
+#else
+#define HDR_IMAGE image2D
+layout(binding = BIND_TEX_VISIBILITY) uniform usampler2D t_visibility;
+#endif
+#ifdef HDR_RGBA32F
+layout(binding = BIND_IMAGE_HDR, rgba32f) writeonly uniform HDR_IMAGE i_hdr;
+#else
+layout(binding = BIND_IMAGE_HDR, rgba16f) writeonly uniform HDR_IMAGE i_hdr;
+#endif
+layout(binding = BIND_TEX_DIFFUSE) uniform sampler2D t_diffuse;
+layout(binding = BIND_TEX_GLOSS) uniform sampler2D t_gloss;
+layout(binding = BIND_TEX_NORMAL) uniform sampler2D t_normal;
+layout(binding = BIND_TEX_EMISSIVE) uniform sampler2D t_emissive;
+
+layout(location = LOC_RENDERER) uniform int u_light_count;   // lights in b_lights
+layout(location = LOC_RENDERER + 1) uniform int u_draw_first;   // this dispatch's draws:
+layout(location = LOC_RENDERER + 2) uniform int u_draw_end;     // [first, end)
+
+// One visible draw (visibility.c's vis_draw, std430, 160 bytes).
+struct Draw {
+    mat4 model_view;
+    vec4 normal_matrix[3];       // mat3 columns
+    vec4 diffuse_specular;       // rgb diffuse, a specular
+    vec4 emissive_shininess;     // rgb emissive, a shininess
+    uvec4 geometry;              // x: first index, y: base vertex
+};
+layout(std430, binding = BIND_SSBO_VIS_DRAWS) readonly buffer Draws {
+    Draw b_draws[];
+};
+// Every mesh of the scene, concatenated: 12 floats a vertex (mesh_vertex: position,
+// normal, tangent, uv) and 32-bit indices.
+layout(std430, binding = BIND_SSBO_VIS_VERTICES) readonly buffer Vertices {
+    float b_vertices[];
+};
+layout(std430, binding = BIND_SSBO_VIS_INDICES) readonly buffer Indices {
+    uint b_mesh_indices[];
+};
+
+const uint VIS_EMPTY = 0xffffffffu;
+
+// surface.inc's safe_normalize (that file declares fragment inputs: not includable here)
+vec3 vis_safe_normalize(vec3 n, vec3 fallback)
+{
+    float len2 = dot(n, n);
+    return len2 > 1e-20 ? n * inversesqrt(len2) : fallback;
+}
+
+// The perspective-correct barycentrics of NDC point p: m_inv is the inverse of the
+// matrix of the clip positions' (x, y, w) columns.
+vec3 barycentrics(mat3 m_inv, vec2 p)
+{
+    vec3 l = m_inv * vec3(p, 1.0);
+    return l / (l.x + l.y + l.z);
+}
+
+vec3 vertex_attr3(uint v, uint offset)
+{
+    uint b = v * 12u + offset;
+    return vec3(b_vertices[b], b_vertices[b + 1u], b_vertices[b + 2u]);
+}
+
+// Whether id (not empty) is one of this dispatch's draws.
+bool in_run(uint id)
+{
+    uint draw = id >> uint(VIS_TRI_BITS);
+    return id != VIS_EMPTY && draw >= uint(u_draw_first) && draw < uint(u_draw_end);
+}
+
+// The light of surface id (in_run) at pixel px's centre.
+vec4 shade_id(uint id, ivec2 px)
+{
+    uint draw = id >> uint(VIS_TRI_BITS);
+    uint tri = id & ((1u << uint(VIS_TRI_BITS)) - 1u);
+    Draw d = b_draws[draw];
+
+    vec3 vpos[3], nrm[3];
+    vec4 tan[3], clip[3];
+    vec2 uv[3];
+    for (uint k = 0u; k < 3u; k++) {
+        uint v = d.geometry.y + b_mesh_indices[d.geometry.x + 3u * tri + k];
+        vec4 p = d.model_view * vec4(vertex_attr3(v, 0u), 1.0);
+        vpos[k] = p.xyz;
+        clip[k] = f_proj * p;
+        nrm[k] = vertex_attr3(v, 3u);
+        uint b = v * 12u;
+        tan[k] = vec4(b_vertices[b + 6u], b_vertices[b + 7u], b_vertices[b + 8u],
+                      b_vertices[b + 9u]);
+        uv[k] = vec2(b_vertices[b + 10u], b_vertices[b + 11u]);
+    }
+    mat3 m = mat3(clip[0].xyw, clip[1].xyw, clip[2].xyw);
+    // counter-clockwise in window coordinates (GL's front face) when det > 0
+    bool front = determinant(m) > 0.0;
+    mat3 m_inv = inverse(m);
+    vec2 step = 2.0 * f_viewport.zw;   // one pixel in NDC
+    vec2 p = (vec2(px) + 0.5) * step - 1.0;
+    vec3 l = barycentrics(m_inv, p);
+    // the derivatives a fragment's 2x2 quad takes (coarse, as texture() gets them): the
+    // quad's first pixel against its right and upper neighbours, on this triangle's plane
+    vec2 q = (vec2(px & ~1) + 0.5) * step - 1.0;
+    vec3 lq = barycentrics(m_inv, q);
+    vec3 lx = barycentrics(m_inv, q + vec2(step.x, 0.0)) - lq;
+    vec3 ly = barycentrics(m_inv, q + vec2(0.0, step.y)) - lq;
+
+    vec3 P = l.x * vpos[0] + l.y * vpos[1] + l.z * vpos[2];
+    mat3 nm = mat3(d.normal_matrix[0].xyz, d.normal_matrix[1].xyz, d.normal_matrix[2].xyz);
+    vec3 N = nm * (l.x * nrm[0] + l.y * nrm[1] + l.z * nrm[2]);
+    vec2 UV = l.x * uv[0] + l.y * uv[1] + l.z * uv[2];
+    vec2 uv_dx = lx.x * uv[0] + lx.y * uv[1] + lx.z * uv[2];
+    vec2 uv_dy = ly.x * uv[0] + ly.y * uv[1] + ly.z * uv[2];
+
+    // surface.inc's surface_get, from the interpolated values
+    vec3 n = vis_safe_normalize(N, vis_safe_normalize(-P, vec3(0.0, 0.0, 1.0)));
+    if (!front)
+        n = -n;
+#ifdef NORMAL_MAP
+    vec4 T = l.x * tan[0] + l.y * tan[1] + l.z * tan[2];
+    T.xyz = mat3(d.model_view) * T.xyz;
+    vec3 t = T.xyz - n * dot(n, T.xyz);
+    float tl2 = dot(t, t);
+    if (tl2 > 1e-20) {
+        t *= inversesqrt(tl2);
+        vec3 bt = cross(n, t) * T.w;
+        vec3 mn = textureGrad(t_normal, UV, uv_dx, uv_dy).xyz * 2.0 - 1.0;
+        n = vis_safe_normalize(t * mn.x + bt * mn.y + n * mn.z, n);
+    }
+#endif
+    vec3 diffuse = d.diffuse_specular.rgb;
+#ifdef DIFFUSE_MAP
+    diffuse *= textureGrad(t_diffuse, UV, uv_dx, uv_dy).rgb;
+#endif
+    float gloss = d.diffuse_specular.a;
+#ifdef GLOSS_MAP
+    gloss *= textureGrad(t_gloss, UV, uv_dx, uv_dy).r;
+#endif
+    float shininess = d.emissive_shininess.a;
+    vec3 emissive = d.emissive_shininess.rgb;
+#ifdef EMISSIVE_MAP
+    vec4 e = textureGrad(t_emissive, UV, uv_dx, uv_dy);   // rgb: colour, a: mask
+    emissive *= e.rgb * e.a;
+#endif
+
+    vec3 c = f_ambient.rgb * diffuse + emissive;
+#ifdef NO_GRID
+    uint first = 0u, count = uint(u_light_count);
+#else
+    uvec2 tile = uvec2(px) / uint(TILE_SIZE);
+    uvec4 list = b_tiles[tile.y * uint(TILES_X) + tile.x];
+    uint first = list.x, count = list.y;
+#ifdef TILE_DEPTH_RANGES
+    // msaa: a sample's triangle taken at the pixel centre (as forward shades it) may lie
+    // outside the depth range its tile was culled against: every light then, in order
+    vec2 range = b_tile_depth[tile.y * uint(TILES_X) + tile.x];
+    bool every = P.z > range.x || P.z < range.y;
+    if (every)
+        count = uint(u_light_count);
+#endif
+#endif
+    for (uint k = 0u; k < count; k++) {
+#if defined(TILE_DEPTH_RANGES) && !defined(NO_GRID)
+        uint i = every ? k : tile_light(first, k);
+#else
+        uint i = tile_light(first, k);
+#endif
+        if (!light_reaches(i, P))
+            continue;
+        c += shade_light(b_lights[i], P, n, diffuse, gloss, shininess);
+    }
+    return forward_output(c, P.z, 1.0);
+}
+
+void main()
+{
+    ivec2 px = ivec2(gl_GlobalInvocationID.xy);
+    if (px.x >= int(f_viewport.x) || px.y >= int(f_viewport.y))
+        return;
+#ifdef MSAA_SAMPLES
+    // each distinct id of the pixel's samples shaded once at the pixel centre (what a
+    // forward pass shades for each triangle covering some sample) and stored into the
+    // samples that hold it: one shading for a pixel inside a triangle, one per surface
+    // on its edges
+    uint ids[MSAA_SAMPLES];
+    for (int k = 0; k < MSAA_SAMPLES; k++)
+        ids[k] = texelFetch(t_visibility, px, k).r;
+    for (int k = 0; k < MSAA_SAMPLES; k++) {
+        if (!in_run(ids[k]))
+            continue;
+        bool done = false;
+        for (int j = 0; j < k; j++)
+            done = done || ids[j] == ids[k];
+        if (done)
+            continue;
+        vec4 c = shade_id(ids[k], px);
+        for (int j = k; j < MSAA_SAMPLES; j++)
+            if (ids[j] == ids[k])
+                imageStore(i_hdr, px, j, c);
+    }
+#else
+    uint id = texelFetch(t_visibility, px, 0).r;
+    if (in_run(id))
+        imageStore(i_hdr, px, shade_id(id, px));
+#endif
+}
