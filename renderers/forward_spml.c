@@ -192,11 +192,9 @@ static void spml_describe(const void *self, pass_plan *out)
 
 static void spml_destroy(void *self)
 {
-    forward_spml *r = self;
-    if (!r)
-        return;
-    release_lights(r);
-    forward_common_free(&r->c);
+    if (self)
+        release_lights(self);
+    forward_common_free(self);   /* c comes first: the object is its forward_common */
 }
 
 const renderer_impl renderer_forward_spml_impl = RENDERER_IMPL(

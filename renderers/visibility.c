@@ -558,11 +558,9 @@ static void visibility_describe(const void *self, pass_plan *out)
 
 static void visibility_destroy(void *self)
 {
-    visibility *r = self;
-    if (!r)
-        return;
-    release(r);
-    forward_common_free(&r->c);
+    if (self)
+        release(self);
+    forward_common_free(self);   /* c comes first: the object is its forward_common */
 }
 
 const renderer_impl renderer_visibility_impl = RENDERER_IMPL(

@@ -36,6 +36,7 @@ void main()
     vec3 c = f_ambient.rgb * s.diffuse + s.emissive;
 #ifdef NO_GRID
     uint first = 0u, n = uint(u_light_count);
+    bool every = false;   // every light, in order (NO_GRID's tile_light does the same)
 #else
     uvec2 t = uvec2(gl_FragCoord.xy) / uint(TILE_SIZE);
     uint cell = t.y * uint(TILES_X) + t.x;
@@ -49,19 +50,15 @@ void main()
 #endif
     uvec4 list = b_tiles[cell];
     uint first = list.x, n = list.y;
+    bool every = false;   // true: a position outside the tile's culled depth range
 #ifdef TILE_DEPTH_RANGES
-    vec2 range = b_tile_depth[t.y * uint(TILES_X) + t.x];
-    bool every = s.position.z > range.x || s.position.z < range.y;
+    every = outside_tile_depth(t, s.position.z);
     if (every)
         n = uint(u_light_count);
 #endif
 #endif
     for (uint k = 0u; k < n; k++) {
-#if defined(TILE_DEPTH_RANGES) && !defined(NO_GRID)
         uint i = every ? k : tile_light(first, k);
-#else
-        uint i = tile_light(first, k);
-#endif
         if (!light_reaches(i, s.position))
             continue;
         c += shade_light(b_lights[i], s.position, s.normal, s.diffuse, s.gloss, s.shininess);

@@ -30,6 +30,15 @@ layout(std430, binding = BIND_SSBO_TILE_STATS) buffer TileStats {
 layout(std430, binding = BIND_SSBO_TILE_DEPTH) buffer TileDepth {
     vec2 b_tile_depth[];
 };
+
+// msaa: whether view z lies outside the depth range tile t was culled against (a
+// sample's surface shaded at another position than the one culled): then every light
+// of the frame is looped, in light order.
+bool outside_tile_depth(uvec2 t, float z)
+{
+    vec2 range = b_tile_depth[t.y * uint(TILES_X) + t.x];
+    return z > range.x || z < range.y;
+}
 #endif
 
 // The k-th light of the list that starts at b_indices[first]; with NO_GRID (no cull

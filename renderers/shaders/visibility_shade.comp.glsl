@@ -182,25 +182,22 @@ vec4 shade_id(uint id, ivec2 px)
     vec3 c = f_ambient.rgb * diffuse + emissive;
 #ifdef NO_GRID
     uint first = 0u, count = uint(u_light_count);
+    bool every = false;   // every light, in order (NO_GRID's tile_light does the same)
 #else
     uvec2 tile = uvec2(px) / uint(TILE_SIZE);
     uvec4 list = b_tiles[tile.y * uint(TILES_X) + tile.x];
     uint first = list.x, count = list.y;
+    bool every = false;   // true: a position outside the tile's culled depth range
 #ifdef TILE_DEPTH_RANGES
     // msaa: a sample's triangle taken at the pixel centre (as forward shades it) may lie
     // outside the depth range its tile was culled against: every light then, in order
-    vec2 range = b_tile_depth[tile.y * uint(TILES_X) + tile.x];
-    bool every = P.z > range.x || P.z < range.y;
+    every = outside_tile_depth(tile, P.z);
     if (every)
         count = uint(u_light_count);
 #endif
 #endif
     for (uint k = 0u; k < count; k++) {
-#if defined(TILE_DEPTH_RANGES) && !defined(NO_GRID)
         uint i = every ? k : tile_light(first, k);
-#else
-        uint i = tile_light(first, k);
-#endif
         if (!light_reaches(i, P))
             continue;
         c += shade_light(b_lights[i], P, n, diffuse, gloss, shininess);

@@ -355,11 +355,9 @@ static void forward_tiled_describe(const void *self, pass_plan *out)
 
 static void forward_tiled_destroy(void *self)
 {
-    forward_plus *r = self;
-    if (!r)
-        return;
-    release_buffers(r);
-    forward_common_free(&r->c);
+    if (self)
+        release_buffers(self);
+    forward_common_free(self);   /* c comes first: the object is its forward_common */
 }
 
 const renderer_impl renderer_forward_plus_impl = RENDERER_IMPL(

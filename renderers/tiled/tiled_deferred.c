@@ -43,6 +43,7 @@ typedef struct tiled_deferred {
     char msaa_define[24];
     size_t tiled_index;              /* msaa > 1: 1 + the tiled pass's index; 0: none */
 } tiled_deferred;
+_Static_assert(offsetof(tiled_deferred, d) == 0, "destroy: the object begins with d");
 
 static void *create(const char *name, bool clustered, const renderer_options *opts, char *err,
                     size_t errlen)
@@ -305,11 +306,9 @@ static const uint32_t *tiled_deferred_light_grid(const void *self, size_t *n)
 
 static void tiled_deferred_destroy(void *self)
 {
-    tiled_deferred *r = self;
-    if (!r)
-        return;
-    release(r);
-    deferred_core_destroy(&r->d);
+    if (self)
+        release(self);
+    deferred_core_destroy(self);   /* d comes first: the object is its deferred_renderer */
 }
 
 /* The plan is deferred's: the same G-buffer, with the cull-and-shade pass among its passes. */
