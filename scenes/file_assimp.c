@@ -33,6 +33,7 @@
 #include <strings.h>
 
 #include "scenes/scene_fail.h"
+#include "scenes/scene_internal.h"
 
 /* FNV-1a 64, the same function as runner/hash.h (scenes/ cannot reach runner/). */
 static uint64_t fnv1a64_more(uint64_t h, const void *data, size_t len)
@@ -586,22 +587,13 @@ static void facing_side(const scene *s, sm_vec3 dir)
         float el = sm_deg2rad(k < 4 ? 30.0f : -30.0f), az = sm_deg2rad(azimuth[k % 4]);
         sm_vec3_make(cosf(el) * sinf(az), sinf(el), cosf(el) * cosf(az), d[k]);
     }
-    for (uint32_t i = 0; i < s->nobjects; i++) {
-        const scene_object *o = &s->objects[i];
-        const mesh *m = &s->meshes[o->mesh];
-        for (uint32_t t = 0; t + 2 < m->nindices; t += 3) {
-            sm_vec3 w[3], e1, e2, n;
-            for (int c = 0; c < 3; c++) {
-                sm_mat4_mulv3(o->transform, m->vertices[m->indices[t + c]].position, 1.0f, w[c]);
-                sm_vec3_scale(w[c], o->scale, w[c]);
-            }
-            sm_vec3_sub(w[1], w[0], e1);
-            sm_vec3_sub(w[2], w[0], e2);
-            sm_vec3_cross(e1, e2, n);
+    for (uint32_t i = 0; i < s->nobjects; i++)
+        for (uint32_t t = 0; t < s->meshes[s->objects[i].mesh].nindices / 3; t++) {
+            sm_vec3 w[3], n;
+            scene_triangle_at_0(s, &s->objects[i], t, w, n);
             for (int k = 0; k < SIDES; k++)
                 score[k] += fmax(0.0, (double)sm_vec3_dot(n, d[k]));
         }
-    }
     int best = 0;
     for (int k = 1; k < SIDES; k++)
         best = score[k] > score[best] ? k : best;

@@ -7,6 +7,12 @@
 
 #include "scenes/scene.h"
 
+/* Triangle t (indices 3t..3t+2 of its mesh) of object o as it stands at schedule time 0
+ * (scene_place.c): its world corners w, its area normal n (length twice the area, towards
+ * the counter-clockwise front face), and its area (0 when not finite). */
+double scene_triangle_at_0(const scene *s, const scene_object *o, uint32_t t, sm_vec3 w[3],
+                           sm_vec3 n);
+
 /* The run's lights on a built scene (scene_place.c): the authored ones (placement scene)
  * or placed from lp. With `check`, only whether they can be: the same failures and
  * messages, but no light is placed and s->lights is left NULL (what a plan check asks of

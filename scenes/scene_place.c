@@ -29,9 +29,7 @@ static void corner_at_0(const scene_object *o, const mesh *m, uint32_t index, sm
         out[k] = o->position[k] + o->scale * out[k];
 }
 
-/* Triangle t (of 3 x t in the mesh's indices) of object o at time 0: its corners and its
- * area normal (length twice the area, towards the front face: counter-clockwise). */
-static double triangle_at_0(const scene *s, const scene_object *o, uint32_t t, sm_vec3 w[3],
+double scene_triangle_at_0(const scene *s, const scene_object *o, uint32_t t, sm_vec3 w[3],
                             sm_vec3 n)
 {
     const mesh *m = &s->meshes[o->mesh];
@@ -52,19 +50,15 @@ static double surface_area(const scene *s)
     sm_vec3 w[3], n;
     for (uint32_t i = 0; i < s->nobjects; i++)
         for (uint32_t t = 0; t < s->meshes[s->objects[i].mesh].nindices / 3; t++)
-            area += triangle_at_0(s, &s->objects[i], t, w, n);
+            area += scene_triangle_at_0(s, &s->objects[i], t, w, n);
     return area;
 }
 
 /* The run's point-light radius: lp->radius, or with lp->overlap > 0 the radius at which
  * the schedule's largest count reaches `overlap` lights per point of the light bounds
- * (lights_overlap_radius), or, placed near surfaces, per point of the surfaces. */
+ * (lights_overlap_radius); surface placement has its own (place_surface). */
 static float placement_radius(const scene *s, const light_params *lp)
 {
-    if (lp->overlap > 0.0f && lp->placement == PLACEMENT_SURFACE)
-        return s->nlights_total ? (float)sqrt((double)lp->overlap * surface_area(s) /
-                                              ((double)SM_PI * (double)s->nlights_total))
-                                : 0.0f;
     if (lp->overlap > 0.0f)
         return lights_overlap_radius(s->nlights_total, lp->overlap, s->light_bounds_min,
                                      s->light_bounds_max);
@@ -126,7 +120,7 @@ static bool inside_an_object(const scene *s, const float *lo, const float *hi, c
         unsigned crossings = 0;
         sm_vec3 w[3], n;
         for (uint32_t t = 0; t < s->meshes[s->objects[o].mesh].nindices / 3; t++) {
-            triangle_at_0(s, &s->objects[o], t, w, n);
+            scene_triangle_at_0(s, &s->objects[o], t, w, n);
             crossings += ray_crosses(p, d, w);
         }
         if (crossings & 1u)
@@ -149,7 +143,7 @@ static bool place_surface(scene *s, const light_params *lp, char *err, size_t er
         ntri += s->meshes[s->objects[o].mesh].nindices / 3;
     double *sum = malloc((ntri ? ntri : 1) * sizeof *sum);
     uint32_t(*which)[2] = malloc((ntri ? ntri : 1) * sizeof *which);   /* object, triangle */
-    float *lo = malloc((s->nobjects ? s->nobjects : 1) * 6 * sizeof *lo), *hi = lo;
+    float *lo = malloc((s->nobjects ? s->nobjects : 1) * 6 * sizeof *lo);
     if (!sum || !which || !lo) {
         free(sum);
         free(which);
@@ -158,7 +152,7 @@ static bool place_surface(scene *s, const light_params *lp, char *err, size_t er
                  "'%s'", ntri, s->name);
         return false;
     }
-    hi = lo + 3 * s->nobjects;
+    float *hi = lo + 3 * s->nobjects;
     size_t n = 0;
     double area = 0.0;
     sm_vec3 w[3], nrm;
@@ -168,7 +162,7 @@ static bool place_surface(scene *s, const light_params *lp, char *err, size_t er
             hi[3 * o + k] = -INFINITY;
         }
         for (uint32_t t = 0; t < s->meshes[s->objects[o].mesh].nindices / 3; t++) {
-            double a = triangle_at_0(s, &s->objects[o], t, w, nrm);
+            double a = scene_triangle_at_0(s, &s->objects[o], t, w, nrm);
             for (int c = 0; c < 3; c++)
                 for (int k = 0; k < 3; k++) {
                     lo[3 * o + k] = fminf(lo[3 * o + k], w[c][k]);
@@ -188,7 +182,11 @@ static bool place_surface(scene *s, const light_params *lp, char *err, size_t er
                  "surface): its triangles have no area", s->name);
     rng g;
     rng_seed(&g, lp->rng, lp->seed);
-    float radius = ok ? placement_radius(s, lp) : 0.0f;
+    /* with overlap: n pi r^2 / area = overlap, per point of the surfaces */
+    float radius = lp->overlap > 0.0f && ok
+                       ? (float)sqrt((double)lp->overlap * area /
+                                     ((double)SM_PI * (double)s->nlights_total))
+                       : lp->radius;
     for (uint32_t i = 0; ok && i < s->nlights_total; i++) {
         scene_light *l = &s->lights[i];
         for (int attempt = 0; attempt < 16; attempt++) {
@@ -202,7 +200,7 @@ static bool place_surface(scene *s, const light_params *lp, char *err, size_t er
                 else
                     a = mid + 1;
             }
-            triangle_at_0(s, &s->objects[which[a][0]], which[a][1], w, nrm);
+            scene_triangle_at_0(s, &s->objects[which[a][0]], which[a][1], w, nrm);
             sm_vec3_normalize(nrm);
             float r1 = sqrtf(u1), bc[3] = {1.0f - r1, r1 * (1.0f - u2), r1 * u2};
             for (int k = 0; k < 3; k++)
