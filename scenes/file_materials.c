@@ -146,8 +146,9 @@ void file_add_material(scene_builder *b, loaded *l, const struct aiMaterial *am,
  * down the image as ours does). assimp 5.2's glTF importer stores it as an aiUVTransform
  * for its own bottom-up v and a rotation about the centre: translation (tx, ty), scaling
  * (sx, sy), rotation -r, with tx = 0.5 sx (1 - cos r + sin r) + offset.x and ty =
- * 0.5 sy (sin r + cos r - 1) + 1 - sy - offset.y; those are inverted here (checked on
- * the Khronos TextureTransformTest: tests/unit/test_scene_file.c). False: no transform. */
+ * 0.5 sy (sin r + cos r - 1) + 1 - sy - offset.y; those are inverted here
+ * (tests/unit/test_scene_file.c checks a quad's corners; the Khronos TextureTransformTest's
+ * arrows point at their green markers, seen by eye). False: no transform. */
 static bool map_transform(const struct aiMaterial *am, enum aiTextureType type,
                           float out[2][3])
 {
