@@ -76,6 +76,8 @@ typedef struct forward_common {
     renderer_base b;                 /* first: name, options, size, caches, queries, passes */
     bool illumination_sets;          /* the frontend computes them (forward-mpml sets this
                                         after init); the others leave it false */
+    struct light_grid *grid;         /* the tiled ones' light grid (tiled/grid.h's
+                                        forward_grid_collect reads it); NULL otherwise */
 
     /* >>made by forward_common_prepare */
     bool prepared;                   /* (the scene on the GPU, the frontend and the shadow

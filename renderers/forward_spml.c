@@ -190,12 +190,7 @@ static void spml_describe(const void *self, pass_plan *out)
     forward_describe_tail(c, out);
 }
 
-static void spml_destroy(void *self)
-{
-    if (self)
-        release_lights(self);
-    forward_common_free(self);   /* c comes first: the object is its forward_common */
-}
+RENDERER_DESTROY(spml, release_lights, forward_common_free)
 
 const renderer_impl renderer_forward_spml_impl = RENDERER_IMPL(
     spml, "forward-spml", "forward.light_buffer hdr msaa fog aa",

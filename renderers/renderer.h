@@ -273,6 +273,17 @@ typedef struct renderer_impl {
         .destroy = P##_destroy, __VA_ARGS__                                                \
     }
 
+/* The destroy of a renderer whose object begins with its family's base (forward_common,
+ * deferred_renderer): RELEASE(self) frees what the renderer made itself (only for an
+ * object), BASE_FREE(self) the base's resources and the object. */
+#define RENDERER_DESTROY(P, RELEASE, BASE_FREE)                                            \
+    static void P##_destroy(void *self)                                                    \
+    {                                                                                      \
+        if (self)                                                                          \
+            RELEASE(self);                                                                 \
+        BASE_FREE(self);                                                                   \
+    }
+
 typedef struct renderer renderer;
 
 size_t renderer_kind_count(void);

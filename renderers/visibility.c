@@ -120,6 +120,7 @@ static void *visibility_create(const renderer_options *opts, char *err, size_t e
     visibility *r = forward_common_new(sizeof *r, "visibility", opts, err, errlen);
     if (!r)
         return NULL;
+    r->c.grid = &r->g;
     if (!light_grid_tile_option(&r->g, "visibility", opts, err, errlen)) {
         forward_common_free(&r->c);
         return NULL;
@@ -515,20 +516,6 @@ static void visibility_draw(void *self, const scene *s, frame_stats *out)
     forward_end_frame(c, out, 0);
 }
 
-static void visibility_collect(void *self, frame_stats *out)
-{
-    visibility *r = self;
-    renderer_base_collect(&r->c.b, out);
-    if (r->c.prepared && r->g.cull)
-        light_grid_collect(&r->g, out);
-}
-
-static const uint32_t *visibility_light_grid(const void *self, size_t *n)
-{
-    const visibility *r = self;
-    return light_grid_counts(&r->g, n);
-}
-
 static void visibility_describe(const void *self, pass_plan *out)
 {
     const visibility *r = self;
@@ -556,17 +543,12 @@ static void visibility_describe(const void *self, pass_plan *out)
     }
 }
 
-static void visibility_destroy(void *self)
-{
-    if (self)
-        release(self);
-    forward_common_free(self);   /* c comes first: the object is its forward_common */
-}
+RENDERER_DESTROY(visibility, release, forward_common_free)
 
 const renderer_impl renderer_visibility_impl = RENDERER_IMPL(
     visibility, "visibility", "tiles hdr msaa fog aa",
     "visibility buffer (Burns and Hunt 2013): draw and triangle ids into an R32UI "
     "target, lights culled per tile, then a compute pass that refetches each pixel's "
     "triangle and shades it with analytic derivatives",
-    .collect = visibility_collect, .read_hdr = forward_read_hdr,
-    .light_grid = visibility_light_grid);
+    .collect = forward_grid_collect, .read_hdr = forward_read_hdr,
+    .light_grid = forward_grid_counts);

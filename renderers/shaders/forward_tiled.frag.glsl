@@ -30,13 +30,15 @@ layout(location = LOC_RENDERER) uniform int u_light_count;   // lights in b_ligh
 
 layout(location = 0) out vec4 o_color;
 
+#include "tile_shade.inc"
+
 void main()
 {
     Surface s = surface_get();
     vec3 c = f_ambient.rgb * s.diffuse + s.emissive;
 #ifdef NO_GRID
     uint first = 0u, n = uint(u_light_count);
-    bool every = false;   // every light, in order (NO_GRID's tile_light does the same)
+    uvec2 t = uvec2(0u);
 #else
     uvec2 t = uvec2(gl_FragCoord.xy) / uint(TILE_SIZE);
     uint cell = t.y * uint(TILES_X) + t.x;
@@ -50,18 +52,7 @@ void main()
 #endif
     uvec4 list = b_tiles[cell];
     uint first = list.x, n = list.y;
-    bool every = false;   // true: a position outside the tile's culled depth range
-#ifdef TILE_DEPTH_RANGES
-    every = outside_tile_depth(t, s.position.z);
-    if (every)
-        n = uint(u_light_count);
 #endif
-#endif
-    for (uint k = 0u; k < n; k++) {
-        uint i = every ? k : tile_light(first, k);
-        if (!light_reaches(i, s.position))
-            continue;
-        c += shade_light(b_lights[i], s.position, s.normal, s.diffuse, s.gloss, s.shininess);
-    }
+    tile_lights_add(c, first, n, t, s.position, s.normal, s.diffuse, s.gloss, s.shininess);
     o_color = forward_output(c, s.position.z, s.alpha);
 }

@@ -56,6 +56,8 @@ layout(location = LOC_RENDERER) uniform int u_light_count;   // lights in b_ligh
 layout(location = LOC_RENDERER + 1) uniform int u_draw_first;   // this dispatch's draws:
 layout(location = LOC_RENDERER + 2) uniform int u_draw_end;     // [first, end)
 
+#include "tile_shade.inc"
+
 // One visible draw (visibility.c's vis_draw, std430, 160 bytes).
 struct Draw {
     mat4 model_view;
@@ -182,26 +184,13 @@ vec4 shade_id(uint id, ivec2 px)
     vec3 c = f_ambient.rgb * diffuse + emissive;
 #ifdef NO_GRID
     uint first = 0u, count = uint(u_light_count);
-    bool every = false;   // every light, in order (NO_GRID's tile_light does the same)
+    uvec2 tile = uvec2(0u);
 #else
     uvec2 tile = uvec2(px) / uint(TILE_SIZE);
     uvec4 list = b_tiles[tile.y * uint(TILES_X) + tile.x];
     uint first = list.x, count = list.y;
-    bool every = false;   // true: a position outside the tile's culled depth range
-#ifdef TILE_DEPTH_RANGES
-    // msaa: a sample's triangle taken at the pixel centre (as forward shades it) may lie
-    // outside the depth range its tile was culled against: every light then, in order
-    every = outside_tile_depth(tile, P.z);
-    if (every)
-        count = uint(u_light_count);
 #endif
-#endif
-    for (uint k = 0u; k < count; k++) {
-        uint i = every ? k : tile_light(first, k);
-        if (!light_reaches(i, P))
-            continue;
-        c += shade_light(b_lights[i], P, n, diffuse, gloss, shininess);
-    }
+    tile_lights_add(c, first, count, tile, P, n, diffuse, gloss, shininess);
     return forward_output(c, P.z, 1.0);
 }
 

@@ -94,6 +94,7 @@ void *forward_tiled_new(const char *name, bool clustered, const renderer_options
     if (!r)
         return NULL;
     r->name = name;
+    r->c.grid = &r->g;
     r->c.translucent_later = true;   /* forward_tiled_prepare: over the tile lists or not */
     if (!light_grid_tile_option(&r->g, name, opts, err, errlen))
         goto fail;
@@ -299,20 +300,6 @@ static void forward_tiled_draw(void *self, const struct scene *s, frame_stats *o
     forward_end_frame(c, out, fe->nvisible);
 }
 
-static void forward_tiled_collect(void *self, frame_stats *out)
-{
-    forward_plus *r = self;
-    renderer_base_collect(&r->c.b, out);
-    if (r->c.prepared && r->g.cull)
-        light_grid_collect(&r->g, out);
-}
-
-static const uint32_t *forward_tiled_light_grid(const void *self, size_t *n)
-{
-    const forward_plus *r = self;
-    return light_grid_counts(&r->g, n);
-}
-
 static void forward_tiled_describe(const void *self, pass_plan *out)
 {
     const forward_plus *r = self;
@@ -353,16 +340,11 @@ static void forward_tiled_describe(const void *self, pass_plan *out)
     forward_describe_tail(c, out);
 }
 
-static void forward_tiled_destroy(void *self)
-{
-    if (self)
-        release_buffers(self);
-    forward_common_free(self);   /* c comes first: the object is its forward_common */
-}
+RENDERER_DESTROY(forward_tiled, release_buffers, forward_common_free)
 
 const renderer_impl renderer_forward_plus_impl = RENDERER_IMPL(
     forward_tiled, "forward-plus", "tiles hdr msaa fog aa",
     "tiled forward (Harada et al. 2012): depth pre-pass, lights culled per "
     "screen tile by a compute pass, each pixel shaded with its tile's lights",
-    .collect = forward_tiled_collect, .read_hdr = forward_read_hdr,
-    .light_grid = forward_tiled_light_grid);
+    .collect = forward_grid_collect, .read_hdr = forward_read_hdr,
+    .light_grid = forward_grid_counts);

@@ -7,6 +7,7 @@
 #include <string.h>
 
 #include "renderers/bindings.h"
+#include "renderers/forward_common.h"
 #include "renderers/shading.h"
 
 bool light_grid_tile_option(light_grid *g, const char *name, const renderer_options *o,
@@ -249,4 +250,18 @@ const uint32_t *light_grid_counts(const light_grid *g, size_t *n)
 {
     *n = g->counted ? g->ncells : 0;
     return g->counted ? g->counts : NULL;
+}
+
+void forward_grid_collect(void *self, frame_stats *out)
+{
+    forward_common *c = self;
+    renderer_base_collect(&c->b, out);
+    if (c->prepared && c->grid->cull)
+        light_grid_collect(c->grid, out);
+}
+
+const uint32_t *forward_grid_counts(const void *self, size_t *n)
+{
+    const forward_common *c = self;
+    return light_grid_counts(c->grid, n);
 }

@@ -113,3 +113,8 @@ void light_grid_dispatch(const light_grid *g, gl_state *st);
 void light_grid_collect(light_grid *g, frame_stats *out);
 /* renderer_impl.light_grid: the lengths of the last frame collected. */
 const uint32_t *light_grid_counts(const light_grid *g, size_t *n);
+/* renderer_impl.collect and .light_grid of a forward renderer whose forward_common.grid
+ * is set (forward-plus, clustered, visibility): the base's counters, then the grid's
+ * when the cull pass ran. */
+void forward_grid_collect(void *self, frame_stats *out);
+const uint32_t *forward_grid_counts(const void *self, size_t *n);

@@ -304,12 +304,7 @@ static const uint32_t *tiled_deferred_light_grid(const void *self, size_t *n)
     return light_grid_counts(&r->g, n);
 }
 
-static void tiled_deferred_destroy(void *self)
-{
-    if (self)
-        release(self);
-    deferred_core_destroy(self);   /* d comes first: the object is its deferred_renderer */
-}
+RENDERER_DESTROY(tiled_deferred, release, deferred_core_destroy)
 
 /* The plan is deferred's: the same G-buffer, with the cull-and-shade pass among its passes. */
 static void tiled_deferred_describe(const void *self, pass_plan *out)
