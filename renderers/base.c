@@ -195,7 +195,7 @@ void renderer_base_pass_begin(renderer_base *b, frame_stats *out, const char *na
 {
     gl_state_begin_pass(b->st, name);
     if (out->npasses < RENDERER_MAX_PASSES)
-        out->pass[out->npasses].single_sampled = false;
+        out->pass[out->npasses].single_sampled = out->pass[out->npasses].shaded_counted = false;
     if (b->queries)
         gl_pass_queries_begin(b->queries, out->npasses);
 }

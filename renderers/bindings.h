@@ -37,6 +37,7 @@
 #define BIND_TEX_VISIBILITY 4       /* visibility_shade.comp: the id target (no G-buffer there) */
 /* Image units */
 #define BIND_IMAGE_HDR 0            /* tiled-deferred writes the HDR target */
+#define BIND_IMAGE_VIS_COUNTS 1     /* visibility_shade.comp's counts (r32ui, 3 x 1) */
 /* Uniform locations: surface.inc's alpha cutoff of a MASK material (file scenes) */
 #define LOC_ALPHA_CUTOFF 12
 /* surface.inc's opacity of a MATERIAL_BLEND material (the TRANSLUCENT variant) */

@@ -156,9 +156,11 @@ void renderer_collect(renderer *r, frame_stats *out)
     for (size_t i = 0; i < out->npasses; i++) {
         pass_stats *p = &out->pass[i];
         /* a pixel shaded once covers n samples; a per-sample draw shades each */
-        p->samples_shaded = n == 1 || p->single_sampled ? p->samples
-                                   : (p->samples - p->per_sample_samples) / n +
-                                         p->per_sample_samples;
+        if (!p->shaded_counted)
+            p->samples_shaded = n == 1 || p->single_sampled
+                                    ? p->samples
+                                    : (p->samples - p->per_sample_samples) / n +
+                                          p->per_sample_samples;
         t.per_sample_samples += p->per_sample_samples;
         t.samples_shaded += p->samples_shaded;
         t.gpu_us += p->gpu_us;

@@ -29,6 +29,8 @@ typedef struct pass_stats {
                                   single_sampled pass; with msaa N, (samples -
                                   per_sample_samples) / N + per_sample_samples (a pixel
                                   shaded once covers N samples) */
+    bool shaded_counted;       /* samples_shaded is the renderer's own count (a compute
+                                  pass that counts its shadings: visibility's shade) */
     bool single_sampled;       /* the pass draws into single-sampled targets whatever the
                                   run's msaa (the display resolve, edge AA): its samples are
                                   pixels */

@@ -76,6 +76,9 @@ typedef struct visibility {
     unsigned tri_bits;
     char tri_bits_define[24];
     gl_target target;                /* "visibility", R32UI */
+    gl_target counts;                /* 3 x 1 R32UI: the shade pass's counts (shadings,
+                                        samples covered, edge pixels) */
+    size_t shade_index;              /* 1 + the shade pass's index this frame; 0: none */
     gl_framebuffer fb;               /* target + the base's depth */
     GLuint vis_program, vis_masked_program[2];   /* [has a diffuse map] */
     GLuint cull_program;
@@ -132,7 +135,7 @@ static void release(visibility *r)
 {
     light_grid_release(&r->g);
     gl_framebuffer_destroy(&r->fb);
-    gl_target_destroy(&r->target);
+    GL_TARGETS_DESTROY(&r->target, &r->counts);
     GLuint buffers[4] = {r->draws, r->vertices, r->indices, r->depth_ranges};
     for (int i = 0; i < 4; i++)
         if (buffers[i])
@@ -348,7 +351,12 @@ static bool visibility_prepare(void *self, const scene *s, char *err, size_t err
         !gl_framebuffer_create(&r->fb, &(gl_framebuffer_desc){.name = "visibility",
                                                               .color = {&r->target},
                                                               .depth_stencil = &c->b.depth},
-                               why, sizeof why)) {
+                               why, sizeof why) ||
+        !gl_target_create(&r->counts,
+                          &(gl_target_desc){.name = "visibility-counts",
+                                            .format = GLT_FORMAT_R32UI, .width = 3,
+                                            .height = 1},
+                          why, sizeof why)) {
         snprintf(err, errlen, "visibility: %s", why);
         goto fail;
     }
@@ -447,7 +455,12 @@ static void shade_pass(visibility *r, frame_stats *out, uint32_t nlights)
 {
     forward_common *c = &r->c;
     gl_state *st = c->b.st;
+    r->shade_index = out->npasses + 1;
     forward_pass_begin(c, out, "shade");
+    static const uint32_t zero[3] = {0, 0, 0};
+    gl.TextureSubImage2D(r->counts.texture, 0, 0, 0, 3, 1, GL_RED_INTEGER, GL_UNSIGNED_INT,
+                         zero);
+    gl_state_image(st, BIND_IMAGE_VIS_COUNTS, r->counts.texture, GL_READ_WRITE, GL_R32UI);
     light_grid_bind_lights(&r->g, st);
     if (r->g.cull)
         light_grid_bind_lists(&r->g, st);
@@ -477,8 +490,9 @@ static void shade_pass(visibility *r, frame_stats *out, uint32_t nlights)
         gl.Uniform1i(LOC_RENDERER + 2, (GLint)run->end);
         light_grid_dispatch(&r->g, st);
     }
-    /* the sky draws into the target, the resolve samples it */
-    gl_state_barrier(st, GL_FRAMEBUFFER_BARRIER_BIT | GL_TEXTURE_FETCH_BARRIER_BIT);
+    /* the sky draws into the target, the resolve samples it, collect reads the counts */
+    gl_state_barrier(st, GL_FRAMEBUFFER_BARRIER_BIT | GL_TEXTURE_FETCH_BARRIER_BIT |
+                             GL_TEXTURE_UPDATE_BARRIER_BIT);
     /* drawn to next frame: not bound for sampling meanwhile */
     gl_state_texture(st, BIND_TEX_VISIBILITY, 0);
     forward_pass_end(c, out);
@@ -543,6 +557,25 @@ static void visibility_describe(const void *self, pass_plan *out)
     }
 }
 
+/* The grid's counters, and the shade pass's own (a compute pass: no query counts its
+ * samples): its samples are those covered, its samples_shaded the shadings (one per
+ * distinct id of a pixel), and at msaa > 1 edge_fraction the pixels with more than one. */
+static void visibility_collect(void *self, frame_stats *out)
+{
+    visibility *r = self;
+    forward_grid_collect(self, out);
+    if (!r->shade_index || r->shade_index > out->npasses)
+        return;
+    uint32_t n[3] = {0, 0, 0};
+    gl.GetTextureImage(r->counts.texture, 0, GL_RED_INTEGER, GL_UNSIGNED_INT, sizeof n, n);
+    pass_stats *p = &out->pass[r->shade_index - 1];
+    p->samples = n[1];
+    p->samples_shaded = n[0];
+    p->shaded_counted = true;
+    if (r->c.b.samples > 1)
+        out->edge_fraction = n[2] / ((double)r->c.b.width * r->c.b.height);
+}
+
 RENDERER_DESTROY(visibility, release, forward_common_free)
 
 const renderer_impl renderer_visibility_impl = RENDERER_IMPL(
@@ -550,5 +583,5 @@ const renderer_impl renderer_visibility_impl = RENDERER_IMPL(
     "visibility buffer (Burns and Hunt 2013): draw and triangle ids into an R32UI "
     "target, lights culled per tile, then a compute pass that refetches each pixel's "
     "triangle and shades it with analytic derivatives",
-    .collect = forward_grid_collect, .read_hdr = forward_read_hdr,
+    .collect = visibility_collect, .read_hdr = forward_read_hdr,
     .light_grid = forward_grid_counts);

@@ -24,6 +24,9 @@
 // it, an inner pixel once), and stored into the samples holding it. TILE_DEPTH_RANGES
 // (with it, when lights are culled): a centre outside the depth range its tile was
 // culled against loops every light, as forward_tiled.frag does.
+// Counted (i_counts, one image atomic per work group and counter): the shadings (the
+// pass's samples_shaded), the samples covered (its samples) and, msaa > 1, the pixels
+// whose samples hold more than one id (edge_fraction).
 // Defines: TILE_SIZE, TILES_X, VIS_TRI_BITS, NO_GRID (no point or spot light: every
 // light of the frame looped), the material's map defines (DIFFUSE_MAP, GLOSS_MAP,
 // NORMAL_MAP, EMISSIVE_MAP), FOG, SHADOWS, HDR_RGBA32F, MSAA_SAMPLES, TILE_DEPTH_RANGES.
@@ -47,6 +50,9 @@ layout(binding = BIND_IMAGE_HDR, rgba32f) writeonly uniform HDR_IMAGE i_hdr;
 #else
 layout(binding = BIND_IMAGE_HDR, rgba16f) writeonly uniform HDR_IMAGE i_hdr;
 #endif
+// the frame's counts, summed over its dispatches (x = 0: shadings, 1: samples covered,
+// 2: edge pixels, msaa > 1); visibility.c clears them before the first dispatch
+layout(binding = BIND_IMAGE_VIS_COUNTS, r32ui) uniform coherent uimage2D i_counts;
 layout(binding = BIND_TEX_DIFFUSE) uniform sampler2D t_diffuse;
 layout(binding = BIND_TEX_GLOSS) uniform sampler2D t_gloss;
 layout(binding = BIND_TEX_NORMAL) uniform sampler2D t_normal;
@@ -194,35 +200,68 @@ vec4 shade_id(uint id, ivec2 px)
     return forward_output(c, P.z, 1.0);
 }
 
+shared uint s_shaded, s_covered, s_edges;
+
 void main()
 {
+    if (gl_LocalInvocationIndex == 0u) {
+        s_shaded = 0u;
+        s_covered = 0u;
+        s_edges = 0u;
+    }
+    barrier();
     ivec2 px = ivec2(gl_GlobalInvocationID.xy);
-    if (px.x >= int(f_viewport.x) || px.y >= int(f_viewport.y))
-        return;
+    // no early return: every invocation meets the barrier below
+    bool inside = px.x < int(f_viewport.x) && px.y < int(f_viewport.y);
+    uint shaded = 0u, covered = 0u;
 #ifdef MSAA_SAMPLES
     // each distinct id of the pixel's samples shaded once at the pixel centre (what a
     // forward pass shades for each triangle covering some sample) and stored into the
     // samples that hold it: one shading for a pixel inside a triangle, one per surface
     // on its edges
     uint ids[MSAA_SAMPLES];
-    for (int k = 0; k < MSAA_SAMPLES; k++)
-        ids[k] = texelFetch(t_visibility, px, k).r;
+    bool edge = false;   // samples of more than one id (or of an id and of nothing)
+    for (int k = 0; k < MSAA_SAMPLES; k++) {
+        ids[k] = inside ? texelFetch(t_visibility, px, k).r : VIS_EMPTY;
+        edge = edge || ids[k] != ids[0];
+    }
     for (int k = 0; k < MSAA_SAMPLES; k++) {
         if (!in_run(ids[k]))
             continue;
+        covered++;
         bool done = false;
         for (int j = 0; j < k; j++)
             done = done || ids[j] == ids[k];
         if (done)
             continue;
+        shaded++;
         vec4 c = shade_id(ids[k], px);
         for (int j = k; j < MSAA_SAMPLES; j++)
             if (ids[j] == ids[k])
                 imageStore(i_hdr, px, j, c);
     }
+    // a pixel's ids are read by every dispatch: its edge counted by the first only
+    if (edge && u_draw_first == 0)
+        atomicAdd(s_edges, 1u);
 #else
-    uint id = texelFetch(t_visibility, px, 0).r;
-    if (in_run(id))
+    uint id = inside ? texelFetch(t_visibility, px, 0).r : VIS_EMPTY;
+    if (in_run(id)) {
+        shaded = covered = 1u;
         imageStore(i_hdr, px, shade_id(id, px));
+    }
 #endif
+    if (shaded > 0u) {
+        atomicAdd(s_shaded, shaded);
+        atomicAdd(s_covered, covered);
+    }
+    barrier();
+    // one image atomic a work group: the counters of the frame (visibility.c's collect)
+    if (gl_LocalInvocationIndex == 0u) {
+        if (s_shaded > 0u) {
+            imageAtomicAdd(i_counts, ivec2(0, 0), s_shaded);
+            imageAtomicAdd(i_counts, ivec2(1, 0), s_covered);
+        }
+        if (s_edges > 0u)
+            imageAtomicAdd(i_counts, ivec2(2, 0), s_edges);
+    }
 }

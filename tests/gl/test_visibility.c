@@ -14,6 +14,7 @@
 #include <stdint.h>
 #include <cmocka.h>
 
+#include <math.h>
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
@@ -35,6 +36,7 @@ typedef struct shot {
     image img;
     frame_stats fs;
     pass_plan plan;
+    uint64_t covered;   /* pixels with some sample nearer than the far plane */
 } shot;
 
 static renderer_options options(void)
@@ -60,6 +62,8 @@ static void render(const char *kind, const renderer_options *o, scene *s, shot *
     gl.Finish();
     renderer_collect(r, &out->fs);
     renderer_describe(r, &out->plan);
+    if (!renderer_coverage(r, &out->covered, err, sizeof err))
+        fail_msg("%s: coverage: %s", kind, err);
     out->img = (image){.width = W, .height = H, .channels = 4, .type = IMAGE_U8,
                        .pixels = malloc((size_t)W * H * 4)};
     assert_true(gl_context_read_rgba8(ctx, out->img.pixels, err, sizeof err));
@@ -137,6 +141,8 @@ static void test_counts_and_target(void **state)
     shot ref, vis;
     render("forward-spml", &o, s, &ref);
     render("visibility", &o, s, &vis);
+    shot plus;
+    render("forward-plus", &o, s, &plus);
 
     /* passes: visibility, cull, shade, [sky], resolve */
     const frame_stats *fs = &vis.fs;
@@ -154,6 +160,18 @@ static void test_counts_and_target(void **state)
     assert_int_equal(fs->total.dispatches, 1u + runs);
     assert_int_equal(fs->grid_cells, ((W + 15) / 16) * ((H + 15) / 16));
     assert_int_equal(fs->overflow[0], '\0');
+    /* the shade pass counts its own work: one shading per covered pixel, the samples
+     * forward-plus's depth-EQUAL shading pass passes (the same visible surfaces) */
+    const pass_stats *sh = &fs->pass[2], *fp = find_pass(&plus.fs, "shade");
+    print_message("covered %llu pixels; shade: %.0f samples, %.0f shaded; forward-plus %.0f\n",
+                  (unsigned long long)vis.covered, sh->samples, sh->samples_shaded,
+                  fp->samples);
+    assert_true(vis.covered > 0 && vis.covered < (uint64_t)W * H);
+    assert_true(sh->samples == (double)vis.covered);
+    assert_true(sh->samples_shaded == sh->samples);
+    assert_true(sh->samples == fp->samples);
+    assert_true(isnan(fs->edge_fraction));
+    image_free(&plus.img);
 
     /* the plan: the id target, 4 bytes a sample, among the target bytes */
     bool found = false;
@@ -230,7 +248,22 @@ static void test_msaa4(void **state)
     shot ref, vis;
     render("forward-spml", &o, s, &ref);
     render("visibility", &o, s, &vis);
+    shot plus;
+    render("forward-plus", &o, s, &plus);
     assert_int_equal(vis.fs.msaa, 4);
+    /* its counts: the covered samples as forward-plus's shading pass passes them; a
+     * shading per covered pixel, and per extra id of an edge pixel (at most 3 more) */
+    const pass_stats *sh = find_pass(&vis.fs, "shade");
+    double edges = vis.fs.edge_fraction * W * H;
+    print_message("msaa 4: covered %llu pixels, %.0f edge pixels; shade: %.0f samples, %.0f "
+                  "shaded; forward-plus %.0f samples\n", (unsigned long long)vis.covered,
+                  edges, sh->samples, sh->samples_shaded, find_pass(&plus.fs, "shade")->samples);
+    assert_true(sh->samples == find_pass(&plus.fs, "shade")->samples);
+    assert_true(sh->samples > (double)vis.covered && sh->samples <= 4.0 * (double)vis.covered);
+    assert_true(vis.fs.edge_fraction > 0.0 && vis.fs.edge_fraction < 0.5);
+    assert_true(sh->samples_shaded > (double)vis.covered);
+    assert_true(sh->samples_shaded <= (double)vis.covered + 3.0 * edges);
+    image_free(&plus.img);
     assert_int_equal(find_pass(&vis.fs, "visibility")->draw_calls, v);
     assert_int_equal(find_pass(&vis.fs, "shade")->dispatches, runs);
     assert_non_null(find_pass(&vis.fs, "msaa-resolve"));
