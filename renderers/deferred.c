@@ -275,4 +275,4 @@ const renderer_impl renderer_deferred_impl = RENDERER_IMPL(
     deferred, "deferred", "gbuffer deferred hdr msaa fog aa",
     "G-buffer pass, then ambient, directional and light-volume passes "
     "(fullscreen | volume | stencil | stencil-two-pass), sky last",
-    .collect = deferred_collect, .read_hdr = deferred_read_hdr);
+    .collect = deferred_collect, .read_hdr = deferred_read_hdr, .traffic = deferred_traffic);

@@ -600,3 +600,10 @@ bool deferred_read_hdr(void *self, float *rgba, int width, int height)
     const deferred_renderer *r = self;
     return r && r->prepared && renderer_base_read_hdr(&r->b, rgba, width, height);
 }
+
+gbuffer_traffic deferred_traffic(const void *self, const frame_stats *fs)
+{
+    const deferred_renderer *r = self;
+    return deferred_gbuffer_traffic(r->prepared ? deferred_layout_bytes_per_pixel(&r->layout) : 0,
+                                    r->b.width, r->b.height, fs);
+}

@@ -159,3 +159,5 @@ void deferred_frame_end(deferred_renderer *r, const scene *s, frame_stats *out, 
 
 void deferred_describe(const void *self, pass_plan *out);
 bool deferred_read_hdr(void *self, float *rgba, int width, int height);
+/* renderer_impl.traffic: deferred_gbuffer_traffic of the layout prepare built. */
+gbuffer_traffic deferred_traffic(const void *self, const frame_stats *fs);

@@ -176,4 +176,4 @@ const renderer_impl renderer_deferred_lighting_impl = RENDERER_IMPL(
     "light pre-pass (Engel 2008): normal + shininess G-buffer, diffuse and specular light "
     "into a light buffer by deferred's light volumes, then the objects again with their "
     "materials (depth EQUAL)",
-    .collect = deferred_collect, .read_hdr = deferred_read_hdr);
+    .collect = deferred_collect, .read_hdr = deferred_read_hdr, .traffic = deferred_traffic);

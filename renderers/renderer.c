@@ -204,6 +204,13 @@ const uint32_t *renderer_light_grid(const renderer *r, size_t *n)
     return r->impl->light_grid(r->self, n);
 }
 
+gbuffer_traffic renderer_traffic(const renderer *r, const frame_stats *fs)
+{
+    if (!r || !r->impl->traffic)
+        return (gbuffer_traffic){NAN, NAN};
+    return r->impl->traffic(r->self, fs);
+}
+
 bool renderer_read_hdr(renderer *r, float *rgba, int w, int h, size_t *nonfinite)
 {
     if (nonfinite)

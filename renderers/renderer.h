@@ -255,6 +255,10 @@ typedef struct renderer_impl {
     /* Optional (NULL: no light grid): after collect, the light-list length of every
      * tile (or cluster) of the last frame collected, *n of them (lightgrid.csv). */
     const uint32_t *(*light_grid)(const void *self, size_t *n);
+    /* Optional (NULL: no G-buffer, both NAN): seed 002's G-buffer traffic of a collected
+     * frame (results/bandwidth.h's MRT terms): the bytes the renderer's per-sample
+     * surface target (a G-buffer, the visibility ids) is written and read in it. */
+    gbuffer_traffic (*traffic)(const void *self, const frame_stats *fs);
     /* Optional (NULL: the entries above serve): a renderer that is one of two designs
      * chosen by an option (clustered: forward or deferred shading over the same cluster
      * lists) returns the registered renderer whose entry points serve an object made with
@@ -313,6 +317,8 @@ void renderer_destroy(renderer *r);                     /* NULL is fine */
 /* The light-list lengths of the last frame collected (renderer_impl.light_grid), or
  * NULL with *n = 0 for a renderer without a light grid. */
 const uint32_t *renderer_light_grid(const renderer *r, size_t *n);
+/* renderer_impl.traffic of a collected frame; NAN for both without one. */
+gbuffer_traffic renderer_traffic(const renderer *r, const frame_stats *fs);
 bool renderer_has_light_grid(const renderer *r);
 
 /* The renderer's float light accumulation of the last frame drawn (what its resolve

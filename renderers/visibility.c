@@ -48,6 +48,7 @@
 #include "renderers/shading.h"
 #include "renderers/tiled/grid.h"
 
+#include <math.h>
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
@@ -93,6 +94,27 @@ typedef struct visibility {
     uint32_t nruns;                  /* the last frame's */
 } visibility;
 _Static_assert(offsetof(visibility, c) == 0, "forward_common_new: the object begins with c");
+
+gbuffer_traffic visibility_id_traffic(int width, int height, int samples, const frame_stats *fs)
+{
+    double written = NAN, dispatches = NAN;
+    for (size_t i = 0; fs && i < fs->npasses; i++) {
+        const pass_stats *p = &fs->pass[i];
+        if (p->name && strcmp(p->name, "visibility") == 0)
+            written = p->samples;
+        else if (p->name && strcmp(p->name, "shade") == 0)
+            dispatches = (double)p->dispatches;
+    }
+    double screen = (double)width * height * (samples > 1 ? samples : 1);
+    return (gbuffer_traffic){s002_mrt_write_bytes(4.0, written),
+                             s002_mrt_read_bytes(4.0, screen * dispatches)};
+}
+
+static gbuffer_traffic visibility_traffic(const void *self, const frame_stats *fs)
+{
+    const visibility *r = self;
+    return visibility_id_traffic(r->c.b.width, r->c.b.height, r->c.b.samples, fs);
+}
 
 bool visibility_split(const char *name, uint32_t objects, uint32_t max_triangles,
                       unsigned *tri_bits, char *err, size_t errlen)
@@ -584,4 +606,4 @@ const renderer_impl renderer_visibility_impl = RENDERER_IMPL(
     "target, lights culled per tile, then a compute pass that refetches each pixel's "
     "triangle and shades it with analytic derivatives",
     .collect = visibility_collect, .read_hdr = forward_read_hdr,
-    .light_grid = forward_grid_counts);
+    .light_grid = forward_grid_counts, .traffic = visibility_traffic);

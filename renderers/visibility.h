@@ -15,6 +15,8 @@
 #include <stddef.h>
 #include <stdint.h>
 
+#include "renderers/renderer.h"
+
 #define VIS_EMPTY 0xffffffffu   /* no surface at the pixel */
 
 /* The split for a scene of `objects` opaque objects whose largest mesh has
@@ -28,3 +30,12 @@ static inline uint32_t visibility_pack(uint32_t draw, uint32_t triangle, unsigne
 {
     return draw << tri_bits | triangle;
 }
+
+/* Seed 002's MRT terms (results/bandwidth.h) for the id target, a collected frame at
+ * width x height with `samples` per pixel: written, 4 bytes x the samples the
+ * "visibility" pass passes (overdraw included, as the G-buffer pass's); read, 4 bytes x
+ * every sample of the screen x the "shade" pass's dispatches (one per run of equal maps,
+ * each reading every pixel's ids). Not in it: the triangles' refetch (indices and
+ * vertices, through the caches), as the model leaves the texture reads out of the
+ * G-buffer's terms. NAN for a count that is NAN or a frame without those passes. */
+gbuffer_traffic visibility_id_traffic(int width, int height, int samples, const frame_stats *fs);

@@ -49,7 +49,6 @@ typedef struct run_state {
     char message[1024];        /* why it failed, for summary.csv */
     char err[512];
     scene_file_info scene_info; /* a file scene: what scene_file_check found */
-    unsigned gbuffer_bpp;      /* the G-buffer's bytes per pixel, seed 002's model; 0: none */
     uint32_t made_opaque;      /* translucency: opaque: the materials it made opaque */
 } run_state;
 

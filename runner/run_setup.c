@@ -99,8 +99,6 @@ bool run_setup(run_state *st)
         return false;
     }
     renderer_describe(st->r, &st->plan);
-    /* seed 002's G-buffer traffic (results/bandwidth.h): the layout the renderer built */
-    st->gbuffer_bpp = deferred_gbuffer_bytes_per_pixel_of(p->renderer, &ro, st->sc);
     if (!run_gl_clean(st, "prepare")) {
         snprintf(st->err, sizeof st->err, "GL error while preparing the renderer");
         run_set_status(st, "gl-error");

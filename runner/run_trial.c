@@ -622,7 +622,7 @@ void run_one_trial(run_state *st, uint32_t trial, trial_result *tr)
             fprintf(stderr, "run %s: frame %zu: %u GPU timer result%s longer than the frame "
                     "itself, recorded as unknown\n", st->s->id, k, dropped, dropped == 1 ? "" : "s");
         tr->gpu_dropped += dropped;
-        gbuffer_traffic gt = deferred_gbuffer_traffic(st->gbuffer_bpp, p->width, p->height, &fs);
+        gbuffer_traffic gt = renderer_traffic(st->r, &fs);
         frame_record rec = {
             .frame = (uint32_t)k,
             .t_wall_s = end,

@@ -37,6 +37,7 @@ typedef struct shot {
     frame_stats fs;
     pass_plan plan;
     uint64_t covered;   /* pixels with some sample nearer than the far plane */
+    gbuffer_traffic traffic;
 } shot;
 
 static renderer_options options(void)
@@ -64,6 +65,7 @@ static void render(const char *kind, const renderer_options *o, scene *s, shot *
     renderer_describe(r, &out->plan);
     if (!renderer_coverage(r, &out->covered, err, sizeof err))
         fail_msg("%s: coverage: %s", kind, err);
+    out->traffic = renderer_traffic(r, &out->fs);
     out->img = (image){.width = W, .height = H, .channels = 4, .type = IMAGE_U8,
                        .pixels = malloc((size_t)W * H * 4)};
     assert_true(gl_context_read_rgba8(ctx, out->img.pixels, err, sizeof err));
@@ -288,6 +290,46 @@ static void test_msaa4(void **state)
     scene_destroy(s);
 }
 
+/* Seed 002's G-buffer terms at msaa 4: the visibility target's bytes a frame (4 a sample,
+ * written by the id pass, read by each shading dispatch) below deferred's G-buffer
+ * bytes for every preset (issue 26's question: where the thin target pays), on the same
+ * frame; at msaa 1 too. */
+static void test_traffic_below_deferred(void **state)
+{
+    (void)state;
+    scene_light l[16];
+    for (int i = 0; i < 16; i++)
+        l[i] = point((float)(i % 4) * 8.0f - 12.0f, 3.0f, (float)(i / 4) * 8.0f - 12.0f, 7.0f);
+    scene *s = shapes(l, 16);
+    static const int msaa[] = {4, 1};
+    for (size_t m = 0; m < sizeof msaa / sizeof msaa[0]; m++) {
+        renderer_options o = options();
+        o.msaa = msaa[m];
+        shot vis;
+        render("visibility", &o, s, &vis);
+        double vb = vis.traffic.write_bytes + vis.traffic.read_bytes;
+        const pass_stats *id = find_pass(&vis.fs, "visibility");
+        assert_true(vis.traffic.write_bytes == 4.0 * id->samples);
+        assert_true(vis.traffic.read_bytes ==
+                    4.0 * W * H * msaa[m] * (double)find_pass(&vis.fs, "shade")->dispatches);
+        image_free(&vis.img);
+        for (gbuffer_preset p = GBUFFER_CURTIS; p <= GBUFFER_REFERENCE; p++) {
+            o.gbuffer = p;
+            shot def;
+            render("deferred", &o, s, &def);
+            double db = def.traffic.write_bytes + def.traffic.read_bytes;
+            print_message("msaa %d, preset %d: visibility %.0f bytes (%.0f + %.0f), deferred "
+                          "%.0f (%.0f + %.0f)\n", msaa[m], (int)p, vb,
+                          vis.traffic.write_bytes, vis.traffic.read_bytes, db,
+                          def.traffic.write_bytes, def.traffic.read_bytes);
+            assert_true(isfinite(vb) && isfinite(db));
+            assert_true(vb < db);
+            image_free(&def.img);
+        }
+    }
+    scene_destroy(s);
+}
+
 /* The split: the fewest triangle bits, the rest for draws, the all-ones id kept for
  * "no surface"; what does not fit refused with the numbers. */
 static void test_split(void **state)
@@ -340,6 +382,7 @@ int main(void)
         cmocka_unit_test(test_counts_and_target),
         cmocka_unit_test(test_no_cull_without_local_lights),
         cmocka_unit_test(test_msaa4),
+        cmocka_unit_test(test_traffic_below_deferred),
     };
     return cmocka_run_group_tests(tests, setup, teardown);
 }

@@ -1,6 +1,7 @@
 /* Seed 002's bandwidth model (results/bandwidth.h, equations 4-7 of its section "MRT
  * Configuration and Bandwidth") and the per-frame G-buffer traffic built on it
- * (renderers/deferred.h, deferred_gbuffer_traffic). No GL context: the layout code and
+ * (renderers/deferred.h, deferred_gbuffer_traffic; the visibility ids' terms,
+ * visibility_id_traffic). No GL context: the layout code and
  * the traffic are arithmetic. Every expected number is worked out by hand beside it. */
 #include <stdarg.h>
 #include <stddef.h>
@@ -14,6 +15,7 @@
 #include <string.h>
 
 #include "renderers/deferred.h"
+#include "renderers/visibility.h"
 #include "results/bandwidth.h"
 
 
@@ -188,6 +190,31 @@ static void test_frame_traffic_tiled(void **state)
     assert_near(t.read_bytes, 24.0 * 32 * 20, 0);   /* one load per pixel: 15,360 */
 }
 
+/* The visibility target's terms (visibility_id_traffic): 4 bytes a written sample, and
+ * every sample of the screen read by each shading dispatch. */
+static void test_frame_traffic_visibility(void **state)
+{
+    (void)state;
+    frame_stats fs;
+    memset(&fs, 0, sizeof fs);
+    add_pass(&fs, "visibility", 1000);  /* samples passed, overdraw included */
+    add_pass(&fs, "cull", 0);
+    add_pass(&fs, "shade", 0);
+    fs.pass[2].dispatches = 3;          /* three runs of equal maps */
+    add_pass(&fs, "sky", 50);
+    gbuffer_traffic t = visibility_id_traffic(32, 20, 1, &fs);
+    assert_near(t.write_bytes, 4.0 * 1000, 0);
+    assert_near(t.read_bytes, 4.0 * 32 * 20 * 3, 0);   /* 7,680 */
+    t = visibility_id_traffic(32, 20, 4, &fs);         /* msaa 4: every sample's id */
+    assert_near(t.read_bytes, 4.0 * 32 * 20 * 4 * 3, 0);
+    fs.pass[0].samples = NAN;                          /* no count: unknown writes */
+    t = visibility_id_traffic(32, 20, 4, &fs);
+    assert_true(isnan(t.write_bytes) && !isnan(t.read_bytes));
+    fs.npasses = 0;                                    /* no such passes: neither */
+    t = visibility_id_traffic(32, 20, 4, &fs);
+    assert_true(isnan(t.write_bytes) && isnan(t.read_bytes));
+}
+
 int main(void)
 {
     const struct CMUnitTest tests[] = {
@@ -198,6 +225,7 @@ int main(void)
         cmocka_unit_test(test_mrt_terms_are_those_of_4_and_5),
         cmocka_unit_test(test_layout_bytes_per_pixel),
         cmocka_unit_test(test_frame_traffic_deferred),
+        cmocka_unit_test(test_frame_traffic_visibility),
         cmocka_unit_test(test_frame_traffic_tiled),
     };
     return cmocka_run_group_tests(tests, NULL, NULL);
