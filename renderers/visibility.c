@@ -146,6 +146,7 @@ static void *visibility_create(const renderer_options *opts, char *err, size_t e
     if (!r)
         return NULL;
     r->c.grid = &r->g;
+    r->c.translucent_later = true;   /* visibility_prepare: over the tile lists or not */
     if (!light_grid_tile_option(&r->g, "visibility", opts, err, errlen)) {
         forward_common_free(&r->c);
         return NULL;
@@ -299,11 +300,19 @@ static bool compile(visibility *r, char *err, size_t errlen)
     bool ms = c->b.samples > 1;
     snprintf(r->samples_define, sizeof r->samples_define, "MSAA_SAMPLES %d", c->b.samples);
     if (g->cull) {
-        /* msaa: every sample's depth, and the tiles' ranges for the shading's fallback */
-        gl_program_desc k = {.name = "tile_cull", .compute = "tile_cull.comp",
-                             .defines = {g->tile_define, g->tiles_x_define,
-                                         ms ? r->samples_define : NULL,
-                                         ms ? "TILE_DEPTH_RANGES" : NULL}};
+        /* msaa: every sample's depth, and the tiles' ranges for the shading's fallback;
+         * TLISTS: the translucent lists too (a NULL ends the defines) */
+        const char *defs[5] = {g->tile_define, g->tiles_x_define};
+        unsigned n = 2;
+        if (ms) {
+            defs[n++] = r->samples_define;
+            defs[n++] = "TILE_DEPTH_RANGES";
+        }
+        if (g->ntlists)
+            defs[n++] = g->tlists_define;
+        gl_program_desc k = {.name = g->ntlists ? "tile_cull_translucent" : "tile_cull",
+                             .compute = "tile_cull.comp",
+                             .defines = {defs[0], defs[1], defs[2], defs[3], defs[4]}};
         if (!program(r, &k, false, &r->cull_program, err, errlen))
             return false;
     }
@@ -350,7 +359,7 @@ static bool visibility_prepare(void *self, const scene *s, char *err, size_t err
     if (!split(r, s, err, errlen) ||
         !light_grid_size(g, s, c->b.width, c->b.height,
                          (c->light_types & ((1u << LIGHT_POINT) | (1u << LIGHT_SPOT))) != 0,
-                         false, err, errlen))
+                         c->translucent.run, err, errlen))
         goto fail;
     int max_block = light_grid_max_block();
     if (!light_grid_heads_fit(g, "tiles", max_block, err, errlen) ||
@@ -389,6 +398,10 @@ static bool visibility_prepare(void *self, const scene *s, char *err, size_t err
                               GL_DYNAMIC_STORAGE_BIT);
     }
     if (!compile(r, err, errlen))
+        goto fail;
+    const translucent_grid tg = light_grid_translucent(g);
+    if (!translucent_compile(&c->translucent, &c->b, &c->b.shadows, g->ntlists ? &tg : NULL,
+                             err, errlen))
         goto fail;
     return true;
 fail:
@@ -569,6 +582,7 @@ static void visibility_describe(const void *self, pass_plan *out)
     else
         forward_describe_pass(out, "cull", false,
                               "skipped, the scene has no point or spot light");
+    forward_grid_describe_translucent(c, out);
     forward_describe_pass(out, "shade", true,
                           "a dispatch per run of equal maps; geometry copies %llu bytes",
                           (unsigned long long)r->geometry_bytes);

@@ -321,16 +321,7 @@ static void forward_tiled_describe(const void *self, pass_plan *out)
     else
         forward_describe_pass(out, "cull", false,
                               "skipped, the scene has no point or spot light");
-    if (g->ntlists)
-        forward_describe_pass(out, "translucent-lists", true,
-                              "in the cull dispatch: per tile, near plane to its max depth");
-    else if (!c->prepared)
-        forward_describe_pass(out, "translucent-lists", true,
-                              "per tile in the cull dispatch, when the scene has translucency");
-    else
-        forward_describe_pass(out, "translucent-lists", false, "%s",
-                              !c->translucent.run ? "skipped: no translucent materials"
-                                                  : "skipped: no cull pass, every light");
+    forward_grid_describe_translucent(c, out);
     forward_describe_pass(out, "shade", true,
                           g->cull ? (g->slices ? "every visible object once, depth EQUAL, "
                                                  "its cluster's lights"

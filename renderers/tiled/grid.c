@@ -265,3 +265,17 @@ const uint32_t *forward_grid_counts(const void *self, size_t *n)
     const forward_common *c = self;
     return light_grid_counts(c->grid, n);
 }
+
+void forward_grid_describe_translucent(const forward_common *c, pass_plan *out)
+{
+    if (c->grid->ntlists)
+        forward_describe_pass(out, "translucent-lists", true,
+                              "in the cull dispatch: per tile, near plane to its max depth");
+    else if (!c->prepared)
+        forward_describe_pass(out, "translucent-lists", true,
+                              "per tile in the cull dispatch, when the scene has translucency");
+    else
+        forward_describe_pass(out, "translucent-lists", false, "%s",
+                              !c->translucent.run ? "skipped: no translucent materials"
+                                                  : "skipped: no cull pass, every light");
+}

@@ -113,8 +113,12 @@ void light_grid_dispatch(const light_grid *g, gl_state *st);
 void light_grid_collect(light_grid *g, frame_stats *out);
 /* renderer_impl.light_grid: the lengths of the last frame collected. */
 const uint32_t *light_grid_counts(const light_grid *g, size_t *n);
+struct forward_common;
 /* renderer_impl.collect and .light_grid of a forward renderer whose forward_common.grid
  * is set (forward-plus, clustered, visibility): the base's counters, then the grid's
  * when the cull pass ran. */
 void forward_grid_collect(void *self, frame_stats *out);
+/* The plan's "translucent-lists" entry of such a renderer (forward_describe_pass): built
+ * in the cull dispatch when the scene has translucency and the cull runs. */
+void forward_grid_describe_translucent(const struct forward_common *c, pass_plan *out);
 const uint32_t *forward_grid_counts(const void *self, size_t *n);
