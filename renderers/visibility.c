@@ -23,22 +23,26 @@
  *               the same maps; each dispatch shades only its run's draws.
  *               A scene without maps: one dispatch
  *   sky, [translucent], [edge-aa], resolve   forward_end_frame (forward_common.h); the
- *               translucent pass loops every light of the frame (as forward-spml's)
+ *               translucent pass loops its tile's translucent list, which the cull
+ *               builds when the scene has translucency (as forward-plus's)
  *
  * Draws: shadows + V + sky + T + [edge-aa] + 1; dispatches: [1 cull] + R, R the runs.
  *
  * MSAA (msaa > 1): the ids, the depth and the HDR target are multisampled (the visibility
  * pass writes each sample the id of the triangle covering it). The cull reads every sample
  * (tile_cull.comp's MSAA_SAMPLES) and writes each tile's range (TILE_DEPTH_RANGES, as
- * forward-plus). The shading reads a pixel's N ids and shades each distinct one once, at
- * the pixel centre, storing it into the samples that hold it: a pixel inside one triangle
- * is shaded once, a pixel on an edge once per surface on it (the edge rule here is "the
- * ids differ", exact for ids, where deferred's edge_rule.inc compares G-buffer positions
- * and normals, which this renderer has none of). That is what forward-spml shades at msaa
- * N (a fragment per covering triangle, at the centre), so the images agree; a centre
- * outside its tile's culled range loops every light, as forward_tiled.frag. Then the
- * base's msaa-resolve. Not counted: the per-sample work (the dispatch counts no samples;
- * edge_fraction stays NAN).
+ * forward-plus). The shading reads a pixel's N ids; where they differ, it rebuilds each
+ * one's surface at the pixel centre (position, and normal before maps) and applies the
+ * deferred renderers' edge rule (edge_rule.inc: a surface on one sample and none on
+ * another, a position off sample 0's plane, normals apart). A pixel that is no edge (one
+ * triangle, or triangles of one smooth surface) is shaded once with sample 0's surface,
+ * stored into every sample; an edge pixel shades each distinct id once at the centre,
+ * storing it into the samples that hold it: what forward-spml shades at msaa N (a
+ * fragment per covering triangle, at the centre). Per distinct surface, not per sample
+ * as deferred's edge pixels: the ids say which samples share a surface. A centre outside
+ * its tile's culled range loops every light, as forward_tiled.frag. Then the base's
+ * msaa-resolve. Counted by the dispatch itself (collect): the shadings (samples_shaded),
+ * the samples covered and the edge pixels (edge_fraction).
  *
  * Refused at prepare: a scene whose opaque objects or largest mesh do not fit the id
  * (visibility_split), or whose vertices or indices do not fit one storage block. */

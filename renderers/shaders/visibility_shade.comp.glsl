@@ -36,6 +36,10 @@
 #include "lights.inc"
 #include "tiles.inc"
 #include "fog.inc"
+#ifdef MSAA_SAMPLES
+#define EDGE_RULE_SURFACES_ONLY
+#include "edge_rule.inc"
+#endif
 
 layout(local_size_x = TILE_SIZE, local_size_y = TILE_SIZE) in;
 #ifdef MSAA_SAMPLES
@@ -114,52 +118,102 @@ bool in_run(uint id)
     return id != VIS_EMPTY && draw >= uint(u_draw_first) && draw < uint(u_draw_end);
 }
 
+// The triangle of id (not empty): its draw, its vertices, their view positions, and the
+// inverse of the matrix of its clip positions' (x, y, w) columns.
+struct VisTriangle {
+    uint draw;
+    uint v[3];
+    vec3 vpos[3];
+    mat3 m_inv;
+    bool front;   // counter-clockwise in window coordinates (GL's front face)
+};
+
+VisTriangle vis_triangle(uint id)
+{
+    VisTriangle t;
+    t.draw = id >> uint(VIS_TRI_BITS);
+    uint tri = id & ((1u << uint(VIS_TRI_BITS)) - 1u);
+    uvec4 geometry = b_draws[t.draw].geometry;
+    mat4 model_view = b_draws[t.draw].model_view;
+    vec4 clip[3];
+    for (uint k = 0u; k < 3u; k++) {
+        t.v[k] = geometry.y + b_mesh_indices[geometry.x + 3u * tri + k];
+        vec4 p = model_view * vec4(vertex_attr3(t.v[k], 0u), 1.0);
+        t.vpos[k] = p.xyz;
+        clip[k] = f_proj * p;
+    }
+    mat3 m = mat3(clip[0].xyw, clip[1].xyw, clip[2].xyw);
+    t.front = determinant(m) > 0.0;
+    t.m_inv = inverse(m);
+    return t;
+}
+
+// Pixel px's centre in NDC.
+vec2 pixel_ndc(ivec2 px)
+{
+    return (vec2(px) + 0.5) * (2.0 * f_viewport.zw) - 1.0;
+}
+
+// The surface's normal before any normal map, at barycentrics l and position P:
+// surface.inc's surface_get from the interpolated vertex normals, facing the side drawn.
+vec3 vis_normal(VisTriangle t, mat3 nm, vec3 l, vec3 P)
+{
+    vec3 N = nm * (l.x * vertex_attr3(t.v[0], 3u) + l.y * vertex_attr3(t.v[1], 3u) +
+                   l.z * vertex_attr3(t.v[2], 3u));
+    vec3 n = vis_safe_normalize(N, vis_safe_normalize(-P, vec3(0.0, 0.0, 1.0)));
+    return t.front ? n : -n;
+}
+
+mat3 draw_normal_matrix(uint draw)
+{
+    vec4 c[3] = b_draws[draw].normal_matrix;
+    return mat3(c[0].xyz, c[1].xyz, c[2].xyz);
+}
+
+#ifdef MSAA_SAMPLES
+// Surface id (VIS_EMPTY: none) at pixel px's centre, for the edge rule: its view
+// position and normal (before maps).
+void vis_surface(uint id, ivec2 px, out vec3 P, out vec3 n)
+{
+    P = n = vec3(0.0);
+    if (id == VIS_EMPTY)
+        return;
+    VisTriangle t = vis_triangle(id);
+    vec3 l = barycentrics(t.m_inv, pixel_ndc(px));
+    P = l.x * t.vpos[0] + l.y * t.vpos[1] + l.z * t.vpos[2];
+    n = vis_normal(t, draw_normal_matrix(t.draw), l, P);
+}
+#endif
+
 // The light of surface id (in_run) at pixel px's centre.
 vec4 shade_id(uint id, ivec2 px)
 {
-    uint draw = id >> uint(VIS_TRI_BITS);
-    uint tri = id & ((1u << uint(VIS_TRI_BITS)) - 1u);
-    Draw d = b_draws[draw];
-
-    vec3 vpos[3], nrm[3];
-    vec4 tan[3], clip[3];
+    VisTriangle tr = vis_triangle(id);
+    Draw d = b_draws[tr.draw];
+    vec4 tan[3];
     vec2 uv[3];
     for (uint k = 0u; k < 3u; k++) {
-        uint v = d.geometry.y + b_mesh_indices[d.geometry.x + 3u * tri + k];
-        vec4 p = d.model_view * vec4(vertex_attr3(v, 0u), 1.0);
-        vpos[k] = p.xyz;
-        clip[k] = f_proj * p;
-        nrm[k] = vertex_attr3(v, 3u);
-        uint b = v * 12u;
+        uint b = tr.v[k] * 12u;
         tan[k] = vec4(b_vertices[b + 6u], b_vertices[b + 7u], b_vertices[b + 8u],
                       b_vertices[b + 9u]);
         uv[k] = vec2(b_vertices[b + 10u], b_vertices[b + 11u]);
     }
-    mat3 m = mat3(clip[0].xyw, clip[1].xyw, clip[2].xyw);
-    // counter-clockwise in window coordinates (GL's front face) when det > 0
-    bool front = determinant(m) > 0.0;
-    mat3 m_inv = inverse(m);
     vec2 step = 2.0 * f_viewport.zw;   // one pixel in NDC
-    vec2 p = (vec2(px) + 0.5) * step - 1.0;
-    vec3 l = barycentrics(m_inv, p);
+    vec3 l = barycentrics(tr.m_inv, pixel_ndc(px));
     // the derivatives a fragment's 2x2 quad takes (coarse, as texture() gets them): the
     // quad's first pixel against its right and upper neighbours, on this triangle's plane
-    vec2 q = (vec2(px & ~1) + 0.5) * step - 1.0;
-    vec3 lq = barycentrics(m_inv, q);
-    vec3 lx = barycentrics(m_inv, q + vec2(step.x, 0.0)) - lq;
-    vec3 ly = barycentrics(m_inv, q + vec2(0.0, step.y)) - lq;
+    vec2 q = pixel_ndc(px & ~1);
+    vec3 lq = barycentrics(tr.m_inv, q);
+    vec3 lx = barycentrics(tr.m_inv, q + vec2(step.x, 0.0)) - lq;
+    vec3 ly = barycentrics(tr.m_inv, q + vec2(0.0, step.y)) - lq;
 
-    vec3 P = l.x * vpos[0] + l.y * vpos[1] + l.z * vpos[2];
-    mat3 nm = mat3(d.normal_matrix[0].xyz, d.normal_matrix[1].xyz, d.normal_matrix[2].xyz);
-    vec3 N = nm * (l.x * nrm[0] + l.y * nrm[1] + l.z * nrm[2]);
+    vec3 P = l.x * tr.vpos[0] + l.y * tr.vpos[1] + l.z * tr.vpos[2];
     vec2 UV = l.x * uv[0] + l.y * uv[1] + l.z * uv[2];
     vec2 uv_dx = lx.x * uv[0] + lx.y * uv[1] + lx.z * uv[2];
     vec2 uv_dy = ly.x * uv[0] + ly.y * uv[1] + ly.z * uv[2];
 
     // surface.inc's surface_get, from the interpolated values
-    vec3 n = vis_safe_normalize(N, vis_safe_normalize(-P, vec3(0.0, 0.0, 1.0)));
-    if (!front)
-        n = -n;
+    vec3 n = vis_normal(tr, draw_normal_matrix(tr.draw), l, P);
 #ifdef NORMAL_MAP
     vec4 T = l.x * tan[0] + l.y * tan[1] + l.z * tan[2];
     T.xyz = mat3(d.model_view) * T.xyz;
@@ -215,17 +269,39 @@ void main()
     bool inside = px.x < int(f_viewport.x) && px.y < int(f_viewport.y);
     uint shaded = 0u, covered = 0u;
 #ifdef MSAA_SAMPLES
-    // each distinct id of the pixel's samples shaded once at the pixel centre (what a
-    // forward pass shades for each triangle covering some sample) and stored into the
-    // samples that hold it: one shading for a pixel inside a triangle, one per surface
-    // on its edges
     uint ids[MSAA_SAMPLES];
-    bool edge = false;   // samples of more than one id (or of an id and of nothing)
+    bool mixed = false;   // samples of more than one id (or of an id and of nothing)
     for (int k = 0; k < MSAA_SAMPLES; k++) {
         ids[k] = inside ? texelFetch(t_visibility, px, k).r : VIS_EMPTY;
-        edge = edge || ids[k] != ids[0];
+        mixed = mixed || ids[k] != ids[0];
     }
-    for (int k = 0; k < MSAA_SAMPLES; k++) {
+    // deferred's edge rule (edge_rule.inc) on the surfaces of the pixel's ids, at its
+    // centre: two triangles of one smooth surface are no edge
+    bool edge = false;
+    if (mixed) {
+        vec3 p0, n0;
+        vis_surface(ids[0], px, p0, n0);
+        for (int k = 1; k < MSAA_SAMPLES && !edge; k++) {
+            if (ids[k] == ids[0])
+                continue;
+            vec3 p, n;
+            vis_surface(ids[k], px, p, n);
+            edge = edge_surfaces_differ(ids[0] != VIS_EMPTY, p0, n0, ids[k] != VIS_EMPTY, p,
+                                        n);
+        }
+    }
+    if (!edge && in_run(ids[0])) {
+        // sample 0's surface for every sample: shaded once
+        shaded = 1u;
+        covered = uint(MSAA_SAMPLES);
+        vec4 c = shade_id(ids[0], px);
+        for (int j = 0; j < MSAA_SAMPLES; j++)
+            imageStore(i_hdr, px, j, c);
+    }
+    // an edge: each distinct id shaded once at the pixel centre (what a forward pass
+    // shades for each triangle covering some sample) and stored into the samples that
+    // hold it
+    for (int k = 0; k < MSAA_SAMPLES && edge; k++) {
         if (!in_run(ids[k]))
             continue;
         covered++;

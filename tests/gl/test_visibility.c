@@ -4,10 +4,12 @@
  * opaque object (the visibility pass), one cull dispatch with point lights and none
  * without, and one shading dispatch per run of the visible list whose materials bind
  * the same maps (counted here from the frontend's own list); its image agrees with
- * forward-spml within RMSE 1/255 (max 4/255), and at msaa 4 too (per distinct id of a
- * pixel's samples); and the id split (visibility_split) takes the fewest triangle bits and
- * refuses, naming the numbers, what does not fit. Every frame runs in a debug context;
- * any GL error fails the test. */
+ * forward-spml within RMSE 1/255 (max 4/255), and at msaa 4 too (deferred's edge rule
+ * on the rebuilt surfaces, edge pixels per distinct id); the shade pass's own counts
+ * (covered samples as forward-plus's shading pass passes them, shadings, edge pixels);
+ * seed 002's terms below deferred's for every G-buffer preset; and the id split
+ * (visibility_split) takes the fewest triangle bits and refuses, naming the numbers,
+ * what does not fit. Every frame runs in a debug context; any GL error fails the test. */
 #include <setjmp.h>
 #include <stdarg.h>
 #include <stddef.h>
@@ -231,8 +233,9 @@ static void test_no_cull_without_local_lights(void **state)
     scene_destroy(s);
 }
 
-/* msaa 4: the multisampled ids, each distinct id of a pixel shaded once at its centre
- * (as forward-spml shades each triangle covering a sample): within RMSE 1/255 of
+/* msaa 4: the multisampled ids, deferred's edge rule on the surfaces they hold, each
+ * distinct id of an edge pixel shaded once at its centre (as forward-spml shades each
+ * triangle covering a sample), any other pixel once: within RMSE 1/255 of
  * forward-spml at msaa 4, fewer than 1 % of the pixels off by more than 1/255 (the
  * tolerance of gl-agreement's msaa cases); the same draws and dispatches plus the
  * msaa-resolve pass, and the target's samples in the plan's bytes. */
