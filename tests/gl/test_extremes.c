@@ -1,8 +1,8 @@
 /* Extreme inputs (issue 5): for each case, each of deferred (curtis and reference
  * G-buffers, stencil light volumes; also fullscreen volumes where volumes matter),
  * forward-mpml, forward-spml (uniform block and storage buffer), forward-plus,
- * clustered, tiled-deferred (curtis G-buffer) and deferred-lighting (stencil; also
- * fullscreen where volumes matter) renders one frame of "shapes" (64x48 unless the case says otherwise)
+ * clustered, tiled-deferred (curtis G-buffer), deferred-lighting (stencil; also
+ * fullscreen where volumes matter) and visibility renders one frame of "shapes" (64x48 unless the case says otherwise)
  * with lights and camera set by hand, in a debug context. Each ends with no GL error, zero non-finite values in the float light accumulation
  * (renderer_read_hdr) and a readable RGBA8 output, or with a clear message before
  * anything renders:
@@ -77,6 +77,8 @@ static const config CONFIGS[] = {
      false, LIGHT_BUFFER_UNIFORM},
     {"deferred-lighting fullscreen", "deferred-lighting", GBUFFER_CURTIS,
      LIGHT_VOLUMES_FULLSCREEN, true, LIGHT_BUFFER_UNIFORM},
+    {"visibility", "visibility", GBUFFER_CURTIS, LIGHT_VOLUMES_STENCIL, false,
+     LIGHT_BUFFER_UNIFORM},
 };
 enum { SPML_UNIFORM = 5 };   /* CONFIGS' forward-spml with its uniform block */
 enum { NCONFIGS = sizeof CONFIGS / sizeof CONFIGS[0] };
@@ -768,9 +770,10 @@ static void test_resolution_max_tiled(void **state)
         fail_msg("a %dx%d context could not be created: %s", max, max, err);
     scene_light l = point(0.0f, 6.0f, 4.0f, 40.0f, 1.0f, ATTENUATION_LINEAR_RANGE);
     scene *s = build(&l, 1, &SIDE, max, max);
-    static const char *const tiled[] = {"forward-plus", "clustered", "tiled-deferred"};
+    static const char *const tiled[] = {"forward-plus", "clustered", "tiled-deferred",
+                                        "visibility"};
     for (size_t i = 0; i < NCONFIGS; i++)
-        for (size_t k = 0; k < 3; k++)
+        for (size_t k = 0; k < 4; k++)
             if (strcmp(CONFIGS[i].name, tiled[k]) == 0) {
                 renderer *pr = make(&CONFIGS[i], max, max, err, sizeof err);
                 if (!pr)
