@@ -24,9 +24,10 @@
 // it, an inner pixel once), and stored into the samples holding it. TILE_DEPTH_RANGES
 // (with it, when lights are culled): a centre outside the depth range its tile was
 // culled against loops every light, as forward_tiled.frag does.
-// Counted (i_counts, one image atomic per work group and counter): the shadings (the
-// pass's samples_shaded), the samples covered (its samples) and, msaa > 1, the pixels
-// whose samples hold more than one id (edge_fraction).
+// Counted (i_counts, an image atomic per shading pixel and counter): the shadings (the
+// pass's samples_shaded), the samples covered (its samples) and, msaa > 1, the edge
+// pixels (edge_fraction). Not reduced per work group first: the barrier that needs cost
+// llvmpipe 15-20 % of the pass (compare --exe, 5 paired rounds, 640x360 curtis-scene3).
 // Defines: TILE_SIZE, TILES_X, VIS_TRI_BITS, NO_GRID (no point or spot light: every
 // light of the frame looped), the material's map defines (DIFFUSE_MAP, GLOSS_MAP,
 // NORMAL_MAP, EMISSIVE_MAP), FOG, SHADOWS, HDR_RGBA32F, MSAA_SAMPLES, TILE_DEPTH_RANGES.
@@ -254,25 +255,17 @@ vec4 shade_id(uint id, ivec2 px)
     return forward_output(c, P.z, 1.0);
 }
 
-shared uint s_shaded, s_covered, s_edges;
-
 void main()
 {
-    if (gl_LocalInvocationIndex == 0u) {
-        s_shaded = 0u;
-        s_covered = 0u;
-        s_edges = 0u;
-    }
-    barrier();
     ivec2 px = ivec2(gl_GlobalInvocationID.xy);
-    // no early return: every invocation meets the barrier below
-    bool inside = px.x < int(f_viewport.x) && px.y < int(f_viewport.y);
+    if (px.x >= int(f_viewport.x) || px.y >= int(f_viewport.y))
+        return;
     uint shaded = 0u, covered = 0u;
 #ifdef MSAA_SAMPLES
     uint ids[MSAA_SAMPLES];
     bool mixed = false;   // samples of more than one id (or of an id and of nothing)
     for (int k = 0; k < MSAA_SAMPLES; k++) {
-        ids[k] = inside ? texelFetch(t_visibility, px, k).r : VIS_EMPTY;
+        ids[k] = texelFetch(t_visibility, px, k).r;
         mixed = mixed || ids[k] != ids[0];
     }
     // deferred's edge rule (edge_rule.inc) on the surfaces of the pixel's ids, at its
@@ -318,26 +311,16 @@ void main()
     }
     // a pixel's ids are read by every dispatch: its edge counted by the first only
     if (edge && u_draw_first == 0)
-        atomicAdd(s_edges, 1u);
+        imageAtomicAdd(i_counts, ivec2(2, 0), 1u);
 #else
-    uint id = inside ? texelFetch(t_visibility, px, 0).r : VIS_EMPTY;
+    uint id = texelFetch(t_visibility, px, 0).r;
     if (in_run(id)) {
         shaded = covered = 1u;
         imageStore(i_hdr, px, shade_id(id, px));
     }
 #endif
     if (shaded > 0u) {
-        atomicAdd(s_shaded, shaded);
-        atomicAdd(s_covered, covered);
-    }
-    barrier();
-    // one image atomic a work group: the counters of the frame (visibility.c's collect)
-    if (gl_LocalInvocationIndex == 0u) {
-        if (s_shaded > 0u) {
-            imageAtomicAdd(i_counts, ivec2(0, 0), s_shaded);
-            imageAtomicAdd(i_counts, ivec2(1, 0), s_covered);
-        }
-        if (s_edges > 0u)
-            imageAtomicAdd(i_counts, ivec2(2, 0), s_edges);
+        imageAtomicAdd(i_counts, ivec2(0, 0), shaded);
+        imageAtomicAdd(i_counts, ivec2(1, 0), covered);
     }
 }
