@@ -4,9 +4,10 @@
 # 1. `shadesweep info` for every EGL device (saved as OUTDIR/info-device-N.txt);
 # 2. on the first hardware device (not llvmpipe's software device; when there is none it
 #    says so and uses the software device), the renderer benchmark
-#    (experiments/renderers-{deferred,forward}.yaml) and seed 003's experiments at the
-#    paper's 1280x720, cut to fit 8 minutes in all: one trial each, experiment 1 at 30 s a
-#    run instead of 3 x 60 s (the cut manifests are written to OUTDIR/manifests/, under
+#    (experiments/renderers-{deferred,forward}.yaml), the deferred families over resolution
+#    and msaa (experiments/families-msaa.yaml, as committed: 3 trials of 5 frames) and
+#    seed 003's experiments at the paper's 1280x720, cut to fit 8 minutes in all: one
+#    trial each, experiment 1 at 30 s a run instead of 3 x 60 s (the cut manifests are written to OUTDIR/manifests/, under
 #    the experiments' own names, so that the report recognises them);
 # 3. the report over OUTDIR (OUTDIR/report.md) and each folder's ranked table.
 # --resume keeps the complete runs of an earlier, interrupted OUTDIR; when the time
@@ -79,12 +80,13 @@ cut() {  # cut NAME SED-SCRIPT: OUTDIR/manifests/NAME.yaml from experiments/NAME
 }
 cut renderers-deferred 's/^trials: 3$/trials: 1/'
 cut renderers-forward 's/^trials: 3$/trials: 1/'
+cut families-msaa ''
 cut s003-exp2 's/^trials: 3$/trials: 1/'
 cut s003-exp1 's/^trials: 3$/trials: 1/; s/^duration: {seconds: 60}$/duration: {seconds: 30}/'
 opts=()
 [ "$smoke" -eq 1 ] && opts+=(--smoke)
 status=0
-for m in renderers-deferred renderers-forward s003-exp2 s003-exp1; do
+for m in renderers-deferred renderers-forward families-msaa s003-exp2 s003-exp1; do
   left=$((budget - (SECONDS - start)))
   if [ $left -le 0 ]; then
     echo "gpu-bench: the ${budget} s budget is spent before $m" >&2

@@ -1,8 +1,9 @@
 #!/usr/bin/env bash
 # scripts/gpu-bench.sh at smoke size on whatever EGL devices this machine has (here
-# llvmpipe's software device): info for every device, the renderer benchmark and seed
-# 003's experiments cut to the budget, the report; --resume runs nothing again; an
-# existing folder without --resume and a spent budget are refused with a message.
+# llvmpipe's software device): info for every device, the renderer benchmark, the
+# deferred families over resolution and msaa, and seed 003's experiments cut to the
+# budget, the report; --resume runs nothing again; an existing folder without --resume
+# and a spent budget are refused with a message.
 . "$(dirname "$0")/lib.sh"
 need_gl
 cd "$T"
@@ -36,6 +37,7 @@ check() {  # check NAME RUNS
 }
 check renderers-deferred 12
 check renderers-forward 6
+check families-msaa 8
 check s003-exp2 2
 check s003-exp1 6
 grep -q "^| s003-exp1 | run | 6 |" gb/report.md || fail "report: s003-exp1"
