@@ -271,8 +271,15 @@ uint64_t deferred_last_shade_draws(const void *self, int type)
     return r && type >= 0 && type < DEFERRED_LIGHT_TYPES ? r->shade_draws[type] : 0;
 }
 
+/* The G-buffer's, and depth.sampled (when the position comes from depth). */
+static uint64_t deferred_own_bytes(const renderer_estimate *e)
+{
+    return deferred_gbuffer_own_bytes(e) + 4u * e->samples * e->pixels;
+}
+
 const renderer_impl renderer_deferred_impl = RENDERER_IMPL(
     deferred, "deferred", "gbuffer deferred hdr msaa fog aa",
     "G-buffer pass, then ambient, directional and light-volume passes "
     "(fullscreen | volume | stencil | stencil-two-pass), sky last",
-    .collect = deferred_collect, .read_hdr = deferred_read_hdr, .traffic = deferred_traffic);
+    .collect = deferred_collect, .read_hdr = deferred_read_hdr, .traffic = deferred_traffic,
+    .own_bytes = deferred_own_bytes);

@@ -607,3 +607,14 @@ gbuffer_traffic deferred_traffic(const void *self, const frame_stats *fs)
     return deferred_gbuffer_traffic(r->prepared ? deferred_layout_bytes_per_pixel(&r->layout) : 0,
                                     r->b.width, r->b.height, fs);
 }
+
+uint64_t deferred_gbuffer_own_bytes(const renderer_estimate *e)
+{
+    unsigned bpp = deferred_gbuffer_bytes_per_pixel(
+        e->opts, e->scene ? e->needs : (deferred_needs){.gloss = true, .emissive = true});
+    uint64_t samples = e->samples * e->pixels;
+    uint64_t b = (uint64_t)(bpp ? bpp : 64) * samples;
+    if (e->opts->separate_specular)
+        b += e->hdr_bytes * samples;
+    return b;
+}

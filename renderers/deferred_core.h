@@ -159,5 +159,9 @@ void deferred_frame_end(deferred_renderer *r, const scene *s, frame_stats *out, 
 
 void deferred_describe(const void *self, pass_plan *out);
 bool deferred_read_hdr(void *self, float *rgba, int width, int height);
+/* renderer_impl.own_bytes of a G-buffer renderer: the layout's bytes per sample (64 when
+ * the layout does not build: the widest preset's bound) and, with separate_specular,
+ * the specular target's. */
+uint64_t deferred_gbuffer_own_bytes(const renderer_estimate *e);
 /* renderer_impl.traffic: deferred_gbuffer_traffic of the layout prepare built. */
 gbuffer_traffic deferred_traffic(const void *self, const frame_stats *fs);

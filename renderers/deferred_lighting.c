@@ -170,10 +170,19 @@ static void deferred_lighting_draw(void *self, const scene *s, frame_stats *out)
     deferred_frame_end(d, s, out, d->fb_light.fbo);
 }
 
+/* Its fixed G-buffer (normal + shininess, RGBA16F), depth.sampled and the light
+ * buffer's two targets (deferred_lighting.light_buffer), every one per sample. */
+static uint64_t deferred_lighting_own_bytes(const renderer_estimate *e)
+{
+    uint64_t light = e->opts->lpp_light_buffer == LPP_LIGHT_BUFFER_RGBA8 ? 4 : 8;
+    return (8 + 4 + 2 * light) * e->samples * e->pixels;
+}
+
 const renderer_impl renderer_deferred_lighting_impl = RENDERER_IMPL(
     deferred_lighting, "deferred-lighting",
     "deferred.light_volumes deferred_lighting hdr msaa fog aa",
     "light pre-pass (Engel 2008): normal + shininess G-buffer, diffuse and specular light "
     "into a light buffer by deferred's light volumes, then the objects again with their "
     "materials (depth EQUAL)",
-    .collect = deferred_collect, .read_hdr = deferred_read_hdr, .traffic = deferred_traffic);
+    .collect = deferred_collect, .read_hdr = deferred_read_hdr, .traffic = deferred_traffic,
+    .own_bytes = deferred_lighting_own_bytes);

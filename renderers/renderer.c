@@ -239,10 +239,24 @@ bool renderer_reads(const char *reads, const char *path)
     return false;
 }
 
-bool deferred_uses_gbuffer(const char *kind, const renderer_options *o)
+/* The design that serves kind with options o (its variant's, for clustered); NULL for
+ * an unknown kind, or a variant without options. */
+static const renderer_impl *design_of(const char *kind, const renderer_options *o)
 {
     const renderer_impl *impl = kind ? renderer_kind_find(kind) : NULL;
     if (impl && impl->variant)
         impl = o ? impl->variant(o) : NULL;
+    return impl;
+}
+
+bool deferred_uses_gbuffer(const char *kind, const renderer_options *o)
+{
+    const renderer_impl *impl = design_of(kind, o);
     return impl && renderer_reads(impl->reads, "gbuffer");
+}
+
+uint64_t renderer_own_bytes(const char *kind, const renderer_estimate *e)
+{
+    const renderer_impl *impl = design_of(kind, e->opts);
+    return impl && impl->own_bytes ? impl->own_bytes(e) : 0;
 }

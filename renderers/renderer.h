@@ -229,6 +229,8 @@ typedef struct renderer_options {
     int msaa;
 } renderer_options;
 
+struct renderer_estimate;
+
 typedef struct renderer_impl {
     const char *name;
     const char *description;
@@ -259,6 +261,11 @@ typedef struct renderer_impl {
      * frame (results/bandwidth.h's MRT terms): the bytes the renderer's per-sample
      * surface target (a G-buffer, the visibility ids) is written and read in it. */
     gbuffer_traffic (*traffic)(const void *self, const frame_stats *fs);
+    /* Optional (NULL: none): the bytes of the targets and buffers the design makes
+     * beyond the base's (hdr, depth, msaa resolve, edge AA, shadow maps, light lists),
+     * for the memory estimate a run is checked against before it starts
+     * (runner/memory.c): a model, no GL call. */
+    uint64_t (*own_bytes)(const struct renderer_estimate *e);
     /* Optional (NULL: the entries above serve): a renderer that is one of two designs
      * chosen by an option (clustered: forward or deferred shading over the same cluster
      * lists) returns the registered renderer whose entry points serve an object made with
@@ -343,6 +350,22 @@ typedef struct deferred_needs {
                                           shininess (a gloss map only scales it) */
     bool emissive;                     /* some object's material has an emissive colour > 0 */
 } deferred_needs;
+
+/* What renderer_impl.own_bytes is given: the run's options (msaa already the samples a
+ * pixel), the output's pixels, its HDR target's bytes a sample, and what the scene
+ * needs (scene false: not built; then the widest bound). */
+typedef struct renderer_estimate {
+    const renderer_options *opts;
+    uint64_t pixels;
+    uint64_t samples;             /* >= 1 */
+    uint64_t hdr_bytes;           /* 8 (RGBA16F) or 16 (RGBA32F) */
+    bool scene;
+    deferred_needs needs;         /* (scene) the materials' G-buffer needs */
+    uint64_t scene_bytes;         /* (scene) the meshes' vertices and indices */
+} renderer_estimate;
+/* renderer_impl.own_bytes of the design that serves `kind` with e->opts (its variant);
+ * 0 for an unknown kind or a design without one. */
+uint64_t renderer_own_bytes(const char *kind, const renderer_estimate *e);
 
 /* What objects' materials of s write (opaque and alpha-tested ones: translucent objects
  * never reach the G-buffer, renderers/translucent.h). */

@@ -114,6 +114,12 @@ gbuffer_traffic visibility_id_traffic(int width, int height, int samples, const 
                              s002_mrt_read_bytes(4.0, screen * dispatches)};
 }
 
+/* Its R32UI ids per sample, and the meshes' copies (at most the scene's bytes). */
+static uint64_t visibility_own_bytes(const renderer_estimate *e)
+{
+    return 4u * e->samples * e->pixels + (e->scene ? e->scene_bytes : 0);
+}
+
 static gbuffer_traffic visibility_traffic(const void *self, const frame_stats *fs)
 {
     const visibility *r = self;
@@ -624,4 +630,5 @@ const renderer_impl renderer_visibility_impl = RENDERER_IMPL(
     "target, lights culled per tile, then a compute pass that refetches each pixel's "
     "triangle and shades it with analytic derivatives",
     .collect = visibility_collect, .read_hdr = forward_read_hdr,
-    .light_grid = forward_grid_counts, .traffic = visibility_traffic);
+    .light_grid = forward_grid_counts, .traffic = visibility_traffic,
+    .own_bytes = visibility_own_bytes);

@@ -72,7 +72,8 @@ static void facts_of(const scene *sc, scene_facts *f)
 static uint64_t targets_of(const char *kind, const run_params *q, int w, int h, int msaa_log2,
                            const scene_facts *sc)
 {
-    if (!kind[0] || is(kind, "null"))
+    const renderer_impl *impl = renderer_kind_find(kind);
+    if (!impl || impl->no_base)   /* null: no target of its own */
         return 0;
     const uint64_t px = (uint64_t)w * (uint64_t)h, s = 1u << msaa_log2;
     const uint64_t hdr = q->hdr == 1 ? 16 : 8, depth = 4;
@@ -80,25 +81,11 @@ static uint64_t targets_of(const char *kind, const run_params *q, int w, int h, 
     renderer_options ro = {0};
     params_to_renderer_options(q, &ro);
     ro.msaa = (int)s;
-    if (deferred_uses_gbuffer(kind, &ro)) {
-        unsigned bpp = deferred_gbuffer_bytes_per_pixel(
-            &ro, sc ? sc->needs : (deferred_needs){.gloss = true, .emissive = true});
-        if (!bpp)
-            bpp = 64;   /* no scene: the widest preset's bound */
-        b += (uint64_t)bpp * s * px;
-        if (is(kind, "deferred"))
-            b += depth * s * px;   /* depth.sampled, when the position comes from depth */
-        if (q->separate_specular)
-            b += hdr * s * px;
-    }
-    if (is(kind, "deferred-lighting")) {
-        /* its fixed G-buffer (normal + shininess, RGBA16F), depth.sampled and the light
-         * buffer's two targets (deferred_lighting.light_buffer), every one per sample */
-        const uint64_t lbuf = q->lpp_light_buffer == 1 ? 4 : 8;
-        b += (8 + depth + 2 * lbuf) * s * px;
-    }
-    if (is(kind, "visibility"))   /* its R32UI ids; the meshes' copies at most the scene's */
-        b += 4u * s * px + (sc ? sc->bytes : 0);
+    /* what the design makes beyond the base (renderer_impl.own_bytes) */
+    renderer_estimate e = {.opts = &ro, .pixels = px, .samples = s, .hdr_bytes = hdr,
+                           .scene = sc != NULL, .needs = sc ? sc->needs : (deferred_needs){0},
+                           .scene_bytes = sc ? sc->bytes : 0};
+    b += renderer_own_bytes(kind, &e);
     if (q->aa == 1)
         b += (hdr + depth) * px;   /* edge AA's output and single-sample depth */
     if (sc && q->shadows != 1)

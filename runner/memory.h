@@ -4,8 +4,9 @@
  *
  * The estimate is computed from the run's parameters and its built scene, without
  * GL: V = render targets (every target the renderer allocates, width x height x
- * samples x bytes per texel: HDR, depth, the MSAA resolve, the G-buffer layout of
- * renderers/gbuffer_layout.c, edge AA, shadow maps, the context's own RGBA8 +
+ * samples x bytes per texel: HDR, depth, the MSAA resolve, what the design makes
+ * itself (renderer_impl.own_bytes: a G-buffer layout of renderers/gbuffer_layout.c, a
+ * light buffer, visibility ids), edge AA, shadow maps, the context's own RGBA8 +
  * depth-stencil framebuffer) + light lists (tiles or clusters x their index cap, as
  * forward_plus.c sizes them, with their CPU copies) + scene (vertices, indices,
  * textures, twice: ours and the driver's) + read-back and reference (screenshots,

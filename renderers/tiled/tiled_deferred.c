@@ -318,4 +318,5 @@ const renderer_impl renderer_tiled_deferred_impl = RENDERER_IMPL(
     "pass that culls lights per screen tile and shades ambient, directional "
     "and local lights into the HDR target by image store; sky last",
     .collect = tiled_deferred_collect, .read_hdr = deferred_read_hdr,
-    .light_grid = tiled_deferred_light_grid, .traffic = deferred_traffic);
+    .light_grid = tiled_deferred_light_grid, .traffic = deferred_traffic,
+    .own_bytes = deferred_gbuffer_own_bytes);
