@@ -401,17 +401,7 @@ static bool visibility_prepare(void *self, const scene *s, char *err, size_t err
         snprintf(err, errlen, "visibility: %s", why);
         goto fail;
     }
-    if (c->b.samples > 1 && g->cull) {
-        gl.CreateBuffers(1, &r->depth_ranges);
-        gl.NamedBufferStorage(r->depth_ranges,
-                              (GLsizeiptr)((size_t)g->ntiles * 2u * sizeof(float)), NULL,
-                              GL_DYNAMIC_STORAGE_BIT);
-    }
-    if (!compile(r, err, errlen))
-        goto fail;
-    const translucent_grid tg = light_grid_translucent(g);
-    if (!translucent_compile(&c->translucent, &c->b, &c->b.shadows, g->ntlists ? &tg : NULL,
-                             err, errlen))
+    if (!compile(r, err, errlen) || !forward_grid_prepare_end(c, &r->depth_ranges, err, errlen))
         goto fail;
     return true;
 fail:

@@ -207,14 +207,7 @@ static bool forward_tiled_prepare(void *self, const struct scene *s, char *err, 
                  s->nlights_total, g->ncells);
         goto fail;
     }
-    if (ms && g->cull) {
-        gl.CreateBuffers(1, &r->depth_ranges);
-        gl.NamedBufferStorage(r->depth_ranges, (GLsizeiptr)((size_t)g->ntiles * 2u * sizeof(float)),
-                              NULL, GL_DYNAMIC_STORAGE_BIT);
-    }
-    const translucent_grid tg = light_grid_translucent(g);
-    if (!translucent_compile(&c->translucent, &c->b, &c->b.shadows, g->ntlists ? &tg : NULL,
-                             err, errlen))
+    if (!forward_grid_prepare_end(c, &r->depth_ranges, err, errlen))
         goto fail;
     return true;
 fail:

@@ -279,3 +279,16 @@ void forward_grid_describe_translucent(const forward_common *c, pass_plan *out)
                               !c->translucent.run ? "skipped: no translucent materials"
                                                   : "skipped: no cull pass, every light");
 }
+
+bool forward_grid_prepare_end(forward_common *c, GLuint *depth_ranges, char *err, size_t errlen)
+{
+    const light_grid *g = c->grid;
+    if (c->b.samples > 1 && g->cull) {
+        gl.CreateBuffers(1, depth_ranges);
+        gl.NamedBufferStorage(*depth_ranges, (GLsizeiptr)((size_t)g->ntiles * 2u * sizeof(float)),
+                              NULL, GL_DYNAMIC_STORAGE_BIT);
+    }
+    const translucent_grid tg = light_grid_translucent(g);
+    return translucent_compile(&c->translucent, &c->b, &c->b.shadows, g->ntlists ? &tg : NULL,
+                               err, errlen);
+}

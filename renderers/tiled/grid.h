@@ -121,4 +121,10 @@ void forward_grid_collect(void *self, frame_stats *out);
 /* The plan's "translucent-lists" entry of such a renderer (forward_describe_pass): built
  * in the cull dispatch when the scene has translucency and the cull runs. */
 void forward_grid_describe_translucent(const struct forward_common *c, pass_plan *out);
+/* The end of such a renderer's prepare: at msaa > 1 with the cull pass, *depth_ranges,
+ * the tiles' culled depth ranges (TILE_DEPTH_RANGES: a vec2 a tile); then the translucent
+ * pass over the grid's translucent lists (every light without them). False with a
+ * message. */
+bool forward_grid_prepare_end(struct forward_common *c, GLuint *depth_ranges, char *err,
+                              size_t errlen);
 const uint32_t *forward_grid_counts(const void *self, size_t *n);
