@@ -12,6 +12,9 @@
  *   total_draws()            a frame's draw calls over all its passes.
  *   GL_TEST_SKIP_WITHOUT_EGL()  in main: exit 77 (skipped) with the reason when there is
  *                            no EGL display.
+ *   GL_TEST_MAIN(ctx, w, h, tests...)  the whole main() of a test whose cmocka tests
+ *                            share one debug context in the file's `ctx`, made at w x h
+ *                            before the first and destroyed after the last.
  *   gl_test_expect_agree()   two images agree within the test's tolerances, no pixel
  *                            non-finite; the numbers printed when not (or always).
  *   test_renderer_create()   (tests/test_options.h) renderer_create with the options the
@@ -41,6 +44,26 @@
             return 77;                                                                     \
         }                                                                                  \
     } while (0)
+
+#define GL_TEST_MAIN(CTX, W, H, ...)                                                       \
+    static int gl_test_setup_(void **state)                                                \
+    {                                                                                      \
+        (void)state;                                                                       \
+        CTX = gl_test_context(W, H);                                                       \
+        return CTX ? 0 : -1;                                                               \
+    }                                                                                      \
+    static int gl_test_teardown_(void **state)                                             \
+    {                                                                                      \
+        (void)state;                                                                       \
+        gl_context_destroy(CTX);                                                           \
+        return 0;                                                                          \
+    }                                                                                      \
+    int main(void)                                                                         \
+    {                                                                                      \
+        GL_TEST_SKIP_WITHOUT_EGL();                                                        \
+        const struct CMUnitTest tests_[] = {__VA_ARGS__};                                  \
+        return cmocka_run_group_tests(tests_, gl_test_setup_, gl_test_teardown_);          \
+    }
 
 static inline bool egl_display_available(char *why, size_t len)
 {

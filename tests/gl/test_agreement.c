@@ -459,35 +459,15 @@ static void test_msaa4(void **state)
     g_msaa = 0;
 }
 
-static int setup(void **state)
-{
-    (void)state;
-    ctx = gl_test_context(W, H);
-    return ctx ? 0 : -1;
-}
-
-static int teardown(void **state)
-{
-    (void)state;
-    gl_context_destroy(ctx);
-    return 0;
-}
-
-int main(void)
-{
-    GL_TEST_SKIP_WITHOUT_EGL();
-    const struct CMUnitTest tests[] = {
-        cmocka_unit_test(test_point),
-        cmocka_unit_test(test_spot),
-        cmocka_unit_test(test_directional),
-        cmocka_unit_test(test_sixteen_lights),
-        cmocka_unit_test(test_camera_inside_point_volume),
-        cmocka_unit_test(test_camera_inside_spot_volume),
-        cmocka_unit_test(test_volume_cut_by_near_plane),
-        cmocka_unit_test(test_volume_cut_by_far_plane),
-        cmocka_unit_test(test_fog),
-        cmocka_unit_test(test_rgba32f_many_overlapping_lights),
-        cmocka_unit_test(test_msaa4),
-    };
-    return cmocka_run_group_tests(tests, setup, teardown);
-}
+GL_TEST_MAIN(ctx, W, H,
+             cmocka_unit_test(test_point),
+             cmocka_unit_test(test_spot),
+             cmocka_unit_test(test_directional),
+             cmocka_unit_test(test_sixteen_lights),
+             cmocka_unit_test(test_camera_inside_point_volume),
+             cmocka_unit_test(test_camera_inside_spot_volume),
+             cmocka_unit_test(test_volume_cut_by_near_plane),
+             cmocka_unit_test(test_volume_cut_by_far_plane),
+             cmocka_unit_test(test_fog),
+             cmocka_unit_test(test_rgba32f_many_overlapping_lights),
+             cmocka_unit_test(test_msaa4))

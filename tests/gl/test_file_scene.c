@@ -251,27 +251,7 @@ static void test_alpha_mask(void **state)
     assert_int_equal(system(cmd), 0);
 }
 
-static int setup(void **state)
-{
-    (void)state;
-    ctx = gl_test_context(W, H);
-    return ctx ? 0 : -1;
-}
-
-static int teardown(void **state)
-{
-    (void)state;
-    gl_context_destroy(ctx);
-    return 0;
-}
-
-int main(void)
-{
-    GL_TEST_SKIP_WITHOUT_EGL();
-    const struct CMUnitTest tests[] = {
-        cmocka_unit_test(test_engine),
-        cmocka_unit_test(test_textured_box),
-        cmocka_unit_test(test_alpha_mask),
-    };
-    return cmocka_run_group_tests(tests, setup, teardown);
-}
+GL_TEST_MAIN(ctx, W, H,
+             cmocka_unit_test(test_engine),
+             cmocka_unit_test(test_textured_box),
+             cmocka_unit_test(test_alpha_mask))

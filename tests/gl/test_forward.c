@@ -876,37 +876,17 @@ static void test_queries_and_misuse(void **state)
     scene_destroy(s);
 }
 
-static int setup(void **state)
-{
-    (void)state;
-    ctx = gl_test_context(W, H);
-    return ctx ? 0 : -1;
-}
-
-static int teardown(void **state)
-{
-    (void)state;
-    gl_context_destroy(ctx);
-    return 0;
-}
-
-int main(void)
-{
-    GL_TEST_SKIP_WITHOUT_EGL();
-    const struct CMUnitTest tests[] = {
-        cmocka_unit_test(test_mpml_draw_calls),
-        cmocka_unit_test(test_mpml_draw_calls_without_sets),
-        cmocka_unit_test(test_mpml_light_reaching_nothing),
-        cmocka_unit_test(test_spml_draw_calls),
-        cmocka_unit_test(test_empty_scene),
-        cmocka_unit_test(test_state_buckets),
-        cmocka_unit_test(test_describe),
-        cmocka_unit_test(test_agree_one_point),
-        cmocka_unit_test(test_agree_sixteen_points),
-        cmocka_unit_test(test_agree_sixty_four_points),
-        cmocka_unit_test(test_agree_spot_and_directional),
-        cmocka_unit_test(test_spml_limit),
-        cmocka_unit_test(test_queries_and_misuse),
-    };
-    return cmocka_run_group_tests(tests, setup, teardown);
-}
+GL_TEST_MAIN(ctx, W, H,
+             cmocka_unit_test(test_mpml_draw_calls),
+             cmocka_unit_test(test_mpml_draw_calls_without_sets),
+             cmocka_unit_test(test_mpml_light_reaching_nothing),
+             cmocka_unit_test(test_spml_draw_calls),
+             cmocka_unit_test(test_empty_scene),
+             cmocka_unit_test(test_state_buckets),
+             cmocka_unit_test(test_describe),
+             cmocka_unit_test(test_agree_one_point),
+             cmocka_unit_test(test_agree_sixteen_points),
+             cmocka_unit_test(test_agree_sixty_four_points),
+             cmocka_unit_test(test_agree_spot_and_directional),
+             cmocka_unit_test(test_spml_limit),
+             cmocka_unit_test(test_queries_and_misuse))

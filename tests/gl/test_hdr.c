@@ -577,31 +577,11 @@ static void test_fog_formula(void **state)
     scene_destroy(s);
 }
 
-static int setup(void **state)
-{
-    (void)state;
-    ctx = gl_test_context(W, H);
-    return ctx ? 0 : -1;
-}
-
-static int teardown(void **state)
-{
-    (void)state;
-    gl_context_destroy(ctx);
-    return 0;
-}
-
-int main(void)
-{
-    GL_TEST_SKIP_WITHOUT_EGL();
-    const struct CMUnitTest tests[] = {
-        cmocka_unit_test(test_hdr_matches_output),
-        cmocka_unit_test(test_unprepared),
-        cmocka_unit_test(test_null_has_none),
-        cmocka_unit_test(test_overflow),
-        cmocka_unit_test(test_rgba32f_every_renderer),
-        cmocka_unit_test(test_rgba32f_internal_format),
-        cmocka_unit_test(test_fog_formula),
-    };
-    return cmocka_run_group_tests(tests, setup, teardown);
-}
+GL_TEST_MAIN(ctx, W, H,
+             cmocka_unit_test(test_hdr_matches_output),
+             cmocka_unit_test(test_unprepared),
+             cmocka_unit_test(test_null_has_none),
+             cmocka_unit_test(test_overflow),
+             cmocka_unit_test(test_rgba32f_every_renderer),
+             cmocka_unit_test(test_rgba32f_internal_format),
+             cmocka_unit_test(test_fog_formula))

@@ -550,32 +550,12 @@ static void test_tiled_deferred_exact_edges(void **state)
     scene_destroy(s);
 }
 
-static int setup(void **state)
-{
-    (void)state;
-    ctx = gl_test_context(W, H);
-    return ctx ? 0 : -1;
-}
-
-static int teardown(void **state)
-{
-    (void)state;
-    gl_context_destroy(ctx);
-    return 0;
-}
-
-int main(void)
-{
-    GL_TEST_SKIP_WITHOUT_EGL();
-    const struct CMUnitTest tests[] = {
-        cmocka_unit_test(test_refusal_on_given_limits),
-        cmocka_unit_test(test_refusal_on_the_context),
-        cmocka_unit_test(test_forward_msaa4),
-        cmocka_unit_test(test_edge_aa_after_msaa),
-        cmocka_unit_test(test_deferred_agrees_msaa4),
-        cmocka_unit_test(test_per_sample_exactly_on_edges),
-        cmocka_unit_test(test_tiled_deferred_agrees_msaa4),
-        cmocka_unit_test(test_tiled_deferred_exact_edges),
-    };
-    return cmocka_run_group_tests(tests, setup, teardown);
-}
+GL_TEST_MAIN(ctx, W, H,
+             cmocka_unit_test(test_refusal_on_given_limits),
+             cmocka_unit_test(test_refusal_on_the_context),
+             cmocka_unit_test(test_forward_msaa4),
+             cmocka_unit_test(test_edge_aa_after_msaa),
+             cmocka_unit_test(test_deferred_agrees_msaa4),
+             cmocka_unit_test(test_per_sample_exactly_on_edges),
+             cmocka_unit_test(test_tiled_deferred_agrees_msaa4),
+             cmocka_unit_test(test_tiled_deferred_exact_edges))

@@ -301,27 +301,7 @@ static void test_counts_at_msaa4(void **state)
     scene_destroy(s);
 }
 
-static int setup(void **state)
-{
-    (void)state;
-    ctx = gl_test_context(W, H);
-    return ctx ? 0 : -1;
-}
-
-static int teardown(void **state)
-{
-    (void)state;
-    gl_context_destroy(ctx);
-    return 0;
-}
-
-int main(void)
-{
-    GL_TEST_SKIP_WITHOUT_EGL();
-    const struct CMUnitTest tests[] = {
-        cmocka_unit_test(test_agreement_cases),
-        cmocka_unit_test(test_light_at_the_silhouette),
-        cmocka_unit_test(test_counts_at_msaa4),
-    };
-    return cmocka_run_group_tests(tests, setup, teardown);
-}
+GL_TEST_MAIN(ctx, W, H,
+             cmocka_unit_test(test_agreement_cases),
+             cmocka_unit_test(test_light_at_the_silhouette),
+             cmocka_unit_test(test_counts_at_msaa4))

@@ -1120,32 +1120,12 @@ static void test_extremes(void **state)
     scene_destroy(s);
 }
 
-static int setup(void **state)
-{
-    (void)state;
-    ctx = gl_test_context(W, H);
-    return ctx ? 0 : -1;
-}
-
-static int teardown(void **state)
-{
-    (void)state;
-    gl_context_destroy(ctx);
-    return 0;
-}
-
-int main(void)
-{
-    GL_TEST_SKIP_WITHOUT_EGL();
-    const struct CMUnitTest tests[] = {
-        cmocka_unit_test(test_spot_occluder),
-        cmocka_unit_test(test_directional_occluder),
-        cmocka_unit_test(test_agreement),
-        cmocka_unit_test(test_sets_and_draws),
-        cmocka_unit_test(test_catalog_draws),
-        cmocka_unit_test(test_directional_in_base),
-        cmocka_unit_test(test_plans),
-        cmocka_unit_test(test_extremes),
-    };
-    return cmocka_run_group_tests(tests, setup, teardown);
-}
+GL_TEST_MAIN(ctx, W, H,
+             cmocka_unit_test(test_spot_occluder),
+             cmocka_unit_test(test_directional_occluder),
+             cmocka_unit_test(test_agreement),
+             cmocka_unit_test(test_sets_and_draws),
+             cmocka_unit_test(test_catalog_draws),
+             cmocka_unit_test(test_directional_in_base),
+             cmocka_unit_test(test_plans),
+             cmocka_unit_test(test_extremes))

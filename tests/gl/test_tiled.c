@@ -539,31 +539,11 @@ static void test_clustered_deferred(void **state)
     scene_destroy(s);
 }
 
-static int setup(void **state)
-{
-    (void)state;
-    ctx = gl_test_context(W, H);
-    return ctx ? 0 : -1;
-}
-
-static int teardown(void **state)
-{
-    (void)state;
-    gl_context_destroy(ctx);
-    return 0;
-}
-
-int main(void)
-{
-    GL_TEST_SKIP_WITHOUT_EGL();
-    const struct CMUnitTest tests[] = {
-        cmocka_unit_test(test_counts_and_tile_sizes),
-        cmocka_unit_test(test_4096_lights),
-        cmocka_unit_test(test_overflow_is_reported),
-        cmocka_unit_test(test_no_cull_without_local_lights),
-        cmocka_unit_test(test_shadows_on_and_off),
-        cmocka_unit_test(test_tiled_deferred_gbuffers),
-        cmocka_unit_test(test_clustered_deferred),
-    };
-    return cmocka_run_group_tests(tests, setup, teardown);
-}
+GL_TEST_MAIN(ctx, W, H,
+             cmocka_unit_test(test_counts_and_tile_sizes),
+             cmocka_unit_test(test_4096_lights),
+             cmocka_unit_test(test_overflow_is_reported),
+             cmocka_unit_test(test_no_cull_without_local_lights),
+             cmocka_unit_test(test_shadows_on_and_off),
+             cmocka_unit_test(test_tiled_deferred_gbuffers),
+             cmocka_unit_test(test_clustered_deferred))

@@ -589,32 +589,12 @@ static void test_no_translucency_skips_the_pass(void **state)
     scene_destroy(s);
 }
 
-static int setup(void **state)
-{
-    (void)state;
-    ctx = gl_test_context(W, H);
-    return ctx ? 0 : -1;
-}
-
-static int teardown(void **state)
-{
-    (void)state;
-    gl_context_destroy(ctx);
-    return 0;
-}
-
-int main(void)
-{
-    GL_TEST_SKIP_WITHOUT_EGL();
-    const struct CMUnitTest tests[] = {
-        cmocka_unit_test(test_glass_agreement),
-        cmocka_unit_test(test_pane_in_front_of_light_volume),
-        cmocka_unit_test(test_light_before_the_wall),
-        cmocka_unit_test(test_pane_beyond_a_wall_edge),
-        cmocka_unit_test(test_translucent_lists_overflow),
-        cmocka_unit_test(test_shadowed_spot),
-        cmocka_unit_test(test_back_to_front),
-        cmocka_unit_test(test_no_translucency_skips_the_pass),
-    };
-    return cmocka_run_group_tests(tests, setup, teardown);
-}
+GL_TEST_MAIN(ctx, W, H,
+             cmocka_unit_test(test_glass_agreement),
+             cmocka_unit_test(test_pane_in_front_of_light_volume),
+             cmocka_unit_test(test_light_before_the_wall),
+             cmocka_unit_test(test_pane_beyond_a_wall_edge),
+             cmocka_unit_test(test_translucent_lists_overflow),
+             cmocka_unit_test(test_shadowed_spot),
+             cmocka_unit_test(test_back_to_front),
+             cmocka_unit_test(test_no_translucency_skips_the_pass))

@@ -363,29 +363,9 @@ static void test_split(void **state)
                              "2^31 triangles a mesh");
 }
 
-static int setup(void **state)
-{
-    (void)state;
-    ctx = gl_test_context(W, H);
-    return ctx ? 0 : -1;
-}
-
-static int teardown(void **state)
-{
-    (void)state;
-    gl_context_destroy(ctx);
-    return 0;
-}
-
-int main(void)
-{
-    GL_TEST_SKIP_WITHOUT_EGL();
-    const struct CMUnitTest tests[] = {
-        cmocka_unit_test(test_split),
-        cmocka_unit_test(test_counts_and_target),
-        cmocka_unit_test(test_no_cull_without_local_lights),
-        cmocka_unit_test(test_msaa4),
-        cmocka_unit_test(test_traffic_below_deferred),
-    };
-    return cmocka_run_group_tests(tests, setup, teardown);
-}
+GL_TEST_MAIN(ctx, W, H,
+             cmocka_unit_test(test_split),
+             cmocka_unit_test(test_counts_and_target),
+             cmocka_unit_test(test_no_cull_without_local_lights),
+             cmocka_unit_test(test_msaa4),
+             cmocka_unit_test(test_traffic_below_deferred))
