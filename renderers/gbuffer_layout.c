@@ -382,18 +382,6 @@ unsigned deferred_gbuffer_bytes_per_pixel(const renderer_options *o, deferred_ne
                ? deferred_layout_bytes_per_pixel(&l) : 0;
 }
 
-unsigned deferred_gbuffer_bytes_per_pixel_of(const char *kind, const renderer_options *o,
-                                             const scene *s)
-{
-    if (kind && strcmp(kind, "deferred-lighting") == 0) {   /* its own fixed layout */
-        deferred_layout l;
-        deferred_layout_light_prepass(deferred_needs_of(s), &l);
-        return deferred_layout_bytes_per_pixel(&l);
-    }
-    return deferred_uses_gbuffer(kind, o) ? deferred_gbuffer_bytes_per_pixel(o, deferred_needs_of(s))
-                                          : 0;
-}
-
 gbuffer_traffic deferred_gbuffer_traffic(unsigned bytes_per_pixel, int width, int height,
                                          const frame_stats *fs)
 {

@@ -377,9 +377,6 @@ bool deferred_uses_gbuffer(const char *kind, const renderer_options *o);
 /* The bytes per pixel of the G-buffer of o's preset and overrides for a scene that needs
  * `needs` (as renderer_prepare builds it); 0 for a layout that does not build. */
 unsigned deferred_gbuffer_bytes_per_pixel(const renderer_options *o, deferred_needs needs);
-/* The same for the renderer `kind` and scene s; 0 for a renderer without a G-buffer. */
-unsigned deferred_gbuffer_bytes_per_pixel_of(const char *kind, const renderer_options *o,
-                                             const struct scene *s);
 /* seed 002's G-buffer traffic (results/bandwidth.h, equations 4 and 5's MRT terms) of one
  * collected frame of such a renderer at width x height: writes = bytes_per_pixel x
  * the samples of the pass named "gbuffer"; reads = bytes_per_pixel x (the samples of

@@ -16,12 +16,15 @@
 // pixels of the agreement test where the mip level changes within a quad; these, 0).
 // Position, normal, tangent and uv are interpolated with lambda, the surface is made as
 // surface.inc makes it (the same operations, textureGrad for texture), then ambient x
-// diffuse + emissive and the tile's lights (shade_light, forward_tiled.frag's loop), fog
-// (forward_output), stored into the HDR target (image unit BIND_IMAGE_HDR).
-// MSAA_SAMPLES (msaa > 1): the ids and the HDR target are multisampled; each distinct id
-// among a pixel's samples is shaded once, at the pixel centre as a forward pass shades
-// every triangle that covers a sample (so an edge pixel is shaded once per surface on
-// it, an inner pixel once), and stored into the samples holding it. TILE_DEPTH_RANGES
+// diffuse + emissive and the tile's lights (tile_shade.inc's tile_lights_add, the loop
+// forward_tiled.frag runs), fog (forward_output), stored into the HDR target (image unit
+// BIND_IMAGE_HDR).
+// MSAA_SAMPLES (msaa > 1): the ids and the HDR target are multisampled. A pixel whose
+// samples hold different ids is an edge only by deferred's rule (edge_rule.inc's
+// edge_surfaces_differ) on the ids' surfaces rebuilt at the pixel centre; any other
+// pixel is shaded once with sample 0's surface, stored into every sample; an edge pixel
+// shades each distinct id once, at the pixel centre as a forward pass shades every
+// triangle that covers a sample, stored into the samples holding it. TILE_DEPTH_RANGES
 // (with it, when lights are culled): a centre outside the depth range its tile was
 // culled against loops every light, as forward_tiled.frag does.
 // Counted (i_counts, an image atomic per shading pixel and counter): the shadings (the

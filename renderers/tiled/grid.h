@@ -118,6 +118,7 @@ struct forward_common;
  * is set (forward-plus, clustered, visibility): the base's counters, then the grid's
  * when the cull pass ran. */
 void forward_grid_collect(void *self, frame_stats *out);
+const uint32_t *forward_grid_counts(const void *self, size_t *n);
 /* The plan's "translucent-lists" entry of such a renderer (forward_describe_pass): built
  * in the cull dispatch when the scene has translucency and the cull runs. */
 void forward_grid_describe_translucent(const struct forward_common *c, pass_plan *out);
@@ -127,4 +128,3 @@ void forward_grid_describe_translucent(const struct forward_common *c, pass_plan
  * message. */
 bool forward_grid_prepare_end(struct forward_common *c, GLuint *depth_ranges, char *err,
                               size_t errlen);
-const uint32_t *forward_grid_counts(const void *self, size_t *n);
