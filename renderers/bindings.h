@@ -36,8 +36,10 @@
 #define BIND_TEX_LIGHT_SPECULAR 14  /* and specular light (the material pass reads both) */
 #define BIND_TEX_VISIBILITY 4       /* visibility_shade.comp: the id target (no G-buffer there) */
 /* Image units */
-#define BIND_IMAGE_HDR 0            /* tiled-deferred writes the HDR target */
+#define BIND_IMAGE_HDR 0            /* tiled-deferred writes the HDR target (deferred-lighting
+                                       tiled: its light buffer's diffuse light) */
 #define BIND_IMAGE_VIS_COUNTS 1     /* visibility_shade.comp's counts (r32ui, 3 x 1) */
+#define BIND_IMAGE_LIGHT_SPECULAR 2 /* deferred-lighting tiled: the light buffer's specular */
 /* Uniform locations: surface.inc's alpha cutoff of a MASK material (file scenes) */
 #define LOC_ALPHA_CUTOFF 12
 /* surface.inc's opacity of a MATERIAL_BLEND material (the TRANSLUCENT variant) */

@@ -207,7 +207,7 @@ static bool deferred_prepare(void *self, const scene *s, char *err, size_t errle
                   "msaa %d: pixels whose samples differ (off the plane > 1%% of depth, normal > "
                   "11.5 deg) get stencil bit 0x40; per sample there, per pixel elsewhere",
                   d->b.samples);
-    return deferred_lights_prepare_end(r, s, NULL, err, errlen);
+    return deferred_lights_prepare_end(r, s, NULL, NULL, err, errlen);
 }
 
 // >>per frame

@@ -1,7 +1,9 @@
 /* deferred-lighting, the light pre-pass (Engel 2008; one of the six schemes of
- * Lauritzen 2010): deferred's light passes (renderers/deferred_lights.c) into a light
- * buffer, then the scene's materials in a second geometry pass. */
+ * Lauritzen 2010): deferred's light passes (renderers/deferred_lights.c), or the tiled
+ * light lists (renderers/tiled/tiled_pass.c), into a light buffer, then the scene's
+ * materials in a second geometry pass. */
 #include "renderers/deferred_lights.h"
+#include "renderers/tiled/tiled_pass.h"
 
 #include "renderers/frontend.h"
 #include "renderers/gl/loader.h"
@@ -28,6 +30,11 @@
  *                      light buffer (lightbuffer.diffuse: incoming x max(N.L, 0),
  *                      lightbuffer.specular: incoming x spec; deferred_light.frag with
  *                      LIGHT_PREPASS); the first that runs clears the light buffer
+ *   tiled              (deferred_lighting.lights: tiled, instead of the three above)
+ *                      tiled-deferred's dispatch (tiled_pass.h, tiles.size) with
+ *                      LIGHT_PREPASS: each tile's lights culled, the same two sums
+ *                      stored into the light buffer's two images (every pixel written:
+ *                      no clear); no depth.sampled copy (the dispatch samples depth)
  *   material           the visible opaque objects again (frontend order, one draw each),
  *                      mesh.vert + deferred_lighting_material.frag in the material's map
  *                      variant, depth EQUAL without writes, back faces culled, into the
@@ -36,8 +43,8 @@
  *   fog, sky, translucent, edge-aa, resolve
  *                      deferred_frame_end, as deferred
  *
- * Draw calls: Sh + 2 V + (the light draws as deferred's, same mode) + [fog] + [sky] +
- * [translucent objects] + [aa] + 1. deferred.separate_specular and deferred.sky_stencil
+ * Draw calls: Sh + 2 V + (the light draws as deferred's, same mode; tiled: none, one
+ * dispatch) + [fog] + [sky] + [translucent objects] + [aa] + 1. deferred.separate_specular and deferred.sky_stencil
  * are not read (its light buffer is always split; no full-screen ambient pass to mask),
  * nor gbuffer.* (the layout is fixed).
  *
@@ -45,7 +52,15 @@
  * deferred's `edges` pass after the G-buffer, and its two classes in every light pass
  * (per sample on edge pixels, per pixel elsewhere: the light draws double as deferred's);
  * the material pass runs per sample everywhere (it reads the light buffer at gl_SampleID,
- * so that each sample takes the light of the surface it holds), then `msaa-resolve`. */
+ * so that each sample takes the light of the surface it holds), then `msaa-resolve`.
+ * Tiled: no edges pass; the dispatch finds the edge pixels by the same rule and
+ * accumulates their other samples' light per sample (tiled_deferred.c's header). */
+
+typedef struct deferred_lighting {
+    deferred r;                      /* first: deferred's light passes and accessors read it */
+    tiled_pass t;                    /* deferred_lighting.lights: tiled (r.d.tiled) */
+} deferred_lighting;
+_Static_assert(offsetof(deferred_lighting, r) == 0, "the object begins with deferred's");
 
 static void deferred_lighting_describe(const void *self, pass_plan *out)
 {
@@ -54,6 +69,9 @@ static void deferred_lighting_describe(const void *self, pass_plan *out)
 
 static void deferred_lighting_destroy(void *self)
 {
+    deferred_lighting *l = self;
+    if (l)
+        tiled_pass_release(&l->t);
     deferred_core_destroy(self);
 }
 
@@ -72,14 +90,29 @@ static void *deferred_lighting_create(const renderer_options *opts, char *err, s
     o.gbuffer = GBUFFER_CURTIS;
     o.gbuffer_position = GBUFFER_POSITION_PRESET;
     o.gbuffer_normal = GBUFFER_NORMAL_PRESET;
-    return deferred_core_create("deferred-lighting", sizeof(deferred), false, true, &o, err,
-                                errlen);
+    light_grid g = {0};
+    if (o.lpp_tiled)
+        o.light_volumes = LIGHT_VOLUMES_STENCIL;   /* not read: no light volume drawn */
+    else
+        o.tile_size = 16;   /* not read: no grid */
+    if (o.lpp_tiled && !light_grid_tile_option(&g, "deferred-lighting", &o, err, errlen))
+        return NULL;
+    deferred_lighting *l = (deferred_lighting *)deferred_core_create(
+        "deferred-lighting", sizeof(deferred_lighting), o.lpp_tiled, true, &o, err, errlen);
+    if (l)
+        l->t.g = g;
+    return l;
 }
 
 /* The material pass's programs: mesh.vert + deferred_lighting_material.frag in every map
- * variant a visible opaque object may have. */
+ * variant a visible opaque object may have; tiled: the grid's buffers and the dispatch
+ * first. */
 static bool compile_material(deferred *r, char *err, size_t errlen)
 {
+    deferred_lighting *l = (deferred_lighting *)r;
+    if (r->d.tiled && (!tiled_pass_buffers(&l->t, &r->d, err, errlen) ||
+                       !tiled_pass_compile(&l->t, &r->d, err, errlen)))
+        return false;
     for (unsigned v = 0; v < DEFERRED_VARIANTS; v++) {
         if (!(r->d.variants & (1u << v)))
             continue;
@@ -102,23 +135,44 @@ static bool compile_material(deferred *r, char *err, size_t errlen)
     return true;
 }
 
+/* tiled: the translucent pass over the grid's translucent lists when it builds them. */
+static bool compile_translucent(deferred *r, char *err, size_t errlen)
+{
+    deferred_lighting *l = (deferred_lighting *)r;
+    const translucent_grid tg = light_grid_translucent(&l->t.g);
+    return translucent_compile(&r->d.translucent, &r->d.b, &r->d.b.shadows,
+                               r->d.tiled && l->t.g.ntlists ? &tg : NULL, err, errlen);
+}
+
 static bool deferred_lighting_prepare(void *self, const scene *s, char *err, size_t errlen)
 {
-    deferred *r = self;
+    deferred_lighting *l = self;
+    deferred *r = &l->r;
     deferred_renderer *d = &r->d;
+    tiled_pass_release(&l->t);
     if (!deferred_lights_prepare_begin(r, s, err, errlen))
         return false;
-    deferred_plan(d, PASS_EDGES, d->b.samples > 1,
-                  "msaa %d: as deferred's, for the light passes; the material pass shades "
-                  "per sample", d->b.samples);
+    if (d->tiled) {
+        if (!tiled_pass_plan(&l->t, d, s, err, errlen)) {
+            deferred_core_release(d);
+            return false;
+        }
+    } else {
+        deferred_plan(d, PASS_EDGES, d->b.samples > 1,
+                      "msaa %d: as deferred's, for the light passes; the material pass shades "
+                      "per sample", d->b.samples);
+        deferred_plan_lights(r);
+    }
     deferred_plan(d, PASS_AMBIENT, false, "ambient and emissive are the material pass's");
-    deferred_plan_lights(r);
     deferred_plan(d, PASS_COMPOSE, false, "the material pass combines the light buffer's "
                   "diffuse and specular light");
     deferred_plan(d, PASS_MATERIAL, true, "%u objects again, depth EQUAL, their materials "
                   "over the light buffer (%s)", s->nobjects,
                   d->b.opts.lpp_light_buffer == LPP_LIGHT_BUFFER_RGBA8 ? "rgba8" : "rgba16f");
-    return deferred_lights_prepare_end(r, s, compile_material, err, errlen);
+    if (deferred_lights_prepare_end(r, s, compile_material, compile_translucent, err, errlen))
+        return true;
+    tiled_pass_release(&l->t);
+    return false;
 }
 
 /* The second geometry pass: each visible opaque object's material over its own light. */
@@ -159,30 +213,72 @@ static void material_pass(deferred *r, const scene *s, frame_stats *out)
 
 static void deferred_lighting_draw(void *self, const scene *s, frame_stats *out)
 {
-    deferred *r = self;
+    deferred_lighting *l = self;
+    deferred *r = &l->r;
     deferred_renderer *d = &r->d;
     r->lbuf_cleared = false;
+    l->t.index = 0;
     if (!deferred_lights_frame_begin(r, s, out))
         return;
-    deferred_bind_gbuffer_textures(d);   /* the normal, shininess and depth.sampled */
-    deferred_light_passes(r, s, out);
+    deferred_bind_gbuffer_textures(d);   /* the normal, shininess and depth (.sampled) */
+    if (d->tiled) {
+        tiled_pass_run(&l->t, d, s, out);
+        r->lbuf_cleared = true;   /* the dispatch wrote every pixel of both */
+    } else {
+        deferred_light_passes(r, s, out);
+    }
     material_pass(r, s, out);
     deferred_frame_end(d, s, out, d->fb_light.fbo);
 }
 
-/* Its fixed G-buffer (normal + shininess, RGBA16F), depth.sampled and the light
- * buffer's two targets (deferred_lighting.light_buffer), every one per sample. */
+static void deferred_lighting_collect(void *self, frame_stats *out)
+{
+    deferred_lighting *l = self;
+    if (l->r.d.tiled)
+        tiled_pass_collect(&l->t, &l->r.d, out);
+    else
+        deferred_collect(self, out);
+}
+
+static const uint32_t *deferred_lighting_light_grid(const void *self, size_t *n)
+{
+    const deferred_lighting *l = self;
+    return light_grid_counts(&l->t.g, n);
+}
+
+/* Its fixed G-buffer (normal + shininess, RGBA16F), depth.sampled (volumes) and the light
+ * buffer's two targets (deferred_lighting.light_buffer), every one per sample; the tiled
+ * lists are the memory estimate's own (runner/memory.c, by the design's reads). */
 static uint64_t deferred_lighting_own_bytes(const renderer_estimate *e)
 {
     uint64_t light = e->opts->lpp_light_buffer == LPP_LIGHT_BUFFER_RGBA8 ? 4 : 8;
-    return (8 + 4 + 2 * light) * e->samples * e->pixels;
+    uint64_t depth = e->opts->lpp_tiled ? 0 : 4;
+    return (8 + depth + 2 * light) * e->samples * e->pixels;
 }
 
-const renderer_impl renderer_deferred_lighting_impl = RENDERER_IMPL(
-    deferred_lighting, "deferred-lighting",
-    "deferred.light_volumes deferred_lighting hdr msaa fog aa",
-    "light pre-pass (Engel 2008): normal + shininess G-buffer, diffuse and specular light "
-    "into a light buffer by deferred's light volumes, then the objects again with their "
-    "materials (depth EQUAL)",
-    .collect = deferred_collect, .read_hdr = deferred_read_hdr, .traffic = deferred_traffic,
-    .own_bytes = deferred_lighting_own_bytes);
+/* The two designs differ in what they read (deferred.light_volumes, or tiles.*): the
+ * registry's entry reads both, and `variant` names the design of a run's options, whose
+ * reads the memory estimate asks. Every entry point is the same. */
+#define DEFERRED_LIGHTING_DESIGN(READS, ...)                                                   \
+    RENDERER_IMPL(deferred_lighting, "deferred-lighting", READS,                               \
+                  "light pre-pass (Engel 2008): normal + shininess G-buffer, diffuse and "     \
+                  "specular light into a light buffer by deferred's light volumes or the "    \
+                  "tiled light lists, then the objects again with their materials (depth "    \
+                  "EQUAL)",                                                                    \
+                  .collect = deferred_lighting_collect, .read_hdr = deferred_read_hdr,         \
+                  .light_grid = deferred_lighting_light_grid, .traffic = deferred_traffic,     \
+                  .own_bytes = deferred_lighting_own_bytes, __VA_ARGS__)
+
+static const renderer_impl volumes_design = DEFERRED_LIGHTING_DESIGN(
+    "deferred.light_volumes deferred_lighting hdr msaa fog aa", .variant = NULL);
+static const renderer_impl tiled_design =
+    DEFERRED_LIGHTING_DESIGN("deferred_lighting tiles hdr msaa fog aa", .variant = NULL);
+
+static const renderer_impl *deferred_lighting_variant(const renderer_options *opts)
+{
+    return opts->lpp_tiled ? &tiled_design : &volumes_design;
+}
+
+const renderer_impl renderer_deferred_lighting_impl = DEFERRED_LIGHTING_DESIGN(
+    "deferred.light_volumes deferred_lighting tiles hdr msaa fog aa",
+    .variant = deferred_lighting_variant);

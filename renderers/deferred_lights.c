@@ -384,13 +384,13 @@ bool deferred_compile_lighting(deferred *r, char *err, size_t errlen)
                                  errlen))
             return false;
     }
-    if (d->b.samples > 1) {
+    if (d->run[PASS_EDGES]) {   /* msaa > 1, unless the edges are found elsewhere */
         const char *extra[2] = {unclipped, NULL};
         if (!deferred_build_msaa(d, "deferred_edges", fs_vert, "edge_mark.frag", &ld, extra,
                                  &r->edge_program, NULL, err, errlen))
             return false;
     }
-    if (d->b.samples > 1 && d->layout.position == DEFERRED_POSITION_DEPTH_BUFFER)
+    if (d->run[PASS_EDGES] && d->layout.position == DEFERRED_POSITION_DEPTH_BUFFER)
         deferred_set_sample_positions(d, d->fb_light.fbo, r->edge_program,
                                       DEFERRED_UNIFORM_LIGHT);
     static const deferred_pass light_pass_of[DEFERRED_LIGHT_TYPES] = {
@@ -487,14 +487,16 @@ bool deferred_lights_prepare_begin(deferred *r, const scene *s, char *err, size_
 
 bool deferred_lights_prepare_end(deferred *r, const scene *s,
                                  bool (*programs)(deferred *r, char *err, size_t errlen),
+                                 bool (*translucent)(deferred *r, char *err, size_t errlen),
                                  char *err, size_t errlen)
 {
     deferred_renderer *d = &r->d;
     if (!deferred_make_targets(d, err, errlen) || !deferred_compile_gbuffer(d, err, errlen) ||
         !deferred_compile_lighting(r, err, errlen) || (programs && !programs(r, err, errlen)) ||
         !deferred_compile_fog(d, err, errlen) ||
-        !translucent_prepare(&d->translucent, &d->b, s, &d->b.shadows, false, err, errlen) ||
-        !deferred_prepare_edge_aa(d, err, errlen)) {
+        !translucent_prepare(&d->translucent, &d->b, s, &d->b.shadows, translucent != NULL,
+                             err, errlen) ||
+        (translucent && !translucent(r, err, errlen)) || !deferred_prepare_edge_aa(d, err, errlen)) {
         deferred_core_release(d);
         return false;
     }

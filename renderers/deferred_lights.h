@@ -39,9 +39,11 @@ bool deferred_lights_prepare_begin(deferred *r, const struct scene *s, char *err
                                    size_t errlen);
 /* prepare's last steps, once the renderer has planned its passes: the targets, the
  * G-buffer and lighting programs, the renderer's own (`programs`, or NULL), fog,
- * translucent, edge-aa; false, released, on failure. */
+ * translucent (its programs by `translucent`, translucent_compile over the renderer's
+ * lists; NULL: without lists), edge-aa; false, released, on failure. */
 bool deferred_lights_prepare_end(deferred *r, const struct scene *s,
                                  bool (*programs)(deferred *r, char *err, size_t errlen),
+                                 bool (*translucent)(deferred *r, char *err, size_t errlen),
                                  char *err, size_t errlen);
 /* The plan's light passes: a pass per light type the scene has. */
 void deferred_plan_lights(deferred *r);

@@ -249,10 +249,15 @@ static const renderer_impl *design_of(const char *kind, const renderer_options *
     return impl;
 }
 
-bool deferred_uses_gbuffer(const char *kind, const renderer_options *o)
+bool renderer_design_reads(const char *kind, const renderer_options *o, const char *path)
 {
     const renderer_impl *impl = design_of(kind, o);
-    return impl && renderer_reads(impl->reads, "gbuffer");
+    return impl && renderer_reads(impl->reads, path);
+}
+
+bool deferred_uses_gbuffer(const char *kind, const renderer_options *o)
+{
+    return renderer_design_reads(kind, o, "gbuffer");
 }
 
 uint64_t renderer_own_bytes(const char *kind, const renderer_estimate *e)

@@ -214,8 +214,10 @@ typedef struct renderer_options {
      * G-buffer (clustered.shading: deferred; every deferred G-buffer option applies) */
     int clustered_slices;
     bool clustered_deferred;
-    /* deferred-lighting (deferred_lighting.light_buffer) */
+    /* deferred-lighting (deferred_lighting.light_buffer), and its lights accumulated by the
+     * tiled light lists instead of deferred's light volumes (deferred_lighting.lights) */
     lpp_light_buffer_format lpp_light_buffer;
+    bool lpp_tiled;
     /* every renderer that draws: the light accumulation's format (hdr), and seed 000
      * 4.5.12's fog from depth (fog.*): off while fog_density is 0; on, a surface at view
      * depth z keeps exp(-fog_density z) of its light and takes the rest from fog_color */
@@ -305,6 +307,10 @@ const renderer_impl *renderer_kind_find(const char *name);   /* NULL if unknown 
 /* Whether a renderer_impl.reads list names the manifest key path, or a group above it
  * ("gbuffer" names gbuffer.preset). */
 bool renderer_reads(const char *reads, const char *path);
+/* Whether the design that serves `kind` with options o (renderer_impl.variant: clustered's
+ * forward or deferred shading, deferred-lighting's volumes or tiles) reads path; the
+ * registry's entry reads what any of its designs does. */
+bool renderer_design_reads(const char *kind, const renderer_options *o, const char *path);
 
 renderer *renderer_create(const char *kind, const renderer_options *opts, char *err, size_t errlen);
 bool renderer_prepare(renderer *r, const struct scene *s, char *err, size_t errlen);

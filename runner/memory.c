@@ -93,13 +93,16 @@ static uint64_t targets_of(const char *kind, const run_params *q, int w, int h, 
     return b;
 }
 
-/* The light lists of the renderers with a light grid (those that read tiles.*) at
- * w x h: heads (offset and count) and indices, as tiled/grid.c sizes them, on the GPU
- * and read back; clustered (reads clustered.*) per cluster. */
+/* The light lists of the renderers with a light grid (whose design for q reads tiles.*:
+ * deferred-lighting's only with deferred_lighting.lights: tiled) at w x h: heads (offset
+ * and count) and indices, as tiled/grid.c sizes them, on the GPU and read back;
+ * clustered (reads clustered.*) per cluster. */
 static uint64_t lists_of(const char *kind, const run_params *q, int w, int h,
                          const scene_facts *sc)
 {
-    if (!param_read_by(param_find("tiles.size"), kind))
+    renderer_options ro = {0};
+    params_to_renderer_options(q, &ro);
+    if (!renderer_design_reads(kind, &ro, "tiles.size"))
         return 0;
     const uint64_t tile = 8u << q->tile_size;
     uint64_t cells = ((uint64_t)w + tile - 1) / tile * (((uint64_t)h + tile - 1) / tile);

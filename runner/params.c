@@ -46,6 +46,7 @@ static const char *const light_buffer_names[] = {"uniform", "storage", NULL};
 static const char *const tile_size_names[] = {"8", "16", "32", NULL};   /* 8 << index */
 static const char *const clustered_shading_names[] = {"forward", "deferred", NULL};
 static const char *const lpp_light_buffer_names[] = {"rgba16f", "rgba8", NULL};
+static const char *const lpp_lights_names[] = {"volumes", "tiled", NULL};
 static const char *const hdr_names[] = {"rgba16f", "rgba32f", NULL};   /* hdr_format */
 static const char *const msaa_names[] = {"1", "2", "4", "8", NULL};   /* 1 << index */
 static const char *const aa_names[] = {"none", "edge", NULL};   /* aa_mode */

@@ -25,8 +25,14 @@
 // spread over its invocations. b_edges counts the frame's edge pixels. With SLICES a
 // cluster is counted covered when any sample of a pixel lies in it, so that each sample
 // finds its cluster's list.
-// Defines: TILE_SIZE, TILES_X (TILES_Y, SLICES, TLISTS, MSAA_SAMPLES), the G-buffer
-// layout's, SHADOWS.
+// LIGHT_PREPASS (deferred-lighting with deferred_lighting.lights: tiled): the lights
+// alone, without ambient, emissive or the material, summed as deferred_light.frag's
+// LIGHT_PREPASS sums them (diffuse light with a white diffuse and no gloss, specular with
+// a black diffuse and a gloss of 1) and stored into the light buffer's two images,
+// diffuse at BIND_IMAGE_HDR and specular at BIND_IMAGE_LIGHT_SPECULAR (rgba16f, or rgba8
+// with LIGHT_BUFFER_RGBA8, where the store clamps to 1 as the volumes' blending does).
+// Defines: TILE_SIZE, TILES_X (TILES_Y, SLICES, TLISTS, MSAA_SAMPLES, LIGHT_PREPASS,
+// LIGHT_BUFFER_RGBA8), the G-buffer layout's, SHADOWS.
 #define TILES_COHERENT
 #include "bindings.h"
 #include "frame.inc"
@@ -56,17 +62,30 @@ shared uint s_edges[TILE_SIZE * TILE_SIZE];   // the tile's edge pixels (local i
 #endif
 
 layout(local_size_x = TILE_SIZE, local_size_y = TILE_SIZE) in;
-#ifdef HDR_RGBA32F
+#if defined(LIGHT_PREPASS) && defined(LIGHT_BUFFER_RGBA8)
+layout(binding = BIND_IMAGE_HDR, rgba8) writeonly uniform HDR_IMAGE i_hdr;
+layout(binding = BIND_IMAGE_LIGHT_SPECULAR, rgba8) writeonly uniform HDR_IMAGE i_specular;
+#elif defined(LIGHT_PREPASS)
+layout(binding = BIND_IMAGE_HDR, rgba16f) writeonly uniform HDR_IMAGE i_hdr;
+layout(binding = BIND_IMAGE_LIGHT_SPECULAR, rgba16f) writeonly uniform HDR_IMAGE i_specular;
+#elif defined(HDR_RGBA32F)
 layout(binding = BIND_IMAGE_HDR, rgba32f) writeonly uniform HDR_IMAGE i_hdr;
 #else
 layout(binding = BIND_IMAGE_HDR, rgba16f) writeonly uniform HDR_IMAGE i_hdr;
 #endif
 
+// What a pixel (or sample) stores: the shaded colour, or (LIGHT_PREPASS) the diffuse
+// light in c and the specular light in s.
+struct Shaded {
+    vec3 c, s;
+};
+
 #include "tile_cull.inc"
 
 // ambient x diffuse + emissive and the lights of g's list (its tile's, or its cluster's
-// by its view depth), after the lists are made
-vec3 shade_surface(GSurface g, uint tile_index)
+// by its view depth), after the lists are made; LIGHT_PREPASS: the list's diffuse and
+// specular light alone
+Shaded shade_surface(GSurface g, uint tile_index)
 {
 #ifndef NO_GRID
 #ifndef SLICES
@@ -79,16 +98,48 @@ vec3 shade_surface(GSurface g, uint tile_index)
 #else
     uint first = 0u, n = uint(u_light_count);
 #endif
-    vec3 c = f_ambient.rgb * g.diffuse + g.emissive;
+#ifdef LIGHT_PREPASS
+    Shaded o = Shaded(vec3(0.0), vec3(0.0));
+#else
+    Shaded o = Shaded(f_ambient.rgb * g.diffuse + g.emissive, vec3(0.0));
+#endif
     if (g.present) {
         for (uint k = 0u; k < n; k++) {
             uint i = tile_light(first, k);
             if (!light_reaches(i, g.position))
                 continue;
-            c += shade_light(b_lights[i], g.position, g.normal, g.diffuse, g.gloss, g.shininess);
+#ifdef LIGHT_PREPASS
+            o.c += shade_light(b_lights[i], g.position, g.normal, vec3(1.0), 0.0, g.shininess);
+            o.s += shade_light(b_lights[i], g.position, g.normal, vec3(0.0), 1.0, g.shininess);
+#else
+            o.c += shade_light(b_lights[i], g.position, g.normal, g.diffuse, g.gloss,
+                               g.shininess);
+#endif
         }
     }
-    return c;
+    return o;
+}
+
+// One store of what a pixel's sample i (single-sampled: the pixel) takes; the light
+// buffer's alpha is 0, as the volumes' blending leaves it.
+#ifdef LIGHT_PREPASS
+#define STORED_ALPHA 0.0
+#else
+#define STORED_ALPHA 1.0
+#endif
+void store(ivec2 p, int i, Shaded o)
+{
+#ifdef MSAA_SAMPLES
+    imageStore(i_hdr, p, i, vec4(o.c, STORED_ALPHA));
+#ifdef LIGHT_PREPASS
+    imageStore(i_specular, p, i, vec4(o.s, 0.0));
+#endif
+#else
+    imageStore(i_hdr, p, vec4(o.c, STORED_ALPHA));
+#ifdef LIGHT_PREPASS
+    imageStore(i_specular, p, vec4(o.s, 0.0));
+#endif
+#endif
 }
 
 void main()
@@ -144,8 +195,12 @@ void main()
         }
         gb_sample = 0;
         g_frag_xy = vec2(pixel) + 0.5;
-        if (edge)
+        if (edge) {
+            // sample 0 of an edge pixel is shaded where it lies, as a per-sample
+            // fragment of deferred's edge class is (its position rebuilt there)
+            g = g0;
             s_edges[atomicAdd(s_nedges, 1u)] = me;
+        }
     }
 #else
     float d = inside ? texelFetch(t_depth, pixel, 0).r : 1.0, d_far = d;
@@ -177,16 +232,16 @@ void main()
 #elif defined(MSAA_SAMPLES)
     barrier();   // the edge list complete
 #endif
-    vec3 c = shade_surface(g, tile_index);
+    Shaded c = shade_surface(g, tile_index);
 #ifndef MSAA_SAMPLES
     if (inside)
-        imageStore(i_hdr, pixel, vec4(c, 1.0));
+        store(pixel, 0, c);
 #else
     if (inside) {
-        imageStore(i_hdr, pixel, 0, vec4(c, 1.0));
+        store(pixel, 0, c);
         if (!edge)   // one shading for the whole pixel
             for (int i = 1; i < MSAA_SAMPLES; i++)
-                imageStore(i_hdr, pixel, i, vec4(c, 1.0));
+                store(pixel, i, c);
     }
     // the edge pixels' samples 1..N-1, spread over the work group
     uint nedges = s_nedges;
@@ -198,7 +253,7 @@ void main()
                                                   int(local / uint(TILE_SIZE)));
         gb_sample = i;
         g_frag_xy = vec2(p) + u_sample_pos[i];   // as a per-sample fragment's gl_FragCoord
-        imageStore(i_hdr, p, i, vec4(shade_surface(gbuffer_load(), tile_index), 1.0));
+        store(p, i, shade_surface(gbuffer_load(), tile_index));
     }
     if (me == 0u && nedges > 0u)
         atomicAdd(b_edges.edges, nedges);

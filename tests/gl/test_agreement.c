@@ -14,8 +14,10 @@
  * extremes-camera.yaml's case, 0.0048 RMSE in RGBA16F) is within 1/255 RMSE of
  * forward-spml with hdr: rgba32f. Issue 12: the eight light cases at msaa 4, deferred in
  * all six light-volume modes against forward-spml within RMSE 1/255 (fewer than 1 % of
- * the pixels off by more than 1/255). Every frame runs in a debug context; any GL error
- * fails the test. */
+ * the pixels off by more than 1/255). deferred-lighting in every mode and by the tiled
+ * lists (deferred_lighting.lights: tiled) as deferred, at msaa 1 and 4; with its 8-bit
+ * light buffer, by either, within 2/255 RMSE. Every frame runs in a debug context; any GL
+ * error fails the test. */
 #include <setjmp.h>
 #include <stdarg.h>
 #include <stddef.h>
@@ -44,6 +46,7 @@ static hdr_format g_hdr = HDR_RGBA16F;
 static float g_fog_density = 0.0f;
 static int g_msaa = 0;   /* issue 12: > 1, run_case compares msaa forward-spml and deferred */
 static lpp_light_buffer_format g_lpp = LPP_LIGHT_BUFFER_RGBA16F;   /* deferred-lighting's */
+static bool g_lpp_tiled = false;   /* deferred-lighting's lights by the tiled lists */
 
 typedef struct light_case {
     const char *name;
@@ -112,7 +115,7 @@ static bool render_with(const char *kind, light_volume_mode mode, bool storage, 
         .gbuffer = GBUFFER_REFERENCE, .light_volumes = mode,
         .light_buffer = storage ? LIGHT_BUFFER_STORAGE : LIGHT_BUFFER_UNIFORM,
         .hdr = g_hdr, .fog_density = g_fog_density, .fog_color = {0.55f, 0.6f, 0.7f},
-        .msaa = g_msaa, .lpp_light_buffer = g_lpp,
+        .msaa = g_msaa, .lpp_light_buffer = g_lpp, .lpp_tiled = g_lpp_tiled,
     };
     renderer *r = test_renderer_create(kind, &o, err, sizeof err);
     if (!r || !renderer_prepare(r, s, err, sizeof err)) {
@@ -197,6 +200,23 @@ static void run_case_msaa(const light_case *c)
         assert_int_equal(e.nonfinite, 0);
         image_free(&img);
     }
+    /* and by the tiled lists: the dispatch's edge pixels per sample */
+    g_lpp_tiled = true;
+    bool ok = render("deferred-lighting", LIGHT_VOLUMES_STENCIL, s, &img);
+    g_lpp_tiled = false;
+    assert_true(ok);
+    {
+        image_error e;
+        char err[256];
+        assert_true(image_compare(&img, &ref, &e, err, sizeof err));
+        print_message("%s: msaa %d deferred-lighting tiled vs forward-spml: rmse %.3f/255, "
+                      "%.4f of pixels off by > 1/255\n", c->name, g_msaa, e.rmse * 255,
+                      e.frac_over_1_255);
+        assert_true(e.rmse < RMSE_MAX);
+        assert_true(e.frac_over_1_255 < 0.01);
+        assert_int_equal(e.nonfinite, 0);
+    }
+    image_free(&img);
     image_free(&ref);
     scene_destroy(s);
 }
@@ -237,6 +257,15 @@ static void run_case(const light_case *c)
         expect_agree(what, &img, &stored);
         image_free(&img);
     }
+    /* deferred-lighting by the tiled lists, which load the lights as the tiled renderers */
+    g_lpp_tiled = true;
+    bool tiled_ok = render("deferred-lighting", LIGHT_VOLUMES_STENCIL, s, &img);
+    g_lpp_tiled = false;
+    assert_true(tiled_ok);
+    snprintf(what, sizeof what, "%s: deferred-lighting tiled vs forward-spml (storage)",
+             c->name);
+    expect_agree(what, &img, &stored);
+    image_free(&img);
     image_free(&stored);
 
     assert_true(render("forward-mpml", LIGHT_VOLUMES_STENCIL, s, &img));
@@ -285,20 +314,23 @@ static void run_case(const light_case *c)
         expect_agree(what, &img, &ref);
         image_free(&img);
     }
-    g_lpp = LPP_LIGHT_BUFFER_RGBA8;
-    bool ok = render("deferred-lighting", LIGHT_VOLUMES_STENCIL, s, &img);
-    g_lpp = LPP_LIGHT_BUFFER_RGBA16F;
-    assert_true(ok);
-    {
+    for (int by_tiles = 0; by_tiles < 2; by_tiles++) {   /* by the volumes, by the lists */
+        g_lpp = LPP_LIGHT_BUFFER_RGBA8;
+        g_lpp_tiled = by_tiles;
+        bool ok = render("deferred-lighting", LIGHT_VOLUMES_STENCIL, s, &img);
+        g_lpp = LPP_LIGHT_BUFFER_RGBA16F;
+        g_lpp_tiled = false;
+        assert_true(ok);
         image_error e;
         char err[256];
         assert_true(image_compare(&img, &ref, &e, err, sizeof err));
-        print_message("%s: deferred-lighting rgba8 vs forward-spml: rmse %.3f/255, max "
-                      "%.1f/255\n", c->name, e.rmse * 255, e.max_abs * 255);
+        print_message("%s: deferred-lighting %s rgba8 vs forward-spml: rmse %.3f/255, max "
+                      "%.1f/255\n", c->name, by_tiles ? "tiled" : "volumes", e.rmse * 255,
+                      e.max_abs * 255);
         assert_int_equal(e.nonfinite, 0);
         assert_true(e.rmse < 2.0 / 255.0);
+        image_free(&img);
     }
-    image_free(&img);
     image_free(&ref);
     scene_destroy(s);
 }

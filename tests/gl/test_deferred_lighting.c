@@ -9,7 +9,10 @@
  * rounding); the keys it does not read (separate specular, the sky mask, the G-buffer
  * preset) leaving its image alone; at msaa 4 deferred's edge pass and classes in its light
  * passes and its material pass per sample (gl-agreement compares its image); an unknown
- * light buffer format refused. Any GL error fails. Exits 77 (skip) when no EGL display can be created at all. */
+ * light buffer format refused. With deferred_lighting.lights: tiled, one dispatch instead
+ * of the light passes (its plan, draws, grid counters, no depth copy), its light buffer
+ * against the volumes' (16-bit within rounding, 8-bit clamped alike), at msaa 4 the same
+ * edge pixels as the volumes' edge pass, a bad tiles.size refused. Any GL error fails. Exits 77 (skip) when no EGL display can be created at all. */
 #include <setjmp.h>
 #include <stdarg.h>
 #include <stddef.h>
@@ -463,6 +466,167 @@ static void test_msaa(void **state)
     scene_destroy(s);
 }
 
+// >>the tiled light lists (deferred_lighting.lights: tiled)
+
+/* The frame's draw calls (dispatches: true, its dispatches) over its passes (the impl's
+ * collect does not sum them). */
+static uint64_t frame_total(const frame_stats *fs, bool dispatches)
+{
+    uint64_t n = 0;
+    for (size_t i = 0; i < fs->npasses; i++)
+        n += dispatches ? fs->pass[i].dispatches : fs->pass[i].draw_calls;
+    return n;
+}
+
+static void light_target(const scene *s, const renderer_options *o, float *hdr,
+                         frame_stats *fs)
+{
+    void *self = make(s, o);
+    frame(self, s, fs);
+    frame(self, s, fs);
+    assert_true(IMPL->read_hdr(self, hdr, W, H));
+    IMPL->destroy(self);
+}
+
+/* The largest difference of two light targets' colour channels, and whether any is not
+ * finite. */
+static float max_diff(const float *a, const float *b)
+{
+    float m = 0.0f;
+    for (size_t i = 0; i < (size_t)W * H * 4; i++) {
+        assert_true(isfinite(a[i]) && isfinite(b[i]));
+        if (i % 4 != 3 && fabsf(a[i] - b[i]) > m)
+            m = fabsf(a[i] - b[i]);
+    }
+    return m;
+}
+
+static void test_tiled(void **state)
+{
+    (void)state;
+    const float sp[3] = {10.0f, 9.0f, 0.0f}, st[3] = {10.0f, 0.0f, 0.0f};
+    scene_light lights[] = {
+        directional(-0.3f, -1.0f, -0.2f, 0.5f, 0.5f, 0.45f),
+        point(-10.0f, 3.0f, -10.0f, 7.0f, 1.0f, 0.8f, 0.6f),
+        point(0.0f, 4.0f, 10.0f, 8.0f, 0.5f, 0.7f, 1.0f),
+        point(0.0f, 4.0f, 400.0f, 8.0f, 1.0f, 1.0f, 1.0f),   /* behind the camera: culled */
+        spot(sp, st, 14.0f, 30.0f),
+    };
+    scene *s = build("shapes", lights, 5);
+    visible v = count_visible(s);
+    renderer_options o = options(LIGHT_VOLUMES_STENCIL, LPP_LIGHT_BUFFER_RGBA16F);
+    o.lpp_tiled = true;
+    void *self = make(s, &o);
+
+    /* the plan: one dispatch, no light pass, no depth copy, the light-prepass program */
+    pass_plan p;
+    IMPL->describe(self, &p);
+    assert_true(plan_pass(&p, "tiled")->run);
+    assert_non_null(strstr(plan_pass(&p, "tiled")->reason, "8x6 tiles of 16 px"));
+    assert_non_null(strstr(plan_pass(&p, "tiled")->reason, "into the light buffer"));
+    static const char *const in_tiled[] = {"directional", "point", "spot"};
+    for (size_t i = 0; i < 3; i++) {
+        assert_false(plan_pass(&p, in_tiled[i])->run);
+        assert_string_equal(plan_pass(&p, in_tiled[i])->reason, "in the tiled pass");
+    }
+    assert_string_equal(plan_pass(&p, "ambient")->reason,
+                        "ambient and emissive are the material pass's");
+    assert_true(plan_pass(&p, "material")->run);
+    assert_int_equal(programs_named(&p, "tiled_light_prepass"), 1);
+    assert_int_equal(programs_named(&p, "deferred_point"), 0);
+    assert_int_equal(programs_named(&p, "deferred_stencil_mark"), 0);
+    assert_null(target_named(&p, "depth.sampled"));
+    assert_non_null(target_named(&p, "lightbuffer.specular"));
+
+    /* the frame: gbuffer, one dispatch, material: 2 V + sky + resolve draws */
+    for (int f = 0; f < 2; f++) {
+        frame_stats fs;
+        frame(self, s, &fs);
+        static const char *const want[] = {"gbuffer", "tiled", "material", "sky", "resolve"};
+        assert_int_equal(fs.npasses, 5);
+        for (size_t i = 0; i < 5; i++)
+            assert_string_equal(fs.pass[i].name, want[i]);
+        const pass_stats *t = find_pass(&fs, "tiled");
+        assert_int_equal(t->draw_calls, 0);
+        assert_int_equal(t->dispatches, 1);
+        assert_int_equal(frame_total(&fs, true), 1);
+        assert_int_equal(find_pass(&fs, "gbuffer")->draw_calls, v.objects);
+        assert_int_equal(find_pass(&fs, "material")->draw_calls, v.objects);
+        assert_int_equal(frame_total(&fs, false), 2 * (uint64_t)v.objects + 2);
+        assert_int_equal(fs.lights_drawn, v.lights[0] + v.lights[1] + v.lights[2]);
+        /* the grid's counters: 48 tiles, the directional light in every list */
+        assert_int_equal(fs.grid_cells, 48);
+        assert_true(fs.grid_lights_mean >= 1.0 && fs.grid_lights_max <= 4.0);
+        assert_true(fs.light_evals_per_pixel >= 1.0);
+        size_t n = 0;
+        assert_non_null(IMPL->light_grid(self, &n));
+        assert_int_equal(n, 48);
+    }
+    IMPL->destroy(self);
+
+    /* its light buffer is the volumes' (16-bit: the sums' order and rounding apart) */
+    float *vol = malloc(sizeof(float) * W * H * 4), *til = malloc(sizeof(float) * W * H * 4);
+    assert_non_null(vol);
+    assert_non_null(til);
+    frame_stats fv, ft;
+    renderer_options ov = options(LIGHT_VOLUMES_STENCIL, LPP_LIGHT_BUFFER_RGBA16F);
+    light_target(s, &ov, vol, &fv);
+    light_target(s, &o, til, &ft);
+    float d16 = max_diff(vol, til);
+    /* 8 bits: the store clamps as the blending does (one rounding instead of one a light) */
+    ov.lpp_light_buffer = o.lpp_light_buffer = LPP_LIGHT_BUFFER_RGBA8;
+    light_target(s, &ov, vol, &fv);
+    light_target(s, &o, til, &ft);
+    float d8 = max_diff(vol, til);
+    print_message("tiled vs volumes light target: max %.2e (rgba16f), %.2e (rgba8)\n", d16,
+                  d8);
+    assert_true(d16 < 2e-3f);
+    assert_true(d8 < 3.0f / 255.0f);
+
+    /* msaa 4: no edges pass, the dispatch finds the same edge pixels as it */
+    ov.lpp_light_buffer = o.lpp_light_buffer = LPP_LIGHT_BUFFER_RGBA16F;
+    ov.msaa = o.msaa = 4;
+    light_target(s, &ov, vol, &fv);
+    light_target(s, &o, til, &ft);
+    assert_non_null(find_pass(&fv, "edges"));
+    assert_null(find_pass(&ft, "edges"));
+    assert_int_equal(frame_total(&ft, true), 1);
+    print_message("msaa 4: edge fraction %.4f (volumes) %.4f (tiled), max diff %.2e\n",
+                  fv.edge_fraction, ft.edge_fraction, max_diff(vol, til));
+    assert_true(ft.edge_fraction > 0.0 && ft.edge_fraction < 1.0);
+    assert_true(ft.edge_fraction == fv.edge_fraction);
+    /* the same light but for a few pixels: where a light volume's silhouette crosses a
+     * pixel, the volumes' stencil lights some of its samples; the dispatch lights them all
+     * or none by the pixel's centre, as forward does (gl-agreement compares both with
+     * forward-spml): at most 0.5 % of the pixels */
+    size_t off = 0;
+    for (size_t i = 0; i < (size_t)W * H; i++)
+        for (int c = 0; c < 3; c++)
+            if (fabsf(vol[4 * i + c] - til[4 * i + c]) > 2e-3f) {
+                off++;
+                break;
+            }
+    print_message("msaa 4: %zu pixels off by > 2e-3\n", off);
+    assert_true(off <= (size_t)W * H / 200);
+    const pass_stats *t = find_pass(&ft, "tiled");
+    assert_true(t->samples == (double)W * H * 4);
+    assert_true(t->per_sample_samples == ft.edge_fraction * W * H * 4);
+    free(vol);
+    free(til);
+
+    /* tiles.size is read (and checked) only with the tiled lists */
+    char err[512] = "";
+    o.msaa = 1;
+    o.tile_size = 12;
+    assert_null(renderer_create("deferred-lighting", &o, err, sizeof err));
+    assert_non_null(strstr(err, "deferred-lighting: tiles.size"));
+    o.lpp_tiled = false;
+    renderer *r = renderer_create("deferred-lighting", &o, err, sizeof err);
+    assert_non_null(r);
+    renderer_destroy(r);
+    scene_destroy(s);
+}
+
 int main(void)
 {
     GL_TEST_SKIP_WITHOUT_EGL();
@@ -485,6 +649,7 @@ int main(void)
         cmocka_unit_test(test_rgba8_clamps),
         cmocka_unit_test(test_unread_keys),
         cmocka_unit_test(test_msaa),
+        cmocka_unit_test(test_tiled),
     };
     int rc = cmocka_run_group_tests(tests, NULL, NULL);
     gl_context_destroy(ctx);

@@ -2,7 +2,7 @@
  * G-buffers, stencil light volumes; also fullscreen volumes where volumes matter),
  * forward-mpml, forward-spml (uniform block and storage buffer), forward-plus,
  * clustered, tiled-deferred (curtis G-buffer), deferred-lighting (stencil; also
- * fullscreen where volumes matter) and visibility renders one frame of "shapes" (64x48 unless the case says otherwise)
+ * fullscreen where volumes matter; and by the tiled lists) and visibility renders one frame of "shapes" (64x48 unless the case says otherwise)
  * with lights and camera set by hand, in a debug context. Each ends with no GL error, zero non-finite values in the float light accumulation
  * (renderer_read_hdr) and a readable RGBA8 output, or with a clear message before
  * anything renders:
@@ -50,35 +50,38 @@ typedef struct config {
     light_volume_mode mode;
     bool volumes_only;         /* only where light volumes matter (fullscreen mode) */
     light_buffer_kind light_buffer;   /* forward-spml */
+    bool lpp_tiled;            /* deferred-lighting: deferred_lighting.lights: tiled */
 } config;
 
 static const config CONFIGS[] = {
     {"deferred curtis stencil", "deferred", GBUFFER_CURTIS, LIGHT_VOLUMES_STENCIL, false,
-     LIGHT_BUFFER_UNIFORM},
+     LIGHT_BUFFER_UNIFORM, false},
     {"deferred reference stencil", "deferred", GBUFFER_REFERENCE, LIGHT_VOLUMES_STENCIL, false,
-     LIGHT_BUFFER_UNIFORM},
+     LIGHT_BUFFER_UNIFORM, false},
     {"deferred curtis fullscreen", "deferred", GBUFFER_CURTIS, LIGHT_VOLUMES_FULLSCREEN, true,
-     LIGHT_BUFFER_UNIFORM},
+     LIGHT_BUFFER_UNIFORM, false},
     {"deferred reference fullscreen", "deferred", GBUFFER_REFERENCE, LIGHT_VOLUMES_FULLSCREEN,
-     true, LIGHT_BUFFER_UNIFORM},
+     true, LIGHT_BUFFER_UNIFORM, false},
     {"forward-mpml", "forward-mpml", GBUFFER_CURTIS, LIGHT_VOLUMES_STENCIL, false,
-     LIGHT_BUFFER_UNIFORM},
+     LIGHT_BUFFER_UNIFORM, false},
     {"forward-spml", "forward-spml", GBUFFER_CURTIS, LIGHT_VOLUMES_STENCIL, false,
-     LIGHT_BUFFER_UNIFORM},
+     LIGHT_BUFFER_UNIFORM, false},
     {"forward-spml storage", "forward-spml", GBUFFER_CURTIS, LIGHT_VOLUMES_STENCIL, false,
-     LIGHT_BUFFER_STORAGE},
+     LIGHT_BUFFER_STORAGE, false},
     {"forward-plus", "forward-plus", GBUFFER_CURTIS, LIGHT_VOLUMES_STENCIL, false,
-     LIGHT_BUFFER_UNIFORM},
+     LIGHT_BUFFER_UNIFORM, false},
     {"clustered", "clustered", GBUFFER_CURTIS, LIGHT_VOLUMES_STENCIL, false,
-     LIGHT_BUFFER_UNIFORM},
+     LIGHT_BUFFER_UNIFORM, false},
     {"tiled-deferred", "tiled-deferred", GBUFFER_CURTIS, LIGHT_VOLUMES_STENCIL, false,
-     LIGHT_BUFFER_UNIFORM},
+     LIGHT_BUFFER_UNIFORM, false},
     {"deferred-lighting stencil", "deferred-lighting", GBUFFER_CURTIS, LIGHT_VOLUMES_STENCIL,
-     false, LIGHT_BUFFER_UNIFORM},
+     false, LIGHT_BUFFER_UNIFORM, false},
     {"deferred-lighting fullscreen", "deferred-lighting", GBUFFER_CURTIS,
-     LIGHT_VOLUMES_FULLSCREEN, true, LIGHT_BUFFER_UNIFORM},
+     LIGHT_VOLUMES_FULLSCREEN, true, LIGHT_BUFFER_UNIFORM, false},
+    {"deferred-lighting tiled", "deferred-lighting", GBUFFER_CURTIS, LIGHT_VOLUMES_STENCIL,
+     false, LIGHT_BUFFER_UNIFORM, true},
     {"visibility", "visibility", GBUFFER_CURTIS, LIGHT_VOLUMES_STENCIL, false,
-     LIGHT_BUFFER_UNIFORM},
+     LIGHT_BUFFER_UNIFORM, false},
 };
 enum { SPML_UNIFORM = 5 };   /* CONFIGS' forward-spml with its uniform block */
 enum { NCONFIGS = sizeof CONFIGS / sizeof CONFIGS[0] };
@@ -182,7 +185,7 @@ static renderer *make(const config *c, int w, int h, char *err, size_t errlen)
                           .pipeline_statistics = i->pipeline_statistics,
                           .max_uniform_block_size = i->max_uniform_block_size,
                           .gbuffer = c->gbuffer, .light_volumes = c->mode,
-                          .light_buffer = c->light_buffer};
+                          .light_buffer = c->light_buffer, .lpp_tiled = c->lpp_tiled};
     gl.BindFramebuffer(GL_FRAMEBUFFER, gl_context_framebuffer(ctx));
     return test_renderer_create(c->kind, &o, err, errlen);
 }
