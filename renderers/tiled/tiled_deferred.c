@@ -24,7 +24,10 @@
  * (BIND_SSBO_EDGES), which collect reads back (edge_fraction, the pass's samples).
  *
  * Refused at create: deferred.sky_stencil (no stencil test masks a dispatch; it skips
- * pixels without a surface itself) and deferred.separate_specular (one target). */
+ * pixels without a surface itself) and deferred.separate_specular (one target).
+ *
+ * The pass itself (its plan, the grid's buffers, the program, the dispatch, its counters)
+ * is tiled_pass.c's, which deferred-lighting's tiled light accumulation shares. */
 #include "renderers/deferred_core.h"
 #include "renderers/tiled/tiled.h"
 #include "renderers/tiled/tiled_pass.h"

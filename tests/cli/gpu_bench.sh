@@ -37,7 +37,7 @@ check() {  # check NAME RUNS
 }
 check renderers-deferred 12
 check renderers-forward 6
-check families-msaa 8
+check families-msaa 10
 check s003-exp2 2
 check s003-exp1 6
 grep -q "^| s003-exp1 | run | 6 |" gb/report.md || fail "report: s003-exp1"
