@@ -272,6 +272,21 @@ static void set_transform(const scene *s, const scene_object *o)
     gl.UniformMatrix3fv(2, 1, GL_FALSE, &nm[0][0]);
 }
 
+/* The object's mesh drawn: a double-sided material's without culling, whatever the pass
+ * culls (the pass's culling set back after it: two state changes a double-sided object). */
+static void draw_mesh(gl_state *st, const scene *s, uint32_t object, const gpu_mesh *gm)
+{
+    gls_cull pass = gl_state_cull_current(st);
+    bool both = s->materials[s->objects[object].material].double_sided &&
+                pass != GLS_CULL_NONE;
+    if (both)
+        gl_state_cull(st, GLS_CULL_NONE);
+    gl_state_vertex_array(st, gm->vao);
+    gl_state_draw_elements(st, GL_TRIANGLES, gm->count, GL_UNSIGNED_INT, 0);
+    if (both)
+        gl_state_cull(st, pass);
+}
+
 void scene_gpu_draw_object(scene_gpu *g, gl_state *st, const scene *s, uint32_t object)
 {
     const gpu_mesh *gm = object_mesh(g, s, object, "scene_gpu_draw_object");
@@ -299,9 +314,7 @@ void scene_gpu_draw_object(scene_gpu *g, gl_state *st, const scene *s, uint32_t 
         gl.Uniform1f(LOC_ALPHA_CUTOFF, m->alpha_cutoff);
     if (m->alpha == MATERIAL_BLEND)   /* only the TRANSLUCENT variant has it */
         gl.Uniform1f(LOC_OPACITY, m->opacity);
-
-    gl_state_vertex_array(st, gm->vao);
-    gl_state_draw_elements(st, GL_TRIANGLES, gm->count, GL_UNSIGNED_INT, 0);
+    draw_mesh(st, s, object, gm);
 }
 
 void scene_gpu_draw_object_geometry(scene_gpu *g, gl_state *st, const scene *s,
@@ -311,8 +324,7 @@ void scene_gpu_draw_object_geometry(scene_gpu *g, gl_state *st, const scene *s,
     if (!gm)
         return;
     set_transform(s, &s->objects[object]);
-    gl_state_vertex_array(st, gm->vao);
-    gl_state_draw_elements(st, GL_TRIANGLES, gm->count, GL_UNSIGNED_INT, 0);
+    draw_mesh(st, s, object, gm);
 }
 
 void scene_gpu_draw_object_depth(scene_gpu *g, gl_state *st, const scene *s, uint32_t object,
@@ -324,8 +336,7 @@ void scene_gpu_draw_object_depth(scene_gpu *g, gl_state *st, const scene *s, uin
     sm_mat4 mvp;
     sm_mat4_mul(viewproj, s->objects[object].model, mvp);
     gl.UniformMatrix4fv(0, 1, GL_FALSE, &mvp[0][0]);
-    gl_state_vertex_array(st, gm->vao);
-    gl_state_draw_elements(st, GL_TRIANGLES, gm->count, GL_UNSIGNED_INT, 0);
+    draw_mesh(st, s, object, gm);
 }
 
 void scene_gpu_draw_light_volume(scene_gpu *g, gl_state *st, const scene *s, uint32_t light)

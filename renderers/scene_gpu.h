@@ -33,6 +33,9 @@
  *   program does not declare: GL_INVALID_OPERATION). Locations 0, 1, 2 (mat3) and 8..11
  *   are set every draw; exactly one draw call (glDrawElements) per object. Passes
  *   without a material use scene_gpu_draw_object_geometry.
+ * - Every object draw (material, geometry, depth) of a double-sided material
+ *   (scene_material.double_sided) turns culling off for its draw and back to the pass's
+ *   after it: two cull changes an object, in whatever pass draws it (shadows included).
  * - The light volume meshes and their placement are frontend.h's ("Light volumes"):
  *   mesh_light_sphere(16, 8) scaled by 1.1 x radius; ONE unit cone
  *   (mesh_light_cone(pi/4, 16)) scaled non-uniformly per spot (radius tan(angle) across,

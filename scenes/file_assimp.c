@@ -259,7 +259,7 @@ static void not_rendered_of(const loaded *l, scene_file_info *info)
     }
     for (unsigned i = 0; i < ai->mNumCameras; i++)
         ortho += ai->mCameras[i]->mOrthographicWidth > 0.0f;
-    unsigned two_sided = 0, uv_differ = 0, mr_maps = 0, occlusion = 0, used = 0;
+    unsigned uv_differ = 0, mr_maps = 0, occlusion = 0, used = 0;
     for (unsigned i = 0; i < ai->mNumMaterials; i++) {
         const struct aiMaterial *am = ai->mMaterials[i];
         bool drawn = false;   /* not assimp's default material, where no mesh uses it */
@@ -276,10 +276,6 @@ static void not_rendered_of(const loaded *l, scene_file_info *info)
                        aiGetMaterialTextureCount(am, aiTextureType_UNKNOWN) > 0;
         occlusion += aiGetMaterialTextureCount(am, aiTextureType_LIGHTMAP) +
                          aiGetMaterialTextureCount(am, aiTextureType_AMBIENT_OCCLUSION) > 0;
-        int on = 0;
-        unsigned max = 1;
-        two_sided += aiGetMaterialIntegerArray(ai->mMaterials[i], AI_MATKEY_TWOSIDED, &on,
-                                               &max) == AI_SUCCESS && on;
     }
     if (skinned)
         not_rendered(info, "skins (%u mesh%s, drawn in the bind pose)", skinned,
@@ -306,8 +302,6 @@ static void not_rendered_of(const loaded *l, scene_file_info *info)
     if (uv_differ)
         not_rendered(info, "per-map texture transforms (%u material%s: the base colour's used)",
                      uv_differ, uv_differ == 1 ? "" : "s");
-    if (two_sided)
-        not_rendered(info, "double-sided materials (%u, back faces culled)", two_sided);
     if (l->files.n)
         gltf_extensions(&l->files.files[0], info);
 }

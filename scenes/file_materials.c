@@ -139,6 +139,10 @@ void file_add_material(scene_builder *b, loaded *l, const struct aiMaterial *am,
             opacity = base.a;
         m->opacity = isfinite(opacity) ? sm_clamp(opacity, 0.0f, 1.0f) : 1.0f;
     }
+    int two_sided = 0;
+    unsigned one = 1;
+    m->double_sided = aiGetMaterialIntegerArray(am, AI_MATKEY_TWOSIDED, &two_sided, &one) ==
+                          AI_SUCCESS && two_sided != 0;
 }
 
 /* One map's KHR_texture_transform, as glTF defines it (offset, rotation, scale: uv' =

@@ -54,6 +54,10 @@ typedef struct scene_material {
     float alpha_cutoff;        /* MATERIAL_MASK */
     float opacity;             /* MATERIAL_BLEND: the coverage alpha in [0, 1] (glTF base
                                 * colour alpha, OBJ d); 1 for the others */
+    bool double_sided;         /* glTF doubleSided (assimp's TWOSIDED): drawn without face
+                                * culling in every pass (scene_gpu's object draws); a back
+                                * face is shaded with its normal turned to the viewer
+                                * (surface.inc, visibility_shade.comp), as glTF asks */
 } scene_material;
 
 /* Whether an object is drawn in the translucent pass (its material is MATERIAL_BLEND). */

@@ -363,6 +363,13 @@ void gl_state_cull(gl_state *s, gls_cull cull)
         count_change(s, GLS_CAT_CULL);
 }
 
+gls_cull gl_state_cull_current(const gl_state *s)
+{
+    if (!s->gl.cull_on)
+        return GLS_CULL_NONE;
+    return s->gl.cull_face == GL_FRONT ? GLS_CULL_FRONT : GLS_CULL_BACK;
+}
+
 void gl_state_viewport(gl_state *s, int x, int y, int width, int height)
 {
     GLint v[4] = {x, y, width, height};

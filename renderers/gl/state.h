@@ -246,6 +246,9 @@ void gl_state_color_mask(gl_state *s, unsigned mask);                 /* GLS_COL
 void gl_state_depth(gl_state *s, const gls_depth *depth);             /* NULL: {0}, off */
 void gl_state_stencil(gl_state *s, const gls_stencil *stencil);       /* NULL: {0}, off */
 void gl_state_cull(gl_state *s, gls_cull cull);
+/* The culling set last (a pass sets it before it draws; after gl_state_invalidate, until
+ * then, what the cache last knew). */
+gls_cull gl_state_cull_current(const gl_state *s);
 void gl_state_viewport(gl_state *s, int x, int y, int width, int height);
 void gl_state_vertex_array(gl_state *s, GLuint vertex_array);         /* 0: the empty one */
 /* The whole of buffer at GL_SHADER_STORAGE_BUFFER binding point `binding` (< 16;

@@ -47,6 +47,8 @@ static float g_fog_density = 0.0f;
 static int g_msaa = 0;   /* issue 12: > 1, run_case compares msaa forward-spml and deferred */
 static lpp_light_buffer_format g_lpp = LPP_LIGHT_BUFFER_RGBA16F;   /* deferred-lighting's */
 static bool g_lpp_tiled = false;   /* deferred-lighting's lights by the tiled lists */
+static bool g_double_sided = false;   /* build: every material double-sided */
+static frame_stats g_last;            /* the last frame render_with drew */
 
 typedef struct light_case {
     const char *name;
@@ -90,6 +92,8 @@ static scene *build(const light_case *c)
     s->count = (light_count){.start = c->nlights, .max = c->nlights};
     if (c->zfar > 0)
         s->zfar = c->zfar;
+    for (uint32_t i = 0; i < s->nmaterials; i++)
+        s->materials[i].double_sided = g_double_sided;
     scene_update(s, 0.0);
     sm_vec3 up = {0.0f, 1.0f, 0.0f};
     sm_vec3_copy(c->eye, s->cam.eye);
@@ -127,6 +131,7 @@ static bool render_with(const char *kind, light_volume_mode mode, bool storage, 
     renderer_draw(r, s, &fs);
     gl.Finish();
     renderer_collect(r, &fs);
+    g_last = fs;
     out->width = W;
     out->height = H;
     out->channels = 4;
@@ -391,6 +396,48 @@ static void test_camera_inside_spot_volume(void **state)
     run_case(&c);
 }
 
+/* glTF's doubleSided: the camera and a light inside the grid's first sphere (radius 2 at
+ * (-10, 2.2, -10)), every material double-sided. Each renderer draws the inside of the
+ * sphere, lit by the light with the back faces' normals turned inward, as forward-spml
+ * does (run_case: every renderer and light-volume mode, msaa 1); single-sided, the inside
+ * is culled and the view goes through the sphere; each pass that draws the objects turns
+ * culling off and back on for each of them (deferred's G-buffer pass: two more state
+ * changes a visible object, the same draws). */
+static void test_double_sided(void **state)
+{
+    (void)state;
+    light_case c = {"double-sided: inside a sphere", {-10.6f, 2.2f, -10.0f},
+                    {-8.0f, 2.0f, -10.0f}, 0, 1, {point(-9.4f, 2.4f, -10.2f, 4.0f, 1.0f, 0.9f,
+                                                        0.8f)}};
+    g_double_sided = true;
+    run_case(&c);
+    scene *two = build(&c);
+    g_double_sided = false;
+    scene *one = build(&c);
+    assert_non_null(two);
+    assert_non_null(one);
+    image a = {0}, b = {0};
+    assert_true(render("deferred", LIGHT_VOLUMES_STENCIL, two, &a));
+    const pass_stats g2 = *find_pass(&g_last, "gbuffer");
+    assert_true(render("deferred", LIGHT_VOLUMES_STENCIL, one, &b));
+    const pass_stats g1 = *find_pass(&g_last, "gbuffer");
+    image_error e;
+    char err[256];
+    assert_true(image_compare(&a, &b, &e, err, sizeof err));
+    print_message("double-sided vs single-sided inside the sphere: %.2f of the pixels differ "
+                  "by > 1/255; G-buffer pass: %llu draws, %llu vs %llu state changes\n",
+                  e.frac_over_1_255, (unsigned long long)g2.draw_calls,
+                  (unsigned long long)g2.state_changes, (unsigned long long)g1.state_changes);
+    assert_true(e.frac_over_1_255 > 0.5);
+    assert_int_equal(g2.draw_calls, g1.draw_calls);
+    assert_true(g2.draw_calls > 0);
+    assert_int_equal(g2.state_changes, g1.state_changes + 2 * g2.draw_calls);
+    image_free(&a);
+    image_free(&b);
+    scene_destroy(two);
+    scene_destroy(one);
+}
+
 /* The eye is outside the light's sphere but inside the volume drawn for it (the
  * sphere scaled by 1.1), so the near plane cuts the volume; the light reaches the
  * floor in front of the camera. */
@@ -500,6 +547,7 @@ GL_TEST_MAIN(ctx, W, H,
              cmocka_unit_test(test_camera_inside_spot_volume),
              cmocka_unit_test(test_volume_cut_by_near_plane),
              cmocka_unit_test(test_volume_cut_by_far_plane),
+             cmocka_unit_test(test_double_sided),
              cmocka_unit_test(test_fog),
              cmocka_unit_test(test_rgba32f_many_overlapping_lights),
              cmocka_unit_test(test_msaa4))
