@@ -198,13 +198,15 @@ static const char *find_bytes(const unsigned char *data, size_t n_data, const ch
 /* The glTF extensions the file says it uses (its JSON's "extensionsUsed", in a .gltf or a
  * .glb's JSON chunk) that shadesweep does not implement: all but the lights
  * (lights.placement: scene), mesh quantization (assimp decodes it), specular-glossiness
- * (mapped onto Phong like metallic-roughness) and texture transforms (baked into the uv;
- * where one material's maps differ, not_rendered_of says so). */
+ * (mapped onto Phong like metallic-roughness), texture transforms (baked into the uv;
+ * where one material's maps differ, not_rendered_of says so) and emissive strength
+ * (file_gltf_emissive_strengths: it scales the emissive). */
 static void gltf_extensions(const read_file *f, scene_file_info *info)
 {
     static const char *const implemented[] = {"KHR_lights_punctual", "KHR_mesh_quantization",
                                               "KHR_materials_pbrSpecularGlossiness",
-                                              "KHR_texture_transform"};
+                                              "KHR_texture_transform",
+                                              "KHR_materials_emissive_strength"};
     /* the JSON only: a .glb's first chunk (its length at byte 12, validated by the
      * pre-scan), a .gltf whole; an OBJ or a binary chunk is not searched */
     size_t json = 0, start = 0;
@@ -637,7 +639,7 @@ bool scene_build_file(scene_builder *b, const void *arg)
     if (!sb_begin(b, c.objects))
         goto out;
     for (unsigned i = 0; i < ai->mNumMaterials && !b->failed; i++)
-        file_add_material(b, &l, ai->mMaterials[i], map);
+        file_add_material(b, &l, i, map);
     for (unsigned i = 0; i < ai->mNumMeshes && !b->failed; i++) {
         float uvt[2][3];
         const struct aiMesh *am = ai->mMeshes[i];

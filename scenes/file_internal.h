@@ -61,6 +61,13 @@ void file_io_close(struct aiFileIO *io, struct aiFile *af);
 /* >>prescan (file_prescan.c): false with a message naming the file when its glTF JSON
  * (or a GLB's lengths) asks for what would hurt inside assimp. */
 bool file_prescan_gltf(const char *path, const read_file *f, char *err, size_t errlen);
+/* KHR_materials_emissive_strength of a glTF's materials (after file_prescan_gltf): *out
+ * (malloc'd, NULL for none) holds each material's emissiveStrength, 1 where it has none,
+ * *n of them, in the file's order, which assimp's glTF importer keeps. Not a glTF, or
+ * malformed (assimp reports it): none. False with a message for a value that is not a
+ * finite number >= 0. */
+bool file_gltf_emissive_strengths(const char *path, const read_file *f, float **out, size_t *n,
+                                  char *err, size_t errlen);
 
 /* >>load (file_load.c) */
 /* One loaded file: assimp's scene, the files read, the decoded images (one per distinct
@@ -78,6 +85,8 @@ typedef struct loaded {
     size_t cap_images;
     char dir[4096];            /* the file's folder, with a trailing '/', or "" */
     const char *path;
+    float *emissive_strength;  /* glTF: per material (KHR_materials_emissive_strength) */
+    size_t nemissive_strength;
 } loaded;
 
 /* Which of a material's maps exist: diffuse, normal, emissive references, "" if none. */
@@ -106,9 +115,10 @@ static inline bool file_finite3(const struct aiVector3D *v)
 /* >>materials (file_materials.c) */
 /* A material's alpha mode (glTF alphaMode; OBJ: d < 1 is translucent) and cutoff. */
 material_alpha file_alpha_mode(const struct aiMaterial *am, float *cutoff);
-/* One material of the file as a scene material, its maps as scene textures (map: file
- * image -> scene texture, -1 where not made yet). */
-void file_add_material(scene_builder *b, loaded *l, const struct aiMaterial *am, int *map);
+/* Material `index` of the file as a scene material, its maps as scene textures (map: file
+ * image -> scene texture, -1 where not made yet), its emissive scaled by its
+ * KHR_materials_emissive_strength. */
+void file_add_material(scene_builder *b, loaded *l, unsigned index, int *map);
 /* The material's KHR_texture_transform as uv' = out x (u, v, 1) in our uv: 1 when its maps
  * have one and agree on it, 0 when they have none (out: identity or untouched), -1 when
  * they differ (out: the base colour map's, else the first map's; one uv set carries one). */

@@ -24,6 +24,7 @@ void file_loaded_free(loaded *l)
         image_free(&l->images[i].img);
     }
     free(l->images);
+    free(l->emissive_strength);
     file_set_free(&l->files);
     memset(l, 0, sizeof *l);
 }
@@ -361,7 +362,9 @@ bool file_load(const scene_file_options *o, loaded *l, char *err, size_t errlen)
         return false;
     }
     l->files.allow_outside = o->allow_outside;
-    if (!file_prescan_gltf(o->path, &l->files.files[0], err, errlen)) {
+    if (!file_prescan_gltf(o->path, &l->files.files[0], err, errlen) ||
+        !file_gltf_emissive_strengths(o->path, &l->files.files[0], &l->emissive_strength,
+                                      &l->nemissive_strength, err, errlen)) {
         file_loaded_free(l);
         return false;
     }

@@ -85,8 +85,9 @@ static int scene_texture(scene_builder *b, loaded *l, const char *ref, int *map,
     return (int)s->ntextures++;
 }
 
-void file_add_material(scene_builder *b, loaded *l, const struct aiMaterial *am, int *map)
+void file_add_material(scene_builder *b, loaded *l, unsigned index, int *map)
 {
+    const struct aiMaterial *am = l->ai->mMaterials[index];
     struct aiColor4D base = {1, 1, 1, 1}, spec = {0, 0, 0, 1}, emis = {0, 0, 0, 1};
     if (aiGetMaterialColor(am, AI_MATKEY_BASE_COLOR, &base) != aiReturn_SUCCESS)
         aiGetMaterialColor(am, AI_MATKEY_COLOR_DIFFUSE, &base);
@@ -127,6 +128,8 @@ void file_add_material(scene_builder *b, loaded *l, const struct aiMaterial *am,
     sm_vec3_make(emis.r, emis.g, emis.b, m->emissive);
     if (em >= 0 && emis.r == 0.0f && emis.g == 0.0f && emis.b == 0.0f)
         sm_vec3_make(1.0f, 1.0f, 1.0f, m->emissive);   /* OBJ: map_Ke without Ke */
+    if (index < l->nemissive_strength)   /* glTF's KHR_materials_emissive_strength */
+        sm_vec3_scale(m->emissive, l->emissive_strength[index], m->emissive);
     float cutoff = 0.5f;
     m->alpha = file_alpha_mode(am, &cutoff);
     if (m->alpha == MATERIAL_MASK)

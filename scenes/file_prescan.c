@@ -2,6 +2,7 @@
  * (see scenes/file_assimp.c). */
 #include "scenes/file_internal.h"
 
+#include <math.h>
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
@@ -344,6 +345,134 @@ static bool glb_lengths(const char *path, const read_file *f, char *err, size_t 
                               path, k, (unsigned long long)len, f->size - at - 8);
         at += 8 + (size_t)((len + 3) & ~(uint64_t)3);
     }
+    return true;
+}
+
+// >>KHR_materials_emissive_strength
+
+/* A JSON number at j (copied out: the bytes need not end in a NUL); false if none. */
+static bool js_number(jscan *j, double *out)
+{
+    js_ws(j);
+    char buf[64];
+    size_t n = 0;
+    while (j->p + n < j->end && n + 1 < sizeof buf && strchr("+-.0123456789eE", j->p[n]) &&
+           j->p[n])
+        n++;
+    memcpy(buf, j->p, n);
+    buf[n] = '\0';
+    char *e;
+    *out = strtod(buf, &e);
+    if (n == 0 || e != buf + n)
+        return j->bad = true, false;
+    j->p += n;
+    return true;
+}
+
+/* An object at j: fn called with each key, the value next (fn reads or skips it; false
+ * stops). The callers' structure is fixed, so the calls nest at most four deep. */
+typedef bool (*js_member_fn)(jscan *j, const char *k, size_t kn, void *ctx);
+static bool js_object(jscan *j, js_member_fn fn, void *ctx)
+{
+    if (!js_lit(j, '{'))
+        return false;
+    if (js_lit(j, '}'))
+        return true;
+    do {
+        const char *k;
+        size_t kn;
+        if (!js_string(j, &k, &kn) || !js_lit(j, ':') || !fn(j, k, kn, ctx))
+            return false;
+    } while (js_lit(j, ','));
+    return js_lit(j, '}');
+}
+
+typedef struct strengths {
+    float *v;                  /* per material: emissiveStrength, 1 without one */
+    size_t n, cap;
+    double bad;                /* the first value that is no finite number >= 0 */
+    bool has_bad;
+    bool deep;
+} strengths;
+
+static bool js_skip_member(jscan *j, bool *deep)
+{
+    return js_skip(j, 4, deep);
+}
+
+static bool strength_member(jscan *j, const char *k, size_t kn, void *ctx)
+{
+    strengths *st = ctx;
+    if (!key_is(k, kn, "emissiveStrength"))
+        return js_skip_member(j, &st->deep);
+    double v;
+    if (!js_number(j, &v))
+        return false;
+    if (!(isfinite(v) && v >= 0.0 && v <= 1e30) && !st->has_bad) {
+        st->bad = v;
+        st->has_bad = true;
+    }
+    st->v[st->n - 1] = (float)v;
+    return true;
+}
+
+static bool extension_member(jscan *j, const char *k, size_t kn, void *ctx)
+{
+    strengths *st = ctx;
+    if (!key_is(k, kn, "KHR_materials_emissive_strength"))
+        return js_skip_member(j, &st->deep);
+    return js_object(j, strength_member, ctx);
+}
+
+static bool material_member(jscan *j, const char *k, size_t kn, void *ctx)
+{
+    strengths *st = ctx;
+    if (!key_is(k, kn, "extensions"))
+        return js_skip_member(j, &st->deep);
+    return js_object(j, extension_member, ctx);
+}
+
+static bool top_member(jscan *j, const char *k, size_t kn, void *ctx)
+{
+    strengths *st = ctx;
+    if (!key_is(k, kn, "materials"))
+        return js_skip_member(j, &st->deep);
+    if (!js_lit(j, '['))
+        return false;
+    if (js_lit(j, ']'))
+        return true;
+    do {
+        if (!GROW(st->v, st->cap, st->n + 1, 16))
+            return false;
+        st->v[st->n++] = 1.0f;
+        if (!js_object(j, material_member, ctx))
+            return false;
+    } while (js_lit(j, ','));
+    return js_lit(j, ']');
+}
+
+bool file_gltf_emissive_strengths(const char *path, const read_file *f, float **out, size_t *n,
+                                  char *err, size_t errlen)
+{
+    *out = NULL;
+    *n = 0;
+    const char *json;
+    size_t len;
+    if (!gltf_json(f, &json, &len))
+        return true;
+    jscan j = {json, json + len, false};
+    strengths st = {0};
+    if (!js_object(&j, top_member, &st)) {   /* malformed: assimp reports it */
+        free(st.v);
+        return true;
+    }
+    if (st.has_bad) {
+        free(st.v);
+        return scene_fail(err, errlen, "%s: KHR_materials_emissive_strength: emissiveStrength "
+                          "%g is not a finite number >= 0", path, st.bad);
+    }
+    *out = st.v;
+    *n = st.n;
     return true;
 }
 

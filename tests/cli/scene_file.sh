@@ -125,3 +125,82 @@ if skin["not_rendered"] != ["skins (1 mesh, drawn in the bind pose)", "animation
 m = yaml.safe_load(open(f"{d}/runs/{summ[3]['run_id']}/meta.yaml"))
 if "scene_file" in m: sys.exit("FAIL: a catalog scene has no scene_file block")
 PY
+
+# KHR_materials_emissive_strength: a quad with a black base colour and an emissive factor
+# of (0.2, 0.1, 0.05), without lights, drawn with emissiveStrength 3 and without the
+# extension: the strength scales the emissive (the centre pixel 3x, within rounding), the
+# extension is not listed as not rendered; a negative strength is refused by name.
+$PYTHON - <<'PY'
+import base64, json, struct
+pos = [-1, -1, 0, 1, -1, 0, 1, 1, 0, -1, 1, 0]
+nrm = [0, 0, 1] * 4
+idx = [0, 1, 2, 0, 2, 3]
+blob = struct.pack("<12f", *pos) + struct.pack("<12f", *nrm) + struct.pack("<6H", *idx) + b"\0\0"
+def quad(strength):
+    mat = {"pbrMetallicRoughness": {"baseColorFactor": [0, 0, 0, 1], "metallicFactor": 0},
+           "emissiveFactor": [0.2, 0.1, 0.05]}
+    g = {"asset": {"version": "2.0"}, "scene": 0, "scenes": [{"nodes": [0]}],
+         "nodes": [{"mesh": 0}], "materials": [mat],
+         "meshes": [{"primitives": [{"attributes": {"POSITION": 0, "NORMAL": 1}, "indices": 2,
+                                     "material": 0}]}],
+         "buffers": [{"byteLength": len(blob), "uri": "data:application/octet-stream;base64,"
+                      + base64.b64encode(blob).decode()}],
+         "bufferViews": [{"buffer": 0, "byteOffset": 0, "byteLength": 48},
+                         {"buffer": 0, "byteOffset": 48, "byteLength": 48},
+                         {"buffer": 0, "byteOffset": 96, "byteLength": 12}],
+         "accessors": [{"bufferView": 0, "componentType": 5126, "count": 4, "type": "VEC3",
+                        "min": [-1, -1, 0], "max": [1, 1, 0]},
+                       {"bufferView": 1, "componentType": 5126, "count": 4, "type": "VEC3"},
+                       {"bufferView": 2, "componentType": 5123, "count": 6, "type": "SCALAR"}]}
+    if strength is not None:
+        mat["extensions"] = {"KHR_materials_emissive_strength": {"emissiveStrength": strength}}
+        g["extensionsUsed"] = ["KHR_materials_emissive_strength"]
+    return json.dumps(g)
+open("scenes/quad1.gltf", "w").write(quad(None))
+open("scenes/quad3.gltf", "w").write(quad(3))
+open("scenes/quadbad.gltf", "w").write(quad(-2))
+PY
+cat >e.yaml <<'YAML'
+shadesweep: 1
+name: emissive-strength
+renderers: [forward-spml, deferred]
+resolution: 48x32
+duration: {frames: 1}
+clock: fixed
+lights: {placement: none, count: 0}
+outputs: {screenshots: [0]}
+sweep:
+  scene: [{file: scenes/quad1.gltf}, {file: scenes/quad3.gltf}]
+YAML
+"$SHADESWEEP" run e.yaml -o eout >erun.txt 2>&1 || fail "run e.yaml: $(tail -5 erun.txt)"
+grep -q "KHR_materials_emissive_strength" erun.txt && fail "listed as not rendered: $(grep warning erun.txt)"
+$PYTHON - eout "$SOURCE_ROOT/tests/cli" <<'PY'
+import csv, sys, glob
+sys.path.insert(0, sys.argv[2])
+from shading_model import read_png
+d = sys.argv[1]
+summ = list(csv.DictReader(open(f"{d}/summary.csv")))
+if [r["status"] for r in summ] != ["ok"] * 4: sys.exit(f"FAIL: {summ}")
+px = {}
+for r in summ:
+    img = read_png(glob.glob(f"{d}/runs/{r['run_id']}/screenshot-*.png")[0])
+    px[(r["scene"], r["renderer"])] = [int(v) for v in img[img.shape[0] // 2, img.shape[1] // 2, :3]]
+for ren in ("forward-spml", "deferred"):
+    one, three = px[("quad1.gltf", ren)], px[("quad3.gltf", ren)]
+    # 0.2, 0.1, 0.05 and three times that, in 8 bits
+    if any(abs(a - round(255 * v)) > 1 for a, v in zip(one, (0.2, 0.1, 0.05))) or \
+       any(abs(a - round(255 * v)) > 1 for a, v in zip(three, (0.6, 0.3, 0.15))):
+        sys.exit(f"FAIL: {ren}: emissive {one} and with strength 3 {three}")
+PY
+cat >eb.yaml <<'YAML'
+shadesweep: 1
+name: emissive-strength-bad
+scene: {file: scenes/quadbad.gltf}
+renderers: [forward-spml]
+resolution: 48x32
+duration: {frames: 1}
+lights: {placement: none, count: 0}
+YAML
+set +e; "$SHADESWEEP" validate eb.yaml >out.txt 2>err.txt; rc=$?; set -e
+[ $rc -eq 2 ] && grep -qF "scenes/quadbad.gltf: KHR_materials_emissive_strength: emissiveStrength -2 is not a finite number >= 0" err.txt ||
+  fail "a negative emissiveStrength: rc $rc $(cat err.txt out.txt)"
