@@ -96,7 +96,8 @@ bool renderer_base_size(renderer_base *b, const struct scene *s, char *err, size
 /* The light features of the scene's lights as lighting.inc's common defines (every
  * program of the base's cache is compiled for them) and the pass plan's `lighting`
  * line: what is compiled in, and what is left out. Attenuation is a point and spot
- * light's only (a directional light has none). */
+ * light's only (a directional light has none). A scene with coloured meshes adds
+ * VERTEX_COLOR (mesh.vert, surface.inc), which the line names too. */
 static bool set_lighting(renderer_base *b, const struct scene *s)
 {
     static const char *const type_name[3] = {"point", "spot", "directional"};
@@ -123,9 +124,14 @@ static bool set_lighting(renderer_base *b, const struct scene *s)
         if (*n < sizeof in)
             *n += (size_t)snprintf(to + *n, sizeof in - *n, "%s%s", *n ? ", " : "", what);
     }
-    snprintf(b->lighting, sizeof b->lighting, "compiled for %s; left out: %s",
-             nin ? in : "no light", nout ? out : "nothing");
-    return gl_program_cache_set_common(b->programs, defs, 2);
+    uint32_t coloured = 0;
+    for (uint32_t i = 0; s && i < s->nmeshes; i++)
+        coloured += s->meshes[i].colors != NULL;
+    const char *defs3[3] = {defs[0], defs[1], "VERTEX_COLOR"};
+    snprintf(b->lighting, sizeof b->lighting, "compiled for %s%s; left out: %s",
+             nin ? in : "no light", coloured ? ", vertex colours" : "",
+             nout ? out : "nothing");
+    return gl_program_cache_set_common(b->programs, defs3, coloured ? 3 : 2);
 }
 
 void renderer_base_describe(const renderer_base *b, pass_plan *out)

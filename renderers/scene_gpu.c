@@ -15,6 +15,7 @@
 
 typedef struct gpu_mesh {
     GLuint vao, vbo, ibo;
+    GLuint cbo;                /* the vertex colours (attribute 4), or 0 */
     GLsizei count;             /* indices */
 } gpu_mesh;
 
@@ -66,6 +67,17 @@ static bool mesh_upload(gpu_mesh *out, const mesh *m, const char *what, uint64_t
         gl.VertexArrayAttribFormat(out->vao, i, attrs[i].size, GL_FLOAT, GL_FALSE, attrs[i].offset);
         gl.VertexArrayAttribBinding(out->vao, i, 0);
     }
+    if (m->colors) {   /* attribute 4 from its own buffer; else the generic white */
+        GLsizeiptr cbytes = (GLsizeiptr)((size_t)m->nvertices * sizeof *m->colors);
+        gl.CreateBuffers(1, &out->cbo);
+        gl.NamedBufferStorage(out->cbo, cbytes, m->colors, 0);
+        gl.VertexArrayVertexBuffer(out->vao, 1, out->cbo, 0, (GLsizei)sizeof *m->colors);
+        gl.EnableVertexArrayAttrib(out->vao, SCENE_GPU_COLOR_ATTRIB);
+        gl.VertexArrayAttribFormat(out->vao, SCENE_GPU_COLOR_ATTRIB, 4, GL_UNSIGNED_BYTE,
+                                   GL_TRUE, 0);
+        gl.VertexArrayAttribBinding(out->vao, SCENE_GPU_COLOR_ATTRIB, 1);
+        *bytes += (uint64_t)cbytes;
+    }
     out->count = (GLsizei)m->nindices;
     *bytes += (uint64_t)vbytes + (uint64_t)ibytes;
     return true;
@@ -77,6 +89,8 @@ static void mesh_release(gpu_mesh *m)
         gl.DeleteVertexArrays(1, &m->vao);
     if (m->vbo)
         gl.DeleteBuffers(1, &m->vbo);
+    if (m->cbo)
+        gl.DeleteBuffers(1, &m->cbo);
     if (m->ibo)
         gl.DeleteBuffers(1, &m->ibo);
     memset(m, 0, sizeof *m);
@@ -164,6 +178,8 @@ scene_gpu *scene_gpu_create(const scene *s, char *err, size_t errlen)
     if (!g->meshes || !g->textures || !g->programs)
         goto oom;
 
+    /* what a mesh without colours reads from attribute 4 (context state, set once) */
+    gl.VertexAttrib4f(SCENE_GPU_COLOR_ATTRIB, 1.0f, 1.0f, 1.0f, 1.0f);
     for (uint32_t i = 0; i < s->nmeshes; i++) {
         char what[32];
         snprintf(what, sizeof what, "mesh %u", i);

@@ -19,7 +19,11 @@
  * Details:
  * - Meshes: one vertex array + vertex buffer + index buffer per scene mesh (immutable
  *   storage), attributes 0 position (vec3), 1 normal (vec3), 2 tangent (vec4), 3 uv
- *   (vec2) from mesh_vertex; 32-bit indices.
+ *   (vec2) from mesh_vertex; 32-bit indices. A mesh with vertex colours (mesh.colors)
+ *   has a second buffer for attribute 4 (SCENE_GPU_COLOR_ATTRIB, RGBA8 normalised);
+ *   the others leave it disabled, so that it reads the generic value scene_gpu_create
+ *   sets, white. Programs read it only when compiled with VERTEX_COLOR
+ *   (renderer_base_scene's common define for a scene with coloured meshes).
  * - Textures: one per scene texture, RGBA8 (4 channels) or R8 (1 channel, read .r),
  *   full mip chain (glGenerateTextureMipmap), trilinear, GL_REPEAT. Not sRGB.
  * - Frame block: one uniform buffer (gpu_frame, 192 bytes) bound to uniform binding 0
@@ -52,6 +56,9 @@
 #include <stdint.h>
 #include "renderers/gl/state.h"
 #include "scenes/scene.h"
+
+/* mesh.vert's a_color: a mesh's vertex colours (VERTEX_COLOR). */
+#define SCENE_GPU_COLOR_ATTRIB 4
 
 typedef struct scene_gpu scene_gpu;
 

@@ -206,6 +206,23 @@ static bool split(visibility *r, const scene *s, char *err, size_t errlen)
     return true;
 }
 
+/* Mesh me's vertices into buffer at vertex `base`, 13 words each: mesh_vertex's 12 and
+ * the RGBA8 colour (white without colours). False when out of memory. */
+static bool upload_coloured(GLuint buffer, uint32_t base, const mesh *me)
+{
+    uint32_t *w = malloc((size_t)(me->nvertices ? me->nvertices : 1) * 13 * sizeof *w);
+    if (!w)
+        return false;
+    for (uint32_t v = 0; v < me->nvertices; v++) {
+        memcpy(w + 13 * (size_t)v, &me->vertices[v], sizeof(mesh_vertex));
+        w[13 * (size_t)v + 12] = me->colors ? me->colors[v] : 0xffffffffu;
+    }
+    gl.NamedBufferSubData(buffer, (GLintptr)((uint64_t)base * 13 * sizeof *w),
+                          (GLsizeiptr)((size_t)me->nvertices * 13 * sizeof *w), w);
+    free(w);
+    return true;
+}
+
 /* Copies of every mesh's vertices and indices, concatenated, as storage buffers (the
  * GPU's vertex buffers are one per mesh), and the per-draw buffer. */
 static bool make_buffers(visibility *r, const scene *s, char *err, size_t errlen)
@@ -225,9 +242,14 @@ static bool make_buffers(visibility *r, const scene *s, char *err, size_t errlen
         nvert += s->meshes[m].nvertices;
         nind += s->meshes[m].nindices;
     }
-    uint64_t vbytes = nvert * sizeof(mesh_vertex), ibytes = nind * sizeof(uint32_t);
+    /* VERTEX_COLOR (a coloured mesh in the scene): a 13th word a vertex, its colour */
+    bool coloured = false;
+    for (uint32_t m = 0; m < s->nmeshes; m++)
+        coloured |= s->meshes[m].colors != NULL;
+    const uint64_t words = coloured ? 13 : 12;
+    uint64_t vbytes = nvert * words * 4, ibytes = nind * sizeof(uint32_t);
     uint64_t max_block = (uint64_t)light_grid_max_block();
-    if (vbytes > max_block || ibytes > max_block || nvert * 12u > UINT32_MAX) {
+    if (vbytes > max_block || ibytes > max_block || nvert * words > UINT32_MAX) {
         snprintf(err, errlen, "visibility: the scene's %llu vertices (%llu bytes) and %llu "
                  "indices do not fit one storage block (%llu bytes)",
                  (unsigned long long)nvert, (unsigned long long)vbytes,
@@ -240,10 +262,18 @@ static bool make_buffers(visibility *r, const scene *s, char *err, size_t errlen
                           GL_DYNAMIC_STORAGE_BIT);
     gl.NamedBufferStorage(r->indices, (GLsizeiptr)(ibytes ? ibytes : 4), NULL,
                           GL_DYNAMIC_STORAGE_BIT);
+    _Static_assert(sizeof(mesh_vertex) == 12 * 4, "visibility_shade.comp reads 12 words");
     for (uint32_t m = 0; m < s->nmeshes; m++) {
         const mesh *me = &s->meshes[m];
-        gl.NamedBufferSubData(r->vertices, (GLintptr)(r->base_vertex[m] * sizeof(mesh_vertex)),
-                              (GLsizeiptr)(me->nvertices * sizeof(mesh_vertex)), me->vertices);
+        if (coloured && !upload_coloured(r->vertices, r->base_vertex[m], me)) {
+            snprintf(err, errlen, "visibility: out of memory for %u vertices", me->nvertices);
+            return false;
+        }
+        if (!coloured)
+            gl.NamedBufferSubData(r->vertices,
+                                  (GLintptr)(r->base_vertex[m] * sizeof(mesh_vertex)),
+                                  (GLsizeiptr)(me->nvertices * sizeof(mesh_vertex)),
+                                  me->vertices);
         gl.NamedBufferSubData(r->indices, (GLintptr)(r->first_index[m] * sizeof(uint32_t)),
                               (GLsizeiptr)(me->nindices * sizeof(uint32_t)), me->indices);
     }

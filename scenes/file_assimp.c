@@ -251,12 +251,11 @@ static void gltf_extensions(const read_file *f, scene_file_info *info)
 static void not_rendered_of(const loaded *l, scene_file_info *info)
 {
     const struct aiScene *ai = l->ai;
-    unsigned skinned = 0, morphed = 0, coloured = 0, uv2 = 0, ortho = 0;
+    unsigned skinned = 0, morphed = 0, uv2 = 0, ortho = 0;
     for (unsigned i = 0; i < ai->mNumMeshes; i++) {
         const struct aiMesh *m = ai->mMeshes[i];
         skinned += m->mNumBones > 0;
         morphed += m->mNumAnimMeshes > 0;
-        coloured += m->mColors[0] != NULL;
         uv2 += m->mTextureCoords[1] != NULL;
     }
     for (unsigned i = 0; i < ai->mNumCameras; i++)
@@ -287,8 +286,6 @@ static void not_rendered_of(const loaded *l, scene_file_info *info)
                      morphed == 1 ? "" : "es");
     if (ai->mNumAnimations)
         not_rendered(info, "animations (%u, not played)", ai->mNumAnimations);
-    if (coloured)
-        not_rendered(info, "vertex colours (%u mesh%s)", coloured, coloured == 1 ? "" : "es");
     if (uv2)
         not_rendered(info, "a second UV set (%u mesh%s)", uv2, uv2 == 1 ? "" : "es");
     if (ortho)
@@ -416,6 +413,24 @@ static int add_mesh(scene_builder *b, const char *path, const struct aiMesh *am,
     }
     m->nvertices = am->mNumVertices;
     m->nindices = am->mNumFaces * 3;
+    if (am->mColors[0]) {   /* COLOR_0: RGBA8, a channel that is not finite as 1 */
+        m->colors = malloc(am->mNumVertices * sizeof *m->colors);
+        if (!m->colors) {
+            mesh_free(m);
+            sb_fail(b, "%s: out of memory for a mesh of %u vertices", path, am->mNumVertices);
+            return -1;
+        }
+        for (unsigned v = 0; v < am->mNumVertices; v++) {
+            const struct aiColor4D *c = &am->mColors[0][v];
+            const float ch[4] = {c->r, c->g, c->b, c->a};
+            uint32_t packed = 0;
+            for (int k = 0; k < 4; k++) {
+                float x = isfinite(ch[k]) ? sm_clamp(ch[k], 0.0f, 1.0f) : 1.0f;
+                packed |= (uint32_t)lrintf(x * 255.0f) << (8 * k);
+            }
+            m->colors[v] = packed;
+        }
+    }
     for (unsigned v = 0; v < am->mNumVertices; v++) {
         mesh_vertex *mv = &m->vertices[v];
         mv->position[0] = am->mVertices[v].x;

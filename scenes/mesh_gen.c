@@ -273,6 +273,23 @@ bool mesh_append(mesh *dst, const mesh *src, const sm_mat4 mat, char *err, size_
         return scene_fail(err, errlen, "mesh_append: out of memory for %llu vertices",
                           (unsigned long long)nv);
     }
+    /* colours when either has them, white for the other's vertices */
+    uint32_t *c = NULL;
+    if (dst->colors || src->colors) {
+        c = malloc((size_t)(nv ? nv : 1) * sizeof *c);
+        if (!c) {
+            free(v);
+            free(ix);
+            return scene_fail(err, errlen, "mesh_append: out of memory for %llu colours",
+                              (unsigned long long)nv);
+        }
+        for (uint32_t i = 0; i < dst->nvertices; i++)
+            c[i] = dst->colors ? dst->colors[i] : 0xffffffffu;
+        for (uint32_t i = 0; i < src->nvertices; i++)
+            c[dst->nvertices + i] = src->colors ? src->colors[i] : 0xffffffffu;
+    }
+    free(dst->colors);
+    dst->colors = c;
     if (dst->nvertices)
         memcpy(v, dst->vertices, (size_t)dst->nvertices * sizeof *v);
     if (src->nvertices)
@@ -306,5 +323,6 @@ void mesh_free(mesh *m)
         return;
     free(m->vertices);
     free(m->indices);
+    free(m->colors);
     memset(m, 0, sizeof *m);
 }

@@ -75,6 +75,7 @@ GL_FUNC(void, BindVertexArray, (GLuint array))
 GL_FUNC(void, EnableVertexAttribArray, (GLuint index))
 GL_FUNC(void, DisableVertexAttribArray, (GLuint index))
 GL_FUNC(void, VertexAttribPointer, (GLuint index, GLint size, GLenum type, GLboolean normalized, GLsizei stride, const void *pointer))
+GL_FUNC(void, VertexAttrib4f, (GLuint index, GLfloat x, GLfloat y, GLfloat z, GLfloat w))
 GL_FUNC(void, VertexAttribIPointer, (GLuint index, GLint size, GLenum type, GLsizei stride, const void *pointer))
 GL_FUNC(void, VertexAttribDivisor, (GLuint index, GLuint divisor))
 

@@ -4,6 +4,12 @@ layout(location = 0) in vec3 a_position;
 layout(location = 1) in vec3 a_normal;
 layout(location = 2) in vec4 a_tangent;
 layout(location = 3) in vec2 a_uv;
+#ifdef VERTEX_COLOR
+// a mesh's vertex colours (scene_gpu.h), white for a mesh without; only in a scene that
+// has some (renderer_base_scene's common define)
+layout(location = 4) in vec4 a_color;
+layout(location = 4) out vec4 v_color;
+#endif
 
 layout(location = 0) uniform mat4 u_model_view;
 layout(location = 1) uniform mat4 u_proj;
@@ -25,5 +31,8 @@ void main()
     v_normal = u_normal_matrix * a_normal;
     v_tangent = vec4(mat3(u_model_view) * a_tangent.xyz, a_tangent.w);
     v_uv = a_uv;
+#ifdef VERTEX_COLOR
+    v_color = a_color;
+#endif
     gl_Position = u_proj * p;
 }

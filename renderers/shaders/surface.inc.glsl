@@ -6,11 +6,17 @@
 // below u_alpha_cutoff are discarded; only that variant has a discard, so opaque
 // materials keep early depth testing); TRANSLUCENT (a MATERIAL_BLEND material, drawn in
 // the translucent pass): Surface.alpha = u_opacity x the diffuse map's alpha (1 otherwise).
+// VERTEX_COLOR (a common define: the scene has coloured meshes): the vertex colour
+// multiplies the diffuse colour, and its alpha the alpha test's and the coverage, as
+// glTF's COLOR_0 multiplies the base colour.
 #include "bindings.h"
 layout(location = 0) in vec3 v_position;
 layout(location = 1) in vec3 v_normal;
 layout(location = 2) in vec4 v_tangent;
 layout(location = 3) in vec2 v_uv;
+#ifdef VERTEX_COLOR
+layout(location = 4) in vec4 v_color;
+#endif
 
 layout(location = 8) uniform vec3 u_diffuse;
 layout(location = 9) uniform float u_specular;
@@ -54,6 +60,9 @@ Surface surface_get()
 #ifdef DIFFUSE_MAP
     alpha = texture(t_diffuse, v_uv).a;
 #endif
+#ifdef VERTEX_COLOR
+    alpha *= v_color.a;
+#endif
     if (alpha < u_alpha_cutoff)
         discard;
 #endif
@@ -76,6 +85,9 @@ Surface surface_get()
 #ifdef DIFFUSE_MAP
     s.diffuse *= texture(t_diffuse, v_uv).rgb;
 #endif
+#ifdef VERTEX_COLOR
+    s.diffuse *= v_color.rgb;
+#endif
     s.gloss = u_specular;
 #ifdef GLOSS_MAP
     s.gloss *= texture(t_gloss, v_uv).r;
@@ -91,6 +103,9 @@ Surface surface_get()
     s.alpha = clamp(u_opacity, 0.0, 1.0);
 #ifdef DIFFUSE_MAP
     s.alpha *= texture(t_diffuse, v_uv).a;
+#endif
+#ifdef VERTEX_COLOR
+    s.alpha *= v_color.a;
 #endif
 #endif
     return s;

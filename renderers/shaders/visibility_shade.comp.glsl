@@ -84,7 +84,17 @@ layout(std430, binding = BIND_SSBO_VIS_DRAWS) readonly buffer Draws {
     Draw b_draws[];
 };
 // Every mesh of the scene, concatenated: 12 floats a vertex (mesh_vertex: position,
-// normal, tangent, uv) and 32-bit indices.
+// normal, tangent, uv), with VERTEX_COLOR (the scene has coloured meshes: a common
+// define) a 13th word, the RGBA8 colour (white for a mesh without), read through a
+// second view of the same buffer as bits; and 32-bit indices.
+#ifdef VERTEX_COLOR
+const uint VIS_VERTEX_WORDS = 13u;
+layout(std430, binding = BIND_SSBO_VIS_VERTICES) readonly buffer VertexWords {
+    uint b_vertex_words[];
+};
+#else
+const uint VIS_VERTEX_WORDS = 12u;
+#endif
 layout(std430, binding = BIND_SSBO_VIS_VERTICES) readonly buffer Vertices {
     float b_vertices[];
 };
@@ -111,7 +121,7 @@ vec3 barycentrics(mat3 m_inv, vec2 p)
 
 vec3 vertex_attr3(uint v, uint offset)
 {
-    uint b = v * 12u + offset;
+    uint b = v * VIS_VERTEX_WORDS + offset;
     return vec3(b_vertices[b], b_vertices[b + 1u], b_vertices[b + 2u]);
 }
 
@@ -197,7 +207,7 @@ vec4 shade_id(uint id, ivec2 px)
     vec4 tan[3];
     vec2 uv[3];
     for (uint k = 0u; k < 3u; k++) {
-        uint b = tr.v[k] * 12u;
+        uint b = tr.v[k] * VIS_VERTEX_WORDS;
         tan[k] = vec4(b_vertices[b + 6u], b_vertices[b + 7u], b_vertices[b + 8u],
                       b_vertices[b + 9u]);
         uv[k] = vec2(b_vertices[b + 10u], b_vertices[b + 11u]);
@@ -233,6 +243,12 @@ vec4 shade_id(uint id, ivec2 px)
     vec3 diffuse = d.diffuse_specular.rgb;
 #ifdef DIFFUSE_MAP
     diffuse *= textureGrad(t_diffuse, UV, uv_dx, uv_dy).rgb;
+#endif
+#ifdef VERTEX_COLOR
+    vec3 vc = vec3(0.0);
+    for (uint k = 0u; k < 3u; k++)
+        vc += l[k] * unpackUnorm4x8(b_vertex_words[tr.v[k] * VIS_VERTEX_WORDS + 12u]).rgb;
+    diffuse *= vc;
 #endif
     float gloss = d.diffuse_specular.a;
 #ifdef GLOSS_MAP

@@ -204,3 +204,76 @@ YAML
 set +e; "$SHADESWEEP" validate eb.yaml >out.txt 2>err.txt; rc=$?; set -e
 [ $rc -eq 2 ] && grep -qF "scenes/quadbad.gltf: KHR_materials_emissive_strength: emissiveStrength -2 is not a finite number >= 0" err.txt ||
   fail "a negative emissiveStrength: rc $rc $(cat err.txt out.txt)"
+
+# glTF's COLOR_0: a grey quad lit by four surface lights, with vertex colours (1, 0.5,
+# 0.25) and without, in every renderer: the centre pixel's red stays, green and blue
+# take about a half and a quarter (a near-black specular apart), the same in each, and
+# the colours are not listed as not rendered.
+$PYTHON - <<'PY'
+import base64, json, struct
+pos = [-1, -1, 0, 1, -1, 0, 1, 1, 0, -1, 1, 0]
+blob = (struct.pack("<12f", *pos) + struct.pack("<12f", *([0, 0, 1] * 4)) +
+        struct.pack("<16f", *([1, 0.5, 0.25, 1] * 4)) + struct.pack("<6H", 0, 1, 2, 0, 2, 3) +
+        b"\0\0")
+def quad(colours):
+    attrs = {"POSITION": 0, "NORMAL": 1}
+    if colours:
+        attrs["COLOR_0"] = 3
+    return json.dumps({
+        "asset": {"version": "2.0"}, "scene": 0, "scenes": [{"nodes": [0]}],
+        "nodes": [{"mesh": 0}],
+        "materials": [{"pbrMetallicRoughness": {"baseColorFactor": [0.8, 0.8, 0.8, 1],
+                                                "metallicFactor": 0, "roughnessFactor": 1}}],
+        "meshes": [{"primitives": [{"attributes": attrs, "indices": 2, "material": 0}]}],
+        "buffers": [{"byteLength": len(blob), "uri": "data:application/octet-stream;base64,"
+                     + base64.b64encode(blob).decode()}],
+        "bufferViews": [{"buffer": 0, "byteOffset": 0, "byteLength": 48},
+                        {"buffer": 0, "byteOffset": 48, "byteLength": 48},
+                        {"buffer": 0, "byteOffset": 160, "byteLength": 12},
+                        {"buffer": 0, "byteOffset": 96, "byteLength": 64}],
+        "accessors": [{"bufferView": 0, "componentType": 5126, "count": 4, "type": "VEC3",
+                       "min": [-1, -1, 0], "max": [1, 1, 0]},
+                      {"bufferView": 1, "componentType": 5126, "count": 4, "type": "VEC3"},
+                      {"bufferView": 2, "componentType": 5123, "count": 6, "type": "SCALAR"},
+                      {"bufferView": 3, "componentType": 5126, "count": 4, "type": "VEC4"}]})
+open("scenes/cquad0.gltf", "w").write(quad(False))
+open("scenes/cquad1.gltf", "w").write(quad(True))
+PY
+cat >c.yaml <<'YAML'
+shadesweep: 1
+name: vertex-colours
+renderers: [forward-spml, forward-mpml, forward-plus, clustered, deferred, tiled-deferred,
+            deferred-lighting, visibility]
+resolution: 48x32
+duration: {frames: 1}
+clock: fixed
+lights: {placement: surface, count: 4, overlap: 2}
+outputs: {screenshots: [0]}
+sweep:
+  scene: [{file: scenes/cquad0.gltf}, {file: scenes/cquad1.gltf}]
+YAML
+"$SHADESWEEP" run c.yaml -o cout >crun.txt 2>&1 || fail "run c.yaml: $(tail -5 crun.txt)"
+grep -q "vertex colours" crun.txt && fail "listed as not rendered: $(grep warning crun.txt)"
+$PYTHON - cout "$SOURCE_ROOT/tests/cli" <<'PY'
+import csv, sys, glob
+sys.path.insert(0, sys.argv[2])
+from shading_model import read_png
+d = sys.argv[1]
+summ = list(csv.DictReader(open(f"{d}/summary.csv")))
+if len(summ) != 16 or any(r["status"] != "ok" for r in summ): sys.exit(f"FAIL: {summ}")
+px = {}
+for r in summ:
+    img = read_png(glob.glob(f"{d}/runs/{r['run_id']}/screenshot-*.png")[0])
+    px[(r["scene"], r["renderer"])] = [int(v) for v in img[img.shape[0] // 2, img.shape[1] // 2, :3]]
+first = None
+for (scene, ren), p in px.items():
+    if scene != "cquad1.gltf":
+        continue
+    plain = px[("cquad0.gltf", ren)]
+    want = [plain[0], plain[1] * 0.5, plain[2] * 0.25]
+    if plain[2] < 20 or any(abs(a - w) > 3 for a, w in zip(p, want)):
+        sys.exit(f"FAIL: {ren}: {p} with vertex colours, {plain} without")
+    if first is not None and any(abs(a - b) > 1 for a, b in zip(p, first)):
+        sys.exit(f"FAIL: {ren}: {p}, the first renderer {first}")
+    first = first or p
+PY

@@ -48,6 +48,7 @@ static int g_msaa = 0;   /* issue 12: > 1, run_case compares msaa forward-spml a
 static lpp_light_buffer_format g_lpp = LPP_LIGHT_BUFFER_RGBA16F;   /* deferred-lighting's */
 static bool g_lpp_tiled = false;   /* deferred-lighting's lights by the tiled lists */
 static bool g_double_sided = false;   /* build: every material double-sided */
+static bool g_vertex_colors = false;  /* build: the sphere's mesh (1) coloured by its normals */
 static frame_stats g_last;            /* the last frame render_with drew */
 
 typedef struct light_case {
@@ -94,6 +95,18 @@ static scene *build(const light_case *c)
         s->zfar = c->zfar;
     for (uint32_t i = 0; i < s->nmaterials; i++)
         s->materials[i].double_sided = g_double_sided;
+    if (g_vertex_colors) {   /* RGB from the normal, alpha 1 */
+        mesh *m = &s->meshes[1];
+        m->colors = malloc(m->nvertices * sizeof *m->colors);
+        assert_non_null(m->colors);
+        for (uint32_t v = 0; v < m->nvertices; v++) {
+            uint32_t rgba = 0xff000000u;
+            for (int k = 0; k < 3; k++)
+                rgba |= (uint32_t)lrintf(255.0f * (0.5f + 0.5f * m->vertices[v].normal[k]))
+                        << (8 * k);
+            m->colors[v] = rgba;
+        }
+    }
     scene_update(s, 0.0);
     sm_vec3 up = {0.0f, 1.0f, 0.0f};
     sm_vec3_copy(c->eye, s->cam.eye);
@@ -438,6 +451,51 @@ static void test_double_sided(void **state)
     scene_destroy(one);
 }
 
+/* glTF's COLOR_0: the grid's first sphere coloured by its normals (mesh.colors), seen
+ * and lit from the side: every renderer multiplies its diffuse colour by the interpolated
+ * vertex colour as forward-spml does (run_case; visibility interpolates the colour from
+ * its copy of the vertices), the image differs from the uncoloured one, and the pass
+ * plan says the programs are compiled for vertex colours (VERTEX_COLOR). */
+static void test_vertex_colors(void **state)
+{
+    (void)state;
+    light_case c = {"vertex colours", {-10.0f, 4.0f, -3.0f}, {-10.0f, 2.2f, -10.0f}, 0, 2,
+                    {point(-7.0f, 5.0f, -6.0f, 12.0f, 1.0f, 1.0f, 1.0f),
+                     point(-13.0f, 3.0f, -7.0f, 10.0f, 0.8f, 0.8f, 0.9f)}};
+    g_vertex_colors = true;
+    run_case(&c);
+    scene *col = build(&c);
+    g_vertex_colors = false;
+    scene *plain = build(&c);
+    assert_non_null(col);
+    assert_non_null(plain);
+    image a = {0}, b = {0};
+    assert_true(render("deferred", LIGHT_VOLUMES_STENCIL, col, &a));
+    assert_true(render("deferred", LIGHT_VOLUMES_STENCIL, plain, &b));
+    image_error e;
+    char err[256];
+    assert_true(image_compare(&a, &b, &e, err, sizeof err));
+    print_message("vertex colours against none: %.2f of the pixels differ by > 1/255\n",
+                  e.frac_over_1_255);
+    assert_true(e.frac_over_1_255 > 0.1);   /* the sphere covers about 15 % of the view */
+    const gl_info *gi = gl_context_info(ctx);
+    renderer_options o = {.width = W, .height = H, .gbuffer = GBUFFER_REFERENCE,
+                          .light_volumes = LIGHT_VOLUMES_STENCIL, .hdr = HDR_RGBA16F,
+                          .max_uniform_block_size = gi->max_uniform_block_size};
+    renderer *r = test_renderer_create("forward-spml", &o, err, sizeof err);
+    assert_non_null(r);
+    assert_true(renderer_prepare(r, col, err, sizeof err));
+    pass_plan p;
+    renderer_describe(r, &p);
+    print_message("plan: lighting %s\n", p.lighting);
+    assert_non_null(strstr(p.lighting, ", vertex colours;"));
+    renderer_destroy(r);
+    image_free(&a);
+    image_free(&b);
+    scene_destroy(col);
+    scene_destroy(plain);
+}
+
 /* The eye is outside the light's sphere but inside the volume drawn for it (the
  * sphere scaled by 1.1), so the near plane cuts the volume; the light reaches the
  * floor in front of the camera. */
@@ -548,6 +606,7 @@ GL_TEST_MAIN(ctx, W, H,
              cmocka_unit_test(test_volume_cut_by_near_plane),
              cmocka_unit_test(test_volume_cut_by_far_plane),
              cmocka_unit_test(test_double_sided),
+             cmocka_unit_test(test_vertex_colors),
              cmocka_unit_test(test_fog),
              cmocka_unit_test(test_rgba32f_many_overlapping_lights),
              cmocka_unit_test(test_msaa4))
