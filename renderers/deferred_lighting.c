@@ -44,9 +44,10 @@
  *                      deferred_frame_end, as deferred
  *
  * Draw calls: Sh + 2 V + (the light draws as deferred's, same mode; tiled: none, one
- * dispatch) + [fog] + [sky] + [translucent objects] + [aa] + 1. deferred.separate_specular and deferred.sky_stencil
- * are not read (its light buffer is always split; no full-screen ambient pass to mask),
- * nor gbuffer.* (the layout is fixed).
+ * dispatch) + [fog] + [sky] + [translucent objects] + [aa] + 1. deferred.separate_specular
+ * and deferred.sky_stencil are not read (its light buffer is always split; no full-screen
+ * ambient pass to mask), nor gbuffer.* (the layout is fixed), nor tiles.* (volumes) or
+ * deferred.light_volumes (tiled).
  *
  * MSAA (msaa > 1): the G-buffer, light buffer, light target and depth multisampled;
  * deferred's `edges` pass after the G-buffer, and its two classes in every light pass

@@ -496,7 +496,8 @@ bool deferred_lights_prepare_end(deferred *r, const scene *s,
         !deferred_compile_fog(d, err, errlen) ||
         !translucent_prepare(&d->translucent, &d->b, s, &d->b.shadows, translucent != NULL,
                              err, errlen) ||
-        (translucent && !translucent(r, err, errlen)) || !deferred_prepare_edge_aa(d, err, errlen)) {
+        (translucent && !translucent(r, err, errlen)) ||
+        !deferred_prepare_edge_aa(d, err, errlen)) {
         deferred_core_release(d);
         return false;
     }
