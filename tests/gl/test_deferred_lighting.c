@@ -96,6 +96,22 @@ static scene *build(const char *name, const scene_light *lights, uint32_t n)
     return s;
 }
 
+/* "shapes" with a light of each type, two point lights in view and one behind the camera
+ * (culled). */
+static scene *shapes_every_type(void)
+{
+    const float sp[3] = {10.0f, 9.0f, 0.0f}, st[3] = {10.0f, 0.0f, 0.0f};
+    scene_light lights[] = {
+        directional(-0.3f, -1.0f, -0.2f, 0.5f, 0.5f, 0.45f),
+        point(-10.0f, 3.0f, -10.0f, 7.0f, 1.0f, 0.8f, 0.6f),
+        point(0.0f, 4.0f, 10.0f, 8.0f, 0.5f, 0.7f, 1.0f),
+        point(0.0f, 4.0f, 400.0f, 8.0f, 1.0f, 1.0f, 1.0f),   /* behind the camera: culled */
+        spot(sp, st, 14.0f, 30.0f),
+    };
+    scene *s = build("shapes", lights, 5);
+    return s;
+}
+
 // >>the renderer
 
 static renderer_options options(light_volume_mode mode, lpp_light_buffer_format lb)
@@ -245,15 +261,7 @@ static void check_formula(const scene *s, light_volume_mode mode)
 static void test_draw_calls(void **state)
 {
     (void)state;
-    const float sp[3] = {10.0f, 9.0f, 0.0f}, st[3] = {10.0f, 0.0f, 0.0f};
-    scene_light lights[] = {
-        directional(-0.3f, -1.0f, -0.2f, 0.5f, 0.5f, 0.45f),
-        point(-10.0f, 3.0f, -10.0f, 7.0f, 1.0f, 0.8f, 0.6f),
-        point(0.0f, 4.0f, 10.0f, 8.0f, 0.5f, 0.7f, 1.0f),
-        point(0.0f, 4.0f, 400.0f, 8.0f, 1.0f, 1.0f, 1.0f),   /* behind the camera: culled */
-        spot(sp, st, 14.0f, 30.0f),
-    };
-    scene *s = build("shapes", lights, 5);
+    scene *s = shapes_every_type();
     visible v = count_visible(s);
     assert_int_equal(v.lights[LIGHT_POINT], 2);
     assert_true(v.objects > 0);
@@ -504,15 +512,7 @@ static float max_diff(const float *a, const float *b)
 static void test_tiled(void **state)
 {
     (void)state;
-    const float sp[3] = {10.0f, 9.0f, 0.0f}, st[3] = {10.0f, 0.0f, 0.0f};
-    scene_light lights[] = {
-        directional(-0.3f, -1.0f, -0.2f, 0.5f, 0.5f, 0.45f),
-        point(-10.0f, 3.0f, -10.0f, 7.0f, 1.0f, 0.8f, 0.6f),
-        point(0.0f, 4.0f, 10.0f, 8.0f, 0.5f, 0.7f, 1.0f),
-        point(0.0f, 4.0f, 400.0f, 8.0f, 1.0f, 1.0f, 1.0f),   /* behind the camera: culled */
-        spot(sp, st, 14.0f, 30.0f),
-    };
-    scene *s = build("shapes", lights, 5);
+    scene *s = shapes_every_type();
     visible v = count_visible(s);
     renderer_options o = options(LIGHT_VOLUMES_STENCIL, LPP_LIGHT_BUFFER_RGBA16F);
     o.lpp_tiled = true;
