@@ -49,17 +49,6 @@ static uint64_t fnv1a64_more(uint64_t h, const void *data, size_t len)
 // >>nodes
 
 /* Our matrix (column-major, m[col][row]) from assimp's row-major one. */
-static void from_ai(const struct aiMatrix4x4 *a, sm_mat4 m)
-{
-    const float r[4][4] = {{a->a1, a->a2, a->a3, a->a4},
-                           {a->b1, a->b2, a->b3, a->b4},
-                           {a->c1, a->c2, a->c3, a->c4},
-                           {a->d1, a->d2, a->d3, a->d4}};
-    for (int c = 0; c < 4; c++)
-        for (int k = 0; k < 4; k++)
-            m[c][k] = r[k][c];
-}
-
 /* The root transform: the file's scale, and z-up turned to y-up ((x, y, z) -> (x, z, -y)). */
 static void root_transform(const scene_file_options *o, sm_mat4 m)
 {
@@ -82,7 +71,7 @@ static void walk(const struct aiNode *n, const sm_mat4 parent, node_fn fn, void 
                  unsigned depth)
 {
     sm_mat4 local, world;
-    from_ai(&n->mTransformation, local);
+    file_matrix_from_ai(&n->mTransformation, local);
     sm_mat4_mul(parent, local, world);
     fn(n, world, user);
     if (depth + 1 < FILE_MAX_NODE_DEPTH)
@@ -284,8 +273,13 @@ static void not_rendered_of(const loaded *l, scene_file_info *info)
     if (morphed)
         not_rendered(info, "morph targets (%u mesh%s, drawn in the base shape)", morphed,
                      morphed == 1 ? "" : "es");
-    if (ai->mNumAnimations)
-        not_rendered(info, "animations (%u, not played)", ai->mNumAnimations);
+    /* the first animation's node channels play (file_anim.c); the rest does not */
+    if (ai->mNumAnimations > 1)
+        not_rendered(info, "animations after the first (%u, not played)",
+                     ai->mNumAnimations - 1);
+    if (ai->mNumAnimations && (ai->mAnimations[0]->mNumMorphMeshChannels ||
+                               ai->mAnimations[0]->mNumMeshChannels))
+        not_rendered(info, "morph-target and mesh animation (not played)");
     if (uv2)
         not_rendered(info, "a second UV set (%u mesh%s)", uv2, uv2 == 1 ? "" : "es");
     if (ortho)
@@ -389,6 +383,8 @@ typedef struct build_nodes {
     const uint32_t *mesh_index;    /* file mesh -> scene mesh */
     const uint32_t *mesh_mirror;   /* file mesh -> its mirrored copy, made on demand */
     uint32_t *mirror;
+    const bool *moves;             /* per node in walk's order: animated (file_anim_load) */
+    uint32_t node;                 /* the nodes walked so far */
 } build_nodes;
 
 /* A mesh of the file as a scene mesh: uv v flipped (assimp gives GL's bottom-up v; ours
@@ -473,6 +469,7 @@ static void object_fn(const struct aiNode *n, const sm_mat4 world, void *user)
 {
     build_nodes *bn = user;
     scene_builder *b = bn->b;
+    uint32_t node = bn->node++;
     for (unsigned i = 0; i < n->mNumMeshes && !b->failed; i++) {
         unsigned fm = n->mMeshes[i];
         const struct aiMesh *am = bn->ai->mMeshes[fm];
@@ -508,6 +505,10 @@ static void object_fn(const struct aiNode *n, const sm_mat4 world, void *user)
         }
         scene_object *o = sb_object(b, (int)me, am->mMaterialIndex, 0.0f, 0.0f, 0.0f, 1.0f);
         sm_mat4_copy(t, o->transform);
+        if (bn->moves && bn->moves[node]) {   /* scene_update poses it (scene_anim.h) */
+            o->anim_node = node + 1;
+            o->anim_mirror = me == bn->mirror[fm];
+        }
     }
 }
 
@@ -664,9 +665,13 @@ bool scene_build_file(scene_builder *b, const void *arg)
     }
     sm_mat4 root;
     root_transform(o, root);
-    build_nodes bn = {b, ai, mesh_index, NULL, mirror};
+    bool *moves = NULL;
+    if (!b->failed && !file_anim_load(b, o->path, ai, root, &moves))
+        goto out;
+    build_nodes bn = {b, ai, mesh_index, NULL, mirror, moves, 0};
     if (!b->failed)
         walk(ai->mRootNode, root, object_fn, &bn, 0);
+    free(moves);
     for (unsigned i = 0; i < ai->mNumLights && !b->failed; i++) {
         find_node f = {ai->mLights[i]->mName.data, false, {{0}}, NULL};
         walk(ai->mRootNode, root, find_fn, &f, 0);

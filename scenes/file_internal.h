@@ -107,10 +107,31 @@ static inline bool file_camera_is(const char *camera, const char *word)
     return strcmp(camera && camera[0] ? camera : "auto", word) == 0;
 }
 
+/* assimp's row-major matrix as ours (column-major). */
+static inline void file_matrix_from_ai(const struct aiMatrix4x4 *a, sm_mat4 m)
+{
+    const float r[4][4] = {{a->a1, a->a2, a->a3, a->a4},
+                           {a->b1, a->b2, a->b3, a->b4},
+                           {a->c1, a->c2, a->c3, a->c4},
+                           {a->d1, a->d2, a->d3, a->d4}};
+    for (int c = 0; c < 4; c++)
+        for (int k = 0; k < 4; k++)
+            m[c][k] = r[k][c];
+}
+
 static inline bool file_finite3(const struct aiVector3D *v)
 {
     return isfinite(v->x) && isfinite(v->y) && isfinite(v->z);
 }
+
+/* >>animation (file_anim.c) */
+/* The file's first animation, when it moves a node that has meshes below it, as the
+ * scene's node animation (scene.anim, scene_anim.h; the root transform `root` above the
+ * file's root), and *moves (malloc'd; NULL when the file has no node animation): per
+ * node in walk's order (pre-order, FILE_MAX_NODE_DEPTH levels) whether it moves. False
+ * (b failed) for a key that is not finite or times that go back, or out of memory. */
+bool file_anim_load(scene_builder *b, const char *path, const struct aiScene *ai,
+                    const sm_mat4 root, bool **moves);
 
 /* >>materials (file_materials.c) */
 /* A material's alpha mode (glTF alphaMode; OBJ: d < 1 is translucent) and cutoff. */

@@ -14,6 +14,7 @@
 #include <string.h>
 #include <time.h>
 
+#include "scenes/scene_anim.h"
 #include "scenes/scene_build.h"
 #include "scenes/scene_internal.h"
 
@@ -196,6 +197,7 @@ void scene_destroy(scene *s)
     free(s->materials);
     free(s->objects);
     free(s->lights);
+    scene_anim_free(s->anim);
     free(s);
 }
 

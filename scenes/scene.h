@@ -78,6 +78,11 @@ typedef struct scene_object {
     sm_vec3 spin_axis;         /* unit; rotation about it through the object's origin */
     float spin_rate;           /* radians per second of schedule time (0: static) */
     sm_mat4 transform;         /* node transform, applied first */
+    /* A file's animated node (scene.anim): 1 + its index, 0 for none; scene_update sets
+     * transform = anim->world[anim_node - 1], times a mirror in x when anim_mirror (the
+     * mesh is the node's mirrored copy, as the file's bind pose made it). */
+    uint32_t anim_node;
+    bool anim_mirror;
     sm_mat4 model;
     sm_vec4 bsphere;           /* world-space bounding sphere (the mesh's sphere under model:
                                 * radius x model's largest axis scale) */
@@ -148,6 +153,7 @@ typedef struct scene {
     uint32_t ncoverage_lights;
 
     int fault;                 /* test scenes: what scene_update does at t >= 0.2 (scene.c) */
+    struct scene_anim *anim;   /* a file's node animation (scene_anim.h), or NULL */
 
     /* posed by scene_update() */
     double t;

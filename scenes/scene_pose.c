@@ -1,6 +1,7 @@
 /* Posing a built scene at schedule time (>>posing: objects, camera, the test scenes'
  * faults) and the manifest's camera overrides (>>camera-overrides). See scenes/scene.c. */
 #include "scenes/scene.h"
+#include "scenes/scene_anim.h"
 
 #include <math.h>
 #include <signal.h>
@@ -32,6 +33,12 @@ static float transform_stretch(const sm_mat4 m)
  * times the transform's stretch bound, so non-uniform scales and shears stay inside). */
 static void pose_object(const scene *s, scene_object *o, double t)
 {
+    if (o->anim_node && s->anim && o->anim_node <= s->anim->nnodes) {
+        sm_mat4 flip;
+        sm_mat4_identity(flip);
+        flip[0][0] = o->anim_mirror ? -1.0f : 1.0f;
+        sm_mat4_mul(s->anim->world[o->anim_node - 1], flip, o->transform);
+    }
     sm_mat4 tr, rot, sc, tmp;
     double angle = o->spin_rate != 0.0f ? fmod((double)o->spin_rate * t, 2.0 * SM_PI) : 0.0;
     sm_vec3 scale = {o->scale, o->scale, o->scale};
@@ -132,6 +139,7 @@ void scene_update(scene *s, double t)
         inject_fault(s);
     uint32_t n = s->nlights_total ? light_count_at(&s->count, t) : 0;
     s->nlights_active = n < s->nlights_total ? n : s->nlights_total;
+    scene_anim_pose(s->anim, t);
     for (uint32_t i = 0; i < s->nobjects; i++)
         pose_object(s, &s->objects[i], t);
     pose_camera(s, t);

@@ -82,7 +82,8 @@ set +e; "$SHADESWEEP" validate m.yaml >out.txt 2>err.txt; rc=$?; set -e
 [ $rc -eq 2 ] && grep -q "scene.up: expected one of y, z, found 'x'" err.txt || fail "up: x: $(cat err.txt)"
 
 # a sweep over three files, rendered: each run's meta.yaml names its file and counts, and
-# lists what the file has that is not rendered (simple_skin: its skin and animation),
+# lists what the file has that is not rendered (simple_skin: its skin; its animation
+# plays, but moves only the skin's joints),
 # which the run also warns of on stderr, once
 cat >s.yaml <<'YAML'
 shadesweep: 1
@@ -98,7 +99,7 @@ YAML
 need_gl
 "$SHADESWEEP" run s.yaml -o out >run.txt 2>&1 || fail "run s.yaml: $(tail -5 run.txt)"
 # every glTF material is shaded as Phong until shading.model pbr exists: each file says so
-want="s.yaml: warning: scene.file: scenes/skin/simple_skin.gltf: read but not rendered: skins (1 mesh, drawn in the bind pose); animations (1, not played); metallic-roughness shading (1 material, as Phong)"
+want="s.yaml: warning: scene.file: scenes/skin/simple_skin.gltf: read but not rendered: skins (1 mesh, drawn in the bind pose); metallic-roughness shading (1 material, as Phong)"
 [ "$(grep -c "warning: scene.file" run.txt)" = 3 ] && grep -qxF "$want" run.txt ||
   fail "the not-rendered warnings: $(grep warning run.txt)"
 $PYTHON - out <<'PY'
@@ -119,7 +120,7 @@ for r, files in zip(summ[:2], (1, 3)):   # the .glb alone; the .gltf, its .bin a
     if sf["not_rendered"] != ["metallic-roughness shading (1 material, as Phong)"]:
         sys.exit(f"FAIL: the box leaves out only its shading model: {sf}")
 skin = yaml.safe_load(open(f"{d}/runs/{summ[2]['run_id']}/meta.yaml"))["scene_file"]
-if skin["not_rendered"] != ["skins (1 mesh, drawn in the bind pose)", "animations (1, not played)",
+if skin["not_rendered"] != ["skins (1 mesh, drawn in the bind pose)",
                             "metallic-roughness shading (1 material, as Phong)"]:
     sys.exit(f"FAIL: simple_skin's not_rendered: {skin['not_rendered']}")
 m = yaml.safe_load(open(f"{d}/runs/{summ[3]['run_id']}/meta.yaml"))
@@ -276,4 +277,89 @@ for (scene, ren), p in px.items():
     if first is not None and any(abs(a - b) > 1 for a, b in zip(p, first)):
         sys.exit(f"FAIL: {ren}: {p}, the first renderer {first}")
     first = first or p
+PY
+
+# The file's animation plays (scene_anim.h): a quad whose node moves from x = -0.5 to
+# +0.5 over 1 s, and a second animation that is not played; clock fixed, screenshots at
+# 0, 0.5 and 1.5 s (1.5 s loops to 0.5): the lit pixels' centre moves right by about 10
+# of the view's 64 pixels, the images at 0.5 and 1.5 s are the same, and so are those of
+# forward-spml, deferred and visibility; meta.yaml names only the second animation as
+# not played.
+$PYTHON - <<'PY'
+import base64, json, struct
+pos = [-0.5, -0.5, 0, 0.5, -0.5, 0, 0.5, 0.5, 0, -0.5, 0.5, 0]
+blob = (struct.pack("<12f", *pos) + struct.pack("<12f", *([0, 0, 1] * 4)) +
+        struct.pack("<6H", 0, 1, 2, 0, 2, 3) +   # 108 bytes so far: aligned for floats
+        struct.pack("<2f", 0, 1) + struct.pack("<6f", -0.5, 0, 0, 0.5, 0, 0))
+g = {"asset": {"version": "2.0"}, "scene": 0, "scenes": [{"nodes": [0, 1]}],
+     "nodes": [{"mesh": 0, "translation": [-0.5, 0, 0]},
+               {"translation": [0, 0, 4], "camera": 0}],
+     "cameras": [{"type": "perspective", "perspective": {"yfov": 0.6, "znear": 0.1,
+                                                         "zfar": 100}}],
+     "materials": [{"pbrMetallicRoughness": {"baseColorFactor": [0, 0, 0, 1]},
+                    "emissiveFactor": [1, 1, 1]}],
+     "meshes": [{"primitives": [{"attributes": {"POSITION": 0, "NORMAL": 1}, "indices": 2,
+                                 "material": 0}]}],
+     "animations": [{"samplers": [{"input": 3, "output": 4}],
+                     "channels": [{"sampler": 0, "target": {"node": 0, "path": "translation"}}]},
+                    {"samplers": [{"input": 3, "output": 4}],
+                     "channels": [{"sampler": 0, "target": {"node": 1, "path": "translation"}}]}],
+     "buffers": [{"byteLength": len(blob), "uri": "data:application/octet-stream;base64,"
+                  + base64.b64encode(blob).decode()}],
+     "bufferViews": [{"buffer": 0, "byteOffset": 0, "byteLength": 48},
+                     {"buffer": 0, "byteOffset": 48, "byteLength": 48},
+                     {"buffer": 0, "byteOffset": 96, "byteLength": 12},
+                     {"buffer": 0, "byteOffset": 108, "byteLength": 8},
+                     {"buffer": 0, "byteOffset": 116, "byteLength": 24}],
+     "accessors": [{"bufferView": 0, "componentType": 5126, "count": 4, "type": "VEC3",
+                    "min": [-0.5, -0.5, 0], "max": [0.5, 0.5, 0]},
+                   {"bufferView": 1, "componentType": 5126, "count": 4, "type": "VEC3"},
+                   {"bufferView": 2, "componentType": 5123, "count": 6, "type": "SCALAR"},
+                   {"bufferView": 3, "componentType": 5126, "count": 2, "type": "SCALAR",
+                    "min": [0], "max": [1]},
+                   {"bufferView": 4, "componentType": 5126, "count": 2, "type": "VEC3"}]}
+open("scenes/moving.gltf", "w").write(json.dumps(g))
+PY
+cat >a.yaml <<'YAML'
+shadesweep: 1
+name: animation
+scene: {file: scenes/moving.gltf}
+renderers: [forward-spml, deferred, visibility]
+resolution: 64x48
+duration: {seconds: 1.6}
+clock: fixed
+step: 0.1
+lights: {placement: none, count: 0}
+outputs: {screenshots: [0, 0.5, 1.5]}
+YAML
+"$SHADESWEEP" run a.yaml -o aout >arun.txt 2>&1 || fail "run a.yaml: $(tail -5 arun.txt)"
+$PYTHON - aout "$SOURCE_ROOT/tests/cli" <<'PY'
+import csv, sys, glob, yaml
+import numpy as np
+sys.path.insert(0, sys.argv[2])
+from shading_model import read_png
+d = sys.argv[1]
+summ = list(csv.DictReader(open(f"{d}/summary.csv")))
+if [r["status"] for r in summ] != ["ok"] * 3: sys.exit(f"FAIL: {summ}")
+shots = {}
+for r in summ:
+    m = yaml.safe_load(open(f"{d}/runs/{r['run_id']}/meta.yaml"))
+    if m["scene_file"]["not_rendered"][:1] != ["animations after the first (1, not played)"]:
+        sys.exit(f"FAIL: not_rendered {m['scene_file']['not_rendered']}")
+    for t in ("0", "0.5", "1.5"):
+        f = glob.glob(f"{d}/runs/{r['run_id']}/screenshot-*-t{t}.png")
+        if len(f) != 1: sys.exit(f"FAIL: {r['renderer']}: screenshot at {t}: {f}")
+        img = read_png(f[0])[..., :3].astype(int)
+        lit = img.sum(axis=2) > 384
+        if lit.sum() < 50: sys.exit(f"FAIL: {r['renderer']} t={t}: {lit.sum()} lit pixels")
+        shots[(r["renderer"], t)] = (img, np.nonzero(lit)[1].mean())
+for ren in ("forward-spml", "deferred", "visibility"):
+    x0, x5, x15 = (shots[(ren, t)][1] for t in ("0", "0.5", "1.5"))
+    # the node moves by 0.5 at 4 units with yfov 0.6 (64x48): about 0.5 / (4 tan 0.3)
+    # of half the height, 24 px: 9.7 px
+    if not 8.0 < x5 - x0 < 11.5 or not np.array_equal(shots[(ren, "0.5")][0], shots[(ren, "1.5")][0]):
+        sys.exit(f"FAIL: {ren}: lit centre x {x0:.2f} at 0, {x5:.2f} at 0.5, {x15:.2f} at 1.5")
+for ren in ("deferred", "visibility"):
+    diff = np.abs(shots[("forward-spml", "0.5")][0] - shots[(ren, "0.5")][0]).max()
+    if diff > 1: sys.exit(f"FAIL: forward-spml and {ren} differ by {diff} at 0.5 s")
 PY

@@ -1,0 +1,135 @@
+/* A file's node animation (scene_anim.h). */
+#include "scenes/scene_anim.h"
+
+#include <math.h>
+#include <stdlib.h>
+#include <string.h>
+
+/* The key interval of time t in k (k->n >= 1): i and the fraction f towards key i + 1
+ * (f 0 before the first key and at or after the last). */
+static uint32_t key_at(const anim_keys *k, float t, float *f)
+{
+    *f = 0.0f;
+    if (k->n == 1 || t <= k->t[0])
+        return 0;
+    if (t >= k->t[k->n - 1])
+        return k->n - 1;
+    uint32_t lo = 0, hi = k->n - 1;   /* k->t[lo] <= t < k->t[hi] */
+    while (hi - lo > 1) {
+        uint32_t mid = lo + (hi - lo) / 2;
+        if (k->t[mid] <= t)
+            lo = mid;
+        else
+            hi = mid;
+    }
+    float span = k->t[hi] - k->t[lo];
+    *f = span > 0.0f ? (t - k->t[lo]) / span : 0.0f;
+    return lo;
+}
+
+static void lerp3(const anim_keys *k, float t, float out[3])
+{
+    float f;
+    uint32_t i = key_at(k, t, &f);
+    const float *a = k->v + 3 * (size_t)i, *b = f > 0.0f ? a + 3 : a;
+    for (int c = 0; c < 3; c++)
+        out[c] = a[c] + (b[c] - a[c]) * f;
+}
+
+/* Spherical interpolation of unit quaternions, the shorter way round. */
+static void slerp(const anim_keys *k, float t, float out[4])
+{
+    float f;
+    uint32_t i = key_at(k, t, &f);
+    const float *a = k->v + 4 * (size_t)i, *b = f > 0.0f ? a + 4 : a;
+    float d = a[0] * b[0] + a[1] * b[1] + a[2] * b[2] + a[3] * b[3];
+    float sb = 1.0f;
+    if (d < 0.0f) {
+        d = -d;
+        sb = -1.0f;
+    }
+    float wa = 1.0f - f, wb = f;
+    if (d < 0.9995f) {   /* else nearly parallel: linear, normalised below */
+        float th = acosf(d), s = sinf(th);
+        wa = sinf((1.0f - f) * th) / s;
+        wb = sinf(f * th) / s;
+    }
+    float n2 = 0.0f;
+    for (int c = 0; c < 4; c++) {
+        out[c] = wa * a[c] + wb * sb * b[c];
+        n2 += out[c] * out[c];
+    }
+    float inv = n2 > 0.0f ? 1.0f / sqrtf(n2) : 0.0f;
+    for (int c = 0; c < 4; c++)
+        out[c] = n2 > 0.0f ? out[c] * inv : (c == 3 ? 1.0f : 0.0f);
+}
+
+/* T R S as one matrix (column-major, as sm_mat4). */
+static void compose(const float p[3], const float q[4], const float s[3], sm_mat4 out)
+{
+    float x = q[0], y = q[1], z = q[2], w = q[3];
+    float r[3][3] = {{1 - 2 * (y * y + z * z), 2 * (x * y + z * w), 2 * (x * z - y * w)},
+                     {2 * (x * y - z * w), 1 - 2 * (x * x + z * z), 2 * (y * z + x * w)},
+                     {2 * (x * z + y * w), 2 * (y * z - x * w), 1 - 2 * (x * x + y * y)}};
+    for (int c = 0; c < 3; c++) {
+        for (int k = 0; k < 3; k++)
+            out[c][k] = r[c][k] * s[c];
+        out[c][3] = 0.0f;
+    }
+    out[3][0] = p[0];
+    out[3][1] = p[1];
+    out[3][2] = p[2];
+    out[3][3] = 1.0f;
+}
+
+void scene_anim_pose(scene_anim *a, double t)
+{
+    if (!a || !a->nnodes)
+        return;
+    double d = a->duration > 0.0 ? a->duration : 1.0;
+    double lt = fmod(t, d);
+    if (lt < 0.0)
+        lt += d;
+    float ft = (float)lt;
+    for (uint32_t i = 0; i < a->nnodes; i++) {
+        const anim_node *n = &a->nodes[i];
+        sm_mat4 local;
+        if (n->channel >= 0) {
+            const anim_channel *c = &a->channels[n->channel];
+            float p[3] = {n->pos[0], n->pos[1], n->pos[2]};
+            float s[3] = {n->scale[0], n->scale[1], n->scale[2]};
+            float q[4] = {n->rot[0], n->rot[1], n->rot[2], n->rot[3]};
+            if (c->pos.n)
+                lerp3(&c->pos, ft, p);
+            if (c->scale.n)
+                lerp3(&c->scale, ft, s);
+            if (c->rot.n)
+                slerp(&c->rot, ft, q);
+            compose(p, q, s, local);
+        } else {
+            sm_mat4_copy(n->local, local);
+        }
+        sm_mat4_mul(n->parent >= 0 ? a->world[n->parent] : a->root, local, a->world[i]);
+    }
+}
+
+static void keys_free(anim_keys *k)
+{
+    free(k->t);
+    free(k->v);
+}
+
+void scene_anim_free(scene_anim *a)
+{
+    if (!a)
+        return;
+    for (uint32_t i = 0; i < a->nchannels; i++) {
+        keys_free(&a->channels[i].pos);
+        keys_free(&a->channels[i].rot);
+        keys_free(&a->channels[i].scale);
+    }
+    free(a->channels);
+    free(a->nodes);
+    free(a->world);
+    free(a);
+}

@@ -1,0 +1,51 @@
+#pragma once
+/* A file's node animation, played by scene_update (issue 25, part 2: "the scene's time
+ * drives the file's animation"). The file's node tree is kept as a table, parents before
+ * children; the first animation's channels move nodes by translation, rotation and scale
+ * keys; each frame scene_anim_pose evaluates them at the scene's time, looping over the
+ * animation's duration, and composes every node's world transform, which the objects
+ * drawn from an animated subtree take as their transform (scene_object.anim_node).
+ *
+ * Keys are interpolated linearly, rotations spherically (glTF's LINEAR); assimp 5.2 does
+ * not say a channel's interpolation, so STEP and CUBICSPLINE channels play as linear
+ * between their values. Before the first key a channel holds it, after the last too.
+ * clock: fixed stays deterministic (the time is the schedule's). */
+#include <stdbool.h>
+#include <stdint.h>
+
+#include "scenes/sm_mat.h"
+
+typedef struct anim_keys {
+    uint32_t n;
+    float *t;                  /* seconds, ascending */
+    float *v;                  /* n values of 3 (translation, scale) or 4 (rotation: x y z w,
+                                * unit) floats */
+} anim_keys;
+
+typedef struct anim_channel {
+    uint32_t node;             /* into scene_anim.nodes */
+    anim_keys pos, rot, scale; /* a set with n 0 keeps the node's own */
+} anim_channel;
+
+typedef struct anim_node {
+    int32_t parent;            /* index of a node before it, or -1 (the root) */
+    sm_vec3 pos, scale;        /* its own transform as translation, rotation, scale ... */
+    float rot[4];
+    sm_mat4 local;             /* ... and as the file's matrix (used when not animated) */
+    int32_t channel;           /* into scene_anim.channels, or -1 */
+} anim_node;
+
+typedef struct scene_anim {
+    anim_node *nodes;
+    uint32_t nnodes;
+    anim_channel *channels;
+    uint32_t nchannels;
+    double duration;           /* seconds; > 0 */
+    sm_mat4 root;              /* the file's placement (scale, up axis) above its root */
+    sm_mat4 *world;            /* nnodes: posed by scene_anim_pose */
+} scene_anim;
+
+/* Every node's world transform at time t (seconds, looped over the duration). */
+void scene_anim_pose(scene_anim *a, double t);
+/* What the animation holds, and the animation; NULL is fine. */
+void scene_anim_free(scene_anim *a);
