@@ -49,7 +49,8 @@ static bool mesh_upload(gpu_mesh *out, const mesh *m, const char *what, uint64_t
     gl.CreateVertexArrays(1, &out->vao);
     gl.CreateBuffers(1, &out->vbo);
     gl.CreateBuffers(1, &out->ibo);
-    gl.NamedBufferStorage(out->vbo, vbytes, m->vertices, 0);
+    /* a deforming mesh's vertices are uploaded again every frame (scene_gpu_frame) */
+    gl.NamedBufferStorage(out->vbo, vbytes, m->vertices, m->deforms ? GL_DYNAMIC_STORAGE_BIT : 0);
     gl.NamedBufferStorage(out->ibo, ibytes, m->indices, 0);
     gl.VertexArrayVertexBuffer(out->vao, 0, out->vbo, 0, (GLsizei)sizeof(mesh_vertex));
     gl.VertexArrayElementBuffer(out->vao, out->ibo);
@@ -257,6 +258,12 @@ void scene_gpu_frame(scene_gpu *g, const scene *s)
     shading_pack_frame(s, &f);
     gl.NamedBufferSubData(g->frame_ubo, 0, (GLsizeiptr)sizeof f, &f);
     gl.BindBufferBase(GL_UNIFORM_BUFFER, 0, g->frame_ubo);
+    for (uint32_t i = 0; i < g->nmeshes && i < s->nmeshes; i++)   /* morph targets */
+        if (s->meshes[i].deforms)
+            gl.NamedBufferSubData(g->meshes[i].vbo, 0,
+                                  (GLsizeiptr)((size_t)s->meshes[i].nvertices *
+                                               sizeof(mesh_vertex)),
+                                  s->meshes[i].vertices);
 }
 
 /* The object's mesh, or NULL (with a message) for a bad object. */

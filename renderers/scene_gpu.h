@@ -23,7 +23,9 @@
  *   has a second buffer for attribute 4 (SCENE_GPU_COLOR_ATTRIB, RGBA8 normalised);
  *   the others leave it disabled, so that it reads the generic value scene_gpu_create
  *   sets, white. Programs read it only when compiled with VERTEX_COLOR
- *   (renderer_base_scene's common define for a scene with coloured meshes).
+ *   (renderer_base_scene's common define for a scene with coloured meshes). A mesh
+ *   that deforms (mesh.deforms: morph targets) has a dynamic vertex buffer, which
+ *   scene_gpu_frame fills again from the posed vertices every frame.
  * - Textures: one per scene texture, RGBA8 (4 channels) or R8 (1 channel, read .r),
  *   full mip chain (glGenerateTextureMipmap), trilinear, GL_REPEAT. Not sRGB.
  * - Frame block: one uniform buffer (gpu_frame, 192 bytes) bound to uniform binding 0

@@ -92,6 +92,7 @@ typedef struct visibility {
     GLuint depth_ranges;             /* msaa > 1 with the cull pass: per tile its range */
     char samples_define[24];
     uint64_t geometry_bytes;         /* the vertex and index copies */
+    bool coloured;                   /* VERTEX_COLOR: 13 words a vertex in the copy */
     uint32_t *first_index, *base_vertex;   /* per scene mesh */
     vis_draw *draw_data;             /* nobjects */
     vis_run *runs;                   /* nobjects */
@@ -223,6 +224,19 @@ static bool upload_coloured(GLuint buffer, uint32_t base, const mesh *me)
     return true;
 }
 
+/* Mesh m's vertices into the copy (again every frame for a mesh that deforms: morph
+ * targets); false when out of memory. */
+static bool upload_vertices(visibility *r, const scene *s, uint32_t m)
+{
+    _Static_assert(sizeof(mesh_vertex) == 12 * 4, "visibility_shade.comp reads 12 words");
+    const mesh *me = &s->meshes[m];
+    if (r->coloured)
+        return upload_coloured(r->vertices, r->base_vertex[m], me);
+    gl.NamedBufferSubData(r->vertices, (GLintptr)(r->base_vertex[m] * sizeof(mesh_vertex)),
+                          (GLsizeiptr)(me->nvertices * sizeof(mesh_vertex)), me->vertices);
+    return true;
+}
+
 /* Copies of every mesh's vertices and indices, concatenated, as storage buffers (the
  * GPU's vertex buffers are one per mesh), and the per-draw buffer. */
 static bool make_buffers(visibility *r, const scene *s, char *err, size_t errlen)
@@ -262,18 +276,13 @@ static bool make_buffers(visibility *r, const scene *s, char *err, size_t errlen
                           GL_DYNAMIC_STORAGE_BIT);
     gl.NamedBufferStorage(r->indices, (GLsizeiptr)(ibytes ? ibytes : 4), NULL,
                           GL_DYNAMIC_STORAGE_BIT);
-    _Static_assert(sizeof(mesh_vertex) == 12 * 4, "visibility_shade.comp reads 12 words");
+    r->coloured = coloured;
     for (uint32_t m = 0; m < s->nmeshes; m++) {
         const mesh *me = &s->meshes[m];
-        if (coloured && !upload_coloured(r->vertices, r->base_vertex[m], me)) {
+        if (!upload_vertices(r, s, m)) {
             snprintf(err, errlen, "visibility: out of memory for %u vertices", me->nvertices);
             return false;
         }
-        if (!coloured)
-            gl.NamedBufferSubData(r->vertices,
-                                  (GLintptr)(r->base_vertex[m] * sizeof(mesh_vertex)),
-                                  (GLsizeiptr)(me->nvertices * sizeof(mesh_vertex)),
-                                  me->vertices);
         gl.NamedBufferSubData(r->indices, (GLintptr)(r->first_index[m] * sizeof(uint32_t)),
                               (GLsizeiptr)(me->nindices * sizeof(uint32_t)), me->indices);
     }
@@ -571,6 +580,10 @@ static void visibility_draw(void *self, const scene *s, frame_stats *out)
     renderer_base_shadow_pass(&c->b, s, out);
     uint32_t n = light_grid_upload_lights(&r->g, s, &c->b.fe);
     upload_draws(r, s);
+    for (uint32_t m = 0; m < s->nmeshes; m++)   /* morph targets: the frame's shape */
+        if (s->meshes[m].deforms && !upload_vertices(r, s, m))
+            fprintf(stderr, "visibility: out of memory for mesh %u's vertices: its last "
+                    "shape is drawn\n", m);
     visibility_pass(r, s, out);
     if (r->g.cull) {
         out->grid_pass = out->npasses + 1;

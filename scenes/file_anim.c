@@ -133,13 +133,136 @@ static void node_trs(const struct aiNode *n, anim_node *an)
     file_matrix_from_ai(&n->mTransformation, an->local);
 }
 
+/* Morph target k of file mesh am as offsets from its own vertices (a value that is not
+ * finite: no offset). */
+static void target_offsets(const struct aiMesh *am, unsigned k, float *dpos, float *dnorm)
+{
+    const struct aiAnimMesh *t = am->mAnimMeshes[k];
+    for (unsigned v = 0; v < am->mNumVertices; v++) {
+        float *p = dpos + 3 * (size_t)v, *n = dnorm + 3 * (size_t)v;
+        p[0] = p[1] = p[2] = n[0] = n[1] = n[2] = 0.0f;
+        if (t->mVertices && v < t->mNumVertices && file_finite3(&t->mVertices[v])) {
+            p[0] = t->mVertices[v].x - am->mVertices[v].x;
+            p[1] = t->mVertices[v].y - am->mVertices[v].y;
+            p[2] = t->mVertices[v].z - am->mVertices[v].z;
+        }
+        if (t->mNormals && am->mNormals && v < t->mNumVertices &&
+            file_finite3(&t->mNormals[v]) && file_finite3(&am->mNormals[v])) {
+            n[0] = t->mNormals[v].x - am->mNormals[v].x;
+            n[1] = t->mNormals[v].y - am->mNormals[v].y;
+            n[2] = t->mNormals[v].z - am->mNormals[v].z;
+        }
+        for (int c = 0; c < 3; c++) {
+            p[c] = isfinite(p[c]) ? p[c] : 0.0f;
+            n[c] = isfinite(n[c]) ? n[c] : 0.0f;
+        }
+    }
+}
+
+/* The morphs of the file's meshes with targets (scene mesh mesh_index[i] of file mesh i),
+ * their default weights. False (b failed) out of memory or beyond 64 targets. */
+static bool load_morphs(scene_builder *b, const char *path, const struct aiScene *ai,
+                        const uint32_t *mesh_index, scene_anim *a)
+{
+    unsigned n = 0;
+    for (unsigned i = 0; i < ai->mNumMeshes; i++)
+        n += ai->mMeshes[i]->mNumAnimMeshes > 0;
+    if (!n)
+        return true;
+    a->morphs = calloc(n, sizeof *a->morphs);
+    if (!a->morphs)
+        return sb_fail(b, "%s: out of memory for %u morphed meshes", path, n);
+    for (unsigned i = 0; i < ai->mNumMeshes; i++) {
+        const struct aiMesh *am = ai->mMeshes[i];
+        unsigned k = am->mNumAnimMeshes;
+        if (!k)
+            continue;
+        if (k > 64)
+            return sb_fail(b, "%s: mesh %u has %u morph targets; at most 64 are drawn", path,
+                           i, k);
+        mesh *m = &b->s->meshes[mesh_index[i]];
+        anim_morph *mo = &a->morphs[a->nmorphs++];
+        mo->mesh = mesh_index[i];
+        mo->ntargets = k;
+        size_t nv = m->nvertices ? m->nvertices : 1;
+        mo->base = malloc(nv * sizeof *mo->base);
+        mo->dpos = malloc(k * nv * 3 * sizeof *mo->dpos);
+        mo->dnorm = malloc(k * nv * 3 * sizeof *mo->dnorm);
+        mo->weights = malloc(k * sizeof *mo->weights);
+        if (!mo->base || !mo->dpos || !mo->dnorm || !mo->weights)
+            return sb_fail(b, "%s: out of memory for mesh %u's %u morph targets", path, i, k);
+        memcpy(mo->base, m->vertices, m->nvertices * sizeof *mo->base);
+        for (unsigned t = 0; t < k; t++) {
+            target_offsets(am, t, mo->dpos + (size_t)t * nv * 3, mo->dnorm + (size_t)t * nv * 3);
+            float w = am->mAnimMeshes[t]->mWeight;
+            mo->weights[t] = isfinite(w) ? w : 0.0f;
+        }
+        m->deforms = true;
+    }
+    return true;
+}
+
+/* The first animation's weights for the morphs of the meshes its morph channels' nodes
+ * draw (a channel names its node). False (b failed) for keys that are not finite or go
+ * back in time, or out of memory. */
+static bool load_weights(scene_builder *b, const char *path, const struct aiScene *ai,
+                         const node_table *t, const uint32_t *sorted, double tps,
+                         const uint32_t *mesh_index, scene_anim *a, double *last)
+{
+    const struct aiAnimation *an = ai->mAnimations[0];
+    for (unsigned c = 0; c < an->mNumMorphMeshChannels; c++) {
+        const struct aiMeshMorphAnim *mm = an->mMorphMeshChannels[c];
+        int32_t node = find(t, sorted, mm->mName.data);
+        if (node < 0 || !mm->mNumKeys)
+            continue;
+        const struct aiNode *nd = t->node[node];
+        for (unsigned j = 0; j < nd->mNumMeshes; j++) {
+            anim_morph *mo = NULL;
+            for (uint32_t i = 0; i < a->nmorphs && nd->mMeshes[j] < ai->mNumMeshes; i++)
+                if (a->morphs[i].mesh == mesh_index[nd->mMeshes[j]])
+                    mo = &a->morphs[i];
+            if (!mo || mo->keys.n)
+                continue;
+            anim_keys *k = &mo->keys;
+            k->t = malloc(mm->mNumKeys * sizeof *k->t);
+            k->v = calloc((size_t)mm->mNumKeys * mo->ntargets, sizeof *k->v);
+            if (!k->t || !k->v)
+                return sb_fail(b, "%s: out of memory for %u morph keys", path, mm->mNumKeys);
+            for (unsigned i = 0; i < mm->mNumKeys; i++) {
+                const struct aiMeshMorphKey *key = &mm->mKeys[i];
+                double tt = key->mTime / tps;
+                if (!isfinite(tt))
+                    return sb_fail(b, "%s: the morph animation of node '%s' has a key time "
+                                   "that is not finite", path, mm->mName.data);
+                if (i > 0 && tt < k->t[i - 1])
+                    return sb_fail(b, "%s: the morph animation of node '%s' has key times that "
+                                   "go back (%g after %g s)", path, mm->mName.data, tt,
+                                   (double)k->t[i - 1]);
+                k->t[i] = (float)tt;
+                for (unsigned q = 0; q < key->mNumValuesAndWeights; q++) {
+                    double w = key->mWeights[q];
+                    if (key->mValues[q] < mo->ntargets)
+                        k->v[(size_t)i * mo->ntargets + key->mValues[q]] =
+                            isfinite(w) ? (float)w : 0.0f;
+                }
+            }
+            k->n = mm->mNumKeys;
+            *last = fmax(*last, k->t[k->n - 1]);
+        }
+    }
+    return true;
+}
+
 bool file_anim_load(scene_builder *b, const char *path, const struct aiScene *ai,
-                    const sm_mat4 root, bool **moves)
+                    const uint32_t *mesh_index, const sm_mat4 root, bool **moves)
 {
     *moves = NULL;
-    if (!ai->mNumAnimations || !ai->mAnimations[0]->mNumChannels)
+    bool morphed = false;
+    for (unsigned i = 0; i < ai->mNumMeshes; i++)
+        morphed |= ai->mMeshes[i]->mNumAnimMeshes > 0;
+    const struct aiAnimation *an = ai->mNumAnimations ? ai->mAnimations[0] : NULL;
+    if (!morphed && (!an || !an->mNumChannels))
         return true;
-    const struct aiAnimation *an = ai->mAnimations[0];
     node_table t = {0};
     collect(&t, ai->mRootNode, -1, 0);
     uint32_t *sorted = t.oom ? NULL : malloc((t.n ? t.n : 1) * sizeof *sorted);
@@ -153,7 +276,7 @@ bool file_anim_load(scene_builder *b, const char *path, const struct aiScene *ai
     qsort(sorted, t.n, sizeof *sorted, by_name);
     a->nodes = calloc(t.n ? t.n : 1, sizeof *a->nodes);
     a->world = calloc(t.n ? t.n : 1, sizeof *a->world);
-    a->channels = calloc(an->mNumChannels, sizeof *a->channels);
+    a->channels = calloc(an && an->mNumChannels ? an->mNumChannels : 1, sizeof *a->channels);
     *moves = calloc(t.n ? t.n : 1, sizeof **moves);
     if (!a->nodes || !a->world || !a->channels || !*moves)
         goto oom;
@@ -163,10 +286,10 @@ bool file_anim_load(scene_builder *b, const char *path, const struct aiScene *ai
         a->nodes[i].channel = -1;
         node_trs(t.node[i], &a->nodes[i]);
     }
-    double tps = an->mTicksPerSecond > 0.0 && isfinite(an->mTicksPerSecond)
+    double tps = an && an->mTicksPerSecond > 0.0 && isfinite(an->mTicksPerSecond)
                      ? an->mTicksPerSecond : 25.0;   /* assimp's convention for 0 */
     double last = 0.0;
-    for (unsigned c = 0; c < an->mNumChannels; c++) {
+    for (unsigned c = 0; an && c < an->mNumChannels; c++) {
         const struct aiNodeAnim *na = an->mChannels[c];
         int32_t node = find(&t, sorted, na->mNodeName.data);
         if (node < 0 || a->nodes[node].channel >= 0)
@@ -188,10 +311,13 @@ bool file_anim_load(scene_builder *b, const char *path, const struct aiScene *ai
             if (k[i]->n)
                 last = fmax(last, k[i]->t[k[i]->n - 1]);
     }
-    double d = an->mDuration / tps;
+    if (!load_morphs(b, path, ai, mesh_index, a) ||
+        (an && !load_weights(b, path, ai, &t, sorted, tps, mesh_index, a, &last)))
+        goto out;
+    double d = an ? an->mDuration / tps : 0.0;
     a->duration = isfinite(d) && d > 0.0 ? d : last > 0.0 ? last : 1.0;
     sm_mat4_copy(root, a->root);
-    bool any = false;
+    bool any = a->nmorphs > 0;
     for (uint32_t i = 0; i < t.n; i++) {
         int32_t p = a->nodes[i].parent;
         (*moves)[i] = a->nodes[i].channel >= 0 || (p >= 0 && (*moves)[p]);

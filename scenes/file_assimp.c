@@ -240,11 +240,10 @@ static void gltf_extensions(const read_file *f, scene_file_info *info)
 static void not_rendered_of(const loaded *l, scene_file_info *info)
 {
     const struct aiScene *ai = l->ai;
-    unsigned skinned = 0, morphed = 0, uv2 = 0, ortho = 0;
+    unsigned skinned = 0, uv2 = 0, ortho = 0;
     for (unsigned i = 0; i < ai->mNumMeshes; i++) {
         const struct aiMesh *m = ai->mMeshes[i];
         skinned += m->mNumBones > 0;
-        morphed += m->mNumAnimMeshes > 0;
         uv2 += m->mTextureCoords[1] != NULL;
     }
     for (unsigned i = 0; i < ai->mNumCameras; i++)
@@ -270,16 +269,13 @@ static void not_rendered_of(const loaded *l, scene_file_info *info)
     if (skinned)
         not_rendered(info, "skins (%u mesh%s, drawn in the bind pose)", skinned,
                      skinned == 1 ? "" : "es");
-    if (morphed)
-        not_rendered(info, "morph targets (%u mesh%s, drawn in the base shape)", morphed,
-                     morphed == 1 ? "" : "es");
     /* the first animation's node channels play (file_anim.c); the rest does not */
     if (ai->mNumAnimations > 1)
         not_rendered(info, "animations after the first (%u, not played)",
                      ai->mNumAnimations - 1);
-    if (ai->mNumAnimations && (ai->mAnimations[0]->mNumMorphMeshChannels ||
-                               ai->mAnimations[0]->mNumMeshChannels))
-        not_rendered(info, "morph-target and mesh animation (not played)");
+    if (ai->mNumAnimations && ai->mAnimations[0]->mNumMeshChannels)
+        not_rendered(info, "vertex animation (%u mesh channels, not played)",
+                     ai->mAnimations[0]->mNumMeshChannels);
     if (uv2)
         not_rendered(info, "a second UV set (%u mesh%s)", uv2, uv2 == 1 ? "" : "es");
     if (ortho)
@@ -666,7 +662,7 @@ bool scene_build_file(scene_builder *b, const void *arg)
     sm_mat4 root;
     root_transform(o, root);
     bool *moves = NULL;
-    if (!b->failed && !file_anim_load(b, o->path, ai, root, &moves))
+    if (!b->failed && !file_anim_load(b, o->path, ai, mesh_index, root, &moves))
         goto out;
     build_nodes bn = {b, ai, mesh_index, NULL, mirror, moves, 0};
     if (!b->failed)

@@ -125,13 +125,15 @@ static inline bool file_finite3(const struct aiVector3D *v)
 }
 
 /* >>animation (file_anim.c) */
-/* The file's first animation, when it moves a node that has meshes below it, as the
- * scene's node animation (scene.anim, scene_anim.h; the root transform `root` above the
- * file's root), and *moves (malloc'd; NULL when the file has no node animation): per
- * node in walk's order (pre-order, FILE_MAX_NODE_DEPTH levels) whether it moves. False
- * (b failed) for a key that is not finite or times that go back, or out of memory. */
+/* The file's first animation, when it moves a node that has meshes below it, and its
+ * meshes' morph targets (scene mesh mesh_index[i] of file mesh i; their weights the
+ * defaults or the animation's) as the scene's animation (scene.anim, scene_anim.h; the
+ * root transform `root` above the file's root), and *moves (malloc'd; NULL when the file
+ * has neither): per node in walk's order (pre-order, FILE_MAX_NODE_DEPTH levels) whether
+ * it moves. False (b failed) for a key that is not finite or times that go back, more
+ * than 64 targets on a mesh, or out of memory. */
 bool file_anim_load(scene_builder *b, const char *path, const struct aiScene *ai,
-                    const sm_mat4 root, bool **moves);
+                    const uint32_t *mesh_index, const sm_mat4 root, bool **moves);
 
 /* >>materials (file_materials.c) */
 /* A material's alpha mode (glTF alphaMode; OBJ: d < 1 is translucent) and cutoff. */

@@ -73,6 +73,8 @@ typedef struct mesh {
     uint32_t *colors;          /* NULL, or per vertex an RGBA8 colour (R in the low byte)
                                 * that multiplies the material's base colour and opacity
                                 * (a file's COLOR_0); mesh_free frees it */
+    bool deforms;              /* its vertices change from frame to frame (morph targets,
+                                * scenes/scene_anim.h): uploaded again every frame */
     uint32_t *indices;         /* triangles, CCW seen from the side the normals point to */
     uint32_t nindices;         /* a multiple of 3 */
     sm_vec3 aabb[2];           /* min, max corner */

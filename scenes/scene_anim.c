@@ -27,13 +27,18 @@ static uint32_t key_at(const anim_keys *k, float t, float *f)
     return lo;
 }
 
-static void lerp3(const anim_keys *k, float t, float out[3])
+static void lerpn(const anim_keys *k, float t, uint32_t width, float *out)
 {
     float f;
     uint32_t i = key_at(k, t, &f);
-    const float *a = k->v + 3 * (size_t)i, *b = f > 0.0f ? a + 3 : a;
-    for (int c = 0; c < 3; c++)
+    const float *a = k->v + width * (size_t)i, *b = f > 0.0f ? a + width : a;
+    for (uint32_t c = 0; c < width; c++)
         out[c] = a[c] + (b[c] - a[c]) * f;
+}
+
+static void lerp3(const anim_keys *k, float t, float out[3])
+{
+    lerpn(k, t, 3, out);
 }
 
 /* Spherical interpolation of unit quaternions, the shorter way round. */
@@ -82,15 +87,50 @@ static void compose(const float p[3], const float q[4], const float s[3], sm_mat
     out[3][3] = 1.0f;
 }
 
-void scene_anim_pose(scene_anim *a, double t)
+/* Mesh m rebuilt from the morph's own vertices and its targets at weights w. */
+static void morph(const anim_morph *mo, const float *w, mesh *m)
 {
-    if (!a || !a->nnodes)
+    for (uint32_t v = 0; v < m->nvertices; v++) {
+        mesh_vertex *out = &m->vertices[v];
+        *out = mo->base[v];
+        sm_vec3 n;
+        sm_vec3_copy(out->normal, n);
+        for (uint32_t k = 0; k < mo->ntargets; k++) {
+            if (w[k] == 0.0f)
+                continue;
+            const float *dp = mo->dpos + ((size_t)k * m->nvertices + v) * 3;
+            const float *dn = mo->dnorm + ((size_t)k * m->nvertices + v) * 3;
+            for (int c = 0; c < 3; c++) {
+                out->position[c] += w[k] * dp[c];
+                n[c] += w[k] * dn[c];
+            }
+        }
+        if (sm_vec3_norm(n) > 1e-20f) {
+            sm_vec3_normalize(n);
+            sm_vec3_copy(n, out->normal);
+        }
+    }
+    mesh_compute_bounds(m);
+}
+
+void scene_anim_pose(scene_anim *a, mesh *meshes, double t)
+{
+    if (!a)
         return;
     double d = a->duration > 0.0 ? a->duration : 1.0;
     double lt = fmod(t, d);
     if (lt < 0.0)
         lt += d;
     float ft = (float)lt;
+    for (uint32_t i = 0; meshes && i < a->nmorphs; i++) {
+        anim_morph *mo = &a->morphs[i];
+        float w[64];   /* file_anim.c keeps at most 64 targets */
+        if (mo->keys.n)
+            lerpn(&mo->keys, ft, mo->ntargets, w);
+        else
+            memcpy(w, mo->weights, mo->ntargets * sizeof *w);
+        morph(mo, w, &meshes[mo->mesh]);
+    }
     for (uint32_t i = 0; i < a->nnodes; i++) {
         const anim_node *n = &a->nodes[i];
         sm_mat4 local;
@@ -123,6 +163,15 @@ void scene_anim_free(scene_anim *a)
 {
     if (!a)
         return;
+    for (uint32_t i = 0; i < a->nmorphs; i++) {
+        anim_morph *mo = &a->morphs[i];
+        free(mo->base);
+        free(mo->dpos);
+        free(mo->dnorm);
+        free(mo->weights);
+        keys_free(&mo->keys);
+    }
+    free(a->morphs);
     for (uint32_t i = 0; i < a->nchannels; i++) {
         keys_free(&a->channels[i].pos);
         keys_free(&a->channels[i].rot);

@@ -1,10 +1,16 @@
 #pragma once
-/* A file's node animation, played by scene_update (issue 25, part 2: "the scene's time
- * drives the file's animation"). The file's node tree is kept as a table, parents before
+/* A file's animation, played by scene_update (issue 25, part 2: "the scene's time drives
+ * the file's animation"). The file's node tree is kept as a table, parents before
  * children; the first animation's channels move nodes by translation, rotation and scale
  * keys; each frame scene_anim_pose evaluates them at the scene's time, looping over the
  * animation's duration, and composes every node's world transform, which the objects
  * drawn from an animated subtree take as their transform (scene_object.anim_node).
+ * Morph targets: a mesh with targets keeps its own vertices and each target's position
+ * and normal offsets; each frame its vertices are rebuilt as its own plus the weighted
+ * offsets (the normals normalised; the tangents kept, which the shaders orthogonalise
+ * to the normal), its bounds recomputed, and the mesh is marked `deforms` so that the
+ * renderers upload it again (scene_gpu_frame, visibility's copy). The weights are the
+ * mesh's defaults, or the first animation's morph channel of a node that draws it.
  *
  * Keys are interpolated linearly, rotations spherically (glTF's LINEAR); assimp 5.2 does
  * not say a channel's interpolation, so STEP and CUBICSPLINE channels play as linear
@@ -13,6 +19,7 @@
 #include <stdbool.h>
 #include <stdint.h>
 
+#include "scenes/mesh.h"
 #include "scenes/sm_mat.h"
 
 typedef struct anim_keys {
@@ -35,17 +42,29 @@ typedef struct anim_node {
     int32_t channel;           /* into scene_anim.channels, or -1 */
 } anim_node;
 
+typedef struct anim_morph {
+    uint32_t mesh;             /* into scene.meshes */
+    uint32_t ntargets;
+    mesh_vertex *base;         /* the mesh's own vertices */
+    float *dpos, *dnorm;       /* ntargets x nvertices x 3: each target's offsets */
+    float *weights;            /* ntargets: the mesh's default weights */
+    anim_keys keys;            /* weights over time, ntargets values a key; n 0: defaults */
+} anim_morph;
+
 typedef struct scene_anim {
     anim_node *nodes;
     uint32_t nnodes;
     anim_channel *channels;
     uint32_t nchannels;
+    anim_morph *morphs;
+    uint32_t nmorphs;
     double duration;           /* seconds; > 0 */
     sm_mat4 root;              /* the file's placement (scale, up axis) above its root */
     sm_mat4 *world;            /* nnodes: posed by scene_anim_pose */
 } scene_anim;
 
-/* Every node's world transform at time t (seconds, looped over the duration). */
-void scene_anim_pose(scene_anim *a, double t);
+/* Every node's world transform at time t (seconds, looped over the duration), and every
+ * morphed mesh of `meshes` (the scene's) rebuilt with the weights at t. */
+void scene_anim_pose(scene_anim *a, mesh *meshes, double t);
 /* What the animation holds, and the animation; NULL is fine. */
 void scene_anim_free(scene_anim *a);

@@ -139,7 +139,7 @@ void scene_update(scene *s, double t)
         inject_fault(s);
     uint32_t n = s->nlights_total ? light_count_at(&s->count, t) : 0;
     s->nlights_active = n < s->nlights_total ? n : s->nlights_total;
-    scene_anim_pose(s->anim, t);
+    scene_anim_pose(s->anim, s->meshes, t);
     for (uint32_t i = 0; i < s->nobjects; i++)
         pose_object(s, &s->objects[i], t);
     pose_camera(s, t);
