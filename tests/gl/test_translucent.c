@@ -10,7 +10,8 @@
  *     pane, another one in front lights the pane) is lit the same by forward-spml and
  *     deferred (stencil and volume modes): the image within RMSE 1/255, the pane's
  *     centre pixel within 1/255;
- *   - the tiled renderers' (and visibility's) translucent lists (near plane to the
+ *   - the tiled renderers' (and visibility's, and deferred-lighting's by the tiled
+ *     lists) translucent lists (near plane to the
  *     tile's max opaque depth, built in their cull dispatch only when the scene has
  *     translucency): on `glass` one list a tile, the cull still 1 dispatch, the longest list no
  *     shorter than the longest opaque one and no longer than the visible lights (and
@@ -68,6 +69,7 @@ static const uint8_t *px(const image *im)
     return im->pixels;
 }
 
+#define DL_TILED "deferred-lighting tiled"
 static const char *const kinds[] = {"forward-spml", "forward-mpml",   "forward-plus",
                                     "clustered",    "deferred",       "tiled-deferred",
                                     "deferred-lighting", "visibility"};
@@ -108,6 +110,11 @@ static bool render(const char *kind, light_volume_mode mode, scene *s, image *ou
         .fog_density = g_fog_density, .fog_color = {0.55f, 0.6f, 0.7f},
         .max_lights_per_tile = g_max_lights_per_tile,
     };
+    /* "deferred-lighting tiled": its lights by the tiled lists (deferred_lighting.lights) */
+    if (strcmp(kind, DL_TILED) == 0) {
+        o.lpp_tiled = true;
+        kind = "deferred-lighting";
+    }
     renderer *r = test_renderer_create(kind, &o, err, sizeof err);
     if (!r || !renderer_prepare(r, s, err, sizeof err)) {
         print_error("%s: %s\n", kind, err);
@@ -192,8 +199,8 @@ static void expect_translucent_lists(const char *kind, const frame_stats *fs,
     /* the one cull dispatch (visibility's shading dispatches apart) */
     if (strcmp(kind, "visibility") != 0)
         assert_int_equal(fs->total.dispatches, 1);
-    const pass_stats *cull = find_pass(fs, strcmp(kind, "tiled-deferred") == 0 ? "tiled"
-                                                                                : "cull");
+    bool deferred_tiled = strcmp(kind, "tiled-deferred") == 0 || strcmp(kind, DL_TILED) == 0;
+    const pass_stats *cull = find_pass(fs, deferred_tiled ? "tiled" : "cull");
     assert_non_null(cull);
     assert_int_equal(cull->dispatches, 1);
     assert_int_equal(fs->overflow[0], '\0');
@@ -370,8 +377,8 @@ static void test_light_before_the_wall(void **state)
     scene_update(s, 0.0);
     look(s, 9.0f, 2.0f, -2.7f, 0.0f, 1.5f, -2.7f);
     static const char *const tiled[] = {"forward-plus", "clustered", "tiled-deferred",
-                                        "visibility"};
-    for (size_t k = 0; k < 4; k++) {
+                                        "visibility", DL_TILED};
+    for (size_t k = 0; k < 5; k++) {
         frame_stats fs;
         pass_plan plan;
         assert_true(render(tiled[k], LIGHT_VOLUMES_STENCIL, s, &img, &fs, &plan));
@@ -413,8 +420,8 @@ static void test_pane_beyond_a_wall_edge(void **state)
     image ref = {0}, img = {0};
     assert_true(render("forward-spml", LIGHT_VOLUMES_STENCIL, s, &ref, NULL, NULL));
     static const char *const tiled[] = {"forward-plus", "clustered", "tiled-deferred",
-                                        "visibility"};
-    for (size_t k = 0; k < 4; k++) {
+                                        "visibility", DL_TILED};
+    for (size_t k = 0; k < 5; k++) {
         frame_stats fs;
         pass_plan plan;
         assert_true(render(tiled[k], LIGHT_VOLUMES_STENCIL, s, &img, &fs, &plan));
