@@ -97,7 +97,8 @@ bool renderer_base_size(renderer_base *b, const struct scene *s, char *err, size
  * program of the base's cache is compiled for them) and the pass plan's `lighting`
  * line: what is compiled in, and what is left out. Attenuation is a point and spot
  * light's only (a directional light has none). A scene with coloured meshes adds
- * VERTEX_COLOR (mesh.vert, surface.inc), which the line names too. */
+ * VERTEX_COLOR (mesh.vert, surface.inc), one whose materials read maps from a second uv
+ * set adds UV2; the line names them too. */
 static bool set_lighting(renderer_base *b, const struct scene *s)
 {
     static const char *const type_name[3] = {"point", "spot", "directional"};
@@ -127,11 +128,17 @@ static bool set_lighting(renderer_base *b, const struct scene *s)
     uint32_t coloured = 0;
     for (uint32_t i = 0; s && i < s->nmeshes; i++)
         coloured += s->meshes[i].colors != NULL;
-    const char *defs3[3] = {defs[0], defs[1], "VERTEX_COLOR"};
-    snprintf(b->lighting, sizeof b->lighting, "compiled for %s%s; left out: %s",
+    bool uv2 = s && scene_uses_uv2(s);
+    const char *all[4] = {defs[0], defs[1], NULL, NULL};
+    size_t n = 2;
+    if (coloured)
+        all[n++] = "VERTEX_COLOR";
+    if (uv2)
+        all[n++] = "UV2";
+    snprintf(b->lighting, sizeof b->lighting, "compiled for %s%s%s; left out: %s",
              nin ? in : "no light", coloured ? ", vertex colours" : "",
-             nout ? out : "nothing");
-    return gl_program_cache_set_common(b->programs, defs3, coloured ? 3 : 2);
+             uv2 ? ", a second uv set" : "", nout ? out : "nothing");
+    return gl_program_cache_set_common(b->programs, all, n);
 }
 
 void renderer_base_describe(const renderer_base *b, pass_plan *out)

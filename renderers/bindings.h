@@ -44,6 +44,8 @@
 #define LOC_ALPHA_CUTOFF 12
 /* surface.inc's opacity of a MATERIAL_BLEND material (the TRANSLUCENT variant) */
 #define LOC_OPACITY 13
+/* surface.inc's maps read from the second uv set (UV2: scene_material.uv1_maps) */
+#define LOC_UV1_MAPS 14
 /* Uniform locations of one light (forward_light.frag, deferred_light.frag) and of a
  * renderer's own first uniform beside mesh.vert's and surface.inc's (0..11) */
 #define LOC_RENDERER 16

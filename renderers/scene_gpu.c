@@ -16,6 +16,7 @@
 typedef struct gpu_mesh {
     GLuint vao, vbo, ibo;
     GLuint cbo;                /* the vertex colours (attribute 4), or 0 */
+    GLuint uvbo;               /* the second uv set (attribute 5), or 0 */
     GLsizei count;             /* indices */
 } gpu_mesh;
 
@@ -29,6 +30,7 @@ struct scene_gpu {
     gl_program_cache *programs;
     GLuint sky_program, resolve_program;
     bool unclipped;            /* the programs are FULLSCREEN_UNCLIPPED variants */
+    bool uv2;                  /* the scene uses a second uv set: LOC_UV1_MAPS is set */
     int width, height;         /* the scene's size (the sky's target) */
     uint64_t bytes;
 };
@@ -79,6 +81,16 @@ static bool mesh_upload(gpu_mesh *out, const mesh *m, const char *what, uint64_t
         gl.VertexArrayAttribBinding(out->vao, SCENE_GPU_COLOR_ATTRIB, 1);
         *bytes += (uint64_t)cbytes;
     }
+    if (m->uv2) {   /* attribute 5 from its own buffer; else the generic (0, 0) */
+        GLsizeiptr ubytes = (GLsizeiptr)((size_t)m->nvertices * sizeof *m->uv2);
+        gl.CreateBuffers(1, &out->uvbo);
+        gl.NamedBufferStorage(out->uvbo, ubytes, m->uv2, 0);
+        gl.VertexArrayVertexBuffer(out->vao, 2, out->uvbo, 0, (GLsizei)sizeof *m->uv2);
+        gl.EnableVertexArrayAttrib(out->vao, SCENE_GPU_UV2_ATTRIB);
+        gl.VertexArrayAttribFormat(out->vao, SCENE_GPU_UV2_ATTRIB, 2, GL_FLOAT, GL_FALSE, 0);
+        gl.VertexArrayAttribBinding(out->vao, SCENE_GPU_UV2_ATTRIB, 2);
+        *bytes += (uint64_t)ubytes;
+    }
     out->count = (GLsizei)m->nindices;
     *bytes += (uint64_t)vbytes + (uint64_t)ibytes;
     return true;
@@ -92,6 +104,8 @@ static void mesh_release(gpu_mesh *m)
         gl.DeleteBuffers(1, &m->vbo);
     if (m->cbo)
         gl.DeleteBuffers(1, &m->cbo);
+    if (m->uvbo)
+        gl.DeleteBuffers(1, &m->uvbo);
     if (m->ibo)
         gl.DeleteBuffers(1, &m->ibo);
     memset(m, 0, sizeof *m);
@@ -181,6 +195,8 @@ scene_gpu *scene_gpu_create(const scene *s, char *err, size_t errlen)
 
     /* what a mesh without colours reads from attribute 4 (context state, set once) */
     gl.VertexAttrib4f(SCENE_GPU_COLOR_ATTRIB, 1.0f, 1.0f, 1.0f, 1.0f);
+    gl.VertexAttrib4f(SCENE_GPU_UV2_ATTRIB, 0.0f, 0.0f, 0.0f, 1.0f);
+    g->uv2 = scene_uses_uv2(s);
     for (uint32_t i = 0; i < s->nmeshes; i++) {
         char what[32];
         snprintf(what, sizeof what, "mesh %u", i);
@@ -337,6 +353,8 @@ void scene_gpu_draw_object(scene_gpu *g, gl_state *st, const scene *s, uint32_t 
         gl.Uniform1f(LOC_ALPHA_CUTOFF, m->alpha_cutoff);
     if (m->alpha == MATERIAL_BLEND)   /* only the TRANSLUCENT variant has it */
         gl.Uniform1f(LOC_OPACITY, m->opacity);
+    if (g->uv2)   /* every surface.inc program has it then (UV2) */
+        gl.Uniform1i(LOC_UV1_MAPS, (GLint)m->uv1_maps);
     draw_mesh(st, s, object, gm);
 }
 

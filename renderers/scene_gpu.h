@@ -25,7 +25,10 @@
  *   sets, white. Programs read it only when compiled with VERTEX_COLOR
  *   (renderer_base_scene's common define for a scene with coloured meshes). A mesh
  *   that deforms (mesh.deforms: morph targets) has a dynamic vertex buffer, which
- *   scene_gpu_frame fills again from the posed vertices every frame.
+ *   scene_gpu_frame fills again from the posed vertices every frame. A mesh with a
+ *   second uv set (mesh.uv2) has a third buffer for attribute 5 (SCENE_GPU_UV2_ATTRIB),
+ *   the others read the generic (0, 0); with UV2 (a common define when the scene uses
+ *   it, scene_uses_uv2) scene_gpu_draw_object sets LOC_UV1_MAPS, the maps read from it.
  * - Textures: one per scene texture, RGBA8 (4 channels) or R8 (1 channel, read .r),
  *   full mip chain (glGenerateTextureMipmap), trilinear, GL_REPEAT. Not sRGB.
  * - Frame block: one uniform buffer (gpu_frame, 192 bytes) bound to uniform binding 0
@@ -59,8 +62,10 @@
 #include "renderers/gl/state.h"
 #include "scenes/scene.h"
 
-/* mesh.vert's a_color: a mesh's vertex colours (VERTEX_COLOR). */
+/* mesh.vert's a_color: a mesh's vertex colours (VERTEX_COLOR); a_uv2: its second uv
+ * set (UV2). */
 #define SCENE_GPU_COLOR_ATTRIB 4
+#define SCENE_GPU_UV2_ATTRIB 5
 
 typedef struct scene_gpu scene_gpu;
 

@@ -65,7 +65,7 @@ typedef struct vis_draw {
     float normal_matrix[12];         /* 3 columns, padded to vec4 */
     float diffuse_specular[4];
     float emissive_shininess[4];
-    uint32_t geometry[4];            /* first index, base vertex */
+    uint32_t geometry[4];            /* first index, base vertex, the maps on uv set 1 */
 } vis_draw;
 _Static_assert(sizeof(vis_draw) == 160, "visibility_shade.comp's Draw");
 
@@ -92,7 +92,9 @@ typedef struct visibility {
     GLuint depth_ranges;             /* msaa > 1 with the cull pass: per tile its range */
     char samples_define[24];
     uint64_t geometry_bytes;         /* the vertex and index copies */
-    bool coloured;                   /* VERTEX_COLOR: 13 words a vertex in the copy */
+    bool coloured;                   /* VERTEX_COLOR: the colour in the copy */
+    bool uv2;                        /* UV2: the second uv set in the copy */
+    uint32_t words;                  /* words a vertex in the copy: 12 + 2 (UV2) + 1 */
     uint32_t *first_index, *base_vertex;   /* per scene mesh */
     vis_draw *draw_data;             /* nobjects */
     vis_run *runs;                   /* nobjects */
@@ -207,19 +209,29 @@ static bool split(visibility *r, const scene *s, char *err, size_t errlen)
     return true;
 }
 
-/* Mesh me's vertices into buffer at vertex `base`, 13 words each: mesh_vertex's 12 and
- * the RGBA8 colour (white without colours). False when out of memory. */
-static bool upload_coloured(GLuint buffer, uint32_t base, const mesh *me)
+/* Mesh me's vertices into buffer at vertex `base`, r->words each: mesh_vertex's 12, with
+ * UV2 the second uv set (2 words, (0, 0) without one), with VERTEX_COLOR the RGBA8 colour
+ * (white without colours). False when out of memory. */
+static bool upload_extended(const visibility *r, uint32_t base, const mesh *me)
 {
-    uint32_t *w = malloc((size_t)(me->nvertices ? me->nvertices : 1) * 13 * sizeof *w);
+    const size_t n = r->words;
+    uint32_t *w = malloc((size_t)(me->nvertices ? me->nvertices : 1) * n * sizeof *w);
     if (!w)
         return false;
     for (uint32_t v = 0; v < me->nvertices; v++) {
-        memcpy(w + 13 * (size_t)v, &me->vertices[v], sizeof(mesh_vertex));
-        w[13 * (size_t)v + 12] = me->colors ? me->colors[v] : 0xffffffffu;
+        uint32_t *out = w + n * (size_t)v;
+        memcpy(out, &me->vertices[v], sizeof(mesh_vertex));
+        size_t k = 12;
+        if (r->uv2) {
+            const float uv[2] = {me->uv2 ? me->uv2[v][0] : 0.0f, me->uv2 ? me->uv2[v][1] : 0.0f};
+            memcpy(out + k, uv, sizeof uv);
+            k += 2;
+        }
+        if (r->coloured)
+            out[k] = me->colors ? me->colors[v] : 0xffffffffu;
     }
-    gl.NamedBufferSubData(buffer, (GLintptr)((uint64_t)base * 13 * sizeof *w),
-                          (GLsizeiptr)((size_t)me->nvertices * 13 * sizeof *w), w);
+    gl.NamedBufferSubData(r->vertices, (GLintptr)((uint64_t)base * n * sizeof *w),
+                          (GLsizeiptr)((size_t)me->nvertices * n * sizeof *w), w);
     free(w);
     return true;
 }
@@ -230,8 +242,8 @@ static bool upload_vertices(visibility *r, const scene *s, uint32_t m)
 {
     _Static_assert(sizeof(mesh_vertex) == 12 * 4, "visibility_shade.comp reads 12 words");
     const mesh *me = &s->meshes[m];
-    if (r->coloured)
-        return upload_coloured(r->vertices, r->base_vertex[m], me);
+    if (r->words > 12)
+        return upload_extended(r, r->base_vertex[m], me);
     gl.NamedBufferSubData(r->vertices, (GLintptr)(r->base_vertex[m] * sizeof(mesh_vertex)),
                           (GLsizeiptr)(me->nvertices * sizeof(mesh_vertex)), me->vertices);
     return true;
@@ -256,11 +268,15 @@ static bool make_buffers(visibility *r, const scene *s, char *err, size_t errlen
         nvert += s->meshes[m].nvertices;
         nind += s->meshes[m].nindices;
     }
-    /* VERTEX_COLOR (a coloured mesh in the scene): a 13th word a vertex, its colour */
+    /* UV2 (scene_uses_uv2): 2 more words a vertex, its second uv set; VERTEX_COLOR (a
+     * coloured mesh in the scene): one more, its colour */
     bool coloured = false;
     for (uint32_t m = 0; m < s->nmeshes; m++)
         coloured |= s->meshes[m].colors != NULL;
-    const uint64_t words = coloured ? 13 : 12;
+    r->coloured = coloured;
+    r->uv2 = scene_uses_uv2(s);
+    const uint64_t words = 12 + (r->uv2 ? 2 : 0) + (coloured ? 1 : 0);
+    r->words = (uint32_t)words;
     uint64_t vbytes = nvert * words * 4, ibytes = nind * sizeof(uint32_t);
     uint64_t max_block = (uint64_t)light_grid_max_block();
     if (vbytes > max_block || ibytes > max_block || nvert * words > UINT32_MAX) {
@@ -276,7 +292,6 @@ static bool make_buffers(visibility *r, const scene *s, char *err, size_t errlen
                           GL_DYNAMIC_STORAGE_BIT);
     gl.NamedBufferStorage(r->indices, (GLsizeiptr)(ibytes ? ibytes : 4), NULL,
                           GL_DYNAMIC_STORAGE_BIT);
-    r->coloured = coloured;
     for (uint32_t m = 0; m < s->nmeshes; m++) {
         const mesh *me = &s->meshes[m];
         if (!upload_vertices(r, s, m)) {
@@ -476,7 +491,8 @@ static void upload_draws(visibility *r, const scene *s)
         d->emissive_shininess[3] = m->shininess;
         d->geometry[0] = r->first_index[o->mesh];
         d->geometry[1] = r->base_vertex[o->mesh];
-        d->geometry[2] = d->geometry[3] = 0;
+        d->geometry[2] = s->materials[o->material].uv1_maps;   /* UV2's maps */
+        d->geometry[3] = 0;
         unsigned maps = forward_material_variant(m) & (VIS_MAP_VARIANTS - 1u);
         int map[4] = {m->diffuse_map, m->gloss_map, m->normal_map, m->emissive_map};
         vis_run *last = r->nruns ? &r->runs[r->nruns - 1] : NULL;

@@ -240,15 +240,14 @@ static void gltf_extensions(const read_file *f, scene_file_info *info)
 static void not_rendered_of(const loaded *l, scene_file_info *info)
 {
     const struct aiScene *ai = l->ai;
-    unsigned skinned = 0, uv2 = 0, ortho = 0;
+    unsigned skinned = 0, ortho = 0;
     for (unsigned i = 0; i < ai->mNumMeshes; i++) {
         const struct aiMesh *m = ai->mMeshes[i];
         skinned += m->mNumBones > 0;
-        uv2 += m->mTextureCoords[1] != NULL;
     }
     for (unsigned i = 0; i < ai->mNumCameras; i++)
         ortho += ai->mCameras[i]->mOrthographicWidth > 0.0f;
-    unsigned uv_differ = 0, mr_maps = 0, occlusion = 0, used = 0;
+    unsigned uv_differ = 0, mr_maps = 0, occlusion = 0, used = 0, far_uv = 0;
     for (unsigned i = 0; i < ai->mNumMaterials; i++) {
         const struct aiMaterial *am = ai->mMaterials[i];
         bool drawn = false;   /* not assimp's default material, where no mesh uses it */
@@ -259,6 +258,10 @@ static void not_rendered_of(const loaded *l, scene_file_info *info)
         used++;
         float uvt[2][3];
         uv_differ += file_uv_transform(am, uvt) < 0;
+        material_refs refs;
+        file_material_refs(am, &refs);
+        far_uv += (refs.diffuse[0] && refs.diffuse_uv > 1) + (refs.normal[0] && refs.normal_uv > 1) +
+                  (refs.emissive[0] && refs.emissive_uv > 1);
         /* assimp 5.2's glTF importer: metallicRoughnessTexture under METALNESS (and
          * UNKNOWN), occlusionTexture under LIGHTMAP */
         mr_maps += aiGetMaterialTextureCount(am, aiTextureType_METALNESS) +
@@ -276,8 +279,6 @@ static void not_rendered_of(const loaded *l, scene_file_info *info)
     if (ai->mNumAnimations && ai->mAnimations[0]->mNumMeshChannels)
         not_rendered(info, "vertex animation (%u mesh channels, not played)",
                      ai->mAnimations[0]->mNumMeshChannels);
-    if (uv2)
-        not_rendered(info, "a second UV set (%u mesh%s)", uv2, uv2 == 1 ? "" : "es");
     if (ortho)
         not_rendered(info, "orthographic cameras (%u)", ortho);
     if (is_gltf(l->path) && used)
@@ -288,6 +289,9 @@ static void not_rendered_of(const loaded *l, scene_file_info *info)
                      mr_maps == 1 ? "" : "s");
     if (occlusion)
         not_rendered(info, "occlusion maps (%u material%s)", occlusion, occlusion == 1 ? "" : "s");
+    if (far_uv)
+        not_rendered(info, "texture coordinate sets after the second (%u map%s, read from the "
+                     "first)", far_uv, far_uv == 1 ? "" : "s");
     if (uv_differ)
         not_rendered(info, "per-map texture transforms (%u material%s: the base colour's used)",
                      uv_differ, uv_differ == 1 ? "" : "s");
@@ -405,6 +409,25 @@ static int add_mesh(scene_builder *b, const char *path, const struct aiMesh *am,
     }
     m->nvertices = am->mNumVertices;
     m->nindices = am->mNumFaces * 3;
+    if (am->mTextureCoords[1]) {   /* TEXCOORD_1, as the first set: v flipped, the
+                                    * material's transform, not finite as 0 */
+        m->uv2 = malloc(am->mNumVertices * sizeof *m->uv2);
+        if (!m->uv2) {
+            mesh_free(m);
+            sb_fail(b, "%s: out of memory for a mesh of %u vertices", path, am->mNumVertices);
+            return -1;
+        }
+        for (unsigned v = 0; v < am->mNumVertices; v++) {
+            float u = am->mTextureCoords[1][v].x, w = 1.0f - am->mTextureCoords[1][v].y;
+            if (uvt) {
+                float tu = uvt[0][0] * u + uvt[0][1] * w + uvt[0][2];
+                w = uvt[1][0] * u + uvt[1][1] * w + uvt[1][2];
+                u = tu;
+            }
+            m->uv2[v][0] = isfinite(u) && isfinite(w) ? u : 0.0f;
+            m->uv2[v][1] = isfinite(u) && isfinite(w) ? w : 0.0f;
+        }
+    }
     if (am->mColors[0]) {   /* COLOR_0: RGBA8, a channel that is not finite as 1 */
         m->colors = malloc(am->mNumVertices * sizeof *m->colors);
         if (!m->colors) {

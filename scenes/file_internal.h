@@ -92,6 +92,7 @@ typedef struct loaded {
 /* Which of a material's maps exist: diffuse, normal, emissive references, "" if none. */
 typedef struct material_refs {
     char diffuse[1024], normal[1024], emissive[1024];
+    unsigned diffuse_uv, normal_uv, emissive_uv;   /* the texture coordinate set of each */
 } material_refs;
 
 /* Imports and checks everything; on success l holds the scene and every texture. */

@@ -193,25 +193,29 @@ int file_load_image(loaded *l, const char *ref, char *err, size_t errlen)
 static const enum aiTextureType base_types[] = {aiTextureType_BASE_COLOR, aiTextureType_DIFFUSE};
 
 static bool material_texture(const struct aiMaterial *m, enum aiTextureType t, char *out,
-                             size_t outlen)
+                             size_t outlen, unsigned *uv_set)
 {
     struct aiString p;
+    unsigned uv = 0;
     if (aiGetMaterialTextureCount(m, t) == 0 ||
-        aiGetMaterialTexture(m, t, 0, &p, NULL, NULL, NULL, NULL, NULL, NULL) != aiReturn_SUCCESS)
+        aiGetMaterialTexture(m, t, 0, &p, NULL, &uv, NULL, NULL, NULL, NULL) != aiReturn_SUCCESS)
         return false;
     snprintf(out, outlen, "%s", p.data);
+    *uv_set = uv;
     return out[0] != '\0';
 }
 
 void file_material_refs(const struct aiMaterial *m, material_refs *r)
 {
     r->diffuse[0] = r->normal[0] = r->emissive[0] = '\0';
+    r->diffuse_uv = r->normal_uv = r->emissive_uv = 0;
     for (size_t k = 0; k < 2; k++)
-        if (material_texture(m, base_types[k], r->diffuse, sizeof r->diffuse))
+        if (material_texture(m, base_types[k], r->diffuse, sizeof r->diffuse, &r->diffuse_uv))
             break;
-    if (!material_texture(m, aiTextureType_NORMALS, r->normal, sizeof r->normal))
+    if (!material_texture(m, aiTextureType_NORMALS, r->normal, sizeof r->normal, &r->normal_uv))
         r->normal[0] = '\0';
-    if (!material_texture(m, aiTextureType_EMISSIVE, r->emissive, sizeof r->emissive))
+    if (!material_texture(m, aiTextureType_EMISSIVE, r->emissive, sizeof r->emissive,
+                          &r->emissive_uv))
         r->emissive[0] = '\0';
 }
 

@@ -125,6 +125,9 @@ void file_add_material(scene_builder *b, loaded *l, unsigned index, int *map)
     m->diffuse_map = d;
     m->normal_map = nm;
     m->emissive_map = em;
+    /* a map on the second uv set (texCoord 1) reads mesh.uv2 */
+    m->uv1_maps = (d >= 0 && r.diffuse_uv == 1 ? 1u : 0u) | (nm >= 0 && r.normal_uv == 1 ? 4u : 0u) |
+                  (em >= 0 && r.emissive_uv == 1 ? 8u : 0u);
     sm_vec3_make(emis.r, emis.g, emis.b, m->emissive);
     if (em >= 0 && emis.r == 0.0f && emis.g == 0.0f && emis.b == 0.0f)
         sm_vec3_make(1.0f, 1.0f, 1.0f, m->emissive);   /* OBJ: map_Ke without Ke */

@@ -73,6 +73,9 @@ typedef struct mesh {
     uint32_t *colors;          /* NULL, or per vertex an RGBA8 colour (R in the low byte)
                                 * that multiplies the material's base colour and opacity
                                 * (a file's COLOR_0); mesh_free frees it */
+    float (*uv2)[2];           /* NULL, or per vertex a second texture coordinate set (a
+                                * file's TEXCOORD_1), for the maps a material reads from
+                                * it (scene_material.uv1_maps); mesh_free frees it */
     bool deforms;              /* its vertices change from frame to frame (morph targets,
                                 * scenes/scene_anim.h): uploaded again every frame */
     uint32_t *indices;         /* triangles, CCW seen from the side the normals point to */

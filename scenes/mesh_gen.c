@@ -288,6 +288,24 @@ bool mesh_append(mesh *dst, const mesh *src, const sm_mat4 mat, char *err, size_
         for (uint32_t i = 0; i < src->nvertices; i++)
             c[dst->nvertices + i] = src->colors ? src->colors[i] : 0xffffffffu;
     }
+    /* the second uv set when either has one, (0, 0) for the other's vertices */
+    float (*u2)[2] = NULL;
+    if (dst->uv2 || src->uv2) {
+        u2 = calloc((size_t)(nv ? nv : 1), sizeof *u2);
+        if (!u2) {
+            free(v);
+            free(ix);
+            free(c);
+            return scene_fail(err, errlen, "mesh_append: out of memory for %llu uvs",
+                              (unsigned long long)nv);
+        }
+        if (dst->uv2)
+            memcpy(u2, dst->uv2, (size_t)dst->nvertices * sizeof *u2);
+        if (src->uv2)
+            memcpy(u2 + dst->nvertices, src->uv2, (size_t)src->nvertices * sizeof *u2);
+    }
+    free(dst->uv2);
+    dst->uv2 = u2;
     free(dst->colors);
     dst->colors = c;
     if (dst->nvertices)
@@ -324,5 +342,6 @@ void mesh_free(mesh *m)
     free(m->vertices);
     free(m->indices);
     free(m->colors);
+    free(m->uv2);
     memset(m, 0, sizeof *m);
 }

@@ -54,6 +54,9 @@ typedef struct scene_material {
     float alpha_cutoff;        /* MATERIAL_MASK */
     float opacity;             /* MATERIAL_BLEND: the coverage alpha in [0, 1] (glTF base
                                 * colour alpha, OBJ d); 1 for the others */
+    unsigned uv1_maps;         /* the maps read from the mesh's second uv set (mesh.uv2):
+                                * bit 0 diffuse, 1 gloss, 2 normal, 3 emissive (a file's
+                                * texCoord 1); the first set for the others */
     bool double_sided;         /* glTF doubleSided (assimp's TWOSIDED): drawn without face
                                 * culling in every pass (scene_gpu's object draws); a back
                                 * face is shaded with its normal turned to the viewer
@@ -161,6 +164,18 @@ typedef struct scene {
     scene_camera cam;
     sm_mat4 view, proj, viewproj;
 } scene;
+
+/* Whether the scene's programs read a second uv set (surface.inc's UV2): some material
+ * reads a map from it and some mesh has one. */
+static inline bool scene_uses_uv2(const scene *s)
+{
+    bool maps = false, uvs = false;
+    for (uint32_t i = 0; i < s->nmaterials; i++)
+        maps |= s->materials[i].uv1_maps != 0;
+    for (uint32_t i = 0; maps && i < s->nmeshes; i++)
+        uvs |= s->meshes[i].uv2 != NULL;
+    return maps && uvs;
+}
 
 typedef struct scene_catalog_entry {
     const char *name;

@@ -10,6 +10,12 @@ layout(location = 3) in vec2 a_uv;
 layout(location = 4) in vec4 a_color;
 layout(location = 4) out vec4 v_color;
 #endif
+#ifdef UV2
+// a mesh's second uv set (scene_gpu.h), (0, 0) for a mesh without; only in a scene whose
+// materials read a map from it (a common define)
+layout(location = 5) in vec2 a_uv2;
+layout(location = 5) out vec2 v_uv2;
+#endif
 
 layout(location = 0) uniform mat4 u_model_view;
 layout(location = 1) uniform mat4 u_proj;
@@ -33,6 +39,9 @@ void main()
     v_uv = a_uv;
 #ifdef VERTEX_COLOR
     v_color = a_color;
+#endif
+#ifdef UV2
+    v_uv2 = a_uv2;
 #endif
     gl_Position = u_proj * p;
 }

@@ -17,6 +17,18 @@ layout(location = 3) in vec2 v_uv;
 #ifdef VERTEX_COLOR
 layout(location = 4) in vec4 v_color;
 #endif
+// UV2 (a common define: some material reads a map from the second uv set): the maps of
+// u_uv1_maps (bit 0 diffuse, 1 gloss, 2 normal, 3 emissive) read v_uv2, the rest v_uv.
+#ifdef UV2
+layout(location = 5) in vec2 v_uv2;
+layout(location = LOC_UV1_MAPS) uniform int u_uv1_maps;
+vec2 map_uv(int bit)
+{
+    return (u_uv1_maps & bit) != 0 ? v_uv2 : v_uv;
+}
+#else
+#define map_uv(bit) v_uv
+#endif
 
 layout(location = 8) uniform vec3 u_diffuse;
 layout(location = 9) uniform float u_specular;
@@ -58,7 +70,7 @@ Surface surface_get()
 #ifdef ALPHA_TEST
     float alpha = 1.0;
 #ifdef DIFFUSE_MAP
-    alpha = texture(t_diffuse, v_uv).a;
+    alpha = texture(t_diffuse, map_uv(1)).a;
 #endif
 #ifdef VERTEX_COLOR
     alpha *= v_color.a;
@@ -76,33 +88,33 @@ Surface surface_get()
     if (tl2 > 1e-20) {
         t *= inversesqrt(tl2);
         vec3 b = cross(n, t) * v_tangent.w;
-        vec3 m = texture(t_normal, v_uv).xyz * 2.0 - 1.0;
+        vec3 m = texture(t_normal, map_uv(4)).xyz * 2.0 - 1.0;
         n = safe_normalize(t * m.x + b * m.y + n * m.z, n);
     }
 #endif
     s.normal = n;
     s.diffuse = u_diffuse;
 #ifdef DIFFUSE_MAP
-    s.diffuse *= texture(t_diffuse, v_uv).rgb;
+    s.diffuse *= texture(t_diffuse, map_uv(1)).rgb;
 #endif
 #ifdef VERTEX_COLOR
     s.diffuse *= v_color.rgb;
 #endif
     s.gloss = u_specular;
 #ifdef GLOSS_MAP
-    s.gloss *= texture(t_gloss, v_uv).r;
+    s.gloss *= texture(t_gloss, map_uv(2)).r;
 #endif
     s.shininess = u_shininess;
     s.emissive = u_emissive;
 #ifdef EMISSIVE_MAP
-    vec4 e = texture(t_emissive, v_uv);   // rgb: colour, a: mask
+    vec4 e = texture(t_emissive, map_uv(8));   // rgb: colour, a: mask
     s.emissive *= e.rgb * e.a;
 #endif
     s.alpha = 1.0;
 #ifdef TRANSLUCENT
     s.alpha = clamp(u_opacity, 0.0, 1.0);
 #ifdef DIFFUSE_MAP
-    s.alpha *= texture(t_diffuse, v_uv).a;
+    s.alpha *= texture(t_diffuse, map_uv(1)).a;
 #endif
 #ifdef VERTEX_COLOR
     s.alpha *= v_color.a;

@@ -78,22 +78,29 @@ struct Draw {
     vec4 normal_matrix[3];       // mat3 columns
     vec4 diffuse_specular;       // rgb diffuse, a specular
     vec4 emissive_shininess;     // rgb emissive, a shininess
-    uvec4 geometry;              // x: first index, y: base vertex
+    uvec4 geometry;              // x: first index, y: base vertex, z: the maps on uv set 1
 };
 layout(std430, binding = BIND_SSBO_VIS_DRAWS) readonly buffer Draws {
     Draw b_draws[];
 };
 // Every mesh of the scene, concatenated: 12 floats a vertex (mesh_vertex: position,
-// normal, tangent, uv), with VERTEX_COLOR (the scene has coloured meshes: a common
-// define) a 13th word, the RGBA8 colour (white for a mesh without), read through a
-// second view of the same buffer as bits; and 32-bit indices.
+// normal, tangent, uv), with UV2 (a common define: the scene's materials read maps from a
+// second uv set) two more, that set ((0, 0) for a mesh without), with VERTEX_COLOR (the
+// scene has coloured meshes: a common define) one more, the RGBA8 colour (white for a
+// mesh without), read through a second view of the same buffer as bits; and 32-bit
+// indices.
+#ifdef UV2
+const uint VIS_UV2_WORDS = 2u;
+#else
+const uint VIS_UV2_WORDS = 0u;
+#endif
 #ifdef VERTEX_COLOR
-const uint VIS_VERTEX_WORDS = 13u;
+const uint VIS_VERTEX_WORDS = 13u + VIS_UV2_WORDS;
 layout(std430, binding = BIND_SSBO_VIS_VERTICES) readonly buffer VertexWords {
     uint b_vertex_words[];
 };
 #else
-const uint VIS_VERTEX_WORDS = 12u;
+const uint VIS_VERTEX_WORDS = 12u + VIS_UV2_WORDS;
 #endif
 layout(std430, binding = BIND_SSBO_VIS_VERTICES) readonly buffer Vertices {
     float b_vertices[];
@@ -206,11 +213,17 @@ vec4 shade_id(uint id, ivec2 px)
     Draw d = b_draws[tr.draw];
     vec4 tan[3];
     vec2 uv[3];
+#ifdef UV2
+    vec2 uv2[3];
+#endif
     for (uint k = 0u; k < 3u; k++) {
         uint b = tr.v[k] * VIS_VERTEX_WORDS;
         tan[k] = vec4(b_vertices[b + 6u], b_vertices[b + 7u], b_vertices[b + 8u],
                       b_vertices[b + 9u]);
         uv[k] = vec2(b_vertices[b + 10u], b_vertices[b + 11u]);
+#ifdef UV2
+        uv2[k] = vec2(b_vertices[b + 12u], b_vertices[b + 13u]);
+#endif
     }
     vec2 step = 2.0 * f_viewport.zw;   // one pixel in NDC
     vec3 l = barycentrics(tr.m_inv, pixel_ndc(px));
@@ -225,6 +238,17 @@ vec4 shade_id(uint id, ivec2 px)
     vec2 UV = l.x * uv[0] + l.y * uv[1] + l.z * uv[2];
     vec2 uv_dx = lx.x * uv[0] + lx.y * uv[1] + lx.z * uv[2];
     vec2 uv_dy = ly.x * uv[0] + ly.y * uv[1] + ly.z * uv[2];
+#ifdef UV2
+    // per map (surface.inc's map_uv): the first set, or the second for the draw's maps
+    vec2 UV1 = l.x * uv2[0] + l.y * uv2[1] + l.z * uv2[2];   // set 1 (UV2 is the define)
+    vec2 uv1_dx = lx.x * uv2[0] + lx.y * uv2[1] + lx.z * uv2[2];
+    vec2 uv1_dy = ly.x * uv2[0] + ly.y * uv2[1] + ly.z * uv2[2];
+    uint on1 = d.geometry.z;
+#define MAP_UV(bit) ((on1 & (bit)) != 0u ? UV1 : UV), ((on1 & (bit)) != 0u ? uv1_dx : uv_dx), \
+                    ((on1 & (bit)) != 0u ? uv1_dy : uv_dy)
+#else
+#define MAP_UV(bit) UV, uv_dx, uv_dy
+#endif
 
     // surface.inc's surface_get, from the interpolated values
     vec3 n = vis_normal(tr, draw_normal_matrix(tr.draw), l, P);
@@ -236,28 +260,29 @@ vec4 shade_id(uint id, ivec2 px)
     if (tl2 > 1e-20) {
         t *= inversesqrt(tl2);
         vec3 bt = cross(n, t) * T.w;
-        vec3 mn = textureGrad(t_normal, UV, uv_dx, uv_dy).xyz * 2.0 - 1.0;
+        vec3 mn = textureGrad(t_normal, MAP_UV(4u)).xyz * 2.0 - 1.0;
         n = vis_safe_normalize(t * mn.x + bt * mn.y + n * mn.z, n);
     }
 #endif
     vec3 diffuse = d.diffuse_specular.rgb;
 #ifdef DIFFUSE_MAP
-    diffuse *= textureGrad(t_diffuse, UV, uv_dx, uv_dy).rgb;
+    diffuse *= textureGrad(t_diffuse, MAP_UV(1u)).rgb;
 #endif
 #ifdef VERTEX_COLOR
     vec3 vc = vec3(0.0);
     for (uint k = 0u; k < 3u; k++)
-        vc += l[k] * unpackUnorm4x8(b_vertex_words[tr.v[k] * VIS_VERTEX_WORDS + 12u]).rgb;
+        vc += l[k] * unpackUnorm4x8(b_vertex_words[tr.v[k] * VIS_VERTEX_WORDS + 12u +
+                                                    VIS_UV2_WORDS]).rgb;
     diffuse *= vc;
 #endif
     float gloss = d.diffuse_specular.a;
 #ifdef GLOSS_MAP
-    gloss *= textureGrad(t_gloss, UV, uv_dx, uv_dy).r;
+    gloss *= textureGrad(t_gloss, MAP_UV(2u)).r;
 #endif
     float shininess = d.emissive_shininess.a;
     vec3 emissive = d.emissive_shininess.rgb;
 #ifdef EMISSIVE_MAP
-    vec4 e = textureGrad(t_emissive, UV, uv_dx, uv_dy);   // rgb: colour, a: mask
+    vec4 e = textureGrad(t_emissive, MAP_UV(8u));   // rgb: colour, a: mask
     emissive *= e.rgb * e.a;
 #endif
 

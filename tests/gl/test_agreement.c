@@ -49,6 +49,8 @@ static lpp_light_buffer_format g_lpp = LPP_LIGHT_BUFFER_RGBA16F;   /* deferred-l
 static bool g_lpp_tiled = false;   /* deferred-lighting's lights by the tiled lists */
 static bool g_double_sided = false;   /* build: every material double-sided */
 static bool g_vertex_colors = false;  /* build: the sphere's mesh (1) coloured by its normals */
+static bool g_uv2 = false;   /* build: the knot's mesh (2) a second uv set, 3 x its first,
+                                which material 2's diffuse and gloss maps read */
 static frame_stats g_last;            /* the last frame render_with drew */
 
 typedef struct light_case {
@@ -95,6 +97,15 @@ static scene *build(const light_case *c)
         s->zfar = c->zfar;
     for (uint32_t i = 0; i < s->nmaterials; i++)
         s->materials[i].double_sided = g_double_sided;
+    if (g_uv2) {
+        mesh *m = &s->meshes[2];
+        m->uv2 = malloc(m->nvertices * sizeof *m->uv2);
+        assert_non_null(m->uv2);
+        for (uint32_t v = 0; v < m->nvertices; v++)
+            for (int k = 0; k < 2; k++)
+                m->uv2[v][k] = 3.0f * m->vertices[v].uv[k];
+        s->materials[2].uv1_maps = 1u | 2u;
+    }
     if (g_vertex_colors) {   /* RGB from the normal, alpha 1 */
         mesh *m = &s->meshes[1];
         m->colors = malloc(m->nvertices * sizeof *m->colors);
@@ -496,6 +507,50 @@ static void test_vertex_colors(void **state)
     scene_destroy(plain);
 }
 
+/* glTF's texCoord 1: the grid's knot (material 2: checker diffuse and gloss maps) with a
+ * second uv set three times its first, which both maps read: every renderer samples the
+ * maps there as forward-spml does (run_case; visibility with its own derivatives of the
+ * second set), the image differs from the one of the first set, and the plan says the
+ * programs are compiled for it (UV2). */
+static void test_second_uv_set(void **state)
+{
+    (void)state;
+    light_case c = {"second uv set", {0.0f, 4.5f, -5.0f}, {0.0f, 2.2f, -10.0f}, 0, 2,
+                    {point(3.0f, 6.0f, -6.0f, 14.0f, 1.0f, 1.0f, 1.0f),
+                     point(-3.0f, 4.0f, -6.0f, 12.0f, 0.8f, 0.8f, 0.9f)}};
+    g_uv2 = true;
+    run_case(&c);
+    scene *two = build(&c);
+    g_uv2 = false;
+    scene *one = build(&c);
+    assert_non_null(two);
+    assert_non_null(one);
+    image a = {0}, b = {0};
+    assert_true(render("deferred", LIGHT_VOLUMES_STENCIL, two, &a));
+    assert_true(render("deferred", LIGHT_VOLUMES_STENCIL, one, &b));
+    image_error e;
+    char err[256];
+    assert_true(image_compare(&a, &b, &e, err, sizeof err));
+    print_message("second uv set against the first: %.2f of the pixels differ by > 1/255\n",
+                  e.frac_over_1_255);
+    assert_true(e.frac_over_1_255 > 0.05);
+    const gl_info *gi = gl_context_info(ctx);
+    renderer_options o = {.width = W, .height = H, .gbuffer = GBUFFER_REFERENCE,
+                          .light_volumes = LIGHT_VOLUMES_STENCIL, .hdr = HDR_RGBA16F,
+                          .max_uniform_block_size = gi->max_uniform_block_size};
+    renderer *r = test_renderer_create("forward-spml", &o, err, sizeof err);
+    assert_non_null(r);
+    assert_true(renderer_prepare(r, two, err, sizeof err));
+    pass_plan p;
+    renderer_describe(r, &p);
+    assert_non_null(strstr(p.lighting, ", a second uv set;"));
+    renderer_destroy(r);
+    image_free(&a);
+    image_free(&b);
+    scene_destroy(two);
+    scene_destroy(one);
+}
+
 /* The eye is outside the light's sphere but inside the volume drawn for it (the
  * sphere scaled by 1.1), so the near plane cuts the volume; the light reaches the
  * floor in front of the camera. */
@@ -607,6 +662,7 @@ GL_TEST_MAIN(ctx, W, H,
              cmocka_unit_test(test_volume_cut_by_far_plane),
              cmocka_unit_test(test_double_sided),
              cmocka_unit_test(test_vertex_colors),
+             cmocka_unit_test(test_second_uv_set),
              cmocka_unit_test(test_fog),
              cmocka_unit_test(test_rgba32f_many_overlapping_lights),
              cmocka_unit_test(test_msaa4))
