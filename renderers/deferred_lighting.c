@@ -257,9 +257,10 @@ static uint64_t deferred_lighting_own_bytes(const renderer_estimate *e)
     return (8 + depth + 2 * light) * e->samples * e->pixels;
 }
 
-/* The two designs differ in what they read (deferred.light_volumes, or tiles.*): the
- * registry's entry reads both, and `variant` names the design of a run's options, whose
- * reads the memory estimate asks. Every entry point is the same. */
+/* The two designs differ in what they read (deferred.light_volumes, or tiles.*) and in
+ * whether they have light lists (light_grid: lightgrid.csv): the registry's entry reads
+ * both and has both, and `variant` names the design of a run's options, whose reads the
+ * memory estimate asks. Every other entry point is the same. */
 #define DEFERRED_LIGHTING_DESIGN(READS, ...)                                                   \
     RENDERER_IMPL(deferred_lighting, "deferred-lighting", READS,                               \
                   "light pre-pass (Engel 2008): normal + shininess G-buffer, diffuse and "     \
@@ -267,13 +268,13 @@ static uint64_t deferred_lighting_own_bytes(const renderer_estimate *e)
                   "tiled light lists, then the objects again with their materials (depth "    \
                   "EQUAL)",                                                                    \
                   .collect = deferred_lighting_collect, .read_hdr = deferred_read_hdr,         \
-                  .light_grid = deferred_lighting_light_grid, .traffic = deferred_traffic,     \
-                  .own_bytes = deferred_lighting_own_bytes, __VA_ARGS__)
+                  .traffic = deferred_traffic, .own_bytes = deferred_lighting_own_bytes,       \
+                  __VA_ARGS__)
 
 static const renderer_impl volumes_design = DEFERRED_LIGHTING_DESIGN(
     "deferred.light_volumes deferred_lighting hdr msaa fog aa", .variant = NULL);
-static const renderer_impl tiled_design =
-    DEFERRED_LIGHTING_DESIGN("deferred_lighting tiles hdr msaa fog aa", .variant = NULL);
+static const renderer_impl tiled_design = DEFERRED_LIGHTING_DESIGN(
+    "deferred_lighting tiles hdr msaa fog aa", .light_grid = deferred_lighting_light_grid);
 
 static const renderer_impl *deferred_lighting_variant(const renderer_options *opts)
 {
@@ -282,4 +283,4 @@ static const renderer_impl *deferred_lighting_variant(const renderer_options *op
 
 const renderer_impl renderer_deferred_lighting_impl = DEFERRED_LIGHTING_DESIGN(
     "deferred.light_volumes deferred_lighting tiles hdr msaa fog aa",
-    .variant = deferred_lighting_variant);
+    .light_grid = deferred_lighting_light_grid, .variant = deferred_lighting_variant);

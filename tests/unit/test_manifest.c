@@ -391,6 +391,7 @@ static void test_kv_canonical(void **state)
         {"clustered.slices", "24"},
         {"clustered.shading", "forward"},
         {"deferred_lighting.light_buffer", "rgba16f"},
+        {"deferred_lighting.lights", "volumes"},
         {"shadows", "auto"},
         {"hdr", "rgba16f"},
         {"msaa", "1"},
@@ -462,6 +463,7 @@ static void test_kv_canonical(void **state)
         {"clustered.slices", "24"},
         {"clustered.shading", "forward"},
         {"deferred_lighting.light_buffer", "rgba16f"},
+        {"deferred_lighting.lights", "volumes"},
         {"shadows", "off"},
         {"hdr", "rgba16f"},
         {"msaa", "1"},
@@ -712,7 +714,8 @@ static const bad_case bad_cases[] = {
        "deferred.sky_stencil, "
        "forward.illumination_sets, forward.directional_in_base, forward.light_buffer, tiles.size, "
       "tiles.max_lights_per_tile, clustered.slices, clustered.shading, "
-      "deferred_lighting.light_buffer, shadows, hdr, msaa, fog.density, "
+      "deferred_lighting.light_buffer, deferred_lighting.lights, shadows, hdr, msaa, "
+      "fog.density, "
       "fog.colour, aa, translucency, camera.radius, "
       "camera.height, camera.period, "
       "camera.target, camera.near, camera.far, camera.hold, lights.placement, lights.seed, "
