@@ -462,93 +462,69 @@ static void test_double_sided(void **state)
     scene_destroy(one);
 }
 
+/* A scene feature that `flag` makes build() add: every renderer draws it as forward-spml
+ * does (run_case), deferred's image with it differs from the one without on more than
+ * min_frac of the pixels, and the pass plan's lighting line names it (`named`, a common
+ * define compiled in only for a scene that has it). */
+static void expect_feature(const light_case *c, bool *flag, double min_frac, const char *named)
+{
+    *flag = true;
+    run_case(c);
+    scene *with = build(c);
+    *flag = false;
+    scene *without = build(c);
+    assert_non_null(with);
+    assert_non_null(without);
+    image a = {0}, b = {0};
+    assert_true(render("deferred", LIGHT_VOLUMES_STENCIL, with, &a));
+    assert_true(render("deferred", LIGHT_VOLUMES_STENCIL, without, &b));
+    image_error e;
+    char err[256];
+    assert_true(image_compare(&a, &b, &e, err, sizeof err));
+    print_message("%s: with and without, %.2f of the pixels differ by > 1/255\n", c->name,
+                  e.frac_over_1_255);
+    assert_true(e.frac_over_1_255 > min_frac);
+    const gl_info *gi = gl_context_info(ctx);
+    renderer_options o = {.width = W, .height = H, .gbuffer = GBUFFER_REFERENCE,
+                          .light_volumes = LIGHT_VOLUMES_STENCIL, .hdr = HDR_RGBA16F,
+                          .max_uniform_block_size = gi->max_uniform_block_size};
+    renderer *r = test_renderer_create("forward-spml", &o, err, sizeof err);
+    assert_non_null(r);
+    assert_true(renderer_prepare(r, with, err, sizeof err));
+    pass_plan p;
+    renderer_describe(r, &p);
+    print_message("plan: lighting %s\n", p.lighting);
+    assert_non_null(strstr(p.lighting, named));
+    renderer_destroy(r);
+    image_free(&a);
+    image_free(&b);
+    scene_destroy(with);
+    scene_destroy(without);
+}
+
 /* glTF's COLOR_0: the grid's first sphere coloured by its normals (mesh.colors), seen
  * and lit from the side: every renderer multiplies its diffuse colour by the interpolated
- * vertex colour as forward-spml does (run_case; visibility interpolates the colour from
- * its copy of the vertices), the image differs from the uncoloured one, and the pass
- * plan says the programs are compiled for vertex colours (VERTEX_COLOR). */
+ * vertex colour (visibility interpolates it from its copy of the vertices); the sphere
+ * covers about 15 % of the view; VERTEX_COLOR. */
 static void test_vertex_colors(void **state)
 {
     (void)state;
     light_case c = {"vertex colours", {-10.0f, 4.0f, -3.0f}, {-10.0f, 2.2f, -10.0f}, 0, 2,
                     {point(-7.0f, 5.0f, -6.0f, 12.0f, 1.0f, 1.0f, 1.0f),
                      point(-13.0f, 3.0f, -7.0f, 10.0f, 0.8f, 0.8f, 0.9f)}};
-    g_vertex_colors = true;
-    run_case(&c);
-    scene *col = build(&c);
-    g_vertex_colors = false;
-    scene *plain = build(&c);
-    assert_non_null(col);
-    assert_non_null(plain);
-    image a = {0}, b = {0};
-    assert_true(render("deferred", LIGHT_VOLUMES_STENCIL, col, &a));
-    assert_true(render("deferred", LIGHT_VOLUMES_STENCIL, plain, &b));
-    image_error e;
-    char err[256];
-    assert_true(image_compare(&a, &b, &e, err, sizeof err));
-    print_message("vertex colours against none: %.2f of the pixels differ by > 1/255\n",
-                  e.frac_over_1_255);
-    assert_true(e.frac_over_1_255 > 0.1);   /* the sphere covers about 15 % of the view */
-    const gl_info *gi = gl_context_info(ctx);
-    renderer_options o = {.width = W, .height = H, .gbuffer = GBUFFER_REFERENCE,
-                          .light_volumes = LIGHT_VOLUMES_STENCIL, .hdr = HDR_RGBA16F,
-                          .max_uniform_block_size = gi->max_uniform_block_size};
-    renderer *r = test_renderer_create("forward-spml", &o, err, sizeof err);
-    assert_non_null(r);
-    assert_true(renderer_prepare(r, col, err, sizeof err));
-    pass_plan p;
-    renderer_describe(r, &p);
-    print_message("plan: lighting %s\n", p.lighting);
-    assert_non_null(strstr(p.lighting, ", vertex colours;"));
-    renderer_destroy(r);
-    image_free(&a);
-    image_free(&b);
-    scene_destroy(col);
-    scene_destroy(plain);
+    expect_feature(&c, &g_vertex_colors, 0.1, ", vertex colours;");
 }
 
 /* glTF's texCoord 1: the grid's knot (material 2: checker diffuse and gloss maps) with a
  * second uv set three times its first, which both maps read: every renderer samples the
- * maps there as forward-spml does (run_case; visibility with its own derivatives of the
- * second set), the image differs from the one of the first set, and the plan says the
- * programs are compiled for it (UV2). */
+ * maps there (visibility with its own derivatives of the second set); UV2. */
 static void test_second_uv_set(void **state)
 {
     (void)state;
     light_case c = {"second uv set", {0.0f, 4.5f, -5.0f}, {0.0f, 2.2f, -10.0f}, 0, 2,
                     {point(3.0f, 6.0f, -6.0f, 14.0f, 1.0f, 1.0f, 1.0f),
                      point(-3.0f, 4.0f, -6.0f, 12.0f, 0.8f, 0.8f, 0.9f)}};
-    g_uv2 = true;
-    run_case(&c);
-    scene *two = build(&c);
-    g_uv2 = false;
-    scene *one = build(&c);
-    assert_non_null(two);
-    assert_non_null(one);
-    image a = {0}, b = {0};
-    assert_true(render("deferred", LIGHT_VOLUMES_STENCIL, two, &a));
-    assert_true(render("deferred", LIGHT_VOLUMES_STENCIL, one, &b));
-    image_error e;
-    char err[256];
-    assert_true(image_compare(&a, &b, &e, err, sizeof err));
-    print_message("second uv set against the first: %.2f of the pixels differ by > 1/255\n",
-                  e.frac_over_1_255);
-    assert_true(e.frac_over_1_255 > 0.05);
-    const gl_info *gi = gl_context_info(ctx);
-    renderer_options o = {.width = W, .height = H, .gbuffer = GBUFFER_REFERENCE,
-                          .light_volumes = LIGHT_VOLUMES_STENCIL, .hdr = HDR_RGBA16F,
-                          .max_uniform_block_size = gi->max_uniform_block_size};
-    renderer *r = test_renderer_create("forward-spml", &o, err, sizeof err);
-    assert_non_null(r);
-    assert_true(renderer_prepare(r, two, err, sizeof err));
-    pass_plan p;
-    renderer_describe(r, &p);
-    assert_non_null(strstr(p.lighting, ", a second uv set;"));
-    renderer_destroy(r);
-    image_free(&a);
-    image_free(&b);
-    scene_destroy(two);
-    scene_destroy(one);
+    expect_feature(&c, &g_uv2, 0.05, ", a second uv set;");
 }
 
 /* Issue 26: every scene of the catalog (but the test-* faults) at 1 s of its own camera,
