@@ -125,9 +125,7 @@ static bool set_lighting(renderer_base *b, const struct scene *s)
         if (*n < sizeof in)
             *n += (size_t)snprintf(to + *n, sizeof in - *n, "%s%s", *n ? ", " : "", what);
     }
-    uint32_t coloured = 0;
-    for (uint32_t i = 0; s && i < s->nmeshes; i++)
-        coloured += s->meshes[i].colors != NULL;
+    bool coloured = s && scene_has_vertex_colors(s);
     bool uv2 = s && scene_uses_uv2(s);
     const char *all[4] = {defs[0], defs[1], NULL, NULL};
     size_t n = 2;

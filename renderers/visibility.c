@@ -270,9 +270,7 @@ static bool make_buffers(visibility *r, const scene *s, char *err, size_t errlen
     }
     /* UV2 (scene_uses_uv2): 2 more words a vertex, its second uv set; VERTEX_COLOR (a
      * coloured mesh in the scene): one more, its colour */
-    bool coloured = false;
-    for (uint32_t m = 0; m < s->nmeshes; m++)
-        coloured |= s->meshes[m].colors != NULL;
+    bool coloured = scene_has_vertex_colors(s);
     r->coloured = coloured;
     r->uv2 = scene_uses_uv2(s);
     const uint64_t words = 12 + (r->uv2 ? 2 : 0) + (coloured ? 1 : 0);

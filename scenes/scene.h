@@ -165,6 +165,15 @@ typedef struct scene {
     sm_mat4 view, proj, viewproj;
 } scene;
 
+/* Whether some mesh of the scene has vertex colours (the programs' VERTEX_COLOR). */
+static inline bool scene_has_vertex_colors(const scene *s)
+{
+    for (uint32_t i = 0; i < s->nmeshes; i++)
+        if (s->meshes[i].colors)
+            return true;
+    return false;
+}
+
 /* Whether the scene's programs read a second uv set (surface.inc's UV2): some material
  * reads a map from it and some mesh has one. */
 static inline bool scene_uses_uv2(const scene *s)

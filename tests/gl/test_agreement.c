@@ -215,37 +215,27 @@ static void run_case_msaa(const light_case *c)
         image_free(&img);
     }
     /* deferred-lighting: deferred's edge classes in its light passes, its material pass
-     * per sample; the same tolerance in every mode */
-    for (size_t m = 0; m < sizeof modes / sizeof modes[0]; m++) {
-        assert_true(render("deferred-lighting", modes[m], s, &img));
+     * per sample; the same tolerance in every mode, and (the last round, m == nmodes) by
+     * the tiled lists, the dispatch's edge pixels per sample */
+    const size_t nmodes = sizeof modes / sizeof modes[0];
+    for (size_t m = 0; m <= nmodes; m++) {
+        g_lpp_tiled = m == nmodes;
+        bool ok = render("deferred-lighting", m < nmodes ? modes[m] : LIGHT_VOLUMES_STENCIL, s,
+                         &img);
+        g_lpp_tiled = false;
+        assert_true(ok);
         image_error e;
         char err[256];
         assert_true(image_compare(&img, &ref, &e, err, sizeof err));
-        print_message("%s: msaa %d deferred-lighting mode %d vs forward-spml: rmse %.3f/255, "
-                      "%.4f of pixels off by > 1/255\n", c->name, g_msaa, (int)modes[m],
+        print_message("%s: msaa %d deferred-lighting %s %d vs forward-spml: rmse %.3f/255, "
+                      "%.4f of pixels off by > 1/255\n", c->name, g_msaa,
+                      m < nmodes ? "mode" : "tiled", m < nmodes ? (int)modes[m] : 0,
                       e.rmse * 255, e.frac_over_1_255);
         assert_true(e.rmse < RMSE_MAX);
         assert_true(e.frac_over_1_255 < 0.01);
         assert_int_equal(e.nonfinite, 0);
         image_free(&img);
     }
-    /* and by the tiled lists: the dispatch's edge pixels per sample */
-    g_lpp_tiled = true;
-    bool ok = render("deferred-lighting", LIGHT_VOLUMES_STENCIL, s, &img);
-    g_lpp_tiled = false;
-    assert_true(ok);
-    {
-        image_error e;
-        char err[256];
-        assert_true(image_compare(&img, &ref, &e, err, sizeof err));
-        print_message("%s: msaa %d deferred-lighting tiled vs forward-spml: rmse %.3f/255, "
-                      "%.4f of pixels off by > 1/255\n", c->name, g_msaa, e.rmse * 255,
-                      e.frac_over_1_255);
-        assert_true(e.rmse < RMSE_MAX);
-        assert_true(e.frac_over_1_255 < 0.01);
-        assert_int_equal(e.nonfinite, 0);
-    }
-    image_free(&img);
     image_free(&ref);
     scene_destroy(s);
 }
