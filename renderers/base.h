@@ -84,7 +84,7 @@ typedef struct renderer_base {
     shadow_maps shadows;             /* the shadow-map plan, and the pool when it runs */
     char light_types_define[32];     /* the programs' common defines (lighting.inc): the */
     char attenuations_define[32];    /* scene's light types and attenuations */
-    char lighting[128];              /* the pass plan's line about them */
+    char lighting[192];              /* the pass plan's line about them */
     /* >>made by renderer_base_targets at prepare */
     gl_target hdr;                   /* the light accumulation, opts.hdr's format */
     gl_target depth;                 /* depth24-stencil8 */

@@ -46,6 +46,8 @@
 #define LOC_OPACITY 13
 /* surface.inc's maps read from the second uv set (UV2: scene_material.uv1_maps) */
 #define LOC_UV1_MAPS 14
+/* surface.inc's occlusion strength of an ORM map (SHADING_PBR with GLOSS_MAP) */
+#define LOC_OCCLUSION 15
 /* Uniform locations of one light (forward_light.frag, deferred_light.frag) and of a
  * renderer's own first uniform beside mesh.vert's and surface.inc's (0..11) */
 #define LOC_RENDERER 16

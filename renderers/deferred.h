@@ -51,6 +51,8 @@ typedef enum deferred_slot_kind {
     DEFERRED_SLOT_GLOSS,
     DEFERRED_SLOT_SHININESS,
     DEFERRED_SLOT_EMISSIVE,            /* rgb, or 1 channel when emissive_intensity */
+    DEFERRED_SLOT_OCCLUSION,           /* pbr: the ambient occlusion */
+    DEFERRED_SLOT_F0,                  /* pbr, deferred-lighting: the material's F0, rgb */
     DEFERRED_SLOT_COUNT
 } deferred_slot_kind;
 
@@ -93,6 +95,8 @@ typedef struct deferred_layout {
     deferred_position_source position;
     deferred_normal_encoding normal;
     bool emissive_intensity;           /* fat: emissive = e x diffuse */
+    bool pbr;                          /* gloss and shininess are metallic and roughness
+                                          (deferred_needs.pbr): their slots are named so */
     bool has[DEFERRED_SLOT_COUNT];     /* a slot of that kind is in some attachment */
 } deferred_layout;
 
@@ -122,7 +126,7 @@ unsigned deferred_layout_bytes_per_pixel(const deferred_layout *l);
 
 /* The layout as gbuffer.inc.glsl's defines ("GB_DIFFUSE gb2.xyz", "GB_NORMAL_ENC 2",
  * ...), what every program reading or writing the G-buffer is compiled with. */
-enum { DEFERRED_MAX_LAYOUT_DEFS = 12 };
+enum { DEFERRED_MAX_LAYOUT_DEFS = 14 };
 typedef struct deferred_layout_defs {
     int n;
     char text[DEFERRED_MAX_LAYOUT_DEFS][40];

@@ -46,7 +46,8 @@ deferred_renderer *deferred_core_create(const char *name, size_t size, bool tile
     r->lpp = lpp;
     /* Options are checked here, before any scene: a bad value never becomes a default. */
     deferred_layout probe;
-    if (!deferred_layout_build(opts, (deferred_needs){true, true}, &probe, err, errlen)) {
+    if (!deferred_layout_build(opts, (deferred_needs){.gloss = true, .emissive = true}, &probe,
+                               err, errlen)) {
         free(r);
         return NULL;
     }
@@ -343,7 +344,8 @@ bool deferred_prepare_scene(deferred_renderer *r, const scene *s, char *err, siz
     deferred_plan(r, PASS_GBUFFER, true,
                   "%u objects into %d attachments (%s, %u bytes/pixel)", s->nobjects,
                   r->layout.nattachments,
-                  r->lpp ? "light pre-pass: normal, shininess"
+                  r->lpp ? (r->needs.pbr ? "light pre-pass: normal, roughness, f0"
+                                         : "light pre-pass: normal, shininess")
                          : deferred_preset_name(r->b.opts.gbuffer),
                   deferred_layout_bytes_per_pixel(&r->layout));
     deferred_plan(r, PASS_COMPOSE, r->b.opts.separate_specular, "%s",

@@ -247,14 +247,15 @@ static const uint32_t *deferred_lighting_light_grid(const void *self, size_t *n)
     return light_grid_counts(&l->t.g, n);
 }
 
-/* Its fixed G-buffer (normal + shininess, RGBA16F), depth.sampled (volumes) and the light
- * buffer's two targets (deferred_lighting.light_buffer), every one per sample; the tiled
- * lists are the memory estimate's own (runner/memory.c, by the design's reads). */
+/* Its fixed G-buffer (normal + shininess, RGBA16F; under pbr F0 beside it, RGBA16F), depth.sampled (volumes) and the light buffer's two targets
+ * (deferred_lighting.light_buffer), every one per sample; the tiled lists are the memory
+ * estimate's own (runner/memory.c, by the design's reads). */
 static uint64_t deferred_lighting_own_bytes(const renderer_estimate *e)
 {
     uint64_t light = e->opts->lpp_light_buffer == LPP_LIGHT_BUFFER_RGBA8 ? 4 : 8;
     uint64_t depth = e->opts->lpp_tiled ? 0 : 4;
-    return (8 + depth + 2 * light) * e->samples * e->pixels;
+    uint64_t f0 = e->scene && e->needs.pbr ? 8 : 0;
+    return (8 + f0 + depth + 2 * light) * e->samples * e->pixels;
 }
 
 /* The two designs differ in what they read (deferred.light_volumes, or tiles.*) and in

@@ -18,7 +18,8 @@ static const char *const slot_names[DEFERRED_SLOT_COUNT] = {
     [DEFERRED_SLOT_DEPTH] = "depth",             [DEFERRED_SLOT_NORMAL_XY] = "normal.xy",
     [DEFERRED_SLOT_NORMAL_Z] = "normal.z",       [DEFERRED_SLOT_DIFFUSE] = "diffuse",
     [DEFERRED_SLOT_GLOSS] = "gloss",             [DEFERRED_SLOT_SHININESS] = "shininess",
-    [DEFERRED_SLOT_EMISSIVE] = "emissive",
+    [DEFERRED_SLOT_EMISSIVE] = "emissive",       [DEFERRED_SLOT_OCCLUSION] = "occlusion",
+    [DEFERRED_SLOT_F0] = "f0",
 };
 
 const char *deferred_slot_name(deferred_slot_kind k)
@@ -106,9 +107,13 @@ const char *deferred_preset_name(gbuffer_preset p)
 
 deferred_needs deferred_needs_of(const scene *s)
 {
-    deferred_needs n = {false, false};
+    deferred_needs n = {false, false, false, false};
     if (!s)
         return n;
+    /* the metallic-roughness model: every surface has a specular lobe, its roughness
+     * always needed (and the metallic factor beside it, as gloss is) */
+    n.pbr = s->shading == SHADING_PBR;
+    n.gloss = n.pbr;
     for (uint32_t i = 0; i < s->nobjects; i++) {
         uint32_t mi = s->objects[i].material;
         if (mi >= s->nmaterials)
@@ -120,6 +125,8 @@ deferred_needs deferred_needs_of(const scene *s)
             n.gloss = true;
         if (m->emissive[0] > 0.0f || m->emissive[1] > 0.0f || m->emissive[2] > 0.0f)
             n.emissive = true;
+        if (n.pbr && m->gloss_map >= 0 && m->occlusion > 0.0f)
+            n.occlusion = true;
     }
     return n;
 }
@@ -191,14 +198,44 @@ static gl_format narrowest(deferred_channel_type ch, unsigned channels)
 
 /* "gbuffer." + the slots' field names joined by '+' (position.xy + position.z is
  * "position", and so the normal). The longest a layout makes is 29 characters. */
-static void name_attachment(deferred_attachment *at, bool spheremap)
+/* The channels a preset's format offers a slot (RGB10A2's 2-bit alpha: none). */
+static unsigned format_channels(gl_format f)
+{
+    switch (f) {
+    case GLT_FORMAT_R16F:
+    case GLT_FORMAT_R32F:
+        return 1;
+    case GLT_FORMAT_RG16F:
+    case GLT_FORMAT_RG8:
+        return 2;
+    case GLT_FORMAT_RGB10A2:
+        return 3;
+    case GLT_FORMAT_RGBA16F:
+    case GLT_FORMAT_RGBA32F:
+    case GLT_FORMAT_RGBA8:
+        return 4;
+    default:
+        return 0;
+    }
+}
+
+static const char *slot_label(deferred_slot_kind k, bool pbr)
+{
+    if (pbr && k == DEFERRED_SLOT_GLOSS)
+        return "metallic";
+    if (pbr && k == DEFERRED_SLOT_SHININESS)
+        return "roughness";
+    return deferred_slot_name(k);
+}
+
+static void name_attachment(deferred_attachment *at, bool spheremap, bool pbr)
 {
     char *out = at->name;
     const size_t cap = sizeof at->name;
     size_t len = (size_t)snprintf(out, cap, "gbuffer.");
     for (int i = 0; i < at->nslots && len < cap; i++) {
         deferred_slot_kind k = at->slot[i].kind;
-        const char *nm = deferred_slot_name(k);
+        const char *nm = slot_label(k, pbr);
         if (k == DEFERRED_SLOT_POSITION_XY && i + 1 < at->nslots &&
             at->slot[i + 1].kind == DEFERRED_SLOT_POSITION_Z) {
             nm = "position";
@@ -299,6 +336,21 @@ bool deferred_layout_build(const renderer_options *o, deferred_needs needs,
     }
     if (!needs.emissive)
         draft_remove(&d, DEFERRED_SLOT_EMISSIVE, false);
+    /* >>pbr's occlusion: no preset has it; the first attachment with a channel to spare
+     * takes it, else one of its own in the preset's first channel type */
+    if (needs.occlusion) {
+        int at = -1;
+        for (int i = 0; i < d.nattachments && at < 0; i++) {
+            unsigned used = 0;
+            for (int k = 0; k < d.att[i].nslots; k++)
+                used += d.att[i].slot[k].count;
+            if (!d.touched[i] && used < format_channels(d.att[i].format) && d.att[i].nslots > 0)
+                at = i;
+        }
+        if (at < 0)
+            at = draft_att(&d, d.att[0].channels, GLT_FORMAT_NONE, true);
+        draft_slot(&d, at, DEFERRED_SLOT_OCCLUSION, 1);
+    }
 
     /* >>the attachments that remain, packed again where an override took a slot */
     memset(out, 0, sizeof *out);
@@ -319,11 +371,12 @@ bool deferred_layout_build(const renderer_options *o, deferred_needs needs,
             }
             at.format = narrowest(at.channels, first);
         }
-        name_attachment(&at, spheremap);
+        name_attachment(&at, spheremap, needs.pbr);
         for (int k = 0; k < at.nslots; k++)
             out->has[at.slot[k].kind] = true;
         out->att[out->nattachments++] = at;
     }
+    out->pbr = needs.pbr;
     out->emissive_intensity = d.emissive_intensity && out->has[DEFERRED_SLOT_EMISSIVE];
     out->position = out->has[DEFERRED_SLOT_POSITION_XY]  ? DEFERRED_POSITION_STORED
                     : out->has[DEFERRED_SLOT_DEPTH] && !depth_buffer ? DEFERRED_POSITION_LINEAR_DEPTH
@@ -353,15 +406,27 @@ void deferred_layout_light_prepass(deferred_needs needs, deferred_layout *out)
     draft_slot(&d, a, DEFERRED_SLOT_NORMAL_Z, 1);
     if (needs.gloss)   /* no specular material: no highlight to shape */
         draft_slot(&d, a, DEFERRED_SLOT_SHININESS, 1);
+    /* the metallic-roughness model's specular light depends on F0 per channel (Schlick's
+     * Fresnel does not factor out of the sum over the lights as Phong's gloss does):
+     * the light pre-pass reads it here, in 16-bit floats as the rest */
+    if (needs.pbr)
+        draft_slot(&d, draft_att(&d, DEFERRED_CHANNELS_FLOAT16, GLT_FORMAT_NONE, false),
+                   DEFERRED_SLOT_F0, 3);
     memset(out, 0, sizeof *out);
-    deferred_attachment at = d.att[a];
-    at.format = narrowest(at.channels, needs.gloss ? 4u : 3u);
-    name_attachment(&at, false);
-    for (int k = 0; k < at.nslots; k++)
-        out->has[at.slot[k].kind] = true;
-    out->att[out->nattachments++] = at;
+    for (int i = 0; i < d.nattachments; i++) {
+        deferred_attachment at = d.att[i];
+        unsigned channels = 0;
+        for (int k = 0; k < at.nslots; k++)
+            channels += at.slot[k].count;
+        at.format = narrowest(at.channels, channels);
+        name_attachment(&at, false, needs.pbr);
+        for (int k = 0; k < at.nslots; k++)
+            out->has[at.slot[k].kind] = true;
+        out->att[out->nattachments++] = at;
+    }
     out->position = DEFERRED_POSITION_DEPTH_BUFFER;
     out->normal = DEFERRED_NORMAL_XYZ_FLOAT;
+    out->pbr = needs.pbr;
 }
 
 unsigned deferred_layout_bytes_per_pixel(const deferred_layout *l)
@@ -463,9 +528,11 @@ void deferred_layout_defines(const deferred_layout *l, deferred_layout_defs *d)
     add_define(d, "GB_SHININESS", DEFERRED_SLOT_SHININESS, l);
     char where[16];
     deferred_channel_type ch;
-    if (slot_where(l, DEFERRED_SLOT_SHININESS, where, sizeof where, &ch) &&
+    if (!l->pbr && slot_where(l, DEFERRED_SLOT_SHININESS, where, sizeof where, &ch) &&
         (ch == DEFERRED_CHANNELS_UNORM8 || ch == DEFERRED_CHANNELS_UNORM10))
         snprintf(d->text[d->n++], sizeof d->text[0], "GB_SHININESS_UNORM");
     add_define(d, l->emissive_intensity ? "GB_EMISSIVE_INTENSITY" : "GB_EMISSIVE",
                DEFERRED_SLOT_EMISSIVE, l);
+    add_define(d, "GB_OCCLUSION", DEFERRED_SLOT_OCCLUSION, l);
+    add_define(d, "GB_F0", DEFERRED_SLOT_F0, l);
 }

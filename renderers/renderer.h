@@ -89,7 +89,7 @@ typedef struct pass_plan {
     char program[RENDERER_MAX_PASSES][64];
     size_t ntargets;
     target_plan_entry target[16];
-    char lighting[128];        /* the light features every program is compiled for, and
+    char lighting[192];        /* the light features every program is compiled for, and
                                   those left out (renderer_base_describe; "" for null) */
     uint64_t gbuffer_bytes;    /* bytes of G-buffer targets (0 for forward / null) */
     uint64_t target_bytes;     /* all targets the renderer allocated */
@@ -355,6 +355,11 @@ typedef struct deferred_needs {
     bool gloss;                        /* some object's material has specular > 0: gloss and
                                           shininess (a gloss map only scales it) */
     bool emissive;                     /* some object's material has an emissive colour > 0 */
+    bool pbr;                          /* the scene is shaded by the metallic-roughness model:
+                                          gloss and shininess hold metallic and roughness,
+                                          stored as they are; deferred-lighting's G-buffer
+                                          adds F0 */
+    bool occlusion;                    /* pbr, and some object's material has an occlusion map */
 } deferred_needs;
 
 /* What renderer_impl.own_bytes is given: the run's options (msaa already the samples a

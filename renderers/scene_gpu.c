@@ -355,6 +355,8 @@ void scene_gpu_draw_object(scene_gpu *g, gl_state *st, const scene *s, uint32_t 
         gl.Uniform1f(LOC_OPACITY, m->opacity);
     if (g->uv2)   /* every surface.inc program has it then (UV2) */
         gl.Uniform1i(LOC_UV1_MAPS, (GLint)m->uv1_maps);
+    if (s->shading == SHADING_PBR && m->gloss_map >= 0)   /* the ORM map's (surface.inc) */
+        gl.Uniform1f(LOC_OCCLUSION, m->occlusion);
     draw_mesh(st, s, object, gm);
 }
 

@@ -481,6 +481,7 @@ static void upload_draws(visibility *r, const scene *s)
                 d->normal_matrix[col * 4 + row] = nm[col][row];
             d->normal_matrix[col * 4 + 3] = 0.0f;
         }
+        d->normal_matrix[3] = m->occlusion;   /* SHADING_PBR: the ORM map's strength */
         for (int i = 0; i < 3; i++) {
             d->diffuse_specular[i] = m->diffuse[i];
             d->emissive_shininess[i] = m->emissive[i];

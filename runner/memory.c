@@ -12,6 +12,7 @@
 
 #include "renderers/renderer.h"
 #include "renderers/shading.h"
+#include "runner/plan_check.h"
 #include "renderers/shadow.h"
 #include "runner/params.h"
 #include "runner/plan_check.h"
@@ -317,7 +318,8 @@ static bool same_scene(const run_params *a, const run_params *b)
            strcmp(a->scene_camera, b->scene_camera) == 0 && a->width == b->width &&
            a->height == b->height &&
            memcmp(&a->lights, &b->lights, sizeof a->lights) == 0 &&
-           memcmp(&a->camera, &b->camera, sizeof a->camera) == 0;
+           memcmp(&a->camera, &b->camera, sizeof a->camera) == 0 &&
+           a->translucency == b->translucency && a->shading_model == b->shading_model;
 }
 
 /* The facts of p's scene, built without GL in this process once per scene and camera
@@ -344,8 +346,10 @@ static const scene_facts *cached_facts(const run_params *p)
     cache[i].used = true;
     cache[i].key = *p;
     cache[i].built = sc && scene_set_camera(sc, &p->camera, err, sizeof err);
-    if (cache[i].built)
+    if (cache[i].built) {
+        run_params_shape_scene(p, sc);   /* the G-buffer's needs follow the model */
         facts_of(sc, &cache[i].facts);
+    }
     scene_destroy(sc);
     return cache[i].built ? &cache[i].facts : NULL;
 }

@@ -51,6 +51,7 @@ static const char *const hdr_names[] = {"rgba16f", "rgba32f", NULL};   /* hdr_fo
 static const char *const msaa_names[] = {"1", "2", "4", "8", NULL};   /* 1 << index */
 static const char *const aa_names[] = {"none", "edge", NULL};   /* aa_mode */
 static const char *const translucency_names[] = {"blend", "opaque", NULL};
+static const char *const shading_model_names[] = {"scene", "phong", "pbr", NULL};
 static const char *const schedule_names[] = {"interleaved", "sequential", NULL};
 static const char *const metric_names[] = {"auto", "wall", "cpu", "gpu", NULL};
 

@@ -65,8 +65,19 @@ void run_params_scene(const run_params *p, scene_file_options *fo, scene_source 
 {
     *fo = (scene_file_options){.path = p->scene_file, .scale = p->scene_scale,
                                .up = (scene_up)p->scene_up, .camera = p->scene_camera,
-                               .allow_outside = p->scene_outside};
+                               .allow_outside = p->scene_outside,
+                               .phong = p->shading_model == 1};
     *src = (scene_source){.name = p->scene, .file = p->scene_file[0] ? fo : NULL};
+}
+
+uint32_t run_params_shape_scene(const run_params *p, scene *s)
+{
+    uint32_t opaque = p->translucency == 1 ? scene_make_opaque(s) : 0;
+    shading_model m = p->shading_model == 1   ? SHADING_PHONG
+                      : p->shading_model == 2 ? SHADING_PBR
+                                              : scene_own_shading(s);
+    scene_set_shading(s, m);   /* a freshly built scene is Phong's: never refused */
+    return opaque;
 }
 
 static uint64_t hash_str(uint64_t h, const char *s)

@@ -79,8 +79,7 @@ bool run_setup(run_state *st)
         run_set_status(st, "scene");
         return false;
     }
-    if (p->translucency == 1)   /* opaque: the same scene without its translucent pass */
-        st->made_opaque = scene_make_opaque(st->sc);
+    st->made_opaque = run_params_shape_scene(p, st->sc);
     const gl_info *gi = gl_context_info(st->ctx);
     if (!resolve_metric(p->metric, gi, st->metric, sizeof st->metric, st->err, sizeof st->err)) {
         run_set_status(st, "metric");

@@ -237,7 +237,7 @@ static void gltf_extensions(const read_file *f, scene_file_info *info)
 }
 
 /* What the file has that no renderer draws (scene_file_info.not_rendered). */
-static void not_rendered_of(const loaded *l, scene_file_info *info)
+static void not_rendered_of(const loaded *l, bool phong, scene_file_info *info)
 {
     const struct aiScene *ai = l->ai;
     unsigned skinned = 0, ortho = 0;
@@ -247,7 +247,7 @@ static void not_rendered_of(const loaded *l, scene_file_info *info)
     }
     for (unsigned i = 0; i < ai->mNumCameras; i++)
         ortho += ai->mCameras[i]->mOrthographicWidth > 0.0f;
-    unsigned uv_differ = 0, mr_maps = 0, occlusion = 0, used = 0, far_uv = 0;
+    unsigned uv_differ = 0, mr_maps = 0, occlusion = 0, used = 0, far_uv = 0, spec_gloss = 0;
     for (unsigned i = 0; i < ai->mNumMaterials; i++) {
         const struct aiMaterial *am = ai->mMaterials[i];
         bool drawn = false;   /* not assimp's default material, where no mesh uses it */
@@ -268,6 +268,9 @@ static void not_rendered_of(const loaded *l, scene_file_info *info)
                        aiGetMaterialTextureCount(am, aiTextureType_UNKNOWN) > 0;
         occlusion += aiGetMaterialTextureCount(am, aiTextureType_LIGHTMAP) +
                          aiGetMaterialTextureCount(am, aiTextureType_AMBIENT_OCCLUSION) > 0;
+        float gloss;
+        spec_gloss += aiGetMaterialFloatArray(am, AI_MATKEY_GLOSSINESS_FACTOR, &gloss, NULL) ==
+                      aiReturn_SUCCESS;
     }
     if (skinned)
         not_rendered(info, "skins (%u mesh%s, drawn in the bind pose)", skinned,
@@ -281,14 +284,19 @@ static void not_rendered_of(const loaded *l, scene_file_info *info)
                      ai->mAnimations[0]->mNumMeshChannels);
     if (ortho)
         not_rendered(info, "orthographic cameras (%u)", ortho);
-    if (is_gltf(l->path) && used)
+    /* shading.model pbr (a file's default) renders glTF's materials and their maps;
+     * phong maps them onto seed 000's model (file_materials.c) */
+    if (phong && is_gltf(l->path) && used)
         not_rendered(info, "metallic-roughness shading (%u material%s, as Phong)", used,
                      used == 1 ? "" : "s");
-    if (mr_maps)
+    if (phong && mr_maps)
         not_rendered(info, "metallic-roughness maps (%u material%s)", mr_maps,
                      mr_maps == 1 ? "" : "s");
-    if (occlusion)
+    if (phong && occlusion)
         not_rendered(info, "occlusion maps (%u material%s)", occlusion, occlusion == 1 ? "" : "s");
+    if (!phong && spec_gloss)
+        not_rendered(info, "specular colours of specular-glossiness materials (%u, drawn as "
+                     "dielectrics)", spec_gloss);
     if (far_uv)
         not_rendered(info, "texture coordinate sets after the second (%u map%s, read from the "
                      "first)", far_uv, far_uv == 1 ? "" : "s");
@@ -361,7 +369,7 @@ bool scene_file_check(const scene_file_options *o, scene_file_info *info, char *
         info->hash = h;
         sm_vec3_copy(c.lo, info->bounds_min);
         sm_vec3_copy(c.hi, info->bounds_max);
-        not_rendered_of(&l, info);
+        not_rendered_of(&l, o->phong, info);
         const struct aiCamera *cam = chosen_camera(l.ai, o->camera);
         if (cam)
             snprintf(info->view, sizeof info->view, "the file's camera '%.60s'", cam->mName.data);

@@ -89,10 +89,12 @@ typedef struct loaded {
     size_t nemissive_strength;
 } loaded;
 
-/* Which of a material's maps exist: diffuse, normal, emissive references, "" if none. */
+/* Which of a material's maps exist: diffuse, normal, emissive, metallic-roughness and
+ * occlusion references, "" if none. */
 typedef struct material_refs {
-    char diffuse[1024], normal[1024], emissive[1024];
-    unsigned diffuse_uv, normal_uv, emissive_uv;   /* the texture coordinate set of each */
+    char diffuse[1024], normal[1024], emissive[1024], mr[1024], occlusion[1024];
+    unsigned diffuse_uv, normal_uv, emissive_uv, mr_uv, occlusion_uv;   /* the texture
+                                                                         * coordinate set of each */
 } material_refs;
 
 /* Imports and checks everything; on success l holds the scene and every texture. */

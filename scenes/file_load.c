@@ -191,6 +191,9 @@ int file_load_image(loaded *l, const char *ref, char *err, size_t errlen)
 
 /* The texture types a material may use, as scene_material's maps take them. */
 static const enum aiTextureType base_types[] = {aiTextureType_BASE_COLOR, aiTextureType_DIFFUSE};
+static const enum aiTextureType mr_types[] = {aiTextureType_UNKNOWN, aiTextureType_METALNESS};
+static const enum aiTextureType occlusion_types[] = {aiTextureType_LIGHTMAP,
+                                                     aiTextureType_AMBIENT_OCCLUSION};
 
 static bool material_texture(const struct aiMaterial *m, enum aiTextureType t, char *out,
                              size_t outlen, unsigned *uv_set)
@@ -207,8 +210,8 @@ static bool material_texture(const struct aiMaterial *m, enum aiTextureType t, c
 
 void file_material_refs(const struct aiMaterial *m, material_refs *r)
 {
-    r->diffuse[0] = r->normal[0] = r->emissive[0] = '\0';
-    r->diffuse_uv = r->normal_uv = r->emissive_uv = 0;
+    r->diffuse[0] = r->normal[0] = r->emissive[0] = r->mr[0] = r->occlusion[0] = '\0';
+    r->diffuse_uv = r->normal_uv = r->emissive_uv = r->mr_uv = r->occlusion_uv = 0;
     for (size_t k = 0; k < 2; k++)
         if (material_texture(m, base_types[k], r->diffuse, sizeof r->diffuse, &r->diffuse_uv))
             break;
@@ -217,6 +220,15 @@ void file_material_refs(const struct aiMaterial *m, material_refs *r)
     if (!material_texture(m, aiTextureType_EMISSIVE, r->emissive, sizeof r->emissive,
                           &r->emissive_uv))
         r->emissive[0] = '\0';
+    /* assimp 5.2's glTF importer: metallicRoughnessTexture under UNKNOWN (and METALNESS),
+     * occlusionTexture under LIGHTMAP */
+    for (size_t k = 0; k < sizeof mr_types / sizeof mr_types[0]; k++)
+        if (material_texture(m, mr_types[k], r->mr, sizeof r->mr, &r->mr_uv))
+            break;
+    for (size_t k = 0; k < sizeof occlusion_types / sizeof occlusion_types[0]; k++)
+        if (material_texture(m, occlusion_types[k], r->occlusion, sizeof r->occlusion,
+                             &r->occlusion_uv))
+            break;
 }
 
 /* Node hierarchy: depth bounded and no node met twice (a hierarchy that recurses). */
@@ -476,8 +488,8 @@ bool file_load(const scene_file_options *o, loaded *l, char *err, size_t errlen)
     for (unsigned i = 0; i < ai->mNumMaterials; i++) {
         material_refs r;
         file_material_refs(ai->mMaterials[i], &r);
-        const char *refs[3] = {r.diffuse, r.normal, r.emissive};
-        for (int k = 0; k < 3; k++)
+        const char *refs[5] = {r.diffuse, r.normal, r.emissive, r.mr, r.occlusion};
+        for (int k = 0; k < 5; k++)
             if (refs[k][0] && file_load_image(l, refs[k], err, errlen) < 0)
                 goto out;
     }

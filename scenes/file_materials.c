@@ -85,6 +85,55 @@ static int scene_texture(scene_builder *b, loaded *l, const char *ref, int *map,
     return (int)s->ntextures++;
 }
 
+/* The ORM map of scene.h from a file's metallic-roughness map (G roughness, B metallic)
+ * and occlusion map (R), either of which may be absent ("": 255 in its channels, a
+ * factor of 1); the occlusion map is sampled at the nearest texel when its size differs
+ * (glTF allows it; most files pack both in one image). Its index, or -1 for neither. */
+static int orm_texture(scene_builder *b, loaded *l, const char *mr_ref, const char *occ_ref)
+{
+    if ((!mr_ref[0] && !occ_ref[0]) || b->failed)
+        return -1;
+    int mi = mr_ref[0] ? file_load_image(l, mr_ref, b->err, b->errlen) : -1;
+    int oi = occ_ref[0] && !b->failed ? file_load_image(l, occ_ref, b->err, b->errlen) : -1;
+    if ((mr_ref[0] && mi < 0) || (occ_ref[0] && oi < 0)) {
+        b->failed = true;
+        return -1;
+    }
+    scene *s = b->s;
+    if (!sb_reserve(b, (void **)&s->textures, &b->cap_textures, s->ntextures, 1,
+                    sizeof *s->textures, "textures"))
+        return -1;
+    /* both images are the loader's, which file_load_image may grow: taken after both */
+    const image *mr = mi >= 0 ? &l->images[mi].img : NULL;
+    const image *occ = oi >= 0 ? &l->images[oi].img : NULL;
+    const image *size = mr ? mr : occ;
+    size_t w = (size_t)size->width, h = (size_t)size->height;
+    texture_image *t = &s->textures[s->ntextures];
+    t->data = malloc(w * h * 4);
+    if (!t->data) {
+        sb_fail(b, "%s: out of memory for a %zux%zu texture", l->path, w, h);
+        return -1;
+    }
+    const unsigned char *mp = mr ? mr->pixels : NULL, *op = occ ? occ->pixels : NULL;
+    for (size_t y = 0; y < h; y++)
+        for (size_t x = 0; x < w; x++) {
+            unsigned char *o = t->data + 4 * (y * w + x);
+            o[0] = o[1] = o[2] = o[3] = 255;
+            if (mr) {
+                o[1] = mp[4 * (y * w + x) + 1];
+                o[2] = mp[4 * (y * w + x) + 2];
+            }
+            if (occ) {
+                size_t ox = x * (size_t)occ->width / w, oy = y * (size_t)occ->height / h;
+                o[0] = op[4 * (oy * (size_t)occ->width + ox)];
+            }
+        }
+    t->width = (uint32_t)w;
+    t->height = (uint32_t)h;
+    t->channels = 4;
+    return (int)s->ntextures++;
+}
+
 void file_add_material(scene_builder *b, loaded *l, unsigned index, int *map)
 {
     const struct aiMaterial *am = l->ai->mMaterials[index];
@@ -94,16 +143,22 @@ void file_add_material(scene_builder *b, loaded *l, unsigned index, int *map)
     aiGetMaterialColor(am, AI_MATKEY_COLOR_EMISSIVE, &emis);
     float metallic = 0.0f, roughness = 1.0f, gloss = 0.0f, shininess = 0.0f;
     float specular, exponent;
+    bool pbr = false;   /* glTF's own factors, else the Phong material's (sb_material) */
     if (mat_float(am, AI_MATKEY_ROUGHNESS_FACTOR, &roughness) == aiReturn_SUCCESS &&
         mat_float(am, AI_MATKEY_GLOSSINESS_FACTOR, &gloss) != aiReturn_SUCCESS) {
         mat_float(am, AI_MATKEY_METALLIC_FACTOR, &metallic);
         metallic = sm_clamp(metallic, 0.0f, 1.0f);
         specular = 0.04f * (1.0f - metallic) + luminance(&base) * metallic;
         exponent = shininess_of_roughness(roughness);
+        pbr = true;
     } else if (mat_float(am, AI_MATKEY_GLOSSINESS_FACTOR, &gloss) == aiReturn_SUCCESS) {
         aiGetMaterialColor(am, AI_MATKEY_COLOR_SPECULAR, &spec);
         specular = luminance(&spec);
         exponent = shininess_of_roughness(1.0f - gloss);
+        /* specular-glossiness under the metallic-roughness model: a dielectric of the
+         * glossiness's roughness (its specular colour is not F0's 0.04; listed) */
+        roughness = 1.0f - gloss;
+        pbr = true;
     } else {
         aiGetMaterialColor(am, AI_MATKEY_COLOR_SPECULAR, &spec);
         mat_float(am, AI_MATKEY_SHININESS, &shininess);
@@ -119,15 +174,29 @@ void file_add_material(scene_builder *b, loaded *l, unsigned index, int *map)
     int d = scene_texture(b, l, r.diffuse, map, false);
     int nm = scene_texture(b, l, r.normal, map, false);
     int em = scene_texture(b, l, r.emissive, map, true);
+    int orm = orm_texture(b, l, r.mr, r.occlusion);
     if (b->failed)
         return;
     scene_material *m = &b->s->materials[mi];
+    if (pbr) {
+        m->metallic = metallic;
+        m->roughness = isfinite(roughness) ? sm_clamp(roughness, 0.0f, 1.0f) : 1.0f;
+    }
+    m->orm_map = orm;
+    if (orm >= 0 && r.occlusion[0]) {
+        float strength = 1.0f;
+        mat_float(am, AI_MATKEY_GLTF_TEXTURE_STRENGTH(aiTextureType_LIGHTMAP, 0), &strength);
+        m->occlusion = isfinite(strength) ? sm_clamp(strength, 0.0f, 1.0f) : 1.0f;
+    }
     m->diffuse_map = d;
     m->normal_map = nm;
     m->emissive_map = em;
     /* a map on the second uv set (texCoord 1) reads mesh.uv2 */
     m->uv1_maps = (d >= 0 && r.diffuse_uv == 1 ? 1u : 0u) | (nm >= 0 && r.normal_uv == 1 ? 4u : 0u) |
-                  (em >= 0 && r.emissive_uv == 1 ? 8u : 0u);
+                  (em >= 0 && r.emissive_uv == 1 ? 8u : 0u) |
+                  /* the ORM map reads the metallic-roughness map's set (or the occlusion
+                   * map's without one): bit 1, the gloss map's, which it replaces */
+                  (orm >= 0 && (r.mr[0] ? r.mr_uv : r.occlusion_uv) == 1 ? 2u : 0u);
     sm_vec3_make(emis.r, emis.g, emis.b, m->emissive);
     if (em >= 0 && emis.r == 0.0f && emis.g == 0.0f && emis.b == 0.0f)
         sm_vec3_make(1.0f, 1.0f, 1.0f, m->emissive);   /* OBJ: map_Ke without Ke */
@@ -181,7 +250,8 @@ int file_uv_transform(const struct aiMaterial *am, float out[2][3])
 {
     /* the base colour first (assimp gives glTF's under both types) */
     static const enum aiTextureType types[] = {aiTextureType_BASE_COLOR, aiTextureType_DIFFUSE,
-                                               aiTextureType_NORMALS, aiTextureType_EMISSIVE};
+                                               aiTextureType_NORMALS, aiTextureType_EMISSIVE,
+                                               aiTextureType_UNKNOWN, aiTextureType_LIGHTMAP};
     static const float identity[2][3] = {{1, 0, 0}, {0, 1, 0}};
     bool have = false, differ = false;
     for (size_t k = 0; k < sizeof types / sizeof types[0]; k++) {

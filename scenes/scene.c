@@ -89,6 +89,7 @@ static scene *build_unlit(const scene_source *src, int width, int height, scene_
         return NULL;
     }
     snprintf(s->name, sizeof s->name, "%s", name);
+    s->from_file = src->file != NULL;
     s->width = width;
     s->height = height;
     s->hold = NAN;
@@ -213,4 +214,25 @@ uint32_t scene_make_opaque(scene *s)
         n++;
     }
     return n;
+}
+
+bool scene_set_shading(scene *s, shading_model m)
+{
+    if (m == s->shading)
+        return true;
+    if (m != SHADING_PBR)
+        return false;
+    for (uint32_t i = 0; i < s->nmaterials; i++) {
+        scene_material *mt = &s->materials[i];
+        mt->specular = mt->metallic;
+        mt->shininess = mt->roughness;
+        mt->gloss_map = mt->orm_map;
+    }
+    s->shading = SHADING_PBR;
+    return true;
+}
+
+shading_model scene_own_shading(const scene *s)
+{
+    return s->from_file ? SHADING_PBR : SHADING_PHONG;
 }

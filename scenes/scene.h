@@ -43,13 +43,30 @@ typedef enum material_alpha {
                                 * it (renderers/translucent.h); casts no shadow */
 } material_alpha;
 
-/* Phong material; a map index is -1 when the material has no such map. */
+/* The two shading models (manifest key shading.model; renderers/shaders/lighting.inc):
+ * seed 000's Phong, and glTF 2.0's metallic-roughness model (its Appendix B: GGX
+ * distribution, separable Smith-GGX visibility, Schlick's Fresnel, Lambert diffuse). */
+typedef enum shading_model { SHADING_PHONG = 0, SHADING_PBR } shading_model;
+
+/* A material; a map index is -1 when the material has no such map. The shaders take
+ * diffuse, specular, shininess, gloss_map and emissive (surface.inc): under Phong as
+ * named; after scene_set_shading(s, SHADING_PBR) specular, shininess and gloss_map hold
+ * the metallic-roughness model's metallic, roughness and ORM map (below), and diffuse is
+ * the base colour. */
 typedef struct scene_material {
-    sm_vec3 diffuse;           /* multiplies the diffuse map */
-    float specular;            /* specular intensity (multiplies the gloss map) */
-    float shininess;           /* specular exponent n */
+    sm_vec3 diffuse;           /* multiplies the diffuse map (PBR: the base colour) */
+    float specular;            /* specular intensity, multiplies the gloss map (PBR: metallic) */
+    float shininess;           /* specular exponent n (PBR: roughness) */
     sm_vec3 emissive;          /* multiplies the emissive mask */
     int diffuse_map, gloss_map, normal_map, emissive_map;   /* into scene.textures */
+    /* The metallic-roughness inputs, kept beside Phong's until scene_set_shading takes
+     * them: metallic and roughness factors in [0, 1] (a catalog material: metallic 0, the
+     * roughness whose GGX alpha matches its exponent n, alpha = sqrt(2 / (n + 2))); the ORM
+     * map, glTF's channel packing (R occlusion, G roughness, B metallic; a file's
+     * metallic-roughness map with its occlusion map put into R, 255 where it has none);
+     * occlusion: the occlusion map's strength (0: R is not read). */
+    float metallic, roughness, occlusion;
+    int orm_map;
     material_alpha alpha;      /* catalog materials: opaque */
     float alpha_cutoff;        /* MATERIAL_MASK */
     float opacity;             /* MATERIAL_BLEND: the coverage alpha in [0, 1] (glTF base
@@ -124,6 +141,8 @@ typedef struct scene {
     int width, height;         /* the run's resolution (aspect of the projection) */
     sm_vec3 light_bounds_min, light_bounds_max;   /* where random lights are placed */
     sm_vec3 ambient;
+    shading_model shading;     /* SHADING_PHONG until scene_set_shading */
+    bool from_file;            /* a file's scene (scene_source.file) */
     bool sky;                  /* a sky is drawn where no geometry is */
     sm_vec3 sky_color;
 
@@ -207,6 +226,9 @@ typedef struct scene_file_options {
                                 * side; "orbit": an orbit about the bounds; otherwise the
                                 * name of one of the file's cameras */
     bool allow_outside;        /* files it references may lie outside its folder */
+    bool phong;                /* the run shades it by Phong (shading.model): its
+                                * metallic-roughness materials and maps are listed in
+                                * not_rendered; false: by PBR, the file's default */
 } scene_file_options;
 
 enum { SCENE_FILE_MAX_NOT_RENDERED = 16 };
@@ -285,6 +307,15 @@ bool scene_set_camera(scene *s, const camera_params *cp, char *err, size_t errle
  * becomes opaque with opacity 1, so that the renderers draw it in their opaque passes
  * and build no translucent pass. Returns how many materials changed. */
 uint32_t scene_make_opaque(scene *s);
+
+/* The manifest's shading.model: SHADING_PBR switches a built scene (always built for
+ * Phong, s->shading) to the metallic-roughness model: every material's specular,
+ * shininess and gloss_map take its metallic, roughness and orm_map, and s->shading says
+ * so. Once: a scene shaded by PBR stays so (false for SHADING_PHONG then; true
+ * otherwise). scene_own_shading: what `shading.model: scene` (the default) picks, Phong
+ * for the catalog and PBR for a file, whose glTF materials are authored for it. */
+bool scene_set_shading(scene *s, shading_model m);
+shading_model scene_own_shading(const scene *s);
 
 /* Fraction of the screen's pixels (0..1) whose view ray, through the pixel's centre,
  * passes through light i's volume (point: its ball of `radius`; spot: its cone of half

@@ -237,7 +237,11 @@ uint32_t sb_material(scene_builder *b, float r, float g, float bl, float specula
     m->specular = specular;
     m->shininess = shininess;
     m->opacity = 1.0f;
-    m->diffuse_map = m->gloss_map = m->normal_map = m->emissive_map = -1;
+    m->diffuse_map = m->gloss_map = m->normal_map = m->emissive_map = m->orm_map = -1;
+    /* the metallic-roughness model's view of a Phong material (scene.h): a dielectric
+     * whose GGX alpha matches the Blinn-Phong exponent, alpha = sqrt(2 / (n + 2)) */
+    m->metallic = 0.0f;
+    m->roughness = sm_clamp(sqrtf(sqrtf(2.0f / (fmaxf(shininess, 0.0f) + 2.0f))), 0.0f, 1.0f);
     return b->s->nmaterials++;
 }
 

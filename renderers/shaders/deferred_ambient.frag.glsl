@@ -11,7 +11,7 @@
 void main()
 {
     GSurface g = gbuffer_load();
-    o_light = vec4(f_ambient.rgb * g.diffuse + g.emissive, 1.0);
+    o_light = vec4(f_ambient.rgb * g.diffuse * g.occlusion + g.emissive, 1.0);
 #ifdef SEPARATE_SPECULAR
     o_specular = vec4(0.0);
 #endif

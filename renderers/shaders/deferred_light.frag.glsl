@@ -6,10 +6,10 @@
 //
 // DEFERRED_LIGHT_TYPE: 0 point, 1 spot, 2 directional (only documents the variant:
 // the light's own type field drives shade_light). SEPARATE_SPECULAR (seed 001):
-// diffuse and specular go to two targets, shade_light evaluated once with gloss 0 and
-// once with a black diffuse (it is linear in both). LIGHT_PREPASS (deferred-lighting,
-// compiled with SEPARATE_SPECULAR for the two outputs): the same two evaluations with a
-// white diffuse and a gloss of 1, the light buffer's diffuse and specular light.
+// diffuse and specular go to two targets (lighting.inc's shade_light_split).
+// LIGHT_PREPASS (deferred-lighting, compiled with SEPARATE_SPECULAR for the two
+// outputs): the light buffer's diffuse and specular light, the light without the
+// material (lighting.inc's light_prepass).
 #include "bindings.h"
 #include "frame.inc"
 #include "lighting.inc"
@@ -28,18 +28,14 @@ void main()
     // shade_light = diffuse x (incoming ndl) + gloss x (incoming spec) sums exactly over
     // the lights in the material pass (deferred_lighting_material.frag)
     vec3 d = vec3(0.0), s = vec3(0.0);
-    if (g.present) {
-        d = shade_light(l, g.position, g.normal, vec3(1.0), 0.0, g.shininess);
-        s = shade_light(l, g.position, g.normal, vec3(0.0), 1.0, g.shininess);
-    }
+    if (g.present)
+        light_prepass(l, g.position, g.normal, g.shininess, g.f0, d, s);
     o_light = vec4(d, 0.0);
     o_specular = vec4(s, 0.0);
 #elif defined(SEPARATE_SPECULAR)
     vec3 d = vec3(0.0), s = vec3(0.0);
-    if (g.present) {
-        d = shade_light(l, g.position, g.normal, g.diffuse, 0.0, g.shininess);
-        s = shade_light(l, g.position, g.normal, vec3(0.0), g.gloss, g.shininess);
-    }
+    if (g.present)
+        shade_light_split(l, g.position, g.normal, g.diffuse, g.gloss, g.shininess, d, s);
     o_light = vec4(d, 0.0);
     o_specular = vec4(s, 0.0);
 #else

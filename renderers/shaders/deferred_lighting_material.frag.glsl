@@ -11,6 +11,7 @@
 #include "bindings.h"
 #include "frame.inc"
 #include "surface.inc"
+#include "lighting.inc"
 
 #include "msaa.inc"
 layout(binding = BIND_TEX_LIGHT_DIFFUSE) uniform GB_SAMPLER t_light_diffuse;
@@ -26,8 +27,16 @@ void main()
     vec3 ls = texelFetch(t_light_specular, px, GB_SAMPLE).rgb;
     // A light buffer that overflowed (RGBA16F beyond 65504) holds Inf: a material channel
     // of 0 takes none of it (0 x Inf would be NaN), as forward's 0 x light is 0.
+#ifdef SHADING_PBR
+    // lighting.inc's pbr_light summed: the diffuse part without the material's
+    // c_diff (1 - F0), the specular part whole (its F0 came from the G-buffer)
+    vec3 kd = pbr_diffuse(s.diffuse, s.gloss);
+    vec3 c = f_ambient.rgb * s.diffuse * s.occlusion + s.emissive +
+             mix(kd * ld, vec3(0.0), equal(kd, vec3(0.0))) + ls;
+#else
     vec3 c = f_ambient.rgb * s.diffuse + s.emissive +
              mix(s.diffuse * ld, vec3(0.0), equal(s.diffuse, vec3(0.0))) +
              (s.gloss > 0.0 ? s.gloss * ls : vec3(0.0));
+#endif
     o_color = vec4(c, 1.0);
 }

@@ -35,7 +35,7 @@ layout(location = 0) out vec4 o_color;
 void main()
 {
     Surface s = surface_get();
-    vec3 c = f_ambient.rgb * s.diffuse + s.emissive;
+    vec3 c = f_ambient.rgb * s.diffuse * s.occlusion + s.emissive;
     int n = min(u_light_count, MAX_LIGHTS);
     for (int i = 0; i < n; i++) {
         Light l = u_lights[i];

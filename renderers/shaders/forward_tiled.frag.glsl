@@ -35,7 +35,7 @@ layout(location = 0) out vec4 o_color;
 void main()
 {
     Surface s = surface_get();
-    vec3 c = f_ambient.rgb * s.diffuse + s.emissive;
+    vec3 c = f_ambient.rgb * s.diffuse * s.occlusion + s.emissive;
 #ifdef NO_GRID
     uint first = 0u, n = uint(u_light_count);
     uvec2 t = uvec2(0u);

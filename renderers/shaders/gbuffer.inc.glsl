@@ -16,6 +16,12 @@
 //                                   GB_SHININESS_UNORM: stored as n / 255
 //   GB_EMISSIVE                     rgb; or GB_EMISSIVE_INTENSITY: e, emissive = e * diffuse
 //                                   (seed 000); neither: no material is emissive
+//   GB_OCCLUSION                    SHADING_PBR: the ambient occlusion (surface.inc); absent:
+//                                   no material has an occlusion map (1)
+//   GB_F0                           SHADING_PBR, deferred-lighting: the material's F0 (rgb),
+//                                   which its light pre-pass needs for the specular light
+// Under SHADING_PBR, diffuse is the base colour, gloss the metallic factor and shininess
+// the roughness (lighting.inc), stored as they are (no GB_SHININESS_UNORM scaling).
 //
 // gbK is attachment K: an output of the G-buffer pass, a texelFetch of the pixel's
 // texel (t_gbK, unit 4 + K) in the passes that read it. Every attachment is cleared to
@@ -97,6 +103,12 @@ void gbuffer_store(Surface s)
 #elif defined(GB_EMISSIVE_INTENSITY)
     GB_EMISSIVE_INTENSITY = max(s.emissive.r, max(s.emissive.g, s.emissive.b));
 #endif
+#ifdef GB_OCCLUSION
+    GB_OCCLUSION = s.occlusion;
+#endif
+#ifdef GB_F0
+    GB_F0 = mix(vec3(0.04), s.diffuse, s.gloss);   // lighting.inc's pbr_f0
+#endif
 }
 
 #else // reading
@@ -132,6 +144,8 @@ struct GSurface {
     float gloss;
     float shininess;
     vec3 emissive;
+    float occlusion;   // of the ambient light (GB_OCCLUSION), 1 otherwise
+    vec3 f0;           // GB_F0 (deferred-lighting under SHADING_PBR), 0.04 otherwise
 };
 
 // The view ray through this pixel's centre, scaled to z = -1: the frustum-corner rays
@@ -197,6 +211,16 @@ GSurface gbuffer_load()
     g.emissive = GB_EMISSIVE_INTENSITY * g.diffuse;
 #else
     g.emissive = vec3(0.0);
+#endif
+#ifdef GB_OCCLUSION
+    g.occlusion = GB_OCCLUSION;
+#else
+    g.occlusion = 1.0;
+#endif
+#ifdef GB_F0
+    g.f0 = GB_F0;
+#else
+    g.f0 = vec3(0.04);
 #endif
     if (!g.present) {
         // Nothing to light: values that keep every light's arithmetic finite.

@@ -115,6 +115,92 @@ vec3 light_incoming(Light l, vec3 P, vec3 N, out vec3 L)
     return l.color_type.rgb * att;
 }
 
+#ifdef SHADING_PBR
+// SHADING_PBR (a common define: shading.model pbr): glTF 2.0's metallic-roughness model,
+// the specification's Appendix B, for light `incoming` arriving from L:
+//   f = (1 - F) c_diff / pi + F D Vis      c_diff = base (1 - metallic)
+//   F = F0 + (1 - F0) (1 - V.H)^5          F0 = mix(0.04, base, metallic)
+//   D = a^2 / (pi ((N.H)^2 (a^2 - 1) + 1)^2),   a = roughness^2
+//   Vis = 1 / ((N.L + sqrt(a^2 + (1 - a^2) (N.L)^2)) (|N.V| + sqrt(a^2 + (1 - a^2) (N.V)^2)))
+// and the light's contribution is incoming x f x N.L, 0 where N.L <= 0. shade_light's
+// (diffuse, gloss, shininess) are then (base colour, metallic, roughness): the Surface's
+// and G-buffer's fields keep their names and carry these (scenes/scene.h).
+// The roughness is clamped below at PBR_MIN_ROUGHNESS (Filament's floor for 32-bit
+// floats): at 0, D is a delta (0/0 at N.H = 1).
+const float PBR_PI = 3.14159265358979;
+const float PBR_MIN_ROUGHNESS = 0.045;
+
+vec3 pbr_f0(vec3 base, float metallic)
+{
+    return mix(vec3(0.04), base, metallic);
+}
+
+// What multiplies pbr_light's kd: c_diff (1 - F0).
+vec3 pbr_diffuse(vec3 base, float metallic)
+{
+    return base * (1.0 - metallic) * (1.0 - pbr_f0(base, metallic));
+}
+
+// The light's contribution in two parts, the material's F0 factored out of the diffuse
+// one, which is what deferred-lighting's light buffer sums without the material:
+//   kd = incoming N.L (1 - s) / pi,  s = (1 - V.H)^5   (so that (1 - F) = (1 - F0)(1 - s))
+//   spec = incoming N.L D Vis F
+// shade_light = pbr_diffuse(base, metallic) x kd + spec.
+void pbr_light(Light l, vec3 P, vec3 N, float roughness, vec3 f0, out vec3 kd, out vec3 spec)
+{
+    vec3 L;
+    vec3 incoming = light_incoming(l, P, N, L);
+#ifdef SHADOWS
+    if (l.params.z > 0.5 && any(greaterThan(incoming, vec3(0.0))))
+        incoming *= shadow_visibility(int(l.params.z + 0.5) - 1, P);
+#endif
+    kd = spec = vec3(0.0);
+    float ndl = dot(N, L);
+    if (!(ndl > 0.0))
+        return;
+    vec3 V = normalize(-P);
+    vec3 h = L + V;   // zero only for a light straight behind the surface's viewer
+    vec3 H = dot(h, h) > 1e-12 ? normalize(h) : N;
+    float vdh = clamp(dot(V, H), 0.0, 1.0);
+    float ndh = clamp(dot(N, H), 0.0, 1.0);
+    float ndv = abs(dot(N, V));
+    float a = max(roughness, PBR_MIN_ROUGHNESS);
+    float a2 = (a * a) * (a * a);
+    float m = 1.0 - vdh;
+    float s = (m * m) * (m * m) * m;
+    float f = ndh * ndh * (a2 - 1.0) + 1.0;
+    float d = a2 / (PBR_PI * f * f);
+    float vis = 1.0 / ((ndl + sqrt(a2 + (1.0 - a2) * ndl * ndl)) *
+                       (ndv + sqrt(a2 + (1.0 - a2) * ndv * ndv)));
+    vec3 li = incoming * ndl;
+    kd = li * ((1.0 - s) / PBR_PI);
+    spec = li * (d * vis) * (f0 + (1.0 - f0) * s);
+}
+
+vec3 shade_light(Light l, vec3 P, vec3 N, vec3 base, float metallic, float roughness)
+{
+    vec3 kd, spec;
+    pbr_light(l, P, N, roughness, pbr_f0(base, metallic), kd, spec);
+    return pbr_diffuse(base, metallic) * kd + spec;
+}
+
+// shade_light's diffuse and specular parts apart (deferred.separate_specular).
+void shade_light_split(Light l, vec3 P, vec3 N, vec3 base, float metallic, float roughness,
+                       out vec3 d, out vec3 s)
+{
+    pbr_light(l, P, N, roughness, pbr_f0(base, metallic), d, s);
+    d *= pbr_diffuse(base, metallic);
+}
+
+// deferred-lighting's light buffer (LIGHT_PREPASS): the light without the material, kd
+// and spec of pbr_light; its material pass adds pbr_diffuse x sum kd + sum spec.
+void light_prepass(Light l, vec3 P, vec3 N, float roughness, vec3 f0, out vec3 d, out vec3 s)
+{
+    pbr_light(l, P, N, roughness, f0, d, s);
+}
+
+#else
+
 // The light's contribution at a surface point: att * spot * (D + g * S).
 vec3 shade_light(Light l, vec3 P, vec3 N, vec3 diffuse, float gloss, float shininess)
 {
@@ -133,6 +219,25 @@ vec3 shade_light(Light l, vec3 P, vec3 N, vec3 diffuse, float gloss, float shini
     float spec = ndl > 0.0 ? (shininess > 0.0 ? pow(rv, shininess) : 1.0) : 0.0;
     return incoming * (diffuse * ndl + gloss * spec);
 }
+
+// shade_light's diffuse and specular parts apart (deferred.separate_specular): it is
+// linear in the diffuse colour and in the gloss, so two evaluations, one without each.
+void shade_light_split(Light l, vec3 P, vec3 N, vec3 diffuse, float gloss, float shininess,
+                       out vec3 d, out vec3 s)
+{
+    d = shade_light(l, P, N, diffuse, 0.0, shininess);
+    s = shade_light(l, P, N, vec3(0.0), gloss, shininess);
+}
+
+// deferred-lighting's light buffer (LIGHT_PREPASS): the light without the material,
+// incoming x N.L and incoming x spec, which its material pass multiplies by the diffuse
+// colour and the gloss (f0 is the metallic-roughness model's only).
+void light_prepass(Light l, vec3 P, vec3 N, float shininess, vec3 f0, out vec3 d, out vec3 s)
+{
+    d = shade_light(l, P, N, vec3(1.0), 0.0, shininess);
+    s = shade_light(l, P, N, vec3(0.0), 1.0, shininess);
+}
+#endif
 
 Light light_from(vec4 v[5])
 {

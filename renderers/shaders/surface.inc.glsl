@@ -30,12 +30,20 @@ vec2 map_uv(int bit)
 #define map_uv(bit) v_uv
 #endif
 
+// SHADING_PBR (a common define, lighting.inc): u_diffuse is the base colour, u_specular
+// the metallic factor, u_shininess the roughness factor, and the gloss map glTF's packed
+// ORM map (R occlusion, G roughness, B metallic; scenes/scene.h), whose occlusion counts
+// by u_occlusion (the occlusion map's strength): 1 + strength (R - 1), which multiplies
+// the ambient light only.
 layout(location = 8) uniform vec3 u_diffuse;
 layout(location = 9) uniform float u_specular;
 layout(location = 10) uniform float u_shininess;
 layout(location = 11) uniform vec3 u_emissive;
 #ifdef ALPHA_TEST
 layout(location = LOC_ALPHA_CUTOFF) uniform float u_alpha_cutoff;
+#endif
+#if defined(SHADING_PBR) && defined(GLOSS_MAP)
+layout(location = LOC_OCCLUSION) uniform float u_occlusion;
 #endif
 #ifdef TRANSLUCENT
 layout(location = LOC_OPACITY) uniform float u_opacity;
@@ -54,6 +62,7 @@ struct Surface {
     float shininess;
     vec3 emissive;
     float alpha;     // coverage (TRANSLUCENT), 1 otherwise
+    float occlusion; // of the ambient light: the ORM map's (SHADING_PBR), 1 otherwise
 };
 
 // A unit vector from n, or `fallback` where n has no length (degenerate normals
@@ -101,10 +110,16 @@ Surface surface_get()
     s.diffuse *= v_color.rgb;
 #endif
     s.gloss = u_specular;
-#ifdef GLOSS_MAP
+    s.shininess = u_shininess;
+    s.occlusion = 1.0;
+#if defined(GLOSS_MAP) && defined(SHADING_PBR)
+    vec3 orm = texture(t_gloss, map_uv(2)).rgb;
+    s.occlusion = 1.0 + u_occlusion * (orm.r - 1.0);
+    s.shininess *= orm.g;
+    s.gloss *= orm.b;
+#elif defined(GLOSS_MAP)
     s.gloss *= texture(t_gloss, map_uv(2)).r;
 #endif
-    s.shininess = u_shininess;
     s.emissive = u_emissive;
 #ifdef EMISSIVE_MAP
     vec4 e = texture(t_emissive, map_uv(8));   // rgb: colour, a: mask

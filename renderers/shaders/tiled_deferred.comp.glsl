@@ -101,7 +101,7 @@ Shaded shade_surface(GSurface g, uint tile_index)
 #ifdef LIGHT_PREPASS
     Shaded o = Shaded(vec3(0.0), vec3(0.0));
 #else
-    Shaded o = Shaded(f_ambient.rgb * g.diffuse + g.emissive, vec3(0.0));
+    Shaded o = Shaded(f_ambient.rgb * g.diffuse * g.occlusion + g.emissive, vec3(0.0));
 #endif
     if (g.present) {
         for (uint k = 0u; k < n; k++) {
@@ -109,8 +109,10 @@ Shaded shade_surface(GSurface g, uint tile_index)
             if (!light_reaches(i, g.position))
                 continue;
 #ifdef LIGHT_PREPASS
-            o.c += shade_light(b_lights[i], g.position, g.normal, vec3(1.0), 0.0, g.shininess);
-            o.s += shade_light(b_lights[i], g.position, g.normal, vec3(0.0), 1.0, g.shininess);
+            vec3 d, sp;
+            light_prepass(b_lights[i], g.position, g.normal, g.shininess, g.f0, d, sp);
+            o.c += d;
+            o.s += sp;
 #else
             o.c += shade_light(b_lights[i], g.position, g.normal, g.diffuse, g.gloss,
                                g.shininess);
@@ -152,7 +154,7 @@ void main()
     bool inside = all(lessThan(pixel, size));
     g_frag_xy = vec2(pixel) + 0.5;
     GSurface g = GSurface(false, vec3(0.0, 0.0, -1.0), vec3(0.0, 0.0, 1.0), vec3(0.0), 0.0, 1.0,
-                          vec3(0.0));
+                          vec3(0.0), 1.0, vec3(0.04));
     if (inside)
         g = gbuffer_load();
 #ifdef MSAA_SAMPLES

@@ -75,7 +75,7 @@ layout(location = LOC_RENDERER + 2) uniform int u_draw_end;     // [first, end)
 // One visible draw (visibility.c's vis_draw, std430, 160 bytes).
 struct Draw {
     mat4 model_view;
-    vec4 normal_matrix[3];       // mat3 columns
+    vec4 normal_matrix[3];       // mat3 columns; [0].w: the occlusion strength (PBR)
     vec4 diffuse_specular;       // rgb diffuse, a specular
     vec4 emissive_shininess;     // rgb emissive, a shininess
     uvec4 geometry;              // x: first index, y: base vertex, z: the maps on uv set 1
@@ -276,17 +276,23 @@ vec4 shade_id(uint id, ivec2 px)
     diffuse *= vc;
 #endif
     float gloss = d.diffuse_specular.a;
-#ifdef GLOSS_MAP
+    float shininess = d.emissive_shininess.a;
+    float occlusion = 1.0;
+#if defined(GLOSS_MAP) && defined(SHADING_PBR)
+    vec3 orm = textureGrad(t_gloss, MAP_UV(2u)).rgb;   // surface.inc's ORM map
+    occlusion = 1.0 + d.normal_matrix[0].w * (orm.r - 1.0);
+    shininess *= orm.g;
+    gloss *= orm.b;
+#elif defined(GLOSS_MAP)
     gloss *= textureGrad(t_gloss, MAP_UV(2u)).r;
 #endif
-    float shininess = d.emissive_shininess.a;
     vec3 emissive = d.emissive_shininess.rgb;
 #ifdef EMISSIVE_MAP
     vec4 e = textureGrad(t_emissive, MAP_UV(8u));   // rgb: colour, a: mask
     emissive *= e.rgb * e.a;
 #endif
 
-    vec3 c = f_ambient.rgb * diffuse + emissive;
+    vec3 c = f_ambient.rgb * diffuse * occlusion + emissive;
 #ifdef NO_GRID
     uint first = 0u, count = uint(u_light_count);
     uvec2 tile = uvec2(0u);

@@ -7,6 +7,16 @@ appendix D (I = A + attenuation * spot * (D + g * S), its three attenuation form
 its spot falloff) by itself, in float64 with numpy, for a plane seen by a known camera
 and lit by one light per case, and compares every renderer's screenshot with it.
 
+Each case runs twice: under `shading: {model: phong}` against that model, and (files
+pbr-NAME) under `shading: {model: pbr}` against glTF 2.0's metallic-roughness model
+(the specification's Appendix B), also written here from its formulas:
+    c_diff = base (1 - metallic),  F0 = 0.04 (1 - metallic) + base metallic
+    F = F0 + (1 - F0) (1 - V.H)^5,  D = a^2 / (pi ((N.H)^2 (a^2 - 1) + 1)^2),  a = r^2
+    Vis = 1 / ((|N.L| + sqrt(a^2 + (1 - a^2) (N.L)^2)) (|N.V| + sqrt(a^2 + (1 - a^2) (N.V)^2)))
+    I = A + light x attenuation x spot x ((1 - F) c_diff / pi + F D Vis) x N.L   (N.L > 0)
+with the project's ambient A = ambient light x base colour (x occlusion: none here),
+metallic PBR_METALLIC, roughness ROUGHNESS and the lights PBR_GAIN times brighter.
+
     shading_model.py gen DIR      writes the glTF scenes and the manifests into DIR
     shading_model.py check DIR    compares DIR/out-*/runs/*/screenshot-*.png with the model
 
@@ -18,7 +28,7 @@ Written from the paper's formulas (seed 000 appendix D), not from our shaders:
     spot = (-L.A)^f if -L.A > cos(c), else 0
     I = A + attenuation * spot * (D + g * S)
 
-What is taken from the project (its mapping of files and manifests onto that model,
+What is taken from the project (its mapping of files and manifests onto the Phong model,
 and how the image is produced), each read from the code named:
   scenes/file_materials.c glTF pbrMetallicRoughness -> Phong: Kd = baseColorFactor;
                         g = 0.04 (1 - metallic) + luminance(baseColor) metallic, with
@@ -79,6 +89,10 @@ TOP = 4.0                # a small triangle at this height behind the camera: it
 AMBIENT = 0.1
 BASE = (0.8, 0.6, 0.4)
 METALLIC, ROUGHNESS = 1.0, 0.5
+# pbr: a material partly metal, so that both lobes of the BRDF show, and lights twice as
+# bright (its diffuse lobe is Lambert's c_diff / pi; more saturates the highlights)
+PBR_METALLIC, PBR_GAIN = 0.4, 2.0
+MODELS = ("phong", "pbr")
 CAMERA = {"t": (0.0, 4.0, 4.0), "pitch_deg": -50.0, "yfov": 0.7, "znear": 0.1,
           "zfar": 100.0}
 SEED, COLOR_MAX = 1337, 3.0
@@ -129,6 +143,14 @@ CASES = {
                        "range": 60.0,
                        "spot": {"innerConeAngle": 0.2, "outerConeAngle": 0.45}},
              "pos": (-0.5, 2.5, 0.3), "at": (0.2, 0.0, 0.6)},
+    # the point light on a material with glTF's metallic-roughness map (G roughness, B
+    # metallic; its R must be ignored) and an occlusion map (R, at strength 0.8) of
+    # another size: uniform images, so that every texel read is exact. pbr multiplies
+    # the factors by them and the ambient light by the occlusion; phong ignores both.
+    "maps": {"light": {"type": "point", "color": [1.0, 0.85, 0.6], "intensity": 3.0,
+                       "range": 60.0},
+             "pos": (0.6, 1.5, 0.2),
+             "mr": (17, 200, 128), "occlusion": (100, 33, 33), "strength": 0.8},
     "linear-range": {"grid": {"attenuation": "linear-range", "radius": 3.0}},
     "quadratic": {"grid": {"attenuation": "quadratic", "radius": 60.0,
                            "quadratic": {"a": 0.5, "b": 0.4, "c": 0.6}}},
@@ -137,8 +159,27 @@ CASES = {
 
 # >>scene files
 
-def plane_gltf(case):
+def png_uniform(rgb, size):
+    """A size x size RGB PNG of one colour, as a data URI."""
+    raw = b"".join(b"\0" + bytes(rgb) * size for _ in range(size))
+    def chunk(kind, body):
+        return (struct.pack(">I", len(body)) + kind + body +
+                struct.pack(">I", zlib.crc32(kind + body) & 0xffffffff))
+    png = (b"\x89PNG\r\n\x1a\n" +
+           chunk(b"IHDR", struct.pack(">IIBBBBB", size, size, 8, 2, 0, 0, 0)) +
+           chunk(b"IDAT", zlib.compress(raw)) + chunk(b"IEND", b""))
+    return "data:image/png;base64," + base64.b64encode(png).decode()
+
+
+def case_file(name, shading):
+    """The file stem of a case under a shading model: the case's name, pbr-NAME."""
+    return name if shading == "phong" else "pbr-" + name
+
+
+def plane_gltf(case, shading):
     """The glTF of a case: the plane, the bounds triangle, the camera, the case's light."""
+    metallic = METALLIC if shading == "phong" else PBR_METALLIC
+    gain = 1.0 if shading == "phong" else PBR_GAIN
     L = HALF
     pos = [-L, 0, L, L, 0, L, L, 0, -L, -L, 0, -L,                      # the plane
            -0.1, TOP, L, 0.1, TOP, L, 0.0, TOP, L - 0.1]                 # the bounds triangle
@@ -160,7 +201,7 @@ def plane_gltf(case):
                      "perspective": {"yfov": cam["yfov"], "znear": cam["znear"],
                                      "zfar": cam["zfar"], "aspectRatio": W / H}}],
         "materials": [{"pbrMetallicRoughness": {"baseColorFactor": list(BASE) + [1.0],
-                                                "metallicFactor": METALLIC,
+                                                "metallicFactor": metallic,
                                                 "roughnessFactor": ROUGHNESS}}],
         "meshes": [{"primitives": [{"attributes": {"POSITION": 0, "NORMAL": 1}, "indices": 2,
                                     "material": 0}]}],
@@ -173,9 +214,17 @@ def plane_gltf(case):
                       {"bufferView": 1, "componentType": 5126, "count": 7, "type": "VEC3"},
                       {"bufferView": 2, "componentType": 5123, "count": 9, "type": "SCALAR"}],
     }
+    if "mr" in case:
+        pbr = doc["materials"][0]["pbrMetallicRoughness"]
+        pbr["metallicRoughnessTexture"] = {"index": 0}
+        doc["materials"][0]["occlusionTexture"] = {"index": 1, "strength": case["strength"]}
+        doc["textures"] = [{"source": 0}, {"source": 1}]
+        doc["images"] = [{"uri": png_uniform(case["mr"], 4)},
+                         {"uri": png_uniform(case["occlusion"], 2)}]
     if "light" in case:
+        light = dict(case["light"], intensity=case["light"]["intensity"] * gain)
         doc["extensionsUsed"] = ["KHR_lights_punctual"]
-        doc["extensions"] = {"KHR_lights_punctual": {"lights": [case["light"]]}}
+        doc["extensions"] = {"KHR_lights_punctual": {"lights": [light]}}
         node = {"name": "light", "extensions": {"KHR_lights_punctual": {"light": 0}}}
         if "pos" in case:
             node["translation"] = list(case["pos"])
@@ -188,9 +237,12 @@ def plane_gltf(case):
     return doc
 
 
-def manifest(name, case):
-    lines = ["shadesweep: 1", f"name: shading-{name}",
-             f"scene: {{file: {name}.gltf, camera: cam}}",
+def manifest(name, case, shading):
+    stem = case_file(name, shading)
+    gain = 1.0 if shading == "phong" else PBR_GAIN
+    lines = ["shadesweep: 1", f"name: shading-{stem}",
+             f"scene: {{file: {stem}.gltf, camera: cam}}",
+             f"shading: {{model: {shading}}}",
              "renderers: [" + ", ".join(RENDERERS) + "]",
              f"resolution: {W}x{H}", "duration: {frames: 2}", "clock: fixed",
              "outputs: {screenshots: [0]}",
@@ -204,18 +256,20 @@ def manifest(name, case):
         q = g.get("quadratic")
         extra = (f", quadratic: {{a: {q['a']}, b: {q['b']}, c: {q['c']}}}" if q else "")
         lines.append(f"lights: {{placement: grid, count: 1, seed: {SEED}, rng: msvc, "
-                     f"color_max: {COLOR_MAX}, radius: {g['radius']}, "
+                     f"color_max: {COLOR_MAX * gain!r}, radius: {g['radius']}, "
                      f"attenuation: {g['attenuation']}{extra}}}")
     return "\n".join(lines) + "\n"
 
 
 def gen(d):
     os.makedirs(d, exist_ok=True)
-    for name, case in CASES.items():
-        with open(os.path.join(d, name + ".gltf"), "w") as f:
-            json.dump(plane_gltf(case), f)
-        with open(os.path.join(d, name + ".yaml"), "w") as f:
-            f.write(manifest(name, case))
+    for shading in MODELS:
+        for name, case in CASES.items():
+            stem = case_file(name, shading)
+            with open(os.path.join(d, stem + ".gltf"), "w") as f:
+                json.dump(plane_gltf(case, shading), f)
+            with open(os.path.join(d, stem + ".yaml"), "w") as f:
+                f.write(manifest(name, case, shading))
 
 
 # >>the model
@@ -228,12 +282,12 @@ def msvc_rand(seed, n):
     return out
 
 
-def light_of(case):
+def light_of(case, gain=1.0):
     """The case's light in the model's terms: type, colour, position, unit direction of
     travel, attenuation (form, coefficients, range), spot cut-off and exponent."""
     if "light" in case:
         gl = case["light"]
-        col = np.array(gl["color"]) * gl["intensity"]
+        col = np.array(gl["color"]) * (gl["intensity"] * gain)
         lt = {"type": gl["type"], "color": col, "range": gl.get("range", math.inf),
               "att": "inverse-square"}
         if "pos" in case:
@@ -249,7 +303,7 @@ def light_of(case):
         return lt
     g = case["grid"]
     q = g.get("quadratic", {"a": 1.0, "b": 0.0, "c": 1.0})
-    return {"type": "point", "color": np.array(msvc_rand(SEED, 3)) * COLOR_MAX,
+    return {"type": "point", "color": np.array(msvc_rand(SEED, 3)) * (COLOR_MAX * gain),
             "pos": np.array([0.0, TOP / 2.0, 0.0]), "range": g["radius"],
             "att": g["attenuation"], "abc": (q["a"], q["b"], q["c"])}
 
@@ -262,7 +316,29 @@ def material():
     return np.array(BASE), g, n
 
 
-def model(case):
+def pbr_shade(P, N, V, Ld, incoming, metallic, roughness):
+    """glTF 2.0 Appendix B's metallic-roughness BRDF times N.L and the light (the
+    project's floor on roughness, 0.045, does not act here)."""
+    base = np.array(BASE)
+    c_diff = base * (1.0 - metallic)
+    f0 = 0.04 * (1.0 - metallic) + base * metallic
+    a = roughness * roughness
+    a2 = a * a
+    ndl = Ld @ N
+    Hh = Ld + V
+    Hh /= np.linalg.norm(Hh, axis=-1, keepdims=True)
+    vdh = np.clip(np.sum(V * Hh, axis=-1), 0.0, 1.0)
+    ndh = np.clip(Hh @ N, 0.0, 1.0)
+    ndv = np.abs(V @ N)
+    F = f0 + (1.0 - f0) * ((1.0 - vdh) ** 5)[..., None]
+    D = a2 / (math.pi * (ndh * ndh * (a2 - 1.0) + 1.0) ** 2)
+    Vis = 1.0 / ((np.abs(ndl) + np.sqrt(a2 + (1.0 - a2) * ndl * ndl)) *
+                 (ndv + np.sqrt(a2 + (1.0 - a2) * ndv * ndv)))
+    f = (1.0 - F) * c_diff / math.pi + F * (D * Vis)[..., None]
+    return np.where((ndl > 0.0)[..., None], incoming * f * ndl[..., None], 0.0)
+
+
+def model(case, shading="phong"):
     """The expected image (H x W x 3, clamped to [0, 1]) and the mask of pixels on a
     spot cone's edge."""
     cam = CAMERA
@@ -283,7 +359,7 @@ def model(case):
     V = eye - P
     V /= np.linalg.norm(V, axis=-1, keepdims=True)
     kd, g, n = material()
-    lt = light_of(case)
+    lt = light_of(case, 1.0 if shading == "phong" else PBR_GAIN)
     edge = np.zeros((H, W), dtype=bool)
     if lt["type"] == "directional":
         Ld = np.broadcast_to(-lt["dir"], P.shape)
@@ -310,7 +386,18 @@ def model(case):
     D = lt["color"] * kd * np.maximum(ndl, 0.0)[..., None]
     S = lt["color"] * (rv ** n)[..., None]
     A = AMBIENT * kd
-    I = A + att[..., None] * (D + g * S)
+    if shading == "pbr":
+        # the project's ambient term under pbr: ambient x base colour x occlusion; glTF
+        # defines no ambient light. The maps (uniform) scale the factors (glTF 3.9.2).
+        metallic, roughness, occlusion = PBR_METALLIC, ROUGHNESS, 1.0
+        if "mr" in case:
+            roughness *= case["mr"][1] / 255.0
+            metallic *= case["mr"][2] / 255.0
+            occlusion = 1.0 + case["strength"] * (case["occlusion"][0] / 255.0 - 1.0)
+        I = A * occlusion + pbr_shade(P, N, V, Ld, lt["color"] * att[..., None], metallic,
+                                      roughness)
+    else:
+        I = A + att[..., None] * (D + g * S)
     return np.clip(I, 0.0, 1.0), edge
 
 
@@ -366,8 +453,9 @@ def read_png(path):
 
 def check(d):
     failures, rows = [], []
-    for name, case in CASES.items():
-        want, edge = model(case)
+    for shading, name, case in [(m, n, c) for m in MODELS for n, c in CASES.items()]:
+        want, edge = model(case, shading)
+        name = case_file(name, shading)
         out = os.path.join(d, "out-" + name)
         summ = list(csv.DictReader(open(os.path.join(out, "summary.csv"))))
         got_renderers = [r["renderer"] for r in summ]
@@ -399,14 +487,15 @@ def check(d):
                     f"x={yx[1]} y={yx[0]}: image {np.round(img[yx] * 255, 1)} model "
                     f"{np.round(want[yx] * 255, 2)}")
     # the model itself must be far from flat, or the comparison proves nothing
-    for name, case in CASES.items():
-        want, _ = model(case)
+    for shading, name, case in [(m, n, c) for m in MODELS for n, c in CASES.items()]:
+        want, _ = model(case, shading)
+        name = case_file(name, shading)
         if want.max() - want.min() < 0.3 or (want >= 1.0).mean() > 0.02:
             failures.append(f"{name}: the model's image spans {want.min():.3f}..{want.max():.3f} "
                             f"with {(want >= 1.0).mean():.1%} saturated: a weak case")
-    print("case          renderer        max/255  rmse/255  edge px")
+    print("case              renderer        max/255  rmse/255  edge px")
     for row in rows:
-        print(f"{row[0]:13s} {row[1]:15s} {row[2]:7.3f}  {row[3]:7.3f}  {row[4]:6d}")
+        print(f"{row[0]:17s} {row[1]:15s} {row[2]:7.3f}  {row[3]:7.3f}  {row[4]:6d}")
     if failures:
         for f in failures:
             print("FAIL:", f, file=sys.stderr)

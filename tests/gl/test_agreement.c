@@ -51,6 +51,8 @@ static bool g_double_sided = false;   /* build: every material double-sided */
 static bool g_vertex_colors = false;  /* build: the sphere's mesh (1) coloured by its normals */
 static bool g_uv2 = false;   /* build: the knot's mesh (2) a second uv set, 3 x its first,
                                 which material 2's diffuse and gloss maps read */
+static bool g_pbr = false;   /* build: shading.model pbr (issue 25) */
+static gbuffer_preset g_gbuffer = GBUFFER_REFERENCE;   /* deferred's and tiled-deferred's */
 static frame_stats g_last;            /* the last frame render_with drew */
 
 typedef struct light_case {
@@ -118,6 +120,8 @@ static scene *build(const light_case *c)
             m->colors[v] = rgba;
         }
     }
+    if (g_pbr)
+        assert_true(scene_set_shading(s, SHADING_PBR));
     scene_update(s, 0.0);
     sm_vec3 up = {0.0f, 1.0f, 0.0f};
     sm_vec3_copy(c->eye, s->cam.eye);
@@ -140,7 +144,7 @@ static bool render_with(const char *kind, light_volume_mode mode, bool storage, 
         .width = W, .height = H, .queries = true,
         .timer_query = gi->timer_query, .pipeline_statistics = gi->pipeline_statistics,
         .max_uniform_block_size = gi->max_uniform_block_size,
-        .gbuffer = GBUFFER_REFERENCE, .light_volumes = mode,
+        .gbuffer = g_gbuffer, .light_volumes = mode,
         .light_buffer = storage ? LIGHT_BUFFER_STORAGE : LIGHT_BUFFER_UNIFORM,
         .hdr = g_hdr, .fog_density = g_fog_density, .fog_color = {0.55f, 0.6f, 0.7f},
         .msaa = g_msaa, .lpp_light_buffer = g_lpp, .lpp_tiled = g_lpp_tiled,
@@ -570,6 +574,73 @@ static void test_every_catalog_scene(void **state)
     }
 }
 
+/* Issue 25: under the metallic-roughness model (shading.model pbr), every renderer
+ * agrees with forward-spml as under Phong: the hand-placed cases in every design (their
+ * G-buffer the lossless reference), and every catalog scene (as above: its authored
+ * lights or 16 random ones) in every renderer, deferred and tiled-deferred with the
+ * default curtis G-buffer (metallic and roughness in its gloss and shininess channels),
+ * within RMSE 1/255, fewer than 1 % of the pixels off by more than 1/255 and nothing
+ * non-finite. */
+static void test_pbr(void **state)
+{
+    g_pbr = true;
+    test_point(state);
+    test_spot(state);
+    test_directional(state);
+    test_sixteen_lights(state);
+    test_camera_inside_spot_volume(state);
+    g_pbr = false;
+}
+
+static void test_pbr_every_catalog_scene(void **state)
+{
+    (void)state;
+    g_gbuffer = GBUFFER_CURTIS;
+    for (size_t i = 0; i < scene_catalog_count(); i++) {
+        const char *name = scene_catalog_at(i)->name;
+        if (strncmp(name, "test-", 5) == 0)
+            continue;
+        bool authored = strcmp(name, "spot-coverage") == 0 ||
+                        strcmp(name, "two-spots-overlap") == 0 ||
+                        strcmp(name, "floating-spot") == 0 || strcmp(name, "glass") == 0;
+        light_params lp = {.placement = authored ? PLACEMENT_SCENE : PLACEMENT_RANDOM,
+                           .seed = 1337, .rng = RNG_MSVC,
+                           .count = {.start = 16, .max = 16}, .radius = 10.0f,
+                           .overlap = 2.0f, .color_max = 0.6f,
+                           .attenuation = ATTENUATION_LINEAR_RANGE};
+        char err[256];
+        scene *s = scene_build(name, &lp, W, H, err, sizeof err);
+        if (!s)
+            fail_msg("scene %s: %s", name, err);
+        assert_true(scene_set_shading(s, SHADING_PBR));
+        scene_update(s, 1.0);
+        image ref = {0}, img = {0};
+        assert_true(render_with("forward-spml", LIGHT_VOLUMES_STENCIL, true, s, &ref));
+        static const char *const kinds[] = {"forward-mpml", "forward-plus", "clustered",
+                                            "deferred", "tiled-deferred", "deferred-lighting",
+                                            "deferred-lighting tiled", "visibility"};
+        for (size_t k = 0; k < sizeof kinds / sizeof kinds[0]; k++) {
+            g_lpp_tiled = strcmp(kinds[k], "deferred-lighting tiled") == 0;
+            bool ok = render(g_lpp_tiled ? "deferred-lighting" : kinds[k],
+                             LIGHT_VOLUMES_STENCIL, s, &img);
+            g_lpp_tiled = false;
+            assert_true(ok);
+            image_error e;
+            assert_true(image_compare(&img, &ref, &e, err, sizeof err));
+            print_message("pbr %s: %s vs forward-spml (storage): rmse %.3f/255, max %.0f/255, "
+                          "%.5f of the pixels off by > 1/255\n", name, kinds[k],
+                          e.rmse * 255, e.max_abs * 255, e.frac_over_1_255);
+            assert_true(e.rmse < RMSE_MAX);
+            assert_true(e.frac_over_1_255 < 0.01);
+            assert_int_equal(e.nonfinite, 0);
+            image_free(&img);
+        }
+        image_free(&ref);
+        scene_destroy(s);
+    }
+    g_gbuffer = GBUFFER_REFERENCE;
+}
+
 /* The eye is outside the light's sphere but inside the volume drawn for it (the
  * sphere scaled by 1.1), so the near plane cuts the volume; the light reaches the
  * floor in front of the camera. */
@@ -683,6 +754,8 @@ GL_TEST_MAIN(ctx, W, H,
              cmocka_unit_test(test_vertex_colors),
              cmocka_unit_test(test_second_uv_set),
              cmocka_unit_test(test_every_catalog_scene),
+             cmocka_unit_test(test_pbr),
+             cmocka_unit_test(test_pbr_every_catalog_scene),
              cmocka_unit_test(test_fog),
              cmocka_unit_test(test_rgba32f_many_overlapping_lights),
              cmocka_unit_test(test_msaa4))

@@ -1163,7 +1163,7 @@ static void check_layout(gbuffer_preset preset, gbuffer_position pos, gbuffer_no
 static void test_layouts(void **state)
 {
     (void)state;
-    const deferred_needs all = {true, true}, none = {false, false};
+    const deferred_needs all = {.gloss = true, .emissive = true}, none = {0};
     const gl_format F16 = GLT_FORMAT_RGBA16F, F32 = GLT_FORMAT_RGBA32F;
     check_layout(GBUFFER_FAT, 0, 0, all,
                  (att_want[]){{"gbuffer.position+shininess", F16},
@@ -1239,6 +1239,49 @@ static void test_layouts(void **state)
                               {"gbuffer.emissive", GLT_FORMAT_RGBA8},
                               {"gbuffer.normal", GLT_FORMAT_RG16F}},
                  4, DEFERRED_POSITION_DEPTH_BUFFER, DEFERRED_NORMAL_SPHEREMAP);
+
+    /* issue 25, the metallic-roughness model: gloss and shininess are named for what
+     * they hold; an occlusion map's slot takes the first channel a preset leaves free,
+     * else a target of its own; deferred-lighting's pre-pass G-buffer gains F0 */
+    const deferred_needs pbr = {.gloss = true, .emissive = true, .pbr = true,
+                                .occlusion = true};
+    check_layout(GBUFFER_CURTIS, 0, 0, pbr,
+                 (att_want[]){{"gbuffer.normal+depth", F16},
+                              {"gbuffer.diffuse+metallic", F16},
+                              {"gbuffer.roughness+occlusion", F16},
+                              {"gbuffer.emissive", F16}},
+                 4, DEFERRED_POSITION_LINEAR_DEPTH, DEFERRED_NORMAL_XYZ_FLOAT);
+    check_layout(GBUFFER_FAT, 0, 0, pbr,
+                 (att_want[]){{"gbuffer.position+roughness", F16},
+                              {"gbuffer.normal+emissive", F16},
+                              {"gbuffer.diffuse+metallic", F16},
+                              {"gbuffer.occlusion", GLT_FORMAT_R16F}},
+                 4, DEFERRED_POSITION_STORED, DEFERRED_NORMAL_XYZ_FLOAT);
+    check_layout(GBUFFER_COMPACT, 0, 0, pbr,
+                 (att_want[]){{"gbuffer.position.xy", GLT_FORMAT_RG16F},
+                              {"gbuffer.position.z", GLT_FORMAT_R16F},
+                              {"gbuffer.diffuse+normal.z", GLT_FORMAT_RGBA8},
+                              {"gbuffer.normal.xy", GLT_FORMAT_RG8},
+                              {"gbuffer.metallic+roughness", GLT_FORMAT_RG8},
+                              {"gbuffer.emissive+occlusion", GLT_FORMAT_RGBA8}},
+                 6, DEFERRED_POSITION_STORED, DEFERRED_NORMAL_XYZ_UNORM);
+    {
+        deferred_layout lp;
+        deferred_layout_defs defs;
+        deferred_layout_light_prepass(pbr, &lp);
+        assert_int_equal(lp.nattachments, 2);
+        assert_string_equal(lp.att[0].name, "gbuffer.normal+roughness");
+        assert_string_equal(lp.att[1].name, "gbuffer.f0");
+        assert_string_equal(gl_format_name(lp.att[1].format), "rgba16f");
+        deferred_layout_defines(&lp, &defs);
+        bool f0 = false, unorm = false;
+        for (int i = 0; i < defs.n; i++) {
+            f0 |= strcmp(defs.text[i], "GB_F0 gb1.xyz") == 0;
+            unorm |= strstr(defs.text[i], "UNORM") != NULL;
+        }
+        assert_true(f0);
+        assert_false(unorm);   /* roughness stored as it is, never as n / 255 */
+    }
 
     /* bad values are refused, in create too */
     char err[256] = "";

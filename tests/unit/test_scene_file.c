@@ -107,7 +107,8 @@ static void test_samples_load_with_their_counts(void **state)
         {"BoxTextured-glTF/BoxTextured.gltf", 1, 1, 2, 1, 0, 3, 12},
         {"BoxTextured-glTF-pbrSpecularGlossiness/BoxTextured.gltf", 1, 1, 2, 1, 0, 3, 12},
         /* several textures, normal maps among them */
-        {"ClearCoat-glTF/ClearCoatTest.gltf", 27, 27, 20, 4, 0, 6, 37116},
+        /* (5 images and 7 files: its metallic-roughness map is read too, for pbr's ORM map) */
+        {"ClearCoat-glTF/ClearCoatTest.gltf", 27, 27, 20, 5, 0, 7, 37116},
     };
     for (size_t i = 0; i < sizeof good / sizeof good[0]; i++) {
         char path[512], err[1024] = "";
@@ -564,9 +565,14 @@ static void test_texture_transform(void **state)
     scene_file_options o = {.path = path};
     scene_file_info info;
     assert_true(scene_file_check(&o, &info, err, sizeof err));
-    /* only the shading model: the transform is rendered */
+    /* the transform is rendered, and so is the material under pbr (a file's default);
+     * under phong its shading model is not */
+    assert_int_equal(info.nnot_rendered, 0);
+    o.phong = true;
+    assert_true(scene_file_check(&o, &info, err, sizeof err));
     assert_int_equal(info.nnot_rendered, 1);
     assert_string_equal(info.not_rendered[0], "metallic-roughness shading (1 material, as Phong)");
+    o.phong = false;
     scene_source src = {.file = &o};
     light_params lp = {.placement = PLACEMENT_NONE};
     scene *s = scene_build_source(&src, &lp, 64, 64, err, sizeof err);
