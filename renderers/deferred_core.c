@@ -344,7 +344,7 @@ bool deferred_prepare_scene(deferred_renderer *r, const scene *s, char *err, siz
     deferred_plan(r, PASS_GBUFFER, true,
                   "%u objects into %d attachments (%s, %u bytes/pixel)", s->nobjects,
                   r->layout.nattachments,
-                  r->lpp ? (r->needs.pbr ? "light pre-pass: normal, roughness, f0"
+                  r->lpp ? (r->needs.pbr ? "light pre-pass: normal, rough, f0"
                                          : "light pre-pass: normal, shininess")
                          : deferred_preset_name(r->b.opts.gbuffer),
                   deferred_layout_bytes_per_pixel(&r->layout));

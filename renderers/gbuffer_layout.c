@@ -18,7 +18,7 @@ static const char *const slot_names[DEFERRED_SLOT_COUNT] = {
     [DEFERRED_SLOT_DEPTH] = "depth",             [DEFERRED_SLOT_NORMAL_XY] = "normal.xy",
     [DEFERRED_SLOT_NORMAL_Z] = "normal.z",       [DEFERRED_SLOT_DIFFUSE] = "diffuse",
     [DEFERRED_SLOT_GLOSS] = "gloss",             [DEFERRED_SLOT_SHININESS] = "shininess",
-    [DEFERRED_SLOT_EMISSIVE] = "emissive",       [DEFERRED_SLOT_OCCLUSION] = "occlusion",
+    [DEFERRED_SLOT_EMISSIVE] = "emissive",       [DEFERRED_SLOT_OCCLUSION] = "ao",
     [DEFERRED_SLOT_F0] = "f0",
 };
 
@@ -196,8 +196,6 @@ static gl_format narrowest(deferred_channel_type ch, unsigned channels)
     return GLT_FORMAT_NONE;
 }
 
-/* "gbuffer." + the slots' field names joined by '+' (position.xy + position.z is
- * "position", and so the normal). The longest a layout makes is 29 characters. */
 /* The channels a preset's format offers a slot (RGB10A2's 2-bit alpha: none). */
 static unsigned format_channels(gl_format f)
 {
@@ -219,15 +217,20 @@ static unsigned format_channels(gl_format f)
     }
 }
 
+/* A slot's field name; under pbr gloss and shininess hold metallic and roughness. Short,
+ * as "ao": the longest name, spheremap's "gbuffer.depth+metal+rough+ao", fits the 31
+ * characters of a target's name. */
 static const char *slot_label(deferred_slot_kind k, bool pbr)
 {
     if (pbr && k == DEFERRED_SLOT_GLOSS)
-        return "metallic";
+        return "metal";
     if (pbr && k == DEFERRED_SLOT_SHININESS)
-        return "roughness";
+        return "rough";
     return deferred_slot_name(k);
 }
 
+/* "gbuffer." + the slots' field names joined by '+' (position.xy + position.z is
+ * "position", and so the normal). The longest a layout makes is 29 characters. */
 static void name_attachment(deferred_attachment *at, bool spheremap, bool pbr)
 {
     char *out = at->name;

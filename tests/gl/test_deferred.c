@@ -1247,30 +1247,36 @@ static void test_layouts(void **state)
                                 .occlusion = true};
     check_layout(GBUFFER_CURTIS, 0, 0, pbr,
                  (att_want[]){{"gbuffer.normal+depth", F16},
-                              {"gbuffer.diffuse+metallic", F16},
-                              {"gbuffer.roughness+occlusion", F16},
+                              {"gbuffer.diffuse+metal", F16},
+                              {"gbuffer.rough+ao", F16},
                               {"gbuffer.emissive", F16}},
                  4, DEFERRED_POSITION_LINEAR_DEPTH, DEFERRED_NORMAL_XYZ_FLOAT);
     check_layout(GBUFFER_FAT, 0, 0, pbr,
-                 (att_want[]){{"gbuffer.position+roughness", F16},
+                 (att_want[]){{"gbuffer.position+rough", F16},
                               {"gbuffer.normal+emissive", F16},
-                              {"gbuffer.diffuse+metallic", F16},
-                              {"gbuffer.occlusion", GLT_FORMAT_R16F}},
+                              {"gbuffer.diffuse+metal", F16},
+                              {"gbuffer.ao", GLT_FORMAT_R16F}},
                  4, DEFERRED_POSITION_STORED, DEFERRED_NORMAL_XYZ_FLOAT);
+    check_layout(GBUFFER_SPHEREMAP, 0, 0, pbr,
+                 (att_want[]){{"gbuffer.normal", GLT_FORMAT_RG8},
+                              {"gbuffer.depth+metal+rough+ao", F16},
+                              {"gbuffer.diffuse", GLT_FORMAT_RGBA8},
+                              {"gbuffer.emissive", GLT_FORMAT_RGBA8}},
+                 4, DEFERRED_POSITION_LINEAR_DEPTH, DEFERRED_NORMAL_SPHEREMAP);
     check_layout(GBUFFER_COMPACT, 0, 0, pbr,
                  (att_want[]){{"gbuffer.position.xy", GLT_FORMAT_RG16F},
                               {"gbuffer.position.z", GLT_FORMAT_R16F},
                               {"gbuffer.diffuse+normal.z", GLT_FORMAT_RGBA8},
                               {"gbuffer.normal.xy", GLT_FORMAT_RG8},
-                              {"gbuffer.metallic+roughness", GLT_FORMAT_RG8},
-                              {"gbuffer.emissive+occlusion", GLT_FORMAT_RGBA8}},
+                              {"gbuffer.metal+rough", GLT_FORMAT_RG8},
+                              {"gbuffer.emissive+ao", GLT_FORMAT_RGBA8}},
                  6, DEFERRED_POSITION_STORED, DEFERRED_NORMAL_XYZ_UNORM);
     {
         deferred_layout lp;
         deferred_layout_defs defs;
         deferred_layout_light_prepass(pbr, &lp);
         assert_int_equal(lp.nattachments, 2);
-        assert_string_equal(lp.att[0].name, "gbuffer.normal+roughness");
+        assert_string_equal(lp.att[0].name, "gbuffer.normal+rough");
         assert_string_equal(lp.att[1].name, "gbuffer.f0");
         assert_string_equal(gl_format_name(lp.att[1].format), "rgba16f");
         deferred_layout_defines(&lp, &defs);
