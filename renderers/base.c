@@ -98,7 +98,8 @@ bool renderer_base_size(renderer_base *b, const struct scene *s, char *err, size
  * line: what is compiled in, and what is left out. Attenuation is a point and spot
  * light's only (a directional light has none). A scene with coloured meshes adds
  * VERTEX_COLOR (mesh.vert, surface.inc), one whose materials read maps from a second uv
- * set adds UV2; the line names them too. */
+ * set adds UV2, one with skins SKINNING (mesh.vert, shadow.vert, visibility_shade.comp:
+ * skin.inc); the line names them too. */
 static bool set_lighting(renderer_base *b, const struct scene *s)
 {
     static const char *const type_name[3] = {"point", "spot", "directional"};
@@ -127,15 +128,18 @@ static bool set_lighting(renderer_base *b, const struct scene *s)
     }
     bool coloured = s && scene_has_vertex_colors(s);
     bool uv2 = s && scene_uses_uv2(s);
-    const char *all[4] = {defs[0], defs[1], NULL, NULL};
+    bool skins = s && scene_has_skins(s);
+    const char *all[5] = {defs[0], defs[1], NULL, NULL, NULL};
     size_t n = 2;
     if (coloured)
         all[n++] = "VERTEX_COLOR";
     if (uv2)
         all[n++] = "UV2";
-    snprintf(b->lighting, sizeof b->lighting, "compiled for %s%s%s; left out: %s",
+    if (skins)
+        all[n++] = "SKINNING";
+    snprintf(b->lighting, sizeof b->lighting, "compiled for %s%s%s%s; left out: %s",
              nin ? in : "no light", coloured ? ", vertex colours" : "",
-             uv2 ? ", a second uv set" : "", nout ? out : "nothing");
+             uv2 ? ", a second uv set" : "", skins ? ", skins" : "", nout ? out : "nothing");
     return gl_program_cache_set_common(b->programs, all, n);
 }
 

@@ -174,6 +174,15 @@ static inline bool scene_has_vertex_colors(const scene *s)
     return false;
 }
 
+/* Whether some mesh of the scene is skinned (the programs' SKINNING: scene_anim.h). */
+static inline bool scene_has_skins(const scene *s)
+{
+    for (uint32_t i = 0; i < s->nmeshes; i++)
+        if (s->meshes[i].joints)
+            return true;
+    return false;
+}
+
 /* Whether the scene's programs read a second uv set (surface.inc's UV2): some material
  * reads a map from it and some mesh has one. */
 static inline bool scene_uses_uv2(const scene *s)
