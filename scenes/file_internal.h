@@ -150,9 +150,10 @@ bool file_skin_load(scene_builder *b, const char *path, const struct aiScene *ai
                     struct scene_anim *a);
 /* How many of the mesh's vertices have more than 4 influences (the rest dropped). */
 unsigned file_skin_over4(const struct aiMesh *am);
-/* lo, hi grown by the skinned meshes' bounds at time 0 (the scene's animation posed
- * then): where the skins are drawn, which their bind-pose vertices under their nodes'
- * transforms (scene_file_check's bounds) need not be. */
+/* lo, hi grown by the skinned meshes' vertices at time 0 (the scene's animation posed
+ * then, the vertices skinned on the CPU): where the skins are drawn, which their
+ * bind-pose vertices under their nodes' transforms (scene_file_check's bounds) need not
+ * be. For the camera's framing. */
 void file_skin_bounds(scene *s, sm_vec3 lo, sm_vec3 hi);
 
 /* >>materials (file_materials.c) */

@@ -195,11 +195,23 @@ void file_skin_bounds(scene *s, sm_vec3 lo, sm_vec3 hi)
     if (!s->anim || !s->anim->nskins)
         return;
     scene_anim_pose(s->anim, s->meshes, 0.0);
+    /* the vertices skinned here, once: the joints' spheres (the frames' culling bounds)
+     * are looser than a framing wants */
     for (uint32_t i = 0; i < s->anim->nskins; i++) {
         const mesh *m = &s->meshes[s->anim->skins[i].mesh];
-        for (int k = 0; k < 3 && m->aabb[0][0] <= m->aabb[1][0]; k++) {
-            lo[k] = fminf(lo[k], m->aabb[0][k]);
-            hi[k] = fmaxf(hi[k], m->aabb[1][k]);
+        for (uint32_t v = 0; v < m->nvertices; v++) {
+            sm_vec3 p = {0.0f, 0.0f, 0.0f};
+            for (int q = 0; q < 4; q++) {
+                sm_vec3 t;
+                sm_mat4_mulv3(s->anim->joints[m->joints[v][q]], m->vertices[v].position, 1.0f,
+                              t);
+                for (int k = 0; k < 3; k++)
+                    p[k] += m->weights[v][q] * t[k];
+            }
+            for (int k = 0; k < 3; k++) {
+                lo[k] = fminf(lo[k], p[k]);
+                hi[k] = fmaxf(hi[k], p[k]);
+            }
         }
     }
 }

@@ -401,8 +401,9 @@ PY
 
 # Skins are drawn: simple_skin (two joints, the second turned by the animation over 5.5 s)
 # at 0 and 2 s in every renderer: the frames differ (the bent part of the strip moves),
-# every renderer draws the same frame as forward-spml at each time (within 2/255:
-# visibility skins its refetched triangles as mesh.vert does), the pass plan names the
+# every renderer draws the same frame as forward-spml at each time (within 4/255, under
+# 0.5 % of the pixels beyond 2/255: visibility skins its refetched triangles as mesh.vert
+# does), the pass plan names the
 # define, and meta.yaml lists no skin as not rendered.
 cat >sk.yaml <<YAML
 shadesweep: 1
@@ -436,15 +437,18 @@ for r in csv.DictReader(open(f"{d}/summary.csv")):
             for t in ("0", "2"))
     covered = (a[..., :3].max(axis=2) > 0).mean()
     moved = (np.abs(a - b).max(axis=2) > 8).mean()
-    # the strip covers about 5 % of the view; its bent half moves: 2 % of it changes
-    if covered < 0.02 or moved < 0.01:
+    # the strip covers about a tenth of the view; its bent half moves: 4 % of it changes
+    if covered < 0.04 or moved < 0.02:
         sys.exit(f"FAIL: {r['renderer']}: {covered:.3f} covered, {moved:.3f} of the view "
                  "changes from 0 to 2 s")
     shots[r["renderer"]] = (a, b)
 for ren, (a, b) in shots.items():
     for t, x, y in (("0", a, shots["forward-spml"][0]), ("2", b, shots["forward-spml"][1])):
-        diff = np.abs(x - y).max()
-        if diff > 2: sys.exit(f"FAIL: {ren} differs from forward-spml by {diff}/255 at {t} s")
+        diff = np.abs(x - y).max(axis=2)
+        # the G-buffer renderers round a highlight's saturated pixel by up to 3/255
+        if diff.max() > 4 or (diff > 2).mean() > 0.005:
+            sys.exit(f"FAIL: {ren} differs from forward-spml by {diff.max()}/255 at {t} s "
+                     f"({(diff > 2).mean():.4f} of the pixels by more than 2/255)")
 PY
 
 # A hostile skin: a vertex whose weights are all 0 (it follows the first joint), one with
