@@ -74,54 +74,6 @@ unsigned file_skin_over4(const struct aiMesh *am)
     return over;
 }
 
-/* The bind-space sphere of the vertices each joint of k moves: centre at their aabb's,
- * radius to the farthest; w -1 for none. Two passes over the vertices' influences.
- * False out of memory. */
-static bool bind_spheres(const mesh *m, anim_skin *k)
-{
-    sm_vec3 *lo = malloc(k->njoints * sizeof *lo), *hi = malloc(k->njoints * sizeof *hi);
-    if (!lo || !hi) {
-        free(lo);
-        free(hi);
-        return false;
-    }
-    for (uint32_t j = 0; j < k->njoints; j++)
-        for (int i = 0; i < 3; i++) {
-            lo[j][i] = INFINITY;
-            hi[j][i] = -INFINITY;
-        }
-    for (uint32_t v = 0; v < m->nvertices; v++)
-        for (int q = 0; q < 4; q++) {
-            if (!(m->weights[v][q] > 0.0f))
-                continue;
-            uint32_t j = m->joints[v][q] - k->first;   /* < njoints: load_skin's */
-            const float *p = m->vertices[v].position;
-            for (int i = 0; i < 3; i++) {
-                lo[j][i] = fminf(lo[j][i], p[i]);
-                hi[j][i] = fmaxf(hi[j][i], p[i]);
-            }
-        }
-    sm_vec4 *s = k->bind_sphere;
-    for (uint32_t j = 0; j < k->njoints; j++) {
-        bool any = lo[j][0] <= hi[j][0];
-        for (int i = 0; i < 3; i++)
-            s[j][i] = any ? 0.5f * (lo[j][i] + hi[j][i]) : 0.0f;
-        s[j][3] = any ? 0.0f : -1.0f;
-    }
-    for (uint32_t v = 0; v < m->nvertices; v++)
-        for (int q = 0; q < 4; q++) {
-            if (!(m->weights[v][q] > 0.0f))
-                continue;
-            uint32_t j = m->joints[v][q] - k->first;
-            const float *p = m->vertices[v].position;
-            sm_vec3 d = {p[0] - s[j][0], p[1] - s[j][1], p[2] - s[j][2]};
-            s[j][3] = fmaxf(s[j][3], sm_vec3_norm(d));
-        }
-    free(lo);
-    free(hi);
-    return true;
-}
-
 /* File mesh am's skin as skin k of a, its vertices' joints and weights into scene mesh m.
  * False (b failed) out of memory or for an inverse bind matrix that is not finite. */
 static bool load_skin(scene_builder *b, const char *path, const struct aiMesh *am, mesh *m,
@@ -153,7 +105,7 @@ static bool load_skin(scene_builder *b, const char *path, const struct aiMesh *a
     }
     for (uint32_t v = 0; v < m->nvertices; v++)
         normalise(m->joints[v], m->weights[v], (uint16_t)k->first);
-    if (!bind_spheres(m, k))
+    if (!scene_anim_skin_spheres(m, k))
         return sb_fail(b, "%s: out of memory for a skin of %u joints", path, k->njoints);
     a->njoints += k->njoints;
     return true;

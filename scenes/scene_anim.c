@@ -113,11 +113,60 @@ static void morph(const anim_morph *mo, const float *w, mesh *m)
     mesh_compute_bounds(m);
 }
 
+/* Two passes over the vertices' influences: each joint's aabb, then the radius. */
+bool scene_anim_skin_spheres(const mesh *m, anim_skin *k)
+{
+    sm_vec3 *lo = malloc(k->njoints * sizeof *lo), *hi = malloc(k->njoints * sizeof *hi);
+    if (!lo || !hi) {
+        free(lo);
+        free(hi);
+        return false;
+    }
+    for (uint32_t j = 0; j < k->njoints; j++)
+        for (int i = 0; i < 3; i++) {
+            lo[j][i] = INFINITY;
+            hi[j][i] = -INFINITY;
+        }
+    for (uint32_t v = 0; v < m->nvertices; v++)
+        for (int q = 0; q < 4; q++) {
+            if (!(m->weights[v][q] > 0.0f))
+                continue;
+            uint32_t j = m->joints[v][q] - k->first;   /* < njoints: load_skin's */
+            const float *p = m->vertices[v].position;
+            for (int i = 0; i < 3; i++) {
+                lo[j][i] = fminf(lo[j][i], p[i]);
+                hi[j][i] = fmaxf(hi[j][i], p[i]);
+            }
+        }
+    sm_vec4 *s = k->bind_sphere;
+    for (uint32_t j = 0; j < k->njoints; j++) {
+        bool any = lo[j][0] <= hi[j][0];
+        for (int i = 0; i < 3; i++)
+            s[j][i] = any ? 0.5f * (lo[j][i] + hi[j][i]) : 0.0f;
+        s[j][3] = any ? 0.0f : -1.0f;
+    }
+    for (uint32_t v = 0; v < m->nvertices; v++)
+        for (int q = 0; q < 4; q++) {
+            if (!(m->weights[v][q] > 0.0f))
+                continue;
+            uint32_t j = m->joints[v][q] - k->first;
+            const float *p = m->vertices[v].position;
+            sm_vec3 d = {p[0] - s[j][0], p[1] - s[j][1], p[2] - s[j][2]};
+            s[j][3] = fmaxf(s[j][3], sm_vec3_norm(d));
+        }
+    free(lo);
+    free(hi);
+    return true;
+}
+
 /* Skin k's joint matrices into the palette, and its mesh's bounds: the joints' bind
  * spheres carried by their matrices (centre by the matrix, radius by its stretch), the
  * aabb about them all and the sphere about the aabb's centre holding them all. */
-static void pose_skin(scene_anim *a, const anim_skin *k, mesh *m)
+static void pose_skin(scene_anim *a, anim_skin *k, mesh *m)
 {
+    if (m && m->deforms)   /* morphed this frame: its spheres from the frame's shape (out
+                            * of memory: the last frame's) */
+        scene_anim_skin_spheres(m, k);
     sm_vec3 lo = {INFINITY, INFINITY, INFINITY}, hi = {-INFINITY, -INFINITY, -INFINITY};
     for (uint32_t j = 0; j < k->njoints; j++) {
         sm_mat4 *out = &a->joints[k->first + j];

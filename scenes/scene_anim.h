@@ -98,5 +98,10 @@ typedef struct scene_anim {
  * morphed mesh of `meshes` (the scene's) rebuilt with the weights at t, every joint's
  * matrix and every skinned mesh's bounds. */
 void scene_anim_pose(scene_anim *a, mesh *meshes, double t);
+/* k->bind_sphere from mesh m's vertices (k's mesh, its joints and weights set): per joint
+ * the sphere of the vertices it moves (a weight above 0), centred on their aabb, radius
+ * to the farthest; w -1 for a joint that moves none. O(vertices); a mesh that also has
+ * morph targets gets it again every frame. False (k unchanged) out of memory. */
+bool scene_anim_skin_spheres(const mesh *m, anim_skin *k);
 /* What the animation holds, and the animation; NULL is fine. */
 void scene_anim_free(scene_anim *a);

@@ -223,8 +223,12 @@ static void test_skin(void **state)
     for (int j = 0; j < 3; j++)
         sm_mat4_identity(k->offset[j]);
     k->offset[2][3][2] = -1.0f;
+    /* joint 0 moves nothing, joint 1 x in [0, 0.5], joint 2 x in [0.5, 1] */
     const float spheres[3][4] = {{0, 0, 0, -1}, {0.25f, 0, 0, 0.25f}, {0.75f, 0, 0, 0.25f}};
-    memcpy(k->bind_sphere, spheres, sizeof spheres);
+    assert_true(scene_anim_skin_spheres(m, k));
+    for (int j = 0; j < 3; j++)
+        for (int c = 0; c < 4; c++)
+            assert_float_equal(k->bind_sphere[j][c], spheres[j][c], 1e-6);
     const double times[4] = {0.0, 1.5, 2.0, 3.0};
     for (int i = 0; i < 4; i++) {
         scene_anim_pose(a, meshes, times[i]);
