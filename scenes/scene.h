@@ -235,10 +235,11 @@ typedef struct scene_file_info {
     uint32_t files;            /* the file and every buffer and image it pulled in */
     uint64_t hash;             /* FNV-1a 64 over those files' bytes, in the order read */
     sm_vec3 bounds_min, bounds_max;   /* world bounds after scale and up */
-    /* What the file has that shadesweep reads but does not render (skins, morph targets,
-     * animations, vertex colours, a second UV set, orthographic cameras, glTF extensions
-     * of extensionsUsed it does not implement), one phrase each: meta.yaml lists them and
-     * validate, list and run warn of them. */
+    /* What the file has that shadesweep reads but does not render (skin influences after
+     * a vertex's 4 largest, animations after the first, texture coordinate sets after the
+     * second, orthographic cameras, glTF extensions of extensionsUsed it does not
+     * implement, ...: file_assimp.c's not_rendered_of), one phrase each: meta.yaml
+     * lists them and validate, list and run warn of them. */
     uint32_t nnot_rendered;
     char not_rendered[SCENE_FILE_MAX_NOT_RENDERED][72];
 } scene_file_info;
