@@ -508,3 +508,35 @@ for r in csv.DictReader(open(f"{d}/summary.csv")):
 if np.abs(img["forward-spml"] - img["visibility"]).max() > 2:
     sys.exit("FAIL: forward-spml and visibility draw the hostile skin apart")
 PY
+# More joints than the palette holds (16384 in all: 4 texels each in a texture buffer of
+# GL's minimum size) refuse the file by name, in validate and in run, before any run.
+$PYTHON - <<'PY'
+import base64, json, struct
+n = 16385
+blob = struct.pack("<9f", 0, 0, 0, 1, 0, 0, 1, 1, 0) + struct.pack("<4H", 0, 1, 2, 0)
+blob += struct.pack("<4H", 0, 0, 0, 0) * 3 + struct.pack("<4f", 1, 0, 0, 0) * 3
+blob += struct.pack("<16f", 1, 0, 0, 0, 0, 1, 0, 0, 0, 0, 1, 0, 0, 0, 0, 1) * n
+views = [(0, 36), (36, 6), (44, 24), (68, 48), (116, 64 * n)]
+g = {"asset": {"version": "2.0"}, "scene": 0, "scenes": [{"nodes": [0, 1]}],
+     "nodes": [{"mesh": 0, "skin": 0}, {"children": list(range(2, n + 1))}] + [{}] * n,
+     "skins": [{"joints": list(range(1, n + 1)), "inverseBindMatrices": 4}],
+     "meshes": [{"primitives": [{"attributes": {"POSITION": 0, "JOINTS_0": 2, "WEIGHTS_0": 3},
+                                 "indices": 1}]}],
+     "buffers": [{"byteLength": len(blob), "uri": "data:application/octet-stream;base64,"
+                  + base64.b64encode(blob).decode()}],
+     "bufferViews": [{"buffer": 0, "byteOffset": o, "byteLength": l} for o, l in views],
+     "accessors": [{"bufferView": 0, "componentType": 5126, "count": 3, "type": "VEC3",
+                    "min": [0, 0, 0], "max": [1, 1, 0]},
+                   {"bufferView": 1, "componentType": 5123, "count": 3, "type": "SCALAR"},
+                   {"bufferView": 2, "componentType": 5123, "count": 3, "type": "VEC4"},
+                   {"bufferView": 3, "componentType": 5126, "count": 3, "type": "VEC4"},
+                   {"bufferView": 4, "componentType": 5126, "count": n, "type": "MAT4"}]}
+open("scenes/many_joints.gltf", "w").write(json.dumps(g))
+PY
+sed 's/hostile_skin.gltf/many_joints.gltf/' hs.yaml >mj.yaml
+for cmd in validate "run -o mjout"; do
+  set +e; "$SHADESWEEP" $cmd mj.yaml >mj.txt 2>&1; rc=$?; set -e
+  [ $rc -eq 2 ] && grep -q "many_joints.gltf: its skins have 16385 joints in all; at most 16384 are drawn" mj.txt ||
+    fail "$cmd with 16385 joints: exit $rc: $(cat mj.txt)"
+done
+[ ! -e mjout ] || fail "a refused skin wrote mjout/"
