@@ -98,8 +98,9 @@ bool renderer_base_size(renderer_base *b, const struct scene *s, char *err, size
  * line: what is compiled in, and what is left out. Attenuation is a point and spot
  * light's only (a directional light has none). A scene with coloured meshes adds
  * VERTEX_COLOR (mesh.vert, surface.inc), one whose materials read maps from a second uv
- * set adds UV2, one shaded by the metallic-roughness model SHADING_PBR (lighting.inc);
- * the line names them too. */
+ * set adds UV2, one with skins SKINNING (mesh.vert, shadow.vert, visibility_shade.comp:
+ * skin.inc), one shaded by the metallic-roughness model SHADING_PBR (lighting.inc); the
+ * line names them too. */
 static bool set_lighting(renderer_base *b, const struct scene *s)
 {
     static const char *const type_name[3] = {"point", "spot", "directional"};
@@ -128,19 +129,22 @@ static bool set_lighting(renderer_base *b, const struct scene *s)
     }
     bool coloured = s && scene_has_vertex_colors(s);
     bool uv2 = s && scene_uses_uv2(s);
+    bool skins = s && scene_has_skins(s);
     bool pbr = s && s->shading == SHADING_PBR;
-    const char *all[5] = {defs[0], defs[1], NULL, NULL, NULL};
+    const char *all[6] = {defs[0], defs[1], NULL, NULL, NULL, NULL};
     size_t n = 2;
     if (coloured)
         all[n++] = "VERTEX_COLOR";
     if (uv2)
         all[n++] = "UV2";
+    if (skins)
+        all[n++] = "SKINNING";
     if (pbr)
         all[n++] = "SHADING_PBR";
-    snprintf(b->lighting, sizeof b->lighting, "compiled for %s%s%s%s; left out: %s",
+    snprintf(b->lighting, sizeof b->lighting, "compiled for %s%s%s%s%s; left out: %s",
              nin ? in : "no light", coloured ? ", vertex colours" : "",
-             uv2 ? ", a second uv set" : "", pbr ? ", metallic-roughness (pbr)" : "",
-             nout ? out : "nothing");
+             uv2 ? ", a second uv set" : "", skins ? ", skins" : "",
+             pbr ? ", metallic-roughness (pbr)" : "", nout ? out : "nothing");
     return gl_program_cache_set_common(b->programs, all, n);
 }
 

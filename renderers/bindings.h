@@ -35,6 +35,8 @@
 #define BIND_TEX_LIGHT_DIFFUSE 13   /* deferred-lighting's light buffer: diffuse light */
 #define BIND_TEX_LIGHT_SPECULAR 14  /* and specular light (the material pass reads both) */
 #define BIND_TEX_VISIBILITY 4       /* visibility_shade.comp: the id target (no G-buffer there) */
+#define BIND_TEX_JOINTS 15          /* skin.inc: the frame's joint matrices (samplerBuffer,
+                                       RGBA32F, 4 texels a joint), bound by scene_gpu_frame */
 /* Image units */
 #define BIND_IMAGE_HDR 0            /* tiled-deferred writes the HDR target (deferred-lighting
                                        tiled: its light buffer's diffuse light) */

@@ -8,6 +8,7 @@
 #include "renderers/gl/loader.h"
 #include "renderers/gl/program.h"
 #include "renderers/shading.h"
+#include "scenes/scene_anim.h"
 
 #include <stdio.h>
 #include <stdlib.h>
@@ -17,6 +18,7 @@ typedef struct gpu_mesh {
     GLuint vao, vbo, ibo;
     GLuint cbo;                /* the vertex colours (attribute 4), or 0 */
     GLuint uvbo;               /* the second uv set (attribute 5), or 0 */
+    GLuint skbo;               /* a skin's joints, then its weights (attributes 6, 7), or 0 */
     GLsizei count;             /* indices */
 } gpu_mesh;
 
@@ -27,6 +29,8 @@ struct scene_gpu {
     uint32_t ntextures;
     gpu_mesh sphere, cone;     /* the light volumes (frontend.h) */
     GLuint frame_ubo;
+    GLuint joints_buffer, joints_texture;   /* the joint palette (skin.inc), or 0 */
+    uint32_t njoints;
     gl_program_cache *programs;
     GLuint sky_program, resolve_program;
     bool unclipped;            /* the programs are FULLSCREEN_UNCLIPPED variants */
@@ -36,6 +40,28 @@ struct scene_gpu {
 };
 
 // >>meshes
+
+/* A skinned mesh's joints (attribute 6, 4 x uint16, integer) and weights (attribute 7,
+ * 4 floats) from one buffer, the weights after the joints; the others read the generic
+ * joint 0 and weights 0, which skin.inc takes for no skin. */
+static void skin_upload(gpu_mesh *out, const mesh *m, uint64_t *bytes)
+{
+    GLsizeiptr jbytes = (GLsizeiptr)((size_t)m->nvertices * sizeof *m->joints);
+    GLsizeiptr wbytes = (GLsizeiptr)((size_t)m->nvertices * sizeof *m->weights);
+    gl.CreateBuffers(1, &out->skbo);
+    gl.NamedBufferStorage(out->skbo, jbytes + wbytes, NULL, GL_DYNAMIC_STORAGE_BIT);
+    gl.NamedBufferSubData(out->skbo, 0, jbytes, m->joints);
+    gl.NamedBufferSubData(out->skbo, jbytes, wbytes, m->weights);
+    gl.VertexArrayVertexBuffer(out->vao, 3, out->skbo, 0, (GLsizei)sizeof *m->joints);
+    gl.VertexArrayVertexBuffer(out->vao, 4, out->skbo, jbytes, (GLsizei)sizeof *m->weights);
+    gl.EnableVertexArrayAttrib(out->vao, SCENE_GPU_JOINTS_ATTRIB);
+    gl.VertexArrayAttribIFormat(out->vao, SCENE_GPU_JOINTS_ATTRIB, 4, GL_UNSIGNED_SHORT, 0);
+    gl.VertexArrayAttribBinding(out->vao, SCENE_GPU_JOINTS_ATTRIB, 3);
+    gl.EnableVertexArrayAttrib(out->vao, SCENE_GPU_WEIGHTS_ATTRIB);
+    gl.VertexArrayAttribFormat(out->vao, SCENE_GPU_WEIGHTS_ATTRIB, 4, GL_FLOAT, GL_FALSE, 0);
+    gl.VertexArrayAttribBinding(out->vao, SCENE_GPU_WEIGHTS_ATTRIB, 4);
+    *bytes += (uint64_t)(jbytes + wbytes);
+}
 
 static bool mesh_upload(gpu_mesh *out, const mesh *m, const char *what, uint64_t *bytes,
                         char *err, size_t errlen)
@@ -91,6 +117,8 @@ static bool mesh_upload(gpu_mesh *out, const mesh *m, const char *what, uint64_t
         gl.VertexArrayAttribBinding(out->vao, SCENE_GPU_UV2_ATTRIB, 2);
         *bytes += (uint64_t)ubytes;
     }
+    if (m->joints && m->weights)
+        skin_upload(out, m, bytes);
     out->count = (GLsizei)m->nindices;
     *bytes += (uint64_t)vbytes + (uint64_t)ibytes;
     return true;
@@ -106,6 +134,8 @@ static void mesh_release(gpu_mesh *m)
         gl.DeleteBuffers(1, &m->cbo);
     if (m->uvbo)
         gl.DeleteBuffers(1, &m->uvbo);
+    if (m->skbo)
+        gl.DeleteBuffers(1, &m->skbo);
     if (m->ibo)
         gl.DeleteBuffers(1, &m->ibo);
     memset(m, 0, sizeof *m);
@@ -163,6 +193,35 @@ static GLuint texture_upload(const texture_image *img, uint32_t index, uint64_t 
 
 // >>create and destroy
 
+/* The joint palette (scene_anim.h) as a texture buffer of RGBA32F texels, a matrix's 4
+ * columns each, which the vertex stage of every pass (and visibility's compute) reads
+ * with texelFetch (skin.inc). Why a texture buffer: a storage block in the vertex stage
+ * may be refused (GL's minimum MAX_VERTEX_SHADER_STORAGE_BLOCKS is 0), a uniform block's
+ * minimum size (16 KiB) holds only 256 matrices and would be bound again per skin, a
+ * texture buffer's minimum (65536 texels) holds every skin's joints at once
+ * (SCENE_ANIM_MAX_JOINTS), bound once a frame. */
+static bool joints_create(scene_gpu *g, const scene *s, char *err, size_t errlen)
+{
+    uint32_t n = s->anim ? s->anim->njoints : 0;
+    if (!n)
+        return true;
+    GLint max_texels = 0;
+    gl.GetIntegerv(GL_MAX_TEXTURE_BUFFER_SIZE, &max_texels);
+    if ((uint64_t)n * 4 > (uint64_t)max_texels) {
+        snprintf(err, errlen, "scene_gpu: the scene's skins have %u joints; a texture buffer "
+                 "of this GL holds %d", n, max_texels / 4);
+        return false;
+    }
+    GLsizeiptr bytes = (GLsizeiptr)((size_t)n * sizeof(sm_mat4));
+    gl.CreateBuffers(1, &g->joints_buffer);
+    gl.NamedBufferStorage(g->joints_buffer, bytes, s->anim->joints, GL_DYNAMIC_STORAGE_BIT);
+    gl.CreateTextures(GL_TEXTURE_BUFFER, 1, &g->joints_texture);
+    gl.TextureBuffer(g->joints_texture, GL_RGBA32F, g->joints_buffer);
+    g->njoints = n;
+    g->bytes += (uint64_t)bytes;
+    return true;
+}
+
 static bool build_program(scene_gpu *g, const char *fragment, GLuint *out, char *err,
                           size_t errlen)
 {
@@ -196,6 +255,10 @@ scene_gpu *scene_gpu_create(const scene *s, char *err, size_t errlen)
     /* what a mesh without colours reads from attribute 4 (context state, set once) */
     gl.VertexAttrib4f(SCENE_GPU_COLOR_ATTRIB, 1.0f, 1.0f, 1.0f, 1.0f);
     gl.VertexAttrib4f(SCENE_GPU_UV2_ATTRIB, 0.0f, 0.0f, 0.0f, 1.0f);
+    gl.VertexAttribI4ui(SCENE_GPU_JOINTS_ATTRIB, 0, 0, 0, 0);
+    gl.VertexAttrib4f(SCENE_GPU_WEIGHTS_ATTRIB, 0.0f, 0.0f, 0.0f, 0.0f);   /* no skin */
+    if (!joints_create(g, s, err, errlen))
+        goto fail;
     g->uv2 = scene_uses_uv2(s);
     for (uint32_t i = 0; i < s->nmeshes; i++) {
         char what[32];
@@ -260,6 +323,10 @@ void scene_gpu_destroy(scene_gpu *g)
     mesh_release(&g->cone);
     if (g->frame_ubo)
         gl.DeleteBuffers(1, &g->frame_ubo);
+    if (g->joints_texture)
+        gl.DeleteTextures(1, &g->joints_texture);
+    if (g->joints_buffer)
+        gl.DeleteBuffers(1, &g->joints_buffer);
     gl_program_cache_destroy(g->programs);
     free(g->meshes);
     free(g->textures);
@@ -280,6 +347,13 @@ void scene_gpu_frame(scene_gpu *g, const scene *s)
                                   (GLsizeiptr)((size_t)s->meshes[i].nvertices *
                                                sizeof(mesh_vertex)),
                                   s->meshes[i].vertices);
+    if (g->joints_texture && s->anim && s->anim->njoints == g->njoints) {
+        /* the frame's joints, for every pass (bound outside the cache, as the Frame) */
+        gl.NamedBufferSubData(g->joints_buffer, 0,
+                              (GLsizeiptr)((size_t)g->njoints * sizeof(sm_mat4)),
+                              s->anim->joints);
+        gl.BindTextureUnit(BIND_TEX_JOINTS, g->joints_texture);
+    }
 }
 
 /* The object's mesh, or NULL (with a message) for a bad object. */

@@ -29,6 +29,13 @@
  *   second uv set (mesh.uv2) has a third buffer for attribute 5 (SCENE_GPU_UV2_ATTRIB),
  *   the others read the generic (0, 0); with UV2 (a common define when the scene uses
  *   it, scene_uses_uv2) scene_gpu_draw_object sets LOC_UV1_MAPS, the maps read from it.
+ *   A skinned mesh (mesh.joints, mesh.weights) has a fourth buffer for attributes 6
+ *   (SCENE_GPU_JOINTS_ATTRIB, 4 x uint16 as integers) and 7 (SCENE_GPU_WEIGHTS_ATTRIB,
+ *   4 floats); the others read the generic weights 0, no skin. Programs read them only
+ *   with SKINNING (a common define for a scene with skins, scene_has_skins). The joint
+ *   palette (scene_anim.h's joints) is a texture buffer (RGBA32F, a matrix's columns in
+ *   4 texels), refilled and bound to unit BIND_TEX_JOINTS by every scene_gpu_frame
+ *   (outside the cache, as the Frame block); why a texture buffer: joints_create.
  * - Textures: one per scene texture, RGBA8 (4 channels) or R8 (1 channel, read .r),
  *   full mip chain (glGenerateTextureMipmap), trilinear, GL_REPEAT. Not sRGB.
  * - Frame block: one uniform buffer (gpu_frame, 192 bytes) bound to uniform binding 0
@@ -66,13 +73,18 @@
  * set (UV2). */
 #define SCENE_GPU_COLOR_ATTRIB 4
 #define SCENE_GPU_UV2_ATTRIB 5
+/* mesh.vert's a_joints (uvec4) and a_weights: a skinned mesh's joints and weights
+ * (SKINNING, skin.inc) */
+#define SCENE_GPU_JOINTS_ATTRIB 6
+#define SCENE_GPU_WEIGHTS_ATTRIB 7
 
 typedef struct scene_gpu scene_gpu;
 
 scene_gpu *scene_gpu_create(const scene *s, char *err, size_t errlen);
 void scene_gpu_destroy(scene_gpu *g);   /* NULL is fine */
 
-/* Uploads this frame's Frame block (shading_pack_frame) to binding 0. */
+/* Uploads this frame's Frame block (shading_pack_frame) to binding 0, the deforming
+ * meshes' vertices and the joint palette (texture unit BIND_TEX_JOINTS). */
 void scene_gpu_frame(scene_gpu *g, const scene *s);
 
 void scene_gpu_draw_object(scene_gpu *g, gl_state *st, const scene *s, uint32_t object);

@@ -94,7 +94,9 @@ typedef struct visibility {
     uint64_t geometry_bytes;         /* the vertex and index copies */
     bool coloured;                   /* VERTEX_COLOR: the colour in the copy */
     bool uv2;                        /* UV2: the second uv set in the copy */
-    uint32_t words;                  /* words a vertex in the copy: 12 + 2 (UV2) + 1 */
+    bool skinned;                    /* SKINNING: the joints and weights in the copy */
+    uint32_t words;                  /* words a vertex in the copy: 12 + 2 (UV2) + 1
+                                        (VERTEX_COLOR) + 6 (SKINNING) */
     uint32_t *first_index, *base_vertex;   /* per scene mesh */
     vis_draw *draw_data;             /* nobjects */
     vis_run *runs;                   /* nobjects */
@@ -211,7 +213,8 @@ static bool split(visibility *r, const scene *s, char *err, size_t errlen)
 
 /* Mesh me's vertices into buffer at vertex `base`, r->words each: mesh_vertex's 12, with
  * UV2 the second uv set (2 words, (0, 0) without one), with VERTEX_COLOR the RGBA8 colour
- * (white without colours). False when out of memory. */
+ * (white without colours), with SKINNING the 4 joints as 16-bit halves of 2 words and the
+ * 4 weights (weights 0 without a skin). False when out of memory. */
 static bool upload_extended(const visibility *r, uint32_t base, const mesh *me)
 {
     const size_t n = r->words;
@@ -228,7 +231,14 @@ static bool upload_extended(const visibility *r, uint32_t base, const mesh *me)
             k += 2;
         }
         if (r->coloured)
-            out[k] = me->colors ? me->colors[v] : 0xffffffffu;
+            out[k++] = me->colors ? me->colors[v] : 0xffffffffu;
+        if (r->skinned) {
+            const uint16_t *j = me->joints ? me->joints[v] : (const uint16_t[4]){0, 0, 0, 0};
+            const float none[4] = {0.0f, 0.0f, 0.0f, 0.0f};
+            out[k] = (uint32_t)j[0] | (uint32_t)j[1] << 16;
+            out[k + 1] = (uint32_t)j[2] | (uint32_t)j[3] << 16;
+            memcpy(out + k + 2, me->weights ? me->weights[v] : none, sizeof none);
+        }
     }
     gl.NamedBufferSubData(r->vertices, (GLintptr)((uint64_t)base * n * sizeof *w),
                           (GLsizeiptr)((size_t)me->nvertices * n * sizeof *w), w);
@@ -269,11 +279,12 @@ static bool make_buffers(visibility *r, const scene *s, char *err, size_t errlen
         nind += s->meshes[m].nindices;
     }
     /* UV2 (scene_uses_uv2): 2 more words a vertex, its second uv set; VERTEX_COLOR (a
-     * coloured mesh in the scene): one more, its colour */
+     * coloured mesh in the scene): one more, its colour; SKINNING: 6 more, its skin */
     bool coloured = scene_has_vertex_colors(s);
     r->coloured = coloured;
     r->uv2 = scene_uses_uv2(s);
-    const uint64_t words = 12 + (r->uv2 ? 2 : 0) + (coloured ? 1 : 0);
+    r->skinned = scene_has_skins(s);
+    const uint64_t words = 12 + (r->uv2 ? 2 : 0) + (coloured ? 1 : 0) + (r->skinned ? 6 : 0);
     r->words = (uint32_t)words;
     uint64_t vbytes = nvert * words * 4, ibytes = nind * sizeof(uint32_t);
     uint64_t max_block = (uint64_t)light_grid_max_block();

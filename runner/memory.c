@@ -128,7 +128,7 @@ static uint64_t scene_of(const scene *sc)
     for (uint32_t i = 0; i < sc->nmeshes; i++)
         b += 2 * ((uint64_t)sc->meshes[i].nvertices *
                       (sizeof(mesh_vertex) + (sc->meshes[i].colors ? 4 : 0) +
-                       (sc->meshes[i].uv2 ? 8 : 0)) +
+                       (sc->meshes[i].uv2 ? 8 : 0) + (sc->meshes[i].joints ? 24 : 0)) +
                   (uint64_t)sc->meshes[i].nindices * 4);
     for (uint32_t i = 0; i < sc->ntextures; i++)   /* ours, and the driver's with mipmaps */
         b += (uint64_t)sc->textures[i].width * sc->textures[i].height *

@@ -1,5 +1,6 @@
 /* File scenes, >>animation: the first animation's node channels as the scene's node
- * animation (scenes/scene_anim.h), which scene_update plays. */
+ * animation (scenes/scene_anim.h), which scene_update plays, with the meshes' morph
+ * targets and skins (file_skin.c). */
 #include "scenes/file_internal.h"
 
 #include <math.h>
@@ -68,6 +69,17 @@ static int32_t find(const node_table *t, const uint32_t *sorted, const char *nam
     }
     return lo < t->n && strcmp(t->node[sorted[lo]]->mName.data, name) == 0 ? (int32_t)sorted[lo]
                                                                          : -1;
+}
+
+typedef struct lookup_ctx {
+    const node_table *t;
+    const uint32_t *sorted;
+} lookup_ctx;
+
+static int32_t lookup(const void *ctx, const char *name)
+{
+    const lookup_ctx *c = ctx;
+    return find(c->t, c->sorted, name);
 }
 
 /* n keys of `width` floats from assimp's keys (times in ticks), checked: finite, times
@@ -257,11 +269,11 @@ bool file_anim_load(scene_builder *b, const char *path, const struct aiScene *ai
                     const uint32_t *mesh_index, const sm_mat4 root, bool **moves)
 {
     *moves = NULL;
-    bool morphed = false;
+    bool deformed = false;   /* morph targets or a skin: posed even when nothing moves */
     for (unsigned i = 0; i < ai->mNumMeshes; i++)
-        morphed |= ai->mMeshes[i]->mNumAnimMeshes > 0;
+        deformed |= ai->mMeshes[i]->mNumAnimMeshes > 0 || ai->mMeshes[i]->mNumBones > 0;
     const struct aiAnimation *an = ai->mNumAnimations ? ai->mAnimations[0] : NULL;
-    if (!morphed && (!an || !an->mNumChannels))
+    if (!deformed && (!an || !an->mNumChannels))
         return true;
     node_table t = {0};
     collect(&t, ai->mRootNode, -1, 0);
@@ -311,13 +323,15 @@ bool file_anim_load(scene_builder *b, const char *path, const struct aiScene *ai
             if (k[i]->n)
                 last = fmax(last, k[i]->t[k[i]->n - 1]);
     }
+    lookup_ctx lc = {&t, sorted};
     if (!load_morphs(b, path, ai, mesh_index, a) ||
+        !file_skin_load(b, path, ai, mesh_index, lookup, &lc, a) ||
         (an && !load_weights(b, path, ai, &t, sorted, tps, mesh_index, a, &last)))
         goto out;
     double d = an ? an->mDuration / tps : 0.0;
     a->duration = isfinite(d) && d > 0.0 ? d : last > 0.0 ? last : 1.0;
     sm_mat4_copy(root, a->root);
-    bool any = a->nmorphs > 0;
+    bool any = a->nmorphs > 0 || a->nskins > 0;
     for (uint32_t i = 0; i < t.n; i++) {
         int32_t p = a->nodes[i].parent;
         (*moves)[i] = a->nodes[i].channel >= 0 || (p >= 0 && (*moves)[p]);

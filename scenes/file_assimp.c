@@ -240,11 +240,9 @@ static void gltf_extensions(const read_file *f, scene_file_info *info)
 static void not_rendered_of(const loaded *l, bool phong, scene_file_info *info)
 {
     const struct aiScene *ai = l->ai;
-    unsigned skinned = 0, ortho = 0;
-    for (unsigned i = 0; i < ai->mNumMeshes; i++) {
-        const struct aiMesh *m = ai->mMeshes[i];
-        skinned += m->mNumBones > 0;
-    }
+    unsigned over4 = 0, ortho = 0;   /* skinned vertices with influences dropped */
+    for (unsigned i = 0; i < ai->mNumMeshes; i++)
+        over4 += file_skin_over4(ai->mMeshes[i]);
     for (unsigned i = 0; i < ai->mNumCameras; i++)
         ortho += ai->mCameras[i]->mOrthographicWidth > 0.0f;
     unsigned uv_differ = 0, mr_maps = 0, occlusion = 0, used = 0, far_uv = 0, spec_gloss = 0;
@@ -272,9 +270,8 @@ static void not_rendered_of(const loaded *l, bool phong, scene_file_info *info)
         spec_gloss += aiGetMaterialFloatArray(am, AI_MATKEY_GLOSSINESS_FACTOR, &gloss, NULL) ==
                       aiReturn_SUCCESS;
     }
-    if (skinned)
-        not_rendered(info, "skins (%u mesh%s, drawn in the bind pose)", skinned,
-                     skinned == 1 ? "" : "es");
+    if (over4)   /* skins are drawn (file_skin.c) with 4 influences a vertex */
+        not_rendered(info, "skin influences after the 4 largest (%u vertices)", over4);
     /* the first animation's node channels play (file_anim.c); the rest does not */
     if (ai->mNumAnimations > 1)
         not_rendered(info, "animations after the first (%u, not played)",
@@ -503,6 +500,12 @@ static void object_fn(const struct aiNode *n, const sm_mat4 world, void *user)
         uint32_t me = bn->mesh_index[fm];
         sm_mat4 t;
         sm_mat4_copy(world, t);
+        if (b->s->meshes[me].joints) {
+            /* a skin: its joints place it, not its node (glTF); scene_anim.h */
+            scene_object *o = sb_object(b, (int)me, am->mMaterialIndex, 0.0f, 0.0f, 0.0f, 1.0f);
+            sm_mat4_identity(o->transform);
+            continue;
+        }
         if (sm_mat4_det(world) < 0.0f) {
             /* a mirroring node: renderers cull back faces by winding, so bake the mirror
              * into a copy of the mesh (mesh_transform flips its winding) */
@@ -713,6 +716,7 @@ bool scene_build_file(scene_builder *b, const void *arg)
 
     /* bounds, camera and projection from the scene's extent */
     scene *s = b->s;
+    file_skin_bounds(s, c.lo, c.hi);
     sm_vec3 centre, ext;
     for (int k = 0; k < 3; k++) {
         centre[k] = 0.5f * (c.lo[k] + c.hi[k]);

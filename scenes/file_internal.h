@@ -130,13 +130,33 @@ static inline bool file_finite3(const struct aiVector3D *v)
 /* >>animation (file_anim.c) */
 /* The file's first animation, when it moves a node that has meshes below it, and its
  * meshes' morph targets (scene mesh mesh_index[i] of file mesh i; their weights the
- * defaults or the animation's) as the scene's animation (scene.anim, scene_anim.h; the
- * root transform `root` above the file's root), and *moves (malloc'd; NULL when the file
- * has neither): per node in walk's order (pre-order, FILE_MAX_NODE_DEPTH levels) whether
- * it moves. False (b failed) for a key that is not finite or times that go back, more
- * than 64 targets on a mesh, or out of memory. */
+ * defaults or the animation's) and skins (file_skin_load) as the scene's animation
+ * (scene.anim, scene_anim.h; the root transform `root` above the file's root), and *moves
+ * (malloc'd; NULL when the file has none of them): per node in walk's order (pre-order,
+ * FILE_MAX_NODE_DEPTH levels) whether it moves. False (b failed) for a key that is not
+ * finite or times that go back, more than 64 targets on a mesh, what file_skin_load
+ * refuses, or out of memory. */
 bool file_anim_load(scene_builder *b, const char *path, const struct aiScene *ai,
                     const uint32_t *mesh_index, const sm_mat4 root, bool **moves);
+
+/* >>skins (file_skin.c) */
+/* The node of the tree (file_anim.c's table) named name, or -1. */
+typedef int32_t (*file_node_lookup)(const void *ctx, const char *name);
+struct scene_anim;
+/* The skins of the file's meshes with bones (scene mesh mesh_index[i] of file mesh i)
+ * into a (scene_anim.h: skins, the joint palette), their vertices' joints and weights
+ * into the scene meshes. False (b failed) for more than SCENE_ANIM_MAX_JOINTS joints in
+ * all, an inverse bind matrix that is not finite, or out of memory. */
+bool file_skin_load(scene_builder *b, const char *path, const struct aiScene *ai,
+                    const uint32_t *mesh_index, file_node_lookup lookup, const void *ctx,
+                    struct scene_anim *a);
+/* How many of the mesh's vertices have more than 4 influences (the rest dropped). */
+unsigned file_skin_over4(const struct aiMesh *am);
+/* lo, hi grown by the skinned meshes' vertices at time 0 (the scene's animation posed
+ * then, the vertices skinned on the CPU): where the skins are drawn, which their
+ * bind-pose vertices under their nodes' transforms (scene_file_check's bounds) need not
+ * be. For the camera's framing. */
+void file_skin_bounds(scene *s, sm_vec3 lo, sm_vec3 hi);
 
 /* >>materials (file_materials.c) */
 /* A material's alpha mode (glTF alphaMode; OBJ: d < 1 is translucent) and cutoff. */

@@ -76,6 +76,11 @@ typedef struct mesh {
     float (*uv2)[2];           /* NULL, or per vertex a second texture coordinate set (a
                                 * file's TEXCOORD_1), for the maps a material reads from
                                 * it (scene_material.uv1_maps); mesh_free frees it */
+    uint16_t (*joints)[4];     /* NULL, or per vertex 4 joints of the scene's joint palette
+                                * (a skinned mesh: scenes/scene_anim.h), each < the
+                                * palette's size; mesh_free frees it */
+    float (*weights)[4];       /* with joints: their weights, each finite and >= 0, summing
+                                * to 1 */
     bool deforms;              /* its vertices change from frame to frame (morph targets,
                                 * scenes/scene_anim.h): uploaded again every frame */
     uint32_t *indices;         /* triangles, CCW seen from the side the normals point to */
@@ -225,7 +230,8 @@ bool mesh_light_cone(float half_angle, uint32_t segments, mesh *out, char *err, 
 bool mesh_transform(mesh *m, const sm_mat4 mat, char *err, size_t errlen);
 
 /* Appends src, transformed by mat (NULL: as it is), to dst (which may be a zeroed mesh).
- * False (dst unchanged) on a bad mat, too many vertices or out of memory. */
+ * False (dst unchanged) on a bad mat, too many vertices, a skinned mesh (either has
+ * joints) or out of memory. */
 bool mesh_append(mesh *dst, const mesh *src, const sm_mat4 mat, char *err, size_t errlen);
 
 /* aabb and sphere from the vertices (an empty mesh: sm_aabb_empty, zero sphere). */

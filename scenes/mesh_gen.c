@@ -258,6 +258,8 @@ bool mesh_append(mesh *dst, const mesh *src, const sm_mat4 mat, char *err, size_
     float det3 = 1.0f;
     if (mat && !mat_ok(mat, &det3))
         return scene_fail(err, errlen, "mesh_append: the matrix is singular or not finite");
+    if (dst->joints || src->joints)   /* joints name a palette of one scene: not merged */
+        return scene_fail(err, errlen, "mesh_append: a skinned mesh is not appended");
     uint64_t nv = (uint64_t)dst->nvertices + src->nvertices;
     uint64_t ni = (uint64_t)dst->nindices + src->nindices;
     if (nv > MESH_MAX_VERTICES || ni > MESH_MAX_INDICES)
@@ -343,5 +345,7 @@ void mesh_free(mesh *m)
     free(m->indices);
     free(m->colors);
     free(m->uv2);
+    free(m->joints);
+    free(m->weights);
     memset(m, 0, sizeof *m);
 }

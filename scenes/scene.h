@@ -193,6 +193,15 @@ static inline bool scene_has_vertex_colors(const scene *s)
     return false;
 }
 
+/* Whether some mesh of the scene is skinned (the programs' SKINNING: scene_anim.h). */
+static inline bool scene_has_skins(const scene *s)
+{
+    for (uint32_t i = 0; i < s->nmeshes; i++)
+        if (s->meshes[i].joints)
+            return true;
+    return false;
+}
+
 /* Whether the scene's programs read a second uv set (surface.inc's UV2): some material
  * reads a map from it and some mesh has one. */
 static inline bool scene_uses_uv2(const scene *s)
@@ -248,10 +257,11 @@ typedef struct scene_file_info {
     uint32_t files;            /* the file and every buffer and image it pulled in */
     uint64_t hash;             /* FNV-1a 64 over those files' bytes, in the order read */
     sm_vec3 bounds_min, bounds_max;   /* world bounds after scale and up */
-    /* What the file has that shadesweep reads but does not render (skins, morph targets,
-     * animations, vertex colours, a second UV set, orthographic cameras, glTF extensions
-     * of extensionsUsed it does not implement), one phrase each: meta.yaml lists them and
-     * validate, list and run warn of them. */
+    /* What the file has that shadesweep reads but does not render (skin influences after
+     * a vertex's 4 largest, animations after the first, texture coordinate sets after the
+     * second, orthographic cameras, glTF extensions of extensionsUsed it does not
+     * implement, ...: file_assimp.c's not_rendered_of), one phrase each: meta.yaml
+     * lists them and validate, list and run warn of them. */
     uint32_t nnot_rendered;
     char not_rendered[SCENE_FILE_MAX_NOT_RENDERED][72];
 } scene_file_info;

@@ -113,6 +113,102 @@ static void morph(const anim_morph *mo, const float *w, mesh *m)
     mesh_compute_bounds(m);
 }
 
+/* Two passes over the vertices' influences: each joint's aabb, then the radius. */
+bool scene_anim_skin_spheres(const mesh *m, anim_skin *k)
+{
+    sm_vec3 *lo = malloc(k->njoints * sizeof *lo), *hi = malloc(k->njoints * sizeof *hi);
+    if (!lo || !hi) {
+        free(lo);
+        free(hi);
+        return false;
+    }
+    for (uint32_t j = 0; j < k->njoints; j++)
+        for (int i = 0; i < 3; i++) {
+            lo[j][i] = INFINITY;
+            hi[j][i] = -INFINITY;
+        }
+    for (uint32_t v = 0; v < m->nvertices; v++)
+        for (int q = 0; q < 4; q++) {
+            if (!(m->weights[v][q] > 0.0f))
+                continue;
+            uint32_t j = m->joints[v][q] - k->first;   /* < njoints: load_skin's */
+            const float *p = m->vertices[v].position;
+            for (int i = 0; i < 3; i++) {
+                lo[j][i] = fminf(lo[j][i], p[i]);
+                hi[j][i] = fmaxf(hi[j][i], p[i]);
+            }
+        }
+    sm_vec4 *s = k->bind_sphere;
+    for (uint32_t j = 0; j < k->njoints; j++) {
+        bool any = lo[j][0] <= hi[j][0];
+        for (int i = 0; i < 3; i++)
+            s[j][i] = any ? 0.5f * (lo[j][i] + hi[j][i]) : 0.0f;
+        s[j][3] = any ? 0.0f : -1.0f;
+    }
+    for (uint32_t v = 0; v < m->nvertices; v++)
+        for (int q = 0; q < 4; q++) {
+            if (!(m->weights[v][q] > 0.0f))
+                continue;
+            uint32_t j = m->joints[v][q] - k->first;
+            const float *p = m->vertices[v].position;
+            sm_vec3 d = {p[0] - s[j][0], p[1] - s[j][1], p[2] - s[j][2]};
+            s[j][3] = fmaxf(s[j][3], sm_vec3_norm(d));
+        }
+    free(lo);
+    free(hi);
+    return true;
+}
+
+/* Skin k's joint matrices into the palette, and its mesh's bounds: the joints' bind
+ * spheres carried by their matrices (centre by the matrix, radius by its stretch), the
+ * aabb about them all and the sphere about the aabb's centre holding them all. */
+static void pose_skin(scene_anim *a, anim_skin *k, mesh *m)
+{
+    if (m && m->deforms)   /* morphed this frame: its spheres from the frame's shape (out
+                            * of memory: the last frame's) */
+        scene_anim_skin_spheres(m, k);
+    sm_vec3 lo = {INFINITY, INFINITY, INFINITY}, hi = {-INFINITY, -INFINITY, -INFINITY};
+    for (uint32_t j = 0; j < k->njoints; j++) {
+        sm_mat4 *out = &a->joints[k->first + j];
+        if (k->node[j] >= 0)
+            sm_mat4_mul(a->world[k->node[j]], k->offset[j], *out);
+        else   /* no node: the vertex where it is bound, under the file's placement */
+            sm_mat4_copy(a->root, *out);
+        const float *bs = k->bind_sphere[j];
+        if (!m || bs[3] < 0.0f)
+            continue;
+        sm_vec3 c = {bs[0], bs[1], bs[2]}, wc;
+        sm_mat4_mulv3(*out, c, 1.0f, wc);
+        float r = bs[3] * sm_mat4_stretch(*out);
+        for (int i = 0; i < 3; i++) {
+            lo[i] = fminf(lo[i], wc[i] - r);
+            hi[i] = fmaxf(hi[i], wc[i] + r);
+        }
+    }
+    if (!m || !(lo[0] <= hi[0]))
+        return;   /* no joint moves a vertex (file_skin.c gives every vertex one) */
+    sm_vec3 centre;
+    for (int i = 0; i < 3; i++)
+        centre[i] = 0.5f * (lo[i] + hi[i]);
+    float radius = 0.0f;
+    for (uint32_t j = 0; j < k->njoints; j++) {
+        const float *bs = k->bind_sphere[j];
+        if (bs[3] < 0.0f)
+            continue;
+        sm_vec3 c = {bs[0], bs[1], bs[2]}, wc, d;
+        const sm_vec4 *jm = a->joints[k->first + j];
+        sm_mat4_mulv3(jm, c, 1.0f, wc);
+        sm_vec3_sub(wc, centre, d);
+        radius = fmaxf(radius, sm_vec3_norm(d) + bs[3] * sm_mat4_stretch(jm));
+    }
+    sm_vec3_copy(lo, m->aabb[0]);
+    sm_vec3_copy(hi, m->aabb[1]);
+    m->sphere[0] = centre[0];
+    m->sphere[1] = centre[1];
+    m->sphere[2] = centre[2];
+    m->sphere[3] = radius;
+}
+
 void scene_anim_pose(scene_anim *a, mesh *meshes, double t)
 {
     if (!a)
@@ -151,6 +247,8 @@ void scene_anim_pose(scene_anim *a, mesh *meshes, double t)
         }
         sm_mat4_mul(n->parent >= 0 ? a->world[n->parent] : a->root, local, a->world[i]);
     }
+    for (uint32_t i = 0; i < a->nskins; i++)
+        pose_skin(a, &a->skins[i], meshes ? &meshes[a->skins[i].mesh] : NULL);
 }
 
 static void keys_free(anim_keys *k)
@@ -172,6 +270,13 @@ void scene_anim_free(scene_anim *a)
         keys_free(&mo->keys);
     }
     free(a->morphs);
+    for (uint32_t i = 0; i < a->nskins; i++) {
+        free(a->skins[i].node);
+        free(a->skins[i].offset);
+        free(a->skins[i].bind_sphere);
+    }
+    free(a->skins);
+    free(a->joints);
     for (uint32_t i = 0; i < a->nchannels; i++) {
         keys_free(&a->channels[i].pos);
         keys_free(&a->channels[i].rot);

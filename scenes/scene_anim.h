@@ -11,6 +11,19 @@
  * to the normal), its bounds recomputed, and the mesh is marked `deforms` so that the
  * renderers upload it again (scene_gpu_frame, visibility's copy). The weights are the
  * mesh's defaults, or the first animation's morph channel of a node that draws it.
+ * Skins (glTF skins, assimp's aiMesh.mBones): a skinned mesh keeps its bind-pose
+ * vertices; its vertices name up to 4 joints of the scene's joint palette each
+ * (mesh.joints, mesh.weights). Each frame every joint's matrix is its node's posed world
+ * transform (the file's placement included) times its inverse bind matrix, into
+ * scene_anim.joints, which the renderers upload once a frame and every pass that draws
+ * the mesh blends in its vertex stage (renderers/shaders/skin.inc.glsl). As glTF asks, a
+ * skinned mesh ignores the transform of the node that draws it: its objects' transform
+ * is the identity (file_assimp.c), the joints place it. Its bounds (mesh.aabb, sphere,
+ * which scene_update turns into the object's world sphere) are rebuilt every frame
+ * from a bind-space sphere per joint about the vertices the joint moves, carried by the
+ * joint's matrix: a skinned vertex is a weighted mean of its joints' images of it, so it
+ * lies in the hull of those spheres, which the union's bound holds. Conservative, and
+ * O(joints) a frame rather than O(vertices).
  *
  * Keys are interpolated linearly, rotations spherically (glTF's LINEAR); assimp 5.2 does
  * not say a channel's interpolation, so STEP and CUBICSPLINE channels play as linear
@@ -51,6 +64,20 @@ typedef struct anim_morph {
     anim_keys keys;            /* weights over time, ntargets values a key; n 0: defaults */
 } anim_morph;
 
+/* At most this many joints in all skins of a scene: 4 RGBA32F texels a joint in one
+ * texture buffer, whose GL 4.5 minimum size is 65536 texels (renderers/scene_gpu.c). */
+#define SCENE_ANIM_MAX_JOINTS 16384u
+
+typedef struct anim_skin {
+    uint32_t mesh;             /* into scene.meshes */
+    uint32_t first, njoints;   /* its joints: scene_anim.joints[first .. first + njoints) */
+    int32_t *node;             /* njoints: the joint's node, or -1: none found (the
+                                * joint's matrix is then the file's placement alone) */
+    sm_mat4 *offset;           /* njoints: inverse bind matrices (finite) */
+    sm_vec4 *bind_sphere;      /* njoints: the vertices it moves, in bind space (w < 0:
+                                * none) */
+} anim_skin;
+
 typedef struct scene_anim {
     anim_node *nodes;
     uint32_t nnodes;
@@ -58,13 +85,23 @@ typedef struct scene_anim {
     uint32_t nchannels;
     anim_morph *morphs;
     uint32_t nmorphs;
+    anim_skin *skins;
+    uint32_t nskins;
+    uint32_t njoints;          /* the joint palette's size, every skin's joints */
+    sm_mat4 *joints;           /* njoints: posed by scene_anim_pose */
     double duration;           /* seconds; > 0 */
     sm_mat4 root;              /* the file's placement (scale, up axis) above its root */
     sm_mat4 *world;            /* nnodes: posed by scene_anim_pose */
 } scene_anim;
 
-/* Every node's world transform at time t (seconds, looped over the duration), and every
- * morphed mesh of `meshes` (the scene's) rebuilt with the weights at t. */
+/* Every node's world transform at time t (seconds, looped over the duration), every
+ * morphed mesh of `meshes` (the scene's) rebuilt with the weights at t, every joint's
+ * matrix and every skinned mesh's bounds. */
 void scene_anim_pose(scene_anim *a, mesh *meshes, double t);
+/* k->bind_sphere from mesh m's vertices (k's mesh, its joints and weights set): per joint
+ * the sphere of the vertices it moves (a weight above 0), centred on their aabb, radius
+ * to the farthest; w -1 for a joint that moves none. O(vertices); a mesh that also has
+ * morph targets gets it again every frame. False (k unchanged) out of memory. */
+bool scene_anim_skin_spheres(const mesh *m, anim_skin *k);
 /* What the animation holds, and the animation; NULL is fine. */
 void scene_anim_free(scene_anim *a);

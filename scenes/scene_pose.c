@@ -12,22 +12,6 @@
 
 // >>posing
 
-/* An upper bound on how far the upper 3x3 of m stretches any vector (its largest
- * singular value): sqrt of the largest absolute row sum of M^T M, which bounds M^T M's
- * largest eigenvalue. Exactly 1 for the identity, s for a uniform scale s. */
-static float transform_stretch(const sm_mat4 m)
-{
-    double most = 0.0;
-    for (int i = 0; i < 3; i++) {
-        double row = 0.0;
-        for (int j = 0; j < 3; j++)
-            row += fabs((double)m[i][0] * m[j][0] + (double)m[i][1] * m[j][1] +
-                        (double)m[i][2] * m[j][2]);
-        most = fmax(most, row);
-    }
-    return (float)sqrt(most);
-}
-
 /* model = translate(position) * rotate(spin_axis, spin_rate * t) * scale * transform,
  * and the world bounding sphere of the object's mesh under it (its radius times scale
  * times the transform's stretch bound, so non-uniform scales and shears stay inside). */
@@ -56,7 +40,7 @@ static void pose_object(const scene *s, scene_object *o, double t)
     o->bsphere[0] = wc[0];
     o->bsphere[1] = wc[1];
     o->bsphere[2] = wc[2];
-    o->bsphere[3] = m->sphere[3] * o->scale * transform_stretch(o->transform);
+    o->bsphere[3] = m->sphere[3] * o->scale * sm_mat4_stretch(o->transform);
 }
 
 /* The test scenes' faults (catalog.c): each says what it does, then does it. */

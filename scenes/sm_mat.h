@@ -4,7 +4,8 @@
  *
  *   mat3  sm_mat3_zero, _mulv, _transpose_to, _det, _inv
  *   mat4  sm_mat4_identity, _zero, _copy, _mul, _mulv, _mulv3, _transpose_to, _det, _inv,
- *         _translate_make, _scale_make, _rotate_make, _pick3, _normal (normal matrix)
+ *         _translate_make, _scale_make, _rotate_make, _pick3, _normal (normal matrix),
+ *         _stretch (a bound on the largest singular value)
  */
 #include "scenes/sm_vec.h"
 
@@ -340,4 +341,20 @@ static inline void sm_mat4_normal(const sm_mat4 m, sm_mat3 dest)
     sm_mat4_pick3(m, t);
     sm_mat3_inv((const sm_vec3 *)t, t);
     sm_mat3_transpose_to((const sm_vec3 *)t, dest);
+}
+
+/* An upper bound on how far the upper 3x3 of m stretches any vector (its largest
+ * singular value): sqrt of the largest absolute row sum of M^T M, which bounds M^T M's
+ * largest eigenvalue. Exactly 1 for the identity, s for a uniform scale s. */
+static inline float sm_mat4_stretch(const sm_mat4 m)
+{
+    double most = 0.0;
+    for (int i = 0; i < 3; i++) {
+        double row = 0.0;
+        for (int j = 0; j < 3; j++)
+            row += fabs((double)m[i][0] * m[j][0] + (double)m[i][1] * m[j][1] +
+                        (double)m[i][2] * m[j][2]);
+        most = fmax(most, row);
+    }
+    return (float)sqrt(most);
 }

@@ -76,6 +76,7 @@ GL_FUNC(void, EnableVertexAttribArray, (GLuint index))
 GL_FUNC(void, DisableVertexAttribArray, (GLuint index))
 GL_FUNC(void, VertexAttribPointer, (GLuint index, GLint size, GLenum type, GLboolean normalized, GLsizei stride, const void *pointer))
 GL_FUNC(void, VertexAttrib4f, (GLuint index, GLfloat x, GLfloat y, GLfloat z, GLfloat w))
+GL_FUNC(void, VertexAttribI4ui, (GLuint index, GLuint x, GLuint y, GLuint z, GLuint w))
 GL_FUNC(void, VertexAttribIPointer, (GLuint index, GLint size, GLenum type, GLsizei stride, const void *pointer))
 GL_FUNC(void, VertexAttribDivisor, (GLuint index, GLuint divisor))
 
@@ -170,6 +171,7 @@ GL_FUNC(void, InvalidateFramebuffer, (GLenum target, GLsizei numAttachments, con
  * created and set up without binding them, so that creation never disturbs the
  * bindings the state cache (state.h) keeps */
 GL_FUNC(void, CreateTextures, (GLenum target, GLsizei n, GLuint *textures))
+GL_FUNC(void, TextureBuffer, (GLuint texture, GLenum internalformat, GLuint buffer))
 GL_FUNC(void, TextureStorage2D, (GLuint texture, GLsizei levels, GLenum internalformat, GLsizei width, GLsizei height))
 GL_FUNC(void, TextureStorage2DMultisample, (GLuint texture, GLsizei samples, GLenum internalformat, GLsizei width, GLsizei height, GLboolean fixedsamplelocations))
 GL_FUNC(void, TextureStorage3D, (GLuint texture, GLsizei levels, GLenum internalformat, GLsizei width, GLsizei height, GLsizei depth))
@@ -197,6 +199,7 @@ GL_FUNC(void, VertexArrayVertexBuffer, (GLuint vaobj, GLuint bindingindex, GLuin
 GL_FUNC(void, VertexArrayElementBuffer, (GLuint vaobj, GLuint buffer))
 GL_FUNC(void, EnableVertexArrayAttrib, (GLuint vaobj, GLuint index))
 GL_FUNC(void, VertexArrayAttribFormat, (GLuint vaobj, GLuint attribindex, GLint size, GLenum type, GLboolean normalized, GLuint relativeoffset))
+GL_FUNC(void, VertexArrayAttribIFormat, (GLuint vaobj, GLuint attribindex, GLint size, GLenum type, GLuint relativeoffset))
 GL_FUNC(void, VertexArrayAttribBinding, (GLuint vaobj, GLuint attribindex, GLuint bindingindex))
 
 /* >>Draws */

@@ -33,13 +33,19 @@
 // llvmpipe 15-20 % of the pass (compare --exe, 5 paired rounds, 640x360 curtis-scene3).
 // Defines: TILE_SIZE, TILES_X, VIS_TRI_BITS, NO_GRID (no point or spot light: every
 // light of the frame looped), the material's map defines (DIFFUSE_MAP, GLOSS_MAP,
-// NORMAL_MAP, EMISSIVE_MAP), FOG, SHADOWS, HDR_RGBA32F, MSAA_SAMPLES, TILE_DEPTH_RANGES.
+// NORMAL_MAP, EMISSIVE_MAP), FOG, SHADOWS, HDR_RGBA32F, MSAA_SAMPLES, TILE_DEPTH_RANGES;
+// the common ones, VERTEX_COLOR, UV2 and SKINNING (each vertex skinned as mesh.vert
+// skins it, skin.inc, before the draw's model-view: the same position the visibility
+// pass rasterised).
 #include "bindings.h"
 #include "frame.inc"
 #include "lighting.inc"
 #include "lights.inc"
 #include "tiles.inc"
 #include "fog.inc"
+#ifdef SKINNING
+#include "skin.inc"
+#endif
 #ifdef MSAA_SAMPLES
 #define EDGE_RULE_SURFACES_ONLY
 #include "edge_rule.inc"
@@ -87,20 +93,30 @@ layout(std430, binding = BIND_SSBO_VIS_DRAWS) readonly buffer Draws {
 // normal, tangent, uv), with UV2 (a common define: the scene's materials read maps from a
 // second uv set) two more, that set ((0, 0) for a mesh without), with VERTEX_COLOR (the
 // scene has coloured meshes: a common define) one more, the RGBA8 colour (white for a
-// mesh without), read through a second view of the same buffer as bits; and 32-bit
-// indices.
+// mesh without), with SKINNING (the scene has skins: a common define) six more, the 4
+// joints as 16-bit halves of 2 words (low half first) and the 4 weights (0 for a mesh
+// without: no skin); words that are bits read through a second view of the same buffer;
+// and 32-bit indices.
 #ifdef UV2
 const uint VIS_UV2_WORDS = 2u;
 #else
 const uint VIS_UV2_WORDS = 0u;
 #endif
 #ifdef VERTEX_COLOR
-const uint VIS_VERTEX_WORDS = 13u + VIS_UV2_WORDS;
+const uint VIS_COLOR_WORDS = 1u;
+#else
+const uint VIS_COLOR_WORDS = 0u;
+#endif
+#ifdef SKINNING
+const uint VIS_SKIN_WORDS = 6u;
+#else
+const uint VIS_SKIN_WORDS = 0u;
+#endif
+const uint VIS_VERTEX_WORDS = 12u + VIS_UV2_WORDS + VIS_COLOR_WORDS + VIS_SKIN_WORDS;
+#if defined(VERTEX_COLOR) || defined(SKINNING)
 layout(std430, binding = BIND_SSBO_VIS_VERTICES) readonly buffer VertexWords {
     uint b_vertex_words[];
 };
-#else
-const uint VIS_VERTEX_WORDS = 12u + VIS_UV2_WORDS;
 #endif
 layout(std430, binding = BIND_SSBO_VIS_VERTICES) readonly buffer Vertices {
     float b_vertices[];
@@ -132,6 +148,19 @@ vec3 vertex_attr3(uint v, uint offset)
     return vec3(b_vertices[b], b_vertices[b + 1u], b_vertices[b + 2u]);
 }
 
+#ifdef SKINNING
+// Vertex v's skin matrix (skin.inc's, from its joints and weights in the copy).
+mat4 vis_skin(uint v)
+{
+    uint b = v * VIS_VERTEX_WORDS + 12u + VIS_UV2_WORDS + VIS_COLOR_WORDS;
+    uint j01 = b_vertex_words[b], j23 = b_vertex_words[b + 1u];
+    uvec4 j = uvec4(j01 & 0xffffu, j01 >> 16, j23 & 0xffffu, j23 >> 16);
+    vec4 w = vec4(b_vertices[b + 2u], b_vertices[b + 3u], b_vertices[b + 4u],
+                  b_vertices[b + 5u]);
+    return skin_matrix(j, w);
+}
+#endif
+
 // Whether id (not empty) is one of this dispatch's draws.
 bool in_run(uint id)
 {
@@ -147,6 +176,9 @@ struct VisTriangle {
     vec3 vpos[3];
     mat3 m_inv;
     bool front;   // counter-clockwise in window coordinates (GL's front face)
+#ifdef SKINNING
+    mat3 skin3[3];   // the vertices' skin matrices' 3x3, for normals and tangents
+#endif
 };
 
 VisTriangle vis_triangle(uint id)
@@ -159,7 +191,13 @@ VisTriangle vis_triangle(uint id)
     vec4 clip[3];
     for (uint k = 0u; k < 3u; k++) {
         t.v[k] = geometry.y + b_mesh_indices[geometry.x + 3u * tri + k];
-        vec4 p = model_view * vec4(vertex_attr3(t.v[k], 0u), 1.0);
+        vec3 position = vertex_attr3(t.v[k], 0u);
+#ifdef SKINNING
+        mat4 skin = vis_skin(t.v[k]);
+        position = (skin * vec4(position, 1.0)).xyz;
+        t.skin3[k] = mat3(skin);
+#endif
+        vec4 p = model_view * vec4(position, 1.0);
         t.vpos[k] = p.xyz;
         clip[k] = f_proj * p;
     }
@@ -175,12 +213,22 @@ vec2 pixel_ndc(ivec2 px)
     return (vec2(px) + 0.5) * (2.0 * f_viewport.zw) - 1.0;
 }
 
+// Vertex k's normal (skinned, as mesh.vert's).
+vec3 vis_vertex_normal(VisTriangle t, uint k)
+{
+#ifdef SKINNING
+    return t.skin3[k] * vertex_attr3(t.v[k], 3u);
+#else
+    return vertex_attr3(t.v[k], 3u);
+#endif
+}
+
 // The surface's normal before any normal map, at barycentrics l and position P:
 // surface.inc's surface_get from the interpolated vertex normals, facing the side drawn.
 vec3 vis_normal(VisTriangle t, mat3 nm, vec3 l, vec3 P)
 {
-    vec3 N = nm * (l.x * vertex_attr3(t.v[0], 3u) + l.y * vertex_attr3(t.v[1], 3u) +
-                   l.z * vertex_attr3(t.v[2], 3u));
+    vec3 N = nm * (l.x * vis_vertex_normal(t, 0u) + l.y * vis_vertex_normal(t, 1u) +
+                   l.z * vis_vertex_normal(t, 2u));
     vec3 n = vis_safe_normalize(N, vis_safe_normalize(-P, vec3(0.0, 0.0, 1.0)));
     return t.front ? n : -n;
 }
@@ -220,6 +268,9 @@ vec4 shade_id(uint id, ivec2 px)
         uint b = tr.v[k] * VIS_VERTEX_WORDS;
         tan[k] = vec4(b_vertices[b + 6u], b_vertices[b + 7u], b_vertices[b + 8u],
                       b_vertices[b + 9u]);
+#ifdef SKINNING
+        tan[k].xyz = tr.skin3[k] * tan[k].xyz;
+#endif
         uv[k] = vec2(b_vertices[b + 10u], b_vertices[b + 11u]);
 #ifdef UV2
         uv2[k] = vec2(b_vertices[b + 12u], b_vertices[b + 13u]);

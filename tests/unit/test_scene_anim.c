@@ -6,7 +6,10 @@
  * last after it, a node without a channel keeps its own matrix, and the root placement
  * sits above every node. Morph targets: a mesh's vertices are its own plus the weighted
  * offsets (weights interpolated between keys, the defaults without keys), the normals
- * normalised, the bounds recomputed. Exact to 1e-5. */
+ * normalised, the bounds recomputed. Skins: every joint's matrix is its node's posed world
+ * times its inverse bind matrix (a joint without a node: the root placement alone), and
+ * the skinned mesh's bounds hold every vertex skinned on the CPU at several times.
+ * Exact to 1e-5. */
 #include <setjmp.h>
 #include <stdarg.h>
 #include <stddef.h>
@@ -160,12 +163,115 @@ static void test_morph(void **state)
     mesh_free(&m);
 }
 
+/* p skinned by the palette: the weighted sum of its joints' images. */
+static void skin_point(const scene_anim *a, const mesh *m, uint32_t v, sm_vec3 out)
+{
+    sm_vec3 p = {m->vertices[v].position[0], m->vertices[v].position[1],
+                 m->vertices[v].position[2]};
+    out[0] = out[1] = out[2] = 0.0f;
+    for (int q = 0; q < 4; q++) {
+        sm_vec3 t;
+        sm_mat4_mulv3(a->joints[m->joints[v][q]], p, 1.0f, t);
+        for (int k = 0; k < 3; k++)
+            out[k] += m->weights[v][q] * t[k];
+    }
+}
+
+/* make()'s nodes; a mesh (scene mesh 1 of 2) of three vertices on x: (0, 0, 0) on joint 1
+ * (node 0), (1, 0, 0) on joint 2 (node 1, bound at (0, 0, 1): its inverse bind matrix
+ * moves by -1 in z), (0.5, 0, 0) half on each; joint 0 (palette index 0, a first skin's
+ * place) has no node. */
+static void test_skin(void **state)
+{
+    (void)state;
+    scene_anim *a = make();
+    mesh meshes[2] = {{0}, {0}};
+    mesh *m = &meshes[1];
+    m->nvertices = 3;
+    m->vertices = calloc(3, sizeof *m->vertices);
+    m->joints = calloc(3, sizeof *m->joints);
+    m->weights = calloc(3, sizeof *m->weights);
+    assert_non_null(m->vertices);
+    assert_non_null(m->joints);
+    assert_non_null(m->weights);
+    const float x[3] = {0.0f, 1.0f, 0.5f};
+    for (int v = 0; v < 3; v++) {
+        m->vertices[v].position[0] = x[v];
+        m->joints[v][0] = v == 1 ? 2 : 1;
+        m->joints[v][1] = 2;
+        m->joints[v][2] = m->joints[v][3] = 1;
+        m->weights[v][0] = v == 2 ? 0.5f : 1.0f;
+        m->weights[v][1] = v == 2 ? 0.5f : 0.0f;
+    }
+    a->njoints = 3;
+    a->joints = calloc(3, sizeof *a->joints);
+    a->skins = calloc(1, sizeof *a->skins);
+    assert_non_null(a->joints);
+    assert_non_null(a->skins);
+    a->nskins = 1;
+    anim_skin *k = &a->skins[0];
+    *k = (anim_skin){.mesh = 1, .first = 0, .njoints = 3};
+    k->node = calloc(3, sizeof *k->node);
+    k->offset = calloc(3, sizeof *k->offset);
+    k->bind_sphere = calloc(3, sizeof *k->bind_sphere);
+    assert_non_null(k->node);
+    assert_non_null(k->offset);
+    assert_non_null(k->bind_sphere);
+    k->node[0] = -1;
+    k->node[1] = 0;
+    k->node[2] = 1;
+    for (int j = 0; j < 3; j++)
+        sm_mat4_identity(k->offset[j]);
+    k->offset[2][3][2] = -1.0f;
+    /* joint 0 moves nothing, joint 1 x in [0, 0.5], joint 2 x in [0.5, 1] */
+    const float spheres[3][4] = {{0, 0, 0, -1}, {0.25f, 0, 0, 0.25f}, {0.75f, 0, 0, 0.25f}};
+    assert_true(scene_anim_skin_spheres(m, k));
+    for (int j = 0; j < 3; j++)
+        for (int c = 0; c < 4; c++)
+            assert_float_equal(k->bind_sphere[j][c], spheres[j][c], 1e-6);
+    const double times[4] = {0.0, 1.5, 2.0, 3.0};
+    for (int i = 0; i < 4; i++) {
+        scene_anim_pose(a, meshes, times[i]);
+        for (int j = 1; j < 3; j++) {   /* world x offset */
+            sm_mat4 want;
+            sm_mat4_mul(a->world[k->node[j]], k->offset[j], want);
+            for (int c = 0; c < 16; c++)
+                assert_float_equal(a->joints[j][c / 4][c % 4], want[c / 4][c % 4], 1e-6);
+        }
+        for (int c = 0; c < 16; c++)   /* no node: the placement */
+            assert_float_equal(a->joints[0][c / 4][c % 4], a->root[c / 4][c % 4], 0.0);
+        for (uint32_t v = 0; v < 3; v++) {
+            sm_vec3 p, d;
+            skin_point(a, m, v, p);
+            for (int c = 0; c < 3; c++) {
+                assert_true(p[c] >= m->aabb[0][c] - 1e-5f && p[c] <= m->aabb[1][c] + 1e-5f);
+                d[c] = p[c] - m->sphere[c];
+            }
+            assert_true(sm_vec3_norm(d) <= m->sphere[3] + 1e-5f);
+        }
+    }
+    /* at 0 s (node 0 still at its first key): vertex 1 on node 1 at (0, 0, 1) under the
+     * root's scale 2, moved back by its inverse bind matrix: (2, 0, 0); vertex 0: (0, 0, 0) */
+    scene_anim_pose(a, meshes, 0.0);
+    sm_vec3 p;
+    skin_point(a, m, 1, p);
+    assert_float_equal(p[0], 2.0f, 1e-5);
+    assert_float_equal(p[2], 0.0f, 1e-5);
+    skin_point(a, m, 0, p);
+    assert_float_equal(p[0], 0.0f, 1e-5);
+    assert_float_equal(m->sphere[3] > 0.0f, 1.0f, 0.0);
+    scene_anim_free(a);
+    mesh_free(&meshes[0]);
+    mesh_free(&meshes[1]);
+}
+
 int main(void)
 {
     const struct CMUnitTest tests[] = {
         cmocka_unit_test(test_midpoint),
         cmocka_unit_test(test_hold_and_loop),
         cmocka_unit_test(test_morph),
+        cmocka_unit_test(test_skin),
     };
     return cmocka_run_group_tests(tests, NULL, NULL);
 }
