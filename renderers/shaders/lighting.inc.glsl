@@ -115,6 +115,19 @@ vec3 light_incoming(Light l, vec3 P, vec3 N, out vec3 L)
     return l.color_type.rgb * att;
 }
 
+// light_incoming, times the light's shadow-map lookup with SHADOWS: what both shading
+// models light a point with.
+vec3 light_arriving(Light l, vec3 P, vec3 N, out vec3 L)
+{
+    vec3 incoming = light_incoming(l, P, N, L);
+#ifdef SHADOWS
+    // Only where the light arrives at all: no lookup outside its range or cone.
+    if (l.params.z > 0.5 && any(greaterThan(incoming, vec3(0.0))))
+        incoming *= shadow_visibility(int(l.params.z + 0.5) - 1, P);
+#endif
+    return incoming;
+}
+
 #ifdef SHADING_PBR
 // SHADING_PBR (a common define: shading.model pbr): glTF 2.0's metallic-roughness model,
 // the specification's Appendix B, for light `incoming` arriving from L:
@@ -149,11 +162,7 @@ vec3 pbr_diffuse(vec3 base, float metallic)
 void pbr_light(Light l, vec3 P, vec3 N, float roughness, vec3 f0, out vec3 kd, out vec3 spec)
 {
     vec3 L;
-    vec3 incoming = light_incoming(l, P, N, L);
-#ifdef SHADOWS
-    if (l.params.z > 0.5 && any(greaterThan(incoming, vec3(0.0))))
-        incoming *= shadow_visibility(int(l.params.z + 0.5) - 1, P);
-#endif
+    vec3 incoming = light_arriving(l, P, N, L);
     kd = spec = vec3(0.0);
     float ndl = dot(N, L);
     if (!(ndl > 0.0))
@@ -205,12 +214,7 @@ void light_prepass(Light l, vec3 P, vec3 N, float roughness, vec3 f0, out vec3 d
 vec3 shade_light(Light l, vec3 P, vec3 N, vec3 diffuse, float gloss, float shininess)
 {
     vec3 L;
-    vec3 incoming = light_incoming(l, P, N, L);
-#ifdef SHADOWS
-    // Only where the light arrives at all: no lookup outside its range or cone.
-    if (l.params.z > 0.5 && any(greaterThan(incoming, vec3(0.0))))
-        incoming *= shadow_visibility(int(l.params.z + 0.5) - 1, P);
-#endif
+    vec3 incoming = light_arriving(l, P, N, L);
     float ndl = max(dot(N, L), 0.0);
     vec3 V = normalize(-P);
     vec3 R = reflect(-L, N);

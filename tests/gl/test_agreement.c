@@ -521,6 +521,55 @@ static void test_second_uv_set(void **state)
     expect_feature(&c, &g_uv2, 0.05, ", a second uv set;");
 }
 
+/* Every catalog scene but the test-* faults at 1 s, its authored lights or 16 random ones
+ * of colour up to color_max, shaded by `model`: each of `kinds` ("deferred-lighting
+ * tiled": by the tiled lists) against forward-spml (storage), within RMSE 1/255, fewer
+ * than 1 % of the pixels off by more than 1/255, nothing non-finite. */
+static void expect_catalog_agrees(const char *const *kinds, size_t nkinds, shading_model model,
+                                  float color_max)
+{
+    for (size_t i = 0; i < scene_catalog_count(); i++) {
+        const char *name = scene_catalog_at(i)->name;
+        if (strncmp(name, "test-", 5) == 0)
+            continue;
+        bool authored = strcmp(name, "spot-coverage") == 0 ||
+                        strcmp(name, "two-spots-overlap") == 0 ||
+                        strcmp(name, "floating-spot") == 0 || strcmp(name, "glass") == 0;
+        light_params lp = {.placement = authored ? PLACEMENT_SCENE : PLACEMENT_RANDOM,
+                           .seed = 1337, .rng = RNG_MSVC,
+                           .count = {.start = 16, .max = 16}, .radius = 10.0f,
+                           .overlap = 2.0f, .color_max = color_max,
+                           .attenuation = ATTENUATION_LINEAR_RANGE};
+        char err[256];
+        scene *s = scene_build(name, &lp, W, H, err, sizeof err);
+        if (!s)
+            fail_msg("scene %s: %s", name, err);
+        assert_true(scene_set_shading(s, model));
+        scene_update(s, 1.0);
+        image ref = {0}, img = {0};
+        assert_true(render_with("forward-spml", LIGHT_VOLUMES_STENCIL, true, s, &ref));
+        for (size_t k = 0; k < nkinds; k++) {
+            g_lpp_tiled = strcmp(kinds[k], "deferred-lighting tiled") == 0;
+            bool ok = render(g_lpp_tiled ? "deferred-lighting" : kinds[k],
+                             LIGHT_VOLUMES_STENCIL, s, &img);
+            g_lpp_tiled = false;
+            assert_true(ok);
+            image_error e;
+            assert_true(image_compare(&img, &ref, &e, err, sizeof err));
+            print_message("%s%s: %s vs forward-spml (storage): rmse %.3f/255, max %.0f/255, "
+                          "%.5f of the pixels off by > 1/255\n",
+                          model == SHADING_PBR ? "pbr " : "", name, kinds[k], e.rmse * 255,
+                          e.max_abs * 255, e.frac_over_1_255);
+            assert_true(e.rmse < RMSE_MAX);
+            assert_true(e.frac_over_1_255 < 0.01);
+            assert_int_equal(e.nonfinite, 0);
+            image_free(&img);
+        }
+        image_free(&ref);
+        scene_destroy(s);
+    }
+}
+
 /* Issue 26: every scene of the catalog (but the test-* faults) at 1 s of its own camera,
  * with its authored lights (the spot scenes, glass) or 16 random ones (seed 1337,
  * overlap 2): deferred-lighting by the light volumes and by the tiled lists, and
@@ -532,46 +581,9 @@ static void test_second_uv_set(void **state)
 static void test_every_catalog_scene(void **state)
 {
     (void)state;
-    for (size_t i = 0; i < scene_catalog_count(); i++) {
-        const char *name = scene_catalog_at(i)->name;
-        if (strncmp(name, "test-", 5) == 0)
-            continue;
-        bool authored = strcmp(name, "spot-coverage") == 0 ||
-                        strcmp(name, "two-spots-overlap") == 0 ||
-                        strcmp(name, "floating-spot") == 0 || strcmp(name, "glass") == 0;
-        light_params lp = {.placement = authored ? PLACEMENT_SCENE : PLACEMENT_RANDOM,
-                           .seed = 1337, .rng = RNG_MSVC,
-                           .count = {.start = 16, .max = 16}, .radius = 10.0f,
-                           .overlap = 2.0f, .color_max = 0.3f,
-                           .attenuation = ATTENUATION_LINEAR_RANGE};
-        char err[256];
-        scene *s = scene_build(name, &lp, W, H, err, sizeof err);
-        if (!s)
-            fail_msg("scene %s: %s", name, err);
-        scene_update(s, 1.0);
-        image ref = {0}, img = {0};
-        assert_true(render_with("forward-spml", LIGHT_VOLUMES_STENCIL, true, s, &ref));
-        static const char *const kinds[] = {"deferred-lighting", "deferred-lighting tiled",
-                                            "visibility"};
-        for (size_t k = 0; k < 3; k++) {
-            g_lpp_tiled = k == 1;
-            bool ok = render(k == 1 ? "deferred-lighting" : kinds[k], LIGHT_VOLUMES_STENCIL,
-                             s, &img);
-            g_lpp_tiled = false;
-            assert_true(ok);
-            image_error e;
-            assert_true(image_compare(&img, &ref, &e, err, sizeof err));
-            print_message("%s: %s vs forward-spml (storage): rmse %.3f/255, max %.0f/255, "
-                          "%.5f of the pixels off by > 1/255\n", name, kinds[k],
-                          e.rmse * 255, e.max_abs * 255, e.frac_over_1_255);
-            assert_true(e.rmse < RMSE_MAX);
-            assert_true(e.frac_over_1_255 < 0.01);
-            assert_int_equal(e.nonfinite, 0);
-            image_free(&img);
-        }
-        image_free(&ref);
-        scene_destroy(s);
-    }
+    static const char *const kinds[] = {"deferred-lighting", "deferred-lighting tiled",
+                                        "visibility"};
+    expect_catalog_agrees(kinds, 3, SHADING_PHONG, 0.3f);
 }
 
 /* Issue 25: under the metallic-roughness model (shading.model pbr), every renderer
@@ -595,49 +607,11 @@ static void test_pbr(void **state)
 static void test_pbr_every_catalog_scene(void **state)
 {
     (void)state;
+    static const char *const kinds[] = {"forward-mpml", "forward-plus", "clustered",
+                                        "deferred", "tiled-deferred", "deferred-lighting",
+                                        "deferred-lighting tiled", "visibility"};
     g_gbuffer = GBUFFER_CURTIS;
-    for (size_t i = 0; i < scene_catalog_count(); i++) {
-        const char *name = scene_catalog_at(i)->name;
-        if (strncmp(name, "test-", 5) == 0)
-            continue;
-        bool authored = strcmp(name, "spot-coverage") == 0 ||
-                        strcmp(name, "two-spots-overlap") == 0 ||
-                        strcmp(name, "floating-spot") == 0 || strcmp(name, "glass") == 0;
-        light_params lp = {.placement = authored ? PLACEMENT_SCENE : PLACEMENT_RANDOM,
-                           .seed = 1337, .rng = RNG_MSVC,
-                           .count = {.start = 16, .max = 16}, .radius = 10.0f,
-                           .overlap = 2.0f, .color_max = 0.6f,
-                           .attenuation = ATTENUATION_LINEAR_RANGE};
-        char err[256];
-        scene *s = scene_build(name, &lp, W, H, err, sizeof err);
-        if (!s)
-            fail_msg("scene %s: %s", name, err);
-        assert_true(scene_set_shading(s, SHADING_PBR));
-        scene_update(s, 1.0);
-        image ref = {0}, img = {0};
-        assert_true(render_with("forward-spml", LIGHT_VOLUMES_STENCIL, true, s, &ref));
-        static const char *const kinds[] = {"forward-mpml", "forward-plus", "clustered",
-                                            "deferred", "tiled-deferred", "deferred-lighting",
-                                            "deferred-lighting tiled", "visibility"};
-        for (size_t k = 0; k < sizeof kinds / sizeof kinds[0]; k++) {
-            g_lpp_tiled = strcmp(kinds[k], "deferred-lighting tiled") == 0;
-            bool ok = render(g_lpp_tiled ? "deferred-lighting" : kinds[k],
-                             LIGHT_VOLUMES_STENCIL, s, &img);
-            g_lpp_tiled = false;
-            assert_true(ok);
-            image_error e;
-            assert_true(image_compare(&img, &ref, &e, err, sizeof err));
-            print_message("pbr %s: %s vs forward-spml (storage): rmse %.3f/255, max %.0f/255, "
-                          "%.5f of the pixels off by > 1/255\n", name, kinds[k],
-                          e.rmse * 255, e.max_abs * 255, e.frac_over_1_255);
-            assert_true(e.rmse < RMSE_MAX);
-            assert_true(e.frac_over_1_255 < 0.01);
-            assert_int_equal(e.nonfinite, 0);
-            image_free(&img);
-        }
-        image_free(&ref);
-        scene_destroy(s);
-    }
+    expect_catalog_agrees(kinds, sizeof kinds / sizeof kinds[0], SHADING_PBR, 0.6f);
     g_gbuffer = GBUFFER_REFERENCE;
 }
 
