@@ -245,7 +245,8 @@ static void not_rendered_of(const loaded *l, bool phong, scene_file_info *info)
         over4 += file_skin_over4(ai->mMeshes[i]);
     for (unsigned i = 0; i < ai->mNumCameras; i++)
         ortho += ai->mCameras[i]->mOrthographicWidth > 0.0f;
-    unsigned uv_differ = 0, mr_maps = 0, occlusion = 0, used = 0, far_uv = 0, spec_gloss = 0;
+    unsigned uv_differ = 0, mr_maps = 0, occlusion = 0, used = 0, far_uv = 0, spec_gloss = 0,
+             occ_uv = 0;
     for (unsigned i = 0; i < ai->mNumMaterials; i++) {
         const struct aiMaterial *am = ai->mMaterials[i];
         bool drawn = false;   /* not assimp's default material, where no mesh uses it */
@@ -260,6 +261,10 @@ static void not_rendered_of(const loaded *l, bool phong, scene_file_info *info)
         file_material_refs(am, &refs);
         far_uv += (refs.diffuse[0] && refs.diffuse_uv > 1) + (refs.normal[0] && refs.normal_uv > 1) +
                   (refs.emissive[0] && refs.emissive_uv > 1);
+        if (!phong) {   /* pbr reads them (the ORM map: the metallic-roughness map's set) */
+            far_uv += (refs.mr[0] && refs.mr_uv > 1) + (refs.occlusion[0] && refs.occlusion_uv > 1);
+            occ_uv += refs.mr[0] && refs.occlusion[0] && refs.mr_uv != refs.occlusion_uv;
+        }
         /* assimp 5.2's glTF importer: metallicRoughnessTexture under METALNESS (and
          * UNKNOWN), occlusionTexture under LIGHTMAP */
         mr_maps += aiGetMaterialTextureCount(am, aiTextureType_METALNESS) +
@@ -300,6 +305,8 @@ static void not_rendered_of(const loaded *l, bool phong, scene_file_info *info)
     if (uv_differ)
         not_rendered(info, "per-map texture transforms (%u material%s: the base colour's used)",
                      uv_differ, uv_differ == 1 ? "" : "s");
+    if (occ_uv)
+        not_rendered(info, "occlusion maps read from the roughness map's uv set (%u)", occ_uv);
     if (l->files.n)
         gltf_extensions(&l->files.files[0], info);
 }
