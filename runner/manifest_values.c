@@ -442,11 +442,13 @@ static void parse_sweep(vctx *c, const param *pd, const ynode *map);
 static bool parse_scene_file(vctx *c, const param *pd, const ynode *n, const char *key,
                              run_params *dst)
 {
-    static const char *const names[] = {"file", "scale", "up", "camera", "allow_outside"};
-    const ynode *keys[5], *vals[5];
-    bool ok = mf_map_keys(c, n, key, names, 5, keys, vals);
-    char sub[5][160], f[128];
-    for (size_t i = 0; i < 5; i++)
+    static const char *const names[] = {"file", "scale", "up", "camera", "allow_outside",
+                                        "light_bounds"};
+    enum { NAMES = sizeof names / sizeof names[0] };
+    const ynode *keys[NAMES], *vals[NAMES];
+    bool ok = mf_map_keys(c, n, key, names, NAMES, keys, vals);
+    char sub[NAMES][160], f[128];
+    for (size_t i = 0; i < NAMES; i++)
         snprintf(sub[i], sizeof sub[i], "%s.%s", key, names[i]);
     if (!vals[0]) {
         mf_err(c, n, sub[0], "expected a path to a glTF 2.0 (.gltf, .glb) or OBJ file, found nothing");
@@ -457,9 +459,18 @@ static bool parse_scene_file(vctx *c, const param *pd, const ynode *n, const cha
             mf_found(vals[0], true, f, sizeof f));
         return false;
     }
-    double scale = 1;
-    if (vals[1] && !mf_parse_number_in(c, vals[1], sub[1], 0, 1e9, PF_MIN_OPEN | PF_FLOAT, &scale))
+    /* fit (the default) is stored as 0, which no number may be */
+    double scale = 0;
+    bool finite;
+    if (!vals[1] || (ynode_plain(vals[1]) && strcmp(vals[1]->text, "fit") == 0)) {
+        /* fit */
+    } else if (!mf_get_number(vals[1], &scale, &finite)) {
+        mf_err(c, vals[1], sub[1], "expected fit or a number > 0 and <= 1e+09, found %s",
+            mf_found(vals[1], false, f, sizeof f));
         ok = false;
+    } else if (!mf_parse_number_in(c, vals[1], sub[1], 0, 1e9, PF_MIN_OPEN | PF_FLOAT, &scale)) {
+        ok = false;
+    }
     int up = SCENE_UP_Y;
     if (vals[2]) {
         if (ynode_plain(vals[2]) && strcmp(vals[2]->text, "y") == 0)
@@ -495,6 +506,16 @@ static bool parse_scene_file(vctx *c, const param *pd, const ynode *n, const cha
             ok = false;
         }
     }
+    bool around = true;
+    if (vals[5]) {
+        if (ynode_plain(vals[5]) && strcmp(vals[5]->text, "model") == 0)
+            around = false;
+        else if (!(ynode_plain(vals[5]) && strcmp(vals[5]->text, "around") == 0)) {
+            mf_err(c, vals[5], sub[5], "expected one of around, model, found %s",
+                mf_found(vals[5], true, f, sizeof f));
+            ok = false;
+        }
+    }
     if (!ok)
         return false;
     /* relative to the manifest's folder */
@@ -510,8 +531,9 @@ static bool parse_scene_file(vctx *c, const param *pd, const ynode *n, const cha
         dst->scene_file[0] = '\0';
         return false;
     }
-    scene_file_options o = {.path = dst->scene_file, .scale = (float)scale, .up = (scene_up)up,
-                            .camera = camera, .allow_outside = outside};
+    scene_file_options o = {.path = dst->scene_file, .scale = (float)scale, .fit = scale == 0,
+                            .up = (scene_up)up, .camera = camera, .allow_outside = outside,
+                            .lights_around = around};
     scene_file_info info;
     char msg[1024];
     if (!scene_file_check(&o, &info, msg, sizeof msg)) {
@@ -531,6 +553,7 @@ static bool parse_scene_file(vctx *c, const param *pd, const ynode *n, const cha
     dst->scene_up = up;
     snprintf(dst->scene_camera, sizeof dst->scene_camera, "%s", camera);
     dst->scene_outside = outside;
+    dst->scene_around = around;
     hash_hex(info.hash, 16, dst->scene_hash);
     return true;
 }

@@ -315,7 +315,8 @@ static bool same_scene(const run_params *a, const run_params *b)
 {
     return strcmp(a->scene, b->scene) == 0 && strcmp(a->scene_file, b->scene_file) == 0 &&
            a->scene_scale == b->scene_scale && a->scene_up == b->scene_up &&
-           strcmp(a->scene_camera, b->scene_camera) == 0 && a->width == b->width &&
+           strcmp(a->scene_camera, b->scene_camera) == 0 && a->scene_around == b->scene_around &&
+           a->width == b->width &&
            a->height == b->height &&
            memcmp(&a->lights, &b->lights, sizeof a->lights) == 0 &&
            memcmp(&a->camera, &b->camera, sizeof a->camera) == 0 &&

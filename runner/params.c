@@ -190,15 +190,18 @@ void param_format(const param *pd, const run_params *p, char *out, size_t len)
             /* a file scene by its content, not its name: a renamed copy is the same run,
              * an edited file a new one */
             char sc[32] = "";
-            if (p->scene_scale != 1)
+            if (p->scene_scale == 0)
+                snprintf(sc, sizeof sc, "fit");
+            else if (p->scene_scale != 1)
                 params_fmt_float(p->scene_scale, sc, sizeof sc);
-            /* orbit, the camera file scenes had before auto, stays out of the text so
-             * that their ids hold; auto, the default now, is written, so a run of it
-             * never takes the id of an orbit's results */
+            /* what file scenes had before each new default (scale 1, camera orbit, light
+             * bounds model) stays out of the text so that their ids hold; the new
+             * defaults (fit, auto, around) are written, so a run of them never takes the
+             * id of the old one's results */
             bool cam = strcmp(p->scene_camera, "orbit") != 0;
-            snprintf(out, len, "file:%s%s%s%s%s%s", p->scene_hash, sc[0] ? ",scale:" : "", sc,
+            snprintf(out, len, "file:%s%s%s%s%s%s%s", p->scene_hash, sc[0] ? ",scale:" : "", sc,
                      p->scene_up == SCENE_UP_Z ? ",up:z" : "", cam ? ",camera:" : "",
-                     cam ? p->scene_camera : "");
+                     cam ? p->scene_camera : "", p->scene_around ? ",light_bounds:around" : "");
         }
         break;
     case PT_RENDERERS:

@@ -64,8 +64,9 @@ static bool check_times(const experiment *e, const run_spec *r, const char *key,
 void run_params_scene(const run_params *p, scene_file_options *fo, scene_source *src)
 {
     *fo = (scene_file_options){.path = p->scene_file, .scale = p->scene_scale,
-                               .up = (scene_up)p->scene_up, .camera = p->scene_camera,
-                               .allow_outside = p->scene_outside,
+                               .fit = p->scene_scale == 0, .up = (scene_up)p->scene_up,
+                               .camera = p->scene_camera, .allow_outside = p->scene_outside,
+                               .lights_around = p->scene_around,
                                .phong = p->shading_model == 1};
     *src = (scene_source){.name = p->scene, .file = p->scene_file[0] ? fo : NULL};
 }
@@ -92,7 +93,7 @@ static bool same_source(const run_params *a, const run_params *b)
 {
     return strcmp(a->scene, b->scene) == 0 && strcmp(a->scene_file, b->scene_file) == 0 &&
            a->scene_scale == b->scene_scale && a->scene_up == b->scene_up &&
-           strcmp(a->scene_camera, b->scene_camera) == 0;
+           strcmp(a->scene_camera, b->scene_camera) == 0 && a->scene_around == b->scene_around;
 }
 
 static uint64_t source_hash(const run_params *a)
@@ -102,6 +103,7 @@ static uint64_t source_hash(const run_params *a)
     float scale = a->scene_scale == 0 ? 0.0f : a->scene_scale;   /* -0 == 0 */
     h = fnv1a64_update(h, &scale, sizeof scale);
     h = fnv1a64_update(h, &a->scene_up, sizeof a->scene_up);
+    h = fnv1a64_update(h, &a->scene_around, sizeof a->scene_around);
     return hash_str(h, a->scene_camera);
 }
 

@@ -105,7 +105,10 @@ bool run_write_meta(run_state *st, char *err, size_t errlen)
         yo_map_begin(y);
         yo_key(y, "path"); yo_str(y, p->scene_file);
         yo_key(y, "hash"); yo_str(y, hash);
-        yo_key(y, "scale"); yo_f64(y, p->scene_scale);
+        yo_key(y, "scale");   /* the one applied: fit's factor */
+        yo_f64(y, si->scale);
+        yo_key(y, "fit"); yo_bool(y, p->scene_scale == 0);
+        yo_key(y, "light_bounds"); yo_str(y, p->scene_around ? "around" : "model");
         yo_key(y, "up"); yo_str(y, p->scene_up == SCENE_UP_Z ? "z" : "y");
         yo_key(y, "camera"); yo_str(y, p->scene_camera);
         yo_key(y, "view"); yo_str(y, si->view);

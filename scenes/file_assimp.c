@@ -162,6 +162,29 @@ static void counts_of(const scene_file_options *o, const loaded *l, count_nodes 
     walk(l->ai->mRootNode, root, count_fn, c, 0);
 }
 
+/* The scale a run applies (root_transform's): the manifest's, or with fit the one that
+ * makes the diagonal of the bounds at scale 1 SCENE_FILE_FIT_DIAGONAL; 1 where those
+ * bounds have no extent (one point, or no mesh: the check refuses that) or a factor
+ * that does not fit a float. */
+static float applied_scale(const scene_file_options *o, const loaded *l)
+{
+    if (!o->fit)
+        return o->scale > 0.0f ? o->scale : 1.0f;
+    scene_file_options one = *o;
+    one.fit = false;
+    one.scale = 1.0f;
+    count_nodes c;
+    counts_of(&one, l, &c);
+    double d2 = 0.0;
+    for (int k = 0; k < 3; k++) {
+        double e = (double)c.hi[k] - (double)c.lo[k];
+        d2 += e * e;
+    }
+    double d = sqrt(d2);
+    float s = d > 0.0 && isfinite(d) ? (float)(SCENE_FILE_FIT_DIAGONAL / d) : 1.0f;
+    return isfinite(s) && s > 0.0f ? s : 1.0f;
+}
+
 /* One phrase of info->not_rendered (the list keeps its first SCENE_FILE_MAX_NOT_RENDERED). */
 static void not_rendered(scene_file_info *info, const char *fmt, ...)
     __attribute__((format(printf, 2, 3)));
@@ -335,6 +358,10 @@ bool scene_file_check(const scene_file_options *o, scene_file_info *info, char *
     loaded l;
     if (!file_load(o, &l, err, errlen))
         return false;
+    scene_file_options applied = *o;   /* fit made a number */
+    applied.scale = applied_scale(o, &l);
+    applied.fit = false;
+    o = &applied;
     count_nodes c;
     counts_of(o, &l, &c);
     bool ok = true;
@@ -373,6 +400,7 @@ bool scene_file_check(const scene_file_options *o, scene_file_info *info, char *
         info->hash = h;
         sm_vec3_copy(c.lo, info->bounds_min);
         sm_vec3_copy(c.hi, info->bounds_max);
+        info->scale = o->scale;
         not_rendered_of(&l, o->phong, info);
         const struct aiCamera *cam = chosen_camera(l.ai, o->camera);
         if (cam)
@@ -551,8 +579,11 @@ static void object_fn(const struct aiNode *n, const sm_mat4 world, void *user)
 
 /* The light of a KHR_lights_punctual (or any assimp) light, in world space; range: the
  * file's (KHR_lights_punctual range), or NAN for none. */
+/* scale: root_transform's. It changes the file's units, not its picture: a range is a
+ * length, and an inverse-square light keeps its brightness at the scaled distance with
+ * its intensity times scale^2. */
 static void add_light(scene_builder *b, const struct aiLight *al, const sm_mat4 world,
-                      float file_range)
+                      float file_range, float scale)
 {
     sm_vec3 p = {al->mPosition.x, al->mPosition.y, al->mPosition.z}, wp;
     sm_vec3 d = {al->mDirection.x, al->mDirection.y, al->mDirection.z}, wd;
@@ -563,12 +594,14 @@ static void add_light(scene_builder *b, const struct aiLight *al, const sm_mat4 
     else
         sm_vec3_make(0.0f, 0.0f, -1.0f, wd);
     sm_vec3 color = {al->mColorDiffuse.r, al->mColorDiffuse.g, al->mColorDiffuse.b};
+    if (al->mType != aiLightSource_DIRECTIONAL)
+        sm_vec3_scale(color, scale * scale, color);
     /* glTF lights are inverse-square, cut off at their range; a light without one
      * reaches where 1 / d^2 falls to 1/256 of its brightest channel (a light volume
      * needs a range) */
     float peak = fmaxf(color[0], fmaxf(color[1], color[2]));
     float range = isfinite(file_range) && file_range > 0.0f
-                      ? file_range : sqrtf(fmaxf(peak, 1e-6f) * 256.0f);
+                      ? file_range * scale : sqrtf(fmaxf(peak, 1e-6f) * 256.0f);
     scene_light *l;
     switch (al->mType) {
     case aiLightSource_DIRECTIONAL:
@@ -613,8 +646,10 @@ static void use_file_camera(scene_builder *b, const scene_file_options *o,
     float aspect = cam->mAspect > 0.0f ? cam->mAspect : 1.0f;
     float fovy = gltf ? cam->mHorizontalFOV / aspect
                       : 2.0f * atanf(tanf(cam->mHorizontalFOV) / aspect);
-    float zn = cam->mClipPlaneNear > 0.0f ? cam->mClipPlaneNear : size * 1e-3f;
-    float zf = cam->mClipPlaneFar > zn ? cam->mClipPlaneFar : size * 10.0f;
+    /* the file's planes in its units; size is scaled already */
+    float zn = cam->mClipPlaneNear > 0.0f ? cam->mClipPlaneNear * o->scale : size * 1e-3f;
+    float zf = cam->mClipPlaneFar * o->scale > zn ? cam->mClipPlaneFar * o->scale
+                                                  : size * 10.0f;
     sb_set_projection(b, sm_rad2deg(fovy), zn, zf);
     b->s->fovy = fovy;   /* exactly, not through degrees */
 }
@@ -675,6 +710,10 @@ bool scene_build_file(scene_builder *b, const void *arg)
         b->failed = true;
         return false;
     }
+    scene_file_options applied = *o;   /* fit made a number, as the check makes it */
+    applied.scale = applied_scale(o, &l);
+    applied.fit = false;
+    o = &applied;
     const struct aiScene *ai = l.ai;
     count_nodes c;
     counts_of(o, &l, &c);
@@ -716,7 +755,7 @@ bool scene_build_file(scene_builder *b, const void *arg)
             sm_mat4_copy(root, f.world);
         float range = NAN;
         node_float(f.node, "PBR_LightRange", &range);
-        add_light(b, ai->mLights[i], f.world, range);
+        add_light(b, ai->mLights[i], f.world, range, o->scale);
     }
     if (b->failed)
         goto out;
@@ -730,7 +769,13 @@ bool scene_build_file(scene_builder *b, const void *arg)
         ext[k] = c.hi[k] - c.lo[k];
     }
     float size = fmaxf(sm_vec3_norm(ext), 1e-3f);
-    sb_set_bounds(b, c.lo[0], c.lo[1], c.lo[2], c.hi[0], c.hi[1], c.hi[2]);
+    /* lights around: room on every side of a closed model for lights to stand in, an
+     * eighth of the diagonal (fit: 2.5 units, a quarter of lights.radius 10, where
+     * surface placement puts them) */
+    float grow = o->lights_around ? 0.125f * size : 0.0f;
+    sb_set_bounds(b, c.lo[0] - grow, c.lo[1] - grow, c.lo[2] - grow, c.hi[0] + grow,
+                  c.hi[1] + grow, c.hi[2] + grow);
+    s->lights_outside = o->lights_around;
     sm_vec3_make(0.1f, 0.1f, 0.1f, s->ambient);
     sb_set_projection(b, 60.0f, size * 1e-3f, size * 10.0f);
     const struct aiCamera *cam = chosen_camera(ai, o->camera);

@@ -143,6 +143,8 @@ typedef struct scene {
     sm_vec3 ambient;
     shading_model shading;     /* SHADING_PHONG until scene_set_shading */
     bool from_file;            /* a file's scene (scene_source.file) */
+    bool lights_outside;       /* random placement draws a position inside a closed mesh
+                                * again (a file's lights_around) */
     bool sky;                  /* a sky is drawn where no geometry is */
     sm_vec3 sky_color;
 
@@ -229,18 +231,31 @@ typedef enum scene_up { SCENE_UP_Y = 0, SCENE_UP_Z } scene_up;
 typedef struct scene_file_options {
     const char *path;          /* the file (the caller resolves it against the manifest) */
     float scale;               /* uniform scale of the whole file; 0 counts as 1 */
+    bool fit;                  /* instead of scale, the one that makes the diagonal of
+                                * the file's bounds SCENE_FILE_FIT_DIAGONAL (a manifest's
+                                * default) */
     scene_up up;               /* the file's up axis; z: rotated so that +Z becomes +Y */
     const char *camera;        /* NULL, "" or "auto": the file's first perspective camera,
                                 * else a fixed view of the bounds from above and to the
                                 * side; "orbit": an orbit about the bounds; otherwise the
                                 * name of one of the file's cameras */
     bool allow_outside;        /* files it references may lie outside its folder */
+    bool lights_around;        /* random and grid lights in the bounds grown by an eighth
+                                * of their diagonal on every side, random ones drawn again
+                                * inside a closed mesh (a manifest's default); false: in
+                                * the bounds themselves, wherever they fall */
     bool phong;                /* the run shades it by Phong (shading.model): its
                                 * metallic-roughness materials and maps are listed in
                                 * not_rendered; false: by PBR, the file's default */
 } scene_file_options;
 
 enum { SCENE_FILE_MAX_NOT_RENDERED = 16 };
+
+/* scale: fit makes a file this many world units across its bounds' diagonal: the size at
+ * which the manifest's defaults (lights.radius 10, inverse-square light of colour_max
+ * 0.3, the camera's near plane) show a model whatever units it was authored in, about
+ * the light bounds of the smaller catalog scenes (two-spots-overlap and glass: 29). */
+#define SCENE_FILE_FIT_DIAGONAL 20.0f
 
 /* What scene_file_check found (also what meta.yaml records). */
 typedef struct scene_file_info {
@@ -257,6 +272,7 @@ typedef struct scene_file_info {
     uint32_t files;            /* the file and every buffer and image it pulled in */
     uint64_t hash;             /* FNV-1a 64 over those files' bytes, in the order read */
     sm_vec3 bounds_min, bounds_max;   /* world bounds after scale and up */
+    float scale;               /* the scale applied: the manifest's, or fit's factor */
     /* What the file has that shadesweep reads but does not render (skin influences after
      * a vertex's 4 largest, animations after the first, texture coordinate sets after the
      * second, orthographic cameras, glTF extensions of extensionsUsed it does not

@@ -65,27 +65,6 @@ static float placement_radius(const scene *s, const light_params *lp)
     return lp->radius;
 }
 
-/* Random placement: for each light in order, x, y, z uniform in the scene's light
- * bounds, then r, g, b uniform in [0, color_max]. Lights are generated up to the
- * schedule's maximum once, so growth adds lights without moving earlier ones. */
-static void place_random(scene *s, const light_params *lp)
-{
-    rng g;
-    rng_seed(&g, lp->rng, lp->seed);
-    float radius = placement_radius(s, lp);
-    for (uint32_t i = 0; i < s->nlights_total; i++) {
-        scene_light *l = &s->lights[i];
-        for (int k = 0; k < 3; k++) {
-            float u = rng_unit(&g);
-            l->position[k] = s->light_bounds_min[k] +
-                             u * (s->light_bounds_max[k] - s->light_bounds_min[k]);
-        }
-        for (int k = 0; k < 3; k++)
-            l->color[k] = rng_unit(&g) * lp->color_max;
-        point_light_from_params(l, lp, radius);
-    }
-}
-
 /* Whether the ray from p along d crosses triangle w (Moller-Trumbore), at t > 0. */
 static bool ray_crosses(const sm_vec3 p, const sm_vec3 d, sm_vec3 w[3])
 {
@@ -129,6 +108,69 @@ static bool inside_an_object(const scene *s, const float *lo, const float *hi, c
     return false;
 }
 
+/* Each object's box at time 0 (lo, hi: 3 floats an object, lo then hi in one block the
+ * caller frees), or NULL with a message when memory runs out. */
+static float *object_boxes(const scene *s, char *err, size_t errlen)
+{
+    float *lo = malloc((s->nobjects ? s->nobjects : 1) * 6 * sizeof *lo);
+    if (!lo) {
+        snprintf(err, errlen, "out of memory placing lights about the %u objects of scene "
+                 "'%s'", s->nobjects, s->name);
+        return NULL;
+    }
+    float *hi = lo + 3 * s->nobjects;
+    sm_vec3 w[3], nrm;
+    for (uint32_t o = 0; o < s->nobjects; o++) {
+        for (int k = 0; k < 3; k++) {
+            lo[3 * o + k] = INFINITY;
+            hi[3 * o + k] = -INFINITY;
+        }
+        for (uint32_t t = 0; t < s->meshes[s->objects[o].mesh].nindices / 3; t++) {
+            scene_triangle_at_0(s, &s->objects[o], t, w, nrm);
+            for (int c = 0; c < 3; c++)
+                for (int k = 0; k < 3; k++) {
+                    lo[3 * o + k] = fminf(lo[3 * o + k], w[c][k]);
+                    hi[3 * o + k] = fmaxf(hi[3 * o + k], w[c][k]);
+                }
+        }
+    }
+    return lo;
+}
+
+/* Random placement: for each light in order, x, y, z uniform in the scene's light
+ * bounds, then r, g, b uniform in [0, color_max]. Lights are generated up to the
+ * schedule's maximum once, so growth adds lights without moving earlier ones. A scene
+ * with lights_outside (a file's, lights around) draws x, y, z again while they fall
+ * inside a closed mesh, up to 16 times (then keeps the last): a light in a closed
+ * model lights none of its faces. False with a message when memory runs out. */
+static bool place_random(scene *s, const light_params *lp, char *err, size_t errlen)
+{
+    float *lo = NULL;
+    if (s->lights_outside && s->nlights_total && !(lo = object_boxes(s, err, errlen)))
+        return false;
+    const float *hi = lo ? lo + 3 * s->nobjects : NULL;
+    rng g;
+    rng_seed(&g, lp->rng, lp->seed);
+    float radius = placement_radius(s, lp);
+    for (uint32_t i = 0; i < s->nlights_total; i++) {
+        scene_light *l = &s->lights[i];
+        for (int attempt = 0; attempt < 16; attempt++) {
+            for (int k = 0; k < 3; k++) {
+                float u = rng_unit(&g);
+                l->position[k] = s->light_bounds_min[k] +
+                                 u * (s->light_bounds_max[k] - s->light_bounds_min[k]);
+            }
+            if (!lo || !inside_an_object(s, lo, hi, l->position))
+                break;
+        }
+        for (int k = 0; k < 3; k++)
+            l->color[k] = rng_unit(&g) * lp->color_max;
+        point_light_from_params(l, lp, radius);
+    }
+    free(lo);
+    return true;
+}
+
 /* Surface placement (scenes/lights.h): per light in order, u0 picks a triangle by area
  * (a binary search of the running sum over objects and their triangles, in order), u1
  * and u2 a point on it uniformly (barycentrics 1 - sqrt(u1), sqrt(u1)(1 - u2),
@@ -143,7 +185,7 @@ static bool place_surface(scene *s, const light_params *lp, char *err, size_t er
         ntri += s->meshes[s->objects[o].mesh].nindices / 3;
     double *sum = malloc((ntri ? ntri : 1) * sizeof *sum);
     uint32_t(*which)[2] = malloc((ntri ? ntri : 1) * sizeof *which);   /* object, triangle */
-    float *lo = malloc((s->nobjects ? s->nobjects : 1) * 6 * sizeof *lo);
+    float *lo = object_boxes(s, err, errlen);
     if (!sum || !which || !lo) {
         free(sum);
         free(which);
@@ -156,18 +198,9 @@ static bool place_surface(scene *s, const light_params *lp, char *err, size_t er
     size_t n = 0;
     double area = 0.0;
     sm_vec3 w[3], nrm;
-    for (uint32_t o = 0; o < s->nobjects; o++) {
-        for (int k = 0; k < 3; k++) {
-            lo[3 * o + k] = INFINITY;
-            hi[3 * o + k] = -INFINITY;
-        }
+    for (uint32_t o = 0; o < s->nobjects; o++)
         for (uint32_t t = 0; t < s->meshes[s->objects[o].mesh].nindices / 3; t++) {
             double a = scene_triangle_at_0(s, &s->objects[o], t, w, nrm);
-            for (int c = 0; c < 3; c++)
-                for (int k = 0; k < 3; k++) {
-                    lo[3 * o + k] = fminf(lo[3 * o + k], w[c][k]);
-                    hi[3 * o + k] = fmaxf(hi[3 * o + k], w[c][k]);
-                }
             if (!(a > 0.0))
                 continue;
             area += a;
@@ -175,7 +208,6 @@ static bool place_surface(scene *s, const light_params *lp, char *err, size_t er
             which[n][0] = o;
             which[n++][1] = t;
         }
-    }
     bool ok = n > 0;
     if (!ok)
         snprintf(err, errlen, "scene '%s' has no surface to place lights near (placement "
@@ -395,7 +427,7 @@ bool scene_place_lights(scene *s, const scene_light *authored, uint32_t nauthore
     if (lp->placement == PLACEMENT_SCENE)
         memcpy(s->lights, authored, s->nlights_total * sizeof *s->lights);
     else if (lp->placement == PLACEMENT_RANDOM)
-        place_random(s, lp);
+        return place_random(s, lp, err, errlen);
     else if (lp->placement == PLACEMENT_SURFACE)
         return place_surface(s, lp, err, errlen);
     else if (!place_grid(s, lp, err, errlen))

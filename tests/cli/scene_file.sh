@@ -114,11 +114,17 @@ if any(r["status"] != "ok" for r in summ): sys.exit(f"FAIL: {summ}")
 for r, files in zip(summ[:2], (1, 3)):   # the .glb alone; the .gltf, its .bin and its .png
     m = yaml.safe_load(open(f"{d}/runs/{r['run_id']}/meta.yaml"))
     sf = m["scene_file"]
+    # scale fit (the default): the unit box made 20 across its diagonal
+    half = 10 / 3 ** 0.5
     if (sf["triangles"] != 12 or sf["textures"] != 1 or sf["files"] != files
-            or len(sf["hash"]) != 16 or sf["bounds_max"] != [0.5, 0.5, 0.5]):
+            or len(sf["hash"]) != 16 or not sf["fit"] or sf["light_bounds"] != "around"
+            or abs(sf["scale"] - 2 * half) > 1e-5
+            or any(abs(b - half) > 1e-5 for b in sf["bounds_max"])):
         sys.exit(f"FAIL: meta scene_file {sf}")
-    if not m["parameters"]["scene"].startswith("file:" + sf["hash"]):
-        sys.exit(f"FAIL: the id text names the content: {m['parameters']['scene']}")
+    # the id text names the content, and the defaults that came after scale 1, orbit
+    # and the model's light bounds
+    if m["parameters"]["scene"] != f"file:{sf['hash']},scale:fit,camera:auto,light_bounds:around":
+        sys.exit(f"FAIL: the id text: {m['parameters']['scene']}")
     if sf.get("not_rendered", []) != []:
         sys.exit(f"FAIL: the box leaves nothing out: {sf}")
 skin = yaml.safe_load(open(f"{d}/runs/{summ[2]['run_id']}/meta.yaml"))["scene_file"]

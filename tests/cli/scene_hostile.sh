@@ -172,3 +172,11 @@ manifest "{file: s/up.gltf, allow_outside: yes}"
 rc=0; "$SHADESWEEP" validate m.yaml >out.txt 2>err.txt || rc=$?
 [ $rc -eq 2 ] && grep -qx "m.yaml:3:41: scene.allow_outside: expected one of false, true, found 'yes'" err.txt ||
   fail "allow_outside: yes: exit $rc: $(cat err.txt)"
+# scale: fit or a number > 0; light_bounds: around or model
+for bad in "scale: fat|m.yaml:3:33: scene.scale: expected fit or a number > 0 and <= 1e+09, found 'fat'" \
+           "scale: 0|m.yaml:3:33: scene.scale: expected a number > 0 and <= 1e+09, found '0'" \
+           "light_bounds: inside|m.yaml:3:40: scene.light_bounds: expected one of around, model, found 'inside'"; do
+  manifest "{file: s/ok.gltf, ${bad%%|*}}"
+  rc=0; "$SHADESWEEP" validate m.yaml >out.txt 2>err.txt || rc=$?
+  [ $rc -eq 2 ] && grep -qxF "${bad#*|}" err.txt || fail "${bad%%|*}: exit $rc: $(cat err.txt)"
+done

@@ -39,6 +39,10 @@ and how the image is produced), each read from the code named:
                         `range`; spot: c = outerConeAngle, f = 1 (innerConeAngle is not
                         used). Cameras: at the node, looking down -Z, yfov, the run's
                         aspect. The ambient light of a file scene is 0.1 (grey).
+  scenes/file_assimp.c  scale (fit, the default: the bounds' diagonal made 20 units)
+                        multiplies positions, a light's range and the camera's planes,
+                        and a point or spot light's intensity by its square: the model
+                        here stays in the file's units.
   scenes/scene_place.c  lights.placement grid with one light: at the centre of the light
                         bounds (a file scene's are its mesh bounds); colour r, g, b =
                         rand() / RAND_MAX x color_max in that order, from Visual C++'s
@@ -240,8 +244,12 @@ def plane_gltf(case, shading):
 def manifest(name, case, shading):
     stem = case_file(name, shading)
     gain = 1.0 if shading == "phong" else PBR_GAIN
+    # the grid cases' light is the manifest's, in the file's units: scale 1; the file's
+    # own lights run at the default scale (fit, x0.35 here), which changes the units and
+    # not the picture (their range scales with the file, their intensity with its square)
+    scale = ", scale: 1" if "grid" in case else ""
     lines = ["shadesweep: 1", f"name: shading-{stem}",
-             f"scene: {{file: {stem}.gltf, camera: cam}}",
+             f"scene: {{file: {stem}.gltf, camera: cam{scale}}}",
              f"shading: {{model: {shading}}}",
              "renderers: [" + ", ".join(RENDERERS) + "]",
              f"resolution: {W}x{H}", "duration: {frames: 2}", "clock: fixed",

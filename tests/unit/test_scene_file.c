@@ -645,6 +645,87 @@ static void test_surface_placement(void **state)
                              "surface): its triangles have no area");
 }
 
+/* scale: fit (a manifest's default) makes the unit box 20 units across its diagonal,
+ * and lights around grow the light bounds by an eighth of it (2.5) on every side and
+ * draw a random light inside the closed box again: all 64 lie out of the box and in
+ * the grown bounds. With the light bounds the model's (before issue 25's item 4) all
+ * 64 lie in the box, where they light no face. */
+static void test_fit_and_lights_around(void **state)
+{
+    (void)state;
+    NEED_MODELS();
+    char err[1024] = "";
+    scene_file_options o = {.path = MODELS "/BoxTextured-glTF/BoxTextured.gltf", .fit = true,
+                            .lights_around = true};
+    scene_file_info info;
+    assert_true(scene_file_check(&o, &info, err, sizeof err));
+    const float half = 10.0f / sqrtf(3.0f);   /* of the box's side, at a diagonal of 20 */
+    assert_true(fabsf(info.scale - 20.0f / sqrtf(3.0f)) < 1e-5f);
+    for (int k = 0; k < 3; k++)
+        assert_true(fabsf(info.bounds_max[k] - half) < 1e-5f &&
+                    fabsf(info.bounds_min[k] + half) < 1e-5f);
+    scene_source src = {.file = &o};
+    light_params lp = {.placement = PLACEMENT_RANDOM, .seed = 1337, .rng = RNG_MSVC,
+                       .count = {.start = 64, .max = 64}, .radius = 10.0f, .color_max = 0.3f};
+    scene *s = scene_build_source(&src, &lp, 64, 64, err, sizeof err);
+    if (!s)
+        fail_msg("%s", err);
+    for (int k = 0; k < 3; k++)
+        assert_true(fabsf(s->light_bounds_max[k] - (half + 2.5f)) < 1e-4f &&
+                    fabsf(s->light_bounds_min[k] + (half + 2.5f)) < 1e-4f);
+    for (uint32_t i = 0; i < 64; i++) {
+        const float *p = s->lights[i].position;
+        float out = -INFINITY;   /* the largest distance out of the box along an axis */
+        for (int k = 0; k < 3; k++) {
+            out = fmaxf(out, fabsf(p[k]) - half);
+            assert_true(fabsf(p[k]) <= half + 2.5f + 1e-4f);
+        }
+        if (!(out > 0.0f))
+            fail_msg("light %u at (%g, %g, %g) is inside the box", i, p[0], p[1], p[2]);
+    }
+    scene_destroy(s);
+    o.lights_around = false;
+    s = scene_build_source(&src, &lp, 64, 64, err, sizeof err);
+    assert_non_null(s);
+    for (uint32_t i = 0; i < 64; i++)
+        for (int k = 0; k < 3; k++)
+            assert_true(fabsf(s->lights[i].position[k]) <= half + 1e-5f);
+    scene_destroy(s);
+}
+
+/* A file's own lights and camera under fit: positions, ranges and the camera's planes
+ * scale with the file, and a point or spot light's intensity with the square of the
+ * scale (an inverse-square light keeps its brightness at the scaled distance); a
+ * directional light's does not change. The triangle's bounds: a diagonal of sqrt(2). */
+static void test_fit_scales_lights_and_camera(void **state)
+{
+    (void)state;
+    char dir[128], path[512], err[1024] = "";
+    assert_int_equal(temp_dir_make(dir, sizeof dir, "scene_file"), 0);
+    write_lights_scene(dir, "lights.gltf", "3");
+    snprintf(path, sizeof path, "%s/lights.gltf", dir);
+    scene_file_options o = {.path = path, .fit = true};
+    light_params lp = scene_lights();
+    scene_source src = {.file = &o};
+    scene *s = scene_build_source(&src, &lp, 96, 64, err, sizeof err);
+    if (!s)
+        fail_msg("%s", err);
+    const float k = 20.0f / sqrtf(2.0f), k2 = k * k;
+    const scene_light *p = &s->lights[0], *sp = &s->lights[1], *d = &s->lights[2];
+#define NEAR(a, b) (fabsf((a) - (b)) <= 1e-5f * fmaxf(1.0f, fabsf(b)))
+    assert_true(NEAR(p->position[0], k) && NEAR(p->position[1], 2 * k) &&
+                NEAR(p->position[2], 3 * k));
+    assert_true(NEAR(p->radius, 7.5f * k) && NEAR(sp->radius, 12.0f * k));
+    assert_true(NEAR(p->color[0], 2 * k2) && NEAR(p->color[1], k2) && NEAR(p->color[2], 0.5f * k2));
+    assert_true(NEAR(sp->color[1], 3 * k2) && sp->spot_angle == 0.6f);
+    assert_true(d->color[0] == 0.5f && d->color[1] == 0.5f && d->color[2] == 1.0f);
+    assert_true(NEAR(s->cam.eye[2], 5 * k) && NEAR(s->cam.znear, 0.05f * k) &&
+                NEAR(s->cam.zfar, 50.0f * k) && s->cam.fovy == 0.8f);
+#undef NEAR
+    scene_destroy(s);
+    remove_dir(dir);
+}
+
 static void test_hash_follows_content_not_names(void **state)
 {
     (void)state;
@@ -755,6 +836,8 @@ int main(void)
         cmocka_unit_test(test_broken_samples_refused),
         cmocka_unit_test(test_generated_broken_files_refused),
         cmocka_unit_test(test_hash_follows_content_not_names),
+        cmocka_unit_test(test_fit_and_lights_around),
+        cmocka_unit_test(test_fit_scales_lights_and_camera),
         cmocka_unit_test(test_obj_with_mtl),
     };
     return cmocka_run_group_tests(tests, NULL, NULL);
