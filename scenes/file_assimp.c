@@ -162,19 +162,20 @@ static void counts_of(const scene_file_options *o, const loaded *l, count_nodes 
     walk(l->ai->mRootNode, root, count_fn, c, 0);
 }
 
-/* The scale a run applies (root_transform's): the manifest's, or with fit the one that
- * makes the diagonal of the bounds at scale 1 SCENE_FILE_FIT_DIAGONAL; 1 where those
- * bounds have no extent (one point, or no mesh: the check refuses that) or a factor
- * that does not fit a float. */
-static float applied_scale(const scene_file_options *o, const loaded *l)
+/* o with the scale a run applies (root_transform's) as a number > 0: the manifest's, or
+ * with fit the one that makes the diagonal of the bounds at scale 1
+ * SCENE_FILE_FIT_DIAGONAL; 1 where those bounds have no extent (one point, or no mesh:
+ * the check refuses that) or the factor does not fit a float. The check and the builder
+ * both take it, so they agree. */
+static scene_file_options applied_options(const scene_file_options *o, const loaded *l)
 {
+    scene_file_options a = *o;
+    a.fit = false;
+    a.scale = o->scale > 0.0f && !o->fit ? o->scale : 1.0f;
     if (!o->fit)
-        return o->scale > 0.0f ? o->scale : 1.0f;
-    scene_file_options one = *o;
-    one.fit = false;
-    one.scale = 1.0f;
+        return a;
     count_nodes c;
-    counts_of(&one, l, &c);
+    counts_of(&a, l, &c);
     double d2 = 0.0;
     for (int k = 0; k < 3; k++) {
         double e = (double)c.hi[k] - (double)c.lo[k];
@@ -182,7 +183,8 @@ static float applied_scale(const scene_file_options *o, const loaded *l)
     }
     double d = sqrt(d2);
     float s = d > 0.0 && isfinite(d) ? (float)(SCENE_FILE_FIT_DIAGONAL / d) : 1.0f;
-    return isfinite(s) && s > 0.0f ? s : 1.0f;
+    a.scale = isfinite(s) && s > 0.0f ? s : 1.0f;
+    return a;
 }
 
 /* One phrase of info->not_rendered (the list keeps its first SCENE_FILE_MAX_NOT_RENDERED). */
@@ -358,9 +360,7 @@ bool scene_file_check(const scene_file_options *o, scene_file_info *info, char *
     loaded l;
     if (!file_load(o, &l, err, errlen))
         return false;
-    scene_file_options applied = *o;   /* fit made a number */
-    applied.scale = applied_scale(o, &l);
-    applied.fit = false;
+    scene_file_options applied = applied_options(o, &l);
     o = &applied;
     count_nodes c;
     counts_of(o, &l, &c);
@@ -578,10 +578,10 @@ static void object_fn(const struct aiNode *n, const sm_mat4 world, void *user)
 }
 
 /* The light of a KHR_lights_punctual (or any assimp) light, in world space; range: the
- * file's (KHR_lights_punctual range), or NAN for none. */
-/* scale: root_transform's. It changes the file's units, not its picture: a range is a
- * length, and an inverse-square light keeps its brightness at the scaled distance with
- * its intensity times scale^2. */
+ * file's (KHR_lights_punctual range), or NAN for none; scale: root_transform's, which
+ * changes the file's units and not its picture: the range is a length, and an
+ * inverse-square light keeps its brightness at the scaled distance with its intensity
+ * times scale^2. */
 static void add_light(scene_builder *b, const struct aiLight *al, const sm_mat4 world,
                       float file_range, float scale)
 {
@@ -710,9 +710,7 @@ bool scene_build_file(scene_builder *b, const void *arg)
         b->failed = true;
         return false;
     }
-    scene_file_options applied = *o;   /* fit made a number, as the check makes it */
-    applied.scale = applied_scale(o, &l);
-    applied.fit = false;
+    scene_file_options applied = applied_options(o, &l);
     o = &applied;
     const struct aiScene *ai = l.ai;
     count_nodes c;

@@ -251,10 +251,10 @@ typedef struct scene_file_options {
 
 enum { SCENE_FILE_MAX_NOT_RENDERED = 16 };
 
-/* scale: fit makes a file this many world units across its bounds' diagonal: the size at
- * which the manifest's defaults (lights.radius 10, inverse-square light of colour_max
- * 0.3, the camera's near plane) show a model whatever units it was authored in, about
- * the light bounds of the smaller catalog scenes (two-spots-overlap and glass: 29). */
+/* scale: fit makes a file this many world units across its bounds' diagonal, one size
+ * for every file, so that the manifest's world-unit defaults (lights.radius 10 reaches
+ * half of it) mean the same whatever units the file was authored in; about the light
+ * bounds of the smaller catalog scenes (two-spots-overlap and glass: 29). */
 #define SCENE_FILE_FIT_DIAGONAL 20.0f
 
 /* What scene_file_check found (also what meta.yaml records). */
