@@ -433,12 +433,29 @@ static bool parse_text(vctx *c, const param *pd, const ynode *n, const char *key
 
 static void parse_sweep(vctx *c, const param *pd, const ynode *map);
 
+/* An optional key of a file scene whose value is one of two words: *second says whether
+ * it is b (left as it is when the key is absent); false with the message otherwise. */
+static bool either_word(vctx *c, const ynode *v, const char *key, const char *a,
+                        const char *b, bool *second)
+{
+    if (!v)
+        return true;
+    if (ynode_plain(v) && (strcmp(v->text, a) == 0 || strcmp(v->text, b) == 0)) {
+        *second = strcmp(v->text, b) == 0;
+        return true;
+    }
+    char f[128];
+    mf_err(c, v, key, "expected one of %s, %s, found %s", a, b, mf_found(v, true, f, sizeof f));
+    return false;
+}
+
 /* Validates n as parameter pd; a run parameter's value goes into dst (at pd->off),
  * the experiment's own (name, renderers...) into c->e. The one path for keys in
  * place, sweep values and defaults. */
-/* `scene: {file: PATH, scale, up, camera}`: the file is opened and checked here
- * (scene_file_check: no GL), so that validate and run refuse a bad file before any
- * output exists; its content hash goes into the run id instead of its path. */
+/* `scene: {file: PATH, scale, up, camera, allow_outside, light_bounds}`: the file is
+ * opened and checked here (scene_file_check: no GL), so that validate and run refuse a
+ * bad file before any output exists; its content hash goes into the run id instead of
+ * its path. */
 static bool parse_scene_file(vctx *c, const param *pd, const ynode *n, const char *key,
                              run_params *dst)
 {
@@ -471,18 +488,9 @@ static bool parse_scene_file(vctx *c, const param *pd, const ynode *n, const cha
     } else if (!mf_parse_number_in(c, vals[1], sub[1], 0, 1e9, PF_MIN_OPEN | PF_FLOAT, &scale)) {
         ok = false;
     }
-    int up = SCENE_UP_Y;
-    if (vals[2]) {
-        if (ynode_plain(vals[2]) && strcmp(vals[2]->text, "y") == 0)
-            up = SCENE_UP_Y;
-        else if (ynode_plain(vals[2]) && strcmp(vals[2]->text, "z") == 0)
-            up = SCENE_UP_Z;
-        else {
-            mf_err(c, vals[2], sub[2], "expected one of y, z, found %s",
-                mf_found(vals[2], true, f, sizeof f));
-            ok = false;
-        }
-    }
+    bool up_z = false;
+    ok &= either_word(c, vals[2], sub[2], "y", "z", &up_z);
+    int up = up_z ? SCENE_UP_Z : SCENE_UP_Y;
     const char *camera = "auto";
     if (vals[3]) {
         if (!mf_stringish(vals[3]) || vals[3]->len >= sizeof dst->scene_camera) {
@@ -496,26 +504,10 @@ static bool parse_scene_file(vctx *c, const param *pd, const ynode *n, const cha
     }
     /* files the scene references may lie outside its folder: not part of the id (the
      * content hash is) */
-    bool outside = false;
-    if (vals[4]) {
-        if (ynode_plain(vals[4]) && strcmp(vals[4]->text, "true") == 0)
-            outside = true;
-        else if (!(ynode_plain(vals[4]) && strcmp(vals[4]->text, "false") == 0)) {
-            mf_err(c, vals[4], sub[4], "expected one of false, true, found %s",
-                mf_found(vals[4], true, f, sizeof f));
-            ok = false;
-        }
-    }
-    bool around = true;
-    if (vals[5]) {
-        if (ynode_plain(vals[5]) && strcmp(vals[5]->text, "model") == 0)
-            around = false;
-        else if (!(ynode_plain(vals[5]) && strcmp(vals[5]->text, "around") == 0)) {
-            mf_err(c, vals[5], sub[5], "expected one of around, model, found %s",
-                mf_found(vals[5], true, f, sizeof f));
-            ok = false;
-        }
-    }
+    bool outside = false, model = false;
+    ok &= either_word(c, vals[4], sub[4], "false", "true", &outside);
+    ok &= either_word(c, vals[5], sub[5], "around", "model", &model);
+    bool around = !model;
     if (!ok)
         return false;
     /* relative to the manifest's folder */
