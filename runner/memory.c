@@ -12,7 +12,6 @@
 
 #include "renderers/renderer.h"
 #include "renderers/shading.h"
-#include "runner/plan_check.h"
 #include "renderers/shadow.h"
 #include "runner/params.h"
 #include "runner/plan_check.h"
@@ -310,17 +309,12 @@ static uint64_t meminfo_kb(const char *field)
     return v ? strtoull(v, NULL, 10) : UINT64_MAX;
 }
 
-/* Two runs build the same scene and camera when these agree (plan_check.c's same_scene). */
+/* Two runs have the same scene facts when they build the same scene and camera and shape
+ * it alike (run_params_shape_scene). */
 static bool same_scene(const run_params *a, const run_params *b)
 {
-    return strcmp(a->scene, b->scene) == 0 && strcmp(a->scene_file, b->scene_file) == 0 &&
-           a->scene_scale == b->scene_scale && a->scene_up == b->scene_up &&
-           strcmp(a->scene_camera, b->scene_camera) == 0 && a->scene_around == b->scene_around &&
-           a->width == b->width &&
-           a->height == b->height &&
-           memcmp(&a->lights, &b->lights, sizeof a->lights) == 0 &&
-           memcmp(&a->camera, &b->camera, sizeof a->camera) == 0 &&
-           a->translucency == b->translucency && a->shading_model == b->shading_model;
+    return run_params_same_scene(a, b) && a->translucency == b->translucency &&
+           a->shading_model == b->shading_model;
 }
 
 /* The facts of p's scene, built without GL in this process once per scene and camera

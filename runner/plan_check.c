@@ -87,8 +87,8 @@ static uint64_t hash_str(uint64_t h, const char *s)
 }
 
 /* Two runs build their scenes from one source when these agree (what scene_probe_build
- * takes), and the same scene and camera when same_scene also holds; each key's hash
- * agrees where the comparison does. */
+ * takes), and the same scene and camera when run_params_same_scene also holds; each
+ * key's hash agrees where the comparison does. */
 static bool same_source(const run_params *a, const run_params *b)
 {
     return strcmp(a->scene, b->scene) == 0 && strcmp(a->scene_file, b->scene_file) == 0 &&
@@ -107,7 +107,7 @@ static uint64_t source_hash(const run_params *a)
     return hash_str(h, a->scene_camera);
 }
 
-static bool same_scene(const run_params *a, const run_params *b)
+bool run_params_same_scene(const run_params *a, const run_params *b)
 {
     return same_source(a, b) && a->width == b->width && a->height == b->height &&
            memcmp(&a->lights, &b->lights, sizeof a->lights) == 0 &&
@@ -192,7 +192,7 @@ bool plan_check(const experiment *e, const plan *p, diag_list *d)
     scene_probe **probes = calloc(p->nruns, sizeof *probes);   /* at a source's first run */
     char (*probe_err)[512] = NULL;
     bool ok = scene_first && source_first && probes &&
-              plan_first_of_key(p, scene_hash, same_scene, scene_first) &&
+              plan_first_of_key(p, scene_hash, run_params_same_scene, scene_first) &&
               plan_first_of_key(p, source_hash, same_source, source_first);
     if (!ok) {
         diag_add(d, e->path, 0, 0, "", "expected a plan that fits in memory, found no memory left");

@@ -26,6 +26,9 @@ void plan_warnings(const experiment *e, const plan *p, FILE *out);
 /* Where run p's scene comes from: the catalog, or its file (fo is filled and
  * src->file points at it; both must outlive src). */
 void run_params_scene(const run_params *p, scene_file_options *fo, scene_source *src);
+/* Whether runs a and b build the same scene, lights and camera from the same source
+ * (before run_params_shape_scene: translucency and shading.model are not compared). */
+bool run_params_same_scene(const run_params *a, const run_params *b);
 /* What the run's keys change in its built scene: translucency: opaque (returns how many
  * materials it made opaque) and shading.model (scene_set_shading). */
 uint32_t run_params_shape_scene(const run_params *p, scene *s);
