@@ -23,6 +23,23 @@ clock: fixed
 lights: {placement: random, count: 8, radius: 2}
 YAML
 }
+# timed NAME SCENE RENDERERS SECONDS STEP LIGHTS TIMES: NAME.yaml (64x48, clock fixed,
+# screenshots at TIMES) run into NAMEout, its log in NAMErun.txt
+timed() {
+  cat >"$1.yaml" <<YAML
+shadesweep: 1
+name: $1
+scene: $2
+renderers: [$3]
+resolution: 64x48
+duration: {seconds: $4}
+clock: fixed
+step: $5
+lights: $6
+outputs: {screenshots: [$7]}
+YAML
+  "$SHADESWEEP" run "$1.yaml" -o "$1out" >"$1run.txt" 2>&1 || fail "run $1.yaml: $(tail -5 "$1run.txt")"
+}
 manifest "{file: scenes/box/BoxTextured.gltf}"
 "$SHADESWEEP" validate m.yaml >v.txt || fail "validate: $(cat v.txt)"
 grep -qx "m.yaml: ok, 2 runs" v.txt || fail "validate: $(cat v.txt)"
@@ -327,36 +344,22 @@ g = {"asset": {"version": "2.0"}, "scene": 0, "scenes": [{"nodes": [0, 1]}],
                    {"bufferView": 4, "componentType": 5126, "count": 2, "type": "VEC3"}]}
 open("scenes/moving.gltf", "w").write(json.dumps(g))
 PY
-cat >a.yaml <<'YAML'
-shadesweep: 1
-name: animation
-scene: {file: scenes/moving.gltf}
-renderers: [forward-spml, deferred, visibility]
-resolution: 64x48
-duration: {seconds: 1.6}
-clock: fixed
-step: 0.1
-lights: {placement: none, count: 0}
-outputs: {screenshots: [0, 0.5, 1.5]}
-YAML
-"$SHADESWEEP" run a.yaml -o aout >arun.txt 2>&1 || fail "run a.yaml: $(tail -5 arun.txt)"
+timed a "{file: scenes/moving.gltf}" "forward-spml, deferred, visibility" 1.6 0.1 \
+  "{placement: none, count: 0}" "0, 0.5, 1.5"
 $PYTHON - aout "$SOURCE_ROOT/tests/cli" <<'PY'
-import csv, sys, glob, yaml
+import sys
 import numpy as np
 sys.path.insert(0, sys.argv[2])
-from shading_model import read_png
-d = sys.argv[1]
-summ = list(csv.DictReader(open(f"{d}/summary.csv")))
-if [r["status"] for r in summ] != ["ok"] * 3: sys.exit(f"FAIL: {summ}")
+from shots import runs_with_shots
+times = ("0", "0.5", "1.5")
+runs = runs_with_shots(sys.argv[1], times)
+if len(runs) != 3: sys.exit(f"FAIL: {len(runs)} runs")
 shots = {}
-for r in summ:
-    m = yaml.safe_load(open(f"{d}/runs/{r['run_id']}/meta.yaml"))
+for r, m, images in runs:
     if m["scene_file"]["not_rendered"][:1] != ["animations after the first (1, not played)"]:
         sys.exit(f"FAIL: not_rendered {m['scene_file']['not_rendered']}")
-    for t in ("0", "0.5", "1.5"):
-        f = glob.glob(f"{d}/runs/{r['run_id']}/screenshot-*-t{t}.png")
-        if len(f) != 1: sys.exit(f"FAIL: {r['renderer']}: screenshot at {t}: {f}")
-        img = read_png(f[0])[..., :3].astype(int)
+    for t, img in zip(times, images):
+        img = img[..., :3]
         lit = img.sum(axis=2) > 384
         if lit.sum() < 50: sys.exit(f"FAIL: {r['renderer']} t={t}: {lit.sum()} lit pixels")
         shots[(r["renderer"], t)] = (img, np.nonzero(lit)[1].mean())
@@ -374,31 +377,17 @@ PY
 # Morph targets play: the Khronos AnimatedMorphCube (its weights animated over 4.2 s) at
 # 0 and 1 s in forward-spml, deferred and visibility: the two frames differ on more than
 # a tenth of the view, and the three renderers draw the same frame at 1 s (within 2/255).
-cat >mc.yaml <<YAML
-shadesweep: 1
-name: morph
-scene: {file: "$G/glTF-Sample-Models/AnimatedMorphCube-glTF/AnimatedMorphCube.gltf"}
-renderers: [forward-spml, deferred, visibility]
-resolution: 64x48
-duration: {seconds: 1.1}
-clock: fixed
-step: 0.1
-lights: {placement: surface, count: 4, overlap: 2}
-outputs: {screenshots: [0, 1]}
-YAML
-"$SHADESWEEP" run mc.yaml -o mcout >mcrun.txt 2>&1 || fail "run mc.yaml: $(tail -5 mcrun.txt)"
+surface4="{placement: surface, count: 4, overlap: 2}"
+timed mc "{file: \"$G/glTF-Sample-Models/AnimatedMorphCube-glTF/AnimatedMorphCube.gltf\"}" \
+  "forward-spml, deferred, visibility" 1.1 0.1 "$surface4" "0, 1"
 grep -q "read but not rendered:.*morph" mcrun.txt && fail "morph targets listed as not rendered: $(grep warning mcrun.txt)"
 $PYTHON - mcout "$SOURCE_ROOT/tests/cli" <<'PY'
-import csv, sys, glob
+import sys
 import numpy as np
 sys.path.insert(0, sys.argv[2])
-from shading_model import read_png
-d = sys.argv[1]
+from shots import runs_with_shots
 at1 = {}
-for r in csv.DictReader(open(f"{d}/summary.csv")):
-    if r["status"] != "ok": sys.exit(f"FAIL: {r['renderer']}: {r['status']}")
-    a, b = (read_png(glob.glob(f"{d}/runs/{r['run_id']}/screenshot-*-t{t}.png")[0]).astype(int)
-            for t in ("0", "1"))
+for r, _, (a, b) in runs_with_shots(sys.argv[1], ("0", "1")):
     moved = (np.abs(a - b).max(axis=2) > 2).mean()
     if moved < 0.1: sys.exit(f"FAIL: {r['renderer']}: {moved:.3f} of the view changes from 0 to 1 s")
     at1[r["renderer"]] = b
@@ -413,36 +402,20 @@ PY
 # 0.5 % of the pixels beyond 2/255: visibility skins its refetched triangles as mesh.vert
 # does), the pass plan names the
 # define, and meta.yaml lists no skin as not rendered.
-cat >sk.yaml <<YAML
-shadesweep: 1
-name: skin
-scene: {file: scenes/skin/simple_skin.gltf}
-renderers: [forward-spml, forward-mpml, forward-plus, clustered, deferred, tiled-deferred, deferred-lighting, visibility]
-resolution: 64x48
-duration: {seconds: 2.5}
-clock: fixed
-step: 1
-lights: {placement: surface, count: 4, overlap: 2}
-outputs: {screenshots: [0, 2]}
-YAML
-"$SHADESWEEP" run sk.yaml -o skout >skrun.txt 2>&1 || fail "run sk.yaml: $(tail -5 skrun.txt)"
+timed sk "{file: scenes/skin/simple_skin.gltf}" "forward-spml, forward-mpml, forward-plus, \
+clustered, deferred, tiled-deferred, deferred-lighting, visibility" 2.5 1 "$surface4" "0, 2"
 grep -q "read but not rendered:.*skin" skrun.txt && fail "skins listed as not rendered: $(grep warning skrun.txt)"
 $PYTHON - skout "$SOURCE_ROOT/tests/cli" <<'PY'
-import csv, sys, glob, yaml
+import sys
 import numpy as np
 sys.path.insert(0, sys.argv[2])
-from shading_model import read_png
-d = sys.argv[1]
+from shots import runs_with_shots
 shots = {}
-for r in csv.DictReader(open(f"{d}/summary.csv")):
-    if r["status"] != "ok": sys.exit(f"FAIL: {r['renderer']}: {r['status']}")
-    m = yaml.safe_load(open(f"{d}/runs/{r['run_id']}/meta.yaml"))
+for r, m, (a, b) in runs_with_shots(sys.argv[1], ("0", "2")):
     if any("skin" in x for x in m["scene_file"]["not_rendered"]):
         sys.exit(f"FAIL: not_rendered {m['scene_file']['not_rendered']}")
     if "skins" not in m["pass_plan"]["lighting"]:
         sys.exit(f"FAIL: {r['renderer']}: the plan's lighting: {m['pass_plan']['lighting']}")
-    a, b = (read_png(glob.glob(f"{d}/runs/{r['run_id']}/screenshot-*-t{t}.png")[0]).astype(int)
-            for t in ("0", "2"))
     covered = (a[..., :3].max(axis=2) > 0).mean()
     moved = (np.abs(a - b).max(axis=2) > 8).mean()
     # the strip covers about a tenth of the view; its bent half moves: 4 % of it changes
