@@ -84,9 +84,11 @@ static bool load_skin(scene_builder *b, const char *path, const struct aiMesh *a
     k->node = malloc(k->njoints * sizeof *k->node);
     k->offset = malloc(k->njoints * sizeof *k->offset);
     k->bind_sphere = malloc(k->njoints * sizeof *k->bind_sphere);
+    k->posed_sphere = malloc(k->njoints * sizeof *k->posed_sphere);
     m->joints = calloc(m->nvertices ? m->nvertices : 1, sizeof *m->joints);
     m->weights = calloc(m->nvertices ? m->nvertices : 1, sizeof *m->weights);
-    if (!k->node || !k->offset || !k->bind_sphere || !m->joints || !m->weights)
+    if (!k->node || !k->offset || !k->bind_sphere || !k->posed_sphere || !m->joints ||
+        !m->weights)
         return sb_fail(b, "%s: out of memory for a skin of %u joints", path, k->njoints);
     for (uint32_t j = 0; j < k->njoints; j++) {
         const struct aiBone *bone = am->mBones[j];

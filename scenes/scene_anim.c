@@ -160,8 +160,9 @@ bool scene_anim_skin_spheres(const mesh *m, anim_skin *k)
 }
 
 /* Skin k's joint matrices into the palette, and its mesh's bounds: the joints' bind
- * spheres carried by their matrices (centre by the matrix, radius by its stretch), the
- * aabb about them all and the sphere about the aabb's centre holding them all. */
+ * spheres carried by their matrices (centre by the matrix, radius by its stretch) into
+ * k->posed_sphere, the aabb about them all and the sphere about the aabb's centre
+ * holding them all. */
 static void pose_skin(scene_anim *a, anim_skin *k, mesh *m)
 {
     if (m && m->deforms)   /* morphed this frame: its spheres from the frame's shape (out
@@ -175,14 +176,15 @@ static void pose_skin(scene_anim *a, anim_skin *k, mesh *m)
         else   /* no node: the vertex where it is bound, under the file's placement */
             sm_mat4_copy(a->root, *out);
         const float *bs = k->bind_sphere[j];
+        float *ps = k->posed_sphere[j];
         if (!m || bs[3] < 0.0f)
             continue;
-        sm_vec3 c = {bs[0], bs[1], bs[2]}, wc;
-        sm_mat4_mulv3(*out, c, 1.0f, wc);
-        float r = bs[3] * sm_mat4_stretch(*out);
+        sm_vec3 c = {bs[0], bs[1], bs[2]};
+        sm_mat4_mulv3(*out, c, 1.0f, ps);
+        ps[3] = bs[3] * sm_mat4_stretch(*out);
         for (int i = 0; i < 3; i++) {
-            lo[i] = fminf(lo[i], wc[i] - r);
-            hi[i] = fmaxf(hi[i], wc[i] + r);
+            lo[i] = fminf(lo[i], ps[i] - ps[3]);
+            hi[i] = fmaxf(hi[i], ps[i] + ps[3]);
         }
     }
     if (!m || !(lo[0] <= hi[0]))
@@ -192,14 +194,12 @@ static void pose_skin(scene_anim *a, anim_skin *k, mesh *m)
         centre[i] = 0.5f * (lo[i] + hi[i]);
     float radius = 0.0f;
     for (uint32_t j = 0; j < k->njoints; j++) {
-        const float *bs = k->bind_sphere[j];
-        if (bs[3] < 0.0f)
+        const float *ps = k->posed_sphere[j];
+        if (k->bind_sphere[j][3] < 0.0f)
             continue;
-        sm_vec3 c = {bs[0], bs[1], bs[2]}, wc, d;
-        const sm_vec4 *jm = a->joints[k->first + j];
-        sm_mat4_mulv3(jm, c, 1.0f, wc);
-        sm_vec3_sub(wc, centre, d);
-        radius = fmaxf(radius, sm_vec3_norm(d) + bs[3] * sm_mat4_stretch(jm));
+        sm_vec3 d;
+        sm_vec3_sub(ps, centre, d);
+        radius = fmaxf(radius, sm_vec3_norm(d) + ps[3]);
     }
     sm_vec3_copy(lo, m->aabb[0]);
     sm_vec3_copy(hi, m->aabb[1]);
@@ -274,6 +274,7 @@ void scene_anim_free(scene_anim *a)
         free(a->skins[i].node);
         free(a->skins[i].offset);
         free(a->skins[i].bind_sphere);
+        free(a->skins[i].posed_sphere);
     }
     free(a->skins);
     free(a->joints);

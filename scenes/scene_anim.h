@@ -76,6 +76,8 @@ typedef struct anim_skin {
     sm_mat4 *offset;           /* njoints: inverse bind matrices (finite) */
     sm_vec4 *bind_sphere;      /* njoints: the vertices it moves, in bind space (w < 0:
                                 * none) */
+    sm_vec4 *posed_sphere;     /* njoints: scratch, bind_sphere under this frame's joint
+                                * matrix (pose_skin) */
 } anim_skin;
 
 typedef struct scene_anim {

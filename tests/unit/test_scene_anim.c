@@ -214,9 +214,11 @@ static void test_skin(void **state)
     k->node = calloc(3, sizeof *k->node);
     k->offset = calloc(3, sizeof *k->offset);
     k->bind_sphere = calloc(3, sizeof *k->bind_sphere);
+    k->posed_sphere = calloc(3, sizeof *k->posed_sphere);
     assert_non_null(k->node);
     assert_non_null(k->offset);
     assert_non_null(k->bind_sphere);
+    assert_non_null(k->posed_sphere);
     k->node[0] = -1;
     k->node[1] = 0;
     k->node[2] = 1;
