@@ -1,5 +1,5 @@
-/* File scenes through assimp's C API: glTF 2.0 (.gltf + .bin + images, .glb, embedded
- * data URIs), OBJ + MTL, and whatever else assimp reads. No GL in here; textures decode
+/* File scenes through assimp: glTF 2.0 (.gltf + .bin + images, .glb, embedded data URIs)
+ * and OBJ + MTL, and no other format (file_import.cpp). No GL in here; textures decode
  * through OpenImageIO (results/image_io.h).
  *
  * Every byte assimp reads goes through our own file callbacks (>>io), which read each

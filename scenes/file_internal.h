@@ -2,7 +2,9 @@
 /* What the pieces of the file-scene loader share (scenes/file_*.c); not part of the
  * scenes interface (nothing outside scenes/ includes it).
  *   file_io.c        every byte assimp reads: each file read whole, once (file_set)
- *   file_prescan.c   glTF JSON and GLB lengths checked before assimp sees them
+ *   file_prescan.c   glTF JSON, GLB lengths and OBJ mtllib paths checked before assimp
+ *                    sees them
+ *   file_import.cpp  the import with only the extension's importers (file_import.h)
  *   file_load.c      the import, its checks and the decoded images (loaded)
  *   file_materials.c assimp's materials onto the Phong model
  *   file_assimp.c    the node walk, scene_file_check and scene_build_file */
@@ -61,6 +63,9 @@ void file_io_close(struct aiFileIO *io, struct aiFile *af);
 /* >>prescan (file_prescan.c): false with a message naming the file when its glTF JSON
  * (or a GLB's lengths) asks for what would hurt inside assimp. */
 bool file_prescan_gltf(const char *path, const read_file *f, char *err, size_t errlen);
+/* The same for an .obj (by path's extension; true for any other): a material library
+ * path with a ':' in it. */
+bool file_prescan_obj(const char *path, const read_file *f, char *err, size_t errlen);
 /* KHR_materials_emissive_strength of a glTF's materials (after file_prescan_gltf): *out
  * (malloc'd, NULL for none) holds each material's emissiveStrength, 1 where it has none,
  * *n of them, in the file's order, which assimp's glTF importer keeps. Not a glTF, or

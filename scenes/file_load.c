@@ -13,6 +13,7 @@
 #include <string.h>
 
 #include "results/grow.h"
+#include "scenes/file_import.h"
 #include "scenes/scene_fail.h"
 
 void file_loaded_free(loaded *l)
@@ -320,7 +321,8 @@ static bool why_no_triangles(loaded *l, const char *path, struct aiFileIO *io,
      * no faces", "mNumMeshes is 0" (NULL: the import gave a scene without meshes) */
     if (error && !strstr(error, "esh"))
         return false;
-    const struct aiScene *raw = aiImportFileEx(path, 0, io);
+    char ignored[256];
+    const struct aiScene *raw = file_import(path, 0, io, 0, ignored, sizeof ignored);
     if (!raw)
         return false;
     unsigned points = 0, lines = 0, triangles = 0;
@@ -379,25 +381,24 @@ bool file_load(const scene_file_options *o, loaded *l, char *err, size_t errlen)
     }
     l->files.allow_outside = o->allow_outside;
     if (!file_prescan_gltf(o->path, &l->files.files[0], err, errlen) ||
+        !file_prescan_obj(o->path, &l->files.files[0], err, errlen) ||
         !file_gltf_emissive_strengths(o->path, &l->files.files[0], &l->emissive_strength,
                                       &l->nemissive_strength, err, errlen)) {
         file_loaded_free(l);
         return false;
     }
     struct aiFileIO io = {file_io_open, file_io_close, (char *)&l->files};
-    struct aiPropertyStore *props = aiCreatePropertyStore();
-    /* drop points and lines after triangulation: shadesweep draws triangles */
-    aiSetImportPropertyInteger(props, AI_CONFIG_PP_SBP_REMOVE,
-                               aiPrimitiveType_POINT | aiPrimitiveType_LINE);
     unsigned flags = aiProcess_Triangulate | aiProcess_JoinIdenticalVertices |
                      aiProcess_GenSmoothNormals | aiProcess_SortByPType |
                      aiProcess_ValidateDataStructure | aiProcess_FindDegenerates;
     import_warning[0] = '\0';
     struct aiLogStream stream = {log_fn, NULL};
     aiAttachLogStream(&stream);
-    l->ai = aiImportFileExWithProperties(o->path, flags, &io, props);
+    /* drop points and lines after triangulation: shadesweep draws triangles */
+    char why[512];
+    l->ai = file_import(o->path, flags, &io, aiPrimitiveType_POINT | aiPrimitiveType_LINE, why,
+                        sizeof why);
     aiDetachLogStream(&stream);
-    aiReleasePropertyStore(props);
     bool ok = false;
     const struct aiScene *ai = l->ai;
     if (l->files.err[0]) {   /* a refused file, even where the importer went on */
@@ -415,14 +416,10 @@ bool file_load(const scene_file_options *o, loaded *l, char *err, size_t errlen)
     }
     char cause[256];
     if (!ai) {
-        const char *why = aiGetErrorString();
-        if (l->files.err[0])
-            scene_fail(err, errlen, "%s", l->files.err);
-        else if (why_no_triangles(l, o->path, &io, why ? why : "", cause, sizeof cause))
+        if (why_no_triangles(l, o->path, &io, why, cause, sizeof cause))
             scene_fail(err, errlen, "%s: cannot load: %s", o->path, cause);
         else
-            scene_fail(err, errlen, "%s: cannot load: %s", o->path,
-                       why && why[0] ? why : "unknown error");
+            scene_fail(err, errlen, "%s: cannot load: %s", o->path, why);
         goto out;
     }
     if (ai->mFlags & AI_SCENE_FLAGS_INCOMPLETE) {

@@ -6,6 +6,7 @@
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
+#include <strings.h>
 
 #include "results/grow.h"
 #include "scenes/scene_fail.h"
@@ -514,4 +515,49 @@ bool file_prescan_gltf(const char *path, const read_file *f, char *err, size_t e
     free(g.edge_from);
     free(g.edge_to);
     return ok;
+}
+
+/* An OBJ's material libraries, read before assimp sees them. assimp 5.2's OBJ importer
+ * rewrites an mtllib path that holds ":/" (a URL or a drive letter) before it opens it,
+ * and one ending in "://" made it erase a negative length (scripts/fuzz.sh found it).
+ * Such a path never names a file relative to the .obj's folder, which is all a scene
+ * may reference, so any ':' in one is refused here, by name. A line is what assimp's
+ * reader makes of it: it ends at CR, LF, NUL or FF, and a backslash before the line
+ * break joins the next line to it. */
+bool file_prescan_obj(const char *path, const read_file *f, char *err, size_t errlen)
+{
+    const char *dot = strrchr(path, '.');
+    if (!dot || strcasecmp(dot, ".obj") != 0)
+        return true;
+    const char *d = (const char *)f->data, *end = d + f->size;
+    for (const char *p = d; p < end;) {
+        while (p < end && (*p == ' ' || *p == '\t'))
+            p++;
+        bool mtllib = end - p > 6 && memcmp(p, "mtllib", 6) == 0 && (p[6] == ' ' || p[6] == '\t');
+        const char *name = mtllib ? p + 7 : NULL, *colon = NULL;
+        for (; p < end; p++) {
+            if (*p == '\\' && p + 1 < end && (p[1] == '\n' || p[1] == '\r')) {
+                p += p + 2 < end && p[1] == '\r' && p[2] == '\n' ? 2 : 1;
+                continue;   /* a continued line */
+            }
+            if (*p == '\r' || *p == '\n' || *p == '\0' || *p == '\f')
+                break;
+            if (name && *p == ':' && !colon)
+                colon = p;
+        }
+        if (colon) {
+            while (*name == ' ' || *name == '\t')
+                name++;
+            char shown[128];   /* one line, printable: a continued line shows as "?" */
+            size_t n = 0;
+            for (; name < p && n + 1 < sizeof shown; name++)
+                shown[n++] = (unsigned char)*name < 0x20 || *name == 0x7f ? '?' : *name;
+            shown[n] = '\0';
+            return scene_fail(err, errlen, "%s: mtllib '%s' has a ':' (a URL or a drive letter): "
+                              "a material library is named relative to the .obj's folder", path,
+                              shown);
+        }
+        p++;
+    }
+    return true;
 }

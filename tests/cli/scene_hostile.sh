@@ -118,6 +118,26 @@ printf 'v 0 0 0\nv 1 0 0\nv 0 1 0\n' >s/cloud.obj
 refuse s/cloud.obj "s/cloud.obj: cannot load: it has only points and lines (1 mesh of points, 0 of lines), and shadesweep draws triangles"
 $PYTHON -c "open('s/utf16.obj', 'wb').write(b'\xff\xfe' + 'v 0 0 0\nv 1 0 0\nv 0 1 0\nf 1 2 3\n'.encode('utf-16-le'))"
 refuse s/utf16.obj "s/utf16.obj: cannot load: the file is UTF-16 (little-endian) text (its byte-order mark says so), which assimp does not read: save it as UTF-8 (iconv -f UTF-16 -t UTF-8)"
+# only the importers of the file's own format: a .gltf that the glTF importers decline
+# is not offered to the other 50 (assimp's OpenGEX importer, whose signature test finds
+# "GeometryNode" here, read past its buffer); an extension shadesweep does not read is
+# refused before assimp sees the bytes, and the case of one does not matter
+printf 'Metric {} GeometryNode { Mesh { VertexArray {} IndexArray {} } }\n' >s/ogex.gltf
+refuse s/ogex.gltf "s/ogex.gltf: cannot load: not a glTF file that assimp reads (no other format is tried for a .gltf file)"
+printf 'v 0 0 0\nv 1 0 0\nv 0 1 0\nf 1 2 3\n' >s/tri.fbx
+refuse s/tri.fbx "s/tri.fbx: cannot load: the extension '.fbx' is not one shadesweep reads: .gltf, .glb (glTF 2.0) or .obj (Wavefront OBJ)"
+cp s/tri.fbx s/tri
+refuse s/tri "s/tri: cannot load: the file has no extension, not one shadesweep reads: .gltf, .glb (glTF 2.0) or .obj (Wavefront OBJ)"
+cp s/tri.fbx s/TRI.OBJ
+manifest "{file: s/TRI.OBJ}"
+"$SHADESWEEP" validate m.yaml >v.txt 2>&1 || fail "an .OBJ in capitals: $(cat v.txt)"
+# an mtllib path with a ':' (a URL or a drive letter; one ending in "://" made assimp's
+# OBJ importer erase a negative length) is refused before assimp reads the file, also
+# where a backslash continues its line
+printf 'mtllib m.mtl://\nv 0 0 0\nv 1 0 0\nv 0 1 0\nf 1 2 3\n' >s/url.obj
+refuse s/url.obj "s/url.obj: mtllib 'm.mtl://' has a ':' (a URL or a drive letter): a material library is named relative to the .obj's folder"
+printf 'mtllib c\\\n:/m.mtl\nv 0 0 0\nv 1 0 0\nv 0 1 0\nf 1 2 3\n' >s/drive.obj
+refuse s/drive.obj "s/drive.obj: mtllib 'c\\?:/m.mtl' has a ':' (a URL or a drive letter): a material library is named relative to the .obj's folder"
 mkdir -p s/win
 gen png s/win/wall.png 4
 printf 'mtllib win.mtl\nv 0 0 0\nv 1 0 0\nv 0 1 0\nvt 0 0\nvt 1 0\nvt 0 1\nusemtl a\nf 1/1 2/2 3/3\n' >s/win/win.obj
