@@ -449,9 +449,6 @@ static bool either_word(vctx *c, const ynode *v, const char *key, const char *a,
     return false;
 }
 
-/* Validates n as parameter pd; a run parameter's value goes into dst (at pd->off),
- * the experiment's own (name, renderers...) into c->e. The one path for keys in
- * place, sweep values and defaults. */
 /* `scene: {file: PATH, scale, up, camera, allow_outside, light_bounds}`: the file is
  * opened and checked here (scene_file_check: no GL), so that validate and run refuse a
  * bad file before any output exists; its content hash goes into the run id instead of
@@ -557,8 +554,11 @@ static bool store(char *at, const void *v, size_t size)
     return true;
 }
 
+/* Validates n as parameter pd; a run parameter's value goes into dst (at pd->off),
+ * the experiment's own (name, renderers...) into c->e. The one path for keys in
+ * place, sweep values and defaults. */
 bool mf_parse_value(vctx *c, const param *pd, const ynode *n, const char *key,
-                        run_params *dst)
+                    run_params *dst)
 {
     char *at = (char *)dst + pd->off;
     if (n->kind == YNODE_SCALAR && !mf_tag_ok(n))

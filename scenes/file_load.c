@@ -269,7 +269,6 @@ static void log_fn(const char *msg, char *user)
     }
 }
 
-/* Imports and checks everything; on success l holds the scene and every texture. */
 /* Why an import gave no triangle mesh, where the cause can be named (issue 25): a text
  * encoding assimp does not read (it reads text formats as ASCII or UTF-8), or a file whose
  * primitives are only points and lines (shadesweep draws triangles). The main file is
@@ -346,6 +345,7 @@ static bool why_no_triangles(loaded *l, const char *path, struct aiFileIO *io,
     return true;
 }
 
+/* Imports and checks everything; on success l holds the scene and every texture. */
 bool file_load(const scene_file_options *o, loaded *l, char *err, size_t errlen)
 {
     memset(l, 0, sizeof *l);
