@@ -39,10 +39,9 @@ logs+=("build/meson-logs/testlog.json")
 logs+=("build-asan/meson-logs/testlog.json")
 
 # The manifest parser, then the scene loader, under libFuzzer (scripts/fuzz.sh; the
-# README's reliability section has the long run). Repeatable: seed 1337, from the seeds
-# alone, a fixed number of inputs, so a commit's verdict here is its verdict in CI and
-# the same command finds a CI finding again (SHADESWEEP_FUZZ_SEED= empty: a random,
-# time-bound run instead). Counted as one test.
+# README's reliability section has the long run). Seed 1337, from the seeds alone, a
+# fixed number of inputs: every run of a commit starts with the same inputs, which a
+# random time-bound run (SHADESWEEP_FUZZ_SEED= empty) does not. Counted as one test.
 mkdir -p build-fuzz
 fuzz_log=build-fuzz/ci-result.json
 if FUZZ_SEED=${SHADESWEEP_FUZZ_SEED-1337} scripts/fuzz.sh "${SHADESWEEP_FUZZ_SECONDS:-120}" >&2; then

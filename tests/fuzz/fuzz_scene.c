@@ -64,8 +64,8 @@ int LLVMFuzzerTestOneInput(const uint8_t *data, size_t size)
 {
     if (!dir[0]) {
         /* the first free of fuzz_scene.000001, ...: not mkdtemp's random letters, which
-         * the loader's path code branches on, so that a seeded run (FUZZ_SEED) sees the
-         * same coverage, keeps the same inputs and is repeatable */
+         * the loader's path code may branch on, so that the path is no reason for a
+         * seeded run (FUZZ_SEED) to see other coverage than the last one */
         const char *tmp = getenv("TMPDIR");
         bool made = false;
         for (unsigned k = 1; k < 1000000 && !made; k++) {
