@@ -139,7 +139,7 @@ fuzz() {
   local ran
   ran=$(sed -n 's/^stat::number_of_executed_units: *//p' "$log")
   if [ -n "$want" ] && [ "${ran:-0}" -lt "$want" ]; then
-    echo "fuzz: $target: the ${t}s limit stopped it after ${ran:-0} of $want runs: not the repeatable run" >&2
+    echo "fuzz: $target: the ${t}s limit stopped it after ${ran:-0} of $want runs: not the full seeded run" >&2
   fi
 }
 
