@@ -104,13 +104,14 @@ bool renderer_base_size(renderer_base *b, const struct scene *s, char *err, size
 static bool set_lighting(renderer_base *b, const struct scene *s)
 {
     static const char *const type_name[3] = {"point", "spot", "directional"};
-    static const char *const att_name[3] = {"inverse-square", "linear-range", "quadratic"};
+    static const char *const att_name[4] = {"inverse-square", "linear-range", "quadratic",
+                                            "windowed"};
     unsigned types = 0, atts = 0;
     for (uint32_t i = 0; s && i < s->nlights_total; i++) {
         const scene_light *l = &s->lights[i];
         if ((unsigned)l->type < 3)
             types |= 1u << l->type;
-        if (l->type != LIGHT_DIRECTIONAL && (unsigned)l->attenuation < 3)
+        if (l->type != LIGHT_DIRECTIONAL && (unsigned)l->attenuation < 4)
             atts |= 1u << l->attenuation;
     }
     snprintf(b->light_types_define, sizeof b->light_types_define, "LIGHT_TYPES %u", types);
@@ -119,7 +120,7 @@ static bool set_lighting(renderer_base *b, const struct scene *s)
     const char *defs[2] = {b->light_types_define, b->attenuations_define};
     char in[96] = "", out[96] = "";
     size_t nin = 0, nout = 0;
-    for (int k = 0; k < 6; k++) {
+    for (int k = 0; k < 7; k++) {
         bool has = k < 3 ? (types >> k) & 1u : (atts >> (k - 3)) & 1u;
         const char *what = k < 3 ? type_name[k] : att_name[k - 3];
         char *to = has ? in : out;

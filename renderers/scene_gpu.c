@@ -36,6 +36,7 @@ struct scene_gpu {
     bool unclipped;            /* the programs are FULLSCREEN_UNCLIPPED variants */
     bool uv2;                  /* the scene uses a second uv set: LOC_UV1_MAPS is set */
     int width, height;         /* the scene's size (the sky's target) */
+    scene_display display;     /* the resolve's variant (at create) and exposure (per frame) */
     uint64_t bytes;
 };
 
@@ -231,6 +232,12 @@ static bool build_program(scene_gpu *g, const char *fragment, GLuint *out, char 
         d.defines[n++] = "FULLSCREEN_UNCLIPPED";
     if (strcmp(fragment, "sky.frag") == 0)
         d.defines[n++] = "FULLSCREEN_FAR";   /* z = w: the sky lies on the far plane */
+    if (strcmp(fragment, "resolve.frag") == 0) {
+        if (g->display.exposed)
+            d.defines[n++] = "EXPOSURE";
+        if (g->display.tonemap == TONEMAP_PBR_NEUTRAL)
+            d.defines[n++] = "TONEMAP_PBR_NEUTRAL";
+    }
     char why[2048];
     if (gl_program_get(g->programs, &d, out, why, sizeof why) != GLP_OK) {
         snprintf(err, errlen, "scene_gpu: %s", why);
@@ -246,6 +253,7 @@ scene_gpu *scene_gpu_create(const scene *s, char *err, size_t errlen)
         goto oom;
     g->width = s->width;
     g->height = s->height;
+    g->display = s->display;
     g->meshes = calloc(s->nmeshes ? s->nmeshes : 1, sizeof *g->meshes);
     g->textures = calloc(s->ntextures ? s->ntextures : 1, sizeof *g->textures);
     g->programs = gl_program_cache_create();
@@ -338,6 +346,7 @@ void scene_gpu_destroy(scene_gpu *g)
 void scene_gpu_frame(scene_gpu *g, const scene *s)
 {
     gpu_frame f;
+    g->display.exposure = s->display.exposure;
     shading_pack_frame(s, &f);
     gl.NamedBufferSubData(g->frame_ubo, 0, (GLsizeiptr)sizeof f, &f);
     gl.BindBufferBase(GL_UNIFORM_BUFFER, 0, g->frame_ubo);
@@ -509,6 +518,8 @@ void scene_gpu_resolve(scene_gpu *g, gl_state *st, unsigned hdr_texture, unsigne
 {
     gl_state_framebuffer(st, output_fbo);
     gl_state_program(st, g->resolve_program);
+    if (g->display.exposed)   /* DSA: whatever program the state cache has bound */
+        gl.ProgramUniform1f(g->resolve_program, 0, g->display.exposure);
     gl_state_texture(st, 0, hdr_texture);
     fullscreen_state(st, NULL);
     gl_state_draw_fullscreen(st, width, height, g->unclipped);

@@ -25,15 +25,49 @@ bool image_box_filter(const float *src, int width, int height, int k, float *dst
     return true;
 }
 
-void image_display_rgba8(const float *src, int width, int height, bool flip, uint8_t *dst)
+void image_pbr_neutral(float rgb[3])
+{
+    const float f90 = 0.04f, ks = 0.8f - f90, kd = 0.15f;
+    for (int c = 0; c < 3; c++)
+        rgb[c] = rgb[c] > 0.0f ? rgb[c] : 0.0f;
+    float x = fminf(rgb[0], fminf(rgb[1], rgb[2]));
+    float f = x <= 2.0f * f90 ? x - x * x / (4.0f * f90) : f90;
+    for (int c = 0; c < 3; c++)
+        rgb[c] -= f;
+    float p = fmaxf(rgb[0], fmaxf(rgb[1], rgb[2]));
+    if (!(p > ks))
+        return;
+    float pn = 1.0f - (1.0f - ks) * (1.0f - ks) / (p + 1.0f - 2.0f * ks);
+    float g = 1.0f / (kd * (p - pn) + 1.0f);
+    for (int c = 0; c < 3; c++)
+        rgb[c] = rgb[c] * (pn / p) * g + pn * (1.0f - g);
+}
+
+float image_srgb_encode(float v)
+{
+    return v <= 0.0031308f ? v * 12.92f : 1.055f * powf(v, 1.0f / 2.4f) - 0.055f;
+}
+
+void image_display_rgba8(const float *src, int width, int height, bool flip, float exposure,
+                         bool pbr_neutral, uint8_t *dst)
 {
     const size_t w = (size_t)width, h = (size_t)height;
     for (size_t y = 0; y < h; y++) {
         const float *in = src + (flip ? h - 1 - y : y) * w * 4;
         uint8_t *out = dst + y * w * 4;
         for (size_t x = 0; x < w; x++) {
+            float rgb[3];
+            for (size_t c = 0; c < 3; c++)
+                rgb[c] = in[x * 4 + c] * exposure;
+            if (pbr_neutral) {
+                image_pbr_neutral(rgb);
+                for (size_t c = 0; c < 3; c++) {
+                    float v = rgb[c] > 0.0f ? (rgb[c] < 1.0f ? rgb[c] : 1.0f) : 0.0f;
+                    rgb[c] = image_srgb_encode(v);
+                }
+            }
             for (size_t c = 0; c < 3; c++) {
-                float v = in[x * 4 + c];
+                float v = rgb[c];
                 v = v > 0.0f ? (v < 1.0f ? v : 1.0f) : 0.0f;   /* NaN fails v > 0: 0 */
                 out[x * 4 + c] = (uint8_t)lrintf(v * 255.0f);
             }

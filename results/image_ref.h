@@ -20,10 +20,18 @@
 bool image_box_filter(const float *src, int width, int height, int k, float *dst);
 
 /* What the resolve pass (renderers/shaders/resolve.frag.glsl) and the RGBA8 output make
- * of linear values: each colour channel clamped to [0, 1] (NaN as 0) and rounded to the
- * nearest of 0..255, alpha 255. flip: src has GL's row order (row 0 at the bottom) and
- * dst gets image_io's (row 0 at the top). */
-void image_display_rgba8(const float *src, int width, int height, bool flip, uint8_t *dst);
+ * of linear values: each colour channel times `exposure` (1: as it is), with pbr_neutral
+ * the Khronos PBR Neutral tone mapper and the sRGB transfer function (image_pbr_neutral,
+ * image_srgb_encode), clamped to [0, 1] (NaN as 0) and rounded to the nearest of 0..255,
+ * alpha 255. flip: src has GL's row order (row 0 at the bottom) and dst gets image_io's
+ * (row 0 at the top). */
+void image_display_rgba8(const float *src, int width, int height, bool flip, float exposure,
+                         bool pbr_neutral, uint8_t *dst);
+/* The Khronos PBR Neutral tone mapper (its specification, 2024) on one linear Rec. 709
+ * colour, in place (negative channels taken as 0); the sRGB transfer function
+ * (IEC 61966-2-1) of one linear value in [0, 1]. resolve.frag's twins. */
+void image_pbr_neutral(float rgb[3]);
+float image_srgb_encode(float v);
 
 /* mask[i] = 1 where pixel i of ref (IMAGE_U8, 3 or 4 channels) is an edge, else 0;
  * returns the number of edge pixels. */

@@ -47,6 +47,7 @@ typedef struct run_params {
 
 typedef struct experiment {
     char *path;                /* as given */
+    unsigned schema;           /* `shadesweep:` 1 or 2 (params_schema_defaults) */
     char name[64];             /* [a-z0-9-]+ */
     char *description;         /* "" if absent */
     char hash[17];             /* FNV-1a 64 of the manifest's bytes, hex (and of --set,

@@ -64,6 +64,14 @@ bool mf_parse_value(vctx *c, const param *pd, const ynode *n, const char *key, r
 /* The table's defaults into dst, each through mf_parse_value (runner/params.c); false
  * (with a "bug:" diagnostic) when one does not validate. */
 bool params_apply_defaults(vctx *c, run_params *dst);
+/* Schema 2's defaults over schema 1's (params.c params_schema2): applied to dst before a
+ * `shadesweep: 2` manifest's own keys, as if the manifest began with them. A run id
+ * leaves out a key only at its schema-1 default, so a schema-2 run's id names each of
+ * these: it is the id of the same run written in schema 1 with the keys spelt out. */
+bool params_apply_schema_defaults(vctx *c, unsigned schema, run_params *dst);
+/* The schema a manifest's root mapping asks for: its `shadesweep` key's plain scalar 2
+ * gives 2, anything else 1 (whose errors the key's own parse reports). */
+unsigned params_schema_of(const struct ynode *root);
 /* A mapping whose keys are the table's parameters under `prefix` ("" at the top). */
 void mf_parse_group(vctx *c, const char *prefix, const ynode *map, run_params *dst);
 

@@ -133,6 +133,9 @@ static bool load_mem(const char *name, const char *data, size_t len,
     if (!overrides_apply(&c, doc))
         goto done;
     c.root = doc->root;
+    e->schema = params_schema_of(doc->root);
+    if (!params_apply_schema_defaults(&c, e->schema, &e->base))
+        goto done;
     mf_parse_group(&c, "", doc->root, &e->base);
     manifest_check(&c);
     if (c.nerr == 0)

@@ -130,7 +130,7 @@ const char *mf_expect(const param *pd, char *buf, size_t len)
     sbuf b = {buf, len, 0};
     buf[0] = '\0';
     switch (pd->type) {
-    case PT_SCHEMA: mf_sb_add(&b, "1"); break;
+    case PT_SCHEMA: mf_sb_add(&b, "1 or 2"); break;
     case PT_NAME: mf_sb_add(&b, "a name of 1..63 characters from a-z, 0-9 and -"); break;
     case PT_TEXT: mf_sb_add(&b, "a string"); break;
     case PT_SCENE:

@@ -566,8 +566,9 @@ bool mf_parse_value(vctx *c, const param *pd, const ynode *n, const char *key,
     switch (pd->type) {
     case PT_SCHEMA: {
         uint64_t v;
-        if (!mf_get_uint(n, &v) || v != 1)
+        if (!mf_get_uint(n, &v) || (v != 1 && v != 2))
             return mf_bad(c, pd, n, key);
+        c->e->schema = (unsigned)v;
         return true;
     }
     case PT_NAME:

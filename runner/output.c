@@ -415,8 +415,13 @@ bool output_write_run_summary(const char *run_dir, const experiment *e, const ru
         csv_u64(w, p->lights.seed);
         /* the most lights measured; the planned most when nothing was measured */
         csv_u64(w, r->frames ? r->lights_max : light_count_max(&p->lights.count));
+        /* the range the placed lights had (overlap's, or lights.sizing's mean), as the
+         * trial used it; the manifest's radius where no trial placed lights */
         char radius[32];
-        num_plain_float(p->lights.radius, radius, sizeof radius);
+        if (r->frames && isfinite(r->lights_radius))
+            num_plain_float((float)r->lights_radius, radius, sizeof radius);
+        else
+            num_plain_float(p->lights.radius, radius, sizeof radius);
         csv_str(w, radius);
         csv_u64(w, r->trial);
         csv_u64(w, r->frames);

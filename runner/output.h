@@ -106,6 +106,7 @@ typedef struct trial_result {
      * that comparison (NAN: no comparison, or no edge in any) */
     double image_edge_rmse, image_edge_pixels;
     unsigned lights_max;
+    double lights_radius;      /* the placed lights' range as used, mean (NAN: unknown) */
     uint32_t order;            /* its place in its round (schedule); 0: unknown */
     char metric[8];            /* what decides: "wall", "cpu", "gpu" ("" : no context) */
     double metric_us;          /* the trial's mean of it per frame (NAN: none) */

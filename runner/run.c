@@ -30,6 +30,7 @@ static void fill_missing_trial(run_state *st)
         metric_totals_none(&tr->m);
         tr->image_rmse = tr->image_psnr_db = tr->image_max_abs = tr->nonfinite = NAN;
         tr->image_edge_rmse = tr->image_edge_pixels = NAN;
+        tr->lights_radius = NAN;
         snprintf(tr->status, sizeof tr->status, "%s",
                  strcmp(st->status, "ok") ? st->status : "failed:not-run");
     }
@@ -168,7 +169,8 @@ bool run_trial_isolated(const experiment *e, const run_spec *s, const run_option
                         trial_outcome *out)
 {
     memset(out, 0, sizeof *out);
-    run_state st = {.e = e, .s = s, .o = o, .pg = pg, .trial = trial, .order = order};
+    run_state st = {.e = e, .s = s, .o = o, .pg = pg, .trial = trial, .order = order,
+                    .meter_lum = NAN, .lights_radius = NAN};
     snprintf(st.status, sizeof st.status, "ok");
     run_utc_now(st.started, sizeof st.started);
     provenance_sample(&st.prov);

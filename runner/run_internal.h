@@ -50,6 +50,10 @@ typedef struct run_state {
     char err[512];
     scene_file_info scene_info; /* a file scene: what scene_file_check found */
     uint32_t made_opaque;      /* translucency: opaque: the materials it made opaque */
+    double meter_lum;          /* exposure.mode auto: the metering frame's log-average
+                                * luminance (0: black; NAN: not metered) */
+    bool meter_lights_off;     /* ... drawn without the placed lights (lights.sizing) */
+    double lights_radius;      /* the placed lights' mean range as used (NAN: none) */
 } run_state;
 
 /* "YYYY-MM-DDTHH:MM:SSZ", now. */
@@ -65,6 +69,10 @@ void run_set_unwritten(char *status, size_t len, char *msg, size_t msglen, const
 
 /* Sets up one run; on failure st->status says why and st->err holds the message. */
 bool run_setup(run_state *st);
+/* exposure.*, tonemap and lights.sizing onto st->sc (runner/run_display.c), before any
+ * renderer is made: ro are the run's renderer options (the metering frame's, single-
+ * sampled). False with st->status and st->err set. */
+bool run_display(run_state *st, const struct renderer_options *ro);
 /* Releases what run_setup and the trial made. */
 void run_teardown(run_state *st);
 /* Draws, unrecorded, the frames whose shader variants the trial will need (run_trial.c

@@ -2,6 +2,7 @@
 #define _DEFAULT_SOURCE
 #include "runner/run_internal.h"
 
+#include <math.h>
 #include <stdio.h>
 #include <string.h>
 #include <unistd.h>
@@ -140,6 +141,33 @@ bool run_write_meta(run_state *st, char *err, size_t errlen)
         for (int i = 0; i < 3; i++)
             yo_f64(y, si->bounds_max[i]);
         yo_seq_end(y);
+        yo_map_end(y);
+    }
+
+    /* the display and the lights' sizing as this trial applied them (run_display.c);
+     * absent when the trial failed before its scene was built */
+    if (st->sc) {
+        const scene_display *d = &st->sc->display;
+        yo_key(y, "display");
+        yo_map_begin(y);
+        static const char *const modes[] = {"none", "auto", "fixed"};
+        yo_key(y, "exposure_mode");
+        yo_str(y, (unsigned)p->exposure_mode < 3 ? modes[p->exposure_mode] : "?");
+        yo_key(y, "exposure"); yo_f64(y, d->exposed ? d->exposure : 1.0);
+        yo_key(y, "ev100");   /* exposure = 1 / (1.2 x 2^EV100) */
+        yo_f64(y, log2(1.0 / (1.2 * (d->exposed ? d->exposure : 1.0))));
+        if (p->exposure_mode == EXPOSURE_AUTO) {
+            yo_key(y, "metered_by"); yo_str(y, "forward-spml at schedule time 0");
+            yo_key(y, "metered_luminance"); yo_f64(y, st->meter_lum);
+            yo_key(y, "metered_without_placed_lights"); yo_bool(y, st->meter_lights_off);
+        }
+        yo_key(y, "tonemap");
+        yo_str(y, d->tonemap == TONEMAP_PBR_NEUTRAL ? "pbr-neutral (then sRGB)" : "none");
+        static const char *const sizings[] = {"radius", "range-from-intensity",
+                                              "intensity-from-range"};
+        yo_key(y, "lights_sizing");
+        yo_str(y, (unsigned)p->lights.sizing < 3 ? sizings[p->lights.sizing] : "?");
+        yo_key(y, "lights_range_mean"); yo_f64(y, st->lights_radius);
         yo_map_end(y);
     }
 

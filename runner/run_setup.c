@@ -92,6 +92,8 @@ bool run_setup(run_state *st)
         .max_uniform_block_size = gi->max_uniform_block_size,
     };
     params_to_renderer_options(p, &ro);   /* params.def's `apply` column */
+    if (!run_display(st, &ro))
+        return false;
     if (!(st->r = renderer_create(p->renderer, &ro, st->err, sizeof st->err)) ||
         !renderer_prepare(st->r, st->sc, st->err, sizeof st->err)) {
         run_set_status(st, "renderer");

@@ -220,7 +220,9 @@ static bool read_reference_supersampled(run_state *st, image *img, char *err, si
         snprintf(err, errlen, "reference %.31s: no HDR image to read", p->error_renderer);
     if (ok) {
         image_box_filter(st->ref_hdr, w, h, k, box);
-        image_display_rgba8(box, w, h, true, img->pixels);   /* GL's rows: bottom first */
+        const scene_display *dp = &st->sc->display;
+        image_display_rgba8(box, w, h, true, dp->exposed ? dp->exposure : 1.0f,
+                            dp->tonemap == TONEMAP_PBR_NEUTRAL, img->pixels);   /* GL's rows */
     }
     free(box);
     return ok;
@@ -561,6 +563,7 @@ void run_one_trial(run_state *st, uint32_t trial, trial_result *tr)
     frame_stats fs;
     memset(tr, 0, sizeof *tr);
     tr->trial = trial;
+    tr->lights_radius = st->lights_radius;
     tr->image_rmse = tr->image_psnr_db = tr->image_max_abs = tr->nonfinite = NAN;
     tr->image_edge_rmse = tr->image_edge_pixels = NAN;
     metric_totals_none(&tr->m);

@@ -47,6 +47,16 @@ typedef struct light_count {
     double every;              /* seconds of schedule time */
 } light_count;
 
+/* lights.sizing: how a placed light's range and colour are tied (random, grid and
+ * surface placement; the scene's own lights keep theirs). The two derived forms need
+ * the run's exposure, known only once the metering frame is drawn: lights_size (below)
+ * applies them after the build. */
+typedef enum light_sizing {
+    LIGHT_SIZING_RADIUS = 0,          /* range = radius (or overlap's), colour as drawn */
+    LIGHT_SIZING_RANGE_FROM_INTENSITY,/* range = sqrt(max channel x exposure / cutoff) */
+    LIGHT_SIZING_INTENSITY_FROM_RANGE,/* colour x cutoff range^2 / (exposure color_max) */
+} light_sizing;
+
 typedef struct light_params {
     light_placement placement;
     uint32_t seed;             /* default 1337, as seed 003 */
@@ -60,6 +70,8 @@ typedef struct light_params {
     float color_max;           /* each channel uniform in [0, color_max]; seed 003 used 0.3 */
     int attenuation;           /* attenuation_kind (scenes/scene.h) */
     float quadratic[3];        /* a, b, c of 1 / (a d^2 + b d + c) */
+    int sizing;                /* light_sizing */
+    float cutoff;              /* the derived sizings' light at the range, of display white */
 } light_params;
 
 /* Lights active at schedule time t (t < 0 counts as 0). */

@@ -19,6 +19,9 @@ typedef enum attenuation_kind {
     ATTENUATION_INVERSE_SQUARE = 0,   /* 1 / d^2 (d clamped below, see renderers' shaders) */
     ATTENUATION_LINEAR_RANGE,         /* max(0, 1 - d / radius) */
     ATTENUATION_QUADRATIC,            /* 1 / (a d^2 + b d + c) */
+    ATTENUATION_WINDOWED,             /* (1 - (d / radius)^4)^2 / d^2, clamped to [0, 1]
+                                       * inside: inverse-square windowed to 0 at the range
+                                       * (Karis 2013), so the range is the lit extent */
 } attenuation_kind;
 
 typedef struct scene_light {
@@ -136,12 +139,24 @@ typedef struct camera_params {
 
 void camera_params_init(camera_params *cp);
 
+/* How the linear image is displayed (manifest keys exposure.* and tonemap): the last
+ * pass of every renderer (resolve.frag) and its CPU twin (results/image_ref.c
+ * image_display_rgba8). All zero: clamped as it is, the images of schema 1. */
+typedef enum exposure_mode { EXPOSURE_NONE = 0, EXPOSURE_AUTO, EXPOSURE_FIXED } exposure_mode;
+typedef enum tonemap_kind { TONEMAP_NONE = 0, TONEMAP_PBR_NEUTRAL } tonemap_kind;
+typedef struct scene_display {
+    bool exposed;              /* the resolve multiplies by `exposure` (mode auto or fixed) */
+    float exposure;            /* linear factor (read only when exposed) */
+    tonemap_kind tonemap;
+} scene_display;
+
 typedef struct scene {
     char name[64];
     int width, height;         /* the run's resolution (aspect of the projection) */
     sm_vec3 light_bounds_min, light_bounds_max;   /* where random lights are placed */
     sm_vec3 ambient;
     shading_model shading;     /* SHADING_PHONG until scene_set_shading */
+    scene_display display;     /* set by the run after the build (runner/run_setup.c) */
     bool from_file;            /* a file's scene (scene_source.file) */
     bool lights_outside;       /* random placement draws a position inside a closed mesh
                                 * again (a file's lights_around) */
@@ -341,6 +356,18 @@ uint32_t scene_make_opaque(scene *s);
  * otherwise). scene_own_shading: what `shading.model: scene` (the default) picks, Phong
  * for the catalog and PBR for a file, whose glTF materials are authored for it. */
 bool scene_set_shading(scene *s, shading_model m);
+
+/* lights.sizing's derived forms on a built scene's placed lights (placement random, grid
+ * or surface: every light of the scene; none for placement scene), for the run's linear
+ * exposure: LIGHT_SIZING_RANGE_FROM_INTENSITY sets each light's range to
+ * sqrt(max channel x exposure / cutoff), where its unwindowed inverse-square light meets
+ * the cutoff; LIGHT_SIZING_INTENSITY_FROM_RANGE keeps the range and scales every colour by
+ * cutoff r^2 / (exposure color_max), so that the brightest colour the placement can draw
+ * meets the cutoff at the range. A light whose derived range is 0 (a black light) keeps
+ * a range of 1e-6. Nothing for LIGHT_SIZING_RADIUS. False, with a message, when the
+ * exposure or a result is not a positive finite number. */
+bool scene_size_lights(scene *s, const light_params *lp, float exposure, char *err,
+                       size_t errlen);
 shading_model scene_own_shading(const scene *s);
 
 /* Fraction of the screen's pixels (0..1) whose view ray, through the pixel's centre,

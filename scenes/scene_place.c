@@ -434,3 +434,42 @@ bool scene_place_lights(scene *s, const scene_light *authored, uint32_t nauthore
         return false;
     return true;
 }
+
+// >>sizing
+
+bool scene_size_lights(scene *s, const light_params *lp, float exposure, char *err,
+                       size_t errlen)
+{
+    if (lp->sizing == LIGHT_SIZING_RADIUS || lp->placement == PLACEMENT_SCENE ||
+        lp->placement == PLACEMENT_NONE)
+        return true;
+    if (!(exposure > 0.0f) || !isfinite(exposure) || !(lp->cutoff > 0.0f)) {
+        snprintf(err, errlen, "lights.sizing: an exposure of %g and a cutoff of %g give no "
+                 "light range", (double)exposure, (double)lp->cutoff);
+        return false;
+    }
+    for (uint32_t i = 0; i < s->nlights_total; i++) {
+        scene_light *l = &s->lights[i];
+        if (l->type == LIGHT_DIRECTIONAL)
+            continue;
+        if (lp->sizing == LIGHT_SIZING_RANGE_FROM_INTENSITY) {
+            float c = fmaxf(l->color[0], fmaxf(l->color[1], l->color[2]));
+            double r = sqrt((double)c * (double)exposure / (double)lp->cutoff);
+            l->radius = r > 1e-6 ? (float)r : 1e-6f;
+        } else {
+            double k = (double)lp->cutoff * (double)l->radius * (double)l->radius /
+                       ((double)exposure * (double)lp->color_max);
+            if (lp->color_max > 0.0f)
+                for (int c = 0; c < 3; c++)
+                    l->color[c] = (float)(l->color[c] * k);
+        }
+        if (!isfinite(l->radius) || !isfinite(l->color[0]) || !isfinite(l->color[1]) ||
+            !isfinite(l->color[2])) {
+            snprintf(err, errlen, "lights.sizing: light %u's %s is not finite (exposure %g, "
+                     "cutoff %g)", i, lp->sizing == LIGHT_SIZING_RANGE_FROM_INTENSITY ?
+                     "range" : "colour", (double)exposure, (double)lp->cutoff);
+            return false;
+        }
+    }
+    return true;
+}

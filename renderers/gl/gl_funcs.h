@@ -107,6 +107,7 @@ GL_FUNC(void, GetProgramResourceName, (GLuint program, GLenum programInterface, 
 GL_FUNC(void, Uniform1i, (GLint location, GLint v0))
 GL_FUNC(void, Uniform1iv, (GLint location, GLsizei count, const GLint *value))
 GL_FUNC(void, Uniform1f, (GLint location, GLfloat v0))
+GL_FUNC(void, ProgramUniform1f, (GLuint program, GLint location, GLfloat v0))
 GL_FUNC(void, Uniform1fv, (GLint location, GLsizei count, const GLfloat *value))
 GL_FUNC(void, Uniform2f, (GLint location, GLfloat v0, GLfloat v1))
 GL_FUNC(void, Uniform2fv, (GLint location, GLsizei count, const GLfloat *value))

@@ -3,7 +3,8 @@
 //   I = A + att * spot * (D + g * S)
 //   D = light * diffuse * max(N.L, 0)
 //   S = light * max(R.V, 0)^n           (g: specular intensity x gloss map)
-//   att: 1/d^2 | max(0, 1 - d/range) | 1/(a d^2 + b d + c), and 0 beyond range
+//   att: 1/d^2 | max(0, 1 - d/range) | 1/(a d^2 + b d + c)
+//        | clamp(1 - (d/range)^4, 0, 1)^2 / d^2 (windowed: Karis 2013), and 0 beyond range
 //   spot = (-L.A)^f inside the cone (-L.A > cos c), else 0
 // Everything is in view space: the eye is at the origin.
 //
@@ -11,7 +12,8 @@
 // uniform u_light[5] of the other passes; renderers/shading.h fills it):
 //   [0] xyz position, w range           [1] rgb colour, w type (0 point, 1 spot, 2 dir.)
 //   [2] xyz direction (unit, the way the light travels), w cos(spot angle)
-//   [3] x spot exponent, y attenuation (0 inverse-square, 1 linear-range, 2 quadratic),
+//   [3] x spot exponent, y attenuation (0 inverse-square, 1 linear-range, 2 quadratic,
+//       3 windowed),
 //       z shadow-map layer + 1 (0: none; read only with SHADOWS, shadow.inc)
 //   [4] xyz quadratic a, b, c
 //
@@ -26,7 +28,7 @@
 
 // The light features the program is compiled for: LIGHT_TYPES, bit t for type t (1 point,
 // 2 spot, 4 directional), and LIGHT_ATTENUATIONS, bit k for attenuation k (1
-// inverse-square, 2 linear-range, 4 quadratic). Every program gets the scene's (the
+// inverse-square, 2 linear-range, 4 quadratic, 8 windowed). Every program gets the scene's (the
 // program cache's common defines, renderers/base.c); the code of the others is left
 // out, so that a light costs only what its kind needs: on llvmpipe both sides of a
 // branch run, masked, for every light a loop visits, and the fields they read are
@@ -35,7 +37,7 @@
 #define LIGHT_TYPES 7
 #endif
 #ifndef LIGHT_ATTENUATIONS
-#define LIGHT_ATTENUATIONS 7
+#define LIGHT_ATTENUATIONS 15
 #endif
 #define HAS_SPOT ((LIGHT_TYPES & 2) != 0)
 #define HAS_DIRECTIONAL ((LIGHT_TYPES & 4) != 0)
@@ -43,6 +45,17 @@
 // 1/d^2 at d = 0 (a light on the surface) is infinite: d^2 is clamped here, so the
 // light is as bright as at 1 cm and never Inf.
 const float ATTENUATION_MIN_D2 = 1e-4;
+
+// Inverse-square falloff windowed to zero at the range (Karis, "Real Shading in Unreal
+// Engine 4", 2013): clamp(1 - (d/r)^4, 0, 1)^2 / d^2, d^2 clamped as 1/d^2's is. The
+// window is 1 near the light and reaches 0 with zero slope at d = r, so the range that
+// culls a light is also where its light ends: no edge at the volume's boundary.
+float attenuation_windowed(float d2, float range)
+{
+    float q = d2 / max(range * range, 1e-30);
+    float w = clamp(1.0 - q * q, 0.0, 1.0);
+    return w * w / max(d2, ATTENUATION_MIN_D2);
+}
 
 struct Light {
     vec4 position_range;
@@ -97,14 +110,18 @@ vec3 light_incoming(Light l, vec3 P, vec3 N, out vec3 L)
     att = max(0.0, 1.0 - dist / range);
 #elif LIGHT_ATTENUATIONS == 4
     att = 1.0 / max(l.quadratic.x * d2 + l.quadratic.y * dist + l.quadratic.z, 1e-6);
+#elif LIGHT_ATTENUATIONS == 8
+    att = attenuation_windowed(d2, range);
 #else
     int kind = int(l.params.y);
     if (kind == 0)
         att = 1.0 / max(d2, ATTENUATION_MIN_D2);
     else if (kind == 1)
         att = max(0.0, 1.0 - dist / range);
-    else
+    else if (kind == 2)
         att = 1.0 / max(l.quadratic.x * d2 + l.quadratic.y * dist + l.quadratic.z, 1e-6);
+    else
+        att = attenuation_windowed(d2, range);
 #endif
 #if HAS_SPOT
     if (type == LIGHT_SPOT) {

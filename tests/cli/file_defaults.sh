@@ -6,7 +6,8 @@
 # (lights.radius 10 reaches 10 mm, and an inverse-square light 5 mm away is 1/25 of
 # its colour). light_bounds around (the default) keeps the random lights out of the
 # closed cube; light_bounds model puts every one inside it, where it lights no face:
-# the frame is the one without lights, to the bit.
+# the frame is the one without lights, to the bit. Under shadesweep: 2 (issue 36) the
+# two cubes give the same picture too, and it shows the cube.
 . "$(dirname "$0")/lib.sh"
 need_gl
 cd "$T"
@@ -26,9 +27,9 @@ for name, s in (("m", 1.0), ("mm", 1000.0)):
         for i, (q, _) in enumerate(faces):
             f.write("f " + " ".join(f"{v}//{i + 1}" for v in q) + "\n")
 PY
-run() {   # name, scene block, lights count
+run() {   # name, scene block, lights count[, schema]
   cat >"$1.yaml" <<Y
-shadesweep: 1
+shadesweep: ${4:-1}
 name: $1
 scene: $2
 renderers: [forward-spml]
@@ -48,12 +49,17 @@ run mm "{file: cube_mm.obj}" 32
 run mm1 "{file: cube_mm.obj, scale: 1}" 32
 run dark "{file: cube_m.obj}" 0
 run inside "{file: cube_m.obj, light_bounds: model}" 32
+# schema 2's defaults (issue 36): ranges from the lights' intensities and an exposure
+# metered from the frame, both in the fitted units, so the same picture again
+run m2 "{file: cube_m.obj}" 32 2
+run mm2 "{file: cube_mm.obj}" 32 2
 "$PYTHON" - "$SOURCE_ROOT/tests/cli" <<'PY'
 import sys, yaml
 import numpy as np
 sys.path.insert(0, sys.argv[1])
 from shading_model import read_png
-img = {n: read_png(f"{n}.png")[..., :3].astype(float) for n in ("m", "mm", "mm1", "dark", "inside")}
+img = {n: read_png(f"{n}.png")[..., :3].astype(float)
+       for n in ("m", "mm", "mm1", "dark", "inside", "m2", "mm2")}
 meta = {n: yaml.safe_load(open(f"{n}.meta.yaml"))["scene_file"] for n in ("m", "mm", "mm1")}
 fails = []
 # fit: 20 / sqrt(3) for the metre cube, a thousandth of it for the millimetre one
@@ -73,6 +79,14 @@ print(f"m against mm: max {d.max() * 255:.3f}/255 rmse {np.sqrt((d ** 2).mean())
 print("lit: " + ", ".join(f"{n} {lit(n):.3f}" for n in ("m", "mm", "mm1", "inside")))
 if d.max() > 1 / 255 or np.sqrt((d ** 2).mean()) > 0.25 / 255:
     fails.append("the cube in millimetres and in metres differ under scale fit")
+d2 = np.abs(img["m2"] - img["mm2"]) / 255
+print(f"schema 2, m against mm: max {d2.max() * 255:.3f}/255 rmse "
+      f"{np.sqrt((d2 ** 2).mean()) * 255:.3f}/255; above 40/255: "
+      f"{float((img['m2'].max(axis=-1) > 40).mean()):.3f}")
+if d2.max() > 1 / 255 or np.sqrt((d2 ** 2).mean()) > 0.25 / 255:
+    fails.append("schema 2: the cube in millimetres and in metres differ")
+if (img["m2"].max(axis=-1) > 40).mean() < 0.02:
+    fails.append("schema 2: the cube is not shown (under 2% of the pixels above 40/255)")
 if lit("m") < 0.01:
     fails.append(f"32 random lights light {lit('m'):.3f} of the frame (want 0.01 or more)")
 if lit("mm1") > 0.001:

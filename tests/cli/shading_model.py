@@ -55,7 +55,8 @@ and how the image is produced), each read from the code named:
                         to the nearest of the 255 levels; screenshots are that image,
                         top row first (renderers/gl/context.c).
 The scenes avoid what the project adds to the paper: every light's range lies beyond
-the visible plane except linear-range's (whose attenuation reaches 0 there anyway), no
+the visible plane except linear-range's and windowed's (whose attenuation reaches 0
+there anyway), no
 light is within 1 cm of the plane (1/d^2 is clamped there), and every light is above
 the plane (N.L > 0 everywhere, so the project's gating of S by N.L > 0 does not show).
 
@@ -156,6 +157,9 @@ CASES = {
              "pos": (0.6, 1.5, 0.2),
              "mr": (17, 200, 128), "occlusion": (100, 33, 33), "strength": 0.8},
     "linear-range": {"grid": {"attenuation": "linear-range", "radius": 3.0}},
+    # Karis 2013's windowed inverse-square: the window cuts the light inside the plane;
+    # its colour 2.5 times color_max, so that the plane spans a strong range
+    "windowed": {"grid": {"attenuation": "windowed", "radius": 3.0, "boost": 2.5}},
     "quadratic": {"grid": {"attenuation": "quadratic", "radius": 60.0,
                            "quadratic": {"a": 0.5, "b": 0.4, "c": 0.6}}},
 }
@@ -264,7 +268,8 @@ def manifest(name, case, shading):
         q = g.get("quadratic")
         extra = (f", quadratic: {{a: {q['a']}, b: {q['b']}, c: {q['c']}}}" if q else "")
         lines.append(f"lights: {{placement: grid, count: 1, seed: {SEED}, rng: msvc, "
-                     f"color_max: {COLOR_MAX * gain!r}, radius: {g['radius']}, "
+                     f"color_max: {COLOR_MAX * gain * g.get('boost', 1.0)!r}, "
+                     f"radius: {g['radius']}, "
                      f"attenuation: {g['attenuation']}{extra}}}")
     return "\n".join(lines) + "\n"
 
@@ -311,7 +316,8 @@ def light_of(case, gain=1.0):
         return lt
     g = case["grid"]
     q = g.get("quadratic", {"a": 1.0, "b": 0.0, "c": 1.0})
-    return {"type": "point", "color": np.array(msvc_rand(SEED, 3)) * (COLOR_MAX * gain),
+    return {"type": "point",
+            "color": np.array(msvc_rand(SEED, 3)) * (COLOR_MAX * gain * g.get("boost", 1.0)),
             "pos": np.array([0.0, TOP / 2.0, 0.0]), "range": g["radius"],
             "att": g["attenuation"], "abc": (q["a"], q["b"], q["c"])}
 
@@ -380,6 +386,9 @@ def model(case, shading="phong"):
             att = 1.0 / (d * d)
         elif lt["att"] == "linear-range":                      # form 3, maxRange = radius
             att = np.maximum(0.0, 1.0 - d / lt["range"])
+        elif lt["att"] == "windowed":                          # Karis 2013
+            w = np.clip(1.0 - (d / lt["range"]) ** 4, 0.0, 1.0)
+            att = w * w / (d * d)
         else:                                                  # form 1
             a, b, c = lt["abc"]
             att = 1.0 / (a * d * d + b * d + c)

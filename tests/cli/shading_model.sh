@@ -1,8 +1,8 @@
 #!/usr/bin/env bash
 # An independent check of the shading model (issue 13): a plane lit by one light per
-# case (directional, point 1/d^2, spot, and grid point lights with linear-range and
-# quadratic attenuation), seen by a glTF camera, rendered by every renderer; each
-# screenshot is compared with seed 000 appendix D's Phong model evaluated on its own in
+# case (directional, point 1/d^2, spot, and grid point lights with linear-range,
+# quadratic and windowed attenuation), seen by a glTF camera, rendered by every
+# renderer; each screenshot is compared with seed 000 appendix D's Phong model evaluated on its own in
 # numpy (shading_model.py: the formulas, the project's mappings it relies on, and the
 # tolerance: max 1/255, RMSE 0.5/255 per case and renderer).
 . "$(dirname "$0")/lib.sh"
@@ -12,8 +12,9 @@ need_gl
 cd "$T"
 PY="$SOURCE_ROOT/tests/cli/shading_model.py"
 "$PYTHON" "$PY" gen . || fail "shading_model.py gen"
-for c in directional point spot maps linear-range quadratic \
-         pbr-directional pbr-point pbr-spot pbr-maps pbr-linear-range pbr-quadratic; do
+for c in directional point spot maps linear-range quadratic windowed \
+         pbr-directional pbr-point pbr-spot pbr-maps pbr-linear-range pbr-quadratic \
+         pbr-windowed; do
   "$SHADESWEEP" run --debug-gl "$c.yaml" -o "out-$c" >"run-$c.txt" 2>&1 ||
     fail "run $c.yaml: $(tail -5 "run-$c.txt")"
 done

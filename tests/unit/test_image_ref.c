@@ -57,15 +57,45 @@ static void test_display(void **state)
     (void)state;
     const float src[2 * 1 * 4] = {-1.0f, 0.2f, 2.0f, 0.5f, NAN, 1.0f, 51.0f / 255.0f, 7.0f};
     uint8_t out[8];
-    image_display_rgba8(src, 2, 1, false, out);
+    image_display_rgba8(src, 2, 1, false, 1.0f, false, out);
     const uint8_t want[8] = {0, 51, 255, 255, 0, 255, 51, 255};
     assert_memory_equal(out, want, sizeof want);
 
     const float rows[1 * 2 * 4] = {0.0f, 0.0f, 0.0f, 0.0f, 1.0f, 1.0f, 1.0f, 1.0f};
     uint8_t flipped[8];
-    image_display_rgba8(rows, 1, 2, true, flipped);
+    image_display_rgba8(rows, 1, 2, true, 1.0f, false, flipped);
     const uint8_t want_flipped[8] = {255, 255, 255, 255, 0, 0, 0, 255};
     assert_memory_equal(flipped, want_flipped, sizeof want_flipped);
+}
+
+/* PBR Neutral and sRGB against values computed by hand from the tone mapper's
+ * specification (Khronos, 2024) and IEC 61966-2-1, independently of image_ref.c:
+ *   (0.5, 0.5, 0.5): f = 0.04 (min > 0.08), peak 0.46 <= 0.76: 0.46, sRGB 181/255
+ *   (2, 1, 0.5): f = 0.04, p = 1.96, pn = 1 - 0.24^2 / 1.44 = 0.96, g = 1 / 1.15:
+ *                (0.96, 0.534091, 0.321136), sRGB (250, 193, 154)/255
+ *   (0.1, 0.04, 0.04): f = 0.04 - 0.04^2 / 0.16 = 0.03: (0.07, 0.01, 0.01)
+ * exposure 0.5 halves the input first (the same colours given twice as bright). */
+static void test_pbr_neutral(void **state)
+{
+    (void)state;
+    float a[3] = {0.5f, 0.5f, 0.5f}, b[3] = {2.0f, 1.0f, 0.5f}, c[3] = {0.1f, 0.04f, 0.04f};
+    image_pbr_neutral(a);
+    image_pbr_neutral(b);
+    image_pbr_neutral(c);
+    for (int k = 0; k < 3; k++)
+        assert_float_equal(a[k], 0.46f, 1e-6f);
+    assert_float_equal(b[0], 0.96f, 1e-5f);
+    assert_float_equal(b[1], 0.534091f, 1e-5f);
+    assert_float_equal(b[2], 0.321136f, 1e-5f);
+    assert_float_equal(c[0], 0.07f, 1e-6f);
+    assert_float_equal(c[1], 0.01f, 1e-6f);
+    assert_float_equal(image_srgb_encode(0.002f), 0.002f * 12.92f, 1e-7f);
+    assert_float_equal(image_srgb_encode(1.0f), 1.0f, 1e-6f);
+    const float src[2 * 4] = {1.0f, 1.0f, 1.0f, 1.0f, 4.0f, 2.0f, 1.0f, 1.0f};
+    uint8_t out[8];
+    image_display_rgba8(src, 2, 1, false, 0.5f, true, out);
+    const uint8_t want[8] = {181, 181, 181, 255, 250, 193, 154, 255};
+    assert_memory_equal(out, want, sizeof want);
 }
 
 static void fill_gray(uint8_t *px, size_t i, uint8_t v)
@@ -149,6 +179,7 @@ int main(void)
         cmocka_unit_test(test_box_filter_k2),
         cmocka_unit_test(test_box_filter_k4_linear),
         cmocka_unit_test(test_display),
+        cmocka_unit_test(test_pbr_neutral),
         cmocka_unit_test(test_edge_mask_threshold),
         cmocka_unit_test(test_edge_rmse),
     };

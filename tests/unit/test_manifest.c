@@ -423,9 +423,15 @@ static void test_kv_canonical(void **state)
         {"lights.overlap", "0"},
         {"lights.color_max", "0.3"},
         {"lights.attenuation", "inverse-square"},
+        {"lights.sizing", "radius"},
+        {"lights.cutoff", "0.005"},
         {"lights.quadratic.a", "1"},
         {"lights.quadratic.b", "0"},
         {"lights.quadratic.c", "1"},
+        {"exposure.mode", "none"},
+        {"exposure.ev100", "0"},
+        {"exposure.key", "0.18"},
+        {"tonemap", "none"},
         {"outputs.frames", "true"},
         {"outputs.seconds", "true"},
         {"outputs.screenshots", ""},
@@ -496,9 +502,15 @@ static void test_kv_canonical(void **state)
         {"lights.overlap", "1.5"},
         {"lights.color_max", "0.25"},
         {"lights.attenuation", "inverse-square"},
+        {"lights.sizing", "radius"},
+        {"lights.cutoff", "0.005"},
         {"lights.quadratic.a", "1"},
         {"lights.quadratic.b", "0"},
         {"lights.quadratic.c", "1"},
+        {"exposure.mode", "none"},
+        {"exposure.ev100", "0"},
+        {"exposure.key", "0.18"},
+        {"tonemap", "none"},
         {"outputs.frames", "false"},
         {"outputs.seconds", "false"},
         {"outputs.screenshots", "0,10,30.5"},
@@ -599,11 +611,11 @@ static const bad_case bad_cases[] = {
     {"unknown_top_key.yaml",
      {"1:1: duration: expected {seconds: S} or {frames: N}, found nothing",
       "5:1: durtion: expected one of shadesweep, name, description, scene, renderers, "
-      "resolution, trials, schedule, measure, warmup, duration, clock, step, sync, timeout, gbuffer, deferred, forward, tiles, clustered, deferred_lighting, shadows, hdr, msaa, fog, aa, translucency, shading, camera, error, lights, outputs, allow_empty, debug, sweep, "
+      "resolution, trials, schedule, measure, warmup, duration, clock, step, sync, timeout, gbuffer, deferred, forward, tiles, clustered, deferred_lighting, shadows, hdr, msaa, fog, aa, translucency, shading, camera, error, lights, exposure, tonemap, outputs, allow_empty, debug, sweep, "
       "found 'durtion'"}},
     {"unknown_nested_key.yaml",
      {"8:3: lights.cnt: expected one of placement, seed, rng, count, radius, overlap, color_max, "
-      "attenuation, quadratic, found 'cnt'"}},
+      "attenuation, sizing, cutoff, quadratic, found 'cnt'"}},
     {"duplicate_key.yaml",
      {"7:1: trials: expected a key used once, found a second 'trials' (first at 5:1)"}},
     {"string_for_integer.yaml", {"6:9: trials: expected an integer 1..1000, or auto, found 'many'"}},
@@ -682,14 +694,14 @@ static const bad_case bad_cases[] = {
       "/nonexistent-shadesweep-test/scene.glb: cannot open: No such file or directory"}},
     {"missing_required.yaml", {"1:1: scene: expected one of {SCENES}or {file: PATH, scale, up, camera}, found nothing"}},
     {"missing_all.yaml",
-     {"1:1: shadesweep: expected 1, found nothing",
+     {"1:1: shadesweep: expected 1 or 2, found nothing",
       "1:1: name: expected a name of 1..63 characters from a-z, 0-9 and -, found nothing",
       "1:1: scene: expected one of {SCENES}or {file: PATH, scale, up, camera}, found nothing",
       "1:1: renderers: expected a non-empty sequence of renderer names, found nothing",
       "1:1: duration: expected {seconds: S} or {frames: N}, found nothing"}},
     {"bad_name.yaml",
      {"2:7: name: expected a name of 1..63 characters from a-z, 0-9 and -, found 'My_Experiment'"}},
-    {"schema_2.yaml", {"1:13: shadesweep: expected 1, found '2'"}},
+    {"schema_3.yaml", {"1:13: shadesweep: expected 1 or 2, found '3'"}},
     {"duration_both.yaml",
      {"5:11: duration: expected {seconds: S} or {frames: N}, found both seconds and frames"}},
     {"warmup_nothing.yaml",
@@ -721,8 +733,9 @@ static const bad_case bad_cases[] = {
       "fog.colour, aa, translucency, shading.model, camera.radius, "
       "camera.height, camera.period, "
       "camera.target, camera.near, camera.far, camera.hold, lights.placement, lights.seed, "
-      "lights.rng, lights.count, lights.radius, lights.overlap, lights.color_max, lights.attenuation, lights.quadratic.a, "
-      "lights.quadratic.b, lights.quadratic.c), found 'lights.cnt'"}},
+      "lights.rng, lights.count, lights.radius, lights.overlap, lights.color_max, lights.attenuation, lights.sizing, "
+      "lights.cutoff, lights.quadratic.a, lights.quadratic.b, lights.quadratic.c, "
+      "exposure.mode, exposure.ev100, exposure.key, tonemap), found 'lights.cnt'"}},
     {"sweep_empty_list.yaml",
      {"7:11: sweep.trials: expected a non-empty sequence of values, found an empty sequence"}},
     {"sweep_wrong_type.yaml",

@@ -280,6 +280,61 @@ static void test_grid_growth(void **state)
 /* interior: the moon (directional, shadows), 5 omni lights (no shadows), 3 spots
  * (shadows); the count caps them in this order; the run's rng, seed and radius do not
  * change them. */
+// >>sizing (lights.sizing)
+
+/* range-from-intensity: each light's range is sqrt(max channel x exposure / cutoff), its
+ * colour untouched; intensity-from-range: the range stays, every colour is scaled by
+ * cutoff r^2 / (exposure color_max); radius and placement scene change nothing. The
+ * expected values are computed here from the lights' own colours, in double. */
+static void test_sizing(void **state)
+{
+    (void)state;
+    char err[256];
+    light_params lp = params(PLACEMENT_RANDOM, RNG_MSVC, 8);
+    lp.radius = 3.0f;
+    lp.cutoff = 0.005f;
+    scene *a = scene_build("empty", &lp, 64, 64, err, sizeof err);
+    scene *b = scene_build("empty", &lp, 64, 64, err, sizeof err);
+    assert_non_null(a);
+    assert_non_null(b);
+    scene_light before[8];
+    memcpy(before, a->lights, sizeof before);
+    lp.sizing = LIGHT_SIZING_RADIUS;
+    assert_true(scene_size_lights(a, &lp, 2.0f, err, sizeof err));
+    assert_memory_equal(a->lights, before, sizeof before);
+    lp.sizing = LIGHT_SIZING_RANGE_FROM_INTENSITY;
+    assert_true(scene_size_lights(a, &lp, 2.0f, err, sizeof err));
+    lp.sizing = LIGHT_SIZING_INTENSITY_FROM_RANGE;
+    assert_true(scene_size_lights(b, &lp, 2.0f, err, sizeof err));
+    for (int i = 0; i < 8; i++) {
+        const float *c = before[i].color;
+        double m = fmax(c[0], fmax(c[1], c[2]));
+        assert_float_equal(a->lights[i].radius, sqrt(m * 2.0 / 0.005), 1e-5 * a->lights[i].radius);
+        assert_memory_equal(a->lights[i].color, c, sizeof(sm_vec3));
+        assert_float_equal(b->lights[i].radius, 3.0f, 0.0f);
+        for (int k = 0; k < 3; k++)
+            assert_float_equal(b->lights[i].color[k], c[k] * 0.005 * 9.0 / (2.0 * 0.3),
+                               1e-6 * (1.0 + c[k]));
+    }
+    /* a light at the brightest colour (0.3) meets the cutoff at the range: 0.3 x k x
+     * exposure / r^2 = cutoff */
+    assert_float_equal(0.3 * (0.005 * 9.0 / (2.0 * 0.3)) * 2.0 / 9.0, 0.005, 1e-12);
+    assert_false(scene_size_lights(b, &lp, NAN, err, sizeof err));
+    assert_non_null(strstr(err, "lights.sizing"));
+    scene_destroy(a);
+    scene_destroy(b);
+
+    light_params own = params(PLACEMENT_SCENE, RNG_MSVC, LIGHT_COUNT_ALL);
+    own.sizing = LIGHT_SIZING_RANGE_FROM_INTENSITY;
+    own.cutoff = 0.005f;
+    scene *c = scene_build("interior", &own, 64, 64, err, sizeof err);
+    assert_non_null(c);
+    float r0 = c->lights[0].radius;
+    assert_true(scene_size_lights(c, &own, 2.0f, err, sizeof err));
+    assert_float_equal(c->lights[0].radius, r0, 0.0f);
+    scene_destroy(c);
+}
+
 static void test_scene_placement_interior(void **state)
 {
     (void)state;
@@ -396,6 +451,7 @@ int main(void)
         cmocka_unit_test(test_grid_single_layer),
         cmocka_unit_test(test_grid_layers),
         cmocka_unit_test(test_grid_growth),
+        cmocka_unit_test(test_sizing),
         cmocka_unit_test(test_scene_placement_interior),
         cmocka_unit_test(test_scene_placement_others),
     };

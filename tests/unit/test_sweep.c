@@ -445,6 +445,55 @@ static const char PAPER[] =
     "  resolution: [800x600, 2560x1440]\n"
     "  lights.radius: [5, 10]\n";
 
+/* shadesweep: 2 (issue 36): its defaults (windowed falloff, ranges from intensity, auto
+ * exposure, PBR Neutral) are schema 1's keys written out, so a schema-2 run has the id of
+ * the schema-1 manifest that spells them; a key the manifest sets wins over them; a
+ * schema-1 manifest keeps schema 1's defaults and its ids. */
+static void test_schema2_defaults(void **state)
+{
+    (void)state;
+    static const char body[] =
+        "name: s\nscene: shapes\nrenderers: [null]\nduration: {frames: 2}\n"
+        "lights: {count: 4}\n";
+    char two[512], one[512], spelt[512], own[512];
+    snprintf(two, sizeof two, "shadesweep: 2\n%s", body);
+    snprintf(one, sizeof one, "shadesweep: 1\n%s", body);
+    snprintf(spelt, sizeof spelt,
+             "shadesweep: 1\n%sexposure: {mode: auto}\ntonemap: pbr-neutral\n"
+             "sweep: {lights.attenuation: [windowed], lights.sizing: [range-from-intensity]}\n",
+             body);
+    snprintf(own, sizeof own, "shadesweep: 2\n%stonemap: none\n", body);
+    experiment *e2 = load_text(two), *e1 = load_text(one), *es = load_text(spelt),
+               *eo = load_text(own);
+    assert_int_equal(e2->schema, 2);
+    assert_int_equal(e1->schema, 1);
+    assert_int_equal(e2->base.lights.attenuation, ATTENUATION_WINDOWED);
+    assert_int_equal(e2->base.lights.sizing, LIGHT_SIZING_RANGE_FROM_INTENSITY);
+    assert_int_equal(e2->base.exposure_mode, EXPOSURE_AUTO);
+    assert_int_equal(e2->base.tonemap, TONEMAP_PBR_NEUTRAL);
+    assert_int_equal(e1->base.lights.attenuation, ATTENUATION_INVERSE_SQUARE);
+    assert_int_equal(e1->base.lights.sizing, LIGHT_SIZING_RADIUS);
+    assert_int_equal(e1->base.exposure_mode, EXPOSURE_NONE);
+    assert_int_equal(e1->base.tonemap, TONEMAP_NONE);
+    assert_int_equal(eo->base.tonemap, TONEMAP_NONE);
+    assert_int_equal(eo->base.exposure_mode, EXPOSURE_AUTO);
+    plan p2, p1, ps;
+    assert_true(expand(e2, 1, &p2));
+    assert_true(expand(e1, 1, &p1));
+    assert_true(expand(es, 1, &ps));
+    assert_int_equal(p2.nruns, 1);
+    assert_int_equal(ps.nruns, 1);
+    assert_string_equal(p2.runs[0].id, ps.runs[0].id);
+    assert_string_not_equal(p2.runs[0].id, p1.runs[0].id);
+    plan_free(&p2);
+    plan_free(&p1);
+    plan_free(&ps);
+    experiment_free(e2);
+    experiment_free(e1);
+    experiment_free(es);
+    experiment_free(eo);
+}
+
 /* run --scale S: every resolution (base and swept) times S, rounded, at least 1; the
  * hash changes with S; bad scales, collisions and overflow are refused with a message. */
 static void test_scale_resolution(void **state)
@@ -573,6 +622,7 @@ int main(void)
         cmocka_unit_test(test_duplicate_points),
         cmocka_unit_test(test_zero_shards),
         cmocka_unit_test(test_scale_resolution),
+        cmocka_unit_test(test_schema2_defaults),
         cmocka_unit_test(test_make_smoke),
     };
     return cmocka_run_group_tests(tests, NULL, NULL);
