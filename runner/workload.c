@@ -8,6 +8,7 @@
 
 #include "results/csv.h"
 #include "results/image_io.h"
+#include "results/numfmt.h"
 
 bool workload_reach_stats(const uint32_t *counts, size_t n, uint32_t nlights,
                           workload_reach *out)
@@ -94,6 +95,14 @@ static const char *const light_columns[] = {
     "dir_x", "dir_y", "dir_z", "cone_rad", "on_s",
 };
 
+/* A float as the shortest decimal that strtof reads back to it (0.1f as "0.1"). */
+static void csv_float(csv_writer *w, float v)
+{
+    char text[64];
+    num_plain_float(v, text, sizeof text);
+    csv_str(w, text);
+}
+
 /* When light i turns on (light_count_at's inverse); NAN: never. */
 static double light_on_s(const light_count *c, uint32_t i)
 {
@@ -121,13 +130,13 @@ bool workload_lights_csv(const char *path, const scene *s, char *err, size_t err
         csv_u64(w, i);
         csv_str(w, (unsigned)l->type < 3 ? kinds[l->type] : "unknown");
         for (int k = 0; k < 3; k++)
-            dir ? csv_empty(w) : csv_g(w, l->position[k]);
-        dir ? csv_empty(w) : csv_g(w, l->radius);
+            dir ? csv_empty(w) : csv_float(w, l->position[k]);
+        dir ? csv_empty(w) : csv_float(w, l->radius);
         for (int k = 0; k < 3; k++)
-            csv_g(w, l->color[k]);
+            csv_float(w, l->color[k]);
         for (int k = 0; k < 3; k++)
-            spot || dir ? csv_g(w, l->direction[k]) : csv_empty(w);
-        spot ? csv_g(w, l->spot_angle) : csv_empty(w);
+            spot || dir ? csv_float(w, l->direction[k]) : csv_empty(w);
+        spot ? csv_float(w, l->spot_angle) : csv_empty(w);
         double on = light_on_s(&s->count, i);
         isfinite(on) ? csv_g(w, on) : csv_empty(w);
         ok = csv_end_row(w);

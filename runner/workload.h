@@ -41,5 +41,6 @@ bool workload_heat_map(const char *path, const uint32_t *counts, int width, int 
  * dir_x, dir_y, dir_z (spot and directional, world space, the way light travels),
  * cone_rad (spot: the outer half-angle), on_s (the schedule time it turns on: 0 for a
  * fixed count; empty for a light a growth schedule never turns on). Floats as the
- * shortest decimal that reads back to the same value. False with a message. */
+ * shortest decimal that strtof reads back to the same float (num_plain_float). False with
+ * a message. */
 bool workload_lights_csv(const char *path, const scene *s, char *err, size_t errlen);
