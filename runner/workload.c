@@ -112,7 +112,7 @@ static double light_on_s(const light_count *c, uint32_t i)
         return 0;
     if (c->step == 0)
         return NAN;
-    uint32_t k = (i + 1 - c->start + c->step - 1) / c->step;
+    uint64_t k = ((uint64_t)i + 1 - c->start + c->step - 1) / c->step;   /* ceil */
     return (double)k * c->every;
 }
 
