@@ -5,8 +5,11 @@
 // of the frame's lights tested: a point or spot light reaches P within its range
 // (|P - light| <= range, the loops' squared-range test), a spot only inside its cone
 // (light_incoming's cut-off: cos > the cone's), a directional light everywhere. Pixels
-// without geometry get 0xffffffff. The lights are read 64 at a time into shared memory,
-// so that each work group loads each light once.
+// without geometry get 0xffffffff. The lights are read 64 at a time; each invocation
+// tests one against the box around the work group's surface points and keeps it in a
+// shared list when its sphere meets it, and only the list is tested per pixel (a pixel
+// tests what reaches near it: 4,096 lights at 1280x720 took 265 s of brute force on a
+// loaded llvmpipe).
 #include "bindings.h"
 layout(local_size_x = 8, local_size_y = 8) in;
 
@@ -28,6 +31,8 @@ layout(location = 1) uniform int u_lights;
 
 shared vec4 s_pos[64];
 shared vec4 s_dir[64];
+shared vec4 s_point[64];   // each invocation's P, w 1 where covered
+shared uint s_kept;
 
 void main()
 {
@@ -51,16 +56,35 @@ void main()
     vec2 ndc = (vec2(pixel) + 0.5) / vec2(size) * 2.0 - 1.0;
     vec4 v = u_inv_proj * vec4(ndc, depth * 2.0 - 1.0, 1.0);
     vec3 P = v.xyz / v.w;
-    uint n = 0u, lights = uint(u_lights);
+    uint n = 0u, lights = uint(u_lights), me = gl_LocalInvocationIndex;
+    s_point[me] = vec4(P, covered ? 1.0 : 0.0);
+    barrier();
+    // the box around the group's covered points (empty: lo > hi, which no sphere meets)
+    vec3 lo = vec3(3.0e38), hi = vec3(-3.0e38);
+    for (uint k = 0u; k < 64u; k++) {
+        if (s_point[k].w > 0.5) {
+            lo = min(lo, s_point[k].xyz);
+            hi = max(hi, s_point[k].xyz);
+        }
+    }
+    bool any_covered = hi.x >= lo.x;
     // every invocation reaches every barrier: the loop bound is uniform
     for (uint base = 0u; base < lights; base += 64u) {
-        uint i = base + gl_LocalInvocationIndex;
-        if (i < lights) {
-            s_pos[gl_LocalInvocationIndex] = b_lights[2u * i];
-            s_dir[gl_LocalInvocationIndex] = b_lights[2u * i + 1u];
+        if (me == 0u)
+            s_kept = 0u;
+        barrier();
+        uint i = base + me;
+        if (i < lights && any_covered) {
+            vec4 pr = b_lights[2u * i];
+            vec3 q = clamp(pr.xyz, lo, hi) - pr.xyz;   // nearest point of the box
+            if (pr.w < 0.0 || !(dot(q, q) > pr.w * pr.w)) {
+                uint slot = atomicAdd(s_kept, 1u);
+                s_pos[slot] = pr;
+                s_dir[slot] = b_lights[2u * i + 1u];
+            }
         }
         barrier();
-        uint m = min(64u, lights - base);
+        uint m = s_kept;
         for (uint j = 0u; covered && j < m; j++) {
             vec4 pr = s_pos[j];
             if (pr.w < 0.0) {
