@@ -3,6 +3,7 @@
 
 #include <math.h>
 #include <stdio.h>
+#include <stdlib.h>
 #include <string.h>
 
 #include "renderers/bindings.h"
@@ -411,6 +412,71 @@ bool renderer_base_coverage(renderer_base *b, uint64_t *covered, char *err, size
     gl.UseProgram(0);
     gl_state_invalidate(b->st);
     *covered = n;
+    return true;
+}
+
+bool renderer_base_lights_reaching(renderer_base *b, const struct scene *s, uint32_t *counts,
+                                   char *err, size_t errlen)
+{
+    if (!b->depth.texture) {
+        snprintf(err, errlen, "%s: lights reaching: no depth target (not prepared)", b->name);
+        return false;
+    }
+    char samples[32], why[512];
+    snprintf(samples, sizeof samples, "MSAA_SAMPLES %d", b->samples);
+    GLuint program = 0;
+    if (gl_program_get(b->programs,
+                       &(gl_program_desc){.name = b->samples > 1 ? "lights_reaching_msaa"
+                                                                 : "lights_reaching",
+                                          .compute = "lights_reaching.comp",
+                                          .defines = {b->samples > 1 ? samples : NULL}},
+                       &program, why, sizeof why) != GLP_OK) {
+        snprintf(err, errlen, "%s: lights reaching: %s", b->name, why);
+        return false;
+    }
+    /* the lights on now, in view space as the frame drew them (s is posed for it) */
+    uint32_t n = s->nlights_active;
+    size_t nfloats = (size_t)(n ? n : 1) * 8u;
+    float *packed = calloc(nfloats, sizeof *packed);
+    if (!packed) {
+        snprintf(err, errlen, "%s: lights reaching: out of memory for %u lights", b->name, n);
+        return false;
+    }
+    for (uint32_t i = 0; i < n; i++) {
+        const scene_light *l = &s->lights[i];
+        sm_vec3 p, d;
+        sm_mat4_mulv3(s->view, l->position, 1.0f, p);
+        sm_mat4_mulv3(s->view, l->direction, 0.0f, d);
+        sm_vec3_normalize(d);
+        float *o = packed + 8u * i;
+        o[0] = p[0], o[1] = p[1], o[2] = p[2];
+        o[3] = l->type == LIGHT_DIRECTIONAL ? -1.0f : l->radius;
+        o[4] = d[0], o[5] = d[1], o[6] = d[2];
+        o[7] = l->type == LIGHT_SPOT ? cosf(l->spot_angle) : -2.0f;
+    }
+    size_t pixels = (size_t)b->width * (size_t)b->height;
+    GLuint buf[2] = {0, 0};
+    gl.CreateBuffers(2, buf);
+    gl.NamedBufferStorage(buf[0], (GLsizeiptr)(nfloats * sizeof *packed), packed, 0);
+    gl.NamedBufferStorage(buf[1], (GLsizeiptr)(pixels * sizeof *counts), NULL, 0);
+    free(packed);
+    sm_mat4 inv;
+    sm_mat4_inv(s->proj, inv);
+    gl.UseProgram(program);
+    gl.UniformMatrix4fv(0, 1, GL_FALSE, &inv[0][0]);
+    gl.Uniform1i(1, (GLint)n);
+    gl.BindTextureUnit(BIND_TEX_DEPTH, b->depth.texture);
+    gl.BindBufferBase(GL_SHADER_STORAGE_BUFFER, BIND_SSBO_REACH_LIGHTS, buf[0]);
+    gl.BindBufferBase(GL_SHADER_STORAGE_BUFFER, BIND_SSBO_REACH_COUNTS, buf[1]);
+    gl.DispatchCompute(((GLuint)b->width + 7u) / 8u, ((GLuint)b->height + 7u) / 8u, 1);
+    gl.MemoryBarrier(GL_BUFFER_UPDATE_BARRIER_BIT);
+    gl.GetNamedBufferSubData(buf[1], 0, (GLsizeiptr)(pixels * sizeof *counts), counts);
+    gl.BindTextureUnit(BIND_TEX_DEPTH, 0);
+    gl.BindBufferBase(GL_SHADER_STORAGE_BUFFER, BIND_SSBO_REACH_LIGHTS, 0);
+    gl.BindBufferBase(GL_SHADER_STORAGE_BUFFER, BIND_SSBO_REACH_COUNTS, 0);
+    gl.UseProgram(0);
+    gl.DeleteBuffers(2, buf);
+    gl_state_invalidate(b->st);
     return true;
 }
 

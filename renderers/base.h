@@ -176,6 +176,14 @@ bool renderer_base_read_hdr(const renderer_base *b, float *rgba, int width, int 
  * frames). False with a message when there is no depth target (not prepared) or the
  * program cannot be made. The state cache is invalidated: its next use sets again. */
 bool renderer_base_coverage(renderer_base *b, uint64_t *covered, char *err, size_t errlen);
+/* The lights of s (posed for the last frame drawn: lights[0 .. nlights_active)) that
+ * reach each pixel's surface in the depth target (lights_reaching.comp: the nearest
+ * sample with geometry unprojected through s->proj; point and spot lights within their
+ * range, spots inside their cone, directional lights always), into counts (width x
+ * height, GL's rows: row 0 at the bottom); UINT32_MAX where no sample has geometry.
+ * Between frames, as renderer_base_coverage; false with a message as it. */
+bool renderer_base_lights_reaching(renderer_base *b, const struct scene *s, uint32_t *counts,
+                                   char *err, size_t errlen);
 /* samples > 1: the pass "msaa-resolve" (a blit of hdr into hdr_resolved, in the HDR
  * format); nothing at all when single-sampled. After the last pass that shades into hdr,
  * before the display resolve. */

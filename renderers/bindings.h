@@ -17,6 +17,10 @@
 #define BIND_SSBO_TILE_DEPTH 4      /* tiles.inc (msaa > 1): per tile the depth range culled */
 #define BIND_SSBO_EDGES 5           /* tiled_deferred.comp (msaa > 1): edge pixels counted */
 #define BIND_SSBO_COVERAGE 6        /* coverage.comp: the covered pixels counted */
+/* lights_reaching.comp, between frames (no other block is bound then): the frame's
+ * lights, and a count per pixel */
+#define BIND_SSBO_REACH_LIGHTS 0
+#define BIND_SSBO_REACH_COUNTS 6
 /* visibility_shade.comp: its draws, and the scene's vertices and indices (slots 5-7: no
  * edge or coverage count in that dispatch, and 8 slots is GL's minimum) */
 #define BIND_SSBO_VIS_DRAWS 5

@@ -139,6 +139,17 @@ bool renderer_coverage(renderer *r, uint64_t *covered, char *err, size_t errlen)
     return renderer_base_coverage(r->self, covered, err, errlen);
 }
 
+bool renderer_lights_reaching(renderer *r, const struct scene *s, uint32_t *counts, char *err,
+                              size_t errlen)
+{
+    if (r->impl->no_base || !r->prepared) {
+        snprintf(err, errlen, "%s: no depth target to count the lights reaching in%s", r->kind,
+                 r->prepared ? "" : " (not prepared)");
+        return false;
+    }
+    return renderer_base_lights_reaching(r->self, s, counts, err, errlen);
+}
+
 void renderer_impl_collect(const renderer_impl *impl, void *self, frame_stats *out)
 {
     if (impl->collect)

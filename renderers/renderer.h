@@ -322,6 +322,11 @@ bool renderer_has_coverage(const renderer *r);
  * (renderer_base_coverage; between frames, never inside a measured one). False with
  * a message when the renderer has no depth target or is not prepared. */
 bool renderer_coverage(renderer *r, uint64_t *covered, char *err, size_t errlen);
+/* The lights that reach each pixel's surface in the last frame drawn, s posed for it
+ * (renderer_base_lights_reaching: counts is width x height, GL's rows, UINT32_MAX where
+ * nothing was drawn; between frames). False with a message where renderer_coverage is. */
+bool renderer_lights_reaching(renderer *r, const struct scene *s, uint32_t *counts, char *err,
+                              size_t errlen);
 /* An object's collect as renderer_collect calls it (renderer_impl.collect, or the
  * base's when that is NULL), without the totals: for tests that drive an impl. */
 void renderer_impl_collect(const renderer_impl *impl, void *self, frame_stats *out);

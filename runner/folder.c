@@ -25,7 +25,8 @@ static const char *const top_names[] = {"plan.csv",     "summary.csv",      "sum
                                          "summary.json", "summary_long.csv", "sweep.yaml"};
 static const char *const run_names[] = {
     "frames.csv", "seconds.csv", "passes.csv", "convergence.csv", "errors.csv",
-    "coverage.csv", "lightgrid.csv", "summary.csv", "meta.yaml", "log.txt", "files.txt",
+    "coverage.csv", "lightgrid.csv", "lights.csv", "summary.csv", "meta.yaml", "log.txt",
+    "files.txt",
 };
 #define NAMES(a) (sizeof(a) / sizeof((a)[0]))
 
@@ -73,13 +74,16 @@ static bool is_top_file(const char *name, bool *temp)
     return in_list(name, n, top_names, NAMES(top_names));
 }
 
-/* A file of a run folder: the fixed names, screenshot-trial*.png, error-trial*.{png,exr}. */
+/* A file of a run folder: the fixed names, screenshot-trial*.png, lights-heat-trial*.png,
+ * error-trial*.{png,exr}. */
 bool folder_is_run_file(const char *name, bool *temp)
 {
     size_t n = base_len(name, temp);
     if (in_list(name, n, run_names, NAMES(run_names)))
         return true;
     if (n > 16 && strncmp(name, "screenshot-trial", 16) == 0 && ends_with(name, n, ".png"))
+        return true;
+    if (n > 17 && strncmp(name, "lights-heat-trial", 17) == 0 && ends_with(name, n, ".png"))
         return true;
     return n > 11 && strncmp(name, "error-trial", 11) == 0 &&
            (ends_with(name, n, ".png") || ends_with(name, n, ".exr"));

@@ -11,6 +11,7 @@
 #include "version.h"
 #include "runner/hash.h"
 #include "runner/memory.h"
+#include "runner/workload.h"
 
 static void cpu_model(char *buf, size_t len)
 {
@@ -219,6 +220,22 @@ bool run_write_meta(run_state *st, char *err, size_t errlen)
     yo_map_begin(y);
     yo_key(y, "estimate_mb"); yo_i64(y, (int64_t)((me.resident + (1u << 19)) >> 20));
     yo_key(y, "peak_rss_mb"); yo_i64(y, hwm < 0 ? -1 : (hwm + 512) / 1024);
+    yo_map_end(y);
+
+    /* what the trial measured (runner/workload.h), and whether it was brute force */
+    const metric_totals *m = &st->result.m;
+    char warning[256];
+    bool brute = workload_brute_force(m->lights_reaching_mean, (double)st->result.lights_max,
+                                      warning, sizeof warning);
+    yo_key(y, "workload");
+    yo_map_begin(y);
+    yo_key(y, "counted_at"); yo_str(y, "the first measured frame, over its covered pixels");
+    yo_key(y, "lights_reaching_mean"); yo_f64(y, m->lights_reaching_mean);
+    yo_key(y, "lights_reaching_p50"); yo_f64(y, m->lights_reaching_p50);
+    yo_key(y, "lights_reaching_p99"); yo_f64(y, m->lights_reaching_p99);
+    yo_key(y, "lights_reaching_max"); yo_f64(y, m->lights_reaching_max);
+    yo_key(y, "coverage"); yo_f64(y, m->coverage);
+    yo_key(y, "warning"); yo_str(y, brute ? warning : NULL);
     yo_map_end(y);
 
     yo_key(y, "pass_plan");

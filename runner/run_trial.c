@@ -14,6 +14,7 @@
 #include "results/contention.h"
 #include "results/image_ref.h"
 #include "runner/folder.h"
+#include "runner/workload.h"
 
 void run_utc_now(char *buf, size_t len)
 {
@@ -490,14 +491,51 @@ static void frame_metrics_of(frame_record *r, const frame_stats *fs, const gbuff
 /* What the trial's first measured frame shows: results/metrics.def's `shown`. */
 typedef struct frame_shown {
     double coverage;   /* covered pixels / pixels; NAN: not counted */
+    workload_reach reach;   /* the lights reaching its covered pixels (NAN: not counted) */
 } frame_shown;
+
+/* The lights that reach each covered pixel of the first measured frame (the workload's
+ * own figure: the renderer's depth of the frame, the scene's lights as posed for it),
+ * and trial 1's heat map of them, lights-heat-trial1.png. False when the trial ends
+ * here (the count failed, or the map could not be written). */
+static bool count_reaching(run_state *st, uint32_t trial, frame_shown *shown, trial_result *tr)
+{
+    const run_params *p = &st->s->p;
+    size_t n = (size_t)p->width * (size_t)p->height;
+    uint32_t *counts = malloc(n * sizeof *counts);
+    if (!counts) {
+        snprintf(tr->status, sizeof tr->status, "failed:oom");
+        snprintf(st->err, sizeof st->err, "out of memory for the lights reaching %zu pixels", n);
+        return false;
+    }
+    uint32_t lights = st->sc->nlights_active;
+    bool ok = renderer_lights_reaching(st->r, st->sc, counts, st->err, sizeof st->err);
+    if (!ok)
+        snprintf(tr->status, sizeof tr->status, "failed:coverage");
+    else if (!(ok = workload_reach_stats(counts, n, lights, &shown->reach))) {
+        snprintf(tr->status, sizeof tr->status, "failed:oom");
+        snprintf(st->err, sizeof st->err, "out of memory for a histogram of %u lights", lights);
+    }
+    char msg[256];
+    if (ok && workload_brute_force(shown->reach.mean, lights, msg, sizeof msg))
+        fprintf(stderr, "run %s: warning: %s\n", st->s->id, msg);
+    if (ok && trial == 1) {   /* an unwritten map leaves the run incomplete, not ended */
+        char path[4500], err[512];
+        snprintf(path, sizeof path, "%s/lights-heat-trial%u.png", st->dir, trial);
+        if (!workload_heat_map(path, counts, p->width, p->height, lights, err, sizeof err))
+            capture_failed(st, tr, "lights heat map", "output", true, err);
+    }
+    free(counts);
+    return ok;
+}
 
 /* The trial's first measured frame, between frames (the caller has paused the measured
  * clock): the fraction of the screen its scene covers, and its brightest channel as
  * displayed. A frame of a scene with objects that shows nothing (no pixel covered, or
  * black) fails the trial as failed:empty unless allow_empty: its frame time would rank a
  * view of nothing. False when the trial ends here. */
-static bool check_shown(run_state *st, double t, frame_shown *shown, trial_result *tr)
+static bool check_shown(run_state *st, uint32_t trial, double t, frame_shown *shown,
+                        trial_result *tr)
 {
     const run_params *p = &st->s->p;
     shown->coverage = NAN;
@@ -509,6 +547,8 @@ static bool check_shown(run_state *st, double t, frame_shown *shown, trial_resul
         return false;
     }
     shown->coverage = (double)covered / ((double)p->width * (double)p->height);
+    if (!count_reaching(st, trial, shown, tr))
+        return false;
     if (p->allow_empty || st->sc->nobjects == 0)
         return true;
     if (covered == 0) {
@@ -589,11 +629,21 @@ void run_one_trial(run_state *st, uint32_t trial, trial_result *tr)
         snprintf(tr->status, sizeof tr->status, "failed:gl-error");
         return;
     }
+    /* The lights as the measured frames will have them: after every step of setup that
+     * can change them, right before the first measured frame (once a run: trial 1's). */
+    if (trial == 1) {
+        char path[4400], err[512];
+        snprintf(path, sizeof path, "%s/lights.csv", st->dir);
+        if (!workload_lights_csv(path, st->sc, err, sizeof err)) {
+            fprintf(stderr, "run %s: lights.csv: %s\n", st->s->id, err);
+            run_set_unwritten(tr->status, sizeof tr->status, st->err, sizeof st->err, err);
+        }
+    }
 
     trial_sink sink = {.st = st, .trial = trial};
     trial_stream_begin(st->stream, 0.01, sink_second, sink_point, &sink);
     bool shot_done[MAX_SCREENSHOTS] = {false}, error_done[MAX_SCREENSHOTS] = {false};
-    frame_shown shown = {.coverage = NAN};
+    frame_shown shown = {.coverage = NAN, .reach = {NAN, NAN, NAN, NAN, 0}};
     double harness_s = 0, t_end = 0, start = 0, t_last = 0;
     size_t n = 0;
     measured_clock mc;
@@ -648,7 +698,7 @@ void run_one_trial(run_state *st, uint32_t trial, trial_result *tr)
         }
         if (k == 0) {   /* what the trial measures must show something */
             mclock_pause(&mc);
-            bool shows = check_shown(st, t, &shown, tr);
+            bool shows = check_shown(st, trial, t, &shown, tr);
             mclock_resume(&mc);
             if (!shows)
                 break;

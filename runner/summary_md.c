@@ -10,10 +10,11 @@
 #include "runner/params.h"
 #include "runner/summary_json.h"
 #include "runner/summary_long.h"
+#include "runner/workload.h"
 
 typedef struct trial_cols {
     int run_id, renderer, experiment, trial, wall, p99, low1, rmse, status, metric, value;
-    int share, steal;
+    int share, steal, reach, evals, coverage, lights;
 } trial_cols;
 
 void summary_free_runs(run_result *runs, size_t n)
@@ -40,7 +41,9 @@ bool summary_load_runs(const char *path, run_result **out, size_t *n, char *err,
         csv_col(&t, "trial"), csv_col(&t, "frametime_mean_us"), csv_col(&t, "frametime_p99_us"),
         csv_col(&t, "fps_1pct_low"), csv_col(&t, "image_rmse"), csv_col(&t, "status"),
         csv_col(&t, "metric"), csv_col(&t, "metric_us"), csv_col(&t, "cpu_share_mean"),
-        csv_col(&t, "steal_frac"),
+        csv_col(&t, "steal_frac"), csv_col(&t, "lights_reaching_mean"),
+        csv_col(&t, "light_evals_per_pixel"), csv_col(&t, "coverage"),
+        csv_col(&t, "lights_count"),
     };
     if (c.run_id < 0 || c.trial < 0 || c.wall < 0 || c.status < 0) {
         snprintf(err, errlen, "%s: not a shadesweep summary.csv (no run_id, trial, "
@@ -95,6 +98,11 @@ bool summary_load_runs(const char *path, run_result **out, size_t *n, char *err,
         size_t m = 0;
         double p99 = 0, low = 0;
         x->rmse = NAN;
+        /* the workload's figures: sums and counts of the ok trials' finite values */
+        double wsum[3] = {0, 0, 0};
+        size_t wn[3] = {0, 0, 0};
+        const int wcol[3] = {c.reach, c.evals, c.coverage};
+        x->lights = NAN;
         for (size_t q = r; q < t.nrows; q++) {
             if (strcmp(csv_get(&t, q, c.run_id), id) != 0)
                 continue;
@@ -122,7 +130,18 @@ bool summary_load_runs(const char *path, run_result **out, size_t *n, char *err,
             double e = c.rmse >= 0 ? csv_num(&t, q, c.rmse) : NAN;
             if (isfinite(e) && !(e <= x->rmse))
                 x->rmse = e;
+            for (int w = 0; w < 3; w++) {
+                double v = wcol[w] >= 0 ? csv_num(&t, q, wcol[w]) : NAN;
+                if (isfinite(v))
+                    wsum[w] += v, wn[w]++;
+            }
+            double nl = c.lights >= 0 ? csv_num(&t, q, c.lights) : NAN;
+            if (isfinite(nl) && !(nl <= x->lights))
+                x->lights = nl;
         }
+        x->reach_mean = wn[0] ? wsum[0] / (double)wn[0] : NAN;
+        x->evals = wn[1] ? wsum[1] / (double)wn[1] : NAN;
+        x->coverage = wn[2] ? wsum[2] / (double)wn[2] : NAN;
         if (x->trials_ok && strcmp(x->status, "ok") != 0)
             snprintf(x->status, sizeof x->status, "ok");   /* some trials failed, not all */
         verdict_mean_ci(x->value, x->nvalues, &x->mean, &x->half);
@@ -180,6 +199,13 @@ size_t summary_warnings(const run_result *runs, size_t n, FILE *out, const char 
         }
         free(flag);
         free(scratch);
+    }
+    for (size_t r = 0; r < n; r++) {
+        char msg[256];
+        if (workload_brute_force(runs[r].reach_mean, runs[r].lights, msg, sizeof msg)) {
+            fprintf(out, "%srun %s (%s): %s\n", prefix, runs[r].id, runs[r].renderer, msg);
+            count++;
+        }
     }
     return count;
 }
@@ -323,6 +349,7 @@ static void fmt_ms(char *dst, size_t len, double us, int dec)
 
 typedef struct cells {
     char rank[24], mean[32], ci[32], wall[64], ratio[48], sig[16], p99[32], low[32], rmse[32];
+    char reach[48], evals[32], coverage[32];
 } cells;
 
 const char *summary_differs(const ratio_ci *r)
@@ -376,6 +403,18 @@ static void make_cells(const run_result *x, const run_result *fastest, size_t ra
         snprintf(o->rmse, sizeof o->rmse, "%.4g", x->rmse);
     else
         snprintf(o->rmse, sizeof o->rmse, "-");
+    if (isfinite(x->reach_mean) && isfinite(x->lights))
+        snprintf(o->reach, sizeof o->reach, "%.2f of %.0f", x->reach_mean, x->lights);
+    else
+        snprintf(o->reach, sizeof o->reach, "-");
+    if (isfinite(x->evals))
+        snprintf(o->evals, sizeof o->evals, "%.2f", x->evals);
+    else
+        snprintf(o->evals, sizeof o->evals, "-");
+    if (isfinite(x->coverage))
+        snprintf(o->coverage, sizeof o->coverage, "%.1f%%", 100 * x->coverage);
+    else
+        snprintf(o->coverage, sizeof o->coverage, "-");
 }
 
 static const char md_intro[] =
@@ -391,7 +430,13 @@ static const char md_intro[] =
     "fewer than 3 paired trials. Wall frame time is shown beside the metric; p99 is the mean "
     "of the trials' 99th-percentile frame time and `1% low` the FPS at that frame time "
     "(1e6 / p99 us: the slowest 1% of frames run at this rate or below); RMSE is the "
-    "largest image error against the reference where the manifest measures it.\n";
+    "largest image error against the reference where the manifest measures it. The "
+    "workload beside them: `lights a pixel` is how many of the run's lights reach a "
+    "covered pixel's surface, on average (the same for every renderer of a point: the "
+    "scene's own figure, counted in the first measured frame), `evals a pixel` the light "
+    "evaluations the renderer's shading loops make a covered pixel (renderers with light "
+    "lists only; above `lights a pixel` by what culling lets through in vain), `coverage` "
+    "the fraction of the screen the scene covers.\n";
 
 /* Prints s left-aligned in a field of `width` columns (UTF-8 aware for "±"). */
 static void tcell(FILE *fp, const char *s, int width)
@@ -544,8 +589,9 @@ bool summary_table_write(const char *out_dir, FILE *terminal, char *err, size_t 
         fprintf(f.fp, "\n## %s\n\n", p->label);
         fprintf(f.fp, "Ranked by %s time per frame.\n\n", metric);
         fprintf(f.fp, "| rank | renderer |%s run | %s (ms) | x fastest | differs | wall (ms) | "
-                "p99 (ms) | 1%% low (FPS) | RMSE | trials |\n"
-                "|---|---|%s---|---|---|---|---|---|---|---|---|\n", single ? " point |" : "",
+                "p99 (ms) | 1%% low (FPS) | RMSE | lights a pixel | evals a pixel | coverage | "
+                "trials |\n"
+                "|---|---|%s---|---|---|---|---|---|---|---|---|---|---|---|\n", single ? " point |" : "",
                 metric, single ? "---|" : "");
         bool term = terminal && k < TERM_MAX_POINTS;
         if (term) {
@@ -562,10 +608,11 @@ bool summary_table_write(const char *out_dir, FILE *terminal, char *err, size_t 
             else
                 snprintf(ft, sizeof ft, "%s", x->status);
             snprintf(trials, sizeof trials, "%zu of %zu ok", x->trials_ok, x->trials);
-            fprintf(f.fp, "| %s | %s |%s%s%s %s | %s | %s | %s | %s | %s | %s | %s | %s |\n",
+            fprintf(f.fp, "| %s | %s |%s%s%s %s | %s | %s | %s | %s | %s | %s | %s | %s | %s | "
+                    "%s | %s |\n",
                     c.rank, rcfg[p->runs[i]], single ? " " : "", single ? rlabel[p->runs[i]] : "",
                     single ? " |" : "", x->id, ft, c.ratio, c.sig, c.wall, c.p99, c.low, c.rmse,
-                    trials);
+                    c.reach, c.evals, c.coverage, trials);
             if (term && i < TERM_MAX_ROWS) {
                 fputs("  ", terminal);
                 tcell(terminal, c.rank, 4);
@@ -607,7 +654,8 @@ bool summary_table_write(const char *out_dir, FILE *terminal, char *err, size_t 
     /* what makes these verdicts doubtful, named per trial */
     fputs("\n## Warnings\n\n", f.fp);
     if (!summary_warnings(runs, nruns, f.fp, "- "))
-        fputs("None: no trial is an outlier among its run's, none ran on a busy machine.\n", f.fp);
+        fputs("None: no trial is an outlier among its run's, none ran on a busy machine, "
+              "no run's workload is brute force.\n", f.fp);
     if (terminal)
         summary_warnings(runs, nruns, terminal, "warning: ");
     ok = afile_commit(&f, err, errlen);

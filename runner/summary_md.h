@@ -35,6 +35,10 @@ typedef struct run_result {
     double p99_us;             /* mean of the ok trials' frametime_p99_us */
     double low1_fps;           /* 1e6 / p99_us (the trials' fps_1pct_low without a p99) */
     double rmse;               /* largest image_rmse of the ok trials; NAN: not measured */
+    /* the workload, means over the ok trials that have it (NAN: none): the lights that
+     * reach a covered pixel, the renderer's light evaluations a pixel, the covered
+     * fraction, and the most lights (lights_count, the largest over the trials) */
+    double reach_mean, evals, coverage, lights;
     char status[96];           /* "ok", or the first trial status that is not */
 } run_result;
 
@@ -47,8 +51,10 @@ void summary_free_runs(run_result *runs, size_t n);
 /* What makes a run's verdicts doubtful, a line per trial (hyperfine warns the same way):
  * a trial whose value is an outlier among the run's (verdict_outliers: interference only
  * adds time), and a trial that ran on a busy machine (it got under 3/4 of the CPU share
- * its run's other trials got, or the hypervisor stole over 5% of the machine). Each line
- * starts with `prefix`. Returns how many. */
+ * its run's other trials got, or the hypervisor stole over 5% of the machine); and a
+ * line per run whose workload is brute force (workload_brute_force: the lights reaching
+ * a pixel average over half its lights). Each line starts with `prefix`. Returns how
+ * many. */
 size_t summary_warnings(const run_result *runs, size_t n, FILE *out, const char *prefix);
 
 /* a / b of two runs measured in the same rounds (trial k with trial k): paired */
