@@ -52,6 +52,7 @@ static const char *const msaa_names[] = {"1", "2", "4", "8", NULL};   /* 1 << in
 static const char *const aa_names[] = {"none", "edge", NULL};   /* aa_mode */
 static const char *const translucency_names[] = {"blend", "opaque", NULL};
 static const char *const shading_model_names[] = {"scene", "phong", "pbr", NULL};
+static const char *const environment_names[] = {"none", "sky", "scene", NULL};
 static const char *const schedule_names[] = {"interleaved", "sequential", NULL};
 static const char *const metric_names[] = {"auto", "wall", "cpu", "gpu", NULL};
 
