@@ -13,7 +13,8 @@ cd "$T"
 PY="$SOURCE_ROOT/tests/cli/shading_model.py"
 "$PYTHON" "$PY" gen . || fail "shading_model.py gen"
 for c in directional point spot maps linear-range quadratic \
-         pbr-directional pbr-point pbr-spot pbr-maps pbr-linear-range pbr-quadratic; do
+         pbr-directional pbr-point pbr-spot pbr-maps pbr-linear-range pbr-quadratic \
+         env-phong env-pbr env-metal; do
   "$SHADESWEEP" run --debug-gl "$c.yaml" -o "out-$c" >"run-$c.txt" 2>&1 ||
     fail "run $c.yaml: $(tail -5 "run-$c.txt")"
 done
