@@ -17,6 +17,12 @@ pbr-NAME) under `shading: {model: pbr}` against glTF 2.0's metallic-roughness mo
 with the project's ambient A = ambient light x base colour (x occlusion: none here),
 metallic PBR_METALLIC, roughness ROUGHNESS and the lights PBR_GAIN times brighter.
 
+Issue 36: three cases without lights under `environment: sky` (ENV_CASES: Phong, a rough
+dielectric and a metal) against the environment's split sum with its two integrals
+computed here from the sky's definition: the irradiance E(+Y)/pi (Gauss-Legendre) and the
+GGX-prefiltered sky about each pixel's reflection (a (theta, phi) grid), times Karis's
+analytic F0 A + B (its tolerance beside ENV_CASES).
+
     shading_model.py gen DIR      writes the glTF scenes and the manifests into DIR
     shading_model.py check DIR    compares DIR/out-*/runs/*/screenshot-*.png with the model
 
