@@ -41,6 +41,13 @@
 #define BIND_TEX_VISIBILITY 4       /* visibility_shade.comp: the id target (no G-buffer there) */
 #define BIND_TEX_JOINTS 15          /* skin.inc: the frame's joint matrices (samplerBuffer,
                                        RGBA32F, 4 texels a joint), bound by scene_gpu_frame */
+#define BIND_TEX_ENVIRONMENT 16    /* environment.inc: the prefiltered sky (samplerCube,
+                                       environment.light: sky), bound by scene_gpu_frame;
+                                       past 15 (a unit index may reach
+                                       GL_MAX_COMBINED_TEXTURE_IMAGE_UNITS, >= 80): it is
+                                       one more sampler in a stage, whose minimum is 16:
+                                       visibility_shade.comp and tiled_deferred.comp use
+                                       at most 9 with it) */
 /* Image units */
 #define BIND_IMAGE_HDR 0            /* tiled-deferred writes the HDR target (deferred-lighting
                                        tiled: its light buffer's diffuse light) */

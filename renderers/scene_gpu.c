@@ -7,6 +7,7 @@
 #include "renderers/frontend.h"
 #include "renderers/gl/loader.h"
 #include "renderers/gl/program.h"
+#include "renderers/environment.h"
 #include "renderers/shading.h"
 #include "scenes/scene_anim.h"
 
@@ -29,7 +30,9 @@ struct scene_gpu {
     uint32_t ntextures;
     gpu_mesh sphere, cone;     /* the light volumes (frontend.h) */
     GLuint frame_ubo;
+    size_t frame_bytes;        /* of gpu_frame: shading_frame_bytes */
     GLuint joints_buffer, joints_texture;   /* the joint palette (skin.inc), or 0 */
+    GLuint environment;        /* the prefiltered sky (environment.inc), or 0 */
     uint32_t njoints;
     gl_program_cache *programs;
     GLuint sky_program, resolve_program;
@@ -223,6 +226,35 @@ static bool joints_create(scene_gpu *g, const scene *s, char *err, size_t errlen
     return true;
 }
 
+/* The environment's cube map (environment.h): RGBA16F, its mips the prefiltered levels,
+ * trilinear, seamless across faces. */
+static bool environment_create(scene_gpu *g, char *err, size_t errlen)
+{
+    const environment_maps *m = environment_get();
+    if (!m) {
+        snprintf(err, errlen, "scene_gpu: out of memory for the environment's maps");
+        return false;
+    }
+    gl.CreateTextures(GL_TEXTURE_CUBE_MAP, 1, &g->environment);
+    gl.TextureStorage2D(g->environment, ENVIRONMENT_LEVELS, GL_RGBA16F, ENVIRONMENT_FACE,
+                        ENVIRONMENT_FACE);
+    for (int k = 0; k < ENVIRONMENT_LEVELS; k++) {
+        int size = ENVIRONMENT_FACE >> k;
+        /* a cube map's faces are layers 0..5 of TextureSubImage3D (DSA) */
+        gl.TextureSubImage3D(g->environment, k, 0, 0, 0, size, size, 6, GL_RGB, GL_FLOAT,
+                             m->level[k]);
+        g->bytes += (uint64_t)size * (uint64_t)size * 6u * 8u;
+    }
+    gl.TextureParameteri(g->environment, GL_TEXTURE_MIN_FILTER, GL_LINEAR_MIPMAP_LINEAR);
+    gl.TextureParameteri(g->environment, GL_TEXTURE_MAG_FILTER, GL_LINEAR);
+    gl.TextureParameteri(g->environment, GL_TEXTURE_WRAP_S, GL_CLAMP_TO_EDGE);
+    gl.TextureParameteri(g->environment, GL_TEXTURE_WRAP_T, GL_CLAMP_TO_EDGE);
+    gl.TextureParameteri(g->environment, GL_TEXTURE_WRAP_R, GL_CLAMP_TO_EDGE);
+    /* context state; no other cube map is sampled (the shadow maps are 2D arrays) */
+    gl.Enable(GL_TEXTURE_CUBE_MAP_SEAMLESS);
+    return true;
+}
+
 static bool build_program(scene_gpu *g, const char *fragment, GLuint *out, char *err,
                           size_t errlen)
 {
@@ -230,8 +262,11 @@ static bool build_program(scene_gpu *g, const char *fragment, GLuint *out, char 
     int n = 0;
     if (g->unclipped)
         d.defines[n++] = "FULLSCREEN_UNCLIPPED";
-    if (strcmp(fragment, "sky.frag") == 0)
+    if (strcmp(fragment, "sky.frag") == 0) {
         d.defines[n++] = "FULLSCREEN_FAR";   /* z = w: the sky lies on the far plane */
+        if (g->environment)
+            d.defines[n++] = "ENVIRONMENT";   /* the sky is the environment's */
+    }
     if (strcmp(fragment, "resolve.frag") == 0) {
         if (g->display.exposed)
             d.defines[n++] = "EXPOSURE";
@@ -267,6 +302,8 @@ scene_gpu *scene_gpu_create(const scene *s, char *err, size_t errlen)
     gl.VertexAttrib4f(SCENE_GPU_WEIGHTS_ATTRIB, 0.0f, 0.0f, 0.0f, 0.0f);   /* no skin */
     if (!joints_create(g, s, err, errlen))
         goto fail;
+    if (s->environment != ENVIRONMENT_NONE && !environment_create(g, err, errlen))
+        goto fail;
     g->uv2 = scene_uses_uv2(s);
     for (uint32_t i = 0; i < s->nmeshes; i++) {
         char what[32];
@@ -292,11 +329,12 @@ scene_gpu *scene_gpu_create(const scene *s, char *err, size_t errlen)
     if (!ok)
         goto fail;
 
+    g->frame_bytes = shading_frame_bytes(s);
     gl.CreateBuffers(1, &g->frame_ubo);
-    gl.NamedBufferStorage(g->frame_ubo, (GLsizeiptr)sizeof(gpu_frame), NULL,
+    gl.NamedBufferStorage(g->frame_ubo, (GLsizeiptr)g->frame_bytes, NULL,
                           GL_DYNAMIC_STORAGE_BIT);
     gl.BindBufferBase(GL_UNIFORM_BUFFER, 0, g->frame_ubo);
-    g->bytes += sizeof(gpu_frame);
+    g->bytes += g->frame_bytes;
 
     GLint dims[2] = {0, 0};
     gl.GetIntegerv(GL_MAX_VIEWPORT_DIMS, dims);
@@ -333,6 +371,8 @@ void scene_gpu_destroy(scene_gpu *g)
         gl.DeleteBuffers(1, &g->frame_ubo);
     if (g->joints_texture)
         gl.DeleteTextures(1, &g->joints_texture);
+    if (g->environment)
+        gl.DeleteTextures(1, &g->environment);
     if (g->joints_buffer)
         gl.DeleteBuffers(1, &g->joints_buffer);
     gl_program_cache_destroy(g->programs);
@@ -348,7 +388,7 @@ void scene_gpu_frame(scene_gpu *g, const scene *s)
     gpu_frame f;
     g->display.exposure = s->display.exposure;
     shading_pack_frame(s, &f);
-    gl.NamedBufferSubData(g->frame_ubo, 0, (GLsizeiptr)sizeof f, &f);
+    gl.NamedBufferSubData(g->frame_ubo, 0, (GLsizeiptr)g->frame_bytes, &f);
     gl.BindBufferBase(GL_UNIFORM_BUFFER, 0, g->frame_ubo);
     for (uint32_t i = 0; i < g->nmeshes && i < s->nmeshes; i++)   /* morph targets */
         if (s->meshes[i].deforms)
@@ -363,6 +403,8 @@ void scene_gpu_frame(scene_gpu *g, const scene *s)
                               s->anim->joints);
         gl.BindTextureUnit(BIND_TEX_JOINTS, g->joints_texture);
     }
+    if (g->environment)   /* as the joints: outside the cache, for every pass */
+        gl.BindTextureUnit(BIND_TEX_ENVIRONMENT, g->environment);
 }
 
 /* The object's mesh, or NULL (with a message) for a bad object. */

@@ -2,6 +2,8 @@
  * renderers/shaders/lighting.inc.glsl and frame.inc.glsl read them (shading.h). */
 #include "renderers/shading.h"
 
+#include "renderers/environment.h"
+
 #include <math.h>
 #include <string.h>
 
@@ -64,6 +66,22 @@ void shading_pack_frame(const scene *s, gpu_frame *out)
     out->sky[3] = s->sky ? 1.0f : 0.0f;
     out->clip[0] = s->cam.znear;
     out->clip[1] = s->cam.zfar;
+    sm_mat4_inv(s->view, inv);
+    memcpy(out->view_to_world, inv, sizeof out->view_to_world);
+    const environment_maps *env = s->environment != ENVIRONMENT_NONE ? environment_get() : NULL;
+    if (env) {   /* without the maps (out of memory) scene_gpu_create has failed already */
+        out->environment[0] = s->environment_intensity;
+        out->environment[1] = (float)(ENVIRONMENT_LEVELS - 1);
+        for (int i = 0; i < 9; i++)
+            for (int c = 0; c < 3; c++)
+                out->environment_sh[i][c] = env->sh[i][c] * s->environment_intensity;
+    }
+}
+
+size_t shading_frame_bytes(const scene *s)
+{
+    return s->environment != ENVIRONMENT_NONE ? sizeof(gpu_frame)
+                                              : offsetof(gpu_frame, view_to_world);
 }
 
 unsigned shading_material_defines(const scene_material *m,

@@ -2,6 +2,7 @@
 /* CPU side of the shared shading code (renderers/shaders/lighting.inc.glsl and
  * frame.inc.glsl): lights and per-frame values packed as the shaders read them.
  * All shading is in view space. */
+#include <stddef.h>
 #include <stdint.h>
 #include "scenes/scene.h"
 
@@ -18,6 +19,11 @@ typedef struct gpu_frame {
     float viewport[4];
     float sky[4];
     float clip[4];
+    /* the environment light (environment.h): in the block only with the ENVIRONMENT
+     * define, a scene with one (shading_frame_bytes) */
+    float view_to_world[16];   /* the view matrix's inverse */
+    float environment[4];      /* x intensity, y the cube map's last lod, zw 0 */
+    float environment_sh[9][4];   /* rgb: environment_maps.sh x intensity, w 0 */
 } gpu_frame;
 
 /* Light l in the view space of `view`: [0] position transformed as a point, w range;
@@ -31,8 +37,14 @@ void shading_pack_light(const scene_light *l, const sm_mat4 view, gpu_light *out
 void shading_set_shadow_layer(gpu_light *l, uint32_t layer);
 /* proj = s->proj, inv_proj = its inverse (sm_mat4_inv), ambient = (s->ambient, 0),
  * viewport = (width, height, 1/width, 1/height) of s, sky = (s->sky_color, 1 when
- * s->sky else 0), clip = (s->cam.znear, s->cam.zfar, 0, 0). */
+ * s->sky else 0), clip = (s->cam.znear, s->cam.zfar, 0, 0), view_to_world = s->view's
+ * inverse; with an environment (s->environment), environment = (intensity, levels - 1,
+ * 0, 0) and environment_sh its irradiance times the intensity (zero otherwise; the maps
+ * are built at the first such call: environment_get). */
 void shading_pack_frame(const scene *s, gpu_frame *out);
+/* The bytes of gpu_frame that frame.inc's block has for s: all of them with an
+ * environment, else up to view_to_world (the block without ENVIRONMENT). */
+size_t shading_frame_bytes(const scene *s);
 
 /* clustered: the depth slices that reach from s's near to its far plane with Olsson
  * et al.'s spacing, each slice's far/near ratio being 1 + 2 tan(fovy/2) / slices_y

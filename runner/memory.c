@@ -314,7 +314,8 @@ static uint64_t meminfo_kb(const char *field)
 static bool same_scene(const run_params *a, const run_params *b)
 {
     return run_params_same_scene(a, b) && a->translucency == b->translucency &&
-           a->shading_model == b->shading_model;
+           a->shading_model == b->shading_model && a->environment == b->environment &&
+           a->environment_intensity == b->environment_intensity;
 }
 
 /* The facts of p's scene, built without GL in this process once per scene and camera

@@ -57,6 +57,7 @@ static const char *const light_sizing_names[] = {"radius", "range-from-intensity
                                                  "intensity-from-range", NULL};
 static const char *const exposure_mode_names[] = {"none", "auto", "fixed", NULL};
 static const char *const tonemap_names[] = {"none", "pbr-neutral", NULL};
+static const char *const environment_names[] = {"none", "sky", "scene", NULL};
 static const char *const schedule_names[] = {"interleaved", "sequential", NULL};
 static const char *const metric_names[] = {"auto", "wall", "cpu", "gpu", NULL};
 

@@ -78,6 +78,9 @@ uint32_t run_params_shape_scene(const run_params *p, scene *s)
                       : p->shading_model == 2 ? SHADING_PBR
                                               : scene_own_shading(s);
     scene_set_shading(s, m);   /* a freshly built scene is Phong's: never refused */
+    bool sky = p->environment == 1 || (p->environment == 2 && s->from_file);
+    scene_set_environment(s, sky ? ENVIRONMENT_SKY : ENVIRONMENT_NONE,
+                          p->environment_intensity);
     return opaque;
 }
 

@@ -236,3 +236,11 @@ shading_model scene_own_shading(const scene *s)
 {
     return s->from_file ? SHADING_PBR : SHADING_PHONG;
 }
+
+void scene_set_environment(scene *s, scene_environment e, float intensity)
+{
+    s->environment = e;
+    s->environment_intensity = e == ENVIRONMENT_NONE ? 0.0f : intensity;
+    if (e != ENVIRONMENT_NONE)
+        s->sky = true;   /* the sky pass draws the environment (sky.frag's ENVIRONMENT) */
+}

@@ -51,6 +51,11 @@ typedef enum material_alpha {
  * distribution, separable Smith-GGX visibility, Schlick's Fresnel, Lambert diffuse). */
 typedef enum shading_model { SHADING_PHONG = 0, SHADING_PBR } shading_model;
 
+/* The environment light (manifest key environment.light, issue 36; renderers/environment.h):
+ * none (the scene's constant ambient light), or the procedural sky, which replaces the
+ * ambient light in every renderer's ambient term and shows where no geometry is. */
+typedef enum scene_environment { ENVIRONMENT_NONE = 0, ENVIRONMENT_SKY } scene_environment;
+
 /* A material; a map index is -1 when the material has no such map. The shaders take
  * diffuse, specular, shininess, gloss_map and emissive (surface.inc): under Phong as
  * named; after scene_set_shading(s, SHADING_PBR) specular, shininess and gloss_map hold
@@ -162,6 +167,8 @@ typedef struct scene {
                                 * again (a file's lights_around) */
     bool sky;                  /* a sky is drawn where no geometry is */
     sm_vec3 sky_color;
+    scene_environment environment;   /* ENVIRONMENT_NONE until scene_set_environment */
+    float environment_intensity;     /* multiplies the environment's radiance */
 
     mesh *meshes;
     uint32_t nmeshes;
@@ -369,6 +376,11 @@ bool scene_set_shading(scene *s, shading_model m);
 bool scene_size_lights(scene *s, const light_params *lp, float exposure, char *err,
                        size_t errlen);
 shading_model scene_own_shading(const scene *s);
+/* The manifest's environment.light: ENVIRONMENT_SKY lights the scene by the procedural
+ * sky at `intensity` instead of its ambient light and draws it as the sky (s->sky set:
+ * the renderers' sky pass shows the environment, not sky_color); ENVIRONMENT_NONE
+ * leaves the scene as built. */
+void scene_set_environment(scene *s, scene_environment e, float intensity);
 
 /* Fraction of the screen's pixels (0..1) whose view ray, through the pixel's centre,
  * passes through light i's volume (point: its ball of `radius`; spot: its cone of half

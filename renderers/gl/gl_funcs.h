@@ -191,6 +191,7 @@ GL_FUNC(void, GetNamedFramebufferAttachmentParameteriv, (GLuint framebuffer, GLe
 GL_FUNC(void, CopyImageSubData, (GLuint srcName, GLenum srcTarget, GLint srcLevel, GLint srcX, GLint srcY, GLint srcZ, GLuint dstName, GLenum dstTarget, GLint dstLevel, GLint dstX, GLint dstY, GLint dstZ, GLsizei srcWidth, GLsizei srcHeight, GLsizei srcDepth))
 GL_FUNC(void, CreateVertexArrays, (GLsizei n, GLuint *arrays))
 GL_FUNC(void, TextureSubImage2D, (GLuint texture, GLint level, GLint xoffset, GLint yoffset, GLsizei width, GLsizei height, GLenum format, GLenum type, const void *pixels))
+GL_FUNC(void, TextureSubImage3D, (GLuint texture, GLint level, GLint xoffset, GLint yoffset, GLint zoffset, GLsizei width, GLsizei height, GLsizei depth, GLenum format, GLenum type, const void *pixels))
 GL_FUNC(void, GenerateTextureMipmap, (GLuint texture))
 GL_FUNC(void, CreateBuffers, (GLsizei n, GLuint *buffers))
 GL_FUNC(void, NamedBufferStorage, (GLuint buffer, GLsizeiptr size, const void *data, GLbitfield flags))

@@ -118,7 +118,9 @@ gl_program_err gl_program_get(gl_program_cache *c, const gl_program_desc *desc,
  * plan says once what the common defines left out. A desc naming a common define is
  * refused as GLP_ERR_DEFINE. False, and the cache unchanged, when one is malformed or
  * repeated, or there are too many. */
-enum { GLP_MAX_COMMON_DEFINES = 4 };
+/* renderer_base_scene's are at most 7: LIGHT_TYPES, LIGHT_ATTENUATIONS, VERTEX_COLOR,
+ * UV2, SKINNING, SHADING_PBR, ENVIRONMENT (renderers/base.c) */
+enum { GLP_MAX_COMMON_DEFINES = 8 };
 bool gl_program_cache_set_common(gl_program_cache *c, const char *const *defines, size_t n);
 
 /* Variants built so far (each compiled and linked once), in order of building. */

@@ -5,13 +5,18 @@
 // started at zero by the same pass.
 #include "frame.inc"
 #include "gbuffer.inc"
+#include "environment.inc"
 
 #include "light_out.inc"
 
 void main()
 {
     GSurface g = gbuffer_load();
-    o_light = vec4(f_ambient.rgb * g.diffuse * g.occlusion + g.emissive, 1.0);
+    vec3 a = ambient_light(g.position, g.normal, g.diffuse, g.gloss, g.shininess, g.occlusion);
+#ifdef ENVIRONMENT
+    a = g.present ? a : vec3(0.0);   // the environment's specular needs no diffuse colour
+#endif
+    o_light = vec4(a + g.emissive, 1.0);
 #ifdef SEPARATE_SPECULAR
     o_specular = vec4(0.0);
 #endif

@@ -12,6 +12,7 @@
 #include "frame.inc"
 #include "surface.inc"
 #include "lighting.inc"
+#include "environment.inc"
 
 #include "msaa.inc"
 layout(binding = BIND_TEX_LIGHT_DIFFUSE) uniform GB_SAMPLER t_light_diffuse;
@@ -31,10 +32,12 @@ void main()
     // lighting.inc's pbr_light summed: the diffuse part without the material's
     // c_diff (1 - F0), the specular part whole (its F0 came from the G-buffer)
     vec3 kd = pbr_diffuse(s.diffuse, s.gloss);
-    vec3 c = f_ambient.rgb * s.diffuse * s.occlusion + s.emissive +
+    vec3 c = ambient_light(s.position, s.normal, s.diffuse, s.gloss, s.shininess,
+                           s.occlusion) + s.emissive +
              mix(kd * ld, vec3(0.0), equal(kd, vec3(0.0))) + ls;
 #else
-    vec3 c = f_ambient.rgb * s.diffuse + s.emissive +
+    vec3 c = ambient_light(s.position, s.normal, s.diffuse, s.gloss, s.shininess,
+                           s.occlusion) + s.emissive +
              mix(s.diffuse * ld, vec3(0.0), equal(s.diffuse, vec3(0.0))) +
              (s.gloss > 0.0 ? s.gloss * ls : vec3(0.0));
 #endif

@@ -10,6 +10,7 @@
 // they need no pass of their own.
 #include "frame.inc"
 #include "surface.inc"
+#include "environment.inc"
 #include "fog.inc"
 
 #ifdef BASE_DIRECTIONAL
@@ -24,7 +25,8 @@ layout(location = 0) out vec4 o_color;
 void main()
 {
     Surface s = surface_get();
-    vec3 c = f_ambient.rgb * s.diffuse * s.occlusion + s.emissive;
+    vec3 c = ambient_light(s.position, s.normal, s.diffuse, s.gloss, s.shininess,
+                           s.occlusion) + s.emissive;
 #ifdef BASE_DIRECTIONAL
     for (int i = 0; i < u_base_count && i < BASE_DIRECTIONAL; i++) {
         Light l = Light(u_base_lights[5 * i], u_base_lights[5 * i + 1],

@@ -10,6 +10,7 @@
 #include "bindings.h"
 #include "frame.inc"
 #include "surface.inc"
+#include "environment.inc"
 #include "lighting.inc"
 #include "fog.inc"
 
@@ -35,7 +36,8 @@ layout(location = 0) out vec4 o_color;
 void main()
 {
     Surface s = surface_get();
-    vec3 c = f_ambient.rgb * s.diffuse * s.occlusion + s.emissive;
+    vec3 c = ambient_light(s.position, s.normal, s.diffuse, s.gloss, s.shininess,
+                           s.occlusion) + s.emissive;
     int n = min(u_light_count, MAX_LIGHTS);
     for (int i = 0; i < n; i++) {
         Light l = u_lights[i];

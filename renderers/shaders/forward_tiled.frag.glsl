@@ -21,6 +21,7 @@
 #include "bindings.h"
 #include "frame.inc"
 #include "surface.inc"
+#include "environment.inc"
 #include "lighting.inc"
 #include "lights.inc"
 #include "tiles.inc"
@@ -35,7 +36,8 @@ layout(location = 0) out vec4 o_color;
 void main()
 {
     Surface s = surface_get();
-    vec3 c = f_ambient.rgb * s.diffuse * s.occlusion + s.emissive;
+    vec3 c = ambient_light(s.position, s.normal, s.diffuse, s.gloss, s.shininess,
+                           s.occlusion) + s.emissive;
 #ifdef NO_GRID
     uint first = 0u, n = uint(u_light_count);
     uvec2 t = uvec2(0u);

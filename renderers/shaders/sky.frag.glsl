@@ -4,7 +4,11 @@
 // (view space: "up" is the camera's +Y). fullscreen.vert puts it at z = w (depth 1,
 // the far plane; compiled with FULLSCREEN_FAR), so that with the depth test LEQUAL
 // against a depth buffer cleared to 1 it lands only where no geometry is.
+// ENVIRONMENT (environment.light sky): the environment itself instead, in the pixel's
+// world direction, from the prefiltered cube map's sharpest mip (roughness 0), as the
+// glTF Sample Viewer shows its environment behind a model.
 #include "frame.inc"
+#include "environment.inc"
 
 const float SKY_ZENITH = 0.6;
 
@@ -16,6 +20,10 @@ void main()
     vec2 ndc = gl_FragCoord.xy * f_viewport.zw * 2.0 - 1.0;
     vec4 p = f_inv_proj * vec4(ndc, -1.0, 1.0);
     vec3 dir = normalize(p.xyz / p.w);
+#ifdef ENVIRONMENT
+    o_color = vec4(env_prefiltered(normalize(mat3(f_view_to_world) * dir), 0.0), 1.0);
+#else
     float up = clamp(dir.y, 0.0, 1.0);
     o_color = vec4(f_sky.rgb * mix(1.0, SKY_ZENITH, up), 1.0);
+#endif
 }

@@ -36,6 +36,7 @@
 #define TILES_COHERENT
 #include "bindings.h"
 #include "frame.inc"
+#include "environment.inc"
 #include "lighting.inc"
 #include "lights.inc"
 #include "tiles.inc"
@@ -101,7 +102,11 @@ Shaded shade_surface(GSurface g, uint tile_index)
 #ifdef LIGHT_PREPASS
     Shaded o = Shaded(vec3(0.0), vec3(0.0));
 #else
-    Shaded o = Shaded(f_ambient.rgb * g.diffuse * g.occlusion + g.emissive, vec3(0.0));
+    vec3 a = ambient_light(g.position, g.normal, g.diffuse, g.gloss, g.shininess, g.occlusion);
+#ifdef ENVIRONMENT
+    a = g.present ? a : vec3(0.0);   // the environment's specular needs no diffuse colour
+#endif
+    Shaded o = Shaded(a + g.emissive, vec3(0.0));
 #endif
     if (g.present) {
         for (uint k = 0u; k < n; k++) {

@@ -39,6 +39,7 @@
 // pass rasterised).
 #include "bindings.h"
 #include "frame.inc"
+#include "environment.inc"
 #include "lighting.inc"
 #include "lights.inc"
 #include "tiles.inc"
@@ -343,7 +344,7 @@ vec4 shade_id(uint id, ivec2 px)
     emissive *= e.rgb * e.a;
 #endif
 
-    vec3 c = f_ambient.rgb * diffuse * occlusion + emissive;
+    vec3 c = ambient_light(P, n, diffuse, gloss, shininess, occlusion) + emissive;
 #ifdef NO_GRID
     uint first = 0u, count = uint(u_light_count);
     uvec2 tile = uvec2(0u);

@@ -52,6 +52,7 @@ static bool g_vertex_colors = false;  /* build: the sphere's mesh (1) coloured b
 static bool g_uv2 = false;   /* build: the knot's mesh (2) a second uv set, 3 x its first,
                                 which material 2's diffuse and gloss maps read */
 static bool g_pbr = false;   /* build: shading.model pbr (issue 25) */
+static bool g_env = false;   /* build: environment.light sky (issue 36) */
 static gbuffer_preset g_gbuffer = GBUFFER_REFERENCE;   /* deferred's and tiled-deferred's */
 static frame_stats g_last;            /* the last frame render_with drew */
 
@@ -122,6 +123,8 @@ static scene *build(const light_case *c)
     }
     if (g_pbr)
         assert_true(scene_set_shading(s, SHADING_PBR));
+    if (g_env)
+        scene_set_environment(s, ENVIRONMENT_SKY, 1.0f);
     scene_update(s, 0.0);
     sm_vec3 up = {0.0f, 1.0f, 0.0f};
     sm_vec3_copy(c->eye, s->cam.eye);
@@ -615,6 +618,25 @@ static void test_pbr_every_catalog_scene(void **state)
     g_gbuffer = GBUFFER_REFERENCE;
 }
 
+/* Issue 36: with the environment light (the sky in every renderer's ambient term and as
+ * the sky), every renderer agrees with forward-spml as without it, under both shading
+ * models: the point and spot cases in every design (deferred with the reference
+ * G-buffer, then under pbr with the default curtis one, whose 8-bit normals the
+ * environment's reflections read), RMSE < 1/255 and max 4/255. */
+static void test_environment(void **state)
+{
+    g_env = true;
+    for (int pbr = 0; pbr < 2; pbr++) {
+        g_pbr = pbr;
+        test_point(state);
+        test_spot(state);
+    }
+    g_gbuffer = GBUFFER_CURTIS;
+    test_point(state);
+    g_gbuffer = GBUFFER_REFERENCE;
+    g_pbr = g_env = false;
+}
+
 /* The eye is outside the light's sphere but inside the volume drawn for it (the
  * sphere scaled by 1.1), so the near plane cuts the volume; the light reaches the
  * floor in front of the camera. */
@@ -730,7 +752,8 @@ static int teardown(void **state)
 }
 
 /* `test_gl_agreement pbr` (meson's gl-agreement_pbr) runs the metallic-roughness cases,
- * the plain call the others: two tests of meson's, each well inside its timeout under the
+ * `test_gl_agreement environment` (gl-agreement_environment) the environment's, the
+ * plain call the others: tests of meson's, each well inside its timeout under the
  * sanitizers, and run side by side. */
 int main(int argc, char **argv)
 {
@@ -756,7 +779,12 @@ int main(int argc, char **argv)
         cmocka_unit_test(test_pbr),
         cmocka_unit_test(test_pbr_every_catalog_scene),
     };
+    const struct CMUnitTest environment[] = {
+        cmocka_unit_test(test_environment),
+    };
     if (argc > 1 && strcmp(argv[1], "pbr") == 0)
         return cmocka_run_group_tests(pbr, setup, teardown);
+    if (argc > 1 && strcmp(argv[1], "environment") == 0)
+        return cmocka_run_group_tests(environment, setup, teardown);
     return cmocka_run_group_tests(phong, setup, teardown);
 }

@@ -555,9 +555,14 @@ static void test_pack_frame(void **state)
     (void)state;
     scene *s = build_shapes(0, 160, 120);
     gpu_frame fr;
-    assert_int_equal(sizeof fr, 192);   /* std140: 2 mat4 + 4 vec4 */
+    /* std140: 2 mat4 + 4 vec4, then (ENVIRONMENT) a mat4 and 10 vec4 */
+    assert_int_equal(sizeof fr, 192 + 64 + 160);
     assert_int_equal(offsetof(gpu_frame, ambient), 128);
     assert_int_equal(offsetof(gpu_frame, clip), 176);
+    assert_int_equal(offsetof(gpu_frame, view_to_world), 192);
+    assert_int_equal(offsetof(gpu_frame, environment), 256);
+    assert_int_equal(offsetof(gpu_frame, environment_sh), 272);
+    assert_int_equal(shading_frame_bytes(s), 192);   /* no environment: the block as before */
     shading_pack_frame(s, &fr);
     assert_memory_equal(fr.proj, s->proj, sizeof fr.proj);
     sm_mat4 p, ip, prod;

@@ -400,6 +400,8 @@ static void test_kv_canonical(void **state)
         {"aa", "none"},
         {"translucency", "blend"},
         {"shading.model", "scene"},
+        {"environment.light", "none"},
+        {"environment.intensity", "1"},
         {"camera.radius", "scene"},
         {"camera.height", "scene"},
         {"camera.period", "scene"},
@@ -479,6 +481,8 @@ static void test_kv_canonical(void **state)
         {"aa", "none"},
         {"translucency", "blend"},
         {"shading.model", "scene"},
+        {"environment.light", "none"},
+        {"environment.intensity", "1"},
         {"camera.radius", "40"},
         {"camera.height", "12.5"},
         {"camera.period", "30"},
@@ -611,7 +615,7 @@ static const bad_case bad_cases[] = {
     {"unknown_top_key.yaml",
      {"1:1: duration: expected {seconds: S} or {frames: N}, found nothing",
       "5:1: durtion: expected one of shadesweep, name, description, scene, renderers, "
-      "resolution, trials, schedule, measure, warmup, duration, clock, step, sync, timeout, gbuffer, deferred, forward, tiles, clustered, deferred_lighting, shadows, hdr, msaa, fog, aa, translucency, shading, camera, error, lights, exposure, tonemap, outputs, allow_empty, debug, sweep, "
+      "resolution, trials, schedule, measure, warmup, duration, clock, step, sync, timeout, gbuffer, deferred, forward, tiles, clustered, deferred_lighting, shadows, hdr, msaa, fog, aa, translucency, shading, environment, camera, error, lights, exposure, tonemap, outputs, allow_empty, debug, sweep, "
       "found 'durtion'"}},
     {"unknown_nested_key.yaml",
      {"8:3: lights.cnt: expected one of placement, seed, rng, count, radius, overlap, color_max, "
@@ -730,7 +734,7 @@ static const bad_case bad_cases[] = {
       "tiles.max_lights_per_tile, clustered.slices, clustered.shading, "
       "deferred_lighting.light_buffer, deferred_lighting.lights, shadows, hdr, msaa, "
       "fog.density, "
-      "fog.colour, aa, translucency, shading.model, camera.radius, "
+      "fog.colour, aa, translucency, shading.model, environment.light, environment.intensity, camera.radius, "
       "camera.height, camera.period, "
       "camera.target, camera.near, camera.far, camera.hold, lights.placement, lights.seed, "
       "lights.rng, lights.count, lights.radius, lights.overlap, lights.color_max, lights.attenuation, lights.sizing, "
