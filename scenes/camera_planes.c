@@ -24,8 +24,9 @@ void scene_fit_planes(float file_near, float file_far, float depth_near, float d
     bool has_near = isfinite(file_near) && file_near > 0.0f;
     bool has_far = isfinite(file_far) && file_far > (has_near ? file_near : 0.0f);
     float n, f;
-    if (!(depth_far > 0.0f)) {
-        /* nothing in front: nothing to fit; the file's planes, else the orbit's */
+    if (!(depth_far > 0.0f) || !isfinite(depth_far) || isnan(depth_near)) {
+        /* nothing in front (or depths past float's range, from coordinates near it):
+         * nothing to fit; the file's planes, else the orbit's */
         n = has_near ? file_near : size * 1e-3f;
         f = has_far && file_far > n ? file_far : fmaxf(size * 10.0f, n * 2.0f);
     } else {

@@ -153,7 +153,7 @@ uint32_t scene_depth_slices(double proj11, double znear, double zfar, int slices
  * when the eye is among them); proj11 as above; size: the bounds' diagonal. out: near =
  * max(file near, depth_near / MARGIN), far = min(file far, depth_far x MARGIN); the
  * fitted pair where the file's planes hold none of the scene, the file's (else the
- * orbit's 1e-3 and 10 x size) where nothing is in front; then near raised to far / R,
+ * orbit's 1e-3 and 10 x size) where nothing is in front or the depths are not finite; then near raised to far / R,
  * R the smaller of SCENE_PLANES_RATIO and the ratio that clustered.slices' default
  * (SCENE_PLANES_SLICES_Y) cuts into SCENE_PLANES_SLICES slices. */
 void scene_fit_planes(float file_near, float file_far, float depth_near, float depth_far,

@@ -429,6 +429,11 @@ static void test_fit_planes(void **state)
     assert_true(out[0] == 0.05f && out[1] == 50.0f);
     scene_fit_planes(0.0f, 0.0f, -10.0f, -5.0f, wide, 20.0f, out);
     assert_true(out[0] == 20.0f * 1e-3f && out[1] == 200.0f);
+    /* depths past float's range are no fit: the file's planes */
+    scene_fit_planes(0.05f, 50.0f, 1.0f, INFINITY, wide, 20.0f, out);
+    assert_true(out[0] == 0.05f && out[1] == 50.0f);
+    scene_fit_planes(0.05f, 50.0f, NAN, 10.0f, wide, 20.0f, out);
+    assert_true(out[0] == 0.05f && out[1] == 50.0f);
 }
 
 /* Clustered's depth slices (scene_depth_slices): 2CylinderEngine's camera (yfov 0.3143)
