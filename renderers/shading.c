@@ -5,6 +5,7 @@
 #include "renderers/environment.h"
 
 #include <math.h>
+#include <stdio.h>
 #include <string.h>
 
 void shading_pack_light(const scene_light *l, const sm_mat4 view, gpu_light *out)
@@ -103,12 +104,24 @@ unsigned shading_material_defines(const scene_material *m,
 
 uint32_t shading_cluster_slices(const scene *s, int slices_y, double *ratio)
 {
-    double r = 1.0 + 2.0 / ((double)s->proj[1][1] * (slices_y > 0 ? slices_y : 1));
+    return scene_depth_slices(s->proj[1][1], s->cam.znear, s->cam.zfar, slices_y, ratio);
+}
+
+bool shading_cluster_slices_ok(const char *name, double proj11, double znear, double zfar,
+                               int slices_y, uint32_t *slices, double *ratio, char *err,
+                               size_t errlen)
+{
+    double r;
+    uint32_t k = scene_depth_slices(proj11, znear, zfar, slices_y, &r);
+    if (slices)
+        *slices = k;
     if (ratio)
         *ratio = r;
-    double n = s->cam.znear, f = s->cam.zfar;
-    if (!(r > 1.0) || !(n > 0.0) || !(f > n))
-        return 1;
-    double k = ceil(log(f / n) / log(r));
-    return k < 1.0 ? 1u : k > 1e6 ? 1000000u : (uint32_t)k;
+    if (k <= SCENE_DEPTH_SLICES_MAX)
+        return true;
+    snprintf(err, errlen,
+             "%s: %u depth slices from near %g to far %g (each %.4g times deeper, "
+             "clustered.slices %d): at most %u; raise near or lower clustered.slices",
+             name, k, znear, zfar, r, slices_y, SCENE_DEPTH_SLICES_MAX);
+    return false;
 }

@@ -51,6 +51,14 @@ size_t shading_frame_bytes(const scene *s);
  * (tan(fovy/2) = 1 / proj[1][1], as tile_cull.inc computes it), at least 1; *ratio (may
  * be NULL) gets that ratio. */
 uint32_t shading_cluster_slices(const scene *s, int slices_y, double *ratio);
+/* Whether clustered.slices slices_y cuts the planes (proj11 the projection's y scale)
+ * into at most SCENE_DEPTH_SLICES_MAX slices; false with the message that names `name`
+ * ("clustered: 1282 depth slices from near ... at most 1024; raise near or lower
+ * clustered.slices"). The renderers' grid and the plan check (validate, before GL) give
+ * the same one. *slices and *ratio (may be NULL) get the count and the ratio. */
+bool shading_cluster_slices_ok(const char *name, double proj11, double znear, double zfar,
+                               int slices_y, uint32_t *slices, double *ratio, char *err,
+                               size_t errlen);
 
 /* The shader defines a material needs ("DIFFUSE_MAP", "GLOSS_MAP", "NORMAL_MAP",
  * "EMISSIVE_MAP", "ALPHA_TEST" for a MATERIAL_MASK material), in that order; returns

@@ -13,6 +13,7 @@
 #include <string.h>
 
 #include "renderers/renderer.h"
+#include "renderers/shading.h"
 #include "runner/hash.h"
 #include "runner/params.h"
 #include "scenes/scene.h"
@@ -169,6 +170,21 @@ bool plan_first_of_key(const plan *p, uint64_t (*hash)(const run_params *),
     return true;
 }
 
+/* clustered's depth slices for run r's renderer (or its error reference: what) over the
+ * view v, refused past what the light grid holds with the message the grid gives at
+ * prepare (renderers/tiled/grid.c), here before any run starts. */
+static void check_slices(const experiment *e, const run_spec *r, const run_params *q,
+                         const scene_view *v, const char *what, diag_list *d)
+{
+    if (!param_read_by(param_find("clustered.slices"), q->renderer))   /* either design */
+        return;
+    char err[512];
+    if (!shading_cluster_slices_ok(q->renderer, v->proj11, v->znear, v->zfar,
+                                   (int)q->clustered_slices, NULL, NULL, err, sizeof err))
+        diag_add(d, e->path, 0, 0, "clustered.slices", "expected depth slices the light grid "
+                 "holds, found: %s (run %s%s)", err, r->id, what);
+}
+
 bool plan_check(const experiment *e, const plan *p, diag_list *d)
 {
     size_t nerr = d->n;
@@ -193,8 +209,10 @@ bool plan_check(const experiment *e, const plan *p, diag_list *d)
     size_t *scene_first = malloc(p->nruns * sizeof *scene_first);
     size_t *source_first = malloc(p->nruns * sizeof *source_first);
     scene_probe **probes = calloc(p->nruns, sizeof *probes);   /* at a source's first run */
+    scene_view *views = malloc(p->nruns * sizeof *views);     /* at a scene's first run */
+    bool *viewed = calloc(p->nruns, sizeof *viewed);
     char (*probe_err)[512] = NULL;
-    bool ok = scene_first && source_first && probes &&
+    bool ok = scene_first && source_first && probes && views && viewed &&
               plan_first_of_key(p, scene_hash, run_params_same_scene, scene_first) &&
               plan_first_of_key(p, source_hash, same_source, source_first);
     if (!ok) {
@@ -226,15 +244,34 @@ bool plan_check(const experiment *e, const plan *p, diag_list *d)
         if (!built)
             snprintf(err, sizeof err, "%s", probe_err[s]);
         if (!built || !scene_probe_check(probes[s], &q->lights, &q->camera, q->width,
-                                         q->height, err, sizeof err))
+                                         q->height, &views[k], err, sizeof err))
             diag_add(d, e->path, 0, 0, "scene", "expected a scene the runs can render, found: %s "
                      "(run %s)", err, p->runs[k].id);
+        else
+            viewed[k] = true;
+    }
+    /* the renderers' limits on a view: clustered's depth slices (the reference renders
+     * the run's scene, so its view) */
+    for (size_t k = 0; k < p->nruns && d->n - nerr < 8; k++) {
+        if (!viewed[scene_first[k]])
+            continue;
+        const run_params *q = &p->runs[k].p;
+        check_slices(e, &p->runs[k], q, &views[scene_first[k]], "", d);
+        if (q->error_renderer[0] && d->n - nerr < 8) {
+            run_params rp;
+            params_reference(q, &rp);
+            snprintf(rp.renderer, sizeof rp.renderer, "%s", q->error_renderer);
+            check_slices(e, &p->runs[k], &rp, &views[scene_first[k]],
+                         "'s error.reference.renderer", d);
+        }
     }
 done:
     if (probes)
         for (size_t k = 0; k < p->nruns; k++)
             scene_probe_destroy(probes[k]);
     free(probes);
+    free(views);
+    free(viewed);
     free(probe_err);
     free(scene_first);
     free(source_first);

@@ -114,6 +114,27 @@ bool run_write_meta(run_state *st, char *err, size_t errlen)
         yo_key(y, "up"); yo_str(y, p->scene_up == SCENE_UP_Z ? "z" : "y");
         yo_key(y, "camera"); yo_str(y, p->scene_camera);
         yo_key(y, "view"); yo_str(y, si->view);
+        if (st->sc) {
+            /* near and far: the file camera's own (world units, 0 where it gave none)
+             * and those the run used (scene_fit_planes', or camera.near and far) */
+            yo_key(y, "camera_planes");
+            yo_map_begin(y);
+            yo_key(y, "file");
+            if (st->sc->file_camera) {
+                yo_seq_begin(y);
+                yo_f64(y, st->sc->file_planes[0]);
+                yo_f64(y, st->sc->file_planes[1]);
+                yo_seq_end(y);
+            } else {
+                yo_str(y, NULL);
+            }
+            yo_key(y, "used");
+            yo_seq_begin(y);
+            yo_f64(y, st->sc->znear);
+            yo_f64(y, st->sc->zfar);
+            yo_seq_end(y);
+            yo_map_end(y);
+        }
         yo_key(y, "files"); yo_i64(y, si->files);
         yo_key(y, "meshes"); yo_i64(y, si->meshes);
         yo_key(y, "triangles"); yo_i64(y, (int64_t)si->triangles);

@@ -32,6 +32,7 @@
 #include <string.h>
 #include <strings.h>
 
+#include "scenes/scene_anim.h"
 #include "scenes/scene_fail.h"
 #include "scenes/scene_internal.h"
 
@@ -621,10 +622,47 @@ static void add_light(scene_builder *b, const struct aiLight *al, const sm_mat4 
     l->attenuation = ATTENUATION_INVERSE_SQUARE;
 }
 
-/* The camera's node pose and lens, held for the whole run. */
+/* The nearest and farthest view depths (along the view direction from the eye) of the
+ * scene's bounds: the box lo..hi (bind pose, skins at time 0) and, for an animated file,
+ * every object's world sphere at ANIM_SAMPLES poses over one loop of the animation (the
+ * code keeps no bounds over the animation; the fit's margin covers the poses between). */
+static void view_depths(scene *s, const sm_vec3 lo, const sm_vec3 hi, const sm_vec3 eye,
+                        const sm_vec3 target, float depth[2])
+{
+    enum { ANIM_SAMPLES = 32 };
+    sm_vec3 dir, d;
+    sm_vec3_sub(target, eye, dir);
+    sm_vec3_normalize(dir);
+    depth[0] = INFINITY;
+    depth[1] = -INFINITY;
+    for (int k = 0; k < 8; k++) {
+        sm_vec3 c = {(k & 1) ? hi[0] : lo[0], (k & 2) ? hi[1] : lo[1], (k & 4) ? hi[2] : lo[2]};
+        sm_vec3_sub(c, eye, d);
+        float z = sm_vec3_dot(d, dir);
+        depth[0] = fminf(depth[0], z);
+        depth[1] = fmaxf(depth[1], z);
+    }
+    if (!s->anim)
+        return;
+    for (int i = 0; i < ANIM_SAMPLES; i++) {
+        scene_update(s, s->anim->duration * i / ANIM_SAMPLES);
+        for (uint32_t j = 0; j < s->nobjects; j++) {
+            const float *bs = s->objects[j].bsphere;
+            sm_vec3 c = {bs[0], bs[1], bs[2]};
+            sm_vec3_sub(c, eye, d);
+            float z = sm_vec3_dot(d, dir);
+            depth[0] = fminf(depth[0], z - bs[3]);
+            depth[1] = fmaxf(depth[1], z + bs[3]);
+        }
+    }
+}
+
+/* The camera's node pose and lens, held for the whole run; its planes fitted to the
+ * scene in front of it (scene_fit_planes: the file's where they hold the scene, a
+ * far/near ratio clustered and 24-bit depth can take). */
 static void use_file_camera(scene_builder *b, const scene_file_options *o,
                             const struct aiScene *ai, const struct aiCamera *cam,
-                            const sm_mat4 root, float size)
+                            const sm_mat4 root, const sm_vec3 lo, const sm_vec3 hi, float size)
 {
     find_node f = {cam->mName.data, false, {{0}}, NULL};
     walk(ai->mRootNode, root, find_fn, &f, 0);
@@ -646,12 +684,17 @@ static void use_file_camera(scene_builder *b, const scene_file_options *o,
     float aspect = cam->mAspect > 0.0f ? cam->mAspect : 1.0f;
     float fovy = gltf ? cam->mHorizontalFOV / aspect
                       : 2.0f * atanf(tanf(cam->mHorizontalFOV) / aspect);
-    /* the file's planes in its units; size is scaled already */
-    float zn = cam->mClipPlaneNear > 0.0f ? cam->mClipPlaneNear * o->scale : size * 1e-3f;
-    float zf = cam->mClipPlaneFar * o->scale > zn ? cam->mClipPlaneFar * o->scale
-                                                  : size * 10.0f;
-    sb_set_projection(b, sm_rad2deg(fovy), zn, zf);
-    b->s->fovy = fovy;   /* exactly, not through degrees */
+    /* the file's planes are in its units; size is scaled already */
+    scene *s = b->s;
+    s->file_camera = true;
+    s->file_planes[0] = fmaxf(cam->mClipPlaneNear * o->scale, 0.0f);
+    s->file_planes[1] = fmaxf(cam->mClipPlaneFar * o->scale, 0.0f);
+    float depth[2], planes[2];
+    view_depths(s, lo, hi, eye[0], target[0], depth);
+    scene_fit_planes(s->file_planes[0], s->file_planes[1], depth[0], depth[1],
+                     1.0f / tanf(0.5f * fovy), size, planes);
+    sb_set_projection(b, sm_rad2deg(fovy), planes[0], planes[1]);
+    s->fovy = fovy;   /* exactly, not through degrees */
 }
 
 /* camera auto without a perspective camera: the side to look from. Eight directions
@@ -778,7 +821,7 @@ bool scene_build_file(scene_builder *b, const void *arg)
     sb_set_projection(b, 60.0f, size * 1e-3f, size * 10.0f);
     const struct aiCamera *cam = chosen_camera(ai, o->camera);
     if (cam)
-        use_file_camera(b, o, ai, cam, root, size);
+        use_file_camera(b, o, ai, cam, root, c.lo, c.hi, size);
     else if (file_camera_is(o->camera, "orbit"))
         sb_set_orbit(b, centre[0], centre[1], centre[2], size, 0.35f * size, 60.0f);
     else

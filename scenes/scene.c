@@ -158,7 +158,7 @@ scene_probe *scene_probe_build(const scene_source *src, char *err, size_t errlen
 }
 
 bool scene_probe_check(const scene_probe *p, const light_params *lp, const camera_params *cp,
-                       int width, int height, char *err, size_t errlen)
+                       int width, int height, scene_view *view, char *err, size_t errlen)
 {
     if (width <= 0 || height <= 0) {
         snprintf(err, errlen, "bug: scene '%s' built for a %dx%d target", p->s->name, width,
@@ -174,7 +174,11 @@ bool scene_probe_check(const scene_probe *p, const light_params *lp, const camer
     if (!scene_place_lights(&t, NULL, p->nauthored, p->ncoverage, lp, true, err, errlen))
         return false;
     t.count = lp->count;
-    return !cp || scene_set_camera(&t, cp, err, errlen);
+    if (cp && !scene_set_camera(&t, cp, err, errlen))
+        return false;
+    if (view)
+        *view = (scene_view){t.proj[1][1], t.cam.znear, t.cam.zfar};
+    return true;
 }
 
 void scene_probe_destroy(scene_probe *p)

@@ -144,6 +144,35 @@ typedef struct camera_params {
 
 void camera_params_init(camera_params *cp);
 
+/* Clustered shading's depth slices (Olsson et al.): exponential from znear to zfar, each
+ * `ratio` = 1 + 2 / (proj11 S_y) times deeper than the one before (proj11: the
+ * projection's y scale, 1 / tan(fovy / 2); S_y: clustered.slices), so that a slice is
+ * about as deep as a tile of a screen cut into S_y rows is wide. 1 for planes that make
+ * no range; at most 1e6. renderers/tiled/grid.c refuses more than SCENE_DEPTH_SLICES_MAX,
+ * and so does the plan check (runner/plan_check.c), before GL. */
+uint32_t scene_depth_slices(double proj11, double znear, double zfar, int slices_y,
+                            double *ratio);
+#define SCENE_DEPTH_SLICES_MAX 1024u
+
+/* A file camera's planes fitted to the scene in front of it (scene_build_file; the rule
+ * is docs/architecture.md's, "File scenes"). file_near, file_far: the file's (world
+ * units; <= 0 or not finite: none, glTF's infinite projection has no far); depth_near,
+ * depth_far: the nearest and farthest view depths of the scene's bounds (depth_near <= 0
+ * when the eye is among them); proj11 as above; size: the bounds' diagonal. out: near =
+ * max(file near, depth_near / MARGIN), far = min(file far, depth_far x MARGIN); the
+ * fitted pair where the file's planes hold none of the scene, the file's (else the
+ * orbit's 1e-3 and 10 x size) where nothing is in front or the depths are not finite; then near raised to far / R,
+ * R the smaller of SCENE_PLANES_RATIO and the ratio that clustered.slices' default
+ * (SCENE_PLANES_SLICES_Y) cuts into SCENE_PLANES_SLICES slices. */
+void scene_fit_planes(float file_near, float file_far, float depth_near, float depth_far,
+                      float proj11, float size, float out[2]);
+#define SCENE_PLANES_MARGIN 1.05f   /* beyond the bounds, for float rounding and an
+                                     * animation sampled between its poses */
+#define SCENE_PLANES_RATIO 1e4      /* far / near at most: the orbit's 1e-3 and 10 x the
+                                     * diagonal; 24-bit depth then resolves 6e-4 x far */
+#define SCENE_PLANES_SLICES_Y 24    /* clustered.slices' default (runner/params.def) */
+#define SCENE_PLANES_SLICES 1000.0  /* below SCENE_DEPTH_SLICES_MAX, clear of rounding */
+
 /* How the linear image is displayed (manifest keys exposure.* and tonemap): the last
  * pass of every renderer (resolve.frag) and its CPU twin (results/image_ref.c
  * image_display_rgba8). All zero: clamped as it is, the images of schema 1. */
@@ -191,6 +220,10 @@ typedef struct scene {
     uint32_t nkeys;            /* CAMERA_SCRIPTED: key poses, evenly spaced in time */
     sm_vec3 key_eye[8], key_target[8];
     float fovy, znear, zfar;
+    /* A file's camera (camera: auto or NAME): the near and far planes the file gave
+     * (world units; 0 where it gave none), before scene_fit_planes; false elsewhere. */
+    bool file_camera;
+    float file_planes[2];
 
     /* Lights whose screen coverage the run records per frame (coverage.csv): with
      * lights.placement scene, the coverage scenes (spot-coverage, two-spots-overlap,
@@ -337,8 +370,14 @@ void scene_update(scene *s, double t);
  * with the message the first of them would give. */
 typedef struct scene_probe scene_probe;
 scene_probe *scene_probe_build(const scene_source *src, char *err, size_t errlen);
+/* The view a run would start with: its projection's y scale (proj[1][1]) and planes, what
+ * scene_depth_slices takes (the plan check's clustered slices). */
+typedef struct scene_view {
+    float proj11, znear, zfar;
+} scene_view;
+/* view (NULL is fine) gets the run's view when it returns true. */
 bool scene_probe_check(const scene_probe *p, const light_params *lp, const camera_params *cp,
-                       int width, int height, char *err, size_t errlen);
+                       int width, int height, scene_view *view, char *err, size_t errlen);
 void scene_probe_destroy(scene_probe *p);   /* NULL is fine */
 
 /* Applies a manifest's camera overrides (call after scene_build, before the run; it

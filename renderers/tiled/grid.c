@@ -41,15 +41,11 @@ bool light_grid_size(light_grid *g, const scene *s, int width, int height, bool 
     g->tiles_x = (uint32_t)((width + g->tile - 1) / g->tile);
     g->tiles_y = (uint32_t)((height + g->tile - 1) / g->tile);
     g->ntiles = g->tiles_x * g->tiles_y;
-    g->slices = g->slices_y ? shading_cluster_slices(s, (int)g->slices_y, &g->slice_ratio) : 0u;
-    if (g->slices > 1024) {
-        snprintf(err, errlen,
-                 "%s: %u depth slices from near %g to far %g (each %.4g times deeper, "
-                 "clustered.slices %u): at most 1024; raise near or lower clustered.slices",
-                 g->name, g->slices, (double)s->cam.znear, (double)s->cam.zfar,
-                 g->slice_ratio, g->slices_y);
+    g->slices = 0;
+    if (g->slices_y && !shading_cluster_slices_ok(g->name, s->proj[1][1], s->cam.znear,
+                                                  s->cam.zfar, (int)g->slices_y, &g->slices,
+                                                  &g->slice_ratio, err, errlen))
         return false;
-    }
     g->ncells = g->ntiles * (g->slices ? g->slices : 1u);
     g->cull = cull;
     g->ntlists = cull && translucency ? g->ntiles : 0u;

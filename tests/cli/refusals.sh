@@ -2,7 +2,8 @@
 # Conditions that would make every run fail or mean nothing are refused by
 # `validate` and `run` before anything is written (exit 2, the reason named):
 # times past the run's end, placement scene without authored lights, near not
-# below far, quadratic attenuation with a = b = c = 0, an empty name. What fails on some
+# below far, quadratic attenuation with a = b = c = 0, an empty name, more depth slices
+# than clustered's light grid holds. What fails on some
 # GL only (forward-spml's uniform block, 8 samples, a side past 16384) is a warning that
 # validate, list and run print.
 . "$(dirname "$0")/lib.sh"
@@ -33,6 +34,16 @@ printf '%s\nduration: {frames: 2}\nlights: {placement: scene}\n' "$base" >scene.
 check scene "scene.yaml: scene: expected a scene the runs can render, found: scene 'shapes' has no authored lights"
 printf '%s\nduration: {frames: 2}\nsweep: {camera.near: [1, 10]}\ncamera: {far: 5}\n' "$base" >near.yaml
 check near "near.yaml: scene: expected a scene the runs can render, found: camera.far: expected a finite number > near (10), found 5"
+# clustered's depth slices past the 1024 its light grid holds: near 0.01 and far 1e6 at
+# clustered.slices 64 make 1031 (at the default 24, experiments/extremes-camera.yaml's,
+# 393), refused in either design with the message the renderer would fail with
+slices="${base/\[null\]/[clustered]}"
+msg="clustered.slices: expected depth slices the light grid holds, found: clustered: 1031 depth slices from near 0.01 to far 1e+06 (each 1.018 times deeper, clustered.slices 64): at most 1024; raise near or lower clustered.slices (run"
+printf '%s\nduration: {frames: 2}\ncamera: {near: 0.01, far: 1000000}\nclustered: {slices: 64}\n' "$slices" >slices.yaml
+check slices "slices.yaml: $msg"
+printf '%s\nduration: {frames: 2}\ncamera: {near: 0.01, far: 1000000}\nclustered: {slices: 64, shading: deferred}\n' "$slices" >slices_d.yaml
+check slices_d "slices_d.yaml: $msg"
+"$SHADESWEEP" validate --set clustered.slices=24 slices.yaml >/dev/null || fail "393 slices are valid"
 printf 'shadesweep: 1\nname: ""\nscene: shapes\nrenderers: [null]\nduration: {frames: 2}\n' >name.yaml
 check name "name.yaml:2:7: name: expected a name of 1..63 characters from a-z, 0-9 and -, found ''"
 # the boundary is accepted: the last frame of {frames: 10} at step 0.1 is at 0.9 s

@@ -388,6 +388,71 @@ static void test_coverage_scenes(void **state)
     }
 }
 
+/* A file camera's planes (scene_fit_planes): the file's where they hold the scene, the
+ * bounds' depths with the margin where they do not, far / near at most 1e4 or what
+ * clustered.slices' default cuts into 1000 slices. M = SCENE_PLANES_MARGIN. */
+static void test_fit_planes(void **state)
+{
+    (void)state;
+    const float M = SCENE_PLANES_MARGIN, wide = sqrtf(3.0f);   /* 60 degrees */
+    float out[2];
+    /* the file's 0.05 to 50 hold a scene 5 to 10 in front: fitted inside them */
+    scene_fit_planes(0.05f, 50.0f, 5.0f, 10.0f, wide, 20.0f, out);
+    assert_true(out[0] == 5.0f / M && out[1] == 10.0f * M);
+    /* the file's 6 to 8 cut into it: kept, as the file asks */
+    scene_fit_planes(6.0f, 8.0f, 5.0f, 10.0f, wide, 20.0f, out);
+    assert_true(out[0] == 6.0f && out[1] == 8.0f);
+    /* no planes (0), glTF's infinite far: the fitted ones */
+    scene_fit_planes(0.0f, INFINITY, 5.0f, 10.0f, wide, 20.0f, out);
+    assert_true(out[0] == 5.0f / M && out[1] == 10.0f * M);
+    scene_fit_planes(0.0f, 0.0f, 5.0f, 10.0f, wide, 20.0f, out);
+    assert_true(out[0] == 5.0f / M && out[1] == 10.0f * M);
+    /* planes that hold none of the scene (all beyond it, all before it): the fitted ones */
+    scene_fit_planes(100.0f, 200.0f, 5.0f, 10.0f, wide, 20.0f, out);
+    assert_true(out[0] == 5.0f / M && out[1] == 10.0f * M);
+    scene_fit_planes(0.01f, 2.0f, 5.0f, 10.0f, wide, 20.0f, out);
+    assert_true(out[0] == 5.0f / M && out[1] == 10.0f * M);
+    /* the eye among the bounds: near = far / 1e4, the file's 1e-4 raised */
+    scene_fit_planes(1e-4f, 1e6f, -3.0f, 10.0f, wide, 20.0f, out);
+    assert_true(out[1] == 10.0f * M && out[0] == (float)((double)(10.0f * M) / 1e4));
+    /* ... a file near beyond far / 1e4 is kept */
+    scene_fit_planes(0.5f, 1e6f, -3.0f, 10.0f, wide, 20.0f, out);
+    assert_true(out[0] == 0.5f && out[1] == 10.0f * M);
+    /* ... and at a narrow field of view (proj11 20: 5.7 degrees), where 1e4 would make
+     * 2216 slices of clustered.slices 24, the ratio of 1000 of them */
+    scene_fit_planes(1e-4f, 1e6f, -3.0f, 10.0f, 20.0f, 20.0f, out);
+    uint32_t k = scene_depth_slices(20.0, out[0], out[1], SCENE_PLANES_SLICES_Y, NULL);
+    assert_true(out[1] == 10.0f * M && k >= 999 && k <= 1001);
+    assert_int_equal(scene_depth_slices(20.0, (float)(out[1] / 1e4), out[1], 24, NULL), 2216);
+    /* nothing in front: the file's planes, else the orbit's 1e-3 and 10 x the size */
+    scene_fit_planes(0.05f, 50.0f, -10.0f, -5.0f, wide, 20.0f, out);
+    assert_true(out[0] == 0.05f && out[1] == 50.0f);
+    scene_fit_planes(0.0f, 0.0f, -10.0f, -5.0f, wide, 20.0f, out);
+    assert_true(out[0] == 20.0f * 1e-3f && out[1] == 200.0f);
+    /* depths past float's range are no fit: the file's planes */
+    scene_fit_planes(0.05f, 50.0f, 1.0f, INFINITY, wide, 20.0f, out);
+    assert_true(out[0] == 0.05f && out[1] == 50.0f);
+    scene_fit_planes(0.05f, 50.0f, NAN, 10.0f, wide, 20.0f, out);
+    assert_true(out[0] == 0.05f && out[1] == 50.0f);
+}
+
+/* Clustered's depth slices (scene_depth_slices): 2CylinderEngine's camera (yfov 0.3143)
+ * with its own planes once fit, and with the fitted ones (a run's meta.yaml); the
+ * extremes manifests' near 0.01 and far 1e6 at 60 degrees. */
+static void test_depth_slices(void **state)
+{
+    (void)state;
+    double p = 1.0f / tanf(0.5f * 0.3143463730812073f), r;
+    assert_int_equal(scene_depth_slices(p, 0.0011960997944697738f, 23921.998046875f, 24, &r),
+                     1282);
+    assert_true(fabs(r - (1.0 + 2.0 / (p * 24))) == 0.0);
+    assert_int_equal(scene_depth_slices(p, 27.971445083618164f, 49.921260833740234f, 24, NULL),
+                     45);
+    assert_int_equal(scene_depth_slices(sqrtf(3.0f), 0.01f, 1e6f, 24, NULL), 393);
+    assert_int_equal(scene_depth_slices(sqrtf(3.0f), 0.01f, 1e6f, 64, NULL), 1031);
+    assert_int_equal(scene_depth_slices(sqrtf(3.0f), 1.0f, 1.0f, 24, NULL), 1);
+}
+
 int main(void)
 {
     const struct CMUnitTest tests[] = {
@@ -398,6 +463,8 @@ int main(void)
         cmocka_unit_test(test_coverage_point),
         cmocka_unit_test(test_coverage_spot),
         cmocka_unit_test(test_coverage_scenes),
+        cmocka_unit_test(test_fit_planes),
+        cmocka_unit_test(test_depth_slices),
     };
     return cmocka_run_group_tests(tests, NULL, NULL);
 }

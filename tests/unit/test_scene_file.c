@@ -261,11 +261,14 @@ static void test_lights_and_camera_arrive_exactly(void **state)
     assert_int_equal(d->type, LIGHT_DIRECTIONAL);
     assert_true(d->color[0] == 0.5f && d->color[1] == 0.5f && d->color[2] == 1.0f);
     assert_true(d->direction[2] == -1.0f);
-    /* the camera: at its node, looking down -Z, the file's yfov and planes */
+    /* the camera: at its node, looking down -Z, the file's yfov; its planes 0.05 and 50
+     * kept, and fitted to the triangle 5 in front (scene_fit_planes) */
     assert_true(s->cam.eye[0] == 0.0f && s->cam.eye[1] == 0.0f && s->cam.eye[2] == 5.0f);
     assert_true(s->cam.target[2] == 4.0f);
     assert_true(s->cam.fovy == 0.8f);
-    assert_true(s->cam.znear == 0.05f && s->cam.zfar == 50.0f);
+    assert_true(s->file_camera && s->file_planes[0] == 0.05f && s->file_planes[1] == 50.0f);
+    assert_true(s->cam.znear == 5.0f / SCENE_PLANES_MARGIN &&
+                s->cam.zfar == 5.0f * SCENE_PLANES_MARGIN);
     scene_destroy(s);
 
     /* a camera the file does not have */
@@ -719,8 +722,10 @@ static void test_fit_scales_lights_and_camera(void **state)
     assert_true(NEAR(p->color[0], 2 * k2) && NEAR(p->color[1], k2) && NEAR(p->color[2], 0.5f * k2));
     assert_true(NEAR(sp->color[1], 3 * k2) && sp->spot_angle == 0.6f);
     assert_true(d->color[0] == 0.5f && d->color[1] == 0.5f && d->color[2] == 1.0f);
-    assert_true(NEAR(s->cam.eye[2], 5 * k) && NEAR(s->cam.znear, 0.05f * k) &&
-                NEAR(s->cam.zfar, 50.0f * k) && s->cam.fovy == 0.8f);
+    assert_true(NEAR(s->cam.eye[2], 5 * k) && NEAR(s->file_planes[0], 0.05f * k) &&
+                NEAR(s->file_planes[1], 50.0f * k) && s->cam.fovy == 0.8f);
+    assert_true(NEAR(s->cam.znear, 5 * k / SCENE_PLANES_MARGIN) &&
+                NEAR(s->cam.zfar, 5 * k * SCENE_PLANES_MARGIN));
 #undef NEAR
     scene_destroy(s);
     remove_dir(dir);
