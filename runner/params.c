@@ -337,6 +337,7 @@ static const struct {
     {"lights.sizing", "range-from-intensity"},
     {"exposure.mode", "auto"},
     {"tonemap", "pbr-neutral"},
+    {"environment.light", "scene"},
 };
 
 /* A key's schema-2 default, or NULL where it is schema 1's. */
