@@ -11,7 +11,7 @@ from .reference import Reference
 from .sections import SECTIONS
 from .sections.base import Section
 from .sections.generic import section_generic
-from .text import md_table
+from .text import code, md_table
 
 
 def setup_text(e):
@@ -139,7 +139,7 @@ def main(argv):
              else ", ".join(sorted(others)) + ": shadesweep report")
     head = [f"# {title}\n",
             f"- Report written: {now} by shadesweep report from "
-            + ", ".join(f"`{d}`" for d in dirs),
+            + ", ".join(code(d) for d in dirs),
             f"- Runs: {times[0]} to {times[-1]}" if times else "- Runs: times unknown (no meta.yaml)",
             "- GL renderer: " + ("; ".join(sorted(gl)) if gl else "unknown (no meta.yaml)"),
             "- CPU: " + ("; ".join(sorted(cpu)) if cpu else "unknown"),
@@ -176,7 +176,7 @@ def main(argv):
             summary.append([name, "not run", "-", "-"])
             continue
         alias = [n for n in e.raw_names if n != name]
-        body.append(f"Output: {', '.join('`' + f + '`' for f in e.folders)}"
+        body.append(f"Output: {', '.join(code(f) for f in e.folders)}"
                     + (f" (experiment {', '.join(alias)})" if alias else "") + ".\n")
         body.append(f"Used: {setup_text(e)}.\n")
         nrun, nok, nfail = len(e.runs), len(e.measured()), len(e.failed())
@@ -210,7 +210,7 @@ def main(argv):
             section_generic(sec)
         if sec.out or not papers:
             body.append(f"## {raw}" + (": not a paper experiment\n" if papers else "\n"))
-            body.append(f"Output: {', '.join('`' + f + '`' for f in e.folders)}.\n")
+            body.append(f"Output: {', '.join(code(f) for f in e.folders)}.\n")
             body.append(f"Used: {setup_text(e)}.\n")
             nrun, nok, nfail = len(e.runs), len(e.measured()), len(e.failed())
             body.append(f"Runs: {nrun} planned, {nok} with measured trials, {nfail} failed.\n")
