@@ -454,6 +454,10 @@ static bool take_lock(folder *f, char *err, size_t errlen)
     }
     int fd = -1;
     int e = flock(dfd, LOCK_EX | LOCK_NB) == 0 ? 0 : errno;
+    /* NFS emulates flock with fcntl locks, which need a descriptor open for writing, and
+     * a folder cannot be: there the lock file's flock alone holds, as it did before. */
+    if (e == EBADF || e == ENOLCK || e == EINVAL || e == EOPNOTSUPP)
+        e = 0;
     if (!e) {
         fd = openat(dfd, "lock", O_RDWR | O_CREAT | O_CLOEXEC | O_NOFOLLOW, 0666);
         if (fd < 0) {
