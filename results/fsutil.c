@@ -155,7 +155,8 @@ bool afile_open(afile *f, const char *final_path, char *err, size_t errlen)
     }
     snprintf(f->tmp_path, (size_t)len + 1, "%s.tmp.%ld", final_path, pid);
 
-    int fd = open(f->tmp_path, O_WRONLY | O_CREAT | O_EXCL | O_CLOEXEC, 0666);
+    /* O_EXCL never follows a link at the name; O_NOFOLLOW says so. */
+    int fd = open(f->tmp_path, O_WRONLY | O_CREAT | O_EXCL | O_CLOEXEC | O_NOFOLLOW, 0666);
     if (fd < 0) {
         int e = errno;
         snprintf(err, errlen, "%s: cannot create: %s%s", f->tmp_path, strerror(e),
@@ -263,6 +264,21 @@ static bool is_dir(const char *path)
 
 bool fs_mkdirs(const char *path, char *err, size_t errlen)
 {
+    return fs_mkdirs_tail(path, 0, err, errlen);
+}
+
+/* The number of components of p after offset at (empty ones skipped). */
+static int components_after(const char *p, size_t at)
+{
+    int n = 0;
+    for (size_t i = at; p[i]; i++)
+        if (p[i] != '/' && (i == 0 || p[i - 1] == '/'))
+            n++;
+    return n;
+}
+
+bool fs_mkdirs_tail(const char *path, int tail, char *err, size_t errlen)
+{
     if (path == NULL || path[0] == '\0') {
         snprintf(err, errlen, "cannot create directory: empty path");
         return false;
@@ -281,9 +297,16 @@ bool fs_mkdirs(const char *path, char *err, size_t errlen)
         if (c[-1] != '/') { /* skip empty components ("a//b", trailing '/') */
             char saved = *c;
             *c = '\0';
+            /* The last `tail` components: a link there is refused, never followed. */
+            bool own = components_after(path, (size_t)(c - p)) < tail;
+            struct stat st;
             if (mkdir(p, 0777) != 0 && !(errno == EEXIST && is_dir(p))) {
                 int e = errno == EEXIST ? ENOTDIR : errno;
                 snprintf(err, errlen, "%s: cannot create directory: %s", p, strerror(e));
+                ok = false;
+            } else if (own && (lstat(p, &st) != 0 || !S_ISDIR(st.st_mode))) {
+                snprintf(err, errlen, "%s is a symbolic link: shadesweep never writes through "
+                         "a link below its output folder (remove it)", p);
                 ok = false;
             }
             *c = saved;

@@ -57,6 +57,10 @@ char *fs_read_all(const char *path, size_t max, size_t *len, int *err);
 
 /* mkdir -p; true if the directory exists afterwards. */
 bool fs_mkdirs(const char *path, char *err, size_t errlen);
+/* mkdir -p whose last `tail` components must be directories of their own: one that is a
+ * symbolic link is refused by name, never followed (what lies below an output folder;
+ * the folder itself and what is above it may be links). */
+bool fs_mkdirs_tail(const char *path, int tail, char *err, size_t errlen);
 bool fs_exists(const char *path);
 /* rm -rf of a directory this program created; false with a message on failure. */
 bool fs_remove_tree(const char *path, char *err, size_t errlen);

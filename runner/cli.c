@@ -60,7 +60,9 @@ static const char usage_text[] =
     "                             every parameter, typed); options as run's\n"
     "  info [--backend B] [--device N] [--json]  the GL context's vendor, renderer and\n"
     "                             limits, the renderers and scenes (--json: one object)\n"
-    "  merge -o OUT [--force] DIR...  combine the output folders of a sweep's shards\n"
+    "  merge -o OUT [--force] [--allow-mixed-builds] DIR...\n"
+    "                             combine the output folders of a sweep's shards (runs\n"
+    "                             of different builds only with --allow-mixed-builds)\n"
     "  compare [OPTIONS] BASE NEW  a regression gate over two output folders (--json:\n"
     "                             the verdicts as JSON)\n"
     "  compare --exe OTHER [OPTIONS] MANIFEST  the manifest with OTHER (BASE) and this\n"
@@ -104,7 +106,7 @@ static bool print_command_help(const char *name)
 
 typedef struct cli_opts {
     const char *out;
-    bool force, resume, debug_gl, smoke, retry_failed, json;
+    bool force, resume, debug_gl, smoke, retry_failed, json, allow_mixed;
     gl_backend backend;
     int device;
     unsigned shard, nshards;
@@ -115,7 +117,7 @@ typedef struct cli_opts {
 } cli_opts;
 
 enum { OPT_FORCE = 1000, OPT_BACKEND, OPT_DEVICE, OPT_SHARD, OPT_DEBUG_GL, OPT_RESUME, OPT_SMOKE, OPT_SCALE,
-       OPT_RETRY_FAILED, OPT_ROUND, OPT_JSON, OPT_SET, OPT_RENDERER };
+       OPT_RETRY_FAILED, OPT_ROUND, OPT_JSON, OPT_SET, OPT_RENDERER, OPT_ALLOW_MIXED };
 
 /* Parses the options a command accepts; `allowed` lists their long names. Returns
  * the index of the first operand, or -1 after printing the problem. */
@@ -136,6 +138,7 @@ static int parse_opts(int argc, char **argv, const char *allowed, cli_opts *o)
         {"json", no_argument, NULL, OPT_JSON},
         {"set", required_argument, NULL, OPT_SET},
         {"renderer", required_argument, NULL, OPT_RENDERER},
+        {"allow-mixed-builds", no_argument, NULL, OPT_ALLOW_MIXED},
         {NULL, 0, NULL, 0},
     };
     memset(o, 0, sizeof *o);
@@ -173,6 +176,7 @@ static int parse_opts(int argc, char **argv, const char *allowed, cli_opts *o)
         case OPT_SMOKE: o->smoke = true; break;
         case OPT_JSON: o->json = true; break;
         case OPT_RETRY_FAILED: o->retry_failed = true; break;
+        case OPT_ALLOW_MIXED: o->allow_mixed = true; break;
         case OPT_ROUND: {
             char *end;
             errno = 0;
@@ -540,14 +544,14 @@ static int cmd_columns(int argc, char **argv)
 static int cmd_merge(int argc, char **argv)
 {
     cli_opts o;
-    int first = parse_opts(argc, argv, "out force", &o);
+    int first = parse_opts(argc, argv, "out force allow-mixed-builds", &o);
     if (first < 0)
         return 2;
     if (!o.out || first >= argc) {
         fprintf(stderr, "shadesweep merge: expected -o OUT and one or more shard folders\n");
         return 2;
     }
-    int rc = merge_main(o.out, o.force, argc - first, argv + first);
+    int rc = merge_main(o.out, o.force, o.allow_mixed, argc - first, argv + first);
     if (rc != 2)
         print_summary_table(o.out);
     return rc;

@@ -6,6 +6,7 @@
 #include <stdlib.h>
 #include <string.h>
 
+#include "results/mdtext.h"
 #include "results/grow.h"
 
 /* The value of a plan cell on a numeric axis: a plain number, or a resolution WxH as
@@ -417,8 +418,14 @@ void crossovers_write_md(FILE *fp, const crossover_list *l)
         const crossover_found *c = &l->item[i];
         xtext t;
         texts(c, &t);
-        fprintf(fp, "| %s | %s | %s | %s | %s-%s | ~%s | %s to %s | %s / %s |\n", c->axis,
-                c->group[0] ? c->group : "-", c->below, c->above, t.x0, t.x1, t.x, t.lo, t.hi,
+        /* names and values from result files: escaped (results/mdtext.h) */
+        const char *cell[4] = {c->axis, c->group[0] ? c->group : "-", c->below, c->above};
+        for (int k = 0; k < 4; k++) {
+            fputs("| ", fp);
+            md_put(fp, cell[k]);
+            fputs(" ", fp);
+        }
+        fprintf(fp, "| %s-%s | ~%s | %s to %s | %s / %s |\n", t.x0, t.x1, t.x, t.lo, t.hi,
                 c->differs0, c->differs1);
     }
 }

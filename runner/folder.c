@@ -13,6 +13,7 @@
 #include <string.h>
 #include <sys/file.h>
 #include <sys/stat.h>
+#include <sys/sysmacros.h>   /* major, minor */
 #include <unistd.h>
 
 #include "results/csv.h"
@@ -222,6 +223,67 @@ static bool clear_folder(const char *dir, bool keep_sweep, char *err, size_t err
     return remove_file(path, err, errlen);
 }
 
+/* ---- no link below the folder ------------------------------------------------------- */
+
+/* A symbolic link where shadesweep writes, replaces or removes one of its names below
+ * OUT is refused by name, before anything is written: a link there (a run folder
+ * linked to another sweep's) would have its target's files overwritten. OUT itself may
+ * be a link (a results disk linked into a checkout). */
+static bool no_link(const char *path, char *err, size_t errlen)
+{
+    struct stat st;
+    if (lstat(path, &st) != 0 || !S_ISLNK(st.st_mode))
+        return true;
+    char to[1024];
+    ssize_t n = readlink(path, to, sizeof to - 1);
+    to[n > 0 ? n : 0] = 0;
+    snprintf(err, errlen, "%s is a symbolic link (to %.1000s): shadesweep never writes "
+             "through a link below its output folder; remove the link, or give the folder "
+             "it leads to as -o", path, to);
+    return false;
+}
+
+/* check_links' part of a run folder's (or a trial folder's) entry. */
+static bool run_entry_links(const char *path, const char *name, void *ctx, char *err,
+                            size_t errlen)
+{
+    (void)ctx;
+    bool temp;
+    if (folder_is_trial_dir(name))
+        return no_link(path, err, errlen) &&
+               (!is_dir_nofollow(path) || folder_each(path, run_entry_links, NULL, err, errlen));
+    return !folder_is_run_file(name, &temp) || no_link(path, err, errlen);
+}
+
+/* check_links' part of an entry of runs/. */
+static bool runs_entry_links(const char *path, const char *name, void *ctx, char *err,
+                             size_t errlen)
+{
+    (void)ctx;
+    if (!is_run_id(name))
+        return true;
+    return no_link(path, err, errlen) &&
+           (!is_dir_nofollow(path) || folder_each(path, run_entry_links, NULL, err, errlen));
+}
+
+/* Every name of shadesweep's below dir: the top files, lock, runs/, runs/<id>/, their
+ * files and trial folders, and the trials' files. */
+static bool check_links(const char *dir, char *err, size_t errlen)
+{
+    char path[4608];
+    for (size_t i = 0; i < NAMES(top_names); i++) {
+        folder_path_join(path, sizeof path, dir, top_names[i]);
+        if (!no_link(path, err, errlen))
+            return false;
+    }
+    folder_path_join(path, sizeof path, dir, "lock");
+    if (!no_link(path, err, errlen))
+        return false;
+    folder_path_join(path, sizeof path, dir, "runs");
+    return no_link(path, err, errlen) &&
+           (!is_dir_nofollow(path) || folder_each(path, runs_entry_links, NULL, err, errlen));
+}
+
 /* ---- what a folder is ------------------------------------------------------------ */
 
 typedef enum probe_kind { P_ABSENT, P_EMPTY, P_OURS, P_FOREIGN, P_ERROR } probe_kind;
@@ -336,34 +398,107 @@ static probe_kind probe(const char *dir, sweep_meta *meta, char *why, size_t why
     return P_OURS;
 }
 
+bool folder_is_output(const char *dir, sweep_meta *meta, char *why, size_t whylen)
+{
+    memset(meta, 0, sizeof *meta);
+    switch (probe(dir, meta, why, whylen)) {
+    case P_OURS:
+        return true;
+    case P_ABSENT:
+        snprintf(why, whylen, "no such folder");
+        return false;
+    case P_EMPTY:
+        snprintf(why, whylen, "it is empty");
+        return false;
+    case P_FOREIGN:
+    case P_ERROR:
+        return false;
+    }
+    return false;
+}
+
 /* ---- open, lock, close ------------------------------------------------------------- */
 
+/* The pid that holds a flock on the file or folder fd names, from /proc/locks ("1: FLOCK
+ * ADVISORY WRITE 1234 08:01:5678 0 EOF"); 0 when it cannot be told. */
+static long flock_holder(int fd)
+{
+    struct stat st;
+    FILE *f = fstat(fd, &st) == 0 ? fopen("/proc/locks", "re") : NULL;
+    if (!f)
+        return 0;
+    char line[256];
+    long pid = 0;
+    while (!pid && fgets(line, sizeof line, f)) {
+        char kind[16];
+        long p;
+        unsigned maj, min;
+        unsigned long long ino;
+        if (sscanf(line, "%*d: %15s %*s %*s %ld %x:%x:%llu", kind, &p, &maj, &min, &ino) == 5 &&
+            strcmp(kind, "FLOCK") == 0 && maj == major(st.st_dev) && min == minor(st.st_dev) &&
+            ino == (unsigned long long)st.st_ino)
+            pid = p;
+    }
+    fclose(f);
+    return pid;
+}
+
+/* The lock is a flock on the folder itself (its descriptor, O_CLOEXEC), not on the lock
+ * file: a lock file deleted under a running sweep would let a second one lock a new
+ * file of the same name. The file still holds the holder's pid (and is flocked too, as
+ * older versions did, so that one of them running into the folder is kept out). */
 static bool take_lock(folder *f, char *err, size_t errlen)
 {
     char path[4200];
     snprintf(path, sizeof path, "%s/lock", f->dir);
-    int fd = open(path, O_RDWR | O_CREAT | O_CLOEXEC | O_NOFOLLOW, 0666);
-    if (fd < 0) {
-        snprintf(err, errlen, "%s: cannot create: %s", path, strerror(errno));
+    int dfd = open(f->dir, O_RDONLY | O_DIRECTORY | O_CLOEXEC);
+    if (dfd < 0) {
+        snprintf(err, errlen, "%s: cannot open: %s", f->dir, strerror(errno));
         return false;
     }
-    if (flock(fd, LOCK_EX | LOCK_NB) != 0) {
-        int e = errno;
+    int fd = -1;
+    int e = flock(dfd, LOCK_EX | LOCK_NB) == 0 ? 0 : errno;
+    /* NFS emulates flock with fcntl locks, which need a descriptor open for writing, and
+     * a folder cannot be: there the lock file's flock alone holds, as it did before. */
+    if (e == EBADF || e == ENOLCK || e == EINVAL || e == EOPNOTSUPP)
+        e = 0;
+    if (!e) {
+        fd = openat(dfd, "lock", O_RDWR | O_CREAT | O_CLOEXEC | O_NOFOLLOW, 0666);
+        if (fd < 0) {
+            if (errno == ELOOP)
+                snprintf(err, errlen, "%s is a symbolic link: shadesweep never writes through a "
+                         "link below its output folder (remove it)", path);
+            else
+                snprintf(err, errlen, "%s: cannot create: %s", path, strerror(errno));
+            close(dfd);
+            return false;
+        }
+        e = flock(fd, LOCK_EX | LOCK_NB) == 0 ? 0 : errno;
+    }
+    if (e) {
+        long holder = flock_holder(fd >= 0 ? fd : dfd);
         char pid[32] = "";
-        ssize_t n = e == EWOULDBLOCK ? pread(fd, pid, sizeof pid - 1, 0) : -1;
-        close(fd);
+        int pfd = openat(dfd, "lock", O_RDONLY | O_CLOEXEC | O_NOFOLLOW);
+        ssize_t n = e == EWOULDBLOCK && pfd >= 0 ? pread(pfd, pid, sizeof pid - 1, 0) : -1;
+        if (pfd >= 0)
+            close(pfd);
+        if (fd >= 0)
+            close(fd);
+        close(dfd);
         if (e != EWOULDBLOCK) {
-            snprintf(err, errlen, "%s: cannot lock: %s", path, strerror(e));
+            snprintf(err, errlen, "%s: cannot lock: %s", fd >= 0 ? path : f->dir, strerror(e));
             return false;
         }
         pid[n > 0 ? n : 0] = 0;
         pid[strcspn(pid, "\n")] = 0;
+        if (holder)   /* the kernel's word before the file's (which may be gone) */
+            snprintf(pid, sizeof pid, "%ld", holder);
         if (pid[0])
-            snprintf(err, errlen, "%s is in use by shadesweep process %s (it holds %s); "
-                     "wait for it to end, or stop it", f->dir, pid, path);
+            snprintf(err, errlen, "%s is in use by shadesweep process %s (it holds the lock "
+                     "on %s); wait for it to end, or stop it", f->dir, pid, f->dir);
         else
-            snprintf(err, errlen, "%s is in use by another shadesweep process (it holds %s)",
-                     f->dir, path);
+            snprintf(err, errlen, "%s is in use by another shadesweep process (it holds the "
+                     "lock on %s)", f->dir, f->dir);
         return false;
     }
     char pid[32];
@@ -371,9 +506,11 @@ static bool take_lock(folder *f, char *err, size_t errlen)
     if (ftruncate(fd, 0) != 0 || pwrite(fd, pid, (size_t)len, 0) != len) {
         snprintf(err, errlen, "%s: cannot write: %s", path, strerror(errno));
         close(fd);
+        close(dfd);
         return false;
     }
     f->lock_fd = fd;
+    f->dir_fd = dfd;
     return true;
 }
 
@@ -421,7 +558,9 @@ static void release(folder *f)
 {
     if (f->lock_fd >= 0)
         close(f->lock_fd);
-    f->lock_fd = -1;
+    if (f->dir_fd >= 0)
+        close(f->dir_fd);
+    f->lock_fd = f->dir_fd = -1;
 }
 
 /* Removes what a fresh folder got from this process (only shadesweep's names). */
@@ -442,7 +581,7 @@ bool folder_open(folder *f, const char *dir, folder_mode mode, const sweep_meta 
                  char *err, size_t errlen)
 {
     memset(f, 0, sizeof *f);
-    f->lock_fd = -1;
+    f->lock_fd = f->dir_fd = -1;
     if (!dir || !dir[0]) {
         snprintf(err, errlen, "the output folder is empty (-o \"\" or an empty name)");
         return false;
@@ -471,6 +610,8 @@ bool folder_open(folder *f, const char *dir, folder_mode mode, const sweep_meta 
     }
     /* Refusals that can be told before the lock leave the folder as it was, lock too. */
     if (k == P_OURS && mode == FOLDER_RESUME && !same_meta(dir, &have, meta, err, errlen))
+        return false;
+    if (k == P_OURS && !check_links(dir, err, errlen))
         return false;
     if (k == P_ABSENT) {
         char parent[4096];
@@ -518,6 +659,10 @@ bool folder_open(folder *f, const char *dir, folder_mode mode, const sweep_meta 
         release(f);
         return false;
     }
+    if (k2 == P_OURS && !check_links(dir, err, errlen)) {   /* again, under the lock */
+        release(f);
+        return false;
+    }
     f->fresh = k2 == P_EMPTY;
     if (f->fresh)
         remove_sweep_tmps(dir);
@@ -537,7 +682,7 @@ bool folder_open(folder *f, const char *dir, folder_mode mode, const sweep_meta 
     char runs[4200];
     snprintf(runs, sizeof runs, "%s/runs", dir);
     if ((write_meta && !output_write_sweep_meta(dir, meta, err, errlen)) ||
-        !fs_mkdirs(runs, err, errlen)) {
+        !fs_mkdirs_tail(runs, 1, err, errlen)) {
         if (f->fresh)
             undo_fresh(f);
         release(f);

@@ -5,9 +5,9 @@
  *   `format: shadesweep-output 1` (written before anything else). --force, --resume and
  *   merge -o refuse any other non-empty folder, and delete only the names shadesweep
  *   writes (FOLDER_OWN_NAMES below, runs/<id>/ files, their temporary twins).
- * - One writer: OUT/lock, flock(LOCK_EX | LOCK_NB) for the command's whole life, with
- *   the holder's pid written in it. The lock file is never removed (removing it would
- *   let two processes hold locks on two different files).
+ * - One writer: flock(LOCK_EX | LOCK_NB) on OUT's own descriptor for the command's
+ *   whole life (deleting a file cannot undo it), and OUT/lock, flocked too, holding the
+ *   holder's pid. The lock file is never removed.
  * - Completion: a run is complete when runs/<id>/files.txt (written last) lists its
  *   files with their sizes and FNV-1a 64 checksums, they all match, and its summary.csv
  *   parses with this version's header and column count. */
@@ -20,7 +20,8 @@
 
 typedef struct folder {
     char dir[4096];
-    int lock_fd;               /* -1: not held */
+    int lock_fd;               /* OUT/lock, holding the pid; -1: not held */
+    int dir_fd;                /* OUT itself, flocked: the lock; -1: not held */
     bool created;              /* this process made the directory */
     bool fresh;                /* it was absent or empty: nothing of anyone's was there */
 } folder;
@@ -38,6 +39,10 @@ typedef enum folder_mode {
  * folder is left as it was, and a folder this call created is removed). */
 bool folder_open(folder *f, const char *dir, folder_mode mode, const sweep_meta *meta,
                  char *err, size_t errlen);
+/* Whether dir is a shadesweep output folder of this format, by the test folder_open
+ * (run --resume, --force) applies: sweep.yaml parses, says `format: shadesweep-output 1`
+ * and has a manifest hash (in meta). why says what it is otherwise. */
+bool folder_is_output(const char *dir, sweep_meta *meta, char *why, size_t whylen);
 /* Releases the lock. abandon: the command failed before it wrote any run: a folder
  * that was fresh is emptied of shadesweep's files (and removed if this process made it)
  * so that a plain rerun is not refused. */

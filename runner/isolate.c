@@ -137,7 +137,7 @@ bool isolate_run(int (*fn)(void *), void *arg, double timeout_s, const char *log
         signal(SIGTERM, SIG_DFL);
         signal(SIGHUP, SIG_DFL);
         signal(SIGPIPE, SIG_DFL);
-        int fd = open(log_path, O_WRONLY | O_CREAT | O_APPEND | O_CLOEXEC, 0644);
+        int fd = open(log_path, O_WRONLY | O_CREAT | O_APPEND | O_CLOEXEC | O_NOFOLLOW, 0644);
         if (fd >= 0) {
             dup2(fd, STDERR_FILENO);
             close(fd);

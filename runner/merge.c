@@ -9,8 +9,10 @@
 
 #include "results/fsutil.h"
 #include "results/grow.h"
+#include "runner/diag.h"
 #include "runner/folder.h"
 #include "runner/output.h"
+#include "runner/yamldoc.h"
 
 /* The whole file into a NUL-terminated buffer (caller frees); NULL with a message. */
 static char *slurp(const char *path, size_t *len, char *err, size_t errlen)
@@ -84,10 +86,47 @@ static bool copy_entry(const char *src, const char *name, void *ctx, char *err, 
 /* Copies the regular files of one run folder. */
 static bool copy_run(const char *from, const char *to, char *err, size_t errlen)
 {
-    return fs_mkdirs(to, err, errlen) && folder_each(from, copy_entry, (void *)to, err, errlen);
+    return fs_mkdirs_tail(to, 2, err, errlen) && folder_each(from, copy_entry, (void *)to, err, errlen);
 }
 
-int merge_main(const char *out, bool force, int ndirs, char **dirs)
+/* The scalar at key of mapping m, NULL when there is none. */
+static const char *map_text(const ynode *m, const char *key)
+{
+    for (size_t i = 0; m && m->kind == YNODE_MAPPING && i < m->n; i++)
+        if (m->pairs[i].key->kind == YNODE_SCALAR && strcmp(m->pairs[i].key->text, key) == 0)
+            return m->pairs[i].value->kind == YNODE_SCALAR ? m->pairs[i].value->text : NULL;
+    return NULL;
+}
+
+/* "version V, commit C" of the build that made run_dir: its meta.yaml's `shadesweep`
+ * block ("unknown" for what it lacks; the run is complete, so meta.yaml is there). */
+static void run_build(const char *run_dir, char *out, size_t len)
+{
+    char path[4300];
+    snprintf(path, sizeof path, "%s/meta.yaml", run_dir);
+    size_t n;
+    int e;
+    char *text = fs_read_all(path, 64u << 20, &n, &e);
+    diag_list d = {0};
+    ydoc *doc = NULL;
+    const char *v = NULL, *c = NULL;
+    if (text && ydoc_load(path, text, n, &doc, &d) && doc->root->kind == YNODE_MAPPING) {
+        const ynode *sw = NULL;
+        for (size_t i = 0; i < doc->root->n; i++)
+            if (doc->root->pairs[i].key->kind == YNODE_SCALAR &&
+                strcmp(doc->root->pairs[i].key->text, "shadesweep") == 0)
+                sw = doc->root->pairs[i].value;
+        v = map_text(sw, "version");
+        c = map_text(sw, "commit");
+    }
+    snprintf(out, len, "version %.60s, commit %.60s", v && *v ? v : "unknown",
+             c && *c ? c : "unknown");
+    ydoc_free(doc);
+    diag_free(&d);
+    free(text);
+}
+
+int merge_main(const char *out, bool force, bool allow_mixed, int ndirs, char **dirs)
 {
     char err[8192];
     sweep_meta meta0 = {0};
@@ -98,12 +137,15 @@ int merge_main(const char *out, bool force, int ndirs, char **dirs)
     int rc = 2;
     folder fo;
     bool opened = false;
+    int *from = NULL;
 
     for (int i = 0; i < ndirs; i++) {
-        char path[4200];
+        char path[4200], why[1024];
         sweep_meta meta;
-        if (!output_read_sweep_meta(dirs[i], &meta, err, sizeof err)) {
-            fprintf(stderr, "shadesweep merge: %s\n", err);
+        /* the test of run --resume: another output format is not merged (nor relabelled) */
+        if (!folder_is_output(dirs[i], &meta, why, sizeof why)) {
+            fprintf(stderr, "shadesweep merge: %s is not a shadesweep output folder (%s): not "
+                    "merging it\n", dirs[i], why);
             goto done;
         }
         snprintf(path, sizeof path, "%s/plan.csv", dirs[i]);
@@ -149,6 +191,55 @@ int merge_main(const char *out, bool force, int ndirs, char **dirs)
                     out, dirs[i]);
             goto done;
         }
+    /* Which folder each run comes from (-1: none has it complete), before OUT is
+     * touched: a refusal below leaves it as it was. */
+    from = malloc((nids ? nids : 1) * sizeof *from);
+    if (!from) {
+        fprintf(stderr, "shadesweep merge: out of memory\n");
+        goto done;
+    }
+    size_t first = nids;   /* the first run taken: the build the others are held to */
+    char build0[160] = "";
+    bool mixed = false;
+    for (size_t r = 0; r < nids; r++) {
+        from[r] = -1;
+        for (int i = 0; i < ndirs; i++) {
+            char why[512], dir[4200];
+            run_check c;
+            if (!folder_check_run(dirs[i], ids[r], true, &c, why, sizeof why)) {
+                snprintf(dir, sizeof dir, "%s/runs/%s", dirs[i], ids[r]);
+                if (fs_exists(dir))
+                    fprintf(stderr, "shadesweep merge: run %s in %s is incomplete (%s): not "
+                            "taken\n", ids[r], dirs[i], why);
+                continue;
+            }
+            if (from[r] < 0)
+                from[r] = i;
+            else
+                fprintf(stderr, "shadesweep merge: run %s is in %s and %s; taking %s's\n",
+                        ids[r], dirs[from[r]], dirs[i], dirs[from[r]]);
+        }
+        if (from[r] < 0 || mixed)
+            continue;
+        /* One build per merged folder: crossovers and rankings across builds would
+         * compare the builds as much as the renderers. */
+        char dir[4200], build[160];
+        snprintf(dir, sizeof dir, "%s/runs/%s", dirs[from[r]], ids[r]);
+        run_build(dir, build, sizeof build);
+        if (first == nids) {
+            first = r;
+            snprintf(build0, sizeof build0, "%s", build);
+        } else if (strcmp(build, build0) != 0) {
+            mixed = true;
+            fprintf(stderr, "shadesweep merge: %s runs of different builds: run %s in %s is "
+                    "%s, run %s in %s is %s%s\n", allow_mixed ? "warning: merging" : "refusing",
+                    ids[first], dirs[from[first]], build0, ids[r], dirs[from[r]], build,
+                    allow_mixed ? " (--allow-mixed-builds)"
+                                : "; --allow-mixed-builds merges them anyway");
+            if (!allow_mixed)
+                goto done;
+        }
+    }
     snprintf(meta0.shard, sizeof meta0.shard, "merged from %d folder%s", ndirs,
              ndirs == 1 ? "" : "s");
     if (!folder_open(&fo, out, force ? FOLDER_FORCE : FOLDER_NEW, &meta0, err, sizeof err)) {
@@ -161,27 +252,10 @@ int merge_main(const char *out, bool force, int ndirs, char **dirs)
     opened = true;
     size_t copied = 0;
     for (size_t r = 0; r < nids; r++) {
-        int from = -1;
-        for (int i = 0; i < ndirs; i++) {
-            char why[512], dir[4200];
-            run_check c;
-            if (!folder_check_run(dirs[i], ids[r], true, &c, why, sizeof why)) {
-                snprintf(dir, sizeof dir, "%s/runs/%s", dirs[i], ids[r]);
-                if (fs_exists(dir))
-                    fprintf(stderr, "shadesweep merge: run %s in %s is incomplete (%s): not "
-                            "taken\n", ids[r], dirs[i], why);
-                continue;
-            }
-            if (from < 0)
-                from = i;
-            else
-                fprintf(stderr, "shadesweep merge: run %s is in %s and %s; taking %s's\n",
-                        ids[r], dirs[from], dirs[i], dirs[from]);
-        }
-        if (from < 0)
+        if (from[r] < 0)
             continue;
         char src[4200], dst[4200];
-        snprintf(src, sizeof src, "%s/runs/%s", dirs[from], ids[r]);
+        snprintf(src, sizeof src, "%s/runs/%s", dirs[from[r]], ids[r]);
         snprintf(dst, sizeof dst, "%s/runs/%s", out, ids[r]);
         if (!copy_run(src, dst, err, sizeof err)) {
             fprintf(stderr, "shadesweep merge: %s\n", err);
@@ -223,5 +297,6 @@ done:
         folder_close(&fo, rc == 2);
     free(plan0);
     free(ids);
+    free(from);
     return rc;
 }

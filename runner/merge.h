@@ -6,4 +6,7 @@
  * there; 1 some are missing (listed); 2 the folders cannot be merged. */
 #include <stdbool.h>
 
-int merge_main(const char *out, bool force, int ndirs, char **dirs);
+/* Folders that are not shadesweep's output (the test of run --resume) are refused, and
+ * so, unless allow_mixed, are runs made by different builds (meta.yaml's version and
+ * commit), before OUT is touched. */
+int merge_main(const char *out, bool force, bool allow_mixed, int ndirs, char **dirs);

@@ -530,7 +530,7 @@ static void print_bash(FILE *out)
           "--debug-gl --scale --smoke --set --renderer --help\" ;;\n"
           "    list) opts=\"--shard --smoke --scale --set --renderer --json --help\" ;;\n"
           "    info) opts=\"--backend --device --help\" ;;\n"
-          "    merge) opts=\"-o --out --force --help\" ;;\n"
+          "    merge) opts=\"-o --out --force --allow-mixed-builds --help\" ;;\n"
           "    validate) opts=\"--set --renderer --help\" ;;\n"
           "    params) opts=\"--markdown --bash --help\"\n"
           "      COMPREPLY=($(compgen -W \"$opts $keys\" -- \"$cur\")); return ;;\n"

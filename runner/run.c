@@ -94,7 +94,8 @@ static bool write_run_result(run_state *st)
     tr->metric_us = metric_value(tr, st->metric);
     run_utc_now(st->finished, sizeof st->finished);
     char err[512];
-    if (!fs_mkdirs(st->dir, err, sizeof err) || !run_write_meta(st, err, sizeof err) ||
+    /* runs/<id>/trial-<k>: none of the three may be a link (docs/reliability.md) */
+    if (!fs_mkdirs_tail(st->dir, 3, err, sizeof err) || !run_write_meta(st, err, sizeof err) ||
         !output_write_run_summary(st->dir, st->e, st->s, &st->plan, tr, 1, st->message, err,
                                   sizeof err) ||
         !folder_write_run_files(st->dir, err, sizeof err)) {
@@ -181,7 +182,7 @@ bool run_trial_isolated(const experiment *e, const run_spec *s, const run_option
     run_report *report = mmap(NULL, sizeof *report, PROT_READ | PROT_WRITE,
                               MAP_SHARED | MAP_ANONYMOUS, -1, 0);
     if (report == MAP_FAILED || !folder_clear_run(st.dir, err, sizeof err) ||
-        !fs_mkdirs(st.dir, err, sizeof err)) {
+        !fs_mkdirs_tail(st.dir, 3, err, sizeof err)) {   /* runs/<id>/trial-<k>: no link */
         fprintf(stderr, "shadesweep: run %s: %s\n", s->id,
                 report != MAP_FAILED ? err : "out of memory");
         if (report != MAP_FAILED)

@@ -44,7 +44,7 @@ bool run_setup(run_state *st)
         .width = p->width,
         .height = p->height,
     };
-    if (!fs_mkdirs(st->dir, st->err, sizeof st->err)) {
+    if (!fs_mkdirs_tail(st->dir, 3, st->err, sizeof st->err)) {   /* runs/<id>/trial-<k> */
         run_set_status(st, "output");
         return false;
     }

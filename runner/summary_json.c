@@ -159,7 +159,7 @@ static bool warnings_array(FILE *fp, const summary_view *v)
     FILE *m = open_memstream(&buf, &len);
     if (!m)
         return false;
-    summary_warnings(v->runs, v->nruns, m, "");
+    summary_warnings(v->runs, v->nruns, m, "", false);
     if (fclose(m) != 0) {
         free(buf);
         return false;

@@ -4,6 +4,7 @@
 #include <stdlib.h>
 #include <string.h>
 
+#include "results/mdtext.h"
 #include "results/csvread.h"
 #include "results/fsutil.h"
 #include "runner/crossovers.h"
@@ -161,7 +162,16 @@ bool summary_load_runs(const char *path, run_result **out, size_t *n, char *err,
     return true;
 }
 
-size_t summary_warnings(const run_result *runs, size_t n, FILE *out, const char *prefix)
+/* s, escaped when it goes into Markdown. */
+static void put(FILE *fp, const char *s, bool md)
+{
+    if (md)
+        md_put(fp, s);
+    else
+        fputs(s, fp);
+}
+
+size_t summary_warnings(const run_result *runs, size_t n, FILE *out, const char *prefix, bool md)
 {
     size_t count = 0;
     for (size_t r = 0; r < n; r++) {
@@ -182,17 +192,25 @@ size_t summary_warnings(const run_result *runs, size_t n, FILE *out, const char 
             shmed = NAN;   /* too few trials to call one of them starved */
         for (size_t k = 0; k < x->nvalues; k++) {
             if (flag[k]) {
-                fprintf(out, "%srun %s (%s) trial %zu is an outlier: %.4g ms of %s time a frame, "
-                        "the run's median %.4g ms\n", prefix, x->id, x->renderer, k + 1,
-                        x->value[k] / 1000, x->metric[0] ? x->metric : "wall", med / 1000);
+                fprintf(out, "%srun ", prefix);
+                put(out, x->id, md);
+                fputs(" (", out);
+                put(out, x->renderer, md);
+                fprintf(out, ") trial %zu is an outlier: %.4g ms of ", k + 1, x->value[k] / 1000);
+                put(out, x->metric[0] ? x->metric : "wall", md);
+                fprintf(out, " time a frame, the run's median %.4g ms\n", med / 1000);
                 count++;
             }
             bool starved = isfinite(shmed) && x->share[k] < 0.75 * shmed;
             bool stolen = x->steal[k] > 0.05;
             if (starved || stolen) {
-                fprintf(out, "%srun %s (%s) trial %zu ran on a busy machine: it got %.0f%% of the "
-                        "CPU it could use (the run's median %.0f%%), steal %.0f%%\n", prefix,
-                        x->id, x->renderer, k + 1, x->share[k] * 100, shmed * 100,
+                fprintf(out, "%srun ", prefix);
+                put(out, x->id, md);
+                fputs(" (", out);
+                put(out, x->renderer, md);
+                fprintf(out, ") trial %zu ran on a busy machine: it got %.0f%% of the "
+                        "CPU it could use (the run's median %.0f%%), steal %.0f%%\n", k + 1,
+                        x->share[k] * 100, shmed * 100,
                         isfinite(x->steal[k]) ? x->steal[k] * 100 : 0.0);
                 count++;
             }
@@ -203,7 +221,13 @@ size_t summary_warnings(const run_result *runs, size_t n, FILE *out, const char 
     for (size_t r = 0; r < n; r++) {
         char msg[256];
         if (workload_brute_force(runs[r].reach_mean, runs[r].lights, msg, sizeof msg)) {
-            fprintf(out, "%srun %s (%s): %s\n", prefix, runs[r].id, runs[r].renderer, msg);
+            fprintf(out, "%srun ", prefix);
+            put(out, runs[r].id, md);
+            fputs(" (", out);
+            put(out, runs[r].renderer, md);
+            fputs("): ", out);
+            put(out, msg, md);
+            fputc('\n', out);
             count++;
         }
     }
@@ -567,7 +591,10 @@ bool summary_table_write(const char *out_dir, FILE *terminal, char *err, size_t 
     if (!(ok = afile_open(&f, mdpath, err, errlen)))
         goto out;
     const char *exp = nruns ? runs[0].experiment : "";
-    fprintf(f.fp, "# %s: the renderers ranked per sweep point\n\n", *exp ? exp : out_dir);
+    /* every name below comes from result files: escaped (results/mdtext.h) */
+    fputs("# ", f.fp);
+    md_put(f.fp, *exp ? exp : out_dir);
+    fputs(": the renderers ranked per sweep point\n\n", f.fp);
     fputs(md_intro, f.fp);
     if (terminal)
         fprintf(terminal, "\n%s: %zu run%s, %zu sweep point%s; %s time per frame, ms: mean ± "
@@ -586,13 +613,16 @@ bool summary_table_write(const char *out_dir, FILE *terminal, char *err, size_t 
                 metric = runs[p->runs[i]].metric;
                 break;
             }
-        fprintf(f.fp, "\n## %s\n\n", p->label);
-        fprintf(f.fp, "Ranked by %s time per frame.\n\n", metric);
-        fprintf(f.fp, "| rank | renderer |%s run | %s (ms) | x fastest | differs | wall (ms) | "
+        fputs("\n## ", f.fp);
+        md_put(f.fp, p->label);
+        fputs("\n\nRanked by ", f.fp);
+        md_put(f.fp, metric);
+        fprintf(f.fp, " time per frame.\n\n| rank | renderer |%s run | ", single ? " point |" : "");
+        md_put(f.fp, metric);
+        fprintf(f.fp, " (ms) | x fastest | differs | wall (ms) | "
                 "p99 (ms) | 1%% low (FPS) | RMSE | lights a pixel | evals a pixel | coverage | "
                 "trials |\n"
-                "|---|---|%s---|---|---|---|---|---|---|---|---|---|---|---|\n", single ? " point |" : "",
-                metric, single ? "---|" : "");
+                "|---|---|%s---|---|---|---|---|---|---|---|---|---|---|---|\n", single ? "---|" : "");
         bool term = terminal && k < TERM_MAX_POINTS;
         if (term) {
             fprintf(terminal, "%s\n", p->label);
@@ -608,11 +638,20 @@ bool summary_table_write(const char *out_dir, FILE *terminal, char *err, size_t 
             else
                 snprintf(ft, sizeof ft, "%s", x->status);
             snprintf(trials, sizeof trials, "%zu of %zu ok", x->trials_ok, x->trials);
-            fprintf(f.fp, "| %s | %s |%s%s%s %s | %s | %s | %s | %s | %s | %s | %s | %s | %s | "
-                    "%s | %s |\n",
-                    c.rank, rcfg[p->runs[i]], single ? " " : "", single ? rlabel[p->runs[i]] : "",
-                    single ? " |" : "", x->id, ft, c.ratio, c.sig, c.wall, c.p99, c.low, c.rmse,
-                    c.reach, c.evals, c.coverage, trials);
+            fprintf(f.fp, "| %s | ", c.rank);
+            md_put(f.fp, rcfg[p->runs[i]]);
+            fputs(" |", f.fp);
+            if (single) {
+                fputs(" ", f.fp);
+                md_put(f.fp, rlabel[p->runs[i]]);
+                fputs(" |", f.fp);
+            }
+            fputs(" ", f.fp);
+            md_put(f.fp, x->id);
+            fputs(" | ", f.fp);
+            md_put(f.fp, ft);
+            fprintf(f.fp, " | %s | %s | %s | %s | %s | %s | %s | %s | %s | %s |\n", c.ratio,
+                    c.sig, c.wall, c.p99, c.low, c.rmse, c.reach, c.evals, c.coverage, trials);
             if (term && i < TERM_MAX_ROWS) {
                 fputs("  ", terminal);
                 tcell(terminal, c.rank, 4);
@@ -653,11 +692,11 @@ bool summary_table_write(const char *out_dir, FILE *terminal, char *err, size_t 
     }
     /* what makes these verdicts doubtful, named per trial */
     fputs("\n## Warnings\n\n", f.fp);
-    if (!summary_warnings(runs, nruns, f.fp, "- "))
+    if (!summary_warnings(runs, nruns, f.fp, "- ", true))
         fputs("None: no trial is an outlier among its run's, none ran on a busy machine, "
               "no run's workload is brute force.\n", f.fp);
     if (terminal)
-        summary_warnings(runs, nruns, terminal, "warning: ");
+        summary_warnings(runs, nruns, terminal, "warning: ", false);
     ok = afile_commit(&f, err, errlen);
     if (ok && terminal) {
         fprintf(terminal, "ranked: %s (the definitions are there)\n", mdpath);

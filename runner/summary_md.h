@@ -53,9 +53,9 @@ void summary_free_runs(run_result *runs, size_t n);
  * adds time), and a trial that ran on a busy machine (it got under 3/4 of the CPU share
  * its run's other trials got, or the hypervisor stole over 5% of the machine); and a
  * line per run whose workload is brute force (workload_brute_force: the lights reaching
- * a pixel average over half its lights). Each line starts with `prefix`. Returns how
- * many. */
-size_t summary_warnings(const run_result *runs, size_t n, FILE *out, const char *prefix);
+ * a pixel average over half its lights). Each line starts with `prefix`; md: names are
+ * escaped for Markdown (results/mdtext.h). Returns how many. */
+size_t summary_warnings(const run_result *runs, size_t n, FILE *out, const char *prefix, bool md);
 
 /* a / b of two runs measured in the same rounds (trial k with trial k): paired */
 void summary_paired_ratio(const run_result *a, const run_result *b, ratio_ci *out);

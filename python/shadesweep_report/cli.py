@@ -5,12 +5,13 @@ import re
 import sys
 
 from .loading import EXPERIMENTS, KNOWN, ME, Experiment, die, load, read_csv, reference_dir
+from .outfiles import open_dir, open_subdir, refuse_link, remove, write_atomic
 from .plots import PLOT_NAMES, Plots
 from .reference import Reference
 from .sections import SECTIONS
 from .sections.base import Section
 from .sections.generic import section_generic
-from .text import md_table
+from .text import code, md_table
 
 
 def setup_text(e):
@@ -111,12 +112,18 @@ def main(argv):
     if not exps and not unknown:
         die(f"{', '.join(dirs)}: no shadesweep output folder in it (none with plan.csv and "
             "summary.csv)")
-    plots = Plots(os.path.join(outdir, "plots"))
-    for name in PLOT_NAMES:   # a plot of an earlier report must not outlive its data
-        try:
-            os.remove(os.path.join(outdir, "plots", name))
-        except OSError:
-            pass
+    # Nothing below OUTDIR is written through a link (outfiles.py); the links in the way
+    # are refused before anything is written.
+    out_fd = open_dir(outdir)
+    refuse_link(out_fd, "report.md", os.path.join(outdir, "report.md"))
+    plots_fd = open_subdir(out_fd, "plots", os.path.join(outdir, "plots"), create=False)
+    if plots_fd is not None:
+        for name in PLOT_NAMES:
+            refuse_link(plots_fd, name, os.path.join(outdir, "plots", name))
+        for name in PLOT_NAMES:   # a plot of an earlier report must not outlive its data
+            remove(plots_fd, name)
+        os.close(plots_fd)
+    plots = Plots(out_fd, outdir)
     # the experiments of no paper: read like the others, their meta.yaml included
     others = {}
     for raw, folders in sorted(unknown.items()):
@@ -132,7 +139,7 @@ def main(argv):
              else ", ".join(sorted(others)) + ": shadesweep report")
     head = [f"# {title}\n",
             f"- Report written: {now} by shadesweep report from "
-            + ", ".join(f"`{d}`" for d in dirs),
+            + ", ".join(code(d) for d in dirs),
             f"- Runs: {times[0]} to {times[-1]}" if times else "- Runs: times unknown (no meta.yaml)",
             "- GL renderer: " + ("; ".join(sorted(gl)) if gl else "unknown (no meta.yaml)"),
             "- CPU: " + ("; ".join(sorted(cpu)) if cpu else "unknown"),
@@ -169,7 +176,7 @@ def main(argv):
             summary.append([name, "not run", "-", "-"])
             continue
         alias = [n for n in e.raw_names if n != name]
-        body.append(f"Output: {', '.join('`' + f + '`' for f in e.folders)}"
+        body.append(f"Output: {', '.join(code(f) for f in e.folders)}"
                     + (f" (experiment {', '.join(alias)})" if alias else "") + ".\n")
         body.append(f"Used: {setup_text(e)}.\n")
         nrun, nok, nfail = len(e.runs), len(e.measured()), len(e.failed())
@@ -203,7 +210,7 @@ def main(argv):
             section_generic(sec)
         if sec.out or not papers:
             body.append(f"## {raw}" + (": not a paper experiment\n" if papers else "\n"))
-            body.append(f"Output: {', '.join('`' + f + '`' for f in e.folders)}.\n")
+            body.append(f"Output: {', '.join(code(f) for f in e.folders)}.\n")
             body.append(f"Used: {setup_text(e)}.\n")
             nrun, nok, nfail = len(e.runs), len(e.measured()), len(e.failed())
             body.append(f"Runs: {nrun} planned, {nok} with measured trials, {nfail} failed.\n")
@@ -218,17 +225,7 @@ def main(argv):
         lines.append(f"Plots not made: {plots.error}.\n")
     lines += body
     path = os.path.join(outdir, "report.md")
-    tmp = path + f".tmp.{os.getpid()}"
-    try:
-        with open(tmp, "w", encoding="utf-8") as f:
-            f.write("\n".join(lines).rstrip() + "\n")
-        os.replace(tmp, path)
-    except OSError as e:
-        try:
-            os.remove(tmp)
-        except OSError:
-            pass
-        die(f"{path}: cannot write: {e.strerror or e}")
+    write_atomic(out_fd, "report.md", ("\n".join(lines).rstrip() + "\n").encode("utf-8"), path)
     ran = [n for n in KNOWN if n in exps]
     print(f"{ME}: wrote {path}: {len(ran)} of {len(KNOWN)} experiments "
           f"({', '.join(ran) if ran else 'none recognised'}), {len(plots.made)} plot(s)"

@@ -7,6 +7,7 @@ import re
 import sys
 
 from .stats import ci95, mean, median, num
+from .text import md, md_values
 
 
 ME = "report"
@@ -84,7 +85,8 @@ def read_csv(path):
             if len(row) != len(header):
                 die(f"{path}:{reader.line_num}: {len(row)} fields, the header has {len(header)} "
                     "(a cut-off or damaged file)")
-            rows.append(dict(zip(header, row)))
+            # values as Markdown text (text.md): names and messages go into report.md
+            rows.append(dict(zip(header, (md(v) for v in row))))
     except csv.Error as e:
         die(f"{path}:{reader.line_num}: not CSV ({e})")
     return rows
@@ -116,7 +118,7 @@ def read_yaml(path):
             where = f"line {mark.line + 1}: " if mark is not None else ""
             what = getattr(e, "problem", None) or str(e).splitlines()[0]
             die(f"{path}: not valid YAML ({where}{what}); not a file shadesweep wrote")
-        return d if isinstance(d, dict) else {}
+        return md_values(d) if isinstance(d, dict) else {}
     root = {}
     stack = [(-1, root)]
     for line in text.splitlines():
@@ -138,7 +140,7 @@ def read_yaml(path):
             stack.append((ind, cont[key]))
         else:
             cont[key] = _scalar(m.group(2))
-    return root
+    return md_values(root)
 
 
 def norm(v):
@@ -419,7 +421,7 @@ def load(dirs):
         raw = str(raw or "")
         canon = canonical(raw)
         if canon is None:
-            unknown.setdefault(raw or os.path.basename(folder), []).append(folder)
+            unknown.setdefault(raw or md(os.path.basename(folder)), []).append(folder)
             continue
         e = exps.get(canon) or Experiment(canon, [])
         exps[canon] = e

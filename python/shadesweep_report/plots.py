@@ -1,11 +1,23 @@
-"""Plots (matplotlib, Agg), written into OUTDIR/plots/."""
+"""Plots (matplotlib, Agg), written into OUTDIR/plots/ (reached from OUTDIR's descriptor:
+never through a link, outfiles.py)."""
+import io
 import os
+import re
 
+from .outfiles import open_subdir, write_atomic
+
+
+def plot_file_name(name):
+    """A plot's file name from names in result files (an experiment's): letters, digits,
+    '.', '-' and '_' only, so that it stays a name inside plots/."""
+    return re.sub(r"[^A-Za-z0-9._-]", "_", name).lstrip(".") or "plot"
 
 
 class Plots:
-    def __init__(self, folder):
-        self.folder = folder
+    def __init__(self, out_fd, outdir):
+        self.out_fd = out_fd
+        self.folder = os.path.join(outdir, "plots")
+        self.fd = None   # plots/, made at the first plot
         self.made = []
         self.error = None
         try:
@@ -18,14 +30,14 @@ class Plots:
             self.error = f"matplotlib could not be loaded ({e.__class__.__name__}: {e})"
 
     def save(self, fig, name):
+        name = plot_file_name(name)
         path = os.path.join(self.folder, name)
         fig.tight_layout()
-        try:
-            os.makedirs(self.folder, exist_ok=True)
-            fig.savefig(path, dpi=110)
-        except OSError as e:
-            from .loading import die
-            die(f"{path}: cannot write the plot: {e.strerror or e}")
+        if self.fd is None:
+            self.fd = open_subdir(self.out_fd, "plots", self.folder, create=True)
+        buf = io.BytesIO()   # encoded here, written atomically (write_atomic)
+        fig.savefig(buf, dpi=110, format="png")
+        write_atomic(self.fd, name, buf.getvalue(), path)
         self.plt.close(fig)
         self.made.append(name)
         return f"![{name}](plots/{name})\n"

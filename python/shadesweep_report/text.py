@@ -3,6 +3,34 @@ import math
 
 
 
+_MD = {"\\": "\\\\", "|": "\\|", "`": "\\`", "&": "&amp;", "<": "&lt;", ">": "&gt;",
+       "\n": " ", "\r": " "}
+
+
+def md(s):
+    """Text from a result file as Markdown shows it, never as markup: `\\` `|` and
+    backticks escaped, `&` `<` `>` as entities, line ends as spaces (runner's
+    results/mdtext.c does the same for summary.md)."""
+    return "".join(_MD.get(c, c) for c in s)
+
+
+def md_values(v):
+    """Every string in v (a row, a parsed YAML or JSON document) through md()."""
+    if isinstance(v, str):
+        return md(v)
+    if isinstance(v, dict):
+        return {k: md_values(x) for k, x in v.items()}
+    if isinstance(v, list):
+        return [md_values(x) for x in v]
+    return v
+
+
+def code(path):
+    """A folder's path as a code span; escaped text instead when a backtick, `|` or a
+    line end in it would break the span or the table around it."""
+    return f"`{path}`" if not any(c in path for c in "`|\n\r") else md(path)
+
+
 def nan(v):
     """None as NaN, for plotting."""
     return float("nan") if v is None else v

@@ -23,7 +23,7 @@ _shadesweep() {
     run) opts="-o --out --force --resume --retry-failed --backend --device --shard --debug-gl --scale --smoke --set --renderer --help" ;;
     list) opts="--shard --smoke --scale --set --renderer --json --help" ;;
     info) opts="--backend --device --help" ;;
-    merge) opts="-o --out --force --help" ;;
+    merge) opts="-o --out --force --allow-mixed-builds --help" ;;
     validate) opts="--set --renderer --help" ;;
     params) opts="--markdown --bash --help"
       COMPREPLY=($(compgen -W "$opts $keys" -- "$cur")); return ;;

@@ -78,7 +78,7 @@ static void test_warnings(void **state)
     size_t len = 0;
     FILE *f = open_memstream(&text, &len);
     assert_non_null(f);
-    size_t k = summary_warnings(runs, n, f, "w: ");
+    size_t k = summary_warnings(runs, n, f, "w: ", false);
     fclose(f);
     assert_int_equal(k, 4);
     assert_non_null(strstr(text, "w: run aaaaaaaaaaaa (deferred) trial 4 is an outlier: 1 ms of "

@@ -5,7 +5,7 @@ import json
 import os
 
 from ..plots import styles
-from ..text import fmt, md_table
+from ..text import code, fmt, md_table, md_values
 from ..stats import mean, num
 from .s003_exp2 import exp2_series
 
@@ -15,7 +15,7 @@ def read_json(path):
     try:
         with open(path, encoding="utf-8") as f:
             d = json.load(f)
-        return d if isinstance(d, dict) else {}
+        return md_values(d) if isinstance(d, dict) else {}   # names go into report.md
     except (OSError, ValueError):
         return {}
 
@@ -45,8 +45,8 @@ def section_generic(s):
         md = os.path.join(f, "summary.md")
         js = os.path.join(f, "summary.json")
         if os.path.isfile(md):
-            s.w(f"The renderers ranked per sweep point, and where they change places: `{md}`"
-                + (f" (and `{js}` for scripts)" if os.path.isfile(js) else "") + ".\n")
+            s.w(f"The renderers ranked per sweep point, and where they change places: {code(md)}"
+                + (f" (and {code(js)} for scripts)" if os.path.isfile(js) else "") + ".\n")
     for f in e.folders:   # the crossovers, as summary.json has them (runner/crossovers.c)
         cx = read_json(os.path.join(f, "summary.json")).get("crossovers", [])
         if cx:
