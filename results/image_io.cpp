@@ -9,6 +9,7 @@
 #include <OpenImageIO/imageio.h>
 
 #include <cerrno>
+#include <climits>
 #include <cmath>
 #include <cstdint>
 #include <cstdio>
@@ -374,7 +375,7 @@ bool image_decode(const void *data, size_t size, const char *name, image_type wa
 }
 
 bool image_probe(const void *data, size_t size, const char *name, int *width, int *height,
-                 char *err, size_t errlen)
+                 int *channels, unsigned long long *bytes, char *err, size_t errlen)
 {
     const char *what = name && name[0] ? name : "embedded image";
     try {
@@ -399,8 +400,18 @@ bool image_probe(const void *data, size_t size, const char *name, int *width, in
                                      one_line(OIIO::geterror()));
             return false;
         }
-        *width = in->spec().width;
-        *height = in->spec().height;
+        const ImageSpec &spec = in->spec();
+        *width = spec.width;
+        *height = spec.height;
+        *channels = spec.nchannels;
+        // a header may claim any of the four: the product saturates rather than wraps
+        unsigned long long total = spec.format.size();
+        for (long long f : {(long long)spec.width, (long long)spec.height,
+                            (long long)spec.nchannels}) {
+            unsigned long long u = f > 0 ? (unsigned long long)f : 0;
+            total = u && total > ULLONG_MAX / u ? ULLONG_MAX : total * u;
+        }
+        *bytes = total;
         in->close();
         return true;
     } catch (const std::exception &e) {
