@@ -327,6 +327,12 @@ bool csv_commit(csv_writer *w, char *err, size_t errlen)
     return ok;
 }
 
+void csv_join(csv_writer *w, struct afile_set *s)
+{
+    if (w)
+        w->file.set = s;
+}
+
 void csv_abort(csv_writer *w)
 {
     if (w == NULL)

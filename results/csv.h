@@ -27,6 +27,9 @@ void csv_empty(csv_writer *w);
 bool csv_end_row(csv_writer *w);
 bool csv_commit(csv_writer *w, char *err, size_t errlen); /* frees w */
 void csv_abort(csv_writer *w);                             /* frees w; NULL is fine */
+/* csv_commit then hands the file to s instead of renaming it (fsutil.h afile_set). */
+struct afile_set;
+void csv_join(csv_writer *w, struct afile_set *s);
 
 /* The quoting rule on its own, for tests and for other writers:
  * writes s to fp, in double quotes (inner quotes doubled) when it contains

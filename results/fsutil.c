@@ -14,6 +14,8 @@
 #include <sys/types.h>
 #include <unistd.h>
 
+static char *read_stream(FILE *f, size_t max, size_t *len, int *err);
+
 char *fs_read_all(const char *path, size_t max, size_t *len, int *err)
 {
     FILE *f = fopen(path, "rb");
@@ -21,6 +23,46 @@ char *fs_read_all(const char *path, size_t max, size_t *len, int *err)
         *err = errno;
         return NULL;
     }
+    return read_stream(f, max, len, err);
+}
+
+static const char *kind_of(mode_t m)
+{
+    return S_ISDIR(m) ? "a directory" : S_ISFIFO(m) ? "a FIFO" : S_ISSOCK(m) ? "a socket"
+         : S_ISCHR(m) ? "a character device" : S_ISBLK(m) ? "a block device"
+         : "not a regular file";
+}
+
+char *fs_read_regular(const char *path, size_t max, size_t *len, int *err, const char **kind)
+{
+    *kind = NULL;
+    /* O_NONBLOCK: opening a FIFO for reading waits for a writer otherwise */
+    int fd = open(path, O_RDONLY | O_NONBLOCK | O_CLOEXEC);
+    struct stat st;
+    if (fd < 0 || fstat(fd, &st) != 0) {
+        *err = errno;
+        if (fd >= 0)
+            close(fd);
+        return NULL;
+    }
+    if (!S_ISREG(st.st_mode)) {
+        *err = 0;
+        *kind = kind_of(st.st_mode);
+        close(fd);
+        return NULL;
+    }
+    FILE *f = fdopen(fd, "rb");
+    if (!f) {
+        *err = errno;
+        close(fd);
+        return NULL;
+    }
+    return read_stream(f, max, len, err);
+}
+
+/* The rest of f, which it closes. */
+static char *read_stream(FILE *f, size_t max, size_t *len, int *err)
+{
     size_t cap = 4096, n = 0;
     char *buf = malloc(cap);
     *err = buf ? 0 : ENOMEM;
@@ -63,6 +105,8 @@ static const char *errno_hint(int e)
            : e == EDQUOT ? " (the disk quota is exhausted)"
            : e == EROFS ? " (the file system is read-only)"
            : e == EIO ? " (the device reported an I/O error)"
+           : e == EFBIG ? " (over the file-size limit, ulimit -f, or the file system's largest "
+                          "file)"
            : "";
 }
 
@@ -224,6 +268,22 @@ bool afile_commit(afile *f, char *err, size_t errlen)
         what = "close: ";
     }
     f->fp = NULL;
+    if (!e && f->set) {
+        /* complete and on disk: the set renames it with the others */
+        afile_set *s = f->set;
+        if (s->n == AFILE_SET_MAX) {
+            snprintf(err, errlen, "%s: bug: more than %d files in one set", f->final_path,
+                     AFILE_SET_MAX);
+            unlink(f->tmp_path);
+            afile_clear(f);
+            return false;
+        }
+        s->tmp[s->n] = f->tmp_path;
+        s->final[s->n++] = f->final_path;
+        f->tmp_path = f->final_path = NULL;
+        afile_clear(f);
+        return true;
+    }
     if (!e && rename(f->tmp_path, f->final_path) != 0) {
         e = errno;
         snprintf(err, errlen, "%s: cannot rename %s: %s%s", f->final_path, f->tmp_path,
@@ -254,6 +314,35 @@ void afile_abort(afile *f)
     if (f->tmp_path != NULL)
         unlink(f->tmp_path);
     afile_clear(f);
+}
+
+bool afile_set_commit(afile_set *s, char *err, size_t errlen)
+{
+    bool ok = true;
+    for (size_t i = 0; i < s->n; i++) {
+        if (ok && rename(s->tmp[i], s->final[i]) != 0) {
+            int e = errno;
+            snprintf(err, errlen, "%s: cannot rename %s: %s%s", s->final[i], s->tmp[i],
+                     strerror(e), errno_hint(e));
+            ok = false;
+        }
+        if (!ok)
+            unlink(s->tmp[i]);
+        free(s->tmp[i]);
+        free(s->final[i]);
+    }
+    s->n = 0;
+    return ok;
+}
+
+void afile_set_abort(afile_set *s)
+{
+    for (size_t i = 0; i < s->n; i++) {
+        unlink(s->tmp[i]);
+        free(s->tmp[i]);
+        free(s->final[i]);
+    }
+    s->n = 0;
 }
 
 static bool is_dir(const char *path)

@@ -23,11 +23,22 @@ extern "C" {
 
 typedef struct afile_sink afile_sink;
 
+/* Files that must change together (a folder's summaries, which describe the same runs):
+ * afile_commit of a file whose `set` is this one does everything but the rename and
+ * hands its temporary over; afile_set_commit then renames them all, afile_set_abort
+ * removes them all. One of the two must be called. */
+enum { AFILE_SET_MAX = 8 };
+typedef struct afile_set {
+    size_t n;
+    char *tmp[AFILE_SET_MAX], *final[AFILE_SET_MAX];
+} afile_set;
+
 typedef struct afile {
     FILE *fp;
     char *final_path;
     char *tmp_path;
     afile_sink *sink;          /* the descriptor, bytes written, first error */
+    afile_set *set;            /* NULL: afile_commit renames at once; set after afile_open */
 } afile;
 
 bool afile_open(afile *f, const char *final_path, char *err, size_t errlen);
@@ -35,6 +46,11 @@ bool afile_open(afile *f, const char *final_path, char *err, size_t errlen);
 bool afile_write(afile *f, const void *data, size_t n);
 bool afile_commit(afile *f, char *err, size_t errlen);
 void afile_abort(afile *f);
+
+/* Renames every file of the set in the order committed; false with a message naming the
+ * first that failed (those before it are renamed, the rest removed). */
+bool afile_set_commit(afile_set *s, char *err, size_t errlen);
+void afile_set_abort(afile_set *s);
 
 /* A writer's sticky failure: the first call sets *failed and writes "PATH: what" into msg
  * (PATH: f's final path, or `fallback` when it has none); later calls do nothing. */
@@ -47,13 +63,18 @@ bool afile_finish(afile *f, bool failed, const char *msg, char *err, size_t errl
 
 /* "path: <strerror(e)>", with what it means for the errors of a full or broken device:
  * ENOSPC "(the disk is full)", EDQUOT "(the disk quota is exhausted)", EROFS "(the file
- * system is read-only)", EIO "(the device reported an I/O error)". */
+ * system is read-only)", EIO "(the device reported an I/O error)", EFBIG "(over the
+ * file-size limit, ulimit -f, or the file system's largest file)". */
 void fs_error_message(char *err, size_t errlen, const char *path, int e);
 
 /* The whole file into a NUL-terminated buffer the caller frees, its length (without the
  * NUL) in *len. NULL on failure with *err an errno value: the open's, EIO for a read
  * error, ENOMEM, or EFBIG when the file holds more than max bytes (max 0: no limit). */
 char *fs_read_all(const char *path, size_t max, size_t *len, int *err);
+/* As fs_read_all for a file a user names (a manifest): opened without blocking (a FIFO
+ * must not hang the reader) and read only when it is a regular file; otherwise NULL
+ * with *err 0 and *kind saying what it is ("a directory", "a FIFO", ...). */
+char *fs_read_regular(const char *path, size_t max, size_t *len, int *err, const char **kind);
 
 /* mkdir -p; true if the directory exists afterwards. */
 bool fs_mkdirs(const char *path, char *err, size_t errlen);

@@ -26,9 +26,11 @@ bool image_read(const char *path, image_type want, image *out, char *err, size_t
 bool image_decode(const void *data, size_t size, const char *name, image_type want, image *out,
                   char *err, size_t errlen);
 /* The size image_decode would give, from the header alone (no pixel decoded): to refuse
- * an image too large before paying for it. */
+ * an image too large before paying for it. *channels is the file's channel count and
+ * *bytes what its pixels take decoded in the file's own format: width x height x
+ * channels x bytes a channel (saturating at UINT64_MAX). */
 bool image_probe(const void *data, size_t size, const char *name, int *width, int *height,
-                 char *err, size_t errlen);
+                 int *channels, unsigned long long *bytes, char *err, size_t errlen);
 void image_free(image *img);
 
 /* Non-finite values in a float image (0 for IMAGE_U8). */

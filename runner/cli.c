@@ -447,15 +447,17 @@ done:
     return rc;
 }
 
-/* The end-of-run table (runner/summary_md.c) on stdout and OUT/summary.md; a
- * problem with it is reported and changes no exit status. */
-static void print_summary_table(const char *dir)
+/* The end-of-run table (runner/summary_md.c) on stdout and OUT/summary.md; false after
+ * reporting a summary that could not be written. */
+static bool print_summary_table(const char *dir)
 {
-    char err[600];
+    char err[1200];
     fflush(stderr);
-    if (!summary_table_write(dir, stdout, err, sizeof err))
-        fprintf(stderr, "shadesweep: no summary table: %s\n", err);
+    bool ok = summary_table_write(dir, stdout, err, sizeof err);
+    if (!ok)
+        fprintf(stderr, "shadesweep merge: no summary table: %s\n", err);
     fflush(stdout);
+    return ok;
 }
 
 static int cmd_run(int argc, char **argv)
@@ -552,8 +554,8 @@ static int cmd_merge(int argc, char **argv)
         return 2;
     }
     int rc = merge_main(o.out, o.force, o.allow_mixed, argc - first, argv + first);
-    if (rc != 2)
-        print_summary_table(o.out);
+    if (rc != 2 && !print_summary_table(o.out))
+        rc = 2;
     return rc;
 }
 
@@ -573,8 +575,10 @@ int cli_main(int argc, char **argv)
         return 0;
     }
     /* `shadesweep COMMAND ... --help` anywhere before a `--`: that command's part of
-     * the usage, on stdout, exit 0. */
-    for (int i = 2; i < argc && strcmp(argv[i], "--") != 0; i++)
+     * the usage, on stdout, exit 0. ratios and compare have a usage of their own,
+     * which says more (the top-level lines of ratios point back at its --help). */
+    bool own_help = strcmp(cmd, "ratios") == 0 || strcmp(cmd, "compare") == 0;
+    for (int i = 2; i < argc && !own_help && strcmp(argv[i], "--") != 0; i++)
         if (strcmp(argv[i], "--help") == 0 || strcmp(argv[i], "-h") == 0) {
             if (print_command_help(cmd))
                 return 0;

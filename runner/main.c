@@ -2,6 +2,12 @@
 #include "runner/folder.h"
 #include "runner/provenance.h"
 
+#include <errno.h>
+#include <signal.h>
+#include <stdio.h>
+
+#include "results/fsutil.h"
+
 #ifdef __GLIBC__
 #include <malloc.h>
 #endif
@@ -23,10 +29,33 @@ static void allocator_fixed(void)
 #endif
 }
 
+/* A command's output that did not reach its file is a failure like any other: stdio
+ * keeps a failed write as the stream's error flag only, so both streams are flushed and
+ * checked where every command returns (stdout on a full disk gave truncated JSON and
+ * status 0). A failure with stdout is said on stderr; one with stderr cannot be said. */
+static int check_std_streams(const char *cmd, int rc)
+{
+    errno = 0;
+    bool out_failed = fflush(stdout) != 0 || ferror(stdout);
+    int e = errno;
+    if (out_failed) {
+        char msg[256] = "standard output: a write failed (the output is incomplete)";
+        if (e)   /* the last write's cause; an earlier failure's errno is gone */
+            fs_error_message(msg, sizeof msg, "standard output", e);
+        fprintf(stderr, "shadesweep%s%s: %s\n", cmd ? " " : "", cmd ? cmd : "", msg);
+    }
+    bool err_failed = fflush(stderr) != 0 || ferror(stderr);
+    return (out_failed || err_failed) && rc < 2 ? 2 : rc;
+}
+
 int main(int argc, char **argv)
 {
     folder_std_fds();   /* a closed stderr must not become the first file opened */
     allocator_fixed();
+    /* Past a file-size limit (ulimit -f) write(2) then fails with EFBIG, and the file's
+     * writer names it (failed:write, its temporary removed); the default action killed
+     * the sweep silently, leaving the temporary. Ignored also in the run children. */
+    signal(SIGXFSZ, SIG_IGN);
     provenance_set_command(argc, argv);
-    return cli_main(argc, argv);
+    return check_std_streams(argc > 1 ? argv[1] : NULL, cli_main(argc, argv));
 }

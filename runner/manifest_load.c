@@ -41,10 +41,16 @@ void experiment_free(experiment *e)
 static bool read_file(const char *path, unsigned char **out, size_t *outlen, diag_list *d)
 {
     int e;
-    *out = (unsigned char *)fs_read_all(path, MANIFEST_MAX_BYTES, outlen, &e);
+    const char *kind;
+    /* a directory read as "Input/output error", and a FIFO hung the reader: only a
+     * regular file is read, as for a scene file */
+    *out = (unsigned char *)fs_read_regular(path, MANIFEST_MAX_BYTES, outlen, &e, &kind);
     if (*out)
         return true;
-    if (e == EFBIG)
+    if (kind)
+        diag_add(d, path, 0, 0, "", "expected a manifest file, found %s, not a regular file",
+                 kind);
+    else if (e == EFBIG)
         diag_add(d, path, 0, 0, "", "expected a manifest of at most %u bytes, found more",
                  MANIFEST_MAX_BYTES);
     else if (e == ENOMEM)
@@ -109,6 +115,26 @@ static bool load_mem(const char *name, const char *data, size_t len,
     }
     if (!data)
         data = "";   /* libyaml wants a buffer even for no bytes */
+    /* libyaml reads UTF-16 by its byte-order mark, but a run records the manifest's
+     * bytes as written, and the YAML writer wants UTF-8 ("YAML emitter: cannot create
+     * event", once the run was under way): refused here, as a scene file's are */
+    static const struct {
+        unsigned char bom[4];
+        size_t len;
+        const char *name;
+    } boms[] = {
+        {{0x00, 0x00, 0xfe, 0xff}, 4, "UTF-32 (big-endian)"},
+        {{0xff, 0xfe, 0x00, 0x00}, 4, "UTF-32 (little-endian)"},
+        {{0xfe, 0xff}, 2, "UTF-16 (big-endian)"},
+        {{0xff, 0xfe}, 2, "UTF-16 (little-endian)"},
+    };
+    for (size_t i = 0; i < sizeof boms / sizeof boms[0]; i++)
+        if (len >= boms[i].len && memcmp(data, boms[i].bom, boms[i].len) == 0) {
+            diag_add(diags, name, 0, 0, "", "expected UTF-8 text, found %s (its byte-order "
+                     "mark says so): save it as UTF-8 (iconv -f %.6s -t UTF-8)", boms[i].name,
+                     boms[i].name);
+            goto done;
+        }
     hash_hex(fnv1a64(data, len), 16, e->hash);
     if (!overrides_keep(&c, ov))
         goto done;

@@ -457,7 +457,8 @@ static bool parse_scene_file(vctx *c, const param *pd, const ynode *n, const cha
                              run_params *dst)
 {
     static const char *const names[] = {"file", "scale", "up", "camera", "allow_outside",
-                                        "light_bounds"};
+                                        "light_bounds", "max_image_bytes", "max_triangles",
+                                        "max_vertices"};
     enum { NAMES = sizeof names / sizeof names[0] };
     const ynode *keys[NAMES], *vals[NAMES];
     bool ok = mf_map_keys(c, n, key, names, NAMES, keys, vals);
@@ -505,6 +506,12 @@ static bool parse_scene_file(vctx *c, const param *pd, const ynode *n, const cha
     ok &= either_word(c, vals[4], sub[4], "false", "true", &outside);
     ok &= either_word(c, vals[5], sub[5], "around", "model", &model);
     bool around = !model;
+    /* limits on what the file may cost to load: not part of the id either (a limit
+     * changes nothing that is measured); 0 stands for the default */
+    uint64_t limit[3] = {0, 0, 0};
+    for (int k = 0; k < 3; k++)
+        if (vals[6 + k])
+            ok &= mf_parse_uint_in(c, vals[6 + k], sub[6 + k], 1, (uint64_t)1 << 53, "", &limit[k]);
     if (!ok)
         return false;
     /* relative to the manifest's folder */
@@ -522,7 +529,8 @@ static bool parse_scene_file(vctx *c, const param *pd, const ynode *n, const cha
     }
     scene_file_options o = {.path = dst->scene_file, .scale = (float)scale, .fit = scale == 0,
                             .up = (scene_up)up, .camera = camera, .allow_outside = outside,
-                            .lights_around = around};
+                            .lights_around = around, .max_image_bytes = limit[0],
+                            .max_triangles = limit[1], .max_vertices = limit[2]};
     scene_file_info info;
     char msg[1024];
     if (!scene_file_check(&o, &info, msg, sizeof msg)) {
@@ -543,6 +551,9 @@ static bool parse_scene_file(vctx *c, const param *pd, const ynode *n, const cha
     snprintf(dst->scene_camera, sizeof dst->scene_camera, "%s", camera);
     dst->scene_outside = outside;
     dst->scene_around = around;
+    dst->scene_max_image_bytes = limit[0];
+    dst->scene_max_triangles = limit[1];
+    dst->scene_max_vertices = limit[2];
     hash_hex(info.hash, 16, dst->scene_hash);
     return true;
 }

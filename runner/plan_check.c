@@ -68,7 +68,10 @@ void run_params_scene(const run_params *p, scene_file_options *fo, scene_source 
                                .fit = p->scene_scale == 0, .up = (scene_up)p->scene_up,
                                .camera = p->scene_camera, .allow_outside = p->scene_outside,
                                .lights_around = p->scene_around,
-                               .phong = p->shading_model == 1};
+                               .phong = p->shading_model == 1,
+                               .max_image_bytes = p->scene_max_image_bytes,
+                               .max_triangles = p->scene_max_triangles,
+                               .max_vertices = p->scene_max_vertices};
     *src = (scene_source){.name = p->scene, .file = p->scene_file[0] ? fo : NULL};
 }
 

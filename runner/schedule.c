@@ -492,16 +492,18 @@ int run_sweep(const experiment *e, const plan *p, const char *out, bool force, r
     o->out_dir = dir;
     int rc = run_plan(e, p, o);
     o->out_dir = NULL;
+    bool table = true;
     if (rc != 2 && !(o->round && rc != 0)) {
         /* the answer (runner/summary_md.c): on stdout and as summary.md, written while
-         * the folder is still ours; a problem with it changes no exit status */
-        char terr[600];
+         * the folder is still ours; summaries that could not be written are a failure */
+        char terr[1200];
         fprintf(stderr, "results: %s/summary.csv\n", dir);
         fflush(stderr);
-        if (!summary_table_write(dir, stdout, terr, sizeof terr))
-            fprintf(stderr, "shadesweep: no summary table: %s\n", terr);
+        table = summary_table_write(dir, stdout, terr, sizeof terr);
+        if (!table)
+            fprintf(stderr, "shadesweep run: no summary table: %s\n", terr);
         fflush(stdout);
     }
-    folder_close(&fo, rc == 2);
-    return rc;
+    folder_close(&fo, rc == 2);   /* the runs stand: only a fresh folder's failure undoes */
+    return table ? rc : 2;
 }

@@ -179,7 +179,8 @@ static bool warnings_array(FILE *fp, const summary_view *v)
     return true;
 }
 
-bool summary_json_write(const char *out_dir, const summary_view *v, char *err, size_t errlen)
+bool summary_json_write(const char *out_dir, const summary_view *v, afile_set *set, char *err,
+                        size_t errlen)
 {
     char path[4200];
     snprintf(path, sizeof path, "%s/summary.json", out_dir);
@@ -195,6 +196,7 @@ bool summary_json_write(const char *out_dir, const summary_view *v, char *err, s
         free(tr.unit);
         return false;
     }
+    f.set = set;
     FILE *fp = f.fp;
     fprintf(fp, "{\"schema\": \"shadesweep-summary\", \"version\": %d,\n  \"experiment\": ",
             SUMMARY_JSON_VERSION);

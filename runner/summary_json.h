@@ -26,5 +26,8 @@ typedef struct summary_view {
     const crossover_list *cx;
 } summary_view;
 
-/* Writes OUT/summary.json atomically; false with a message. */
-bool summary_json_write(const char *out_dir, const summary_view *v, char *err, size_t errlen);
+/* Writes OUT/summary.json into `set` (fsutil.h: renamed with the folder's other
+ * summaries); false with a message. */
+struct afile_set;
+bool summary_json_write(const char *out_dir, const summary_view *v, struct afile_set *set,
+                        char *err, size_t errlen);

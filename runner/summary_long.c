@@ -8,6 +8,7 @@
 #include <string.h>
 
 #include "results/csv.h"
+#include "results/fsutil.h"
 #include "runner/output.h"
 
 /* ---- typed cells --------------------------------------------------------------------- */
@@ -208,7 +209,7 @@ static void trial_rows(csv_writer *w, const csv_table *pl, const csv_table *sm, 
 }
 
 bool summary_long_write(const char *out_dir, const csv_table *pl, const csv_table *sm,
-                        char *err, size_t errlen)
+                        afile_set *set, char *err, size_t errlen)
 {
     size_t cap = 9 + 3 * pl->ncols;
     key_col *keys = malloc((pl->ncols ? pl->ncols : 1) * sizeof *keys);
@@ -224,6 +225,7 @@ bool summary_long_write(const char *out_dir, const csv_table *pl, const csv_tabl
         char path[4200];
         snprintf(path, sizeof path, "%s/summary_long.csv", out_dir);
         csv_writer *w = csv_open(path, (const char *const *)names, nnames, err, errlen);
+        csv_join(w, set);
         int own[NHEAD + 2], idcol = csv_col(sm, "run_id");
         for (size_t i = 0; i < NHEAD; i++)
             own[i] = csv_col(sm, head[i]);

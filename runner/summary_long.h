@@ -16,6 +16,8 @@
 
 #include "results/csvread.h"
 
-/* Writes OUT/summary_long.csv atomically from plan.csv (pl) and summary.csv (sm). */
+/* Writes OUT/summary_long.csv from plan.csv (pl) and summary.csv (sm) into `set`
+ * (fsutil.h: renamed with the folder's other summaries). */
+struct afile_set;
 bool summary_long_write(const char *out_dir, const csv_table *pl, const csv_table *sm,
-                        char *err, size_t errlen);
+                        struct afile_set *set, char *err, size_t errlen);

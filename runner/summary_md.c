@@ -1,8 +1,10 @@
 #include "runner/summary_md.h"
 
+#include <errno.h>
 #include <math.h>
 #include <stdlib.h>
 #include <string.h>
+#include <unistd.h>
 
 #include "results/mdtext.h"
 #include "results/csvread.h"
@@ -492,8 +494,9 @@ static void term_header(FILE *t, bool with_point, int cfg_width, const char *met
     fputs("\n", t);
 }
 
-bool summary_table_write(const char *out_dir, FILE *terminal, char *err, size_t errlen)
+static bool table_write(const char *out_dir, FILE *terminal, char *err, size_t errlen)
 {
+    afile_set set = {0};   /* summary.json, summary_long.csv, summary.md: renamed together */
     char path[4200];
     snprintf(path, sizeof path, "%s/summary.csv", out_dir);
     run_result *runs = NULL;
@@ -590,6 +593,7 @@ bool summary_table_write(const char *out_dir, FILE *terminal, char *err, size_t 
     afile f;
     if (!(ok = afile_open(&f, mdpath, err, errlen)))
         goto out;
+    f.set = &set;
     const char *exp = nruns ? runs[0].experiment : "";
     /* every name below comes from result files: escaped (results/mdtext.h) */
     fputs("# ", f.fp);
@@ -683,8 +687,8 @@ bool summary_table_write(const char *out_dir, FILE *terminal, char *err, size_t 
     crossovers_write_md(f.fp, &cx);
     /* the same for scripts */
     summary_view view = {exp, runs, nruns, &pl, &sm, prow, varies, rcfg, shown, nshown, &cx};
-    if (!summary_json_write(out_dir, &view, err, errlen) ||
-        !summary_long_write(out_dir, &pl, &sm, err, errlen)) {
+    if (!summary_json_write(out_dir, &view, &set, err, errlen) ||
+        !summary_long_write(out_dir, &pl, &sm, &set, err, errlen)) {
         crossovers_free(&cx);
         afile_abort(&f);
         ok = false;
@@ -697,7 +701,7 @@ bool summary_table_write(const char *out_dir, FILE *terminal, char *err, size_t 
               "no run's workload is brute force.\n", f.fp);
     if (terminal)
         summary_warnings(runs, nruns, terminal, "warning: ", false);
-    ok = afile_commit(&f, err, errlen);
+    ok = afile_commit(&f, err, errlen) && afile_set_commit(&set, err, errlen);
     if (ok && terminal) {
         fprintf(terminal, "ranked: %s (the definitions are there)\n", mdpath);
         /* the answer along the swept axes, last */
@@ -705,6 +709,7 @@ bool summary_table_write(const char *out_dir, FILE *terminal, char *err, size_t 
     }
     crossovers_free(&cx);
 out:
+    afile_set_abort(&set);   /* what a failure left uncommitted */
     for (size_t r = 0; rlabel && r < nruns; r++)
         free(rlabel[r]);
     free(rlabel);
@@ -722,4 +727,32 @@ out:
     csv_table_free(&sm);
     summary_free_runs(runs, nruns);
     return ok;
+}
+
+/* On a failure the summaries of an earlier run, resume or merge would stay beside a
+ * summary.csv that has other runs: they are removed (the next --resume writes them
+ * again), and the message names each, or each one that stays stale. */
+bool summary_table_write(const char *out_dir, FILE *terminal, char *err, size_t errlen)
+{
+    if (table_write(out_dir, terminal, err, errlen))
+        return true;
+    static const char *const derived[] = {"summary.md", "summary.json", "summary_long.csv"};
+    char removed[128] = "", stale[512] = "";
+    for (size_t i = 0; i < sizeof derived / sizeof *derived; i++) {
+        char path[4200];
+        snprintf(path, sizeof path, "%s/%s", out_dir, derived[i]);
+        if (unlink(path) == 0)
+            snprintf(removed + strlen(removed), sizeof removed - strlen(removed), "%s%s",
+                     removed[0] ? ", " : "", derived[i]);
+        else if (errno != ENOENT)
+            snprintf(stale + strlen(stale), sizeof stale - strlen(stale),
+                     "; %s is stale (cannot remove it: %s)", derived[i], strerror(errno));
+    }
+    size_t n = strlen(err);
+    if (removed[0])
+        snprintf(err + n, errlen - n, "; removed %s, which would describe other runs "
+                 "than summary.csv", removed);
+    n = strlen(err);
+    snprintf(err + n, errlen - n, "%s", stale);
+    return false;
 }

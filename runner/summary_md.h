@@ -77,6 +77,8 @@ typedef struct summary_point {
     size_t nruns;
 } summary_point;
 
-/* Writes OUT/summary.md and prints the compact table to `terminal` (NULL: none).
- * False with a message (nothing written) when summary.csv or plan.csv is unreadable. */
+/* Writes OUT/summary.md, summary.json and summary_long.csv, renamed together, and prints
+ * the compact table to `terminal` (NULL: none). False with a message when summary.csv or
+ * plan.csv is unreadable or a summary could not be written: then none of the three is
+ * left from before (the message names those removed, or any that could not be). */
 bool summary_table_write(const char *out_dir, FILE *terminal, char *err, size_t errlen);

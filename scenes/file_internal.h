@@ -26,6 +26,9 @@
 /* Limits on what a file may ask for before anything is allocated for it. */
 #define FILE_MAX_BYTES ((size_t)1 << 31)      /* one file, buffer or image: 2 GiB */
 #define FILE_MAX_NODE_DEPTH 256u
+/* The largest coordinate a vertex may have: a bounds' extent of 2e18 squared (its
+ * diagonal, distances) stays below FLT_MAX (3.4e38). */
+#define FILE_MAX_COORD 1e18
 
 /* >>io (file_io.c) */
 typedef struct read_file {
@@ -64,8 +67,10 @@ void file_io_close(struct aiFileIO *io, struct aiFile *af);
  * (or a GLB's lengths) asks for what would hurt inside assimp. */
 bool file_prescan_gltf(const char *path, const read_file *f, char *err, size_t errlen);
 /* The same for an .obj (by path's extension; true for any other): a material library
- * path with a ':' in it. */
-bool file_prescan_obj(const char *path, const read_file *f, char *err, size_t errlen);
+ * path with a ':' in it, more triangles (a face of n corners makes n - 2) or vertex
+ * positions than the limits (scene_file_options). */
+bool file_prescan_obj(const char *path, const read_file *f, uint64_t max_triangles,
+                      uint64_t max_vertices, char *err, size_t errlen);
 /* KHR_materials_emissive_strength of a glTF's materials (after file_prescan_gltf): *out
  * (malloc'd, NULL for none) holds each material's emissiveStrength, 1 where it has none,
  * *n of them, in the file's order, which assimp's glTF importer keeps. Not a glTF, or
@@ -92,6 +97,8 @@ typedef struct loaded {
     const char *path;
     float *emissive_strength;  /* glTF: per material (KHR_materials_emissive_strength) */
     size_t nemissive_strength;
+    uint64_t max_image_bytes;  /* the limits in force (scene_file_options, defaults applied) */
+    uint64_t max_triangles, max_vertices;
 } loaded;
 
 /* Which of a material's maps exist: diffuse, normal, emissive, metallic-roughness and

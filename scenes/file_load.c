@@ -130,14 +130,23 @@ int file_load_image(loaded *l, const char *ref, char *err, size_t errlen)
             bytes = f->data;
             size = f->size;
         }
-        int w = 0, h = 0;
-        if (!image_probe(bytes, size, name, &w, &h, why, sizeof why)) {
+        int w = 0, h = 0, ch = 0;
+        unsigned long long decoded = 0;
+        if (!image_probe(bytes, size, name, &w, &h, &ch, &decoded, why, sizeof why)) {
             scene_fail(err, errlen, "%s: texture '%s' does not decode: %s", l->path, ref, why);
             return -1;
         }
         if (w > (int)TEXTURE_MAX_SIZE || h > (int)TEXTURE_MAX_SIZE) {
             scene_fail(err, errlen, "%s: texture '%s' is %dx%d, more than %u texels a side",
                        l->path, ref, w, h, TEXTURE_MAX_SIZE);
+            return -1;
+        }
+        /* the sides pass, yet a header's channel count (or depth) can still ask for
+         * gigabytes: the decoded size is bounded before decoding */
+        if (decoded > l->max_image_bytes) {
+            scene_fail(err, errlen, "%s: texture '%s' is %dx%d with %d channels, %llu bytes "
+                       "decoded, more than scene.max_image_bytes %llu", l->path, ref, w, h, ch,
+                       decoded, (unsigned long long)l->max_image_bytes);
             return -1;
         }
         image raw;
@@ -284,8 +293,9 @@ static bool any_area(const struct aiScene *ai)
             const unsigned *x = m->mFaces[f].mIndices;
             const struct aiVector3D *a = &m->mVertices[x[0]], *b = &m->mVertices[x[1]],
                                     *c = &m->mVertices[x[2]];
-            double e1[3] = {b->x - a->x, b->y - a->y, b->z - a->z};
-            double e2[3] = {c->x - a->x, c->y - a->y, c->z - a->z};
+            /* in double: float differences of large coordinates overflow */
+            double e1[3] = {(double)b->x - a->x, (double)b->y - a->y, (double)b->z - a->z};
+            double e2[3] = {(double)c->x - a->x, (double)c->y - a->y, (double)c->z - a->z};
             double n[3] = {e1[1] * e2[2] - e1[2] * e2[1], e1[2] * e2[0] - e1[0] * e2[2],
                            e1[0] * e2[1] - e1[1] * e2[0]};
             if (n[0] * n[0] + n[1] * n[1] + n[2] * n[2] > 0.0)
@@ -352,6 +362,9 @@ bool file_load(const scene_file_options *o, loaded *l, char *err, size_t errlen)
     if (!o || !o->path || !o->path[0])
         return scene_fail(err, errlen, "scene file: no path");
     l->path = o->path;
+    l->max_image_bytes = o->max_image_bytes ? o->max_image_bytes : SCENE_FILE_MAX_IMAGE_BYTES;
+    l->max_triangles = o->max_triangles ? o->max_triangles : SCENE_FILE_MAX_TRIANGLES;
+    l->max_vertices = o->max_vertices ? o->max_vertices : SCENE_FILE_MAX_VERTICES;
     if (!(o->scale == 0.0f || (isfinite(o->scale) && o->scale > 0.0f)))
         return scene_fail(err, errlen, "%s: scale %g: expected a finite number > 0", o->path,
                           (double)o->scale);
@@ -381,7 +394,8 @@ bool file_load(const scene_file_options *o, loaded *l, char *err, size_t errlen)
     }
     l->files.allow_outside = o->allow_outside;
     if (!file_prescan_gltf(o->path, &l->files.files[0], err, errlen) ||
-        !file_prescan_obj(o->path, &l->files.files[0], err, errlen) ||
+        !file_prescan_obj(o->path, &l->files.files[0], l->max_triangles, l->max_vertices, err,
+                          errlen) ||
         !file_gltf_emissive_strengths(o->path, &l->files.files[0], &l->emissive_strength,
                                       &l->nemissive_strength, err, errlen)) {
         file_loaded_free(l);
@@ -436,6 +450,20 @@ bool file_load(const scene_file_options *o, loaded *l, char *err, size_t errlen)
     const struct aiNode *path[FILE_MAX_NODE_DEPTH];
     if (!check_nodes(l, ai->mRootNode, 0, path, err, errlen))
         goto out;
+    /* the whole file's, for what the pre-scan cannot count (a glTF's accessors) */
+    uint64_t total_vertices = 0, total_triangles = 0;
+    for (unsigned i = 0; i < ai->mNumMeshes; i++) {
+        total_vertices += ai->mMeshes[i]->mNumVertices;
+        total_triangles += ai->mMeshes[i]->mNumFaces;
+    }
+    if (total_triangles > l->max_triangles || total_vertices > l->max_vertices) {
+        bool tri = total_triangles > l->max_triangles;
+        scene_fail(err, errlen, "%s: %llu %s, more than scene.max_%s %llu", o->path,
+                   (unsigned long long)(tri ? total_triangles : total_vertices),
+                   tri ? "triangles" : "vertices", tri ? "triangles" : "vertices",
+                   (unsigned long long)(tri ? l->max_triangles : l->max_vertices));
+        goto out;
+    }
     for (unsigned i = 0; i < ai->mNumMeshes; i++) {
         const struct aiMesh *m = ai->mMeshes[i];
         if (!m->mVertices || m->mNumVertices == 0 || m->mNumFaces == 0) {
@@ -449,14 +477,26 @@ bool file_load(const scene_file_options *o, loaded *l, char *err, size_t errlen)
                        i, m->mNumVertices, m->mNumFaces, MESH_MAX_VERTICES, MESH_MAX_INDICES / 3);
             goto out;
         }
-        for (unsigned v = 0; v < m->mNumVertices; v++)
-            if (!file_finite3(&m->mVertices[v])) {
+        for (unsigned v = 0; v < m->mNumVertices; v++) {
+            const struct aiVector3D *q = &m->mVertices[v];
+            if (!file_finite3(q)) {
                 scene_fail(err, errlen, "%s: mesh %u ('%s'): vertex %u has a position that is not "
-                           "finite (%g, %g, %g)", o->path, i, m->mName.data, v,
-                           (double)m->mVertices[v].x, (double)m->mVertices[v].y,
-                           (double)m->mVertices[v].z);
+                           "finite (%g, %g, %g)", o->path, i, m->mName.data, v, (double)q->x,
+                           (double)q->y, (double)q->z);
                 goto out;
             }
+            /* finite, but past what 32-bit float arithmetic on it survives: the bounds'
+             * diagonal (fit's scale) and squared distances overflow to inf or NaN (3e38
+             * passed as "zero area" before) */
+            if (fabsf(q->x) > FILE_MAX_COORD || fabsf(q->y) > FILE_MAX_COORD ||
+                fabsf(q->z) > FILE_MAX_COORD) {
+                scene_fail(err, errlen, "%s: mesh %u ('%s'): vertex %u has a position too large "
+                           "for 32-bit float arithmetic (%g, %g, %g): at most %g a coordinate",
+                           o->path, i, m->mName.data, v, (double)q->x, (double)q->y,
+                           (double)q->z, FILE_MAX_COORD);
+                goto out;
+            }
+        }
         for (unsigned f = 0; f < m->mNumFaces; f++) {
             const struct aiFace *fc = &m->mFaces[f];
             if (fc->mNumIndices != 3) {

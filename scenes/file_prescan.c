@@ -2,6 +2,7 @@
  * (see scenes/file_assimp.c). */
 #include "scenes/file_internal.h"
 
+#include <inttypes.h>
 #include <math.h>
 #include <stdio.h>
 #include <stdlib.h>
@@ -524,27 +525,40 @@ bool file_prescan_gltf(const char *path, const read_file *f, char *err, size_t e
  * may reference, so any ':' in one is refused here, by name. A line is what assimp's
  * reader makes of it: it ends at CR, LF, NUL or FF, and a backslash before the line
  * break joins the next line to it. */
-bool file_prescan_obj(const char *path, const read_file *f, char *err, size_t errlen)
+bool file_prescan_obj(const char *path, const read_file *f, uint64_t max_triangles,
+                      uint64_t max_vertices, char *err, size_t errlen)
 {
     const char *dot = strrchr(path, '.');
     if (!dot || strcasecmp(dot, ".obj") != 0)
         return true;
     const char *d = (const char *)f->data, *end = d + f->size;
+    /* what assimp would build, counted before it builds anything: a face of n corners
+     * is n - 2 triangles, a `v` line one position */
+    uint64_t triangles = 0, vertices = 0;
     for (const char *p = d; p < end;) {
         while (p < end && (*p == ' ' || *p == '\t'))
             p++;
         bool mtllib = end - p > 6 && memcmp(p, "mtllib", 6) == 0 && (p[6] == ' ' || p[6] == '\t');
+        bool face = end - p > 1 && p[0] == 'f' && (p[1] == ' ' || p[1] == '\t');
+        vertices += end - p > 1 && p[0] == 'v' && (p[1] == ' ' || p[1] == '\t');
         const char *name = mtllib ? p + 7 : NULL, *colon = NULL;
-        for (; p < end; p++) {
+        uint64_t corners = 0;
+        bool in_word = false;
+        for (p += face; p < end; p++) {
             if (*p == '\\' && p + 1 < end && (p[1] == '\n' || p[1] == '\r')) {
                 p += p + 2 < end && p[1] == '\r' && p[2] == '\n' ? 2 : 1;
+                in_word = false;
                 continue;   /* a continued line */
             }
             if (*p == '\r' || *p == '\n' || *p == '\0' || *p == '\f')
                 break;
             if (name && *p == ':' && !colon)
                 colon = p;
+            bool space = *p == ' ' || *p == '\t';
+            corners += face && !space && !in_word;
+            in_word = !space;
         }
+        triangles += corners > 2 ? corners - 2 : 0;
         if (colon) {
             while (*name == ' ' || *name == '\t')
                 name++;
@@ -559,5 +573,11 @@ bool file_prescan_obj(const char *path, const read_file *f, char *err, size_t er
         }
         p++;
     }
+    if (triangles > max_triangles)
+        return scene_fail(err, errlen, "%s: %" PRIu64 " triangles, more than scene.max_triangles %"
+                          PRIu64, path, triangles, max_triangles);
+    if (vertices > max_vertices)
+        return scene_fail(err, errlen, "%s: %" PRIu64 " vertices, more than scene.max_vertices %"
+                          PRIu64, path, vertices, max_vertices);
     return true;
 }

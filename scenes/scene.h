@@ -302,7 +302,19 @@ typedef struct scene_file_options {
     bool phong;                /* the run shades it by Phong (shading.model): its
                                 * metallic-roughness materials and maps are listed in
                                 * not_rendered; false: by PBR, the file's default */
+    /* What one small file may make the loader spend, checked from what the file says
+     * before the work (scene.max_image_bytes, max_triangles, max_vertices; 0: the
+     * defaults below): an image's decoded bytes, the whole file's triangles and
+     * vertices (an .obj's counted before assimp reads it). */
+    uint64_t max_image_bytes, max_triangles, max_vertices;
 } scene_file_options;
+
+/* The defaults of those limits: every 8192 x 8192 texture of 4 float channels; ten
+ * million triangles and vertices (an .obj of 10 million faces took 55 s and 3.5 GB to
+ * check; the largest model of the tests has under a million). */
+#define SCENE_FILE_MAX_IMAGE_BYTES (1ull << 30)
+#define SCENE_FILE_MAX_TRIANGLES 10000000ull
+#define SCENE_FILE_MAX_VERTICES 10000000ull
 
 enum { SCENE_FILE_MAX_NOT_RENDERED = 16 };
 

@@ -4,8 +4,8 @@
 # counts the write-level calls (write, fsync, ...) the sweep makes to its output folder;
 # then, for chosen points N, the Nth call fails (ENOSPC, the disk staying full after it,
 # or a single EIO), and each time:
-#   - the sweep exits non-zero, or (summary.md alone: "a problem with it changes no exit
-#     status") says so; the run whose file was lost is failed:write, never ok;
+#   - the sweep exits non-zero (summary.md too, since issue 39); the run whose file was
+#     lost is failed:write, never ok;
 #   - a message names the file (its final name) with "No space left on device (the disk
 #     is full)" (or the I/O error);
 #   - nothing is half-written under a final name: every files.txt's files exist with its
@@ -125,9 +125,7 @@ while read -r n mode e; do
   rel=$(echo "$rel" | sed -E 's/\.tmp\.[0-9]+$//')
   grep -F "$rel: " "$T/err.txt" | grep -qF "$text" \
     || fail "$what: no message naming $rel with '$text': $(cat "$T/err.txt")"
-  if [ $rc -eq 0 ]; then
-    [ "${rel##*/}" = summary.md ] || fail "$what: exit 0 after losing $rel"
-  fi
+  [ $rc -ne 0 ] || fail "$what: exit 0 after losing $rel"
   case $rel in
     */runs/*)
       # the run is not ok: failed:write where its row could be written at all, and
@@ -157,4 +155,37 @@ PY
     || fail "$what: images missing"
   rm -rf "$out"
 done <<<"$points"
-echo "ok ($npoints failure points)"
+
+# The folder's summaries are written together (issue 39): a resume whose summary.json
+# cannot be written (the disk full from its first write on) exits 2, names the file,
+# and removes the summaries of the earlier sweep that would now describe other runs
+# than summary.csv; nothing is left under a temporary name, and a resume without the
+# shim writes them all again.
+"$SHADESWEEP" run -o r w.yaml >"$T/out.txt" 2>"$T/err.txt" || fail "sweep r: $(cat "$T/err.txt")"
+rm -f "$T/count" "$T/trace"
+LD_PRELOAD="$PRELOAD" IOFAULT_DIR="$T/r" IOFAULT_COUNT="$T/count" IOFAULT_AT=0 \
+  IOFAULT_TRACE="$T/trace" "$SHADESWEEP" run --resume -o r w.yaml >"$T/out.txt" 2>"$T/err.txt" ||
+  fail "counting resume: $(cat "$T/err.txt")"
+n=$(first 'summary[.]json[.]tmp[.]')
+[ -n "$n" ] || fail "the resume wrote no summary.json: $(cat "$T/trace")"
+rm -f "$T/count" "$T/hit"
+set +e
+LD_PRELOAD="$PRELOAD" IOFAULT_DIR="$T/r" IOFAULT_COUNT="$T/count" IOFAULT_AT="$n" \
+  IOFAULT_PERSIST=1 IOFAULT_ERRNO=ENOSPC IOFAULT_HIT="$T/hit" \
+  "$SHADESWEEP" run --resume -o r w.yaml >"$T/out.txt" 2>"$T/err.txt"
+rc=$?
+set -e
+rm -f "$T/count"
+[ $rc -eq 2 ] || fail "summary.json lost on a resume: exit $rc: $(cat "$T/err.txt")"
+grep -qxF "shadesweep run: no summary table: r/summary.json: No space left on device (the disk is full); removed summary.md, summary.json, summary_long.csv, which would describe other runs than summary.csv" "$T/err.txt" ||
+  fail "summary.json lost on a resume: message: $(cat "$T/err.txt")"
+for f in summary.md summary.json summary_long.csv; do
+  [ ! -e "r/$f" ] || fail "summary.json lost on a resume: a stale r/$f stayed"
+done
+what="summary.json lost on a resume"
+check_folder r
+"$SHADESWEEP" run --resume -o r w.yaml >"$T/out.txt" 2>"$T/err.txt" || fail "resume r: $(cat "$T/err.txt")"
+for f in summary.md summary.json summary_long.csv; do
+  [ -s "r/$f" ] || fail "resume r: no r/$f"
+done
+echo "ok ($npoints failure points, and a summary lost on a resume)"

@@ -200,3 +200,83 @@ for bad in "scale: fat|m.yaml:3:33: scene.scale: expected fit or a number > 0 an
   rc=0; "$SHADESWEEP" validate m.yaml >out.txt 2>err.txt || rc=$?
   [ $rc -eq 2 ] && grep -qxF "${bad#*|}" err.txt || fail "${bad%%|*}: exit $rc: $(cat err.txt)"
 done
+
+# issue 39: bounds from what a file says, before the work, each naming the limit a
+# manifest can raise (scene.max_image_bytes, max_triangles, max_vertices): an .obj's
+# faces counted before assimp (a polygon of n corners is n - 2 triangles), a texture's
+# decoded bytes from its header (a TIFF whose sides pass but whose 100 channels ask for
+# 1.6 GB); a limit let through at its value, and none of them part of the id
+$PYTHON - <<'PY'
+import struct, zlib
+tri = 'v 0 0 0\nv 1 0 0\nv 0 1 0\n'
+open('s/many.obj', 'w').write(tri + 'f 1 2 3\n' * 2000)
+open('s/poly.obj', 'w').write(tri + 'f ' + ' '.join(['1 2 3'] * 400) + '\n')
+open('s/huge.obj', 'w').write('v -3e38 0 0\nv 3e38 0 0\nv 0 3e38 0\nf 1 2 3\n')
+def tiff(w, h, spp):   # a header only: what the probe reads
+    e = [(256, 4, w), (257, 4, h), (258, 3, 8), (259, 3, 1), (262, 3, 1), (273, 4, 8),
+         (277, 3, spp), (278, 4, h), (279, 4, w * h * spp), (284, 3, 1)]
+    ifd = struct.pack('<H', len(e)) + b''.join(
+        struct.pack('<HHI', t, k, 1) + (struct.pack('<HH', v, 0) if k == 3 else struct.pack('<I', v))
+        for t, k, v in e) + struct.pack('<I', 0)
+    return b'II*\0' + struct.pack('<I', 8) + ifd
+def png(w, h):
+    def chunk(t, d):
+        return struct.pack('>I', len(d)) + t + d + struct.pack('>I', zlib.crc32(t + d))
+    raw = b''.join(b'\0' + b'\x80' * (3 * w) for _ in range(h))
+    return (b'\x89PNG\r\n\x1a\n' + chunk(b'IHDR', struct.pack('>IIBBBBB', w, h, 8, 2, 0, 0, 0))
+            + chunk(b'IDAT', zlib.compress(raw)) + chunk(b'IEND', b''))
+open('s/wide.tif', 'wb').write(tiff(4096, 4096, 100))
+open('s/t64.png', 'wb').write(png(64, 64))
+open('s/cut.png', 'wb').write(png(64, 64)[:60])
+for name, img in (('wide', 'wide.tif'), ('t64', 't64.png'), ('cut', 'cut.png')):
+    open(f's/{name}.mtl', 'w').write(f'newmtl a\nKd 1 1 1\nmap_Kd {img}\n')
+    open(f's/{name}.obj', 'w').write(f'mtllib {name}.mtl\n' + tri +
+        'vt 0 0\nvt 1 0\nvt 0 1\nusemtl a\nf 1/1 2/2 3/3\n')
+PY
+refuse_with() {   # scene block, column, exact message after "found "
+  manifest "$1"
+  local rc=0
+  timeout 20 "$SHADESWEEP" validate m.yaml >out.txt 2>err.txt || rc=$?
+  [ $rc -eq 2 ] || fail "$1: exit $rc, want 2: $(cat err.txt)"
+  local want="m.yaml:3:$2: scene.file: expected a scene file that loads, found $3"
+  [ "$(cat err.txt)" = "$want" ] || fail "$1: got: $(cat err.txt)
+want: $want"
+}
+refuse_with "{file: s/many.obj, max_triangles: 1999}" 15 "s/many.obj: 2000 triangles, more than scene.max_triangles 1999"
+refuse_with "{file: s/poly.obj, max_triangles: 1000}" 15 "s/poly.obj: 1198 triangles, more than scene.max_triangles 1000"
+refuse_with "{file: s/many.obj, max_vertices: 2}" 15 "s/many.obj: 3 vertices, more than scene.max_vertices 2"
+refuse s/wide.obj "s/wide.obj: texture 'wide.tif' is 4096x4096 with 100 channels, 1677721600 bytes decoded, more than scene.max_image_bytes 1073741824"
+refuse_with "{file: s/t64.obj, max_image_bytes: 12287}" 15 "s/t64.obj: texture 't64.png' is 64x64 with 3 channels, 12288 bytes decoded, more than scene.max_image_bytes 12287"
+manifest "{file: s/t64.obj}"
+"$SHADESWEEP" list m.yaml >ids1.txt
+for ok in "s/many.obj, max_triangles: 2000" "s/many.obj, max_vertices: 3" \
+          "s/t64.obj, max_image_bytes: 12288"; do
+  manifest "{file: $ok}"
+  "$SHADESWEEP" validate m.yaml >v.txt 2>&1 || fail "$ok: $(cat v.txt)"
+done
+"$SHADESWEEP" list m.yaml >ids2.txt
+cmp -s ids1.txt ids2.txt || fail "max_image_bytes changed the id: $(cat ids1.txt ids2.txt)"
+manifest "{file: s/many.obj, max_triangles: 0}"
+rc=0; "$SHADESWEEP" validate m.yaml >out.txt 2>err.txt || rc=$?
+[ $rc -eq 2 ] && grep -qxF "m.yaml:3:42: scene.max_triangles: expected an integer 1..9007199254740992, found '0'" err.txt ||
+  fail "max_triangles: 0: exit $rc: $(cat err.txt)"
+# messages that name the real cause: huge but finite coordinates (3e38 was "zero area"),
+# a PNG cut off (refused before libpng, which printed a line of its own and leaked)
+refuse s/huge.obj "s/huge.obj: mesh 0 ('defaultobject'): vertex 0 has a position too large for 32-bit float arithmetic (-3e+38, 0, 0): at most 1e+18 a coordinate"
+refuse s/cut.obj "s/cut.obj: texture 'cut.png' does not decode: s/cut.png: cannot read image: cut off: its IDAT chunk claims 192 bytes, 15 follow"
+
+# the manifest itself as a scene file is: anything but a regular file is refused by
+# name (a FIFO hung validate; a directory read "Input/output error"), and UTF-16 is
+# refused by validate, naming the encoding (run failed later, in its YAML writer)
+mkdir mdir.yaml
+mkfifo mfifo.yaml
+for m in mdir.yaml:directory mfifo.yaml:FIFO; do
+  rc=0; timeout 20 "$SHADESWEEP" validate "${m%%:*}" >out.txt 2>err.txt || rc=$?
+  [ $rc -eq 2 ] && [ "$(cat err.txt)" = "${m%%:*}: expected a manifest file, found a ${m#*:}, not a regular file" ] ||
+    fail "${m%%:*} as the manifest: exit $rc: $(cat err.txt)"
+done
+manifest "{file: s/ok.gltf}"
+$PYTHON -c "open('m16.yaml', 'wb').write(b'\xff\xfe' + open('m.yaml').read().encode('utf-16-le'))"
+rc=0; "$SHADESWEEP" validate m16.yaml >out.txt 2>err.txt || rc=$?
+[ $rc -eq 2 ] && [ "$(cat err.txt)" = "m16.yaml: expected UTF-8 text, found UTF-16 (little-endian) (its byte-order mark says so): save it as UTF-8 (iconv -f UTF-16 -t UTF-8)" ] ||
+  fail "a UTF-16 manifest: exit $rc: $(cat err.txt)"
