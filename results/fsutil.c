@@ -464,3 +464,21 @@ bool fs_remove_tree(const char *path, char *err, size_t errlen)
         snprintf(err, errlen, "%s: cannot remove: %s", path, strerror(errno));
     return false;
 }
+
+const char *fs_text_bom(const void *data, size_t len)
+{
+    static const struct {
+        unsigned char bom[4];
+        size_t len;
+        const char *name;
+    } boms[] = {
+        {{0x00, 0x00, 0xfe, 0xff}, 4, "UTF-32 (big-endian)"},
+        {{0xff, 0xfe, 0x00, 0x00}, 4, "UTF-32 (little-endian)"},
+        {{0xfe, 0xff}, 2, "UTF-16 (big-endian)"},
+        {{0xff, 0xfe}, 2, "UTF-16 (little-endian)"},
+    };
+    for (size_t i = 0; data && i < sizeof boms / sizeof boms[0]; i++)
+        if (len >= boms[i].len && memcmp(data, boms[i].bom, boms[i].len) == 0)
+            return boms[i].name;
+    return NULL;
+}

@@ -89,3 +89,8 @@ bool fs_remove_tree(const char *path, char *err, size_t errlen);
 #ifdef __cplusplus
 }
 #endif
+
+/* The name of the UTF-16 or UTF-32 encoding whose byte-order mark `data` (len bytes)
+ * starts with ("UTF-16 (little-endian)", ...), or NULL for none: text shadesweep reads
+ * as UTF-8 (a manifest, an OBJ or glTF file) is refused by it, naming it. */
+const char *fs_text_bom(const void *data, size_t len);

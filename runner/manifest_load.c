@@ -118,23 +118,12 @@ static bool load_mem(const char *name, const char *data, size_t len,
     /* libyaml reads UTF-16 by its byte-order mark, but a run records the manifest's
      * bytes as written, and the YAML writer wants UTF-8 ("YAML emitter: cannot create
      * event", once the run was under way): refused here, as a scene file's are */
-    static const struct {
-        unsigned char bom[4];
-        size_t len;
-        const char *name;
-    } boms[] = {
-        {{0x00, 0x00, 0xfe, 0xff}, 4, "UTF-32 (big-endian)"},
-        {{0xff, 0xfe, 0x00, 0x00}, 4, "UTF-32 (little-endian)"},
-        {{0xfe, 0xff}, 2, "UTF-16 (big-endian)"},
-        {{0xff, 0xfe}, 2, "UTF-16 (little-endian)"},
-    };
-    for (size_t i = 0; i < sizeof boms / sizeof boms[0]; i++)
-        if (len >= boms[i].len && memcmp(data, boms[i].bom, boms[i].len) == 0) {
-            diag_add(diags, name, 0, 0, "", "expected UTF-8 text, found %s (its byte-order "
-                     "mark says so): save it as UTF-8 (iconv -f %.6s -t UTF-8)", boms[i].name,
-                     boms[i].name);
-            goto done;
-        }
+    const char *bom = fs_text_bom(data, len);
+    if (bom) {
+        diag_add(diags, name, 0, 0, "", "expected UTF-8 text, found %s (its byte-order mark "
+                 "says so): save it as UTF-8 (iconv -f %.6s -t UTF-8)", bom, bom);
+        goto done;
+    }
     hash_hex(fnv1a64(data, len), 16, e->hash);
     if (!overrides_keep(&c, ov))
         goto done;

@@ -12,6 +12,7 @@
 #include <stdlib.h>
 #include <string.h>
 
+#include "results/fsutil.h"
 #include "results/grow.h"
 #include "scenes/file_import.h"
 #include "scenes/scene_fail.h"
@@ -309,23 +310,12 @@ static bool why_no_triangles(loaded *l, const char *path, struct aiFileIO *io,
                              const char *error, char *why, size_t n)
 {
     const read_file *f = l->files.n ? &l->files.files[0] : NULL;
-    static const struct {
-        unsigned char bom[4];
-        size_t len;
-        const char *name;
-    } boms[] = {
-        {{0x00, 0x00, 0xfe, 0xff}, 4, "UTF-32 (big-endian)"},
-        {{0xff, 0xfe, 0x00, 0x00}, 4, "UTF-32 (little-endian)"},
-        {{0xfe, 0xff}, 2, "UTF-16 (big-endian)"},
-        {{0xff, 0xfe}, 2, "UTF-16 (little-endian)"},
-    };
-    for (size_t i = 0; f && i < sizeof boms / sizeof boms[0]; i++)
-        if (f->size >= boms[i].len && memcmp(f->data, boms[i].bom, boms[i].len) == 0) {
-            snprintf(why, n, "the file is %s text (its byte-order mark says so), which assimp "
-                     "does not read: save it as UTF-8 (iconv -f %.6s -t UTF-8)", boms[i].name,
-                     boms[i].name);
-            return true;
-        }
+    const char *bom = f ? fs_text_bom(f->data, f->size) : NULL;
+    if (bom) {
+        snprintf(why, n, "the file is %s text (its byte-order mark says so), which assimp "
+                 "does not read: save it as UTF-8 (iconv -f %.6s -t UTF-8)", bom, bom);
+        return true;
+    }
     /* only where assimp's error is about meshes: "No meshes remaining", "Mesh contains
      * no faces", "mNumMeshes is 0" (NULL: the import gave a scene without meshes) */
     if (error && !strstr(error, "esh"))
