@@ -30,12 +30,18 @@ static double log_average_luminance(const float *rgba, size_t n, size_t *counted
     return k ? exp(sum / (double)k) : 0.0;
 }
 
+/* The metering frame's longest side: the log-average of a frame does not need every
+ * pixel, and forward-spml tests every light at every pixel (at 1920x1080 with 16,384
+ * lights that is minutes on llvmpipe). */
+#define METER_MAX_SIDE 256
+
 /* exposure.mode auto: forward-spml (its lights in a storage buffer beyond the uniform
- * block, as the error reference's) draws the scene at schedule time 0 at the run's size,
- * single-sampled, and its linear image is metered. The same renderer for every run of
- * a sweep point, so every renderer there is shown with the same exposure. With the
- * placed lights' range or colour derived from the exposure (lights.sizing), they are
- * off in that frame: what they add cannot decide what they are. */
+ * block, as the error reference's) draws the scene at schedule time 0, single-sampled,
+ * at the run's aspect with its longest side at most METER_MAX_SIDE, and its linear image
+ * is metered. The same renderer at the same size for every run of a sweep point, so
+ * every renderer there is shown with the same exposure. With the placed lights' range or
+ * colour derived from the exposure (lights.sizing), they are off in that frame: what
+ * they add cannot decide what they are. */
 static bool meter(run_state *st, const renderer_options *ro, bool lights_off, double *lum)
 {
     const run_params *p = &st->s->p;
@@ -43,13 +49,22 @@ static bool meter(run_state *st, const renderer_options *ro, bool lights_off, do
     mo.queries = false;
     mo.light_buffer = LIGHT_BUFFER_AUTO;
     mo.msaa = 1;
+    int side = p->width > p->height ? p->width : p->height;
+    if (side > METER_MAX_SIDE) {
+        mo.width = (int)fmax(1.0, round((double)p->width * METER_MAX_SIDE / side));
+        mo.height = (int)fmax(1.0, round((double)p->height * METER_MAX_SIDE / side));
+    }
+    /* the scene's size is the frame's viewport and aspect (as the supersampled error
+     * reference's, run_setup.c): the meter's while it prepares and draws */
+    st->sc->width = mo.width;
+    st->sc->height = mo.height;
     char why[512];
     renderer *m = renderer_create("forward-spml", &mo, why, sizeof why);
     bool ok = m && renderer_prepare(m, st->sc, why, sizeof why);
-    size_t n = (size_t)p->width * (size_t)p->height;
+    size_t n = (size_t)mo.width * (size_t)mo.height;
     float *hdr = ok ? malloc(n * 4 * sizeof *hdr) : NULL;
     if (ok && !hdr) {
-        snprintf(why, sizeof why, "out of memory for a %dx%d image", p->width, p->height);
+        snprintf(why, sizeof why, "out of memory for a %dx%d image", mo.width, mo.height);
         ok = false;
     }
     if (ok) {
@@ -63,13 +78,15 @@ static bool meter(run_state *st, const renderer_options *ro, bool lights_off, do
         gl.Finish();
         renderer_collect(m, &fs);
         size_t counted = 0;
-        if (!(ok = renderer_read_hdr(m, hdr, p->width, p->height, NULL)))
+        if (!(ok = renderer_read_hdr(m, hdr, mo.width, mo.height, NULL)))
             snprintf(why, sizeof why, "its image could not be read");
         else
             *lum = log_average_luminance(hdr, n, &counted);
     }
     free(hdr);
     renderer_destroy(m);
+    st->sc->width = p->width;
+    st->sc->height = p->height;
     gl.BindFramebuffer(GL_FRAMEBUFFER, gl_context_framebuffer(st->ctx));
     if (!ok)
         snprintf(st->err, sizeof st->err, "exposure.mode auto: the metering frame "

@@ -179,7 +179,8 @@ bool run_write_meta(run_state *st, char *err, size_t errlen)
         yo_key(y, "ev100");   /* exposure = 1 / (1.2 x 2^EV100) */
         yo_f64(y, log2(1.0 / (1.2 * (d->exposed ? d->exposure : 1.0))));
         if (p->exposure_mode == EXPOSURE_AUTO) {
-            yo_key(y, "metered_by"); yo_str(y, "forward-spml at schedule time 0");
+            yo_key(y, "metered_by");
+            yo_str(y, "forward-spml at schedule time 0, longest side at most 256");
             yo_key(y, "metered_luminance"); yo_f64(y, st->meter_lum);
             yo_key(y, "metered_without_placed_lights"); yo_bool(y, st->meter_lights_off);
         }
