@@ -446,7 +446,7 @@ static const char PAPER[] =
     "  lights.radius: [5, 10]\n";
 
 /* shadesweep: 2 (issue 36): its defaults (windowed falloff, ranges from intensity, auto
- * exposure, PBR Neutral) are schema 1's keys written out, so a schema-2 run has the id of
+ * exposure, PBR Neutral, the environment) are schema 1's keys written out, so a schema-2 run has the id of
  * the schema-1 manifest that spells them; a key the manifest sets wins over them; a
  * schema-1 manifest keeps schema 1's defaults and its ids. */
 static void test_schema2_defaults(void **state)
@@ -460,6 +460,7 @@ static void test_schema2_defaults(void **state)
     snprintf(one, sizeof one, "shadesweep: 1\n%s", body);
     snprintf(spelt, sizeof spelt,
              "shadesweep: 1\n%sexposure: {mode: auto}\ntonemap: pbr-neutral\n"
+             "environment: {light: scene}\n"
              "sweep: {lights.attenuation: [windowed], lights.sizing: [range-from-intensity]}\n",
              body);
     snprintf(own, sizeof own, "shadesweep: 2\n%stonemap: none\n", body);
@@ -471,6 +472,8 @@ static void test_schema2_defaults(void **state)
     assert_int_equal(e2->base.lights.sizing, LIGHT_SIZING_RANGE_FROM_INTENSITY);
     assert_int_equal(e2->base.exposure_mode, EXPOSURE_AUTO);
     assert_int_equal(e2->base.tonemap, TONEMAP_PBR_NEUTRAL);
+    assert_int_equal(e2->base.environment, 2);   /* environment_names: "scene" */
+    assert_int_equal(e1->base.environment, 0);   /* "none" */
     assert_int_equal(e1->base.lights.attenuation, ATTENUATION_INVERSE_SQUARE);
     assert_int_equal(e1->base.lights.sizing, LIGHT_SIZING_RADIUS);
     assert_int_equal(e1->base.exposure_mode, EXPOSURE_NONE);
