@@ -242,8 +242,11 @@ set -e
 [ $rc -eq 0 ] || fail "stderr closed: exit $rc"
 check_summary closed 8
 [ -z "$(find closed -name '*.tmp.*')" ] || fail "temporary files left"
-# ... and a stderr whose reader has gone (a closed pipe): no SIGPIPE death half-way
-{ "$SHADESWEEP" run -o piped t.yaml 2>&1 >/dev/null; echo $? > piped.rc; } | true
-[ "$(cat piped.rc)" -eq 0 ] || fail "stderr into a closed pipe: exit $(cat piped.rc)"
+# ... and a stderr whose reader has gone (a closed pipe): no SIGPIPE death half-way, the
+# folder complete, and exit 2, since what it said was not written (issue 39: stdout and
+# stderr are checked at exit)
+{ rc=0; "$SHADESWEEP" run -o piped t.yaml 2>&1 >/dev/null || rc=$?; echo "$rc" > piped.rc; } |
+  true
+[ "$(cat piped.rc)" -eq 2 ] || fail "stderr into a closed pipe: exit $(cat piped.rc), not 2"
 check_summary piped 8
 echo ok
