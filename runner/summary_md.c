@@ -2,6 +2,7 @@
 
 #include <errno.h>
 #include <math.h>
+#include <stdarg.h>
 #include <stdlib.h>
 #include <string.h>
 #include <unistd.h>
@@ -388,6 +389,20 @@ const char *summary_differs(const ratio_ci *r)
     }
 }
 
+/* A table cell: the printf of its values where they are finite (`have`), else "-". */
+__attribute__((format(printf, 4, 5)))
+static void cell(char *out, size_t len, bool have, const char *fmt, ...)
+{
+    if (!have) {
+        snprintf(out, len, "-");
+        return;
+    }
+    va_list ap;
+    va_start(ap, fmt);
+    vsnprintf(out, len, fmt, ap);
+    va_end(ap);
+}
+
 static void make_cells(const run_result *x, const run_result *fastest, size_t rank, cells *o)
 {
     memset(o, 0, sizeof *o);
@@ -421,26 +436,12 @@ static void make_cells(const run_result *x, const run_result *fastest, size_t ra
         snprintf(o->sig, sizeof o->sig, "%s", summary_differs(&r));
     }
     fmt_ms(o->p99, sizeof o->p99, x->p99_us, decimals_for(x->p99_us / 1000));
-    if (isfinite(x->low1_fps))
-        snprintf(o->low, sizeof o->low, "%.1f", x->low1_fps);
-    else
-        snprintf(o->low, sizeof o->low, "-");
-    if (isfinite(x->rmse))
-        snprintf(o->rmse, sizeof o->rmse, "%.4g", x->rmse);
-    else
-        snprintf(o->rmse, sizeof o->rmse, "-");
-    if (isfinite(x->reach_mean) && isfinite(x->lights))
-        snprintf(o->reach, sizeof o->reach, "%.2f of %.0f", x->reach_mean, x->lights);
-    else
-        snprintf(o->reach, sizeof o->reach, "-");
-    if (isfinite(x->evals))
-        snprintf(o->evals, sizeof o->evals, "%.2f", x->evals);
-    else
-        snprintf(o->evals, sizeof o->evals, "-");
-    if (isfinite(x->coverage))
-        snprintf(o->coverage, sizeof o->coverage, "%.1f%%", 100 * x->coverage);
-    else
-        snprintf(o->coverage, sizeof o->coverage, "-");
+    cell(o->low, sizeof o->low, isfinite(x->low1_fps), "%.1f", x->low1_fps);
+    cell(o->rmse, sizeof o->rmse, isfinite(x->rmse), "%.4g", x->rmse);
+    cell(o->reach, sizeof o->reach, isfinite(x->reach_mean) && isfinite(x->lights),
+         "%.2f of %.0f", x->reach_mean, x->lights);
+    cell(o->evals, sizeof o->evals, isfinite(x->evals), "%.2f", x->evals);
+    cell(o->coverage, sizeof o->coverage, isfinite(x->coverage), "%.1f%%", 100 * x->coverage);
 }
 
 static const char md_intro[] =

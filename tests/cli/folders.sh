@@ -17,17 +17,6 @@ clock: fixed
 sweep:
   lights.seed: [1, 2, 3, 4]
 YAML
-# tree DIR: every file under DIR with its checksum (what "untouched" means here)
-tree() { (cd "$1" && find . -type f -print0 | sort -z | xargs -0 -r md5sum); }
-# expect RC MESSAGE CMD...: exit status RC and MESSAGE (a fixed string) on stderr
-expect() {
-  local want=$1 msg=$2; shift 2
-  set +e
-  "$@" >"$T/cmd.out" 2>"$T/cmd.err"; local rc=$?
-  set -e
-  [ $rc -eq "$want" ] || fail "$*: exit $rc, want $want: $(cat "$T/cmd.err")"
-  grep -qF -- "$msg" "$T/cmd.err" || fail "$*: no '$msg' in: $(cat "$T/cmd.err")"
-}
 # check_summary DIR N: DIR/summary.csv has exactly N rows, each with the header's
 # number of fields, no (run, trial) twice, every run id one of the plan's
 check_summary() {

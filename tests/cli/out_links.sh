@@ -20,22 +20,6 @@ clock: fixed
 sweep:
   lights.seed: [1, 2]
 YAML
-# tree DIR: every file (and link) under DIR with its checksum or target
-tree() {
-  (cd "$1" && find . \( -type f -o -type l \) -print0 | sort -z |
-    while IFS= read -r -d '' f; do
-      if [ -L "$f" ]; then echo "$f -> $(readlink "$f")"; else md5sum "$f"; fi
-    done)
-}
-# expect RC MESSAGE CMD...: exit status RC and MESSAGE (a fixed string) on stderr
-expect() {
-  local want=$1 msg=$2; shift 2
-  set +e
-  "$@" >"$T/cmd.out" 2>"$T/cmd.err"; local rc=$?
-  set -e
-  [ $rc -eq "$want" ] || fail "$*: exit $rc, want $want: $(cat "$T/cmd.err")"
-  grep -qF -- "$msg" "$T/cmd.err" || fail "$*: no '$msg' in: $(cat "$T/cmd.err")"
-}
 # refile RUN_DIR: files.txt again after a test edited the run's files (what a hostile
 # or another build's folder would hold, complete by its own list)
 refile() {
