@@ -40,6 +40,7 @@
 #include "runner/manifest.h"
 #include "runner/summary_md.h"
 #include "runner/sweep_axis.h"
+#include "runner/trials.h"
 
 static const char compare_usage[] =
     "usage: shadesweep compare [OPTIONS] BASE NEW\n"
@@ -133,8 +134,8 @@ static void write_md(FILE *fp, const char *base, const char *new_, double thr, b
         const char *v = verdict_name(p[i].v);
         bool bold = p[i].v == VERDICT_SLOWER || p[i].v == VERDICT_FASTER;
         fprintf(fp, "| %s | %s | %s | %s | %s | %s | %zu | %s%s%s |\n", p[i].a->id,
-                p[i].a->renderer, strcmp(p[i].a->status, "ok") ? p[i].a->status : a,
-                strcmp(p[i].b->status, "ok") ? p[i].b->status : b, ch, ci, p[i].r.n,
+                p[i].a->renderer, trials_status_measured(p[i].a->status) ? a : p[i].a->status,
+                trials_status_measured(p[i].b->status) ? b : p[i].b->status, ch, ci, p[i].r.n,
                 bold ? "**" : "", v, bold ? "**" : "");
     }
     fprintf(fp, "\n%zu run%s in common: %zu slower, %zu faster, %zu same, %zu undecided, %zu "

@@ -271,13 +271,16 @@ int merge_main(const char *out, bool force, bool allow_mixed, int ndirs, char **
         fprintf(stderr, "shadesweep merge: %s\n", err);
         goto done;
     }
-    size_t missing = 0, failed = 0;
-    if (!output_merge_summary_ids(out, ids, nids, &missing, &failed, err, sizeof err)) {
+    run_account acct;
+    if (!output_merge_summary_ids(out, ids, nids, &acct, err, sizeof err)) {
         fprintf(stderr, "shadesweep merge: %s\n", err);
         goto done;
     }
     fprintf(stderr, "merged %zu of %zu runs from %d folder%s into %s\n", copied, nids, ndirs,
             ndirs == 1 ? "" : "s", out);
+    size_t missing = acct.missing, failed = acct.failed + acct.partial;
+    output_account_print(stderr, &acct, 20);
+    output_account_free(&acct);
     if (missing) {
         fprintf(stderr, "missing runs (no folder has them complete):");
         size_t shown = 0;

@@ -102,16 +102,21 @@ void progress_run_end(progress *pg, const char *status, double fps)
     fflush(pg->out);
 }
 
-void progress_finish(progress *pg)
+void progress_finish(progress *pg, const char *counts)
 {
-    char el[32];
+    char el[32], own[96];
     fmt_duration(el, sizeof el, progress_now() - pg->t0);
-    if (pg->runs_done == pg->done)
-        fprintf(pg->out, "%zu run%s, %zu failed, in %s\n", pg->runs_done,
-                pg->runs_done == 1 ? "" : "s", pg->runs_failed, el);
+    if (!counts) {
+        snprintf(own, sizeof own, "%zu run%s, %zu failed", pg->runs_done,
+                 pg->runs_done == 1 ? "" : "s", pg->runs_failed);
+        counts = own;
+    }
+    if (!pg->done)
+        fprintf(pg->out, "%s (nothing left to run), in %s\n", counts, el);
+    else if (pg->runs_done == pg->done)
+        fprintf(pg->out, "%s, in %s\n", counts, el);
     else
-        fprintf(pg->out, "%zu run%s, %zu failed (%zu trials), in %s\n", pg->runs_done,
-                pg->runs_done == 1 ? "" : "s", pg->runs_failed, pg->done, el);
+        fprintf(pg->out, "%s (%zu trials), in %s\n", counts, pg->done, el);
 }
 
 void progress_run_complete(progress *pg, const char *status)

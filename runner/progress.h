@@ -25,5 +25,7 @@ void progress_tick(progress *pg, unsigned trial, unsigned lights, double fps);
 void progress_run_end(progress *pg, const char *status, double fps);
 /* A run whose files are complete (all its trials merged), with its status. */
 void progress_run_complete(progress *pg, const char *status);
-/* "N runs, N failed, in T" (and the trials, where they are more). */
-void progress_finish(progress *pg);
+/* "COUNTS (N trials), in T": counts says what the folder holds (output_account_counts;
+ * NULL: this sweep's runs are counted instead), then how many trials this sweep ran
+ * where they differ from the runs ("nothing left to run" when none). */
+void progress_finish(progress *pg, const char *counts);

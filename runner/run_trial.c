@@ -129,16 +129,20 @@ static void busy_wait_us(uint32_t us)
 }
 
 /* Draws one frame at schedule time t and waits for its end; a measured frame of a
- * run with debug.busy_us (of its renderer) then busy-waits inside the frame. */
+ * run with debug.busy_us (of its renderer) then busy-waits inside the frame, and trial
+ * debug.stall_trial hangs in it (until its time limit kills it, or a stop signal). */
 static bool draw_frame(run_state *st, double t, frame_stats *fs, bool measured)
 {
     const run_params *p = &st->s->p;
     scene_update(st->sc, t);
     renderer_draw(st->r, st->sc, fs);
     bool ok = frame_sync(p->sync, st->err, sizeof st->err);
-    if (ok && measured && p->debug_busy_us &&
-        (!p->debug_busy_renderer[0] || strcmp(p->debug_busy_renderer, p->renderer) == 0))
+    bool debug = !p->debug_busy_renderer[0] || strcmp(p->debug_busy_renderer, p->renderer) == 0;
+    if (ok && measured && debug && p->debug_busy_us)
         busy_wait_us(p->debug_busy_us);
+    for (int s = 0; ok && measured && debug && p->debug_stall_trial == st->trial && s < 3600 &&
+                    !run_stop_signal(); s++)
+        sleep(1);
     return ok;
 }
 

@@ -26,6 +26,7 @@ typedef struct run_slot {
     bool complete;             /* its files are merged (or were, before a resume) */
     bool ended;                /* a trial's status ended it: no more trials */
     uint32_t done;             /* trials 1..done have complete folders */
+    uint32_t ok;               /* ... of which ok */
     uint32_t *order;           /* order[k - 1]: trial k's place in its round */
     double *value;             /* value[k - 1]: trial k's metric_us (trials: auto; NAN:
                                 * none), read once from its folder */
@@ -183,6 +184,7 @@ static bool run_one_trial(const experiment *e, const run_options *o, progress *p
         return false;
     progress_run_end(pg, out.status, out.fps);
     r->done = k;
+    r->ok += strcmp(out.status, "ok") == 0;
     if (!slot_value(o->out_dir, r, k)) {
         fprintf(stderr, "shadesweep: out of memory\n");
         return false;
@@ -209,15 +211,17 @@ static bool finish_run(const experiment *e, const run_options *o, progress *pg, 
         if (!slot_order(r, k, 0))
             return false;
     }
-    char err[600];
+    char err[600], status[96];
+    trials_run_status(n, r->ok, strcmp(r->status, "ok") ? r->status : NULL, status,
+                      sizeof status);
     trials_schedule ts = {.mode = schedule_name(&s->p), .seed = s->p.schedule_seed,
                           .point = s->group, .order = r->order};
-    if (!trials_merge(o->out_dir, s->id, n, r->status, &ts, err, sizeof err)) {
+    if (!trials_merge(o->out_dir, s->id, n, status, &ts, err, sizeof err)) {
         fprintf(stderr, "run %s: %s\n", s->id, err);
         return false;
     }
     r->complete = true;
-    progress_run_complete(pg, r->status);
+    progress_run_complete(pg, status);
     return true;
 }
 
@@ -324,6 +328,7 @@ static void resume_slot(const run_options *o, run_slot *r, size_t *kept, size_t 
     char twhy[512];
     while (folder_check_trial(o->out_dir, s->id, k, &tc, twhy, sizeof twhy) && !tc.unwritten) {
         r->done = k;
+        r->ok += !tc.failed;
         if (tc.failed && strcmp(r->status, "ok") == 0)
             snprintf(r->status, sizeof r->status, "%s", tc.status);
         if (tc.failed && run_status_ends_run(tc.status))
@@ -423,15 +428,21 @@ int run_plan(const experiment *e, const plan *p, const run_options *o)
             break;
         }
     }
-    progress_finish(&pg);
-
-    /* The exit status describes the folder as it stands, not this invocation's runs. */
-    size_t missing = 0, failed = 0;
-    if (!output_merge_summary(o->out_dir, p, o->shard, &missing, &failed, err, sizeof err)) {
+    /* The account and the exit status describe the folder as it stands, not this
+     * invocation's runs. */
+    run_account acct;
+    if (!output_merge_summary(o->out_dir, p, o->shard, &acct, err, sizeof err)) {
+        progress_finish(&pg, NULL);
         fprintf(stderr, "shadesweep: %s\n", err);
         rc = 2;
         goto done;
     }
+    char counts[160];
+    output_account_counts(&acct, counts, sizeof counts);
+    progress_finish(&pg, counts);
+    output_account_print(progress_out, &acct, 20);
+    size_t missing = acct.missing, failed = acct.failed + acct.partial;
+    output_account_free(&acct);
     if (run_stop_signal()) {
         fprintf(stderr,
                 "interrupted by %s: %zu of %zu runs complete; to finish the others:\n"

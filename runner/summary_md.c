@@ -14,6 +14,7 @@
 #include "runner/params.h"
 #include "runner/summary_json.h"
 #include "runner/summary_long.h"
+#include "runner/trials.h"
 #include "runner/workload.h"
 
 typedef struct trial_cols {
@@ -146,8 +147,10 @@ bool summary_load_runs(const char *path, run_result **out, size_t *n, char *err,
         x->reach_mean = wn[0] ? wsum[0] / (double)wn[0] : NAN;
         x->evals = wn[1] ? wsum[1] / (double)wn[1] : NAN;
         x->coverage = wn[2] ? wsum[2] / (double)wn[2] : NAN;
-        if (x->trials_ok && strcmp(x->status, "ok") != 0)
-            snprintf(x->status, sizeof x->status, "ok");   /* some trials failed, not all */
+        char failure[sizeof x->status];
+        snprintf(failure, sizeof failure, "%s", x->status);
+        trials_run_status(x->trials, x->trials_ok, strcmp(failure, "ok") ? failure : NULL,
+                          x->status, sizeof x->status);
         verdict_mean_ci(x->value, x->nvalues, &x->mean, &x->half);
         verdict_mean_ci(x->wall, x->nvalues, &x->wall_mean, &x->wall_half);
         x->p99_us = m ? p99 / (double)m : NAN;
@@ -463,7 +466,9 @@ static const char md_intro[] =
     "scene's own figure, counted in the first measured frame), `evals a pixel` the light "
     "evaluations the renderer's shading loops make a covered pixel (renderers with light "
     "lists only; above `lights a pixel` by what culling lets through in vain), `coverage` "
-    "the fraction of the screen the scene covers.\n";
+    "the fraction of the screen the scene covers. `trials` counts the ok ones and names a "
+    "partial run's status (`partial:<reason>`: some trials ok, the first other failed so); "
+    "a run with no ok trial shows its failure in place of its time.\n";
 
 /* Prints s left-aligned in a field of `width` columns (UTF-8 aware for "±"). */
 static void tcell(FILE *fp, const char *s, int width)
@@ -637,12 +642,14 @@ static bool table_write(const char *out_dir, FILE *terminal, char *err, size_t e
             const run_result *x = &runs[p->runs[i]];
             cells c;
             make_cells(x, fastest, i + 1, &c);
-            char ft[160], trials[64];
+            char ft[160], trials[160];
             if (isfinite(x->mean))
                 snprintf(ft, sizeof ft, "%s ± %s", c.mean, c.ci);
             else
                 snprintf(ft, sizeof ft, "%s", x->status);
-            snprintf(trials, sizeof trials, "%zu of %zu ok", x->trials_ok, x->trials);
+            snprintf(trials, sizeof trials, "%zu of %zu ok%s%s", x->trials_ok, x->trials,
+                     isfinite(x->mean) && strcmp(x->status, "ok") ? ", " : "",
+                     isfinite(x->mean) && strcmp(x->status, "ok") ? x->status : "");
             fprintf(f.fp, "| %s | ", c.rank);
             md_put(f.fp, rcfg[p->runs[i]]);
             fputs(" |", f.fp);

@@ -39,7 +39,7 @@ typedef struct run_result {
      * reach a covered pixel, the renderer's light evaluations a pixel, the covered
      * fraction, and the most lights (lights_count, the largest over the trials) */
     double reach_mean, evals, coverage, lights;
-    char status[96];           /* "ok", or the first trial status that is not */
+    char status[96];           /* the run's: trials_run_status (runner/trials.h) */
 } run_result;
 
 /* The runs of DIR/summary.csv in the order they first appear (plan order). False

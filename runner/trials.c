@@ -20,6 +20,26 @@ static const char *const csv_parts[] = {
 };
 #define NPARTS (sizeof csv_parts / sizeof csv_parts[0])
 
+const char *trials_run_status(size_t trials, size_t ok, const char *failure, char *out,
+                              size_t len)
+{
+    if (!failure || !*failure)
+        failure = "failed:not-run";
+    if (trials && ok >= trials)
+        snprintf(out, len, "ok");
+    else if (ok)
+        snprintf(out, len, "partial:%s",
+                 strncmp(failure, "failed:", 7) == 0 ? failure + 7 : failure);
+    else
+        snprintf(out, len, "%s", failure);
+    return out;
+}
+
+bool trials_status_measured(const char *status)
+{
+    return strcmp(status, "ok") == 0 || strncmp(status, "partial:", 8) == 0;
+}
+
 static void trial_path(char *dst, size_t len, const char *run_dir, uint32_t k, const char *name)
 {
     snprintf(dst, len, "%s/trial-%u/%s", run_dir, k, name);

@@ -10,6 +10,16 @@
 #include <stdint.h>
 #include "runner/manifest.h"
 
+/* A run's status from its trials', the one rule that meta.yaml, summary.csv's account,
+ * summary.md, summary.json, the report and the terminal all use: "ok" when all `trials`
+ * are ok; "partial:<reason>" when `ok` of them are (0 < ok < trials) and the first that
+ * is not says "failed:<reason>" (`failure`: that trial's status); else `failure` itself
+ * ("failed:not-run" when there is none). Returns out. */
+const char *trials_run_status(size_t trials, size_t ok, const char *failure, char *out,
+                              size_t len);
+/* Whether a run status (above) has measured trials to rank: ok or partial:<reason>. */
+bool trials_status_measured(const char *status);
+
 /* What the schedule knows of a run's trials, for meta.yaml. */
 typedef struct trials_schedule {
     const char *mode;          /* "interleaved" or "sequential" */
@@ -23,6 +33,6 @@ typedef struct trials_schedule {
  * trial, the trials' images, meta.yaml (trial 1's, its `status` the run's, `finished`
  * the last trial's, with `schedule` and a `trials` list), then files.txt; then the
  * trial folders are removed. A merge cut off part-way leaves every trial folder whole,
- * so that it can be done again. status: the run's ("ok" or its first failure). */
+ * so that it can be done again. status: the run's (trials_run_status). */
 bool trials_merge(const char *out_dir, const char *id, uint32_t n, const char *status,
                   const trials_schedule *sched, char *err, size_t errlen);

@@ -440,6 +440,7 @@ static void test_kv_canonical(void **state)
         {"allow_empty", "false"},
         {"debug.busy_us", "0"},
         {"debug.busy_renderer", ""},
+        {"debug.stall_trial", "0"},
         {NULL, NULL},
     };
     static const char *const full[][2] = {
@@ -521,6 +522,7 @@ static void test_kv_canonical(void **state)
         {"allow_empty", "false"},
         {"debug.busy_us", "0"},
         {"debug.busy_renderer", ""},
+        {"debug.stall_trial", "0"},
         {NULL, NULL},
     };
     static const struct {
