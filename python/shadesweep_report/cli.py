@@ -28,6 +28,20 @@ def setup_text(e):
     return "; ".join(parts)
 
 
+def runs_text(e, missing=None):
+    """The "Runs:" line of an experiment, from each run's status (Run.status), and the
+    partial runs named (their ok trials are shown)."""
+    nrun, nok, nfail, part = len(e.runs), len(e.measured()), len(e.failed()), e.partial()
+    text = (f"Runs: {nrun} planned, {nok} with measured trials, {nfail} failed"
+            + (f", {len(part)} partial" if part else "")
+            + (f", {len(missing)} without results" if missing else "") + ".\n")
+    if part:
+        text += ("Partial runs (their ok trials are used): " + "; ".join(
+            f"{r.id} {r.renderer}: {r.status}, {len(r.ok_rows)} of {len(r.rows)} trials ok"
+            for r in part[:12]) + (" ..." if len(part) > 12 else "") + ".\n")
+    return text
+
+
 def gather_meta(exps):
     gl, cpu, commits, started = set(), set(), set(), []
     for e in exps.values():
@@ -179,10 +193,8 @@ def main(argv):
         body.append(f"Output: {', '.join(code(f) for f in e.folders)}"
                     + (f" (experiment {', '.join(alias)})" if alias else "") + ".\n")
         body.append(f"Used: {setup_text(e)}.\n")
-        nrun, nok, nfail = len(e.runs), len(e.measured()), len(e.failed())
-        missing = [r.id for r in e.runs.values() if not r.rows]
-        body.append(f"Runs: {nrun} planned, {nok} with measured trials, {nfail} failed"
-                    + (f", {len(missing)} without results" if missing else "") + ".\n")
+        nok = len(e.measured())
+        body.append(runs_text(e, [r.id for r in e.runs.values() if not r.rows]))
         bad = [row for r in e.runs.values() for row in r.rows if row.get("status") != "ok"]
         if bad:
             body.append("Failed trials (left out): " + "; ".join(
@@ -212,8 +224,7 @@ def main(argv):
             body.append(f"## {raw}" + (": not a paper experiment\n" if papers else "\n"))
             body.append(f"Output: {', '.join(code(f) for f in e.folders)}.\n")
             body.append(f"Used: {setup_text(e)}.\n")
-            nrun, nok, nfail = len(e.runs), len(e.measured()), len(e.failed())
-            body.append(f"Runs: {nrun} planned, {nok} with measured trials, {nfail} failed.\n")
+            body.append(runs_text(e))
             body.append(sec.text())
     if broken:
         summary.append([", ".join(broken), "unreadable summary.csv", "-", "-"])
@@ -227,9 +238,12 @@ def main(argv):
     path = os.path.join(outdir, "report.md")
     write_atomic(out_fd, "report.md", ("\n".join(lines).rstrip() + "\n").encode("utf-8"), path)
     ran = [n for n in KNOWN if n in exps]
-    print(f"{ME}: wrote {path}: {len(ran)} of {len(KNOWN)} experiments "
-          f"({', '.join(ran) if ran else 'none recognised'}), {len(plots.made)} plot(s)"
-          + (f"; not recognised: {', '.join(sorted(unknown))}" if unknown else ""))
+    if papers:
+        print(f"{ME}: wrote {path}: {len(ran)} of {len(KNOWN)} experiments "
+              f"({', '.join(ran)}), {len(plots.made)} plot(s)"
+              + (f"; not recognised: {', '.join(sorted(unknown))}" if unknown else ""))
+    else:   # the user's own manifests: nothing to recognise
+        print(f"{ME}: wrote {path}: {', '.join(sorted(others))}, {len(plots.made)} plot(s)")
     return 0
 
 

@@ -193,6 +193,28 @@ class Run:
     def param(self, key):
         return self.params.get(key, "")
 
+    @property
+    def status(self):
+        """The run's status as shadesweep wrote it in meta.yaml (runner/trials.c
+        trials_run_status: ok, partial:<reason> or the failure); "" without results. A
+        meta.yaml with no status (a folder not written by shadesweep) gets the same rule
+        applied to the rows."""
+        if not self.rows:
+            return ""
+        st = self.meta().get("status")
+        if isinstance(st, str) and st:
+            return st
+        bad = [r.get("status") or "unknown" for r in self.rows if r.get("status") != "ok"]
+        if not bad:
+            return "ok"
+        reason = bad[0][len("failed:"):] if bad[0].startswith("failed:") else bad[0]
+        return f"partial:{reason}" if self.ok_rows else bad[0]
+
+    @property
+    def measured(self):
+        """Whether the run has trials to show: its status is ok or partial."""
+        return self.status == "ok" or self.status.startswith("partial:")
+
     def meta(self):
         if "meta" not in self._cache:
             self._cache["meta"] = read_yaml(os.path.join(self.dir, "meta.yaml"))
@@ -329,10 +351,13 @@ class Experiment:
                     run.params.setdefault(k, "" if v is None else str(v))
 
     def measured(self):
-        return [r for r in self.runs.values() if r.ok_rows]
+        return [r for r in self.runs.values() if r.measured and r.ok_rows]
 
     def failed(self):
-        return [r for r in self.runs.values() if r.rows and not r.ok_rows]
+        return [r for r in self.runs.values() if r.rows and not r.measured]
+
+    def partial(self):
+        return [r for r in self.runs.values() if r.status.startswith("partial:")]
 
     def select(self, renderer=None, scene=None, **params):
         """The runs with ok trials that match; parameter keys with '.' spelled '__'."""

@@ -59,7 +59,7 @@ def section_generic(s):
     failed = e.failed()
     if failed:
         s.w("Failed runs (not plotted): " + "; ".join(
-            f"{r.id} {r.renderer}: {(r.rows[0].get('status') if r.rows else 'no result')}"
+            f"{r.id} {r.renderer}: {r.status or 'no result'}"
             for r in failed[:12]) + (" ..." if len(failed) > 12 else "") + ".\n")
     # one line per renderer and value of every other parameter that varies (the lights'
     # count excepted: it is the x axis)
