@@ -77,9 +77,8 @@ static const char usage_text[] =
     "  version, -V, --version     the version and the commit it was built from\n"
     "  help, -h, --help           this (COMMAND --help: that command's options)\n"
     "\n"
-    "exit status: 0 every run of the folder complete and ok; 1 some run failed, partial\n"
-    "or missing (run's closing lines name them); 2 bad input or a fatal error; 128 + the\n"
-    "signal (130, 143, 129) when SIGINT, SIGTERM or SIGHUP stopped it.\n";
+    "exit status: 0 all runs complete and ok; 1 some run failed, partial or missing;\n"
+    "2 bad input or a fatal error; 128 + the signal when interrupted.\n";
 
 /* The usage of one command: its lines of usage_text, from "  NAME " to the next
  * command. False for a name that is not a command. */
