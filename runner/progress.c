@@ -112,7 +112,7 @@ void progress_finish(progress *pg, const char *counts)
         counts = own;
     }
     if (!pg->done)
-        fprintf(pg->out, "%s (nothing left to run), in %s\n", counts, el);
+        fprintf(pg->out, "%s (no trial run now), in %s\n", counts, el);
     else if (pg->runs_done == pg->done)
         fprintf(pg->out, "%s, in %s\n", counts, el);
     else

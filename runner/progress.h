@@ -27,5 +27,5 @@ void progress_run_end(progress *pg, const char *status, double fps);
 void progress_run_complete(progress *pg, const char *status);
 /* "COUNTS (N trials), in T": counts says what the folder holds (output_account_counts;
  * NULL: this sweep's runs are counted instead), then how many trials this sweep ran
- * where they differ from the runs ("nothing left to run" when none). */
+ * where they differ from the runs ("no trial run now" when none). */
 void progress_finish(progress *pg, const char *counts);

@@ -71,7 +71,7 @@ set +e
 "$SHADESWEEP" run --resume -o out st.yaml >resume.out 2>resume.err; rc=$?
 set -e
 [ $rc -eq 1 ] || fail "run --resume: exit $rc, want 1: $(cat resume.err)"
-grep -qx "2 runs, 0 failed, 1 partial (nothing left to run), in .*" resume.err ||
+grep -qx "2 runs, 0 failed, 1 partial (no trial run now), in .*" resume.err ||
   fail "resume's count: $(cat resume.err)"
 grep -qxF "$want" resume.err || fail "resume names no partial run: $(cat resume.err)"
 
