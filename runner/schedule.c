@@ -176,8 +176,8 @@ static bool run_one_trial(const experiment *e, const run_options *o, progress *p
         fprintf(stderr, "shadesweep: out of memory\n");
         return false;
     }
-    progress_run_begin(pg, ++*nth, s->id, s->p.renderer, s->p.width, s->p.height, k,
-                       s->p.trials);
+    progress_run_begin(pg, ++*nth, s->id, s->p.renderer, s->p.width, s->p.height, s->p.scene,
+                       k, s->p.trials);
     trial_outcome out;
     if (!run_trial_isolated(e, s, o, pg, k, place, run_trial_timeout_s(&s->p), &out))
         return false;
@@ -204,8 +204,12 @@ static bool run_one_trial(const experiment *e, const run_options *o, progress *p
         snprintf(r->status, sizeof r->status, "%s", out.status);
         snprintf(r->message, sizeof r->message, "%s", out.message);
     }
-    if (run_status_ends_run(out.status))
+    if (run_status_ends_run(out.status)) {
         r->ended = true;
+        uint32_t want = s->p.trials ? s->p.trials : TRIALS_AUTO_MIN;
+        progress_unexpect(pg, s->p.renderer, s->p.width, s->p.height, s->p.scene,
+                          want > k ? want - k : 0);
+    }
     slot_timed_out(r, k, out.status);
     return true;
 }
@@ -426,6 +430,13 @@ int run_plan(const experiment *e, const plan *p, const run_options *o)
 
     progress pg;
     progress_init(&pg, trials_left, progress_out);
+    for (size_t i = 0; i < p->nruns; i++) {   /* what the ETA counts */
+        const run_slot *r = &slots[i];
+        uint32_t want = r->s->p.trials ? r->s->p.trials : TRIALS_AUTO_MIN;
+        if (r->selected && !r->complete && !r->ended && want > r->done)
+            progress_expect(&pg, r->s->p.renderer, r->s->p.width, r->s->p.height,
+                            r->s->p.scene, want - r->done);
+    }
     size_t nth = 0;
     /* the sweep points in plan order, each with its runs in plan order */
     for (size_t g = 0; g < p->ngroups && !run_stop_signal(); g++) {
@@ -439,6 +450,7 @@ int run_plan(const experiment *e, const plan *p, const run_options *o)
         }
     }
     progress_finish(&pg);
+    progress_free(&pg);
 
     /* The exit status describes the folder as it stands, not this invocation's runs. */
     size_t missing = 0, failed = 0;
