@@ -111,8 +111,11 @@ void experiment_free(experiment *e);   /* NULL is fine */
 
 /* The smoke variant of a manifest (`run --smoke`), for CI and for a quick look before
  * an overnight sweep: every run at 160x120 (or smaller if the manifest asks for
- * smaller), one trial, no warm-up, at most 2 s (or 120 frames) measured; sweeps of
- * resolution, trials, warm-up and duration collapse to that one value; screenshot
+ * smaller), one trial, no warm-up, at most 2 s (or 120 frames) measured, and a
+ * draw_limit of 2 s over its priming and measured frames together (a frame that is
+ * slow stops the run early; a draw_limit the manifest sets is kept); sweeps of
+ * resolution, trials, warm-up, duration and
+ * draw_limit collapse to that one value; screenshot
  * and error times past the end move to the middle of the run. The name gets
  * "-smoke" and the manifest hash changes with it, so a smoke folder never merges
  * with a full one. */

@@ -15,6 +15,8 @@
 
 /* >>smoke */
 
+#define SMOKE_SECONDS 2.0   /* of frames a smoke trial draws, priming included */
+
 static void smoke_span(span *s, double max_s, uint32_t max_frames)
 {
     if (s->kind == SPAN_FRAMES)
@@ -40,7 +42,8 @@ static void smoke_times(double *t, size_t *n, double end)
 
 void experiment_make_smoke(experiment *e)
 {
-    static const char *const collapse[] = {"resolution", "trials", "warmup", "duration"};
+    static const char *const collapse[] = {"resolution", "trials", "warmup", "duration",
+                                           "draw_limit"};
     size_t k = 0;
     for (size_t i = 0; i < e->naxes; i++) {
         bool drop = false;
@@ -63,7 +66,12 @@ void experiment_make_smoke(experiment *e)
     }
     b->trials = 1;
     b->warmup = (span){.kind = SPAN_FRAMES, .frames = 0};
-    smoke_span(&b->duration, 2.0, 120);
+    smoke_span(&b->duration, SMOKE_SECONDS, 120);
+    /* a slow frame (16384 lights) must not stretch 120 frames, or the priming, far
+     * past the promise: the trial stops drawing once SMOKE_SECONDS are spent, unless
+     * the manifest (or --set) gives its own draw_limit (exact frame counts in tests) */
+    if (!(b->draw_limit_s > 0))
+        b->draw_limit_s = SMOKE_SECONDS;
     double end = b->duration.kind == SPAN_FRAMES
                      ? b->duration.frames * (b->clock == RUN_CLOCK_FIXED ? b->step : 1.0 / 60)
                      : b->duration.seconds;

@@ -1,5 +1,8 @@
 #include "runner/progress.h"
 
+#include <math.h>
+#include <stdint.h>
+#include <stdlib.h>
 #include <string.h>
 #include <time.h>
 #include <unistd.h>
@@ -28,31 +31,125 @@ static void fmt_duration(char *buf, size_t len, double s)
         snprintf(buf, len, "%lus", t);
 }
 
-/* ETA from the mean duration of completed runs; unknown before the first. */
+static size_t kind_of(const progress *pg, const char *renderer, int width, int height,
+                      const char *scene)
+{
+    char key[128];
+    snprintf(key, sizeof key, "%s %dx%d %s", renderer, width, height, scene);
+    size_t i = 0;
+    while (i < pg->nkinds && strcmp(pg->kinds[i].key, key) != 0)
+        i++;
+    return i;
+}
+
+bool progress_expect(progress *pg, const char *renderer, int width, int height,
+                     const char *scene, size_t trials)
+{
+    size_t i = kind_of(pg, renderer, width, height, scene);
+    if (i == pg->nkinds) {
+        if (pg->nkinds == pg->cap) {
+            size_t cap = pg->cap ? 2 * pg->cap : 16;
+            progress_kind *k = realloc(pg->kinds, cap * sizeof *k);
+            if (!k)
+                return false;
+            pg->kinds = k;
+            pg->cap = cap;
+        }
+        progress_kind *k = &pg->kinds[pg->nkinds++];
+        memset(k, 0, sizeof *k);
+        snprintf(k->key, sizeof k->key, "%s %dx%d %s", renderer, width, height, scene);
+    }
+    pg->kinds[i].left += trials;
+    return true;
+}
+
+void progress_unexpect(progress *pg, const char *renderer, int width, int height,
+                       const char *scene, size_t trials)
+{
+    size_t i = kind_of(pg, renderer, width, height, scene);
+    if (i < pg->nkinds)
+        pg->kinds[i].left -= trials < pg->kinds[i].left ? trials : pg->kinds[i].left;
+}
+
+void progress_record(progress *pg, double seconds)
+{
+    if (pg->cur >= pg->nkinds)
+        return;
+    progress_kind *k = &pg->kinds[pg->cur];
+    k->measured++;
+    k->seconds += seconds;
+    if (k->left)
+        k->left--;
+}
+
+double progress_eta_s(const progress *pg, double elapsed, size_t *guessed)
+{
+    double slowest = NAN;
+    for (size_t i = 0; i < pg->nkinds; i++)
+        if (pg->kinds[i].measured) {
+            double mean = pg->kinds[i].seconds / (double)pg->kinds[i].measured;
+            slowest = isnan(slowest) || mean > slowest ? mean : slowest;
+        }
+    *guessed = 0;
+    if (isnan(slowest))
+        return NAN;
+    double left = 0;
+    for (size_t i = 0; i < pg->nkinds; i++) {
+        const progress_kind *k = &pg->kinds[i];
+        double mean = k->measured ? k->seconds / (double)k->measured : slowest;
+        if (!k->measured)
+            *guessed += k->left;
+        double t = mean * (double)k->left;
+        /* the trial running is one of those left: what it has spent is done */
+        if (i == pg->cur && k->left)
+            t -= elapsed < mean ? elapsed : mean;
+        left += t;
+    }
+    return left;
+}
+
+/* "6m27s", "~6m27s (3 trials guessed)" or "unknown". */
 static void eta(const progress *pg, double now, char *buf, size_t len)
 {
-    if (pg->done == 0) {
-        snprintf(buf, len, "?");
+    size_t guessed;
+    double left = progress_eta_s(pg, now - pg->run_t0, &guessed);
+    if (isnan(left)) {
+        snprintf(buf, len, "unknown");
         return;
     }
-    double per_run = (pg->run_t0 - pg->t0) / (double)pg->done;
-    double left = per_run * ((double)pg->total - (double)pg->done) - (now - pg->run_t0);
-    fmt_duration(buf, len, left > 0 ? left : 0);
+    char d[32];
+    fmt_duration(d, sizeof d, left);
+    if (guessed)
+        snprintf(buf, len, "~%s (%zu trial%s guessed)", d, guessed, guessed == 1 ? "" : "s");
+    else
+        snprintf(buf, len, "%s", d);
 }
 
 void progress_init(progress *pg, size_t total, FILE *out)
 {
     memset(pg, 0, sizeof *pg);
     pg->out = out;
-    pg->tty = isatty(fileno(out)) == 1;
+    pg->tty = out && isatty(fileno(out)) == 1;
     pg->total = total;
     pg->t0 = pg->run_t0 = progress_now();
+    pg->cur = SIZE_MAX;
+}
+
+void progress_free(progress *pg)
+{
+    free(pg->kinds);
+    pg->kinds = NULL;
+    pg->nkinds = pg->cap = 0;
+    pg->cur = SIZE_MAX;
 }
 
 void progress_run_begin(progress *pg, size_t k, const char *id, const char *renderer,
-                        int width, int height, unsigned trial, unsigned trials)
+                        int width, int height, const char *scene, unsigned trial,
+                        unsigned trials)
 {
     pg->run_t0 = progress_now();
+    size_t kind = kind_of(pg, renderer, width, height, scene);
+    pg->cur = kind < pg->nkinds ? kind : SIZE_MAX;
     char of[32] = "";
     if (trials != 1)
         snprintf(of, sizeof of, trials ? " of %u" : " (auto)", trials);
@@ -74,7 +171,7 @@ void progress_tick(progress *pg, unsigned trial, unsigned lights, double fps)
     if (now - pg->last_draw < 0.25)
         return;
     pg->last_draw = now;
-    char el[32], et[32], bar[PROGRESS_BAR + 1];
+    char el[32], et[80], bar[PROGRESS_BAR + 1];
     fmt_duration(el, sizeof el, now - pg->t0);
     eta(pg, now, et, sizeof et);
     size_t filled = pg->total ? pg->done * PROGRESS_BAR / pg->total : 0;
@@ -92,8 +189,10 @@ void progress_run_end(progress *pg, const char *status, double fps)
     if (strcmp(status, "ok") != 0)
         pg->failed++;
     double now = progress_now();
+    progress_record(pg, now - pg->run_t0);
+    pg->cur = SIZE_MAX;
     pg->run_t0 = now;
-    char el[32], et[32];
+    char el[32], et[80];
     fmt_duration(el, sizeof el, now - pg->t0);
     eta(pg, now, et, sizeof et);
     if (pg->tty)

@@ -223,10 +223,17 @@ bool run_trial_isolated(const experiment *e, const run_spec *s, const run_option
         isolate_status(&ir, st.status, sizeof st.status);
         char tail[200];
         isolate_log_tail(log_path, 3, tail, sizeof tail);
-        snprintf(st.message, sizeof st.message, "%.80s after %.1f s%s%.200s",
-                 ir.oom_killed ? "killed by the kernel's OOM killer (the cgroup counted it)"
-                               : st.status + 7,
-                 ir.seconds, tail[0] ? ": " : "", tail);
+        if (ir.outcome == ISOLATE_TIMEOUT && !ir.oom_killed) {
+            char limit[160];
+            run_timeout_text(&s->p, limit, sizeof limit);
+            snprintf(st.message, sizeof st.message, "stopped after %.1f s: %s%s%.200s",
+                     ir.seconds, limit, tail[0] ? ": " : "", tail);
+        } else {
+            snprintf(st.message, sizeof st.message, "%.80s after %.1f s%s%.200s",
+                     ir.oom_killed ? "killed by the kernel's OOM killer (the cgroup counted it)"
+                                   : st.status + 7,
+                     ir.seconds, tail[0] ? ": " : "", tail);
+        }
         char note[240];
         if (memory_explain(st.status, tail, ir.peak_vm_kb, ir.peak_rss_kb, note, sizeof note)) {
             char m[sizeof st.message];
@@ -270,12 +277,20 @@ bool run_status_ends_run(const char *status)
 
 static double seconds_of(const span *sp) { return sp->kind == SPAN_SECONDS ? sp->seconds : 0; }
 
-double run_timeout_s(const run_params *p)
+double run_trial_timeout_s(const run_params *p)
 {
     if (p->timeout_s > 0)
         return p->timeout_s;
-    double trials = p->trials ? p->trials : TRIALS_AUTO_MAX;
-    return 600.0 + 3.0 * trials * (seconds_of(&p->warmup) + seconds_of(&p->duration));
+    return 600.0 + 3.0 * (seconds_of(&p->warmup) + seconds_of(&p->duration));
+}
+
+void run_timeout_text(const run_params *p, char *buf, size_t len)
+{
+    if (p->timeout_s > 0)
+        snprintf(buf, len, "timeout: %g s a trial, warm-up included", p->timeout_s);
+    else
+        snprintf(buf, len, "timeout: 0, so %g s a trial (600 + 3 x (warm-up + duration)), "
+                 "warm-up included", run_trial_timeout_s(p));
 }
 
 /* EGL device N exists: asked in a child, so that the parent never loads a GL driver. */

@@ -23,8 +23,8 @@ typedef struct run_options {
 /* The sweep (runner/schedule.c): the runs of each sweep point in rounds, round k
  * running trial k of each of them in a seeded random order (schedule: interleaved) or
  * each run's trials back to back (sequential), every trial in a child process of its own
- * (isolate.h) with what is left of its run's time limit; a crash, hang or OOM kill fails
- * that run and the sweep goes on. A run's files are merged from its trials' when its
+ * (isolate.h) with its own time limit (run_trial_timeout_s); a crash, hang or OOM kill
+ * fails that run and the sweep goes on. A run's files are merged from its trials' when its
  * last trial is complete (runner/trials.c). SIGINT/SIGTERM/SIGHUP discard the trial in
  * progress, write the summary of the complete runs and return 128 + the signal, after
  * printing how to resume. The folder is open and locked (folder.h) and has its
@@ -71,9 +71,11 @@ bool run_status_ends_run(const char *status);
 /* "SIGINT", "SIGTERM" or "SIGHUP". */
 const char *run_stop_name(int sig);
 
-/* The run's time limit: its `timeout`, or 600 + 3 x trials x (warm-up + duration)
- * seconds (spans in frames count 0). */
-double run_timeout_s(const run_params *p);
+/* Each trial's time limit, its start-up, priming and warm-up included: the run's
+ * `timeout`, or 600 + 3 x (warm-up + duration) seconds (spans in frames count 0). */
+double run_trial_timeout_s(const run_params *p);
+/* That limit as messages quote it: "timeout: 3 s a trial, warm-up included". */
+void run_timeout_text(const run_params *p, char *buf, size_t len);
 
 /* From now on SIGINT, SIGTERM and SIGHUP (to this process or its whole group) only
  * ask the sweep to stop: run_plan discards the run in progress and returns 128 + the

@@ -3,7 +3,7 @@
  *   run_setup.c  the context, scene, renderers, reference and files of a trial
  *   run_trial.c  the frame loop: priming, measuring, screenshots, error comparisons
  *   run_meta.c   the trial's meta.yaml
- *   run.c        one trial in a child process, its result, signals, the run's timeout
+ *   run.c        one trial in a child process, its result, signals, its timeout
  * Nothing here is for code outside these four files (runner/run.h is). */
 #include "runner/run.h"
 

@@ -389,7 +389,8 @@ bool run_prime_variants(run_state *st)
     n = m;
     double t0 = progress_now();
     frame_stats fs;
-    for (size_t i = 0; i < n; i++) {
+    size_t i = 0;
+    for (; i < n && !(i && p->draw_limit_s > 0 && progress_now() - t0 >= p->draw_limit_s); i++) {
         if (!draw_frame(st, times[i], &fs, false)) {
             char why[sizeof st->err];
             memcpy(why, st->err, sizeof why);
@@ -400,7 +401,7 @@ bool run_prime_variants(run_state *st)
         renderer_collect(st->r, &fs);
     }
     st->prime_s = progress_now() - t0;
-    st->prime_frames = n;
+    st->prime_frames = i;
     if (!run_gl_clean(st, "prime")) {
         snprintf(st->err, sizeof st->err, "GL error while priming the renderer");
         run_set_status(st, "gl-error");
@@ -482,6 +483,17 @@ static bool capture_is_due(const run_params *p, double t, const bool *shot_done,
 {
     return next_due(p->screenshots, p->nscreenshots, shot_done, t, 0) < p->nscreenshots ||
            next_due(p->error_at, p->nerror_at, error_done, t, 0) < p->nerror_at;
+}
+
+/* The earliest screenshot or error time not yet taken; INFINITY: none. */
+static double next_capture(const run_params *p, const bool *shot_done, const bool *error_done)
+{
+    double t = INFINITY;
+    for (size_t i = 0; i < p->nscreenshots; i++)
+        t = shot_done[i] ? t : fmin(t, p->screenshots[i]);
+    for (size_t i = 0; i < p->nerror_at; i++)
+        t = error_done[i] ? t : fmin(t, p->error_at[i]);
+    return t;
 }
 
 /* A measured frame's quantities of results/metrics.def, each from its `from`. */
@@ -616,8 +628,11 @@ void run_one_trial(run_state *st, uint32_t trial, trial_result *tr)
     double loadavg = contention_loadavg_1m();
     unsigned ncpus = contention_usable_cpus();
 
+    /* draw_limit: the seconds of frames the trial may draw, priming included */
+    const double limit = p->draw_limit_s > 0 ? p->draw_limit_s - st->prime_s : INFINITY;
     double w0 = progress_now();
-    for (size_t k = 0; !span_done(&p->warmup, k, progress_now() - w0); k++) {
+    for (size_t k = 0; !span_done(&p->warmup, k, progress_now() - w0) &&
+                       progress_now() - w0 < limit; k++) {
         if (!draw_frame(st, schedule_time(p, k, progress_now() - w0), &fs, false)) {
             snprintf(tr->status, sizeof tr->status, "failed:sync");
             return;
@@ -633,6 +648,7 @@ void run_one_trial(run_state *st, uint32_t trial, trial_result *tr)
         snprintf(tr->status, sizeof tr->status, "failed:gl-error");
         return;
     }
+    const double measure_limit = limit - (progress_now() - w0);
     /* The lights as the measured frames will have them: after every step of setup that
      * can change them, right before the first measured frame (once a run: trial 1's). */
     if (trial == 1) {
@@ -715,6 +731,14 @@ void run_one_trial(run_state *st, uint32_t trial, trial_result *tr)
         progress_tick(st->pg, trial, rec.lights, (double)(k + 1) / end);
         if (span_done(&p->duration, k + 1, end))
             break;
+        if (end >= measure_limit) {   /* draw_limit spent: the captures left, and no more */
+            double next = next_capture(p, shot_done, error_done);
+            if (next == INFINITY)
+                break;
+            /* clock: fixed goes straight to the frame that takes the next one */
+            if (p->clock == RUN_CLOCK_FIXED && p->step > 0 && ceil(next / p->step - 1e-9) > k + 1)
+                k = (size_t)ceil(next / p->step - 1e-9) - 1;
+        }
         cpu0 = contention_process_cpu_s();
         start = mclock_now(&mc);
         harness_s += start - end;

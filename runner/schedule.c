@@ -33,6 +33,8 @@ typedef struct run_slot {
     uint32_t cap;              /* of order and value */
     char status[96];           /* the first failure among its trials, or "ok" */
     char message[512];         /* ... and why, for the rows of the trials it did not run */
+    char not_run[600];         /* a timeout ended it: the message of the trials it did not
+                                * run (failed:not-run, not the timeout's status) */
     double used_s;             /* wall time of its trials' processes */
 } run_slot;
 
@@ -154,6 +156,18 @@ static const char *schedule_name(const run_params *p)
     return p->schedule == RUN_SCHEDULE_SEQUENTIAL ? "sequential" : "interleaved";
 }
 
+/* Trial k of r ended with `status`: a timeout ends the run, and its later trials are
+ * failed:not-run, saying why. */
+static void slot_timed_out(run_slot *r, uint32_t k, const char *status)
+{
+    if (strcmp(status, "failed:timeout") != 0 || r->not_run[0])
+        return;
+    char limit[160];
+    run_timeout_text(&r->s->p, limit, sizeof limit);
+    snprintf(r->not_run, sizeof r->not_run, "not run: trial %u was stopped by its limit (%s), "
+             "which ends the run", k, limit);
+}
+
 /* Runs trial k of r (place: its place in its round). False: the sweep cannot go on. */
 static bool run_one_trial(const experiment *e, const run_options *o, progress *pg, run_slot *r,
                           uint32_t k, uint32_t place, size_t *nth)
@@ -163,11 +177,10 @@ static bool run_one_trial(const experiment *e, const run_options *o, progress *p
         fprintf(stderr, "shadesweep: out of memory\n");
         return false;
     }
-    progress_run_begin(pg, ++*nth, s->id, s->p.renderer, s->p.width, s->p.height, k,
-                       s->p.trials);
-    double left = run_timeout_s(&s->p) - r->used_s;
+    progress_run_begin(pg, ++*nth, s->id, s->p.renderer, s->p.width, s->p.height, s->p.scene,
+                       k, s->p.trials);
     trial_outcome out;
-    if (!run_trial_isolated(e, s, o, pg, k, place, left > 1 ? left : 1, &out))
+    if (!run_trial_isolated(e, s, o, pg, k, place, run_trial_timeout_s(&s->p), &out))
         return false;
     r->used_s += out.seconds;
     if (out.interrupted)
@@ -193,8 +206,13 @@ static bool run_one_trial(const experiment *e, const run_options *o, progress *p
         snprintf(r->status, sizeof r->status, "%s", out.status);
         snprintf(r->message, sizeof r->message, "%s", out.message);
     }
-    if (run_status_ends_run(out.status))
+    if (run_status_ends_run(out.status)) {
         r->ended = true;
+        uint32_t want = s->p.trials ? s->p.trials : TRIALS_AUTO_MIN;
+        progress_unexpect(pg, s->p.renderer, s->p.width, s->p.height, s->p.scene,
+                          want > k ? want - k : 0);
+    }
+    slot_timed_out(r, k, out.status);
     return true;
 }
 
@@ -204,9 +222,9 @@ static bool finish_run(const experiment *e, const run_options *o, progress *pg, 
 {
     const run_spec *s = r->s;
     for (uint32_t k = r->done + 1; k <= n; k++) {
-        if (!run_write_missing_trial(e, s, o, k, 0,
-                                     strcmp(r->status, "ok") ? r->status : "failed:not-run",
-                                     r->message))
+        const char *st = r->not_run[0] || strcmp(r->status, "ok") == 0 ? "failed:not-run"
+                                                                      : r->status;
+        if (!run_write_missing_trial(e, s, o, k, 0, st, r->not_run[0] ? r->not_run : r->message))
             return false;
         if (!slot_order(r, k, 0))
             return false;
@@ -333,6 +351,7 @@ static void resume_slot(const run_options *o, run_slot *r, size_t *kept, size_t 
             snprintf(r->status, sizeof r->status, "%s", tc.status);
         if (tc.failed && run_status_ends_run(tc.status))
             r->ended = true;
+        slot_timed_out(r, k, tc.status);
         /* without memory the value stays NAN: auto then sees one pair fewer */
         (void)slot_value(o->out_dir, r, k);
         k++;
@@ -416,6 +435,13 @@ int run_plan(const experiment *e, const plan *p, const run_options *o)
 
     progress pg;
     progress_init(&pg, trials_left, progress_out);
+    for (size_t i = 0; i < p->nruns; i++) {   /* what the ETA counts */
+        const run_slot *r = &slots[i];
+        uint32_t want = r->s->p.trials ? r->s->p.trials : TRIALS_AUTO_MIN;
+        if (r->selected && !r->complete && !r->ended && want > r->done)
+            progress_expect(&pg, r->s->p.renderer, r->s->p.width, r->s->p.height,
+                            r->s->p.scene, want - r->done);
+    }
     size_t nth = 0;
     /* the sweep points in plan order, each with its runs in plan order */
     for (size_t g = 0; g < p->ngroups && !run_stop_signal(); g++) {
@@ -430,6 +456,7 @@ int run_plan(const experiment *e, const plan *p, const run_options *o)
     }
     /* The account and the exit status describe the folder as it stands, not this
      * invocation's runs. */
+    progress_free(&pg);   /* the ETA's costs: only the closing line is left */
     run_account acct;
     if (!output_merge_summary(o->out_dir, p, o->shard, &acct, err, sizeof err)) {
         progress_finish(&pg, NULL);

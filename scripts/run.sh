@@ -2,8 +2,11 @@
 # Set-up if needed, build, then `shadesweep ARGS`.
 # With no arguments: the quick-start experiment on EGL + llvmpipe, into out/quickstart,
 # ending with the ranked table and a plot of frame time against lights.
+# On a terminal it says what it is doing (scripts/say.sh).
 set -euo pipefail
 root=$(cd "$(dirname "$0")/.." && pwd)
+. "$root/scripts/say.sh"
+say "run: checking the packages it needs (scripts/setup.sh)"
 "$root/scripts/setup.sh"
 "$root/scripts/build.sh" "$root/build"
 exe="$root/build/runner/shadesweep"
@@ -18,8 +21,10 @@ if [ $# -eq 0 ]; then
   rc=0
   log=$(mktemp)
   trap 'rm -f "$log"' EXIT
+  say "run: running experiments/quickstart.yaml into out/quickstart"
   "$exe" run --force experiments/quickstart.yaml | tee "$log" || rc=${PIPESTATUS[0]}
   [ $rc -eq 2 ] && exit 2
+  say "run: writing the report (out/quickstart/report.md)"
   "$exe" report out/quickstart >&2 &&
     echo "plot: out/quickstart/plots/quickstart_frametime_lights.png (in out/quickstart/report.md)"
   grep -E '^crossovers?: ' "$log" || true

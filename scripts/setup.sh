@@ -2,6 +2,7 @@
 # Installs the Debian packages shadesweep needs to build, run and test, when any is
 # missing. Quiet when nothing needs installing. Safe to run any number of times.
 set -euo pipefail
+. "$(dirname "$0")/say.sh"
 
 packages=(
   meson ninja-build pkg-config gcc g++
@@ -24,12 +25,15 @@ for p in "${packages[@]}"; do
 done
 [ ${#missing[@]} -eq 0 ] && exit 0
 
-echo "setup: installing ${missing[*]}" >&2
+echo "setup: installing packages (apt-get): ${missing[*]}" >&2
 sudo=()
 if [ "$(id -u)" -ne 0 ]; then
   command -v sudo >/dev/null || { echo "setup: need root (or sudo) to install: ${missing[*]}" >&2; exit 1; }
   sudo=(sudo)
 fi
 export DEBIAN_FRONTEND=noninteractive
+say "setup: updating the package lists (apt-get update)"
 "${sudo[@]}" apt-get update -qq >&2
+say "setup: installing ${#missing[@]} packages (apt-get install)"
 "${sudo[@]}" apt-get install -y -qq --no-install-recommends "${missing[@]}" >&2
+say "setup: done"

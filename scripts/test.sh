@@ -5,6 +5,8 @@
 set -uo pipefail
 root=$(cd "$(dirname "$0")/.." && pwd)
 cd "$root"
+. scripts/say.sh   # on a terminal: what it is doing
+say "test: checking the packages it needs (scripts/setup.sh)"
 scripts/setup.sh || exit 1
 
 # GL tests run on Mesa's llvmpipe, in debug contexts (tests/meson.build sets that).
@@ -16,6 +18,7 @@ logs=()
 run_suite() {   # name builddir [meson setup options...]
   local name=$1 dir=$2; shift 2
   rm -f "$dir/meson-logs/testlog.json"   # a stale log must not count
+  say "test: building the $name build ($dir)"
   if ! scripts/build.sh "$dir" "$@"; then
     echo "test: $name build failed" >&2
     status=1
@@ -44,6 +47,7 @@ logs+=("build-asan/meson-logs/testlog.json")
 # random time-bound run (SHADESWEEP_FUZZ_SEED= empty) does not. Counted as one test.
 mkdir -p build-fuzz
 fuzz_log=build-fuzz/ci-result.json
+say "test: running the fuzzers (scripts/fuzz.sh, ${SHADESWEEP_FUZZ_SECONDS:-120} s)"
 if FUZZ_SEED=${SHADESWEEP_FUZZ_SEED-1337} scripts/fuzz.sh "${SHADESWEEP_FUZZ_SECONDS:-120}" >&2; then
   echo '{"name": "fuzz-manifest", "result": "OK"}' > "$fuzz_log"
 else

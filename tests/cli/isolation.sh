@@ -34,21 +34,26 @@ want = []
 for scene, status in [("test-abort", "failed:SIGABRT"), ("test-segv", "failed:SIGSEGV"),
                       ("test-hang", "failed:timeout"), ("test-sigkill", "failed:SIGKILL"),
                       ("empty", "ok")]:
-    want += [(scene, "1", status), (scene, "2", status)]
+    # a timeout is one trial's: the trial after it did not run
+    want += [(scene, "1", status), (scene, "2", "failed:not-run" if status == "failed:timeout" else status)]
 if got != want: fail(f"statuses {got}")
 for r in rows:
     if r["status"] == "ok":
         if r["message"] or r["frames"] != "10": fail(f"ok row {r}")
         continue
     # the tail of the run's log, with the scene's own last words, and no measurements
-    if "as this test scene does" not in r["message"]: fail(f"message lacks the log tail: {r}")
+    if r["status"] == "failed:not-run":
+        if not r["message"].startswith("not run: trial 1 was stopped by its limit (timeout: 3 s"):
+            fail(f"not-run message: {r}")
+    elif "as this test scene does" not in r["message"]: fail(f"message lacks the log tail: {r}")
     if r["frames"] != "0" or r["fps_mean"] != "": fail(f"failed row has numbers: {r}")
     d = os.path.join("out/faults/runs", r["run_id"])
     if not os.path.exists(os.path.join(d, "meta.yaml")): fail("failed run lacks meta.yaml")
     if [f for f in os.listdir(d) if ".tmp." in f]: fail(f"temporary files left in {d}")
     if os.path.exists(os.path.join(d, "frames.csv")): fail("a crashed run has a final frames.csv")
 timeout = [r for r in rows if r["scene"] == "test-hang"][0]["message"]
-if not timeout.startswith("timeout after 3."): fail(f"timeout message: {timeout}")
+if not timeout.startswith("stopped after 3.") or "timeout: 3 s a trial, warm-up included" not in timeout:
+    fail(f"timeout message: {timeout}")
 PY
 # (the priming frames before the first trial get there first: t = 0.250 at step 0.05)
 grep -q "test-abort: failing at t = 0\.2[0-9]* s" out/faults/runs/*/log.txt || fail "log.txt of the aborted run"

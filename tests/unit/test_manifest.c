@@ -377,6 +377,7 @@ static void test_kv_canonical(void **state)
         {"step", "0.016666666666666666"},
         {"sync", "finish"},
         {"timeout", "0"},
+        {"draw_limit", "0"},
         {"gbuffer.preset", "curtis"},
         {"gbuffer.position", "preset"},
         {"gbuffer.normal", "preset"},
@@ -459,6 +460,7 @@ static void test_kv_canonical(void **state)
         {"step", "0.1"},
         {"sync", "fence"},
         {"timeout", "7200"},
+        {"draw_limit", "0"},
         {"gbuffer.preset", "curtis"},
         {"gbuffer.position", "preset"},
         {"gbuffer.normal", "preset"},
@@ -617,7 +619,7 @@ static const bad_case bad_cases[] = {
     {"unknown_top_key.yaml",
      {"1:1: duration: expected {seconds: S} or {frames: N}, found nothing",
       "5:1: durtion: expected one of shadesweep, name, description, scene, renderers, "
-      "resolution, trials, schedule, measure, warmup, duration, clock, step, sync, timeout, gbuffer, deferred, forward, tiles, clustered, deferred_lighting, shadows, hdr, msaa, fog, aa, translucency, shading, environment, camera, error, lights, exposure, tonemap, outputs, allow_empty, debug, sweep, "
+      "resolution, trials, schedule, measure, warmup, duration, clock, step, sync, timeout, draw_limit, gbuffer, deferred, forward, tiles, clustered, deferred_lighting, shadows, hdr, msaa, fog, aa, translucency, shading, environment, camera, error, lights, exposure, tonemap, outputs, allow_empty, debug, sweep, "
       "found 'durtion'"}},
     {"unknown_nested_key.yaml",
      {"8:3: lights.cnt: expected one of placement, seed, rng, count, radius, overlap, color_max, "
@@ -729,7 +731,7 @@ static const bad_case bad_cases[] = {
       "found 17 times"}},
     {"sweep_unknown_path.yaml",
      {"7:3: sweep.lights.cnt: expected a sweepable parameter (one of scene, resolution, "
-      "trials, warmup, duration, clock, step, sync, timeout, gbuffer.preset, gbuffer.position, "
+      "trials, warmup, duration, clock, step, sync, timeout, draw_limit, gbuffer.preset, gbuffer.position, "
       "gbuffer.normal, deferred.light_volumes, deferred.separate_specular, "
        "deferred.sky_stencil, "
        "forward.illumination_sets, forward.directional_in_base, forward.light_buffer, tiles.size, "
