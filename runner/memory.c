@@ -183,12 +183,14 @@ static void estimate(const run_params *p, const scene_facts *sc, memory_estimate
                  ", light lists %s, scene %s, read-back %s", l, s, r);
 }
 
+static const scene_facts *cached_facts(const run_params *p, bool build);
+
 void memory_estimate_run(const run_params *p, const scene *sc, memory_estimate *out)
 {
     scene_facts f;
     if (sc)
         facts_of(sc, &f);
-    estimate(p, sc ? &f : NULL, out);
+    estimate(p, sc ? &f : cached_facts(p, false), out);
 }
 
 /* ---- limits */
@@ -320,8 +322,8 @@ static bool same_scene(const run_params *a, const run_params *b)
 
 /* The facts of p's scene, built without GL in this process once per scene and camera
  * (a sweep's trials and renderers share them: canyon takes a second to build); NULL when
- * it does not build. */
-static const scene_facts *cached_facts(const run_params *p)
+ * it does not build, or when it is not built yet and `build` is false. */
+static const scene_facts *cached_facts(const run_params *p, bool build)
 {
     enum { SLOTS = 8 };
     static struct {
@@ -333,6 +335,8 @@ static const scene_facts *cached_facts(const run_params *p)
     for (unsigned i = 0; i < SLOTS; i++)
         if (cache[i].used && same_scene(&cache[i].key, p))
             return cache[i].built ? &cache[i].facts : NULL;
+    if (!build)
+        return NULL;
     unsigned i = next++ % SLOTS;
     char err[512];
     scene_file_options fo;
@@ -355,7 +359,7 @@ bool memory_check_run(const run_params *p, char *msg, size_t len)
     const char *env = getenv("SHADESWEEP_MEMORY_CHECK");
     if (env && strcmp(env, "off") == 0)
         return true;
-    const scene_facts *f = cached_facts(p);
+    const scene_facts *f = cached_facts(p, true);
     if (!f)
         return true;   /* the scene does not build: the trial says why */
     memory_estimate e;

@@ -29,7 +29,8 @@ typedef struct memory_estimate {
     char what[320];                             /* "targets 2.9 GiB at 16384x16384 x 4x MSAA, ..." */
 } memory_estimate;
 
-/* The estimate of run p with its built scene sc (NULL: the scene's share is left out). */
+/* The estimate of run p with its built scene sc (NULL: the facts memory_check_run kept
+ * of its scene, or without the scene's share when it kept none). */
 void memory_estimate_run(const run_params *p, const struct scene *sc, memory_estimate *out);
 
 /* Whether run p fits what this process may use now: the smallest of RLIMIT_AS (less
