@@ -43,4 +43,36 @@ if not 40 <= mem["peak_rss_mb"] <= 4096: fail(f"peak_rss_mb {mem}")
 if abs(hwm / 1024 - mem["peak_rss_mb"]) > 1: fail(f"vm_hwm_kb {hwm} is not peak_rss_mb {mem}")
 if not mem["estimate_mb"] > 0: fail(f"estimate {mem}")
 PY
+
+# --- B. the estimate against the peak ------------------------------------------------
+truck=/usr/share/assimp/models/glTF/CesiumMilkTruck/CesiumMilkTruck.gltf
+[ -f "$truck" ] || fail "B: assimp-testmodels is not installed (scripts/setup.sh installs it)"
+# case: name, then the manifest's lines that differ
+cases=(
+  "baseline|scene: shapes|renderers: [null]|resolution: 16x16"
+  "canyon|scene: canyon|renderers: [deferred]|resolution: 256x256"
+  "lights-deferred|scene: shapes|renderers: [deferred]|resolution: 128x128|lights: {count: 4096}"
+  "lights-clustered|scene: shapes|renderers: [clustered]|resolution: 256x256|lights: {count: 4096}"
+  "lights-multipass|scene: shapes|renderers: [forward-mpml]|resolution: 128x128|lights: {count: 1024}"
+  "gbuffer-msaa|scene: shapes|renderers: [deferred]|resolution: 512x512|gbuffer: reference|msaa: 4"
+  "textured-file|scene: {file: \"$truck\"}|renderers: [forward-spml]|resolution: 128x128"
+)
+for c in "${cases[@]}"; do
+  name=${c%%|*}
+  { printf 'shadesweep: 1\nname: %s\ntrials: 1\nwarmup: {frames: 0}\nduration: {frames: 1}\nclock: fixed\n' "$name"
+    tr '|' '\n' <<<"${c#*|}"; } >"$name.yaml"
+  "$SHADESWEEP" run "$name.yaml" >/dev/null 2>"$name.err" || fail "B: $name: $(cat "$name.err")"
+done
+"$PYTHON" - "${cases[@]%%|*}" <<'PY'
+import csv, sys, yaml
+bad = []
+print("case | estimate MiB | peak MiB | peak/estimate")
+for name in sys.argv[1:]:
+    rows = list(csv.DictReader(open(f"out/{name}/summary.csv")))
+    mem = yaml.safe_load(open(f"out/{name}/runs/{rows[0]['run_id']}/meta.yaml"))["memory"]
+    r = mem["peak_rss_mb"] / mem["estimate_mb"]
+    print(f"{name} | {mem['estimate_mb']} | {mem['peak_rss_mb']} | {r:.2f}")
+    if not 1 / 1.5 <= r <= 1.5: bad.append(name)
+if bad: print("FAIL: B: peak/estimate outside 1/1.5..1.5:", bad, file=sys.stderr); sys.exit(1)
+PY
 echo ok
