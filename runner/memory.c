@@ -126,20 +126,21 @@ static uint64_t lists_of(const char *kind, const run_params *q, int w, int h,
 }
 
 /* llvmpipe's binning of one frame's draws, which it keeps until the frame ends: a
- * draw call costs about 32 KiB at 64x64 and 3 KiB more each time the pixels quadruple
+ * draw call costs about 32 KiB at 64x64 and 12 KiB more each time the pixels quadruple
  * (measured on deferred's light volumes: 32, 44, 54, 68 KiB a draw at 64x64 .. 512x512,
- * 8205 draws; forward-mpml 45 KiB at 128x128). The draws that grow with the lights:
- * deferred and deferred-lighting draw each light's volume (and mark its stencil),
- * forward-mpml draws the meshes each light reaches (about a third of them on shapes). */
+ * 8205 draws). The draws that grow with the lights: deferred and deferred-lighting
+ * draw each light's volume (and mark its stencil); forward-mpml draws the meshes each
+ * light reaches, counted as half of them (shapes: 3.4 draws a light, 45-64 KiB each at
+ * 128x128, dearer than a volume: more triangles). */
 static uint64_t draws_of(const char *kind, int w, int h, const scene_facts *sc)
 {
     if (!sc)
         return 0;
     uint64_t per_light = is(kind, "deferred") || is(kind, "deferred-lighting") ? 2
-                         : is(kind, "forward-mpml") ? (sc->nmeshes + 2) / 3 : 0;
+                         : is(kind, "forward-mpml") ? (sc->nmeshes + 1) / 2 : 0;
     uint64_t px = (uint64_t)w * (uint64_t)h, kib = 32;
     for (uint64_t q = 4096 * 4; q <= px; q *= 4)
-        kib += 3;
+        kib += 12;
     return per_light * sc->nlights * kib * 1024;
 }
 

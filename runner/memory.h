@@ -12,7 +12,7 @@
  * (128 MiB: context, JIT, threads; 96 MiB for null) + 1.25 V (one copy of the list
  * indices: the other is never touched) + D; address space (beyond what the parent
  * maps) = 192 MiB + 2.5 V + D, where D is llvmpipe's binning of a frame's draws for
- * renderers that draw once per light (32 KiB a draw at 64x64, 3 KiB more each time the
+ * renderers that draw once per light (32 KiB a draw at 64x64, 12 KiB more each time the
  * pixels quadruple). */
 #include <stdbool.h>
 #include <stddef.h>
