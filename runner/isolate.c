@@ -29,20 +29,26 @@ static void nap(double s)
         ;
 }
 
-/* SIGTERM, then SIGKILL if it has not ended after a second; returns its wait status. */
-static int kill_and_reap(pid_t pid)
+/* SIGTERM, then SIGKILL if it has not ended after a second; returns its wait status,
+ * and its peak resident size (wait4's ru_maxrss, kB) in *rss_kb when wait4 says. */
+static int kill_and_reap(pid_t pid, long *rss_kb)
 {
     int st = 0;
+    struct rusage ru;
     kill(pid, SIGTERM);
     for (int i = 0; i < 100; i++) {
-        pid_t r = waitpid(pid, &st, WNOHANG);
-        if (r == pid)
+        if (wait4(pid, &st, WNOHANG, &ru) == pid) {
+            *rss_kb = ru.ru_maxrss;
             return st;
+        }
         nap(0.01);
     }
     kill(pid, SIGKILL);
-    while (waitpid(pid, &st, 0) == -1 && errno == EINTR)
+    pid_t r;
+    while ((r = wait4(pid, &st, 0, &ru)) == -1 && errno == EINTR)
         ;
+    if (r == pid)
+        *rss_kb = ru.ru_maxrss;
     return st;
 }
 
@@ -161,17 +167,17 @@ bool isolate_run(int (*fn)(void *), void *arg, double timeout_s, const char *log
                 out->peak_vm_kb = vm;
         }
         if (r < 0 && errno != EINTR) {
-            st = kill_and_reap(pid);
+            st = kill_and_reap(pid, &out->peak_rss_kb);
             break;
         }
         if (stop && *stop) {
-            kill_and_reap(pid);
+            kill_and_reap(pid, &out->peak_rss_kb);
             out->outcome = ISOLATE_INTERRUPTED;
             out->seconds = now_s() - t0;
             return true;
         }
         if (timeout_s > 0 && now_s() - t0 > timeout_s) {
-            kill_and_reap(pid);
+            kill_and_reap(pid, &out->peak_rss_kb);
             out->outcome = ISOLATE_TIMEOUT;
             out->seconds = now_s() - t0;
             return true;

@@ -20,7 +20,8 @@ typedef struct isolate_result {
     int signal;                /* ISOLATE_SIGNALED */
     bool oom_killed;           /* SIGKILL, and the cgroup's OOM-kill count went up */
     double seconds;            /* wall time the child ran */
-    long peak_rss_kb;          /* the child's peak resident size (wait4's ru_maxrss); -1 unknown */
+    long peak_rss_kb;          /* the child's peak resident size (wait4's ru_maxrss, kB), however
+                                * it ended (killed ones too); -1 unknown (no fork) */
     long peak_vm_kb;           /* its peak address space (VmPeak, sampled every 0.1 s); -1 unknown */
 } isolate_result;
 

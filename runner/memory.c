@@ -19,7 +19,8 @@
 
 enum {
     MIB = 1 << 20,
-    BASE_RESIDENT = 128 * MIB,   /* a 16x16 run on llvmpipe: 87-130 MiB resident */
+    BASE_RESIDENT = 128 * MIB,   /* a 16x16 run on llvmpipe: 130-136 MiB resident */
+    BASE_NULL = 96 * MIB,        /* ... of null, which compiles no program: 88-96 MiB */
     BASE_ADDRESS = 192 * MIB,    /* ... and about 170 MiB of address space beyond the parent */
     INDEX_CAP = 1u << 25,        /* forward_plus.c's PLUS_INDEX_CAP */
 };
@@ -46,7 +47,7 @@ static bool is(const char *a, const char *b) { return strcmp(a, b) == 0; }
  * depth slices of its camera for every clustered.slices. */
 typedef struct scene_facts {
     deferred_needs needs;
-    uint32_t shadow_layers, nlights;
+    uint32_t shadow_layers, nlights, nmeshes;
     uint64_t bytes;
     uint32_t slices[65];
 } scene_facts;
@@ -58,6 +59,7 @@ static void facts_of(const scene *sc, scene_facts *f)
     memset(f, 0, sizeof *f);
     f->needs = deferred_needs_of(sc);
     f->nlights = sc->nlights_total;
+    f->nmeshes = sc->nmeshes;
     for (uint32_t i = 0; i < sc->nlights_total; i++)
         f->shadow_layers += sc->lights[i].shadows && sc->lights[i].type != LIGHT_POINT;
     f->bytes = scene_of(sc);
@@ -98,7 +100,7 @@ static uint64_t targets_of(const char *kind, const run_params *q, int w, int h, 
  * and count) and indices, as tiled/grid.c sizes them, on the GPU and read back;
  * clustered (reads clustered.*) per cluster. */
 static uint64_t lists_of(const char *kind, const run_params *q, int w, int h,
-                         const scene_facts *sc)
+                         const scene_facts *sc, uint64_t *untouched)
 {
     renderer_options ro = {0};
     params_to_renderer_options(q, &ro);
@@ -116,7 +118,30 @@ static uint64_t lists_of(const char *kind, const run_params *q, int w, int h,
     uint64_t cap = heads * (q->max_lights_per_tile ? q->max_lights_per_tile : (n ? n : 1));
     if (cap > INDEX_CAP)
         cap = INDEX_CAP;
+    /* the indices are mapped twice, but only about one copy's pages are ever touched
+     * (clustered, 4096 lights at 256x256: 300 MiB peak, 457 MiB estimated with both) */
+    if (untouched)
+        *untouched += cap * 4;
     return 2 * (heads * 8 + cap * 4) + n * sizeof(gpu_light) * 2;
+}
+
+/* llvmpipe's binning of one frame's draws, which it keeps until the frame ends: a
+ * draw call costs about 32 KiB at 64x64 and 12 KiB more each time the pixels quadruple
+ * (measured on deferred's light volumes: 32, 44, 54, 68 KiB a draw at 64x64 .. 512x512,
+ * 8205 draws). The draws that grow with the lights: deferred and deferred-lighting
+ * draw each light's volume (and mark its stencil); forward-mpml draws the meshes each
+ * light reaches, counted as half of them (shapes: 3.4 draws a light, 45-64 KiB each at
+ * 128x128, dearer than a volume: more triangles). */
+static uint64_t draws_of(const char *kind, int w, int h, const scene_facts *sc)
+{
+    if (!sc)
+        return 0;
+    uint64_t per_light = is(kind, "deferred") || is(kind, "deferred-lighting") ? 2
+                         : is(kind, "forward-mpml") ? (sc->nmeshes + 1) / 2 : 0;
+    uint64_t px = (uint64_t)w * (uint64_t)h, kib = 32;
+    for (uint64_t q = 4096 * 4; q <= px; q *= 4)
+        kib += 12;
+    return per_light * sc->nlights * kib * 1024;
 }
 
 static uint64_t scene_of(const scene *sc)
@@ -141,7 +166,9 @@ static void estimate(const run_params *p, const scene_facts *sc, memory_estimate
     const int w = p->width, h = p->height;
     const uint64_t px = (uint64_t)w * (uint64_t)h;
     out->targets = 8 * px + targets_of(p->renderer, p, w, h, p->msaa, sc);
-    out->lists = lists_of(p->renderer, p, w, h, sc);
+    uint64_t untouched = 0;
+    out->lists = lists_of(p->renderer, p, w, h, sc, &untouched);
+    out->draws = draws_of(p->renderer, w, h, sc);
     out->scene = sc ? sc->bytes : 0;
     /* screenshots and error images: RGBA8 and float RGBA copies of the frame; else the
      * first measured frame's check (run_trial.c's check_shown) reads an RGBA8 copy, in
@@ -160,12 +187,14 @@ static void estimate(const run_params *p, const scene_facts *sc, memory_estimate
         const uint64_t kpx = (uint64_t)kw * (uint64_t)kh;
         out->targets += targets_of(rp.renderer, &rp, kw, kh, rp.msaa, sc) +
                         (k > 1 ? 8 * kpx : 0);   /* its own framebuffer at K W x K H */
-        out->lists += lists_of(rp.renderer, &rp, kw, kh, sc);
+        out->lists += lists_of(rp.renderer, &rp, kw, kh, sc, &untouched);
+        out->draws += draws_of(rp.renderer, kw, kh, sc);
         out->readback += (k > 1 ? 16 * kpx : 0) + 3 * 16 * px;   /* its HDR, the compared */
     }
     const uint64_t v = out->targets + out->lists + out->scene + out->readback;
-    out->resident = BASE_RESIDENT + v + v / 4;
-    out->address_space = BASE_ADDRESS + v * 5 / 2;
+    out->base = ri && ri->no_base ? BASE_NULL : BASE_RESIDENT;
+    out->resident = out->base + (v - untouched) * 5 / 4 + out->draws;
+    out->address_space = BASE_ADDRESS + v * 5 / 2 + out->draws;
     char t[32], l[32], s[32], r[32];
     memory_format(out->targets, t, sizeof t);
     memory_format(out->lists, l, sizeof l);
@@ -183,12 +212,14 @@ static void estimate(const run_params *p, const scene_facts *sc, memory_estimate
                  ", light lists %s, scene %s, read-back %s", l, s, r);
 }
 
+static const scene_facts *cached_facts(const run_params *p, bool build);
+
 void memory_estimate_run(const run_params *p, const scene *sc, memory_estimate *out)
 {
     scene_facts f;
     if (sc)
         facts_of(sc, &f);
-    estimate(p, sc ? &f : NULL, out);
+    estimate(p, sc ? &f : cached_facts(p, false), out);
 }
 
 /* ---- limits */
@@ -320,8 +351,8 @@ static bool same_scene(const run_params *a, const run_params *b)
 
 /* The facts of p's scene, built without GL in this process once per scene and camera
  * (a sweep's trials and renderers share them: canyon takes a second to build); NULL when
- * it does not build. */
-static const scene_facts *cached_facts(const run_params *p)
+ * it does not build, or when it is not built yet and `build` is false. */
+static const scene_facts *cached_facts(const run_params *p, bool build)
 {
     enum { SLOTS = 8 };
     static struct {
@@ -333,6 +364,8 @@ static const scene_facts *cached_facts(const run_params *p)
     for (unsigned i = 0; i < SLOTS; i++)
         if (cache[i].used && same_scene(&cache[i].key, p))
             return cache[i].built ? &cache[i].facts : NULL;
+    if (!build)
+        return NULL;
     unsigned i = next++ % SLOTS;
     char err[512];
     scene_file_options fo;
@@ -355,13 +388,18 @@ bool memory_check_run(const run_params *p, char *msg, size_t len)
     const char *env = getenv("SHADESWEEP_MEMORY_CHECK");
     if (env && strcmp(env, "off") == 0)
         return true;
-    const scene_facts *f = cached_facts(p);
+    const scene_facts *f = cached_facts(p, true);
     if (!f)
         return true;   /* the scene does not build: the trial says why */
     memory_estimate e;
     estimate(p, f, &e);
 
-    char need[32], room[32], src_text[200] = "";
+    char need[32], room[32], src_text[200] = "", draws[64] = "";
+    if (e.draws) {
+        char d[32];
+        memory_format(e.draws, d, sizeof d);
+        snprintf(draws, sizeof draws, " + %s for its draws", d);
+    }
     struct rlimit rl;
     if (getrlimit(RLIMIT_AS, &rl) == 0 && rl.rlim_cur != RLIM_INFINITY) {
         long mapped = memory_proc_kb(0, "VmSize");
@@ -374,8 +412,8 @@ bool memory_check_run(const run_params *p, char *msg, size_t len)
             memory_format((uint64_t)rl.rlim_cur, lim, sizeof lim);
             memory_format(have, m, sizeof m);
             snprintf(msg, len, "needs about %s of address space (%s; 2.5 times that + %d MiB "
-                     "for the driver), the process may map %s more (RLIMIT_AS %s, %s mapped "
-                     "already)", need, e.what, BASE_ADDRESS / MIB, room, lim, m);
+                     "for the driver%s), the process may map %s more (RLIMIT_AS %s, %s mapped "
+                     "already)", need, e.what, BASE_ADDRESS / MIB, draws, room, lim, m);
             return false;
         }
     }
@@ -390,8 +428,8 @@ bool memory_check_run(const run_params *p, char *msg, size_t len)
         snprintf(src_text, sizeof src_text, "/proc/meminfo MemAvailable + SwapFree");
     memory_format(e.resident, need, sizeof need);
     memory_format(left, room, sizeof room);
-    snprintf(msg, len, "needs about %s (%s; 1.25 times that + %d MiB for the driver), the "
-             "process may use %s (%s)", need, e.what, BASE_RESIDENT / MIB, room, src_text);
+    snprintf(msg, len, "needs about %s (%s; 1.25 times that + %d MiB for the driver%s), the "
+             "process may use %s (%s)", need, e.what, (int)(e.base / MIB), draws, room, src_text);
     return false;
 }
 

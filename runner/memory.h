@@ -1,20 +1,19 @@
 #pragma once
 /* What a run needs in memory, what the process may use, and whether a failed trial
- * ran out of it (README "Reliability", "Memory").
- *
- * The estimate is computed from the run's parameters and its built scene, without
- * GL: V = render targets (every target the renderer allocates, width x height x
- * samples x bytes per texel: HDR, depth, the MSAA resolve, what the design makes
- * itself (renderer_impl.own_bytes: a G-buffer layout of renderers/gbuffer_layout.c, a
- * light buffer, visibility ids), edge AA, shadow maps, the context's own RGBA8 +
- * depth-stencil framebuffer) + light lists (tiles or clusters x their index cap, as
- * forward_plus.c sizes them, with their CPU copies) + scene (vertices, indices,
- * textures, twice: ours and the driver's) + read-back and reference (screenshots,
- * the error reference's targets at K W x K H and its float images). llvmpipe keeps
- * its targets in system memory, so all of it is host memory. Calibrated on llvmpipe
- * (LLVM 15): resident = 128 MiB (context, JIT, threads) + 1.25 V; address space
- * (RLIMIT_AS, beyond what the parent already maps, which the child inherits) =
- * 192 MiB + 2.5 V. */
+ * ran out of it (README "Memory", docs/reliability.md "Memory": the calibration).
+ * The estimate, from the run's parameters and its built scene, without GL: V = render
+ * targets (every target the renderer allocates, width x height x samples x bytes per
+ * texel: HDR, depth, the MSAA resolve, renderer_impl.own_bytes (a G-buffer layout, a
+ * light buffer, visibility ids), edge AA, shadow maps, the context's own framebuffer)
+ * + light lists (tiles or clusters x their index cap, as forward_plus.c sizes them,
+ * with their CPU copies) + scene (vertices, indices, textures, ours and the driver's)
+ * + read-back and reference (screenshots, the error reference at K W x K H). llvmpipe
+ * keeps all of it in host memory. Calibrated on llvmpipe (LLVM 15): resident = base
+ * (128 MiB: context, JIT, threads; 96 MiB for null) + 1.25 V (one copy of the list
+ * indices: the other is never touched) + D; address space (beyond what the parent
+ * maps) = 192 MiB + 2.5 V + D, where D is llvmpipe's binning of a frame's draws for
+ * renderers that draw once per light (32 KiB a draw at 64x64, 12 KiB more each time the
+ * pixels quadruple). */
 #include <stdbool.h>
 #include <stddef.h>
 #include <stdint.h>
@@ -24,12 +23,15 @@ struct scene;
 
 typedef struct memory_estimate {
     uint64_t targets, lists, scene, readback;   /* bytes, the parts of V */
+    uint64_t draws;                             /* the driver's binning of a frame's draws */
+    uint64_t base;                              /* the context's own (null: less) */
     uint64_t resident;                          /* what it keeps resident, about */
     uint64_t address_space;                     /* what it maps beyond the parent */
     char what[320];                             /* "targets 2.9 GiB at 16384x16384 x 4x MSAA, ..." */
 } memory_estimate;
 
-/* The estimate of run p with its built scene sc (NULL: the scene's share is left out). */
+/* The estimate of run p with its built scene sc (NULL: the facts memory_check_run kept
+ * of its scene, or without the scene's share when it kept none). */
 void memory_estimate_run(const run_params *p, const struct scene *sc, memory_estimate *out);
 
 /* Whether run p fits what this process may use now: the smallest of RLIMIT_AS (less

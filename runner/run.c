@@ -155,6 +155,7 @@ typedef struct child_args {
 static int child_main(void *arg)
 {
     child_args *a = arg;
+    a->st->in_child = true;
     run_one(a->st);
     const trial_result *tr = &a->st->result;
     snprintf(a->report->status, sizeof a->report->status, "%s", a->st->status);
@@ -241,6 +242,7 @@ bool run_trial_isolated(const experiment *e, const run_spec *s, const run_option
             snprintf(st.message, sizeof st.message, "%s", m);
         }
         folder_remove_temp(st.dir);
+        st.child_rss_kb = ir.peak_rss_kb;
         write_run_result(&st);
         snprintf(out->status, sizeof out->status, "%s", st.status);
         snprintf(out->message, sizeof out->message, "%.500s", st.message);

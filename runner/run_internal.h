@@ -54,6 +54,9 @@ typedef struct run_state {
                                 * luminance (0: black; NAN: not metered) */
     bool meter_lights_off;     /* ... drawn without the placed lights (lights.sizing) */
     double lights_radius;      /* the placed lights' mean range as used (NAN: none) */
+    bool in_child;             /* this is the trial's own process (run.c's child_main) */
+    long child_rss_kb;         /* written by the parent for a child that died or hung: its
+                                * peak resident size (wait4), kB; 0: none */
 } run_state;
 
 /* "YYYY-MM-DDTHH:MM:SSZ", now. */

@@ -221,6 +221,10 @@ bool run_write_meta(run_state *st, char *err, size_t errlen)
     yo_key(y, "started"); yo_str(y, st->started);
     yo_key(y, "finished"); yo_str(y, st->finished);
 
+    /* The trial process's peak resident size, kB: its own VmHWM as it writes this (the
+     * counter that wait4's ru_maxrss reads when it exits), or the parent's wait4 figure
+     * for a child that died or was killed; -1 when no child ran (a refused run). */
+    int64_t hwm = st->child_rss_kb > 0 ? st->child_rss_kb : st->in_child ? vm_hwm_kb() : -1;
     yo_key(y, "timing");
     yo_map_begin(y);
     yo_key(y, "clock_source"); yo_str(y, "CLOCK_MONOTONIC");
@@ -230,14 +234,13 @@ bool run_write_meta(run_state *st, char *err, size_t errlen)
     yo_key(y, "prime_frames"); yo_i64(y, (int64_t)st->prime_frames);
     yo_key(y, "prime_s"); yo_f64(y, st->prime_s);
     yo_key(y, "paused_s"); yo_f64(y, st->paused_s);
-    yo_key(y, "vm_hwm_kb"); yo_i64(y, vm_hwm_kb());
+    yo_key(y, "vm_hwm_kb"); yo_i64(y, hwm);
     yo_map_end(y);
 
     /* runner/memory.h's estimate (with the built scene when there is one) next to what
-     * this process held at its peak (-1: written by the parent for a child that died) */
+     * the trial's process held at its peak */
     memory_estimate me;
     memory_estimate_run(&st->s->p, st->sc, &me);
-    int64_t hwm = st->sc ? vm_hwm_kb() : -1;
     yo_key(y, "memory");
     yo_map_begin(y);
     yo_key(y, "estimate_mb"); yo_i64(y, (int64_t)((me.resident + (1u << 19)) >> 20));
