@@ -36,8 +36,7 @@
 #include "scenes/scene_fail.h"
 #include "scenes/scene_internal.h"
 
-/* FNV-1a 64, the same function as runner/hash.h (scenes/ cannot reach runner/). */
-static uint64_t fnv1a64_more(uint64_t h, const void *data, size_t len)
+uint64_t scene_fnv1a64_more(uint64_t h, const void *data, size_t len)
 {
     const unsigned char *p = data;
     for (size_t i = 0; i < len; i++) {
@@ -355,8 +354,47 @@ static const struct aiCamera *chosen_camera(const struct aiScene *ai, const char
 }
 
 
+uint64_t scene_file_hash_more(uint64_t h, const void *data, size_t len)
+{
+    unsigned char n[8];
+    for (int k = 0; k < 8; k++)
+        n[k] = (unsigned char)((uint64_t)len >> (8 * k));
+    h = scene_fnv1a64_more(h, n, sizeof n);
+    return scene_fnv1a64_more(h, data, len);
+}
+
+void scene_file_list_free(scene_file_list *f)
+{
+    for (uint32_t i = 0; f && i < f->n; i++)
+        free(f->path[i]);
+    if (f)
+        free(f->path);
+    if (f)
+        *f = (scene_file_list){0};
+}
+
+/* The paths of the files l read, in the order of the content hash. */
+static bool list_files(const loaded *l, scene_file_list *out, char *err, size_t errlen)
+{
+    *out = (scene_file_list){0};
+    if (!(out->path = calloc(l->files.n ? l->files.n : 1, sizeof *out->path)))
+        return scene_fail(err, errlen, "%s: out of memory", l->path);
+    for (; out->n < l->files.n; out->n++)
+        if (!(out->path[out->n] = strdup(l->files.files[out->n].path))) {
+            scene_file_list_free(out);
+            return scene_fail(err, errlen, "%s: out of memory", l->path);
+        }
+    return true;
+}
+
 bool scene_file_check(const scene_file_options *o, scene_file_info *info, char *err,
                       size_t errlen)
+{
+    return scene_file_check_list(o, info, NULL, err, errlen);
+}
+
+bool scene_file_check_list(const scene_file_options *o, scene_file_info *info,
+                           scene_file_list *files, char *err, size_t errlen)
 {
     loaded l;
     if (!file_load(o, &l, err, errlen))
@@ -389,15 +427,8 @@ bool scene_file_check(const scene_file_options *o, scene_file_info *info, char *
         }
         info->files = l.files.n;
         uint64_t h = UINT64_C(0xcbf29ce484222325);
-        for (uint32_t i = 0; i < l.files.n; i++) {
-            /* each file's length, then its bytes: names do not count */
-            uint64_t n = l.files.files[i].size;
-            unsigned char len[8];
-            for (int k = 0; k < 8; k++)
-                len[k] = (unsigned char)(n >> (8 * k));
-            h = fnv1a64_more(h, len, sizeof len);
-            h = fnv1a64_more(h, l.files.files[i].data, l.files.files[i].size);
-        }
+        for (uint32_t i = 0; i < l.files.n; i++)   /* names do not count */
+            h = scene_file_hash_more(h, l.files.files[i].data, l.files.files[i].size);
         info->hash = h;
         sm_vec3_copy(c.lo, info->bounds_min);
         sm_vec3_copy(c.hi, info->bounds_max);
@@ -412,6 +443,8 @@ bool scene_file_check(const scene_file_options *o, scene_file_info *info, char *
                                                         : "the bounds framed from above and "
                                                           "to the side");
     }
+    if (ok && files)
+        ok = list_files(&l, files, err, errlen);
     file_loaded_free(&l);
     return ok;
 }

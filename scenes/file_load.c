@@ -11,6 +11,7 @@
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
+#include <time.h>
 
 #include "results/fsutil.h"
 #include "results/grow.h"
@@ -345,8 +346,38 @@ static bool why_no_triangles(loaded *l, const char *path, struct aiFileIO *io,
     return true;
 }
 
+/* What this thread's loads spent since scene_file_times_take last took it. */
+static _Thread_local scene_file_times load_times;
+
+static double now_s(void)
+{
+    struct timespec ts;
+    clock_gettime(CLOCK_MONOTONIC, &ts);
+    return (double)ts.tv_sec + 1e-9 * (double)ts.tv_nsec;
+}
+
+void scene_file_times_take(scene_file_times *t)
+{
+    *t = load_times;
+    load_times = (scene_file_times){0};
+}
+
+static bool file_load_checked(const scene_file_options *o, loaded *l, double *decode_s,
+                              char *err, size_t errlen);
+
 /* Imports and checks everything; on success l holds the scene and every texture. */
 bool file_load(const scene_file_options *o, loaded *l, char *err, size_t errlen)
+{
+    double t0 = now_s(), decode_s = 0.0;
+    bool ok = file_load_checked(o, l, &decode_s, err, errlen);
+    load_times.import_s += now_s() - t0 - decode_s;
+    load_times.decode_s += decode_s;
+    load_times.loads++;
+    return ok;
+}
+
+static bool file_load_checked(const scene_file_options *o, loaded *l, double *decode_s,
+                              char *err, size_t errlen)
 {
     memset(l, 0, sizeof *l);
     if (!o || !o->path || !o->path[0])
@@ -512,14 +543,18 @@ bool file_load(const scene_file_options *o, loaded *l, char *err, size_t errlen)
                    "on a line): nothing to draw", o->path);
         goto out;
     }
+    double t_decode = now_s();
     for (unsigned i = 0; i < ai->mNumMaterials; i++) {
         material_refs r;
         file_material_refs(ai->mMaterials[i], &r);
         const char *refs[5] = {r.diffuse, r.normal, r.emissive, r.mr, r.occlusion};
         for (int k = 0; k < 5; k++)
-            if (refs[k][0] && file_load_image(l, refs[k], err, errlen) < 0)
+            if (refs[k][0] && file_load_image(l, refs[k], err, errlen) < 0) {
+                *decode_s = now_s() - t_decode;
                 goto out;
+            }
     }
+    *decode_s = now_s() - t_decode;
     if (!file_camera_is(o->camera, "orbit") && !file_camera_is(o->camera, "auto")) {
         bool found = false;
         for (unsigned i = 0; i < ai->mNumCameras && !found; i++)
