@@ -127,7 +127,8 @@ static bool run_setup_scene(run_state *st)
     scene_file_list_free(&files);
     if (store.path) {
         st->load.cache = store.written ? "written" : "not written";
-        load_note(st, store.note);
+        if (store.note[0])
+            load_note(st, store.note);
     }
     scene_file_times bt;
     scene_file_times_take(&bt);
