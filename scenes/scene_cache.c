@@ -6,7 +6,8 @@
  * a file that fails any check (or lists files whose bytes changed) is not used, and every
  * count, size and index is checked before it is used, so any bytes are safe to read.
  * Structs go as their bytes (the layout word names their sizes): this is a cache on one
- * machine, not an interchange format. Animated scenes are not cached. */
+ * machine and one build (the key hashes the program's bytes), not an interchange format.
+ * Animated scenes are not cached. */
 #include "scenes/scene.h"
 
 #include <errno.h>
@@ -46,14 +47,34 @@ static uint32_t layout(void)
     return (uint32_t)scene_fnv1a64_more(FNV_BASIS, sizes, sizeof sizes);
 }
 
+/* The program's own bytes (/proc/self/exe), hashed once a process: a loader changed
+ * without a new format version must not read an older build's scene (a --resume with a
+ * rebuilt program, compare's two programs). 0 where it cannot be read. */
+static uint64_t program_hash(void)
+{
+    static uint64_t h;
+    static bool done;
+    if (!done) {
+        size_t n;
+        int e;
+        const char *kind = NULL;
+        char *exe = fs_read_regular("/proc/self/exe", (size_t)1 << 31, &n, &e, &kind);
+        h = exe ? scene_fnv1a64_more(FNV_BASIS, exe, n) : 0;
+        free(exe);
+        done = true;
+    }
+    return h;
+}
+
 static uint64_t key_of(const scene_file_options *o, uint64_t content_hash, int width,
                        int height)
 {
     char text[1024];
     snprintf(text, sizeof text,
-             "v%u layout %08x files %016llx %dx%d scale %a fit %d up %d camera %s outside %d "
-             "around %d phong %d max %llu %llu %llu",
-             CACHE_VERSION, layout(), (unsigned long long)content_hash, width, height,
+             "v%u layout %08x program %016llx files %016llx %dx%d scale %a fit %d up %d "
+             "camera %s outside %d around %d phong %d max %llu %llu %llu",
+             CACHE_VERSION, layout(), (unsigned long long)program_hash(),
+             (unsigned long long)content_hash, width, height,
              (double)o->scale, o->fit, (int)o->up, o->camera ? o->camera : "", o->allow_outside,
              o->lights_around, o->phong, (unsigned long long)o->max_image_bytes,
              (unsigned long long)o->max_triangles, (unsigned long long)o->max_vertices);
