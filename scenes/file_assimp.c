@@ -354,39 +354,6 @@ static const struct aiCamera *chosen_camera(const struct aiScene *ai, const char
 }
 
 
-uint64_t scene_file_hash_more(uint64_t h, const void *data, size_t len)
-{
-    unsigned char n[8];
-    for (int k = 0; k < 8; k++)
-        n[k] = (unsigned char)((uint64_t)len >> (8 * k));
-    h = scene_fnv1a64_more(h, n, sizeof n);
-    return scene_fnv1a64_more(h, data, len);
-}
-
-void scene_file_list_free(scene_file_list *f)
-{
-    for (uint32_t i = 0; f && i < f->n; i++)
-        free(f->path[i]);
-    if (f)
-        free(f->path);
-    if (f)
-        *f = (scene_file_list){0};
-}
-
-/* The paths of the files l read, in the order of the content hash. */
-static bool list_files(const loaded *l, scene_file_list *out, char *err, size_t errlen)
-{
-    *out = (scene_file_list){0};
-    if (!(out->path = calloc(l->files.n ? l->files.n : 1, sizeof *out->path)))
-        return scene_fail(err, errlen, "%s: out of memory", l->path);
-    for (; out->n < l->files.n; out->n++)
-        if (!(out->path[out->n] = strdup(l->files.files[out->n].path))) {
-            scene_file_list_free(out);
-            return scene_fail(err, errlen, "%s: out of memory", l->path);
-        }
-    return true;
-}
-
 bool scene_file_check(const scene_file_options *o, scene_file_info *info, char *err,
                       size_t errlen)
 {
@@ -444,7 +411,7 @@ bool scene_file_check_list(const scene_file_options *o, scene_file_info *info,
                                                           "to the side");
     }
     if (ok && files)
-        ok = list_files(&l, files, err, errlen);
+        ok = file_loaded_list(&l, files, err, errlen);
     file_loaded_free(&l);
     return ok;
 }

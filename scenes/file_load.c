@@ -17,6 +17,7 @@
 #include "results/grow.h"
 #include "scenes/file_import.h"
 #include "scenes/scene_fail.h"
+#include "scenes/scene_internal.h"
 
 void file_loaded_free(loaded *l)
 {
@@ -343,6 +344,38 @@ static bool why_no_triangles(loaded *l, const char *path, struct aiFileIO *io,
         return false;
     snprintf(why, n, "it has only points and lines (%u mesh%s of points, %u of lines), and "
              "shadesweep draws triangles", points, points == 1 ? "" : "es", lines);
+    return true;
+}
+
+uint64_t scene_file_hash_more(uint64_t h, const void *data, size_t len)
+{
+    unsigned char n[8];
+    for (int k = 0; k < 8; k++)
+        n[k] = (unsigned char)((uint64_t)len >> (8 * k));
+    h = scene_fnv1a64_more(h, n, sizeof n);
+    return scene_fnv1a64_more(h, data, len);
+}
+
+void scene_file_list_free(scene_file_list *f)
+{
+    for (uint32_t i = 0; f && i < f->n; i++)
+        free(f->path[i]);
+    if (f)
+        free(f->path);
+    if (f)
+        *f = (scene_file_list){0};
+}
+
+bool file_loaded_list(const loaded *l, scene_file_list *out, char *err, size_t errlen)
+{
+    *out = (scene_file_list){0};
+    if (!(out->path = calloc(l->files.n ? l->files.n : 1, sizeof *out->path)))
+        return scene_fail(err, errlen, "%s: out of memory", l->path);
+    for (; out->n < l->files.n; out->n++)
+        if (!(out->path[out->n] = strdup(l->files.files[out->n].path))) {
+            scene_file_list_free(out);
+            return scene_fail(err, errlen, "%s: out of memory", l->path);
+        }
     return true;
 }
 
