@@ -126,7 +126,7 @@ static bool run_setup_scene(run_state *st)
     double built = progress_now() - t1;
     scene_file_list_free(&files);
     if (store.path) {
-        st->load.cache = store.written ? "written" : "not written";
+        st->load.cache = store.written ? "written" : store.animated ? "animated" : "not written";
         if (store.note[0])
             load_note(st, store.note);
     }

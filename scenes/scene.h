@@ -410,14 +410,15 @@ scene_cached *scene_cache_read(const char *path, const scene_file_options *o,
                                scene_file_info *info, char *note, size_t notelen);
 void scene_cached_free(scene_cached *c);   /* NULL is fine */
 /* Where scene_build_cache writes a scene it built (path NULL: nowhere), and what came of
- * it: written, or note says why not (an animated scene is not cached; a write failure). */
+ * it: written; animated (an animated scene is not cached); or note says why not (a write
+ * failure). */
 typedef struct scene_cache_store {
     const char *path;
     const scene_file_options *o;
     uint64_t content_hash;
     const scene_file_info *info;
     const scene_file_list *files;
-    bool written;
+    bool written, animated;
     char note[600];
     double write_s;            /* seconds the write took */
 } scene_cache_store;

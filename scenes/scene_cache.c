@@ -180,10 +180,8 @@ static void write_file(scene_cache_store *to, const scene_builder *b)
 {
     to->written = false;
     to->note[0] = '\0';
-    if (b->s->anim) {
-        snprintf(to->note, sizeof to->note, "not cached: an animated scene is loaded again");
+    if ((to->animated = b->s->anim != NULL))
         return;
-    }
     /* the payload twice: its size and checksum for the header, then its bytes */
     writer dry = {.checksum = FNV_BASIS, .ok = true};
     put_payload(&dry, to, b);
