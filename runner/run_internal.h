@@ -49,6 +49,13 @@ typedef struct run_state {
     char message[1024];        /* why it failed, for summary.csv */
     char err[512];
     scene_file_info scene_info; /* a file scene: what scene_file_check found */
+    struct {                   /* how the scene was loaded (meta.yaml's scene_load) */
+        const char *source;    /* "catalog", "file" or "cache" */
+        const char *cache;     /* "off", "hit", "written", "not written", "animated" (not
+                                * cached), "" (catalog) */
+        char note[640];        /* why a cache file was ignored or not written, or "" */
+        double import_s, decode_s, build_s, cache_s, prepare_s, total_s;
+    } load;
     uint32_t made_opaque;      /* translucency: opaque: the materials it made opaque */
     double meter_lum;          /* exposure.mode auto: the metering frame's log-average
                                 * luminance (0: black; NAN: not metered) */

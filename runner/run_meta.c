@@ -99,6 +99,28 @@ bool run_write_meta(run_state *st, char *err, size_t errlen)
         yo_key(y, "made_opaque");   /* translucency: opaque */
         yo_i64(y, st->made_opaque);
     }
+    if (st->load.source) {
+        /* seconds: the file's import (twice where the scene is not read from the cache:
+         * the check, then the build) and texture decode, the building of the scene from
+         * it, the cache file's read and write, the scene in all (load), and the
+         * renderer's prepare (the scene's upload to the GPU and the programs) */
+        yo_key(y, "scene_load");
+        yo_map_begin(y);
+        yo_key(y, "source"); yo_str(y, st->load.source);
+        if (st->load.cache[0]) {
+            yo_key(y, "cache"); yo_str(y, st->load.cache);
+        }
+        if (st->load.note[0]) {
+            yo_key(y, "cache_note"); yo_str(y, st->load.note);
+        }
+        yo_key(y, "import_s"); yo_f64(y, st->load.import_s);
+        yo_key(y, "decode_s"); yo_f64(y, st->load.decode_s);
+        yo_key(y, "build_s"); yo_f64(y, st->load.build_s);
+        yo_key(y, "cache_s"); yo_f64(y, st->load.cache_s);
+        yo_key(y, "load_s"); yo_f64(y, st->load.total_s);
+        yo_key(y, "prepare_s"); yo_f64(y, st->load.prepare_s);
+        yo_map_end(y);
+    }
     if (p->scene_file[0]) {
         const scene_file_info *si = &st->scene_info;
         char hash[17];

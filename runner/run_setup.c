@@ -12,6 +12,7 @@
 #include "runner/hash.h"
 #include "runner/params.h"
 #include "runner/plan_check.h"
+#include "runner/progress.h"
 
 /* measure.metric for this context. auto: the process's CPU time on a software
  * rasteriser (its threads are ours, and load that takes a core moves its wall time,
@@ -30,6 +31,117 @@ static bool resolve_metric(run_metric m, const gl_info *gi, char *out, size_t le
                              : m == RUN_METRIC_CPU ? "cpu"
                              : m == RUN_METRIC_GPU ? "gpu"
                              : software ? "cpu" : gi->timer_query ? "gpu" : "wall");
+    return true;
+}
+
+/* The scene's cache file for this run (outputs.scene_cache), OUT/.cache/scenes/NAME:
+ * inside the output folder, which the run may write and which its trials and the other
+ * runs of its sweep share, and which goes when the results go; "" when off. */
+static void cache_path(const run_state *st, const scene_file_options *fo, uint64_t hash,
+                       char *out, size_t len)
+{
+    const run_params *p = &st->s->p;
+    out[0] = '\0';
+    if (!p->scene_cache || !p->scene_file[0])
+        return;
+    char name[SCENE_CACHE_NAME_LEN];
+    scene_cache_name(fo, hash, p->width, p->height, name);
+    snprintf(out, len, "%s/.cache/scenes/%s", st->o->out_dir, name);
+}
+
+static void load_note(run_state *st, const char *note)
+{
+    snprintf(st->load.note, sizeof st->load.note, "%s", note);
+    if (note[0])
+        fprintf(stderr, "shadesweep: scene cache: %s\n", note);
+}
+
+/* The run's scene, from its cache file when that holds (file scenes), else loaded and
+ * built (and cached); st->load says how and what it took. */
+static bool run_setup_scene(run_state *st)
+{
+    const run_params *p = &st->s->p;
+    double t0 = progress_now();
+    scene_file_times ft;
+    scene_file_times_take(&ft);   /* what loads before this run's spent is not its */
+    scene_file_options fo;
+    scene_source src;
+    run_params_scene(p, &fo, &src);
+    st->load.source = p->scene_file[0] ? "file" : "catalog";
+    st->load.cache = !p->scene_file[0] ? "" : p->scene_cache ? "not written" : "off";
+    uint64_t planned = strtoull(p->scene_hash, NULL, 16);
+    char path[4400];
+    cache_path(st, &fo, planned, path, sizeof path);
+    scene_cached *cached = NULL;
+    if (path[0]) {
+        char note[640];
+        cached = scene_cache_read(path, &fo, planned, p->width, p->height, &st->scene_info,
+                                  note, sizeof note);
+        load_note(st, note);
+    }
+    scene_file_list files = {0};
+    scene_cache_store store = {.path = path[0] ? path : NULL, .o = &fo,
+                               .content_hash = planned, .info = &st->scene_info,
+                               .files = &files};
+    if (cached) {
+        st->load.source = "cache";
+        st->load.cache = "hit";
+        store.path = NULL;
+    } else if (p->scene_file[0]) {
+        /* A file scene is checked again here: the plan named it by its content hash, and
+         * a file edited since then must not be measured under the old id. */
+        char hash[17];
+        if (!scene_file_check_list(&fo, &st->scene_info, store.path ? &files : NULL, st->err,
+                                   sizeof st->err)) {
+            run_set_status(st, "scene");
+            return false;
+        }
+        hash_hex(st->scene_info.hash, 16, hash);
+        if (strcmp(hash, p->scene_hash) != 0) {
+            snprintf(st->err, sizeof st->err,
+                     "%.300s changed since the plan was made (content hash %s, now %s)",
+                     p->scene_file, p->scene_hash, hash);
+            scene_file_list_free(&files);
+            run_set_status(st, "scene");
+            return false;
+        }
+        char why[512];
+        if (store.path) {
+            *strrchr(path, '/') = '\0';
+            bool made = fs_mkdirs_tail(path, 2, why, sizeof why);   /* .cache/scenes: no links */
+            *strchr(path, '\0') = '/';
+            if (!made) {
+                char note[640];
+                snprintf(note, sizeof note, "not cached: %.500s", why);
+                load_note(st, note);
+                store.path = NULL;
+            }
+        }
+    }
+    double cache_s = progress_now() - t0;
+    scene_file_times_take(&ft);
+    double t1 = progress_now();
+    st->sc = scene_build_cache(&src, cached, store.path ? &store : NULL, &p->lights, p->width,
+                               p->height, st->err, sizeof st->err);
+    double built = progress_now() - t1;
+    scene_file_list_free(&files);
+    if (store.path) {
+        st->load.cache = store.written ? "written" : store.animated ? "animated" : "not written";
+        if (store.note[0])
+            load_note(st, store.note);
+    }
+    scene_file_times bt;
+    scene_file_times_take(&bt);
+    st->load.import_s = ft.import_s + bt.import_s;
+    st->load.decode_s = ft.decode_s + bt.decode_s;
+    /* the check's load (before t1) is import and decode; the cache's read is cache_s */
+    st->load.cache_s = (cached ? cache_s : cache_s - ft.import_s - ft.decode_s) + store.write_s;
+    st->load.build_s = built - bt.import_s - bt.decode_s - store.write_s;
+    if (!st->sc || !scene_set_camera(st->sc, &p->camera, st->err, sizeof st->err)) {
+        run_set_status(st, "scene");
+        return false;
+    }
+    st->load.total_s = progress_now() - t0;
     return true;
 }
 
@@ -52,33 +164,8 @@ bool run_setup(run_state *st)
         run_set_status(st, "context");
         return false;
     }
-    /* A file scene is checked again here: the plan named it by its content hash, and
-     * a file edited since then must not be measured under the old id. */
-    scene_file_options fo;
-    scene_source src;
-    run_params_scene(p, &fo, &src);
-    if (p->scene_file[0]) {
-        char hash[17];
-        if (!scene_file_check(&fo, &st->scene_info, st->err, sizeof st->err)) {
-            run_set_status(st, "scene");
-            return false;
-        }
-        hash_hex(st->scene_info.hash, 16, hash);
-        if (strcmp(hash, p->scene_hash) != 0) {
-            snprintf(st->err, sizeof st->err,
-                     "%.300s changed since the plan was made (content hash %s, now %s)",
-                     p->scene_file, p->scene_hash, hash);
-            run_set_status(st, "scene");
-            return false;
-        }
-    }
-
-    if (!(st->sc = scene_build_source(&src, &p->lights, p->width, p->height, st->err,
-                                      sizeof st->err)) ||
-        !scene_set_camera(st->sc, &p->camera, st->err, sizeof st->err)) {
-        run_set_status(st, "scene");
+    if (!run_setup_scene(st))
         return false;
-    }
     st->made_opaque = run_params_shape_scene(p, st->sc);
     const gl_info *gi = gl_context_info(st->ctx);
     if (!resolve_metric(p->metric, gi, st->metric, sizeof st->metric, st->err, sizeof st->err)) {
@@ -94,11 +181,13 @@ bool run_setup(run_state *st)
     params_to_renderer_options(p, &ro);   /* params.def's `apply` column */
     if (!run_display(st, &ro))
         return false;
+    double t_prepare = progress_now();
     if (!(st->r = renderer_create(p->renderer, &ro, st->err, sizeof st->err)) ||
         !renderer_prepare(st->r, st->sc, st->err, sizeof st->err)) {
         run_set_status(st, "renderer");
         return false;
     }
+    st->load.prepare_s = progress_now() - t_prepare;   /* the scene's upload, the programs */
     renderer_describe(st->r, &st->plan);
     if (!run_gl_clean(st, "prepare")) {
         snprintf(st->err, sizeof st->err, "GL error while preparing the renderer");

@@ -168,9 +168,29 @@ static char *read_meta(const char *run_dir, uint32_t k, char *err, size_t errlen
     return text;
 }
 
-/* What meta.yaml's `trials` list says of one trial: its top-level values as written. */
+/* The lines of a top-level block `key:` of a meta.yaml text (the indented lines after
+ * it, each with its newline), malloc'd; NULL when absent or out of memory. */
+static char *top_block(const char *text, const char *key)
+{
+    size_t kl = strlen(key);
+    for (const char *line = text; line && *line; line = strchr(line, '\n') ? strchr(line, '\n') + 1 : NULL) {
+        if (strncmp(line, key, kl) != 0 || line[kl] != ':' || line[kl + 1] != '\n')
+            continue;
+        const char *start = line + kl + 2, *end = start;
+        while (*end == ' ') {
+            const char *nl = strchr(end, '\n');
+            end = nl ? nl + 1 : end + strlen(end);
+        }
+        return strndup(start, (size_t)(end - start));
+    }
+    return NULL;
+}
+
+/* What meta.yaml's `trials` list says of one trial: its top-level values as written,
+ * and how it loaded its scene (its scene_load block; each trial loads its own). */
 typedef struct trial_meta {
     char status[160], started[128], finished[128];
+    char *scene_load;
 } trial_meta;
 
 /* meta.yaml: trial 1's with the run's status and the last trial's end, then how the
@@ -190,6 +210,7 @@ static bool merge_meta(const char *run_dir, uint32_t n, const char *status,
         top_value(m, "status", tm[k - 1].status, sizeof tm[k - 1].status);
         top_value(m, "started", tm[k - 1].started, sizeof tm[k - 1].started);
         top_value(m, "finished", tm[k - 1].finished, sizeof tm[k - 1].finished);
+        tm[k - 1].scene_load = top_block(m, "scene_load");
         if (k == 1)
             first = m;   /* the run's meta.yaml is made from it */
         else
@@ -200,6 +221,8 @@ static bool merge_meta(const char *run_dir, uint32_t n, const char *status,
     afile out;
     if (!ok || !afile_open(&out, final, err, errlen)) {
         free(first);
+        for (uint32_t k = 0; tm && k < n; k++)
+            free(tm[k].scene_load);
         free(tm);
         return false;
     }
@@ -228,7 +251,18 @@ static bool merge_meta(const char *run_dir, uint32_t n, const char *status,
                 "    finished: %s\n", k, sched->order ? sched->order[k - 1] : 0,
                 t->status[0] ? t->status : "\"\"", t->started[0] ? t->started : "\"\"",
                 t->finished[0] ? t->finished : "\"\"");
+        if (t->scene_load) {
+            fputs("    scene_load:\n", out.fp);
+            for (const char *l = t->scene_load; *l;) {
+                const char *nl = strchr(l, '\n');
+                size_t len = nl ? (size_t)(nl - l) + 1 : strlen(l);
+                fprintf(out.fp, "    %.*s", (int)len, l);
+                l += len;
+            }
+        }
     }
+    for (uint32_t k = 0; k < n; k++)
+        free(tm[k].scene_load);
     free(tm);
     return afile_commit(&out, err, errlen);
 }

@@ -36,8 +36,7 @@
 #include "scenes/scene_fail.h"
 #include "scenes/scene_internal.h"
 
-/* FNV-1a 64, the same function as runner/hash.h (scenes/ cannot reach runner/). */
-static uint64_t fnv1a64_more(uint64_t h, const void *data, size_t len)
+uint64_t scene_fnv1a64_more(uint64_t h, const void *data, size_t len)
 {
     const unsigned char *p = data;
     for (size_t i = 0; i < len; i++) {
@@ -358,6 +357,12 @@ static const struct aiCamera *chosen_camera(const struct aiScene *ai, const char
 bool scene_file_check(const scene_file_options *o, scene_file_info *info, char *err,
                       size_t errlen)
 {
+    return scene_file_check_list(o, info, NULL, err, errlen);
+}
+
+bool scene_file_check_list(const scene_file_options *o, scene_file_info *info,
+                           scene_file_list *files, char *err, size_t errlen)
+{
     loaded l;
     if (!file_load(o, &l, err, errlen))
         return false;
@@ -389,15 +394,8 @@ bool scene_file_check(const scene_file_options *o, scene_file_info *info, char *
         }
         info->files = l.files.n;
         uint64_t h = UINT64_C(0xcbf29ce484222325);
-        for (uint32_t i = 0; i < l.files.n; i++) {
-            /* each file's length, then its bytes: names do not count */
-            uint64_t n = l.files.files[i].size;
-            unsigned char len[8];
-            for (int k = 0; k < 8; k++)
-                len[k] = (unsigned char)(n >> (8 * k));
-            h = fnv1a64_more(h, len, sizeof len);
-            h = fnv1a64_more(h, l.files.files[i].data, l.files.files[i].size);
-        }
+        for (uint32_t i = 0; i < l.files.n; i++)   /* names do not count */
+            h = scene_file_hash_more(h, l.files.files[i].data, l.files.files[i].size);
         info->hash = h;
         sm_vec3_copy(c.lo, info->bounds_min);
         sm_vec3_copy(c.hi, info->bounds_max);
@@ -412,6 +410,8 @@ bool scene_file_check(const scene_file_options *o, scene_file_info *info, char *
                                                         : "the bounds framed from above and "
                                                           "to the side");
     }
+    if (ok && files)
+        ok = file_loaded_list(&l, files, err, errlen);
     file_loaded_free(&l);
     return ok;
 }

@@ -112,6 +112,8 @@ typedef struct material_refs {
 /* Imports and checks everything; on success l holds the scene and every texture. */
 bool file_load(const scene_file_options *o, loaded *l, char *err, size_t errlen);
 void file_loaded_free(loaded *l);
+/* The paths of the files l read, in the order of the content hash (scene.h). */
+bool file_loaded_list(const loaded *l, scene_file_list *out, char *err, size_t errlen);
 /* The image a material references, decoded (once per reference), or -1 with a message. */
 int file_load_image(loaded *l, const char *ref, char *err, size_t errlen);
 void file_material_refs(const struct aiMaterial *m, material_refs *r);

@@ -11,11 +11,13 @@
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
+#include <time.h>
 
 #include "results/fsutil.h"
 #include "results/grow.h"
 #include "scenes/file_import.h"
 #include "scenes/scene_fail.h"
+#include "scenes/scene_internal.h"
 
 void file_loaded_free(loaded *l)
 {
@@ -345,8 +347,70 @@ static bool why_no_triangles(loaded *l, const char *path, struct aiFileIO *io,
     return true;
 }
 
+uint64_t scene_file_hash_more(uint64_t h, const void *data, size_t len)
+{
+    unsigned char n[8];
+    for (int k = 0; k < 8; k++)
+        n[k] = (unsigned char)((uint64_t)len >> (8 * k));
+    h = scene_fnv1a64_more(h, n, sizeof n);
+    return scene_fnv1a64_more(h, data, len);
+}
+
+void scene_file_list_free(scene_file_list *f)
+{
+    for (uint32_t i = 0; f && i < f->n; i++)
+        free(f->path[i]);
+    if (f)
+        free(f->path);
+    if (f)
+        *f = (scene_file_list){0};
+}
+
+bool file_loaded_list(const loaded *l, scene_file_list *out, char *err, size_t errlen)
+{
+    *out = (scene_file_list){0};
+    if (!(out->path = calloc(l->files.n ? l->files.n : 1, sizeof *out->path)))
+        return scene_fail(err, errlen, "%s: out of memory", l->path);
+    for (; out->n < l->files.n; out->n++)
+        if (!(out->path[out->n] = strdup(l->files.files[out->n].path))) {
+            scene_file_list_free(out);
+            return scene_fail(err, errlen, "%s: out of memory", l->path);
+        }
+    return true;
+}
+
+/* What this thread's loads spent since scene_file_times_take last took it. */
+static _Thread_local scene_file_times load_times;
+
+static double now_s(void)
+{
+    struct timespec ts;
+    clock_gettime(CLOCK_MONOTONIC, &ts);
+    return (double)ts.tv_sec + 1e-9 * (double)ts.tv_nsec;
+}
+
+void scene_file_times_take(scene_file_times *t)
+{
+    *t = load_times;
+    load_times = (scene_file_times){0};
+}
+
+static bool file_load_checked(const scene_file_options *o, loaded *l, double *decode_s,
+                              char *err, size_t errlen);
+
 /* Imports and checks everything; on success l holds the scene and every texture. */
 bool file_load(const scene_file_options *o, loaded *l, char *err, size_t errlen)
+{
+    double t0 = now_s(), decode_s = 0.0;
+    bool ok = file_load_checked(o, l, &decode_s, err, errlen);
+    load_times.import_s += now_s() - t0 - decode_s;
+    load_times.decode_s += decode_s;
+    load_times.loads++;
+    return ok;
+}
+
+static bool file_load_checked(const scene_file_options *o, loaded *l, double *decode_s,
+                              char *err, size_t errlen)
 {
     memset(l, 0, sizeof *l);
     if (!o || !o->path || !o->path[0])
@@ -512,14 +576,18 @@ bool file_load(const scene_file_options *o, loaded *l, char *err, size_t errlen)
                    "on a line): nothing to draw", o->path);
         goto out;
     }
+    double t_decode = now_s();
     for (unsigned i = 0; i < ai->mNumMaterials; i++) {
         material_refs r;
         file_material_refs(ai->mMaterials[i], &r);
         const char *refs[5] = {r.diffuse, r.normal, r.emissive, r.mr, r.occlusion};
         for (int k = 0; k < 5; k++)
-            if (refs[k][0] && file_load_image(l, refs[k], err, errlen) < 0)
+            if (refs[k][0] && file_load_image(l, refs[k], err, errlen) < 0) {
+                *decode_s = now_s() - t_decode;
                 goto out;
+            }
     }
+    *decode_s = now_s() - t_decode;
     if (!file_camera_is(o->camera, "orbit") && !file_camera_is(o->camera, "auto")) {
         bool found = false;
         for (unsigned i = 0; i < ai->mNumCameras && !found; i++)

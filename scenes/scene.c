@@ -112,10 +112,34 @@ static scene *build_unlit(const scene_source *src, int width, int height, scene_
 scene *scene_build_source(const scene_source *src, const light_params *lp, int width,
                           int height, char *err, size_t errlen)
 {
+    return scene_build_cache(src, NULL, NULL, lp, width, height, err, errlen);
+}
+
+scene *scene_build_cache(const scene_source *src, scene_cached *from, scene_cache_store *to,
+                         const light_params *lp, int width, int height, char *err,
+                         size_t errlen)
+{
     scene_builder *b;
-    scene *s = build_unlit(src, width, height, &b, err, errlen);
-    if (!s)
-        return NULL;
+    scene *s;
+    if (from) {
+        source_plan plan;
+        if (!plan_source(src, &plan, err, errlen)) {
+            scene_cached_free(from);
+            return NULL;
+        }
+        if (!(b = scene_cached_take(from, err, errlen)))
+            return NULL;
+        s = b->s;
+        snprintf(s->name, sizeof s->name, "%s", plan.name);   /* the name is not cached */
+        s->fault = plan.fault;
+        s->width = width;
+        s->height = height;
+    } else {
+        if (!(s = build_unlit(src, width, height, &b, err, errlen)))
+            return NULL;
+        if (to && to->path)
+            scene_cache_write(to, b);
+    }
     bool ok = scene_place_lights(s, b->authored, b->nauthored, b->ncoverage, lp, false, err,
                                  errlen);
     free(b->authored);

@@ -357,6 +357,27 @@ typedef struct scene_file_info {
 bool scene_file_check(const scene_file_options *o, scene_file_info *info, char *err,
                       size_t errlen);
 
+/* scene_file_check, and the paths of the files it read (the scene file, its buffers and
+ * images), in the order its content hash takes them: files (NULL is fine) is filled on
+ * success, scene_file_list_free frees it. */
+typedef struct scene_file_list {
+    char **path;
+    uint32_t n;
+} scene_file_list;
+bool scene_file_check_list(const scene_file_options *o, scene_file_info *info,
+                           scene_file_list *files, char *err, size_t errlen);
+void scene_file_list_free(scene_file_list *f);   /* NULL is fine */
+
+/* What this thread's file loads (each scene_file_check and file scene build loads the
+ * file) spent since the last call, which zeroes it: the import (reading the files,
+ * assimp's parse and post-processing, the checks) and the texture decode, in seconds of
+ * CLOCK_MONOTONIC; loads: how many loads. */
+typedef struct scene_file_times {
+    double import_s, decode_s;
+    uint32_t loads;
+} scene_file_times;
+void scene_file_times_take(scene_file_times *t);
+
 /* Where a scene comes from: the catalog (name) or a file (file != NULL). */
 typedef struct scene_source {
     const char *name;          /* catalog name; ignored when file is set */
@@ -371,6 +392,41 @@ scene *scene_build_source(const scene_source *src, const light_params *lp, int w
                           int height, char *err, size_t errlen);
 scene *scene_build(const char *name, const light_params *lp, int width, int height,
                    char *err, size_t errlen);
+
+/* The scene cache (scenes/scene_cache.c; docs/architecture.md "File scenes"): a file
+ * scene as its builder made it, before the run's lights, in a file named by a hash of
+ * the files' content hash, the loading options, the resolution and the cache format.
+ * scene_cache_name: that name ("<16 hex digits>.scene"). scene_cache_read: the scene
+ * of the cache file at path when every check holds (header, sizes, checksum, key, the
+ * files it lists hashing to content_hash today, every index in range), with the
+ * scene_file_info stored with it in *info; else NULL, note "" where there is no file,
+ * else one line saying why it was not used. */
+typedef struct scene_cached scene_cached;
+#define SCENE_CACHE_NAME_LEN 24
+void scene_cache_name(const scene_file_options *o, uint64_t content_hash, int width,
+                      int height, char out[SCENE_CACHE_NAME_LEN]);
+scene_cached *scene_cache_read(const char *path, const scene_file_options *o,
+                               uint64_t content_hash, int width, int height,
+                               scene_file_info *info, char *note, size_t notelen);
+void scene_cached_free(scene_cached *c);   /* NULL is fine */
+/* Where scene_build_cache writes a scene it built (path NULL: nowhere), and what came of
+ * it: written; animated (an animated scene is not cached); or note says why not (a write
+ * failure). */
+typedef struct scene_cache_store {
+    const char *path;
+    const scene_file_options *o;
+    uint64_t content_hash;
+    const scene_file_info *info;
+    const scene_file_list *files;
+    bool written, animated;
+    char note[600];
+    double write_s;            /* seconds the write took */
+} scene_cache_store;
+/* scene_build_source, from `from` when not NULL (taken: freed here, built or not), else
+ * built and then stored as `to` says (NULL: not stored; a failed store fails nothing). */
+scene *scene_build_cache(const scene_source *src, scene_cached *from, scene_cache_store *to,
+                         const light_params *lp, int width, int height, char *err,
+                         size_t errlen);
 void scene_update(scene *s, double t);
 
 /* What a plan check asks of many runs' scenes without building each (runner/plan_check.c):

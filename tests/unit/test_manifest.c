@@ -437,6 +437,7 @@ static void test_kv_canonical(void **state)
         {"tonemap", "none"},
         {"outputs.frames", "true"},
         {"outputs.seconds", "true"},
+        {"outputs.scene_cache", "true"},
         {"outputs.screenshots", ""},
         {"allow_empty", "false"},
         {"debug.busy_us", "0"},
@@ -520,6 +521,7 @@ static void test_kv_canonical(void **state)
         {"tonemap", "none"},
         {"outputs.frames", "false"},
         {"outputs.seconds", "false"},
+        {"outputs.scene_cache", "true"},
         {"outputs.screenshots", "0,10,30.5"},
         {"allow_empty", "false"},
         {"debug.busy_us", "0"},
@@ -546,9 +548,11 @@ static void test_kv_canonical(void **state)
             /* a timeout changes no result, so it is not part of the run id; nor the
              * debug keys (testing regression gates: a slowed run keeps its id), nor how
              * trials are scheduled and ranked (schedule, measure.*). Keys at their
-             * default leave the id too (is_default), which test_params.c checks. */
+             * default leave the id too (is_default), which test_params.c checks. Nor
+             * whether a file scene is read from the cache (the same scene either way). */
             assert_int_equal(kv[i].in_id, strcmp(kv[i].key, "timeout") != 0 &&
                                               strcmp(kv[i].key, "schedule") != 0 &&
+                                              strcmp(kv[i].key, "outputs.scene_cache") != 0 &&
                                               strncmp(kv[i].key, "measure.", 8) != 0 &&
                                               strncmp(kv[i].key, "debug.", 6) != 0);
         }
