@@ -3,7 +3,9 @@
  * beyond a run's end, an attenuation that never falls off, and every scene and
  * camera the plan builds (scenes/ has no GL: a scene that cannot be built, such as
  * placement scene on a scene without authored lights or near not below far, fails
- * here with the message scene_build or scene_set_camera gives). */
+ * here with the message scene_build or scene_set_camera gives); and the runs past
+ * a GL's limits (plan_check_gl: the context run would get) or, without one, past what
+ * every GL has (plan_warnings). */
 #include "runner/plan_check.h"
 
 #include <inttypes.h>

@@ -20,7 +20,8 @@ bool plan_first_of_key(const plan *p, uint64_t (*hash)(const run_params *),
 
 /* Prints (one line each) what may make runs fail on some GL but not on others, known
  * before any GL: forward-spml's uniform block beyond the size every GL guarantees.
- * validate, list and run print them; they refuse nothing. */
+ * list, validate --no-gl, and validate and run without a GL context print them; they
+ * refuse nothing. */
 void plan_warnings(const experiment *e, const plan *p, FILE *out);
 /* Whether some run is past what every GL guarantees (what plan_warnings names): only
  * then can a GL's own limits refuse a run. */
