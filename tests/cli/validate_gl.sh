@@ -1,10 +1,10 @@
 #!/usr/bin/env bash
 # `validate` against the GL that run would use (issue 42, item 4): on llvmpipe (819
 # lights in a 65536-byte uniform block) forward-spml with 16384 uniform lights is an
-# error naming the run, the value and the limit; the same with forward.light_buffer:
-# storage is valid; the quick-start validates with nothing on stderr; --no-gl keeps the
-# warning against the 204 lights every GL has; no context (--device 99): --gl refuses,
-# the default says what it could not check and why.
+# error naming the run, the value and the limit (msaa 8 past its 4 samples too); the
+# same with forward.light_buffer: storage is valid; the quick-start validates with
+# nothing on stderr; --no-gl keeps the warning against the 204 lights every GL has; no
+# context (--device 99): --gl refuses, the default says what it could not check and why.
 . "$(dirname "$0")/lib.sh"
 need_gl
 cd "$T"
@@ -26,6 +26,13 @@ grep -qF "$tail" "$T/cmd.err" || fail "validate --gl big.yaml: $(cat "$T/cmd.err
 printf 'shadesweep: 1\nname: big\nscene: shapes\nrenderers: [forward-spml]\nresolution: 16x16\nduration: {frames: 2}\nclock: fixed\nlights: {count: 16384}\nforward: {light_buffer: storage}\n' >ssbo.yaml
 expect 2 "$tail" "$SHADESWEEP" validate --gl ssbo.yaml big.yaml
 [ "$(cat "$T/cmd.out")" = "ssbo.yaml: ok, 1 run" ] || fail "ssbo.yaml beside big.yaml: $(cat "$T/cmd.out")"
+# samples past the context's (llvmpipe: 4) likewise
+samples=$("$SHADESWEEP" info | sed -n 's/^max_samples: //p')
+if [ "$samples" -lt 8 ]; then
+  expect 2 "big.yaml: msaa: expected at most $samples samples a pixel on this GL (" \
+    "$SHADESWEEP" validate --gl --set forward.light_buffer=storage --set msaa=8 big.yaml
+  grep -qF "found 8 in run " "$T/cmd.err" || fail "msaa 8: $(cat "$T/cmd.err")"
+fi
 # the default: the same refusal when the context came within 1 s, else the note and
 # the warning (a loaded machine): either is exact
 set +e; "$SHADESWEEP" validate big.yaml >out.txt 2>err.txt; rc=$?; set -e
