@@ -55,8 +55,18 @@ static const char usage_text[] =
     "                             renderers: listed only those of its own (in its order).\n"
     "                             --set and --renderer are part of the manifest hash\n"
     "                             (--resume, merge) and recorded in each run's meta.yaml\n"
-    "  validate [--set KEY=VALUE] [--renderer R[,R...]] MANIFEST...  check manifests\n"
-    "                             (with run's --set and --renderer); print every error\n"
+    "  validate [--set KEY=VALUE] [--renderer R[,R...]] [--gl|--no-gl] [--backend B]\n"
+    "      [--device N] MANIFEST...  check manifests (with run's --set and --renderer)\n"
+    "                             and print every error; exit 0 when all are valid, 2\n"
+    "                             when one is not (or --gl had no GL context)\n"
+    "      --gl                   check the runs against the limits of the GL context\n"
+    "                             run would get (--backend, --device): forward-spml's\n"
+    "                             uniform block, samples, framebuffer size; a run past\n"
+    "                             them is an error. Waits up to 10 s for the context;\n"
+    "                             none is an error. Default: so checked when a context\n"
+    "                             is had within 1 s, else (saying why) warned about\n"
+    "                             against what every GL has, as --no-gl does\n"
+    "      --no-gl                no GL: only what every GL has, as warnings\n"
     "  list [--shard I/N] [--smoke] [--scale S] [--set KEY=VALUE] [--renderer R[,R...]]\n"
     "      [--json] MANIFEST      the expanded runs, one per line (--json: every run's\n"
     "                             every parameter, typed); options as run's\n"
@@ -116,10 +126,32 @@ typedef struct cli_opts {
     unsigned round;            /* --round K; 0: not given */
     const char *sets[64];      /* --set KEY=VALUE, in order */
     manifest_overrides ov;     /* the --set and --renderer that load_plan applies */
+    int gl;                    /* --gl 1, --no-gl -1; 0: when a context is had in time */
+    bool refuse_gl;            /* runs past the GL's limits are errors (validate), not
+                                * warnings (run) */
+    int gl_state;              /* 0: not asked yet; 1: gi holds the limits; -1: gl_why */
+    gl_info gi;
+    char gl_why[512];
 } cli_opts;
 
 enum { OPT_FORCE = 1000, OPT_BACKEND, OPT_DEVICE, OPT_SHARD, OPT_DEBUG_GL, OPT_RESUME, OPT_SMOKE, OPT_SCALE,
-       OPT_RETRY_FAILED, OPT_ROUND, OPT_JSON, OPT_SET, OPT_RENDERER, OPT_ALLOW_MIXED };
+       OPT_RETRY_FAILED, OPT_ROUND, OPT_JSON, OPT_SET, OPT_RENDERER, OPT_ALLOW_MIXED, OPT_GL,
+       OPT_NO_GL };
+
+/* How long validate waits for the GL context whose limits it checks against: by
+ * default (no context in time: the checks are warnings), and with --gl. */
+#define GL_WAIT_DEFAULT_S 1.0
+#define GL_WAIT_GL_S 10.0
+
+/* Whether `name` is one of the space-separated words of `words`. */
+static bool has_word(const char *words, const char *name)
+{
+    size_t n = strlen(name);
+    for (const char *w = strstr(words, name); w; w = strstr(w + 1, name))
+        if ((w == words || w[-1] == ' ') && (w[n] == ' ' || w[n] == 0))
+            return true;
+    return false;
+}
 
 /* Parses the options a command accepts; `allowed` lists their long names. Returns
  * the index of the first operand, or -1 after printing the problem. */
@@ -141,6 +173,8 @@ static int parse_opts(int argc, char **argv, const char *allowed, cli_opts *o)
         {"set", required_argument, NULL, OPT_SET},
         {"renderer", required_argument, NULL, OPT_RENDERER},
         {"allow-mixed-builds", no_argument, NULL, OPT_ALLOW_MIXED},
+        {"gl", no_argument, NULL, OPT_GL},
+        {"no-gl", no_argument, NULL, OPT_NO_GL},
         {NULL, 0, NULL, 0},
     };
     memset(o, 0, sizeof *o);
@@ -161,7 +195,7 @@ static int parse_opts(int argc, char **argv, const char *allowed, cli_opts *o)
         for (size_t k = 1; c >= OPT_FORCE && longopts[k].name; k++)
             if (longopts[k].val == c)
                 name = longopts[k].name;
-        if (c == '?' || c == ':' || (name && !strstr(allowed, name))) {
+        if (c == '?' || c == ':' || (name && !has_word(allowed, name))) {
             /* a known option by its name: argv[optind - 1] may be its value */
             char known[40];
             snprintf(known, sizeof known, c == 'o' ? "-o" : "--%s", name ? name : "");
@@ -179,6 +213,8 @@ static int parse_opts(int argc, char **argv, const char *allowed, cli_opts *o)
         case OPT_JSON: o->json = true; break;
         case OPT_RETRY_FAILED: o->retry_failed = true; break;
         case OPT_ALLOW_MIXED: o->allow_mixed = true; break;
+        case OPT_GL: o->gl = 1; break;
+        case OPT_NO_GL: o->gl = -1; break;
         case OPT_ROUND: {
             char *end;
             errno = 0;
@@ -265,8 +301,45 @@ static int parse_opts(int argc, char **argv, const char *allowed, cli_opts *o)
     return optind;
 }
 
+/* The limits of the GL context run would get, asked once (run_probe_gl, within
+ * GL_WAIT_GL_S with --gl, else GL_WAIT_DEFAULT_S); false with o->gl_why. */
+static bool get_gl(cli_opts *o)
+{
+    if (!o->gl_state)
+        o->gl_state = run_probe_gl(o->backend, o->device,
+                                   o->gl > 0 ? GL_WAIT_GL_S : GL_WAIT_DEFAULT_S, &o->gi,
+                                   o->gl_why, sizeof o->gl_why) ? 1 : -1;
+    return o->gl_state > 0;
+}
+
+/* The plan's runs against the GL's limits (where some run is past what every GL has,
+ * or with --gl): errors in d (refuse_gl) or warnings; without a GL, or with --no-gl,
+ * the warnings against what every GL has, and why (only a GL can refuse them). */
+static bool check_plan_gl(const char *path, cli_opts *o, const experiment *e, const plan *p,
+                          diag_list *d)
+{
+    if (o->gl < 0 || (o->gl == 0 && !plan_needs_gl(p))) {
+        plan_warnings(e, p, stderr);
+        return true;
+    }
+    if (!get_gl(o)) {
+        fprintf(stderr, "%s: note: not checked against this GL (%s): the warnings say what "
+                "every GL has\n", path, o->gl_why);
+        plan_warnings(e, p, stderr);
+        return true;
+    }
+    if (o->refuse_gl)
+        return plan_check_gl(e, p, &o->gi, d);
+    diag_list w = {0};
+    plan_check_gl(e, p, &o->gi, &w);
+    for (size_t i = 0; i < w.n; i++)
+        fprintf(stderr, "%s: warning: %s: %s\n", path, w.v[i].key, w.v[i].msg);
+    diag_free(&w);
+    return true;
+}
+
 /* Loads and expands a manifest, printing every problem. */
-static bool load_plan(const char *path, const cli_opts *o, experiment **e, plan *p)
+static bool load_plan(const char *path, cli_opts *o, experiment **e, plan *p)
 {
     diag_list d = {0};
     *e = NULL;
@@ -280,12 +353,10 @@ static bool load_plan(const char *path, const cli_opts *o, experiment **e, plan 
     if (ok && o->smoke)
         experiment_make_smoke(*e);
     ok = ok && plan_expand(*e, o->nshards, p, &d);
-    if (ok && !plan_check(*e, p, &d)) {
+    if (ok && (!plan_check(*e, p, &d) || !check_plan_gl(path, o, *e, p, &d))) {
         plan_free(p);
         ok = false;
     }
-    if (ok)
-        plan_warnings(*e, p, stderr);
     diag_print(&d, stderr);
     diag_free(&d);
     if (!ok) {
@@ -298,11 +369,16 @@ static bool load_plan(const char *path, const cli_opts *o, experiment **e, plan 
 static int cmd_validate(int argc, char **argv)
 {
     cli_opts o;
-    int first = parse_opts(argc, argv, "set renderer", &o);
+    int first = parse_opts(argc, argv, "set renderer gl no-gl backend device", &o);
     if (first < 0)
         return 2;
     if (first >= argc) {
         fprintf(stderr, "shadesweep validate: expected one or more manifests\n");
+        return 2;
+    }
+    o.refuse_gl = true;
+    if (o.gl > 0 && !get_gl(&o)) {
+        fprintf(stderr, "shadesweep validate: --gl: %s\n", o.gl_why);
         return 2;
     }
     int bad = 0;
@@ -330,6 +406,7 @@ static int cmd_list(int argc, char **argv)
     int first = parse_opts(argc, argv, "shard smoke scale json set renderer", &o);
     if (first < 0)
         return 2;
+    o.gl = -1;   /* list loads no GL: it warns about what every GL has */
     if (argc - first != 1) {
         fprintf(stderr, "shadesweep list: expected one manifest\n");
         return 2;

@@ -531,7 +531,7 @@ static void print_bash(FILE *out)
           "    list) opts=\"--shard --smoke --scale --set --renderer --json --help\" ;;\n"
           "    info) opts=\"--backend --device --help\" ;;\n"
           "    merge) opts=\"-o --out --force --allow-mixed-builds --help\" ;;\n"
-          "    validate) opts=\"--set --renderer --help\" ;;\n"
+          "    validate) opts=\"--set --renderer --gl --no-gl --backend --device --help\" ;;\n"
           "    params) opts=\"--markdown --bash --help\"\n"
           "      COMPREPLY=($(compgen -W \"$opts $keys\" -- \"$cur\")); return ;;\n"
           "    columns) opts=\"--markdown --help\" ;;\n"

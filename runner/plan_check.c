@@ -3,7 +3,9 @@
  * beyond a run's end, an attenuation that never falls off, and every scene and
  * camera the plan builds (scenes/ has no GL: a scene that cannot be built, such as
  * placement scene on a scene without authored lights or near not below far, fails
- * here with the message scene_build or scene_set_camera gives). */
+ * here with the message scene_build or scene_set_camera gives); and the runs past
+ * a GL's limits (plan_check_gl: the context run would get) or, without one, past what
+ * every GL has (plan_warnings). */
 #include "runner/plan_check.h"
 
 #include <inttypes.h>
@@ -12,6 +14,7 @@
 #include <stdlib.h>
 #include <string.h>
 
+#include "renderers/gl/context.h"
 #include "renderers/renderer.h"
 #include "renderers/shading.h"
 #include "runner/hash.h"
@@ -288,7 +291,7 @@ done:
 #define GL_GUARANTEED_SAMPLES 4
 #define GL_GUARANTEED_SIZE 16384
 
-/* The runs past one guarantee: how many, the first's id, the largest value asked. */
+/* The runs past one limit: how many, the first's id, the largest value asked. */
 typedef struct beyond {
     size_t n;
     const char *first;
@@ -301,6 +304,95 @@ static void note_beyond(beyond *b, const run_spec *r, uint64_t v)
         b->first = r->id;
     if (v > b->most)
         b->most = v;
+}
+
+/* What a GL holds: forward-spml's lights in its uniform block, samples a pixel, pixels
+ * a framebuffer's side. */
+typedef struct gl_holds {
+    uint64_t lights, samples, side;
+} gl_holds;
+
+/* The runs past each of `holds`: forward-spml with forward.light_buffer: uniform holds
+ * max_uniform_block_size / 80 lights (llvmpipe's 65536 bytes hold 819); samples and
+ * sizes count the error reference's too (its lights come from a storage buffer past
+ * the block: runner/run_setup.c). */
+static void find_beyond(const plan *p, const gl_holds *holds, beyond *lights, beyond *samples,
+                        beyond *size)
+{
+    *lights = *samples = *size = (beyond){0};
+    for (size_t k = 0; k < p->nruns; k++) {
+        const run_spec *r = &p->runs[k];
+        const run_params *q = &r->p;
+        if (strcmp(q->renderer, "forward-spml") == 0 && q->light_buffer == 0 &&
+            q->lights.placement != PLACEMENT_SCENE && q->lights.count.max > holds->lights)
+            note_beyond(lights, r, q->lights.count.max);
+        unsigned msaa = 1u << q->msaa, ref_msaa = q->error_renderer[0] ? 1u << q->error_msaa : 1;
+        unsigned most_msaa = msaa > ref_msaa ? msaa : ref_msaa;
+        if (strcmp(q->renderer, "null") != 0 && most_msaa > holds->samples)
+            note_beyond(samples, r, most_msaa);
+        uint64_t k_ref = q->error_renderer[0] ? q->error_supersample : 1;
+        uint64_t side = (uint64_t)(q->width > q->height ? q->width : q->height) *
+                        (k_ref > 1 ? k_ref : 1);
+        if (side > holds->side)
+            note_beyond(size, r, side);
+    }
+}
+
+static gl_holds guaranteed(void)
+{
+    return (gl_holds){.lights = forward_spml_max_lights(GL_GUARANTEED_UNIFORM_BLOCK_BYTES),
+                      .samples = GL_GUARANTEED_SAMPLES, .side = GL_GUARANTEED_SIZE};
+}
+
+bool plan_needs_gl(const plan *p)
+{
+    beyond lights, samples, size;
+    gl_holds g = guaranteed();
+    find_beyond(p, &g, &lights, &samples, &size);
+    return lights.n || samples.n || size.n;
+}
+
+static int min_int(int a, int b) { return a < b ? a : b; }
+
+/* "16384 in run ID" or "up to 16384 in 3 runs (ID, ...)" */
+static const char *found_in(const beyond *b, char *buf, size_t len)
+{
+    if (b->n == 1)
+        snprintf(buf, len, "%" PRIu64 " in run %s", b->most, b->first);
+    else
+        snprintf(buf, len, "up to %" PRIu64 " in %zu runs (%s, ...)", b->most, b->n, b->first);
+    return buf;
+}
+
+bool plan_check_gl(const experiment *e, const plan *p, const gl_info *gi, diag_list *d)
+{
+    size_t nerr = d->n;
+    int side = min_int(min_int(gi->max_renderbuffer_size, gi->max_texture_size),
+                       min_int(gi->max_viewport_dims[0], gi->max_viewport_dims[1]));
+    gl_holds holds = {.lights = forward_spml_max_lights(gi->max_uniform_block_size),
+                      .samples = gi->max_samples > 0 ? (uint64_t)gi->max_samples : 1,
+                      .side = side > 0 ? (uint64_t)side : 0};
+    beyond lights, samples, size;
+    find_beyond(p, &holds, &lights, &samples, &size);
+    char found[160];
+    if (lights.n)
+        diag_add(d, e->path, 0, 0, "forward.light_buffer",
+                 "expected at most %" PRIu64 " lights in forward-spml's uniform block on this "
+                 "GL (%.200s: GL_MAX_UNIFORM_BLOCK_SIZE %d bytes), found %s; set "
+                 "forward.light_buffer: storage or fewer lights", holds.lights, gi->renderer,
+                 gi->max_uniform_block_size, found_in(&lights, found, sizeof found));
+    if (samples.n)
+        diag_add(d, e->path, 0, 0, "msaa",
+                 "expected at most %" PRIu64 " samples a pixel on this GL (%.200s: "
+                 "GL_MAX_SAMPLES), found %s (the run's or its error reference's)",
+                 holds.samples, gi->renderer, found_in(&samples, found, sizeof found));
+    if (size.n)
+        diag_add(d, e->path, 0, 0, "resolution",
+                 "expected a framebuffer at most %" PRIu64 " pixels a side on this GL (%.200s: "
+                 "the least of its renderbuffer, texture and viewport sizes), found %s "
+                 "(error.reference.supersample included)", holds.side, gi->renderer,
+                 found_in(&size, found, sizeof found));
+    return d->n == nerr;
 }
 
 /* One warning: "PATH: warning: KEY: N runs (ID, ...) ask for BEFORE<most>AFTER, past the
@@ -321,27 +413,12 @@ static void warn_beyond(FILE *out, const char *path, const char *key, const beyo
 
 void plan_warnings(const experiment *e, const plan *p, FILE *out)
 {
-    /* forward-spml with forward.light_buffer: uniform holds max_uniform_block_size / 80
-     * lights (llvmpipe's 65536 bytes hold 819); samples and sizes past the guarantees
-     * fail where the context's limits are the least (llvmpipe: 4 samples, 16384) */
-    const uint32_t sure = forward_spml_max_lights(GL_GUARANTEED_UNIFORM_BLOCK_BYTES);
-    beyond lights = {0}, samples = {0}, size = {0};
-    for (size_t k = 0; k < p->nruns; k++) {
-        const run_spec *r = &p->runs[k];
-        const run_params *q = &r->p;
-        if (strcmp(q->renderer, "forward-spml") == 0 && q->light_buffer == 0 &&
-            q->lights.placement != PLACEMENT_SCENE && q->lights.count.max > sure)
-            note_beyond(&lights, r, q->lights.count.max);
-        unsigned msaa = 1u << q->msaa, ref_msaa = q->error_renderer[0] ? 1u << q->error_msaa : 1;
-        unsigned most_msaa = msaa > ref_msaa ? msaa : ref_msaa;
-        if (strcmp(q->renderer, "null") != 0 && most_msaa > GL_GUARANTEED_SAMPLES)
-            note_beyond(&samples, r, most_msaa);
-        uint64_t k_ref = q->error_renderer[0] ? q->error_supersample : 1;
-        uint64_t side = (uint64_t)(q->width > q->height ? q->width : q->height) *
-                        (k_ref > 1 ? k_ref : 1);
-        if (side > GL_GUARANTEED_SIZE)
-            note_beyond(&size, r, side);
-    }
+    /* samples and sizes past the guarantees fail where the context's limits are the
+     * least (llvmpipe: 4 samples, 16384) */
+    const gl_holds g = guaranteed();
+    const uint32_t sure = (uint32_t)g.lights;
+    beyond lights, samples, size;
+    find_beyond(p, &g, &lights, &samples, &size);
     char held[96];
     snprintf(held, sizeof held, "%" PRIu32 " lights of the %d bytes", sure,
              GL_GUARANTEED_UNIFORM_BLOCK_BYTES);

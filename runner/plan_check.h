@@ -20,8 +20,16 @@ bool plan_first_of_key(const plan *p, uint64_t (*hash)(const run_params *),
 
 /* Prints (one line each) what may make runs fail on some GL but not on others, known
  * before any GL: forward-spml's uniform block beyond the size every GL guarantees.
- * validate, list and run print them; they refuse nothing. */
+ * list, validate --no-gl, and validate and run without a GL context print them; they
+ * refuse nothing. */
 void plan_warnings(const experiment *e, const plan *p, FILE *out);
+/* Whether some run is past what every GL guarantees (what plan_warnings names): only
+ * then can a GL's own limits refuse a run. */
+bool plan_needs_gl(const plan *p);
+/* The same limits on the GL gi describes (run_probe_gl: what run would get): one error
+ * for each kind of run past them, naming the value, the limit, the first run. */
+struct gl_info;
+bool plan_check_gl(const experiment *e, const plan *p, const struct gl_info *gi, diag_list *d);
 
 /* Where run p's scene comes from: the catalog, or its file (fo is filled and
  * src->file points at it; both must outlive src). */

@@ -3,6 +3,8 @@
 #include "runner/run_internal.h"
 
 #include <errno.h>
+#include <fcntl.h>
+#include <poll.h>
 #include <math.h>
 #include <signal.h>
 #include <stdio.h>
@@ -10,6 +12,7 @@
 #include <string.h>
 #include <sys/mman.h>
 #include <sys/wait.h>
+#include <time.h>
 #include <unistd.h>
 
 #include "results/fsutil.h"
@@ -295,12 +298,12 @@ void run_timeout_text(const run_params *p, char *buf, size_t len)
                  "warm-up included", run_trial_timeout_s(p));
 }
 
-/* EGL device N exists: asked in a child, so that the parent never loads a GL driver. */
-bool run_probe_device(int device, char *err, size_t errlen)
+bool run_ask_child(void (*fn)(void *arg, char *answer, size_t len), void *arg,
+                   double timeout_s, char *answer, size_t len, char *err, size_t errlen)
 {
     int fds[2];
     if (pipe(fds) != 0) {
-        snprintf(err, errlen, "--device: %s", strerror(errno));
+        snprintf(err, errlen, "%s", strerror(errno));
         return false;
     }
     fflush(NULL);
@@ -308,33 +311,87 @@ bool run_probe_device(int device, char *err, size_t errlen)
     if (pid < 0) {
         close(fds[0]);
         close(fds[1]);
-        snprintf(err, errlen, "--device: fork: %s", strerror(errno));
+        snprintf(err, errlen, "fork: %s", strerror(errno));
         return false;
     }
     if (pid == 0) {
         close(fds[0]);
-        char why[400] = "";
-        int n = gl_egl_device_count(why, sizeof why);
-        char msg[420];
-        int len = snprintf(msg, sizeof msg, "%d %s", n, why);
-        ssize_t w = write(fds[1], msg, (size_t)len);
-        _exit(w == len ? 0 : 1);
+        int null = open("/dev/null", O_WRONLY);   /* what a driver says, the answer says */
+        if (null >= 0)
+            dup2(null, STDERR_FILENO);
+        char *msg = calloc(1, len);
+        if (!msg)
+            _exit(1);
+        fn(arg, msg, len);
+        size_t n = strnlen(msg, len - 1);
+        ssize_t w = write(fds[1], msg, n);
+        _exit(w == (ssize_t)n ? 0 : 1);
     }
     close(fds[1]);
-    char msg[420];
+    struct timespec t0, t;
+    clock_gettime(CLOCK_MONOTONIC, &t0);
     size_t got = 0;
-    ssize_t r;
-    while (got < sizeof msg - 1 &&
-           ((r = read(fds[0], msg + got, sizeof msg - 1 - got)) > 0 || (r < 0 && errno == EINTR)))
-        got += r > 0 ? (size_t)r : 0;
-    msg[got] = 0;
+    bool late = false;
+    for (;;) {
+        clock_gettime(CLOCK_MONOTONIC, &t);
+        double left = timeout_s - (double)(t.tv_sec - t0.tv_sec) -
+                      (double)(t.tv_nsec - t0.tv_nsec) / 1e9;
+        if (timeout_s > 0 && left <= 0) {
+            late = true;
+            break;
+        }
+        struct pollfd pf = {.fd = fds[0], .events = POLLIN};
+        int r = poll(&pf, 1, timeout_s > 0 ? (int)(left * 1000) + 1 : -1);
+        if (r < 0 && errno == EINTR)
+            continue;
+        if (r <= 0)
+            continue;   /* the time is checked above */
+        ssize_t n = got < len - 1 ? read(fds[0], answer + got, len - 1 - got) : 0;
+        if (n < 0 && errno == EINTR)
+            continue;
+        if (n <= 0)
+            break;
+        got += (size_t)n;
+    }
+    answer[got] = 0;
     close(fds[0]);
+    if (late)
+        kill(pid, SIGKILL);
     int st;
     while (waitpid(pid, &st, 0) < 0 && errno == EINTR)
         ;
+    if (late) {
+        snprintf(err, errlen, "no answer within %g s", timeout_s);
+        return false;
+    }
+    if (got == 0) {
+        snprintf(err, errlen, "no answer (the child %s %d)",
+                 WIFSIGNALED(st) ? "died of signal" : "exited with", WIFSIGNALED(st) ?
+                 WTERMSIG(st) : WEXITSTATUS(st));
+        return false;
+    }
+    return true;
+}
+
+static void count_devices(void *arg, char *answer, size_t len)
+{
+    (void)arg;
+    char why[400] = "";
+    int n = gl_egl_device_count(why, sizeof why);
+    snprintf(answer, len, "%d %s", n, why);
+}
+
+/* EGL device N exists: asked in a child, so that the parent never loads a GL driver. */
+bool run_probe_device(int device, char *err, size_t errlen)
+{
+    char msg[420], why[200];
+    if (!run_ask_child(count_devices, NULL, 0, msg, sizeof msg, why, sizeof why)) {
+        snprintf(err, errlen, "--device %d: could not count the EGL devices (%s)", device, why);
+        return false;
+    }
     char *rest;
     long n = strtol(msg, &rest, 10);
-    if (got == 0 || rest == msg) {
+    if (rest == msg) {
         snprintf(err, errlen, "--device %d: could not count the EGL devices", device);
         return false;
     }
@@ -347,5 +404,55 @@ bool run_probe_device(int device, char *err, size_t errlen)
                  n - 1);
         return false;
     }
+    return true;
+}
+
+typedef struct gl_probe {
+    gl_context_desc desc;
+    gl_info info;
+} gl_probe;
+
+/* The context's limits as "ok N N N N N N\n<renderer>" (run_probe_gl reads them back),
+ * or "no <why>". */
+static void probe_gl(void *arg, char *answer, size_t len)
+{
+    gl_probe *g = arg;
+    char why[512];
+    gl_context *ctx = gl_context_create(&g->desc, why, sizeof why);
+    if (!ctx) {
+        snprintf(answer, len, "no %s", why);
+        return;
+    }
+    const gl_info *i = gl_context_info(ctx);
+    snprintf(answer, len, "ok %d %d %d %d %d %d\n%s", i->max_uniform_block_size,
+             i->max_samples, i->max_texture_size, i->max_renderbuffer_size,
+             i->max_viewport_dims[0], i->max_viewport_dims[1], i->renderer);
+    gl_context_destroy(ctx);
+}
+
+bool run_probe_gl(gl_backend backend, int device, double timeout_s, gl_info *out, char *err,
+                  size_t errlen)
+{
+    memset(out, 0, sizeof *out);
+    if (device >= 0 && !run_probe_device(device, err, errlen))
+        return false;
+    gl_probe g = {.desc = {.backend = backend, .device = device}};
+    char answer[600], why[200];
+    if (!run_ask_child(probe_gl, &g, timeout_s, answer, sizeof answer, why, sizeof why)) {
+        snprintf(err, errlen, "no GL context: %s", why);
+        return false;
+    }
+    if (strncmp(answer, "no ", 3) == 0) {
+        snprintf(err, errlen, "no GL context: %.500s", answer + 3);
+        return false;
+    }
+    int used = 0;
+    if (sscanf(answer, "ok %d %d %d %d %d %d\n%n", &out->max_uniform_block_size,
+               &out->max_samples, &out->max_texture_size, &out->max_renderbuffer_size,
+               &out->max_viewport_dims[0], &out->max_viewport_dims[1], &used) != 6 || !used) {
+        snprintf(err, errlen, "no GL context: an answer that does not parse");
+        return false;
+    }
+    snprintf(out->renderer, sizeof out->renderer, "%s", answer + used);
     return true;
 }

@@ -88,3 +88,16 @@ int run_stop_signal(void);
 
 /* Whether EGL device `device` exists (asked in a child process); false with a message. */
 bool run_probe_device(int device, char *err, size_t errlen);
+
+/* fn(arg, answer, len) runs in a child process (so that this one never loads a GL
+ * driver; its stderr goes to /dev/null) and the text it leaves in answer comes back
+ * here; with timeout_s > 0 a child still running then is killed. False with a message
+ * when no answer came. */
+bool run_ask_child(void (*fn)(void *arg, char *answer, size_t len), void *arg,
+                   double timeout_s, char *answer, size_t len, char *err, size_t errlen);
+
+/* The limits of the GL context a run would get (backend, device: as run_setup opens
+ * it), asked in a child within timeout_s (0: no bound): out's max_* and renderer are
+ * filled, the rest is zero. With device >= 0, run_probe_device first. False with why. */
+bool run_probe_gl(gl_backend backend, int device, double timeout_s, gl_info *out, char *err,
+                  size_t errlen);

@@ -24,7 +24,7 @@ _shadesweep() {
     list) opts="--shard --smoke --scale --set --renderer --json --help" ;;
     info) opts="--backend --device --help" ;;
     merge) opts="-o --out --force --allow-mixed-builds --help" ;;
-    validate) opts="--set --renderer --help" ;;
+    validate) opts="--set --renderer --gl --no-gl --backend --device --help" ;;
     params) opts="--markdown --bash --help"
       COMPREPLY=($(compgen -W "$opts $keys" -- "$cur")); return ;;
     columns) opts="--markdown --help" ;;
