@@ -12,6 +12,7 @@
 #include "results/fsutil.h"
 #include "runner/crossovers.h"
 #include "runner/params.h"
+#include "runner/point_verdict.h"
 #include "runner/summary_json.h"
 #include "runner/summary_long.h"
 #include "runner/workload.h"
@@ -211,10 +212,15 @@ size_t summary_warnings(const run_result *runs, size_t n, FILE *out, const char 
                 put(out, x->id, md);
                 fputs(" (", out);
                 put(out, x->renderer, md);
-                fprintf(out, ") trial %zu ran on a busy machine: it got %.0f%% of the "
-                        "CPU it could use (the run's median %.0f%%), steal %.0f%%\n", k + 1,
-                        x->share[k] * 100, shmed * 100,
-                        isfinite(x->steal[k]) ? x->steal[k] * 100 : 0.0);
+                fprintf(out, ") trial %zu ran on a busy machine: ", k + 1);
+                /* the median needs 3 trials: fewer (a one-trial run) name the steal alone */
+                if (isfinite(shmed))
+                    fprintf(out, "it got %.0f%% of the CPU it could use (the run's median "
+                            "%.0f%%), steal %.0f%%\n", x->share[k] * 100, shmed * 100,
+                            isfinite(x->steal[k]) ? x->steal[k] * 100 : 0.0);
+                else
+                    fprintf(out, "the hypervisor stole %.0f%% of the machine's CPU time\n",
+                            x->steal[k] * 100);
                 count++;
             }
         }
@@ -495,6 +501,28 @@ static void term_header(FILE *t, bool with_point, int cfg_width, const char *met
     fputs("\n", t);
 }
 
+#define TERM_MAX_VERDICTS 24
+
+/* A line a point: "verdict: LABEL: fastest X, then Y at ..." (point_verdict). */
+static void term_verdicts(FILE *t, const run_result *runs, const point *pts, size_t n,
+                          char *const *rcfg)
+{
+    size_t shown = 0, more = 0;
+    for (size_t k = 0; k < n; k++) {
+        char v[1024];
+        if (!point_verdict(runs, &pts[k], rcfg, v, sizeof v))
+            continue;
+        if (shown < TERM_MAX_VERDICTS) {
+            fprintf(t, "verdict: %s: %s\n", pts[k].label, v);
+            shown++;
+        } else {
+            more++;
+        }
+    }
+    if (more)
+        fprintf(t, "... %zu more verdicts in summary.md\n", more);
+}
+
 static bool table_write(const char *out_dir, FILE *terminal, char *err, size_t errlen)
 {
     afile_set set = {0};   /* summary.json, summary_long.csv, summary.md: renamed together */
@@ -672,6 +700,12 @@ static bool table_write(const char *out_dir, FILE *terminal, char *err, size_t e
         }
         if (term && p->nruns > TERM_MAX_ROWS)
             fprintf(terminal, "  ... %zu more\n", p->nruns - TERM_MAX_ROWS);
+        char said[1024];
+        if (point_verdict(runs, p, rcfg, said, sizeof said)) {
+            fputs("\nVerdict: ", f.fp);
+            md_put(f.fp, said);
+            fputs(".\n", f.fp);
+        }
     }
     if (terminal && nshown > TERM_MAX_POINTS)
         fprintf(terminal, "... %zu more sweep points\n", nshown - TERM_MAX_POINTS);
@@ -705,8 +739,9 @@ static bool table_write(const char *out_dir, FILE *terminal, char *err, size_t e
     ok = afile_commit(&f, err, errlen) && afile_set_commit(&set, err, errlen);
     if (ok && terminal) {
         fprintf(terminal, "ranked: %s (the definitions are there)\n", mdpath);
-        /* the answer along the swept axes, last */
-        crossovers_print(terminal, &cx, TERM_MAX_POINTS);
+        /* the answer: who wins at each point, then along the swept axes, last */
+        term_verdicts(terminal, runs, shown, nshown, rcfg);
+        crossovers_print(terminal, &cx);
     }
     crossovers_free(&cx);
 out:
