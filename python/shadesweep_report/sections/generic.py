@@ -8,7 +8,7 @@ import os
 from .. import verdicts
 from ..loading import read_csv
 from ..plots import styles
-from ..text import code, fmt, md, md_table, md_values
+from ..text import code, fmt, md_table, md_values
 from ..stats import ci95, mean, num
 
 
@@ -69,11 +69,15 @@ def lights_series(run, metric, value):
     return [(lights, value["mean_us"] / 1000, ci / 1000 if ci is not None else None)]
 
 
-def line_label(run, vary):
-    """The renderer and the values of the varying keys it reads (a key only other
-    renderers read would name a difference that is not there)."""
-    return " ".join([run.renderer] + [f"{k}={run.param(k)}" for k in vary
-                                      if verdicts.reads(run.renderer, k)])
+def line_labels(runs):
+    """{run id: its line's label}: the renderer and the values of the keys that vary across
+    runs (but the lights' count, the x axis) and that it reads; a key only other
+    renderers read would name a difference that is not there."""
+    keys = sorted({k for r in runs for k in r.params})
+    vary = [k for k in keys if k not in ("renderer", "lights.count")
+            and len({r.param(k) for r in runs}) > 1]
+    return {r.id: " ".join([r.renderer] + [f"{k}={r.param(k)}" for k in vary
+                                           if verdicts.reads(r.renderer, k)]) for r in runs}
 
 
 def span(vals):
@@ -111,17 +115,12 @@ def section_generic(s):
         s.w("Failed runs (not plotted): " + "; ".join(
             f"{r.id} {r.renderer}: {(r.rows[0].get('status') if r.rows else 'no result')}"
             for r in failed[:12]) + (" ..." if len(failed) > 12 else "") + ".\n")
-    # one line per renderer and value of every other parameter that varies and that it
-    # reads (the lights' count excepted: it is the x axis)
-    keys = sorted({k for r in runs for k in r.params})
-    vary = [k for k in keys if k not in ("renderer", "lights.count")
-            and len({r.param(k) for r in runs}) > 1]
     metrics = {metric_of(r) for r in runs}   # one, but for folders measured apart
     metric = metrics.pop() if len(metrics) == 1 else "wall"
     values = verdicts.values(runs)
-    by, ren = {}, {}
+    by, ren, labels = {}, {}, line_labels(runs)
     for r in runs:
-        label = line_label(r, vary)
+        label = labels[r.id]
         by.setdefault(label, []).extend(lights_series(r, metric, values.get(r.id)))
         ren[label] = r.renderer
     if not s.plots.plt or not any(len({x for x, _, _ in v}) > 1 for v in by.values()):
@@ -151,6 +150,3 @@ def section_generic(s):
     ax.grid(alpha=0.3, which="both")
     ax.legend(fontsize=7)
     s.w(s.plots.save(fig, f"{e.name}_frametime_lights.png"))
-    s.w(f"The plot: {what}, the metric that ranks, per light count; a line per configuration "
-        "(the renderer and the varying keys it reads): "
-        + "; ".join(md(label) for label in sorted(by)) + ".\n")
