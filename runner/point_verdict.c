@@ -59,3 +59,24 @@ bool point_verdict(const run_result *runs, const summary_point *p, char *const *
     }
     return true;
 }
+
+#define TERM_MAX_VERDICTS 24
+
+void point_verdicts_print(FILE *t, const run_result *runs, const summary_point *pts, size_t n,
+                          char *const *cfg)
+{
+    size_t shown = 0, more = 0;
+    for (size_t k = 0; k < n; k++) {
+        char v[1024];
+        if (!point_verdict(runs, &pts[k], cfg, v, sizeof v))
+            continue;
+        if (shown < TERM_MAX_VERDICTS) {
+            fprintf(t, "verdict: %s: %s\n", pts[k].label, v);
+            shown++;
+        } else {
+            more++;
+        }
+    }
+    if (more)
+        fprintf(t, "... %zu more verdicts in summary.md\n", more);
+}

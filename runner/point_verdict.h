@@ -6,6 +6,7 @@
  * a run, under each point's table in summary.md, in summary.json and report.md. */
 #include <stdbool.h>
 #include <stddef.h>
+#include <stdio.h>
 
 #include "runner/summary_md.h"
 
@@ -16,3 +17,7 @@
  * first two are one configuration (the one-renderer table of every point). */
 bool point_verdict(const run_result *runs, const summary_point *p, char *const *cfg,
                    char *out, size_t len);
+/* A line a point with a verdict, "verdict: LABEL: ...", at most 24 (then how many more
+ * summary.md has). */
+void point_verdicts_print(FILE *t, const run_result *runs, const summary_point *pts, size_t n,
+                          char *const *cfg);

@@ -469,7 +469,8 @@ static const char md_intro[] =
     "scene's own figure, counted in the first measured frame), `evals a pixel` the light "
     "evaluations the renderer's shading loops make a covered pixel (renderers with light "
     "lists only; above `lights a pixel` by what culling lets through in vain), `coverage` "
-    "the fraction of the screen the scene covers.\n";
+    "the fraction of the screen the scene covers. Under each table, `Verdict:` names the "
+    "fastest, those that tie with it (their `x fastest` interval holds 1) and the next.\n";
 
 /* Prints s left-aligned in a field of `width` columns (UTF-8 aware for "±"). */
 static void tcell(FILE *fp, const char *s, int width)
@@ -499,28 +500,6 @@ static void term_header(FILE *t, bool with_point, int cfg_width, const char *met
     if (with_point)
         fputs("point", t);
     fputs("\n", t);
-}
-
-#define TERM_MAX_VERDICTS 24
-
-/* A line a point: "verdict: LABEL: fastest X, then Y at ..." (point_verdict). */
-static void term_verdicts(FILE *t, const run_result *runs, const point *pts, size_t n,
-                          char *const *rcfg)
-{
-    size_t shown = 0, more = 0;
-    for (size_t k = 0; k < n; k++) {
-        char v[1024];
-        if (!point_verdict(runs, &pts[k], rcfg, v, sizeof v))
-            continue;
-        if (shown < TERM_MAX_VERDICTS) {
-            fprintf(t, "verdict: %s: %s\n", pts[k].label, v);
-            shown++;
-        } else {
-            more++;
-        }
-    }
-    if (more)
-        fprintf(t, "... %zu more verdicts in summary.md\n", more);
 }
 
 static bool table_write(const char *out_dir, FILE *terminal, char *err, size_t errlen)
@@ -740,7 +719,7 @@ static bool table_write(const char *out_dir, FILE *terminal, char *err, size_t e
     if (ok && terminal) {
         fprintf(terminal, "ranked: %s (the definitions are there)\n", mdpath);
         /* the answer: who wins at each point, then along the swept axes, last */
-        term_verdicts(terminal, runs, shown, nshown, rcfg);
+        point_verdicts_print(terminal, runs, shown, nshown, rcfg);
         crossovers_print(terminal, &cx);
     }
     crossovers_free(&cx);
