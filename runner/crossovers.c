@@ -60,11 +60,42 @@ static bool push(crossover_list *l, const crossover_found *c)
     return true;
 }
 
-/* Every crossing of a / b (ratios r at x[0..n), ascending) through 1, named: a / b
- * rising through 1 makes a the faster below the crossing. */
-static bool push_crossings(const double *x, const ratio_ci *r, size_t n, const char *axis,
-                           const char *group, const char *a, const char *b,
-                           crossover_list *out)
+/* Whether r (a / b) lies below 1 (side -1) or above it (+1); 0 when not finite or 1. */
+static int side_of(const ratio_ci *r)
+{
+    return !(isfinite(r->ratio) && r->ratio > 0) || r->ratio == 1 ? 0 : r->ratio < 1 ? -1 : 1;
+}
+
+/* Whether r's interval lies wholly on `side` of 1. */
+static bool decided(const ratio_ci *r, int side)
+{
+    return side < 0 ? r->hi < 1 : r->lo > 1;
+}
+
+/* Whether the crossing co of a / b is one to report: the configuration faster below is
+ * the fastest of all (lead[k]: the fastest at x[k]; NULL: unknown) at x[i] and the one
+ * faster above at x[j], and the evidence holds: the ratio's interval lies on its side of
+ * 1 at both x[i] and x[j], or two points each side are on their side (x[i-1] with x[i],
+ * x[j+1] with x[j]). */
+static bool worth_reporting(const ratio_ci *r, size_t n, const char *const *lead,
+                            const ratio_crossover *co, const char *below, const char *above)
+{
+    if (!lead[co->i] || !lead[co->j] || strcmp(lead[co->i], below) != 0 ||
+        strcmp(lead[co->j], above) != 0)
+        return false;
+    int s0 = side_of(&r[co->i]), s1 = side_of(&r[co->j]);
+    if (decided(&r[co->i], s0) && decided(&r[co->j], s1))
+        return true;
+    return co->i > 0 && side_of(&r[co->i - 1]) == s0 && co->j + 1 < n &&
+           side_of(&r[co->j + 1]) == s1;
+}
+
+/* Every crossing of a / b (ratios r at x[0..n), ascending) through 1 worth reporting,
+ * named (a / b rising through 1 makes a the faster below the crossing); the others
+ * counted in out->pruned. */
+static bool push_crossings(const double *x, const ratio_ci *r, const char *const *lead,
+                           size_t n, const char *axis, const char *group, const char *a,
+                           const char *b, crossover_list *out)
 {
     ratio_crossover co;
     for (size_t from = 0; n >= 2 && verdict_crossover(x, r, n, from, &co); from = co.j) {
@@ -74,7 +105,9 @@ static bool push_crossings(const double *x, const ratio_ci *r, size_t n, const c
             .x0 = x[co.i], .x1 = x[co.j], .x = co.x, .lo = co.lo, .hi = co.hi,
             .differs0 = summary_differs(&r[co.i]), .differs1 = summary_differs(&r[co.j]),
         };
-        if (!push(out, &f))
+        if (!worth_reporting(r, n, lead, &co, f.below, f.above))
+            out->pruned++;
+        else if (!push(out, &f))
             return false;
     }
     return true;
@@ -99,15 +132,28 @@ static char *group_of(const csv_table *pl, long row, const bool *varies, size_t 
     return s;
 }
 
+/* The configuration with the least mean among a group's entries e[g0..g1) at x. */
+static const char *leader_at(const run_result *runs, const entry *e, size_t g0, size_t g1,
+                             double x)
+{
+    const entry *best = NULL;
+    for (size_t k = g0; k < g1; k++)
+        if (e[k].x == x && (!best || runs[e[k].run].mean < runs[best->run].mean))
+            best = &e[k];
+    return best ? best->cfg : NULL;
+}
+
 /* The crossings of configurations a and b (entries e[a0..a1) and e[b0..b1), each
- * ascending in x) at the x values both have. */
-static bool pair_crossings(const run_result *runs, const entry *e, size_t a0, size_t a1,
-                           size_t b0, size_t b1, const char *axis, crossover_list *out)
+ * ascending in x) at the x values both have; their group's entries are e[g0..g1). */
+static bool pair_crossings(const run_result *runs, const entry *e, size_t g0, size_t g1,
+                           size_t a0, size_t a1, size_t b0, size_t b1, const char *axis,
+                           crossover_list *out)
 {
     size_t cap = (a1 - a0) < (b1 - b0) ? a1 - a0 : b1 - b0;
     double *x = malloc((cap ? cap : 1) * sizeof *x);
     ratio_ci *r = malloc((cap ? cap : 1) * sizeof *r);
-    bool ok = x && r;
+    const char **lead = malloc((cap ? cap : 1) * sizeof *lead);
+    bool ok = x && r && lead;
     size_t n = 0;
     for (size_t i = a0, j = b0; ok && i < a1 && j < b1;) {
         if (e[i].x < e[j].x) {
@@ -118,15 +164,17 @@ static bool pair_crossings(const run_result *runs, const entry *e, size_t a0, si
             if (!n || e[i].x > x[n - 1]) {   /* the first run of a repeated x */
                 x[n] = e[i].x;
                 summary_paired_ratio(&runs[e[i].run], &runs[e[j].run], &r[n]);
+                lead[n] = leader_at(runs, e, g0, g1, x[n]);
                 n++;
             }
             i++;
             j++;
         }
     }
-    ok = ok && push_crossings(x, r, n, axis, e[a0].group, e[a0].cfg, e[b0].cfg, out);
+    ok = ok && push_crossings(x, r, lead, n, axis, e[a0].group, e[a0].cfg, e[b0].cfg, out);
     free(x);
     free(r);
+    free(lead);
     return ok;
 }
 
@@ -165,7 +213,8 @@ static bool along(const run_result *runs, size_t nruns, const csv_table *pl, con
             for (size_t b0 = a1, b1; ok && b0 < g1; b0 = b1) {
                 for (b1 = b0; b1 < g1 && strcmp(e[b1].cfg, e[b0].cfg) == 0; b1++)
                     ;
-                ok = pair_crossings(runs, e, a0, a1, b0, b1, pl->header[axis], out);
+                ok = pair_crossings(runs, e, g0, g1, a0, a1, b0, b1, pl->header[axis],
+                                    out);
             }
         }
     }
@@ -291,15 +340,49 @@ static bool read_levels(const char *out_dir, const run_result *x, levels *lv)
     return ok;
 }
 
-/* The crossings of a against b along the light counts both drew. */
-static bool growth_pair(const levels *a, const levels *b, const char *ca, const char *cb,
-                        const char *group, crossover_list *out)
+/* The mean over its trials of run lv's metric at light count L; NAN where it drew none. */
+static double level_mean(const levels *lv, double L)
 {
+    const double *at = lv->n ? bsearch(&L, lv->lights, lv->n, sizeof *lv->lights, by_double)
+                             : NULL;
+    double s = 0;
+    size_t m = 0;
+    for (size_t t = 0; at && t < lv->ntrials; t++) {
+        double v = lv->mean[(size_t)(at - lv->lights) * lv->ntrials + t];
+        if (isfinite(v))
+            s += v, m++;
+    }
+    return m ? s / (double)m : NAN;
+}
+
+/* The configuration fastest at light count L among a point's nr runs (those with
+ * have[k]): the least mean over the trials. */
+static const char *growth_leader(const levels *lv, const bool *have, const char *const *cfg,
+                                 size_t nr, double L)
+{
+    const char *best = NULL;
+    double bv = INFINITY;
+    for (size_t k = 0; k < nr; k++) {
+        double v = have[k] ? level_mean(&lv[k], L) : NAN;
+        if (v < bv)
+            bv = v, best = cfg[k];
+    }
+    return best;
+}
+
+/* The crossings of runs ia against ib of a point (lv, have, cfg: its nr runs) along the
+ * light counts both drew. */
+static bool growth_pair(const levels *lv, const bool *have, const char *const *cfg,
+                        size_t nr, size_t ia, size_t ib, const char *group,
+                        crossover_list *out)
+{
+    const levels *a = &lv[ia], *b = &lv[ib];
     size_t cap = a->n < b->n ? a->n : b->n, nt = a->ntrials < b->ntrials ? a->ntrials
                                                                           : b->ntrials;
     double *x = malloc((cap ? cap : 1) * sizeof *x);
     ratio_ci *r = malloc((cap ? cap : 1) * sizeof *r);
-    bool ok = x && r;
+    const char **lead = malloc((cap ? cap : 1) * sizeof *lead);
+    bool ok = x && r && lead;
     size_t n = 0;
     for (size_t i = 0, j = 0; ok && i < a->n && j < b->n;) {
         if (a->lights[i] < b->lights[j]) {
@@ -309,14 +392,17 @@ static bool growth_pair(const levels *a, const levels *b, const char *ca, const 
         } else {
             x[n] = a->lights[i];
             verdict_paired_ratio(a->mean + i * a->ntrials, b->mean + j * b->ntrials, nt, &r[n]);
+            lead[n] = growth_leader(lv, have, cfg, nr, x[n]);
             n += isfinite(r[n].ratio);
             i++;
             j++;
         }
     }
-    ok = ok && push_crossings(x, r, n, "lights (growing over time)", group, ca, cb, out);
+    ok = ok && push_crossings(x, r, lead, n, "lights (growing over time)", group, cfg[ia],
+                              cfg[ib], out);
     free(x);
     free(r);
+    free(lead);
     return ok;
 }
 
@@ -333,25 +419,27 @@ bool crossovers_growth(const char *out_dir, const run_result *runs, const summar
             continue;   /* a fixed light count: nothing grows */
         levels *lv = calloc(p->nruns, sizeof *lv);
         bool *have = calloc(p->nruns, sizeof *have);
-        ok = lv && have;
-        for (size_t i = 0; ok && i < p->nruns; i++)
+        const char **cfg = calloc(p->nruns, sizeof *cfg);
+        ok = lv && have && cfg;
+        for (size_t i = 0; ok && i < p->nruns; i++) {
             have[i] = isfinite(runs[p->runs[i]].mean) &&
                       read_levels(out_dir, &runs[p->runs[i]], &lv[i]);
+            cfg[i] = rcfg[p->runs[i]];
+        }
         out->axes += ok;
         const char *group = strcmp(p->label, "all runs") == 0 ? "" : p->label;
         /* pairs in name order, as along a swept key */
         for (size_t i = 0; ok && i < p->nruns; i++)
-            for (size_t j = 0; ok && j < p->nruns; j++) {
-                const char *ci = rcfg[p->runs[i]], *cj = rcfg[p->runs[j]];
-                if (have[i] && have[j] && strcmp(ci, cj) < 0)
-                    ok = growth_pair(&lv[i], &lv[j], ci, cj, group, out);
-            }
+            for (size_t j = 0; ok && j < p->nruns; j++)
+                if (have[i] && have[j] && strcmp(cfg[i], cfg[j]) < 0)
+                    ok = growth_pair(lv, have, cfg, p->nruns, i, j, group, out);
         for (size_t i = 0; lv && i < p->nruns; i++) {
             free(lv[i].lights);
             free(lv[i].mean);
         }
         free(lv);
         free(have);
+        free(cfg);
     }
     return ok;
 }
@@ -397,21 +485,30 @@ void crossovers_write_md(FILE *fp, const crossover_list *l)
               "nothing to cross along.\n", fp);
         return;
     }
+    char pruned[160] = "";
+    if (l->pruned)
+        snprintf(pruned, sizeof pruned, " %zu other crossing%s of configurations that do "
+                 "not lead, or with too little evidence, %s left out.", l->pruned,
+                 l->pruned == 1 ? "" : "s", l->pruned == 1 ? "is" : "are");
     if (!l->n) {
-        fputs("None: along the numeric parameters the sweep varies, no two configurations "
-              "change places.\n", fp);
+        fprintf(fp, "None: along the numeric parameters the sweep varies, the fastest "
+                "configuration does not change.%s\n", pruned);
         return;
     }
     fputs("Along each numeric parameter the sweep varies (the others held, as named), and "
           "along the light count where it grows within a run (`lights (growing over "
           "time)`: per trial, the mean of the metric over the frames drawn at each count; "
-          "needs frames.csv), where two configurations change places: the ratio of their paired trial values at each "
-          "value (as `x fastest`), its log interpolated linearly in the log of the parameter "
-          "between the last value where the first is faster and the next where the second "
-          "is (linearly from 0), to where it crosses 1; the 95% interval is where the "
-          "ratio's interval bounds cross 1, `?` where one does not within the values run. "
-          "`differs` at the two values says whether each ratio's interval excludes 1 there. "
-          "An estimate between measured values, not a measurement.\n\n", fp);
+          "needs frames.csv), where the fastest configuration changes: the ratio of the "
+          "two leaders' paired trial values at each value (as `x fastest`), its log "
+          "interpolated linearly in the log of the parameter between the last value where "
+          "the first is the fastest of all and the next where the second is (linearly from "
+          "0), to where it crosses 1; the 95% interval is where the ratio's interval "
+          "bounds cross 1, `?` where one does not within the values run. `differs` at the "
+          "two values says whether each ratio's interval excludes 1 there. A crossing is "
+          "kept when both intervals exclude 1 or two values each side agree, and is never "
+          "placed beyond the values run. An estimate between measured values, not a "
+          "measurement.", fp);
+    fprintf(fp, "%s\n\n", pruned);
     fputs("| along | where | faster below | faster above | between | crossing | 95% interval "
           "| differs below / above |\n|---|---|---|---|---|---|---|---|\n", fp);
     for (size_t i = 0; i < l->n; i++) {
@@ -430,9 +527,9 @@ void crossovers_write_md(FILE *fp, const crossover_list *l)
     }
 }
 
-void crossovers_print(FILE *out, const crossover_list *l, size_t max)
+void crossovers_print(FILE *out, const crossover_list *l)
 {
-    for (size_t i = 0; i < l->n && i < max; i++) {
+    for (size_t i = 0; i < l->n; i++) {
         const crossover_found *c = &l->item[i];
         xtext t;
         texts(c, &t);
@@ -442,13 +539,11 @@ void crossovers_print(FILE *out, const crossover_list *l, size_t max)
         else
             snprintf(ci, sizeof ci, "no interval: %s", strcmp(c->differs0, "n/a") == 0
                      ? "fewer than 3 trials" : "the bounds do not cross within the values run");
-        fprintf(out, "crossover: %s is faster below %s ~%s (%s), %s above%s%s%s\n",
+        fprintf(out, "crossover: %s is the fastest below %s ~%s (%s), %s above%s%s%s\n",
                 c->below, c->axis, t.x, ci, c->above, c->group[0] ? " (" : "",
                 c->group, c->group[0] ? ")" : "");
     }
-    if (l->n > max)
-        fprintf(out, "... %zu more crossovers\n", l->n - max);
     if (l->axes && !l->n)
-        fprintf(out, "crossovers: none: along the numeric parameters the sweep varies, no two "
-                "configurations change places\n");
+        fprintf(out, "crossovers: none: along the numeric parameters the sweep varies, the "
+                "fastest configuration does not change\n");
 }

@@ -6,7 +6,10 @@
  * keys), the paired ratio of their trial values at each value both ran
  * (summary_paired_ratio: the runs of one value are of one sweep point, measured in the
  * same rounds), and results/verdict.c's verdict_crossover says where it crosses 1 and
- * the interval of where. Written into summary.md and printed at the end of a run
+ * the interval of where, between two values run (never beyond them). Kept only between
+ * the leaders (the fastest of all configurations at the value before and at the value
+ * after) and with evidence: the ratio's interval excludes 1 on both sides, or two values
+ * each side agree. Written into summary.md and printed at the end of a run
  * (runner/summary_md.c). */
 #include <stdbool.h>
 #include <stddef.h>
@@ -28,6 +31,8 @@ typedef struct crossover_list {
     crossover_found *item;
     size_t n, cap;
     size_t axes;               /* how many numeric axes were searched */
+    size_t pruned;             /* crossings left out: not between the leaders, or too
+                                * little evidence (crossovers.h's opening) */
     char **strings;            /* owned group labels */
     size_t nstrings, capstrings;
 } crossover_list;
@@ -52,6 +57,6 @@ void crossovers_free(crossover_list *l);
 
 /* The "## Crossovers" section of summary.md. */
 void crossovers_write_md(FILE *fp, const crossover_list *l);
-/* One line a crossing, at most max, for the terminal; one line saying there is none
- * where numeric axes were searched. */
-void crossovers_print(FILE *t, const crossover_list *l, size_t max);
+/* One line a crossing for the terminal; one line saying there is none where numeric
+ * axes were searched. */
+void crossovers_print(FILE *t, const crossover_list *l);

@@ -10,6 +10,7 @@
 #include "results/fsutil.h"
 #include "results/jsonout.h"
 #include "runner/output.h"
+#include "runner/point_verdict.h"
 
 static bool bookkeeping(const char *name)
 {
@@ -117,6 +118,12 @@ static void point_object(FILE *fp, const summary_view *v, const trial_rows *tr,
 {
     fputs("{\"label\": ", fp);
     json_string(fp, p->label);
+    char said[1024];
+    fputs(", \"verdict\": ", fp);
+    if (point_verdict(v->runs, p, v->rcfg, said, sizeof said))
+        json_string(fp, said);
+    else
+        fputs("null", fp);
     fputs(", \"parameters\": {", fp);
     long row = p->nruns ? v->prow[p->runs[0]] : -1;
     bool first = true;

@@ -12,6 +12,7 @@
 #include "results/fsutil.h"
 #include "runner/crossovers.h"
 #include "runner/params.h"
+#include "runner/point_verdict.h"
 #include "runner/summary_json.h"
 #include "runner/summary_long.h"
 #include "runner/trials.h"
@@ -214,10 +215,15 @@ size_t summary_warnings(const run_result *runs, size_t n, FILE *out, const char 
                 put(out, x->id, md);
                 fputs(" (", out);
                 put(out, x->renderer, md);
-                fprintf(out, ") trial %zu ran on a busy machine: it got %.0f%% of the "
-                        "CPU it could use (the run's median %.0f%%), steal %.0f%%\n", k + 1,
-                        x->share[k] * 100, shmed * 100,
-                        isfinite(x->steal[k]) ? x->steal[k] * 100 : 0.0);
+                fprintf(out, ") trial %zu ran on a busy machine: ", k + 1);
+                /* the median needs 3 trials: fewer (a one-trial run) name the steal alone */
+                if (isfinite(shmed))
+                    fprintf(out, "it got %.0f%% of the CPU it could use (the run's median "
+                            "%.0f%%), steal %.0f%%\n", x->share[k] * 100, shmed * 100,
+                            isfinite(x->steal[k]) ? x->steal[k] * 100 : 0.0);
+                else
+                    fprintf(out, "the hypervisor stole %.0f%% of the machine's CPU time\n",
+                            x->steal[k] * 100);
                 count++;
             }
         }
@@ -468,7 +474,9 @@ static const char md_intro[] =
     "lists only; above `lights a pixel` by what culling lets through in vain), `coverage` "
     "the fraction of the screen the scene covers. `trials` counts the ok ones and names a "
     "partial run's status (`partial:<reason>`: some trials ok, the first other failed so); "
-    "a run with no ok trial shows its failure in place of its time.\n";
+    "a run with no ok trial shows its failure in place of its time. Under each table, "
+    "`Verdict:` names the fastest, those that tie with it (their `x fastest` interval holds "
+    "1) and the next.\n";
 
 /* Prints s left-aligned in a field of `width` columns (UTF-8 aware for "±"). */
 static void tcell(FILE *fp, const char *s, int width)
@@ -679,6 +687,12 @@ static bool table_write(const char *out_dir, FILE *terminal, char *err, size_t e
         }
         if (term && p->nruns > TERM_MAX_ROWS)
             fprintf(terminal, "  ... %zu more\n", p->nruns - TERM_MAX_ROWS);
+        char said[1024];
+        if (point_verdict(runs, p, rcfg, said, sizeof said)) {
+            fputs("\nVerdict: ", f.fp);
+            md_put(f.fp, said);
+            fputs(".\n", f.fp);
+        }
     }
     if (terminal && nshown > TERM_MAX_POINTS)
         fprintf(terminal, "... %zu more sweep points\n", nshown - TERM_MAX_POINTS);
@@ -712,8 +726,9 @@ static bool table_write(const char *out_dir, FILE *terminal, char *err, size_t e
     ok = afile_commit(&f, err, errlen) && afile_set_commit(&set, err, errlen);
     if (ok && terminal) {
         fprintf(terminal, "ranked: %s (the definitions are there)\n", mdpath);
-        /* the answer along the swept axes, last */
-        crossovers_print(terminal, &cx, TERM_MAX_POINTS);
+        /* the answer: who wins at each point, then along the swept axes, last */
+        point_verdicts_print(terminal, runs, shown, nshown, rcfg);
+        crossovers_print(terminal, &cx);
     }
     crossovers_free(&cx);
 out:

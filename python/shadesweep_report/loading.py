@@ -330,7 +330,8 @@ class Experiment:
             rid = p.get("run_id")
             if rid and rid not in self.runs:
                 run = Run(self, rid, folder)
-                run.params = {k: v for k, v in p.items() if k not in ("index", "run_id", "shard")}
+                run.params = {k: v for k, v in p.items()
+                              if k not in ("index", "run_id", "shard", "folded")}
                 self.runs[rid] = run
         seen = {(r.id, row.get("trial")) for r in self.runs.values() for row in r.rows}
         for row in summary:

@@ -46,6 +46,29 @@ def _ask(requests):
     return out
 
 
+_READERS = {}
+
+
+def readers():
+    """{key: set of the renderers that read it ("*": every run)} from `shadesweep params
+    --json` (runner/params.def), asked once; {} when it cannot say (every key kept)."""
+    if "keys" not in _READERS:
+        try:
+            p = subprocess.run([_exe(), "params", "--json"], capture_output=True, text=True,
+                               check=False)
+            keys = json.loads(p.stdout)["keys"] if p.returncode == 0 else []
+        except (OSError, ValueError, KeyError):
+            keys = []
+        _READERS["keys"] = {k["key"]: set(k["read_by"]) for k in keys}
+    return _READERS["keys"]
+
+
+def reads(renderer, key):
+    """Whether a run of renderer reads key (a key shadesweep does not know: kept)."""
+    r = readers().get(key)
+    return r is None or "*" in r or renderer in r
+
+
 def _folder(run):
     return os.path.dirname(os.path.dirname(run.dir))
 

@@ -428,4 +428,30 @@ for d in "$SOURCE_ROOT"/docs/results/*/; do
   ncommitted=$((ncommitted + 1))
 done
 [ "$ncommitted" -ge 1 ] || fail "no committed reproduction (docs/results/*/data with report.md)"
+# The generic section's plot of lights that grow within a run: the metric that ranks
+# (cpu: frames.csv's cpu_us, not the wall frame time), per count the mean over the ok
+# trials of each trial's mean, and its t interval over them; a failed trial left out
+mkdir -p grow/runs/aaaaaaaaaaaa
+PYTHONPATH="$SOURCE_ROOT/python" "$PYTHON" - <<'PY' || fail "the plot's series of growing lights"
+from shadesweep_report.loading import Experiment
+from shadesweep_report.sections.generic import growth_series, metric_of
+from shadesweep_report.stats import t975
+with open("grow/runs/aaaaaaaaaaaa/frames.csv", "w") as f:
+    f.write("run_id,trial,frame,lights,frametime_us,cpu_us\n")
+    for k in (1, 2, 3, 4):   # trial k: 0 lights at k ms of CPU, 10 lights at 3k ms
+        for n, (lights, us) in enumerate(((0, 1000), (0, 1000), (10, 3000), (10, 3000))):
+            f.write(f"aaaaaaaaaaaa,{k},{n},{lights},{10 * us * k},{us * k + (50 if n % 2 else -50)}\n")
+e = Experiment("g", ["g"])
+e.add_folder("grow", [dict(run_id="aaaaaaaaaaaa", renderer="deferred", trial=str(k),
+                           status="ok" if k < 4 else "failed:timeout", metric="cpu")
+                      for k in (1, 2, 3, 4)], [])
+(r,) = e.measured()
+assert metric_of(r) == "cpu"
+pts = growth_series(r, "cpu")
+# the trials' means 1, 2, 3 ms at 0 lights and 3, 6, 9 at 10: sd 1 and 3 over 3 trials
+half = t975(2) / 3 ** 0.5
+want = [(0, 2, half), (10, 6, 3 * half)]
+assert [p[0] for p in pts] == [0, 10], pts
+assert all(abs(p[1] - w[1]) < 1e-9 and abs(p[2] - w[2]) < 1e-9 for p, w in zip(pts, want)), pts
+PY
 echo "report: ok"

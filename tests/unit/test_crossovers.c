@@ -1,7 +1,8 @@
 /* runner/crossovers.c on a plan and a summary.csv with known trial values: the crossings
  * along a numeric parameter per group of the other varying parameters, where each lies
  * (the log-log interpolation of the paired ratios, computed here independently), which
- * configuration is faster on either side, and a resolution as an axis of pixels. */
+ * configuration is faster on either side, and a resolution as an axis of pixels; only
+ * crossings between the leaders, with evidence on both sides, are kept. */
 #define _DEFAULT_SOURCE
 #include <setjmp.h>
 #include <stdarg.h>
@@ -29,9 +30,9 @@ typedef struct fixture {
     run_result *runs;
     size_t n;
     csv_table pl;
-    long prow[16];
+    long prow[32];
     bool varies[8];
-    char *cfg[16];
+    char *cfg[32];
 } fixture;
 
 /* Loads summary and plan; every plan column but index, run_id and renderer varies. */
@@ -45,7 +46,7 @@ static void load(fixture *f, const char *summary, const char *plan)
     assert_true(csv_read(pp, &f->pl, err, sizeof err));
     unlink(sp);
     unlink(pp);
-    assert_true(f->n <= 16 && f->pl.ncols <= 8);
+    assert_true(f->n <= 32 && f->pl.ncols <= 8);
     int id = csv_col(&f->pl, "run_id");
     for (size_t r = 0; r < f->n; r++) {
         f->prow[r] = -1;
@@ -228,12 +229,90 @@ static void test_growth_over_time(void **state)
     unload(&f);
 }
 
+/* Three trials of one run at one light count: "ID,R,x,k,1,ok,cpu,V" rows. */
+static void rows(char **at, const char *id, const char *r, double v1, double v2, double v3)
+{
+    const double v[3] = {v1, v2, v3};
+    for (int k = 0; k < 3; k++)
+        *at += sprintf(*at, "%s,%s,x,%d,1,ok,cpu,%g\n", id, r, k + 1, v[k]);
+}
+
+static void test_only_leaders_with_evidence(void **state)
+{
+    (void)state;
+    char summary[8192], plan[4096], *s = summary, *p = plan;
+    s += sprintf(s, "run_id,renderer,experiment,trial,frametime_mean_us,status,metric,"
+                    "metric_us\n");
+    p += sprintf(p, "index,run_id,renderer,scene,lights.count\n");
+    int idx = 0;
+    /* scene l: df leads everywhere; fp and cl change places between 16 and 256 (both
+     * intervals exclude 1), but neither leads: no crossover */
+    static const double xl[] = {1, 16, 256}, fp[] = {100, 200, 900}, cl[] = {200, 300, 600};
+    for (int k = 0; k < 3; k++) {
+        char id[3][16];
+        static const char *const ren[] = {"df", "fp", "cl"};
+        const double v[] = {50, fp[k], cl[k]};
+        for (int r = 0; r < 3; r++) {
+            snprintf(id[r], sizeof id[r], "l%s%03g", ren[r], xl[k]);
+            rows(&s, id[r], ren[r], v[r], v[r] * 1.01, v[r] * 0.99);
+            p += sprintf(p, "%d,%s,%s,l,%g\n", idx++, id[r], ren[r], xl[k]);
+        }
+    }
+    /* scene n: a is faster from 2 lights; at 1 light a / b is 1.01 with an interval that
+     * holds 1, and only one value lies below the crossing: no crossover (the old rule
+     * named one between 1 and 2) */
+    static const double xs[] = {1, 2, 4, 8};
+    static const double na[4][3] = {{105, 95, 104}, {50, 50, 50}, {40, 40, 40}, {30, 30, 30}};
+    /* scene t: a / b above 1 at 1 and 2 lights, below at 4 and 8, no interval excluding 1:
+     * two values each side agree, so the crossing between 2 and 4 stands */
+    static const double ta[4][3] = {{110, 95, 108}, {108, 96, 110}, {92, 104, 90},
+                                    {90, 105, 91}};
+    for (int g = 0; g < 2; g++)
+        for (int k = 0; k < 4; k++) {
+            const double *a = g ? ta[k] : na[k];
+            char ida[16], idb[16];
+            snprintf(ida, sizeof ida, "%ca%g", g ? 't' : 'n', xs[k]);
+            snprintf(idb, sizeof idb, "%cb%g", g ? 't' : 'n', xs[k]);
+            rows(&s, ida, "a", a[0], a[1], a[2]);
+            rows(&s, idb, "b", 100, 100, 100);
+            p += sprintf(p, "%d,%s,a,%c,%g\n%d,%s,b,%c,%g\n", idx, ida, g ? 't' : 'n',
+                         xs[k], idx + 1, idb, g ? 't' : 'n', xs[k]);
+            idx += 2;
+        }
+    fixture f;
+    load(&f, summary, plan);
+    crossover_list l;
+    assert_true(crossovers_find(f.runs, f.n, &f.pl, f.prow, f.varies, f.cfg, &l));
+    assert_int_equal(l.n, 1);
+    assert_int_equal(l.pruned, 2);   /* fp / cl in scene l, a / b at 1-2 in scene n */
+    const crossover_found *c = &l.item[0];
+    assert_string_equal(c->group, "scene=t");
+    assert_string_equal(c->below, "b");
+    assert_string_equal(c->above, "a");
+    assert_true(c->x0 == 2 && c->x1 == 4 && 2 < c->x && c->x < 4);
+    assert_string_equal(c->differs0, "no");
+    assert_string_equal(c->differs1, "no");
+    char *text = NULL;
+    size_t len = 0;
+    FILE *out = open_memstream(&text, &len);
+    assert_non_null(out);
+    crossovers_print(out, &l);
+    fclose(out);
+    assert_non_null(strstr(text, "crossover: b is the fastest below lights.count ~"));
+    assert_non_null(strstr(text, "), a above (scene=t)\n"));
+    assert_null(strchr(strchr(text, '\n') + 1, '\n'));   /* one line */
+    free(text);
+    crossovers_free(&l);
+    unload(&f);
+}
+
 int main(void)
 {
     const struct CMUnitTest tests[] = {
         cmocka_unit_test(test_crossing_per_group),
         cmocka_unit_test(test_resolution_is_an_axis_of_pixels),
         cmocka_unit_test(test_growth_over_time),
+        cmocka_unit_test(test_only_leaders_with_evidence),
     };
     return cmocka_run_group_tests(tests, NULL, NULL);
 }

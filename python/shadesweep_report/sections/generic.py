@@ -1,13 +1,19 @@
-"""Any other experiment (the quick-start, the renderer benchmark, a user's sweep): where
-shadesweep's ranked table is, and frame time against lights per renderer when the lights
-vary within or across its runs."""
+"""Any other experiment (the quick-start, the renderer benchmark, a user's sweep): who
+wins at each sweep point and where they change places (summary.json, as the run printed
+them), and the metric that ranks against lights per configuration when the lights vary
+within or across its runs."""
 import json
 import os
 
+from .. import verdicts
+from ..loading import read_csv
 from ..plots import styles
 from ..text import code, fmt, md_table, md_values
-from ..stats import mean, num
-from .s003_exp2 import exp2_series
+from ..stats import ci95, mean, num
+
+
+METRIC_TEXT = {"wall": "frame time", "cpu": "CPU time per frame", "gpu": "GPU time per frame"}
+FRAME_COLUMN = {"cpu": "cpu_us", "gpu": "gpu_us", "wall": "frametime_us"}
 
 
 def read_json(path):
@@ -20,17 +26,58 @@ def read_json(path):
         return {}
 
 
-def lights_series(run):
-    """[(lights, frame time ms, 95% CI ms or None)]: per complete second of seconds.csv
-    (mean over trials) when the lights grow within the run, else one point for the run
-    from summary.csv (its mean frame time over the trials at lights_count, with its CI)."""
-    pts = [(s[1], s[4] / 1000, None) for s in exp2_series(run)
-           if s[1] is not None and s[4] is not None]
-    if len({x for x, _, _ in pts}) > 1:
+def metric_of(run):
+    """What ranks the run: summary.csv's `metric` (wall in a folder written before it)."""
+    return next((r["metric"] for r in run.rows if r.get("metric")), "wall")
+
+
+def growth_series(run, metric):
+    """[(lights, ms, 95% CI ms or None)] when the lights grow within the run, as the
+    crossovers read it (runner/crossovers.c): per trial, the mean of the metric's
+    frames.csv column over the frames drawn at each count; per count, the mean over the
+    trials and its t interval over them (none under 3 trials). [] without frames.csv or
+    with one count."""
+    rows = read_csv(os.path.join(run.dir, "frames.csv")) or []
+    col = FRAME_COLUMN.get(metric, "frametime_us")
+    ok = {r.get("trial") for r in run.ok_rows}
+    acc = {}
+    for r in rows:
+        lights, v = num(r.get("lights")), num(r.get(col))
+        if r.get("trial") in ok and lights is not None and v is not None:
+            acc.setdefault(lights, {}).setdefault(r.get("trial"), []).append(v)
+    if len(acc) < 2:
+        return []
+    out = []
+    for lights in sorted(acc):
+        per = [mean(v) for v in acc[lights].values()]
+        ci = ci95(per) if len(per) >= 3 else None
+        out.append((lights, mean(per) / 1000, ci / 1000 if ci is not None else None))
+    return out
+
+
+def lights_series(run, metric, value):
+    """[(lights, ms, 95% CI ms or None)] of the metric that ranks: per light count when the
+    lights grow within the run, else one point for the run: value, shadesweep's mean over
+    its trials and 95% t interval (verdicts.values: the table's numbers) at lights_count."""
+    pts = growth_series(run, metric)
+    if pts:
         return pts
-    m, ci, _ = run.frametime_ms()
     lights = mean(num(r.get("lights_count")) for r in run.ok_rows)
-    return [(lights, m, ci)] if m is not None and lights is not None else []
+    if not value or value.get("mean_us") is None or lights is None:
+        return []
+    ci = value.get("ci95_us")
+    return [(lights, value["mean_us"] / 1000, ci / 1000 if ci is not None else None)]
+
+
+def line_labels(runs):
+    """{run id: its line's label}: the renderer and the values of the keys that vary across
+    runs (but the lights' count, the x axis) and that it reads; a key only other
+    renderers read would name a difference that is not there."""
+    keys = sorted({k for r in runs for k in r.params})
+    vary = [k for k in keys if k not in ("renderer", "lights.count")
+            and len({r.param(k) for r in runs}) > 1]
+    return {r.id: " ".join([r.renderer] + [f"{k}={r.param(k)}" for k in vary
+                                           if verdicts.reads(r.renderer, k)]) for r in runs}
 
 
 def span(vals):
@@ -42,15 +89,22 @@ def span(vals):
 def section_generic(s):
     e = s.e
     for f in e.folders:
-        md = os.path.join(f, "summary.md")
+        ranked = os.path.join(f, "summary.md")
         js = os.path.join(f, "summary.json")
-        if os.path.isfile(md):
-            s.w(f"The renderers ranked per sweep point, and where they change places: {code(md)}"
+        if os.path.isfile(ranked):
+            s.w(f"The renderers ranked per sweep point, and where they change places: "
+                f"{code(ranked)}"
                 + (f" (and {code(js)} for scripts)" if os.path.isfile(js) else "") + ".\n")
-    for f in e.folders:   # the crossovers, as summary.json has them (runner/crossovers.c)
-        cx = read_json(os.path.join(f, "summary.json")).get("crossovers", [])
+    for f in e.folders:   # who wins and where that changes, as summary.json has them
+        d = read_json(os.path.join(f, "summary.json"))
+        said = [(p.get("label", ""), p["verdict"]) for p in d.get("points", [])
+                if p.get("verdict")]
+        if said:
+            s.w(f"Verdicts, by {METRIC_TEXT.get(d.get('metric'), 'the metric that ranks')}:\n")
+            s.w("".join(f"- {label}: {v}\n" for label, v in said))
+        cx = d.get("crossovers", [])
         if cx:
-            s.w(md_table(["along", "where", "faster below", "faster above", "crossing",
+            s.w(md_table(["along", "where", "fastest below", "fastest above", "crossing",
                           "95% interval", "differs below / above"],
                          [[c["along"], c["where"] or "-", c["faster_below"], c["faster_above"],
                            f"~{fmt(c['x'], 1)}", f"{fmt(c['x_lo'], 1)} to {fmt(c['x_hi'], 1)}",
@@ -61,15 +115,13 @@ def section_generic(s):
         s.w("Failed runs (not plotted): " + "; ".join(
             f"{r.id} {r.renderer}: {r.status or 'no result'}"
             for r in failed[:12]) + (" ..." if len(failed) > 12 else "") + ".\n")
-    # one line per renderer and value of every other parameter that varies (the lights'
-    # count excepted: it is the x axis)
-    keys = sorted({k for r in runs for k in r.params})
-    vary = [k for k in keys if k not in ("renderer", "lights.count")
-            and len({r.param(k) for r in runs}) > 1]
-    by, ren = {}, {}
+    metrics = {metric_of(r) for r in runs}   # one, but for folders measured apart
+    metric = metrics.pop() if len(metrics) == 1 else "wall"
+    values = verdicts.values(runs)
+    by, ren, labels = {}, {}, line_labels(runs)
     for r in runs:
-        label = " ".join([r.renderer] + [f"{k}={r.param(k)}" for k in vary])
-        by.setdefault(label, []).extend(lights_series(r))
+        label = labels[r.id]
+        by.setdefault(label, []).extend(lights_series(r, metric, values.get(r.id)))
         ren[label] = r.renderer
     if not s.plots.plt or not any(len({x for x, _, _ in v}) > 1 for v in by.values()):
         return
@@ -91,9 +143,10 @@ def section_generic(s):
         ax.set_xscale("symlog", linthresh=1) if min(xs) <= 0 else ax.set_xscale("log")
     if logy:
         ax.set_yscale("log")
+    what = METRIC_TEXT.get(metric, metric)
     ax.set_xlabel("lights" + (" (log)" if logx else ""))
-    ax.set_ylabel("frame time (ms" + (", log" if logy else "") + "; band = 95% CI)")
-    ax.set_title(f"{e.name}: frame time against lights")
+    ax.set_ylabel(f"{what} (ms" + (", log" if logy else "") + "; band = 95% CI over trials)")
+    ax.set_title(f"{e.name}: {what} against lights")
     ax.grid(alpha=0.3, which="both")
     ax.legend(fontsize=7)
     s.w(s.plots.save(fig, f"{e.name}_frametime_lights.png"))
