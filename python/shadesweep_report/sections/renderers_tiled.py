@@ -54,12 +54,44 @@ def lights_text(c):
     return f"{int(c)}" if c == int(c) else fmt(c, 1)
 
 
+def _side(rt):
+    r = rt.get("ratio")
+    if r is None or not r > 0 or r == 1:
+        return 0
+    return -1 if r < 1 else 1
+
+
+def _decided(rt, side):
+    if rt.get("lo") is None or rt.get("hi") is None:
+        return False
+    return rt["hi"] < 1 if side < 0 else rt["lo"] > 1
+
+
+def _worth(ans, x, lead, counts, first, then):
+    """The rule of runner/crossovers.c's worth_reporting: the one faster below leads at
+    the lower count and the one faster above at the higher, and the evidence holds (both
+    ratios' intervals on their side of 1, or a second count on each side agrees)."""
+    i, j = x["i"], x["j"]
+    if lead.get(counts[i]) != first or lead.get(counts[j]) != then:
+        return False
+    r = ans["ratios"]
+    s0, s1 = _side(r[i]), _side(r[j])
+    if _decided(r[i], s0) and _decided(r[j], s1):
+        return True
+    return i > 0 and _side(r[i - 1]) == s0 and j + 1 < len(r) and _side(r[j + 1]) == s1
+
+
 def crossovers(by, rens):
-    """Every pair of renderers whose order changes as the lights grow:
-    [(c1, c2, faster before, faster then, answer, crossing)], the crossing between light
-    counts c1 and c2 with the interval of where it lies (results/verdict.c's
-    verdict_crossover: log time ratio interpolated linearly in log lights, in lights from
-    a count of 0), and the pair's per-count ratios in answer."""
+    """The crossings worth reporting, as the terminal's (runner/crossovers.c): between
+    the renderers that lead on either side, with the evidence to hold them. Returns
+    ([(c1, c2, faster before, faster then, answer, crossing)], how many others were
+    left out); the crossing lies between light counts c1 and c2, with the interval of
+    where it lies (results/verdict.c's verdict_crossover: log time ratio interpolated
+    linearly in log lights), and the pair's per-count ratios in answer."""
+    lead = {}
+    for c in sorted({c for r in rens for c in by[r]}):
+        have = sorted((by[r][c][0], r) for r in rens if c in by[r])
+        lead[c] = have[0][1]
     pairs, series = [], []
     for i, a in enumerate(rens):
         for b in rens[i + 1:]:
@@ -67,12 +99,15 @@ def crossovers(by, rens):
             if len(counts) >= 2:
                 pairs.append((a, b, counts))
                 series.append([(c, by[a][c][2], by[b][c][2]) for c in counts])
-    out = []
+    out, pruned = [], 0
     for (a, b, counts), ans in zip(pairs, verdicts.crossovers(series)):
         for x in ans.get("crossings", []):
             first, then = (a, b) if x["dir"] > 0 else (b, a)
-            out.append((counts[x["i"]], counts[x["j"]], first, then, ans, x))
-    return out
+            if _worth(ans, x, lead, counts, first, then):
+                out.append((counts[x["i"]], counts[x["j"]], first, then, ans, x))
+            else:
+                pruned += 1
+    return out, pruned
 
 
 def crossing_text(x):
@@ -127,7 +162,11 @@ def section_renderers_tiled(s):
             f"{r} at {', '.join(lights_text(c) for c in wins[r])} lights"
             for r in sorted(wins, key=lambda r: min(wins[r]))) + ".\n")
         found = []
-        for c1, c2, first, then, ans, x in crossovers(by, rens):
+        kept, pruned = crossovers(by, rens)
+        left = (f" {pruned} other crossing{'s' if pruned != 1 else ''} of renderers that "
+                f"do not lead, or with too little evidence, {'is' if pruned == 1 else 'are'} "
+                "left out.") if pruned else ""
+        for c1, c2, first, then, ans, x in kept:
             f1, t1 = by[first][c1], by[then][c1]
             f2, t2 = by[first][c2], by[then][c2]
             found.append([f"{first} -> {then}", f"{lights_text(c1)}-{lights_text(c2)}",
@@ -136,18 +175,19 @@ def section_renderers_tiled(s):
                           " / ".join(ans["ratios"][k]["differs"] for k in (x["i"], x["j"])),
                           crossing_text(x)])
         if found:
-            s.w(f"Crossovers on {scene}: each pair whose order changes, between the last light "
-                "count where the first is faster and the next count where the second is (the "
+            s.w(f"Crossovers on {scene}: where the fastest renderer changes, between the last "
+                "light count where the first leads and the next count where the second does "
+                "(both intervals on their side of 1, or a second count on each side agrees; the "
                 "times ms, first vs second, at both counts). The crossing interpolates the log "
                 "time ratio linearly in log(lights) between those two counts, an estimate, "
                 "not a measurement; its 95% interval is where the ratio's interval bounds "
-                "cross 1, interpolated the same way.\n")
+                f"cross 1, interpolated the same way.{left}\n")
             s.w(md_table(["faster first -> faster then", "between lights",
                           "at the lower count", "at the higher count",
                           "differs at lower / higher", "crossing (interpolated) lights"], found))
         else:
-            s.w(f"Crossovers on {scene}: none; no two renderers change places over the light "
-                "counts run.\n")
+            s.w(f"Crossovers on {scene}: none; the fastest renderer does not change over the "
+                f"light counts run.{left}\n")
     if s.plots.plt:
         plt = s.plots.plt
         scenes = sorted(data)
