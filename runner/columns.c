@@ -49,8 +49,8 @@ void columns_print(FILE *out, bool markdown)
         list(out, frames_columns, frames_ncolumns, true);
         fputs("\n## summary.csv (one row per run x trial)\n\n", out);
         list(out, summary_columns, summary_ncolumns, true);
-        fputs("\n`status` is the trial's: `ok` or `failed:<reason>` (a trial after the one that\n"
-              "ended its run has that failure, or `failed:not-run`). The run's own status is\n"
+        fputs("\n`status` is the trial's: `ok` or `failed:<reason>`; a trial after the one that\n"
+              "ended its run is `failed:not-run`, its message saying which. The run's own status is\n"
               "no column: `ok` when every trial is, `partial:<reason>` when some are and the\n"
               "first other one failed so, else that failure. meta.yaml's `status`,\n"
               "summary.json, summary.md, report.md and `run`'s closing lines say it\n"

@@ -32,9 +32,9 @@ typedef struct run_slot {
                                 * none), read once from its folder */
     uint32_t cap;              /* of order and value */
     char status[96];           /* the first failure among its trials, or "ok" */
-    char message[512];         /* ... and why, for the rows of the trials it did not run */
-    char not_run[600];         /* a timeout ended it: the message of the trials it did not
-                                * run (failed:not-run, not the timeout's status) */
+    char message[512];         /* ... and why, for the rows of a run refused before a trial */
+    char not_run[600];         /* a trial ended it: the message of the trials it did not
+                                * run (failed:not-run, not the status that ended it) */
     double used_s;             /* wall time of its trials' processes */
 } run_slot;
 
@@ -156,16 +156,22 @@ static const char *schedule_name(const run_params *p)
     return p->schedule == RUN_SCHEDULE_SEQUENTIAL ? "sequential" : "interleaved";
 }
 
-/* Trial k of r ended with `status`: a timeout ends the run, and its later trials are
- * failed:not-run, saying why. */
-static void slot_timed_out(run_slot *r, uint32_t k, const char *status)
+/* Trial k of r ended with `status`: a status that ends the run (a timeout, a crash, a
+ * refusal) makes its later trials failed:not-run, saying why; they never carry a
+ * failure of their own they did not have. */
+static void slot_ended(run_slot *r, uint32_t k, const char *status)
 {
-    if (strcmp(status, "failed:timeout") != 0 || r->not_run[0])
+    if (!run_status_ends_run(status) || r->not_run[0])
         return;
-    char limit[160];
-    run_timeout_text(&r->s->p, limit, sizeof limit);
-    snprintf(r->not_run, sizeof r->not_run, "not run: trial %u was stopped by its limit (%s), "
-             "which ends the run", k, limit);
+    if (strcmp(status, "failed:timeout") == 0) {
+        char limit[160];
+        run_timeout_text(&r->s->p, limit, sizeof limit);
+        snprintf(r->not_run, sizeof r->not_run, "not run: trial %u was stopped by its limit "
+                 "(%s), which ends the run", k, limit);
+    } else {
+        snprintf(r->not_run, sizeof r->not_run, "not run: trial %u ended the run (%s)", k,
+                 status);
+    }
 }
 
 /* Runs trial k of r (place: its place in its round). False: the sweep cannot go on. */
@@ -212,7 +218,7 @@ static bool run_one_trial(const experiment *e, const run_options *o, progress *p
         progress_unexpect(pg, s->p.renderer, s->p.width, s->p.height, s->p.scene,
                           want > k ? want - k : 0);
     }
-    slot_timed_out(r, k, out.status);
+    slot_ended(r, k, out.status);
     return true;
 }
 
@@ -351,7 +357,7 @@ static void resume_slot(const run_options *o, run_slot *r, size_t *kept, size_t 
             snprintf(r->status, sizeof r->status, "%s", tc.status);
         if (tc.failed && run_status_ends_run(tc.status))
             r->ended = true;
-        slot_timed_out(r, k, tc.status);
+        slot_ended(r, k, tc.status);
         /* without memory the value stays NAN: auto then sees one pair fewer */
         (void)slot_value(o->out_dir, r, k);
         k++;

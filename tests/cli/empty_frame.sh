@@ -65,9 +65,9 @@ rc=0
 want="the scene covers no pixel of the first measured frame (schedule time 0 s): the camera sees none of its 10 objects; allow_empty: true measures it anyway"
 [ "$(grep -cF "$want" away.log)" = 2 ] || { cat away.log; fail "expected the message once per run"; }
 rows out/away >away.txt
-# the first trial measured coverage 0; the run ends there, and its second trial (not
-# run) carries the run's status with no coverage
-[ "$(cat away.txt)" = "$(printf 'deferred,1,failed:empty,0.000000\ndeferred,1,failed:empty,\nforward-spml,1,failed:empty,0.000000\nforward-spml,1,failed:empty,')" ] ||
+# the first trial measured coverage 0; the run ends there, and its second trial is
+# failed:not-run, with no coverage
+[ "$(cat away.txt)" = "$(printf 'deferred,1,failed:empty,0.000000\ndeferred,1,failed:not-run,\nforward-spml,1,failed:empty,0.000000\nforward-spml,1,failed:not-run,')" ] ||
   { cat away.txt; fail "expected failed:empty, coverage 0, and the run ended after its first trial"; }
 
 # 3. the same with allow_empty: measured, coverage 0

@@ -34,8 +34,8 @@ want = []
 for scene, status in [("test-abort", "failed:SIGABRT"), ("test-segv", "failed:SIGSEGV"),
                       ("test-hang", "failed:timeout"), ("test-sigkill", "failed:SIGKILL"),
                       ("empty", "ok")]:
-    # a timeout is one trial's: the trial after it did not run
-    want += [(scene, "1", status), (scene, "2", "failed:not-run" if status == "failed:timeout" else status)]
+    # a failure that ends the run is trial 1's: the trial after it did not run
+    want += [(scene, "1", status), (scene, "2", "failed:not-run" if status != "ok" else status)]
 if got != want: fail(f"statuses {got}")
 for r in rows:
     if r["status"] == "ok":
@@ -43,7 +43,11 @@ for r in rows:
         continue
     # the tail of the run's log, with the scene's own last words, and no measurements
     if r["status"] == "failed:not-run":
-        if not r["message"].startswith("not run: trial 1 was stopped by its limit (timeout: 3 s"):
+        first = [x for x in rows if x["run_id"] == r["run_id"] and x["trial"] == "1"][0]
+        want = ("not run: trial 1 was stopped by its limit (timeout: 3 s"
+                if first["status"] == "failed:timeout"
+                else f"not run: trial 1 ended the run ({first['status']})")
+        if not r["message"].startswith(want):
             fail(f"not-run message: {r}")
     elif "as this test scene does" not in r["message"]: fail(f"message lacks the log tail: {r}")
     if r["frames"] != "0" or r["fps_mean"] != "": fail(f"failed row has numbers: {r}")
