@@ -55,6 +55,8 @@ typedef struct run_state {
                                 * cached), "" (catalog) */
         char note[640];        /* why a cache file was ignored or not written, or "" */
         double import_s, decode_s, build_s, cache_s, prepare_s, total_s;
+        double total_cpu_s;    /* the process's CPU seconds over total_s: what a busy
+                                * machine's waits do not inflate */
     } load;
     uint32_t made_opaque;      /* translucency: opaque: the materials it made opaque */
     double meter_lum;          /* exposure.mode auto: the metering frame's log-average

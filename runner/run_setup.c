@@ -8,6 +8,7 @@
 
 #include "renderers/gl/loader.h"
 #include "renderers/renderer.h"
+#include "results/contention.h"
 #include "results/fsutil.h"
 #include "runner/hash.h"
 #include "runner/params.h"
@@ -61,7 +62,7 @@ static void load_note(run_state *st, const char *note)
 static bool run_setup_scene(run_state *st)
 {
     const run_params *p = &st->s->p;
-    double t0 = progress_now();
+    double t0 = progress_now(), cpu0 = contention_process_cpu_s();
     scene_file_times ft;
     scene_file_times_take(&ft);   /* what loads before this run's spent is not its */
     scene_file_options fo;
@@ -142,6 +143,7 @@ static bool run_setup_scene(run_state *st)
         return false;
     }
     st->load.total_s = progress_now() - t0;
+    st->load.total_cpu_s = contention_process_cpu_s() - cpu0;
     return true;
 }
 

@@ -45,7 +45,8 @@ for meta in sorted(glob.glob("out/cache/runs/*/meta.yaml")):
         continue   # only that run was made again
     for t in m["trials"]:
         sl = t.get("scene_load") or fail(f"{meta}: trial {t['trial']}: no scene_load")
-        for k in ("import_s", "decode_s", "build_s", "cache_s", "load_s", "prepare_s"):
+        for k in ("import_s", "decode_s", "build_s", "cache_s", "load_s", "load_cpu_s",
+                  "prepare_s"):
             if not (isinstance(sl[k], float) and sl[k] >= 0):
                 fail(f"{meta}: trial {t['trial']}: {k} {sl[k]!r}")
         loads.append((ren, t["trial"], sl))
@@ -75,10 +76,11 @@ for ren, k, sl in loads:
     if sl["source"] == "cache":
         if sl["import_s"] != 0 or sl["decode_s"] != 0:
             fail(f"{ren} trial {k}: a cache hit imported or decoded: {sl}")
-        # 0.2 of it here; a generous margin, any machine
-        if not sl["load_s"] < 0.6 * miss["load_s"]:
-            fail(f"{ren} trial {k}: loaded from the cache in {sl['load_s']:.3f} s, the file "
-                 f"in {miss['load_s']:.3f} s")
+        # the CPU seconds, which waits on a busy machine do not inflate (its wall
+        # seconds went from 0.2 to 0.65 of the miss's under load): 0.28 here
+        if not sl["load_cpu_s"] < 0.6 * miss["load_cpu_s"]:
+            fail(f"{ren} trial {k}: loaded from the cache in {sl['load_cpu_s']:.3f} s of "
+                 f"CPU, the file in {miss['load_cpu_s']:.3f} s")
 note = miss.get("cache_note", "")
 if mode == "fresh" and note:
     fail(f"a note on a fresh cache: {note}")
