@@ -104,6 +104,8 @@ renderer *renderer_create(const char *kind, const renderer_options *opts, char *
     return r;
 }
 
+double renderer_upload_s(void) { return scene_gpu_upload_s(); }
+
 bool renderer_prepare(renderer *r, const struct scene *s, char *err, size_t errlen)
 {
     r->prepared = r->impl->prepare(r->self, s, err, errlen);

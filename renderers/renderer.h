@@ -314,6 +314,9 @@ bool renderer_design_reads(const char *kind, const renderer_options *o, const ch
 
 renderer *renderer_create(const char *kind, const renderer_options *opts, char *err, size_t errlen);
 bool renderer_prepare(renderer *r, const struct scene *s, char *err, size_t errlen);
+/* Seconds this process has spent uploading scenes to the GPU (scene_gpu_upload_s): the
+ * difference across a renderer_prepare is that prepare's upload. */
+double renderer_upload_s(void);
 void renderer_draw(renderer *r, const struct scene *s, frame_stats *out);
 void renderer_collect(renderer *r, frame_stats *out);   /* also computes out->total */
 /* Whether renderer_coverage can count (every renderer but null, which draws nothing). */

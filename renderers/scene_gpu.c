@@ -14,6 +14,7 @@
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
+#include <time.h>
 
 typedef struct gpu_mesh {
     GLuint vao, vbo, ibo;
@@ -281,8 +282,20 @@ static bool build_program(scene_gpu *g, const char *fragment, GLuint *out, char 
     return true;
 }
 
+static double upload_total_s;   /* this process's scene_gpu_create uploads */
+
+static double mono_s(void)
+{
+    struct timespec ts;
+    clock_gettime(CLOCK_MONOTONIC, &ts);
+    return (double)ts.tv_sec + (double)ts.tv_nsec * 1e-9;
+}
+
+double scene_gpu_upload_s(void) { return upload_total_s; }
+
 scene_gpu *scene_gpu_create(const scene *s, char *err, size_t errlen)
 {
+    double t0 = mono_s();
     scene_gpu *g = calloc(1, sizeof *g);
     if (!g)
         goto oom;
@@ -335,6 +348,8 @@ scene_gpu *scene_gpu_create(const scene *s, char *err, size_t errlen)
                           GL_DYNAMIC_STORAGE_BIT);
     gl.BindBufferBase(GL_UNIFORM_BUFFER, 0, g->frame_ubo);
     g->bytes += g->frame_bytes;
+    gl.Finish();   /* the copies done, so that the time is theirs: once, before any frame */
+    upload_total_s += mono_s() - t0;
 
     GLint dims[2] = {0, 0};
     gl.GetIntegerv(GL_MAX_VIEWPORT_DIMS, dims);

@@ -124,6 +124,12 @@ void scene_gpu_resolve(scene_gpu *g, gl_state *st, unsigned hdr_texture, unsigne
  * material's maps themselves (visibility.c's shading dispatches). */
 unsigned scene_gpu_texture(const scene_gpu *g, int index);
 
+/* Seconds this process spent in scene_gpu_create's uploads (meshes, textures, the
+ * environment's maps, the Frame block; up to a glFinish; the programs after them not
+ * included), summed over its calls: a trial reads it before and after its renderer's
+ * prepare. */
+double scene_gpu_upload_s(void);
+
 /* Bytes of vertex, index and texture data on the GPU (textures with their whole mip
  * chain; the light volumes and the Frame block included), for renderer_describe. */
 uint64_t scene_gpu_bytes(const scene_gpu *g);

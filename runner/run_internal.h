@@ -54,7 +54,7 @@ typedef struct run_state {
         const char *cache;     /* "off", "hit", "written", "not written", "animated" (not
                                 * cached), "" (catalog) */
         char note[640];        /* why a cache file was ignored or not written, or "" */
-        double import_s, decode_s, build_s, cache_s, prepare_s, total_s;
+        double import_s, decode_s, build_s, cache_s, prepare_s, upload_s, total_s;
         double total_cpu_s;    /* the process's CPU seconds over total_s: what a busy
                                 * machine's waits do not inflate */
     } load;

@@ -120,6 +120,7 @@ bool run_write_meta(run_state *st, char *err, size_t errlen)
         yo_key(y, "load_s"); yo_f64(y, st->load.total_s);
         yo_key(y, "load_cpu_s"); yo_f64(y, st->load.total_cpu_s);
         yo_key(y, "prepare_s"); yo_f64(y, st->load.prepare_s);
+        yo_key(y, "upload_s"); yo_f64(y, st->load.upload_s);
         yo_map_end(y);
     }
     if (p->scene_file[0]) {

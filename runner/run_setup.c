@@ -183,13 +183,14 @@ bool run_setup(run_state *st)
     params_to_renderer_options(p, &ro);   /* params.def's `apply` column */
     if (!run_display(st, &ro))
         return false;
-    double t_prepare = progress_now();
+    double t_prepare = progress_now(), up0 = renderer_upload_s();
     if (!(st->r = renderer_create(p->renderer, &ro, st->err, sizeof st->err)) ||
         !renderer_prepare(st->r, st->sc, st->err, sizeof st->err)) {
         run_set_status(st, "renderer");
         return false;
     }
     st->load.prepare_s = progress_now() - t_prepare;   /* the scene's upload, the programs */
+    st->load.upload_s = renderer_upload_s() - up0;
     renderer_describe(st->r, &st->plan);
     if (!run_gl_clean(st, "prepare")) {
         snprintf(st->err, sizeof st->err, "GL error while preparing the renderer");

@@ -46,9 +46,13 @@ for meta in sorted(glob.glob("out/cache/runs/*/meta.yaml")):
     for t in m["trials"]:
         sl = t.get("scene_load") or fail(f"{meta}: trial {t['trial']}: no scene_load")
         for k in ("import_s", "decode_s", "build_s", "cache_s", "load_s", "load_cpu_s",
-                  "prepare_s"):
+                  "prepare_s", "upload_s"):
             if not (isinstance(sl[k], float) and sl[k] >= 0):
                 fail(f"{meta}: trial {t['trial']}: {k} {sl[k]!r}")
+        # the upload (6 maps and their mip chains) is a part of the renderer's prepare
+        if not 0 < sl["upload_s"] <= sl["prepare_s"]:
+            fail(f"{meta}: trial {t['trial']}: upload_s {sl['upload_s']} of prepare_s "
+                 f"{sl['prepare_s']}")
         loads.append((ren, t["trial"], sl))
     shots = [open(f"{run}/screenshot-trial{k}-t0.png", "rb").read() for k in (1, 2)]
     if shots[1] != shots[0]:
