@@ -5,6 +5,7 @@
 #include <errno.h>
 #include <signal.h>
 #include <stdio.h>
+#include <unistd.h>
 
 #include "results/fsutil.h"
 
@@ -51,6 +52,12 @@ static int check_std_streams(const char *cmd, int rc)
 int main(int argc, char **argv)
 {
     folder_std_fds();   /* a closed stderr must not become the first file opened */
+    /* Not on a terminal, stdout is written in 1 MiB blocks rather than 4 KiB: a write
+     * that fails then fails in check_std_streams' flush, whose errno names the cause (a
+     * failure inside a command's printf leaves only the stream's error flag). */
+    static char out_buf[1 << 20];   /* glibc ignores the size of a buffer it allocates */
+    if (!isatty(STDOUT_FILENO))
+        setvbuf(stdout, out_buf, _IOFBF, sizeof out_buf);
     allocator_fixed();
     /* Past a file-size limit (ulimit -f) write(2) then fails with EFBIG, and the file's
      * writer names it (failed:write, its temporary removed); the default action killed
