@@ -382,7 +382,7 @@ bool file_loaded_list(const loaded *l, scene_file_list *out, char *err, size_t e
 /* What this thread's loads spent since scene_file_times_take last took it. */
 static _Thread_local scene_file_times load_times;
 
-static double now_s(void)
+double scene_now_s(void)
 {
     struct timespec ts;
     clock_gettime(CLOCK_MONOTONIC, &ts);
@@ -401,9 +401,9 @@ static bool file_load_checked(const scene_file_options *o, loaded *l, double *de
 /* Imports and checks everything; on success l holds the scene and every texture. */
 bool file_load(const scene_file_options *o, loaded *l, char *err, size_t errlen)
 {
-    double t0 = now_s(), decode_s = 0.0;
+    double t0 = scene_now_s(), decode_s = 0.0;
     bool ok = file_load_checked(o, l, &decode_s, err, errlen);
-    load_times.import_s += now_s() - t0 - decode_s;
+    load_times.import_s += scene_now_s() - t0 - decode_s;
     load_times.decode_s += decode_s;
     load_times.loads++;
     return ok;
@@ -576,18 +576,18 @@ static bool file_load_checked(const scene_file_options *o, loaded *l, double *de
                    "on a line): nothing to draw", o->path);
         goto out;
     }
-    double t_decode = now_s();
+    double t_decode = scene_now_s();
     for (unsigned i = 0; i < ai->mNumMaterials; i++) {
         material_refs r;
         file_material_refs(ai->mMaterials[i], &r);
         const char *refs[5] = {r.diffuse, r.normal, r.emissive, r.mr, r.occlusion};
         for (int k = 0; k < 5; k++)
             if (refs[k][0] && file_load_image(l, refs[k], err, errlen) < 0) {
-                *decode_s = now_s() - t_decode;
+                *decode_s = scene_now_s() - t_decode;
                 goto out;
             }
     }
-    *decode_s = now_s() - t_decode;
+    *decode_s = scene_now_s() - t_decode;
     if (!file_camera_is(o->camera, "orbit") && !file_camera_is(o->camera, "auto")) {
         bool found = false;
         for (unsigned i = 0; i < ai->mNumCameras && !found; i++)

@@ -164,20 +164,13 @@ static void put_payload(writer *w, const scene_cache_store *to, const scene_buil
     put(w, b->authored, (size_t)b->nauthored * sizeof *b->authored);
 }
 
-static double now_s(void)
-{
-    struct timespec ts;
-    clock_gettime(CLOCK_MONOTONIC, &ts);
-    return (double)ts.tv_sec + 1e-9 * (double)ts.tv_nsec;
-}
-
 static void write_file(scene_cache_store *to, const scene_builder *b);
 
 void scene_cache_write(scene_cache_store *to, const scene_builder *b)
 {
-    double t0 = now_s();
+    double t0 = scene_now_s();
     write_file(to, b);
-    to->write_s = now_s() - t0;
+    to->write_s = scene_now_s() - t0;
 }
 
 static void write_file(scene_cache_store *to, const scene_builder *b)

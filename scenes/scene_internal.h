@@ -24,6 +24,8 @@ bool scene_place_lights(scene *s, const scene_light *authored, uint32_t nauthore
 /* FNV-1a 64, the same function as runner/hash.h (scenes/ cannot reach runner/), continued
  * from h (start: 0xcbf29ce484222325). */
 uint64_t scene_fnv1a64_more(uint64_t h, const void *data, size_t len);
+/* CLOCK_MONOTONIC in seconds: the load's and the cache's times (scene_file_times). */
+double scene_now_s(void);
 /* One file's step of a file scene's content hash (scene_file_info.hash): its length as 8
  * little-endian bytes, then its bytes. */
 uint64_t scene_file_hash_more(uint64_t h, const void *data, size_t len);
