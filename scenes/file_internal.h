@@ -47,6 +47,8 @@ typedef struct file_set {
     char root[PATH_MAX];       /* referenced files must resolve inside it; "" while the
                                 * scene file itself is read */
     bool allow_outside;        /* scene.allow_outside: no containment */
+    bool obj;                  /* the scene is an .obj: any other file assimp opens is
+                                * a material library (file_prescan_mtl) */
     struct aiFile **open;      /* assimp's files not closed yet (an importer that
                                 * throws forgets its streams) */
     uint32_t nopen;
@@ -71,6 +73,10 @@ bool file_prescan_gltf(const char *path, const read_file *f, char *err, size_t e
  * positions than the limits (scene_file_options). */
 bool file_prescan_obj(const char *path, const read_file *f, uint64_t max_triangles,
                       uint64_t max_vertices, char *err, size_t errlen);
+/* An OBJ's material library, as assimp opens it: false with a message naming it when
+ * a statement comes before its first newmtl (assimp 5.2 writes through a null
+ * material for some of them). */
+bool file_prescan_mtl(const char *path, const read_file *f, char *err, size_t errlen);
 /* KHR_materials_emissive_strength of a glTF's materials (after file_prescan_gltf): *out
  * (malloc'd, NULL for none) holds each material's emissiveStrength, 1 where it has none,
  * *n of them, in the file's order, which assimp's glTF importer keeps. Not a glTF, or

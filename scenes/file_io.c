@@ -201,6 +201,9 @@ struct aiFile *file_io_open(struct aiFileIO *io, const char *path, const char *m
             snprintf(fs->missing, sizeof fs->missing, "%s", path);
         return NULL;
     }
+    /* the OBJ importer opens nothing but the .obj and its material libraries */
+    if (fs->obj && f != &fs->files[0] && !file_prescan_mtl(path, f, fs->err, sizeof fs->err))
+        return NULL;
     if (!GROW(fs->open, fs->cap_open, (size_t)fs->nopen + 1, 8))
         return NULL;
     struct aiFile *af = calloc(1, sizeof *af);

@@ -11,6 +11,7 @@
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
+#include <strings.h>
 #include <time.h>
 
 #include "results/fsutil.h"
@@ -447,6 +448,8 @@ static bool file_load_checked(const scene_file_options *o, loaded *l, double *de
         return false;
     }
     l->files.allow_outside = o->allow_outside;
+    const char *dot = strrchr(o->path, '.');
+    l->files.obj = dot && strcasecmp(dot, ".obj") == 0;   /* file_import.cpp: by extension */
     if (!file_prescan_gltf(o->path, &l->files.files[0], err, errlen) ||
         !file_prescan_obj(o->path, &l->files.files[0], l->max_triangles, l->max_vertices, err,
                           errlen) ||

@@ -581,3 +581,45 @@ bool file_prescan_obj(const char *path, const read_file *f, uint64_t max_triangl
                           PRIu64, path, vertices, max_vertices);
     return true;
 }
+
+/* An OBJ's material library. assimp 5.2's MTL reader keeps a "current material" that
+ * only newmtl sets, and a statement before the first one writes through it while it is
+ * still null for some keywords (an "a..." line, any texture map: scripts/fuzz.sh found
+ * the first; assimp fixed it after 5.2.5, pull requests 4647 and 5119). Only blank and
+ * '#' lines may come before the first newmtl, which the reader takes from any line
+ * starting "ne" (either case of the n). Lines end where assimp's do (CR, LF, NUL, FF)
+ * and leading blanks are skipped, a stricter reading than assimp's, which skips them on
+ * the second line on. A file with a UTF-16 or UTF-32 byte-order mark (assimp converts
+ * it) is refused: its bytes are not the text checked here. */
+bool file_prescan_mtl(const char *path, const read_file *f, char *err, size_t errlen)
+{
+    const unsigned char *d = f->data, *end = d + f->size;
+    if (f->size >= 2 && ((d[0] == 0xff && d[1] == 0xfe) || (d[0] == 0xfe && d[1] == 0xff) ||
+                         (f->size >= 4 && d[0] == 0 && d[1] == 0 && d[2] == 0xfe && d[3] == 0xff)))
+        return scene_fail(err, errlen, "%s: a material library in UTF-16 or UTF-32: write it "
+                          "as UTF-8", path);
+    if (f->size >= 3 && d[0] == 0xef && d[1] == 0xbb && d[2] == 0xbf)
+        d += 3;   /* UTF-8's mark: assimp drops it */
+    unsigned line = 1;
+    for (const unsigned char *p = d; p < end; line++) {
+        while (p < end && (*p == ' ' || *p == '\t'))
+            p++;
+        const unsigned char *start = p;
+        while (p < end && *p != '\r' && *p != '\n' && *p != '\0' && *p != '\f')
+            p++;
+        if (start < p && *start != '#') {
+            if (p - start >= 2 && (start[0] == 'n' || start[0] == 'N') && start[1] == 'e')
+                return true;   /* the first material: what follows has one */
+            char shown[48];
+            size_t n = 0;
+            for (const unsigned char *q = start; q < p && n + 1 < sizeof shown; q++)
+                shown[n++] = *q < 0x20 || *q >= 0x7f ? '?' : (char)*q;
+            shown[n] = '\0';
+            return scene_fail(err, errlen, "%s: line %u '%s' comes before the first newmtl: "
+                              "a material statement needs a material", path, line, shown);
+        }
+        if (p < end)
+            p++;
+    }
+    return true;
+}

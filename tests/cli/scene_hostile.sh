@@ -138,6 +138,21 @@ printf 'mtllib m.mtl://\nv 0 0 0\nv 1 0 0\nv 0 1 0\nf 1 2 3\n' >s/url.obj
 refuse s/url.obj "s/url.obj: mtllib 'm.mtl://' has a ':' (a URL or a drive letter): a material library is named relative to the .obj's folder"
 printf 'mtllib c\\\n:/m.mtl\nv 0 0 0\nv 1 0 0\nv 0 1 0\nf 1 2 3\n' >s/drive.obj
 refuse s/drive.obj "s/drive.obj: mtllib 'c\\?:/m.mtl' has a ':' (a URL or a drive letter): a material library is named relative to the .obj's folder"
+# a statement before a material library's first newmtl: assimp 5.2 wrote through a null
+# material for an "a..." line (scripts/fuzz.sh found it) and for any texture map; the
+# library is refused by name whatever the name of the file (here .bin) and its line shown
+printf 'mtllib m.bin\nv 0 0 0\nv 1 0 0\nv 0 1 0\nf 1 2 3\n' >s/pre.obj
+printf '# made by hand\n\n  aniso 1\nnewmtl a\n' >s/m.bin
+refuse s/pre.obj "s/pre.obj: s/m.bin: line 3 'aniso 1' comes before the first newmtl: a material statement needs a material"
+printf 'map_Kd x.png\r\nnewmtl a\r\n' >s/m.bin
+refuse s/pre.obj "s/pre.obj: s/m.bin: line 1 'map_Kd x.png' comes before the first newmtl: a material statement needs a material"
+printf '\xff\xfen\0e\0' >s/m.bin
+refuse s/pre.obj "s/pre.obj: s/m.bin: a material library in UTF-16 or UTF-32: write it as UTF-8"
+printf '\xef\xbb\xbf# ok\n\tNEWMTL a\nmap_Kd x.png\n' >s/m.bin
+manifest "{file: s/pre.obj}"
+"$SHADESWEEP" validate m.yaml >v.txt 2>&1 && fail "a NEWMTL is not newmtl: $(cat v.txt)"
+printf '\xef\xbb\xbf# ok\n\tnewmtl a\nKd 1 0 0\na 0.5\n' >s/m.bin
+"$SHADESWEEP" validate m.yaml >v.txt 2>&1 || fail "a material library after its newmtl: $(cat v.txt)"
 mkdir -p s/win
 gen png s/win/wall.png 4
 printf 'mtllib win.mtl\nv 0 0 0\nv 1 0 0\nv 0 1 0\nvt 0 0\nvt 1 0\nvt 0 1\nusemtl a\nf 1/1 2/2 3/3\n' >s/win/win.obj
