@@ -1,6 +1,6 @@
 /* A file camera's near and far planes fitted to the scene in front of it, and the depth
- * slices a pair of planes makes for clustered shading (scene.h; docs/architecture.md
- * "File scenes", "The camera's planes"). Pure functions: no scene, no GL. */
+ * slices a pair of planes makes for clustered shading (scene.h; docs/notes/file-scenes.md,
+ * "A file camera's planes"). Pure functions: no scene, no GL. */
 #include "scenes/scene.h"
 
 #include <math.h>

@@ -7,7 +7,7 @@
  * are read the same way before they are decoded. scene_file_check and the builder share
  * one loader (>>load), so what validate accepts is exactly what a run builds.
  *
- * Mapping onto the Phong model (docs/architecture.md, "File scenes"):
+ * Mapping onto the Phong model (docs/notes/file-scenes.md):
  *   diffuse    base colour factor (glTF) or Kd (OBJ), times the base colour / diffuse map
  *   specular   metallic-roughness: F0 = mix(0.04, luminance(base colour), metallic);
  *              specular-glossiness and Phong: luminance of the specular colour

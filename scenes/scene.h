@@ -155,7 +155,7 @@ uint32_t scene_depth_slices(double proj11, double znear, double zfar, int slices
 #define SCENE_DEPTH_SLICES_MAX 1024u
 
 /* A file camera's planes fitted to the scene in front of it (scene_build_file; the rule
- * is docs/architecture.md's, "File scenes"). file_near, file_far: the file's (world
+ * is docs/notes/file-scenes.md's). file_near, file_far: the file's (world
  * units; <= 0 or not finite: none, glTF's infinite projection has no far); depth_near,
  * depth_far: the nearest and farthest view depths of the scene's bounds (depth_near <= 0
  * when the eye is among them); proj11 as above; size: the bounds' diagonal. out: near =
@@ -393,7 +393,7 @@ scene *scene_build_source(const scene_source *src, const light_params *lp, int w
 scene *scene_build(const char *name, const light_params *lp, int width, int height,
                    char *err, size_t errlen);
 
-/* The scene cache (scenes/scene_cache.c; docs/architecture.md "File scenes"): a file
+/* The scene cache (scenes/scene_cache.c; docs/notes/file-scenes.md): a file
  * scene as its builder made it, before the run's lights, in a file named by a hash of
  * the files' content hash, the loading options, the resolution and the cache format.
  * scene_cache_name: that name ("<16 hex digits>.scene"). scene_cache_read: the scene
