@@ -7,22 +7,12 @@
  * are read the same way before they are decoded. scene_file_check and the builder share
  * one loader (>>load), so what validate accepts is exactly what a run builds.
  *
- * Mapping onto the Phong model (docs/notes/file-scenes.md):
- *   diffuse    base colour factor (glTF) or Kd (OBJ), times the base colour / diffuse map
- *   specular   metallic-roughness: F0 = mix(0.04, luminance(base colour), metallic);
- *              specular-glossiness and Phong: luminance of the specular colour
- *   shininess  glTF: from roughness (1 - glossiness) as the Blinn-Phong exponent that
- *              matches GGX's alpha = roughness^2, n = 2 / alpha^2 - 2, clamped to
- *              [1, 2048]; OBJ: Ns (0 counts as 1)
- *   normal map the normal texture, tangents from our own mesh_compute_tangents
- *   emissive   the emissive factor times the emissive map (mask alpha = 1)
- *   alpha      MASK -> MATERIAL_MASK with the cutoff; BLEND -> MATERIAL_BLEND (translucent,
- *              opacity: assimp's opacity, else the base colour's alpha)
  * Untrusted input: only regular files are opened, references stay in the scene file's
  * folder (unless allow_outside), and glTF JSON is pre-scanned before assimp (>>prescan).
  * Sections, each its own file (scenes/file_internal.h): >>io file_io.c, >>prescan
  * file_prescan.c, >>load file_load.c, >>materials file_materials.c; here >>nodes >>check
- * >>build */
+ * >>build. The mapping of a file's materials onto the Phong model: the comment above
+ * file_add_material (file_materials.c). */
 #include "scenes/file_internal.h"
 
 #include <math.h>

@@ -134,6 +134,17 @@ static int orm_texture(scene_builder *b, loaded *l, const char *mr_ref, const ch
     return (int)s->ntextures++;
 }
 
+/* Mapping onto the Phong model (docs/notes/file-scenes.md):
+ *   diffuse    base colour factor (glTF) or Kd (OBJ), times the base colour / diffuse map
+ *   specular   metallic-roughness: F0 = mix(0.04, luminance(base colour), metallic);
+ *              specular-glossiness and Phong: luminance of the specular colour
+ *   shininess  glTF: from roughness (1 - glossiness) as the Blinn-Phong exponent that
+ *              matches GGX's alpha = roughness^2, n = 2 / alpha^2 - 2, clamped to
+ *              [1, 2048]; OBJ: Ns (0 counts as 1)
+ *   normal map the normal texture, tangents from our own mesh_compute_tangents
+ *   emissive   the emissive factor times the emissive map (mask alpha = 1)
+ *   alpha      MASK -> MATERIAL_MASK with the cutoff; BLEND -> MATERIAL_BLEND (translucent,
+ *              opacity: assimp's opacity, else the base colour's alpha) */
 void file_add_material(scene_builder *b, loaded *l, unsigned index, int *map)
 {
     const struct aiMaterial *am = l->ai->mMaterials[index];

@@ -3,7 +3,15 @@
  * the deferred renderer's light volumes. No OpenGL in here: a mesh is two arrays the
  * renderers upload as they are.
  *
- * Conventions (every generator):
+ * Solids, shells (room, corridor), terrain, light volumes and editing. The conventions
+ * every generator keeps, its errors and ownership, the vertex and index counts and the
+ * list of generators: the comment above the limits below. */
+#include <stdbool.h>
+#include <stddef.h>
+#include <stdint.h>
+#include "scenes/sm_bounds.h"
+
+/* Conventions (every generator):
  *   - Right-handed, Y up. Triangles are counter-clockwise seen from the side the normals
  *     point to (outside for solids, inside for room and corridor shells), so the usual
  *     glFrontFace(GL_CCW) + glCullFace(GL_BACK) culls the far side.
@@ -51,10 +59,6 @@
  *   editing      mesh_transform, mesh_append, mesh_compute_bounds, mesh_compute_tangents,
  *                mesh_free
  */
-#include <stdbool.h>
-#include <stddef.h>
-#include <stdint.h>
-#include "scenes/sm_bounds.h"
 
 /* Limits on what one generator builds (48 bytes a vertex, 4 an index). */
 #define MESH_MAX_VERTICES (1u << 26)

@@ -5,7 +5,16 @@
  * keys; each frame scene_anim_pose evaluates them at the scene's time, looping over the
  * animation's duration, and composes every node's world transform, which the objects
  * drawn from an animated subtree take as their transform (scene_object.anim_node).
- * Morph targets: a mesh with targets keeps its own vertices and each target's position
+ *
+ * Morph targets, skins and their bounds, and how keys are interpolated: the comment
+ * above the types below. */
+#include <stdbool.h>
+#include <stdint.h>
+
+#include "scenes/mesh.h"
+#include "scenes/sm_mat.h"
+
+/* Morph targets: a mesh with targets keeps its own vertices and each target's position
  * and normal offsets; each frame its vertices are rebuilt as its own plus the weighted
  * offsets (the normals normalised; the tangents kept, which the shaders orthogonalise
  * to the normal), its bounds recomputed, and the mesh is marked `deforms` so that the
@@ -29,12 +38,6 @@
  * not say a channel's interpolation, so STEP and CUBICSPLINE channels play as linear
  * between their values. Before the first key a channel holds it, after the last too.
  * clock: fixed stays deterministic (the time is the schedule's). */
-#include <stdbool.h>
-#include <stdint.h>
-
-#include "scenes/mesh.h"
-#include "scenes/sm_mat.h"
-
 typedef struct anim_keys {
     uint32_t n;
     float *t;                  /* seconds, ascending */

@@ -9,7 +9,14 @@
  * calls return a scratch record that may be written and is thrown away), so a builder
  * can make all its calls and check b->failed once at the end.
  *
- * What it offers:
+ * The list of what it offers: the comment above scene_builder below. */
+#include <stdbool.h>
+#include <stddef.h>
+#include <stdint.h>
+
+#include "scenes/scene.h"
+
+/* What it offers:
  *   setup      sb_begin, sb_fail
  *   meshes     sb_box, sb_sphere, sb_icosphere, sb_torus_knot, sb_cylinder, sb_pillar,
  *              sb_cone, sb_corridor, sb_heightfield, sb_mesh_transform, sb_mesh_uv_scale,
@@ -19,11 +26,6 @@
  *   objects    sb_object
  *   lights     sb_point, sb_spot, sb_directional
  *   scene      sb_set_bounds, sb_set_orbit, sb_set_keys, sb_set_projection, sb_set_sky */
-#include <stdbool.h>
-#include <stddef.h>
-#include <stdint.h>
-
-#include "scenes/scene.h"
 
 /* Every table grows as it fills (doubling); nothing has a fixed cap. sb_reserve checks a
  * count against what a uint32_t index and size_t bytes can hold before allocating. */

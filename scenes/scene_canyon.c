@@ -3,7 +3,13 @@
  * casting directional light source (the sun)" and "4 relatively high poly terrain
  * meshes, each with diffuse, specular and normal maps".
  *
- * Units: 1 world unit = 1 metre here (seed 000's units are its engine's; only the 8192
+ * Units, the terrain, the camera and the random lights' bounds: the comment above the
+ * terrain's constants below. */
+#include "scenes/scene_build.h"
+
+#include <math.h>
+
+/* Units: 1 world unit = 1 metre here (seed 000's units are its engine's; only the 8192
  * matters). The terrain is 8192 x 8192 units, four 4096 x 4096 tiles of 128 x 128 cells
  * (32 units a cell, 32768 triangles each, 131072 in all) about the origin: a valley
  * running along Z whose floor (|x - meander(z)| < 400, height within +-30 of 0) winds
@@ -23,10 +29,6 @@
  * runs with random lights here want linear-range attenuation with a radius in the
  * hundreds: 160 lights reach a point of the bounds once on average at radius 207
  * (lights.overlap: 1 gives it). */
-#include "scenes/scene_build.h"
-
-#include <math.h>
-
 #define CANYON_TILE 4096.0f
 #define CANYON_CELLS 128u
 

@@ -6,7 +6,12 @@
  * to 590 (experiment 2), placed with srand(1337), colour channels at most 0.3, squared
  * distance attenuation.
  *
- * The paper gives no sizes. Units here: 1 world unit = 1 metre, models a few metres
+ * Units, the lights' range and bounds, no floor and no sky: the comment above C_PERIOD. */
+#include "scenes/scene_build.h"
+
+#include <math.h>
+
+/* The paper gives no sizes. Units here: 1 world unit = 1 metre, models a few metres
  * across. Under 1/d^2 attenuation a light of colour 0.3 adds less than 1/255 beyond
  * sqrt(0.3 x 255) = 8.7 units, so the manifest's default range, lights.radius 10, cuts off
  * only what an 8-bit image cannot show: it is the radius these scenes are made for. The
@@ -15,10 +20,6 @@
  * half-ball of radius 10), is a clearly visible 0.1 to 0.4 on top of an ambient of 0.05.
  *
  * No floor and no sky: the models float over the clear colour, as the paper's did. */
-#include "scenes/scene_build.h"
-
-#include <math.h>
-
 #define C_PERIOD 60.0f   /* the camera "rotated around a scene for sixty seconds" */
 
 /* The models' and the spheres' maps: a noise "stone" for the models, bevelled checker

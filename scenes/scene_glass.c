@@ -1,7 +1,12 @@
 /* "glass": translucent panes and particles over a lit, textured floor (our own scene for
  * the translucent pass, renderers/translucent.h).
  *
- *   floor      a 24 x 24 box, its top at y = 0, checker diffuse + gloss maps (opaque)
+ * Floor, pillar, panes, particles, lights and camera: the comment above the counts below. */
+#include "scenes/scene_build.h"
+
+#include <math.h>
+
+/*   floor      a 24 x 24 box, its top at y = 0, checker diffuse + gloss maps (opaque)
  *   pillar     one opaque pillar behind the panes, so panes are seen over geometry as
  *              well as over the floor and the sky
  *   panes      GLASS_PANES thin boxes (0.1 x 3 x 4, facing +-x) standing on the floor,
@@ -19,10 +24,6 @@
  * Camera: an orbit of radius 14 at height 5 about (0, 1.5, 0), 30 s a turn; ambient
  * 0.05, a sky. Units are metres (the panes are door-sized). Everything is static but
  * the camera, so a frame depends on t only through it (clock: fixed is deterministic). */
-#include "scenes/scene_build.h"
-
-#include <math.h>
-
 enum { GLASS_PANES = 4, GLASS_PARTICLES = 24, GLASS_LIGHTS = 12 };
 
 bool scene_build_glass(scene_builder *b, const void *arg)

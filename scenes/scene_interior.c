@@ -6,7 +6,15 @@
  * meshes have an emissive channel." "The majority of the lights do not overlap, but in a
  * handful of places (such as between the two generators) there is some overlapping."
  *
- * Units: 1 world unit = 1 inch (the convention of the id Tech games the section names;
+ * Units, the hall and corridor, the 72 instances, the authored lights, the camera and
+ * the random lights' bounds: the comment above scene_build_interior. */
+#include "scenes/scene_build.h"
+
+#include <math.h>
+
+enum { INTERIOR_OBJECTS = 72 };
+
+/* Units: 1 world unit = 1 inch (the convention of the id Tech games the section names;
  * 2048 units is then 52 m). A generator hall 1152 x 288 x 896 (x, y, z; floor at y = 0,
  * x in [-576, 576], z in [-448, 448]) with a doorway (128 x 176) in its north wall (z =
  * -448) into a corridor 128 wide, 176 high and 512 long, closed at z = -960.
@@ -40,12 +48,6 @@
  * generators (212) and the ceiling (288). Random lights: x in [-540, 540], y in [20, 270],
  * z in [-420, 420]; for them, linear-range attenuation and a radius of 100 to 200 suit
  * the scale (1/d^2 with colour 0.3 fades out within 9 units). */
-#include "scenes/scene_build.h"
-
-#include <math.h>
-
-enum { INTERIOR_OBJECTS = 72 };
-
 bool scene_build_interior(scene_builder *b, const void *arg)
 {
     scene *s = b->s;

@@ -13,7 +13,13 @@
  *   AABB                      sm_vec3 box[2]: box[0] min corner, box[1] max corner
  *   plane                     sm_vec4: a, b, c, d; signed distance = dot(abc, p) + d
  *
- * Conventions: inputs first, output (`dest`) last. Inputs are `const`; passing a
+ * Conventions, degenerate input and the list of functions: the comment above the types. */
+#include <float.h>
+#include <math.h>
+#include <stdbool.h>
+#include <string.h>
+
+/* Conventions: inputs first, output (`dest`) last. Inputs are `const`; passing a
  * non-const matrix to a `const sm_mat4` parameter is fine in GCC/Clang C11 (only
  * -Wpedantic complains before C2x). Unless a function says otherwise, every output may
  * alias any input (results are built in temporaries first). Functions named `verb(v)`
@@ -32,11 +38,6 @@
  *   vec4  sm_vec4_make, _copy, _from_vec3, _zero, _add, _sub, _scale
  * Names with `sm__` are internal helpers.
  */
-#include <float.h>
-#include <math.h>
-#include <stdbool.h>
-#include <string.h>
-
 typedef float sm_vec2[2];
 typedef float sm_vec3[3];
 typedef float sm_vec4[4];

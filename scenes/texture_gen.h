@@ -3,7 +3,13 @@
  * gradient noise they and the terrain share. No OpenGL in here: an image is bytes the
  * renderers upload as they are.
  *
- * A material is one texture_desc; its four maps come from the same pattern, so they
+ * The four maps of a material, the image layout, determinism and the list of functions:
+ * the comment above the limits below. */
+#include <stdbool.h>
+#include <stddef.h>
+#include <stdint.h>
+
+/* A material is one texture_desc; its four maps come from the same pattern, so they
  * agree (mortar is dark, dull, sunken and never lit):
  *   texture_diffuse     RGBA8: colour (stored as given; the renderer decides whether the
  *                       texture is sRGB), alpha 255
@@ -23,10 +29,6 @@
  *            texture_emissive, texture_height, texture_free, texture_pattern_name
  *   noise    texture_noise_keys, texture_noise2, texture_fbm2
  */
-#include <stdbool.h>
-#include <stddef.h>
-#include <stdint.h>
-
 #define TEXTURE_MAX_SIZE 8192u
 #define TEXTURE_MAX_OCTAVES 12u
 
