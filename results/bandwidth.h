@@ -3,7 +3,10 @@
  * Configuration and Bandwidth": Table 1's variables, equations 4-7, Table 2). Arithmetic
  * only, no GL.
  *
- * Units: every size is in BYTES per pixel or per texel. Table 1 states bit depths
+ * Units (bytes, as the paper's worked example) and what the project measures with it:
+ * the comment above s002_vars below. */
+
+/* Units: every size is in BYTES per pixel or per texel. Table 1 states bit depths
  * (32 bpp, 24 bpp), but the paper's own worked example puts them in as bytes (32 bpp as
  * 4, 24 bpp as 3), and so does Table 2; so do we. The one oddity of that example, its
  * depth/stencil term written as 8 x (Overdraw + Sorting) although Z_BPP is 32 bpp, is
@@ -17,7 +20,6 @@
  * Sorting, W x H x n) replaced by the ones the run counts (GL_SAMPLES_PASSED of those
  * passes), and n_MRT x MRT_BPP by the sum of the layout's attachments' bytes per pixel
  * (the paper's optimised 96-bit layout already mixes bit depths). */
-
 typedef struct s002_vars {
     double w, h;               /* W, H: render width and height, pixels */
     double z_bytes;            /* Z_BPP: depth/stencil bytes per pixel */

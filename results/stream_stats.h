@@ -3,7 +3,15 @@
  * the number of frames (results/stats.c holds the exact, array-based definitions they
  * follow; tests/unit/test_stats.c checks one against the other).
  *
- * - Moments (mean, sd, min, max): exact (Welford's update).
+ * Moments, percentiles, the batch-means CI and the per-second callbacks, each with its
+ * precision: the comment above the limits below. */
+#include <stdbool.h>
+#include <stddef.h>
+#include <stdint.h>
+#include "results/record.h"
+#include "results/stats.h"
+
+/* - Moments (mean, sd, min, max): exact (Welford's update).
  * - Percentiles: nearest rank, exact while a sketch holds at most QS_EXACT values;
  *   beyond that from a fixed logarithmic histogram whose buckets are (g^(i-1), g^i]
  *   with g = (1 + QS_ALPHA) / (1 - QS_ALPHA), each represented by 2 g^i / (g + 1):
@@ -18,12 +26,6 @@
  *   by about sqrt(10 / BM_BLOCKS) = 1.2% of its standard error.)
  * - Per-second bins and convergence points are handed to callbacks as each second
  *   ends, with the same definitions as stats_bin_seconds and stats_convergence. */
-#include <stdbool.h>
-#include <stddef.h>
-#include <stdint.h>
-#include "results/record.h"
-#include "results/stats.h"
-
 #define QS_EXACT 1024
 #define QS_ALPHA 0.005
 #define QS_LO 1e-3              /* us */

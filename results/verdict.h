@@ -9,15 +9,17 @@
  * k of A and trial k of B are paired: whatever slowed the machine during round k
  * slowed both, and the per-round ratio a_k / b_k cancels it.
  *
- * Ratios are A / B of times: above 1, A is slower. They are estimated on logs
+ * Ratios, non-finite values and allocation: the comment above ratio_ci below. */
+#include <stdbool.h>
+#include <stddef.h>
+
+/* Ratios are A / B of times: above 1, A is slower. They are estimated on logs
  * (geometric means), so that A / B and B / A give reciprocal intervals.
  *
  * A non-finite value (a failed trial) is left out everywhere, and the ratio
  * functions also leave out values <= 0 (log needs > 0); each function says which
  * count it reports.
  * Pure arithmetic: no I/O; verdict_outliers allocates a scratch copy. */
-#include <stdbool.h>
-#include <stddef.h>
 
 /* A ratio of times A / B and its 95% confidence interval. */
 typedef struct ratio_ci {
