@@ -9,14 +9,7 @@
  * written as numbers, not as string literals, so that no escaping and no limit on
  * the length of a literal can get in the way.
  *
- * A C header (NAME.h, renderers/bindings.h) is embedded under its whole name
- * ("bindings.h"), so that shaders can `#include "bindings.h"` the same file C does.
- *
- * Refused, with "embed: FILE: why" on stderr and exit status 1 (and no OUTPUT
- * left behind): a name that ends in neither ".glsl" nor ".h", two inputs with the same
- * name, an input that cannot be read, a NUL byte in an input, and an input that
- * is not text ending in a newline. Built natively and run by renderers/meson.build;
- * it uses nothing but the C library. */
+ * C headers, and what is refused: the comment above main(). */
 #include "results/grow.h"
 
 #include <stdio.h>
@@ -167,6 +160,14 @@ static int write_output(FILE *out, const input *ins, size_t n)
     return !ferror(out);
 }
 
+/* A C header (NAME.h, renderers/bindings.h) is embedded under its whole name
+ * ("bindings.h"), so that shaders can `#include "bindings.h"` the same file C does.
+ *
+ * Refused, with "embed: FILE: why" on stderr and exit status 1 (and no OUTPUT
+ * left behind): a name that ends in neither ".glsl" nor ".h", two inputs with the same
+ * name, an input that cannot be read, a NUL byte in an input, and an input that
+ * is not text ending in a newline. Built natively and run by renderers/meson.build;
+ * it uses nothing but the C library. */
 int main(int argc, char **argv)
 {
     if (argc < 2) {

@@ -2,7 +2,24 @@
 /* GLSL programs from the embedded sources (shaders.h), compiled in #define
  * variants, each variant once.
  *
- *     gl_program_cache *pc = gl_program_cache_create();
+ * Use, what a stage is compiled from line by line, #include, the cache and its variant
+ * names: the comment above the types below. Needs GL 4.5 (the shaders are #version 450)
+ * and a current context whose GL table is loaded. */
+#include "renderers/gl/loader.h"
+#include "renderers/renderer.h"
+
+#include <stdbool.h>
+#include <stddef.h>
+
+enum {
+    GLP_MAX_DEFINES = 16,
+    GLP_MAX_FILES = 16,          /* per stage, the stage's own file included */
+    GLP_MAX_INCLUDE_DEPTH = 8,
+};
+
+/* Zero value: nothing (refused as GLP_ERR_DESC). Give vertex + fragment, or
+ * compute alone. */
+/*     gl_program_cache *pc = gl_program_cache_create();
  *     GLuint prog;
  *     gl_program_err e = gl_program_get(pc, &(gl_program_desc){
  *             .name = "light_point",
@@ -43,20 +60,6 @@
  *
  * Needs GL 4.5 (the shaders are #version 450) and a current context whose GL table
  * is loaded; every GL object is made and deleted in that context. */
-#include "renderers/gl/loader.h"
-#include "renderers/renderer.h"
-
-#include <stdbool.h>
-#include <stddef.h>
-
-enum {
-    GLP_MAX_DEFINES = 16,
-    GLP_MAX_FILES = 16,          /* per stage, the stage's own file included */
-    GLP_MAX_INCLUDE_DEPTH = 8,
-};
-
-/* Zero value: nothing (refused as GLP_ERR_DESC). Give vertex + fragment, or
- * compute alone. */
 typedef struct gl_program_desc {
     const char *name;        /* display name; NULL: the fragment (or compute) source
                                 name up to its first '.' ("light_point.frag" -> "light_point") */

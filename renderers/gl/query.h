@@ -3,7 +3,15 @@
  * GL_FRAGMENT_SHADER_INVOCATIONS_ARB / GL_PRIMITIVES_SUBMITTED_ARB
  * (GL_ARB_pipeline_statistics_query).
  *
- * Use, per frame:
+ * Use per frame, what collect() sets, the query ring and misuse: the comment above the
+ * enum below. Needs a current context with the GL table loaded (loader.h), the one the
+ * object was created in. */
+#include <stdbool.h>
+#include <stddef.h>
+
+#include "renderers/renderer.h"
+
+/* Use, per frame:
  *
  *     gl_pass_queries_begin(q, 0);  ... submit pass 0 ...  gl_pass_queries_end(q);
  *     gl_pass_queries_begin(q, 1);  ... submit pass 1 ...  gl_pass_queries_end(q);
@@ -29,11 +37,6 @@
  *
  * Needs a current context with the GL table loaded (loader.h), the one the
  * object was created in. */
-#include <stdbool.h>
-#include <stddef.h>
-
-#include "renderers/renderer.h"
-
 enum { GL_PASS_QUERIES_FRAMES = 3 };
 
 typedef struct gl_pass_queries gl_pass_queries;

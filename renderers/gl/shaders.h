@@ -6,7 +6,11 @@
  * built; nothing is read from disk at run time. A source is found by its file
  * name without ".glsl".
  *
- * Conventions for the files (program.h relies on them):
+ * The conventions for the files (program.h relies on them): the comment above
+ * gl_shader_source below. */
+#include <stddef.h>
+
+/* Conventions for the files (program.h relies on them):
  * - One shader stage per file; the stage is in the name:
  *       NAME.vert.glsl   vertex shader
  *       NAME.frag.glsl   fragment shader
@@ -19,7 +23,6 @@
  *   #defines in front of the source, then "#line 1 0", so that a compiler
  *   message's line numbers are those of the file.
  * - Text ending in a newline, no NUL byte (the build refuses anything else). */
-#include <stddef.h>
 
 /* The embedded source called name ("fullscreen.vert"), NUL-terminated, or NULL
  * when there is none of that name (NULL too). */

@@ -5,7 +5,19 @@
  * differences reach GL, and a switch forces full re-application to catch caching
  * bugs.)
  *
- *     gl_state *s = gl_state_create();
+ * Use, what each category counts, the force switch, unknown state, what is assumed
+ * and never touched, and misuse: the comment above the categories below. Needs a
+ * current GL 4.5 context whose GL table is loaded. */
+#include "renderers/gl/loader.h"
+#include "renderers/renderer.h"
+
+#include <stdbool.h>
+#include <stddef.h>
+#include <stdint.h>
+
+enum { GLS_MAX_TEXTURE_UNITS = 16, GLS_MAX_BUFFER_BINDINGS = 16, GLS_MAX_IMAGE_UNITS = 8 };
+
+/*     gl_state *s = gl_state_create();
  *     per frame, per pass:
  *         gl_state_begin_pass(s, "lights");
  *         gl_state_framebuffer(s, fb.fbo);
@@ -80,15 +92,6 @@
  * Misuse (a texture unit out of range, passes nested or ended without a begin)
  * prints "bug: ..." on stderr and raises no GL error. Needs a current GL 4.5
  * context whose GL table is loaded. */
-#include "renderers/gl/loader.h"
-#include "renderers/renderer.h"
-
-#include <stdbool.h>
-#include <stddef.h>
-#include <stdint.h>
-
-enum { GLS_MAX_TEXTURE_UNITS = 16, GLS_MAX_BUFFER_BINDINGS = 16, GLS_MAX_IMAGE_UNITS = 8 };
-
 // >>categories and counts
 
 typedef enum gls_category {

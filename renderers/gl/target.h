@@ -3,7 +3,17 @@
  * framebuffers of up to GLT_MAX_COLOR colour targets plus an optional depth
  * (-stencil) target, with byte accounting for renderer_describe.
  *
- *     gl_target albedo, depth;
+ * Use, ownership, direct state access, what a texture is made with and multisampled
+ * targets: the comment above the format table below. Needs a current GL 4.5 context
+ * whose GL table is loaded. */
+#include "renderers/gl/loader.h"
+#include "renderers/renderer.h"
+
+#include <stdbool.h>
+#include <stddef.h>
+#include <stdint.h>
+
+/*     gl_target albedo, depth;
  *     gl_framebuffer gbuf;
  *     if (!gl_target_create(&albedo, &(gl_target_desc){.name = "albedo",
  *             .format = gl_format_find("rgba8"), .width = w, .height = h}, err, len) || ...
@@ -24,12 +34,6 @@
  * fixed sample locations (no sampler state: read with texelFetch and a sample index);
  * its bytes count every sample.
  * Needs a current GL 4.5 context whose GL table is loaded. */
-#include "renderers/gl/loader.h"
-#include "renderers/renderer.h"
-
-#include <stdbool.h>
-#include <stddef.h>
-#include <stdint.h>
 
 // >>formats
 
