@@ -1,68 +1,13 @@
 /* forward-plus: tiled forward shading (Harada, McKee and Yang, "Forward+", EG 2012).
  *
- *   shadows  (some spot or directional light casts shadows, shadows not off) as every
- *            renderer (renderers/shadow.h)
- *   depth    the visible objects, depth only (mesh.vert + depth_only.frag, colour
- *            mask off), depth LESS with writes: the pre-pass the tiles are cut from
- *   cull     (only when the scene has a point or spot light) ONE compute dispatch of
- *            tiles_x x tiles_y work groups (tile_cull.comp): per tile its depth range
- *            from the pre-pass and its frustum, every light of the frame tested
- *            against them, the passing lights' indices written into one index buffer,
- *            dynamically sized: each tile takes its place with one atomicAdd after
- *            counting, so no tile has a budget of its own (see "overflow" below). The
- *            dispatch samples the depth target, so the output framebuffer (no texture
- *            attached) is bound for it: texturing from an image attached to the bound
- *            draw framebuffer is undefined, compute shaders included (GL 4.5 section 9.3;
- *            the state cache's feedback-loop check, state.h)
- *   shade    the visible objects again, depth EQUAL without writes:
- *            forward_tiled.frag adds ambient, emissive and the lights of its tile's
- *            list (directional lights pass every tile's test, so each list holds the
- *            same terms as forward-spml's loop, in the same order); without the cull
- *            pass every light of the frame (all directional) is looped
- *   sky, [translucent], resolve   as every renderer (translucent.h); when the cull
- *            pass runs, the translucent pass loops its tile's translucent list, which
- *            the cull dispatch builds after the opaque lists when (and only when) the
- *            scene has translucent objects (TLISTS, tile_cull.inc: every light against
- *            the tile's planes from the camera's near plane to the tile's max depth, or
- *            to the far side where some pixel of the tile has no geometry), per tile for
- *            clustered too: its clusters cover only the slices the tile's opaque depth
- *            range meets, so a pane's own cluster may be empty. Same index buffer, same
- *            overflow rule; heads after the opaque cells (b_tiles[cells + tile])
+ * Passes: [shadows], depth pre-pass, ONE cull dispatch (tile_cull.comp) that writes
+ * every tile's light list into one dynamically sized index buffer, shade (depth EQUAL,
+ * forward_tiled.frag loops its tile's list), sky, [translucent], resolve. The lights are
+ * packed as forward-spml packs them, in one storage buffer sized by the light grid
+ * (renderers/tiled/grid.h). clustered's forward shading is this file too.
  *
- * Draw calls per frame, with V visible objects (dispatches counted apart):
- *
- *     draws = sum over shadowed l of |C(l)| + V (depth) + V (shade) + sky + 1
- *     dispatches = 1 when the scene has a point or spot light, else 0
- *
- * The lights: the frame's visible lights packed as forward-spml packs them
- * (shading_pack_light) in one storage buffer (lights.inc) sized for the run's lights: the light grid's
- * (renderers/tiled/grid.h: tiles, clusters, buffers, the index cap and the counters).
- *
- * Overflow: the index buffer's size is the grid's (grid.h). A tile whose list does not
- * fit is never truncated: it is left empty, and collect, seeing more entries asked for
- * than the buffer holds, puts the total, the capacity and the longest tile with its
- * count into frame_stats.overflow (the run fails as failed:overflow).
- *
- * MSAA (msaa > 1; renderers/base.h): the same passes, draws and dispatch. The depth
- * pre-pass writes the multisampled depth; the cull pass (tile_cull.comp with
- * MSAA_SAMPLES) reads every sample of every pixel of its tile with texelFetch and a
- * sample index (no resolved depth copy: a copy would keep one depth per pixel and
- * cull a light that reaches only another sample), so the tile's depth range holds
- * every sample with geometry; it also writes that range per tile (b_tile_depth,
- * TILE_DEPTH_RANGES, one more small buffer). The shade pass draws into the
- * multisampled HDR target, depth EQUAL per sample, shading once per pixel at its
- * centre with the coverage of the samples it passes on, as forward-spml does; a
- * fragment whose centre's view z falls outside its tile's range (the centre of a
- * partly covered pixel is extrapolated) loops every light of the frame instead of
- * the tile's or cluster's list, so it adds what forward-spml adds. Then the base's
- * msaa-resolve and the resolve. clustered with clustered.shading: deferred shades in
- * tiled_deferred.c's compute pass (per-tile edge lists, as tiled-deferred). Counters count a pixel with geometry when some sample has it
- * (a cluster's: in the slice of its nearest sample). At msaa 1 none of this exists.
- *
- * Counters (collect, after the frame's sync point, so reading them never stalls):
- * grid_cells = tiles, the mean and largest list length over the tiles, and the light
- * evaluations per shaded pixel = sum over tiles of length x pixels with geometry /
- * pixels with geometry; renderer_light_grid gives the lengths (lightgrid.csv). */
+ * Each pass in detail, the draw counts, overflow, MSAA and the counters: the comment
+ * above forward_tiled_draw. */
 #include "renderers/forward_common.h"
 #include "renderers/shading.h"
 #include "renderers/tiled/grid.h"
@@ -236,6 +181,69 @@ static void bind_buffers(forward_plus *r)
     }
 }
 
+/*   shadows  (some spot or directional light casts shadows, shadows not off) as every
+ *            renderer (renderers/shadow.h)
+ *   depth    the visible objects, depth only (mesh.vert + depth_only.frag, colour
+ *            mask off), depth LESS with writes: the pre-pass the tiles are cut from
+ *   cull     (only when the scene has a point or spot light) ONE compute dispatch of
+ *            tiles_x x tiles_y work groups (tile_cull.comp): per tile its depth range
+ *            from the pre-pass and its frustum, every light of the frame tested
+ *            against them, the passing lights' indices written into one index buffer,
+ *            dynamically sized: each tile takes its place with one atomicAdd after
+ *            counting, so no tile has a budget of its own (see "overflow" below). The
+ *            dispatch samples the depth target, so the output framebuffer (no texture
+ *            attached) is bound for it: texturing from an image attached to the bound
+ *            draw framebuffer is undefined, compute shaders included (GL 4.5 section 9.3;
+ *            the state cache's feedback-loop check, state.h)
+ *   shade    the visible objects again, depth EQUAL without writes:
+ *            forward_tiled.frag adds ambient, emissive and the lights of its tile's
+ *            list (directional lights pass every tile's test, so each list holds the
+ *            same terms as forward-spml's loop, in the same order); without the cull
+ *            pass every light of the frame (all directional) is looped
+ *   sky, [translucent], resolve   as every renderer (translucent.h); when the cull
+ *            pass runs, the translucent pass loops its tile's translucent list, which
+ *            the cull dispatch builds after the opaque lists when (and only when) the
+ *            scene has translucent objects (TLISTS, tile_cull.inc: every light against
+ *            the tile's planes from the camera's near plane to the tile's max depth, or
+ *            to the far side where some pixel of the tile has no geometry), per tile for
+ *            clustered too: its clusters cover only the slices the tile's opaque depth
+ *            range meets, so a pane's own cluster may be empty. Same index buffer, same
+ *            overflow rule; heads after the opaque cells (b_tiles[cells + tile])
+ *
+ * Draw calls per frame, with V visible objects (dispatches counted apart):
+ *
+ *     draws = sum over shadowed l of |C(l)| + V (depth) + V (shade) + sky + 1
+ *     dispatches = 1 when the scene has a point or spot light, else 0
+ *
+ * The lights: the frame's visible lights packed as forward-spml packs them
+ * (shading_pack_light) in one storage buffer (lights.inc) sized for the run's lights: the light grid's
+ * (renderers/tiled/grid.h: tiles, clusters, buffers, the index cap and the counters).
+ *
+ * Overflow: the index buffer's size is the grid's (grid.h). A tile whose list does not
+ * fit is never truncated: it is left empty, and collect, seeing more entries asked for
+ * than the buffer holds, puts the total, the capacity and the longest tile with its
+ * count into frame_stats.overflow (the run fails as failed:overflow).
+ *
+ * MSAA (msaa > 1; renderers/base.h): the same passes, draws and dispatch. The depth
+ * pre-pass writes the multisampled depth; the cull pass (tile_cull.comp with
+ * MSAA_SAMPLES) reads every sample of every pixel of its tile with texelFetch and a
+ * sample index (no resolved depth copy: a copy would keep one depth per pixel and
+ * cull a light that reaches only another sample), so the tile's depth range holds
+ * every sample with geometry; it also writes that range per tile (b_tile_depth,
+ * TILE_DEPTH_RANGES, one more small buffer). The shade pass draws into the
+ * multisampled HDR target, depth EQUAL per sample, shading once per pixel at its
+ * centre with the coverage of the samples it passes on, as forward-spml does; a
+ * fragment whose centre's view z falls outside its tile's range (the centre of a
+ * partly covered pixel is extrapolated) loops every light of the frame instead of
+ * the tile's or cluster's list, so it adds what forward-spml adds. Then the base's
+ * msaa-resolve and the resolve. clustered with clustered.shading: deferred shades in
+ * tiled_deferred.c's compute pass (per-tile edge lists, as tiled-deferred). Counters count a pixel with geometry when some sample has it
+ * (a cluster's: in the slice of its nearest sample). At msaa 1 none of this exists.
+ *
+ * Counters (collect, after the frame's sync point, so reading them never stalls):
+ * grid_cells = tiles, the mean and largest list length over the tiles, and the light
+ * evaluations per shaded pixel = sum over tiles of length x pixels with geometry /
+ * pixels with geometry; renderer_light_grid gives the lengths (lightgrid.csv). */
 static void forward_tiled_draw(void *self, const struct scene *s, frame_stats *out)
 {
     forward_plus *r = self;

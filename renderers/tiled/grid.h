@@ -1,6 +1,24 @@
 #pragma once
 /* The light grid of the tiled and clustered renderers (forward-plus, clustered,
- * tiled-deferred; Harada et al. 2012, Olsson et al. 2012), written once:
+ * tiled-deferred; Harada et al. 2012, Olsson et al. 2012), written once.
+ *
+ * The renderer owns the dispatch itself (which program, what else it binds); this
+ * module sizes, allocates, resets, binds and reads back what every one of them shares:
+ * sizing, cull, buffers, the index cap and the counters, each in the comment above
+ * LIGHT_GRID_INDEX_CAP below. */
+#include <stdbool.h>
+#include <stddef.h>
+#include <stdint.h>
+
+#include "renderers/frontend.h"
+#include "renderers/gl/loader.h"
+#include "renderers/gl/state.h"
+#include "renderers/light_buffer.h"
+#include "renderers/renderer.h"
+#include "renderers/translucent.h"
+#include "scenes/scene.h"
+
+/* The grid, part by part:
  *
  *   sizing     the screen cut into tiles of `tile` pixels (tiles.size: 8, 16 or 32),
  *              tiles_x x tiles_y of them; clustered cuts each tile's view depth into
@@ -27,18 +45,6 @@
  *
  * The renderer owns the dispatch itself (which program, what else it binds); this
  * module sizes, allocates, resets, binds and reads back what every one of them shares. */
-#include <stdbool.h>
-#include <stddef.h>
-#include <stdint.h>
-
-#include "renderers/frontend.h"
-#include "renderers/gl/loader.h"
-#include "renderers/gl/state.h"
-#include "renderers/light_buffer.h"
-#include "renderers/renderer.h"
-#include "renderers/translucent.h"
-#include "scenes/scene.h"
-
 #define LIGHT_GRID_INDEX_CAP (1u << 25)   /* entries of the index buffer at most */
 
 typedef struct light_grid {

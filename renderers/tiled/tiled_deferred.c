@@ -4,7 +4,27 @@
  * compute dispatch (tiled_deferred.comp) over the light grid (grid.h): per tile (or
  * cluster) the lights that reach it culled, then ambient, emissive and those lights
  * shaded from the G-buffer and stored into the "light" target by image store (the run's
- * HDR format: renderer_base_hdr_define, renderer_base_hdr_image_format). The passes:
+ * HDR format: renderer_base_hdr_define, renderer_base_hdr_image_format).
+ *
+ * The passes, the dispatch's depth binding, MSAA and what create refuses: the comment
+ * above create(). The pass itself (its plan, the grid's buffers, the program, the
+ * dispatch, its counters) is tiled_pass.c's, which deferred-lighting's tiled light
+ * accumulation shares. */
+#include "renderers/deferred_core.h"
+#include "renderers/tiled/tiled.h"
+#include "renderers/tiled/tiled_pass.h"
+
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+
+typedef struct tiled_deferred {
+    deferred_renderer d;             /* first: deferred_describe and the accessors read it */
+    tiled_pass t;                    /* the grid (tiles, or clusters) and the dispatch */
+} tiled_deferred;
+_Static_assert(offsetof(tiled_deferred, d) == 0, "destroy: the object begins with d");
+
+/* The passes:
  *
  *   shadows, gbuffer   as deferred (deferred.c's header)
  *   tiled              the frame's visible lights into the grid's light buffer, then the
@@ -25,23 +45,7 @@
  *
  * Refused at create: deferred.sky_stencil (no stencil test masks a dispatch; it skips
  * pixels without a surface itself) and deferred.separate_specular (one target).
- *
- * The pass itself (its plan, the grid's buffers, the program, the dispatch, its counters)
- * is tiled_pass.c's, which deferred-lighting's tiled light accumulation shares. */
-#include "renderers/deferred_core.h"
-#include "renderers/tiled/tiled.h"
-#include "renderers/tiled/tiled_pass.h"
-
-#include <stdio.h>
-#include <stdlib.h>
-#include <string.h>
-
-typedef struct tiled_deferred {
-    deferred_renderer d;             /* first: deferred_describe and the accessors read it */
-    tiled_pass t;                    /* the grid (tiles, or clusters) and the dispatch */
-} tiled_deferred;
-_Static_assert(offsetof(tiled_deferred, d) == 0, "destroy: the object begins with d");
-
+ */
 static void *create(const char *name, bool clustered, const renderer_options *opts, char *err,
                     size_t errlen)
 {
