@@ -4,26 +4,8 @@
 //   ambient_light(P, N, diffuse, gloss, shininess, occlusion)
 // takes Surface's fields (view space; under SHADING_PBR diffuse, gloss and shininess are
 // the base colour, metallic and roughness).
-//
-// Without ENVIRONMENT: the scene's constant ambient light, A = ambient x diffuse x
-// occlusion (seed 000 appendix D), exactly as it always was.
-//
-// ENVIRONMENT (a common define: environment.light sky, renderers/environment.h): the
-// procedural sky in place of the ambient light, by Karis's split sum (2013), as the glTF
-// Sample Viewer lights a model by its environment map:
-//   SHADING_PBR  (irradiance(N) c_diff + prefiltered(R, roughness) (F0 A + B)) x occlusion
-//                c_diff = base (1 - metallic), F0 = mix(0.04, base, metallic)
-//   Phong        (irradiance(N) diffuse + gloss prefiltered(R, r)) x occlusion,
-//                r = sqrt(alpha), alpha = sqrt(2 / (n + 2)): the GGX roughness whose lobe
-//                matches the exponent n (the mapping of built-in materials under pbr,
-//                scenes/scene_build.c); gloss reflects the environment as the specular
-//                intensity does a light, with no Fresnel (Phong has none)
-// irradiance: E(N) / pi from the Frame block's 9 SH terms; prefiltered: the cube map's
-// mip roughness x (levels - 1), each mip the sky convolved with the GGX lobe of its
-// roughness; A, B: Karis's analytic fit of the environment BRDF ("Physically Based
-// Shading on Mobile", 2014), an expression rather than a LUT: no texture read, no
-// texture unit in the compute shaders, the same few operations everywhere. N and R are
-// turned to world space (the sky's, y up) by f_view_to_world.
+// (Without ENVIRONMENT and with it, by Karis's split sum: the comment above
+// ambient_light below.)
 #include "frame.inc"
 
 #ifdef ENVIRONMENT
@@ -63,6 +45,25 @@ vec2 env_brdf(float roughness, float ndv)
 }
 #endif
 
+// Without ENVIRONMENT: the scene's constant ambient light, A = ambient x diffuse x
+// occlusion (seed 000 appendix D), exactly as it always was.
+//
+// ENVIRONMENT (a common define: environment.light sky, renderers/environment.h): the
+// procedural sky in place of the ambient light, by Karis's split sum (2013), as the glTF
+// Sample Viewer lights a model by its environment map:
+//   SHADING_PBR  (irradiance(N) c_diff + prefiltered(R, roughness) (F0 A + B)) x occlusion
+//                c_diff = base (1 - metallic), F0 = mix(0.04, base, metallic)
+//   Phong        (irradiance(N) diffuse + gloss prefiltered(R, r)) x occlusion,
+//                r = sqrt(alpha), alpha = sqrt(2 / (n + 2)): the GGX roughness whose lobe
+//                matches the exponent n (the mapping of built-in materials under pbr,
+//                scenes/scene_build.c); gloss reflects the environment as the specular
+//                intensity does a light, with no Fresnel (Phong has none)
+// irradiance: E(N) / pi from the Frame block's 9 SH terms; prefiltered: the cube map's
+// mip roughness x (levels - 1), each mip the sky convolved with the GGX lobe of its
+// roughness; A, B: Karis's analytic fit of the environment BRDF ("Physically Based
+// Shading on Mobile", 2014), an expression rather than a LUT: no texture read, no
+// texture unit in the compute shaders, the same few operations everywhere. N and R are
+// turned to world space (the sky's, y up) by f_view_to_world.
 vec3 ambient_light(vec3 P, vec3 N, vec3 diffuse, float gloss, float shininess,
                    float occlusion)
 {

@@ -5,19 +5,7 @@
 // in the same order. Depth EQUAL against the pre-pass: each pixel is shaded once.
 // clustered: SLICES (and TILES_Y) defined, the list is the fragment's cluster's.
 // Defines: the material's maps (surface.inc); TILE_SIZE and TILES_X (the grid);
-// NO_GRID: the scene has no point or spot light, there is no cull pass and every
-// light of the frame (u_light_count, all directional) is looped. FOG (fog.inc): the sum
-// fogged. TILE_DEPTH_RANGES (msaa > 1): the fragment is shaded once per pixel at the
-// pixel centre (as forward-spml's), which an edge's triangle need not cover (its
-// position then extrapolated) and whose samples may be occluded where the fragment is
-// not; when that position's view z lies outside the depth range its tile was culled
-// against (b_tile_depth), every light of the frame is looped, in light order, so that
-// no light the centre sees is missed (rare: pixels on the edges of steep surfaces).
-// fogged. TRANSLUCENT (the translucent pass of forward-plus, clustered and
-// tiled-deferred, renderers/translucent.c): the list is the tile's translucent one,
-// b_tiles[TLISTS + tile] (near plane to the tile's max opaque depth, tile_cull.inc),
-// for clustered too (its clusters cover only the depths of the tile's opaque samples),
-// and the output premultiplied, (c a, a), as forward_spml.frag's TRANSLUCENT.
+// NO_GRID, FOG, TILE_DEPTH_RANGES (msaa > 1) and TRANSLUCENT: the comment above main().
 #include "bindings.h"
 #include "frame.inc"
 #include "surface.inc"
@@ -33,6 +21,20 @@ layout(location = 0) out vec4 o_color;
 
 #include "tile_shade.inc"
 
+// Defines: the material's maps (surface.inc); TILE_SIZE and TILES_X (the grid);
+// NO_GRID: the scene has no point or spot light, there is no cull pass and every
+// light of the frame (u_light_count, all directional) is looped. FOG (fog.inc): the sum
+// fogged. TILE_DEPTH_RANGES (msaa > 1): the fragment is shaded once per pixel at the
+// pixel centre (as forward-spml's), which an edge's triangle need not cover (its
+// position then extrapolated) and whose samples may be occluded where the fragment is
+// not; when that position's view z lies outside the depth range its tile was culled
+// against (b_tile_depth), every light of the frame is looped, in light order, so that
+// no light the centre sees is missed (rare: pixels on the edges of steep surfaces).
+// TRANSLUCENT (the translucent pass of forward-plus, clustered and
+// tiled-deferred, renderers/translucent.c): the list is the tile's translucent one,
+// b_tiles[TLISTS + tile] (near plane to the tile's max opaque depth, tile_cull.inc),
+// for clustered too (its clusters cover only the depths of the tile's opaque samples),
+// and the output premultiplied, (c a, a), as forward_spml.frag's TRANSLUCENT.
 void main()
 {
     Surface s = surface_get();

@@ -5,7 +5,9 @@
 // Either way the triangle's corners land on the target's pixels (0,0), (2W,0) and
 // (0,2H): it holds the whole W x H target, every pixel centre is covered exactly
 // once, and v_uv runs 0..1 across the target (0,0 at the bottom left).
-//
+// (The default, FULLSCREEN_UNCLIPPED and FULLSCREEN_FAR: the comment above main().)
+layout(location = 0) out vec2 v_uv;   // fragment shaders: layout(location = 0) in vec2 v_uv;
+
 // - Default: viewport (0,0,W,H), corners at clip (-1,-1), (3,-1), (-1,3). GL clips
 //   the triangle to the viewport. Mesa's llvmpipe splits the clipped polygon into
 //   two triangles, and counts fragment shader invocations per 4x4 block per
@@ -18,8 +20,6 @@
 // - FULLSCREEN_FAR: z = w, so the triangle lies on the far plane (depth 1): drawn with
 //   depth test LEQUAL against a depth buffer cleared to 1 it covers only the pixels no
 //   geometry wrote, and early depth testing skips the others (the sky).
-layout(location = 0) out vec2 v_uv;   // fragment shaders: layout(location = 0) in vec2 v_uv;
-
 void main()
 {
     vec2 p = vec2(float((gl_VertexID << 1) & 2), float(gl_VertexID & 2));   // (0,0) (2,0) (0,2)

@@ -1,7 +1,11 @@
 // The G-buffer's accessors (seed 001: the layout lives in one place): what the
 // G-buffer pass stores (gbuffer_store, with GBUFFER_WRITE defined before the include)
 // and what the passes that read it load (gbuffer_load). renderers/deferred.c builds the
-// layout and passes it as defines, each naming where a field lives:
+// layout and passes it as defines, each naming where a field lives
+// (the defines, what each names, and the attachments gbK: the comment above the
+// encodings below)
+
+// The layout's defines, each naming where a field lives:
 //
 //   GB_POSITION_XY, GB_POSITION_Z   view-space position, e.g. gb0.xy and gb0.z
 //   GB_DEPTH                        linear view depth -z (position = view ray x depth)
@@ -27,7 +31,6 @@
 // texel (t_gbK, unit 4 + K) in the passes that read it. Every attachment is cleared to
 // zero before the G-buffer pass; a zero normal (which no encoding produces for a unit
 // vector) marks a pixel that no surface covers.
-
 #define GB_NORMAL_FLOAT 0
 #define GB_NORMAL_UNORM 1
 #define GB_NORMAL_SPHEREMAP 2

@@ -7,18 +7,7 @@
 //        | clamp(1 - (d/range)^4, 0, 1)^2 / d^2 (windowed: Karis 2013), and 0 beyond range
 //   spot = (-L.A)^f inside the cone (-L.A > cos c), else 0
 // Everything is in view space: the eye is at the origin.
-//
-// A light is 5 vec4s (the layout of forward-spml's buffer and of the per-light
-// uniform u_light[5] of the other passes; renderers/shading.h fills it):
-//   [0] xyz position, w range           [1] rgb colour, w type (0 point, 1 spot, 2 dir.)
-//   [2] xyz direction (unit, the way the light travels), w cos(spot angle)
-//   [3] x spot exponent, y attenuation (0 inverse-square, 1 linear-range, 2 quadratic,
-//       3 windowed),
-//       z shadow-map layer + 1 (0: none; read only with SHADOWS, shadow.inc)
-//   [4] xyz quadratic a, b, c
-//
-// With SHADOWS defined, the light arriving at a point is also multiplied by its
-// shadow-map lookup (shadow.inc): I = A + att * spot * shadow * (D + g * S).
+// (A light's 5 vec4s and SHADOWS: the comment above struct Light below.)
 
 #include "shadow.inc"
 
@@ -57,6 +46,17 @@ float attenuation_windowed(float d2, float range)
     return w * w / max(d2, ATTENUATION_MIN_D2);
 }
 
+// A light is 5 vec4s (the layout of forward-spml's buffer and of the per-light
+// uniform u_light[5] of the other passes; renderers/shading.h fills it):
+//   [0] xyz position, w range           [1] rgb colour, w type (0 point, 1 spot, 2 dir.)
+//   [2] xyz direction (unit, the way the light travels), w cos(spot angle)
+//   [3] x spot exponent, y attenuation (0 inverse-square, 1 linear-range, 2 quadratic,
+//       3 windowed),
+//       z shadow-map layer + 1 (0: none; read only with SHADOWS, shadow.inc)
+//   [4] xyz quadratic a, b, c
+//
+// With SHADOWS defined, the light arriving at a point is also multiplied by its
+// shadow-map lookup (shadow.inc): I = A + att * spot * shadow * (D + g * S).
 struct Light {
     vec4 position_range;
     vec4 color_type;

@@ -2,7 +2,14 @@
 // lighting.inc so that every renderer shades a shadowed light with the same code.
 // Everything here exists only with SHADOWS defined (renderers define it, and
 // MAX_SHADOWS, only for programs that light with shadow-casting lights).
-//
+// (The Shadows block, t_shadow, a light's layer and what lies outside the map: the
+// comment above the Shadows block below.)
+#ifdef SHADOWS
+#ifndef MAX_SHADOWS
+#error "SHADOWS needs MAX_SHADOWS, the size of the shadow-map pool"
+#endif
+
+#include "bindings.h"
 //   Shadows   uniform block binding 2 (renderers/shadow.c fills it per frame): per
 //             layer of the pool, the matrix from VIEW space to the layer's shadow-map
 //             coordinates: xy in [0, 1] across the map, z the depth [0, 1] the map
@@ -18,12 +25,6 @@
 // the map (x, y or z out of [0, 1], or behind a spot's apex) are lit: a spot's cone lies
 // inside its map and beyond its far plane (its range) it lights nothing anyway; a
 // directional map covers every visible receiver.
-#ifdef SHADOWS
-#ifndef MAX_SHADOWS
-#error "SHADOWS needs MAX_SHADOWS, the size of the shadow-map pool"
-#endif
-
-#include "bindings.h"
 layout(std140, binding = BIND_UBO_SHADOWS) uniform Shadows {
     mat4 u_shadow_matrix[MAX_SHADOWS];
 };

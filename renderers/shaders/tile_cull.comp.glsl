@@ -1,5 +1,24 @@
 // forward-plus's light culling (Harada et al. 2012): one work group per screen tile of
 // TILE_SIZE x TILE_SIZE pixels, one invocation per pixel.
+// The steps, clustered (SLICES), MSAA_SAMPLES, TLISTS and the defines: above main().
+// Defines: TILE_SIZE, TILES_X (and SLICES, SLICES_Y, TILES_Y; MSAA_SAMPLES,
+// TILE_DEPTH_RANGES; TLISTS). Uniforms: u_light_count.
+#define TILES_COHERENT   // clusters read their tile's list, written in this dispatch
+#include "bindings.h"
+#include "frame.inc"
+#include "lighting.inc"
+#include "lights.inc"
+#include "tiles.inc"
+layout(local_size_x = TILE_SIZE, local_size_y = TILE_SIZE) in;
+
+#ifdef MSAA_SAMPLES
+layout(binding = BIND_TEX_DEPTH) uniform sampler2DMS t_depth;
+#else
+layout(binding = BIND_TEX_DEPTH) uniform sampler2D t_depth;
+#endif
+
+#include "tile_cull.inc"
+
 //   1. The tile's depth range: the smallest and largest pre-pass depth of its pixels
 //      with geometry (depth < 1), widened by two steps of the 24-bit depth buffer so
 //      that no surface's reconstructed depth falls outside; a tile without geometry
@@ -36,24 +55,6 @@
 // TLISTS (the scene has translucent objects): then, in the same work group, the tile's
 // translucent list (near plane to the tile's max depth, cull_translucent in
 // tile_cull.inc) for the translucent pass.
-// Defines: TILE_SIZE, TILES_X (and SLICES, SLICES_Y, TILES_Y; MSAA_SAMPLES,
-// TILE_DEPTH_RANGES; TLISTS). Uniforms: u_light_count.
-#define TILES_COHERENT   // clusters read their tile's list, written in this dispatch
-#include "bindings.h"
-#include "frame.inc"
-#include "lighting.inc"
-#include "lights.inc"
-#include "tiles.inc"
-layout(local_size_x = TILE_SIZE, local_size_y = TILE_SIZE) in;
-
-#ifdef MSAA_SAMPLES
-layout(binding = BIND_TEX_DEPTH) uniform sampler2DMS t_depth;
-#else
-layout(binding = BIND_TEX_DEPTH) uniform sampler2D t_depth;
-#endif
-
-#include "tile_cull.inc"
-
 void main()
 {
     ivec2 pixel = ivec2(gl_GlobalInvocationID.xy);

@@ -9,30 +9,8 @@
 // rgba16f, or rgba32f with HDR_RGBA32F: the image's format qualifier must be the
 // target's, renderers/base.h): ambient, directional and local lights in one pass, one
 // write per pixel.
-// NO_GRID (no point or spot light in the scene): no culling, every light looped.
-// SLICES (clustered with clustered.shading: deferred): the tile's clusters are culled as
-// tile_cull.comp culls them, and each pixel takes its cluster's list by the view depth
-// of its G-buffer position.
-// TLISTS (the scene has translucent objects): each tile's translucent list too, as
-// tile_cull.comp makes it (cull_translucent), for the translucent pass after the sky.
-// MSAA_SAMPLES (msaa > 1; Lauritzen 2010's compute path): the G-buffer, depth and HDR
-// target are multisampled (GB_MSAA, image2DMS). The tile's depth range covers every
-// sample (as tile_cull.comp's MSAA_SAMPLES path); each pixel is classified by
-// edge_rule.inc (the rule of deferred's edge_mark.frag) and sample 0 is shaded for every
-// pixel and stored into every sample of a non-edge pixel; edge pixels are appended to a
-// per-tile list in shared memory and, after a barrier, the work group shades their other
-// samples (read at their GL_SAMPLE_POSITIONs, u_sample_pos), N - 1 per listed pixel,
-// spread over its invocations. b_edges counts the frame's edge pixels. With SLICES a
-// cluster is counted covered when any sample of a pixel lies in it, so that each sample
-// finds its cluster's list.
-// LIGHT_PREPASS (deferred-lighting with deferred_lighting.lights: tiled): the lights
-// alone, without ambient, emissive or the material, summed as deferred_light.frag's
-// LIGHT_PREPASS sums them (diffuse light with a white diffuse and no gloss, specular with
-// a black diffuse and a gloss of 1) and stored into the light buffer's two images,
-// diffuse at BIND_IMAGE_HDR and specular at BIND_IMAGE_LIGHT_SPECULAR (rgba16f, or rgba8
-// with LIGHT_BUFFER_RGBA8, where the store clamps to 1 as the volumes' blending does).
-// Defines: TILE_SIZE, TILES_X (TILES_Y, SLICES, TLISTS, MSAA_SAMPLES, LIGHT_PREPASS,
-// LIGHT_BUFFER_RGBA8), the G-buffer layout's, SHADOWS.
+// The variants (NO_GRID, SLICES, TLISTS, MSAA_SAMPLES, LIGHT_PREPASS) and the defines:
+// the comment above main().
 #define TILES_COHERENT
 #include "bindings.h"
 #include "frame.inc"
@@ -149,6 +127,30 @@ void store(ivec2 p, int i, Shaded o)
 #endif
 }
 
+// NO_GRID (no point or spot light in the scene): no culling, every light looped.
+// SLICES (clustered with clustered.shading: deferred): the tile's clusters are culled as
+// tile_cull.comp culls them, and each pixel takes its cluster's list by the view depth
+// of its G-buffer position.
+// TLISTS (the scene has translucent objects): each tile's translucent list too, as
+// tile_cull.comp makes it (cull_translucent), for the translucent pass after the sky.
+// MSAA_SAMPLES (msaa > 1; Lauritzen 2010's compute path): the G-buffer, depth and HDR
+// target are multisampled (GB_MSAA, image2DMS). The tile's depth range covers every
+// sample (as tile_cull.comp's MSAA_SAMPLES path); each pixel is classified by
+// edge_rule.inc (the rule of deferred's edge_mark.frag) and sample 0 is shaded for every
+// pixel and stored into every sample of a non-edge pixel; edge pixels are appended to a
+// per-tile list in shared memory and, after a barrier, the work group shades their other
+// samples (read at their GL_SAMPLE_POSITIONs, u_sample_pos), N - 1 per listed pixel,
+// spread over its invocations. b_edges counts the frame's edge pixels. With SLICES a
+// cluster is counted covered when any sample of a pixel lies in it, so that each sample
+// finds its cluster's list.
+// LIGHT_PREPASS (deferred-lighting with deferred_lighting.lights: tiled): the lights
+// alone, without ambient, emissive or the material, summed as deferred_light.frag's
+// LIGHT_PREPASS sums them (diffuse light with a white diffuse and no gloss, specular with
+// a black diffuse and a gloss of 1) and stored into the light buffer's two images,
+// diffuse at BIND_IMAGE_HDR and specular at BIND_IMAGE_LIGHT_SPECULAR (rgba16f, or rgba8
+// with LIGHT_BUFFER_RGBA8, where the store clamps to 1 as the volumes' blending does).
+// Defines: TILE_SIZE, TILES_X (TILES_Y, SLICES, TLISTS, MSAA_SAMPLES, LIGHT_PREPASS,
+// LIGHT_BUFFER_RGBA8), the G-buffer layout's, SHADOWS.
 void main()
 {
     uint me = gl_LocalInvocationIndex;

@@ -1,42 +1,9 @@
 // The visibility renderer's shading pass (Burns and Hunt 2013; derivatives as Schied and
 // Dachsbacher 2015): a work group per TILE_SIZE x TILE_SIZE tile (the light grid of
-// tile_cull.comp, renderers/tiled/grid.h), an invocation per pixel. Each pixel reads its
-// id from the visibility target and, when its draw is in this dispatch's range
-// [u_draw_first, u_draw_end) (one dispatch per run of visible draws whose materials bind
-// the same maps), fetches the triangle's three vertices from the geometry buffers,
-// transforms them with the draw's model-view and the frame's projection, and takes the
-// perspective-correct barycentrics of the pixel centre in closed form from the clip
-// positions (2D homogeneous: with M the columns (x, y, w) of the three clip positions,
-// lambda is M^-1 (p, 1) normalised to sum 1; no division by w, so vertices behind the eye
-// need no care). Their screen-space derivatives: the same closed form at the right and
-// upper neighbours of the first pixel of the pixel's 2x2 quad, minus at that pixel: the
-// coarse differences a fragment quad takes of the triangle's plane (its helper
-// invocations extrapolate it), so textureGrad gets the uv derivatives texture() gets in
-// the forward passes (one-pixel differences at the pixel itself gave 9/255 on a few
-// pixels of the agreement test where the mip level changes within a quad; these, 0).
-// Position, normal, tangent and uv are interpolated with lambda, the surface is made as
-// surface.inc makes it (the same operations, textureGrad for texture), then ambient x
-// diffuse + emissive and the tile's lights (tile_shade.inc's tile_lights_add, the loop
-// forward_tiled.frag runs), fog (forward_output), stored into the HDR target (image unit
-// BIND_IMAGE_HDR).
-// MSAA_SAMPLES (msaa > 1): the ids and the HDR target are multisampled. A pixel whose
-// samples hold different ids is an edge only by deferred's rule (edge_rule.inc's
-// edge_surfaces_differ) on the ids' surfaces rebuilt at the pixel centre; any other
-// pixel is shaded once with sample 0's surface, stored into every sample; an edge pixel
-// shades each distinct id once, at the pixel centre as a forward pass shades every
-// triangle that covers a sample, stored into the samples holding it. TILE_DEPTH_RANGES
-// (with it, when lights are culled): a centre outside the depth range its tile was
-// culled against loops every light, as forward_tiled.frag does.
-// Counted (i_counts, an image atomic per shading pixel and counter): the shadings (the
-// pass's samples_shaded), the samples covered (its samples) and, msaa > 1, the edge
-// pixels (edge_fraction). Not reduced per work group first: the barrier that needs cost
-// llvmpipe 15-20 % of the pass (compare --exe, 5 paired rounds, 640x360 curtis-scene3).
-// Defines: TILE_SIZE, TILES_X, VIS_TRI_BITS, NO_GRID (no point or spot light: every
-// light of the frame looped), the material's map defines (DIFFUSE_MAP, GLOSS_MAP,
-// NORMAL_MAP, EMISSIVE_MAP), FOG, SHADOWS, HDR_RGBA32F, MSAA_SAMPLES, TILE_DEPTH_RANGES;
-// the common ones, VERTEX_COLOR, UV2 and SKINNING (each vertex skinned as mesh.vert
-// skins it, skin.inc, before the draw's model-view: the same position the visibility
-// pass rasterised).
+// tile_cull.comp, renderers/tiled/grid.h), an invocation per pixel.
+// Each pixel reads its id, rebuilds its triangle from the geometry buffers and shades it
+// as forward_tiled.frag would. How (barycentrics, derivatives), MSAA_SAMPLES, what is
+// counted and the defines: the comment above main().
 #include "bindings.h"
 #include "frame.inc"
 #include "environment.inc"
@@ -357,6 +324,43 @@ vec4 shade_id(uint id, ivec2 px)
     return forward_output(c, P.z, 1.0);
 }
 
+// Each pixel reads its id from the visibility target and, when its draw is in this
+// dispatch's range
+// [u_draw_first, u_draw_end) (one dispatch per run of visible draws whose materials bind
+// the same maps), fetches the triangle's three vertices from the geometry buffers,
+// transforms them with the draw's model-view and the frame's projection, and takes the
+// perspective-correct barycentrics of the pixel centre in closed form from the clip
+// positions (2D homogeneous: with M the columns (x, y, w) of the three clip positions,
+// lambda is M^-1 (p, 1) normalised to sum 1; no division by w, so vertices behind the eye
+// need no care). Their screen-space derivatives: the same closed form at the right and
+// upper neighbours of the first pixel of the pixel's 2x2 quad, minus at that pixel: the
+// coarse differences a fragment quad takes of the triangle's plane (its helper
+// invocations extrapolate it), so textureGrad gets the uv derivatives texture() gets in
+// the forward passes (one-pixel differences at the pixel itself gave 9/255 on a few
+// pixels of the agreement test where the mip level changes within a quad; these, 0).
+// Position, normal, tangent and uv are interpolated with lambda, the surface is made as
+// surface.inc makes it (the same operations, textureGrad for texture), then ambient x
+// diffuse + emissive and the tile's lights (tile_shade.inc's tile_lights_add, the loop
+// forward_tiled.frag runs), fog (forward_output), stored into the HDR target (image unit
+// BIND_IMAGE_HDR).
+// MSAA_SAMPLES (msaa > 1): the ids and the HDR target are multisampled. A pixel whose
+// samples hold different ids is an edge only by deferred's rule (edge_rule.inc's
+// edge_surfaces_differ) on the ids' surfaces rebuilt at the pixel centre; any other
+// pixel is shaded once with sample 0's surface, stored into every sample; an edge pixel
+// shades each distinct id once, at the pixel centre as a forward pass shades every
+// triangle that covers a sample, stored into the samples holding it. TILE_DEPTH_RANGES
+// (with it, when lights are culled): a centre outside the depth range its tile was
+// culled against loops every light, as forward_tiled.frag does.
+// Counted (i_counts, an image atomic per shading pixel and counter): the shadings (the
+// pass's samples_shaded), the samples covered (its samples) and, msaa > 1, the edge
+// pixels (edge_fraction). Not reduced per work group first: the barrier that needs cost
+// llvmpipe 15-20 % of the pass (compare --exe, 5 paired rounds, 640x360 curtis-scene3).
+// Defines: TILE_SIZE, TILES_X, VIS_TRI_BITS, NO_GRID (no point or spot light: every
+// light of the frame looped), the material's map defines (DIFFUSE_MAP, GLOSS_MAP,
+// NORMAL_MAP, EMISSIVE_MAP), FOG, SHADOWS, HDR_RGBA32F, MSAA_SAMPLES, TILE_DEPTH_RANGES;
+// the common ones, VERTEX_COLOR, UV2 and SKINNING (each vertex skinned as mesh.vert
+// skins it, skin.inc, before the draw's model-view: the same position the visibility
+// pass rasterised).
 void main()
 {
     ivec2 px = ivec2(gl_GlobalInvocationID.xy);
