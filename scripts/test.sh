@@ -1,8 +1,9 @@
 #!/usr/bin/env bash
-# Set-up if needed, build, and test in tiers (tests/meson.build's suites; README
-# "Testing"). With no option (CI): the plain build's quick, full and slow tiers two at a
-# time, then its timing tier alone; the ASan + UBSan build's suite `asan` (unit, GL, fuzz
-# replay, the CLI tests that parse or do I/O); the seeded fuzzers.
+# Set-up if needed, build, and test in tiers (tests/meson.build's suites; README's
+# "Install" says which command runs which). With no option (CI): the plain build's
+# quick, full and slow tiers two at a time, then its timing tier alone; the ASan + UBSan
+# build's suite `asan` (unit, GL, fuzz replay, the CLI tests that parse or do I/O); the
+# seeded fuzzers.
 #   --quick   the quick tier on the plain build only (a developer's few minutes)
 #   --plain   every tier on the plain build only (no sanitizers, no fuzzers)
 # Ends with one line "N passed, N failed" (", N skipped" when any test skipped).
