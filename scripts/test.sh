@@ -1,10 +1,22 @@
 #!/usr/bin/env bash
-# Set-up if needed, build, and run the whole suite twice: the normal build, and a
-# build with AddressSanitizer + UndefinedBehaviorSanitizer. Ends with one line
-# "N passed, N failed" (", N skipped" when any test skipped).
+# Set-up if needed, build, and test in tiers (tests/meson.build's suites; README's
+# "Install" says which command runs which). With no option (CI): the plain build's
+# quick, full and slow tiers two at a time, then its timing tier alone; the ASan + UBSan
+# build's suite `asan` (unit, GL, fuzz replay, the CLI tests that parse or do I/O); the
+# seeded fuzzers.
+#   --quick   the quick tier on the plain build only (a developer's few minutes)
+#   --plain   every tier on the plain build only (no sanitizers, no fuzzers)
+# Ends with one line "N passed, N failed" (", N skipped" when any test skipped).
 set -uo pipefail
 root=$(cd "$(dirname "$0")/.." && pwd)
 cd "$root"
+mode=ci
+case ${1:-} in
+  '') ;;
+  --quick) mode=quick ;;
+  --plain) mode=plain ;;
+  *) echo "usage: scripts/test.sh [--quick | --plain]" >&2; exit 2 ;;
+esac
 . scripts/say.sh   # on a terminal: what it is doing
 say "test: checking the packages it needs (scripts/setup.sh)"
 scripts/setup.sh || exit 1
@@ -15,46 +27,62 @@ export MESA_DEBUG=silent
 
 status=0
 logs=()
-run_suite() {   # name builddir [meson setup options...]
+build() {   # name builddir [meson setup options...]
   local name=$1 dir=$2; shift 2
-  rm -f "$dir/meson-logs/testlog.json"   # a stale log must not count
+  rm -f "$dir"/meson-logs/testlog*.json   # a stale log must not count
   say "test: building the $name build ($dir)"
-  if ! scripts/build.sh "$dir" "$@"; then
-    echo "test: $name build failed" >&2
-    status=1
-    return
-  fi
-  echo "== $name: meson test" >&2
-  meson test -C "$dir" --print-errorlogs --num-processes 2 >&2 || status=1
+  scripts/build.sh "$dir" "$@" && return 0
+  echo "test: $name build failed" >&2
+  logs+=("$dir/meson-logs/missing-$name.json")   # counted as one failure
+  status=1
+  return 1
+}
+tier() {   # builddir logname processes suite...: meson test over those suites
+  local dir=$1 log=$2 procs=$3; shift 3
+  local suites=() s
+  for s in "$@"; do suites+=(--suite "$s"); done
+  echo "== $dir: meson test ${*} ($procs at a time)" >&2
+  meson test -C "$dir" --print-errorlogs --num-processes "$procs" --logbase "$log" \
+    "${suites[@]}" >&2 || status=1
+  logs+=("$dir/meson-logs/$log.json")
 }
 
-run_suite plain build
-logs+=("build/meson-logs/testlog.json")
-# The sanitizer build is optimised (-O2 -g, as the fuzz build): its checks are the same,
-# and the suite runs in about half the time of an -O0 build, which CI's limit needs.
-(
+if build plain build; then
+  if [ $mode = quick ]; then
+    tier build testlog-quick 2 quick
+  else
+    tier build testlog-main 2 quick full slow
+    # Assertions on measured time, one test at a time on an otherwise idle machine.
+    tier build testlog-timing 1 timing
+  fi
+fi
+if [ $mode = ci ]; then
+  # The sanitizer build is optimised (-O2 -g, as the fuzz build): its checks are the
+  # same, at about half the time of an -O0 build. It runs the suite `asan` only:
+  # tests/meson.build says which tests and why.
   export ASAN_OPTIONS=abort_on_error=0:detect_leaks=1:strict_string_checks=1
   export UBSAN_OPTIONS=halt_on_error=1:print_stacktrace=1
-  run_suite sanitizers build-asan -Db_sanitize=address,undefined -Db_lundef=false \
-    -Dbuildtype=debugoptimized
-  exit $status
-) || status=1
-logs+=("build-asan/meson-logs/testlog.json")
+  if build sanitizers build-asan -Db_sanitize=address,undefined -Db_lundef=false \
+      -Dbuildtype=debugoptimized; then
+    tier build-asan testlog-asan 2 asan
+  fi
+  unset ASAN_OPTIONS UBSAN_OPTIONS
 
-# The manifest parser, then the scene loader, under libFuzzer (scripts/fuzz.sh; the
-# README's reliability section has the long run). Seed 1337, from the seeds alone, a
-# fixed number of inputs: every run of a commit starts with the same inputs, which a
-# random time-bound run (SHADESWEEP_FUZZ_SEED= empty) does not. Counted as one test.
-mkdir -p build-fuzz
-fuzz_log=build-fuzz/ci-result.json
-say "test: running the fuzzers (scripts/fuzz.sh, ${SHADESWEEP_FUZZ_SECONDS:-120} s)"
-if FUZZ_SEED=${SHADESWEEP_FUZZ_SEED-1337} scripts/fuzz.sh "${SHADESWEEP_FUZZ_SECONDS:-120}" >&2; then
-  echo '{"name": "fuzz-manifest", "result": "OK"}' > "$fuzz_log"
-else
-  echo '{"name": "fuzz-manifest", "result": "FAIL"}' > "$fuzz_log"
-  status=1
+  # The manifest parser, then the scene loader, under libFuzzer (scripts/fuzz.sh; the
+  # README's reliability section has the long run). Seed 1337, from the seeds alone, a
+  # fixed number of inputs: every run of a commit starts with the same inputs, which a
+  # random time-bound run (SHADESWEEP_FUZZ_SEED= empty) does not. Counted as one test.
+  mkdir -p build-fuzz
+  fuzz_log=build-fuzz/ci-result.json
+  say "test: running the fuzzers (scripts/fuzz.sh, ${SHADESWEEP_FUZZ_SECONDS:-120} s)"
+  if FUZZ_SEED=${SHADESWEEP_FUZZ_SEED-1337} scripts/fuzz.sh "${SHADESWEEP_FUZZ_SECONDS:-120}" >&2; then
+    echo '{"name": "fuzz-manifest", "result": "OK"}' > "$fuzz_log"
+  else
+    echo '{"name": "fuzz-manifest", "result": "FAIL"}' > "$fuzz_log"
+    status=1
+  fi
+  logs+=("$fuzz_log")
 fi
-logs+=("$fuzz_log")
 
 /usr/bin/python3 - "${logs[@]}" <<'PY'
 import json, sys, os
