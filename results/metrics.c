@@ -1,28 +1,15 @@
-/* The code results/metrics.def generates that needs no frame stream: the NAN
- * initialisation, the CSV writers and the table of columns. See metrics.h. */
+/* The code results/metrics.def generates that needs no frame: the NAN initialisation,
+ * the summary writer and the table of columns. See metrics.h; a frame's row is
+ * results/record.c's. */
 #include "results/metrics.h"
 
 #include <math.h>
-
-#include "results/record.h"
 
 void metric_totals_none(metric_totals *m)
 {
 #define FRAME_METRIC(field, type, frames, fprec, from, agg, with, trial, ...) m->trial = NAN;
 #define FRAME_STAT(field, agg, with, trial, ...) m->trial = NAN;
 #define TRIAL_METRIC(trial, ...) m->trial = NAN;
-#include "results/metrics.def"
-}
-
-#define METRIC_WRITE_F64(w, x, decimals) csv_f64(w, x, decimals)
-#define METRIC_WRITE_U64(w, x, decimals) csv_u64(w, x)
-
-void metrics_write_frame(csv_writer *w, const frame_record *r)
-{
-#define FRAME_METRIC(field, type, frames, fprec, ...) \
-    METRIC_IF(frames, F, METRIC_CAT(METRIC_WRITE_, type)(w, r->field, fprec);)
-#define FRAME_DERIVED(name, frames, fexpr, fprec, ...) \
-    METRIC_IF(frames, F, csv_f64(w, fexpr, fprec);)
 #include "results/metrics.def"
 }
 

@@ -48,9 +48,7 @@ void metric_totals_none(metric_totals *m);
  * #include "results/metric_names.inc" (it undefines them). */
 typedef enum metric_slot { METRIC_SLOT_S1, METRIC_SLOT_S2, METRIC_SLOT_S3 } metric_slot;
 
-typedef struct frame_record frame_record;
-/* One frame's table columns in frames.csv; one trial's of `slot` in summary.csv. */
-void metrics_write_frame(csv_writer *w, const frame_record *r);
+/* One trial's table columns of `slot` in summary.csv (a frame's: record.h). */
 void metrics_write_summary(csv_writer *w, const metric_totals *m, metric_slot slot);
 
 /* One row of the table of columns (docs/columns.md, `shadesweep columns`). */

@@ -18,3 +18,6 @@ typedef struct frame_record {
 #define FRAME_METRIC(field, type, ...) METRIC_CTYPE(type) field;
 #include "results/metrics.def"
 } frame_record;
+
+/* One frame's table columns in frames.csv. */
+void metrics_write_frame(csv_writer *w, const frame_record *r);

@@ -1,5 +1,5 @@
 /* The named scenes manifests can ask for, each with its builder (scene_*.c): the one
- * table of the catalog's scenes. scene.c builds them (and file scenes, file_assimp.c). */
+ * table of the catalog's scenes. scene_make.c builds them (and file scenes, file_assimp.c). */
 #include "scenes/scene.h"
 
 #include <stdlib.h>
@@ -11,7 +11,7 @@
 typedef struct catalog_scene {
     scene_catalog_entry e;
     scene_build_fn build;
-    int fault;                 /* test scenes: scene.c's inject_fault */
+    int fault;                 /* test scenes: scene_make.c's inject_fault */
 } catalog_scene;
 
 static const catalog_scene catalog[] = {

@@ -85,6 +85,9 @@ bool file_prescan_mtl(const char *path, const read_file *f, char *err, size_t er
 bool file_gltf_emissive_strengths(const char *path, const read_file *f, float **out, size_t *n,
                                   char *err, size_t errlen);
 
+/* glTF (.gltf, .glb) by the path's extension (file_assimp.c). */
+bool file_is_gltf(const char *path);
+
 /* >>load (file_load.c) */
 /* One loaded file: assimp's scene, the files read, the decoded images (one per distinct
  * texture reference, in first-use order) and the world transforms of the mesh nodes. */
@@ -123,6 +126,9 @@ bool file_loaded_list(const loaded *l, scene_file_list *out, char *err, size_t e
 /* The image a material references, decoded (once per reference), or -1 with a message. */
 int file_load_image(loaded *l, const char *ref, char *err, size_t errlen);
 void file_material_refs(const struct aiMaterial *m, material_refs *r);
+/* >>unrendered (file_unrendered.c): what the file has that no renderer draws, as
+ * phrases of info->not_rendered (phong: the file's materials mapped onto Phong). */
+void file_not_rendered(const loaded *l, bool phong, scene_file_info *info);
 
 /* Whether the scene's camera option is the word (auto, orbit); NULL and "" are auto. */
 static inline bool file_camera_is(const char *camera, const char *word)

@@ -4,7 +4,7 @@
  * scene_anim_pose poses and every renderer blends in its vertex stage.
  *
  * Per vertex the 4 largest influences are kept (glTF's JOINTS_0 / WEIGHTS_0; a file's
- * JOINTS_1 beyond them is dropped, which not_rendered_of lists) and renormalised to sum
+ * JOINTS_1 beyond them is dropped, which file_not_rendered lists) and renormalised to sum
  * to 1. Untrusted weights: one that is not finite or not above 0, or of a vertex the mesh
  * does not have, counts as none; a vertex left with no influence follows its mesh's first
  * joint wholly (a documented fallback: never a zero or NaN blend). A joint's inverse bind

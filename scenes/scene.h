@@ -231,7 +231,7 @@ typedef struct scene {
      * elsewhere and with any other placement. */
     uint32_t ncoverage_lights;
 
-    int fault;                 /* test scenes: what scene_update does at t >= 0.2 (scene.c) */
+    int fault;                 /* test scenes: what scene_update does at t >= 0.2 (scene_make.c) */
     struct scene_anim *anim;   /* a file's node animation (scene_anim.h), or NULL */
 
     /* posed by scene_update() */
@@ -343,7 +343,7 @@ typedef struct scene_file_info {
     /* What the file has that shadesweep reads but does not render (skin influences after
      * a vertex's 4 largest, animations after the first, texture coordinate sets after the
      * second, orthographic cameras, glTF extensions of extensionsUsed it does not
-     * implement, ...: file_assimp.c's not_rendered_of), one phrase each: meta.yaml
+     * implement, ...: file_unrendered.c's file_not_rendered), one phrase each: meta.yaml
      * lists them and validate, list and run warn of them. */
     uint32_t nnot_rendered;
     char not_rendered[SCENE_FILE_MAX_NOT_RENDERED][72];

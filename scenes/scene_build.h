@@ -1,5 +1,5 @@
 #pragma once
-/* What the catalog scenes' builders share (scenes/scene.c and scenes/scene_*.c); not part
+/* What the catalog scenes' builders share (scenes/scene_make.c and scenes/scene_*.c); not part
  * of the scenes interface (nothing outside scenes/ includes it).
  *
  * A builder fills a scene through a scene_builder: tables, meshes, maps, materials,
@@ -49,7 +49,7 @@ typedef struct scene_builder {
 typedef bool (*scene_build_fn)(scene_builder *b, const void *arg);
 
 /* The catalog's builder of an entry (catalog.c), and which test fault it injects (0: none;
- * scene.c's inject_fault). NULL / 0 for an entry that is not the catalog's. */
+ * scene_make.c's inject_fault). NULL / 0 for an entry that is not the catalog's. */
 scene_build_fn scene_catalog_builder(const scene_catalog_entry *e);
 int scene_catalog_fault(const scene_catalog_entry *e);
 

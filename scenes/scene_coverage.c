@@ -1,4 +1,4 @@
-/* The screen coverage of a scene's lights (>>coverage). See scenes/scene.c. */
+/* The screen coverage of a scene's lights (>>coverage). See scenes/scene_make.c. */
 #include "scenes/scene.h"
 
 #include <math.h>

@@ -110,7 +110,7 @@ bool scene_build_curtis2(scene_builder *b, const void *arg)
     sm_vec3_make(0.0f, 0.0f, 1.0f, c->spin_axis);
     c->spin_rate = 0.5f;
     sb_object(b, small, tiles, 0.0f, 0.0f, 4.5f, 1.0f);
-    /* the eye at C2_BIG_AT (the orbit of scene.c: angle 2 pi t / period from +X towards
+    /* the eye at C2_BIG_AT (the orbit of scene_make.c: angle 2 pi t / period from +X towards
      * +Z), and the ball's centre on its line of sight */
     double ang = 2.0 * SM_PI * C2_BIG_AT / C_PERIOD;
     double eye[3] = {C2_RADIUS * cos(ang), C2_HEIGHT, C2_RADIUS * sin(ang)};

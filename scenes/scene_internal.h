@@ -1,5 +1,5 @@
 #pragma once
-/* What scenes/scene.c shares with the other pieces of scene construction; not part of
+/* What scenes/scene_make.c shares with the other pieces of scene construction; not part of
  * the scenes interface (nothing outside scenes/ includes it). */
 #include <stdbool.h>
 #include <stddef.h>

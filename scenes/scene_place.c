@@ -1,5 +1,5 @@
 /* The run's lights placed on a built scene (>>placement): authored, random or on a grid,
- * from the manifest's light parameters. See scenes/scene.c. */
+ * from the manifest's light parameters. See scenes/scene_make.c. */
 #include "scenes/scene_internal.h"
 
 #include <math.h>

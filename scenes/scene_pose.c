@@ -1,5 +1,5 @@
 /* Posing a built scene at schedule time (>>posing: objects, camera, the test scenes'
- * faults) and the manifest's camera overrides (>>camera-overrides). See scenes/scene.c. */
+ * faults) and the manifest's camera overrides (>>camera-overrides). See scenes/scene_make.c. */
 #include "scenes/scene.h"
 #include "scenes/scene_anim.h"
 

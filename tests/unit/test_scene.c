@@ -176,7 +176,7 @@ static void test_orbit_camera(void **state)
     scene_destroy(s);
 }
 
-/* "shapes": its objects, materials and maps as scenes/scene.c builds them, posed
+/* "shapes": its objects, materials and maps as scenes/scene_make.c builds them, posed
  * with finite world bounds that contain each mesh, the rotating ones moving. */
 static void test_shapes_scene(void **state)
 {
