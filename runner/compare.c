@@ -38,7 +38,7 @@
 #include "runner/diag.h"
 #include "runner/hash.h"
 #include "runner/manifest.h"
-#include "runner/summary_md.h"
+#include "runner/run_model.h"
 #include "runner/sweep_axis.h"
 #include "runner/trials.h"
 

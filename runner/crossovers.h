@@ -16,7 +16,7 @@
 #include <stdio.h>
 
 #include "results/csvread.h"
-#include "runner/summary_md.h"
+#include "runner/run_model.h"
 
 typedef struct crossover_found {
     const char *axis;          /* the plan column */

@@ -8,7 +8,7 @@
 #include <stddef.h>
 #include <stdio.h>
 
-#include "runner/summary_md.h"
+#include "runner/run_model.h"
 
 /* The verdict of point p (its runs ranked, the fastest first) into out: the fastest,
  * the runs that tie with it (their ratio to it holds 1, in rank order until the first

@@ -33,7 +33,7 @@
 #include "results/jsonout.h"
 #include "results/verdict.h"
 #include "runner/commands.h"
-#include "runner/summary_md.h"
+#include "runner/run_model.h"
 
 typedef struct folder_data {
     char *path;

@@ -7,7 +7,7 @@
 
 #include "results/csvread.h"
 #include "runner/crossovers.h"
-#include "runner/summary_md.h"
+#include "runner/run_model.h"
 
 #define SUMMARY_JSON_VERSION 1
 

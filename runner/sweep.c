@@ -170,7 +170,7 @@ static int id_ref_cmp_first(const void *x, const void *y)
 /* The sweep point of a run: the hash of the canonical text of every parameter that
  * every run reads (params.def readers "*") but the renderer. Runs that share it differ
  * only in their renderer and the keys only some renderers read: they are ranked
- * together (runner/summary_md.c's rule), and the schedule runs them in rounds. */
+ * together (runner/run_model.c's rule), and the schedule runs them in rounds. */
 static uint64_t point_hash(const run_params *rp)
 {
     uint64_t h = FNV1A64_OFFSET_BASIS;
