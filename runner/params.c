@@ -20,36 +20,15 @@ _Static_assert(sizeof(run_sync) == sizeof(int), "enum size");
 _Static_assert(sizeof(light_placement) == sizeof(int), "enum size");
 _Static_assert(sizeof(rng_kind) == sizeof(int), "enum size");
 _Static_assert(sizeof(attenuation_kind) == sizeof(int), "enum size");
-_Static_assert(sizeof(gbuffer_position) == sizeof(int), "enum size");
-_Static_assert(sizeof(gbuffer_normal) == sizeof(int), "enum size");
 _Static_assert(sizeof(run_schedule) == sizeof(int), "enum size");
 _Static_assert(sizeof(run_metric) == sizeof(int), "enum size");
 
 static const char *const clock_names[] = {"wall", "fixed", NULL};
 static const char *const sync_names[] = {"finish", "fence", NULL};
 /* light placements: light_placement_names of scenes/lights.h */
-static const char *const shadows_names[] = {"auto", "off", NULL};
 static const char *const rng_names[] = {"msvc", "pcg32", "mt19937", NULL};
 static const char *const attenuation_names[] = {"inverse-square", "linear-range", "quadratic",
                                                 "windowed", NULL};
-/* In the order of the enums of renderers/renderer.h: gbuffer_preset and light_volume_mode
- * from the member after their UNSET zero (params.def's apply adds it), the others from 0. */
-static const char *const gbuffer_names[] = {"curtis", "fat", "compact", "spheremap", "reference",
-                                            NULL};
-static const char *const gbuffer_position_names[] = {"preset", "stored16", "stored32", "depth",
-                                                     NULL};
-static const char *const gbuffer_normal_names[] = {"preset", "float16", "float32", "unorm10",
-                                                   "spheremap8", "spheremap16", NULL};
-static const char *const light_volume_names[] = {"stencil", "fullscreen", "volume",
-                                                 "stencil-two-pass", "hull", "scissor", NULL};
-static const char *const light_buffer_names[] = {"uniform", "storage", NULL};
-static const char *const tile_size_names[] = {"8", "16", "32", NULL};   /* 8 << index */
-static const char *const clustered_shading_names[] = {"forward", "deferred", NULL};
-static const char *const lpp_light_buffer_names[] = {"rgba16f", "rgba8", NULL};
-static const char *const lpp_lights_names[] = {"volumes", "tiled", NULL};
-static const char *const hdr_names[] = {"rgba16f", "rgba32f", NULL};   /* hdr_format */
-static const char *const msaa_names[] = {"1", "2", "4", "8", NULL};   /* 1 << index */
-static const char *const aa_names[] = {"none", "edge", NULL};   /* aa_mode */
 static const char *const translucency_names[] = {"blend", "opaque", NULL};
 static const char *const shading_model_names[] = {"scene", "phong", "pbr", NULL};
 /* light_sizing (scenes/lights.h), exposure_mode and tonemap_kind (scenes/scene.h) */
@@ -60,6 +39,15 @@ static const char *const tonemap_names[] = {"none", "pbr-neutral", NULL};
 static const char *const environment_names[] = {"none", "sky", "scene", NULL};
 static const char *const schedule_names[] = {"interleaved", "sequential", NULL};
 static const char *const metric_names[] = {"auto", "wall", "cpu", "gpu", NULL};
+/* The renderers' enums (renderers/keys.h): each value's text at its enumerator. */
+#define KEY_ENUM(type, names, values)                                                         \
+    _Static_assert(sizeof(type) == sizeof(int), "enum size");                                 \
+    static const char *const names[] = {values NULL};
+#define V(text, e) [e] = text,
+#define VX(e)
+#include "runner/params.def"
+#undef V
+#undef VX
 
 #define RP(f) .off = offsetof(run_params, f), .size = sizeof(((run_params *)0)->f)
 #define RP_SPAN(a, b)                                                                         \

@@ -323,7 +323,7 @@ static void find_beyond(const plan *p, const gl_holds *holds, beyond *lights, be
     for (size_t k = 0; k < p->nruns; k++) {
         const run_spec *r = &p->runs[k];
         const run_params *q = &r->p;
-        if (strcmp(q->renderer, "forward-spml") == 0 && q->light_buffer == 0 &&
+        if (strcmp(q->renderer, "forward-spml") == 0 && q->light_buffer == LIGHT_BUFFER_UNIFORM &&
             q->lights.placement != PLACEMENT_SCENE && q->lights.count.max > holds->lights)
             note_beyond(lights, r, q->lights.count.max);
         unsigned msaa = 1u << q->msaa, ref_msaa = q->error_renderer[0] ? 1u << q->error_msaa : 1;
