@@ -29,14 +29,19 @@ static const char *const sync_names[] = {"finish", "fence", NULL};
 static const char *const rng_names[] = {"msvc", "pcg32", "mt19937", NULL};
 static const char *const attenuation_names[] = {"inverse-square", "linear-range", "quadratic",
                                                 "windowed", NULL};
-static const char *const translucency_names[] = {"blend", "opaque", NULL};
-static const char *const shading_model_names[] = {"scene", "phong", "pbr", NULL};
+static const char *const translucency_names[] = {[RUN_TRANSLUCENCY_BLEND] = "blend",
+                                                 [RUN_TRANSLUCENCY_OPAQUE] = "opaque", NULL};
+static const char *const shading_model_names[] = {[RUN_SHADING_MODEL_SCENE] = "scene",
+                                                  [RUN_SHADING_MODEL_PHONG] = "phong",
+                                                  [RUN_SHADING_MODEL_PBR] = "pbr", NULL};
 /* light_sizing (scenes/lights.h), exposure_mode and tonemap_kind (scenes/scene.h) */
 static const char *const light_sizing_names[] = {"radius", "range-from-intensity",
                                                  "intensity-from-range", NULL};
 static const char *const exposure_mode_names[] = {"none", "auto", "fixed", NULL};
 static const char *const tonemap_names[] = {"none", "pbr-neutral", NULL};
-static const char *const environment_names[] = {"none", "sky", "scene", NULL};
+static const char *const environment_names[] = {[RUN_ENVIRONMENT_NONE] = "none",
+                                                [RUN_ENVIRONMENT_SKY] = "sky",
+                                                [RUN_ENVIRONMENT_SCENE] = "scene", NULL};
 static const char *const schedule_names[] = {"interleaved", "sequential", NULL};
 static const char *const metric_names[] = {"auto", "wall", "cpu", "gpu", NULL};
 /* The renderers' enums (renderers/keys.h): each value's text at its enumerator. */

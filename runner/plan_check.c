@@ -71,7 +71,7 @@ void run_params_scene(const run_params *p, scene_file_options *fo, scene_source 
                                .fit = p->scene_scale == 0, .up = (scene_up)p->scene_up,
                                .camera = p->scene_camera, .allow_outside = p->scene_outside,
                                .lights_around = p->scene_around,
-                               .phong = p->shading_model == 1,
+                               .phong = p->shading_model == RUN_SHADING_MODEL_PHONG,
                                .max_image_bytes = p->scene_max_image_bytes,
                                .max_triangles = p->scene_max_triangles,
                                .max_vertices = p->scene_max_vertices};
@@ -80,12 +80,13 @@ void run_params_scene(const run_params *p, scene_file_options *fo, scene_source 
 
 uint32_t run_params_shape_scene(const run_params *p, scene *s)
 {
-    uint32_t opaque = p->translucency == 1 ? scene_make_opaque(s) : 0;
-    shading_model m = p->shading_model == 1   ? SHADING_PHONG
-                      : p->shading_model == 2 ? SHADING_PBR
-                                              : scene_own_shading(s);
+    uint32_t opaque = p->translucency == RUN_TRANSLUCENCY_OPAQUE ? scene_make_opaque(s) : 0;
+    shading_model m = p->shading_model == RUN_SHADING_MODEL_PHONG ? SHADING_PHONG
+                      : p->shading_model == RUN_SHADING_MODEL_PBR ? SHADING_PBR
+                                                                : scene_own_shading(s);
     scene_set_shading(s, m);   /* a freshly built scene is Phong's: never refused */
-    bool sky = p->environment == 1 || (p->environment == 2 && s->from_file);
+    bool sky = p->environment == RUN_ENVIRONMENT_SKY ||
+               (p->environment == RUN_ENVIRONMENT_SCENE && s->from_file);
     scene_set_environment(s, sky ? ENVIRONMENT_SKY : ENVIRONMENT_NONE,
                           p->environment_intensity);
     return opaque;
