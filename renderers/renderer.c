@@ -8,28 +8,23 @@
 #include <stdlib.h>
 #include <string.h>
 
-extern const renderer_impl renderer_null_impl;
-extern const renderer_impl renderer_deferred_impl;
-extern const renderer_impl renderer_forward_mpml_impl;
-extern const renderer_impl renderer_forward_spml_impl;
-extern const renderer_impl renderer_forward_plus_impl;
-extern const renderer_impl renderer_clustered_impl;
-extern const renderer_impl renderer_tiled_deferred_impl;
-extern const renderer_impl renderer_deferred_lighting_impl;
-extern const renderer_impl renderer_visibility_impl;
+/* Every renderer the program knows, one line each (its renderer_X_impl), in the order
+ * `info` and errors list them. */
+#define RENDERER_REGISTRY(R)                                                               \
+    R(null)                                                                                \
+    R(deferred)                                                                            \
+    R(forward_mpml)                                                                        \
+    R(forward_spml)                                                                        \
+    R(forward_plus)                                                                        \
+    R(clustered)                                                                           \
+    R(tiled_deferred)                                                                      \
+    R(deferred_lighting)                                                                   \
+    R(visibility)
 
-/* Every renderer the program knows, in the order `info` and errors list them. */
-static const renderer_impl *const registry[] = {
-    &renderer_null_impl,
-    &renderer_deferred_impl,
-    &renderer_forward_mpml_impl,
-    &renderer_forward_spml_impl,
-    &renderer_forward_plus_impl,
-    &renderer_clustered_impl,
-    &renderer_tiled_deferred_impl,
-    &renderer_deferred_lighting_impl,
-    &renderer_visibility_impl,
-};
+#define RENDERER_EXTERN(x) extern const renderer_impl renderer_##x##_impl;
+RENDERER_REGISTRY(RENDERER_EXTERN)
+#define RENDERER_ENTRY(x) &renderer_##x##_impl,
+static const renderer_impl *const registry[] = {RENDERER_REGISTRY(RENDERER_ENTRY)};
 
 struct renderer {
     const renderer_impl *impl;   /* the design whose entry points serve self */

@@ -1,7 +1,18 @@
 #pragma once
 /* The renderer interface (DESIGN.md): a static registry from name to
  * implementation, one opaque object per run. Renderers draw into the context's
- * off-screen framebuffer. */
+ * off-screen framebuffer.
+ *
+ * Adding a renderer:
+ *   1. its code, renderers/x.c (or its family's folder; in renderers/meson.build):
+ *      x_create/prepare/draw/describe/destroy and `const renderer_impl renderer_x_impl =
+ *      RENDERER_IMPL(x, "x", reads, description, ...)`, `reads` naming the keys or groups
+ *      it reads beyond every run's ("x hdr msaa fog aa");
+ *   2. its shaders, renderers/shaders/x*.glsl (listed in renderers/meson.build);
+ *   3. its keys, if any, in renderers/x_keys.def (format: renderers/keys.h), included by
+ *      renderers/keys.def: the manifest, docs, completion and renderer_options follow;
+ *   4. its test, tests/gl/test_x.c (a line in tests/meson.build's gl_tests);
+ *   5. one line in renderers/renderer.c's RENDERER_REGISTRY. */
 #include <stdbool.h>
 #include <stddef.h>
 #include <stdint.h>
