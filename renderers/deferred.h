@@ -102,8 +102,7 @@ typedef struct deferred_layout {
 
 /* The slot kind's field name as attachment names use it: "position.xy", ... */
 const char *deferred_slot_name(deferred_slot_kind k);
-/* "fat", "curtis", "compact", "spheremap", "reference"; "unset" for GBUFFER_UNSET,
- * "unknown" out of range. */
+/* "fat", "curtis", "compact", "spheremap", "reference"; "unknown" out of range. */
 const char *deferred_preset_name(gbuffer_preset p);
 
 /* The layout of preset (with the field-by-field overrides of o) for a scene that needs

@@ -78,7 +78,7 @@ static void deferred_lighting_destroy(void *self)
 
 static void *deferred_lighting_create(const renderer_options *opts, char *err, size_t errlen)
 {
-    if ((unsigned)opts->lpp_light_buffer - 1u > 1u) {
+    if ((unsigned)opts->lpp_light_buffer > (unsigned)LPP_LIGHT_BUFFER_RGBA8) {
         snprintf(err, errlen, "deferred-lighting: unknown light buffer format %d",
                  (int)opts->lpp_light_buffer);
         return NULL;

@@ -56,7 +56,6 @@ typedef struct preset_def {
 #define U8 DEFERRED_CHANNELS_UNORM8
 #define S(kind, n) {DEFERRED_SLOT_##kind, n}
 static const preset_def presets[] = {
-    [GBUFFER_UNSET] = {.name = "unset"},
     [GBUFFER_CURTIS] = {"curtis",
                         {{F16, GLT_FORMAT_RGBA16F, {S(NORMAL_XY, 2), S(NORMAL_Z, 1), S(DEPTH, 1)}},
                          {F16, GLT_FORMAT_RGBA16F, {S(DIFFUSE, 3), S(GLOSS, 1)}},
@@ -96,8 +95,7 @@ static const preset_def presets[] = {
 
 static const preset_def *preset_get(gbuffer_preset p)
 {
-    return p > GBUFFER_UNSET && (size_t)p < sizeof presets / sizeof presets[0] ? &presets[p]
-                                                                                : NULL;
+    return (size_t)p < sizeof presets / sizeof presets[0] ? &presets[p] : NULL;
 }
 
 const char *deferred_preset_name(gbuffer_preset p)

@@ -8,28 +8,23 @@
 #include <stdlib.h>
 #include <string.h>
 
-extern const renderer_impl renderer_null_impl;
-extern const renderer_impl renderer_deferred_impl;
-extern const renderer_impl renderer_forward_mpml_impl;
-extern const renderer_impl renderer_forward_spml_impl;
-extern const renderer_impl renderer_forward_plus_impl;
-extern const renderer_impl renderer_clustered_impl;
-extern const renderer_impl renderer_tiled_deferred_impl;
-extern const renderer_impl renderer_deferred_lighting_impl;
-extern const renderer_impl renderer_visibility_impl;
+/* Every renderer the program knows, one line each (its renderer_X_impl), in the order
+ * `info` and errors list them. */
+#define RENDERER_REGISTRY(R)                                                               \
+    R(null)                                                                                \
+    R(deferred)                                                                            \
+    R(forward_mpml)                                                                        \
+    R(forward_spml)                                                                        \
+    R(forward_plus)                                                                        \
+    R(clustered)                                                                           \
+    R(tiled_deferred)                                                                      \
+    R(deferred_lighting)                                                                   \
+    R(visibility)
 
-/* Every renderer the program knows, in the order `info` and errors list them. */
-static const renderer_impl *const registry[] = {
-    &renderer_null_impl,
-    &renderer_deferred_impl,
-    &renderer_forward_mpml_impl,
-    &renderer_forward_spml_impl,
-    &renderer_forward_plus_impl,
-    &renderer_clustered_impl,
-    &renderer_tiled_deferred_impl,
-    &renderer_deferred_lighting_impl,
-    &renderer_visibility_impl,
-};
+#define RENDERER_EXTERN(x) extern const renderer_impl renderer_##x##_impl;
+RENDERER_REGISTRY(RENDERER_EXTERN)
+#define RENDERER_ENTRY(x) &renderer_##x##_impl,
+static const renderer_impl *const registry[] = {RENDERER_REGISTRY(RENDERER_ENTRY)};
 
 struct renderer {
     const renderer_impl *impl;   /* the design whose entry points serve self */
@@ -53,32 +48,12 @@ const renderer_impl *renderer_kind_find(const char *name)
     return NULL;
 }
 
-/* The first field of o that is unset (its zero), by its manifest key; NULL if none. */
-static const char *unset_option(const renderer_options *o)
-{
-    return o->gbuffer == GBUFFER_UNSET                ? "gbuffer.preset"
-           : o->light_volumes == LIGHT_VOLUMES_UNSET ? "deferred.light_volumes"
-           : o->light_buffer == LIGHT_BUFFER_UNSET   ? "forward.light_buffer"
-           : o->tile_size == 0                       ? "tiles.size"
-           : o->clustered_slices == 0                ? "clustered.slices"
-           : o->hdr == HDR_UNSET                     ? "hdr"
-           : o->aa == AA_UNSET                       ? "aa"
-           : o->lpp_light_buffer == LPP_LIGHT_BUFFER_UNSET ? "deferred_lighting.light_buffer"
-                                                     : NULL;
-}
 
 renderer *renderer_create(const char *kind, const renderer_options *opts, char *err, size_t errlen)
 {
     const renderer_impl *impl = renderer_kind_find(kind);
     if (!impl) {
         snprintf(err, errlen, "unknown renderer '%s'", kind);
-        return NULL;
-    }
-    const char *unset = unset_option(opts);
-    if (unset) {
-        snprintf(err, errlen,
-                 "%s: the option %s is unset (runner/params.def gives every option its default)",
-                 kind, unset);
         return NULL;
     }
     const renderer_impl *design = impl->variant ? impl->variant(opts) : impl;
@@ -277,4 +252,86 @@ uint64_t renderer_own_bytes(const char *kind, const renderer_estimate *e)
 {
     const renderer_impl *impl = design_of(kind, e->opts);
     return impl && impl->own_bytes ? impl->own_bytes(e) : 0;
+}
+
+/* >>defaults: the key tables' default texts as options (renderer_options_default) */
+
+#define KEY_ENUM(type, names, values) static const char *const names[] = {values NULL};
+#define V(text, e) [e] = text,
+#define VX(e)
+#define PARAM_META(...)
+#define PARAM(...)
+#define KEY_OPTION(type, member, dims)
+#include "renderers/keys.def"
+#undef KEY_ENUM
+#undef V
+#undef VX
+#undef PARAM
+#define KEY_ENUM(...)
+
+/* The keys' values as run_params holds them (the tables' decl column). */
+#define KEY_DECL(...) __VA_ARGS__
+#define PARAM(path, type, flags, field, decl, def, lim, values, readers, ref, apply, desc)  \
+    KEY_DECL decl
+typedef struct key_values {
+#include "renderers/keys.def"
+} key_values;
+#undef PARAM
+
+/* One default text into the value at `at`, read as its C type `kind` says (an enum's
+ * by its names); the runner validates every default at every load, so each reads. */
+static void key_default(const char *def, const char *const *names, void *at, char kind)
+{
+    if (names) {
+        for (int i = 0; names[i]; i++)
+            if (strcmp(names[i], def) == 0)
+                memcpy(at, &i, sizeof i);
+    } else if (kind == 'b') {
+        *(bool *)at = strcmp(def, "true") == 0;
+    } else if (kind == 'u') {
+        *(uint32_t *)at = (uint32_t)strtoul(def, NULL, 10);
+    } else if (kind == 'f') {
+        *(float *)at = strtof(def, NULL);
+    } else if (kind == 'd') {
+        *(double *)at = strtod(def, NULL);
+    } else if (kind == 'v') {
+        float *v = at;
+        if (sscanf(def, "[%f, %f, %f]", &v[0], &v[1], &v[2]) != 3)
+            v[0] = v[1] = v[2] = 0;
+    }
+}
+
+renderer_options renderer_options_default(void)
+{
+    key_values kv = {0}, *p = &kv;
+    renderer_options opts = {0}, *o = &opts;
+#define RP(m)                                                                               \
+    &p->m, _Generic(p->m, bool: 'b', uint32_t: 'u', float: 'f', double: 'd', float *: 'v',   \
+                    default: 'e')
+#define PARAM(path, type, flags, field, decl, def, lim, values, readers, ref, apply, desc)  \
+    key_default(def, values, field);
+#include "renderers/keys.def"
+#undef PARAM
+#undef RP
+#define PARAM(path, type, flags, field, decl, def, lim, values, readers, ref, apply, desc)  \
+    apply;
+#include "renderers/keys.def"
+#undef PARAM
+    return opts;
+}
+
+void renderer_options_complete(renderer_options *o)
+{
+    static const unsigned char zero[sizeof(renderer_options)];
+    const renderer_options d = renderer_options_default();
+#undef KEY_OPTION
+#define KEY_OPTION(type, member, dims)                                                      \
+    if (memcmp(&o->member, zero, sizeof o->member) == 0)                                    \
+        memcpy(&o->member, &d.member, sizeof o->member);
+#define PARAM(...)
+#include "renderers/keys.def"
+#undef PARAM
+#undef KEY_OPTION
+#undef PARAM_META
+#undef KEY_ENUM
 }

@@ -1,11 +1,23 @@
 #pragma once
 /* The renderer interface (DESIGN.md): a static registry from name to
  * implementation, one opaque object per run. Renderers draw into the context's
- * off-screen framebuffer. */
+ * off-screen framebuffer.
+ *
+ * Adding a renderer:
+ *   1. its code, renderers/x.c (or its family's folder; in renderers/meson.build):
+ *      x_create/prepare/draw/describe/destroy and `const renderer_impl renderer_x_impl =
+ *      RENDERER_IMPL(x, "x", reads, description, ...)`, `reads` naming the keys or groups
+ *      it reads beyond every run's ("x hdr msaa fog aa");
+ *   2. its shaders, renderers/shaders/x*.glsl (listed in renderers/meson.build);
+ *   3. its keys, if any, in renderers/x_keys.def (format: renderers/keys.h), included by
+ *      renderers/keys.def: the manifest, docs, completion and renderer_options follow;
+ *   4. its test, tests/gl/test_x.c (a line in tests/meson.build's gl_tests);
+ *   5. one line in renderers/renderer.c's RENDERER_REGISTRY. */
 #include <stdbool.h>
 #include <stddef.h>
 #include <stdint.h>
 
+#include "renderers/keys.h"
 #include "results/bandwidth.h"
 
 struct scene;
@@ -95,141 +107,33 @@ typedef struct pass_plan {
     uint64_t target_bytes;     /* all targets the renderer allocated */
 } pass_plan;
 
-/* Every enum of renderer_options begins with an UNSET zero, and sizes are 0 when unset: a
- * zeroed renderer_options chooses nothing, and renderer_create refuses it, naming the
- * field. The runner sets every field from runner/params.def (params_to_renderer_options),
- * the one place that says what the defaults are. */
-
-/* G-buffer layouts (the deferred renderer; renderers/deferred.c documents each):
- *   fat        seed 000: three RGBA16F, view-space position, normal + emissive, diffuse + gloss
- *   curtis     seed 003: four RGBA16F, normal + depth, diffuse + specular, specular colour,
- *              one unused; position rebuilt from depth
- *   compact    seed 002's 96-bit layout
- *   spheremap  seed 004: view-space normal in two 8-bit channels (Lambert azimuthal),
- *              position from linear depth and frustum-corner rays
- *   reference  RGBA32F, position stored: the G-buffer that loses (almost) nothing */
-typedef enum gbuffer_preset {
-    GBUFFER_UNSET = 0,
-    GBUFFER_CURTIS,
-    GBUFFER_FAT,
-    GBUFFER_COMPACT,
-    GBUFFER_SPHEREMAP,
-    GBUFFER_REFERENCE,
-} gbuffer_preset;
-
-/* Field by field over the preset (0: no override, as the preset has it). */
-typedef enum gbuffer_position {
-    GBUFFER_POSITION_PRESET = 0,
-    GBUFFER_POSITION_STORED16,     /* view-space xyz in RGBA16F */
-    GBUFFER_POSITION_STORED32,     /* view-space xyz in RGBA32F */
-    GBUFFER_POSITION_DEPTH,        /* rebuilt from the depth buffer */
-} gbuffer_position;
-
-typedef enum gbuffer_normal {
-    GBUFFER_NORMAL_PRESET = 0,
-    GBUFFER_NORMAL_FLOAT16,        /* xyz in 16-bit floats */
-    GBUFFER_NORMAL_FLOAT32,
-    GBUFFER_NORMAL_UNORM10,        /* xyz * 0.5 + 0.5 in RGB10A2 */
-    GBUFFER_NORMAL_SPHEREMAP8,     /* Lambert azimuthal in RG8 */
-    GBUFFER_NORMAL_SPHEREMAP16,    /* Lambert azimuthal in RG16F */
-} gbuffer_normal;
-
-/* How deferred light passes find their pixels. */
-typedef enum light_volume_mode {
-    LIGHT_VOLUMES_UNSET = 0,
-    LIGHT_VOLUMES_STENCIL,         /* seed 003: one two-sided stencil pass (inc/dec on depth
-                                      fail), then the light on non-zero, and reset */
-    LIGHT_VOLUMES_FULLSCREEN,      /* a full-screen pass per light */
-    LIGHT_VOLUMES_VOLUME,          /* back faces, depth test GREATER, no stencil */
-    LIGHT_VOLUMES_STENCIL_TWO_PASS,/* seed 000: clear to 1, front faces inc on depth fail,
-                                      back faces dec, shade where 0 */
-    LIGHT_VOLUMES_HULL,            /* seed 000 4.5.8's unoptimised hull: back faces, no depth
-                                      test, no stencil: every pixel the hull covers */
-    LIGHT_VOLUMES_SCISSOR,         /* a full-screen pass scissored to the light's projected
-                                      screen rectangle */
-} light_volume_mode;
-
-/* Where forward-spml reads its lights from. */
-typedef enum light_buffer_kind {
-    LIGHT_BUFFER_UNSET = 0,
-    LIGHT_BUFFER_UNIFORM,          /* seed 003's uniform block: GL_MAX_UNIFORM_BLOCK_SIZE / 80 */
-    LIGHT_BUFFER_STORAGE,          /* one shader storage buffer: no limit of its own */
-    LIGHT_BUFFER_AUTO,             /* uniform when the run's lights fit, storage beyond
-                                      (what an error reference uses) */
-} light_buffer_kind;
-
-/* The float light accumulation's format (the manifest's `hdr`): every renderer that
- * draws accumulates into one target of it (renderers/base.h). */
-typedef enum hdr_format {
-    HDR_UNSET = 0,
-    HDR_RGBA16F,                   /* 16-bit floats (seed 000 4.5.12's FP16 HDR) */
-    HDR_RGBA32F,                   /* 32-bit floats: no rounding of additive passes to 11 bits */
-} hdr_format;
-
-/* deferred-lighting's light buffer (deferred_lighting.light_buffer): the format of its
- * diffuse and specular light targets. RGBA8 is Engel 2008's 8-bit buffer: light above
- * 1.0 clamps there, and the image shows it. */
-typedef enum lpp_light_buffer_format {
-    LPP_LIGHT_BUFFER_UNSET = 0,
-    LPP_LIGHT_BUFFER_RGBA16F,
-    LPP_LIGHT_BUFFER_RGBA8,
-} lpp_light_buffer_format;
-
-/* Anti-aliasing after the lighting (the manifest's `aa`): every renderer that draws. */
-typedef enum aa_mode {
-    AA_UNSET = 0,
-    AA_NONE,                       /* no pass */
-    AA_EDGE,                       /* seed 001 19.5.2's edge-detect blur (renderers/edge_aa.h) */
-} aa_mode;
-
+/* What a renderer is made with: the context's facts, then the members the key tables
+ * declare (renderers/keys.def's KEY_OPTION), which the runner sets by each key's `apply`
+ * (params_to_renderer_options); a test starts from renderer_options_default(). */
 typedef struct renderer_options {
     int width, height;
     bool queries;              /* use timer / pipeline-statistics queries where the context has them */
     bool timer_query, pipeline_statistics;  /* what the context offers (from gl_info) */
     int max_uniform_block_size;   /* the context's limit, for forward-spml's light buffer */
-    /* deferred */
-    gbuffer_preset gbuffer;
-    gbuffer_position gbuffer_position;
-    gbuffer_normal gbuffer_normal;
-    light_volume_mode light_volumes;
-    bool separate_specular;    /* seed 001: diffuse and specular in separate targets */
-    bool sky_stencil;          /* seed 001 19.7.2: the full-screen passes skip the pixels no
-                                  surface covers by a stencil bit the G-buffer pass sets */
-    /* shadows (every renderer; renderers/shadow.h): false = auto (spot and directional
-     * lights with shadows = true cast them), true = the manifest's `shadows: off` */
-    bool no_shadows;
     int shadow_map_size;       /* side of each shadow map in texels; 0: 1024 */
-    /* forward-mpml */
-    bool no_illumination_sets; /* draw every visible object for every light (seed 000 5.6) */
-    bool directional_in_base;  /* the directional lights shaded in the base pass, not in
-                                  passes of their own (forward.directional_in_base) */
-    /* forward-spml's light buffer (forward.light_buffer) */
-    light_buffer_kind light_buffer;
-    /* forward-plus (tiles.*): tile side in pixels (8, 16 or 32); the index
-     * buffer's capacity in entries per tile on average (0: enough for every light in
-     * every tile, i.e. no list can overflow) */
-    int tile_size;
-    uint32_t max_lights_per_tile;   /* clustered: per cluster */
-    /* clustered: exponential depth slices (clustered.slices, 1 to 64), and shading from the
-     * G-buffer (clustered.shading: deferred; every deferred G-buffer option applies) */
-    int clustered_slices;
-    bool clustered_deferred;
-    /* deferred-lighting (deferred_lighting.light_buffer), and its lights accumulated by the
-     * tiled light lists instead of deferred's light volumes (deferred_lighting.lights) */
-    lpp_light_buffer_format lpp_light_buffer;
-    bool lpp_tiled;
-    /* every renderer that draws: the light accumulation's format (hdr), and seed 000
-     * 4.5.12's fog from depth (fog.*): off while fog_density is 0; on, a surface at view
-     * depth z keeps exp(-fog_density z) of its light and takes the rest from fog_color */
-    hdr_format hdr;
-    float fog_density;
-    float fog_color[3];
-    /* every renderer that draws: anti-aliasing (aa), a post pass on the HDR image */
-    aa_mode aa;
-    /* every renderer that draws (msaa): samples per pixel of its HDR and depth targets;
-     * 0 or 1: single-sampled (renderers/base.h) */
-    int msaa;
+#define KEY_ENUM(...)
+#define PARAM_META(...)
+#define PARAM(...)
+#define KEY_OPTION(type, member, dims) type member dims;
+#include "renderers/keys.def"
+#undef KEY_ENUM
+#undef PARAM_META
+#undef PARAM
+#undef KEY_OPTION
 } renderer_options;
+
+/* Every key at its default: the tables' default texts, each by its value's C type, made
+ * into options by the keys' `apply` as the runner makes a run's (tests/unit/test_params.c
+ * checks the two agree). */
+renderer_options renderer_options_default(void);
+/* What a test means by a key's member it leaves zero: the default's (a member a test sets
+ * to zero on purpose is the default's already, fog_color aside). */
+void renderer_options_complete(renderer_options *o);
 
 struct renderer_estimate;
 

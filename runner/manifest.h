@@ -29,6 +29,16 @@ typedef enum run_schedule { RUN_SCHEDULE_INTERLEAVED = 0, RUN_SCHEDULE_SEQUENTIA
 typedef enum run_metric {
     RUN_METRIC_AUTO = 0, RUN_METRIC_WALL, RUN_METRIC_CPU, RUN_METRIC_GPU
 } run_metric;
+/* `translucency`, `shading.model` and `environment.light` (the names: runner/params.c) */
+typedef enum run_translucency {
+    RUN_TRANSLUCENCY_BLEND = 0, RUN_TRANSLUCENCY_OPAQUE
+} run_translucency;
+typedef enum run_shading_model {
+    RUN_SHADING_MODEL_SCENE = 0, RUN_SHADING_MODEL_PHONG, RUN_SHADING_MODEL_PBR
+} run_shading_model;
+typedef enum run_environment {
+    RUN_ENVIRONMENT_NONE = 0, RUN_ENVIRONMENT_SKY, RUN_ENVIRONMENT_SCENE
+} run_environment;
 /* trials: auto: rounds until measure.precision or measure.budget, within these */
 #define TRIALS_AUTO_MIN 3
 #define TRIALS_AUTO_MAX 30

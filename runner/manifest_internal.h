@@ -1,7 +1,9 @@
 #pragma once
 /* Internal to the manifest code (manifest_text.c, manifest_values.c,
- * manifest_check.c, manifest_load.c, manifest_variant.c, params.c): the
- * validation context and the helpers the files share. */
+ * manifest_check.c, manifest_load.c, manifest_variant.c, overrides.c, params*.c): the
+ * validation context and the helpers the files share. The calls go one way: params.c
+ * (the table) <- manifest_text.c <- overrides.c <- manifest_values.c (the parser) <-
+ * params_defaults.c <- params_print.c, manifest_check.c and the rest. */
 #include <stdbool.h>
 #include <stddef.h>
 #include <stdint.h>
@@ -61,10 +63,10 @@ bool mf_map_keys(vctx *c, const ynode *map, const char *prefix, const char *cons
 /* Validates n as parameter pd; a run parameter's value goes into dst (at pd->off),
  * the experiment's own (name, renderers...) into c->e. */
 bool mf_parse_value(vctx *c, const param *pd, const ynode *n, const char *key, run_params *dst);
-/* The table's defaults into dst, each through mf_parse_value (runner/params.c); false
+/* The table's defaults into dst, each through mf_parse_value (params_defaults.c); false
  * (with a "bug:" diagnostic) when one does not validate. */
 bool params_apply_defaults(vctx *c, run_params *dst);
-/* Schema 2's defaults over schema 1's (params.c params_schema2): applied to dst before a
+/* Schema 2's defaults over schema 1's (params_defaults.c params_schema2): applied to dst before a
  * `shadesweep: 2` manifest's own keys, as if the manifest began with them. A run id
  * leaves out a key only at its schema-1 default, so a schema-2 run's id names each of
  * these: it is the id of the same run written in schema 1 with the keys spelt out. */

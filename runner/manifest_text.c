@@ -14,18 +14,6 @@
 #include "scenes/scene.h"
 
 
-void mf_sb_add(sbuf *b, const char *fmt, ...)
-{
-    if (b->len + 1 >= b->cap)
-        return;
-    va_list ap;
-    va_start(ap, fmt);
-    int n = vsnprintf(b->s + b->len, b->cap - b->len, fmt, ap);
-    va_end(ap);
-    if (n > 0)
-        b->len = b->len + (size_t)n < b->cap ? b->len + (size_t)n : b->cap - 1;
-}
-
 /* Scalar text for a one-line message: escapes, truncated at a character boundary. */
 void mf_escape_text(sbuf *b, const char *s, size_t len)
 {

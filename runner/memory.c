@@ -78,7 +78,7 @@ static uint64_t targets_of(const char *kind, const run_params *q, int w, int h, 
     if (!impl || impl->no_base)   /* null: no target of its own */
         return 0;
     const uint64_t px = (uint64_t)w * (uint64_t)h, s = 1u << msaa_log2;
-    const uint64_t hdr = q->hdr == 1 ? 16 : 8, depth = 4;
+    const uint64_t hdr = q->hdr == HDR_RGBA32F ? 16 : 8, depth = 4;
     uint64_t b = (hdr + depth) * s * px + (s > 1 ? hdr * px : 0);
     renderer_options ro = {0};
     params_to_renderer_options(q, &ro);
@@ -88,9 +88,9 @@ static uint64_t targets_of(const char *kind, const run_params *q, int w, int h, 
                            .scene = sc != NULL, .needs = sc ? sc->needs : (deferred_needs){0},
                            .scene_bytes = sc ? sc->bytes : 0};
     b += renderer_own_bytes(kind, &e);
-    if (q->aa == 1)
+    if (q->aa == AA_EDGE)
         b += (hdr + depth) * px;   /* edge AA's output and single-sample depth */
-    if (sc && q->shadows != 1)
+    if (sc && q->shadows != SHADOWS_OFF)
         b += (uint64_t)sc->shadow_layers * SHADOW_DEFAULT_SIZE * SHADOW_DEFAULT_SIZE * depth;
     return b;
 }

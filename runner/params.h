@@ -84,6 +84,11 @@ void param_format(const param *pd, const run_params *p, char *out, size_t len);
 /* The column a parameter has in plan.csv and run_params_kv. */
 const char *param_column(const param *pd);
 
+/* params_defaults.c: a key's schema-2 default (NULL where it is schema 1's), and the
+ * canonical text of each parameter's default, by table index ("" for those without). */
+const char *params_schema2_default(const char *path);
+const char (*params_default_texts(void))[160];
+
 /* Every parameter at its default (those without one zeroed): the table's defaults
  * validate at every manifest load, so this cannot fail after one has loaded. */
 bool params_defaults(run_params *out);

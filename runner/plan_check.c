@@ -71,7 +71,7 @@ void run_params_scene(const run_params *p, scene_file_options *fo, scene_source 
                                .fit = p->scene_scale == 0, .up = (scene_up)p->scene_up,
                                .camera = p->scene_camera, .allow_outside = p->scene_outside,
                                .lights_around = p->scene_around,
-                               .phong = p->shading_model == 1,
+                               .phong = p->shading_model == RUN_SHADING_MODEL_PHONG,
                                .max_image_bytes = p->scene_max_image_bytes,
                                .max_triangles = p->scene_max_triangles,
                                .max_vertices = p->scene_max_vertices};
@@ -80,12 +80,13 @@ void run_params_scene(const run_params *p, scene_file_options *fo, scene_source 
 
 uint32_t run_params_shape_scene(const run_params *p, scene *s)
 {
-    uint32_t opaque = p->translucency == 1 ? scene_make_opaque(s) : 0;
-    shading_model m = p->shading_model == 1   ? SHADING_PHONG
-                      : p->shading_model == 2 ? SHADING_PBR
-                                              : scene_own_shading(s);
+    uint32_t opaque = p->translucency == RUN_TRANSLUCENCY_OPAQUE ? scene_make_opaque(s) : 0;
+    shading_model m = p->shading_model == RUN_SHADING_MODEL_PHONG ? SHADING_PHONG
+                      : p->shading_model == RUN_SHADING_MODEL_PBR ? SHADING_PBR
+                                                                : scene_own_shading(s);
     scene_set_shading(s, m);   /* a freshly built scene is Phong's: never refused */
-    bool sky = p->environment == 1 || (p->environment == 2 && s->from_file);
+    bool sky = p->environment == RUN_ENVIRONMENT_SKY ||
+               (p->environment == RUN_ENVIRONMENT_SCENE && s->from_file);
     scene_set_environment(s, sky ? ENVIRONMENT_SKY : ENVIRONMENT_NONE,
                           p->environment_intensity);
     return opaque;
@@ -323,7 +324,7 @@ static void find_beyond(const plan *p, const gl_holds *holds, beyond *lights, be
     for (size_t k = 0; k < p->nruns; k++) {
         const run_spec *r = &p->runs[k];
         const run_params *q = &r->p;
-        if (strcmp(q->renderer, "forward-spml") == 0 && q->light_buffer == 0 &&
+        if (strcmp(q->renderer, "forward-spml") == 0 && q->light_buffer == LIGHT_BUFFER_UNIFORM &&
             q->lights.placement != PLACEMENT_SCENE && q->lights.count.max > holds->lights)
             note_beyond(lights, r, q->lights.count.max);
         unsigned msaa = 1u << q->msaa, ref_msaa = q->error_renderer[0] ? 1u << q->error_msaa : 1;

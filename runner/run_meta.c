@@ -95,7 +95,7 @@ bool run_write_meta(run_state *st, char *err, size_t errlen)
     yo_map_end(y);
 
     const run_params *p = &st->s->p;
-    if (p->translucency == 1) {
+    if (p->translucency == RUN_TRANSLUCENCY_OPAQUE) {
         yo_key(y, "made_opaque");   /* translucency: opaque */
         yo_i64(y, st->made_opaque);
     }
@@ -167,7 +167,7 @@ bool run_write_meta(run_state *st, char *err, size_t errlen)
         yo_key(y, "materials_mask"); yo_i64(y, si->materials_mask);
         yo_key(y, "materials_blend"); yo_i64(y, si->materials_blend);
         yo_key(y, "blend"); yo_str(y, !si->materials_blend ? "none"
-                                      : p->translucency == 1 ? "made opaque (translucency: opaque)"
+                                      : p->translucency == RUN_TRANSLUCENCY_OPAQUE ? "made opaque (translucency: opaque)"
                                                              : "translucent, in the translucent pass");
         yo_key(y, "textures"); yo_i64(y, si->textures);
         yo_key(y, "lights"); yo_i64(y, si->lights);

@@ -17,8 +17,8 @@
  *                            before the first and destroyed after the last.
  *   gl_test_expect_agree()   two images agree within the test's tolerances, no pixel
  *                            non-finite; the numbers printed when not (or always).
- *   test_renderer_create()   (tests/test_options.h) renderer_create with the options the
- *                            test left unset at runner/params.def's defaults. */
+ *   test_renderer_create()   renderer_create with the key members the test left zero
+ *                            at their defaults (renderer_options_complete). */
 #include <EGL/egl.h>
 #include <EGL/eglext.h>
 #include <stdbool.h>
@@ -34,7 +34,6 @@
 #include "renderers/gl/context.h"
 #include "renderers/renderer.h"
 #include "results/image_ref.h"
-#include "tests/test_options.h"
 
 #define GL_TEST_SKIP_WITHOUT_EGL()                                                         \
     do {                                                                                   \
@@ -135,4 +134,13 @@ static inline void gl_test_expect_agree(const char *what, const image *a, const 
     assert_true(e.rmse < rmse_max);
     assert_true(e.max_abs <= max_abs);
     assert_int_equal(e.nonfinite, 0);
+}
+
+/* renderer_create with o's zero key members at their defaults. */
+static inline renderer *test_renderer_create(const char *kind, const renderer_options *o,
+                                             char *err, size_t errlen)
+{
+    renderer_options c = *o;
+    renderer_options_complete(&c);
+    return renderer_create(kind, &c, err, errlen);
 }

@@ -137,7 +137,7 @@ static renderer_options options(light_volume_mode mode, gbuffer_preset preset)
                           .pipeline_statistics = i->pipeline_statistics,
                           .max_uniform_block_size = i->max_uniform_block_size,
                           .gbuffer = preset, .light_volumes = mode};
-    test_options_complete(&o);   /* the renderer's own create is called: no renderer_create */
+    renderer_options_complete(&o);   /* the renderer's own create is called: no renderer_create */
     return o;
 }
 

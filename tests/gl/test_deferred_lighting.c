@@ -122,7 +122,7 @@ static renderer_options options(light_volume_mode mode, lpp_light_buffer_format 
                           .pipeline_statistics = i->pipeline_statistics,
                           .max_uniform_block_size = i->max_uniform_block_size,
                           .light_volumes = mode, .lpp_light_buffer = lb};
-    test_options_complete(&o);   /* the renderer's own create is called: no renderer_create */
+    renderer_options_complete(&o);   /* the renderer's own create is called: no renderer_create */
     return o;
 }
 

@@ -132,7 +132,7 @@ static renderer_options options(bool sets)
                           .pipeline_statistics = i->pipeline_statistics,
                           .max_uniform_block_size = i->max_uniform_block_size,
                           .no_illumination_sets = !sets};
-    test_options_complete(&o);   /* the renderers' own create is called: no renderer_create */
+    renderer_options_complete(&o);   /* the renderers' own create is called: no renderer_create */
     return o;
 }
 

@@ -338,7 +338,7 @@ static renderer_options options32(const char *kind, hdr_format hdr, float fog)
                           .gbuffer = GBUFFER_REFERENCE, .hdr = hdr, .fog_density = fog,
                           .fog_color = {0.6f, 0.5f, 0.4f}};
     (void)kind;
-    test_options_complete(&o);   /* some are made through their implementations */
+    renderer_options_complete(&o);   /* some are made through their implementations */
     return o;
 }
 

@@ -558,7 +558,7 @@ static void test_kv_canonical(void **state)
         }
         /* away from its default, such a key is part of the id */
         run_params p = e->base;
-        p.tile_size = 2;   /* 32 */
+        p.tile_size = TILE_SIZE_32;
         size_t m = run_params_kv(&p, kv, PARAM_KV_MAX);
         bool seen = false;
         for (size_t i = 0; i < m; i++)

@@ -14,7 +14,6 @@
 #include <cmocka.h>
 
 #include "renderers/renderer.h"
-#include "tests/test_options.h"
 #include "runner/diag.h"
 #include "runner/manifest.h"
 #include "runner/params.h"
@@ -28,15 +27,28 @@ static renderer_options options_of(const run_params *p)
     return o;
 }
 
-/* No renderer option is left unset by the defaults, and what the tests mean by an unset
- * one (tests/test_options.h) is the default; a zeroed option is refused by name. */
+/* The renderers' defaults (renderer_options_default: the key tables' texts read by their
+ * C types) are the runner's (the same texts validated and applied), and what the tests
+ * mean by a zero member (renderer_options_complete) is the default. */
 static void test_renderer_option_defaults(void **state)
 {
     (void)state;
     run_params d;
     assert_true(params_defaults(&d));
     renderer_options fromdef = options_of(&d), completed = {0};
-    test_options_complete(&completed);
+    renderer_options_complete(&completed);
+    renderer_options tables = renderer_options_default();
+#define KEY_ENUM(...)
+#define PARAM_META(...)
+#define PARAM(...)
+#define KEY_OPTION(type, member, dims)                                                      \
+    assert_memory_equal(&fromdef.member, &tables.member, sizeof fromdef.member);            \
+    assert_memory_equal(&fromdef.member, &completed.member, sizeof fromdef.member);
+#include "renderers/keys.def"
+#undef KEY_ENUM
+#undef PARAM_META
+#undef PARAM
+#undef KEY_OPTION
     assert_int_equal(fromdef.gbuffer, completed.gbuffer);
     assert_int_equal(fromdef.gbuffer_position, completed.gbuffer_position);
     assert_int_equal(fromdef.gbuffer_normal, completed.gbuffer_normal);
@@ -46,19 +58,11 @@ static void test_renderer_option_defaults(void **state)
     assert_int_equal(fromdef.clustered_slices, completed.clustered_slices);
     assert_int_equal(fromdef.hdr, completed.hdr);
     assert_int_equal(fromdef.aa, completed.aa);
-    char err[256] = "";
-    for (size_t i = 0; i < renderer_kind_count(); i++) {
-        const char *kind = renderer_kind_at(i)->name;
-        assert_null(renderer_create(kind, &(renderer_options){0}, err, sizeof err));
-        char want[256];
-        snprintf(want, sizeof want, "%s: the option gbuffer.preset is unset "
-                 "(runner/params.def gives every option its default)", kind);
-        assert_string_equal(err, want);
-    }
-    renderer_options noaa = completed;
-    noaa.aa = AA_UNSET;
-    assert_null(renderer_create("forward-plus", &noaa, err, sizeof err));
-    assert_non_null(strstr(err, "the option aa is unset"));
+    assert_int_equal(fromdef.tile_size, 16);
+    assert_int_equal(fromdef.clustered_slices, 24);
+    assert_int_equal(fromdef.msaa, 1);
+    assert_false(fromdef.no_illumination_sets);
+    assert_true(fromdef.fog_color[0] == 0.5f && fromdef.fog_color[2] == 0.5f);
 }
 
 static experiment *load_text(const char *yaml, diag_list *d)
@@ -276,11 +280,70 @@ static void test_table(void **state)
         }
     }
 #ifdef SHADESWEEP_TEST_EXTRA_PARAM
-    assert_non_null(param_find("test_extra"));   /* this build really has one more key */
+    assert_non_null(param_find("deferred.test_extra"));   /* this build has one more key */
     assert_int_equal(d.test_extra, 7);
 #else
-    assert_null(param_find("test_extra"));
+    assert_null(param_find("deferred.test_extra"));
 #endif
+}
+
+/* `params` in one format, as text (freed by the caller). */
+static char *params_text(params_format fmt)
+{
+    char *got = NULL;
+    size_t len = 0;
+    FILE *f = open_memstream(&got, &len);
+    params_print(f, fmt);
+    fclose(f);
+    return got;
+}
+
+/* A key declared only in a renderer's table (renderers/deferred_keys.def's
+ * deferred.test_extra, in the build with SHADESWEEP_TEST_EXTRA_PARAM) reaches the
+ * validation, `params`, its markdown (docs/manifest.md) and its bash completion, and
+ * is read by the renderer that reads its group; the plain build has none of it. The
+ * ids of every manifest at its default: test_pinned_ids, in this same build. */
+static void test_extra_key(void **state)
+{
+    (void)state;
+    diag_list d = {0};
+    experiment *e = load_text("shadesweep: 1\nname: extra\nscene: shapes\n"
+                              "renderers: [deferred]\nduration: {frames: 2}\n"
+                              "deferred: {test_extra: 101}\n",
+                              &d);
+    char *got = NULL;
+    size_t len = 0;
+    FILE *f = open_memstream(&got, &len);
+    diag_print(&d, f);
+    fclose(f);
+    char *md = params_text(PARAMS_MARKDOWN), *bash = params_text(PARAMS_BASH),
+         *text = params_text(PARAMS_TEXT);
+#ifdef SHADESWEEP_TEST_EXTRA_PARAM
+    assert_null(e);
+    assert_string_equal(got, "mem.yaml:6:24: deferred.test_extra: expected an integer 0..100, "
+                             "found '101'\n");
+    assert_non_null(strstr(md, "| `deferred.test_extra` | integer | 7 | an integer 0..100 | yes "
+                               "| deferred | inherit | a key that only the id test knows |\n"));
+    assert_non_null(strstr(bash, " deferred.sky_stencil deferred.test_extra forward "));
+    assert_non_null(strstr(bash, " deferred.sky_stencil deferred.test_extra "
+                                 "forward.illumination_sets "));   /* sweepable */
+    assert_non_null(strstr(text, "deferred.test_extra  (integer, sweepable)\n"
+                                 "    default:   7\n"));
+    assert_true(param_read_by(param_find("deferred.test_extra"), "deferred"));
+    assert_false(param_read_by(param_find("deferred.test_extra"), "forward-spml"));
+#else
+    assert_null(e);   /* an unknown key */
+    assert_non_null(strstr(got, "deferred.test_extra"));
+    assert_null(strstr(md, "test_extra"));
+    assert_null(strstr(bash, "test_extra"));
+    assert_null(strstr(text, "test_extra"));
+#endif
+    free(got);
+    free(md);
+    free(bash);
+    free(text);
+    experiment_free(e);
+    diag_free(&d);
 }
 
 /* The reference renders with error.reference.*, the run's inherited keys, and the
@@ -326,6 +389,7 @@ int main(void)
         cmocka_unit_test(test_fold_with_reference),
         cmocka_unit_test(test_sweep_key_nobody_reads),
         cmocka_unit_test(test_table),
+        cmocka_unit_test(test_extra_key),
         cmocka_unit_test(test_reference_params),
     };
     return cmocka_run_group_tests(tests, NULL, NULL);

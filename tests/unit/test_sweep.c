@@ -472,8 +472,8 @@ static void test_schema2_defaults(void **state)
     assert_int_equal(e2->base.lights.sizing, LIGHT_SIZING_RANGE_FROM_INTENSITY);
     assert_int_equal(e2->base.exposure_mode, EXPOSURE_AUTO);
     assert_int_equal(e2->base.tonemap, TONEMAP_PBR_NEUTRAL);
-    assert_int_equal(e2->base.environment, 2);   /* environment_names: "scene" */
-    assert_int_equal(e1->base.environment, 0);   /* "none" */
+    assert_int_equal(e2->base.environment, RUN_ENVIRONMENT_SCENE);
+    assert_int_equal(e1->base.environment, RUN_ENVIRONMENT_NONE);
     assert_int_equal(e1->base.lights.attenuation, ATTENUATION_INVERSE_SQUARE);
     assert_int_equal(e1->base.lights.sizing, LIGHT_SIZING_RADIUS);
     assert_int_equal(e1->base.exposure_mode, EXPOSURE_NONE);
