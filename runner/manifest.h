@@ -10,9 +10,43 @@
 #include <stdio.h>
 #include "renderers/renderer.h"
 #include "runner/diag.h"
-#include "runner/overrides.h"
 #include "scenes/lights.h"
 #include "scenes/scene.h"
+
+/* The manifest changed from the command line (run, list, validate):
+ *
+ *   --set KEY=VALUE     KEY: VALUE as if written in the manifest (repeatable, applied
+ *                       in order). VALUE is YAML (`--set 'lights.count={start: 0,
+ *                       step: 8, every: 1, max: 64}'`); KEY is a dotted key of
+ *                       docs/manifest.md, `sweep.KEY` (an axis) or `sweep`. The key is
+ *                       replaced wherever the manifest has it: `--set lights.count=64`
+ *                       on a manifest that sweeps lights.count makes it fixed (the axis
+ *                       is gone), `--set 'sweep.lights.count=[16, 64]'` sweeps a key the
+ *                       manifest sets in place, `--set 'sweep={...}'` replaces the
+ *                       whole sweep (its keys removed in place). A value replaces
+ *                       the whole key: `--set gbuffer=fat` drops the manifest's
+ *                       gbuffer.normal, `--set gbuffer.preset=fat` keeps it.
+ *   --renderer LIST     only the runs of these renderers (comma-separated), as if the
+ *                       manifest's `renderers` listed only those of its own that LIST
+ *                       names, in its order.
+ *
+ * Both go through the manifest's own validation (overrides.c grafts each
+ * --set's YAML onto the manifest's tree before it is read), so a bad value gets the
+ * manifest's message, located at "MANIFEST: --set KEY=VALUE" instead of a line; the
+ * run ids are those of the same manifest written out. Both are part of the manifest
+ * hash (a folder resumes and merges only with the same ones) and meta.yaml records
+ * them verbatim. */
+typedef struct manifest_overrides {
+    size_t nsets;
+    const char *const *sets;   /* "KEY=VALUE", verbatim, in command-line order */
+    const char *renderers;     /* --renderer's list, verbatim; NULL: every renderer */
+} manifest_overrides;
+
+/* The command line's checks of one argument, before any manifest is read: a --set
+ * without '=' or with an empty or malformed KEY; a --renderer list with a name that is
+ * not a renderer or an empty name. False with a one-line message in err. */
+bool override_check_set(const char *arg, char *err, size_t errlen);
+bool override_check_renderers(const char *list, char *err, size_t errlen);
 
 typedef enum span_kind { SPAN_SECONDS = 0, SPAN_FRAMES } span_kind;
 typedef struct span {          /* {seconds: x} or {frames: n} */
@@ -64,7 +98,7 @@ typedef struct experiment {
                                 * --renderer, --smoke and --scale where given) */
     char *text;                /* the manifest's bytes, NUL-terminated (meta.yaml keeps them) */
     size_t nsets;
-    char **sets;               /* --set KEY=VALUE, verbatim, in order (runner/overrides.h) */
+    char **sets;               /* --set KEY=VALUE, verbatim, in order (manifest_overrides, above) */
     char *renderer_filter;     /* --renderer's list, verbatim; NULL: none */
     double scale;              /* run --scale (1 when not given) */
     bool smoke;                /* run --smoke: experiment_make_smoke applied */
@@ -113,7 +147,7 @@ bool manifest_load(const char *path, experiment **out, diag_list *diags);
  * in messages and in experiment.path. manifest_load reads the file and calls it. */
 bool manifest_load_mem(const char *name, const char *data, size_t len, experiment **out,
                        diag_list *diags);
-/* manifest_load with the command line's --set and --renderer (runner/overrides.h);
+/* manifest_load with the command line's --set and --renderer (manifest_overrides, above);
  * ov NULL: none. */
 bool manifest_load_with(const char *path, const manifest_overrides *ov, experiment **out,
                         diag_list *diags);

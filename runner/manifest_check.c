@@ -1,7 +1,7 @@
 /* Manifest rules that need the whole manifest: required keys, swept-and-set, the
  * lights placement against its count, the error block, and what would make every
  * run fail or mean nothing. */
-#include "runner/manifest_internal.h"
+#include "runner/manifest_parse.h"
 
 #include <errno.h>
 #include <inttypes.h>

@@ -1,6 +1,6 @@
 /* Loading a manifest: the file, the defaults, the checks, the diagnostics in
  * document order. */
-#include "runner/manifest_internal.h"
+#include "runner/manifest_parse.h"
 
 #include <errno.h>
 #include <inttypes.h>

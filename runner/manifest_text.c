@@ -1,5 +1,5 @@
 /* Manifest messages: quoting what was found, what a parameter expects, lists. */
-#include "runner/manifest_internal.h"
+#include "runner/manifest_parse.h"
 
 #include <errno.h>
 #include <inttypes.h>

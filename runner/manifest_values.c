@@ -1,7 +1,7 @@
 /* Manifest values: integers, numbers, booleans and strings out of YAML scalars, and
  * one parser per parameter type (the one path for keys in place, sweep values and
  * defaults). */
-#include "runner/manifest_internal.h"
+#include "runner/manifest_parse.h"
 
 #include <errno.h>
 #include <inttypes.h>

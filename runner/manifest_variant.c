@@ -1,5 +1,5 @@
 /* Variants of a loaded manifest: `run --smoke` and `run --scale S`. */
-#include "runner/manifest_internal.h"
+#include "runner/manifest_parse.h"
 
 #include <errno.h>
 #include <inttypes.h>

@@ -1,5 +1,5 @@
-/* --set and --renderer (overrides.h). Each --set's value is loaded as a YAML document
- * of its own and grafted onto the manifest's tree before the manifest is read, so it
+/* --set and --renderer (manifest.h's manifest_overrides). Each --set's value is loaded
+ * as a YAML document of its own and grafted onto the manifest's tree before the manifest is read, so it
  * meets exactly the checks, messages and canonical values of a value written in the
  * file. The nodes of the k-th --set carry line -k: overrides_where turns that into
  * "MANIFEST: --set KEY=VALUE" for a diag.
@@ -8,7 +8,7 @@
  * >>graft          the tree surgery: a key set in place or as an axis, and removed
  *                  from the other place
  * >>load           what manifest_load calls */
-#include "runner/manifest_internal.h"
+#include "runner/manifest_parse.h"
 
 #include <stdarg.h>
 #include <stdio.h>

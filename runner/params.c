@@ -14,9 +14,8 @@
 
 #include "renderers/renderer.h"
 #include "runner/hash.h"
-#include "runner/manifest_internal.h"
 
-/* A bounded string builder (manifest_internal.h), at the bottom: every layer uses it. */
+/* A bounded string builder (manifest_parse.h), at the bottom: every layer uses it. */
 void mf_sb_add(sbuf *b, const char *fmt, ...)
 {
     if (b->len + 1 >= b->cap)

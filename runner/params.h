@@ -14,6 +14,13 @@
 #define MAX_EVERY 604800.0
 #define MAX_AXIS_VALUES 10000
 
+/* A bounded string builder: appends what fits, always NUL-terminated. */
+typedef struct sbuf {
+    char *s;
+    size_t cap, len;
+} sbuf;
+void mf_sb_add(sbuf *b, const char *fmt, ...) __attribute__((format(printf, 2, 3)));
+
 typedef enum ptype {
     PT_SCHEMA,       /* the integer 1 */
     PT_NAME,         /* [a-z0-9-]{1,63} -> experiment.name */

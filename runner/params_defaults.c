@@ -6,7 +6,7 @@
 #include <stdlib.h>
 #include <string.h>
 
-#include "runner/manifest_internal.h"
+#include "runner/manifest_parse.h"
 
 /* What `shadesweep: 2` changes (issue 36): a file scene shown as a viewer shows it,
  * its lights sized by what they light. Every other default is schema 1's. */

@@ -9,7 +9,7 @@
 
 #include "renderers/renderer.h"
 #include "results/jsonout.h"
-#include "runner/manifest_internal.h"
+#include "runner/manifest_parse.h"
 
 static const char *type_name(const param *pd)
 {

@@ -7,7 +7,7 @@
 
 #include "results/jsonout.h"
 #include "runner/hash.h"
-#include "runner/manifest_internal.h"
+#include "runner/manifest_parse.h"
 #include "runner/plan_check.h"
 #include "runner/sweep_axis.h"
 

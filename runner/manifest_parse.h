@@ -1,7 +1,7 @@
 #pragma once
-/* Internal to the manifest code (manifest_text.c, manifest_values.c,
- * manifest_check.c, manifest_load.c, manifest_variant.c, overrides.c, params*.c): the
- * validation context and the helpers the files share. The calls go one way: params.c
+/* Internal to the manifest's parser (manifest_text.c, manifest_values.c,
+ * manifest_check.c, manifest_load.c, manifest_variant.c, overrides.c, params_*.c): the
+ * validation context and the helpers the files share; above params.h and manifest.h. The calls go one way: params.c
  * (the table) <- manifest_text.c <- overrides.c <- manifest_values.c (the parser) <-
  * params_defaults.c <- params_print.c, manifest_check.c and the rest. */
 #include <stdbool.h>
@@ -13,13 +13,6 @@
 #include "runner/yamldoc.h"
 
 #define MANIFEST_MAX_BYTES (1u << 20)
-
-/* A bounded string builder: appends what fits, always NUL-terminated. */
-typedef struct sbuf {
-    char *s;
-    size_t cap, len;
-} sbuf;
-void mf_sb_add(sbuf *b, const char *fmt, ...) __attribute__((format(printf, 2, 3)));
 
 /* manifest_text.c: scalar text for a one-line message (escaped, cut at 60 bytes) */
 void mf_escape_text(sbuf *b, const char *s, size_t len);
@@ -80,7 +73,7 @@ void mf_parse_group(vctx *c, const char *prefix, const ynode *map, run_params *d
 /* manifest_check.c: every rule that needs the whole manifest, after parse_group */
 void manifest_check(vctx *c);
 
-/* overrides.c: --set and --renderer (overrides.h) */
+/* overrides.c: --set and --renderer (manifest.h) */
 /* Copies ov into c->e (sets, renderer_filter) and adds them to its hash; false (a
  * diag) when out of memory. */
 bool overrides_keep(vctx *c, const manifest_overrides *ov);
