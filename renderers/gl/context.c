@@ -23,6 +23,7 @@
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
+#include <time.h>
 
 // >>errors
 
@@ -397,6 +398,48 @@ const gl_info *gl_context_info(const gl_context *ctx)
 unsigned gl_context_framebuffer(const gl_context *ctx)
 {
     return ctx->fbo;
+}
+
+void gl_context_bind_default(const gl_context *ctx)
+{
+    gl.BindFramebuffer(GL_FRAMEBUFFER, ctx->fbo);
+}
+
+// >>sync
+
+static double monotonic_s(void)
+{
+    struct timespec ts;
+    clock_gettime(CLOCK_MONOTONIC, &ts);
+    return (double)ts.tv_sec + (double)ts.tv_nsec * 1e-9;
+}
+
+bool gl_context_sync(bool fence, double timeout_s, char *err, size_t errlen)
+{
+    if (!fence) {
+        gl.Finish();
+        return true;
+    }
+    GLsync f = gl.FenceSync(GL_SYNC_GPU_COMMANDS_COMPLETE, 0);
+    if (!f) {
+        snprintf(err, errlen, "glFenceSync failed");
+        return false;
+    }
+    double t0 = monotonic_s();
+    GLenum res;
+    do {
+        res = gl.ClientWaitSync(f, GL_SYNC_FLUSH_COMMANDS_BIT, 100000000u /* 0.1 s */);
+    } while (res == GL_TIMEOUT_EXPIRED && monotonic_s() - t0 < timeout_s);
+    gl.DeleteSync(f);
+    if (res == GL_TIMEOUT_EXPIRED) {
+        snprintf(err, errlen, "frame not finished after %.0f s", timeout_s);
+        return false;
+    }
+    if (res == GL_WAIT_FAILED) {
+        snprintf(err, errlen, "glClientWaitSync failed");
+        return false;
+    }
+    return true;
 }
 
 // >>readback
