@@ -610,6 +610,12 @@ gbuffer_traffic deferred_traffic(const void *self, const frame_stats *fs)
                                     r->b.width, r->b.height, fs);
 }
 
+uint64_t deferred_draws_per_light(const renderer_estimate *e)
+{
+    (void)e;
+    return 2;
+}
+
 uint64_t deferred_gbuffer_own_bytes(const renderer_estimate *e)
 {
     unsigned bpp = deferred_gbuffer_bytes_per_pixel(

@@ -194,3 +194,8 @@ const gl_target *forward_depth_target(const void *self);
  * as RGBA floats, row 0 at the bottom (renderer_read_hdr). False when not prepared or
  * width x height is not the target's. Direct state access: the cache is not disturbed. */
 bool forward_read_hdr(void *self, float *rgba, int width, int height);
+
+/* The most lights forward-spml can hold in one uniform block of the context:
+ * max_uniform_block_size / sizeof(gpu_light) (80 bytes: 5 vec4s, std140), 0 for a
+ * size <= 0. `shadesweep info` reports it. */
+uint32_t forward_spml_max_lights(int max_uniform_block_size);

@@ -314,9 +314,15 @@ static void mpml_destroy(void *self)
     forward_common_free(self);
 }
 
+/* The meshes each light reaches, counted as half of the scene's. */
+static uint64_t mpml_draws_per_light(const renderer_estimate *e)
+{
+    return (e->nmeshes + 1) / 2;
+}
+
 const renderer_impl renderer_forward_mpml_impl = RENDERER_IMPL(
     mpml, "forward-mpml", "forward.illumination_sets forward.directional_in_base hdr msaa fog aa",
     "multi-pass multi-light forward (seed 000 4.6): a depth, ambient and "
     "emissive pass, then an additive depth-EQUAL pass per visible light "
     "over its illumination set",
-    .read_hdr = forward_read_hdr);
+    .read_hdr = forward_read_hdr, .draws_per_light = mpml_draws_per_light);

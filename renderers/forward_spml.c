@@ -192,8 +192,17 @@ static void spml_describe(const void *self, pass_plan *out)
 
 RENDERER_DESTROY(spml, release_lights, forward_common_free)
 
+/* The uniform light buffer's capacity; a storage buffer (or auto's fallback to one)
+ * has no limit of its own. */
+static uint32_t spml_max_lights(const renderer_options *o, int max_uniform_block_size)
+{
+    if (o && o->light_buffer != LIGHT_BUFFER_UNIFORM)
+        return UINT32_MAX;
+    return forward_spml_max_lights(max_uniform_block_size);
+}
+
 const renderer_impl renderer_forward_spml_impl = RENDERER_IMPL(
     spml, "forward-spml", "forward.light_buffer hdr msaa fog aa",
     "single-pass multi-light forward (seed 003 4.1): every visible light "
     "from a uniform buffer, looped in the fragment shader",
-    .read_hdr = forward_read_hdr);
+    .read_hdr = forward_read_hdr, .max_lights = spml_max_lights);

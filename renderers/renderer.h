@@ -268,6 +268,18 @@ typedef struct renderer_impl {
      * for the memory estimate a run is checked against before it starts
      * (runner/memory.c): a model, no GL call. */
     uint64_t (*own_bytes)(const struct renderer_estimate *e);
+    /* Optional (NULL: 0): for the memory estimate, the draw calls a frame makes for each
+     * light, which llvmpipe bins until the frame ends (light volumes and their stencil
+     * marks, forward-mpml's meshes a light reaches). */
+    uint64_t (*draws_per_light)(const struct renderer_estimate *e);
+    /* Optional (NULL: no limit of its own): the most lights an object made with opts
+     * (NULL: its most limited design) holds in a context whose uniform blocks hold
+     * max_uniform_block_size bytes; UINT32_MAX where opts choose no such limit. */
+    uint32_t (*max_lights)(const renderer_options *opts, int max_uniform_block_size);
+    /* Optional (NULL: none, or the gbuffer.* keys choose it): the name of the per-sample
+     * surface target the design keeps when no key chooses its layout (summary.csv's
+     * gbuffer column): deferred-lighting's "light-prepass", visibility's "ids". */
+    const char *gbuffer_layout;
     /* Optional (NULL: the entries above serve): a renderer that is one of two designs
      * chosen by an option (clustered: forward or deferred shading over the same cluster
      * lists) returns the registered renderer whose entry points serve an object made with
@@ -381,10 +393,27 @@ typedef struct renderer_estimate {
     bool scene;
     deferred_needs needs;         /* (scene) the materials' G-buffer needs */
     uint64_t scene_bytes;         /* (scene) the meshes' vertices and indices */
+    uint32_t nmeshes;             /* (scene) its meshes */
 } renderer_estimate;
 /* renderer_impl.own_bytes of the design that serves `kind` with e->opts (its variant);
  * 0 for an unknown kind or a design without one. */
 uint64_t renderer_own_bytes(const char *kind, const renderer_estimate *e);
+/* renderer_impl.draws_per_light of the registry's entry `kind`; 0 without one. */
+uint64_t renderer_draws_per_light(const char *kind, const renderer_estimate *e);
+/* renderer_impl.max_lights of the registry's entry `kind` (o NULL: its most limited
+ * design); UINT32_MAX for a renderer without one or an unknown kind. */
+uint32_t renderer_max_lights(const char *kind, const renderer_options *o,
+                             int max_uniform_block_size);
+/* The bytes one light takes in the renderers' light buffers (std140 vec4s). */
+uint64_t renderer_light_bytes(void);
+/* The bytes of one shadow map layer at the default size (renderers/shadow.h). */
+uint64_t renderer_shadow_layer_bytes(void);
+/* The depth slices clustered.slices slices_y makes of s's camera (its light grid's
+ * depth, renderers/shading.h), and whether the planes proj11, znear, zfar hold them
+ * (false with the message the grid gives at prepare, naming kind). */
+uint32_t renderer_cluster_slices(const struct scene *s, int slices_y);
+bool renderer_cluster_slices_ok(const char *kind, double proj11, double znear, double zfar,
+                                int slices_y, char *err, size_t errlen);
 
 /* What objects' materials of s write (opaque and alpha-tested ones: translucent objects
  * never reach the G-buffer, renderers/translucent.h). */
@@ -393,6 +422,8 @@ deferred_needs deferred_needs_of(const struct scene *s);
 /* Whether the renderer `kind` with options o shades from a G-buffer: whether the design
  * that serves it (renderer_impl.variant) reads the gbuffer keys. */
 bool deferred_uses_gbuffer(const char *kind, const renderer_options *o);
+/* renderer_impl.gbuffer_layout of the design that serves kind with o; "" without one. */
+const char *renderer_gbuffer_layout(const char *kind, const renderer_options *o);
 /* The bytes per pixel of the G-buffer of o's preset and overrides for a scene that needs
  * `needs` (as renderer_prepare builds it); 0 for a layout that does not build. */
 unsigned deferred_gbuffer_bytes_per_pixel(const renderer_options *o, deferred_needs needs);
@@ -407,7 +438,3 @@ unsigned deferred_gbuffer_bytes_per_pixel(const renderer_options *o, deferred_ne
 gbuffer_traffic deferred_gbuffer_traffic(unsigned bytes_per_pixel, int width, int height,
                                          const frame_stats *fs);
 
-/* The most lights forward-spml can hold in one uniform block of the context:
- * max_uniform_block_size / sizeof(gpu_light) (80 bytes: 5 vec4s, std140), 0 for a
- * size <= 0. `shadesweep info` reports it. */
-uint32_t forward_spml_max_lights(int max_uniform_block_size);

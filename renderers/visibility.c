@@ -659,6 +659,7 @@ static void visibility_describe(const void *self, pass_plan *out)
     if (r->target.texture && out->ntargets < sizeof out->target / sizeof out->target[0]) {
         gl_target_describe(&r->target, &out->target[out->ntargets++]);
         out->target_bytes += r->target.bytes;
+        out->gbuffer_bytes += r->target.bytes;   /* the ids: its G-buffer, 4 bytes a sample */
     }
 }
 
@@ -690,4 +691,4 @@ const renderer_impl renderer_visibility_impl = RENDERER_IMPL(
     "triangle and shades it with analytic derivatives",
     .collect = visibility_collect, .read_hdr = forward_read_hdr,
     .light_grid = forward_grid_counts, .traffic = visibility_traffic,
-    .own_bytes = visibility_own_bytes);
+    .own_bytes = visibility_own_bytes, .gbuffer_layout = "ids");
