@@ -5,7 +5,7 @@
  * flushes, fsyncs, checks the file's size against the bytes written, closes and renames
  * it over the final name; afile_abort() closes and unlinks it. Either of the two must be
  * called exactly once. Every file the program writes goes through here (images too:
- * results/image_io.cpp encodes in memory, then afile_write).
+ * common/image_io.cpp encodes in memory, then afile_write).
  *
  * fp is a stream whose every write(2) is checked: the first error's errno is kept (a
  * later fflush or ferror cannot lose it), and afile_commit fails with a message naming

@@ -359,10 +359,18 @@ bool renderer_base_targets(renderer_base *b, const char *hdr_name, char *err, si
                                  err, errlen);
 }
 
+void renderer_base_release_aa(edge_aa *e)
+{
+    GL_FRAMEBUFFERS_DESTROY(&e->fb, &e->depth_read, &e->depth_draw);
+    GL_TARGETS_DESTROY(&e->out, &e->depth1);
+    e->program = 0;   /* the base's cache owns it */
+    e->run = false;
+}
+
 void renderer_base_release_targets(renderer_base *b)
 {
     GL_FRAMEBUFFERS_DESTROY(&b->msaa_read, &b->msaa_draw);
-    edge_aa_release(&b->aa);
+    renderer_base_release_aa(&b->aa);
     GL_TARGETS_DESTROY(&b->hdr_resolved, &b->hdr, &b->depth);
 }
 

@@ -1,6 +1,7 @@
 /* What deferred and tiled-deferred share (deferred_core.h; deferred.c has the design). */
 #include "renderers/deferred_core.h"
 
+#include "renderers/edge_aa.h"
 #include "renderers/frontend.h"
 #include "renderers/gl/loader.h"
 #include "renderers/gl/program.h"

@@ -3,6 +3,7 @@
 
 #include <assert.h>
 
+#include "renderers/edge_aa.h"
 #include "renderers/shading.h"
 
 #include <math.h>

@@ -1,6 +1,6 @@
 /* File scenes through assimp: glTF 2.0 (.gltf + .bin + images, .glb, embedded data URIs)
  * and OBJ + MTL, and no other format (file_import.cpp). No GL in here; textures decode
- * through OpenImageIO (results/image_io.h).
+ * through OpenImageIO (common/image_io.h).
  *
  * Every byte assimp reads goes through our own file callbacks (>>io), which read each
  * file whole, once, and feed it to the content hash; images the materials reference

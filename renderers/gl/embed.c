@@ -17,7 +17,7 @@
  * name, an input that cannot be read, a NUL byte in an input, and an input that
  * is not text ending in a newline. Built natively and run by renderers/meson.build;
  * it uses nothing but the C library. */
-#include "results/grow.h"
+#include "common/grow.h"
 
 #include <stdio.h>
 #include <stdlib.h>
