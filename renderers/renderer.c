@@ -270,7 +270,7 @@ bool renderer_design_reads(const char *kind, const renderer_options *o, const ch
     return impl && renderer_reads(impl->reads, path);
 }
 
-bool deferred_uses_gbuffer(const char *kind, const renderer_options *o)
+bool renderer_uses_gbuffer(const char *kind, const renderer_options *o)
 {
     return renderer_design_reads(kind, o, "gbuffer");
 }

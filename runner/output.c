@@ -393,7 +393,7 @@ bool output_write_run_summary(const char *run_dir, const experiment *e, const ru
     renderer_options ro = {0};
     params_to_renderer_options(p, &ro);
     snprintf(gbuffer, sizeof gbuffer, "%s", renderer_gbuffer_layout(p->renderer, &ro));
-    if (deferred_uses_gbuffer(p->renderer, &ro)) {
+    if (renderer_uses_gbuffer(p->renderer, &ro)) {
         param_kv kv[PARAM_KV_MAX];
         size_t n = run_params_kv(p, kv, PARAM_KV_MAX);
         for (size_t k = 0; k < n; k++) {

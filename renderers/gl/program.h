@@ -44,7 +44,7 @@
  * Needs GL 4.5 (the shaders are #version 450) and a current context whose GL table
  * is loaded; every GL object is made and deleted in that context. */
 #include "renderers/gl/loader.h"
-#include "renderers/renderer.h"
+#include "renderers/gl/stats.h"
 
 #include <stdbool.h>
 #include <stddef.h>

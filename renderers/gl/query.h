@@ -32,7 +32,7 @@
 #include <stdbool.h>
 #include <stddef.h>
 
-#include "renderers/renderer.h"
+#include "renderers/gl/stats.h"
 
 enum { GL_PASS_QUERIES_FRAMES = 3 };
 

@@ -81,7 +81,7 @@
  * prints "bug: ..." on stderr and raises no GL error. Needs a current GL 4.5
  * context whose GL table is loaded. */
 #include "renderers/gl/loader.h"
-#include "renderers/renderer.h"
+#include "renderers/gl/stats.h"
 
 #include <stdbool.h>
 #include <stddef.h>

@@ -25,7 +25,7 @@
  * its bytes count every sample.
  * Needs a current GL 4.5 context whose GL table is loaded. */
 #include "renderers/gl/loader.h"
-#include "renderers/renderer.h"
+#include "renderers/gl/stats.h"
 
 #include <stdbool.h>
 #include <stddef.h>
