@@ -206,8 +206,6 @@ static void mpml_draw(void *self, const struct scene *s, frame_stats *out)
     const frontend *fe = &c->b.fe;
     const bool sets = !c->b.opts.no_illumination_sets;
 
-    renderer_base_shadow_pass(&c->b, s, out);
-
     uint32_t lights_drawn = 0;
     if (r->fold) {
         /* the frame's directional lights, in frontend order, for the base pass */
@@ -274,8 +272,7 @@ static void mpml_describe(const void *self, pass_plan *out)
 {
     const forward_mpml *r = self;
     const forward_common *c = &r->c;
-    out->npasses = 0;
-    forward_describe_shadows(c, out);
+    forward_describe_begin(c, out);
     if (r->fold)
         forward_describe_pass(out, "base", true,
                               "depth, ambient, emissive and %u directional light%s "

@@ -131,11 +131,7 @@ fail:
 static void spml_on_program(void *user, unsigned variant, GLuint program)
 {
     forward_spml *r = user;
-    (void)program;
-    if (r->program_frame[variant] != r->frame) {
-        gl.Uniform1i(FORWARD_UNIFORM_LIGHT, r->count);
-        r->program_frame[variant] = r->frame;
-    }
+    forward_light_count_once(&r->program_frame[variant], r->frame, r->count);
 }
 
 static void spml_draw(void *self, const struct scene *s, frame_stats *out)
@@ -144,8 +140,6 @@ static void spml_draw(void *self, const struct scene *s, frame_stats *out)
     forward_common *c = &r->c;
     forward_begin_frame(c, s, out);
     const frontend *fe = &c->b.fe;
-
-    renderer_base_shadow_pass(&c->b, s, out);
 
     forward_pass_begin(c, out, "shade");
     /* The frame's visible lights, packed in view space. The frontend's lights are
@@ -175,8 +169,7 @@ static void spml_describe(const void *self, pass_plan *out)
 {
     const forward_spml *r = self;
     const forward_common *c = &r->c;
-    out->npasses = 0;
-    forward_describe_shadows(c, out);
+    forward_describe_begin(c, out);
     if (r->storage)
         forward_describe_pass(out, "shade", true,
                               "every visible object once, up to %u lights from a storage "

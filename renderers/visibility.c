@@ -603,7 +603,6 @@ static void visibility_draw(void *self, const scene *s, frame_stats *out)
     visibility *r = self;
     forward_common *c = &r->c;
     forward_begin_frame(c, s, out);
-    renderer_base_shadow_pass(&c->b, s, out);
     uint32_t n = light_grid_upload_lights(&r->g, s, &c->b.fe);
     upload_draws(r, s);
     for (uint32_t m = 0; m < s->nmeshes; m++)   /* morph targets: the frame's shape */
@@ -639,8 +638,7 @@ static void visibility_describe(const void *self, pass_plan *out)
     const visibility *r = self;
     const forward_common *c = &r->c;
     const light_grid *g = &r->g;
-    out->npasses = 0;
-    forward_describe_shadows(c, out);
+    forward_describe_begin(c, out);
     forward_describe_pass(out, "visibility", true,
                           "the visible opaque objects: draw << %u | triangle, R32UI",
                           r->tri_bits);

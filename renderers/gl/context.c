@@ -546,11 +546,7 @@ bool gl_offscreen_create(gl_context *ctx, int width, int height, gl_offscreen *o
 
 void gl_offscreen_destroy(gl_offscreen *o)
 {
-    if (o->fbo)
-        gl.DeleteFramebuffers(1, &o->fbo);
-    if (o->color_rb)
-        gl.DeleteRenderbuffers(1, &o->color_rb);
-    if (o->depth_stencil_rb)
-        gl.DeleteRenderbuffers(1, &o->depth_stencil_rb);
+    GL_OBJECTS_DELETE(GLO_FRAMEBUFFER, &o->fbo);
+    GL_OBJECTS_DELETE(GLO_RENDERBUFFER, &o->color_rb, &o->depth_stencil_rb);
     *o = (gl_offscreen){0};
 }
