@@ -359,10 +359,18 @@ bool renderer_base_targets(renderer_base *b, const char *hdr_name, char *err, si
                                  err, errlen);
 }
 
+void renderer_base_release_aa(edge_aa *e)
+{
+    GL_FRAMEBUFFERS_DESTROY(&e->fb, &e->depth_read, &e->depth_draw);
+    GL_TARGETS_DESTROY(&e->out, &e->depth1);
+    e->program = 0;   /* the base's cache owns it */
+    e->run = false;
+}
+
 void renderer_base_release_targets(renderer_base *b)
 {
     GL_FRAMEBUFFERS_DESTROY(&b->msaa_read, &b->msaa_draw);
-    edge_aa_release(&b->aa);
+    renderer_base_release_aa(&b->aa);
     GL_TARGETS_DESTROY(&b->hdr_resolved, &b->hdr, &b->depth);
 }
 
@@ -382,24 +390,36 @@ bool renderer_base_read_hdr(const renderer_base *b, float *rgba, int width, int 
     return true;
 }
 
-bool renderer_base_coverage(renderer_base *b, uint64_t *covered, char *err, size_t errlen)
+/* The compute program `name` (NAME.comp; "NAME_msaa" with MSAA_SAMPLES at samples > 1)
+ * that reads the depth target between frames; 0 with a message that names `what`. */
+static GLuint depth_program(renderer_base *b, const char *name, const char *msaa_name,
+                            const char *compute, const char *what, char *err, size_t errlen)
 {
-    *covered = 0;
     if (!b->depth.texture) {
-        snprintf(err, errlen, "%s: coverage: no depth target (not prepared)", b->name);
-        return false;
+        snprintf(err, errlen, "%s: %s: no depth target (not prepared)", b->name, what);
+        return 0;
     }
     char samples[32], why[512];
     snprintf(samples, sizeof samples, "MSAA_SAMPLES %d", b->samples);
     GLuint program = 0;
     if (gl_program_get(b->programs,
-                       &(gl_program_desc){.name = b->samples > 1 ? "coverage_msaa" : "coverage",
-                                          .compute = "coverage.comp",
+                       &(gl_program_desc){.name = b->samples > 1 ? msaa_name : name,
+                                          .compute = compute,
                                           .defines = {b->samples > 1 ? samples : NULL}},
                        &program, why, sizeof why) != GLP_OK) {
-        snprintf(err, errlen, "%s: coverage: %s", b->name, why);
-        return false;
+        snprintf(err, errlen, "%s: %s: %s", b->name, what, why);
+        return 0;
     }
+    return program;
+}
+
+bool renderer_base_coverage(renderer_base *b, uint64_t *covered, char *err, size_t errlen)
+{
+    *covered = 0;
+    GLuint program = depth_program(b, "coverage", "coverage_msaa", "coverage.comp", "coverage",
+                                   err, errlen);
+    if (!program)
+        return false;
     if (!b->coverage_buffer) {
         gl.CreateBuffers(1, &b->coverage_buffer);
         gl.NamedBufferStorage(b->coverage_buffer, sizeof(GLuint), NULL, GL_DYNAMIC_STORAGE_BIT);
@@ -424,22 +444,10 @@ bool renderer_base_coverage(renderer_base *b, uint64_t *covered, char *err, size
 bool renderer_base_lights_reaching(renderer_base *b, const struct scene *s, uint32_t *counts,
                                    char *err, size_t errlen)
 {
-    if (!b->depth.texture) {
-        snprintf(err, errlen, "%s: lights reaching: no depth target (not prepared)", b->name);
+    GLuint program = depth_program(b, "lights_reaching", "lights_reaching_msaa",
+                                   "lights_reaching.comp", "lights reaching", err, errlen);
+    if (!program)
         return false;
-    }
-    char samples[32], why[512];
-    snprintf(samples, sizeof samples, "MSAA_SAMPLES %d", b->samples);
-    GLuint program = 0;
-    if (gl_program_get(b->programs,
-                       &(gl_program_desc){.name = b->samples > 1 ? "lights_reaching_msaa"
-                                                                 : "lights_reaching",
-                                          .compute = "lights_reaching.comp",
-                                          .defines = {b->samples > 1 ? samples : NULL}},
-                       &program, why, sizeof why) != GLP_OK) {
-        snprintf(err, errlen, "%s: lights reaching: %s", b->name, why);
-        return false;
-    }
     /* the lights on now, in view space as the frame drew them (s is posed for it) */
     uint32_t n = s->nlights_active;
     size_t nfloats = (size_t)(n ? n : 1) * 8u;

@@ -53,7 +53,6 @@
 #include <stdbool.h>
 #include <stddef.h>
 
-#include "renderers/edge_aa.h"
 #include "renderers/frontend.h"
 #include "renderers/gl/loader.h"
 #include "renderers/gl/program.h"
@@ -67,6 +66,20 @@
 enum { RENDERER_BASE_MAX_PASSES = 16 };
 
 struct scene;
+
+/* aa: edge's state (made and run by renderers/edge_aa.h, released with the base's
+ * targets, its output the display when it runs). */
+typedef struct edge_aa {
+    bool run;                        /* opts.aa == AA_EDGE and prepared */
+    bool gbuffer_normals;            /* normals from the G-buffer, else from depth */
+    gl_target out;                   /* "hdr.aa" */
+    gl_framebuffer fb;               /* out alone */
+    GLuint program;                  /* in the base's program cache */
+    /* msaa > 1: the multisampled depth blitted to one sample a pixel ("depth.aa"), what
+     * the edge test reads; normals then come from it, not from the G-buffer */
+    gl_target depth1;
+    gl_framebuffer depth_read, depth_draw;
+} edge_aa;
 
 typedef struct renderer_base {
     const char *name;                /* "deferred": prefixes messages */
@@ -164,6 +177,9 @@ bool renderer_base_hdr_target(const renderer_base *b, gl_target *t, const char *
  * renderer_base_destroy calls too) undoes it, as often as wanted. */
 bool renderer_base_targets(renderer_base *b, const char *hdr_name, char *err, size_t errlen);
 void renderer_base_release_targets(renderer_base *b);
+/* What edge_aa_prepare made (renderer_base_release_targets calls it); a zeroed one is
+ * fine. */
+void renderer_base_release_aa(edge_aa *e);
 /* The HDR image the resolve clamps into the output and read_hdr reads: with aa: edge
  * the edge pass's "hdr.aa", with msaa > 1 "hdr.resolved", else hdr. */
 const gl_target *renderer_base_display(const renderer_base *b);

@@ -282,4 +282,4 @@ const renderer_impl renderer_deferred_impl = RENDERER_IMPL(
     "G-buffer pass, then ambient, directional and light-volume passes "
     "(fullscreen | volume | stencil | stencil-two-pass), sky last",
     .collect = deferred_collect, .read_hdr = deferred_read_hdr, .traffic = deferred_traffic,
-    .own_bytes = deferred_own_bytes);
+    .own_bytes = deferred_own_bytes, .draws_per_light = deferred_draws_per_light);

@@ -156,3 +156,19 @@ uint64_t deferred_last_shade_draws(const void *self, int type);
  * larger than the mesh); the whole screen when the box reaches the eye's plane. Returns
  * its area in pixels (0: off screen). */
 int64_t deferred_scissor_rect(const struct scene *s, uint32_t light, int w, int h, int rect[4]);
+
+/* >>the G-buffer models the renderers and tests ask without making a renderer */
+
+/* The bytes per pixel of the G-buffer of o's preset and overrides for a scene that needs
+ * `needs` (as renderer_prepare builds it); 0 for a layout that does not build. */
+unsigned deferred_gbuffer_bytes_per_pixel(const renderer_options *o, deferred_needs needs);
+/* seed 002's G-buffer traffic (results/bandwidth.h, equations 4 and 5's MRT terms) of one
+ * collected frame of such a renderer at width x height: writes = bytes_per_pixel x
+ * the samples of the pass named "gbuffer"; reads = bytes_per_pixel x (the samples of
+ * "ambient", "directional", "point" and "spot", the passes that fetch the G-buffer per
+ * shaded sample, + width x height for each "tiled" pass: a compute pass counts no
+ * samples, and tiled_deferred.comp loads the surface of every pixel of the screen once).
+ * Other passes (shadows, compose, sky, resolve) touch no G-buffer attachment. NAN for
+ * both when bytes_per_pixel is 0 (no G-buffer), NAN for one whose samples are NAN. */
+gbuffer_traffic deferred_gbuffer_traffic(unsigned bytes_per_pixel, int width, int height,
+                                         const frame_stats *fs);

@@ -1,6 +1,7 @@
 /* What deferred and tiled-deferred share (deferred_core.h; deferred.c has the design). */
 #include "renderers/deferred_core.h"
 
+#include "renderers/edge_aa.h"
 #include "renderers/frontend.h"
 #include "renderers/gl/loader.h"
 #include "renderers/gl/program.h"
@@ -608,6 +609,12 @@ gbuffer_traffic deferred_traffic(const void *self, const frame_stats *fs)
     const deferred_renderer *r = self;
     return deferred_gbuffer_traffic(r->prepared ? deferred_layout_bytes_per_pixel(&r->layout) : 0,
                                     r->b.width, r->b.height, fs);
+}
+
+uint64_t deferred_draws_per_light(const renderer_estimate *e)
+{
+    (void)e;
+    return 2;
 }
 
 uint64_t deferred_gbuffer_own_bytes(const renderer_estimate *e)

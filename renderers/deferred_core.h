@@ -163,5 +163,8 @@ bool deferred_read_hdr(void *self, float *rgba, int width, int height);
  * the layout does not build: the widest preset's bound) and, with separate_specular,
  * the specular target's. */
 uint64_t deferred_gbuffer_own_bytes(const renderer_estimate *e);
+/* renderer_impl.draws_per_light of the light-volume designs: each light's volume and
+ * its stencil mark. */
+uint64_t deferred_draws_per_light(const renderer_estimate *e);
 /* renderer_impl.traffic: deferred_gbuffer_traffic of the layout prepare built. */
 gbuffer_traffic deferred_traffic(const void *self, const frame_stats *fs);

@@ -270,6 +270,8 @@ static uint64_t deferred_lighting_own_bytes(const renderer_estimate *e)
                   "EQUAL)",                                                                    \
                   .collect = deferred_lighting_collect, .read_hdr = deferred_read_hdr,         \
                   .traffic = deferred_traffic, .own_bytes = deferred_lighting_own_bytes,       \
+                  .draws_per_light = deferred_draws_per_light,                                 \
+                  .gbuffer_layout = "light-prepass",                                           \
                   __VA_ARGS__)
 
 static const renderer_impl volumes_design = DEFERRED_LIGHTING_DESIGN(

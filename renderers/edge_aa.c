@@ -4,24 +4,15 @@
 #include <stdio.h>
 #include <string.h>
 
-#include "renderers/base.h"
 #include "renderers/bindings.h"
 #include "renderers/gl/program.h"
 #include "renderers/gl/state.h"
-
-void edge_aa_release(edge_aa *e)
-{
-    GL_FRAMEBUFFERS_DESTROY(&e->fb, &e->depth_read, &e->depth_draw);
-    GL_TARGETS_DESTROY(&e->out, &e->depth1);
-    e->program = 0;   /* the base's cache owns it */
-    e->run = false;
-}
 
 bool edge_aa_prepare(renderer_base *b, const char *const *gbuffer_defines, int n, char *err,
                      size_t errlen)
 {
     edge_aa *e = &b->aa;
-    edge_aa_release(e);
+    renderer_base_release_aa(e);
     e->gbuffer_normals = false;
     if (b->opts.aa != AA_EDGE)
         return true;
@@ -65,7 +56,7 @@ bool edge_aa_prepare(renderer_base *b, const char *const *gbuffer_defines, int n
                                                         .depth_stencil = &e->depth1},
                                  why, sizeof why)))) {
         snprintf(err, errlen, "%s: aa: edge: %s", b->name, why);
-        edge_aa_release(e);
+        renderer_base_release_aa(e);
         return false;
     }
     e->run = true;

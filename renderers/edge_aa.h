@@ -49,36 +49,24 @@
 #include "renderers/gl/target.h"
 #include "renderers/renderer.h"
 
-struct renderer_base;
+/* The pass's state (edge_aa: its target, framebuffers, program) lives in the base
+ * (renderers/base.h), which releases it and hands its target to the resolve. */
+#include "renderers/base.h"
 
 enum { EDGE_AA_MAX_GBUFFER = 6 };
-
-typedef struct edge_aa {
-    bool run;                        /* opts.aa == AA_EDGE and prepared */
-    bool gbuffer_normals;            /* normals from the G-buffer, else from depth */
-    gl_target out;                   /* "hdr.aa" */
-    gl_framebuffer fb;               /* out alone */
-    GLuint program;                  /* in the base's program cache */
-    /* msaa > 1: the multisampled depth blitted to one sample a pixel ("depth.aa"), what
-     * the edge test reads; normals then come from it, not from the G-buffer */
-    gl_target depth1;
-    gl_framebuffer depth_read, depth_draw;
-} edge_aa;
 
 /* At prepare, after renderer_base_targets: with opts.aa == AA_EDGE, the target, its
  * framebuffer and the program (fullscreen.vert + edge_aa.frag), normals from the
  * G-buffer when gbuffer_defines is not NULL (the layout's defines, n of them: what
  * gbuffer.inc needs), else from depth. With aa: none, nothing. False with a message;
  * a second call releases what the first made first. */
-bool edge_aa_prepare(struct renderer_base *b, const char *const *gbuffer_defines, int n,
+bool edge_aa_prepare(renderer_base *b, const char *const *gbuffer_defines, int n,
                      char *err, size_t errlen);
-/* What prepare made (renderer_base_release_targets calls it); a zeroed one is fine. */
-void edge_aa_release(edge_aa *e);
 /* The "edge-aa" pass when it runs (nothing otherwise): hdr and depth, and the
  * G-buffer textures gbuffer[0..n) at units BIND_TEX_GBUFFER0 + k (the deferred
  * renderers; NULL, 0 for the forward ones), into "hdr.aa". One draw. */
-void edge_aa_pass(struct renderer_base *b, frame_stats *out, const GLuint *gbuffer, int n);
+void edge_aa_pass(renderer_base *b, frame_stats *out, const GLuint *gbuffer, int n);
 /* The plan's "edge-aa" row: runs (and where its normals come from) or skipped, why. */
-void edge_aa_describe_pass(const struct renderer_base *b, pass_plan *out);
+void edge_aa_describe_pass(const renderer_base *b, pass_plan *out);
 /* Appends "hdr.aa" to out->target (and target_bytes) when it was made. */
-void edge_aa_describe_target(const struct renderer_base *b, pass_plan *out);
+void edge_aa_describe_target(const renderer_base *b, pass_plan *out);

@@ -3,6 +3,7 @@
 
 #include <assert.h>
 
+#include "renderers/edge_aa.h"
 #include "renderers/shading.h"
 
 #include <math.h>
@@ -179,10 +180,19 @@ bool forward_compile_base(forward_common *fc, char *err, size_t errlen)
 
 // >>per frame
 
+void forward_light_count_once(uint64_t *seen, uint64_t frame, int count)
+{
+    if (*seen != frame) {
+        gl.Uniform1i(FORWARD_UNIFORM_LIGHT, count);
+        *seen = frame;
+    }
+}
+
 void forward_begin_frame(forward_common *fc, const scene *s, frame_stats *out)
 {
     renderer_base_begin_frame(&fc->b, s, out);
     fc->frame_scene = s;
+    renderer_base_shadow_pass(&fc->b, s, out);
 }
 
 unsigned forward_shadow_defines(const forward_common *fc, int type, const char *defs[2])
@@ -280,9 +290,10 @@ void forward_describe_resources(const forward_common *fc, pass_plan *out)
     out->gbuffer_bytes = 0;
 }
 
-void forward_describe_shadows(const forward_common *fc, pass_plan *out)
+void forward_describe_begin(const forward_common *fc, pass_plan *out)
 {
     const shadow_maps *sm = &fc->b.shadows;
+    out->npasses = 0;
     if (!fc->prepared ||
         sm->asking[LIGHT_POINT] + sm->asking[LIGHT_SPOT] + sm->asking[LIGHT_DIRECTIONAL] == 0)
         return;

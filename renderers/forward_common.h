@@ -7,10 +7,11 @@
  * Every frame of both renderers:
  *
  *     forward_begin_frame     renderer_base_begin_frame: cache invalidated (every frame
- *                             counted alike), frontend_build, scene_gpu_frame
- *     renderer_base_shadow_pass   when some spot or directional light casts shadows (and
- *                             shadows are not off): "shadows", renderers/shadow.h, one
- *                             draw per object of each shadowed light's shadow-casting set
+ *                             counted alike), frontend_build, scene_gpu_frame; then
+ *                             renderer_base_shadow_pass when some spot or directional
+ *                             light casts shadows (and shadows are not off): "shadows",
+ *                             renderers/shadow.h, one draw per object of each shadowed
+ *                             light's shadow-casting set
  *     ... the renderer's own passes into fc->fb (the base's "hdr", in the run's HDR
  *         format, RGBA16F or RGBA32F, + "depth": renderer_base_targets) ...
  *     forward_sky_pass        when the scene has a sky: one draw into untouched depth
@@ -126,6 +127,9 @@ bool forward_compile_base(forward_common *fc, char *err, size_t errlen);
 // >>per frame
 
 void forward_begin_frame(forward_common *fc, const scene *s, frame_stats *out);
+/* A forward_draw_objects on_program hook's light count: count into FORWARD_UNIFORM_LIGHT
+ * of the bound program once a frame; *seen is the frame its variant last got it. */
+void forward_light_count_once(uint64_t *seen, uint64_t frame, int count);
 
 /* The SHADOWS defines for programs lighting type t ("SHADOWS", "MAX_SHADOWS n") into
  * defs, or nothing (shadow_maps_for_type); returns how many. type < 0: any type (a
@@ -171,10 +175,11 @@ void forward_describe_pass(pass_plan *out, const char *name, bool run, const cha
     __attribute__((format(printf, 4, 5)));
 /* The targets (hdr, depth), their bytes, the programs compiled; gbuffer_bytes 0. */
 void forward_describe_resources(const forward_common *fc, pass_plan *out);
-/* The "shadows" entry, first in the plan, when some light of the scene asks for
- * shadows (it runs, or why not: "shadows: off", point lights only); a scene where no
- * light asks has no entry (the forward plans list only their own passes then). */
-void forward_describe_shadows(const forward_common *fc, pass_plan *out);
+/* How every describe begins: the plan emptied, then the "shadows" entry when some
+ * light of the scene asks for shadows (it runs, or why not: "shadows: off", point
+ * lights only); a scene where no light asks has no entry (the forward plans list only
+ * their own passes then). */
+void forward_describe_begin(const forward_common *fc, pass_plan *out);
 /* The fog (run, in the shaders, or skipped), sky and resolve entries, then the
  * resources: how every describe ends. */
 void forward_describe_tail(const forward_common *fc, pass_plan *out);
@@ -194,3 +199,8 @@ const gl_target *forward_depth_target(const void *self);
  * as RGBA floats, row 0 at the bottom (renderer_read_hdr). False when not prepared or
  * width x height is not the target's. Direct state access: the cache is not disturbed. */
 bool forward_read_hdr(void *self, float *rgba, int width, int height);
+
+/* The most lights forward-spml can hold in one uniform block of the context:
+ * max_uniform_block_size / sizeof(gpu_light) (80 bytes: 5 vec4s, std140), 0 for a
+ * size <= 0. `shadesweep info` reports it. */
+uint32_t forward_spml_max_lights(int max_uniform_block_size);

@@ -206,8 +206,6 @@ static void mpml_draw(void *self, const struct scene *s, frame_stats *out)
     const frontend *fe = &c->b.fe;
     const bool sets = !c->b.opts.no_illumination_sets;
 
-    renderer_base_shadow_pass(&c->b, s, out);
-
     uint32_t lights_drawn = 0;
     if (r->fold) {
         /* the frame's directional lights, in frontend order, for the base pass */
@@ -274,8 +272,7 @@ static void mpml_describe(const void *self, pass_plan *out)
 {
     const forward_mpml *r = self;
     const forward_common *c = &r->c;
-    out->npasses = 0;
-    forward_describe_shadows(c, out);
+    forward_describe_begin(c, out);
     if (r->fold)
         forward_describe_pass(out, "base", true,
                               "depth, ambient, emissive and %u directional light%s "
@@ -314,9 +311,15 @@ static void mpml_destroy(void *self)
     forward_common_free(self);
 }
 
+/* The meshes each light reaches, counted as half of the scene's. */
+static uint64_t mpml_draws_per_light(const renderer_estimate *e)
+{
+    return (e->nmeshes + 1) / 2;
+}
+
 const renderer_impl renderer_forward_mpml_impl = RENDERER_IMPL(
     mpml, "forward-mpml", "forward.illumination_sets forward.directional_in_base hdr msaa fog aa",
     "multi-pass multi-light forward (seed 000 4.6): a depth, ambient and "
     "emissive pass, then an additive depth-EQUAL pass per visible light "
     "over its illumination set",
-    .read_hdr = forward_read_hdr);
+    .read_hdr = forward_read_hdr, .draws_per_light = mpml_draws_per_light);

@@ -131,11 +131,7 @@ fail:
 static void spml_on_program(void *user, unsigned variant, GLuint program)
 {
     forward_spml *r = user;
-    (void)program;
-    if (r->program_frame[variant] != r->frame) {
-        gl.Uniform1i(FORWARD_UNIFORM_LIGHT, r->count);
-        r->program_frame[variant] = r->frame;
-    }
+    forward_light_count_once(&r->program_frame[variant], r->frame, r->count);
 }
 
 static void spml_draw(void *self, const struct scene *s, frame_stats *out)
@@ -144,8 +140,6 @@ static void spml_draw(void *self, const struct scene *s, frame_stats *out)
     forward_common *c = &r->c;
     forward_begin_frame(c, s, out);
     const frontend *fe = &c->b.fe;
-
-    renderer_base_shadow_pass(&c->b, s, out);
 
     forward_pass_begin(c, out, "shade");
     /* The frame's visible lights, packed in view space. The frontend's lights are
@@ -175,8 +169,7 @@ static void spml_describe(const void *self, pass_plan *out)
 {
     const forward_spml *r = self;
     const forward_common *c = &r->c;
-    out->npasses = 0;
-    forward_describe_shadows(c, out);
+    forward_describe_begin(c, out);
     if (r->storage)
         forward_describe_pass(out, "shade", true,
                               "every visible object once, up to %u lights from a storage "
@@ -192,8 +185,17 @@ static void spml_describe(const void *self, pass_plan *out)
 
 RENDERER_DESTROY(spml, release_lights, forward_common_free)
 
+/* The uniform light buffer's capacity; a storage buffer (or auto's fallback to one)
+ * has no limit of its own. */
+static uint32_t spml_max_lights(const renderer_options *o, int max_uniform_block_size)
+{
+    if (o && o->light_buffer != LIGHT_BUFFER_UNIFORM)
+        return UINT32_MAX;
+    return forward_spml_max_lights(max_uniform_block_size);
+}
+
 const renderer_impl renderer_forward_spml_impl = RENDERER_IMPL(
     spml, "forward-spml", "forward.light_buffer hdr msaa fog aa",
     "single-pass multi-light forward (seed 003 4.1): every visible light "
     "from a uniform buffer, looped in the fragment shader",
-    .read_hdr = forward_read_hdr);
+    .read_hdr = forward_read_hdr, .max_lights = spml_max_lights);

@@ -1,7 +1,7 @@
 /* The frontend: visible objects, lights, illumination sets and eye-inside flags of
  * one frame, decided once for every renderer (frontend.h says what each means). */
 #include "renderers/frontend.h"
-#include "results/grow.h"
+#include "common/grow.h"
 
 #include <math.h>
 #include <stdio.h>

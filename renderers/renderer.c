@@ -2,6 +2,8 @@
 #include "renderers/renderer.h"
 
 #include "renderers/base.h"
+#include "renderers/shading.h"
+#include "renderers/shadow.h"
 
 #include <math.h>
 #include <stdio.h>
@@ -243,9 +245,15 @@ bool renderer_design_reads(const char *kind, const renderer_options *o, const ch
     return impl && renderer_reads(impl->reads, path);
 }
 
-bool deferred_uses_gbuffer(const char *kind, const renderer_options *o)
+bool renderer_uses_gbuffer(const char *kind, const renderer_options *o)
 {
     return renderer_design_reads(kind, o, "gbuffer");
+}
+
+const char *renderer_gbuffer_layout(const char *kind, const renderer_options *o)
+{
+    const renderer_impl *impl = design_of(kind, o);
+    return impl && impl->gbuffer_layout ? impl->gbuffer_layout : "";
 }
 
 uint64_t renderer_own_bytes(const char *kind, const renderer_estimate *e)
@@ -334,4 +342,37 @@ void renderer_options_complete(renderer_options *o)
 #undef KEY_OPTION
 #undef PARAM_META
 #undef KEY_ENUM
+}
+
+uint64_t renderer_draws_per_light(const char *kind, const renderer_estimate *e)
+{
+    const renderer_impl *impl = renderer_kind_find(kind);
+    return impl && impl->draws_per_light ? impl->draws_per_light(e) : 0;
+}
+
+uint32_t renderer_max_lights(const char *kind, const renderer_options *o,
+                             int max_uniform_block_size)
+{
+    const renderer_impl *impl = renderer_kind_find(kind);
+    return impl && impl->max_lights ? impl->max_lights(o, max_uniform_block_size) : UINT32_MAX;
+}
+
+uint64_t renderer_light_bytes(void) { return sizeof(gpu_light); }
+
+uint64_t renderer_shadow_layer_bytes(void)
+{
+    return (uint64_t)SHADOW_DEFAULT_SIZE * SHADOW_DEFAULT_SIZE * 4;   /* 4 bytes a texel */
+}
+
+uint32_t renderer_cluster_slices(const struct scene *s, int slices_y)
+{
+    double ratio;
+    return shading_cluster_slices(s, slices_y, &ratio);
+}
+
+bool renderer_cluster_slices_ok(const char *kind, double proj11, double znear, double zfar,
+                                int slices_y, char *err, size_t errlen)
+{
+    return shading_cluster_slices_ok(kind, proj11, znear, zfar, slices_y, NULL, NULL, err,
+                                     errlen);
 }

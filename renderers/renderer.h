@@ -18,94 +18,10 @@
 #include <stdint.h>
 
 #include "renderers/keys.h"
+#include "renderers/gl/stats.h"
 #include "results/bandwidth.h"
 
 struct scene;
-
-#define RENDERER_MAX_PASSES 32
-
-/* Work and time of one pass in one frame. NAN where a measurement is unavailable. */
-typedef struct pass_stats {
-    const char *name;          /* static string */
-    double gpu_us;             /* GL_TIME_ELAPSED */
-    double cpu_us;             /* CPU time spent submitting the pass */
-    uint64_t draw_calls;
-    uint64_t dispatches;       /* compute dispatches (not in draw_calls) */
-    uint64_t state_changes;
-    double fragments;          /* GL_FRAGMENT_SHADER_INVOCATIONS */
-    double samples;            /* GL_SAMPLES_PASSED of the pass's shading draws (not the
-                                  stencil marks, shadow maps or depth pre-pass) */
-    double per_sample_samples; /* msaa: of samples, those of draws shaded per sample (deferred's
-                                  edge pixels); 0 elsewhere */
-    double samples_shaded;     /* fragment shader runs in samples: samples at msaa 1 and in a
-                                  single_sampled pass; with msaa N, (samples -
-                                  per_sample_samples) / N + per_sample_samples (a pixel
-                                  shaded once covers N samples) */
-    bool shaded_counted;       /* samples_shaded is the renderer's own count (a compute
-                                  pass that counts its shadings: visibility's shade) */
-    bool single_sampled;       /* the pass draws into single-sampled targets whatever the
-                                  run's msaa (the display resolve, edge AA): its samples are
-                                  pixels */
-    double primitives;         /* GL_PRIMITIVES_SUBMITTED */
-    double scissor_pixels;     /* light_volumes scissor: the pass's scissor rectangles'
-                                  area, summed over its lights; NAN elsewhere */
-} pass_stats;
-
-typedef struct frame_stats {
-    size_t npasses;
-    pass_stats pass[RENDERER_MAX_PASSES];
-    pass_stats total;          /* sums over passes (NAN if any pass's value is NAN) */
-    uint32_t lights_drawn;
-    /* deferred with msaa > 1 (NAN elsewhere): the fraction of the output's pixels whose
-     * samples differ (the edge-mark pass's samples / N / pixels), after collect */
-    double edge_fraction;
-    int msaa;                  /* samples per pixel of the frame's targets (0: 1) */
-    /* Tiled and clustered renderers, filled by collect (NAN and 0 for the others):
-     * over the frame's tiles (or clusters), the mean and largest light-list length,
-     * and the light evaluations per shaded pixel (list length summed over the pixels
-     * of the output / pixels: what the shading loop iterates). */
-    uint32_t grid_cells;       /* tiles, or clusters */
-    size_t grid_pass;          /* 1 + the index of the pass that built the grid; 0: none */
-    double grid_lights_mean, grid_lights_max;
-    double light_evals_per_pixel;
-    uint64_t grid_covered;     /* pixels with geometry over the cells (each pixel's in one) */
-    /* The tiles' translucent lists (tiled and clustered renderers whose cull builds them
-     * because the scene has translucent objects; 0 and NAN otherwise): how many, and
-     * their mean and largest length. The grid_* counters above stay the opaque lists'. */
-    uint32_t translucent_lists;
-    double translucent_lights_mean, translucent_lights_max;
-    /* Non-empty when the frame could not be drawn as asked (a light list that would
-     * not fit, tiled renderers): the run fails as failed:overflow with this message. */
-    char overflow[160];
-} frame_stats;
-
-/* What renderer_prepare() decided: passes run and skipped (with why), programs
- * compiled, targets allocated. Recorded in meta.yaml. */
-typedef struct pass_plan_entry {
-    char name[32];
-    bool run;
-    char reason[96];           /* why it runs or why it was skipped */
-} pass_plan_entry;
-
-typedef struct target_plan_entry {
-    char name[32];
-    char format[24];
-    int width, height;
-    uint64_t bytes;
-} target_plan_entry;
-
-typedef struct pass_plan {
-    size_t npasses;
-    pass_plan_entry pass[RENDERER_MAX_PASSES];
-    size_t nprograms;
-    char program[RENDERER_MAX_PASSES][64];
-    size_t ntargets;
-    target_plan_entry target[16];
-    char lighting[192];        /* the light features every program is compiled for, and
-                                  those left out (renderer_base_describe; "" for null) */
-    uint64_t gbuffer_bytes;    /* bytes of G-buffer targets (0 for forward / null) */
-    uint64_t target_bytes;     /* all targets the renderer allocated */
-} pass_plan;
 
 /* What a renderer is made with: the context's facts, then the members the key tables
  * declare (renderers/keys.def's KEY_OPTION), which the runner sets by each key's `apply`
@@ -172,6 +88,18 @@ typedef struct renderer_impl {
      * for the memory estimate a run is checked against before it starts
      * (runner/memory.c): a model, no GL call. */
     uint64_t (*own_bytes)(const struct renderer_estimate *e);
+    /* Optional (NULL: 0): for the memory estimate, the draw calls a frame makes for each
+     * light, which llvmpipe bins until the frame ends (light volumes and their stencil
+     * marks, forward-mpml's meshes a light reaches). */
+    uint64_t (*draws_per_light)(const struct renderer_estimate *e);
+    /* Optional (NULL: no limit of its own): the most lights an object made with opts
+     * (NULL: its most limited design) holds in a context whose uniform blocks hold
+     * max_uniform_block_size bytes; UINT32_MAX where opts choose no such limit. */
+    uint32_t (*max_lights)(const renderer_options *opts, int max_uniform_block_size);
+    /* Optional (NULL: none, or the gbuffer.* keys choose it): the name of the per-sample
+     * surface target the design keeps when no key chooses its layout (summary.csv's
+     * gbuffer column): deferred-lighting's "light-prepass", visibility's "ids". */
+    const char *gbuffer_layout;
     /* Optional (NULL: the entries above serve): a renderer that is one of two designs
      * chosen by an option (clustered: forward or deferred shading over the same cluster
      * lists) returns the registered renderer whose entry points serve an object made with
@@ -285,10 +213,27 @@ typedef struct renderer_estimate {
     bool scene;
     deferred_needs needs;         /* (scene) the materials' G-buffer needs */
     uint64_t scene_bytes;         /* (scene) the meshes' vertices and indices */
+    uint32_t nmeshes;             /* (scene) its meshes */
 } renderer_estimate;
 /* renderer_impl.own_bytes of the design that serves `kind` with e->opts (its variant);
  * 0 for an unknown kind or a design without one. */
 uint64_t renderer_own_bytes(const char *kind, const renderer_estimate *e);
+/* renderer_impl.draws_per_light of the registry's entry `kind`; 0 without one. */
+uint64_t renderer_draws_per_light(const char *kind, const renderer_estimate *e);
+/* renderer_impl.max_lights of the registry's entry `kind` (o NULL: its most limited
+ * design); UINT32_MAX for a renderer without one or an unknown kind. */
+uint32_t renderer_max_lights(const char *kind, const renderer_options *o,
+                             int max_uniform_block_size);
+/* The bytes one light takes in the renderers' light buffers (std140 vec4s). */
+uint64_t renderer_light_bytes(void);
+/* The bytes of one shadow map layer at the default size (renderers/shadow.h). */
+uint64_t renderer_shadow_layer_bytes(void);
+/* The depth slices clustered.slices slices_y makes of s's camera (its light grid's
+ * depth, renderers/shading.h), and whether the planes proj11, znear, zfar hold them
+ * (false with the message the grid gives at prepare, naming kind). */
+uint32_t renderer_cluster_slices(const struct scene *s, int slices_y);
+bool renderer_cluster_slices_ok(const char *kind, double proj11, double znear, double zfar,
+                                int slices_y, char *err, size_t errlen);
 
 /* What objects' materials of s write (opaque and alpha-tested ones: translucent objects
  * never reach the G-buffer, renderers/translucent.h). */
@@ -296,22 +241,7 @@ deferred_needs deferred_needs_of(const struct scene *s);
 
 /* Whether the renderer `kind` with options o shades from a G-buffer: whether the design
  * that serves it (renderer_impl.variant) reads the gbuffer keys. */
-bool deferred_uses_gbuffer(const char *kind, const renderer_options *o);
-/* The bytes per pixel of the G-buffer of o's preset and overrides for a scene that needs
- * `needs` (as renderer_prepare builds it); 0 for a layout that does not build. */
-unsigned deferred_gbuffer_bytes_per_pixel(const renderer_options *o, deferred_needs needs);
-/* seed 002's G-buffer traffic (results/bandwidth.h, equations 4 and 5's MRT terms) of one
- * collected frame of such a renderer at width x height: writes = bytes_per_pixel x
- * the samples of the pass named "gbuffer"; reads = bytes_per_pixel x (the samples of
- * "ambient", "directional", "point" and "spot", the passes that fetch the G-buffer per
- * shaded sample, + width x height for each "tiled" pass: a compute pass counts no
- * samples, and tiled_deferred.comp loads the surface of every pixel of the screen once).
- * Other passes (shadows, compose, sky, resolve) touch no G-buffer attachment. NAN for
- * both when bytes_per_pixel is 0 (no G-buffer), NAN for one whose samples are NAN. */
-gbuffer_traffic deferred_gbuffer_traffic(unsigned bytes_per_pixel, int width, int height,
-                                         const frame_stats *fs);
+bool renderer_uses_gbuffer(const char *kind, const renderer_options *o);
+/* renderer_impl.gbuffer_layout of the design that serves kind with o; "" without one. */
+const char *renderer_gbuffer_layout(const char *kind, const renderer_options *o);
 
-/* The most lights forward-spml can hold in one uniform block of the context:
- * max_uniform_block_size / sizeof(gpu_light) (80 bytes: 5 vec4s, std140), 0 for a
- * size <= 0. `shadesweep info` reports it. */
-uint32_t forward_spml_max_lights(int max_uniform_block_size);

@@ -7,6 +7,7 @@
 #include "renderers/frontend.h"
 #include "renderers/gl/loader.h"
 #include "renderers/gl/program.h"
+#include "renderers/gl/target.h"
 #include "renderers/environment.h"
 #include "renderers/shading.h"
 #include "scenes/scene_anim.h"
@@ -131,18 +132,8 @@ static bool mesh_upload(gpu_mesh *out, const mesh *m, const char *what, uint64_t
 
 static void mesh_release(gpu_mesh *m)
 {
-    if (m->vao)
-        gl.DeleteVertexArrays(1, &m->vao);
-    if (m->vbo)
-        gl.DeleteBuffers(1, &m->vbo);
-    if (m->cbo)
-        gl.DeleteBuffers(1, &m->cbo);
-    if (m->uvbo)
-        gl.DeleteBuffers(1, &m->uvbo);
-    if (m->skbo)
-        gl.DeleteBuffers(1, &m->skbo);
-    if (m->ibo)
-        gl.DeleteBuffers(1, &m->ibo);
+    GL_OBJECTS_DELETE(GLO_VERTEX_ARRAY, &m->vao);
+    GL_OBJECTS_DELETE(GLO_BUFFER, &m->vbo, &m->cbo, &m->uvbo, &m->skbo, &m->ibo);
     memset(m, 0, sizeof *m);
 }
 
@@ -382,14 +373,8 @@ void scene_gpu_destroy(scene_gpu *g)
         gl.DeleteTextures((GLsizei)g->ntextures, g->textures);
     mesh_release(&g->sphere);
     mesh_release(&g->cone);
-    if (g->frame_ubo)
-        gl.DeleteBuffers(1, &g->frame_ubo);
-    if (g->joints_texture)
-        gl.DeleteTextures(1, &g->joints_texture);
-    if (g->environment)
-        gl.DeleteTextures(1, &g->environment);
-    if (g->joints_buffer)
-        gl.DeleteBuffers(1, &g->joints_buffer);
+    GL_OBJECTS_DELETE(GLO_BUFFER, &g->frame_ubo, &g->joints_buffer);
+    GL_OBJECTS_DELETE(GLO_TEXTURE, &g->joints_texture, &g->environment);
     gl_program_cache_destroy(g->programs);
     free(g->meshes);
     free(g->textures);

@@ -1,6 +1,8 @@
 /* Shadow maps for spot and directional lights, shared by every renderer (shadow.h). */
 #include "renderers/shadow.h"
 
+#include "renderers/gl/target.h"
+
 #include <stdarg.h>
 #include <stdio.h>
 #include <stdlib.h>
@@ -156,10 +158,8 @@ void shadow_maps_destroy(shadow_maps *sm)
             if (sm->fbo[i])
                 gl.DeleteFramebuffers(1, &sm->fbo[i]);
     }
-    if (sm->texture)
-        gl.DeleteTextures(1, &sm->texture);
-    if (sm->ubo)
-        gl.DeleteBuffers(1, &sm->ubo);
+    GL_OBJECTS_DELETE(GLO_TEXTURE, &sm->texture);
+    GL_OBJECTS_DELETE(GLO_BUFFER, &sm->ubo);
     free(sm->fbo);
     free(sm->staging);
     memset(sm, 0, sizeof *sm);

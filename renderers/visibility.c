@@ -603,7 +603,6 @@ static void visibility_draw(void *self, const scene *s, frame_stats *out)
     visibility *r = self;
     forward_common *c = &r->c;
     forward_begin_frame(c, s, out);
-    renderer_base_shadow_pass(&c->b, s, out);
     uint32_t n = light_grid_upload_lights(&r->g, s, &c->b.fe);
     upload_draws(r, s);
     for (uint32_t m = 0; m < s->nmeshes; m++)   /* morph targets: the frame's shape */
@@ -639,8 +638,7 @@ static void visibility_describe(const void *self, pass_plan *out)
     const visibility *r = self;
     const forward_common *c = &r->c;
     const light_grid *g = &r->g;
-    out->npasses = 0;
-    forward_describe_shadows(c, out);
+    forward_describe_begin(c, out);
     forward_describe_pass(out, "visibility", true,
                           "the visible opaque objects: draw << %u | triangle, R32UI",
                           r->tri_bits);
@@ -659,6 +657,7 @@ static void visibility_describe(const void *self, pass_plan *out)
     if (r->target.texture && out->ntargets < sizeof out->target / sizeof out->target[0]) {
         gl_target_describe(&r->target, &out->target[out->ntargets++]);
         out->target_bytes += r->target.bytes;
+        out->gbuffer_bytes += r->target.bytes;   /* the ids: its G-buffer, 4 bytes a sample */
     }
 }
 
@@ -690,4 +689,4 @@ const renderer_impl renderer_visibility_impl = RENDERER_IMPL(
     "triangle and shades it with analytic derivatives",
     .collect = visibility_collect, .read_hdr = forward_read_hdr,
     .light_grid = forward_grid_counts, .traffic = visibility_traffic,
-    .own_bytes = visibility_own_bytes);
+    .own_bytes = visibility_own_bytes, .gbuffer_layout = "ids");

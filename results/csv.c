@@ -18,8 +18,8 @@
 #include <string.h>
 #include <errno.h>
 
-#include "results/fsutil.h"
-#include "results/grow.h"
+#include "common/fsutil.h"
+#include "common/grow.h"
 #include "results/numfmt.h"
 
 #define CSV_BUF_SIZE (64 * 1024)

@@ -1,8 +1,8 @@
 #include "results/csvread.h"
 
 #include "results/csv.h"
-#include "results/fsutil.h"
-#include "results/grow.h"
+#include "common/fsutil.h"
+#include "common/grow.h"
 
 #include <errno.h>
 #include <math.h>

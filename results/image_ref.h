@@ -6,7 +6,7 @@
 #include <stddef.h>
 #include <stdint.h>
 
-#include "results/image_io.h"
+#include "common/image_io.h"
 
 /* A pixel is an edge of the reference when its luminance (Rec. 709 weights on the 8-bit
  * values / 255: 0.2126 R + 0.7152 G + 0.0722 B) differs from that of one of its four

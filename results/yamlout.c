@@ -20,7 +20,7 @@
 #include <string.h>
 #include <yaml.h>
 
-#include "results/fsutil.h"
+#include "common/fsutil.h"
 #include "results/numfmt.h"
 
 #define YO_MAX_DEPTH 64

@@ -504,8 +504,18 @@ static int cmd_info(int argc, char **argv)
         goto done;
     }
     gl_context_print_info(ctx, out);
-    fprintf(out, "forward_spml_max_lights: %u\n",
-            (unsigned)forward_spml_max_lights(gl_context_info(ctx)->max_uniform_block_size));
+    /* each renderer's light limit on this context ("forward_spml_max_lights: 819") */
+    for (size_t i = 0; i < renderer_kind_count(); i++) {
+        const renderer_impl *ri = renderer_kind_at(i);
+        if (!ri->max_lights)
+            continue;
+        char key[64];
+        snprintf(key, sizeof key, "%s", ri->name);
+        for (char *c = key; *c; c++)
+            *c = *c == '-' ? '_' : *c;
+        fprintf(out, "%s_max_lights: %u\n", key,
+                (unsigned)ri->max_lights(NULL, gl_context_info(ctx)->max_uniform_block_size));
+    }
     gl_context_destroy(ctx);
     fprintf(out, "renderers:");
     for (size_t i = 0; i < renderer_kind_count(); i++)

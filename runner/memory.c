@@ -11,8 +11,6 @@
 #include <unistd.h>
 
 #include "renderers/renderer.h"
-#include "renderers/shading.h"
-#include "renderers/shadow.h"
 #include "runner/params.h"
 #include "runner/plan_check.h"
 #include "scenes/scene.h"
@@ -63,10 +61,8 @@ static void facts_of(const scene *sc, scene_facts *f)
     for (uint32_t i = 0; i < sc->nlights_total; i++)
         f->shadow_layers += sc->lights[i].shadows && sc->lights[i].type != LIGHT_POINT;
     f->bytes = scene_of(sc);
-    for (int k = 1; k <= 64; k++) {
-        double ratio;
-        f->slices[k] = shading_cluster_slices(sc, k, &ratio);
-    }
+    for (int k = 1; k <= 64; k++)
+        f->slices[k] = renderer_cluster_slices(sc, k);
 }
 
 /* Bytes of the targets renderer `kind` (options of q) allocates at w x h, beyond the
@@ -86,12 +82,12 @@ static uint64_t targets_of(const char *kind, const run_params *q, int w, int h, 
     /* what the design makes beyond the base (renderer_impl.own_bytes) */
     renderer_estimate e = {.opts = &ro, .pixels = px, .samples = s, .hdr_bytes = hdr,
                            .scene = sc != NULL, .needs = sc ? sc->needs : (deferred_needs){0},
-                           .scene_bytes = sc ? sc->bytes : 0};
+                           .scene_bytes = sc ? sc->bytes : 0, .nmeshes = sc ? sc->nmeshes : 0};
     b += renderer_own_bytes(kind, &e);
     if (q->aa == AA_EDGE)
         b += (hdr + depth) * px;   /* edge AA's output and single-sample depth */
     if (sc && q->shadows != SHADOWS_OFF)
-        b += (uint64_t)sc->shadow_layers * SHADOW_DEFAULT_SIZE * SHADOW_DEFAULT_SIZE * depth;
+        b += (uint64_t)sc->shadow_layers * renderer_shadow_layer_bytes();
     return b;
 }
 
@@ -122,7 +118,7 @@ static uint64_t lists_of(const char *kind, const run_params *q, int w, int h,
      * (clustered, 4096 lights at 256x256: 300 MiB peak, 457 MiB estimated with both) */
     if (untouched)
         *untouched += cap * 4;
-    return 2 * (heads * 8 + cap * 4) + n * sizeof(gpu_light) * 2;
+    return 2 * (heads * 8 + cap * 4) + n * renderer_light_bytes() * 2;
 }
 
 /* llvmpipe's binning of one frame's draws, which it keeps until the frame ends: a
@@ -136,8 +132,9 @@ static uint64_t draws_of(const char *kind, int w, int h, const scene_facts *sc)
 {
     if (!sc)
         return 0;
-    uint64_t per_light = is(kind, "deferred") || is(kind, "deferred-lighting") ? 2
-                         : is(kind, "forward-mpml") ? (sc->nmeshes + 1) / 2 : 0;
+    renderer_estimate e = {.scene = true, .needs = sc->needs, .scene_bytes = sc->bytes,
+                           .nmeshes = sc->nmeshes};
+    uint64_t per_light = renderer_draws_per_light(kind, &e);
     uint64_t px = (uint64_t)w * (uint64_t)h, kib = 32;
     for (uint64_t q = 4096 * 4; q <= px; q *= 4)
         kib += 12;
@@ -148,7 +145,7 @@ static uint64_t scene_of(const scene *sc)
 {
     if (!sc)
         return 0;
-    uint64_t b = (uint64_t)sc->nlights_total * (sizeof(scene_light) + 2 * sizeof(gpu_light));
+    uint64_t b = (uint64_t)sc->nlights_total * (sizeof(scene_light) + 2 * renderer_light_bytes());
     for (uint32_t i = 0; i < sc->nmeshes; i++)
         b += 2 * ((uint64_t)sc->meshes[i].nvertices *
                       (sizeof(mesh_vertex) + (sc->meshes[i].colors ? 4 : 0) +

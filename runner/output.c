@@ -10,6 +10,7 @@
 #include "results/numfmt.h"
 #include "results/yamlout.h"
 #include "runner/folder.h"
+#include "runner/params.h"
 #include "runner/trials.h"
 #include "runner/yamldoc.h"
 
@@ -386,9 +387,13 @@ bool output_write_run_summary(const char *run_dir, const experiment *e, const ru
     if (!w)
         return false;
     const run_params *p = &s->p;
-    /* The G-buffer describes deferred runs only: "preset[/position][/normal]". */
+    /* The G-buffer of a design that has one: "preset[/position][/normal]" where the
+     * gbuffer keys choose it, else the design's own ("light-prepass", "ids"). */
     char gbuffer[96] = "";
-    if (strcmp(p->renderer, "deferred") == 0) {
+    renderer_options ro = {0};
+    params_to_renderer_options(p, &ro);
+    snprintf(gbuffer, sizeof gbuffer, "%s", renderer_gbuffer_layout(p->renderer, &ro));
+    if (renderer_uses_gbuffer(p->renderer, &ro)) {
         param_kv kv[PARAM_KV_MAX];
         size_t n = run_params_kv(p, kv, PARAM_KV_MAX);
         for (size_t k = 0; k < n; k++) {

@@ -16,7 +16,6 @@
 
 #include "renderers/gl/context.h"
 #include "renderers/renderer.h"
-#include "renderers/shading.h"
 #include "runner/hash.h"
 #include "runner/params.h"
 #include "scenes/scene.h"
@@ -186,8 +185,8 @@ static void check_slices(const experiment *e, const run_spec *r, const run_param
     if (!param_read_by(param_find("clustered.slices"), q->renderer))   /* either design */
         return;
     char err[512];
-    if (!shading_cluster_slices_ok(q->renderer, v->proj11, v->znear, v->zfar,
-                                   (int)q->clustered_slices, NULL, NULL, err, sizeof err))
+    if (!renderer_cluster_slices_ok(q->renderer, v->proj11, v->znear, v->zfar,
+                                    (int)q->clustered_slices, err, sizeof err))
         diag_add(d, e->path, 0, 0, "clustered.slices", "expected depth slices the light grid "
                  "holds, found: %s (run %s%s)", err, r->id, what);
 }
@@ -297,20 +296,24 @@ typedef struct beyond {
     size_t n;
     const char *first;
     uint64_t most;
+    uint64_t limit;            /* what the first run's renderer holds */
 } beyond;
 
-static void note_beyond(beyond *b, const run_spec *r, uint64_t v)
+static void note_beyond(beyond *b, const run_spec *r, uint64_t v, uint64_t limit)
 {
-    if (!b->n++)
+    if (!b->n++) {
         b->first = r->id;
+        b->limit = limit;
+    }
     if (v > b->most)
         b->most = v;
 }
 
-/* What a GL holds: forward-spml's lights in its uniform block, samples a pixel, pixels
- * a framebuffer's side. */
+/* What a GL holds: the bytes of a uniform block (the renderers' lights in it:
+ * renderer_max_lights), samples a pixel, pixels a framebuffer's side. */
 typedef struct gl_holds {
-    uint64_t lights, samples, side;
+    int uniform_block;
+    uint64_t samples, side;
 } gl_holds;
 
 /* The runs past each of `holds`: forward-spml with forward.light_buffer: uniform holds
@@ -324,24 +327,28 @@ static void find_beyond(const plan *p, const gl_holds *holds, beyond *lights, be
     for (size_t k = 0; k < p->nruns; k++) {
         const run_spec *r = &p->runs[k];
         const run_params *q = &r->p;
-        if (strcmp(q->renderer, "forward-spml") == 0 && q->light_buffer == LIGHT_BUFFER_UNIFORM &&
-            q->lights.placement != PLACEMENT_SCENE && q->lights.count.max > holds->lights)
-            note_beyond(lights, r, q->lights.count.max);
+        renderer_options ro = {0};
+        params_to_renderer_options(q, &ro);
+        uint32_t held = renderer_max_lights(q->renderer, &ro, holds->uniform_block);
+        if (q->lights.placement != PLACEMENT_SCENE && q->lights.count.max > held)
+            note_beyond(lights, r, q->lights.count.max, held);
         unsigned msaa = 1u << q->msaa, ref_msaa = q->error_renderer[0] ? 1u << q->error_msaa : 1;
         unsigned most_msaa = msaa > ref_msaa ? msaa : ref_msaa;
-        if (strcmp(q->renderer, "null") != 0 && most_msaa > holds->samples)
-            note_beyond(samples, r, most_msaa);
+        const renderer_impl *impl = renderer_kind_find(q->renderer);
+        bool targets = !impl || !impl->no_base;   /* null has none to sample */
+        if (targets && most_msaa > holds->samples)
+            note_beyond(samples, r, most_msaa, holds->samples);
         uint64_t k_ref = q->error_renderer[0] ? q->error_supersample : 1;
         uint64_t side = (uint64_t)(q->width > q->height ? q->width : q->height) *
                         (k_ref > 1 ? k_ref : 1);
         if (side > holds->side)
-            note_beyond(size, r, side);
+            note_beyond(size, r, side, holds->side);
     }
 }
 
 static gl_holds guaranteed(void)
 {
-    return (gl_holds){.lights = forward_spml_max_lights(GL_GUARANTEED_UNIFORM_BLOCK_BYTES),
+    return (gl_holds){.uniform_block = GL_GUARANTEED_UNIFORM_BLOCK_BYTES,
                       .samples = GL_GUARANTEED_SAMPLES, .side = GL_GUARANTEED_SIZE};
 }
 
@@ -370,7 +377,7 @@ bool plan_check_gl(const experiment *e, const plan *p, const gl_info *gi, diag_l
     size_t nerr = d->n;
     int side = min_int(min_int(gi->max_renderbuffer_size, gi->max_texture_size),
                        min_int(gi->max_viewport_dims[0], gi->max_viewport_dims[1]));
-    gl_holds holds = {.lights = forward_spml_max_lights(gi->max_uniform_block_size),
+    gl_holds holds = {.uniform_block = gi->max_uniform_block_size,
                       .samples = gi->max_samples > 0 ? (uint64_t)gi->max_samples : 1,
                       .side = side > 0 ? (uint64_t)side : 0};
     beyond lights, samples, size;
@@ -380,7 +387,7 @@ bool plan_check_gl(const experiment *e, const plan *p, const gl_info *gi, diag_l
         diag_add(d, e->path, 0, 0, "forward.light_buffer",
                  "expected at most %" PRIu64 " lights in forward-spml's uniform block on this "
                  "GL (%.200s: GL_MAX_UNIFORM_BLOCK_SIZE %d bytes), found %s; set "
-                 "forward.light_buffer: storage or fewer lights", holds.lights, gi->renderer,
+                 "forward.light_buffer: storage or fewer lights", lights.limit, gi->renderer,
                  gi->max_uniform_block_size, found_in(&lights, found, sizeof found));
     if (samples.n)
         diag_add(d, e->path, 0, 0, "msaa",
@@ -417,9 +424,9 @@ void plan_warnings(const experiment *e, const plan *p, FILE *out)
     /* samples and sizes past the guarantees fail where the context's limits are the
      * least (llvmpipe: 4 samples, 16384) */
     const gl_holds g = guaranteed();
-    const uint32_t sure = (uint32_t)g.lights;
     beyond lights, samples, size;
     find_beyond(p, &g, &lights, &samples, &size);
+    const uint32_t sure = (uint32_t)lights.limit;
     char held[96];
     snprintf(held, sizeof held, "%" PRIu32 " lights of the %d bytes", sure,
              GL_GUARANTEED_UNIFORM_BLOCK_BYTES);

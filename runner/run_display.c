@@ -8,7 +8,7 @@
 #include <stdlib.h>
 #include <string.h>
 
-#include "renderers/gl/loader.h"
+#include "renderers/gl/context.h"
 #include "renderers/renderer.h"
 
 /* The log-average (geometric mean) of the Rec. 709 luminance of an RGBA float image,
@@ -75,7 +75,7 @@ static bool meter(run_state *st, const renderer_options *ro, bool lights_off, do
             st->sc->nlights_active = 0;
         renderer_draw(m, st->sc, &fs);
         st->sc->nlights_active = active;
-        gl.Finish();
+        gl_context_sync(false, 0, NULL, 0);
         renderer_collect(m, &fs);
         size_t counted = 0;
         if (!(ok = renderer_read_hdr(m, hdr, mo.width, mo.height, NULL)))
@@ -87,7 +87,7 @@ static bool meter(run_state *st, const renderer_options *ro, bool lights_off, do
     renderer_destroy(m);
     st->sc->width = p->width;
     st->sc->height = p->height;
-    gl.BindFramebuffer(GL_FRAMEBUFFER, gl_context_framebuffer(st->ctx));
+    gl_context_bind_default(st->ctx);
     if (!ok)
         snprintf(st->err, sizeof st->err, "exposure.mode auto: the metering frame "
                  "(forward-spml): %.440s", why);

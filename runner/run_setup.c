@@ -6,7 +6,7 @@
 #include <stdlib.h>
 #include <string.h>
 
-#include "renderers/gl/loader.h"
+#include "renderers/gl/context.h"
 #include "renderers/renderer.h"
 #include "results/contention.h"
 #include "results/fsutil.h"
@@ -245,7 +245,7 @@ bool run_setup(run_state *st)
                     renderer_prepare(st->ref, st->sc, why, sizeof why);
         st->sc->width = p->width;
         st->sc->height = p->height;
-        gl.BindFramebuffer(GL_FRAMEBUFFER, gl_context_framebuffer(st->ctx));
+        gl_context_bind_default(st->ctx);
         if (!made) {
             snprintf(st->err, sizeof st->err, "reference %.31s: %.400s", p->error_renderer, why);
             run_set_status(st, "reference");

@@ -9,7 +9,7 @@
 #include <time.h>
 #include <unistd.h>
 
-#include "renderers/gl/loader.h"
+#include "renderers/gl/context.h"
 #include "renderers/renderer.h"
 #include "results/contention.h"
 #include "results/image_ref.h"
@@ -27,30 +27,7 @@ void run_utc_now(char *buf, size_t len)
 /* Waits until the GPU (or llvmpipe) has finished every command issued so far. */
 static bool frame_sync(run_sync how, char *err, size_t errlen)
 {
-    if (how == RUN_SYNC_FINISH) {
-        gl.Finish();
-        return true;
-    }
-    GLsync f = gl.FenceSync(GL_SYNC_GPU_COMMANDS_COMPLETE, 0);
-    if (!f) {
-        snprintf(err, errlen, "glFenceSync failed");
-        return false;
-    }
-    double t0 = progress_now();
-    GLenum res;
-    do {
-        res = gl.ClientWaitSync(f, GL_SYNC_FLUSH_COMMANDS_BIT, 100000000u /* 0.1 s */);
-    } while (res == GL_TIMEOUT_EXPIRED && progress_now() - t0 < SYNC_TIMEOUT_S);
-    gl.DeleteSync(f);
-    if (res == GL_TIMEOUT_EXPIRED) {
-        snprintf(err, errlen, "frame not finished after %.0f s", SYNC_TIMEOUT_S);
-        return false;
-    }
-    if (res == GL_WAIT_FAILED) {
-        snprintf(err, errlen, "glClientWaitSync failed");
-        return false;
-    }
-    return true;
+    return gl_context_sync(how != RUN_SYNC_FINISH, SYNC_TIMEOUT_S, err, errlen);
 }
 
 static bool span_done(const span *sp, size_t frames, double elapsed)
@@ -261,7 +238,7 @@ static bool measure_error(run_state *st, uint32_t trial, uint32_t frame, double 
         renderer_draw(st->ref, st->sc, &fs);
         st->sc->width = p->width;
         st->sc->height = p->height;
-        gl.Finish();
+        gl_context_sync(false, 0, NULL, 0);
         renderer_collect(st->ref, &fs);
         ok = (p->error_supersample > 1 ? read_reference_supersampled(st, &ref, err, errlen)
                                        : read_output(st, &ref, err, errlen)) &&

@@ -1,6 +1,6 @@
 /* File scenes through assimp: glTF 2.0 (.gltf + .bin + images, .glb, embedded data URIs)
  * and OBJ + MTL, and no other format (file_import.cpp). No GL in here; textures decode
- * through OpenImageIO (results/image_io.h).
+ * through OpenImageIO (common/image_io.h).
  *
  * Every byte assimp reads goes through our own file callbacks (>>io), which read each
  * file whole, once, and feed it to the content hash; images the materials reference
@@ -270,6 +270,17 @@ typedef struct build_nodes {
     uint32_t node;                 /* the nodes walked so far */
 } build_nodes;
 
+/* ok, after add_mesh allocated m's arrays; else m freed and the failure said. */
+static bool mesh_allocated(scene_builder *b, const char *path, const struct aiMesh *am, mesh *m,
+                           bool ok)
+{
+    if (!ok) {
+        mesh_free(m);
+        sb_fail(b, "%s: out of memory for a mesh of %u vertices", path, am->mNumVertices);
+    }
+    return ok;
+}
+
 /* A mesh of the file as a scene mesh: uv v flipped (assimp gives GL's bottom-up v; ours
  * is the image's first row at v = 0), tangents computed. Index or -1. */
 /* uvt: the material's texture transform baked into the mesh's uv (an affine map commutes
@@ -285,21 +296,15 @@ static int add_mesh(scene_builder *b, const char *path, const struct aiMesh *am,
     memset(m, 0, sizeof *m);
     m->vertices = calloc(am->mNumVertices, sizeof *m->vertices);
     m->indices = malloc((size_t)am->mNumFaces * 3 * sizeof *m->indices);
-    if (!m->vertices || !m->indices) {
-        mesh_free(m);
-        sb_fail(b, "%s: out of memory for a mesh of %u vertices", path, am->mNumVertices);
+    if (!mesh_allocated(b, path, am, m, m->vertices && m->indices))
         return -1;
-    }
     m->nvertices = am->mNumVertices;
     m->nindices = am->mNumFaces * 3;
     if (am->mTextureCoords[1]) {   /* TEXCOORD_1, as the first set: v flipped, the
                                     * material's transform, not finite as 0 */
         m->uv2 = malloc(am->mNumVertices * sizeof *m->uv2);
-        if (!m->uv2) {
-            mesh_free(m);
-            sb_fail(b, "%s: out of memory for a mesh of %u vertices", path, am->mNumVertices);
+        if (!mesh_allocated(b, path, am, m, m->uv2 != NULL))
             return -1;
-        }
         for (unsigned v = 0; v < am->mNumVertices; v++) {
             float u = am->mTextureCoords[1][v].x, w = 1.0f - am->mTextureCoords[1][v].y;
             if (uvt) {
@@ -313,11 +318,8 @@ static int add_mesh(scene_builder *b, const char *path, const struct aiMesh *am,
     }
     if (am->mColors[0]) {   /* COLOR_0: RGBA8, a channel that is not finite as 1 */
         m->colors = malloc(am->mNumVertices * sizeof *m->colors);
-        if (!m->colors) {
-            mesh_free(m);
-            sb_fail(b, "%s: out of memory for a mesh of %u vertices", path, am->mNumVertices);
+        if (!mesh_allocated(b, path, am, m, m->colors != NULL))
             return -1;
-        }
         for (unsigned v = 0; v < am->mNumVertices; v++) {
             const struct aiColor4D *c = &am->mColors[0][v];
             const float ch[4] = {c->r, c->g, c->b, c->a};

@@ -19,7 +19,7 @@
 #include <assimp/material.h>
 #include <assimp/scene.h>
 
-#include "results/image_io.h"
+#include "common/image_io.h"
 #include "scenes/scene.h"
 #include "scenes/scene_build.h"
 

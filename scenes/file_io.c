@@ -13,7 +13,7 @@
 #include <sys/stat.h>
 #include <unistd.h>
 
-#include "results/grow.h"
+#include "common/grow.h"
 
 void file_set_free(file_set *fs)
 {

@@ -14,8 +14,8 @@
 #include <strings.h>
 #include <time.h>
 
-#include "results/fsutil.h"
-#include "results/grow.h"
+#include "common/fsutil.h"
+#include "common/grow.h"
 #include "scenes/file_import.h"
 #include "scenes/scene_fail.h"
 #include "scenes/scene_internal.h"

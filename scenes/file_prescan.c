@@ -9,7 +9,7 @@
 #include <string.h>
 #include <strings.h>
 
-#include "results/grow.h"
+#include "common/grow.h"
 #include "scenes/scene_fail.h"
 
 /* glTF's JSON read before assimp sees it, for what would hurt inside the importer:

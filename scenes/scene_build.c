@@ -7,7 +7,7 @@
 #include <stdlib.h>
 #include <string.h>
 
-#include "results/grow.h"
+#include "common/grow.h"
 
 // >>setup
 

@@ -17,7 +17,7 @@
 #include <sys/stat.h>
 #include <time.h>
 
-#include "results/fsutil.h"
+#include "common/fsutil.h"
 #include "scenes/scene_build.h"
 #include "scenes/scene_internal.h"
 

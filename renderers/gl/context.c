@@ -23,6 +23,7 @@
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
+#include <time.h>
 
 // >>errors
 
@@ -399,6 +400,48 @@ unsigned gl_context_framebuffer(const gl_context *ctx)
     return ctx->fbo;
 }
 
+void gl_context_bind_default(const gl_context *ctx)
+{
+    gl.BindFramebuffer(GL_FRAMEBUFFER, ctx->fbo);
+}
+
+// >>sync
+
+static double monotonic_s(void)
+{
+    struct timespec ts;
+    clock_gettime(CLOCK_MONOTONIC, &ts);
+    return (double)ts.tv_sec + (double)ts.tv_nsec * 1e-9;
+}
+
+bool gl_context_sync(bool fence, double timeout_s, char *err, size_t errlen)
+{
+    if (!fence) {
+        gl.Finish();
+        return true;
+    }
+    GLsync f = gl.FenceSync(GL_SYNC_GPU_COMMANDS_COMPLETE, 0);
+    if (!f) {
+        snprintf(err, errlen, "glFenceSync failed");
+        return false;
+    }
+    double t0 = monotonic_s();
+    GLenum res;
+    do {
+        res = gl.ClientWaitSync(f, GL_SYNC_FLUSH_COMMANDS_BIT, 100000000u /* 0.1 s */);
+    } while (res == GL_TIMEOUT_EXPIRED && monotonic_s() - t0 < timeout_s);
+    gl.DeleteSync(f);
+    if (res == GL_TIMEOUT_EXPIRED) {
+        snprintf(err, errlen, "frame not finished after %.0f s", timeout_s);
+        return false;
+    }
+    if (res == GL_WAIT_FAILED) {
+        snprintf(err, errlen, "glClientWaitSync failed");
+        return false;
+    }
+    return true;
+}
+
 // >>readback
 
 bool gl_context_read_rgba8(gl_context *ctx, uint8_t *pixels, char *err, size_t errlen)
@@ -503,11 +546,7 @@ bool gl_offscreen_create(gl_context *ctx, int width, int height, gl_offscreen *o
 
 void gl_offscreen_destroy(gl_offscreen *o)
 {
-    if (o->fbo)
-        gl.DeleteFramebuffers(1, &o->fbo);
-    if (o->color_rb)
-        gl.DeleteRenderbuffers(1, &o->color_rb);
-    if (o->depth_stencil_rb)
-        gl.DeleteRenderbuffers(1, &o->depth_stencil_rb);
+    GL_OBJECTS_DELETE(GLO_FRAMEBUFFER, &o->fbo);
+    GL_OBJECTS_DELETE(GLO_RENDERBUFFER, &o->color_rb, &o->depth_stencil_rb);
     *o = (gl_offscreen){0};
 }

@@ -39,6 +39,12 @@ void gl_context_destroy(gl_context *ctx);   /* NULL is fine */
 
 const gl_info *gl_context_info(const gl_context *ctx);
 unsigned gl_context_framebuffer(const gl_context *ctx);   /* the off-screen FBO name */
+/* Binds the off-screen framebuffer again (after a renderer made or bound its own). */
+void gl_context_bind_default(const gl_context *ctx);
+/* Waits until the GPU has finished every command issued so far: glFinish (fence
+ * false), or a fence waited on in 0.1 s steps for at most timeout_s. False with a
+ * message when the fence fails or the commands are not done in time. */
+bool gl_context_sync(bool fence, double timeout_s, char *err, size_t errlen);
 
 /* GL errors seen so far: through the debug callback (debug contexts) plus those
  * found by gl_context_poll_errors(). Each is also printed as "GL error: ..." on stderr. */

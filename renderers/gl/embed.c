@@ -10,7 +10,7 @@
  * the length of a literal can get in the way.
  *
  * C headers, and what is refused: the comment above main(). */
-#include "results/grow.h"
+#include "common/grow.h"
 
 #include <stdio.h>
 #include <stdlib.h>

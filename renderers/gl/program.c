@@ -2,7 +2,7 @@
 #include "renderers/gl/program.h"
 
 #include "renderers/gl/shaders.h"
-#include "results/grow.h"
+#include "common/grow.h"
 
 #include <stdarg.h>
 #include <stdint.h>

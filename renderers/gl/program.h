@@ -6,7 +6,7 @@
  * names: the comment above the types below. Needs GL 4.5 (the shaders are #version 450)
  * and a current context whose GL table is loaded. */
 #include "renderers/gl/loader.h"
-#include "renderers/renderer.h"
+#include "renderers/gl/stats.h"
 
 #include <stdbool.h>
 #include <stddef.h>

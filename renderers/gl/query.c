@@ -2,7 +2,7 @@
 #include "renderers/gl/query.h"
 
 #include "renderers/gl/loader.h"
-#include "results/grow.h"
+#include "common/grow.h"
 
 #include <math.h>
 #include <stdio.h>

@@ -9,7 +9,7 @@
 #include <stdbool.h>
 #include <stddef.h>
 
-#include "renderers/renderer.h"
+#include "renderers/gl/stats.h"
 
 /* Use, per frame:
  *

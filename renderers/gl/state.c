@@ -1,6 +1,8 @@
 /* The GL state cache (state.h). */
 #include "renderers/gl/state_internal.h"
 
+#include "renderers/gl/target.h"
+
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
@@ -113,8 +115,7 @@ void gl_state_destroy(gl_state *s)
 {
     if (!s)
         return;
-    if (s->empty_vertex_array && gl.DeleteVertexArrays)
-        gl.DeleteVertexArrays(1, &s->empty_vertex_array);
+    GL_OBJECTS_DELETE(GLO_VERTEX_ARRAY, &s->empty_vertex_array);
     free(s);
 }
 

@@ -9,7 +9,7 @@
  * and never touched, and misuse: the comment above the categories below. Needs a
  * current GL 4.5 context whose GL table is loaded. */
 #include "renderers/gl/loader.h"
-#include "renderers/renderer.h"
+#include "renderers/gl/stats.h"
 
 #include <stdbool.h>
 #include <stddef.h>

@@ -124,8 +124,7 @@ void gl_target_destroy(gl_target *t)
 {
     if (!t)
         return;
-    if (t->texture && gl.DeleteTextures)
-        gl.DeleteTextures(1, &t->texture);
+    GL_OBJECTS_DELETE(GLO_TEXTURE, &t->texture);
     memset(t, 0, sizeof *t);
 }
 
@@ -133,6 +132,20 @@ void gl_targets_destroy(gl_target *const *list)
 {
     for (; *list; list++)
         gl_target_destroy(*list);
+}
+
+void gl_objects_delete(gl_object_kind kind, GLuint *const *names)
+{
+    void (*del)(GLsizei, const GLuint *) = kind == GLO_BUFFER         ? gl.DeleteBuffers
+                                           : kind == GLO_TEXTURE      ? gl.DeleteTextures
+                                           : kind == GLO_FRAMEBUFFER  ? gl.DeleteFramebuffers
+                                           : kind == GLO_RENDERBUFFER ? gl.DeleteRenderbuffers
+                                                                      : gl.DeleteVertexArrays;
+    for (; *names; names++) {
+        if (**names && del)
+            del(1, *names);
+        **names = 0;
+    }
 }
 
 void gl_target_describe(const gl_target *t, target_plan_entry *out)
@@ -315,8 +328,7 @@ void gl_framebuffer_destroy(gl_framebuffer *fb)
 {
     if (!fb)
         return;
-    if (fb->fbo && gl.DeleteFramebuffers)
-        gl.DeleteFramebuffers(1, &fb->fbo);
+    GL_OBJECTS_DELETE(GLO_FRAMEBUFFER, &fb->fbo);
     memset(fb, 0, sizeof *fb);
 }
 

@@ -7,7 +7,7 @@
  * targets: the comment above the format table below. Needs a current GL 4.5 context
  * whose GL table is loaded. */
 #include "renderers/gl/loader.h"
-#include "renderers/renderer.h"
+#include "renderers/gl/stats.h"
 
 #include <stdbool.h>
 #include <stddef.h>
@@ -115,6 +115,19 @@ void gl_target_destroy(gl_target *t);
 /* Destroys each target of a NULL-ended list; GL_TARGETS_DESTROY(&a, &b) ends it. */
 void gl_targets_destroy(gl_target *const *list);
 #define GL_TARGETS_DESTROY(...) gl_targets_destroy((gl_target *const[]){__VA_ARGS__, NULL})
+
+/* Deletes the GL objects of one kind whose names a NULL-ended list points at, those that
+ * are not 0 (nothing without a loaded GL table), and zeroes the names:
+ * GL_OBJECTS_DELETE(GLO_BUFFER, &m->vbo, &m->ibo). */
+typedef enum gl_object_kind {
+    GLO_BUFFER,
+    GLO_TEXTURE,
+    GLO_FRAMEBUFFER,
+    GLO_RENDERBUFFER,
+    GLO_VERTEX_ARRAY,
+} gl_object_kind;
+void gl_objects_delete(gl_object_kind kind, GLuint *const *names);
+#define GL_OBJECTS_DELETE(KIND, ...) gl_objects_delete(KIND, (GLuint *const[]){__VA_ARGS__, NULL})
 
 /* The pass_plan row of t: name, format name ("rgba16f", "rgba16f x4" when
  * multisampled), size, bytes. */

@@ -164,11 +164,7 @@ fail:
 static void plus_on_program(void *user, unsigned variant, GLuint program)
 {
     forward_plus *r = user;
-    (void)program;
-    if (r->program_frame[variant] != r->frame) {
-        gl.Uniform1i(FORWARD_UNIFORM_LIGHT, r->count);
-        r->program_frame[variant] = r->frame;
-    }
+    forward_light_count_once(&r->program_frame[variant], r->frame, r->count);
 }
 
 static void bind_buffers(forward_plus *r)
@@ -250,7 +246,6 @@ static void forward_tiled_draw(void *self, const struct scene *s, frame_stats *o
     forward_common *c = &r->c;
     forward_begin_frame(c, s, out);
     const frontend *fe = &c->b.fe;
-    renderer_base_shadow_pass(&c->b, s, out);
 
     /* the frame's visible lights, as forward-spml packs them */
     uint32_t n = light_grid_upload_lights(&r->g, s, fe);
@@ -306,8 +301,7 @@ static void forward_tiled_describe(const void *self, pass_plan *out)
     const forward_plus *r = self;
     const forward_common *c = &r->c;
     const light_grid *g = &r->g;
-    out->npasses = 0;
-    forward_describe_shadows(c, out);
+    forward_describe_begin(c, out);
     forward_describe_pass(out, "depth", true, "the visible objects, depth only");
     if ((!c->prepared || g->cull) && g->slices)
         forward_describe_pass(out, "cull", true,

@@ -192,6 +192,7 @@ static void test_counts_and_target(void **state)
     }
     assert_true(found);
     assert_int_equal(vis.plan.target_bytes, sum);
+    assert_int_equal(vis.plan.gbuffer_bytes, (uint64_t)W * H * 4);   /* the ids */
     const pass_plan_entry *e = plan_pass(&vis.plan, "visibility");
     assert_non_null(e);
     assert_true(e->run);

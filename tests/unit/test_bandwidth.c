@@ -118,7 +118,7 @@ static unsigned bpp(const char *kind, gbuffer_preset p, gbuffer_position pos, bo
     o.gbuffer_position = pos;
     o.clustered_deferred = cd;
     /* no scene: nothing needs gloss or emissive */
-    if (!deferred_uses_gbuffer(kind, &o))
+    if (!renderer_uses_gbuffer(kind, &o))
         return 0;
     return deferred_gbuffer_bytes_per_pixel(&o, deferred_needs_of(NULL));
 }

@@ -8,7 +8,7 @@
 
 #include <stdlib.h>
 
-#include "results/grow.h"
+#include "common/grow.h"
 
 static void test_grow_doubles_and_keeps(void **state)
 {

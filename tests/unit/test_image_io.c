@@ -14,8 +14,8 @@
 #include <stdlib.h>
 #include <string.h>
 
-#include "results/fsutil.h"
-#include "results/image_io.h"
+#include "common/fsutil.h"
+#include "common/image_io.h"
 #include "tests/unit/tempdir.h"
 
 typedef struct fixture {

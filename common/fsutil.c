@@ -3,7 +3,7 @@
 /* nftw() and FTW_DEPTH/FTW_PHYS are XSI, fopencookie() is glibc's: _GNU_SOURCE has both. */
 #define _GNU_SOURCE
 
-#include "results/fsutil.h"
+#include "common/fsutil.h"
 
 #include <errno.h>
 #include <fcntl.h>

@@ -2,8 +2,8 @@
 //
 // No C++ exception crosses into C: every entry point catches everything and turns
 // it into false with a message (or a neutral value where the function cannot fail).
-#include "results/image_io.h"
-#include "results/fsutil.h"
+#include "common/image_io.h"
+#include "common/fsutil.h"
 
 #include <OpenImageIO/filesystem.h>
 #include <OpenImageIO/imageio.h>
@@ -107,7 +107,7 @@ bool stores_float(const std::string &ext)
 }
 
 // The image encoded into bytes in memory (IOVecOutput): OIIO's writers then never touch
-// the disk, and the bytes go through afile (results/fsutil.h), which checks every write,
+// the disk, and the bytes go through afile (common/fsutil.h), which checks every write,
 // the flush, fsync and the file's size before the rename. A format whose writer cannot
 // write to a proxy is refused (PNG and EXR, what this program writes, can).
 bool encode(const std::string &final_path, const std::string &ext, const image *img,
