@@ -11,6 +11,7 @@
 #include "results/grow.h"
 #include "runner/diag.h"
 #include "runner/folder.h"
+#include "runner/account.h"
 #include "runner/output.h"
 #include "runner/yamldoc.h"
 

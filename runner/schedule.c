@@ -14,6 +14,7 @@
 #include "results/verdict.h"
 #include "runner/folder.h"
 #include "runner/hash.h"
+#include "runner/account.h"
 #include "runner/output.h"
 #include "runner/resume_plan.h"
 #include "runner/summary_md.h"
