@@ -7,7 +7,7 @@
 
 #include "results/csv.h"
 #include "results/csvread.h"
-#include "results/fsutil.h"
+#include "common/fsutil.h"
 #include "runner/folder.h"
 #include "runner/trials.h"
 

@@ -33,7 +33,7 @@
 #include <unistd.h>
 
 #include "results/csv.h"
-#include "results/fsutil.h"
+#include "common/fsutil.h"
 #include "results/jsonout.h"
 #include "runner/diag.h"
 #include "runner/hash.h"

@@ -7,7 +7,7 @@
 #include <string.h>
 
 #include "results/mdtext.h"
-#include "results/grow.h"
+#include "common/grow.h"
 
 /* The value of a plan cell on a numeric axis: a plain number, or a resolution WxH as
  * its pixel count. False for anything else ("volume", "seconds:0.3", ""). */

@@ -5,7 +5,7 @@
 #include <stdlib.h>
 #include <string.h>
 
-#include "results/grow.h"
+#include "common/grow.h"
 
 /* Diagnostics are what tells the user why nothing ran: losing one to a failed
  * allocation would turn a bad manifest into a silent one, so that aborts. */

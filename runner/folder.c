@@ -17,7 +17,7 @@
 #include <unistd.h>
 
 #include "results/csv.h"
-#include "results/fsutil.h"
+#include "common/fsutil.h"
 
 /* sweep.yaml last: clear_folder removes the others and may keep it. Every file a sweep
  * and a rerun leave behind from an older sweep, whose killed write's ".tmp.<pid>" is

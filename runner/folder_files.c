@@ -15,8 +15,8 @@
 #include <unistd.h>
 
 #include "results/csv.h"
-#include "results/fsutil.h"
-#include "results/grow.h"
+#include "common/fsutil.h"
+#include "common/grow.h"
 #include "runner/hash.h"
 
 #define RUN_FILES_HEADER "# shadesweep run files 1"

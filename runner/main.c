@@ -7,7 +7,7 @@
 #include <stdio.h>
 #include <unistd.h>
 
-#include "results/fsutil.h"
+#include "common/fsutil.h"
 
 #ifdef __GLIBC__
 #include <malloc.h>

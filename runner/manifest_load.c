@@ -10,7 +10,7 @@
 #include <string.h>
 
 #include "renderers/renderer.h"
-#include "results/fsutil.h"
+#include "common/fsutil.h"
 #include "runner/hash.h"
 #include "runner/sweep_axis.h"
 #include "scenes/scene.h"

@@ -7,8 +7,8 @@
 #include <sys/stat.h>
 #include <unistd.h>
 
-#include "results/fsutil.h"
-#include "results/grow.h"
+#include "common/fsutil.h"
+#include "common/grow.h"
 #include "runner/diag.h"
 #include "runner/folder.h"
 #include "runner/account.h"

@@ -6,7 +6,7 @@
 #include <stdlib.h>
 #include <string.h>
 
-#include "results/fsutil.h"
+#include "common/fsutil.h"
 #include "results/numfmt.h"
 #include "results/yamlout.h"
 #include "runner/params.h"

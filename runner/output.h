@@ -14,7 +14,7 @@
 #include <stdio.h>
 #include "results/csv.h"
 #include "results/csvread.h"
-#include "results/image_io.h"
+#include "common/image_io.h"
 #include "results/metrics.h"
 #include "results/record.h"
 #include "results/stats.h"

@@ -29,7 +29,7 @@
 #include <string.h>
 
 #include "results/csvread.h"
-#include "results/grow.h"
+#include "common/grow.h"
 #include "results/jsonout.h"
 #include "results/verdict.h"
 #include "runner/commands.h"

@@ -15,7 +15,7 @@
 #include <time.h>
 #include <unistd.h>
 
-#include "results/fsutil.h"
+#include "common/fsutil.h"
 #include "runner/folder.h"
 #include "runner/isolate.h"
 #include "runner/memory.h"

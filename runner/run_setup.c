@@ -9,7 +9,7 @@
 #include "renderers/gl/context.h"
 #include "renderers/renderer.h"
 #include "results/contention.h"
-#include "results/fsutil.h"
+#include "common/fsutil.h"
 #include "runner/hash.h"
 #include "runner/params.h"
 #include "runner/plan_check.h"

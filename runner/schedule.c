@@ -10,7 +10,7 @@
 #include <unistd.h>
 
 #include "results/csvread.h"
-#include "results/fsutil.h"
+#include "common/fsutil.h"
 #include "results/verdict.h"
 #include "runner/folder.h"
 #include "runner/hash.h"

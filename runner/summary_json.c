@@ -7,7 +7,7 @@
 #include <stdlib.h>
 #include <string.h>
 
-#include "results/fsutil.h"
+#include "common/fsutil.h"
 #include "results/jsonout.h"
 #include "runner/output.h"
 #include "runner/point_verdict.h"

@@ -8,7 +8,7 @@
 #include <string.h>
 
 #include "results/csv.h"
-#include "results/fsutil.h"
+#include "common/fsutil.h"
 #include "runner/output.h"
 
 /* ---- typed cells --------------------------------------------------------------------- */

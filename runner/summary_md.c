@@ -9,7 +9,7 @@
 
 #include "results/mdtext.h"
 #include "results/csvread.h"
-#include "results/fsutil.h"
+#include "common/fsutil.h"
 #include "runner/crossovers.h"
 #include "runner/params.h"
 #include "runner/point_verdict.h"

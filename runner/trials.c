@@ -8,7 +8,7 @@
 #include <string.h>
 #include <unistd.h>
 
-#include "results/fsutil.h"
+#include "common/fsutil.h"
 #include "results/jsonout.h"
 #include "runner/folder.h"
 

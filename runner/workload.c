@@ -7,7 +7,7 @@
 #include <string.h>
 
 #include "results/csv.h"
-#include "results/image_io.h"
+#include "common/image_io.h"
 #include "results/numfmt.h"
 
 bool workload_reach_stats(const uint32_t *counts, size_t n, uint32_t nlights,

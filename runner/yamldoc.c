@@ -10,7 +10,7 @@
 #include <string.h>
 #include <yaml.h>
 
-#include "results/grow.h"
+#include "common/grow.h"
 #include "runner/hash.h"
 
 /* >>nodes */

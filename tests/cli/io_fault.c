@@ -14,7 +14,7 @@
  *
  * Counted calls: write, writev, pwrite, pwrite64, fsync, fdatasync made through the
  * dynamic linker (the program's own calls; glibc's stdio inside libc is not seen, which
- * is why results/fsutil.c's streams write through write(2) of their own). */
+ * is why common/fsutil.c's streams write through write(2) of their own). */
 #define _GNU_SOURCE
 /* pwrite and pwrite64 are defined apart: neither may be renamed to the other */
 #undef _FILE_OFFSET_BITS

@@ -35,7 +35,7 @@
 #include "renderers/gl/context.h"
 #include "renderers/gl/loader.h"
 #include "renderers/renderer.h"
-#include "results/image_io.h"
+#include "common/image_io.h"
 #include "scenes/scene.h"
 #include "tests/gl/gl_test.h"
 

@@ -20,7 +20,7 @@
 #include "renderers/gl/loader.h"
 #include "renderers/renderer.h"
 #include "renderers/shading.h"
-#include "results/image_io.h"
+#include "common/image_io.h"
 #include "scenes/scene.h"
 #include "tests/gl/gl_test.h"
 

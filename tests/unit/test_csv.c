@@ -1,5 +1,5 @@
 /* CSV writer: quoting, number formatting, whole files byte for byte, and the
- * temp-name-then-rename life cycle (see results/csv.h, results/fsutil.h). */
+ * temp-name-then-rename life cycle (see results/csv.h, common/fsutil.h). */
 #include <stdarg.h>
 #include <stddef.h>
 #include <setjmp.h>
@@ -19,7 +19,7 @@
 #include <unistd.h>
 
 #include "results/csv.h"
-#include "results/fsutil.h"
+#include "common/fsutil.h"
 #include "tests/unit/tempdir.h"
 
 typedef struct fixture {

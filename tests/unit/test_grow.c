@@ -1,4 +1,4 @@
-/* results/grow.h: GROW doubles from `first` until the need fits, keeps the elements,
+/* common/grow.h: GROW doubles from `first` until the need fits, keeps the elements,
  * and leaves everything as it was when the size would overflow. */
 #include <setjmp.h>
 #include <stdarg.h>

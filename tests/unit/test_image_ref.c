@@ -10,7 +10,7 @@
 #include <math.h>
 #include <string.h>
 
-#include "results/image_io.h"
+#include "common/image_io.h"
 #include "results/image_ref.h"
 
 /* K = 2 on a 4x2 source (one RGBA value per pixel, v = x + 4 y, channel c adds 10 c):

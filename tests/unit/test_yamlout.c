@@ -14,7 +14,7 @@
 #include <string.h>
 #include <yaml.h>
 
-#include "results/fsutil.h"
+#include "common/fsutil.h"
 #include "results/yamlout.h"
 #include "tests/unit/tempdir.h"
 
