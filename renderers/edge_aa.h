@@ -2,8 +2,20 @@
 /* Edge-detect anti-aliasing (the manifest's `aa: edge`): seed 001 section 19.5.2's
  * resolution-independent edge detection, as a post pass on the float HDR image that
  * every renderer that draws adds after its lighting (and sky), before the resolve.
- *
- * The test (edge_aa.frag.glsl), per pixel, over its 8 neighbours taken as 4 opposite
+ * The test and the blur, where the normals come from, and what the pass reads and
+ * writes: the comment above EDGE_AA_MAX_GBUFFER below. */
+#include <stdbool.h>
+#include <stddef.h>
+
+#include "renderers/gl/loader.h"
+#include "renderers/gl/target.h"
+#include "renderers/renderer.h"
+
+/* The pass's state (edge_aa: its target, framebuffers, program) lives in the base
+ * (renderers/base.h), which releases it and hands its target to the resolve. */
+#include "renderers/base.h"
+
+/* The test (edge_aa.frag.glsl), per pixel, over its 8 neighbours taken as 4 opposite
  * pairs (left/right, top/bottom and the two diagonals), as 19.5.2 describes it:
  *   depth   the two steps of depth from the centre to either neighbour of a pair: the
  *           pair is an edge when the larger is at least 25 x the smaller (19.5.2's
@@ -42,17 +54,6 @@
  * "edge-aa". It reads single-sample textures: with multisampled targets (msaa > 1) the
  * resolved HDR image (msaa-resolve first) and depth1, a blit of the multisampled depth
  * to one sample a pixel, with normals rebuilt from it; "hdr.aa" is single-sampled. */
-#include <stdbool.h>
-#include <stddef.h>
-
-#include "renderers/gl/loader.h"
-#include "renderers/gl/target.h"
-#include "renderers/renderer.h"
-
-/* The pass's state (edge_aa: its target, framebuffers, program) lives in the base
- * (renderers/base.h), which releases it and hands its target to the resolve. */
-#include "renderers/base.h"
-
 enum { EDGE_AA_MAX_GBUFFER = 6 };
 
 /* At prepare, after renderer_base_targets: with opts.aa == AA_EDGE, the target, its

@@ -5,8 +5,27 @@
  * per-pass queries and the describe helpers.
  *
  * Every frame of both renderers:
- *
- *     forward_begin_frame     renderer_base_begin_frame: cache invalidated (every frame
+ * Every frame of both renderers, the draw order, the material variants and the
+ * uniforms and bindings of its programs: the comment above the first enum below. */
+#include <stdbool.h>
+#include <stddef.h>
+#include <stdint.h>
+
+#include "renderers/base.h"
+#include "renderers/bindings.h"
+#include "renderers/frontend.h"
+#include "renderers/gl/loader.h"
+#include "renderers/gl/program.h"
+#include "renderers/gl/query.h"
+#include "renderers/gl/state.h"
+#include "renderers/gl/target.h"
+#include "renderers/renderer.h"
+#include "renderers/scene_gpu.h"
+#include "renderers/shadow.h"
+#include "renderers/translucent.h"
+#include "scenes/scene.h"
+
+/*     forward_begin_frame     renderer_base_begin_frame: cache invalidated (every frame
  *                             counted alike), frontend_build, scene_gpu_frame; then
  *                             renderer_base_shadow_pass when some spot or directional
  *                             light casts shadows (and shadows are not off): "shadows",
@@ -37,24 +56,6 @@
  * FORWARD_UNIFORM_LIGHT (16): forward_light.frag's vec4 u_light[5] (one light),
  * forward_spml.frag's int u_light_count. forward-spml's light buffer is uniform
  * block binding FORWARD_LIGHTS_BINDING (1); binding 0 is the Frame block. */
-#include <stdbool.h>
-#include <stddef.h>
-#include <stdint.h>
-
-#include "renderers/base.h"
-#include "renderers/bindings.h"
-#include "renderers/frontend.h"
-#include "renderers/gl/loader.h"
-#include "renderers/gl/program.h"
-#include "renderers/gl/query.h"
-#include "renderers/gl/state.h"
-#include "renderers/gl/target.h"
-#include "renderers/renderer.h"
-#include "renderers/scene_gpu.h"
-#include "renderers/shadow.h"
-#include "renderers/translucent.h"
-#include "scenes/scene.h"
-
 enum {
     FORWARD_VARIANTS = 32,           /* 4 map bits and the alpha test */
     FORWARD_LIGHT_TYPES = 3,         /* LIGHT_POINT, LIGHT_SPOT, LIGHT_DIRECTIONAL */

@@ -1,4 +1,21 @@
 /* forward-mpml: multi-pass multi-light forward shading (seed 000 4.6).
+ * Its passes and the draw calls per frame: the comment above struct forward_mpml
+ * below. */
+#include "renderers/forward_common.h"
+#include "renderers/shading.h"
+
+#include <assert.h>
+#include <stdint.h>
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+
+/* The most directional lights directional_in_base folds into the base pass (its
+ * u_base_lights array takes 5 uniform locations each from LOC_BASE_LIGHTS); a scene
+ * with more is refused in prepare. */
+#define MPML_BASE_DIRECTIONAL_MAX 8
+
+/* A frame's passes:
  *
  *   shadows  (some spot or directional light casts shadows, shadows not off) the
  *            shadow maps of the frame's shadow-casting lights (renderers/shadow.h):
@@ -41,20 +58,6 @@
  * the point and spot lights only: D x V fewer draws for D visible directional lights.
  * A light whose set is empty draws nothing and is not counted in lights_drawn (a
  * folded directional light counts when V > 0, as its pass would have drawn). */
-#include "renderers/forward_common.h"
-#include "renderers/shading.h"
-
-#include <assert.h>
-#include <stdint.h>
-#include <stdio.h>
-#include <stdlib.h>
-#include <string.h>
-
-/* The most directional lights directional_in_base folds into the base pass (its
- * u_base_lights array takes 5 uniform locations each from LOC_BASE_LIGHTS); a scene
- * with more is refused in prepare. */
-#define MPML_BASE_DIRECTIONAL_MAX 8
-
 typedef struct forward_mpml {
     forward_common c;   /* first: forward_common_new makes the object; read as it */
     bool lights_pass;        /* the scene has lights */

@@ -1,4 +1,16 @@
 /* forward-spml: single-pass multi-light forward shading (seed 003 4.1).
+ * Its passes, the draw calls per frame and the light buffer: the comment above
+ * struct forward_spml below. */
+#include "renderers/forward_common.h"
+#include "renderers/light_buffer.h"
+#include "renderers/shading.h"
+
+#include <assert.h>
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+
+/* A frame's passes:
  *
  *   shadows  (some spot or directional light casts shadows, shadows not off) the
  *            shadow maps of the frame's shadow-casting lights (renderers/shadow.h):
@@ -29,15 +41,6 @@
  * compiled once per run. A run asking for more lights than the capacity fails in
  * prepare, before anything is drawn. Each frame uploads the frontend's visible
  * lights only; their number goes to u_light_count. lights_drawn is that number. */
-#include "renderers/forward_common.h"
-#include "renderers/light_buffer.h"
-#include "renderers/shading.h"
-
-#include <assert.h>
-#include <stdio.h>
-#include <stdlib.h>
-#include <string.h>
-
 typedef struct forward_spml {
     forward_common c;   /* first: forward_common_new makes the object; read as it */
     uint32_t capacity;       /* lights one uniform block of the context holds */

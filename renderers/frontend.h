@@ -1,6 +1,15 @@
 #pragma once
 /* The frontend (DOOM 3 BFG's split): what to draw this frame, decided once and
  * shared by every renderer; the backends only execute it.
+ * Its fields (visible, translucent, lights, illum, eye_inside, shadow), the
+ * matrices its tests use, the light volumes and what it allocates: the comment
+ * above FRONTEND_VOLUME_SCALE below. */
+#include <stdbool.h>
+#include <stddef.h>
+#include <stdint.h>
+#include "scenes/scene.h"
+
+/* What frontend_build() decides each frame, in struct frontend:
  *
  *   visible   opaque objects (material not MATERIAL_BLEND) whose world bounding
  *             sphere is not outside the view frustum, sorted into state buckets: by diffuse map, then material,
@@ -97,11 +106,6 @@
  * allocated by frontend_build() unless the scene grew since the last call (more
  * objects or lights than any frame before, or more illumination or shadow-set entries
  * than the reserve: capacities only grow). */
-#include <stdbool.h>
-#include <stddef.h>
-#include <stdint.h>
-#include "scenes/scene.h"
-
 #define FRONTEND_VOLUME_SCALE 1.1f
 enum {
     FRONTEND_SPHERE_SLICES = 16,

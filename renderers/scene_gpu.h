@@ -7,8 +7,25 @@
  *   scene_gpu_draw_object(g, st, s, i);                     // binds VAO + the material's maps, sets
  *                                                           // the mesh.vert/surface.inc uniforms, draws
  *   scene_gpu_draw_light_volume(g, st, s, light);           // the deferred light volumes
- *
- * Uniform locations are those of mesh.vert.glsl (0 model-view, 1 projection, 2 normal
+ * Uniform locations, texture units, the light volumes and the details (meshes,
+ * textures, the Frame block, draws, programs): the comment above the scene_gpu
+ * type below. */
+#include <stdbool.h>
+#include <stddef.h>
+#include <stdint.h>
+#include "renderers/gl/state.h"
+#include "scenes/scene.h"
+
+/* mesh.vert's a_color: a mesh's vertex colours (VERTEX_COLOR); a_uv2: its second uv
+ * set (UV2). */
+#define SCENE_GPU_COLOR_ATTRIB 4
+#define SCENE_GPU_UV2_ATTRIB 5
+/* mesh.vert's a_joints (uvec4) and a_weights: a skinned mesh's joints and weights
+ * (SKINNING, skin.inc) */
+#define SCENE_GPU_JOINTS_ATTRIB 6
+#define SCENE_GPU_WEIGHTS_ATTRIB 7
+
+/* Uniform locations are those of mesh.vert.glsl (0 model-view, 1 projection, 2 normal
  * matrix) and surface.inc.glsl (8..11 material); the material's maps go to texture
  * units 0 diffuse, 1 gloss, 2 normal, 3 emissive (only those it has). The program
  * must be bound (gl_state_program) before a draw. Light volumes: a low-poly sphere
@@ -63,21 +80,6 @@
  *   FULLSCREEN_UNCLIPPED variant when twice the scene's size fits GL_MAX_VIEWPORT_DIMS
  *   (exactly width x height fragments), the clipped one otherwise. scene_gpu_describe
  *   lists them for renderer_describe. */
-#include <stdbool.h>
-#include <stddef.h>
-#include <stdint.h>
-#include "renderers/gl/state.h"
-#include "scenes/scene.h"
-
-/* mesh.vert's a_color: a mesh's vertex colours (VERTEX_COLOR); a_uv2: its second uv
- * set (UV2). */
-#define SCENE_GPU_COLOR_ATTRIB 4
-#define SCENE_GPU_UV2_ATTRIB 5
-/* mesh.vert's a_joints (uvec4) and a_weights: a skinned mesh's joints and weights
- * (SKINNING, skin.inc) */
-#define SCENE_GPU_JOINTS_ATTRIB 6
-#define SCENE_GPU_WEIGHTS_ATTRIB 7
-
 typedef struct scene_gpu scene_gpu;
 
 scene_gpu *scene_gpu_create(const scene *s, char *err, size_t errlen);

@@ -4,6 +4,21 @@
  * the view depth of their bounding sphere's centre), drawn over the opaque image and
  * its depth buffer, after the sky (which would otherwise overwrite them: it fills
  * every pixel still at depth 1) and after deferred's fog pass.
+ * Its program, lights, state and draws, and when it is skipped: the comment
+ * above TRANSLUCENT_VARIANTS below. */
+#include <stdbool.h>
+#include <stddef.h>
+#include <stdint.h>
+
+#include "renderers/base.h"
+#include "renderers/frontend.h"
+#include "renderers/light_buffer.h"
+#include "renderers/scene_gpu.h"
+#include "renderers/shading.h"
+#include "renderers/shadow.h"
+#include "scenes/scene.h"
+
+/* The pass:
  *
  *   program   forward_spml.frag (mesh.vert) with LIGHTS_STORAGE and TRANSLUCENT, one
  *             per material map variant the translucent objects have, plus SHADOWS
@@ -27,18 +42,6 @@
  *
  * A scene with no MATERIAL_BLEND object skips the pass: no program, no buffer, and the
  * plan's entry says "skipped: no translucent materials". */
-#include <stdbool.h>
-#include <stddef.h>
-#include <stdint.h>
-
-#include "renderers/base.h"
-#include "renderers/frontend.h"
-#include "renderers/light_buffer.h"
-#include "renderers/scene_gpu.h"
-#include "renderers/shading.h"
-#include "renderers/shadow.h"
-#include "scenes/scene.h"
-
 enum { TRANSLUCENT_VARIANTS = 16 };   /* the four map bits (no alpha test) */
 
 /* A tiled renderer's translucent lists (see "lights" above). */

@@ -8,16 +8,8 @@
  * threshold T: slower when the whole interval lies above 1 + T, faster when below
  * 1 / (1 + T), same when inside [1 / (1 + T), 1 + T], undecided otherwise; fewer than
  * 3 trials a side give no verdict.
- *
- * compare --exe OTHER MANIFEST: one manifest measured by two builds, OTHER (BASE) and
- * this one (NEW), in rounds: round k runs trial k of every run with each build (`run
- * --round k`), the two builds in a seeded random order, so that trial k of BASE and of
- * NEW ran minutes apart at most and are compared paired (the geometric mean of the
- * per-round ratios). The gate for a change on a shared machine.
- *
- * Markdown on stdout (and --md FILE), one CSV row per run with --csv FILE.
- * Exit 1 when any run is slower, when a run of BASE failed or is missing in NEW
- * (unless --allow-missing), 2 on bad input. */
+ * compare --exe (two builds, in rounds, paired), the output and the exit status:
+ * the comment above cmd_compare below. */
 #define _DEFAULT_SOURCE
 #include "runner/commands.h"
 
@@ -464,6 +456,15 @@ static int compare_exe(const char *other, const char *base_manifest, const char 
     return compare_folders(bdir, ndir, &paired);
 }
 
+/* compare --exe OTHER MANIFEST: one manifest measured by two builds, OTHER (BASE) and
+ * this one (NEW), in rounds: round k runs trial k of every run with each build (`run
+ * --round k`), the two builds in a seeded random order, so that trial k of BASE and of
+ * NEW ran minutes apart at most and are compared paired (the geometric mean of the
+ * per-round ratios). The gate for a change on a shared machine.
+ *
+ * Markdown on stdout (and --md FILE), one CSV row per run with --csv FILE.
+ * Exit 1 when any run is slower, when a run of BASE failed or is missing in NEW
+ * (unless --allow-missing), 2 on bad input. */
 int cmd_compare(int argc, char **argv)
 {
     enum { OPT_THRESHOLD = 1000, OPT_CSV, OPT_MD, OPT_HELP, OPT_EXE, OPT_BASE_MANIFEST,

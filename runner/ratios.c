@@ -2,27 +2,8 @@
  * programs. The Python report asks here for every ratio, significance and crossover it
  * prints, so that the ranking, summary.md, compare, the crossovers and the report's
  * claims come from one statistics module and cannot disagree on the same data.
- *
- * Requests on standard input, one a line, fields separated by tabs (folder names may
- * hold spaces); answers on standard output, one JSON object a line, in the order asked:
- *
- *   run FOLDER RUN
- *     the run's value, what ranks it: {"id", "metric", "mean_us", "ci95_us", "trials"},
- *     the mean over its ok trials and the half-width of the 95% t interval
- *   ratio FOLDER_A RUN_A FOLDER_B RUN_B
- *     A / B of the runs' trial values (summary.csv metric_us: what measure.metric
- *     chose): paired (the geometric mean of per-round ratios) when both are of one
- *     folder and one sweep point, whose trials ran in the same rounds; else Welch's
- *     interval on the logs. {"a", "b", "metric", "paired", "n", "ratio", "lo", "hi",
- *     "differs", "a_mean_us", "a_ci95_us", "a_trials", "b_mean_us", ...}
- *   crossover X1 FOLDER_A1 RUN_A1 FOLDER_B1 RUN_B1 X2 FOLDER_A2 ...
- *     where A / B crosses 1 along an axis whose value at point k is Xk (ascending):
- *     {"crossings": [{"i", "j", "dir", "x", "lo", "hi"}, ...]} (verdict_crossover), with
- *     "ratios": [{"ratio", "lo", "hi", "differs"}, ...] of each point.
- *
- * A request naming a folder or run that is not there answers {"error": "..."} on its
- * line, and the others go on; a malformed line is a message on stderr and exit 2. A
- * number that is not finite is null. */
+ * The request lines, their JSON answers and the errors: the comment above
+ * cmd_ratios below. */
 #include <math.h>
 #include <stdio.h>
 #include <stdlib.h>
@@ -267,6 +248,26 @@ static const char usage[] =
     "exit status: 0 answered (a request about a missing run answers {\"error\": ...});\n"
     "2 a malformed request\n";
 
+/* Requests on standard input, one a line, fields separated by tabs (folder names may
+ * hold spaces); answers on standard output, one JSON object a line, in the order asked:
+ *
+ *   run FOLDER RUN
+ *     the run's value, what ranks it: {"id", "metric", "mean_us", "ci95_us", "trials"},
+ *     the mean over its ok trials and the half-width of the 95% t interval
+ *   ratio FOLDER_A RUN_A FOLDER_B RUN_B
+ *     A / B of the runs' trial values (summary.csv metric_us: what measure.metric
+ *     chose): paired (the geometric mean of per-round ratios) when both are of one
+ *     folder and one sweep point, whose trials ran in the same rounds; else Welch's
+ *     interval on the logs. {"a", "b", "metric", "paired", "n", "ratio", "lo", "hi",
+ *     "differs", "a_mean_us", "a_ci95_us", "a_trials", "b_mean_us", ...}
+ *   crossover X1 FOLDER_A1 RUN_A1 FOLDER_B1 RUN_B1 X2 FOLDER_A2 ...
+ *     where A / B crosses 1 along an axis whose value at point k is Xk (ascending):
+ *     {"crossings": [{"i", "j", "dir", "x", "lo", "hi"}, ...]} (verdict_crossover), with
+ *     "ratios": [{"ratio", "lo", "hi", "differs"}, ...] of each point.
+ *
+ * A request naming a folder or run that is not there answers {"error": "..."} on its
+ * line, and the others go on; a malformed line is a message on stderr and exit 2. A
+ * number that is not finite is null. */
 int cmd_ratios(int argc, char **argv)
 {
     for (int i = 1; i < argc; i++) {

@@ -7,8 +7,14 @@
  *   ynode_plain()  a plain, untagged scalar: the only kind whose text is read as
  *                  a number, boolean or null (a quoted "3" is a string)
  *   ynode_empty()  a plain, untagged, empty scalar: `key:` with nothing after it
- *
- * Aliases resolve to their anchored node, which is then shared (the tree is a
+ * Aliases, the bounds on them and on depth, and the errors: the comment above
+ * YDOC_MAX_ALIAS_NODES below. */
+#include <stdbool.h>
+#include <stddef.h>
+#include <stdint.h>
+#include "runner/diag.h"
+
+/* Aliases resolve to their anchored node, which is then shared (the tree is a
  * DAG; ydoc_free() frees each node once). Every node an alias makes reachable
  * counts against YDOC_MAX_ALIAS_NODES, so a billion-laughs document fails at the
  * alias that crosses the bound, in microseconds and with no more memory than
@@ -21,11 +27,6 @@
  * empty file or a file of comments only; an empty document (`---` alone); a
  * second document; an undefined or recursive alias; the alias bound; nesting
  * deeper than YDOC_MAX_DEPTH. Loading stops at the first of them. */
-#include <stdbool.h>
-#include <stddef.h>
-#include <stdint.h>
-#include "runner/diag.h"
-
 #define YDOC_MAX_ALIAS_NODES 10000
 #define YDOC_MAX_DEPTH 256
 
