@@ -24,7 +24,6 @@ RENDERER_REGISTRY(RENDERER_EXTERN)
 #define RENDERER_ENTRY(x) &renderer_##x##_impl,
 static const renderer_impl *const registry[] = {RENDERER_REGISTRY(RENDERER_ENTRY)};
 
-
 size_t renderer_kind_count(void) { return sizeof registry / sizeof registry[0]; }
 
 const renderer_impl *renderer_kind_at(size_t i)
@@ -39,7 +38,6 @@ const renderer_impl *renderer_kind_find(const char *name)
             return registry[i];
     return NULL;
 }
-
 
 renderer *renderer_create(const char *kind, const renderer_options *opts, char *err, size_t errlen)
 {
@@ -70,7 +68,6 @@ renderer *renderer_create(const char *kind, const renderer_options *opts, char *
     }
     return r;
 }
-
 
 bool renderer_prepare(renderer *r, const struct scene *s, char *err, size_t errlen)
 {
