@@ -1,4 +1,5 @@
-/* What deferred and tiled-deferred share (deferred_core.h; deferred.c has the design). */
+/* What deferred and tiled-deferred share (deferred_core.h). The design:
+ * docs/notes/deferred.md. */
 #include "renderers/deferred_core.h"
 
 #include "renderers/edge_aa.h"
@@ -386,7 +387,7 @@ void deferred_pass_end(deferred_renderer *r, frame_stats *out)
     renderer_base_pass_end(&r->b, out);
 }
 
-/* The sky mask (deferred.c's header): bit 7 marks a surface. */
+/* The sky mask (docs/notes/deferred.md): bit 7 marks a surface. */
 static const gls_stencil SURFACE_MARK = {
     .enabled = true, .front = {.compare = GLS_COMPARE_ALWAYS, .pass = GLS_STENCIL_OP_REPLACE},
     .ref = 0x80, .write_mask = 0x80};

@@ -3,8 +3,8 @@
  * with clustered.shading: deferred) share: the object's common part, the pass plan's
  * common entries, the G-buffer (its layout's targets and programs, and the G-buffer pass),
  * the light and fog targets, the passes after the lighting (fog, sky, translucent,
- * msaa-resolve, edge-aa, resolve), describe, destroy and the accessors tests use.
- * deferred.c's header has the design; a renderer of this family is
+ * msaa-resolve, edge-aa, resolve), describe, destroy and the accessors tests use. A
+ * renderer of this family (the design: docs/notes/deferred.md) is
  *
  *     create     deferred_core_create (the options both check), its own checks first
  *     prepare    deferred_prepare_scene (the scene, the layout, the common plan), its own
@@ -19,7 +19,7 @@
 #include <stdint.h>
 
 #include "renderers/base.h"
-#include "renderers/deferred.h"
+#include "renderers/gbuffer_layout.h"
 #include "renderers/gl/state.h"
 #include "renderers/gl/target.h"
 #include "renderers/renderer.h"
@@ -168,3 +168,23 @@ uint64_t deferred_gbuffer_own_bytes(const renderer_estimate *e);
 uint64_t deferred_draws_per_light(const renderer_estimate *e);
 /* renderer_impl.traffic: deferred_gbuffer_traffic of the layout prepare built. */
 gbuffer_traffic deferred_traffic(const void *self, const frame_stats *fs);
+
+/* For tests: self is what a deferred_core renderer's create returned. The layout
+ * renderer_prepare chose (NULL before a successful prepare). */
+const deferred_layout *deferred_gbuffer_layout(const void *self);
+/* The float target (the run's hdr format) the frame's light is accumulated in (the one
+ * resolved), and the G-buffer attachment k (NULL past the layout's attachments). */
+const gl_target *deferred_hdr_target(const void *self);
+const gl_target *deferred_gbuffer_target(const void *self, int k);
+/* The shared depth-stencil target (what the G-buffer pass left in it). */
+const gl_target *deferred_depth_target(const void *self);
+/* The renderer's state cache (gl/state.h), e.g. to switch on gl_state_set_force. */
+struct gl_state *deferred_state_cache(void *self);
+/* light_volumes scissor (deferred_lights.c; tests ask it too): the screen rectangle
+ * {x, y, width, height} (GL's window coordinates, whole pixels, clipped to the w x h
+ * screen) that holds the projection of
+ * light `light`'s volume (the box around its mesh in the volume's own frame, a little
+ * larger than the mesh); the whole screen when the box reaches the eye's plane. Returns
+ * its area in pixels (0: off screen). */
+int64_t deferred_scissor_rect(const struct scene *s, uint32_t light, int w, int h, int rect[4]);
+

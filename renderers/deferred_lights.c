@@ -1,7 +1,7 @@
 /* The light passes of deferred and deferred-lighting (deferred_lights.h): the
  * light-volume modes as one table (MODES) of what differs per mode, the draws of a light
  * by it, the lighting programs, and with msaa > 1 the edge pass and its draw classes.
- * renderers/deferred.c's header has the passes, the stencil use and the draw counts. */
+ * docs/notes/deferred.md has the passes, the stencil use and the draw counts. */
 #include "renderers/deferred_lights.h"
 
 #include "renderers/frontend.h"

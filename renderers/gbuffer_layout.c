@@ -1,9 +1,9 @@
-/* The G-buffer layout logic of deferred.h, apart from the renderer: layouts built from
+/* The G-buffer layout logic of gbuffer_layout.h, apart from the renderer: layouts built from
  * the preset, the field overrides and what the scene's materials write, their bytes,
  * and their shader defines. No GL call (formats come from target.h's table), so the
  * deferred renderer, tiled-deferred and clustered deferred shading, and tests without
  * a context share it. */
-#include "renderers/deferred.h"
+#include "renderers/gbuffer_layout.h"
 
 #include "renderers/gl/target.h"
 #include "scenes/scene.h"

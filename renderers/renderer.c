@@ -1,9 +1,5 @@
 /* The renderer registry and the thin dispatch over renderer_impl. */
-#include "renderers/renderer.h"
-
-#include "renderers/base.h"
-#include "renderers/shading.h"
-#include "renderers/shadow.h"
+#include "renderers/renderer_internal.h"
 
 #include <math.h>
 #include <stdio.h>
@@ -28,13 +24,6 @@ RENDERER_REGISTRY(RENDERER_EXTERN)
 #define RENDERER_ENTRY(x) &renderer_##x##_impl,
 static const renderer_impl *const registry[] = {RENDERER_REGISTRY(RENDERER_ENTRY)};
 
-struct renderer {
-    const renderer_impl *impl;   /* the design whose entry points serve self */
-    const char *kind;            /* the registry's name ("clustered" for its variants) */
-    void *self;
-    bool prepared;               /* the last prepare succeeded: draw may run */
-};
-
 size_t renderer_kind_count(void) { return sizeof registry / sizeof registry[0]; }
 
 const renderer_impl *renderer_kind_at(size_t i)
@@ -49,7 +38,6 @@ const renderer_impl *renderer_kind_find(const char *name)
             return registry[i];
     return NULL;
 }
-
 
 renderer *renderer_create(const char *kind, const renderer_options *opts, char *err, size_t errlen)
 {
@@ -81,8 +69,6 @@ renderer *renderer_create(const char *kind, const renderer_options *opts, char *
     return r;
 }
 
-double renderer_upload_s(void) { return scene_gpu_upload_s(); }
-
 bool renderer_prepare(renderer *r, const struct scene *s, char *err, size_t errlen)
 {
     r->prepared = r->impl->prepare(r->self, s, err, errlen);
@@ -105,36 +91,6 @@ void renderer_draw(renderer *r, const struct scene *s, frame_stats *out)
 bool renderer_has_coverage(const renderer *r)
 {
     return !r->impl->no_base;
-}
-
-bool renderer_coverage(renderer *r, uint64_t *covered, char *err, size_t errlen)
-{
-    *covered = 0;
-    if (r->impl->no_base || !r->prepared) {
-        snprintf(err, errlen, "%s: no depth target to count coverage in%s", r->kind,
-                 r->prepared ? "" : " (not prepared)");
-        return false;
-    }
-    return renderer_base_coverage(r->self, covered, err, errlen);
-}
-
-bool renderer_lights_reaching(renderer *r, const struct scene *s, uint32_t *counts, char *err,
-                              size_t errlen)
-{
-    if (r->impl->no_base || !r->prepared) {
-        snprintf(err, errlen, "%s: no depth target to count the lights reaching in%s", r->kind,
-                 r->prepared ? "" : " (not prepared)");
-        return false;
-    }
-    return renderer_base_lights_reaching(r->self, s, counts, err, errlen);
-}
-
-void renderer_impl_collect(const renderer_impl *impl, void *self, frame_stats *out)
-{
-    if (impl->collect)
-        impl->collect(self, out);
-    else
-        renderer_base_collect(self, out);   /* renderer_impl.collect: the base first */
 }
 
 /* NAN in any pass makes the total NAN: a partial sum would pass for a measurement. */
@@ -357,22 +313,3 @@ uint32_t renderer_max_lights(const char *kind, const renderer_options *o,
     return impl && impl->max_lights ? impl->max_lights(o, max_uniform_block_size) : UINT32_MAX;
 }
 
-uint64_t renderer_light_bytes(void) { return sizeof(gpu_light); }
-
-uint64_t renderer_shadow_layer_bytes(void)
-{
-    return (uint64_t)SHADOW_DEFAULT_SIZE * SHADOW_DEFAULT_SIZE * 4;   /* 4 bytes a texel */
-}
-
-uint32_t renderer_cluster_slices(const struct scene *s, int slices_y)
-{
-    double ratio;
-    return shading_cluster_slices(s, slices_y, &ratio);
-}
-
-bool renderer_cluster_slices_ok(const char *kind, double proj11, double znear, double zfar,
-                                int slices_y, char *err, size_t errlen)
-{
-    return shading_cluster_slices_ok(kind, proj11, znear, zfar, slices_y, NULL, NULL, err,
-                                     errlen);
-}

@@ -1,51 +1,13 @@
-/* visibility: the visibility buffer (Burns and Hunt, "The Visibility Buffer: A
- * Cache-Friendly Approach to Deferred Shading", JCGT 2(2), 2013). The passes:
- *
- *   shadows     as every renderer (renderers/shadow.h)
- *   visibility  the visible opaque objects, depth LESS with writes, into the R32UI target
- *               "visibility" (cleared to VIS_EMPTY) and the base's depth: per pixel the
- *               id draw << tri_bits | gl_PrimitiveID (visibility.h: the split, chosen
- *               per scene, and what is refused). No material work: visibility.frag
- *               writes the id, and a MASK material's program (ALPHA_TEST) discards
- *               what surface.inc discards. One draw per visible opaque object
- *   cull        (only when the scene has a point or spot light) forward-plus's
- *               tile_cull.comp over the pass's depth: one dispatch, the grid's per-tile
- *               light lists (renderers/tiled/grid.h)
- *   shade       visibility_shade.comp, a work group per tile: each pixel's triangle
- *               fetched from copies of the scene's vertices and indices in storage
- *               buffers (scene_gpu's per-mesh vertex buffers cannot be bound as one),
- *               transformed, its barycentrics and their screen derivatives in closed
- *               form from the clip positions, the surface interpolated and its maps
- *               sampled with textureGrad, then ambient, emissive, the tile's lights
- *               (shade_light) and fog, stored into the HDR target. A compute dispatch
- *               binds one set of maps, so the pass makes one dispatch per run of the
- *               visible list (sorted by diffuse map, material, mesh) whose materials bind
- *               the same maps; each dispatch shades only its run's draws.
- *               A scene without maps: one dispatch
- *   sky, [translucent], [edge-aa], resolve   forward_end_frame (forward_common.h); the
- *               translucent pass loops its tile's translucent list, which the cull
- *               builds when the scene has translucency (as forward-plus's)
- *
- * Draws: shadows + V + sky + T + [edge-aa] + 1; dispatches: [1 cull] + R, R the runs.
- *
- * MSAA (msaa > 1): the ids, the depth and the HDR target are multisampled (the visibility
- * pass writes each sample the id of the triangle covering it). The cull reads every sample
- * (tile_cull.comp's MSAA_SAMPLES) and writes each tile's range (TILE_DEPTH_RANGES, as
- * forward-plus). The shading reads a pixel's N ids; where they differ, it rebuilds each
- * one's surface at the pixel centre (position, and normal before maps) and applies the
- * deferred renderers' edge rule (edge_rule.inc: a surface on one sample and none on
- * another, a position off sample 0's plane, normals apart). A pixel that is no edge (one
- * triangle, or triangles of one smooth surface) is shaded once with sample 0's surface,
- * stored into every sample; an edge pixel shades each distinct id once at the centre,
- * storing it into the samples that hold it: what forward-spml shades at msaa N (a
- * fragment per covering triangle, at the centre). Per distinct surface, not per sample
- * as deferred's edge pixels: the ids say which samples share a surface. A centre outside
- * its tile's culled range loops every light, as forward_tiled.frag. Then the base's
- * msaa-resolve. Counted by the dispatch itself (collect): the shadings (samples_shaded),
- * the samples covered and the edge pixels (edge_fraction).
- *
- * Refused at prepare: a scene whose opaque objects or largest mesh do not fit the id
- * (visibility_split), or whose vertices or indices do not fit one storage block. */
+/* visibility: the visibility buffer (Burns and Hunt, JCGT 2(2), 2013). Passes: shadows;
+ * visibility (the visible opaque objects into the R32UI id target, each
+ * pixel the id draw << tri_bits | gl_PrimitiveID, see visibility.h); [cull] (forward-
+ * plus's tile_cull.comp, when the scene has a point or spot light); shade
+ * (visibility_shade.comp, a work group per tile, one dispatch per run of visible draws
+ * that bind the same maps); then forward_end_frame (sky, [translucent], [edge-aa],
+ * resolve). Draws: shadows + V + sky + T + [edge-aa] + 1; dispatches: [1 cull] + R.
+ * MSAA: ids, depth and HDR multisampled; an edge pixel shades each distinct id once at
+ * the centre. Refused at prepare: a scene whose ids or storage blocks do not fit.
+ * The whole account (MSAA edge rule, refusals): docs/notes/visibility.md. */
 #include "renderers/visibility.h"
 
 #include "renderers/forward_common.h"
@@ -56,6 +18,11 @@
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
+
+/* The pass names (passes.csv, meta.yaml), each written once: visibility_pass and
+ * shade_pass begin them, visibility_id_traffic finds them by them. */
+static const char VIS_PASS[] = "visibility";
+static const char SHADE_PASS[] = "shade";
 
 enum { VIS_MAP_VARIANTS = 16 };   /* the 4 map bits of FORWARD_VARIANT_* */
 
@@ -109,9 +76,9 @@ gbuffer_traffic visibility_id_traffic(int width, int height, int samples, const 
     double written = NAN, dispatches = NAN;
     for (size_t i = 0; fs && i < fs->npasses; i++) {
         const pass_stats *p = &fs->pass[i];
-        if (p->name && strcmp(p->name, "visibility") == 0)
+        if (p->name && strcmp(p->name, VIS_PASS) == 0)
             written = p->samples;
-        else if (p->name && strcmp(p->name, "shade") == 0)
+        else if (p->name && strcmp(p->name, SHADE_PASS) == 0)
             dispatches = (double)p->dispatches;
     }
     double screen = (double)width * height * (samples > 1 ? samples : 1);
@@ -524,7 +491,7 @@ static void visibility_pass(visibility *r, const scene *s, frame_stats *out)
     forward_common *c = &r->c;
     gl_state *st = c->b.st;
     const frontend *fe = &c->b.fe;
-    forward_pass_begin(c, out, "visibility");
+    forward_pass_begin(c, out, VIS_PASS);
     forward_bind_target(c);
     gl_state_blend(st, NULL);
     gl_state_stencil(st, NULL);
@@ -556,7 +523,7 @@ static void shade_pass(visibility *r, frame_stats *out, uint32_t nlights)
     forward_common *c = &r->c;
     gl_state *st = c->b.st;
     r->shade_index = out->npasses + 1;
-    forward_pass_begin(c, out, "shade");
+    forward_pass_begin(c, out, SHADE_PASS);
     static const uint32_t zero[3] = {0, 0, 0};
     gl.TextureSubImage2D(r->counts.texture, 0, 0, 0, 3, 1, GL_RED_INTEGER, GL_UNSIGNED_INT,
                          zero);
@@ -639,7 +606,7 @@ static void visibility_describe(const void *self, pass_plan *out)
     const forward_common *c = &r->c;
     const light_grid *g = &r->g;
     forward_describe_begin(c, out);
-    forward_describe_pass(out, "visibility", true,
+    forward_describe_pass(out, VIS_PASS, true,
                           "the visible opaque objects: draw << %u | triangle, R32UI",
                           r->tri_bits);
     if (!c->prepared || g->cull)
@@ -650,7 +617,7 @@ static void visibility_describe(const void *self, pass_plan *out)
         forward_describe_pass(out, "cull", false,
                               "skipped, the scene has no point or spot light");
     forward_grid_describe_translucent(c, out);
-    forward_describe_pass(out, "shade", true,
+    forward_describe_pass(out, SHADE_PASS, true,
                           "a dispatch per run of equal maps; geometry copies %llu bytes",
                           (unsigned long long)r->geometry_bytes);
     forward_describe_tail(c, out);

@@ -13,7 +13,7 @@
  * disabled (stderr stays quiet). On EGL the context must carry
  * GL_CONTEXT_FLAG_DEBUG_BIT; OSMesa has no way to ask for it, so there debug
  * output is enabled on a plain core context and gl_info.debug_context is false. */
-#include "renderers/gl/internal.h"
+#include "renderers/gl/context_internal.h"
 #include "renderers/gl/loader.h"
 #include "renderers/gl/target.h"
 

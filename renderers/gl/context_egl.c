@@ -1,7 +1,7 @@
 /* EGL backend: Mesa's surfaceless platform (device -1) or EGL device N
  * (EGL_EXT_device_enumeration + EGL_EXT_platform_device); a GL 4.5 core context
  * made current without a surface (EGL_KHR_surfaceless_context). */
-#include "renderers/gl/internal.h"
+#include "renderers/gl/context_internal.h"
 #include "renderers/gl/loader.h"
 
 #include <EGL/egl.h>

@@ -4,7 +4,7 @@
  *
  * No GL or EGL types may come in here from elsewhere: <GL/osmesa.h> includes
  * <GL/gl.h>, which does not mix with <GL/glcorearb.h>. */
-#include "renderers/gl/internal.h"
+#include "renderers/gl/context_internal.h"
 #include "renderers/gl/loader.h"
 
 #include <GL/osmesa.h>
