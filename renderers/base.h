@@ -3,8 +3,40 @@
  * embeds as its first member: the options and output size, the output framebuffer,
  * the state cache, the program cache, the per-pass queries, and the bracketing and
  * collection of passes. A renderer is then its own passes plus this.
- *
- *     renderer_base_init      at create: records the output framebuffer (the draw
+ * The calls in a frame's order, the targets, MSAA and fog: the comment above
+ * struct renderer_base below. */
+#include <stdbool.h>
+#include <stddef.h>
+
+#include "renderers/frontend.h"
+#include "renderers/gl/loader.h"
+#include "renderers/gl/program.h"
+#include "renderers/gl/query.h"
+#include "renderers/gl/state.h"
+#include "renderers/gl/target.h"
+#include "renderers/renderer.h"
+#include "renderers/scene_gpu.h"
+#include "renderers/shadow.h"
+
+enum { RENDERER_BASE_MAX_PASSES = 16 };
+
+struct scene;
+
+/* aa: edge's state (made and run by renderers/edge_aa.h, released with the base's
+ * targets, its output the display when it runs). */
+typedef struct edge_aa {
+    bool run;                        /* opts.aa == AA_EDGE and prepared */
+    bool gbuffer_normals;            /* normals from the G-buffer, else from depth */
+    gl_target out;                   /* "hdr.aa" */
+    gl_framebuffer fb;               /* out alone */
+    GLuint program;                  /* in the base's program cache */
+    /* msaa > 1: the multisampled depth blitted to one sample a pixel ("depth.aa"), what
+     * the edge test reads; normals then come from it, not from the G-buffer */
+    gl_target depth1;
+    gl_framebuffer depth_read, depth_draw;
+} edge_aa;
+
+/*     renderer_base_init      at create: records the output framebuffer (the draw
  *                             framebuffer bound now), the context's uniform block limit
  *                             when opts does not give it, makes the caches and (with
  *                             opts.queries) max_passes pass queries
@@ -50,37 +82,6 @@
  * Fog (seed 000 4.5.12, opts.fog_*): renderer_base_fog says whether it is on; each
  * program compiled with the "FOG" define (fog.inc.glsl) gets the run's fog once from
  * renderer_base_fog_uniform. */
-#include <stdbool.h>
-#include <stddef.h>
-
-#include "renderers/frontend.h"
-#include "renderers/gl/loader.h"
-#include "renderers/gl/program.h"
-#include "renderers/gl/query.h"
-#include "renderers/gl/state.h"
-#include "renderers/gl/target.h"
-#include "renderers/renderer.h"
-#include "renderers/scene_gpu.h"
-#include "renderers/shadow.h"
-
-enum { RENDERER_BASE_MAX_PASSES = 16 };
-
-struct scene;
-
-/* aa: edge's state (made and run by renderers/edge_aa.h, released with the base's
- * targets, its output the display when it runs). */
-typedef struct edge_aa {
-    bool run;                        /* opts.aa == AA_EDGE and prepared */
-    bool gbuffer_normals;            /* normals from the G-buffer, else from depth */
-    gl_target out;                   /* "hdr.aa" */
-    gl_framebuffer fb;               /* out alone */
-    GLuint program;                  /* in the base's program cache */
-    /* msaa > 1: the multisampled depth blitted to one sample a pixel ("depth.aa"), what
-     * the edge test reads; normals then come from it, not from the G-buffer */
-    gl_target depth1;
-    gl_framebuffer depth_read, depth_draw;
-} edge_aa;
-
 typedef struct renderer_base {
     const char *name;                /* "deferred": prefixes messages */
     renderer_options opts;

@@ -3,8 +3,31 @@
  * every renderer: deferred samples them in its light passes (4.5.6), forward-mpml in
  * its per-light passes (4.6.4), forward-spml in its one pass (every map of the frame in
  * memory at once: the cost seed 000's literature review ascribes to SPML).
- *
- * Which lights, which objects: the frontend (frontend.h, "shadow"): per frame, every
+ * Which lights and objects, the pass, the pool and what a shader reads: the comment
+ * above struct shadow_maps below. */
+#include <stdbool.h>
+#include <stddef.h>
+#include <stdint.h>
+
+#include "renderers/frontend.h"
+#include "renderers/gl/loader.h"
+#include "renderers/gl/program.h"
+#include "renderers/gl/state.h"
+#include "renderers/renderer.h"
+#include "renderers/scene_gpu.h"
+#include "renderers/bindings.h"
+#include "scenes/scene.h"
+
+enum {
+    SHADOW_TEXTURE_UNIT = BIND_TEX_SHADOW,
+    SHADOW_UBO_BINDING = BIND_UBO_SHADOWS,
+    SHADOW_DEFAULT_SIZE = 1024,
+    SHADOW_LIGHT_TYPES = 3,
+};
+#define SHADOW_OFFSET_FACTOR 2.0f
+#define SHADOW_OFFSET_UNITS 4.0f
+
+/* Which lights, which objects: the frontend (frontend.h, "shadow"): per frame, every
  * visible light that casts shadows gets a layer of the pool, a matrix and its
  * shadow-casting set. Here:
  *
@@ -55,28 +78,6 @@
  *
  * Only what the scene needs is made: nothing (no pool, no program, no SHADOWS variant)
  * unless the plan runs the pass. Needs a current GL 4.5 context. */
-#include <stdbool.h>
-#include <stddef.h>
-#include <stdint.h>
-
-#include "renderers/frontend.h"
-#include "renderers/gl/loader.h"
-#include "renderers/gl/program.h"
-#include "renderers/gl/state.h"
-#include "renderers/renderer.h"
-#include "renderers/scene_gpu.h"
-#include "renderers/bindings.h"
-#include "scenes/scene.h"
-
-enum {
-    SHADOW_TEXTURE_UNIT = BIND_TEX_SHADOW,
-    SHADOW_UBO_BINDING = BIND_UBO_SHADOWS,
-    SHADOW_DEFAULT_SIZE = 1024,
-    SHADOW_LIGHT_TYPES = 3,
-};
-#define SHADOW_OFFSET_FACTOR 2.0f
-#define SHADOW_OFFSET_UNITS 4.0f
-
 typedef struct shadow_maps {
     /* >>the plan (shadow_maps_plan, no GL) */
     bool run;                  /* the shadows pass runs */

@@ -10,9 +10,8 @@
  * Untrusted input: only regular files are opened, references stay in the scene file's
  * folder (unless allow_outside), and glTF JSON is pre-scanned before assimp (>>prescan).
  * Sections, each its own file (scenes/file_internal.h): >>io file_io.c, >>prescan
- * file_prescan.c, >>load file_load.c, >>materials file_materials.c, what is not drawn
- * file_unrendered.c; here >>nodes >>check
- * >>build. The mapping of a file's materials onto the Phong model: the comment above
+ * file_prescan.c, >>load file_load.c, >>materials file_materials.c, >>unrendered
+ * file_unrendered.c; here >>nodes >>check >>build. The mapping of a file's materials onto the Phong model: the comment above
  * file_add_material (file_materials.c). */
 #include "scenes/file_internal.h"
 
