@@ -1,13 +1,13 @@
 #pragma once
 /* The manifest keys the renderers read, declared by each family in a table beside its
- * code (renderers/keys.def lists them). runner/params.def includes them in place, so the
+ * code (renderers/keys.def lists them). runner/manifest/params.def includes them in place, so the
  * central key table stays one ordered list; this header makes their C enums. A table
  * holds, in any order:
  *   KEY_ENUM(type, names, V("text", ENUMERATOR) ...)   an enum key's values: the C enum
  *       `type`, whose ENUMERATOR is the value's index (what run_params stores), and the
- *       NULL-terminated `names` (runner/params.c); VX(ENUMERATOR): a value the renderers
+ *       NULL-terminated `names` (runner/manifest/params.c); VX(ENUMERATOR): a value the renderers
  *       know that no manifest names
- *   PARAM(...), PARAM_META(...)   the keys, in runner/params.def's format: type, default
+ *   PARAM(...), PARAM_META(...)   the keys, in runner/manifest/params.def's format: type, default
  *       text, limits, description, and `apply`, the statement that sets the options
  *   KEY_OPTION(type, member, dims)   a renderer_options member the key before it sets
  * A default is written once, as the key's text: the runner parses it like any value, and

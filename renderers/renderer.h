@@ -57,7 +57,7 @@ typedef struct renderer_impl {
     const char *name;
     const char *description;
     /* The manifest keys whose value changes its output beyond those every run reads
-     * (runner/params.def readers "*"), space-separated; a group name stands for its keys
+     * (runner/manifest/params.def readers "*"), space-separated; a group name stands for its keys
      * ("gbuffer": gbuffer.*). A sweep folds the runs of a renderer that differ only in
      * keys it does not read; docs/manifest.md's "read by" is made from these. */
     const char *reads;
@@ -65,7 +65,7 @@ typedef struct renderer_impl {
     bool (*prepare)(void *self, const struct scene *s, char *err, size_t errlen);
     void (*draw)(void *self, const struct scene *s, frame_stats *out);
     /* After the frame's sync point: fills GPU times and query counts of that frame.
-     * Optional (NULL: the object begins with a renderer_base, renderers/base.h, and its
+     * Optional (NULL: the object begins with a renderer_base, renderers/frame/base.h, and its
      * counters are all the renderer collects). */
     bool no_base;   /* the object does not begin with a renderer_base (null): it has
                        neither the base's counters nor its depth target */
@@ -86,7 +86,7 @@ typedef struct renderer_impl {
     /* Optional (NULL: none): the bytes of the targets and buffers the design makes
      * beyond the base's (hdr, depth, msaa resolve, edge AA, shadow maps, light lists),
      * for the memory estimate a run is checked against before it starts
-     * (runner/memory.c): a model, no GL call. */
+     * (runner/plan/memory.c): a model, no GL call. */
     uint64_t (*own_bytes)(const struct renderer_estimate *e);
     /* Optional (NULL: 0): for the memory estimate, the draw calls a frame makes for each
      * light, which llvmpipe bins until the frame ends (light volumes and their stencil
@@ -226,17 +226,17 @@ uint32_t renderer_max_lights(const char *kind, const renderer_options *o,
                              int max_uniform_block_size);
 /* The bytes one light takes in the renderers' light buffers (std140 vec4s). */
 uint64_t renderer_light_bytes(void);
-/* The bytes of one shadow map layer at the default size (renderers/shadow.h). */
+/* The bytes of one shadow map layer at the default size (renderers/frame/shadow.h). */
 uint64_t renderer_shadow_layer_bytes(void);
 /* The depth slices clustered.slices slices_y makes of s's camera (its light grid's
- * depth, renderers/shading.h), and whether the planes proj11, znear, zfar hold them
+ * depth, renderers/frame/shading.h), and whether the planes proj11, znear, zfar hold them
  * (false with the message the grid gives at prepare, naming kind). */
 uint32_t renderer_cluster_slices(const struct scene *s, int slices_y);
 bool renderer_cluster_slices_ok(const char *kind, double proj11, double znear, double zfar,
                                 int slices_y, char *err, size_t errlen);
 
 /* What objects' materials of s write (opaque and alpha-tested ones: translucent objects
- * never reach the G-buffer, renderers/translucent.h). */
+ * never reach the G-buffer, renderers/frame/translucent.h). */
 deferred_needs deferred_needs_of(const struct scene *s);
 
 /* Whether the renderer `kind` with options o shades from a G-buffer: whether the design

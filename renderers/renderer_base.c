@@ -5,9 +5,9 @@
  * renderer.h for its types, so the arrows go one way, renderer_base -> base -> renderer. */
 #include "renderers/renderer_internal.h"
 
-#include "renderers/base.h"
-#include "renderers/shading.h"
-#include "renderers/shadow.h"
+#include "renderers/frame/base.h"
+#include "renderers/frame/shading.h"
+#include "renderers/frame/shadow.h"
 
 #include <stdio.h>
 

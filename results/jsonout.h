@@ -9,7 +9,7 @@
 
 void json_string(FILE *fp, const char *s);
 /* The n bytes at s as json_string writes a string; where yaml, a control character as
- * \xXX instead (a YAML double-quoted scalar: meta.yaml's trial status, runner/trials.c). */
+ * \xXX instead (a YAML double-quoted scalar: meta.yaml's trial status, runner/folder/trials.c). */
 void json_quoted(FILE *fp, const char *s, size_t n, bool yaml);
 /* Space-separated words (a list of names) as an array of strings; "" is []. */
 void json_words(FILE *fp, const char *words);

@@ -9,7 +9,7 @@ typedef struct frame_record {
     uint32_t frame;        /* index among measured frames (warm-up excluded), from 0 */
     double t_wall_s;       /* end of this frame, seconds since measurement start on the
                             * measured clock (CLOCK_MONOTONIC less the pauses for
-                            * screenshots and comparisons, runner/run.c) */
+                            * screenshots and comparisons, runner/trial/run.c) */
     double t_scene_s;      /* schedule time the scene was drawn at */
     uint32_t lights;       /* lights active in the scene this frame */
     double frametime_us;   /* CPU wall time from frame start to its sync point */

@@ -9,7 +9,7 @@
 #include <stdbool.h>
 #include <stddef.h>
 #include <stdint.h>
-#include "scenes/sm_bounds.h"
+#include "scenes/math/sm_bounds.h"
 
 /* Conventions (every generator):
  *   - Right-handed, Y up. Triangles are counter-clockwise seen from the side the normals

@@ -5,10 +5,10 @@
 #include <stdbool.h>
 #include <stddef.h>
 #include <stdint.h>
-#include "scenes/sm_bounds.h"
+#include "scenes/math/sm_bounds.h"
 #include "scenes/lights.h"
 #include "scenes/mesh.h"
-#include "scenes/texture_gen.h"
+#include "scenes/builtin/texture_gen.h"
 
 typedef enum light_type { LIGHT_POINT = 0, LIGHT_SPOT, LIGHT_DIRECTIONAL } light_type;
 
@@ -34,7 +34,7 @@ typedef struct scene_light {
     float spot_exponent;       /* spot: falloff f in (-L.A)^f */
     attenuation_kind attenuation;
     float att_a, att_b, att_c; /* ATTENUATION_QUADRATIC */
-    bool shadows;              /* spot and directional: casts shadows (renderers/shadow.h) */
+    bool shadows;              /* spot and directional: casts shadows (renderers/frame/shadow.h) */
 } scene_light;
 
 /* How a material's alpha (diffuse alpha x the diffuse map's alpha) is used. */
@@ -43,7 +43,7 @@ typedef enum material_alpha {
     MATERIAL_MASK,             /* alpha test: fragments with alpha < alpha_cutoff discarded */
     MATERIAL_BLEND,            /* translucent: coverage = opacity x the diffuse map's alpha,
                                 * drawn after the opaque scene, back to front, blended over
-                                * it (renderers/translucent.h); casts no shadow */
+                                * it (renderers/frame/translucent.h); casts no shadow */
 } material_alpha;
 
 /* The two shading models (manifest key shading.model; renderers/shaders/lighting.inc):
@@ -51,7 +51,7 @@ typedef enum material_alpha {
  * distribution, separable Smith-GGX visibility, Schlick's Fresnel, Lambert diffuse). */
 typedef enum shading_model { SHADING_PHONG = 0, SHADING_PBR } shading_model;
 
-/* The environment light (manifest key environment.light, issue 36; renderers/environment.h):
+/* The environment light (manifest key environment.light, issue 36; renderers/frame/environment.h):
  * none (the scene's constant ambient light), or the procedural sky, which replaces the
  * ambient light in every renderer's ambient term and shows where no geometry is. */
 typedef enum scene_environment { ENVIRONMENT_NONE = 0, ENVIRONMENT_SKY } scene_environment;
@@ -149,7 +149,7 @@ void camera_params_init(camera_params *cp);
  * projection's y scale, 1 / tan(fovy / 2); S_y: clustered.slices), so that a slice is
  * about as deep as a tile of a screen cut into S_y rows is wide. 1 for planes that make
  * no range; at most 1e6. renderers/tiled/grid.c refuses more than SCENE_DEPTH_SLICES_MAX,
- * and so does the plan check (runner/plan_check.c), before GL. */
+ * and so does the plan check (runner/plan/plan_check.c), before GL. */
 uint32_t scene_depth_slices(double proj11, double znear, double zfar, int slices_y,
                             double *ratio);
 #define SCENE_DEPTH_SLICES_MAX 1024u
@@ -170,7 +170,7 @@ void scene_fit_planes(float file_near, float file_far, float depth_near, float d
                                      * animation sampled between its poses */
 #define SCENE_PLANES_RATIO 1e4      /* far / near at most: the orbit's 1e-3 and 10 x the
                                      * diagonal; 24-bit depth then resolves 6e-4 x far */
-#define SCENE_PLANES_SLICES_Y 24    /* clustered.slices' default (runner/params.def) */
+#define SCENE_PLANES_SLICES_Y 24    /* clustered.slices' default (runner/manifest/params.def) */
 #define SCENE_PLANES_SLICES 1000.0  /* below SCENE_DEPTH_SLICES_MAX, clear of rounding */
 
 /* How the linear image is displayed (manifest keys exposure.* and tonemap): the last
@@ -190,7 +190,7 @@ typedef struct scene {
     sm_vec3 light_bounds_min, light_bounds_max;   /* where random lights are placed */
     sm_vec3 ambient;
     shading_model shading;     /* SHADING_PHONG until scene_set_shading */
-    scene_display display;     /* set by the run after the build (runner/run_setup.c) */
+    scene_display display;     /* set by the run after the build (runner/trial/run_setup.c) */
     bool from_file;            /* a file's scene (scene_source.file) */
     bool lights_outside;       /* random placement draws a position inside a closed mesh
                                 * again (a file's lights_around) */
@@ -280,7 +280,7 @@ size_t scene_catalog_count(void);
 const scene_catalog_entry *scene_catalog_at(size_t i);
 const scene_catalog_entry *scene_catalog_find(const char *name);   /* NULL if unknown */
 
-/* A scene from a file (scenes/file_assimp.c): glTF 2.0 (.gltf + .bin + images, .glb,
+/* A scene from a file (scenes/file/file_assimp.c): glTF 2.0 (.gltf + .bin + images, .glb,
  * embedded), OBJ + MTL, and whatever else assimp reads. */
 typedef enum scene_up { SCENE_UP_Y = 0, SCENE_UP_Z } scene_up;
 typedef struct scene_file_options {
@@ -429,7 +429,7 @@ scene *scene_build_cache(const scene_source *src, scene_cached *from, scene_cach
                          size_t errlen);
 void scene_update(scene *s, double t);
 
-/* What a plan check asks of many runs' scenes without building each (runner/plan_check.c):
+/* What a plan check asks of many runs' scenes without building each (runner/plan/plan_check.c):
  * a source built once, without lights (maps and meshes included: a file whose texture
  * does not decode fails here), against which each run's lights and camera are checked
  * with no further building. scene_probe_build: NULL with scene_build_source's message when

@@ -12,7 +12,7 @@
 #include <stdint.h>
 
 #include "scenes/mesh.h"
-#include "scenes/sm_mat.h"
+#include "scenes/math/sm_mat.h"
 
 /* Morph targets: a mesh with targets keeps its own vertices and each target's position
  * and normal offsets; each frame its vertices are rebuilt as its own plus the weighted
@@ -68,7 +68,7 @@ typedef struct anim_morph {
 } anim_morph;
 
 /* At most this many joints in all skins of a scene: 4 RGBA32F texels a joint in one
- * texture buffer, whose GL 4.5 minimum size is 65536 texels (renderers/scene_gpu.c). */
+ * texture buffer, whose GL 4.5 minimum size is 65536 texels (renderers/frame/scene_gpu.c). */
 #define SCENE_ANIM_MAX_JOINTS 16384u
 
 typedef struct anim_skin {

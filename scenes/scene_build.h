@@ -1,5 +1,5 @@
 #pragma once
-/* What the catalog scenes' builders share (scenes/scene_make.c and scenes/scene_*.c); not part
+/* What the catalog scenes' builders share (scenes/scene_make.c and scenes/builtin/scene_*.c); not part
  * of the scenes interface (nothing outside scenes/ includes it).
  *
  * A builder fills a scene through a scene_builder: tables, meshes, maps, materials,
@@ -142,5 +142,5 @@ bool scene_build_spot_coverage(scene_builder *b, const void *arg);
 bool scene_build_two_spots(scene_builder *b, const void *arg);
 bool scene_build_floating_spot(scene_builder *b, const void *arg);
 bool scene_build_glass(scene_builder *b, const void *arg);
-/* A file scene through assimp (scenes/file_assimp.c); arg: a scene_file_options. */
+/* A file scene through assimp (scenes/file/file_assimp.c); arg: a scene_file_options. */
 bool scene_build_file(scene_builder *b, const void *arg);

@@ -60,7 +60,7 @@ static bool ray_meets_cone(const double o[3], const double d[3], const float a[3
 /* Point: the ball of `radius`. Spot: the cone of half angle spot_angle (clamped to
  * [1e-4, pi/2 - 1e-3], as the renderers clamp it), apex at the light, along its direction
  * (a zero direction counts as -Y, as in the renderers), capped by the PLANE at distance
- * `radius` along the axis: the volume renderers/frontend.c culls with and the deferred
+ * `radius` along the axis: the volume renderers/frame/frontend.c culls with and the deferred
  * renderer rasterizes (mesh_light_cone of height = range). The lit part of it (within
  * `radius` of the light, lighting.inc) is the cone capped by the sphere, inside this.
  * The ray is the whole ray from the eye: neither the near nor the far plane cuts it.

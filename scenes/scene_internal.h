@@ -21,7 +21,7 @@ bool scene_place_lights(scene *s, const scene_light *authored, uint32_t nauthore
                         uint32_t ncoverage, const light_params *lp, bool check, char *err,
                         size_t errlen);
 
-/* FNV-1a 64, the same function as runner/hash.h (scenes/ cannot reach runner/), continued
+/* FNV-1a 64, the same function as runner/manifest/hash.h (scenes/ cannot reach runner/), continued
  * from h (start: 0xcbf29ce484222325). */
 uint64_t scene_fnv1a64_more(uint64_t h, const void *data, size_t len);
 /* CLOCK_MONOTONIC in seconds: the load's and the cache's times (scene_file_times). */

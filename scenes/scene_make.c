@@ -1,5 +1,5 @@
 /* Scene construction and posing. Each catalog scene is built by its builder (the
- * registry below; scenes/scene_*.c); the run's lights are then placed from the manifest's
+ * registry below; scenes/builtin/scene_*.c); the run's lights are then placed from the manifest's
  * light parameters; scene_update poses everything from schedule time alone.
  *
  * Sections: >>registry >>build >>probe here (with scene_destroy and scene_make_opaque);

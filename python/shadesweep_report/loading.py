@@ -195,7 +195,7 @@ class Run:
 
     @property
     def status(self):
-        """The run's status as shadesweep wrote it in meta.yaml (runner/trials.c
+        """The run's status as shadesweep wrote it in meta.yaml (runner/folder/trials.c
         trials_run_status: ok, partial:<reason> or the failure); "" without results. A
         meta.yaml with no status (a folder not written by shadesweep) gets the same rule
         applied to the rows."""

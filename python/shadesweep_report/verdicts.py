@@ -1,5 +1,5 @@
 """The report's statistics. Every ratio, significance and crossover the report prints is
-asked of shadesweep itself (`shadesweep ratios`, runner/ratios.c over results/verdict.c):
+asked of shadesweep itself (`shadesweep ratios`, runner/answer/ratios.c over results/verdict.c):
 the module the ranking, summary.md and compare use, so that the report cannot say
 "cannot say" where the ranking says "differs: yes" on the same data. The trial is the
 unit: two runs of one folder and one sweep point are paired round by round, others are
@@ -51,7 +51,7 @@ _READERS = {}
 
 def readers():
     """{key: set of the renderers that read it ("*": every run)} from `shadesweep params
-    --json` (runner/params.def), asked once; {} when it cannot say (every key kept)."""
+    --json` (runner/manifest/params.def), asked once; {} when it cannot say (every key kept)."""
     if "keys" not in _READERS:
         try:
             p = subprocess.run([_exe(), "params", "--json"], capture_output=True, text=True,

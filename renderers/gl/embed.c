@@ -82,7 +82,7 @@ static int set_name(input *in)
     size_t n = strlen(base);
     const char *ext = ".glsl";
     size_t e = strlen(ext);
-    /* A C header shared with GLSL (renderers/bindings.h) keeps its whole name. */
+    /* A C header shared with GLSL (renderers/frame/bindings.h) keeps its whole name. */
     if (n > 2 && strcmp(base + n - 2, ".h") == 0)
         e = 0;
     else if (n <= e || strcmp(base + n - e, ext) != 0) {
@@ -160,7 +160,7 @@ static int write_output(FILE *out, const input *ins, size_t n)
     return !ferror(out);
 }
 
-/* A C header (NAME.h, renderers/bindings.h) is embedded under its whole name
+/* A C header (NAME.h, renderers/frame/bindings.h) is embedded under its whole name
  * ("bindings.h"), so that shaders can `#include "bindings.h"` the same file C does.
  *
  * Refused, with "embed: FILE: why" on stderr and exit status 1 (and no OUTPUT

@@ -122,7 +122,7 @@ gl_program_err gl_program_get(gl_program_cache *c, const gl_program_desc *desc,
  * refused as GLP_ERR_DEFINE. False, and the cache unchanged, when one is malformed or
  * repeated, or there are too many. */
 /* renderer_base_scene's are at most 7: LIGHT_TYPES, LIGHT_ATTENUATIONS, VERTEX_COLOR,
- * UV2, SKINNING, SHADING_PBR, ENVIRONMENT (renderers/base.c) */
+ * UV2, SKINNING, SHADING_PBR, ENVIRONMENT (renderers/frame/base.c) */
 enum { GLP_MAX_COMMON_DEFINES = 8 };
 bool gl_program_cache_set_common(gl_program_cache *c, const char *const *defines, size_t n);
 

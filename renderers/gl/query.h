@@ -58,7 +58,7 @@ void gl_pass_queries_collect(gl_pass_queries *q, frame_stats *fs);
  * fine. */
 void gl_pass_queries_pause(gl_pass_queries *q);
 void gl_pass_queries_resume(gl_pass_queries *q);
-/* MSAA edges (renderers/deferred.c): the stretches of shading draws begun while on are
+/* MSAA edges (renderers/deferred/deferred.c): the stretches of shading draws begun while on are
  * per-sample shading; collect sums their samples apart as well
  * (pass_stats.per_sample_samples). Off again at every pass's begin; NULL is fine. */
 void gl_pass_queries_per_sample(gl_pass_queries *q, bool on);

@@ -84,7 +84,7 @@ enum { GLS_MAX_TEXTURE_UNITS = 16, GLS_MAX_BUFFER_BINDINGS = 16, GLS_MAX_IMAGE_U
  *
  * Assumed and never touched: GL_SCISSOR_TEST, GL_RASTERIZER_DISCARD and
  * GL_POLYGON_OFFSET_FILL off, glFrontFace GL_CCW (GL's defaults). (The shadows pass,
- * renderers/shadow.c, switches GL_POLYGON_OFFSET_FILL on for its draws and off again
+ * renderers/frame/shadow.c, switches GL_POLYGON_OFFSET_FILL on for its draws and off again
  * before it ends, as deferred does with GL_DEPTH_CLAMP.) Textures,
  * framebuffers and vertex arrays should be made without binding them (direct state
  * access, as target.h does); the empty vertex array is the cache's own.

@@ -1,4 +1,4 @@
-// Edge-detect anti-aliasing (renderers/edge_aa.h; seed 001 section 19.5.2), drawn with
+// Edge-detect anti-aliasing (renderers/frame/edge_aa.h; seed 001 section 19.5.2), drawn with
 // fullscreen.vert into its own target: the HDR image (t_hdr) with each pixel blended
 // with its 8 neighbours by how much of an edge it is. The edge test compares, per
 // opposite pair of neighbours, the two depth steps from the centre with each other

@@ -48,7 +48,7 @@ vec2 env_brdf(float roughness, float ndv)
 // Without ENVIRONMENT: the scene's constant ambient light, A = ambient x diffuse x
 // occlusion (seed 000 appendix D), exactly as it always was.
 //
-// ENVIRONMENT (a common define: environment.light sky, renderers/environment.h): the
+// ENVIRONMENT (a common define: environment.light sky, renderers/frame/environment.h): the
 // procedural sky in place of the ambient light, by Karis's split sum (2013), as the glTF
 // Sample Viewer lights a model by its environment map:
 //   SHADING_PBR  (irradiance(N) c_diff + prefiltered(R, roughness) (F0 A + B)) x occlusion

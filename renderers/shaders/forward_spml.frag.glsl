@@ -5,7 +5,7 @@
 // Defines: the material's maps (surface.inc); MAX_LIGHTS, the array size, chosen once
 // per run from the run's largest light count (forward_spml.c); or LIGHTS_STORAGE:
 // the lights from a storage buffer; FOG (fog.inc): the sum fogged; TRANSLUCENT (the
-// translucent pass, renderers/translucent.c): the output premultiplied by the surface's
+// translucent pass, renderers/frame/translucent.c): the output premultiplied by the surface's
 // alpha, (c a, a), for blending ONE, ONE_MINUS_SRC_ALPHA over what lies behind.
 #include "bindings.h"
 #include "frame.inc"

@@ -31,7 +31,7 @@ layout(location = 0) out vec4 o_color;
 // against (b_tile_depth), every light of the frame is looped, in light order, so that
 // no light the centre sees is missed (rare: pixels on the edges of steep surfaces).
 // TRANSLUCENT (the translucent pass of forward-plus, clustered and
-// tiled-deferred, renderers/translucent.c): the list is the tile's translucent one,
+// tiled-deferred, renderers/frame/translucent.c): the list is the tile's translucent one,
 // b_tiles[TLISTS + tile] (near plane to the tile's max opaque depth, tile_cull.inc),
 // for clustered too (its clusters cover only the depths of the tile's opaque samples),
 // and the output premultiplied, (c a, a), as forward_spml.frag's TRANSLUCENT.

@@ -1,4 +1,4 @@
-// Per-frame values every pass can read: uniform block binding 0 (renderers/shading.h
+// Per-frame values every pass can read: uniform block binding 0 (renderers/frame/shading.h
 // fills it as gpu_frame, std140).
 #include "bindings.h"
 layout(std140, binding = BIND_UBO_FRAME) uniform Frame {

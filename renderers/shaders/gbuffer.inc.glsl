@@ -1,6 +1,6 @@
 // The G-buffer's accessors (seed 001: the layout lives in one place): what the
 // G-buffer pass stores (gbuffer_store, with GBUFFER_WRITE defined before the include)
-// and what the passes that read it load (gbuffer_load). renderers/deferred.c builds the
+// and what the passes that read it load (gbuffer_load). renderers/deferred/deferred.c builds the
 // layout and passes it as defines, each naming where a field lives
 // (the defines, what each names, and the attachments gbK: the comment above the
 // encodings below)

@@ -18,7 +18,7 @@
 // The light features the program is compiled for: LIGHT_TYPES, bit t for type t (1 point,
 // 2 spot, 4 directional), and LIGHT_ATTENUATIONS, bit k for attenuation k (1
 // inverse-square, 2 linear-range, 4 quadratic, 8 windowed). Every program gets the scene's (the
-// program cache's common defines, renderers/base.c); the code of the others is left
+// program cache's common defines, renderers/frame/base.c); the code of the others is left
 // out, so that a light costs only what its kind needs: on llvmpipe both sides of a
 // branch run, masked, for every light a loop visits, and the fields they read are
 // loaded. A light of a kind left out is never in the frame. Without them: everything.
@@ -47,7 +47,7 @@ float attenuation_windowed(float d2, float range)
 }
 
 // A light is 5 vec4s (the layout of forward-spml's buffer and of the per-light
-// uniform u_light[5] of the other passes; renderers/shading.h fills it):
+// uniform u_light[5] of the other passes; renderers/frame/shading.h fills it):
 //   [0] xyz position, w range           [1] rgb colour, w type (0 point, 1 spot, 2 dir.)
 //   [2] xyz direction (unit, the way the light travels), w cos(spot angle)
 //   [3] x spot exponent, y attenuation (0 inverse-square, 1 linear-range, 2 quadratic,

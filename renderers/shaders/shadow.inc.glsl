@@ -10,7 +10,7 @@
 #endif
 
 #include "bindings.h"
-//   Shadows   uniform block binding 2 (renderers/shadow.c fills it per frame): per
+//   Shadows   uniform block binding 2 (renderers/frame/shadow.c fills it per frame): per
 //             layer of the pool, the matrix from VIEW space to the layer's shadow-map
 //             coordinates: xy in [0, 1] across the map, z the depth [0, 1] the map
 //             stores. Deferred (4.5.6) goes view -> world -> light projection space

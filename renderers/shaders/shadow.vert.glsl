@@ -1,4 +1,4 @@
-// The shadows pass (renderers/shadow.c): a scene mesh into one layer of the shadow-map
+// The shadows pass (renderers/frame/shadow.c): a scene mesh into one layer of the shadow-map
 // pool, depth only. u_model_view_proj takes the object to the light's clip space
 // (scene_gpu_draw_object_depth). Only the position attribute is read, and with SKINNING
 // a skinned mesh's joints and weights (skin.inc, as mesh.vert).

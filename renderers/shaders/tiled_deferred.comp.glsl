@@ -7,7 +7,7 @@
 // the tile's list (directional lights pass every tile) with forward-spml's range
 // rejection, and stores the sum into the HDR target (image unit BIND_IMAGE_HDR,
 // rgba16f, or rgba32f with HDR_RGBA32F: the image's format qualifier must be the
-// target's, renderers/base.h): ambient, directional and local lights in one pass, one
+// target's, renderers/frame/base.h): ambient, directional and local lights in one pass, one
 // write per pixel.
 // The variants (NO_GRID, SLICES, TLISTS, MSAA_SAMPLES, LIGHT_PREPASS) and the defines:
 // the comment above main().

@@ -1,5 +1,5 @@
 // The visibility pass (Burns and Hunt, JCGT 2(2), 2013): per pixel the draw and the
-// triangle that cover it, packed into one 32-bit id (renderers/visibility.h):
+// triangle that cover it, packed into one 32-bit id (renderers/visibility/visibility.h):
 // id = draw << VIS_TRI_BITS | gl_PrimitiveID, the draw being the object's index in the
 // frame's visible list (u_draw) and gl_PrimitiveID the triangle of its mesh. No
 // material work, except ALPHA_TEST (a MASK material): surface.inc's discard, the same

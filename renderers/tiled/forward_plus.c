@@ -8,8 +8,8 @@
  *
  * Each pass in detail, the draw counts, overflow, MSAA and the counters: the comment
  * above forward_tiled_draw. */
-#include "renderers/forward_common.h"
-#include "renderers/shading.h"
+#include "renderers/forward/forward_common.h"
+#include "renderers/frame/shading.h"
 #include "renderers/tiled/grid.h"
 #include "renderers/tiled/tiled.h"
 
@@ -178,7 +178,7 @@ static void bind_buffers(forward_plus *r)
 }
 
 /*   shadows  (some spot or directional light casts shadows, shadows not off) as every
- *            renderer (renderers/shadow.h)
+ *            renderer (renderers/frame/shadow.h)
  *   depth    the visible objects, depth only (mesh.vert + depth_only.frag, colour
  *            mask off), depth LESS with writes: the pre-pass the tiles are cut from
  *   cull     (only when the scene has a point or spot light) ONE compute dispatch of
@@ -220,7 +220,7 @@ static void bind_buffers(forward_plus *r)
  * than the buffer holds, puts the total, the capacity and the longest tile with its
  * count into frame_stats.overflow (the run fails as failed:overflow).
  *
- * MSAA (msaa > 1; renderers/base.h): the same passes, draws and dispatch. The depth
+ * MSAA (msaa > 1; renderers/frame/base.h): the same passes, draws and dispatch. The depth
  * pre-pass writes the multisampled depth; the cull pass (tile_cull.comp with
  * MSAA_SAMPLES) reads every sample of every pixel of its tile with texelFetch and a
  * sample index (no resolved depth copy: a copy would keep one depth per pixel and

@@ -6,9 +6,9 @@
 #include <stdlib.h>
 #include <string.h>
 
-#include "renderers/bindings.h"
-#include "renderers/forward_common.h"
-#include "renderers/shading.h"
+#include "renderers/frame/bindings.h"
+#include "renderers/forward/forward_common.h"
+#include "renderers/frame/shading.h"
 
 bool light_grid_tile_option(light_grid *g, const char *name, const renderer_options *o,
                             char *err, size_t errlen)

@@ -10,12 +10,12 @@
 #include <stddef.h>
 #include <stdint.h>
 
-#include "renderers/frontend.h"
+#include "renderers/frame/frontend.h"
 #include "renderers/gl/loader.h"
 #include "renderers/gl/state.h"
-#include "renderers/light_buffer.h"
+#include "renderers/frame/light_buffer.h"
 #include "renderers/renderer.h"
-#include "renderers/translucent.h"
+#include "renderers/frame/translucent.h"
 #include "scenes/scene.h"
 
 /* The grid, part by part:

@@ -1,6 +1,6 @@
 /* tiled-deferred (Andersson 2009, Lauritzen 2010), and clustered with clustered.shading:
  * deferred (Olsson et al. 2012): deferred's G-buffer (every preset and override;
- * renderers/deferred_core.h), then instead of deferred's ambient and light passes ONE
+ * renderers/deferred/deferred_core.h), then instead of deferred's ambient and light passes ONE
  * compute dispatch (tiled_deferred.comp) over the light grid (grid.h): per tile (or
  * cluster) the lights that reach it culled, then ambient, emissive and those lights
  * shaded from the G-buffer and stored into the "light" target by image store (the run's
@@ -10,7 +10,7 @@
  * above create(). The pass itself (its plan, the grid's buffers, the program, the
  * dispatch, its counters) is tiled_pass.c's, which deferred-lighting's tiled light
  * accumulation shares. */
-#include "renderers/deferred_core.h"
+#include "renderers/deferred/deferred_core.h"
 #include "renderers/tiled/tiled.h"
 #include "renderers/tiled/tiled_pass.h"
 

@@ -2,9 +2,9 @@
  * shading pass and deferred-lighting's tiled light accumulation, one compute dispatch. */
 #include "renderers/tiled/tiled_pass.h"
 
-#include "renderers/bindings.h"
+#include "renderers/frame/bindings.h"
 #include "renderers/gl/program.h"
-#include "renderers/shadow.h"
+#include "renderers/frame/shadow.h"
 
 #include <stdio.h>
 #include <string.h>

@@ -17,7 +17,7 @@
 #include <stddef.h>
 #include <stdint.h>
 
-#include "renderers/deferred_core.h"
+#include "renderers/deferred/deferred_core.h"
 #include "renderers/tiled/grid.h"
 
 typedef struct tiled_pass {

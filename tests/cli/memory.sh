@@ -1,5 +1,5 @@
 #!/usr/bin/env bash
-# Memory (README "Reliability", runner/memory.h):
+# Memory (README "Reliability", runner/plan/memory.h):
 #  A. a run whose estimate exceeds what the process may use (here MemAvailable +
 #     SwapFree, or the memory cgroup: 32768x32768 at 4x MSAA in RGBA32F with a reference
 #     at 4 times the width and height needs about 3 TiB) is refused before any child

@@ -1,5 +1,5 @@
 #!/usr/bin/env bash
-# One parameter definition (runner/params.def): docs/manifest.md and the bash
+# One parameter definition (runner/manifest/params.def): docs/manifest.md and the bash
 # completion are its output and must not be stale; `params`, `COMMAND --help`,
 # options after the operands, `gbuffer` as a sweep axis, and the folded plan as
 # `validate`, `list` and plan.csv report it.

@@ -1,5 +1,5 @@
 #!/usr/bin/env bash
-# The schedule (runner/schedule.c): trials: auto stops when the ranking is decided, or
+# The schedule (runner/cli/schedule.c): trials: auto stops when the ranking is decided, or
 # when measure.budget is spent (and says so); `schedule: sequential` runs each run's
 # trials back to back; auto with sequential is refused; run --round K adds one round at
 # a time and merges the runs after the last. No assertion reads a time.

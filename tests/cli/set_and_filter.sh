@@ -1,5 +1,5 @@
 #!/usr/bin/env bash
-# --set KEY=VALUE and --renderer LIST (runner/overrides.c): the plan of a manifest with
+# --set KEY=VALUE and --renderer LIST (runner/manifest/overrides.c): the plan of a manifest with
 # them is the plan of the manifest with the same written into it (same runs, same ids,
 # same order), a bad value gets the manifest's own message and exit 2, and a run records
 # them in meta.yaml and resumes only with the same ones.

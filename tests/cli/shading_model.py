@@ -36,7 +36,7 @@ Written from the paper's formulas (seed 000 appendix D), not from our shaders:
 
 What is taken from the project (its mapping of files and manifests onto the Phong model,
 and how the image is produced), each read from the code named:
-  scenes/file_materials.c glTF pbrMetallicRoughness -> Phong: Kd = baseColorFactor;
+  scenes/file/file_materials.c glTF pbrMetallicRoughness -> Phong: Kd = baseColorFactor;
                         g = 0.04 (1 - metallic) + luminance(baseColor) metallic, with
                         luminance = 0.2126 r + 0.7152 g + 0.0722 b; n = 2 / r^4 - 2 for
                         roughness r (the Blinn-Phong exponent of GGX alpha = r^2).
@@ -45,7 +45,7 @@ and how the image is produced), each read from the code named:
                         `range`; spot: c = outerConeAngle, f = 1 (innerConeAngle is not
                         used). Cameras: at the node, looking down -Z, yfov, the run's
                         aspect. The ambient light of a file scene is 0.1 (grey).
-  scenes/file_assimp.c  scale (fit, the default: the bounds' diagonal made 20 units)
+  scenes/file/file_assimp.c  scale (fit, the default: the bounds' diagonal made 20 units)
                         multiplies positions, a light's range and the camera's planes,
                         and a point or spot light's intensity by its square: the model
                         here stays in the file's units.
@@ -172,7 +172,7 @@ CASES = {
 
 
 # Issue 36: the environment light (environment.light sky), no lights: the plane under the
-# procedural sky, written here from its definition (renderers/environment.c's
+# procedural sky, written here from its definition (renderers/frame/environment.c's
 # environment_sky: y up, each side blended exponentially into the horizon). Each case is
 # (model, metallic, roughness); its file and manifest are NAME.gltf / NAME.yaml.
 ENV_CASES = {

@@ -1,4 +1,4 @@
-/* libFuzzer target for the manifest parser (runner/manifest.c on runner/yamldoc.c).
+/* libFuzzer target for the manifest parser (runner/manifest.c on runner/manifest/yamldoc.c).
  *
  * Each input is the bytes of a manifest. It is loaded with manifest_load_mem; when
  * valid, the plan is expanded (3 shards), every run's parameters are formatted with
@@ -20,8 +20,8 @@
 #include <stdlib.h>
 #include <string.h>
 
-#include "runner/diag.h"
-#include "runner/manifest.h"
+#include "runner/manifest/diag.h"
+#include "runner/manifest/manifest.h"
 
 #define FUZZ_SHARDS 3u
 

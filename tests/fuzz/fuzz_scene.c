@@ -1,4 +1,4 @@
-/* libFuzzer target for scene files (scenes/file_assimp.c through assimp): glTF, GLB,
+/* libFuzzer target for scene files (scenes/file/file_assimp.c through assimp): glTF, GLB,
  * OBJ + MTL.
  *
  * Each input: its first byte picks the scene file's name (s.gltf, s.glb, s.obj); the

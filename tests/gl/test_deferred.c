@@ -1,4 +1,4 @@
-/* The deferred renderer (renderers/deferred.c) in a debug context, on scenes set up
+/* The deferred renderer (renderers/deferred/deferred.c) in a debug context, on scenes set up
  * here: draw calls per pass against the formulas of deferred.c's header for every
  * light-volume mode; the pixels the light passes shade (pass_stats.samples:
  * GL_SAMPLES_PASSED of the shade draws) ordered stencil <= volume <= hull <= scissor <
@@ -30,8 +30,8 @@
 
 #include <cmocka.h>
 
-#include "renderers/deferred.h"
-#include "renderers/frontend.h"
+#include "renderers/deferred/deferred.h"
+#include "renderers/frame/frontend.h"
 #include "renderers/gl/context.h"
 #include "renderers/gl/loader.h"
 #include "renderers/gl/state.h"

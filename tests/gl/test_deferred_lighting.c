@@ -1,4 +1,4 @@
-/* deferred-lighting (the light pre-pass, renderers/deferred_lighting.c) in a debug
+/* deferred-lighting (the light pre-pass, renderers/deferred/deferred_lighting.c) in a debug
  * context: the passes of a frame in order and their draw calls against the formula of
  * its header in every light-volume mode (the two geometry passes draw exactly the visible
  * opaque objects each, the light passes what deferred's do), two frames running; the
@@ -20,8 +20,8 @@
 
 #include <cmocka.h>
 
-#include "renderers/deferred.h"
-#include "renderers/frontend.h"
+#include "renderers/deferred/deferred.h"
+#include "renderers/frame/frontend.h"
 #include "renderers/gl/context.h"
 #include "renderers/gl/loader.h"
 #include "renderers/renderer.h"

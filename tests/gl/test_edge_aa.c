@@ -1,4 +1,4 @@
-/* aa: edge (renderers/edge_aa.h; seed 001 19.5.2's edge-detect blur) in a debug
+/* aa: edge (renderers/frame/edge_aa.h; seed 001 19.5.2's edge-detect blur) in a debug
  * context, on "shapes" with its maps taken off (flat materials: every contrast left is
  * a geometric edge or a crease) under three point lights, for every renderer that
  * draws (the forward three, deferred, tiled-deferred, clustered with forward and with

@@ -23,11 +23,11 @@
 
 #include <cmocka.h>
 
-#include "renderers/forward_common.h"
+#include "renderers/forward/forward_common.h"
 #include "renderers/gl/context.h"
 #include "renderers/gl/loader.h"
 #include "renderers/renderer.h"
-#include "renderers/shading.h"
+#include "renderers/frame/shading.h"
 #include "scenes/scene.h"
 #include "tests/gl/gl_test.h"
 

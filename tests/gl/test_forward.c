@@ -1,4 +1,4 @@
-/* The forward renderers (renderers/forward_mpml.c, forward_spml.c, forward_common.c)
+/* The forward renderers (renderers/forward/forward_mpml.c, forward_spml.c, forward_common.c)
  * in a debug context on scenes set up here: draw calls against the formulas of their
  * headers (with and without illumination sets), program and texture changes against
  * the state buckets of the frontend's order, the pass plan, forward-mpml and
@@ -17,8 +17,8 @@
 
 #include <cmocka.h>
 
-#include "renderers/forward_common.h"
-#include "renderers/frontend.h"
+#include "renderers/forward/forward_common.h"
+#include "renderers/frame/frontend.h"
 #include "renderers/gl/context.h"
 #include "renderers/gl/loader.h"
 #include "renderers/renderer.h"

@@ -1,7 +1,7 @@
 /* The code every renderer shares above the GL layer: the frontend (visible objects,
- * light culling, illumination sets, eye-inside flags, sort order; renderers/frontend.h),
- * the packing of lights and frame values for the shaders (renderers/shading.h) and the
- * scene on the GPU with its draws (renderers/scene_gpu.h), on whatever headless GL this
+ * light culling, illumination sets, eye-inside flags, sort order; renderers/frame/frontend.h),
+ * the packing of lights and frame values for the shaders (renderers/frame/shading.h) and the
+ * scene on the GPU with its draws (renderers/frame/scene_gpu.h), on whatever headless GL this
  * machine has (llvmpipe in CI). Scenes are the catalog's "shapes" and hand-built poses
  * of it. GL tests run in a debug context and fail on any GL error. Exits 77 (skip) when
  * no EGL display can be created. */
@@ -12,14 +12,14 @@
 
 #include <cmocka.h>
 
-#include "renderers/frontend.h"
+#include "renderers/frame/frontend.h"
 #include "renderers/gl/context.h"
 #include "renderers/gl/loader.h"
 #include "renderers/gl/shaders.h"
 #include "renderers/gl/state.h"
 #include "renderers/gl/target.h"
-#include "renderers/scene_gpu.h"
-#include "renderers/shading.h"
+#include "renderers/frame/scene_gpu.h"
+#include "renderers/frame/shading.h"
 #include "scenes/scene.h"
 #include "tests/gl/gl_test.h"
 

@@ -27,8 +27,8 @@
 
 #include "renderers/gl/context.h"
 #include "renderers/gl/loader.h"
-#include "renderers/deferred.h"
-#include "renderers/forward_common.h"
+#include "renderers/deferred/deferred.h"
+#include "renderers/forward/forward_common.h"
 #include "renderers/renderer.h"
 #include "scenes/scene.h"
 #include "tests/gl/gl_test.h"

@@ -1,4 +1,4 @@
-/* MSAA (issue 12, the manifest's `msaa`; renderers/base.h): the refusal of a sample
+/* MSAA (issue 12, the manifest's `msaa`; renderers/frame/base.h): the refusal of a sample
  * count the context cannot do (on the limits of a test, and on the context's own,
  * before anything renders, with the message naming the key, the value and the
  * limits); forward-spml and forward-mpml at msaa 4 draw into multisampled targets
@@ -30,7 +30,7 @@
 #include <stdlib.h>
 #include <string.h>
 
-#include "renderers/base.h"
+#include "renderers/frame/base.h"
 #include "renderers/gl/context.h"
 #include "renderers/gl/loader.h"
 #include "renderers/gl/target.h"

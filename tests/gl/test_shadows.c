@@ -1,4 +1,4 @@
-/* Shadow maps for spot and directional lights (renderers/shadow.h, frontend.h
+/* Shadow maps for spot and directional lights (renderers/frame/shadow.h, frontend.h
  * "shadow"), in every renderer family:
  *
  *   - an occluder between a light (a spot, a directional light) and the floor: floor
@@ -31,7 +31,7 @@
 #include <stdlib.h>
 #include <string.h>
 
-#include "renderers/frontend.h"
+#include "renderers/frame/frontend.h"
 #include "renderers/gl/context.h"
 #include "renderers/gl/loader.h"
 #include "renderers/renderer.h"

@@ -19,7 +19,7 @@
 #include "renderers/gl/context.h"
 #include "renderers/gl/loader.h"
 #include "renderers/renderer.h"
-#include "renderers/shading.h"
+#include "renderers/frame/shading.h"
 #include "common/image_io.h"
 #include "scenes/scene.h"
 #include "tests/gl/gl_test.h"

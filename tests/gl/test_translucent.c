@@ -1,4 +1,4 @@
-/* The translucent pass (issue 12, renderers/translucent.h), on small images:
+/* The translucent pass (issue 12, renderers/frame/translucent.h), on small images:
  *
  *   - on the catalog scene `glass` (its 12 authored point lights) every renderer
  *     agrees with forward-spml within RMSE 1/255 (max 4/255) on the 8-bit output, and

@@ -1,4 +1,4 @@
-/* The visibility renderer (renderers/visibility.c; Burns and Hunt 2013) on "shapes"
+/* The visibility renderer (renderers/visibility/visibility.c; Burns and Hunt 2013) on "shapes"
  * (textured, glossy, normal-mapped and emissive materials): its plan holds the R32UI
  * "visibility" target at 4 bytes a pixel; its passes make exactly one draw per visible
  * opaque object (the visibility pass), one cull dispatch with point lights and none
@@ -21,11 +21,11 @@
 #include <stdlib.h>
 #include <string.h>
 
-#include "renderers/frontend.h"
+#include "renderers/frame/frontend.h"
 #include "renderers/gl/context.h"
 #include "renderers/gl/loader.h"
 #include "renderers/renderer.h"
-#include "renderers/visibility.h"
+#include "renderers/visibility/visibility.h"
 #include "common/image_io.h"
 #include "scenes/scene.h"
 #include "tests/gl/gl_test.h"

@@ -4,7 +4,9 @@
   (b) runner/ includes nothing of renderers/ but RUNNER_MAY_INCLUDE;
   (c) no renderer's name (read from the registry, renderers/renderer.c) as a string
       literal in a strcmp/strncmp call outside the registry;
-  (d) no product file over MAX_LINES lines.
+  (d) no product file over MAX_LINES lines;
+  (e) runner/'s folders include one way, each only from those RUNNER_FOLDERS lets it
+      (runner/meson.build links them as static libraries in that order).
 Prints every violation as FILE:LINE: RULE and exits 1 if there is any.
 Usage: check.py [SOURCE_ROOT] (default: two folders above this file)."""
 import fnmatch
@@ -16,11 +18,20 @@ PRODUCT_DIRS = ("runner", "renderers", "scenes", "results", "common")
 EXTENSIONS = (".c", ".h", ".cpp", ".def", ".inc")
 REGISTRY = "renderers/renderer.c"
 # What runner/ may include from renderers/ (fnmatch patterns, from the source root).
-# the interface, the GL context, and the renderers' key tables (runner/params.def
+# the interface, the GL context, and the renderers' key tables (runner/manifest/params.def
 # includes them into the one table of keys)
 RUNNER_MAY_INCLUDE = ("renderers/renderer.h", "renderers/gl/context*.h", "renderers/keys.def",
                       "renderers/keys.h")
 MAX_LINES = 800
+# runner/'s folders, each with the folders it may include from (runner/*/meson.build)
+RUNNER_FOLDERS = {
+    "manifest": (),
+    "plan": ("manifest",),
+    "folder": ("manifest",),
+    "answer": ("folder", "plan", "manifest"),
+    "trial": ("folder", "plan", "manifest"),
+    "cli": ("answer", "trial", "folder", "plan", "manifest"),
+}
 
 INCLUDE = re.compile(r'^[ \t]*#[ \t]*include[ \t]*"([^"]+)"', re.M)
 STRING = re.compile(r'"(?:[^"\\\n]|\\.)*"')
@@ -73,6 +84,12 @@ def node(path):
     if ext not in (".c", ".h", ".cpp"):
         return path
     return base[:-len("_internal")] if base.endswith("_internal") else base
+
+
+def runner_folder(path):
+    """The runner/ folder a file is in ("" outside runner/'s folders)."""
+    parts = path.split("/")
+    return parts[1] if len(parts) > 2 and parts[0] == "runner" else ""
 
 
 def resolve(root, including, target, files):
@@ -161,6 +178,12 @@ def main():
                                 f"{', '.join(RUNNER_MAY_INCLUDE)})")
             if dest and node(dest) != node(f):
                 edges.setdefault(node(f), {}).setdefault(node(dest), (f, line))
+            src_dir, dst_dir = runner_folder(f), runner_folder(dest or "")
+            if src_dir and dst_dir and dst_dir != src_dir \
+                    and dst_dir not in RUNNER_FOLDERS.get(src_dir, ()):
+                problems.append(f"{f}:{line}: (e) runner/{src_dir}/ includes {dest} "
+                                f"(runner/{src_dir}/ may include from "
+                                f"{', '.join(RUNNER_FOLDERS.get(src_dir, ())) or 'no other folder'})")
     for cycle, comp in circles(edges):
         where = edges[cycle[0]][cycle[1]]
         steps = " -> ".join(cycle + [cycle[0]])

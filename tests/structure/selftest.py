@@ -21,11 +21,11 @@ CLEAN = {
     "renderers/b.c": ('#define FAMILY(R) RENDERER_IMPL(b, "beta-2", R)\n'
                       'const renderer_impl renderer_b_impl = FAMILY("reads");\n'),
     "renderers/gl/context.h": "#pragma once\n",
-    "runner/run.c": ('#include "runner/run.h"\n#include "runner/run_internal.h"\n'
+    "runner/trial/run.c": ('#include "runner/trial/run.h"\n#include "runner/trial/run_internal.h"\n'
                      '#include "renderers/renderer.h"\n#include "renderers/gl/context.h"\n'
                      '/* strcmp(x, "alpha") in a comment */\n'),
-    "runner/run.h": "#pragma once\n",
-    "runner/run_internal.h": '#include "run.h"\n',
+    "runner/trial/run.h": "#pragma once\n",
+    "runner/trial/run_internal.h": '#include "run.h"\n',
     "scenes/x.c": '#include "scenes/x.h"\nint f(const char *s) { return strcmp(s, "gamma"); }\n',
     "scenes/x.h": '#include "results/y.h"\n',
     "results/y.h": "#pragma once\n",
@@ -33,16 +33,18 @@ CLEAN = {
 BAD = dict(CLEAN)
 BAD.update({
     "results/y.h": '#pragma once\n#include "scenes/x.h"\n',                  # (a) x -> y -> x
-    "runner/run.c": CLEAN["runner/run.c"] + '#include "renderers/shading.h"\n',  # (b)
-    "renderers/shading.h": "#pragma once\n",
+    "runner/trial/run.c": CLEAN["runner/trial/run.c"] + '#include "renderers/frame/shading.h"\n',  # (b)
+    "renderers/frame/shading.h": "#pragma once\n",
     "scenes/z.c": "int g(const char *s)\n{\n    return !strncmp(s, \"beta-2\", 6);\n}\n",  # (c)
     "common/long.inc": "x\n" * 801,                                          # (d)
+    "runner/manifest/m.c": '#include "runner/trial/run.h"\n',               # (e) upward
 })
 WANT = sorted([
     "results/y.h:2: (a)",
-    "runner/run.c:6: (b)",
+    "runner/trial/run.c:6: (b)",
     "scenes/z.c:3: (c)",
     "common/long.inc:801: (d)",
+    "runner/manifest/m.c:1: (e)",
 ])
 
 

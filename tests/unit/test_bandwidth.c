@@ -1,6 +1,6 @@
 /* Seed 002's bandwidth model (results/bandwidth.h, equations 4-7 of its section "MRT
  * Configuration and Bandwidth") and the per-frame G-buffer traffic built on it
- * (renderers/deferred.h, deferred_gbuffer_traffic; the visibility ids' terms,
+ * (renderers/deferred/deferred.h, deferred_gbuffer_traffic; the visibility ids' terms,
  * visibility_id_traffic). No GL context: the layout code and
  * the traffic are arithmetic. Every expected number is worked out by hand beside it. */
 #include <stdarg.h>
@@ -14,8 +14,8 @@
 #include <math.h>
 #include <string.h>
 
-#include "renderers/deferred.h"
-#include "renderers/visibility.h"
+#include "renderers/deferred/deferred.h"
+#include "renderers/visibility/visibility.h"
 #include "results/bandwidth.h"
 
 
@@ -108,7 +108,7 @@ static void test_mrt_terms_are_those_of_4_and_5(void **state)
     assert_near(r, s002_shading_bytes(&v) - s002_shading_bytes(&none), 1e-6);
 }
 
-/* >>the layouts' bytes per pixel (renderers/gbuffer_layout.c) */
+/* >>the layouts' bytes per pixel (renderers/deferred/gbuffer_layout.c) */
 
 static unsigned bpp(const char *kind, gbuffer_preset p, gbuffer_position pos, bool cd)
 {

@@ -1,4 +1,4 @@
-/* runner/crossovers.c on a plan and a summary.csv with known trial values: the crossings
+/* runner/answer/crossovers.c on a plan and a summary.csv with known trial values: the crossings
  * along a numeric parameter per group of the other varying parameters, where each lies
  * (the log-log interpolation of the paired ratios, computed here independently), which
  * configuration is faster on either side, and a resolution as an axis of pixels; only
@@ -16,7 +16,7 @@
 #include <sys/stat.h>
 #include <unistd.h>
 
-#include "runner/crossovers.h"
+#include "runner/answer/crossovers.h"
 
 static void write_tmp(char *path, const char *text)
 {

@@ -1,5 +1,5 @@
-/* Manifests (runner/manifest.c), their YAML layer (runner/yamldoc.c), diagnostics
- * (runner/diag.c) and hashing (runner/hash.c).
+/* Manifests (runner/manifest.c), their YAML layer (runner/manifest/yamldoc.c), diagnostics
+ * (runner/manifest/diag.c) and hashing (runner/manifest/hash.c).
  *
  * Good manifests: every parsed value and every default. Bad manifests: the exact
  * output of diag_print, line by line, for each file under tests/data/bad. */
@@ -14,11 +14,11 @@
 #include <cmocka.h>
 
 #include "renderers/renderer.h"
-#include "runner/diag.h"
-#include "runner/hash.h"
-#include "runner/manifest.h"
-#include "runner/params.h"
-#include "runner/yamldoc.h"
+#include "runner/manifest/diag.h"
+#include "runner/manifest/hash.h"
+#include "runner/manifest/manifest.h"
+#include "runner/manifest/params.h"
+#include "runner/manifest/yamldoc.h"
 
 static const char *data_dir(void)
 {
@@ -64,7 +64,7 @@ static experiment *load_good(const char *rel)
     return e;
 }
 
-/* An FNV-1a 64 written out here, independent of runner/hash.c. */
+/* An FNV-1a 64 written out here, independent of runner/manifest/hash.c. */
 static uint64_t file_fnv(const char *path)
 {
     FILE *f = fopen(path, "rb");

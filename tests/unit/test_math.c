@@ -1,4 +1,4 @@
-/* Unit tests for scenes/sm_vec.h, sm_mat.h, sm_view.h and sm_bounds.h.
+/* Unit tests for scenes/math/sm_vec.h, sm_mat.h, sm_view.h and sm_bounds.h.
  *
  * Every function with a cglm twin is compared against cglm 0.8.8 (the test oracle; never
  * linked into the program) on thousands of inputs drawn from a fixed-seed splitmix64, and
@@ -26,7 +26,7 @@
 
 #include <cglm/cglm.h>
 
-#include "scenes/sm_bounds.h"
+#include "scenes/math/sm_bounds.h"
 
 #define U 0x1p-24                  /* float unit roundoff */
 #define PI_D 3.14159265358979323846

@@ -1,4 +1,4 @@
-/* Procedural meshes, light volumes and textures (scenes/mesh.h, scenes/texture_gen.h).
+/* Procedural meshes, light volumes and textures (scenes/mesh.h, scenes/builtin/texture_gen.h).
  *
  * Every mesh goes through check_mesh: counts as the header's formulas, every float
  * finite, unit normals and tangents (1e-5), tangents orthogonal to normals (1e-5),
@@ -23,7 +23,7 @@
 #include <string.h>
 
 #include "scenes/mesh.h"
-#include "scenes/texture_gen.h"
+#include "scenes/builtin/texture_gen.h"
 
 #define PI 3.14159265358979323846
 

@@ -1,4 +1,4 @@
-/* The parameter definition (runner/params.def): run ids pinned for every manifest
+/* The parameter definition (runner/manifest/params.def): run ids pinned for every manifest
  * in experiments/ (this file is built twice, the second time with one more key,
  * SHADESWEEP_TEST_EXTRA_PARAM: a new key at its default must change no id),
  * folding of runs that differ only in keys their renderer does not read, sweeps of
@@ -14,9 +14,9 @@
 #include <cmocka.h>
 
 #include "renderers/renderer.h"
-#include "runner/diag.h"
-#include "runner/manifest.h"
-#include "runner/params.h"
+#include "runner/manifest/diag.h"
+#include "runner/manifest/manifest.h"
+#include "runner/manifest/params.h"
 
 
 /* The renderer options a run's parameters give (params.def's apply column). */
@@ -298,7 +298,7 @@ static char *params_text(params_format fmt)
     return got;
 }
 
-/* A key declared only in a renderer's table (renderers/deferred_keys.def's
+/* A key declared only in a renderer's table (renderers/deferred/deferred_keys.def's
  * deferred.test_extra, in the build with SHADESWEEP_TEST_EXTRA_PARAM) reaches the
  * validation, `params`, its markdown (docs/manifest.md) and its bash completion, and
  * is read by the renderer that reads its group; the plain build has none of it. The

@@ -1,4 +1,4 @@
-/* runner/progress.c's ETA on synthetic trial costs (powers of two: exact arithmetic):
+/* runner/plan/progress.c's ETA on synthetic trial costs (powers of two: exact arithmetic):
  * unknown before any trial ends, each kind (renderer, size, scene) at its own measured
  * mean, a kind not yet measured at the slowest one's and counted as guessed, the
  * running trial's elapsed time taken off, runs that end early taken out. */
@@ -10,7 +10,7 @@
 #include <math.h>
 #include <stdio.h>
 
-#include "runner/progress.h"
+#include "runner/plan/progress.h"
 #include "assert_near.h"
 
 static void begin(progress *pg, const char *renderer, int w)

@@ -14,7 +14,7 @@
 #include <sys/stat.h>
 #include <unistd.h>
 
-#include "runner/hash.h"
+#include "runner/manifest/hash.h"
 #include "scenes/scene.h"
 #include "tempdir.h"
 

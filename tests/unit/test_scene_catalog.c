@@ -1,4 +1,4 @@
-/* The catalog's scenes (scenes/scene_*.c): every scene builds at 1x1 and 1600x1200 with
+/* The catalog's scenes (scenes/builtin/scene_*.c): every scene builds at 1x1 and 1600x1200 with
  * valid tables, finite poses and bounds; the papers' scenes have what their papers list
  * (seed 000 section 4.8, seed 003 section 6) and what scene_*.c promises. */
 #include <setjmp.h>

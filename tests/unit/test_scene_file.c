@@ -1,4 +1,4 @@
-/* File scenes (scenes/file_assimp.c): the Khronos samples Debian's assimp-testmodels
+/* File scenes (scenes/file/file_assimp.c): the Khronos samples Debian's assimp-testmodels
  * ships (good ones load with their counts, broken ones are refused with a message), the
  * files this test writes (KHR_lights_punctual lights and a camera that must arrive
  * exactly; truncated, garbage, cut and absurd files), and the content hash. */

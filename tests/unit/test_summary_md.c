@@ -1,6 +1,6 @@
-/* runner/summary_md.c on a summary.csv with known trial values: the paired ratio of two
+/* runner/answer/summary_md.c on a summary.csv with known trial values: the paired ratio of two
  * runs, and the warnings (an outlier trial, a trial on a busy machine, a run too short
- * to judge), each naming the run and the trial; runner/point_verdict.c's line of who
+ * to judge), each naming the run and the trial; runner/answer/point_verdict.c's line of who
  * wins at a point (a clear winner, a tie, one trial). */
 #define _DEFAULT_SOURCE
 #include <setjmp.h>
@@ -14,8 +14,8 @@
 #include <string.h>
 #include <unistd.h>
 
-#include "runner/point_verdict.h"
-#include "runner/summary_md.h"
+#include "runner/answer/point_verdict.h"
+#include "runner/answer/summary_md.h"
 
 static const char csv[] =
     "run_id,renderer,experiment,trial,frametime_mean_us,status,metric,metric_us,"

@@ -1,4 +1,4 @@
-/* Plans (runner/sweep.c): expansion order, run ids, shards, --shard parsing,
+/* Plans (runner/plan/sweep.c): expansion order, run ids, shards, --shard parsing,
  * `shadesweep list` output, duplicate points. */
 #include <stdarg.h>
 #include <stddef.h>
@@ -9,8 +9,8 @@
 #include <string.h>
 #include <cmocka.h>
 
-#include "runner/diag.h"
-#include "runner/manifest.h"
+#include "runner/manifest/diag.h"
+#include "runner/manifest/manifest.h"
 
 static void data_path(char *out, size_t len, const char *rel)
 {
@@ -70,7 +70,7 @@ static bool expand(const experiment *e, unsigned nshards, plan *p)
     return ok;
 }
 
-/* FNV-1a 64 written out here, independent of runner/hash.c. */
+/* FNV-1a 64 written out here, independent of runner/manifest/hash.c. */
 static uint64_t fnv(const char *s)
 {
     uint64_t h = 14695981039346656037u;

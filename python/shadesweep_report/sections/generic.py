@@ -33,7 +33,7 @@ def metric_of(run):
 
 def growth_series(run, metric):
     """[(lights, ms, 95% CI ms or None)] when the lights grow within the run, as the
-    crossovers read it (runner/crossovers.c): per trial, the mean of the metric's
+    crossovers read it (runner/answer/crossovers.c): per trial, the mean of the metric's
     frames.csv column over the frames drawn at each count; per count, the mean over the
     trials and its t interval over them (none under 3 trials). [] without frames.csv or
     with one count."""

@@ -68,7 +68,7 @@ def _decided(rt, side):
 
 
 def _worth(ans, x, lead, counts, first, then):
-    """The rule of runner/crossovers.c's worth_reporting: the one faster below leads at
+    """The rule of runner/answer/crossovers.c's worth_reporting: the one faster below leads at
     the lower count and the one faster above at the higher, and the evidence holds (both
     ratios' intervals on their side of 1, or a second count on each side agrees)."""
     i, j = x["i"], x["j"]
@@ -82,7 +82,7 @@ def _worth(ans, x, lead, counts, first, then):
 
 
 def crossovers(by, rens):
-    """The crossings worth reporting, as the terminal's (runner/crossovers.c): between
+    """The crossings worth reporting, as the terminal's (runner/answer/crossovers.c): between
     the renderers that lead on either side, with the evidence to hold them. Returns
     ([(c1, c2, faster before, faster then, answer, crossing)], how many others were
     left out); the crossing lies between light counts c1 and c2, with the interval of
