@@ -13,7 +13,7 @@
  * reproduced by passing z_bytes = 8 (the test does; read it as a read and a write of a
  * 32-bit depth).
  *
- * What the project measures with it (renderers/deferred/deferred.h, deferred_gbuffer_traffic):
+ * What the project measures with it (renderers/deferred/gbuffer_layout.h, deferred_gbuffer_traffic):
  * only the MRT terms, the bytes the G-buffer pass writes (equation 4's
  * n_MRT x W x H x MRT_BPP x Sorting) and the light passes read (equation 5's
  * n_MRT x W x H x MRT_BPP x n), with the pixel counts the paper estimates (W x H x

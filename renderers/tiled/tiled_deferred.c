@@ -26,7 +26,7 @@ _Static_assert(offsetof(tiled_deferred, d) == 0, "destroy: the object begins wit
 
 /* The passes:
  *
- *   shadows, gbuffer   as deferred (deferred.c's header)
+ *   shadows, gbuffer   as deferred (docs/notes/deferred.md)
  *   tiled              the frame's visible lights into the grid's light buffer, then the
  *                      dispatch; "translucent-lists" (not a pass) says whether it builds
  *                      the tiles' translucent lists after the opaque ones (TLISTS, when

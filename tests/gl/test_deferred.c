@@ -1,5 +1,5 @@
 /* The deferred renderer (renderers/deferred/deferred.c) in a debug context, on scenes set up
- * here: draw calls per pass against the formulas of deferred.c's header for every
+ * here: draw calls per pass against the formulas of docs/notes/deferred.md for every
  * light-volume mode; the pixels the light passes shade (pass_stats.samples:
  * GL_SAMPLES_PASSED of the shade draws) ordered stencil <= volume <= hull <= scissor <
  * fullscreen, the scissor's exactly its rectangle; seed 000 5.5's floating-spot (stencil
