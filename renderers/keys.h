@@ -13,7 +13,11 @@
  * A default is written once, as the key's text: the runner parses it like any value, and
  * renderer_options_default() (renderers/renderer.c) makes options of it by its C type. */
 
-#define KEY_ENUM(type, names, values) typedef enum type { values } type;
+/* each enum, and its names (defined once, renderers/renderer.c) */
+#define KEY_ENUM(type, names, values)                                                         \
+    typedef enum type { values } type;                                                        \
+    _Static_assert(sizeof(type) == sizeof(int), "enum size");                                 \
+    extern const char *const names[];
 #define V(text, e) e,
 #define VX(e) e,
 #define PARAM_META(...)

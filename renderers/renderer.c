@@ -220,7 +220,9 @@ uint64_t renderer_own_bytes(const char *kind, const renderer_estimate *e)
 
 /* >>defaults: the key tables' default texts as options (renderer_options_default) */
 
-#define KEY_ENUM(type, names, values) static const char *const names[] = {values NULL};
+/* the enums' names, each value's text at its enumerator (declared in keys.h; the
+ * runner validates against them) */
+#define KEY_ENUM(type, names, values) const char *const names[] = {values NULL};
 #define V(text, e) [e] = text,
 #define VX(e)
 #define PARAM_META(...)

@@ -58,15 +58,7 @@ static const char *const environment_names[] = {[RUN_ENVIRONMENT_NONE] = "none",
                                                 [RUN_ENVIRONMENT_SCENE] = "scene", NULL};
 static const char *const schedule_names[] = {"interleaved", "sequential", NULL};
 static const char *const metric_names[] = {"auto", "wall", "cpu", "gpu", NULL};
-/* The renderers' enums (renderers/keys.h): each value's text at its enumerator. */
-#define KEY_ENUM(type, names, values)                                                         \
-    _Static_assert(sizeof(type) == sizeof(int), "enum size");                                 \
-    static const char *const names[] = {values NULL};
-#define V(text, e) [e] = text,
-#define VX(e)
-#include "runner/manifest/params.def"
-#undef V
-#undef VX
+/* The renderers' enums' names: renderers/keys.h declares them, renderer.c holds them. */
 
 #define RP(f) .off = offsetof(run_params, f), .size = sizeof(((run_params *)0)->f)
 #define RP_SPAN(a, b)                                                                         \
