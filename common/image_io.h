@@ -1,20 +1,16 @@
 #pragma once
-/* The only door to OpenImageIO (image_io.cpp is a thin extern "C" shim).
- * Images are tightly packed, row 0 at the TOP (callers flip GL readbacks). */
+/* Images in memory, their files and their comparison. Encoding and decoding go through
+ * OpenImageIO in the image module, loaded on the first such call (image_codec.h says
+ * why); comparison is plain C. Images are tightly packed, row 0 at the TOP (callers flip
+ * GL readbacks). */
 #include <stdbool.h>
 #include <stddef.h>
+
+#include "common/image.h"
 
 #ifdef __cplusplus
 extern "C" {
 #endif
-
-typedef enum image_type { IMAGE_U8 = 0, IMAGE_F32 } image_type;
-
-typedef struct image {
-    int width, height, channels;
-    image_type type;
-    void *pixels;           /* width*height*channels of uint8_t or float */
-} image;
 
 /* Writes by extension (.png, .exr, ...), under a temporary name then renamed. */
 bool image_write(const char *path, const image *img, char *err, size_t errlen);
@@ -33,20 +29,15 @@ bool image_probe(const void *data, size_t size, const char *name, int *width, in
                  int *channels, unsigned long long *bytes, char *err, size_t errlen);
 void image_free(image *img);
 
+/* Loads the image module now (it is loaded on first use otherwise): a process that
+ * forks workers which write images loads it once, before the fork. False with the
+ * reason when it cannot be loaded (then every encode and decode fails with it). The
+ * module is SHADESWEEP_IMAGE_MODULE when set, else shadesweep-image.so beside the program
+ * (BINDIR/../LIBDIR/shadesweep), in the build folder, or at the install path. */
+bool image_io_load(char *err, size_t errlen);
+
 /* Non-finite values in a float image (0 for IMAGE_U8). */
 size_t image_count_nonfinite(const image *img);
-
-typedef struct image_error {
-    double rmse;            /* over all channels, values in [0,1] for U8 (v/255) */
-    double psnr_db;         /* INFINITY when rmse == 0 */
-    double max_abs;
-    double frac_over_1_255; /* fraction of pixels with any channel off by more than 1/255 */
-    size_t nonfinite;       /* non-finite values in either image */
-    /* over the reference's edge pixels only: image_edge_rmse (image_ref.h) fills them,
-     * image_compare leaves them as they are */
-    double edge_rmse;       /* NAN when the reference has no edge */
-    size_t edge_pixels;
-} image_error;
 
 /* a and b must have equal size and channels. Computed in double precision.
  * Values non-finite in either image are left out of rmse and max_abs (they count in

@@ -16,6 +16,7 @@
 #include <unistd.h>
 
 #include "common/fsutil.h"
+#include "common/image_io.h"
 #include "runner/folder/folder.h"
 #include "runner/trial/isolate.h"
 #include "runner/plan/memory.h"
@@ -204,6 +205,9 @@ bool run_trial_isolated(const experiment *e, const run_spec *s, const run_option
         return true;
     }
     child_args args = {.st = &st, .report = report};
+    /* The image module once, here, rather than in every child (a failure to load it is
+     * the child's to report, at its first image). */
+    (void)image_io_load(NULL, 0);
     isolate_result ir;
     isolate_run(child_main, &args, timeout_s, log_path, &stop_signal, &ir);
     out->seconds = ir.seconds;

@@ -9,7 +9,7 @@
 #    README.md's own #anchors must name one of its headings;
 #  - `meson install` of this build into a temporary destdir gives a program that runs:
 #    `version`, `validate`, `report --help`, with the report package, the papers'
-#    tables and the bash completion installed beside it.
+#    tables, the image module and the bash completion installed beside it.
 . "$(dirname "$0")/lib.sh"
 cd "$T"
 
@@ -95,6 +95,9 @@ for f in share/shadesweep/python/shadesweep_report/__main__.py share/shadesweep/
          share/bash-completion/completions/shadesweep; do
   [ -f "$prefix/$f" ] || fail "meson install left out $f"
 done
+# the image module (common/image_codec.h), where the program looks for it: BINDIR/../LIBDIR
+[ -n "$(find "$prefix" -path '*/lib*/shadesweep/shadesweep-image.so' -type f)" ] ||
+  fail "meson install left out the image module shadesweep-image.so"
 cd /   # nowhere near the source tree
 "$exe" version | grep -q '^shadesweep ' || fail "installed shadesweep version"
 "$exe" validate "$SOURCE_ROOT/experiments/smoke.yaml" >"$T/validate.txt" 2>&1 ||

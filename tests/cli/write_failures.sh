@@ -5,6 +5,8 @@
 #   - a sweep under a file-size limit (ulimit -f): exit 2, not death by SIGXFSZ (153),
 #     a message naming the file with "File too large", no temporary left, and nothing
 #     outside its folder changed.
+#   - a sweep whose image module cannot be loaded (common/image_codec.h): each run
+#     failed:write with the image's path and the loader's reason, exit 1.
 # The failing summary write (summary.json on a resume) is tests/cli/io_errors.sh's.
 . "$(dirname "$0")/lib.sh"
 cd "$T"
@@ -65,4 +67,20 @@ cmp -s snap1.txt snap2.txt || fail "under ulimit -f 2: files outside the folder 
 for f in summary.csv summary.md summary.json summary_long.csv; do
   [ -s "o/$f" ] || fail "resume: no o/$f"
 done
+
+# no image module: every run fails to write its first image, saying why
+rc=0
+sed 's/renderers: \[null\]/renderers: [forward-spml]/' m.yaml >shaded.yaml   # null draws no image
+SHADESWEEP_IMAGE_MODULE=$T/no-such-module.so "$SHADESWEEP" run -o nomod shaded.yaml >out.txt 2>err.txt || rc=$?
+[ $rc -eq 1 ] || fail "without the image module: exit $rc, want 1: $(cat err.txt)"
+"$PYTHON" - <<'PY' || fail "without the image module: summary.csv"
+import csv, sys
+rows = list(csv.DictReader(open("nomod/summary.csv")))
+want = "cannot write image: cannot load the image module: "
+ok = len(rows) == 1 and rows[0]["status"] == "failed:write" and want in rows[0]["message"] \
+    and "no-such-module.so" in rows[0]["message"] and ".png" in rows[0]["message"]
+if not ok:
+    print(rows, file=sys.stderr)
+sys.exit(0 if ok else 1)
+PY
 echo ok

@@ -1,8 +1,9 @@
-// The only door to OpenImageIO: a thin extern "C" shim. See image_io.h.
+// The image module (shadesweep-image.so): the only door to OpenImageIO, loaded by
+// common/image_io.c on the first encode or decode; see image_codec.h for why.
 //
 // No C++ exception crosses into C: every entry point catches everything and turns
-// it into false with a message (or a neutral value where the function cannot fail).
-#include "common/image_io.h"
+// it into false with a message.
+#include "common/image_codec.h"
 #include "common/fsutil.h"
 
 #include <OpenImageIO/filesystem.h>
@@ -276,87 +277,6 @@ bool read_impl(const char *path, image_type want, image *out, char *err, size_t 
     return true;
 }
 
-// Channel value i of img as a number in the [0,1] scale (U8 as v/255).
-inline double value_at(const image *img, size_t i)
-{
-    if (img->type == IMAGE_U8)
-        return (double)static_cast<const uint8_t *>(img->pixels)[i] / 255.0;
-    return (double)static_cast<const float *>(img->pixels)[i];
-}
-
-size_t count_nonfinite(const image *img)
-{
-    size_t n;
-    if (img == nullptr || img->type != IMAGE_F32 || img->pixels == nullptr ||
-        !value_count(img->width, img->height, img->channels, &n))
-        return 0;
-    const float *p = static_cast<const float *>(img->pixels);
-    size_t bad = 0;
-    for (size_t i = 0; i < n; i++)
-        bad += std::isfinite(p[i]) ? 0 : 1;
-    return bad;
-}
-
-// Computed here in double precision rather than through ImageBufAlgo::compare,
-// which works in float: U8 differences come out exact (3/255 is 3/255).
-// Channel values where either image is non-finite are left out of rmse and
-// max_abs (they are counted in nonfinite) and make their pixel count as differing.
-bool compare_impl(const image *a, const image *b, image_error *out, char *err, size_t errlen)
-{
-    if (!valid_image(a, "image compare (first image)", err, errlen) ||
-        !valid_image(b, "image compare (second image)", err, errlen))
-        return false;
-    if (a->width != b->width || a->height != b->height || a->channels != b->channels) {
-        char m[200];
-        std::snprintf(m, sizeof m,
-                      "image compare: sizes differ: %dx%d with %d channels vs %dx%d with %d "
-                      "channels",
-                      a->width, a->height, a->channels, b->width, b->height, b->channels);
-        set_err(err, errlen, m);
-        return false;
-    }
-    const size_t pixels = (size_t)a->width * (size_t)a->height;
-    const size_t ch = (size_t)a->channels;
-    const bool both_u8 = a->type == IMAGE_U8 && b->type == IMAGE_U8;
-    const uint8_t *a8 = static_cast<const uint8_t *>(a->pixels);
-    const uint8_t *b8 = static_cast<const uint8_t *>(b->pixels);
-
-    double sum_sq = 0.0, max_abs = 0.0;
-    size_t finite_values = 0, over = 0;
-    for (size_t p = 0; p < pixels; p++) {
-        bool differs = false;
-        for (size_t c = 0; c < ch; c++) {
-            size_t i = p * ch + c;
-            double d;
-            if (both_u8) {
-                int di = (int)a8[i] - (int)b8[i];
-                differs = differs || di > 1 || di < -1;
-                d = (double)di / 255.0;
-            } else {
-                double va = value_at(a, i), vb = value_at(b, i);
-                if (!std::isfinite(va) || !std::isfinite(vb)) {
-                    differs = true;
-                    continue;
-                }
-                d = va - vb;
-                differs = differs || std::fabs(d) > 1.0 / 255.0;
-            }
-            double ad = std::fabs(d);
-            sum_sq += d * d;
-            max_abs = ad > max_abs ? ad : max_abs;
-            finite_values++;
-        }
-        over += differs ? 1 : 0;
-    }
-    out->rmse = finite_values > 0 ? std::sqrt(sum_sq / (double)finite_values)
-                                  : std::numeric_limits<double>::quiet_NaN();
-    out->psnr_db = out->rmse == 0.0 ? INFINITY : 20.0 * std::log10(1.0 / out->rmse);
-    out->max_abs = finite_values > 0 ? max_abs : std::numeric_limits<double>::quiet_NaN();
-    out->frac_over_1_255 = (double)over / (double)pixels;
-    out->nonfinite = count_nonfinite(a) + count_nonfinite(b);
-    return true;
-}
-
 // body() for the C interface: an exception becomes "WHAT: cannot VERB image: why" and false.
 template <typename Body>
 bool guarded(const char *what, const char *verb, char *err, size_t errlen, Body body)
@@ -372,23 +292,19 @@ bool guarded(const char *what, const char *verb, char *err, size_t errlen, Body 
     return false;
 }
 
-} // namespace
-
-extern "C" {
-
-bool image_write(const char *path, const image *img, char *err, size_t errlen)
+bool codec_write(const char *path, const image *img, char *err, size_t errlen)
 {
     return guarded(path ? path : "image", "write", err, errlen,
                    [&] { return write_impl(path, img, err, errlen); });
 }
 
-bool image_read(const char *path, image_type want, image *out, char *err, size_t errlen)
+bool codec_read(const char *path, image_type want, image *out, char *err, size_t errlen)
 {
     return guarded(path ? path : "image", "read", err, errlen,
                    [&] { return read_impl(path, want, out, err, errlen); });
 }
 
-bool image_decode(const void *data, size_t size, const char *name, image_type want, image *out,
+bool codec_decode(const void *data, size_t size, const char *name, image_type want, image *out,
                   char *err, size_t errlen)
 {
     const char *what = name && name[0] ? name : "embedded image";
@@ -403,7 +319,7 @@ bool image_decode(const void *data, size_t size, const char *name, image_type wa
     });
 }
 
-bool image_probe(const void *data, size_t size, const char *name, int *width, int *height,
+bool codec_probe(const void *data, size_t size, const char *name, int *width, int *height,
                  int *channels, unsigned long long *bytes, char *err, size_t errlen)
 {
     const char *what = name && name[0] ? name : "embedded image";
@@ -451,30 +367,11 @@ bool image_probe(const void *data, size_t size, const char *name, int *width, in
     return false;
 }
 
-void image_free(image *img)
-{
-    if (img == nullptr)
-        return;
-    std::free(img->pixels);
-    img->pixels = nullptr;
-    img->width = img->height = img->channels = 0;
-}
+const image_codec codec = {IMAGE_CODEC_ABI, codec_write, codec_read, codec_decode, codec_probe};
 
-size_t image_count_nonfinite(const image *img)
-{
-    return count_nonfinite(img); // no allocation, cannot throw
-}
+} // namespace
 
-bool image_compare(const image *a, const image *b, image_error *out, char *err, size_t errlen)
+extern "C" __attribute__((visibility("default"))) const image_codec *shadesweep_image_codec(void)
 {
-    try {
-        return compare_impl(a, b, out, err, errlen);
-    } catch (const std::exception &e) {
-        set_err(err, errlen, std::string("image compare: ") + e.what());
-    } catch (...) {
-        set_err(err, errlen, "image compare: unknown exception");
-    }
-    return false;
+    return &codec;
 }
-
-} // extern "C"
