@@ -2,6 +2,7 @@
 #include "scenes/scene_build.h"
 
 #include <math.h>
+#include <pthread.h>
 #include <stdarg.h>
 #include <stdio.h>
 #include <stdlib.h>
@@ -201,16 +202,79 @@ uint64_t sb_mesh_triangles(const scene *s)
 
 // >>maps and materials
 
-int sb_texture(scene_builder *b,
-               bool (*make)(const texture_desc *, texture_image *, char *, size_t),
-               const texture_desc *d)
+/* The maps this process has made, kept to be copied rather than made again: a sweep
+ * builds its scene in the parent (the plan check) and again in each trial's child, which
+ * inherits this memo across fork. The built-in scenes' noise maps were a fifth of a
+ * small trial's time on llvmpipe. Bounded; a map beyond the bound is made each time. */
+typedef bool (*texture_maker)(const texture_desc *, texture_image *, char *, size_t);
+typedef struct made_map {
+    texture_maker make;
+    texture_desc desc;
+    texture_image img;
+} made_map;
+#define MADE_MAX 64
+#define MADE_BYTES_MAX ((size_t)64 << 20)
+static made_map made[MADE_MAX];
+static unsigned nmade;
+static size_t made_bytes;
+static pthread_mutex_t made_lock = PTHREAD_MUTEX_INITIALIZER;
+
+static size_t map_bytes(const texture_image *t)
+{
+    return (size_t)t->width * t->height * t->channels;
+}
+
+/* A copy of the map made from (make, d) before, into *out: false when there is none
+ * (or no memory for the copy). */
+static bool made_copy(texture_maker make, const texture_desc *d, texture_image *out)
+{
+    bool hit = false;
+    pthread_mutex_lock(&made_lock);
+    for (unsigned i = 0; i < nmade && !hit; i++) {
+        if (made[i].make != make || memcmp(&made[i].desc, d, sizeof *d) != 0)
+            continue;
+        size_t n = map_bytes(&made[i].img);
+        uint8_t *data = malloc(n);
+        if (data) {
+            memcpy(data, made[i].img.data, n);
+            *out = made[i].img;
+            out->data = data;
+            hit = true;
+        }
+        break;
+    }
+    pthread_mutex_unlock(&made_lock);
+    return hit;
+}
+
+static void made_keep(texture_maker make, const texture_desc *d, const texture_image *t)
+{
+    size_t n = map_bytes(t);
+    pthread_mutex_lock(&made_lock);
+    if (nmade < MADE_MAX && n <= MADE_BYTES_MAX - made_bytes) {
+        uint8_t *data = malloc(n);
+        if (data) {
+            memcpy(data, t->data, n);
+            made[nmade] = (made_map){.make = make, .desc = *d, .img = *t};
+            made[nmade++].img.data = data;
+            made_bytes += n;
+        }
+    }
+    pthread_mutex_unlock(&made_lock);
+}
+
+int sb_texture(scene_builder *b, texture_maker make, const texture_desc *d)
 {
     if (!sb_reserve(b, (void **)&b->s->textures, &b->cap_textures, b->s->ntextures, 1,
                     sizeof *b->s->textures, "textures"))
         return -1;
-    if (!make(d, &b->s->textures[b->s->ntextures], b->err, b->errlen)) {
-        b->failed = true;
-        return -1;
+    texture_image *t = &b->s->textures[b->s->ntextures];
+    if (!made_copy(make, d, t)) {
+        if (!make(d, t, b->err, b->errlen)) {
+            b->failed = true;
+            return -1;
+        }
+        made_keep(make, d, t);
     }
     return (int)b->s->ntextures++;
 }
