@@ -139,6 +139,39 @@ static void mesh_release(gpu_mesh *m)
 
 // >>textures
 
+/* Half way from a to b as llvmpipe's 8-bit linear filter has it: a + (b - a + 1) / 2,
+ * rounded down (to -inf). */
+static unsigned lerp_half(unsigned a, unsigned b)
+{
+    int d = (int)b - (int)a + 1;
+    return (unsigned)((int)a + (d >= 0 ? d / 2 : -((1 - d) / 2)));
+}
+
+/* The level below src (sw x sh texels of ch 8-bit channels) into dst, GL's size rule
+ * (max(1, floor(n / 2)) a side). Each texel filters its 2x2 block as glGenerateMipmap
+ * does on llvmpipe (a bilinear sample at the block's centre: the two rows' texel pairs,
+ * then the two results, each by lerp_half), so llvmpipe's mip levels, and its images, are
+ * the same bytes; a GPU's own filter may differ from it by a unit. Sides are powers of
+ * two (texture_upload leaves the others to glGenerateMipmap, whose sample points then
+ * fall between blocks). Why on the CPU: glGenerateMipmap cost llvmpipe 0.33 s a trial (a
+ * blit per level per map, each through its shader pipeline), more than most trials'
+ * measured frames; this takes a millisecond. */
+static void mip_down(const uint8_t *src, uint32_t sw, uint32_t sh, uint32_t ch, uint8_t *dst)
+{
+    uint32_t dw = sw > 1 ? sw / 2 : 1, dh = sh > 1 ? sh / 2 : 1;
+    for (uint32_t y = 0; y < dh; y++) {
+        const uint8_t *r0 = src + (size_t)(sh > 1 ? 2 * y : 0) * sw * ch;   /* a side of 1 */
+        const uint8_t *r1 = src + (size_t)(sh > 1 ? 2 * y + 1 : 0) * sw * ch;
+        for (uint32_t x = 0; x < dw; x++) {
+            size_t x0 = (size_t)(sw > 1 ? 2 * x : 0) * ch, x1 = (size_t)(sw > 1 ? 2 * x + 1 : 0) * ch;
+            for (uint32_t c = 0; c < ch; c++)
+                dst[((size_t)y * dw + x) * ch + c] =
+                    (uint8_t)lerp_half(lerp_half(r0[x0 + c], r0[x1 + c]),
+                                       lerp_half(r1[x0 + c], r1[x1 + c]));
+        }
+    }
+}
+
 static GLuint texture_upload(const texture_image *img, uint32_t index, uint64_t *bytes,
                              char *err, size_t errlen)
 {
@@ -165,25 +198,48 @@ static GLuint texture_upload(const texture_image *img, uint32_t index, uint64_t 
     GLsizei levels = 1;
     for (uint32_t m = img->width > img->height ? img->width : img->height; m > 1; m >>= 1)
         levels++;
+    /* levels below the first: mip_down's where both sides are powers of two */
+    bool pot = (img->width & (img->width - 1)) == 0 && (img->height & (img->height - 1)) == 0;
+    size_t below = (size_t)(img->width > 1 ? img->width / 2 : 1) *
+                   (img->height > 1 ? img->height / 2 : 1) * img->channels;
+    uint8_t *mip[2] = {pot ? malloc(below) : NULL, pot ? malloc(below) : NULL};
+    if (pot && (!mip[0] || !mip[1])) {
+        free(mip[0]);
+        free(mip[1]);
+        snprintf(err, errlen, "scene_gpu: out of memory for texture %u's levels", index);
+        return 0;
+    }
     GLuint t = 0;
     GLint align = 4;
     gl.CreateTextures(GL_TEXTURE_2D, 1, &t);
     gl.TextureStorage2D(t, levels, ifmt, (GLsizei)img->width, (GLsizei)img->height);
     gl.GetIntegerv(GL_UNPACK_ALIGNMENT, &align);
     gl.PixelStorei(GL_UNPACK_ALIGNMENT, 1);   /* rows are tightly packed */
-    gl.TextureSubImage2D(t, 0, 0, 0, (GLsizei)img->width, (GLsizei)img->height, fmt,
-                         GL_UNSIGNED_BYTE, img->data);
+    const uint8_t *level = img->data;
+    uint32_t w = img->width, h = img->height;
+    for (GLsizei l = 0; l < levels; l++) {
+        if (l > 0) {
+            if (pot) {
+                mip_down(level, w, h, img->channels, mip[l & 1]);
+                level = mip[l & 1];
+            }
+            w = w > 1 ? w / 2 : 1;
+            h = h > 1 ? h / 2 : 1;
+        }
+        if (l == 0 || pot)
+            gl.TextureSubImage2D(t, l, 0, 0, (GLsizei)w, (GLsizei)h, fmt, GL_UNSIGNED_BYTE,
+                                 level);
+        *bytes += (uint64_t)w * h * img->channels;
+    }
     gl.PixelStorei(GL_UNPACK_ALIGNMENT, align);
-    gl.GenerateTextureMipmap(t);
+    if (!pot)
+        gl.GenerateTextureMipmap(t);
+    free(mip[0]);
+    free(mip[1]);
     gl.TextureParameteri(t, GL_TEXTURE_MIN_FILTER, GL_LINEAR_MIPMAP_LINEAR);
     gl.TextureParameteri(t, GL_TEXTURE_MAG_FILTER, GL_LINEAR);
     gl.TextureParameteri(t, GL_TEXTURE_WRAP_S, GL_REPEAT);
     gl.TextureParameteri(t, GL_TEXTURE_WRAP_T, GL_REPEAT);
-    for (uint32_t w = img->width, h = img->height;; w = w > 1 ? w / 2 : 1, h = h > 1 ? h / 2 : 1) {
-        *bytes += (uint64_t)w * h * img->channels;
-        if (w == 1 && h == 1)
-            break;
-    }
     return t;
 }
 

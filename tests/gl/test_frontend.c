@@ -1136,6 +1136,50 @@ static void test_bytes_and_describe(void **state)
     assert_no_gl_errors(f);
 }
 
+/* The mip levels scene_gpu_create makes on the CPU (renderers/frame/scene_gpu.c's
+ * mip_down) against glGenerateMipmap's of the same map on this GL: every byte of every
+ * level of every shapes map equal on llvmpipe (whose filter mip_down follows), within
+ * one unit elsewhere. */
+static void test_mip_levels(void **state)
+{
+    fixture *f = *state;
+    scene *s = f->s;
+    const char *device = (const char *)gl.GetString(GL_RENDERER);
+    int tolerance = device && strstr(device, "llvmpipe") ? 0 : 1;
+    assert_true(s->ntextures > 0);
+    for (uint32_t i = 0; i < s->ntextures; i++) {
+        const texture_image *t = &s->textures[i];
+        GLenum fmt = t->channels == 4 ? GL_RGBA : GL_RED;
+        GLuint ref = 0;
+        gl.CreateTextures(GL_TEXTURE_2D, 1, &ref);
+        gl.TextureStorage2D(ref, 9, t->channels == 4 ? GL_RGBA8 : GL_R8, 256, 256);
+        gl.PixelStorei(GL_UNPACK_ALIGNMENT, 1);
+        gl.PixelStorei(GL_PACK_ALIGNMENT, 1);
+        gl.TextureSubImage2D(ref, 0, 0, 0, 256, 256, fmt, GL_UNSIGNED_BYTE, t->data);
+        gl.GenerateTextureMipmap(ref);
+        size_t n = (size_t)256 * 256 * t->channels;
+        uint8_t *a = malloc(n), *b = malloc(n);
+        assert_non_null(a);
+        assert_non_null(b);
+        for (int l = 1, side = 128; l < 9; l++, side /= 2) {
+            size_t bytes = (size_t)side * side * t->channels;
+            gl.GetTextureImage(scene_gpu_texture(f->g, (int)i), l, fmt, GL_UNSIGNED_BYTE,
+                               (GLsizei)bytes, a);
+            gl.GetTextureImage(ref, l, fmt, GL_UNSIGNED_BYTE, (GLsizei)bytes, b);
+            for (size_t k = 0; k < bytes; k++)
+                if (abs((int)a[k] - (int)b[k]) > tolerance)
+                    fail_msg("map %u level %d byte %zu: %d made, %d from glGenerateMipmap", i,
+                             l, k, a[k], b[k]);
+        }
+        free(a);
+        free(b);
+        gl.DeleteTextures(1, &ref);
+        gl.PixelStorei(GL_UNPACK_ALIGNMENT, 4);
+        gl.PixelStorei(GL_PACK_ALIGNMENT, 4);
+    }
+    assert_no_gl_errors(f);
+}
+
 int main(void)
 {
     char why[256];
@@ -1162,6 +1206,7 @@ int main(void)
         cmocka_unit_test_setup_teardown(test_sky, setup, teardown),
         cmocka_unit_test_setup_teardown(test_resolve, setup, teardown),
         cmocka_unit_test_setup_teardown(test_bytes_and_describe, setup, teardown),
+        cmocka_unit_test_setup_teardown(test_mip_levels, setup, teardown),
     };
     return failed | cmocka_run_group_tests_name("scene_gpu", gl_tests, NULL, NULL);
 }
