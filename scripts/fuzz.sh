@@ -1,9 +1,13 @@
 #!/usr/bin/env bash
-# Fuzzes the manifest parser (tests/fuzz/fuzz_manifest.c) and then the scene-file
-# loader (tests/fuzz/fuzz_scene.c) with libFuzzer for a bounded time, on one core.
+# Fuzzes the manifest parser (tests/fuzz/fuzz_manifest.c) and the scene-file loader
+# (tests/fuzz/fuzz_scene.c) with libFuzzer for a bounded time, one core each: side by
+# side where there are two cores, else one after the other.
 #
 #   scripts/fuzz.sh [SECONDS]        default 60: the manifest parser SECONDS, the
-#                                    scene loader half that (FUZZ_SCENE_SECONDS)
+#                                    scene loader as long side by side, half that one
+#                                    after the other (FUZZ_SCENE_SECONDS)
+#   scripts/fuzz.sh --build          builds the targets only (scripts/test.sh builds
+#                                    them while the plain build's tests run)
 #
 # Builds with clang in its own folder (FUZZ_BUILD, default build-fuzz): ASan +
 # UBSan (any report aborts), coverage instrumentation on all C code, the target
@@ -32,8 +36,10 @@ set -euo pipefail
 root=$(cd "$(dirname "$0")/.." && pwd)
 cd "$root"
 
+build_only=false
+if [ "${1:-}" = --build ]; then build_only=true; shift; fi
 secs=${1:-60}
-case $secs in '' | *[!0-9]*) echo "usage: scripts/fuzz.sh [SECONDS]" >&2; exit 2 ;; esac
+case $secs in '' | *[!0-9]*) echo "usage: scripts/fuzz.sh [--build] [SECONDS]" >&2; exit 2 ;; esac
 build=${FUZZ_BUILD:-build-fuzz}
 rss_mb=${FUZZ_RSS_MB:-2048}
 per_input=${FUZZ_TIMEOUT:-10}
@@ -65,13 +71,19 @@ if [ ! -f "$build/build.ninja" ]; then
   fi
   rm -f "$setup_log"
 fi
-if ! ninja -C "$build" tests/fuzz/fuzz_manifest tests/fuzz/fuzz_scene >"$build/fuzz-build.log" 2>&1; then
+# the image module too: the scene loader decodes embedded textures through it
+if ! ninja -C "$build" tests/fuzz/fuzz_manifest tests/fuzz/fuzz_scene common/shadesweep-image.so \
+    >"$build/fuzz-build.log" 2>&1; then
   cat "$build/fuzz-build.log" >&2
   echo "fuzz: build failed" >&2
   exit 2
 fi
+$build_only && exit 0
 
-scene_secs=${FUZZ_SCENE_SECONDS:-$((secs / 2))}
+# With two cores the targets run side by side (below), the scene loader for as long as
+# the parser; on one core one after the other, the scene loader for half as long.
+if [ "$(nproc)" -ge 2 ]; then default_scene=$secs; else default_scene=$((secs / 2)); fi
+scene_secs=${FUZZ_SCENE_SECONDS:-$default_scene}
 case $scene_secs in '' | *[!0-9]*) echo "fuzz: FUZZ_SCENE_SECONDS: not a number" >&2; exit 2 ;; esac
 findings="$build/findings"
 corpus=$build/corpus corpus_scene=$build/corpus-scene
@@ -110,7 +122,7 @@ export LSAN_OPTIONS=${LSAN_OPTIONS:-suppressions=$root/tests/lsan.supp:print_sup
 
 # fuzz TARGET SECONDS CORPUS [SEEDS / FLAGS...]: 0, or 1 on a finding
 fuzz() {
-  local target=$1 t=$2 corpus=$3 stamp="$build/fuzz.started" log="$build/$1.log" rc
+  local target=$1 t=$2 corpus=$3 stamp="$build/$1.started" log="$build/$1.log" rc
   shift 3
   [ "$t" -gt 0 ] || return 0
   touch "$stamp"
@@ -144,8 +156,20 @@ fuzz() {
 }
 
 status=0
-fuzz fuzz_manifest "$secs" "$corpus" ${flags[@]+"${flags[@]}"} -dict=tests/fuzz/yaml.dict \
-  tests/data experiments || status=1
-fuzz fuzz_scene "$scene_secs" "$corpus_scene" ${scene_flags[@]+"${scene_flags[@]}"} \
-  tests/fuzz/scene_seeds || status=1
+if [ "$(nproc)" -ge 2 ]; then
+  # Two cores: the two targets at once, one core each (each run is single-threaded).
+  fuzz fuzz_manifest "$secs" "$corpus" ${flags[@]+"${flags[@]}"} -dict=tests/fuzz/yaml.dict \
+    tests/data experiments &
+  manifest_pid=$!
+  fuzz fuzz_scene "$scene_secs" "$corpus_scene" ${scene_flags[@]+"${scene_flags[@]}"} \
+    tests/fuzz/scene_seeds &
+  scene_pid=$!
+  wait "$manifest_pid" || status=1
+  wait "$scene_pid" || status=1
+else
+  fuzz fuzz_manifest "$secs" "$corpus" ${flags[@]+"${flags[@]}"} -dict=tests/fuzz/yaml.dict \
+    tests/data experiments || status=1
+  fuzz fuzz_scene "$scene_secs" "$corpus_scene" ${scene_flags[@]+"${scene_flags[@]}"} \
+    tests/fuzz/scene_seeds || status=1
+fi
 exit $status

@@ -1,9 +1,10 @@
 #!/usr/bin/env bash
 # Set-up if needed, build, and test in tiers (tests/meson.build's suites; README's
 # "Install" says which command runs which). With no option (CI): the plain build's
-# quick, full and slow tiers two at a time, then its timing tier alone; the ASan + UBSan
-# build's suite `asan` (unit, GL, fuzz replay, the CLI tests that parse or do I/O); the
-# seeded fuzzers.
+# quick, full and slow tiers two at a time (the ASan + UBSan and fuzz builds made
+# meanwhile at the lowest priority), then its timing tier alone; the sanitizer build's
+# suite `asan` (unit, GL, fuzz replay, the CLI tests that parse or do I/O); the seeded
+# fuzzers.
 #   --quick   the quick tier on the plain build only (a developer's few minutes)
 #   --plain   every tier on the plain build only (no sanitizers, no fuzzers)
 # Ends with one line "N passed, N failed" (", N skipped" when any test skipped).
@@ -47,41 +48,73 @@ tier() {   # builddir logname processes suite...: meson test over those suites
   logs+=("$dir/meson-logs/$log.json")
 }
 
+sanitize_opts=(-Db_sanitize=address,undefined -Db_lundef=false -Dbuildtype=debugoptimized)
+bg=
 if build plain build; then
+  if [ $mode = ci ]; then
+    # The sanitizer and fuzz builds, at the lowest priority, while the plain build's tests
+    # run: they take the CPU the tests leave idle (a test waiting, the last test alone)
+    # and little else. Their outcome is read below, after `wait`.
+    bgdir=$(mktemp -d)
+    rm -f build-asan/meson-logs/testlog*.json
+    ( nice -n 19 scripts/build.sh build-asan "${sanitize_opts[@]}" >"$bgdir/asan.log" 2>&1
+      echo $? >"$bgdir/asan.rc"
+      nice -n 19 scripts/fuzz.sh --build >"$bgdir/fuzz.log" 2>&1
+      echo $? >"$bgdir/fuzz.rc" ) &
+    bg=$!
+    say "test: building the sanitizer and fuzz builds in the background (nice 19)"
+  fi
   if [ $mode = quick ]; then
     tier build testlog-quick 2 quick
   else
     tier build testlog-main 2 quick full slow
+    if [ -n "$bg" ]; then wait "$bg"; bg=waited; fi
     # Assertions on measured time, one test at a time on an otherwise idle machine.
     tier build testlog-timing 1 timing
   fi
 fi
 if [ $mode = ci ]; then
+  if [ -n "$bg" ]; then
+    [ "$bg" = waited ] || wait "$bg"
+  else   # the plain build failed: the others in the foreground
+    bgdir=$(mktemp -d)
+    scripts/build.sh build-asan "${sanitize_opts[@]}" >"$bgdir/asan.log" 2>&1; echo $? >"$bgdir/asan.rc"
+    scripts/fuzz.sh --build >"$bgdir/fuzz.log" 2>&1; echo $? >"$bgdir/fuzz.rc"
+  fi
   # The sanitizer build is optimised (-O2 -g, as the fuzz build): its checks are the
   # same, at about half the time of an -O0 build. It runs the suite `asan` only:
   # tests/meson.build says which tests and why.
-  export ASAN_OPTIONS=abort_on_error=0:detect_leaks=1:strict_string_checks=1
-  export UBSAN_OPTIONS=halt_on_error=1:print_stacktrace=1
-  if build sanitizers build-asan -Db_sanitize=address,undefined -Db_lundef=false \
-      -Dbuildtype=debugoptimized; then
+  if [ "$(cat "$bgdir/asan.rc" 2>/dev/null)" = 0 ]; then
+    export ASAN_OPTIONS=abort_on_error=0:detect_leaks=1:strict_string_checks=1
+    export UBSAN_OPTIONS=halt_on_error=1:print_stacktrace=1
     tier build-asan testlog-asan 2 asan
+    unset ASAN_OPTIONS UBSAN_OPTIONS
+  else
+    cat "$bgdir/asan.log" >&2
+    echo "test: sanitizers build failed" >&2
+    logs+=("build-asan/meson-logs/missing-sanitizers.json")   # counted as one failure
+    status=1
   fi
-  unset ASAN_OPTIONS UBSAN_OPTIONS
 
-  # The manifest parser, then the scene loader, under libFuzzer (scripts/fuzz.sh; the
+  # The manifest parser and the scene loader under libFuzzer (scripts/fuzz.sh; the
   # README's reliability section has the long run). Seed 1337, from the seeds alone, a
   # fixed number of inputs: every run of a commit starts with the same inputs, which a
   # random time-bound run (SHADESWEEP_FUZZ_SEED= empty) does not. Counted as one test.
   mkdir -p build-fuzz
   fuzz_log=build-fuzz/ci-result.json
   say "test: running the fuzzers (scripts/fuzz.sh, ${SHADESWEEP_FUZZ_SECONDS:-120} s)"
-  if FUZZ_SEED=${SHADESWEEP_FUZZ_SEED-1337} scripts/fuzz.sh "${SHADESWEEP_FUZZ_SECONDS:-120}" >&2; then
+  if [ "$(cat "$bgdir/fuzz.rc" 2>/dev/null)" != 0 ]; then
+    cat "$bgdir/fuzz.log" >&2
+    echo '{"name": "fuzz-manifest", "result": "FAIL"}' > "$fuzz_log"
+    status=1
+  elif FUZZ_SEED=${SHADESWEEP_FUZZ_SEED-1337} scripts/fuzz.sh "${SHADESWEEP_FUZZ_SECONDS:-120}" >&2; then
     echo '{"name": "fuzz-manifest", "result": "OK"}' > "$fuzz_log"
   else
     echo '{"name": "fuzz-manifest", "result": "FAIL"}' > "$fuzz_log"
     status=1
   fi
   logs+=("$fuzz_log")
+  rm -rf "$bgdir"
 fi
 
 /usr/bin/python3 - "${logs[@]}" <<'PY'
