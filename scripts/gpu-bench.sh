@@ -14,7 +14,9 @@
 # budget (GPU_BENCH_BUDGET_S, default 480 s) runs out, the run in progress is stopped
 # (SIGINT) and the script says how to go on. --smoke (or GPU_BENCH_SMOKE=1) runs every
 # manifest's smoke variant (160x120, 2 s): what CI runs on llvmpipe.
-# SHADESWEEP names the program (default: build/runner/shadesweep, built if needed).
+# GPU_BENCH_SET="KEY=VALUE ..." adds --set KEY=VALUE to every run (tests/cli/gpu_bench.sh
+# lowers draw_limit). SHADESWEEP names the program (default: build/runner/shadesweep,
+# built if needed).
 # Exit status: 0 every run ok, 1 some run failed or the budget ran out, 2 bad usage.
 set -euo pipefail
 root=$(cd "$(dirname "$0")/.." && pwd)
@@ -85,6 +87,8 @@ cut s003-exp2 's/^trials: 3$/trials: 1/'
 cut s003-exp1 's/^trials: 3$/trials: 1/; s/^duration: {seconds: 60}$/duration: {seconds: 30}/'
 opts=()
 [ "$smoke" -eq 1 ] && opts+=(--smoke)
+sets=()
+for kv in ${GPU_BENCH_SET:-}; do sets+=(--set "$kv"); done
 status=0
 for m in renderers-deferred renderers-forward families-msaa s003-exp2 s003-exp1; do
   left=$((budget - (SECONDS - start)))
@@ -97,7 +101,7 @@ for m in renderers-deferred renderers-forward families-msaa s003-exp2 s003-exp1;
   [ -f "$out/$m/plan.csv" ] && r=(--resume)
   echo "== $m (${left} s of the budget left)"
   set +e
-  timeout -s INT -k 30 "$left" "$exe" run "${opts[@]}" "${dev[@]}" "${r[@]}" -o "$out/$m" \
+  timeout -s INT -k 30 "$left" "$exe" run "${opts[@]}" "${sets[@]}" "${dev[@]}" "${r[@]}" -o "$out/$m" \
     "$out/manifests/$m.yaml"
   rc=$?
   set -e
@@ -109,7 +113,7 @@ for m in renderers-deferred renderers-forward families-msaa s003-exp2 s003-exp1;
   esac
 done
 if [ $status -ne 0 ] && [ $((SECONDS - start)) -ge "$budget" ]; then
-  echo "gpu-bench: to finish: scripts/gpu-bench.sh --resume${opts:+ ${opts[*]}} $out" >&2
+  echo "gpu-bench: to finish: ${GPU_BENCH_SET:+GPU_BENCH_SET='$GPU_BENCH_SET' }scripts/gpu-bench.sh --resume${opts:+ ${opts[*]}} $out" >&2
 fi
 
 # 3. the report

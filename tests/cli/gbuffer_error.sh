@@ -9,7 +9,10 @@
 need_gl
 cd "$T"
 M="$SOURCE_ROOT/experiments/gbuffer-error.yaml"
-"$SHADESWEEP" run --smoke --debug-gl --shard 1/2 --out out/gbuffer-error-smoke "$M" \
+# draw_limit 0.1 s: each run draws its first frames and its error times, no more (the
+# checks below read no frame count; the smoke default of 2 s a run tripled this test).
+"$SHADESWEEP" run --smoke --debug-gl --set draw_limit=0.1 --shard 1/2 \
+  --out out/gbuffer-error-smoke "$M" \
   >ge.out 2>ge.err || { tail -n 30 ge.err >&2; fail "gbuffer-error --smoke --shard 1/2 exited non-zero"; }
 
 "$PYTHON" - out/gbuffer-error-smoke <<'PY'
