@@ -62,13 +62,6 @@ static bool find_module(char *out, size_t len, char *looked, size_t looklen)
 
 static void load(void)
 {
-#if SHADESWEEP_IMAGE_LINKED
-    const char *env = getenv("SHADESWEEP_IMAGE_MODULE");
-    if (!env || !*env) {   /* linked in (a sanitizer build: meson.build says why) */
-        codec = shadesweep_image_codec();
-        return;
-    }
-#endif
     char path[2048], looked[3 * 2048 + 64];
     if (!find_module(path, sizeof path, looked, sizeof looked)) {
         snprintf(load_err, sizeof load_err,
