@@ -12,8 +12,13 @@ cd "$T"
 manifests=(s003-exp1 s003-exp2 s000-resolution s000-drawcalls s000-spot-coverage
            s000-two-spots s000-stencil s000-illumination-sets)
 for m in "${manifests[@]}"; do
-  if ! "$SHADESWEEP" run --smoke --debug-gl --set draw_limit=3600 --out "out/$m-smoke" \
-       "$SOURCE_ROOT/experiments/$m.yaml" >"$m.out" 2>"$m.err"; then
+  # 4 frames a run (a smoke run draws 2 s or 120 frames): the checks below compare work
+  # per frame and the values of every frame drawn, which 4 frames hold as well; seed 003's
+  # experiment 2 keeps its 2 s, as its check reads the lights of its second second
+  short=(--set 'duration={frames: 4}')
+  [ "$m" = s003-exp2 ] && short=()
+  if ! "$SHADESWEEP" run --smoke --debug-gl --set draw_limit=3600 "${short[@]}" \
+       --out "out/$m-smoke" "$SOURCE_ROOT/experiments/$m.yaml" >"$m.out" 2>"$m.err"; then
     tail -n 30 "$m.err" >&2
     fail "$m --smoke exited non-zero"
   fi
