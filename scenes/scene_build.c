@@ -214,6 +214,8 @@ typedef struct made_map {
 } made_map;
 #define MADE_MAX 64
 #define MADE_BYTES_MAX ((size_t)64 << 20)
+/* made_copy compares descriptions with memcmp: they must have no padding bytes */
+_Static_assert(sizeof(texture_desc) == 19 * 4, "texture_desc has padding or new fields");
 static made_map made[MADE_MAX];
 static unsigned nmade;
 static size_t made_bytes;

@@ -53,8 +53,9 @@ bg=
 if build plain build; then
   if [ $mode = ci ]; then
     # The sanitizer and fuzz builds, at the lowest priority, while the plain build's tests
-    # run: they take the CPU the tests leave idle (a test waiting, the last test alone)
-    # and little else. Their outcome is read below, after `wait`.
+    # run: the tests go first, and the CPU they leave (a test waiting, the last test
+    # alone) is no longer idle. Measured: the plain tiers ~2.5 min longer, the builds ~6
+    # min shorter after them. Their outcome is read below, after `wait`.
     bgdir=$(mktemp -d)
     rm -f build-asan/meson-logs/testlog*.json
     ( nice -n 19 scripts/build.sh build-asan "${sanitize_opts[@]}" >"$bgdir/asan.log" 2>&1
