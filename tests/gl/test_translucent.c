@@ -1,43 +1,13 @@
-/* The translucent pass (issue 12, renderers/frame/translucent.h), on small images:
- *
- *   - on the catalog scene `glass` (its 12 authored point lights) every renderer
- *     agrees with forward-spml within RMSE 1/255 (max 4/255) on the 8-bit output, and
- *     each one's `translucent` pass draws exactly the translucent objects whose
- *     bounding sphere is in the frustum (counted here independently; forward-spml at a
- *     pose among the particles too, where some are culled), after the sky and before
- *     the resolve; with fog on (density 0.05) deferred agrees with forward-spml too;
- *   - a pane in front of a point light's volume (that light lights the floor behind the
- *     pane, another one in front lights the pane) is lit the same by forward-spml and
- *     deferred (stencil and volume modes): the image within RMSE 1/255, the pane's
- *     centre pixel within 1/255;
- *   - the tiled renderers' (and visibility's, and deferred-lighting's by the tiled
- *     lists) translucent lists (near plane to the
- *     tile's max opaque depth, built in their cull dispatch only when the scene has
- *     translucency): on `glass` one list a tile, the cull still 1 dispatch, the longest list no
- *     shorter than the longest opaque one and no longer than the visible lights (and
- *     for forward-plus and tiled-deferred, whose per-tile lists they contain, the mean
- *     no smaller); a wall filling the view with a light between the camera and the
- *     wall (in front of every tile's min depth: in no opaque list) lighting a pane, one
- *     near the wall (in both) and one behind it (in neither): exactly 2 lights in the
- *     longest translucent list, 1 in the longest opaque one, 3 visible, and the pane lit
- *     as forward-spml lights it (that light changes it); a near wall's edge across a
- *     pane seen over the sky, lit by a light wholly behind the wall: tiles with a pixel
- *     of sky take lights to the far side, and the image agrees; the lists share the
- *     opaque lists' index buffer: a budget the opaque lists alone fit but not with
- *     the translucent ones reports the overflow;
- *   - with a shadowing spot the pass's SHADOWS variant runs, and deferred agrees;
- *   - two overlapping panes of different colours (the front one first in object order,
- *     so drawing in object order would be wrong): where they overlap the pixel is the
- *     back-to-front "over" of the two panes over the background, computed here from
- *     the materials and the background pixel, within 3/255, and differs from the
- *     front-to-back order by more than 20/255; seen from the other side the order
- *     turns with the camera (every renderer from +x, forward-spml and deferred from
- *     -x too);
- *   - a scene without translucent materials (shapes) plans the pass as "skipped: no
- *     translucent materials", runs no such pass and compiles no translucent program
- *     (the tiled renderers plan their translucent lists as skipped and build none;
- *     tests/gl/test_tiled.c's exact dispatch counts hold).
- * Every frame runs in a debug context; any GL error fails the test. */
+/* The translucent pass (issue 12, renderers/frame/translucent.h), on small images: every
+ * renderer against forward-spml on the catalog scene `glass` (fog too) with exact counts
+ * of the pass's draws; a pane lit through or beside light volumes (deferred's stencil
+ * and volume modes); the tiled renderers' translucent light lists (near plane to a
+ * tile's max opaque depth: which lights they keep, their overflow of the shared index
+ * budget); a shadowing spot (the SHADOWS variant); back-to-front order where two panes
+ * overlap, from both sides; and a scene without translucency, where the pass, its
+ * program and the tiled lists are planned as skipped and never built. Each test's
+ * comment gives its tolerance. Every frame runs in a debug context; any GL error fails
+ * the test. */
 #include <setjmp.h>
 #include <stdarg.h>
 #include <stddef.h>
@@ -217,6 +187,15 @@ static void expect_translucent_lists(const char *kind, const frame_stats *fs,
     assert_true(tiled);
 }
 
+/* On `glass` (its 12 authored point lights) every renderer agrees with forward-spml
+ * within RMSE 1/255 (max 4/255) on the 8-bit output, and each one's `translucent` pass
+ * draws exactly the translucent objects whose bounding sphere is in the frustum (counted
+ * here independently; forward-spml at a pose among the particles too, where some are
+ * culled), after the sky and before the resolve; with fog on (density 0.05) deferred
+ * agrees too. The tiled renderers (visibility's and deferred-lighting's tiled lists too):
+ * one translucent list a tile, the cull still 1 dispatch, the longest list no shorter
+ * than the longest opaque one and no longer than the visible lights (forward-plus and
+ * tiled-deferred, whose per-tile lists they contain: the mean no smaller). */
 static void test_glass_agreement(void **state)
 {
     (void)state;
@@ -263,7 +242,9 @@ static void test_glass_agreement(void **state)
 
 /* Pane 0 (x = 2.25, its front face at x = 2.3, facing +x) seen from +x; light B's
  * volume (radius 1.8, drawn at 1.98) lies wholly behind the pane and lights the floor
- * there, seen through the pane; light A, 1 in front of the pane, lights the pane. */
+ * there, seen through the pane; light A, 1 in front of the pane, lights the pane.
+ * forward-spml and deferred (stencil and volume modes) light it the same: the image
+ * within RMSE 1/255, the pane's centre pixel within 1/255. */
 static void test_pane_in_front_of_light_volume(void **state)
 {
     (void)state;
@@ -342,7 +323,9 @@ static void set_lights(scene *s, const scene_light *l, uint32_t n)
  * (front face x = -0.5, depth 9.5 in every pixel); light F (depth 5, range 2) lights the
  * pane and not the wall: wholly in front of every tile's min depth, in no opaque list;
  * W (depth 8.5, range 3) lights both: in both lists; B (depth 12, range 2) is behind the
- * wall: in neither (the translucent lists end at the tile's max depth). */
+ * wall: in neither (the translucent lists end at the tile's max depth). So exactly 2
+ * lights in the longest translucent list, 1 in the longest opaque one, 3 visible, and the
+ * pane lit as forward-spml lights it (F changes it). */
 static void test_light_before_the_wall(void **state)
 {
     (void)state;
@@ -541,6 +524,12 @@ static void check_order(const char *kind, bool from_plus_x)
     scene_destroy(s);
 }
 
+/* Two overlapping panes of different colours, the front one first in object order (so
+ * drawing in object order would be wrong): where they overlap the pixel is the
+ * back-to-front "over" of the two over the background, computed here from the materials
+ * and the background pixel, within 3/255, and differs from the front-to-back order by
+ * more than 20/255; from the other side the order turns with the camera (every renderer
+ * from +x, forward-spml and deferred from -x too). */
 static void test_back_to_front(void **state)
 {
     (void)state;
@@ -553,6 +542,10 @@ static void test_back_to_front(void **state)
     }
 }
 
+/* shapes has no translucent material: the pass is planned as "skipped: no translucent
+ * materials", no such pass runs and no translucent program is compiled; the tiled
+ * renderers plan their translucent lists as skipped and build none (test_tiled.c's exact
+ * dispatch counts hold). */
 static void test_no_translucency_skips_the_pass(void **state)
 {
     (void)state;
