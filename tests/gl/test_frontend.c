@@ -1149,6 +1149,8 @@ static void test_mip_levels(void **state)
     assert_true(s->ntextures > 0);
     for (uint32_t i = 0; i < s->ntextures; i++) {
         const texture_image *t = &s->textures[i];
+        assert_int_equal(t->width, 256);   /* the sizes below: 256 x 256, 9 levels */
+        assert_int_equal(t->height, 256);
         GLenum fmt = t->channels == 4 ? GL_RGBA : GL_RED;
         GLuint ref = 0;
         gl.CreateTextures(GL_TEXTURE_2D, 1, &ref);
