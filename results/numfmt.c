@@ -1,6 +1,7 @@
 #include "results/numfmt.h"
 
 #include <locale.h>
+#include <stdbool.h>
 #include <math.h>
 #include <stdio.h>
 #include <stdlib.h>
@@ -19,14 +20,46 @@ void num_c_decimal_point(char *s)
     memmove(hit + 1, hit + dl, strlen(hit + dl) + 1);
 }
 
+/* Whether v's decimal form with prec significant digits reads back as v (strtof for a
+ * float, strtod for a double). */
+static bool reads_back(double v, int prec, bool single)
+{
+    char e[40];
+    snprintf(e, sizeof e, "%.*e", prec - 1, v);
+    return single ? strtof(e, NULL) == (float)v : strtod(e, NULL) == v;
+}
+
+/* printf rounds correctly, so the nearest (p+1)-digit decimal is at least as near v as
+ * the nearest p-digit one (which is one of them): where v's rounding interval is
+ * symmetric, p digits reading back means p+1 do too, and a bisection finds the fewest
+ * in 4 or 5 conversions instead of up to 17 (lights.csv of 65,536 lights: 2 s a run).
+ * Below a power of two the interval is half as wide as above, which can break that
+ * order: those are scanned from 1 digit up. */
+int num_fewest_digits(double v, bool single)
+{
+    const int max = single ? 9 : 17;
+    int exp;
+    double m = frexp(v, &exp);
+    int lo = 1, hi = max;
+    if (m == 0.5 || m == -0.5 || m == 0) {
+        while (lo < hi && !reads_back(v, lo, single))
+            lo++;
+        return lo;
+    }
+    while (lo < hi) {
+        int mid = lo + (hi - lo) / 2;
+        if (reads_back(v, mid, single))
+            hi = mid;
+        else
+            lo = mid + 1;
+    }
+    return lo;
+}
+
 void num_shortest(double v, char *s, size_t cap)
 {
-    int prec = 1;
-    for (; prec <= 17; prec++) {
-        snprintf(s, cap, "%.*g", prec, v);
-        if (strtod(s, NULL) == v)
-            break;
-    }
+    int prec = isfinite(v) ? num_fewest_digits(v, false) : 17;
+    snprintf(s, cap, "%.*g", prec, v);
     const char *e = strchr(s, 'e');
     if (e != NULL) {
         int x = atoi(e + 1);
@@ -58,24 +91,10 @@ static void plain_digits(double v, int prec, char *s, size_t cap)
 
 void num_plain(double v, char *s, size_t cap)
 {
-    char e[40];
-    int prec = 1;
-    for (; prec < 17; prec++) {
-        snprintf(e, sizeof e, "%.*e", prec - 1, v);
-        if (strtod(e, NULL) == v)
-            break;
-    }
-    plain_digits(v, prec, s, cap);
+    plain_digits(v, isfinite(v) ? num_fewest_digits(v, false) : 17, s, cap);
 }
 
 void num_plain_float(float v, char *s, size_t cap)
 {
-    char e[40];
-    int prec = 1;
-    for (; prec < 9; prec++) {
-        snprintf(e, sizeof e, "%.*e", prec - 1, (double)v);
-        if (strtof(e, NULL) == v)
-            break;
-    }
-    plain_digits(v, prec, s, cap);
+    plain_digits(v, isfinite(v) ? num_fewest_digits(v, true) : 9, s, cap);
 }

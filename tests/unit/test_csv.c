@@ -6,6 +6,8 @@
 #include <stdint.h>
 #include <cmocka.h>
 
+#include <stdbool.h>
+
 #include <dirent.h>
 #include <errno.h>
 #include <float.h>
@@ -19,6 +21,7 @@
 #include <unistd.h>
 
 #include "results/csv.h"
+#include "results/numfmt.h"
 #include "common/fsutil.h"
 #include "tests/unit/tempdir.h"
 
@@ -262,6 +265,58 @@ static void test_g_round_trip(void **state)
     }
     assert_null(strtok_r(NULL, "\n", &save));
     free(got);
+}
+
+/* The fewest digits that read back, by bisection (results/numfmt.c's
+ * num_fewest_digits, which num_plain, num_shortest and num_plain_float print with),
+ * against the plain scan from 1 digit up over random bit patterns (normal, subnormal,
+ * huge), every power of two and short decimals, as double and as float. */
+static int scan_digits(double v, bool single)
+{
+    char e[40];
+    int prec = 1, max = single ? 9 : 17;
+    for (; prec < max; prec++) {
+        snprintf(e, sizeof e, "%.*e", prec - 1, v);
+        if (single ? strtof(e, NULL) == (float)v : strtod(e, NULL) == v)
+            break;
+    }
+    return prec;
+}
+
+static void expect_same_digits(double v, bool single)
+{
+    int got = num_fewest_digits(v, single), want = scan_digits(v, single);
+    if (got != want)
+        fail_msg("%.17g as a %s: %d digits, the scan %d", v, single ? "float" : "double",
+                 got, want);
+}
+
+static void test_fewest_digits_as_scan(void **state)
+{
+    (void)state;
+    uint64_t x = 1337;
+    for (int i = 0; i < 20000; i++) {
+        x = x * 6364136223846793005u + 1442695040888963407u;
+        uint64_t bits = x;
+        double d;
+        memcpy(&d, &bits, sizeof d);
+        if (isfinite(d))
+            expect_same_digits(d, false);
+        uint32_t fb = (uint32_t)(x >> 32);
+        float f;
+        memcpy(&f, &fb, sizeof f);
+        if (isfinite(f))
+            expect_same_digits(f, true);
+    }
+    for (int k = -1074; k <= 1023; k++)
+        expect_same_digits(ldexp(1, k), false);
+    for (int k = -149; k <= 127; k++)
+        expect_same_digits(ldexpf(1, k), true);
+    const double shorts[] = {0.1, 0.3, 1e-5, 123.456, 1e22, 0, -0.0, 2.5e-5, 65504};
+    for (size_t i = 0; i < sizeof shorts / sizeof *shorts; i++) {
+        expect_same_digits(shorts[i], false);
+        expect_same_digits((float)shorts[i], true);
+    }
 }
 
 /* >>life cycle */
@@ -541,6 +596,7 @@ int main(void)
     const struct CMUnitTest tests[] = {
         cmocka_unit_test(test_quoting),
         cmocka_unit_test(test_reader),
+        cmocka_unit_test(test_fewest_digits_as_scan),
         cmocka_unit_test_setup_teardown(test_full_file_bytes, setup, teardown),
         cmocka_unit_test_setup_teardown(test_header_quoted, setup, teardown),
         cmocka_unit_test_setup_teardown(test_f64_formatting, setup, teardown),
