@@ -1,10 +1,10 @@
 #!/usr/bin/env bash
 # Set-up if needed, build, and test in tiers (tests/meson.build's suites; README's
 # "Install" says which command runs which). With no option (CI): the plain build's
-# quick, full and slow tiers two at a time (the ASan + UBSan and fuzz builds made
-# meanwhile at the lowest priority), then its timing tier alone; the sanitizer build's
-# suite `asan` (unit, GL, fuzz replay, the CLI tests that parse or do I/O); the seeded
-# fuzzers.
+# quick, full and slow tiers two at a time, less the suite `asan` (the ASan + UBSan and
+# fuzz builds made meanwhile at the lowest priority), then its timing tier alone; the
+# sanitizer build's suite `asan` (unit, GL, fuzz replay, the CLI tests that parse or do
+# I/O); the seeded fuzzers. Each test runs once: where the sanitizer build runs it.
 #   --quick   the quick tier on the plain build only (a developer's few minutes)
 #   --plain   every tier on the plain build only (no sanitizers, no fuzzers)
 # Ends with one line "N passed, N failed" (", N skipped" when any test skipped).
@@ -38,10 +38,12 @@ build() {   # name builddir [meson setup options...]
   status=1
   return 1
 }
-tier() {   # builddir logname processes suite...: meson test over those suites
-  local dir=$1 log=$2 procs=$3; shift 3
+tier() {   # builddir logname processes suite... [-suite...]: meson test over those
+  local dir=$1 log=$2 procs=$3; shift 3   # suites, less the tests of any -suite
   local suites=() s
-  for s in "$@"; do suites+=(--suite "$s"); done
+  for s in "$@"; do
+    case $s in -*) suites+=(--no-suite "${s#-}") ;; *) suites+=(--suite "$s") ;; esac
+  done
   echo "== $dir: meson test ${*} ($procs at a time)" >&2
   meson test -C "$dir" --print-errorlogs --num-processes "$procs" --logbase "$log" \
     "${suites[@]}" >&2 || status=1
@@ -68,7 +70,13 @@ if build plain build; then
   if [ $mode = quick ]; then
     tier build testlog-quick 2 quick
   else
-    tier build testlog-main 2 quick full slow
+    if [ $mode = ci ]; then
+      # the suite asan's tests run under the sanitizers below: the same code and
+      # assertions at -O2, memory and undefined behaviour checked too
+      tier build testlog-main 2 quick full slow -asan
+    else
+      tier build testlog-main 2 quick full slow
+    fi
     if [ -n "$bg" ]; then wait "$bg"; bg=waited; fi
     # Assertions on measured time, one test at a time on an otherwise idle machine.
     tier build testlog-timing 1 timing

@@ -13,7 +13,7 @@ name: det-interior
 scene: interior
 renderers: [deferred, forward-mpml, forward-spml, forward-plus, clustered, tiled-deferred,
             deferred-lighting]
-resolution: 160x120
+resolution: 80x60
 trials: 2
 warmup: {frames: 1}
 duration: {frames: 8}
@@ -28,7 +28,7 @@ name: det-growth
 scene: curtis-scene3
 renderers: [deferred, forward-mpml, forward-spml, forward-plus, clustered, tiled-deferred,
             deferred-lighting]
-resolution: 160x120
+resolution: 80x60
 trials: 2
 warmup: {frames: 1}
 duration: {frames: 8}
