@@ -1,20 +1,16 @@
 #!/usr/bin/env bash
-# Do shadesweep's verdicts hold on a shared machine? The benchmark of issue "Verdicts that
-# hold on a shared machine", on experiments/noise-aa.yaml (six renderers, one sweep point,
-# 5 interleaved rounds), under a background load that this script starts and stops itself
-# (busy loops that come and go, bounded in time):
-#   A/A     compare --exe SELF noise-aa.yaml: the same build as BASE and NEW, paired rounds;
-#           every slower/faster verdict is a false alarm (the folders are also compared
-#           unpaired, as two sweeps run apart would be)
-#   A/B     the same with NEW's forward-plus slowed by +25% of its CPU time per frame
-#           (debug.busy_us, a fixed amount of work): it must be flagged slower, the other
-#           five not
+# Do shadesweep's verdicts hold on a shared machine? On experiments/noise-aa.yaml (six
+# renderers, one sweep point, 5 interleaved rounds), under a background load this script
+# starts and stops itself (busy loops that come and go, bounded in time):
+#   A/A     compare --exe SELF: the same build as BASE and NEW, paired rounds: every
+#           slower/faster verdict is a false alarm (the folders also compared unpaired)
+#   A/B     NEW's forward-plus slowed by +25% of its CPU time a frame (debug.busy_us): it
+#           must be flagged slower, the other five not
 #   repeat  the manifest run 4 times: the winner each names where it says it differs
-#   cost    the interleaved schedule's wall time against the sequential one's, same frames,
-#           and against a build that ran all of a run's trials in one process
-#           (OLD_SHADESWEEP=path, e.g. a build of the commit before trials had processes)
-# Prints one line per finding and a table for the README. Not part of CI (about 15 minutes
-# on a 2-core machine).
+#   cost    the interleaved schedule's wall time against the sequential one's, and
+#           against OLD_SHADESWEEP (a build that ran a run's trials in one process)
+# Prints one line per finding and a table for the README. Not part of CI (about 15
+# minutes on a 2-core machine).
 #   scripts/bench-noise.sh [OUT]        (default out/bench-noise)
 set -euo pipefail
 root=$(cd "$(dirname "$0")/.." && pwd)

@@ -2,36 +2,16 @@
 # Fuzzes the manifest parser (tests/fuzz/fuzz_manifest.c) and the scene-file loader
 # (tests/fuzz/fuzz_scene.c) with libFuzzer for a bounded time, one core each: side by
 # side where there are two cores, else one after the other.
-#
-#   scripts/fuzz.sh [SECONDS]        default 60: the manifest parser SECONDS, the
-#                                    scene loader as long side by side, half that one
-#                                    after the other (FUZZ_SCENE_SECONDS)
-#   scripts/fuzz.sh --build          builds the targets only (scripts/test.sh builds
-#                                    them while the plain build's tests run)
-#
-# Builds with clang in its own folder (FUZZ_BUILD, default build-fuzz): ASan +
-# UBSan (any report aborts), coverage instrumentation on all C code, the target
-# linked with -fsanitize=fuzzer. Seeds: every file under tests/data/ and
-# experiments/ (read in place), plus what earlier runs found, kept in
-# FUZZ_BUILD/corpus (scenes: tests/fuzz/scene_seeds/ and FUZZ_BUILD/corpus-scene).
-# Dictionary: tests/fuzz/yaml.dict.
-#
-# Exit status: 0 nothing found; 1 a finding (crash, sanitizer report, leak,
-# timeout, out of memory, broken contract): the input is saved under
-# FUZZ_BUILD/findings/ and the line to reproduce it is printed; 2 cannot build.
-#
-# Environment: FUZZ_BUILD, FUZZ_RSS_MB (memory limit, default 2048),
-# FUZZ_TIMEOUT (seconds per input, default 10), FUZZ_ARGS (more libFuzzer flags).
-#
-# FUZZ_SEED=N makes a seeded run (scripts/test.sh, CI): libFuzzer's random seed is N,
-# each target starts from the seeds alone (the corpus of earlier runs is left out; what
-# this run finds goes to FUZZ_BUILD/corpus-seed*, emptied first) and stops after
-# FUZZ_RUNS executions (manifest, default 15000) and FUZZ_SCENE_RUNS (scenes, default
-# 2000), with address randomisation and libFuzzer's RSS watchdog thread off
-# (FUZZ_RSS_MB then bounds each allocation, not the total). SECONDS is then only a
-# limit: where it cuts a target short, the script says so. Runs of the same build start
-# with the same inputs and part after some thousand (heap addresses among the values
-# the fuzzer compares): closer to repeatable than a random run, not yet repeatable.
+#   scripts/fuzz.sh [SECONDS]   default 60: the parser SECONDS, the scene loader as long
+#                               side by side, half that one after the other
+#   scripts/fuzz.sh --build     builds the targets only (scripts/test.sh builds them
+#                               while the plain build's tests run)
+# Exit status: 0 nothing found; 1 a finding (crash, sanitizer report, leak, timeout, out
+# of memory, broken contract): the input is saved under FUZZ_BUILD/findings/ and the line
+# to reproduce it is printed; 2 cannot build. Environment: FUZZ_BUILD (default
+# build-fuzz), FUZZ_RSS_MB (memory limit, default 2048), FUZZ_TIMEOUT (seconds per input,
+# default 10), FUZZ_ARGS (more libFuzzer flags), FUZZ_SCENE_SECONDS, and FUZZ_SEED for a
+# seeded run (below, where it is read). The build, the seeds and the dictionary: below.
 set -euo pipefail
 root=$(cd "$(dirname "$0")/.." && pwd)
 cd "$root"
@@ -57,6 +37,8 @@ if ! echo 'int LLVMFuzzerTestOneInput(const char *d, unsigned long n) { (void)d;
   exit 2
 fi
 
+# Built with clang in its own folder: ASan + UBSan (any report aborts), coverage
+# instrumentation on all C code, the target linked with -fsanitize=fuzzer.
 if [ ! -f "$build/build.ninja" ]; then
   echo "fuzz: configuring $build (clang, ASan+UBSan, libFuzzer)" >&2
   instr='-fsanitize=fuzzer-no-link -fno-sanitize-recover=undefined'
@@ -85,9 +67,21 @@ $build_only && exit 0
 if [ "$(nproc)" -ge 2 ]; then default_scene=$secs; else default_scene=$((secs / 2)); fi
 scene_secs=${FUZZ_SCENE_SECONDS:-$default_scene}
 case $scene_secs in '' | *[!0-9]*) echo "fuzz: FUZZ_SCENE_SECONDS: not a number" >&2; exit 2 ;; esac
+# Seeds: every file under tests/data/ and experiments/ (read in place), plus what earlier
+# runs found, kept in FUZZ_BUILD/corpus (scenes: tests/fuzz/scene_seeds/ and
+# FUZZ_BUILD/corpus-scene). Dictionary: tests/fuzz/yaml.dict.
 findings="$build/findings"
 corpus=$build/corpus corpus_scene=$build/corpus-scene
 flags=() scene_flags=() launch=() rss_limit=$rss_mb
+# FUZZ_SEED=N makes a seeded run (scripts/test.sh, CI): libFuzzer's random seed is N,
+# each target starts from the seeds alone (the corpus of earlier runs is left out; what
+# this run finds goes to FUZZ_BUILD/corpus-seed*, emptied first) and stops after
+# FUZZ_RUNS executions (manifest, default 15000) and FUZZ_SCENE_RUNS (scenes, default
+# 2000), with address randomisation and libFuzzer's RSS watchdog thread off
+# (FUZZ_RSS_MB then bounds each allocation, not the total). SECONDS is then only a
+# limit: where it cuts a target short, the script says so. Runs of the same build start
+# with the same inputs and part after some thousand (heap addresses among the values
+# the fuzzer compares): closer to repeatable than a random run, not yet repeatable.
 seed=${FUZZ_SEED:-}
 if [ -n "$seed" ]; then
   runs=${FUZZ_RUNS:-15000} scene_runs=${FUZZ_SCENE_RUNS:-2000}

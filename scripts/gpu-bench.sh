@@ -1,23 +1,19 @@
 #!/usr/bin/env bash
 # A GPU session in one command (issue 15, item 9):
 #   scripts/gpu-bench.sh [--smoke] [--resume] OUTDIR
-# 1. `shadesweep info` for every EGL device (saved as OUTDIR/info-device-N.txt);
-# 2. on the first hardware device (not llvmpipe's software device; when there is none it
-#    says so and uses the software device), the renderer benchmark
-#    (experiments/renderers-{deferred,forward}.yaml), the deferred families over resolution
-#    and msaa (experiments/families-msaa.yaml, as committed: 3 trials of 5 frames) and
-#    seed 003's experiments at the paper's 1280x720, cut to fit 8 minutes in all: one
-#    trial each, experiment 1 at 30 s a run instead of 3 x 60 s (the cut manifests are written to OUTDIR/manifests/, under
-#    the experiments' own names, so that the report recognises them);
+# 1. `shadesweep info` for every EGL device (OUTDIR/info-device-N.txt);
+# 2. on the first hardware device (else, saying so, the software one): the renderer
+#    benchmark (experiments/renderers-{deferred,forward}.yaml), the deferred families over
+#    resolution and msaa (experiments/families-msaa.yaml) and seed 003's experiments at
+#    1280x720, cut to fit 8 minutes (one trial each, experiment 1 at 30 s a run; the cut
+#    manifests in OUTDIR/manifests/ under the experiments' names, for the report);
 # 3. the report over OUTDIR (OUTDIR/report.md) and each folder's ranked table.
-# --resume keeps the complete runs of an earlier, interrupted OUTDIR; when the time
-# budget (GPU_BENCH_BUDGET_S, default 480 s) runs out, the run in progress is stopped
-# (SIGINT) and the script says how to go on. --smoke (or GPU_BENCH_SMOKE=1) runs every
-# manifest's smoke variant (160x120, 2 s): what CI runs on llvmpipe.
-# GPU_BENCH_SET="KEY=VALUE ..." adds --set KEY=VALUE to every run (tests/cli/gpu_bench.sh
-# lowers draw_limit). SHADESWEEP names the program (default: build/runner/shadesweep,
-# built if needed).
-# Exit status: 0 every run ok, 1 some run failed or the budget ran out, 2 bad usage.
+# --resume keeps the complete runs of an interrupted OUTDIR; when the budget
+# (GPU_BENCH_BUDGET_S, default 480 s) runs out, the run in progress is stopped and the
+# script says how to go on. --smoke (GPU_BENCH_SMOKE=1): every manifest's smoke variant.
+# GPU_BENCH_SET="KEY=VALUE ..." adds --set to every run. SHADESWEEP names the program
+# (default build/runner/shadesweep, built if needed). Exit status: 0 every run ok, 1 some
+# run failed or the budget ran out, 2 bad usage.
 set -euo pipefail
 root=$(cd "$(dirname "$0")/.." && pwd)
 smoke=${GPU_BENCH_SMOKE:-0} resume=0 out=""

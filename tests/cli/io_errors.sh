@@ -1,21 +1,17 @@
 #!/usr/bin/env bash
 # Every write checked (issue 22): a sweep whose writes fail, one failure point at a time,
-# through tests/cli/io_fault.c (LD_PRELOAD; SQLite's I/O error injection). A first run
-# counts the write-level calls (write, fsync, ...) the sweep makes to its output folder;
-# then, for chosen points N, the Nth call fails (ENOSPC, the disk staying full after it,
-# or a single EIO), and each time:
+# through tests/cli/io_fault.c (LD_PRELOAD, after SQLite's I/O error injection). A first
+# run counts the write-level calls the sweep makes to its output folder; then the Nth call
+# fails (ENOSPC, the disk staying full after it, or a single EIO), and each time:
 #   - the sweep exits non-zero (summary.md too, since issue 39); the run whose file was
 #     lost is failed:write, never ok;
 #   - a message names the file (its final name) with "No space left on device (the disk
 #     is full)" (or the I/O error);
-#   - nothing is half-written under a final name: every files.txt's files exist with its
-#     sizes, no empty file, every PNG ends with its IEND chunk, every CSV with a newline,
-#     and no *.tmp.* is left;
-#   - `--resume` without the shim then finishes the sweep: exit 0, every run ok, every
-#     file whole.
-# Every call is not tried by default (a sweep and a resume each, about 5 s a call, 50
-# calls): three points chosen below; IOFAULT_ALL=1 tries them all (every one passed on
-# 2026-12-04).
+#   - nothing is half-written under a final name: files.txt's files exist with its sizes,
+#     no empty file, every PNG ends with IEND, every CSV with a newline, no *.tmp.* left;
+#   - `--resume` without the shim finishes the sweep: exit 0, every run ok, files whole.
+# Three points are chosen below (a sweep and a resume each, about 5 s a call, 50 calls);
+# IOFAULT_ALL=1 tries them all (every one passed on 2026-12-04).
 . "$(dirname "$0")/lib.sh"
 SHIM=${1:?the io_fault shim library}
 need_gl

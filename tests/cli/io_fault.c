@@ -1,20 +1,16 @@
 /* I/O error injection for tests/cli/io_errors.sh (LD_PRELOAD), after SQLite's harness:
  * the Nth write-level call to a file under a chosen folder fails.
- *
- *   IOFAULT_DIR=/abs/dir    only regular files under it count (log.txt and lock not:
- *                           they are logs and the folder's lock, not results)
- *   IOFAULT_COUNT=FILE      the count, shared by every process of the sweep: one byte is
- *                           appended to FILE per call (the sweep's processes run one at a
- *                           time, a trial's child while its parent waits)
- *   IOFAULT_AT=N            call N (1-based) fails; 0 or unset: count only
- *   IOFAULT_PERSIST=1       every call after N fails too (a disk that stays full)
- *   IOFAULT_ERRNO=ENOSPC    or EIO, EDQUOT, EROFS
- *   IOFAULT_HIT=FILE        "N path" of each failed call, one line each
- *   IOFAULT_TRACE=FILE      "N kind path" of every counted call
- *
- * Counted calls: write, writev, pwrite, pwrite64, fsync, fdatasync made through the
- * dynamic linker (the program's own calls; glibc's stdio inside libc is not seen, which
- * is why common/fsutil.c's streams write through write(2) of their own). */
+ *   IOFAULT_DIR=/abs/dir  only regular files under it count (not log.txt and lock)
+ *   IOFAULT_COUNT=FILE    the count, shared by the sweep's processes (one at a time):
+ *                         a byte appended to FILE per call
+ *   IOFAULT_AT=N          call N (1-based) fails; 0 or unset: count only
+ *   IOFAULT_PERSIST=1     every call after N fails too (a disk that stays full)
+ *   IOFAULT_ERRNO=ENOSPC  or EIO, EDQUOT, EROFS
+ *   IOFAULT_HIT=FILE      "N path" of each failed call, one line each
+ *   IOFAULT_TRACE=FILE    "N kind path" of every counted call
+ * Counted: write, writev, pwrite, pwrite64, fsync, fdatasync through the dynamic linker
+ * (glibc's stdio inside libc is not seen, which is why common/fsutil.c's streams write
+ * through write(2) of their own). */
 #define _GNU_SOURCE
 /* pwrite and pwrite64 are defined apart: neither may be renamed to the other */
 #undef _FILE_OFFSET_BITS

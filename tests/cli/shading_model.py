@@ -1,83 +1,17 @@
 #!/usr/bin/env python3
-"""An independent check of the shading model (issue 13, item 8).
+"""An independent check of the shading model (issue 13, item 8; issue 36).
 
 Every renderer includes the same lighting.inc.glsl, so their agreement with each other
-cannot catch an error in it. This script evaluates the Phong model of seed 000
-appendix D (I = A + attenuation * spot * (D + g * S), its three attenuation forms and
-its spot falloff) by itself, in float64 with numpy, for a plane seen by a known camera
-and lit by one light per case, and compares every renderer's screenshot with it.
-
-Each case runs twice: under `shading: {model: phong}` against that model, and (files
-pbr-NAME) under `shading: {model: pbr}` against glTF 2.0's metallic-roughness model
-(the specification's Appendix B), also written here from its formulas:
-    c_diff = base (1 - metallic),  F0 = 0.04 (1 - metallic) + base metallic
-    F = F0 + (1 - F0) (1 - V.H)^5,  D = a^2 / (pi ((N.H)^2 (a^2 - 1) + 1)^2),  a = r^2
-    Vis = 1 / ((|N.L| + sqrt(a^2 + (1 - a^2) (N.L)^2)) (|N.V| + sqrt(a^2 + (1 - a^2) (N.V)^2)))
-    I = A + light x attenuation x spot x ((1 - F) c_diff / pi + F D Vis) x N.L   (N.L > 0)
-with the project's ambient A = ambient light x base colour (x occlusion: none here),
-metallic PBR_METALLIC, roughness ROUGHNESS and the lights PBR_GAIN times brighter.
-
-Issue 36: three cases without lights under `environment: sky` (ENV_CASES: Phong, a rough
-dielectric and a metal) against the environment's split sum with its two integrals
-computed here from the sky's definition: the irradiance E(+Y)/pi (Gauss-Legendre) and the
-GGX-prefiltered sky about each pixel's reflection (a (theta, phi) grid), times Karis's
-analytic F0 A + B (its tolerance beside ENV_CASES).
+cannot catch an error in it. This script evaluates the models by itself, in float64 with
+numpy, for a plane seen by a known camera, and compares every renderer's screenshot with
+them: seed 000 appendix D's Phong model with one light per case (`shading: {model:
+phong}`); glTF 2.0's metallic-roughness model (files pbr-NAME, `model: pbr`); and three
+cases lit only by `environment: sky` (ENV_CASES). The formulas are beside model() and
+pbr_shade(), what is read from the project beside "scene files", the tolerance beside
+check().
 
     shading_model.py gen DIR      writes the glTF scenes and the manifests into DIR
     shading_model.py check DIR    compares DIR/out-*/runs/*/screenshot-*.png with the model
-
-Written from the paper's formulas (seed 000 appendix D), not from our shaders:
-    A = ambient light * ambient material                      (our ambient material: Kd)
-    D = light * Kd * max(N.L, 0)
-    S = light * Ks * max(R.V, 0)^n,  R = 2 (N.L) N - L        (Ks: white, see g)
-    attenuation: 1 / (a d^2 + b d + c) | 1 / d^2 | max(0, 1 - d / maxRange)
-    spot = (-L.A)^f if -L.A > cos(c), else 0
-    I = A + attenuation * spot * (D + g * S)
-
-What is taken from the project (its mapping of files and manifests onto the Phong model,
-and how the image is produced), each read from the code named:
-  scenes/file/file_materials.c glTF pbrMetallicRoughness -> Phong: Kd = baseColorFactor;
-                        g = 0.04 (1 - metallic) + luminance(baseColor) metallic, with
-                        luminance = 0.2126 r + 0.7152 g + 0.0722 b; n = 2 / r^4 - 2 for
-                        roughness r (the Blinn-Phong exponent of GGX alpha = r^2).
-                        KHR_lights_punctual: colour x intensity; position and direction
-                        (-Z) from the light's node; point and spot: 1/d^2 cut off at
-                        `range`; spot: c = outerConeAngle, f = 1 (innerConeAngle is not
-                        used). Cameras: at the node, looking down -Z, yfov, the run's
-                        aspect. The ambient light of a file scene is 0.1 (grey).
-  scenes/file/file_assimp.c  scale (fit, the default: the bounds' diagonal made 20 units)
-                        multiplies positions, a light's range and the camera's planes,
-                        and a point or spot light's intensity by its square: the model
-                        here stays in the file's units.
-  scenes/scene_place.c  lights.placement grid with one light: at the centre of the light
-                        bounds (a file scene's are its mesh bounds); colour r, g, b =
-                        rand() / RAND_MAX x color_max in that order, from Visual C++'s
-                        rand (holdrand = holdrand * 214013 + 2531011, rand = holdrand >> 16
-                        & 0x7fff, RAND_MAX 0x7fff) seeded with lights.seed; the attenuation
-                        form and its coefficients from lights.attenuation / lights.quadratic.
-  scenes/scene.h        a point or spot light reaches nothing beyond its radius (range).
-  renderers/shaders/resolve.frag.glsl  the output is the HDR value clamped to [0, 1]
-                        (no tone curve, no sRGB encoding), written to RGBA8: GL rounds
-                        to the nearest of the 255 levels; screenshots are that image,
-                        top row first (renderers/gl/context.c).
-The scenes avoid what the project adds to the paper: every light's range lies beyond
-the visible plane except linear-range's and windowed's (whose attenuation reaches 0
-there anyway), no
-light is within 1 cm of the plane (1/d^2 is clamped there), and every light is above
-the plane (N.L > 0 everywhere, so the project's gating of S by N.L > 0 does not show).
-
-The G-buffer renderers (deferred, tiled-deferred) run with
-`gbuffer: reference` (RGBA32F, position stored): with the default preset (curtis) the
-point light's highlight misses by one more level at one pixel (1.015/255), which is the
-G-buffer's precision, not the shading model. deferred-lighting reads no gbuffer key: its
-own G-buffer (the normal and shininess in RGBA16F, the position from depth) and its
-RGBA16F light buffer stay within the same tolerance (0.8/255 at most).
-
-Tolerance: per case and renderer, over every pixel, the largest channel difference
-between the screenshot (u8 / 255) and the model (clamped to [0, 1]) at most 1/255 (the
-8-bit rounding alone is up to 0.5/255), and the RMSE at most 0.5/255. Pixels whose
-spot cosine lies within 1e-4 of cos(c) (the cone's edge, a step of cos(c) in the model)
-are left out of both and counted.
 """
 import base64
 import csv
@@ -246,6 +180,32 @@ def env_brdf(roughness, ndv):
 
 
 # >>scene files
+# What is taken from the project (its mapping of files and manifests onto the Phong
+# model, and how the image is produced), each read from the code named:
+#   scenes/file/file_materials.c  glTF pbrMetallicRoughness -> Phong: Kd = baseColorFactor;
+#       g = 0.04 (1 - metallic) + luminance(baseColor) metallic, luminance = 0.2126 r +
+#       0.7152 g + 0.0722 b; n = 2 / r^4 - 2 for roughness r (the Blinn-Phong exponent of
+#       GGX alpha = r^2). KHR_lights_punctual: colour x intensity; position and direction
+#       (-Z) from the light's node; point and spot: 1/d^2 cut off at `range`; spot: c =
+#       outerConeAngle, f = 1 (innerConeAngle is not used). Cameras: at the node, looking
+#       down -Z, yfov, the run's aspect. The ambient light of a file scene is 0.1 (grey).
+#   scenes/file/file_assimp.c  scale (fit, the default: the bounds' diagonal made 20 units)
+#       multiplies positions, a light's range and the camera's planes, and a point or spot
+#       light's intensity by its square: the model here stays in the file's units.
+#   scenes/scene_place.c  lights.placement grid with one light: at the centre of the light
+#       bounds (a file scene's are its mesh bounds); colour r, g, b = rand() / RAND_MAX x
+#       color_max in that order, from Visual C++'s rand (msvc_rand) seeded with
+#       lights.seed; the attenuation form and its coefficients from lights.attenuation /
+#       lights.quadratic.
+#   scenes/scene.h  a point or spot light reaches nothing beyond its radius (range).
+#   renderers/shaders/resolve.frag.glsl  the output is the HDR value clamped to [0, 1] (no
+#       tone curve, no sRGB encoding), written to RGBA8: GL rounds to the nearest of the
+#       255 levels; screenshots are that image, top row first (renderers/gl/context.c).
+# The scenes avoid what the project adds to the paper: every light's range lies beyond
+# the visible plane except linear-range's and windowed's (whose attenuation reaches 0
+# there anyway), no light is within 1 cm of the plane (1/d^2 is clamped there), and every
+# light is above the plane (N.L > 0 everywhere, so the project's gating of S by N.L > 0
+# does not show).
 
 def png_uniform(rgb, size):
     """A size x size RGB PNG of one colour, as a data URI."""
@@ -327,6 +287,12 @@ def plane_gltf(case, shading):
     return doc
 
 
+# The G-buffer renderers (deferred, tiled-deferred) run with `gbuffer: reference`
+# (RGBA32F, position stored): with the default preset (curtis) the point light's
+# highlight misses by one more level at one pixel (1.015/255), which is the G-buffer's
+# precision, not the shading model. deferred-lighting reads no gbuffer key: its own
+# G-buffer (the normal and shininess in RGBA16F, the position from depth) and its RGBA16F
+# light buffer stay within the same tolerance (0.8/255 at most).
 def manifest(name, case, shading):
     stem = name if "env" in case else case_file(name, shading)
     gain = 1.0 if shading == "phong" else PBR_GAIN
@@ -384,6 +350,24 @@ def all_cases():
 
 
 # >>the model
+# Written from the paper's formulas (seed 000 appendix D), not from our shaders:
+#     A = ambient light * ambient material                      (our ambient material: Kd)
+#     D = light * Kd * max(N.L, 0)
+#     S = light * Ks * max(R.V, 0)^n,  R = 2 (N.L) N - L        (Ks: white, see g)
+#     attenuation: 1 / (a d^2 + b d + c) | 1 / d^2 | max(0, 1 - d / maxRange)
+#     spot = (-L.A)^f if -L.A > cos(c), else 0
+#     I = A + attenuation * spot * (D + g * S)
+# and glTF 2.0's metallic-roughness model (the specification's Appendix B, pbr_shade):
+#     c_diff = base (1 - metallic),  F0 = 0.04 (1 - metallic) + base metallic
+#     F = F0 + (1 - F0) (1 - V.H)^5,  D = a^2 / (pi ((N.H)^2 (a^2 - 1) + 1)^2),  a = r^2
+#     Vis = 1 / ((|N.L| + sqrt(a^2 + (1 - a^2) (N.L)^2)) (|N.V| + sqrt(a^2 + (1 - a^2) (N.V)^2)))
+#     I = A + light x attenuation x spot x ((1 - F) c_diff / pi + F D Vis) x N.L  (N.L > 0)
+# with the project's ambient A = ambient light x base colour (x occlusion: none here),
+# metallic PBR_METALLIC, roughness ROUGHNESS and the lights PBR_GAIN times brighter.
+# The environment cases (issue 36): the split sum with its two integrals computed here
+# from the sky's definition: the irradiance E(+Y)/pi (Gauss-Legendre) and the
+# GGX-prefiltered sky about each pixel's reflection (a (theta, phi) grid), times Karis's
+# analytic F0 A + B (its tolerance beside ENV_CASES).
 
 def msvc_rand(seed, n):
     s, out = seed & 0xffffffff, []
@@ -590,6 +574,11 @@ def read_png(path):
     return out.reshape(h, w, ch).astype(np.uint8)
 
 
+# Tolerance: per case and renderer, over every pixel, the largest channel difference
+# between the screenshot (u8 / 255) and the model (clamped to [0, 1]) at most 1/255 (the
+# 8-bit rounding alone is up to 0.5/255), and the RMSE at most 0.5/255. Pixels whose spot
+# cosine lies within 1e-4 of cos(c) (the cone's edge, a step of cos(c) in the model) are
+# left out of both and counted.
 def check(d):
     failures, rows = [], []
     for shading, name, case in all_cases():

@@ -1,19 +1,15 @@
-/* libFuzzer target for the manifest parser (runner/manifest.c on runner/manifest/yamldoc.c).
- *
- * Each input is the bytes of a manifest. It is loaded with manifest_load_mem; when
- * valid, the plan is expanded (3 shards), every run's parameters are formatted with
- * run_params_kv and `shadesweep list` output is produced; then everything is freed.
- * A crash, a sanitizer report (ASan, UBSan) or a leak is a finding, and so is a
- * broken contract, which aborts:
+/* libFuzzer target for the manifest parser (runner/manifest/). Each input is a
+ * manifest's bytes, loaded with manifest_load_mem; when valid, the plan is expanded (3
+ * shards), every run's parameters formatted (run_params_kv) and `list` output made, then
+ * all freed. A crash, a sanitizer report or a leak is a finding, and so is a broken
+ * contract, which aborts:
  *   - a failed load reports at least one diagnostic, a successful one none;
  *   - every diagnostic is one line "expected ..., found ..." at a line:col >= 0;
- *   - loading the same bytes twice gives the same hash and the same run ids
- *     (a value depending on uninitialised memory would show up here);
- *   - run ids are 12 lowercase hex digits, shards are in 1..3, indexes in order.
- *
- * Built with clang -fsanitize=fuzzer (scripts/fuzz.sh); the same file with
- * replay.c as main() runs the seed corpus and tests/data/bad/ as a unit test
- * under any compiler (tests/fuzz/meson.build). */
+ *   - the same bytes loaded twice give the same hash and run ids (a value depending on
+ *     uninitialised memory would show here);
+ *   - run ids are 12 lowercase hex digits, shards in 1..3, indexes in order.
+ * Built with clang -fsanitize=fuzzer (scripts/fuzz.sh); with replay.c as main() it runs
+ * the seed corpus and tests/data/bad/ as a unit test under any compiler. */
 #include <stdbool.h>
 #include <stdint.h>
 #include <stdio.h>

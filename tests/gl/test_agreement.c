@@ -1,23 +1,15 @@
-/* Image agreement across renderers (issue 3's acceptance): on the "shapes" scene
- * with hand-placed lights and cameras, deferred with the `reference` G-buffer (in
- * each of the four light-volume modes) agrees with forward-mpml and forward-spml
- * within RMSE 1/255 and max error 4/255 on the 8-bit output; the four light-volume
- * modes give the same image. Cases: one light of each type, 16 lights, the camera
- * inside a point volume and inside a spot volume, a volume cut by the near plane
- * and one cut by the far plane. forward-spml with its lights in a storage buffer
- * gives the same image as with the uniform block, and the tiled renderers (issue
- * 10: forward-plus, clustered, tiled-deferred with the reference G-buffer) agree
- * with it within the same tolerance. Issue 13: with seed 000's fog on (fog.density
- * 0.03) every one of them still agrees with forward-spml within the same tolerance
- * (forward-mpml's additive passes fogged apart, deferred's fog pass from depth); and
- * forward-mpml with 64 overlapping lights (radius 1e5, every light on every pixel:
- * extremes-camera.yaml's case, 0.0048 RMSE in RGBA16F) is within 1/255 RMSE of
- * forward-spml with hdr: rgba32f. Issue 12: the eight light cases at msaa 4, deferred in
- * all six light-volume modes against forward-spml within RMSE 1/255 (fewer than 1 % of
- * the pixels off by more than 1/255). deferred-lighting in every mode and by the tiled
- * lists (deferred_lighting.lights: tiled) as deferred, at msaa 1 and 4; with its 8-bit
- * light buffer, by either, within 2/255 RMSE. Every frame runs in a debug context; any GL
- * error fails the test. */
+/* Image agreement across renderers (issue 3's acceptance), in a debug context (any GL
+ * error fails): on "shapes" with hand-placed lights and cameras (one light of each type,
+ * 16 lights, the camera inside a point and a spot volume, volumes cut by the near and far
+ * planes), deferred with the `reference` G-buffer in every light-volume mode agrees with
+ * forward-mpml and forward-spml within RMSE 1/255 and max 4/255 on the 8-bit output, and
+ * the modes give the same image; forward-spml's storage buffer the uniform block's image;
+ * the tiled renderers (issue 10) within the same bounds; with fog (issue 13) every one of
+ * them still; forward-mpml with 64 lights on every pixel within 1/255 RMSE of forward-spml
+ * in hdr: rgba32f (0.0048 RMSE in RGBA16F: extremes-camera.yaml's case). Issue 12: the
+ * eight cases at msaa 4, deferred in all six modes within RMSE 1/255 (under 1 % of pixels
+ * off by more than 1/255). deferred-lighting in every mode and by the tiled lists as
+ * deferred, at msaa 1 and 4; with its 8-bit light buffer within 2/255 RMSE. */
 #include <setjmp.h>
 #include <stdarg.h>
 #include <stddef.h>

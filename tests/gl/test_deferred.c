@@ -1,28 +1,17 @@
-/* The deferred renderer (renderers/deferred/deferred.c) in a debug context, on scenes set up
- * here: draw calls per pass against the formulas of docs/notes/deferred.md for every
- * light-volume mode; the pixels the light passes shade (pass_stats.samples:
- * GL_SAMPLES_PASSED of the shade draws) ordered stencil <= volume <= hull <= scissor <
- * fullscreen, the scissor's exactly its rectangle; seed 000 5.5's floating-spot (stencil
- * 0, hull most of the screen); with
- * fragment-shader invocations exactly W x H full screen and fewer for a volume (llvmpipe
- * counts every 4x4 block a triangle covers, depth- and stencil-rejected ones included,
- * so invocations cannot show what the stencil saves); a floating light (its volume
- * touches no surface) shading no pixel under both stencil modes; the four modes giving
- * the same image
- * (RGBA8, max difference <= 1/255) with the camera outside, inside a point volume,
- * inside a spot volume, with a volume cut by the near plane and one cut by the far
- * plane; every preset (and field overrides) rendering with no GL error and no
- * non-finite value in the HDR target, close to the reference G-buffer; separate
- * specular accumulation and the state cache's force mode leaving the image alone; the
- * sky mask (deferred.sky_stencil, seed 001 19.7.2) in every mode, with and without a sky
- * pass: the image within 1/255, and each full-screen draw's samples lower by exactly the
- * sky's pixels counted from a depth read-back (scissor: those in its rectangles);
- * pruning of
- * passes, programs and G-buffer attachments, asserted through renderer_describe;
- * gbuffer_bytes; the layouts themselves. Any GL error fails. Exits 77 (skip) when no
- * EGL display can be created at all.
- *
- * Formulas are computed from a frontend of the test's own over the same scene. */
+/* The deferred renderer (renderers/deferred/deferred.c) in a debug context, on scenes set
+ * up here, against formulas from a frontend of the test's own (docs/notes/deferred.md):
+ * draw calls per pass in every light-volume mode; the pixels the light passes shade
+ * (GL_SAMPLES_PASSED) ordered stencil <= volume <= hull <= scissor < fullscreen, the
+ * scissor's exactly its rectangle, seed 000 5.5's floating spot; fragment invocations
+ * exactly W x H full screen (llvmpipe counts every 4x4 block a triangle covers, rejected
+ * ones too); a floating light shading no pixel; the four modes' images within 1/255 with
+ * the camera outside, inside a point or spot volume, and volumes cut by the near and far
+ * planes; every preset and field override finite and close to the reference G-buffer;
+ * separate specular and the state cache's force mode leaving the image alone; the sky
+ * mask (seed 001 19.7.2) in every mode: the image within 1/255, each full-screen draw's
+ * samples lower by exactly the sky's pixels; pruned passes, programs and attachments
+ * (renderer_describe); gbuffer_bytes; the layouts. Any GL error fails; exits 77 (skip)
+ * when no EGL display can be created. */
 #include <setjmp.h>
 #include <stdarg.h>
 #include <stddef.h>

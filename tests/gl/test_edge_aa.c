@@ -1,20 +1,15 @@
 /* aa: edge (renderers/frame/edge_aa.h; seed 001 19.5.2's edge-detect blur) in a debug
- * context, on "shapes" with its maps taken off (flat materials: every contrast left is
- * a geometric edge or a crease) under three point lights, for every renderer that
- * draws (the forward three, deferred, tiled-deferred, clustered with forward and with
- * deferred shading):
- *   - aa: none has no "edge-aa" pass in the frame, and its plan lists the pass as
- *     skipped, saying why; aa: edge has the pass, one draw, every pixel shaded once
- *     (samples W x H), and the frame draws exactly one draw more; its plan lists the
- *     pass as run and the "hdr.aa" target;
- *   - read_hdr gives the anti-aliased image (finite, >= 0), and the output is it
- *     clamped and rounded to 8 bits within 1 at every pixel (the resolve reads it);
- *   - the error against a supersampled reference: forward-spml (aa: none) at 4x the
- *     size, each 4 x 4 block averaged, all in clamp(hdr) in [0, 1]. Its edge
- *     pixels are those whose 16 samples span more than EDGE_SPAN in some channel; the
- *     RMSE over them (all channels) with aa: edge is at most MARGIN x the one with
- *     aa: none.
- * Any GL error fails. Exits 77 (skip) when no EGL display can be created at all. */
+ * context (any GL error fails; 77 when no EGL display), on "shapes" without its maps (every
+ * contrast left is an edge or a crease) under three point lights, in every renderer that
+ * draws (the forward three, deferred, tiled-deferred, clustered forward and deferred):
+ *   - aa: none has no "edge-aa" pass, its plan lists it as skipped with why; aa: edge has
+ *     it: one draw, every pixel shaded once, exactly one draw more in the frame, the plan
+ *     listing the pass and the "hdr.aa" target;
+ *   - read_hdr gives the anti-aliased image (finite, >= 0), and the output is it clamped
+ *     and rounded to 8 bits within 1;
+ *   - against a supersampled reference (forward-spml at 4x the size, 4 x 4 blocks
+ *     averaged), the RMSE over the edge pixels (16 samples spanning more than EDGE_SPAN)
+ *     with aa: edge is at most MARGIN x the one with aa: none. */
 #include <setjmp.h>
 #include <stdarg.h>
 #include <stddef.h>

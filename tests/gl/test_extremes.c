@@ -1,21 +1,16 @@
-/* Extreme inputs (issue 5): for each case, each of deferred (curtis and reference
- * G-buffers, stencil light volumes; also fullscreen volumes where volumes matter),
- * forward-mpml, forward-spml (uniform block and storage buffer), forward-plus,
- * clustered, tiled-deferred (curtis G-buffer), deferred-lighting (stencil; also
- * fullscreen where volumes matter; and by the tiled lists) and visibility renders one frame of "shapes" (64x48 unless the case says otherwise)
- * with lights and camera set by hand, in a debug context. Each ends with no GL error, zero non-finite values in the float light accumulation
- * (renderer_read_hdr) and a readable RGBA8 output, or with a clear message before
- * anything renders:
- *   0 lights; 1 light; 4096 and 65536 lights (forward-spml's uniform block: refused
- *   at prepare with the message naming GL_MAX_UNIFORM_BLOCK_SIZE); light radius 1e-4
- *   (lights nothing) and 1e5 (covers everything); a light exactly on a surface with 1/d^2; the camera
- *   inside 50 overlapping point lights; volumes cut by the near and by the far plane;
- *   specular exponent 0 and 10000; resolutions 1x1, the largest the context allows
- *   (null renderer only: 2 GB of framebuffer) and one beyond it (refused with the
- *   limit named); far 1e6 with near 0.01; 64 lights of colour 1e5 overflowing RGBA16F
- *   (the overflow is reported or clamped, never NaN, and the output is 255 there);
- *   grazing angles; zero-length normals and tangents in the meshes.
- * Exits 77 (skip) when no EGL display can be created at all. */
+/* Extreme inputs (issue 5), in a debug context (77 when no EGL display): each case renders
+ * one frame of "shapes" (64x48 unless it says) with lights and camera set by hand in
+ * deferred (curtis and reference G-buffers, stencil volumes; fullscreen where volumes
+ * matter), forward-mpml, forward-spml (uniform block and storage buffer), forward-plus,
+ * clustered, tiled-deferred, deferred-lighting (stencil, fullscreen, tiled lists) and
+ * visibility, and ends with no GL error, no non-finite value in the accumulation and a
+ * readable output, or with a clear message before anything renders. Cases: 0, 1, 4096 and
+ * 65536 lights (forward-spml's uniform block refused at prepare, naming
+ * GL_MAX_UNIFORM_BLOCK_SIZE); radius 1e-4 and 1e5; a light on a surface with 1/d^2; the
+ * camera inside 50 point lights; volumes cut by the near and far planes; specular exponent
+ * 0 and 10000; 1x1, the largest size the context allows (null renderer: 2 GB) and one
+ * beyond (refused, limit named); far 1e6 with near 0.01; RGBA16F overflow (reported or
+ * clamped, never NaN, output 255); grazing angles; zero-length normals and tangents. */
 #include <setjmp.h>
 #include <stdarg.h>
 #include <stddef.h>

@@ -1,23 +1,14 @@
-/* renderer_read_hdr (renderers/renderer.h) in a debug context: for forward-mpml,
- * forward-spml and deferred (also with separate_specular) on "shapes" with a few point
- * lights at 64x48, the float light accumulation reads back, is finite and >= 0, and the
- * RGBA8 output is round(clamp(hdr) x 255) at every pixel within 1 (hdr row 0 is the
- * bottom, the output's the top); reading it disturbs nothing (the next frame's output
- * is the same); a wrong size or an unprepared renderer is refused with nothing read;
- * null has no float target (false, count 0). Lights bright enough to overflow RGBA16F
- * (64 lights of colour 1e5 at one point): the count is the number of non-finite values
- * the read gives, and the output saturates at 255 where the accumulation is +Inf.
- * hdr: rgba32f (issue 13): every renderer that draws, with and without fog, renders
- * without GL error into a target GL reports as GL_RGBA32F (glGetTextureLevelParameteriv)
- * whose plan says rgba32f at 16 bytes a pixel, and the output is the RGBA16F one's within
- * 2/255 (tiled-deferred's image store has the matching format qualifier). Fog
- * (seed 000 4.5.12): with fog on, every pixel that a surface covers is, in the float
- * accumulation, L f + C (1 - f) with L the same frame without fog, C the fog colour and
- * f = exp(-density z), z the view depth unprojected from the depth buffer read back;
- * pixels at depth 1 (the sky) are unchanged; and the fog changes the image by a lot.
- * With fog on, the deferred renderers draw exactly one draw more, their "fog" pass's
- * (every pixel sampled once), and the forward ones exactly what they drew without it.
- * Any GL error fails. Exits 77 (skip) when no EGL display can be created at all. */
+/* renderer_read_hdr (renderers/renderer.h) in a debug context (any GL error fails; 77 when
+ * no EGL display): forward-mpml, forward-spml and deferred on "shapes" at 64x48 read back
+ * a finite, non-negative accumulation, and the RGBA8 output is round(clamp(hdr) x 255)
+ * within 1 (hdr row 0 is the bottom); reading disturbs nothing; a wrong size or an
+ * unprepared renderer is refused; null has no float target. RGBA16F overflow (64 lights
+ * of colour 1e5 at one point): the count is the non-finite values read, the output 255
+ * there. hdr: rgba32f (issue 13): every renderer renders into a GL_RGBA32F target that its
+ * plan says is 16 bytes a pixel, within 2/255 of RGBA16F. Fog (seed 000 4.5.12): each
+ * covered pixel is L f + C (1 - f), f = exp(-density z) with z unprojected from the depth
+ * read back, the sky unchanged, and the image changed by a lot; the deferred renderers
+ * draw exactly one more draw (their "fog" pass), the forward ones the same draws. */
 #include <setjmp.h>
 #include <stdarg.h>
 #include <stddef.h>

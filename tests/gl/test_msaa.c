@@ -1,24 +1,15 @@
-/* MSAA (issue 12, the manifest's `msaa`; renderers/frame/base.h): the refusal of a sample
- * count the context cannot do (on the limits of a test, and on the context's own,
- * before anything renders, with the message naming the key, the value and the
- * limits); forward-spml and forward-mpml at msaa 4 draw into multisampled targets
- * (4x the bytes), run the pass "msaa-resolve" (a blit: no draw, no sample shaded)
- * before the display resolve, and agree with each other within RMSE 1/255 and max
- * 4/255 on the 8-bit output; the 4-sample image differs from the single-sampled one
- * only on a small fraction of the pixels (the edges). Deferred at msaa 4 (reference
- * G-buffer) agrees with forward-spml at msaa 4 within RMSE 1/255 (and fewer than 1 %
- * of the pixels off by more than 1/255) in every
- * light-volume mode (point, spot and directional lights; also with the sky mask, with
- * separate specular and with fog). Per-sample shading exactly on the edge pixels: one
- * box face seen head-on against the sky (position stored and from depth), its edge
- * pixels counted on the CPU from the
- * projected rectangle and the context's sample positions; the edge pass finds exactly
- * them, and the ambient and directional passes pass 4 samples per pixel, 4 x edges of
- * them from per-sample draws (so P + 3 E fragment runs). tiled-deferred at msaa 4 (its one
- * dispatch: a per-tile edge list, Lauritzen 2010's compute path) agrees with forward-spml
- * by the same bounds, in one dispatch, finds the same edge pixels as deferred's edge pass
- * (on the box face, exactly the counted ones) and counts P + 3 E samples shaded. Any GL
- * error fails. */
+/* MSAA (issue 12, the manifest's `msaa`; renderers/frame/base.h), any GL error failing:
+ * a sample count the context cannot do refused before anything renders, the message
+ * naming key, value and limits; forward-spml and forward-mpml at msaa 4 into
+ * multisampled targets (4x the bytes) with the pass "msaa-resolve" (a blit), agreeing
+ * within RMSE 1/255 and max 4/255, and differing from the single-sampled image on the
+ * edges only; deferred at msaa 4 (reference G-buffer) against forward-spml within RMSE
+ * 1/255 (under 1 % of pixels off by more than 1/255) in every light-volume mode, also
+ * with the sky mask, separate specular and fog; per-sample shading exactly on the edge
+ * pixels of a box face against the sky, counted on the CPU from the projected rectangle
+ * and the sample positions: the edge pass finds them, and P + 3 E samples are shaded;
+ * tiled-deferred at msaa 4 (one dispatch with a per-tile edge list, Lauritzen 2010) by the
+ * same bounds, finding the same edge pixels and shading P + 3 E samples. */
 #include <setjmp.h>
 #include <stdarg.h>
 #include <stddef.h>

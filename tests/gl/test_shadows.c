@@ -1,25 +1,18 @@
 /* Shadow maps for spot and directional lights (renderers/frame/shadow.h, frontend.h
- * "shadow"), in every renderer family:
- *
- *   - an occluder between a light (a spot, a directional light) and the floor: floor
- *     pixels in its shadow get exactly the ambient light (what the frame shows with
- *     no light at all), lit floor pixels beside it are bright, and with shadows off
- *     the shadowed pixels are bright too; deferred (each light-volume mode, two
- *     G-buffer presets), forward-mpml and forward-spml
- *   - deferred (reference G-buffer, each light-volume mode) and forward-mpml agree
- *     with forward-spml within the agreement tests' bounds (test_agreement.c: RMSE
- *     < 1/255, max error <= 4/255) on "shapes" with shadow-casting spot and
- *     directional lights, and the shadows change the image
- *   - the shadow-casting sets, recomputed here from the objects' and lights' geometry,
- *     are the frontend's, and the shadows pass draws exactly the sum of their sizes in
- *     every renderer (the per-renderer formulas with the shadow term)
- *   - shadows off (renderer_options.no_shadows) and scenes where no spot or
- *     directional light casts shadows: no shadows pass, no shadow program or pool in
- *     the plan, the frame's draws those of the formulas without shadows
- *   - a light exactly on a surface, a camera inside a shadowed spot, spots of extreme
- *     angles, nothing visible: finite light, no GL error
- *
- * Every frame runs in a debug context; any GL error fails the test. */
+ * "shadow"), in every renderer family, in a debug context (any GL error fails):
+ *   - an occluder between a light (spot, directional) and the floor: shadowed floor
+ *     pixels get exactly the ambient light, lit ones beside them are bright, and with
+ *     shadows off both are bright (deferred in each light-volume mode and two G-buffer
+ *     presets, forward-mpml, forward-spml);
+ *   - deferred and forward-mpml agree with forward-spml on "shapes" with shadow-casting
+ *     lights within test_agreement.c's bounds (RMSE < 1/255, max <= 4/255), and the
+ *     shadows change the image;
+ *   - the shadow-casting sets, recomputed here from the geometry, are the frontend's, and
+ *     the shadows pass draws exactly the sum of their sizes in every renderer;
+ *   - shadows off, or no light that casts: no shadows pass, program or pool, and the
+ *     frame's draws those of the formulas without shadows;
+ *   - a light on a surface, a camera inside a shadowed spot, spots of extreme angles,
+ *     nothing visible: finite light, no GL error. */
 #include <setjmp.h>
 #include <stdarg.h>
 #include <stddef.h>

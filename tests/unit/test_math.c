@@ -1,22 +1,15 @@
 /* Unit tests for scenes/math/sm_vec.h, sm_mat.h, sm_view.h and sm_bounds.h.
- *
- * Every function with a cglm twin is compared against cglm 0.8.8 (the test oracle; never
- * linked into the program) on thousands of inputs drawn from a fixed-seed splitmix64, and
- * against double-precision references where cglm is not exact enough or wrong.
- *
- * Tolerances are in units of u = 2^-24 (the float unit roundoff, ~6e-8) times the size of
- * what is summed, the standard a-priori rounding bounds (Higham, "Accuracy and Stability
- * of Numerical Algorithms", ch. 3): a sum of n products has error <= n u sum|a_i b_i|; two
- * implementations each within that bound differ by at most twice it. Each bound below
- * says where it comes from; all leave at least 2x headroom over that bound.
- *
- * Boolean tests (culling, intersection) may legitimately disagree with a reference only
- * when the deciding quantity is within rounding of the boundary; those cases are allowed
- * (and counted), any other disagreement fails.
- *
- * cglm arrays (mat4, vec4, versor) are 16-byte aligned types, and cglm's SSE code needs
- * that alignment, so every array handed to both libraries is declared with cglm's type.
- */
+ * Every function with a cglm twin is compared against cglm 0.8.8 (the oracle; never linked
+ * into the program) on thousands of inputs from a fixed-seed splitmix64, and against
+ * double-precision references where cglm is not exact enough or wrong.
+ * Tolerances are in units of u = 2^-24 (float unit roundoff) times the size of what is
+ * summed: the a-priori rounding bounds of Higham ("Accuracy and Stability of Numerical
+ * Algorithms", ch. 3), a sum of n products within n u sum|a_i b_i|, so two implementations
+ * within it differ by at most twice it. Each bound says where it comes from; all leave 2x
+ * headroom. Boolean tests (culling, intersection) may disagree with a reference only where
+ * the deciding quantity is within rounding of the boundary: such cases are counted, any
+ * other disagreement fails. cglm's SSE code needs 16-byte alignment, so every array handed
+ * to both libraries is declared with cglm's type. */
 #include <setjmp.h>
 #include <stdarg.h>
 #include <stddef.h>
