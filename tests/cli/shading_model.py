@@ -153,7 +153,9 @@ def prefiltered(ry, roughness):
     a = roughness * roughness
     a2 = a * a
     th = (np.arange(400) + 0.5) * (0.5 * math.pi / 400)     # angle of l from R: N.L > 0
-    ph = (np.arange(800) + 0.5) * (2.0 * math.pi / 800)
+    # the grid's 800 azimuths pair up as phi and 2 pi - phi, where l has the same world y
+    # (the sky's one variable): the first 400, each counted twice
+    ph = (np.arange(400) + 0.5) * (2.0 * math.pi / 800)
     TH, PH = np.meshgrid(th, ph, indexing="ij")
     ndl = np.cos(TH)
     ndh = np.cos(TH / 2.0)                                   # h halfway between R and l
@@ -456,7 +458,18 @@ def env_model(case, shading, V):
     return base * (1.0 - metallic) * E + P * (f0 * A[..., None] + B[..., None])
 
 
+MODELS_MADE = {}
+
+
 def model(case, shading="phong"):
+    """model_image, once per case (check() reads each case's model twice)."""
+    key = json.dumps([case, shading], sort_keys=True)
+    if key not in MODELS_MADE:
+        MODELS_MADE[key] = model_image(case, shading)
+    return MODELS_MADE[key]
+
+
+def model_image(case, shading):
     """The expected image (H x W x 3, clamped to [0, 1]) and the mask of pixels on a
     spot cone's edge."""
     cam = CAMERA
@@ -547,28 +560,30 @@ def read_png(path):
             break
     raw = zlib.decompress(idat)
     stride = w * ch
-    out = np.zeros((h, stride), dtype=np.int32)
-    prev = np.zeros(stride, dtype=np.int32)
+    out = np.zeros((h, stride), dtype=np.int64)
+    prev = np.zeros(stride, dtype=np.int64)
     for y in range(h):
         ft = raw[y * (stride + 1)]
-        line = np.frombuffer(raw, np.uint8, stride, y * (stride + 1) + 1).astype(np.int32)
-        cur = np.zeros(stride, dtype=np.int32)
-        for x in range(stride):
-            a = cur[x - ch] if x >= ch else 0
-            b = prev[x]
-            c = prev[x - ch] if x >= ch else 0
-            if ft == 0:
-                p = 0
-            elif ft == 1:
-                p = a
-            elif ft == 2:
-                p = b
-            elif ft == 3:
-                p = (a + b) // 2
-            else:
-                pa, pb, pc = abs(b - c), abs(a - c), abs(a + b - 2 * c)
-                p = a if pa <= pb and pa <= pc else (b if pb <= pc else c)
-            cur[x] = (line[x] + p) & 0xff
+        line = np.frombuffer(raw, np.uint8, stride, y * (stride + 1) + 1).astype(np.int64)
+        if ft == 0:
+            cur = line
+        elif ft == 1:   # Sub: a running sum along the row, per channel, modulo 256
+            cur = np.cumsum(line.reshape(w, ch), axis=0).reshape(stride) & 0xff
+        elif ft == 2:   # Up
+            cur = (line + prev) & 0xff
+        else:           # Average, Paeth: each byte needs the one to its left, in ints
+            cur, up, ln = [0] * stride, prev.tolist(), line.tolist()
+            for x in range(stride):
+                a = cur[x - ch] if x >= ch else 0
+                b = up[x]
+                if ft == 3:
+                    p = (a + b) >> 1
+                else:
+                    c = up[x - ch] if x >= ch else 0
+                    pa, pb, pc = abs(b - c), abs(a - c), abs(a + b - 2 * c)
+                    p = a if pa <= pb and pa <= pc else (b if pb <= pc else c)
+                cur[x] = (ln[x] + p) & 0xff
+            cur = np.array(cur, dtype=np.int64)
         out[y] = cur
         prev = cur
     return out.reshape(h, w, ch).astype(np.uint8)
