@@ -201,6 +201,8 @@ bool run_setup(run_state *st)
         run_set_status(st, "output");
         return false;
     }
+    st->files.pass_times_frame_only =
+        gl_software_rasterizer(gi->renderer, gi->vendor, gi->version) != NULL;
     if (st->sc->ncoverage_lights &&
         !run_files_open_coverage(&st->files, st->dir, st->err, sizeof st->err)) {
         run_set_status(st, "output");
