@@ -18,6 +18,17 @@ static const ynode *map_get(const ynode *m, const char *key)
     return NULL;
 }
 
+/* A plain scalar that YAML's core schema reads as null (yamlout.c writes a missing
+ * string so: a trial without a context has `renderer: null`). */
+static bool yaml_null(const ynode *v)
+{
+    static const char *const nulls[] = {"~", "null", "Null", "NULL"};
+    for (size_t i = 0; v->style == YSTYLE_PLAIN && i < sizeof nulls / sizeof *nulls; i++)
+        if (strcmp(v->text, nulls[i]) == 0)
+            return true;
+    return false;
+}
+
 bool meta_read_block(const char *run_dir, const char *block, const char *const *keys,
                      size_t nkeys, char *out, size_t len)
 {
@@ -34,9 +45,7 @@ bool meta_read_block(const char *run_dir, const char *block, const char *const *
     const ynode *b = ok ? map_get(doc->root, block) : NULL;
     for (size_t k = 0; k < nkeys; k++) {
         const ynode *v = map_get(b, keys[k]);
-        bool null = v && v->style == YSTYLE_PLAIN &&
-                    (strcmp(v->text, "null") == 0 || strcmp(v->text, "~") == 0);
-        if (v && v->kind == YNODE_SCALAR && !null)
+        if (v && v->kind == YNODE_SCALAR && !yaml_null(v))
             snprintf(out + k * len, len, "%s", v->text);
     }
     ydoc_free(doc);
