@@ -442,11 +442,11 @@ static bool table_write(const char *out_dir, FILE *terminal, char *err, size_t e
     ok = afile_commit(&f, err, errlen) && afile_set_commit(&set, err, errlen);
     if (ok && terminal) {
         fprintf(terminal, "ranked: %s (the definitions are there)\n", mdpath);
+        if (dn.line[0])   /* above the answer, which stays last (crossovers.sh) */
+            fprintf(terminal, "device: %s\n", dn.line);
         /* the answer: who wins at each point, then along the swept axes, last */
         point_verdicts_print(terminal, runs, shown, nshown, rcfg);
         crossovers_print(terminal, &cx);
-        if (dn.line[0])
-            fprintf(terminal, "device: %s\n", dn.line);
     }
     crossovers_free(&cx);
 out:

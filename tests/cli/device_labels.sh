@@ -2,7 +2,7 @@
 # Honest labels (issue 38, item 5): every answer made on a software rasterizer says so in
 # one line, and passes.csv says its pass times are not the passes' own. A tiny llvmpipe
 # sweep (16x16, two frames, two renderers): summary.md before its first table,
-# summary.json, run's terminal answer, compare and report carry the line, and passes.csv's
+# summary.json, run's terminal answer (above the verdicts), compare and report carry it, and passes.csv's
 # gpu_us_attributed and cpu_us_attributed are 0 with the counters kept. A GPU folder says
 # nothing: the committed H200 data (docs/results/2026-12-04-h200) through report, compare
 # and ratios, and this sweep's folder with its meta.yaml's GL strings made the H200's,
@@ -29,8 +29,9 @@ YAML
 "$SHADESWEEP" run -o sw tiny.yaml >run.out 2>run.err || fail "run: $(cat run.err)"
 grep -q "llvmpipe" sw/runs/*/meta.yaml || { echo "SKIP: not on llvmpipe" >&2; exit 77; }
 
-# the terminal: the line last, once
-tail -n 1 run.out | grep -q "^device: $LINE.*$CPU" || fail "terminal: $(tail -n 3 run.out)"
+# the terminal: once, between the table's "ranked:" line and the verdicts (last)
+grep -A1 "^ranked: " run.out | grep -q "^device: $LINE.*$CPU" || fail "terminal: $(tail -n 4 run.out)"
+tail -n 1 run.out | grep -q "^verdict: " || fail "terminal: the verdict not last: $(tail -n 1 run.out)"
 [ "$(grep -c "CPU rasterizer" run.out)" -eq 1 ] || fail "terminal: not one line"
 # summary.md: one line, before the first table
 grep -q "^\*\*Device:\*\* $LINE.*$CPU" sw/summary.md || fail "summary.md: no device line"
@@ -123,5 +124,5 @@ cp -r sw mix && gpuify mix "$(ls sw/runs | head -n 1)"
 "$SHADESWEEP" merge -o mm mix >mm.out 2>mm.err || fail "merge mixed: $(cat mm.err)"
 grep -q "^\*\*Device:\*\* measured on 2 devices, .*: llvmpipe (LLVM [^)]*) (1 run, a CPU rasterizer); NVIDIA H200/PCIe/SSE2 (1 run); on a CPU rasterizer these rankings measure a CPU" mm/summary.md ||
   fail "mixed: $(grep Device mm/summary.md)"
-tail -n 1 mm.out | grep -q "^device: measured on 2 devices" || fail "mixed terminal: $(tail -n 2 mm.out)"
+grep -q "^device: measured on 2 devices" mm.out || fail "mixed terminal: $(tail -n 3 mm.out)"
 echo "device_labels: ok"
