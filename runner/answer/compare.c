@@ -94,14 +94,21 @@ static void fmt_ms(char *dst, size_t len, double us, double ci_us)
 
 #define NVERDICTS (VERDICT_UNDECIDED + 1)
 
+/* count[v]: the pairs whose verdict is v */
+static void count_verdicts(const pair *p, size_t np, size_t count[NVERDICTS])
+{
+    memset(count, 0, NVERDICTS * sizeof *count);
+    for (size_t i = 0; i < np; i++)
+        count[p[i].v]++;
+}
+
 /* dn[0], dn[1]: the devices of BASE and NEW (device_note.h) */
 static void write_md(FILE *fp, const char *base, const char *new_, double thr, bool paired,
                      const pair *p, size_t np, size_t only_base, size_t only_new,
                      const device_note *dn)
 {
-    size_t count[NVERDICTS] = {0};
-    for (size_t i = 0; i < np; i++)
-        count[p[i].v]++;
+    size_t count[NVERDICTS];
+    count_verdicts(p, np, count);
     const char *metric = np ? p[0].a->metric : "wall";
     fprintf(fp, "# compare: `%s` -> `%s`\n\n", base, new_);
     fprintf(fp, "Each trial is a process of its own; a run's value per trial is its mean %s "
@@ -150,9 +157,8 @@ static void write_json(FILE *fp, const char *base, const char *new_, double thr,
                        const pair *p, size_t np, size_t only_base, size_t only_new,
                        const device_note *dn)
 {
-    size_t count[NVERDICTS] = {0};
-    for (size_t i = 0; i < np; i++)
-        count[p[i].v]++;
+    size_t count[NVERDICTS];
+    count_verdicts(p, np, count);
     bool first = true;
     fputs("{", fp);
     json_member_string(fp, &first, "schema", "shadesweep-compare");
