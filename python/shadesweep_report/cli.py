@@ -1,7 +1,6 @@
 """shadesweep report: the command line and the report's frame."""
 import datetime
 import os
-import re
 import sys
 
 from .loading import EXPERIMENTS, KNOWN, ME, Experiment, die, load, read_csv, reference_dir
@@ -12,6 +11,7 @@ from .sections import SECTIONS
 from .sections.base import Section
 from .sections.generic import section_generic
 from .text import code, md_table
+from . import verdicts
 
 
 def setup_text(e):
@@ -163,7 +163,14 @@ def main(argv):
                     "003 on a GeForce GTX 870M (Direct3D 11, Intel GPA). Absolute numbers do not "
                     "transfer between machines; the claims (which renderer wins, by what ratio, "
                     "where the lines cross) are what is compared.")
-    soft = any(re.search(r"llvmpipe|softpipe|swrast|lavapipe", g, re.I) for g in gl)
+    # the device of each folder, as summary.md says it (results/gl_device.c decides)
+    dev = verdicts.devices([f for e in {**exps, **others}.values() for f in e.folders])
+    notes = {f: d["note"] for f, d in dev.items() if d["note"]}
+    if len(set(notes.values())) == 1:
+        head.append(f"- **Device:** {next(iter(notes.values()))}.")
+    else:
+        head += [f"- **Device of {code(f)}:** {n}." for f, n in notes.items()]
+    soft = any(d["software_rasterizer"] for d in dev.values())
     if soft:
         head.append("- **Software rendering.** These runs used a CPU rasteriser (llvmpipe), which "
                     "shades pixels far slower than " + ("the papers' GPUs" if papers else "a GPU")
@@ -244,6 +251,8 @@ def main(argv):
               + (f"; not recognised: {', '.join(sorted(unknown))}" if unknown else ""))
     else:   # the user's own manifests: nothing to recognise
         print(f"{ME}: wrote {path}: {', '.join(sorted(others))}, {len(plots.made)} plot(s)")
+    for n in dict.fromkeys(notes.values()):   # the device, as report.md's head says it
+        print(f"{ME}: device: {n}")
     return 0
 
 

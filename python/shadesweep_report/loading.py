@@ -264,7 +264,9 @@ class Run:
         """passes.csv of ok trials: {pass: {gpu_us, draw_calls, samples, frames_with_pass}}:
         the median GPU time per frame (robust to a wild timer result; None when the driver
         gave none), the mean draw calls and the mean shaded samples (GL_SAMPLES_PASSED)
-        per frame (None when the folder has no samples column)."""
+        per frame (None when the folder has no samples column); "_attributed": whether the
+        times are the passes' own (gpu_us_attributed: 0 on a software rasterizer; None
+        for a folder written before the column)."""
         if "passes" not in self._cache:
             path = os.path.join(self.dir, "passes.csv")
             out = None
@@ -272,9 +274,12 @@ class Run:
                 ok = {r.get("trial") for r in self.ok_rows}
                 acc = {}
                 frames = set()
+                attributed = None
                 for r in read_csv(path) or []:
                     if r.get("trial") not in ok:
                         continue
+                    if r.get("gpu_us_attributed") in ("0", "1"):
+                        attributed = (attributed is not False) and r["gpu_us_attributed"] == "1"
                     frames.add((r["trial"], r["frame"]))
                     a = acc.setdefault(r["pass"], [[], None, 0.0, 0])
                     g = num(r.get("gpu_us"))
@@ -291,6 +296,7 @@ class Run:
                            "samples": a[1] / nf if nf and a[1] is not None else None,
                            "frames_with_pass": a[3]} for p, a in acc.items()}
                 out["_frames"] = nf
+                out["_attributed"] = attributed
             self._cache["passes"] = out
         return self._cache["passes"]
 

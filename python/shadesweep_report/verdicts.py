@@ -120,3 +120,33 @@ def within_text(a):
     if a["differs"] == "no":
         return f" (not told apart: the ratio's 95% interval {a['lo']:.2f}-{a['hi']:.2f} holds 1)"
     return ""
+
+
+_DEVICES = {}
+
+
+def devices(folders):
+    """{folder: {"software_rasterizer", "devices", "note"}}: whether a CPU rasterizer
+    measured the folder's runs and the line summary.md says of them (None on one GPU),
+    from `shadesweep ratios` (runner/answer/device_note.c; the detection is
+    results/gl_device.c), asked once a folder."""
+    ask = [f for f in dict.fromkeys(folders) if f not in _DEVICES]
+    for f, a in zip(ask, _ask([("device", f) for f in ask])):
+        _DEVICES[f] = a if "error" not in a else {"software_rasterizer": False, "devices": 0,
+                                                  "note": None}
+    return {f: _DEVICES[f] for f in folders}
+
+
+def pass_times_attributed(run):
+    """Whether run's per-pass times are the passes' own: passes.csv's gpu_us_attributed,
+    or, in a folder written before it, whether its device is a GPU. On a CPU rasterizer
+    only the frame total is trusted (llvmpipe rasterizes where it flushes)."""
+    a = (run.passes() or {}).get("_attributed")
+    if a is not None:
+        return a
+    return not devices([_folder(run)])[_folder(run)]["software_rasterizer"]
+
+
+UNATTRIBUTED = ("Measured on a CPU rasterizer, these per-pass times are not the passes' own "
+                "(it runs the work where it flushes, not in the pass that issued it): only the "
+                "frame total is trusted; the counts per pass are.")

@@ -30,6 +30,7 @@
 #include "runner/manifest/diag.h"
 #include "runner/manifest/hash.h"
 #include "runner/manifest/manifest.h"
+#include "runner/answer/device_note.h"
 #include "runner/answer/run_model.h"
 #include "runner/manifest/sweep_axis.h"
 #include "runner/folder/trials.h"
@@ -93,12 +94,21 @@ static void fmt_ms(char *dst, size_t len, double us, double ci_us)
 
 #define NVERDICTS (VERDICT_UNDECIDED + 1)
 
-static void write_md(FILE *fp, const char *base, const char *new_, double thr, bool paired,
-                     const pair *p, size_t np, size_t only_base, size_t only_new)
+/* count[v]: the pairs whose verdict is v */
+static void count_verdicts(const pair *p, size_t np, size_t count[NVERDICTS])
 {
-    size_t count[NVERDICTS] = {0};
+    memset(count, 0, NVERDICTS * sizeof *count);
     for (size_t i = 0; i < np; i++)
         count[p[i].v]++;
+}
+
+/* dn[0], dn[1]: the devices of BASE and NEW (device_note.h) */
+static void write_md(FILE *fp, const char *base, const char *new_, double thr, bool paired,
+                     const pair *p, size_t np, size_t only_base, size_t only_new,
+                     const device_note *dn)
+{
+    size_t count[NVERDICTS];
+    count_verdicts(p, np, count);
     const char *metric = np ? p[0].a->metric : "wall";
     fprintf(fp, "# compare: `%s` -> `%s`\n\n", base, new_);
     fprintf(fp, "Each trial is a process of its own; a run's value per trial is its mean %s "
@@ -113,6 +123,11 @@ static void write_md(FILE *fp, const char *base, const char *new_, double thr, b
                    : "the ratio of geometric means (Welch's interval on the logs: two "
                      "folders measured at different times are independent)",
             1 + thr, thr * 100, 1 + thr, 1 + thr, 1 + thr);
+    bool same = strcmp(dn[0].line, dn[1].line) == 0;   /* one line for both */
+    for (int k = same; k < 2; k++)
+        if (dn[k].line[0])
+            fprintf(fp, "**Device of %s:** %s.\n\n", same ? "BASE and NEW" : k ? "NEW" : "BASE",
+                    dn[k].line);
     fprintf(fp, "| run | renderer | BASE (ms) | NEW (ms) | NEW / BASE | 95%% interval | trials "
                 "| verdict |\n|---|---|---|---|---|---|---|---|\n");
     for (size_t i = 0; i < np; i++) {
@@ -139,11 +154,11 @@ static void write_md(FILE *fp, const char *base, const char *new_, double thr, b
 
 /* The table as JSON (--json): what write_md says, for scripts; docs/summary-json.md. */
 static void write_json(FILE *fp, const char *base, const char *new_, double thr, bool paired,
-                       const pair *p, size_t np, size_t only_base, size_t only_new)
+                       const pair *p, size_t np, size_t only_base, size_t only_new,
+                       const device_note *dn)
 {
-    size_t count[NVERDICTS] = {0};
-    for (size_t i = 0; i < np; i++)
-        count[p[i].v]++;
+    size_t count[NVERDICTS];
+    count_verdicts(p, np, count);
     bool first = true;
     fputs("{", fp);
     json_member_string(fp, &first, "schema", "shadesweep-compare");
@@ -183,6 +198,8 @@ static void write_json(FILE *fp, const char *base, const char *new_, double thr,
     fputs("}", fp);
     json_member_number(fp, &first, "only_base", (double)only_base);
     json_member_number(fp, &first, "only_new", (double)only_new);
+    json_member_string(fp, &first, "base_device", dn[0].line[0] ? dn[0].line : NULL);
+    json_member_string(fp, &first, "new_device", dn[1].line[0] ? dn[1].line : NULL);
     fputs("}\n", fp);
 }
 
@@ -292,6 +309,9 @@ static int compare_folders(const char *base, const char *new_, const compare_opt
                 "both summary.csv files)\n", base, new_);
         goto done;
     }
+    device_note dn[2];
+    device_note_of(base, ra, na, &dn[0]);
+    device_note_of(new_, rb, nb, &dn[1]);
     char err[600];
     if (co->csv_path && !write_csv(co->csv_path, p, np, err, sizeof err)) {
         fprintf(stderr, "shadesweep compare: %s\n", err);
@@ -303,14 +323,14 @@ static int compare_folders(const char *base, const char *new_, const compare_opt
             fprintf(stderr, "shadesweep compare: %s\n", err);
             goto done;
         }
-        write_md(f.fp, base, new_, co->thr, co->paired, p, np, missing, nb - np);
+        write_md(f.fp, base, new_, co->thr, co->paired, p, np, missing, nb - np, dn);
         if (!afile_commit(&f, err, sizeof err)) {
             fprintf(stderr, "shadesweep compare: %s\n", err);
             goto done;
         }
     }
     (co->json ? write_json : write_md)(stdout, base, new_, co->thr, co->paired, p, np, missing,
-                                       nb - np);
+                                       nb - np, dn);
     rc = 0;
     for (size_t i = 0; i < np; i++)
         if (p[i].v == VERDICT_SLOWER)

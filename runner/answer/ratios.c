@@ -14,6 +14,7 @@
 #include "results/jsonout.h"
 #include "results/verdict.h"
 #include "runner/answer/commands.h"
+#include "runner/answer/device_note.h"
 #include "runner/answer/run_model.h"
 
 typedef struct folder_data {
@@ -178,6 +179,25 @@ static void answer_run(cache *c, char **f)
     fputs("}\n", stdout);
 }
 
+/* The folder's device (runner/answer/device_note.h): what the report says of it. */
+static void answer_device(cache *c, char **f)
+{
+    folder_data *d = folder_get(c, f[0]);
+    if (!d || !d->ok) {
+        print_error(d ? d->err : "out of memory");
+        return;
+    }
+    device_note dn;
+    device_note_of(f[0], d->runs, d->nruns, &dn);
+    bool first = true;
+    fputs("{", stdout);
+    json_key(stdout, &first, "software_rasterizer");
+    fputs(dn.nsoftware ? "true" : "false", stdout);
+    json_member_number(stdout, &first, "devices", (double)dn.ndevices);
+    json_member_string(stdout, &first, "note", dn.line[0] ? dn.line : NULL);
+    fputs("}\n", stdout);
+}
+
 static void answer_crossover(cache *c, char **f, size_t npts)
 {
     double *x = calloc(npts ? npts : 1, sizeof *x);
@@ -245,6 +265,8 @@ static const char usage[] =
     "      folder's sweep point, else Welch on logs; its 95% interval and `differs`\n"
     "    crossover X1 FOLDER_A1 RUN_A1 FOLDER_B1 RUN_B1 X2 ...\n"
     "      where A / B crosses 1 along an axis (X ascending), with its interval\n"
+    "    device FOLDER      whether a CPU rasterizer measured the folder's runs, how\n"
+    "      many devices did, and the line summary.md says of them (null: none)\n"
     "exit status: 0 answered (a request about a missing run answers {\"error\": ...});\n"
     "2 a malformed request\n";
 
@@ -264,6 +286,9 @@ static const char usage[] =
  *     where A / B crosses 1 along an axis whose value at point k is Xk (ascending):
  *     {"crossings": [{"i", "j", "dir", "x", "lo", "hi"}, ...]} (verdict_crossover), with
  *     "ratios": [{"ratio", "lo", "hi", "differs"}, ...] of each point.
+ *   device FOLDER
+ *     {"software_rasterizer", "devices", "note"}: summary.md's `Device:` line of the
+ *     folder (runner/answer/device_note.h), null when it has none.
  *
  * A request naming a folder or run that is not there answers {"error": "..."} on its
  * line, and the others go on; a malformed line is a message on stderr and exit 2. A
@@ -315,11 +340,13 @@ int cmd_ratios(int argc, char **argv)
             answer_run(&c, f + 1);
         } else if (strcmp(f[0], "ratio") == 0 && nf == 5) {
             answer_ratio(&c, f + 1);
+        } else if (strcmp(f[0], "device") == 0 && nf == 2) {
+            answer_device(&c, f + 1);
         } else if (strcmp(f[0], "crossover") == 0 && nf >= 11 && (nf - 1) % 5 == 0) {
             answer_crossover(&c, f + 1, (nf - 1) / 5);
         } else {
-            fprintf(stderr, "shadesweep ratios: line %zu: want 'run' and 2 fields, 'ratio' and 4, or "
-                    "'crossover' and 5 fields a point (2 points or more), separated by "
+            fprintf(stderr, "shadesweep ratios: line %zu: want 'run' and 2 fields, 'ratio' and 4, "
+                    "'device' and 1, or 'crossover' and 5 fields a point (2 points or more), separated by "
                     "tabs\n", lineno);
             status = 2;
         }

@@ -3,6 +3,8 @@
 #define _GNU_SOURCE   /* open_memstream */
 #include "runner/answer/summary_json.h"
 
+#include "runner/answer/device_note.h"
+
 #include <math.h>
 #include <stdlib.h>
 #include <string.h>
@@ -11,6 +13,7 @@
 #include "results/jsonout.h"
 #include "runner/folder/output.h"
 #include "runner/answer/point_verdict.h"
+#include "runner/answer/device_note.h"
 
 static bool bookkeeping(const char *name)
 {
@@ -210,6 +213,14 @@ bool summary_json_write(const char *out_dir, const summary_view *v, afile_set *s
     json_string(fp, v->experiment);
     fputs(",\n  \"metric\": ", fp);
     json_string(fp, v->nruns && v->runs[0].metric[0] ? v->runs[0].metric : "wall");
+    /* the device, when a CPU rasterizer measured the runs (runner/answer/device_note.h) */
+    fputs(",\n  \"device\": {", fp);
+    bool df = true;
+    json_key(fp, &df, "software_rasterizer");
+    fputs(v->device->nsoftware ? "true" : "false", fp);
+    json_member_number(fp, &df, "devices", (double)v->device->ndevices);
+    json_member_string(fp, &df, "note", v->device->line[0] ? v->device->line : NULL);
+    fputs("}", fp);
     fputs(",\n  \"units\": {", fp);   /* of the measures of trial_results */
     bool uf = true;
     for (size_t c = 0; c < v->sm->ncols; c++)

@@ -24,6 +24,7 @@ typedef struct summary_view {
     const summary_point *points;  /* ranked */
     size_t npoints;
     const crossover_list *cx;
+    const struct device_note *device;   /* runner/answer/device_note.h */
 } summary_view;
 
 /* Writes OUT/summary.json into `set` (fsutil.h: renamed with the folder's other

@@ -11,6 +11,7 @@
 #include "results/csvread.h"
 #include "common/fsutil.h"
 #include "runner/answer/crossovers.h"
+#include "runner/answer/device_note.h"
 #include "runner/manifest/params.h"
 #include "runner/answer/point_verdict.h"
 #include "runner/answer/summary_json.h"
@@ -320,6 +321,14 @@ static bool table_write(const char *out_dir, FILE *terminal, char *err, size_t e
     md_put(f.fp, *exp ? exp : out_dir);
     fputs(": the renderers ranked per sweep point\n\n", f.fp);
     fputs(md_intro, f.fp);
+    /* on a CPU rasterizer, or across devices: said before any table (device_note.h) */
+    device_note dn;
+    device_note_of(out_dir, runs, nruns, &dn);
+    if (dn.line[0]) {
+        fputs("\n**Device:** ", f.fp);
+        md_put(f.fp, dn.line);
+        fputs(".\n", f.fp);
+    }
     if (terminal)
         fprintf(terminal, "\n%s: %zu run%s, %zu sweep point%s; %s time per frame, ms: mean ± "
                 "95%% CI over the trials\n", *exp ? exp : out_dir, nruns, nruns == 1 ? "" : "s",
@@ -414,7 +423,8 @@ static bool table_write(const char *out_dir, FILE *terminal, char *err, size_t e
     }
     crossovers_write_md(f.fp, &cx);
     /* the same for scripts */
-    summary_view view = {exp, runs, nruns, &pl, &sm, prow, varies, rcfg, shown, nshown, &cx};
+    summary_view view = {exp, runs, nruns, &pl, &sm, prow, varies, rcfg, shown, nshown, &cx,
+                         &dn};
     if (!summary_json_write(out_dir, &view, &set, err, errlen) ||
         !summary_long_write(out_dir, &pl, &sm, &set, err, errlen)) {
         crossovers_free(&cx);
@@ -432,6 +442,8 @@ static bool table_write(const char *out_dir, FILE *terminal, char *err, size_t e
     ok = afile_commit(&f, err, errlen) && afile_set_commit(&set, err, errlen);
     if (ok && terminal) {
         fprintf(terminal, "ranked: %s (the definitions are there)\n", mdpath);
+        if (dn.line[0])   /* above the answer, which stays last (crossovers.sh) */
+            fprintf(terminal, "device: %s\n", dn.line);
         /* the answer: who wins at each point, then along the swept axes, last */
         point_verdicts_print(terminal, runs, shown, nshown, rcfg);
         crossovers_print(terminal, &cx);

@@ -9,11 +9,10 @@
 
 #include "common/fsutil.h"
 #include "common/grow.h"
-#include "runner/manifest/diag.h"
 #include "runner/folder/folder.h"
 #include "runner/folder/account.h"
+#include "runner/folder/meta_read.h"
 #include "runner/folder/output.h"
-#include "runner/manifest/yamldoc.h"
 
 /* The whole file into a NUL-terminated buffer (caller frees); NULL with a message. */
 static char *slurp(const char *path, size_t *len, char *err, size_t errlen)
@@ -90,41 +89,15 @@ static bool copy_run(const char *from, const char *to, char *err, size_t errlen)
     return fs_mkdirs_tail(to, 2, err, errlen) && folder_each(from, copy_entry, (void *)to, err, errlen);
 }
 
-/* The scalar at key of mapping m, NULL when there is none. */
-static const char *map_text(const ynode *m, const char *key)
-{
-    for (size_t i = 0; m && m->kind == YNODE_MAPPING && i < m->n; i++)
-        if (m->pairs[i].key->kind == YNODE_SCALAR && strcmp(m->pairs[i].key->text, key) == 0)
-            return m->pairs[i].value->kind == YNODE_SCALAR ? m->pairs[i].value->text : NULL;
-    return NULL;
-}
-
 /* "version V, commit C" of the build that made run_dir: its meta.yaml's `shadesweep`
  * block ("unknown" for what it lacks; the run is complete, so meta.yaml is there). */
 static void run_build(const char *run_dir, char *out, size_t len)
 {
-    char path[4300];
-    snprintf(path, sizeof path, "%s/meta.yaml", run_dir);
-    size_t n;
-    int e;
-    char *text = fs_read_all(path, 64u << 20, &n, &e);
-    diag_list d = {0};
-    ydoc *doc = NULL;
-    const char *v = NULL, *c = NULL;
-    if (text && ydoc_load(path, text, n, &doc, &d) && doc->root->kind == YNODE_MAPPING) {
-        const ynode *sw = NULL;
-        for (size_t i = 0; i < doc->root->n; i++)
-            if (doc->root->pairs[i].key->kind == YNODE_SCALAR &&
-                strcmp(doc->root->pairs[i].key->text, "shadesweep") == 0)
-                sw = doc->root->pairs[i].value;
-        v = map_text(sw, "version");
-        c = map_text(sw, "commit");
-    }
-    snprintf(out, len, "version %.60s, commit %.60s", v && *v ? v : "unknown",
-             c && *c ? c : "unknown");
-    ydoc_free(doc);
-    diag_free(&d);
-    free(text);
+    static const char *const keys[] = {"version", "commit"};
+    char v[2][61];
+    meta_read_block(run_dir, "shadesweep", keys, 2, v[0], sizeof v[0]);
+    snprintf(out, len, "version %s, commit %s", v[0][0] ? v[0] : "unknown",
+             v[1][0] ? v[1] : "unknown");
 }
 
 int merge_main(const char *out, bool force, bool allow_mixed, int ndirs, char **dirs)

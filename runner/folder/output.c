@@ -96,6 +96,9 @@ static const char *const passes_columns[] = {
     "run_id", "trial", "frame", "pass", "gpu_us", "cpu_us", "draw_calls", "state_changes",
     "fragments", "samples", "primitives", "dispatches", "cell_lights_mean", "cell_lights_max",
     "light_evals_per_pixel", "scissor_pixels", "samples_shaded", "edge_fraction",
+    /* whether gpu_us and cpu_us are the pass's own (0 on a software rasterizer: there
+     * only the frame's total is; run_files.pass_times_frame_only) */
+    "gpu_us_attributed", "cpu_us_attributed",
 };
 #define NCOLS(a) (sizeof(a) / sizeof((a)[0]))
 
@@ -221,6 +224,8 @@ void run_files_frame(run_files *f, const char *run_id, uint32_t trial, const fra
         csv_f64(w, ps->samples_shaded, 1);
         /* msaa, deferred: the frame's edge-pixel fraction on its edge pass's row */
         csv_f64(w, strcmp(ps->name, "edges") == 0 ? fs->edge_fraction : NAN, 6);
+        csv_u64(w, f->pass_times_frame_only ? 0 : 1);
+        csv_u64(w, f->pass_times_frame_only ? 0 : 1);
         csv_end_row(w);
     }
 }

@@ -57,6 +57,10 @@ bool output_read_sweep_meta(const char *out_dir, sweep_meta *m, char *err, size_
 /* The per-run CSV streams, open across the run's trials. */
 typedef struct run_files {
     csv_writer *frames, *seconds, *passes, *convergence, *errors, *coverage, *lightgrid;
+    /* passes.csv's gpu_us_attributed and cpu_us_attributed are 0: the device (a software
+     * rasterizer, results/gl_device.h) runs a pass's work where it flushes, so only the
+     * frame's total time is trusted; the counters per pass are kept as they are */
+    bool pass_times_frame_only;
 } run_files;
 
 bool run_files_open(run_files *f, const char *run_dir, const run_params *p, char *err,

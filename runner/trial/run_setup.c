@@ -9,6 +9,7 @@
 #include "renderers/gl/context.h"
 #include "renderers/renderer.h"
 #include "results/contention.h"
+#include "results/gl_device.h"
 #include "common/fsutil.h"
 #include "runner/manifest/hash.h"
 #include "runner/manifest/params.h"
@@ -22,8 +23,7 @@
 static bool resolve_metric(run_metric m, const gl_info *gi, char *out, size_t len, char *err,
                            size_t errlen)
 {
-    bool software = strstr(gi->renderer, "llvmpipe") || strstr(gi->renderer, "softpipe") ||
-                    strstr(gi->renderer, "swrast");
+    bool software = gl_software_rasterizer(gi->renderer, gi->vendor, gi->version) != NULL;
     if (m == RUN_METRIC_GPU && !gi->timer_query) {
         snprintf(err, errlen, "measure.metric: gpu, but %s has no timer queries", gi->renderer);
         return false;
@@ -201,6 +201,8 @@ bool run_setup(run_state *st)
         run_set_status(st, "output");
         return false;
     }
+    st->files.pass_times_frame_only =
+        gl_software_rasterizer(gi->renderer, gi->vendor, gi->version) != NULL;
     if (st->sc->ncoverage_lights &&
         !run_files_open_coverage(&st->files, st->dir, st->err, sizeof st->err)) {
         run_set_status(st, "output");

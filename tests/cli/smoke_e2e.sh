@@ -42,7 +42,8 @@ seconds_cols = ["run_id","trial","second","complete","lights_min","lights_max","
   "frametime_mean_us","frametime_sd_us","frametime_p50_us","frametime_p99_us","draw_calls_mean"]
 passes_cols = ["run_id","trial","frame","pass","gpu_us","cpu_us","draw_calls","state_changes",
   "fragments","samples","primitives","dispatches","cell_lights_mean","cell_lights_max",
-  "light_evals_per_pixel","scissor_pixels","samples_shaded","edge_fraction"]
+  "light_evals_per_pixel","scissor_pixels","samples_shaded","edge_fraction",
+  "gpu_us_attributed","cpu_us_attributed"]
 convergence_cols = ["run_id","trial","elapsed_s","frames","frametime_mean_us","frametime_ci95_us",
   "ci95_rel"]
 

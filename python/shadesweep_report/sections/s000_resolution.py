@@ -2,6 +2,7 @@
 from ..plots import COLORS, paper_vs_ours
 from ..stats import linfit, num
 from ..text import fmt, fmt_ci, md_table, nan, ratio
+from .. import verdicts
 
 
 # ---- seed 000 resolution
@@ -112,6 +113,7 @@ def section_s000_resolution(s):
     s.w("**Performance breakdowns.** The paper's NVPerfHUD times per pipeline unit have no "
         "counterpart here (no vertex/pixel/texture/raster-op counters); ours are the median GPU "
         "time per frame of each pass (passes.csv, timer queries), by the same positions.\n")
+    any_soft = False
     for scene, tab, _ in S0_RES_TABLES:
         for pren in ("deferred", "forward-mpml"):
             ren = "deferred" if pren == "deferred" else fwd
@@ -138,9 +140,15 @@ def section_s000_resolution(s):
                 row.append(", ".join(f"{k} {fmt(p[k]['gpu_us'] / 1000, 2) if p[k]['gpu_us'] is not None else '-'}"
                                      for k in names if k in p) if p else "-")
                 rows.append(row)
+            # a CPU rasterizer's pass times are marked (verdicts.UNATTRIBUTED)
+            soft = any(not verdicts.pass_times_attributed(r) for r in runs if r.passes())
             s.w(f"{scene}, {pren}{'' if ren == pren else ' (ours: ' + ren + ')'}:\n")
             s.w(md_table(["Resolution", "Vertex Shader ms", "Pixel Shader ms", "Texture Unit ms",
-                          "Raster Ops ms", "ours at", "ours: GPU ms per pass"], rows))
+                          "Raster Ops ms", "ours at", "ours: GPU ms per pass"
+                          + (" (not attributed)" if soft else "")], rows))
+            any_soft |= soft
+    if any_soft:
+        s.w(verdicts.UNATTRIBUTED + "\n")
 
     if s.plots.plt:
         plt = s.plots.plt

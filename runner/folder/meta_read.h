@@ -1,0 +1,13 @@
+#pragma once
+/* Reading back what a complete run's meta.yaml says (runner/trial/run_meta.c writes it):
+ * the scalars of one top-level block, for merge (the build that made a run) and the
+ * answers (the GL device each run was measured on: runner/answer/device_note.h). */
+#include <stdbool.h>
+#include <stddef.h>
+
+/* out + i * len receives the text of keys[i] in the top-level mapping `block` of
+ * RUN_DIR/meta.yaml, cut to len - 1 bytes ("" where the block or the key is missing, or
+ * its value is null or not a scalar). False, every value "", when the file cannot be read or
+ * is not YAML. */
+bool meta_read_block(const char *run_dir, const char *block, const char *const *keys,
+                     size_t nkeys, char *out, size_t len);
