@@ -94,8 +94,10 @@ static void *deferred_lighting_create(const renderer_options *opts, char *err, s
     light_grid g = {0};
     if (o.lpp_tiled)
         o.light_volumes = LIGHT_VOLUMES_STENCIL;   /* not read: no light volume drawn */
-    else
+    else {
         o.tile_size = 16;   /* not read: no grid */
+        o.depth_mask = false;
+    }
     if (o.lpp_tiled && !light_grid_tile_option(&g, "deferred-lighting", &o, err, errlen))
         return NULL;
     deferred_lighting *l = (deferred_lighting *)deferred_core_create(

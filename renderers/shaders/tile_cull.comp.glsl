@@ -52,6 +52,9 @@ layout(binding = BIND_TEX_DEPTH) uniform sampler2D t_depth;
 // when some sample has geometry, in the slice of its nearest such sample. With
 // TILE_DEPTH_RANGES the tile's range is also written to b_tile_depth (tiles.inc) for
 // the shading pass.
+// DEPTH_MASK (tiles.depth_culling: mask): after step 1, the cells of the range each
+// sample occupies (tile_mask_cover), and the tile's list keeps only the lights whose
+// depth extent covers one of them (Harada's 2.5D culling; tile_cull.inc).
 // TLISTS (the scene has translucent objects): then, in the same work group, the tile's
 // translucent list (near plane to the tile's max depth, cull_translucent in
 // tile_cull.inc) for the translucent pass.
@@ -75,5 +78,9 @@ void main()
         }
     }
     barrier();
+#ifdef DEPTH_MASK
+    tile_mask_cover(pixel);   // tiles.depth_culling: mask (tile_cull.inc)
+    barrier();
+#endif
     cull_tile();
 }

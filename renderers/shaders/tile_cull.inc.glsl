@@ -3,7 +3,7 @@
 // counting), the tile's planes and depth range, the sphere tests, and cull_cell(), which counts, places and writes one
 // tile's (or cluster's) list, and cull_translucent() (TLISTS). Needs bindings.h,
 // frame.inc, lighting.inc, lights.inc, tiles.inc and TILE_SIZE, TILES_X (SLICES, TILES_Y,
-// TLISTS).
+// TLISTS, DEPTH_MASK: tile_mask_cover).
 layout(location = LOC_RENDERER) uniform int u_light_count;
 
 const uint N = uint(TILE_SIZE * TILE_SIZE);
@@ -18,6 +18,9 @@ shared uint s_bits[WORDS];               // this chunk's passing lights, a bit e
 shared uint s_part[TILE_SIZE * TILE_SIZE];   // per invocation: its words' count, then
                                              // where its lights go
 shared uint s_chunk;                     // lights of this chunk in the list
+#ifdef DEPTH_MASK
+shared uint s_depth_mask;                // the cells of the tile's range its samples occupy
+#endif
 
 vec3 view_at(vec2 ndc_xy, float ndc_z)
 {
@@ -33,6 +36,9 @@ void tile_reset(uint me)
         s_min_depth = floatBitsToUint(1.0);
         s_max_depth = 0u;
         s_covered = 0u;
+#ifdef DEPTH_MASK
+        s_depth_mask = 0u;
+#endif
     }
 #ifdef SLICES
     for (uint k = me; k < uint(SLICES); k += uint(TILE_SIZE * TILE_SIZE))
@@ -139,11 +145,32 @@ bool light_sphere(uint i, out vec3 c, out float r)
     return true;
 }
 
+#ifdef DEPTH_MASK
+// tiles.depth_culling: mask. While g_masked (the tile's own list, cull_tile), a sphere
+// that passes the range must also cover a cell of g_mask, the cells the tile's samples
+// occupy (tile_mask_cover): its extent in view z, c.z - r .. c.z + r, clamped to the
+// tile's range, as cells (depth_cell, tiles.inc).
+bool g_masked = false;
+uint g_mask;
+float g_cell_near, g_cell_scale;
+
+bool sphere_meets_mask(vec3 c, float r)
+{
+    int lo = depth_cell(c.z + r, g_cell_near, g_cell_scale);
+    int hi = depth_cell(c.z - r, g_cell_near, g_cell_scale);
+    return !g_masked || (g_mask & (0xffffffffu >> uint(31 - hi)) & (0xffffffffu << uint(lo))) != 0u;
+}
+#endif
+
 bool light_passes(uint i)
 {
     vec3 c;
     float r;
+#ifdef DEPTH_MASK
+    return !light_sphere(i, c, r) || (sphere_passes(c, r) && sphere_meets_mask(c, r));
+#else
     return !light_sphere(i, c, r) || sphere_passes(c, r);
+#endif
 }
 
 #ifdef SLICES
@@ -169,14 +196,22 @@ float slice_start(int k)
 }
 #endif
 
-// The tile's four planes into g_planes and its corner rays into g_corners, and its depth range (view z, widened by two
-// steps of the 24-bit depth buffer; -inf far when some pixel is at depth 1) from
-// s_min_depth and s_max_depth.
+const float DEPTH_WIDEN = 2.0 / 16777215.0;   // two steps of the 24-bit depth buffer
+
+// The tile's depth range (view z, widened by two steps of the 24-bit depth buffer; -inf
+// far when some pixel is at depth 1) from s_min_depth and s_max_depth.
+void tile_depth_range(out float tile_znear, out float tile_zfar)
+{
+    float dmin = max(uintBitsToFloat(s_min_depth) - DEPTH_WIDEN, 0.0);
+    float dmax = uintBitsToFloat(s_max_depth) + DEPTH_WIDEN;
+    tile_znear = view_z(dmin);
+    tile_zfar = dmax >= 1.0 ? uintBitsToFloat(0xff800000u) : view_z(dmax);   // -inf
+}
+
+// The tile's four planes into g_planes and its corner rays into g_corners, and its
+// depth range (tile_depth_range).
 void tile_frustum(uvec2 tile, ivec2 size, out float tile_znear, out float tile_zfar)
 {
-    const float STEP = 2.0 / 16777215.0;
-    float dmin = max(uintBitsToFloat(s_min_depth) - STEP, 0.0);
-    float dmax = uintBitsToFloat(s_max_depth) + STEP;
     vec2 lo = vec2(tile * uint(TILE_SIZE)) / vec2(size) * 2.0 - 1.0;
     vec2 hi = vec2(min((tile + 1u) * uint(TILE_SIZE), uvec2(size))) / vec2(size) * 2.0 - 1.0;
     vec3 c00 = view_at(lo, -1.0), c10 = view_at(vec2(hi.x, lo.y), -1.0);
@@ -190,9 +225,45 @@ void tile_frustum(uvec2 tile, ivec2 size, out float tile_znear, out float tile_z
     g_corners[1] = c10;
     g_corners[2] = c11;
     g_corners[3] = c01;
-    tile_znear = view_z(dmin);
-    tile_zfar = dmax >= 1.0 ? uintBitsToFloat(0xff800000u) : view_z(dmax);   // -inf
+    tile_depth_range(tile_znear, tile_zfar);
 }
+
+#ifdef DEPTH_MASK
+// tiles.depth_culling: mask (Harada, McKee and Yang, "Forward+", EG 2012 short paper;
+// GPU Pro 4's 2.5D culling). Once the tile's range is known (after tile_cover and a
+// barrier), each invocation marks in s_depth_mask the cells (tiles.inc's depth_cell)
+// its pixel's samples occupy, every sample at msaa > 1, each sample's depth widened by
+// the range's two steps, so that the cells hold every depth the shading can see there;
+// a barrier follows before cull_tile.
+uint sample_cells(float d, float znear, float scale)
+{
+    if (d >= 1.0)
+        return 0u;   // no geometry
+    if (scale == 0.0)
+        return 1u;   // open range: one cell
+    int lo = depth_cell(view_z(max(d - DEPTH_WIDEN, 0.0)), znear, scale);
+    int hi = depth_cell(view_z(d + DEPTH_WIDEN), znear, scale);
+    return (0xffffffffu >> uint(31 - hi)) & (0xffffffffu << uint(lo));
+}
+
+void tile_mask_cover(ivec2 pixel)
+{
+    if (!all(lessThan(pixel, ivec2(f_viewport.xy))))
+        return;
+    float znear, zfar;
+    tile_depth_range(znear, zfar);
+    float scale = depth_cell_scale(znear, zfar);
+    uint bits = 0u;
+#ifdef MSAA_SAMPLES
+    for (int i = 0; i < MSAA_SAMPLES; i++)
+        bits |= sample_cells(texelFetch(t_depth, pixel, i).r, znear, scale);
+#else
+    bits = sample_cells(texelFetch(t_depth, pixel, 0).r, znear, scale);
+#endif
+    if (bits != 0u)
+        atomicOr(s_depth_mask, bits);
+}
+#endif
 
 // Culls every light against the planes and [g_zfar, g_znear] into cell `cell`'s list,
 // in light order. Called by the whole work group with the same arguments. The passing
@@ -343,6 +414,9 @@ void cull_clusters(uint tile_index, uint covered, uint nlights, float tile_znear
     uint me = gl_LocalInvocationIndex;
     uint ntiles = uint(TILES_X * TILES_Y);
     cull_cell(NO_CELL, covered, nlights, 0u, false);
+#ifdef DEPTH_MASK
+    g_masked = false;   // the clusters are cut from the masked tile list
+#endif
     memoryBarrierBuffer();
     barrier();
     uint src = s_offset, n = s_offset == 0xffffffffu ? 0u : s_count;
@@ -477,9 +551,9 @@ void pixel_depth_range(ivec2 pixel, out float d, out float d_far)
 }
 #endif
 
-// Once the work group has covered the tile (tile_cover, then a barrier): its frustum, and
-// the light lists of its cell or its clusters (SLICES) and its translucent list (TLISTS),
-// culled by the whole work group. TILE_DEPTH_RANGES keeps the range culled against for
+// Once the work group has covered the tile (tile_cover, then a barrier; DEPTH_MASK:
+// tile_mask_cover, then a barrier): its frustum, and the light lists of its cell or its
+// clusters (SLICES) and its translucent list (TLISTS), culled by the whole work group. TILE_DEPTH_RANGES keeps the range culled against for
 // the shading pass's fallback.
 void cull_tile()
 {
@@ -490,15 +564,28 @@ void cull_tile()
     uint nlights = covered == 0u ? 0u : uint(u_light_count);
     float tile_znear, tile_zfar;
     tile_frustum(tile, size, tile_znear, tile_zfar);
-#ifdef TILE_DEPTH_RANGES
+#if defined(TILE_DEPTH_RANGES) && defined(DEPTH_MASK)
+    if (gl_LocalInvocationIndex == 0u)
+        b_tile_depth[tile_index] = uvec4(floatBitsToUint(vec2(tile_znear, tile_zfar)),
+                                         s_depth_mask, 0u);
+#elif defined(TILE_DEPTH_RANGES)
     if (gl_LocalInvocationIndex == 0u)
         b_tile_depth[tile_index] = vec2(tile_znear, tile_zfar);
 #endif
     cull_range(tile_znear, tile_zfar);
+#ifdef DEPTH_MASK
+    g_mask = s_depth_mask;   // the tile's own list only: not its translucent one
+    g_cell_near = tile_znear;
+    g_cell_scale = depth_cell_scale(tile_znear, tile_zfar);
+    g_masked = true;
+#endif
 #ifndef SLICES
     cull_cell(tile_index, covered, nlights, 0u, false);
 #else
     cull_clusters(tile_index, covered, nlights, tile_znear, tile_zfar);
+#endif
+#ifdef DEPTH_MASK
+    g_masked = false;
 #endif
 #ifdef TLISTS
     cull_translucent(tile, tile_index, size, covered, tile_zfar);

@@ -149,8 +149,10 @@ void store(ivec2 p, int i, Shaded o)
 // a black diffuse and a gloss of 1) and stored into the light buffer's two images,
 // diffuse at BIND_IMAGE_HDR and specular at BIND_IMAGE_LIGHT_SPECULAR (rgba16f, or rgba8
 // with LIGHT_BUFFER_RGBA8, where the store clamps to 1 as the volumes' blending does).
+// DEPTH_MASK (tiles.depth_culling: mask): the tile's list masked by the cells its
+// samples occupy, as tile_cull.comp's.
 // Defines: TILE_SIZE, TILES_X (TILES_Y, SLICES, TLISTS, MSAA_SAMPLES, LIGHT_PREPASS,
-// LIGHT_BUFFER_RGBA8), the G-buffer layout's, SHADOWS.
+// LIGHT_BUFFER_RGBA8, DEPTH_MASK), the G-buffer layout's, SHADOWS.
 void main()
 {
     uint me = gl_LocalInvocationIndex;
@@ -235,6 +237,10 @@ void main()
         }
     }
     barrier();
+#ifdef DEPTH_MASK
+    tile_mask_cover(pixel);   // tiles.depth_culling: mask (tile_cull.inc)
+    barrier();
+#endif
     cull_tile();
     memoryBarrierBuffer();
     barrier();

@@ -8,7 +8,8 @@
 //                 fit); capacity: entries the index buffer holds
 //   b_tile_depth[t]  (TILE_DEPTH_RANGES: forward-plus and clustered at msaa > 1) the
 //                 view-z range (near, far; far -inf when open) tile t's lights were
-//                 culled against, for forward_tiled.frag's fallback
+//                 culled against, for forward_tiled.frag's fallback; with DEPTH_MASK
+//                 a uvec4: the range's bits, then the tile's cell mask (depth_cell)
 // Needs bindings.h. TILES_COHERENT (tiled_deferred.comp, which reads the lists its own
 // work group wrote) makes the lists coherent.
 #ifdef TILES_COHERENT
@@ -26,18 +27,52 @@ layout(std430, binding = BIND_SSBO_TILE_STATS) buffer TileStats {
     uint next;
     uint capacity;
 } b_stats;
+#ifdef DEPTH_MASK
+// tiles.depth_culling: mask (Harada 2012's 2.5D culling, tile_cull.inc): a tile's depth
+// range [zfar, znear] (view z) cut into 32 equal cells, 0 the nearest. The cell of z
+// is floor((znear - z) x scale) clamped to 0..31, with scale = 32 / (znear - zfar), or
+// 0 when the range is open (zfar -inf: every depth in cell 0, the mask passes every
+// light the range passes). The cull and the shading's fallback use these two functions
+// alone, so both find the same cell for the same depth (monotone in z).
+float depth_cell_scale(float znear, float zfar)
+{
+    return !isinf(zfar) && znear > zfar ? 32.0 / (znear - zfar) : 0.0;
+}
+
+int depth_cell(float z, float znear, float scale)
+{
+    return clamp(int(floor((znear - z) * scale)), 0, 31);
+}
+#endif
+
 #ifdef TILE_DEPTH_RANGES
+#ifdef DEPTH_MASK
+layout(std430, binding = BIND_SSBO_TILE_DEPTH) buffer TileDepth {
+    uvec4 b_tile_depth[];   // near, far (float bits), the cells the tile's samples occupy
+};
+#else
 layout(std430, binding = BIND_SSBO_TILE_DEPTH) buffer TileDepth {
     vec2 b_tile_depth[];
 };
+#endif
 
 // msaa: whether view z lies outside the depth range tile t was culled against (a
-// sample's surface shaded at another position than the one culled): then every light
-// of the frame is looped, in light order.
+// sample's surface shaded at another position than the one culled), or (DEPTH_MASK)
+// in a cell no sample of the tile occupies: then every light of the frame is looped,
+// in light order.
 bool outside_tile_depth(uvec2 t, float z)
 {
+#ifdef DEPTH_MASK
+    uvec4 e = b_tile_depth[t.y * uint(TILES_X) + t.x];
+    vec2 range = uintBitsToFloat(e.xy);
+    if (z > range.x || z < range.y)
+        return true;
+    int k = depth_cell(z, range.x, depth_cell_scale(range.x, range.y));
+    return (e.z & (1u << uint(k))) == 0u;
+#else
     vec2 range = b_tile_depth[t.y * uint(TILES_X) + t.x];
     return z > range.x || z < range.y;
+#endif
 }
 #endif
 

@@ -90,16 +90,16 @@ static bool forward_tiled_prepare(void *self, const struct scene *s, char *err, 
     /* msaa > 1: the cull reads every sample, and shading gets the tiles' ranges */
     bool ms = c->b.samples > 1;
     snprintf(r->samples_define, sizeof r->samples_define, "MSAA_SAMPLES %d", c->b.samples);
-    const char *grid_defs[6] = {g->tile_define, g->tiles_x_define,
+    const char *grid_defs[7] = {g->tile_define, g->tiles_x_define,
                                 g->slices ? g->tiles_y_define : NULL,
                                 g->slices ? g->slices_define : NULL,
                                 g->slices ? g->slices_y_define : NULL,
-                                ms ? "TILE_DEPTH_RANGES" : NULL};
+                                ms ? "TILE_DEPTH_RANGES" : NULL, light_grid_mask_define(g)};
     /* the cull's defines: grid_defs without the NULLs, then the samples, then TLISTS
      * when it builds translucent lists (a NULL ends the list) */
-    const char *cull_defs[9] = {NULL};
+    const char *cull_defs[10] = {NULL};
     unsigned ncull = 0;
-    for (unsigned i = 0; i < 6; i++)
+    for (unsigned i = 0; i < 7; i++)
         if (grid_defs[i])
             cull_defs[ncull++] = grid_defs[i];
     if (ms)
@@ -124,7 +124,7 @@ static bool forward_tiled_prepare(void *self, const struct scene *s, char *err, 
                            .compute = "tile_cull.comp",
                            .defines = {cull_defs[0], cull_defs[1], cull_defs[2],
                                        cull_defs[3], cull_defs[4], cull_defs[5],
-                                       cull_defs[6], cull_defs[7]}},
+                                       cull_defs[6], cull_defs[7], cull_defs[8]}},
                        &r->cull_program, why, sizeof why) != GLP_OK) {
         snprintf(err, errlen, "%s: %s", r->name, why);
         goto fail;
@@ -132,7 +132,7 @@ static bool forward_tiled_prepare(void *self, const struct scene *s, char *err, 
     const char *extra[10] = {NULL};
     unsigned k = 0;
     if (g->cull) {
-        for (unsigned i = 0; i < 6; i++)
+        for (unsigned i = 0; i < 7; i++)
             if (grid_defs[i])
                 extra[k++] = grid_defs[i];
     } else {

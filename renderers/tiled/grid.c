@@ -15,6 +15,7 @@ bool light_grid_tile_option(light_grid *g, const char *name, const renderer_opti
 {
     g->name = name;
     g->tile = o->tile_size;
+    g->depth_mask = o->depth_mask;
     if (g->tile != 8 && g->tile != 16 && g->tile != 32) {
         snprintf(err, errlen, "%s: tiles.size %d: expected 8, 16 or 32", name, g->tile);
         return false;
@@ -105,6 +106,11 @@ void light_grid_defines(light_grid *g)
     snprintf(g->slices_define, sizeof g->slices_define, "SLICES %u", g->slices);
     snprintf(g->slices_y_define, sizeof g->slices_y_define, "SLICES_Y %u", g->slices_y);
     snprintf(g->tlists_define, sizeof g->tlists_define, "TLISTS %u", g->ncells);
+}
+
+const char *light_grid_mask_define(const light_grid *g)
+{
+    return g->depth_mask && g->cull ? "DEPTH_MASK" : NULL;
 }
 
 static GLuint make_buffer(size_t bytes)
@@ -281,7 +287,8 @@ bool forward_grid_prepare_end(forward_common *c, GLuint *depth_ranges, char *err
     const light_grid *g = c->grid;
     if (c->b.samples > 1 && g->cull) {
         gl.CreateBuffers(1, depth_ranges);
-        gl.NamedBufferStorage(*depth_ranges, (GLsizeiptr)((size_t)g->ntiles * 2u * sizeof(float)),
+        size_t words = g->depth_mask ? 4u : 2u;   /* DEPTH_MASK: and the tile's cells */
+        gl.NamedBufferStorage(*depth_ranges, (GLsizeiptr)((size_t)g->ntiles * words * 4u),
                               NULL, GL_DYNAMIC_STORAGE_BIT);
     }
     const translucent_grid tg = light_grid_translucent(g);

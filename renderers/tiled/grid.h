@@ -50,6 +50,7 @@
 typedef struct light_grid {
     const char *name;                /* the renderer: first word of its messages */
     int tile;                        /* pixels per tile side */
+    bool depth_mask;                 /* tiles.depth_culling: mask (DEPTH_MASK, tile_cull.inc) */
     uint32_t slices_y;               /* clustered: Olsson's S_y (clustered.slices); else 0 */
     /* >>light_grid_size, at prepare */
     uint32_t slices;                 /* clustered: depth slices to the far plane; else 0 */
@@ -71,8 +72,8 @@ typedef struct light_grid {
     char slices_y_define[24], tlists_define[24];
 } light_grid;
 
-/* The options, at create: tiles.size (0: 16) into g->tile, and clustered.slices (0: 24)
- * into g->slices_y; false with "NAME: tiles.size ..." / "NAME: clustered.slices ...". */
+/* The options, at create: tiles.size (0: 16) into g->tile (and tiles.depth_culling into
+ * g->depth_mask), and clustered.slices (0: 24) into g->slices_y; false with "NAME: tiles.size ..." / "NAME: clustered.slices ...". */
 bool light_grid_tile_option(light_grid *g, const char *name, const renderer_options *o,
                             char *err, size_t errlen);
 bool light_grid_slices_option(light_grid *g, const char *name, const renderer_options *o,
@@ -95,6 +96,8 @@ bool light_grid_lights_fit(const light_grid *g, uint32_t nlights, int max_block,
 /* The index buffer's entries (the header's cap) for max_lights_per_tile (0: every light). */
 void light_grid_capacity(light_grid *g, uint32_t max_lights_per_tile, int max_block);
 /* TILE_SIZE, TILES_X, TILES_Y, SLICES, SLICES_Y and TLISTS (the cells) into the defines. */
+/* "DEPTH_MASK" for the cull and shading programs when the lists are masked, else NULL. */
+const char *light_grid_mask_define(const light_grid *g);
 void light_grid_defines(light_grid *g);
 /* The buffers and the readback arrays; false when out of memory (the caller says so). */
 bool light_grid_alloc(light_grid *g);
@@ -129,7 +132,8 @@ const uint32_t *forward_grid_counts(const void *self, size_t *n);
  * in the cull dispatch when the scene has translucency and the cull runs. */
 void forward_grid_describe_translucent(const struct forward_common *c, pass_plan *out);
 /* The end of such a renderer's prepare: at msaa > 1 with the cull pass, *depth_ranges,
- * the tiles' culled depth ranges (TILE_DEPTH_RANGES: a vec2 a tile); then the translucent
+ * the tiles' culled depth ranges (TILE_DEPTH_RANGES: a vec2 a tile; a uvec4 with
+ * DEPTH_MASK, the tile's cells too); then the translucent
  * pass over the grid's translucent lists (every light without them). False with a
  * message. */
 bool forward_grid_prepare_end(struct forward_common *c, GLuint *depth_ranges, char *err,

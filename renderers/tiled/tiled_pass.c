@@ -113,6 +113,8 @@ bool tiled_pass_compile(tiled_pass *t, deferred_renderer *d, char *err, size_t e
         extra[n++] = "NO_GRID";
     if (g->ntlists)
         extra[n++] = g->tlists_define;
+    if (light_grid_mask_define(g))
+        extra[n++] = light_grid_mask_define(g);
     n += (int)shadow_maps_defines(&d->b.shadows, extra + n);   /* any type: one program */
     gl_program_desc desc = {.name = program_name(t, d), .compute = "tiled_deferred.comp"};
     unsigned k = 0;

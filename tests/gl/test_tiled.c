@@ -56,8 +56,10 @@ static renderer_options options(void)
 }
 
 /* One frame of s with `kind` and options o: the output, the frame's stats (after
- * collect), the plan and the light grid. */
-static void render(const char *kind, const renderer_options *o, scene *s, shot *out)
+ * collect), the plan and the light grid; with counts, a copy of the grid's lengths
+ * (malloc'd, the caller frees it). */
+static void render_counts(const char *kind, const renderer_options *o, scene *s, shot *out,
+                          uint32_t **counts)
 {
     char err[512];
     memset(out, 0, sizeof *out);
@@ -75,12 +77,23 @@ static void render(const char *kind, const renderer_options *o, scene *s, shot *
         out->grid_sum += g[i];
     }
     out->ngrid = n;
+    if (counts) {
+        *counts = malloc((n ? n : 1) * sizeof **counts);
+        assert_non_null(*counts);
+        if (n)
+            memcpy(*counts, g, n * sizeof **counts);
+    }
     out->img = (image){.width = W, .height = H, .channels = 4, .type = IMAGE_U8,
                        .pixels = malloc((size_t)W * H * 4)};
     assert_true(gl_context_read_rgba8(ctx, out->img.pixels, err, sizeof err));
     renderer_destroy(r);
     gl_context_poll_errors(ctx, kind);
     assert_int_equal(gl_context_error_count(ctx), 0);
+}
+
+static void render(const char *kind, const renderer_options *o, scene *s, shot *out)
+{
+    render_counts(kind, o, s, out, NULL);
 }
 
 static void expect_agree(const char *what, const image *a, const image *b)
@@ -539,6 +552,58 @@ static void test_clustered_deferred(void **state)
     scene_destroy(s);
 }
 
+/* tiles.depth_culling: mask (issue 37, Harada's 2.5D culling): on curtis-scene3 and canyon
+ * with 2,000 radius-3 lights, each kind's list of every tile (cluster) with mask is at
+ * most as long as with minmax, cell by cell, and the lists are shorter in all (mask
+ * does something): fewer light evaluations a pixel; the image still forward-spml's. */
+static void test_depth_mask(void **state)
+{
+    (void)state;
+    static const char *const scenes[] = {"curtis-scene3", "canyon"};
+    for (size_t i = 0; i < 2; i++) {
+        char err[256];
+        light_params lp = {.placement = PLACEMENT_RANDOM, .seed = 1337, .rng = RNG_MSVC,
+                           .count = {.start = 2000, .max = 2000}, .radius = 3.0f,
+                           .color_max = 0.3f};
+        scene *s = scene_build(scenes[i], &lp, W, H, err, sizeof err);
+        if (!s)
+            fail_msg("%s: %s", scenes[i], err);
+        scene_update(s, 5.0);
+        renderer_options o = options();
+        shot ref, a, b;
+        render("forward-spml", &o, s, &ref);
+        for (size_t k = 0; k < NKINDS; k++) {
+            uint32_t *ca = NULL, *cb = NULL;
+            o.depth_mask = false;
+            render_counts(KINDS[k], &o, s, &a, &ca);
+            o.depth_mask = true;
+            render_counts(KINDS[k], &o, s, &b, &cb);
+            print_message("%s, %s: lights a cell %.4f (minmax) %.4f (mask), evaluations a "
+                          "pixel %.3f %.3f\n", scenes[i], KINDS[k], a.fs.grid_lights_mean,
+                          b.fs.grid_lights_mean, a.fs.light_evals_per_pixel,
+                          b.fs.light_evals_per_pixel);
+            assert_true(a.ngrid > 0);
+            assert_int_equal(a.ngrid, b.ngrid);
+            for (size_t c = 0; c < a.ngrid; c++)
+                if (cb[c] > ca[c])
+                    fail_msg("%s, %s: cell %zu: %u lights with mask, %u with minmax",
+                             scenes[i], KINDS[k], c, cb[c], ca[c]);
+            assert_true(b.grid_sum < a.grid_sum);
+            assert_true(b.fs.light_evals_per_pixel < a.fs.light_evals_per_pixel);
+            assert_int_equal(b.fs.grid_covered, a.fs.grid_covered);
+            char what[96];
+            snprintf(what, sizeof what, "%s, %s, mask", scenes[i], KINDS[k]);
+            expect_agree(what, &b.img, &ref.img);
+            free(ca);
+            free(cb);
+            image_free(&a.img);
+            image_free(&b.img);
+        }
+        image_free(&ref.img);
+        scene_destroy(s);
+    }
+}
+
 GL_TEST_MAIN(ctx, W, H,
              cmocka_unit_test(test_counts_and_tile_sizes),
              cmocka_unit_test(test_4096_lights),
@@ -546,4 +611,5 @@ GL_TEST_MAIN(ctx, W, H,
              cmocka_unit_test(test_no_cull_without_local_lights),
              cmocka_unit_test(test_shadows_on_and_off),
              cmocka_unit_test(test_tiled_deferred_gbuffers),
-             cmocka_unit_test(test_clustered_deferred))
+             cmocka_unit_test(test_clustered_deferred),
+             cmocka_unit_test(test_depth_mask))
