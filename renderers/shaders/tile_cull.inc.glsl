@@ -234,7 +234,7 @@ void tile_frustum(uvec2 tile, ivec2 size, out float tile_znear, out float tile_z
 // barrier), each invocation marks in s_depth_mask the cells (tiles.inc's depth_cell)
 // its pixel's samples occupy, every sample at msaa > 1, each sample's depth widened by
 // the range's two steps, so that the cells hold every depth the shading can see there;
-// a barrier follows before cull_tile.
+// cull_tile calls it, with a barrier after.
 uint sample_cells(float d, float znear, float scale)
 {
     if (d >= 1.0)
@@ -551,12 +551,17 @@ void pixel_depth_range(ivec2 pixel, out float d, out float d_far)
 }
 #endif
 
-// Once the work group has covered the tile (tile_cover, then a barrier; DEPTH_MASK:
-// tile_mask_cover, then a barrier): its frustum, and the light lists of its cell or its
-// clusters (SLICES) and its translucent list (TLISTS), culled by the whole work group. TILE_DEPTH_RANGES keeps the range culled against for
-// the shading pass's fallback.
-void cull_tile()
+// Once the work group has covered the tile (tile_cover, then a barrier), each
+// invocation with its pixel: (DEPTH_MASK) the cells its samples occupy
+// (tile_mask_cover, then a barrier); the tile's frustum, and the light lists of its cell
+// or its clusters (SLICES) and its translucent list (TLISTS), culled by the whole work
+// group. TILE_DEPTH_RANGES keeps the range culled against for the shading pass's fallback.
+void cull_tile(ivec2 pixel)
 {
+#ifdef DEPTH_MASK
+    tile_mask_cover(pixel);
+    barrier();
+#endif
     uvec2 tile = gl_WorkGroupID.xy;
     uint tile_index = tile.y * uint(TILES_X) + tile.x;
     ivec2 size = ivec2(f_viewport.xy);

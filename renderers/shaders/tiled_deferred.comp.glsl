@@ -237,11 +237,7 @@ void main()
         }
     }
     barrier();
-#ifdef DEPTH_MASK
-    tile_mask_cover(pixel);   // tiles.depth_culling: mask (tile_cull.inc)
-    barrier();
-#endif
-    cull_tile();
+    cull_tile(pixel);   // DEPTH_MASK: the depth mask first (tile_cull.inc)
     memoryBarrierBuffer();
     barrier();
 #elif defined(MSAA_SAMPLES)
