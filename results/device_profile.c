@@ -42,6 +42,13 @@ bool device_profile_add(device_profile *p, const char *name, const char *unit,
     return true;
 }
 
+void device_profile_set_gl(device_profile *p, const char *const gl[6])
+{
+    char *dst[] = {p->vendor, p->renderer, p->version, p->glsl_version, p->backend, p->device};
+    for (size_t i = 0; i < 6; i++)
+        snprintf(dst[i], DEVICE_PROFILE_STRING, "%s", gl[i] ? gl[i] : "");
+}
+
 void device_profile_key(const device_profile *p, char key[17])
 {
     const char *parts[] = {p->vendor, p->renderer, p->version, p->glsl_version, p->backend,
@@ -92,6 +99,21 @@ bool device_profile_cache_path(const device_profile *p, char *path, size_t n)
     X("version", version)                  \
     X("glsl", glsl_version)
 
+static void kv_str(yaml_out *y, const char *k, const char *v)
+{
+    yo_key(y, k);
+    yo_str(y, v);
+}
+
+static void kv_num(yaml_out *y, const char *k, double v, bool integer)
+{
+    yo_key(y, k);
+    if (integer)
+        yo_i64(y, (int64_t)v);
+    else
+        yo_f64(y, v);
+}
+
 bool device_profile_write_yaml(const device_profile *p, const char *path, char *err,
                                size_t errlen)
 {
@@ -101,35 +123,26 @@ bool device_profile_write_yaml(const device_profile *p, const char *path, char *
     char key[17];
     device_profile_key(p, key);
     yo_map_begin(y);
-    yo_key(y, "key");
-    yo_str(y, key);
-#define YAML_STRING(k, field) yo_key(y, k); yo_str(y, p->field);
+    kv_str(y, "key", key);
+#define YAML_STRING(k, field) kv_str(y, k, p->field);
     PROFILE_STRINGS(YAML_STRING)
 #undef YAML_STRING
-    yo_key(y, "software_rasterizer");
-    yo_str(y, p->software);
-    yo_key(y, "timing");
-    yo_str(y, p->timing);
+    kv_str(y, "software_rasterizer", p->software);
+    kv_str(y, "timing", p->timing);
     yo_key(y, "quick");
     yo_bool(y, p->quick);
-    yo_key(y, "target_width");
-    yo_i64(y, p->width);
-    yo_key(y, "target_height");
-    yo_i64(y, p->height);
+    kv_num(y, "target_width", p->width, true);
+    kv_num(y, "target_height", p->height, true);
     yo_key(y, "figures");
     yo_map_begin(y);
     for (size_t i = 0; i < p->nfigures; i++) {
         const device_figure *f = &p->figure[i];
         yo_key(y, f->name);
         yo_map_begin(y);
-        yo_key(y, "median");
-        yo_f64(y, f->median);
-        yo_key(y, "spread");
-        yo_f64(y, f->spread);
-        yo_key(y, "unit");
-        yo_str(y, f->unit);
-        yo_key(y, "repeats");
-        yo_i64(y, f->repeats);
+        kv_num(y, "median", f->median, false);
+        kv_num(y, "spread", f->spread, false);
+        kv_str(y, "unit", f->unit);
+        kv_num(y, "repeats", f->repeats, true);
         yo_map_end(y);
     }
     yo_map_end(y);

@@ -10,7 +10,7 @@
 #include <stdint.h>
 #include <stdio.h>
 
-enum { DEVICE_PROFILE_MAX_FIGURES = 48, DEVICE_PROFILE_MAX_REPEATS = 32 };
+enum { DEVICE_PROFILE_MAX_FIGURES = 48, DEVICE_PROFILE_MAX_REPEATS = 32, DEVICE_PROFILE_STRING = 256 };
 
 typedef struct device_figure {
     char name[48];       /* "fill_rgba8_1x", "bandwidth_copy", ... */
@@ -21,8 +21,10 @@ typedef struct device_figure {
 } device_figure;
 
 typedef struct device_profile {
-    char vendor[256], renderer[256], version[256], glsl_version[256];   /* the GL strings */
-    char backend[256], device[256];
+    /* the GL strings, backend and EGL device: device_profile_set_gl */
+    char vendor[DEVICE_PROFILE_STRING], renderer[DEVICE_PROFILE_STRING];
+    char version[DEVICE_PROFILE_STRING], glsl_version[DEVICE_PROFILE_STRING];
+    char backend[DEVICE_PROFILE_STRING], device[DEVICE_PROFILE_STRING];
     char host[256], cpu[256], shadesweep_version[64], date[32];
     const char *software;   /* gl_software_rasterizer's name, NULL for a GPU */
     const char *timing;     /* "gpu-timer" (GL_TIME_ELAPSED) or "cpu-finish" */
@@ -39,6 +41,10 @@ void device_median_spread(const double *x, size_t n, double *median, double *spr
 /* Adds a figure from its repeats; false when the table is full. */
 bool device_profile_add(device_profile *p, const char *name, const char *unit,
                         const double *x, size_t n);
+
+/* Sets vendor, renderer, version, glsl_version, backend and device from gl[0..5], in
+ * that order (NULL: ""; each cut to DEVICE_PROFILE_STRING - 1 bytes). */
+void device_profile_set_gl(device_profile *p, const char *const gl[6]);
 
 /* The cache key of a device and driver: 16 hex digits of FNV-1a 64 over the GL
  * strings (vendor, renderer, version, GLSL version) and the backend and device, each

@@ -307,12 +307,9 @@ static void probe_timer(probe *pr)
 bool gl_probe_run(gl_context *ctx, bool quick, device_profile *out, char *err, size_t errlen)
 {
     const gl_info *gi = gl_context_info(ctx);
-    snprintf(out->vendor, sizeof out->vendor, "%s", gi->vendor);
-    snprintf(out->renderer, sizeof out->renderer, "%s", gi->renderer);
-    snprintf(out->version, sizeof out->version, "%s", gi->version);
-    snprintf(out->glsl_version, sizeof out->glsl_version, "%s", gi->glsl_version);
-    snprintf(out->backend, sizeof out->backend, "%s", gi->backend);
-    snprintf(out->device, sizeof out->device, "%s", gi->device);
+    device_profile_set_gl(out, (const char *const[6]){gi->vendor, gi->renderer, gi->version,
+                                                       gi->glsl_version, gi->backend,
+                                                       gi->device});
     out->software = gl_software_rasterizer(gi->renderer, gi->vendor, gi->version);
     probe pr = {
         .gpu_timer = gi->timer_query && !out->software,

@@ -477,16 +477,21 @@ static void info_lines_to_json(const char *text, const char *const *lists,
     fputs("}\n", out);
 }
 
+/* parse_opts for a command that takes no operands (argv[0] its name); false after
+ * printing the problem. */
+static bool parse_opts_only(int argc, char **argv, const char *allowed, cli_opts *o)
+{
+    int first = parse_opts(argc, argv, allowed, o);
+    if (first >= 0 && first != argc)
+        fprintf(stderr, "shadesweep %s: unexpected argument '%s'\n", argv[0], argv[first]);
+    return first == argc;
+}
+
 static int cmd_info(int argc, char **argv)
 {
     cli_opts o;
-    int first = parse_opts(argc, argv, "backend device debug-gl json", &o);
-    if (first < 0)
+    if (!parse_opts_only(argc, argv, "backend device debug-gl json", &o))
         return 2;
-    if (first != argc) {
-        fprintf(stderr, "shadesweep info: unexpected argument '%s'\n", argv[first]);
-        return 2;
-    }
     /* the lines are written once; --json reads them back as an object */
     char *text = NULL;
     size_t text_len = 0;
@@ -547,13 +552,8 @@ done:
 static int cmd_probe(int argc, char **argv)
 {
     cli_opts o;
-    int first = parse_opts(argc, argv, "backend device json quick", &o);
-    if (first < 0)
+    if (!parse_opts_only(argc, argv, "backend device json quick", &o))
         return 2;
-    if (first != argc) {
-        fprintf(stderr, "shadesweep probe: unexpected argument '%s'\n", argv[first]);
-        return 2;
-    }
     return probe_main(o.backend, o.device, o.json, o.quick);
 }
 

@@ -90,12 +90,7 @@ void probe_copy_to_folder(const char *out_dir, const plan *p)
         return;   /* no run reached a GL context: no device to name */
     static device_profile prof;
     memset(&prof, 0, sizeof prof);
-    snprintf(prof.vendor, sizeof prof.vendor, "%s", v[0]);
-    snprintf(prof.renderer, sizeof prof.renderer, "%s", v[1]);
-    snprintf(prof.version, sizeof prof.version, "%s", v[2]);
-    snprintf(prof.glsl_version, sizeof prof.glsl_version, "%s", v[3]);
-    snprintf(prof.backend, sizeof prof.backend, "%s", v[4]);
-    snprintf(prof.device, sizeof prof.device, "%s", v[5]);
+    device_profile_set_gl(&prof, (const char *const[6]){v[0], v[1], v[2], v[3], v[4], v[5]});
     char src[4096], dst[4300], err[4400];
     if (!device_profile_cache_path(&prof, src, sizeof src) || !fs_exists(src)) {
         fprintf(stderr, "no device profile of %s cached: `shadesweep probe` makes one (about a "
