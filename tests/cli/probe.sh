@@ -2,7 +2,7 @@
 # `shadesweep probe` (issue 38, item 1) at its smallest size on llvmpipe: every figure
 # finite and positive, in YAML (printed, and cached as device.yaml under
 # $XDG_CACHE_HOME/shadesweep, keyed by the GL strings) and in JSON with the same fields;
-# two probes agree (below: how far); `run` of a tiny sweep says in one line how to make
+# two probes agree within a factor of 4 (below: why no closer); `run` of a tiny sweep says in one line how to make
 # a profile when none is cached, and copies the cached one into its folder once there
 # is; a bad --device is refused with exit 2.
 . "$(dirname "$0")/lib.sh"
@@ -60,19 +60,17 @@ for p in (p1, p2):
         assert math.isfinite(f["median"]) and f["median"] > 0, (n, f)
         assert math.isfinite(f["spread"]) and f["spread"] >= 0, (n, f)
         assert f["repeats"] == 5, (n, f)
-# Two probes: the spread is the largest deviation of a repeat from its median, so the
-# medians of two probes of one device are within the sum of their spreads unless the
-# machine's load moved between them. At --quick a repeat is ~0.1-1 ms of llvmpipe's
-# work on cores that other tests share, and a whole probe can be moved by a scheduler
-# stall: so most figures (3 in 4) must agree so, and every one within a factor of 10
-# (what an unloaded CI machine shows: docs/notes/device-profile.md).
-agree = 0
+# Two probes: the spread is the largest deviation of a repeat from its median, which
+# says how a probe's own repeats scatter, not how far a second probe moves: at --quick a
+# repeat is 0.1-1 ms of llvmpipe's work on cores that other tests share, and the load
+# moves between probes (back to back here, 2 to 10 of the 24 figures fell outside the
+# summed spreads, the medians never more than 2x apart). So what is asserted is weaker
+# but real: every figure's two medians within a factor of 4 (a figure that times
+# nothing real, such as a clock read before the work is done, scatters far more).
 for n in figs:
     a, b = p1["figures"][n], p2["figures"][n]
-    agree += abs(a["median"] - b["median"]) <= a["spread"] + b["spread"]
     r = a["median"] / b["median"]
-    assert 0.1 < r < 10, (n, a, b)
-assert agree * 4 >= len(figs) * 3, (agree, len(figs))
+    assert 0.25 < r < 4, (n, a, b)
 PY
 
 # a profile cached: the sweep's folder gets it, byte for byte
