@@ -20,6 +20,7 @@ typedef struct probe {
     GLuint query[2];
     int w, h, draws, tiny;        /* fill size, draws a repeat, tiny calls a repeat */
     unsigned repeats;
+    double min_repeat_s;          /* a repeat's least time (calls doubled up to it) */
     device_profile *out;
     GLuint vao, buf[2], fbo8, tex8;
     char *err;
@@ -36,33 +37,42 @@ static double now_s(void)
     return (double)t.tv_sec + 1e-9 * (double)t.tv_nsec;
 }
 
-/* Seconds one call of fn takes (cpu: by the CPU's clock whatever the context has). */
-static double time_work(probe *pr, work_fn fn, const void *arg, bool cpu)
+/* Seconds `calls` calls of fn take (cpu: by the CPU's clock whatever the context has). */
+static double time_work(probe *pr, work_fn fn, const void *arg, bool cpu, unsigned calls)
 {
     gl.Finish();
     if (pr->gpu_timer && !cpu) {
         GLuint64 ns = 0;
         gl.BeginQuery(GL_TIME_ELAPSED, pr->query[0]);
-        fn(pr, arg);
+        for (unsigned c = 0; c < calls; c++)
+            fn(pr, arg);
         gl.EndQuery(GL_TIME_ELAPSED);
         gl.GetQueryObjectui64v(pr->query[0], GL_QUERY_RESULT, &ns);
         return (double)ns * 1e-9;
     }
     double t0 = now_s();
-    fn(pr, arg);
+    for (unsigned c = 0; c < calls; c++)
+        fn(pr, arg);
     gl.Finish();
     return now_s() - t0;
 }
 
-/* A figure over pr->repeats calls of fn: amount per second in units of 1e9 (a rate),
- * or per_item: microseconds per one of `amount` items. */
+/* A figure over pr->repeats repeats, each `calls` calls of fn (amount each): amount per
+ * second in units of 1e9 (a rate), or per_item: microseconds per one of the items. */
 static void figure(probe *pr, const char *name, const char *unit, double amount, work_fn fn,
                    const void *arg, bool per_item)
 {
     double x[DEVICE_PROFILE_MAX_REPEATS];
-    time_work(pr, fn, arg, per_item);   /* warm-up: shader variants, first touches */
+    time_work(pr, fn, arg, per_item, 1);   /* warm-up: shader variants, first touches */
+    /* a GPU does a 1024 x 1024 call in microseconds: calls are doubled until a repeat
+     * takes min_repeat_s (llvmpipe's take longer at once) */
+    unsigned calls = 1;
+    while (calls < 1024 && pr->min_repeat_s > 0 &&
+           time_work(pr, fn, arg, per_item, calls) < pr->min_repeat_s)
+        calls *= 2;
+    amount *= calls;
     for (unsigned r = 0; r < pr->repeats; r++) {
-        double t = fmax(time_work(pr, fn, arg, per_item), 1e-9);
+        double t = fmax(time_work(pr, fn, arg, per_item, calls), 1e-9);
         x[r] = per_item ? t * 1e6 / amount : amount / t * 1e-9;
     }
     if (!device_profile_add(pr->out, name, unit, x, pr->repeats) && !pr->failed) {
@@ -314,7 +324,7 @@ bool gl_probe_run(gl_context *ctx, bool quick, device_profile *out, char *err, s
     probe pr = {
         .gpu_timer = gi->timer_query && !out->software,
         .w = quick ? 64 : 1024, .h = quick ? 64 : 1024, .draws = quick ? 2 : 8,
-        .tiny = quick ? 200 : 4000, .repeats = quick ? 5 : 9,
+        .tiny = quick ? 200 : 4000, .repeats = quick ? 5 : 9, .min_repeat_s = quick ? 0 : 0.01,
         .out = out, .err = err, .errlen = errlen,
     };
     out->timing = pr.gpu_timer ? "gpu-timer" : "cpu-finish";
