@@ -65,10 +65,10 @@ static void figure(probe *pr, const char *name, const char *unit, double amount,
     double x[DEVICE_PROFILE_MAX_REPEATS];
     time_work(pr, fn, arg, per_item, 1);   /* warm-up: shader variants, first touches */
     /* a GPU does a 1024 x 1024 call in microseconds: calls are doubled until a repeat
-     * takes min_repeat_s (llvmpipe's take longer at once) */
+     * takes min_repeat_s (llvmpipe's take longer at once), so that a repeat times the
+     * work more than the clock, and a stall of the CPU moves it less */
     unsigned calls = 1;
-    while (calls < 1024 && pr->min_repeat_s > 0 &&
-           time_work(pr, fn, arg, per_item, calls) < pr->min_repeat_s)
+    while (calls < 1024 && time_work(pr, fn, arg, per_item, calls) < pr->min_repeat_s)
         calls *= 2;
     amount *= calls;
     for (unsigned r = 0; r < pr->repeats; r++) {
@@ -324,7 +324,7 @@ bool gl_probe_run(gl_context *ctx, bool quick, device_profile *out, char *err, s
     probe pr = {
         .gpu_timer = gi->timer_query && !out->software,
         .w = quick ? 64 : 1024, .h = quick ? 64 : 1024, .draws = quick ? 2 : 8,
-        .tiny = quick ? 200 : 4000, .repeats = quick ? 5 : 9, .min_repeat_s = quick ? 0 : 0.01,
+        .tiny = quick ? 200 : 4000, .repeats = quick ? 5 : 9, .min_repeat_s = quick ? 0.002 : 0.01,
         .out = out, .err = err, .errlen = errlen,
     };
     out->timing = pr.gpu_timer ? "gpu-timer" : "cpu-finish";
