@@ -3,6 +3,7 @@
 #include "runner/folder/columns.h"
 #include "runner/answer/commands.h"
 #include "runner/answer/summary_md.h"
+#include "runner/cli/probe.h"
 
 #include <errno.h>
 #include <getopt.h>
@@ -72,6 +73,11 @@ static const char usage_text[] =
     "                             every parameter, typed); options as run's\n"
     "  info [--backend B] [--device N] [--json]  the GL context's vendor, renderer and\n"
     "                             limits, the renderers and scenes (--json: one object)\n"
+    "  probe [--backend B] [--device N] [--json] [--quick]  measure the device: fill\n"
+    "                             rate, bandwidth, arithmetic, call costs (about a\n"
+    "                             minute; --quick: the smallest sizes); cache it and print\n"
+    "                             it as device.yaml (--json: one object). run copies the\n"
+    "                             cached profile into every output folder on that device\n"
     "  merge -o OUT [--force] [--allow-mixed-builds] DIR...\n"
     "                             combine the output folders of a sweep's shards (runs\n"
     "                             of different builds only with --allow-mixed-builds)\n"
@@ -118,7 +124,7 @@ static bool print_command_help(const char *name)
 
 typedef struct cli_opts {
     const char *out;
-    bool force, resume, debug_gl, smoke, retry_failed, json, allow_mixed;
+    bool force, resume, debug_gl, smoke, retry_failed, json, allow_mixed, quick;
     gl_backend backend;
     int device;
     unsigned shard, nshards;
@@ -136,7 +142,7 @@ typedef struct cli_opts {
 
 enum { OPT_FORCE = 1000, OPT_BACKEND, OPT_DEVICE, OPT_SHARD, OPT_DEBUG_GL, OPT_RESUME, OPT_SMOKE, OPT_SCALE,
        OPT_RETRY_FAILED, OPT_ROUND, OPT_JSON, OPT_SET, OPT_RENDERER, OPT_ALLOW_MIXED, OPT_GL,
-       OPT_NO_GL };
+       OPT_NO_GL, OPT_QUICK };
 
 /* How long validate waits for the GL context whose limits it checks against: by
  * default (no context in time: the checks are warnings), and with --gl. */
@@ -175,6 +181,7 @@ static int parse_opts(int argc, char **argv, const char *allowed, cli_opts *o)
         {"allow-mixed-builds", no_argument, NULL, OPT_ALLOW_MIXED},
         {"gl", no_argument, NULL, OPT_GL},
         {"no-gl", no_argument, NULL, OPT_NO_GL},
+        {"quick", no_argument, NULL, OPT_QUICK},
         {NULL, 0, NULL, 0},
     };
     memset(o, 0, sizeof *o);
@@ -215,6 +222,7 @@ static int parse_opts(int argc, char **argv, const char *allowed, cli_opts *o)
         case OPT_ALLOW_MIXED: o->allow_mixed = true; break;
         case OPT_GL: o->gl = 1; break;
         case OPT_NO_GL: o->gl = -1; break;
+        case OPT_QUICK: o->quick = true; break;
         case OPT_ROUND: {
             char *end;
             errno = 0;
@@ -469,16 +477,21 @@ static void info_lines_to_json(const char *text, const char *const *lists,
     fputs("}\n", out);
 }
 
+/* parse_opts for a command that takes no operands (argv[0] its name); false after
+ * printing the problem. */
+static bool parse_opts_only(int argc, char **argv, const char *allowed, cli_opts *o)
+{
+    int first = parse_opts(argc, argv, allowed, o);
+    if (first >= 0 && first != argc)
+        fprintf(stderr, "shadesweep %s: unexpected argument '%s'\n", argv[0], argv[first]);
+    return first == argc;
+}
+
 static int cmd_info(int argc, char **argv)
 {
     cli_opts o;
-    int first = parse_opts(argc, argv, "backend device debug-gl json", &o);
-    if (first < 0)
+    if (!parse_opts_only(argc, argv, "backend device debug-gl json", &o))
         return 2;
-    if (first != argc) {
-        fprintf(stderr, "shadesweep info: unexpected argument '%s'\n", argv[first]);
-        return 2;
-    }
     /* the lines are written once; --json reads them back as an object */
     char *text = NULL;
     size_t text_len = 0;
@@ -534,6 +547,14 @@ done:
         free(text);
     }
     return rc;
+}
+
+static int cmd_probe(int argc, char **argv)
+{
+    cli_opts o;
+    if (!parse_opts_only(argc, argv, "backend device json quick", &o))
+        return 2;
+    return probe_main(o.backend, o.device, o.json, o.quick);
 }
 
 /* The end-of-run table (runner/answer/summary_md.c) on stdout and OUT/summary.md; false after
@@ -680,7 +701,7 @@ int cli_main(int argc, char **argv)
         {"run", cmd_run},         {"validate", cmd_validate}, {"list", cmd_list},
         {"info", cmd_info},       {"merge", cmd_merge},       {"params", cmd_params},
         {"columns", cmd_columns}, {"ratios", cmd_ratios},     {"compare", cmd_compare},
-        {"report", cmd_report},
+        {"report", cmd_report},   {"probe", cmd_probe},
     };
     /* Each command parses argv[1..]: its name plays argv[0]. */
     for (size_t i = 0; i < sizeof commands / sizeof commands[0]; i++)

@@ -1,5 +1,6 @@
 /* The sweep as rounds of trials (run.h run_plan; docs/architecture.md "Schedule"). */
 #include "runner/trial/run.h"
+#include "runner/cli/probe.h"
 
 #include <errno.h>
 #include <math.h>
@@ -537,6 +538,8 @@ int run_sweep(const experiment *e, const plan *p, const char *out, bool force, r
     o->out_dir = dir;
     int rc = run_plan(e, p, o);
     o->out_dir = NULL;
+    if (rc != 2)
+        probe_copy_to_folder(dir, p);   /* device.yaml from the cache, never a probe */
     bool table = true;
     if (rc != 2 && !(o->round && rc != 0)) {
         /* the answer (runner/answer/summary_md.c): on stdout and as summary.md, written while

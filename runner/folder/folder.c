@@ -23,7 +23,8 @@
  * and a rerun leave behind from an older sweep, whose killed write's ".tmp.<pid>" is
  * never swept, and (in a run folder) that files.txt does not vouch for. */
 static const char *const top_names[] = {"plan.csv",     "summary.csv",      "summary.md",
-                                         "summary.json", "summary_long.csv", "sweep.yaml"};
+                                         "summary.json", "summary_long.csv", "device.yaml",
+                                         "sweep.yaml"};
 static const char *const run_names[] = {
     "frames.csv", "seconds.csv", "passes.csv", "convergence.csv", "errors.csv",
     "coverage.csv", "lightgrid.csv", "lights.csv", "summary.csv", "meta.yaml", "log.txt",

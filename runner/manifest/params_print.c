@@ -54,7 +54,7 @@ static void print_bash(FILE *out)
           "_shadesweep() {\n"
           "  local cur=${COMP_WORDS[COMP_CWORD]} cmd=${COMP_WORDS[1]}\n"
           "  local prev=${COMP_WORDS[COMP_CWORD-1]}\n"
-          "  local commands=\"run validate list info merge params columns report compare\"\n"
+          "  local commands=\"run validate list info probe merge params columns report compare\"\n"
           "  local keys=\"",
           out);
     for (size_t i = 0; i < NPARAMS; i++)
@@ -89,6 +89,7 @@ static void print_bash(FILE *out)
           "--debug-gl --scale --smoke --set --renderer --help\" ;;\n"
           "    list) opts=\"--shard --smoke --scale --set --renderer --json --help\" ;;\n"
           "    info) opts=\"--backend --device --help\" ;;\n"
+          "    probe) opts=\"--backend --device --json --quick --help\" ;;\n"
           "    merge) opts=\"-o --out --force --allow-mixed-builds --help\" ;;\n"
           "    validate) opts=\"--set --renderer --gl --no-gl --backend --device --help\" ;;\n"
           "    params) opts=\"--markdown --bash --help\"\n"

@@ -121,3 +121,26 @@ void provenance_write_host(yaml_out *y, const provenance_start *s)
     yo_key(y, "mem_total_mb"); yo_f64(y, round(s->mem_total_mb));
     yo_key(y, "mem_available_mb_at_start"); yo_f64(y, round(s->mem_available_mb));
 }
+
+void provenance_cpu_model(char *buf, size_t len)
+{
+    snprintf(buf, len, "unknown");
+    FILE *f = fopen("/proc/cpuinfo", "r");
+    if (!f)
+        return;
+    char line[512];
+    while (fgets(line, sizeof line, f)) {
+        if (strncmp(line, "model name", 10) == 0) {
+            char *colon = strchr(line, ':');
+            if (colon) {
+                colon++;
+                while (*colon == ' ' || *colon == '\t')
+                    colon++;
+                colon[strcspn(colon, "\n")] = 0;
+                snprintf(buf, len, "%s", colon);
+            }
+            break;
+        }
+    }
+    fclose(f);
+}

@@ -19,6 +19,8 @@ void provenance_sample(provenance_start *out);
 /* Writes `invocation: {command, cwd}` and `environment: {NAME: value, ...}` (the
  * variables that are set, of those that matter: provenance.c's prefixes). */
 void provenance_write_invocation(yaml_out *y);
+/* The CPU's model name (/proc/cpuinfo), or "unknown". */
+void provenance_cpu_model(char *buf, size_t len);
 /* Writes the host map's extra members: kernel, cpus_usable, load_1m_at_start,
  * mem_total_mb, mem_available_mb_at_start. */
 void provenance_write_host(yaml_out *y, const provenance_start *s);

@@ -13,29 +13,6 @@
 #include "runner/plan/memory.h"
 #include "runner/plan/workload.h"
 
-static void cpu_model(char *buf, size_t len)
-{
-    snprintf(buf, len, "unknown");
-    FILE *f = fopen("/proc/cpuinfo", "r");
-    if (!f)
-        return;
-    char line[512];
-    while (fgets(line, sizeof line, f)) {
-        if (strncmp(line, "model name", 10) == 0) {
-            char *colon = strchr(line, ':');
-            if (colon) {
-                colon++;
-                while (*colon == ' ' || *colon == '\t')
-                    colon++;
-                colon[strcspn(colon, "\n")] = 0;
-                snprintf(buf, len, "%s", colon);
-            }
-            break;
-        }
-    }
-    fclose(f);
-}
-
 /* The process's peak resident size (VmHWM in /proc/self/status), kB; -1 unknown. */
 static int64_t vm_hwm_kb(void)
 {
@@ -233,7 +210,7 @@ bool run_write_meta(run_state *st, char *err, size_t errlen)
     yo_map_end(y);
 
     char cpu[256], host[256] = "unknown";
-    cpu_model(cpu, sizeof cpu);
+    provenance_cpu_model(cpu, sizeof cpu);
     gethostname(host, sizeof host - 1);
     yo_key(y, "host");
     yo_map_begin(y);

@@ -3,6 +3,8 @@ set -euo pipefail
 : "${SHADESWEEP:?run through meson test}"
 : "${SOURCE_ROOT:?run through meson test}"
 T=$(mktemp -d /tmp/shadesweep-test.XXXXXX)
+# device profiles (shadesweep probe) cached here, never in the user's cache
+export XDG_CACHE_HOME="$T/cache"
 trap 'rm -rf "$T"' EXIT
 # Debian's python3 (scripts/setup.sh installs it with python3-yaml), not whatever is on PATH.
 PYTHON=/usr/bin/python3

@@ -20,8 +20,9 @@ REGISTRY = "renderers/renderer.c"
 # What runner/ may include from renderers/ (fnmatch patterns, from the source root).
 # the interface, the GL context, and the renderers' key tables (runner/manifest/params.def
 # includes them into the one table of keys)
+# and the device probe's one entry (runner/cli/probe.c, issue 38)
 RUNNER_MAY_INCLUDE = ("renderers/renderer.h", "renderers/gl/context*.h", "renderers/keys.def",
-                      "renderers/keys.h")
+                      "renderers/keys.h", "renderers/probe/probe.h")
 MAX_LINES = 800
 # runner/'s folders, each with the folders it may include from (runner/*/meson.build)
 RUNNER_FOLDERS = {
