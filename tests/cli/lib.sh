@@ -3,7 +3,10 @@ set -euo pipefail
 : "${SHADESWEEP:?run through meson test}"
 : "${SOURCE_ROOT:?run through meson test}"
 T=$(mktemp -d /tmp/shadesweep-test.XXXXXX)
-# device profiles (shadesweep probe) cached here, never in the user's cache
+# device profiles (shadesweep probe) cached here, never in the user's cache; Mesa's
+# shader cache stays where it was (it is under XDG_CACHE_HOME too): a cold one a test
+# would compile every shader again
+export MESA_SHADER_CACHE_DIR="${MESA_SHADER_CACHE_DIR:-${XDG_CACHE_HOME:-$HOME/.cache}}"
 export XDG_CACHE_HOME="$T/cache"
 trap 'rm -rf "$T"' EXIT
 # Debian's python3 (scripts/setup.sh installs it with python3-yaml), not whatever is on PATH.
