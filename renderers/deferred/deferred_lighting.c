@@ -97,6 +97,7 @@ static void *deferred_lighting_create(const renderer_options *opts, char *err, s
     else {
         o.tile_size = 16;   /* not read: no grid */
         o.depth_mask = false;
+        o.prune_samples = false;
     }
     if (o.lpp_tiled && !light_grid_tile_option(&g, "deferred-lighting", &o, err, errlen))
         return NULL;

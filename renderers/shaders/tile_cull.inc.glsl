@@ -3,7 +3,7 @@
 // counting), the tile's planes and depth range, the sphere tests, and cull_cell(), which counts, places and writes one
 // tile's (or cluster's) list, and cull_translucent() (TLISTS). Needs bindings.h,
 // frame.inc, lighting.inc, lights.inc, tiles.inc and TILE_SIZE, TILES_X (SLICES, TILES_Y,
-// TLISTS, DEPTH_MASK: tile_mask_cover).
+// TLISTS, DEPTH_MASK: tile_mask_cover, PRUNE_SAMPLES: prune_bits).
 layout(location = LOC_RENDERER) uniform int u_light_count;
 
 const uint N = uint(TILE_SIZE * TILE_SIZE);
@@ -20,6 +20,9 @@ shared uint s_part[TILE_SIZE * TILE_SIZE];   // per invocation: its words' count
 shared uint s_chunk;                     // lights of this chunk in the list
 #ifdef DEPTH_MASK
 shared uint s_depth_mask;                // the cells of the tile's range its samples occupy
+#endif
+#ifdef PRUNE_SAMPLES
+shared uint s_hit[2];                    // prune_bits: a word's lights some pixel holds
 #endif
 
 vec3 view_at(vec2 ndc_xy, float ndc_z)
@@ -284,6 +287,118 @@ uint candidate(uint e, uint src, bool from_list)
     return from_list ? b_indices[src + e] : e;
 }
 
+#ifdef MSAA_SAMPLES
+// The nearest (d) and farthest (d_far) depth of the pixel's samples that have geometry;
+// 1 and 0 when none has (t_depth: the multisampled depth target).
+void pixel_depth_range(ivec2 pixel, out float d, out float d_far)
+{
+    d = 1.0;
+    d_far = 0.0;
+    for (int i = 0; i < MSAA_SAMPLES; i++) {
+        float di = texelFetch(t_depth, pixel, i).r;
+        if (di < 1.0) {
+            d = min(d, di);
+            d_far = max(d_far, di);
+        }
+    }
+}
+#endif
+
+#ifdef PRUNE_SAMPLES
+// tiles.prune: samples (Unity HDRP's fine pruning of its FPTL tiles). Each invocation
+// holds its pixel's samples as a view-space box (pixel_samples_box): the pixel's
+// centre ray (msaa > 1: its four corner rays, every sample position) between its
+// nearest and farthest sample depth, each widened by the range's two steps; no box
+// (g_px_valid false) without geometry. While g_pruned (the tile's own list, cull_tile),
+// cull_bits' passing lights are then pruned word by word (prune_bits): each invocation
+// tests the word's lights against its box, the hits are ORed into a shared word, and
+// a light no pixel's box meets is dropped, so the list keeps every light that reaches
+// a position the shading can reconstruct from the tile's depth.
+bool g_pruned = false;
+bool g_px_valid;
+vec3 g_px_lo, g_px_hi;
+
+void pixel_samples_box(ivec2 pixel)
+{
+    g_px_valid = false;
+    if (!all(lessThan(pixel, ivec2(f_viewport.xy))))
+        return;
+#ifdef MSAA_SAMPLES
+    float d, d_far;
+    pixel_depth_range(pixel, d, d_far);
+    vec2 lo = vec2(pixel), hi = lo + 1.0;
+#else
+    float d = texelFetch(t_depth, pixel, 0).r, d_far = d;
+    vec2 lo = vec2(pixel) + 0.5, hi = lo;
+#endif
+    if (d >= 1.0)
+        return;
+    g_px_valid = true;
+    float zn = view_z(max(d - DEPTH_WIDEN, 0.0)), zf = view_z(min(d_far + DEPTH_WIDEN, 1.0));
+    vec2 size = f_viewport.xy;
+    vec3 r[4] = vec3[4](view_at(lo / size * 2.0 - 1.0, -1.0),
+                        view_at(vec2(hi.x, lo.y) / size * 2.0 - 1.0, -1.0),
+                        view_at(hi / size * 2.0 - 1.0, -1.0),
+                        view_at(vec2(lo.x, hi.y) / size * 2.0 - 1.0, -1.0));
+    g_px_lo = vec3(uintBitsToFloat(0x7f800000u));
+    g_px_hi = -g_px_lo;
+    for (int i = 0; i < 4; i++) {
+        vec3 a = r[i] * (zn / r[i].z), b = r[i] * (zf / r[i].z);
+        g_px_lo = min(g_px_lo, min(a, b));
+        g_px_hi = max(g_px_hi, max(a, b));
+    }
+}
+
+// The lights of word w's bits `b` (candidates first .. first + 31) whose volume meets
+// this invocation's pixel box; a directional light meets every box.
+uint pixel_hits(uint b, uint first, uint src, bool from_list)
+{
+    uint hits = 0u;
+    if (!g_px_valid)
+        return 0u;
+    while (b != 0u) {
+        int j = findLSB(b);
+        b &= b - 1u;
+        vec3 c;
+        float r;
+        if (light_sphere(candidate(first + uint(j), src, from_list), c, r)) {
+            vec3 d = max(max(g_px_lo - c, c - g_px_hi), vec3(0.0));
+            if (dot(d, d) > r * r)
+                continue;
+        }
+        hits |= 1u << uint(j);
+    }
+    return hits;
+}
+
+// Keeps in s_bits[0 .. words) only the lights some pixel's box meets (candidates from
+// base on); one barrier a non-empty word: the hits of word k are ORed into s_hit[k & 1]
+// while invocation 0 clears the other for the next word.
+void prune_bits(uint base, uint words, uint src, bool from_list)
+{
+    uint me = gl_LocalInvocationIndex;
+    if (me == 0u)
+        s_hit[0] = 0u;
+    barrier();
+    uint k = 0u;
+    for (uint w = 0u; w < words; w++) {
+        uint b = s_bits[w];   // uniform: only invocation 0 rewrites it, after the barrier
+        if (b == 0u)
+            continue;
+        uint mine = pixel_hits(b, base + w * 32u, src, from_list);
+        if (me == 0u)
+            s_hit[(k + 1u) & 1u] = 0u;
+        if (mine != 0u)
+            atomicOr(s_hit[k & 1u], mine);
+        barrier();
+        if (me == 0u)
+            s_bits[w] = s_hit[k & 1u];
+        k++;
+    }
+    barrier();
+}
+#endif
+
 // Invocation 0: the place of a list of `count` lights in the index buffer (s_offset,
 // 0xffffffff when it does not fit; s_count) and cell's b_tiles entry.
 void place_list(uint cell, uint covered, uint count)
@@ -307,6 +422,10 @@ void cull_bits(uint base, uint end, uint words, uint src, bool from_list)
         if (light_passes(candidate(i, src, from_list)))
             atomicOr(s_bits[(i - base) >> 5], 1u << ((i - base) & 31u));
     barrier();
+#ifdef PRUNE_SAMPLES
+    if (g_pruned)
+        prune_bits(base, words, src, from_list);
+#endif
 }
 
 // Each invocation's run of the first `words` words of s_bits: s_part[me] = its count,
@@ -348,6 +467,12 @@ void write_run(uvec2 run, uint base, uint pos, uint src, bool from_list)
     }
 }
 
+#ifdef PRUNE_SAMPLES
+#define PRUNED g_pruned
+#else
+#define PRUNED false
+#endif
+
 void cull_cell(uint cell, uint covered, uint nlights, uint src, bool from_list)
 {
     uint me = gl_LocalInvocationIndex;
@@ -366,9 +491,21 @@ void cull_cell(uint cell, uint covered, uint nlights, uint src, bool from_list)
     if (me == 0u)
         s_count = 0u;
     barrier();
+#ifdef PRUNE_SAMPLES
+    if (g_pruned) {   // counted chunk by chunk, pruned as they will be written
+        for (uint base = 0u; base < nlights; base += CHUNK) {
+            cull_bits(base, min(base + CHUNK, nlights), WORDS, src, from_list);
+            count_runs(WORDS);
+            barrier();
+            if (me == 0u)
+                s_count += s_chunk;
+            barrier();
+        }
+    }
+#endif
     uint mine = 0u;
     for (uint i = me; i < nlights; i += N)
-        if (light_passes(candidate(i, src, from_list)))
+        if (!PRUNED && light_passes(candidate(i, src, from_list)))
             mine++;
     if (mine > 0u)
         atomicAdd(s_count, mine);
@@ -416,6 +553,9 @@ void cull_clusters(uint tile_index, uint covered, uint nlights, float tile_znear
     cull_cell(NO_CELL, covered, nlights, 0u, false);
 #ifdef DEPTH_MASK
     g_masked = false;   // the clusters are cut from the masked tile list
+#endif
+#ifdef PRUNE_SAMPLES
+    g_pruned = false;   // and from the pruned one
 #endif
     memoryBarrierBuffer();
     barrier();
@@ -534,22 +674,6 @@ void cull_translucent(uvec2 tile, uint tile_index, ivec2 size, uint covered, flo
 }
 #endif
 
-#ifdef MSAA_SAMPLES
-// The nearest (d) and farthest (d_far) depth of the pixel's samples that have geometry;
-// 1 and 0 when none has (t_depth: the multisampled depth target).
-void pixel_depth_range(ivec2 pixel, out float d, out float d_far)
-{
-    d = 1.0;
-    d_far = 0.0;
-    for (int i = 0; i < MSAA_SAMPLES; i++) {
-        float di = texelFetch(t_depth, pixel, i).r;
-        if (di < 1.0) {
-            d = min(d, di);
-            d_far = max(d_far, di);
-        }
-    }
-}
-#endif
 
 // Once the work group has covered the tile (tile_cover, then a barrier), each
 // invocation with its pixel: (DEPTH_MASK) the cells its samples occupy
@@ -584,6 +708,10 @@ void cull_tile(ivec2 pixel)
     g_cell_scale = depth_cell_scale(tile_znear, tile_zfar);
     g_masked = true;
 #endif
+#ifdef PRUNE_SAMPLES
+    pixel_samples_box(ivec2(gl_GlobalInvocationID.xy));
+    g_pruned = true;   // the tile's own list only: not its translucent one
+#endif
 #ifndef SLICES
     cull_cell(tile_index, covered, nlights, 0u, false);
 #else
@@ -591,6 +719,9 @@ void cull_tile(ivec2 pixel)
 #endif
 #ifdef DEPTH_MASK
     g_masked = false;
+#endif
+#ifdef PRUNE_SAMPLES
+    g_pruned = false;
 #endif
 #ifdef TLISTS
     cull_translucent(tile, tile_index, size, covered, tile_zfar);

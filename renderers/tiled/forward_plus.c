@@ -97,7 +97,7 @@ static bool forward_tiled_prepare(void *self, const struct scene *s, char *err, 
                                 ms ? "TILE_DEPTH_RANGES" : NULL, light_grid_mask_define(g)};
     /* the cull's defines: grid_defs without the NULLs, then the samples, then TLISTS
      * when it builds translucent lists (a NULL ends the list) */
-    const char *cull_defs[10] = {NULL};
+    const char *cull_defs[11] = {NULL};
     unsigned ncull = 0;
     for (unsigned i = 0; i < 7; i++)
         if (grid_defs[i])
@@ -106,6 +106,8 @@ static bool forward_tiled_prepare(void *self, const struct scene *s, char *err, 
         cull_defs[ncull++] = r->samples_define;
     if (g->ntlists)
         cull_defs[ncull++] = g->tlists_define;
+    if (light_grid_prune_define(g))
+        cull_defs[ncull++] = light_grid_prune_define(g);
     char why[4096] = "";
     if (gl_program_get(c->b.programs,
                        &(gl_program_desc){.name = "depth_only", .vertex = "mesh.vert",
@@ -124,7 +126,8 @@ static bool forward_tiled_prepare(void *self, const struct scene *s, char *err, 
                            .compute = "tile_cull.comp",
                            .defines = {cull_defs[0], cull_defs[1], cull_defs[2],
                                        cull_defs[3], cull_defs[4], cull_defs[5],
-                                       cull_defs[6], cull_defs[7], cull_defs[8]}},
+                                       cull_defs[6], cull_defs[7], cull_defs[8],
+                                       cull_defs[9]}},
                        &r->cull_program, why, sizeof why) != GLP_OK) {
         snprintf(err, errlen, "%s: %s", r->name, why);
         goto fail;

@@ -16,6 +16,7 @@ bool light_grid_tile_option(light_grid *g, const char *name, const renderer_opti
     g->name = name;
     g->tile = o->tile_size;
     g->depth_mask = o->depth_mask;
+    g->prune_samples = o->prune_samples;
     if (g->tile != 8 && g->tile != 16 && g->tile != 32) {
         snprintf(err, errlen, "%s: tiles.size %d: expected 8, 16 or 32", name, g->tile);
         return false;
@@ -111,6 +112,11 @@ void light_grid_defines(light_grid *g)
 const char *light_grid_mask_define(const light_grid *g)
 {
     return g->depth_mask && g->cull ? "DEPTH_MASK" : NULL;
+}
+
+const char *light_grid_prune_define(const light_grid *g)
+{
+    return g->prune_samples && g->cull ? "PRUNE_SAMPLES" : NULL;
 }
 
 static GLuint make_buffer(size_t bytes)

@@ -51,6 +51,7 @@ typedef struct light_grid {
     const char *name;                /* the renderer: first word of its messages */
     int tile;                        /* pixels per tile side */
     bool depth_mask;                 /* tiles.depth_culling: mask (DEPTH_MASK, tile_cull.inc) */
+    bool prune_samples;              /* tiles.prune: samples (PRUNE_SAMPLES, tile_cull.inc) */
     uint32_t slices_y;               /* clustered: Olsson's S_y (clustered.slices); else 0 */
     /* >>light_grid_size, at prepare */
     uint32_t slices;                 /* clustered: depth slices to the far plane; else 0 */
@@ -73,7 +74,7 @@ typedef struct light_grid {
 } light_grid;
 
 /* The options, at create: tiles.size (0: 16) into g->tile (and tiles.depth_culling into
- * g->depth_mask), and clustered.slices (0: 24) into g->slices_y; false with "NAME: tiles.size ..." / "NAME: clustered.slices ...". */
+ * g->depth_mask, tiles.prune into g->prune_samples), and clustered.slices (0: 24) into g->slices_y; false with "NAME: tiles.size ..." / "NAME: clustered.slices ...". */
 bool light_grid_tile_option(light_grid *g, const char *name, const renderer_options *o,
                             char *err, size_t errlen);
 bool light_grid_slices_option(light_grid *g, const char *name, const renderer_options *o,
@@ -98,6 +99,8 @@ void light_grid_capacity(light_grid *g, uint32_t max_lights_per_tile, int max_bl
 /* TILE_SIZE, TILES_X, TILES_Y, SLICES, SLICES_Y and TLISTS (the cells) into the defines. */
 /* "DEPTH_MASK" for the cull and shading programs when the lists are masked, else NULL. */
 const char *light_grid_mask_define(const light_grid *g);
+/* "PRUNE_SAMPLES" for the cull programs when the lists are pruned by samples, else NULL. */
+const char *light_grid_prune_define(const light_grid *g);
 void light_grid_defines(light_grid *g);
 /* The buffers and the readback arrays; false when out of memory (the caller says so). */
 bool light_grid_alloc(light_grid *g);

@@ -115,6 +115,8 @@ bool tiled_pass_compile(tiled_pass *t, deferred_renderer *d, char *err, size_t e
         extra[n++] = g->tlists_define;
     if (light_grid_mask_define(g))
         extra[n++] = light_grid_mask_define(g);
+    if (light_grid_prune_define(g))
+        extra[n++] = light_grid_prune_define(g);
     n += (int)shadow_maps_defines(&d->b.shadows, extra + n);   /* any type: one program */
     gl_program_desc desc = {.name = program_name(t, d), .compute = "tiled_deferred.comp"};
     unsigned k = 0;

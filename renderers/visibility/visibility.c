@@ -342,10 +342,12 @@ static bool compile(visibility *r, char *err, size_t errlen)
     if (g->cull) {
         /* msaa: every sample's depth, and the tiles' ranges for the shading's fallback;
          * TLISTS: the translucent lists too (a NULL ends the defines) */
-        const char *defs[6] = {g->tile_define, g->tiles_x_define};
+        const char *defs[7] = {g->tile_define, g->tiles_x_define};
         unsigned n = 2;
         if (light_grid_mask_define(g))
             defs[n++] = light_grid_mask_define(g);
+        if (light_grid_prune_define(g))
+            defs[n++] = light_grid_prune_define(g);
         if (ms) {
             defs[n++] = r->samples_define;
             defs[n++] = "TILE_DEPTH_RANGES";
@@ -355,7 +357,7 @@ static bool compile(visibility *r, char *err, size_t errlen)
         gl_program_desc k = {.name = g->ntlists ? "tile_cull_translucent" : "tile_cull",
                              .compute = "tile_cull.comp",
                              .defines = {defs[0], defs[1], defs[2], defs[3], defs[4],
-                                         defs[5]}};
+                                         defs[5], defs[6]}};
         if (!program(r, &k, false, &r->cull_program, err, errlen))
             return false;
     }

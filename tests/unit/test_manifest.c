@@ -389,6 +389,7 @@ static void test_kv_canonical(void **state)
         {"forward.light_buffer", "uniform"},
         {"tiles.size", "16"},
         {"tiles.depth_culling", "minmax"},
+        {"tiles.prune", "bounds"},
         {"tiles.max_lights_per_tile", "0"},
         {"clustered.slices", "24"},
         {"clustered.shading", "forward"},
@@ -474,6 +475,7 @@ static void test_kv_canonical(void **state)
         {"forward.light_buffer", "uniform"},
         {"tiles.size", "16"},
         {"tiles.depth_culling", "minmax"},
+        {"tiles.prune", "bounds"},
         {"tiles.max_lights_per_tile", "0"},
         {"clustered.slices", "24"},
         {"clustered.shading", "forward"},
@@ -741,7 +743,7 @@ static const bad_case bad_cases[] = {
       "gbuffer.normal, deferred.light_volumes, deferred.separate_specular, "
        "deferred.sky_stencil, "
        "forward.illumination_sets, forward.directional_in_base, forward.light_buffer, tiles.size, "
-      "tiles.depth_culling, tiles.max_lights_per_tile, clustered.slices, clustered.shading, "
+      "tiles.depth_culling, tiles.prune, tiles.max_lights_per_tile, clustered.slices, clustered.shading, "
       "deferred_lighting.light_buffer, deferred_lighting.lights, shadows, hdr, msaa, "
       "fog.density, "
       "fog.colour, aa, translucency, shading.model, environment.light, environment.intensity, camera.radius, "
