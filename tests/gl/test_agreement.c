@@ -40,6 +40,7 @@ static int g_msaa = 0;   /* issue 12: > 1, run_case compares msaa forward-spml a
 static lpp_light_buffer_format g_lpp = LPP_LIGHT_BUFFER_RGBA16F;   /* deferred-lighting's */
 static bool g_lpp_tiled = false;   /* deferred-lighting's lights by the tiled lists */
 static bool g_depth_mask = false;  /* tiles.depth_culling: mask (issue 37) */
+static bool g_prune = false;       /* tiles.prune: samples (issue 37) */
 static const char *const *g_scenes;   /* expect_catalog_agrees: these (NULL-ended), or all */
 static bool g_double_sided = false;   /* build: every material double-sided */
 static bool g_vertex_colors = false;  /* build: the sphere's mesh (1) coloured by its normals */
@@ -145,7 +146,7 @@ static bool render_with(const char *kind, light_volume_mode mode, bool storage, 
         .light_buffer = storage ? LIGHT_BUFFER_STORAGE : LIGHT_BUFFER_UNIFORM,
         .hdr = g_hdr, .fog_density = g_fog_density, .fog_color = {0.55f, 0.6f, 0.7f},
         .msaa = g_msaa, .lpp_light_buffer = g_lpp, .lpp_tiled = g_lpp_tiled,
-        .depth_mask = g_depth_mask,
+        .depth_mask = g_depth_mask, .prune_samples = g_prune,
     };
     renderer *r = test_renderer_create(kind, &o, err, sizeof err);
     if (!r || !renderer_prepare(r, s, err, sizeof err)) {
@@ -748,6 +749,25 @@ static void test_depth_mask(void **state)
     g_depth_mask = false;
 }
 
+/* Issue 37: tiles.prune: samples (HDRP's fine pruning; at msaa 4 each pixel's box over
+ * its samples) on the same kinds, at msaa 1 and 4 on shapes, curtis-scene3 and canyon,
+ * against forward-spml within RMSE 1/255 as test_depth_mask's. */
+static void test_prune_samples(void **state)
+{
+    (void)state;
+    static const char *const kinds[] = {"forward-plus", "clustered", "tiled-deferred",
+                                        "deferred-lighting tiled", "visibility"};
+    static const char *const some[] = {"shapes", "curtis-scene3", "canyon", NULL};
+    g_prune = true;
+    g_scenes = some;
+    expect_catalog_agrees(kinds, 3, SHADING_PHONG, 0.3f);
+    g_msaa = 4;
+    expect_catalog_agrees(kinds, 5, SHADING_PHONG, 0.3f);
+    g_msaa = 0;
+    g_scenes = NULL;
+    g_prune = false;
+}
+
 /* Issue 12: the cases above at msaa 4, forward-spml against deferred in every mode. */
 static void test_msaa4(void **state)
 {
@@ -779,7 +799,8 @@ static int teardown(void **state)
 
 /* `test_gl_agreement pbr` (meson's gl-agreement_pbr) runs the metallic-roughness cases,
  * `test_gl_agreement environment` (gl-agreement_environment) the environment's,
- * `test_gl_agreement mask` (gl-agreement_mask) tiles.depth_culling: mask's, the
+ * `test_gl_agreement mask` (gl-agreement_mask) tiles.depth_culling: mask's and
+ * tiles.prune: samples', the
  * plain call the others: tests of meson's, each well inside its timeout under the
  * sanitizers, and run side by side. */
 int main(int argc, char **argv)
@@ -811,6 +832,7 @@ int main(int argc, char **argv)
     };
     const struct CMUnitTest mask[] = {
         cmocka_unit_test(test_depth_mask),
+        cmocka_unit_test(test_prune_samples),
     };
     if (argc > 1 && strcmp(argv[1], "pbr") == 0)
         return cmocka_run_group_tests(pbr, setup, teardown);

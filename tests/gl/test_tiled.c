@@ -552,13 +552,13 @@ static void test_clustered_deferred(void **state)
     scene_destroy(s);
 }
 
-/* tiles.depth_culling: mask (issue 37, Harada's 2.5D culling): on curtis-scene3 and canyon
- * with 2,000 radius-3 lights, each kind's list of every tile (cluster) with mask is at
- * most as long as with minmax, cell by cell, and the lists are shorter in all (mask
- * does something): fewer light evaluations a pixel; the image still forward-spml's. */
-static void test_depth_mask(void **state)
+/* A culling option of issue 37 (set() turns it off and on): on curtis-scene3 and
+ * canyon with 2,000 radius-3 lights, each kind's list of every tile (cluster) with it
+ * on is at most as long as with it off, cell by cell, and the lists are shorter in all
+ * (the option does something): fewer light evaluations a pixel; the image still
+ * forward-spml's, and byte for byte the option off's (msaa 1). */
+static void expect_fewer_lights(const char *name, void (*set)(renderer_options *, bool))
 {
-    (void)state;
     static const char *const scenes[] = {"curtis-scene3", "canyon"};
     for (size_t i = 0; i < 2; i++) {
         char err[256];
@@ -574,26 +574,29 @@ static void test_depth_mask(void **state)
         render("forward-spml", &o, s, &ref);
         for (size_t k = 0; k < NKINDS; k++) {
             uint32_t *ca = NULL, *cb = NULL;
-            o.depth_mask = false;
+            set(&o, false);
             render_counts(KINDS[k], &o, s, &a, &ca);
-            o.depth_mask = true;
+            set(&o, true);
             render_counts(KINDS[k], &o, s, &b, &cb);
-            print_message("%s, %s: lights a cell %.4f (minmax) %.4f (mask), evaluations a "
+            print_message("%s, %s: lights a cell %.4f (off) %.4f (%s), evaluations a "
                           "pixel %.3f %.3f\n", scenes[i], KINDS[k], a.fs.grid_lights_mean,
-                          b.fs.grid_lights_mean, a.fs.light_evals_per_pixel,
+                          b.fs.grid_lights_mean, name, a.fs.light_evals_per_pixel,
                           b.fs.light_evals_per_pixel);
             assert_true(a.ngrid > 0);
             assert_int_equal(a.ngrid, b.ngrid);
             for (size_t c = 0; c < a.ngrid; c++)
                 if (cb[c] > ca[c])
-                    fail_msg("%s, %s: cell %zu: %u lights with mask, %u with minmax",
-                             scenes[i], KINDS[k], c, cb[c], ca[c]);
+                    fail_msg("%s, %s: cell %zu: %u lights with %s, %u without",
+                             scenes[i], KINDS[k], c, cb[c], name, ca[c]);
             assert_true(b.grid_sum < a.grid_sum);
             assert_true(b.fs.light_evals_per_pixel < a.fs.light_evals_per_pixel);
             assert_int_equal(b.fs.grid_covered, a.fs.grid_covered);
             char what[96];
-            snprintf(what, sizeof what, "%s, %s, mask", scenes[i], KINDS[k]);
+            snprintf(what, sizeof what, "%s, %s, %s", scenes[i], KINDS[k], name);
             expect_agree(what, &b.img, &ref.img);
+            /* the lights dropped reach no shaded position: the same image, byte for byte */
+            if (memcmp(a.img.pixels, b.img.pixels, (size_t)W * H * 4) != 0)
+                fail_msg("%s: the image differs from the default's", what);
             free(ca);
             free(cb);
             image_free(&a.img);
@@ -604,6 +607,30 @@ static void test_depth_mask(void **state)
     }
 }
 
+static void set_mask(renderer_options *o, bool on)
+{
+    o->depth_mask = on;
+}
+
+static void set_prune(renderer_options *o, bool on)
+{
+    o->prune_samples = on;
+}
+
+/* tiles.depth_culling: mask (Harada's 2.5D culling) against minmax. */
+static void test_depth_mask(void **state)
+{
+    (void)state;
+    expect_fewer_lights("mask", set_mask);
+}
+
+/* tiles.prune: samples (HDRP's fine pruning) against bounds. */
+static void test_prune_samples(void **state)
+{
+    (void)state;
+    expect_fewer_lights("prune samples", set_prune);
+}
+
 GL_TEST_MAIN(ctx, W, H,
              cmocka_unit_test(test_counts_and_tile_sizes),
              cmocka_unit_test(test_4096_lights),
@@ -612,4 +639,5 @@ GL_TEST_MAIN(ctx, W, H,
              cmocka_unit_test(test_shadows_on_and_off),
              cmocka_unit_test(test_tiled_deferred_gbuffers),
              cmocka_unit_test(test_clustered_deferred),
-             cmocka_unit_test(test_depth_mask))
+             cmocka_unit_test(test_depth_mask),
+             cmocka_unit_test(test_prune_samples))
