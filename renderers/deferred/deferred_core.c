@@ -20,11 +20,12 @@
 static const char *const pass_names[PASS_COUNT] = {
     "shadows", "gbuffer", "ambient", "directional", "point", "spot", "compose", "sky", "resolve",
     "tiled", "fog", "translucent", "edges", "msaa-resolve", "translucent-lists", "material",
+    "cull-coarse",
 };
 
 /* The order describe lists them in (tiled-deferred's "tiled" after the G-buffer). */
 static const deferred_pass describe_order[PASS_COUNT] = {
-    PASS_SHADOWS, PASS_GBUFFER, PASS_EDGES, PASS_TILED, PASS_TLISTS, PASS_AMBIENT,
+    PASS_SHADOWS, PASS_GBUFFER, PASS_EDGES, PASS_COARSE, PASS_TILED, PASS_TLISTS, PASS_AMBIENT,
     PASS_DIRECTIONAL, PASS_POINT, PASS_SPOT, PASS_MATERIAL, PASS_COMPOSE, PASS_FOG, PASS_SKY,
     PASS_TRANSLUCENT, PASS_MSAA, PASS_RESOLVE,
 };
@@ -533,6 +534,8 @@ void deferred_describe(const void *self, pass_plan *out)
         deferred_pass p = describe_order[i];
         if ((p == PASS_TILED || p == PASS_TLISTS) && !r->tiled)
             continue;   /* deferred's plan is what it always was */
+        if (p == PASS_COARSE && !r->reason[p][0])
+            continue;   /* planned only with tiles.levels: 2 */
         if (p == PASS_MATERIAL && !r->lpp)
             continue;
         if ((p == PASS_EDGES || p == PASS_MSAA) && r->b.samples <= 1)

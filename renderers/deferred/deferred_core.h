@@ -51,6 +51,7 @@ typedef enum deferred_pass {
     PASS_MSAA,                       /* msaa > 1: renderer_base_msaa_resolve_pass */
     PASS_TLISTS,                     /* not a pass: the tiled pass's translucent lists */
     PASS_MATERIAL,                   /* deferred-lighting: the second geometry pass */
+    PASS_COARSE,                     /* tiles.levels: 2: the big tiles' dispatch (coarse.c) */
     PASS_COUNT
 } deferred_pass;
 

@@ -17,6 +17,8 @@
 #define BIND_SSBO_TILE_DEPTH 4      /* tiles.inc (msaa > 1): per tile the depth range culled */
 #define BIND_SSBO_EDGES 5           /* tiled_deferred.comp (msaa > 1): edge pixels counted */
 #define BIND_SSBO_COVERAGE 6        /* coverage.comp: the covered pixels counted */
+#define BIND_SSBO_COARSE_LISTS 8    /* tiles.inc (tiles.levels: 2): the big tiles' heads */
+#define BIND_SSBO_COARSE_INDICES 9  /* tiles.inc (tiles.levels: 2): their light indices */
 /* lights_reaching.comp, between frames (no other block is bound then): the frame's
  * lights, and a count per pixel */
 #define BIND_SSBO_REACH_LIGHTS 0

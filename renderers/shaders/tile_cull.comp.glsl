@@ -2,7 +2,8 @@
 // TILE_SIZE x TILE_SIZE pixels, one invocation per pixel.
 // The steps, clustered (SLICES), MSAA_SAMPLES, TLISTS and the defines: above main().
 // Defines: TILE_SIZE, TILES_X (and SLICES, SLICES_Y, TILES_Y; MSAA_SAMPLES,
-// TILE_DEPTH_RANGES; TLISTS). Uniforms: u_light_count.
+// TILE_DEPTH_RANGES; TLISTS; DEPTH_MASK, PRUNE_SAMPLES; COARSE_SIZE or COARSE_LISTS).
+// Uniforms: u_light_count.
 #define TILES_COHERENT   // clusters read their tile's list, written in this dispatch
 #include "bindings.h"
 #include "frame.inc"
@@ -58,11 +59,12 @@ layout(binding = BIND_TEX_DEPTH) uniform sampler2D t_depth;
 // TLISTS (the scene has translucent objects): then, in the same work group, the tile's
 // translucent list (near plane to the tile's max depth, cull_translucent in
 // tile_cull.inc) for the translucent pass.
-void main()
+// COARSE_SIZE (tiles.levels: 2, coarse.c): the dispatch of the big tiles, COARSE_SIZE
+// pixels a side (TILES_X: theirs), each invocation covering every TILE_SIZE-th pixel of
+// its big tile; their lists, culled as a tile's (with more slack, light_sphere), are
+// what each tile of the fine dispatch culls then (COARSE_LISTS, cull_tile).
+void cover_pixel(ivec2 pixel)
 {
-    ivec2 pixel = ivec2(gl_GlobalInvocationID.xy);
-    tile_reset(gl_LocalInvocationIndex);
-    barrier();
     if (all(lessThan(pixel, ivec2(f_viewport.xy)))) {
 #ifdef MSAA_SAMPLES
         float d, d_far;
@@ -77,6 +79,22 @@ void main()
 #endif
         }
     }
+}
+
+void main()
+{
+    ivec2 pixel = ivec2(gl_GlobalInvocationID.xy);
+    tile_reset(gl_LocalInvocationIndex);
+    barrier();
+#ifdef COARSE_SIZE
+    const int R = COARSE_SIZE / TILE_SIZE;
+    ivec2 base = ivec2(gl_WorkGroupID.xy) * COARSE_SIZE + ivec2(gl_LocalInvocationID.xy);
+    for (int y = 0; y < R; y++)
+        for (int x = 0; x < R; x++)
+            cover_pixel(base + ivec2(x, y) * TILE_SIZE);
+#else
+    cover_pixel(pixel);
+#endif
     barrier();
     cull_tile(pixel);   // DEPTH_MASK: the depth mask first (tile_cull.inc)
 }

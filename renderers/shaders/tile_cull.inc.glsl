@@ -3,7 +3,8 @@
 // counting), the tile's planes and depth range, the sphere tests, and cull_cell(), which counts, places and writes one
 // tile's (or cluster's) list, and cull_translucent() (TLISTS). Needs bindings.h,
 // frame.inc, lighting.inc, lights.inc, tiles.inc and TILE_SIZE, TILES_X (SLICES, TILES_Y,
-// TLISTS, DEPTH_MASK: tile_mask_cover, PRUNE_SAMPLES: prune_bits).
+// TLISTS, DEPTH_MASK: tile_mask_cover, PRUNE_SAMPLES: prune_bits, COARSE_SIZE and
+// COARSE_LISTS: tile_cull.comp's two levels).
 layout(location = LOC_RENDERER) uniform int u_light_count;
 
 const uint N = uint(TILE_SIZE * TILE_SIZE);
@@ -144,6 +145,9 @@ bool light_sphere(uint i, out vec3 c, out float r)
         }
     }
 #endif
+#ifdef COARSE_SIZE
+    slack *= 10.0;   // a big tile keeps every light its tiles' tests (rounded) can pass
+#endif
     r += slack;
     return true;
 }
@@ -213,10 +217,16 @@ void tile_depth_range(out float tile_znear, out float tile_zfar)
 
 // The tile's four planes into g_planes and its corner rays into g_corners, and its
 // depth range (tile_depth_range).
+#ifdef COARSE_SIZE
+const uint CELL_PX = uint(COARSE_SIZE);   // a big tile's side
+#else
+const uint CELL_PX = uint(TILE_SIZE);
+#endif
+
 void tile_frustum(uvec2 tile, ivec2 size, out float tile_znear, out float tile_zfar)
 {
-    vec2 lo = vec2(tile * uint(TILE_SIZE)) / vec2(size) * 2.0 - 1.0;
-    vec2 hi = vec2(min((tile + 1u) * uint(TILE_SIZE), uvec2(size))) / vec2(size) * 2.0 - 1.0;
+    vec2 lo = vec2(tile * CELL_PX) / vec2(size) * 2.0 - 1.0;
+    vec2 hi = vec2(min((tile + 1u) * CELL_PX, uvec2(size))) / vec2(size) * 2.0 - 1.0;
     vec3 c00 = view_at(lo, -1.0), c10 = view_at(vec2(hi.x, lo.y), -1.0);
     vec3 c11 = view_at(hi, -1.0), c01 = view_at(vec2(lo.x, hi.y), -1.0);
     vec3 inside = (c00 + c10 + c11 + c01) * 0.25;
@@ -282,8 +292,16 @@ void tile_mask_cover(ivec2 pixel)
 // length stay in s_offset and s_count (0xffffffff: it did not fit).
 const uint NO_CELL = 0xffffffffu;
 
+#ifdef COARSE_LISTS
+bool g_from_coarse = false;   // from_list: the list is the big tile's (cull_tile)
+#endif
+
 uint candidate(uint e, uint src, bool from_list)
 {
+#ifdef COARSE_LISTS
+    if (from_list && g_from_coarse)
+        return b_coarse_indices[src + e];
+#endif
     return from_list ? b_indices[src + e] : e;
 }
 
@@ -545,12 +563,15 @@ shared uint s_cluster_count[SLICES], s_cluster_first[SLICES];
 // them (invocation 0), and the lists written word by word, each in the tile list's
 // (light) order. A tile whose slices' bits would not fit s_bits (n x slices > CHUNK)
 // takes the slices one by one.
-void cull_clusters(uint tile_index, uint covered, uint nlights, float tile_znear,
-                   float tile_zfar)
+void cull_clusters(uint tile_index, uint covered, uint nlights, uint from, bool from_list,
+                   float tile_znear, float tile_zfar)
 {
     uint me = gl_LocalInvocationIndex;
     uint ntiles = uint(TILES_X * TILES_Y);
-    cull_cell(NO_CELL, covered, nlights, 0u, false);
+    cull_cell(NO_CELL, covered, nlights, from, from_list);
+#ifdef COARSE_LISTS
+    g_from_coarse = false;   // the clusters are cut from the tile's list
+#endif
 #ifdef DEPTH_MASK
     g_masked = false;   // the clusters are cut from the masked tile list
 #endif
@@ -712,10 +733,28 @@ void cull_tile(ivec2 pixel)
     pixel_samples_box(ivec2(gl_GlobalInvocationID.xy));
     g_pruned = true;   // the tile's own list only: not its translucent one
 #endif
+    uint from = 0u;
+    bool from_list = false;
+#ifdef COARSE_LISTS
+    // tiles.levels: 2: the big tile's list, a superset of what the tile keeps (every
+    // light when the big tile's did not fit: y < w)
+    uvec4 big = b_coarse_tiles[(tile.y / uint(COARSE_LISTS)) *
+                               ((uint(TILES_X) + uint(COARSE_LISTS) - 1u) / uint(COARSE_LISTS)) +
+                               tile.x / uint(COARSE_LISTS)];
+    if (nlights > 0u && big.y == big.w) {
+        from = big.x;
+        from_list = true;
+        nlights = big.y;
+        g_from_coarse = true;
+    }
+#endif
 #ifndef SLICES
-    cull_cell(tile_index, covered, nlights, 0u, false);
+    cull_cell(tile_index, covered, nlights, from, from_list);
 #else
-    cull_clusters(tile_index, covered, nlights, tile_znear, tile_zfar);
+    cull_clusters(tile_index, covered, nlights, from, from_list, tile_znear, tile_zfar);
+#endif
+#ifdef COARSE_LISTS
+    g_from_coarse = false;
 #endif
 #ifdef DEPTH_MASK
     g_masked = false;

@@ -27,6 +27,16 @@ layout(std430, binding = BIND_SSBO_TILE_STATS) buffer TileStats {
     uint next;
     uint capacity;
 } b_stats;
+#ifdef COARSE_LISTS
+// tiles.levels: 2 (coarse.c): the big tiles' lists, as b_tiles and b_indices, big tile
+// (x, y) of a tile (x, y) x COARSE_LISTS, COARSE_LISTS tiles a side.
+layout(std430, binding = BIND_SSBO_COARSE_LISTS) readonly buffer CoarseLists {
+    uvec4 b_coarse_tiles[];
+};
+layout(std430, binding = BIND_SSBO_COARSE_INDICES) readonly buffer CoarseIndices {
+    uint b_coarse_indices[];
+};
+#endif
 #ifdef DEPTH_MASK
 // tiles.depth_culling: mask (Harada 2012's 2.5D culling, tile_cull.inc): a tile's depth
 // range [zfar, znear] (view z) cut into 32 equal cells, 0 the nearest. The cell of z

@@ -97,7 +97,7 @@ static bool forward_tiled_prepare(void *self, const struct scene *s, char *err, 
                                 ms ? "TILE_DEPTH_RANGES" : NULL, light_grid_mask_define(g)};
     /* the cull's defines: grid_defs without the NULLs, then the samples, then TLISTS
      * when it builds translucent lists (a NULL ends the list) */
-    const char *cull_defs[11] = {NULL};
+    const char *cull_defs[12] = {NULL};
     unsigned ncull = 0;
     for (unsigned i = 0; i < 7; i++)
         if (grid_defs[i])
@@ -108,6 +108,8 @@ static bool forward_tiled_prepare(void *self, const struct scene *s, char *err, 
         cull_defs[ncull++] = g->tlists_define;
     if (light_grid_prune_define(g))
         cull_defs[ncull++] = light_grid_prune_define(g);
+    if (light_grid_coarse_lists_define(g))
+        cull_defs[ncull++] = light_grid_coarse_lists_define(g);
     char why[4096] = "";
     if (gl_program_get(c->b.programs,
                        &(gl_program_desc){.name = "depth_only", .vertex = "mesh.vert",
@@ -127,11 +129,14 @@ static bool forward_tiled_prepare(void *self, const struct scene *s, char *err, 
                            .defines = {cull_defs[0], cull_defs[1], cull_defs[2],
                                        cull_defs[3], cull_defs[4], cull_defs[5],
                                        cull_defs[6], cull_defs[7], cull_defs[8],
-                                       cull_defs[9]}},
+                                       cull_defs[9], cull_defs[10]}},
                        &r->cull_program, why, sizeof why) != GLP_OK) {
         snprintf(err, errlen, "%s: %s", r->name, why);
         goto fail;
     }
+    if (!light_grid_coarse_compile(g, c->b.programs, ms ? r->samples_define : NULL, err,
+                                   errlen))
+        goto fail;
     const char *extra[10] = {NULL};
     unsigned k = 0;
     if (g->cull) {
@@ -269,6 +274,14 @@ static void forward_tiled_draw(void *self, const struct scene *s, frame_stats *o
         scene_gpu_draw_object_geometry(c->b.gpu, c->b.st, s, fe->visible[k]);
     forward_pass_end(c, out);
 
+    if (r->g.coarse_x) {   /* tiles.levels: 2: the big tiles first (coarse.c) */
+        forward_pass_begin(c, out, "cull-coarse");
+        gl_state_framebuffer(c->b.st, c->b.output_fbo);
+        gl_state_texture(c->b.st, BIND_TEX_DEPTH, c->b.depth.texture);
+        light_grid_bind_lights(&r->g, c->b.st);
+        light_grid_coarse_dispatch(&r->g, c->b.st, (uint32_t)r->count);
+        forward_pass_end(c, out);
+    }
     if (r->g.cull) {
         out->grid_pass = out->npasses + 1;
         forward_pass_begin(c, out, "cull");
@@ -306,6 +319,14 @@ static void forward_tiled_describe(const void *self, pass_plan *out)
     const light_grid *g = &r->g;
     forward_describe_begin(c, out);
     forward_describe_pass(out, "depth", true, "the visible objects, depth only");
+    if (g->levels == 2 && (!c->prepared || g->coarse_x))
+        forward_describe_pass(out, "cull-coarse", true,
+                              "one dispatch: %ux%u big tiles of %d px, lights culled per big "
+                              "tile; each tile culls its big tile's list",
+                              g->coarse_x, g->coarse_y, g->coarse);
+    else if (g->levels == 2)
+        forward_describe_pass(out, "cull-coarse", false,
+                              "skipped, the scene has no point or spot light");
     if ((!c->prepared || g->cull) && g->slices)
         forward_describe_pass(out, "cull", true,
                               "one dispatch: %ux%ux%u clusters (%d px, r = %.4g), lights "

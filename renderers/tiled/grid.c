@@ -21,7 +21,7 @@ bool light_grid_tile_option(light_grid *g, const char *name, const renderer_opti
         snprintf(err, errlen, "%s: tiles.size %d: expected 8, 16 or 32", name, g->tile);
         return false;
     }
-    return true;
+    return light_grid_levels_option(g, o, err, errlen);
 }
 
 bool light_grid_slices_option(light_grid *g, const char *name, const renderer_options *o,
@@ -52,6 +52,7 @@ bool light_grid_size(light_grid *g, const scene *s, int width, int height, bool 
     g->cull = cull;
     g->ntlists = cull && translucency ? g->ntiles : 0u;
     g->max_lights = s->nlights_total ? s->nlights_total : 1u;
+    light_grid_coarse_size(g);
     return true;
 }
 
@@ -107,6 +108,7 @@ void light_grid_defines(light_grid *g)
     snprintf(g->slices_define, sizeof g->slices_define, "SLICES %u", g->slices);
     snprintf(g->slices_y_define, sizeof g->slices_y_define, "SLICES_Y %u", g->slices_y);
     snprintf(g->tlists_define, sizeof g->tlists_define, "TLISTS %u", g->ncells);
+    light_grid_coarse_defines(g);
 }
 
 const char *light_grid_mask_define(const light_grid *g)
@@ -139,7 +141,7 @@ bool light_grid_alloc(light_grid *g)
     g->tiles = make_buffer(heads * 16u);
     g->indices = make_buffer((size_t)g->capacity * 4u);
     g->stats = make_buffer(2 * sizeof(uint32_t));
-    return true;
+    return light_grid_coarse_alloc(g);
 }
 
 void light_grid_release(light_grid *g)
@@ -150,6 +152,7 @@ void light_grid_release(light_grid *g)
         if (b[i])
             gl.DeleteBuffers(1, &b[i]);
     g->tiles = g->indices = g->stats = 0;
+    light_grid_coarse_release(g);
     free(g->readback);
     free(g->counts);
     g->readback = g->counts = NULL;
@@ -185,6 +188,10 @@ void light_grid_bind_lists(const light_grid *g, gl_state *st)
     gl_state_storage_buffer(st, BIND_SSBO_TILE_LISTS, g->tiles);
     gl_state_storage_buffer(st, BIND_SSBO_TILE_INDICES, g->indices);
     gl_state_storage_buffer(st, BIND_SSBO_TILE_STATS, g->stats);
+    if (g->coarse_x) {   /* tiles.levels: 2: what the fine tiles cull from */
+        gl_state_storage_buffer(st, BIND_SSBO_COARSE_LISTS, g->coarse_tiles);
+        gl_state_storage_buffer(st, BIND_SSBO_COARSE_INDICES, g->coarse_indices);
+    }
 }
 
 void light_grid_dispatch(const light_grid *g, gl_state *st)

@@ -12,6 +12,7 @@
 
 #include "renderers/frame/frontend.h"
 #include "renderers/gl/loader.h"
+#include "renderers/gl/program.h"
 #include "renderers/gl/state.h"
 #include "renderers/frame/light_buffer.h"
 #include "renderers/renderer.h"
@@ -71,6 +72,11 @@ typedef struct light_grid {
     bool counted;                    /* counts hold a frame */
     char tile_define[24], tiles_x_define[32], tiles_y_define[32], slices_define[24];
     char slices_y_define[24], tlists_define[24];
+    /* tiles.levels: 2 (coarse.c): big tiles of `coarse` pixels culled first */
+    int levels, coarse;              /* tiles.levels, tiles.coarse_size */
+    uint32_t coarse_x, coarse_y, coarse_capacity;   /* at light_grid_size */
+    GLuint coarse_tiles, coarse_indices, coarse_stats, coarse_program;
+    char coarse_define[24], coarse_x_define[32], coarse_lists_define[24];
 } light_grid;
 
 /* The options, at create: tiles.size (0: 16) into g->tile (and tiles.depth_culling into
@@ -102,6 +108,28 @@ const char *light_grid_mask_define(const light_grid *g);
 /* "PRUNE_SAMPLES" for the cull programs when the lists are pruned by samples, else NULL. */
 const char *light_grid_prune_define(const light_grid *g);
 void light_grid_defines(light_grid *g);
+/* tiles.levels: 2 (coarse.c): big tiles of g->coarse pixels, coarse_x x coarse_y of them
+ * (none at levels 1 or without the cull), culled first by their own dispatch
+ * (tile_cull.comp with COARSE_SIZE) into their own heads and indices (every light in
+ * every big tile, capped); each fine tile then culls its big tile's list (COARSE_LISTS,
+ * bound at BIND_SSBO_COARSE_*): the same lists as levels 1. levels_option: at create
+ * (from light_grid_tile_option); size, defines, alloc, release: from the grid's own. */
+bool light_grid_levels_option(light_grid *g, const renderer_options *o, char *err,
+                              size_t errlen);
+void light_grid_coarse_size(light_grid *g);
+void light_grid_coarse_defines(light_grid *g);
+/* "COARSE_LISTS R" (R fine tiles a big tile's side) for the fine cull, else NULL. */
+const char *light_grid_coarse_lists_define(const light_grid *g);
+bool light_grid_coarse_alloc(light_grid *g);
+void light_grid_coarse_release(light_grid *g);
+/* The coarse program into g->coarse_program (none without big tiles); samples_define:
+ * "MSAA_SAMPLES n" at msaa > 1, else NULL. False with a message. */
+bool light_grid_coarse_compile(light_grid *g, gl_program_cache *pc, const char *samples_define,
+                               char *err, size_t errlen);
+/* The coarse dispatch (the caller's "cull-coarse" pass, the depth target bound at
+ * BIND_TEX_DEPTH): it leaves the coarse buffers at the lists' bindings, so the caller
+ * binds the grid's (light_grid_bind_lists) before the fine cull. */
+void light_grid_coarse_dispatch(const light_grid *g, gl_state *st, uint32_t nlights);
 /* The buffers and the readback arrays; false when out of memory (the caller says so). */
 bool light_grid_alloc(light_grid *g);
 /* What alloc made; a zeroed grid is fine (the options and sizes stay). */

@@ -32,6 +32,12 @@ bool tiled_pass_plan(tiled_pass *t, deferred_renderer *d, const scene *s, char *
     const char *cull = g->slices ? "lights culled per cluster" : "lights culled per tile";
     if (!g->cull)
         cull = "no point or spot light: no culling";
+    if (g->coarse_x)
+        deferred_plan(d, PASS_COARSE, true, "one dispatch: %ux%u big tiles of %d px, lights "
+                      "culled per big tile; each tile culls its big tile's list",
+                      g->coarse_x, g->coarse_y, g->coarse);
+    else if (g->levels == 2)
+        deferred_plan(d, PASS_COARSE, false, "skipped, the scene has no point or spot light");
     if (g->slices)
         deferred_plan(d, PASS_TILED, true, "one dispatch: %ux%ux%u clusters (%d px), %s, %s",
                       g->tiles_x, g->tiles_y, g->slices, g->tile, cull, what);
@@ -117,6 +123,8 @@ bool tiled_pass_compile(tiled_pass *t, deferred_renderer *d, char *err, size_t e
         extra[n++] = light_grid_mask_define(g);
     if (light_grid_prune_define(g))
         extra[n++] = light_grid_prune_define(g);
+    if (light_grid_coarse_lists_define(g))
+        extra[n++] = light_grid_coarse_lists_define(g);
     n += (int)shadow_maps_defines(&d->b.shadows, extra + n);   /* any type: one program */
     gl_program_desc desc = {.name = program_name(t, d), .compute = "tiled_deferred.comp"};
     unsigned k = 0;
@@ -136,7 +144,8 @@ bool tiled_pass_compile(tiled_pass *t, deferred_renderer *d, char *err, size_t e
     if (d->b.samples > 1)   /* u_sample_pos, after u_light_count */
         deferred_set_sample_positions(d, d->fb_gbuffer.fbo, t->program,
                                       DEFERRED_UNIFORM_LIGHT + 1);
-    return true;
+    return light_grid_coarse_compile(&t->g, d->b.programs,
+                                     d->b.samples > 1 ? t->msaa_define : NULL, err, errlen);
 }
 
 void tiled_pass_release(tiled_pass *t)
@@ -168,6 +177,14 @@ void tiled_pass_run(tiled_pass *t, deferred_renderer *d, const scene *s, frame_s
     light_grid *g = &t->g;
     t->index = 0;
     uint32_t n = light_grid_upload_lights(g, s, &d->b.fe);
+    if (g->coarse_x) {   /* tiles.levels: 2: the big tiles first (coarse.c) */
+        deferred_pass_begin(d, out, PASS_COARSE);
+        gl_state_framebuffer(st, d->b.output_fbo);
+        gl_state_texture(st, DEFERRED_DEPTH_UNIT, d->b.depth.texture);
+        light_grid_bind_lights(g, st);
+        light_grid_coarse_dispatch(g, st, n);
+        deferred_pass_end(d, out);
+    }
     out->grid_pass = g->cull ? out->npasses + 1 : 0;
     deferred_pass_begin(d, out, PASS_TILED);
     light_grid_reset(g);

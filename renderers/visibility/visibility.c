@@ -133,6 +133,7 @@ static void *visibility_create(const renderer_options *opts, char *err, size_t e
         forward_common_free(&r->c);
         return NULL;
     }
+    r->g.levels = 1;   /* tiles.levels: its one cull dispatch stays one level */
     return r;
 }
 

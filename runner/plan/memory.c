@@ -94,7 +94,8 @@ static uint64_t targets_of(const char *kind, const run_params *q, int w, int h, 
 /* The light lists of the renderers with a light grid (whose design for q reads tiles.*:
  * deferred-lighting's only with deferred_lighting.lights: tiled) at w x h: heads (offset
  * and count) and indices, as tiled/grid.c sizes them, on the GPU and read back;
- * clustered (reads clustered.*) per cluster. */
+ * clustered (reads clustered.*) per cluster; with tiles.levels: 2 the big tiles' heads
+ * and indices too (tiled/coarse.c: every light in every big tile). */
 static uint64_t lists_of(const char *kind, const run_params *q, int w, int h,
                          const scene_facts *sc, uint64_t *untouched)
 {
@@ -118,7 +119,14 @@ static uint64_t lists_of(const char *kind, const run_params *q, int w, int h,
      * (clustered, 4096 lights at 256x256: 300 MiB peak, 457 MiB estimated with both) */
     if (untouched)
         *untouched += cap * 4;
-    return 2 * (heads * 8 + cap * 4) + n * renderer_light_bytes() * 2;
+    uint64_t coarse = 0;
+    if (q->tile_levels == 2 && param_read_by(param_find("tiles.levels"), kind)) {
+        uint64_t side = q->coarse_size ? q->coarse_size : 64;
+        uint64_t big = ((uint64_t)w + side - 1) / side * (((uint64_t)h + side - 1) / side);
+        uint64_t entries = big * (n ? n : 1);
+        coarse = big * 16 + (entries < INDEX_CAP ? entries : INDEX_CAP) * 4;
+    }
+    return 2 * (heads * 8 + cap * 4) + coarse + n * renderer_light_bytes() * 2;
 }
 
 /* llvmpipe's binning of one frame's draws, which it keeps until the frame ends: a

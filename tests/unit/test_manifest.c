@@ -390,6 +390,8 @@ static void test_kv_canonical(void **state)
         {"tiles.size", "16"},
         {"tiles.depth_culling", "minmax"},
         {"tiles.prune", "bounds"},
+        {"tiles.levels", "1"},
+        {"tiles.coarse_size", "64"},
         {"tiles.max_lights_per_tile", "0"},
         {"clustered.slices", "24"},
         {"clustered.shading", "forward"},
@@ -476,6 +478,8 @@ static void test_kv_canonical(void **state)
         {"tiles.size", "16"},
         {"tiles.depth_culling", "minmax"},
         {"tiles.prune", "bounds"},
+        {"tiles.levels", "1"},
+        {"tiles.coarse_size", "64"},
         {"tiles.max_lights_per_tile", "0"},
         {"clustered.slices", "24"},
         {"clustered.shading", "forward"},
@@ -743,7 +747,8 @@ static const bad_case bad_cases[] = {
       "gbuffer.normal, deferred.light_volumes, deferred.separate_specular, "
        "deferred.sky_stencil, "
        "forward.illumination_sets, forward.directional_in_base, forward.light_buffer, tiles.size, "
-      "tiles.depth_culling, tiles.prune, tiles.max_lights_per_tile, clustered.slices, clustered.shading, "
+      "tiles.depth_culling, tiles.prune, tiles.levels, tiles.coarse_size, "
+      "tiles.max_lights_per_tile, clustered.slices, clustered.shading, "
       "deferred_lighting.light_buffer, deferred_lighting.lights, shadows, hdr, msaa, "
       "fog.density, "
       "fog.colour, aa, translucency, shading.model, environment.light, environment.intensity, camera.radius, "
