@@ -41,6 +41,7 @@ static lpp_light_buffer_format g_lpp = LPP_LIGHT_BUFFER_RGBA16F;   /* deferred-l
 static bool g_lpp_tiled = false;   /* deferred-lighting's lights by the tiled lists */
 static bool g_depth_mask = false;  /* tiles.depth_culling: mask (issue 37) */
 static bool g_prune = false;       /* tiles.prune: samples (issue 37) */
+static int g_levels = 1;           /* tiles.levels (issue 37) */
 static const char *const *g_scenes;   /* expect_catalog_agrees: these (NULL-ended), or all */
 static bool g_double_sided = false;   /* build: every material double-sided */
 static bool g_vertex_colors = false;  /* build: the sphere's mesh (1) coloured by its normals */
@@ -147,6 +148,7 @@ static bool render_with(const char *kind, light_volume_mode mode, bool storage, 
         .hdr = g_hdr, .fog_density = g_fog_density, .fog_color = {0.55f, 0.6f, 0.7f},
         .msaa = g_msaa, .lpp_light_buffer = g_lpp, .lpp_tiled = g_lpp_tiled,
         .depth_mask = g_depth_mask, .prune_samples = g_prune,
+        .tile_levels = g_levels,
     };
     renderer *r = test_renderer_create(kind, &o, err, sizeof err);
     if (!r || !renderer_prepare(r, s, err, sizeof err)) {
@@ -768,6 +770,28 @@ static void test_prune_samples(void **state)
     g_prune = false;
 }
 
+/* Issue 37: tiles.levels: 2 (the big tiles culled first) on forward-plus, clustered,
+ * tiled-deferred and deferred-lighting by the tiled lists (visibility stays one level),
+ * at msaa 1 on shapes (gl-tiled holds its images to level 1's byte for byte) and at
+ * msaa 4 on shapes, curtis-scene3 and canyon, against forward-spml within RMSE 1/255. */
+static void test_two_levels(void **state)
+{
+    (void)state;
+    static const char *const kinds[] = {"forward-plus", "clustered", "tiled-deferred",
+                                        "deferred-lighting tiled"};
+    static const char *const shapes[] = {"shapes", NULL};
+    static const char *const some[] = {"shapes", "curtis-scene3", "canyon", NULL};
+    g_levels = 2;
+    g_scenes = shapes;
+    expect_catalog_agrees(kinds, 4, SHADING_PHONG, 0.3f);
+    g_scenes = some;
+    g_msaa = 4;
+    expect_catalog_agrees(kinds, 4, SHADING_PHONG, 0.3f);
+    g_msaa = 0;
+    g_scenes = NULL;
+    g_levels = 1;
+}
+
 /* Issue 12: the cases above at msaa 4, forward-spml against deferred in every mode. */
 static void test_msaa4(void **state)
 {
@@ -799,8 +823,9 @@ static int teardown(void **state)
 
 /* `test_gl_agreement pbr` (meson's gl-agreement_pbr) runs the metallic-roughness cases,
  * `test_gl_agreement environment` (gl-agreement_environment) the environment's,
- * `test_gl_agreement mask` (gl-agreement_mask) tiles.depth_culling: mask's and
- * tiles.prune: samples', the
+ * `test_gl_agreement mask` (gl-agreement_mask) tiles.depth_culling: mask's,
+ * `test_gl_agreement culling` (gl-agreement_culling) tiles.prune: samples' and
+ * tiles.levels: 2's, the
  * plain call the others: tests of meson's, each well inside its timeout under the
  * sanitizers, and run side by side. */
 int main(int argc, char **argv)
@@ -832,7 +857,10 @@ int main(int argc, char **argv)
     };
     const struct CMUnitTest mask[] = {
         cmocka_unit_test(test_depth_mask),
+    };
+    const struct CMUnitTest culling[] = {
         cmocka_unit_test(test_prune_samples),
+        cmocka_unit_test(test_two_levels),
     };
     if (argc > 1 && strcmp(argv[1], "pbr") == 0)
         return cmocka_run_group_tests(pbr, setup, teardown);
@@ -840,5 +868,7 @@ int main(int argc, char **argv)
         return cmocka_run_group_tests(environment, setup, teardown);
     if (argc > 1 && strcmp(argv[1], "mask") == 0)
         return cmocka_run_group_tests(mask, setup, teardown);
+    if (argc > 1 && strcmp(argv[1], "culling") == 0)
+        return cmocka_run_group_tests(culling, setup, teardown);
     return cmocka_run_group_tests(phong, setup, teardown);
 }

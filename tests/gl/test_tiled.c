@@ -556,8 +556,10 @@ static void test_clustered_deferred(void **state)
  * canyon with 2,000 radius-3 lights, each kind's list of every tile (cluster) with it
  * on is at most as long as with it off, cell by cell, and the lists are shorter in all
  * (the option does something): fewer light evaluations a pixel; the image still
- * forward-spml's, and byte for byte the option off's (msaa 1). */
-static void expect_fewer_lights(const char *name, void (*set)(renderer_options *, bool))
+ * forward-spml's, and byte for byte the option off's (msaa 1). With `pass`, the
+ * option only adds that pass, of one dispatch: every list exactly as long as without. */
+static void expect_lights(const char *name, void (*set)(renderer_options *, bool),
+                          const char *pass)
 {
     static const char *const scenes[] = {"curtis-scene3", "canyon"};
     for (size_t i = 0; i < 2; i++) {
@@ -585,11 +587,19 @@ static void expect_fewer_lights(const char *name, void (*set)(renderer_options *
             assert_true(a.ngrid > 0);
             assert_int_equal(a.ngrid, b.ngrid);
             for (size_t c = 0; c < a.ngrid; c++)
-                if (cb[c] > ca[c])
+                if (pass ? cb[c] != ca[c] : cb[c] > ca[c])
                     fail_msg("%s, %s: cell %zu: %u lights with %s, %u without",
                              scenes[i], KINDS[k], c, cb[c], name, ca[c]);
-            assert_true(b.grid_sum < a.grid_sum);
-            assert_true(b.fs.light_evals_per_pixel < a.fs.light_evals_per_pixel);
+            if (pass) {
+                assert_null(find_pass(&a.fs, pass));
+                assert_non_null(find_pass(&b.fs, pass));
+                assert_int_equal(find_pass(&b.fs, pass)->dispatches, 1);
+                assert_int_equal(b.fs.npasses, a.fs.npasses + 1);
+                assert_true(b.fs.light_evals_per_pixel == a.fs.light_evals_per_pixel);
+            } else {
+                assert_true(b.grid_sum < a.grid_sum);
+                assert_true(b.fs.light_evals_per_pixel < a.fs.light_evals_per_pixel);
+            }
             assert_int_equal(b.fs.grid_covered, a.fs.grid_covered);
             char what[96];
             snprintf(what, sizeof what, "%s, %s, %s", scenes[i], KINDS[k], name);
@@ -617,18 +627,31 @@ static void set_prune(renderer_options *o, bool on)
     o->prune_samples = on;
 }
 
+static void set_levels(renderer_options *o, bool on)
+{
+    o->tile_levels = on ? 2 : 1;
+}
+
 /* tiles.depth_culling: mask (Harada's 2.5D culling) against minmax. */
 static void test_depth_mask(void **state)
 {
     (void)state;
-    expect_fewer_lights("mask", set_mask);
+    expect_lights("mask", set_mask, NULL);
 }
 
 /* tiles.prune: samples (HDRP's fine pruning) against bounds. */
 static void test_prune_samples(void **state)
 {
     (void)state;
-    expect_fewer_lights("prune samples", set_prune);
+    expect_lights("prune samples", set_prune, NULL);
+}
+
+/* tiles.levels: 2 (HDRP's and Unreal's two-level culling) against 1: the same lists, the
+ * coarse pass of its own. */
+static void test_two_levels(void **state)
+{
+    (void)state;
+    expect_lights("levels 2", set_levels, "cull-coarse");
 }
 
 GL_TEST_MAIN(ctx, W, H,
@@ -640,4 +663,5 @@ GL_TEST_MAIN(ctx, W, H,
              cmocka_unit_test(test_tiled_deferred_gbuffers),
              cmocka_unit_test(test_clustered_deferred),
              cmocka_unit_test(test_depth_mask),
-             cmocka_unit_test(test_prune_samples))
+             cmocka_unit_test(test_prune_samples),
+             cmocka_unit_test(test_two_levels))
