@@ -695,12 +695,13 @@ void cull_translucent(uvec2 tile, uint tile_index, ivec2 size, uint covered, flo
 }
 #endif
 
-
 // Once the work group has covered the tile (tile_cover, then a barrier), each
 // invocation with its pixel: (DEPTH_MASK) the cells its samples occupy
 // (tile_mask_cover, then a barrier); the tile's frustum, and the light lists of its cell
 // or its clusters (SLICES) and its translucent list (TLISTS), culled by the whole work
 // group. TILE_DEPTH_RANGES keeps the range culled against for the shading pass's fallback.
+// PRUNE_SAMPLES: the tile's list pruned by its pixels' boxes (prune_bits); COARSE_LISTS:
+// its candidates are its big tile's list rather than every light.
 void cull_tile(ivec2 pixel)
 {
 #ifdef DEPTH_MASK
@@ -730,7 +731,7 @@ void cull_tile(ivec2 pixel)
     g_masked = true;
 #endif
 #ifdef PRUNE_SAMPLES
-    pixel_samples_box(ivec2(gl_GlobalInvocationID.xy));
+    pixel_samples_box(pixel);
     g_pruned = true;   // the tile's own list only: not its translucent one
 #endif
     uint from = 0u;
