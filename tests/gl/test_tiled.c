@@ -652,6 +652,14 @@ static void test_two_levels(void **state)
 {
     (void)state;
     expect_lights("levels 2", set_levels, "cull-coarse");
+    renderer_options o = options();
+    o.tile_levels = 2;
+    o.tile_size = 16;
+    o.coarse_size = 40;   /* not a multiple of the tile: refused at create */
+    char err[256] = "";
+    assert_null(test_renderer_create("forward-plus", &o, err, sizeof err));
+    assert_string_equal(err, "forward-plus: tiles.coarse_size 40: expected a multiple of "
+                             "tiles.size (16) up to 512");
 }
 
 GL_TEST_MAIN(ctx, W, H,
