@@ -25,6 +25,7 @@
 #include <unistd.h>
 
 #include "results/csv.h"
+#include "results/drift.h"
 #include "common/fsutil.h"
 #include "results/jsonout.h"
 #include "runner/manifest/diag.h"
@@ -59,7 +60,9 @@ static const char compare_usage[] =
 
 typedef struct pair {
     const run_result *a, *b;   /* BASE, NEW */
-    ratio_ci r;                /* NEW / BASE */
+    ratio_ci raw;              /* NEW / BASE as measured */
+    ratio_ci r;                /* NEW / BASE the verdict is on: raw / the common change
+                                * where that was applied (results/drift.h), else raw */
     verdict v;
 } pair;
 
@@ -102,10 +105,35 @@ static void count_verdicts(const pair *p, size_t np, size_t count[NVERDICTS])
         count[p[i].v]++;
 }
 
+/* The common change is beyond the threshold: the machine moved by more than it. */
+static bool drift_beyond(const common_change *cc, double thr)
+{
+    return cc->applied && (cc->ratio > 1 + thr || cc->ratio < 1 / (1 + thr));
+}
+
+/* Above the table: the common change, whether the verdicts are corrected for it, and
+ * the warning when the machine moved by more than the threshold. */
+static void drift_md_lines(FILE *fp, const common_change *cc, double thr, bool paired)
+{
+    const char *between = paired ? "between the builds within the rounds" : "between the folders";
+    if (!isfinite(cc->ratio))
+        fprintf(fp, "Common change: not estimated: %zu run%s with an interval, the median "
+                "needs %d (with fewer, one changed run would move it); verdicts on the raw "
+                "ratios.\n\n", cc->n, cc->n == 1 ? "" : "s", DRIFT_MIN_RUNS);
+    else
+        fprintf(fp, "Common change %s (median of the %zu runs' NEW / BASE, robust to a few "
+                "changed runs): %.4f (%.4f .. %.4f): %s.\n\n", between, cc->n, cc->ratio,
+                cc->lo, cc->hi, cc->applied ? "verdicts on the ratios divided by it, the raw "
+                "ratios beside them" : "its interval holds 1, no correction");
+    if (drift_beyond(cc, thr))
+        fprintf(fp, "**Warning:** the machine moved by %+.0f%% %s: verdicts are on ratios "
+                "corrected for it.\n\n", (cc->ratio - 1) * 100, between);
+}
+
 /* dn[0], dn[1]: the devices of BASE and NEW (device_note.h) */
 static void write_md(FILE *fp, const char *base, const char *new_, double thr, bool paired,
                      const pair *p, size_t np, size_t only_base, size_t only_new,
-                     const device_note *dn)
+                     const device_note *dn, const common_change *cc)
 {
     size_t count[NVERDICTS];
     count_verdicts(p, np, count);
@@ -128,8 +156,10 @@ static void write_md(FILE *fp, const char *base, const char *new_, double thr, b
         if (dn[k].line[0])
             fprintf(fp, "**Device of %s:** %s.\n\n", same ? "BASE and NEW" : k ? "NEW" : "BASE",
                     dn[k].line);
-    fprintf(fp, "| run | renderer | BASE (ms) | NEW (ms) | NEW / BASE | 95%% interval | trials "
-                "| verdict |\n|---|---|---|---|---|---|---|---|\n");
+    drift_md_lines(fp, cc, thr, paired);
+    fprintf(fp, "| run | renderer | BASE (ms) | NEW (ms) | NEW / BASE | 95%% interval | %strials "
+                "| verdict |\n|---|---|---|---|---|---|---|---|%s\n",
+            cc->applied ? "raw NEW / BASE | raw interval | " : "", cc->applied ? "---|---|" : "");
     for (size_t i = 0; i < np; i++) {
         char a[64], b[64], ch[32] = "-", ci[64] = "-";
         fmt_ms(a, sizeof a, p[i].a->mean, p[i].a->half);
@@ -138,11 +168,15 @@ static void write_md(FILE *fp, const char *base, const char *new_, double thr, b
             snprintf(ch, sizeof ch, "%.4f", p[i].r.ratio);
         if (isfinite(p[i].r.lo))
             snprintf(ci, sizeof ci, "%.4f .. %.4f", p[i].r.lo, p[i].r.hi);
+        char raw[96] = "";
+        if (cc->applied)
+            snprintf(raw, sizeof raw, "%.4f | %.4f .. %.4f | ", p[i].raw.ratio, p[i].raw.lo,
+                     p[i].raw.hi);
         const char *v = verdict_name(p[i].v);
         bool bold = p[i].v == VERDICT_SLOWER || p[i].v == VERDICT_FASTER;
-        fprintf(fp, "| %s | %s | %s | %s | %s | %s | %zu | %s%s%s |\n", p[i].a->id,
+        fprintf(fp, "| %s | %s | %s | %s | %s | %s | %s%zu | %s%s%s |\n", p[i].a->id,
                 p[i].a->renderer, trials_status_measured(p[i].a->status) ? a : p[i].a->status,
-                trials_status_measured(p[i].b->status) ? b : p[i].b->status, ch, ci, p[i].r.n,
+                trials_status_measured(p[i].b->status) ? b : p[i].b->status, ch, ci, raw, p[i].r.n,
                 bold ? "**" : "", v, bold ? "**" : "");
     }
     fprintf(fp, "\n%zu run%s in common: %zu slower, %zu faster, %zu same, %zu undecided, %zu "
@@ -155,7 +189,7 @@ static void write_md(FILE *fp, const char *base, const char *new_, double thr, b
 /* The table as JSON (--json): what write_md says, for scripts; docs/summary-json.md. */
 static void write_json(FILE *fp, const char *base, const char *new_, double thr, bool paired,
                        const pair *p, size_t np, size_t only_base, size_t only_new,
-                       const device_note *dn)
+                       const device_note *dn, const common_change *cc)
 {
     size_t count[NVERDICTS];
     count_verdicts(p, np, count);
@@ -169,6 +203,18 @@ static void write_json(FILE *fp, const char *base, const char *new_, double thr,
     json_member_number(fp, &first, "threshold", thr);
     json_key(fp, &first, "paired");
     fputs(paired ? "true" : "false", fp);
+    json_key(fp, &first, "common_change");
+    fputs("{", fp);
+    bool fc = true;
+    json_member_number(fp, &fc, "ratio", cc->ratio);
+    json_member_number(fp, &fc, "ratio_lo", cc->lo);
+    json_member_number(fp, &fc, "ratio_hi", cc->hi);
+    json_member_number(fp, &fc, "runs", (double)cc->n);
+    json_key(fp, &fc, "applied");
+    fputs(cc->applied ? "true" : "false", fp);
+    json_key(fp, &fc, "beyond_threshold");
+    fputs(drift_beyond(cc, thr) ? "true" : "false", fp);
+    fputs("}", fp);
     json_key(fp, &first, "runs");
     fputs("[", fp);
     for (size_t i = 0; i < np; i++) {
@@ -185,6 +231,9 @@ static void write_json(FILE *fp, const char *base, const char *new_, double thr,
         json_member_number(fp, &f, "ratio", p[i].r.ratio);
         json_member_number(fp, &f, "ratio_lo", p[i].r.lo);
         json_member_number(fp, &f, "ratio_hi", p[i].r.hi);
+        json_member_number(fp, &f, "raw_ratio", p[i].raw.ratio);
+        json_member_number(fp, &f, "raw_ratio_lo", p[i].raw.lo);
+        json_member_number(fp, &f, "raw_ratio_hi", p[i].raw.hi);
         json_member_number(fp, &f, "trials", (double)p[i].r.n);
         json_member_string(fp, &f, "verdict", verdict_name(p[i].v));
         fputs("}", fp);
@@ -229,6 +278,25 @@ static bool write_csv(const char *path, const pair *p, size_t np, char *err, siz
         csv_end_row(w);
     }
     return csv_commit(w, err, errlen);
+}
+
+/* The common change over the pairs' raw ratios, each pair's ratio corrected for it
+ * (results/drift.h), and the verdicts. */
+static void drift_apply(pair *p, size_t np, double thr, common_change *cc)
+{
+    ratio_ci *raw = malloc((np ? np : 1) * sizeof *raw);
+    if (raw) {
+        for (size_t i = 0; i < np; i++)
+            raw[i] = p[i].raw;
+        drift_common_change(raw, np, cc);
+        free(raw);
+    } else {
+        *cc = (common_change){.ratio = NAN, .lo = NAN, .hi = NAN};
+    }
+    for (size_t i = 0; i < np; i++) {
+        drift_correct(&p[i].raw, cc, &p[i].r);
+        p[i].v = verdict_of(&p[i].r, thr);
+    }
 }
 
 static bool load(const char *dir, run_result **runs, size_t *n)
@@ -297,7 +365,7 @@ static int compare_folders(const char *base, const char *new_, const compare_opt
         else
             verdict_unpaired_ratio(x->b->value, x->b->nvalues, x->a->value, x->a->nvalues,
                                    &x->r);
-        x->v = verdict_of(&x->r, co->thr);
+        x->raw = x->r;
         if (strcmp(x->b->status, "ok") != 0 && strcmp(x->a->status, "ok") == 0) {
             broke++;
             fprintf(stderr, "shadesweep compare: run %s (%s) failed in NEW (%s), not in BASE\n",
@@ -309,6 +377,8 @@ static int compare_folders(const char *base, const char *new_, const compare_opt
                 "both summary.csv files)\n", base, new_);
         goto done;
     }
+    common_change cc;
+    drift_apply(p, np, co->thr, &cc);
     device_note dn[2];
     device_note_of(base, ra, na, &dn[0]);
     device_note_of(new_, rb, nb, &dn[1]);
@@ -323,14 +393,14 @@ static int compare_folders(const char *base, const char *new_, const compare_opt
             fprintf(stderr, "shadesweep compare: %s\n", err);
             goto done;
         }
-        write_md(f.fp, base, new_, co->thr, co->paired, p, np, missing, nb - np, dn);
+        write_md(f.fp, base, new_, co->thr, co->paired, p, np, missing, nb - np, dn, &cc);
         if (!afile_commit(&f, err, sizeof err)) {
             fprintf(stderr, "shadesweep compare: %s\n", err);
             goto done;
         }
     }
     (co->json ? write_json : write_md)(stdout, base, new_, co->thr, co->paired, p, np, missing,
-                                       nb - np, dn);
+                                       nb - np, dn, &cc);
     rc = 0;
     for (size_t i = 0; i < np; i++)
         if (p[i].v == VERDICT_SLOWER)
