@@ -130,6 +130,43 @@ static void drift_md_lines(FILE *fp, const common_change *cc, double thr, bool p
                 "corrected for it.\n\n", (cc->ratio - 1) * 100, between);
 }
 
+/* compare --exe: round k's common change, the median over the runs of NEW / BASE in
+ * that round (DRIFT_MIN_RUNS runs at least, else not printed), a number a round: what
+ * the pairing leaves of the drift, since BASE and NEW of a round ran back to back. */
+static void round_changes_line(FILE *fp, const pair *p, size_t np)
+{
+    size_t rounds = 0;
+    for (size_t i = 0; i < np; i++)
+        rounds = p[i].a->nvalues > rounds ? p[i].a->nvalues : rounds;
+    double *l = malloc(2 * (np ? np : 1) * sizeof *l);
+    if (!l || rounds == 0) {
+        free(l);
+        return;
+    }
+    bool any = false;
+    for (size_t k = 0; k < rounds && k < 64; k++) {
+        size_t m = 0;
+        for (size_t i = 0; i < np; i++) {
+            if (k >= p[i].a->nvalues || k >= p[i].b->nvalues)
+                continue;
+            double a = p[i].a->value[k], b = p[i].b->value[k];
+            if (isfinite(a) && isfinite(b) && a > 0 && b > 0)
+                l[m++] = log(b / a);
+        }
+        if (m < DRIFT_MIN_RUNS)
+            continue;
+        double med;
+        verdict_median(l, m, l + np, &med);
+        fprintf(fp, "%s round %zu %.4f", any ? "," : "Common change within each round (the "
+                "median over the runs of NEW / BASE of that round; the pairing cancels the "
+                "drift between rounds, these are what it leaves):", k + 1, exp(med));
+        any = true;
+    }
+    if (any)
+        fputs(".\n\n", fp);
+    free(l);
+}
+
 /* dn[0], dn[1]: the devices of BASE and NEW (device_note.h) */
 static void write_md(FILE *fp, const char *base, const char *new_, double thr, bool paired,
                      const pair *p, size_t np, size_t only_base, size_t only_new,
@@ -157,6 +194,8 @@ static void write_md(FILE *fp, const char *base, const char *new_, double thr, b
             fprintf(fp, "**Device of %s:** %s.\n\n", same ? "BASE and NEW" : k ? "NEW" : "BASE",
                     dn[k].line);
     drift_md_lines(fp, cc, thr, paired);
+    if (paired)
+        round_changes_line(fp, p, np);
     fprintf(fp, "| run | renderer | BASE (ms) | NEW (ms) | NEW / BASE | 95%% interval | %strials "
                 "| verdict |\n|---|---|---|---|---|---|---|---|%s\n",
             cc->applied ? "raw NEW / BASE | raw interval | " : "", cc->applied ? "---|---|" : "");
