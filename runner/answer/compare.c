@@ -7,7 +7,9 @@
  * measured at different times are independent samples. Verdicts at a relative
  * threshold T: slower when the whole interval lies above 1 + T, faster when below
  * 1 / (1 + T), same when inside [1 / (1 + T), 1 + T], undecided otherwise; fewer than
- * 3 trials a side give no verdict.
+ * 3 trials a side give no verdict. With 5 runs or more the verdicts are on ratios
+ * corrected for the common change (the machine's drift: results/drift.h) where its
+ * interval excludes 1, the raw ratios beside them.
  * compare --exe (two builds, in rounds, paired), the output and the exit status:
  * the comment above cmd_compare below. */
 #define _DEFAULT_SOURCE
@@ -42,7 +44,9 @@ static const char compare_usage[] =
     "  the runs two output folders share (by run id): NEW / BASE of the metric that\n"
     "  decides (measure.metric), with its 95% interval over the trials, and a verdict\n"
     "  per run: slower, faster, same, undecided (the interval straddles the threshold)\n"
-    "  or no verdict (fewer than 3 trials)\n"
+    "  or no verdict (fewer than 3 trials); with 5 runs or more, on the ratios divided\n"
+    "  by their common change (the machine's drift: the median NEW / BASE) where its\n"
+    "  interval excludes 1, the raw ratios beside them\n"
     "  --threshold P%      a change within P% is `same` (default 5%)\n"
     "  --allow-missing     a BASE run missing or failed in NEW does not fail the gate\n"
     "  --csv FILE          also write one CSV row per run\n"
