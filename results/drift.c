@@ -33,8 +33,9 @@ bool drift_common_change(const ratio_ci *r, size_t n, common_change *out)
     for (size_t i = 0; i < k; i++)
         h[i] = fabs(l[i] - m);   /* h's median is taken: reuse it for the deviations */
     verdict_median(h, k, scratch, &mad);
-    double se = 1.2533141373155 * 1.4826 * mad / sqrt((double)k);
-    double half = fmax(stats_t975(k - 1) * se, hmed / sqrt((double)k));
+    /* the median of k values has sqrt(pi / 2) times the standard error of their mean */
+    const double eff = 1.2533141373155;
+    double half = fmax(stats_t975(k - 1) * eff * 1.4826 * mad, eff * hmed) / sqrt((double)k);
     out->ratio = exp(m);
     out->lo = exp(m - half);
     out->hi = exp(m + half);

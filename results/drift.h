@@ -23,11 +23,11 @@ typedef struct common_change {
 
 /* From the runs' ratios r[0..n): m = median of log ratio_i, MAD = median |log
  * ratio_i - m|, and the half-width of log ratio in the 95% interval
- * H = max(t975(k - 1) * 1.2533 * 1.4826 * MAD / sqrt(k), median(h_i) / sqrt(k)) over
- * the k runs used, h_i = log(hi_i / lo_i) / 2: the first the median's standard error
- * from the runs' spread (1.4826 MAD estimates sd, 1.2533 = sqrt(pi / 2) the median's
- * efficiency), the second a floor from the runs' own intervals (runs that agree
- * exactly still each carry their trials' noise). ratio = exp(m), lo / hi = exp(m -+ H).
+ * H = 1.2533 max(t975(k - 1) 1.4826 MAD, median(h_i)) / sqrt(k) over the k runs used,
+ * h_i = log(hi_i / lo_i) / 2: the median's 95% half-width from the runs' spread
+ * (1.4826 MAD estimates sd; the median's standard error is sqrt(pi / 2) = 1.2533
+ * times the mean's), floored by the same from the runs' own intervals (runs that
+ * agree exactly still each carry their trials' noise). ratio = exp(m), lo / hi = exp(m -+ H).
  * Returns whether it was estimated (k >= DRIFT_MIN_RUNS). */
 bool drift_common_change(const ratio_ci *r, size_t n, common_change *out);
 
