@@ -10,6 +10,7 @@
 #include <stdlib.h>
 #include <string.h>
 #include <strings.h>
+#include <unistd.h>
 
 typedef int nvml_ret;
 typedef void *nvml_device;
@@ -17,10 +18,17 @@ typedef void *nvml_device;
 enum { NVML_CLOCK_SM = 1, NVML_CLOCK_MEM = 2, NVML_TEMPERATURE_GPU = 0 };
 enum { NAME_LEN = 96, UUID_LEN = 96 };   /* NVML_DEVICE_{NAME,UUID}_V2_BUFFER_SIZE */
 
+/* nvmlPciInfo_t (nvmlDeviceGetPciInfo_v3): busIdLegacy[16], then the numbers */
+typedef struct nvml_pci {
+    char bus_id_legacy[16];
+    unsigned domain, bus, device, pci_device_id, pci_subsystem_id;
+    char bus_id[32];
+} nvml_pci;
+
 struct nvml {
     void *lib;
     nvml_device dev;
-    bool matched;
+    const char *matched;
     char name[NAME_LEN], uuid[UUID_LEN];
     nvml_ret (*shutdown)(void);
     nvml_ret (*clock)(nvml_device, int, unsigned *);
@@ -63,12 +71,13 @@ static void *sym(void *lib, const char *name, char *why, size_t len)
 
 #define FAIL(...) do { snprintf(why, whylen, __VA_ARGS__); goto fail; } while (0)
 
-nvml *nvml_open(const char *gl_renderer, char *why, size_t whylen)
+nvml *nvml_open(const char *gl_renderer, const char *gl_pci, char *why, size_t whylen)
 {
     const char *path = getenv("SHADESWEEP_NVML_LIBRARY");
     if (!path || !path[0])
         path = "libnvidia-ml.so.1";
-    void *lib = dlopen(path, RTLD_NOW | RTLD_LOCAL);
+    /* never unloaded: a driver's library may not survive it (nvml_close) */
+    void *lib = dlopen(path, RTLD_NOW | RTLD_LOCAL | RTLD_NODELETE);
     if (!lib) {
         snprintf(why, whylen, "%s cannot be loaded (no NVIDIA driver)", path);
         return NULL;
@@ -85,6 +94,8 @@ nvml *nvml_open(const char *gl_renderer, char *why, size_t whylen)
         (nvml_ret (*)(unsigned, nvml_device *))sym(lib, "nvmlDeviceGetHandleByIndex_v2", why, whylen);
     nvml_ret (*name)(nvml_device, char *, unsigned) =
         (nvml_ret (*)(nvml_device, char *, unsigned))sym(lib, "nvmlDeviceGetName", why, whylen);
+    nvml_ret (*pci)(nvml_device, nvml_pci *) =
+        (nvml_ret (*)(nvml_device, nvml_pci *))dlsym(lib, "nvmlDeviceGetPciInfo_v3");
     nvml_ret (*uuid)(nvml_device, char *, unsigned) =
         (nvml_ret (*)(nvml_device, char *, unsigned))dlsym(lib, "nvmlDeviceGetUUID");
     n->error_string = (const char *(*)(nvml_ret))dlsym(lib, "nvmlErrorString");
@@ -106,25 +117,40 @@ nvml *nvml_open(const char *gl_renderer, char *why, size_t whylen)
         FAIL("nvmlDeviceGetCount_v2: %s", nvml_error_message(n, r));
     if (ndev == 0)
         FAIL("NVML sees no NVIDIA device");
-    /* the device the GL context runs on: its NVML name inside GL_RENDERER
-     * ("NVIDIA H100 80GB HBM3/PCIe/SSE2"), else the first */
-    for (unsigned i = ndev; i-- > 0;) {
+    /* the device the GL context runs on: the one at its PCI address, else the first
+     * whose NVML name is inside GL_RENDERER ("NVIDIA H100 80GB HBM3/PCIe/SSE2"), else 0 */
+    unsigned want[3], by_name = ndev;
+    bool by_pci = gl_pci && pci && sscanf(gl_pci, "%x:%x:%x", &want[0], &want[1], &want[2]) == 3;
+    bool have = false;   /* a device NVML answered for (one it cannot is skipped) */
+    n->matched = "none";
+    for (unsigned i = 0; i < ndev; i++) {
         nvml_device d;
         char nm[NAME_LEN] = "";
-        if ((r = handle(i, &d)) != 0)
-            FAIL("nvmlDeviceGetHandleByIndex_v2(%u): %s", i, nvml_error_message(n, r));
-        if ((r = name(d, nm, sizeof nm)) != 0)
-            FAIL("nvmlDeviceGetName(%u): %s", i, nvml_error_message(n, r));
+        if ((r = handle(i, &d)) != 0 || (r = name(d, nm, sizeof nm)) != 0) {
+            snprintf(why, whylen, "NVML device %u: %s", i, nvml_error_message(n, r));
+            continue;
+        }
         nm[sizeof nm - 1] = '\0';
-        bool m = gl_renderer && nm[0] && strcasestr(gl_renderer, nm);
-        if (i == 0 || m) {
+        nvml_pci pi;
+        if (by_pci && pci(d, &pi) == 0 && pi.domain == want[0] && pi.bus == want[1] &&
+            pi.device == want[2]) {
             n->dev = d;
-            n->matched = m;
+            n->matched = "pci";
+            have = true;
             memcpy(n->name, nm, sizeof nm);
-            if (m)
-                break;
+            break;
+        }
+        bool m = gl_renderer && nm[0] && strcasestr(gl_renderer, nm);
+        if (!have || (m && by_name == ndev)) {
+            have = true;
+            n->dev = d;
+            n->matched = m ? "name" : "none";
+            memcpy(n->name, nm, sizeof nm);
+            by_name = m ? i : by_name;
         }
     }
+    if (!have)
+        goto fail;   /* why: the last device's error */
     if (!uuid || uuid(n->dev, n->uuid, sizeof n->uuid) != 0)
         n->uuid[0] = '\0';
     n->uuid[sizeof n->uuid - 1] = '\0';
@@ -148,7 +174,27 @@ void nvml_close(nvml *n)
 
 const char *nvml_device_name(const nvml *n) { return n->name; }
 const char *nvml_device_uuid(const nvml *n) { return n->uuid; }
-bool nvml_gl_matched(const nvml *n) { return n->matched; }
+const char *nvml_matched_by(const nvml *n) { return n->matched; }
+
+bool nvml_drm_pci(const char *sysfs, const char *drm_file, char *bus_id, size_t len)
+{
+    const char *base = drm_file ? strrchr(drm_file, '/') : NULL;
+    if (!base || strncmp(drm_file, "/dev/dri/", 9) != 0)
+        return false;
+    char link[512], target[512];
+    snprintf(link, sizeof link, "%s/class/drm/%s/device", sysfs ? sysfs : "/sys", base + 1);
+    ssize_t k = readlink(link, target, sizeof target - 1);
+    if (k <= 0)
+        return false;
+    target[k] = '\0';
+    const char *last = strrchr(target, '/');
+    last = last ? last + 1 : target;
+    unsigned d, b, s, f;
+    if (sscanf(last, "%x:%x:%x.%x", &d, &b, &s, &f) != 4)
+        return false;
+    snprintf(bus_id, len, "%04x:%02x:%02x.%x", d, b, s, f);
+    return true;
+}
 
 static double read_u(nvml *n, nvml_ret r, unsigned v, double scale, const char *what,
                      char *note)
@@ -217,7 +263,7 @@ size_t nvml_throttle_names(uint64_t mask, const char **names, char (*buf)[16], s
 void nvml_availability(char *line, size_t len)
 {
     char why[256];
-    nvml *n = nvml_open(NULL, why, sizeof why);
+    nvml *n = nvml_open(NULL, NULL, why, sizeof why);
     if (n) {
         line[0] = '\0';
         nvml_close(n);

@@ -19,15 +19,21 @@ typedef struct nvml_sample {
 
 #define NVML_FIELDS 5          /* sm_mhz, mem_mhz, power_w, temp_c, throttle */
 
-/* Loads the library, initialises it and picks the device whose NVML name appears in
- * gl_renderer (case-insensitive; NULL: none), else device 0. NULL with `why` set when
- * there is no library, no device or NVML fails; nothing else changes then. */
-nvml *nvml_open(const char *gl_renderer, char *why, size_t whylen);
+/* Loads the library, initialises it and picks the GL context's device: the one at PCI
+ * address gl_pci ("0000:17:00.0", nvml_drm_pci's; NULL: unknown), else the first whose
+ * NVML name appears in gl_renderer (case-insensitive; NULL: none), else device 0. NULL
+ * with `why` set when there is no library, no device or NVML fails. */
+nvml *nvml_open(const char *gl_renderer, const char *gl_pci, char *why, size_t whylen);
 void nvml_close(nvml *n);      /* nvmlShutdown and dlclose; NULL is fine */
 
 const char *nvml_device_name(const nvml *n);
 const char *nvml_device_uuid(const nvml *n);   /* "" when NVML gave none */
-bool nvml_gl_matched(const nvml *n);           /* the name was found in gl_renderer */
+const char *nvml_matched_by(const nvml *n);    /* "pci", "name" or "none" (device 0) */
+
+/* The PCI address ("0000:17:00.0") of a DRM device file ("/dev/dri/card1", meta.yaml's
+ * gl.device) from <sysfs>/class/drm/<name>/device (sysfs NULL: "/sys"); false when it
+ * is not a DRM file or sysfs does not say. */
+bool nvml_drm_pci(const char *sysfs, const char *drm_file, char *bus_id, size_t len);
 
 /* Reads every quantity now. notes[i] (NVML_FIELDS of them, each `len` bytes; NULL: not
  * wanted) gets "nvmlDeviceGetPowerUsage: Not Supported" for a quantity that failed,

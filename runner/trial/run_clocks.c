@@ -29,7 +29,9 @@ void run_clocks_open(run_state *st)
 {
     char why[256];
     const gl_info *gi = st->ctx ? gl_context_info(st->ctx) : NULL;
-    nvml *n = nvml_open(gi ? gi->renderer : NULL, why, sizeof why);
+    char pci[32];
+    bool has_pci = gi && nvml_drm_pci(NULL, gi->device, pci, sizeof pci);
+    nvml *n = nvml_open(gi ? gi->renderer : NULL, has_pci ? pci : NULL, why, sizeof why);
     if (!n)
         return;
     st->clocks = calloc(1, sizeof *st->clocks);
@@ -159,7 +161,7 @@ void run_clocks_meta(const run_state *st, yaml_out *y)
     yo_key(y, "source"); yo_str(y, "nvml");
     yo_key(y, "device"); yo_str(y, nvml_device_name(c->n));
     yo_key(y, "uuid"); yo_str(y, nvml_device_uuid(c->n)[0] ? nvml_device_uuid(c->n) : NULL);
-    yo_key(y, "gl_match"); yo_bool(y, nvml_gl_matched(c->n));
+    yo_key(y, "matched_by"); yo_str(y, nvml_matched_by(c->n));   /* pci, name, none */
     yo_key(y, "interval_ms"); yo_i64(y, (int64_t)(CLOCKS_INTERVAL_S * 1000));
     yo_key(y, "samples"); yo_i64(y, (int64_t)c->ns);
     reading(y, "start", &c->start, true);

@@ -49,7 +49,7 @@ def meta(folder):
 for t in meta("with")["trials"]:
     c = t["clocks"]
     assert c["source"] == "nvml" and c["device"] == "NVIDIA Stand-in", c
-    assert c["uuid"] == "GPU-00000000-stand-in" and c["gl_match"] is False, c   # llvmpipe
+    assert c["uuid"] == "GPU-00000000-stand-in" and c["matched_by"] == "none", c   # llvmpipe
     assert c["interval_ms"] == 100 and c["samples"] >= 2, c   # the start and the end
     for k in ("start", "end"):
         assert c[k] == {"sm_mhz": 1755, "mem_mhz": 1593, "power_w": 287.5, "temp_c": 58,

@@ -2,10 +2,11 @@
  * SHADESWEEP_NVML_LIBRARY): the entry points shadesweep uses, with NVML's documented
  * signatures, returning what the environment scripts, read at each call:
  *   STANDIN_NVML_INIT   nvmlInit_v2's return code (0)    STANDIN_NVML_NAMES  the devices'
- *   names, '|'-separated ("NVIDIA Stand-in"; "": none)   STANDIN_NVML_SM, _MEM (MHz),
+ *   names, '|'-separated ("NVIDIA Stand-in"; "": none; "!N": error N)   STANDIN_NVML_SM, _MEM (MHz),
  *   _POWER (mW), _TEMP (C), _THROTTLE (the mask, 0x.. allowed): the values, or
  *   "!N": that call returns code N.   STANDIN_NVML_UUID    nvmlDeviceGetUUID's text.
  *   STANDIN_NVML_CALLS  a file: one line per nvmlInit_v2 and nvmlShutdown call.
+ *   STANDIN_NVML_PCI    the devices' PCI addresses, '|'-separated ("0:1:0" each by default).
  * Built with -DSTANDIN_NO_THROTTLE it lacks nvmlDeviceGetCurrentClocksThrottleReasons. */
 #include <stdint.h>
 #include <stdio.h>
@@ -26,6 +27,14 @@ EXPORT int nvmlDeviceGetPowerUsage(void *device, unsigned *power);
 EXPORT int nvmlDeviceGetTemperature(void *device, int sensor, unsigned *temp);
 EXPORT int nvmlDeviceGetCurrentClocksThrottleReasons(void *device, unsigned long long *mask);
 EXPORT const char *nvmlErrorString(int result);
+
+/* nvmlPciInfo_t as NVML documents it */
+typedef struct {
+    char busIdLegacy[16];
+    unsigned domain, bus, device, pciDeviceId, pciSubSystemId;
+    char busId[32];
+} nvmlPciInfo_t;
+EXPORT int nvmlDeviceGetPciInfo_v3(void *device, nvmlPciInfo_t *pci);
 
 static const char *env(const char *name, const char *dflt)
 {
@@ -96,10 +105,25 @@ EXPORT int nvmlDeviceGetName(void *device, char *name, unsigned length)
     for (unsigned i = 1; i < (unsigned)(uintptr_t)device; i++)
         v = strchr(v, '|') + 1;
     size_t n = strcspn(v, "|");
+    if (v[0] == '!')   /* "!N": this device's name is error N */
+        return atoi(v + 1);
     if (n >= length)
         return 7;   /* NVML_ERROR_INSUFFICIENT_SIZE */
     memcpy(name, v, n);
     name[n] = '\0';
+    return 0;
+}
+
+EXPORT int nvmlDeviceGetPciInfo_v3(void *device, nvmlPciInfo_t *pci)
+{
+    const char *v = env("STANDIN_NVML_PCI", "");
+    for (unsigned i = 1; i < (unsigned)(uintptr_t)device && strchr(v, '|'); i++)
+        v = strchr(v, '|') + 1;
+    memset(pci, 0, sizeof *pci);
+    if (sscanf(v, "%x:%x:%x", &pci->domain, &pci->bus, &pci->device) != 3)
+        pci->bus = 1;
+    snprintf(pci->busId, sizeof pci->busId, "%08X:%02X:%02X.0", pci->domain, pci->bus,
+             pci->device);
     return 0;
 }
 
