@@ -131,9 +131,9 @@ nvml *nvml_open(const char *gl_renderer, const char *gl_pci, char *why, size_t w
             continue;
         }
         nm[sizeof nm - 1] = '\0';
-        nvml_pci pi;
-        if (by_pci && pci(d, &pi) == 0 && pi.domain == want[0] && pi.bus == want[1] &&
-            pi.device == want[2]) {
+        union { nvml_pci p; char room[512]; } pi;   /* room: should a driver's be longer */
+        if (by_pci && pci(d, &pi.p) == 0 && pi.p.domain == want[0] && pi.p.bus == want[1] &&
+            pi.p.device == want[2]) {
             n->dev = d;
             n->matched = "pci";
             have = true;
