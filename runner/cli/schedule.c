@@ -12,6 +12,7 @@
 
 #include "results/csvread.h"
 #include "common/fsutil.h"
+#include "common/nvml.h"
 #include "results/verdict.h"
 #include "runner/folder/folder.h"
 #include "runner/manifest/hash.h"
@@ -427,6 +428,12 @@ int run_plan(const experiment *e, const plan *p, const run_options *o)
                 selected);
     if (retried)
         fprintf(stderr, "retrying %zu failed run%s\n", retried, retried == 1 ? "" : "s");
+
+    char clocks[320] = "";   /* once a sweep: why meta.yaml has no clocks (common/nvml.h) */
+    if (trials_left)
+        nvml_availability(clocks, sizeof clocks);
+    if (clocks[0])
+        fprintf(stderr, "%s\n", clocks);
 
     /* Progress goes to the terminal (or log) the user sees; each child's own stderr
      * goes to its run's log.txt. */

@@ -187,11 +187,26 @@ static char *top_block(const char *text, const char *key)
 }
 
 /* What meta.yaml's `trials` list says of one trial: its top-level values as written,
- * and how it loaded its scene (its scene_load block; each trial loads its own). */
+ * how it loaded its scene (its scene_load block; each trial loads its own) and its GPU
+ * clocks (its clocks block, NVML's: runner/trial/run_clocks.c; NULL without). */
 typedef struct trial_meta {
     char status[160], started[128], finished[128];
-    char *scene_load;
+    char *scene_load, *clocks;
 } trial_meta;
+
+/* A trial's block `key:` (top_block's lines) inside its entry of the `trials` list. */
+static void put_block(FILE *fp, const char *key, const char *block)
+{
+    if (!block)
+        return;
+    fprintf(fp, "    %s:\n", key);
+    for (const char *l = block; *l;) {
+        const char *nl = strchr(l, '\n');
+        size_t len = nl ? (size_t)(nl - l) + 1 : strlen(l);
+        fprintf(fp, "    %.*s", (int)len, l);
+        l += len;
+    }
+}
 
 /* meta.yaml: trial 1's with the run's status and the last trial's end, then how the
  * trials were scheduled and what became of each. Each trial's meta.yaml is read once. */
@@ -211,6 +226,7 @@ static bool merge_meta(const char *run_dir, uint32_t n, const char *status,
         top_value(m, "started", tm[k - 1].started, sizeof tm[k - 1].started);
         top_value(m, "finished", tm[k - 1].finished, sizeof tm[k - 1].finished);
         tm[k - 1].scene_load = top_block(m, "scene_load");
+        tm[k - 1].clocks = top_block(m, "clocks");
         if (k == 1)
             first = m;   /* the run's meta.yaml is made from it */
         else
@@ -221,16 +237,22 @@ static bool merge_meta(const char *run_dir, uint32_t n, const char *status,
     afile out;
     if (!ok || !afile_open(&out, final, err, errlen)) {
         free(first);
-        for (uint32_t k = 0; tm && k < n; k++)
+        for (uint32_t k = 0; tm && k < n; k++) {
             free(tm[k].scene_load);
+            free(tm[k].clocks);
+        }
         free(tm);
         return false;
     }
     const char *finished = tm[n - 1].finished;
+    bool in_clocks = false;   /* trial 1's clocks: not the run's, each trial's below */
     for (char *line = first; *line;) {
         char *nl = strchr(line, '\n');
         size_t len = nl ? (size_t)(nl - line) + 1 : strlen(line);
-        if (strncmp(line, "status: ", 8) == 0) {
+        in_clocks = strncmp(line, "clocks:\n", 8) == 0 || (in_clocks && line[0] == ' ');
+        if (in_clocks) {
+            /* left out */
+        } else if (strncmp(line, "status: ", 8) == 0) {
             fputs("status: ", out.fp);
             json_quoted(out.fp, status, strlen(status), true);
             fputc('\n', out.fp);
@@ -251,18 +273,13 @@ static bool merge_meta(const char *run_dir, uint32_t n, const char *status,
                 "    finished: %s\n", k, sched->order ? sched->order[k - 1] : 0,
                 t->status[0] ? t->status : "\"\"", t->started[0] ? t->started : "\"\"",
                 t->finished[0] ? t->finished : "\"\"");
-        if (t->scene_load) {
-            fputs("    scene_load:\n", out.fp);
-            for (const char *l = t->scene_load; *l;) {
-                const char *nl = strchr(l, '\n');
-                size_t len = nl ? (size_t)(nl - l) + 1 : strlen(l);
-                fprintf(out.fp, "    %.*s", (int)len, l);
-                l += len;
-            }
-        }
+        put_block(out.fp, "scene_load", t->scene_load);
+        put_block(out.fp, "clocks", t->clocks);
     }
-    for (uint32_t k = 0; k < n; k++)
+    for (uint32_t k = 0; k < n; k++) {
         free(tm[k].scene_load);
+        free(tm[k].clocks);
+    }
     free(tm);
     return afile_commit(&out, err, errlen);
 }

@@ -3,8 +3,9 @@
  *   run_setup.c  the context, scene, renderers, reference and files of a trial
  *   run_trial.c  the frame loop: priming, measuring, screenshots, error comparisons
  *   run_meta.c   the trial's meta.yaml
+ *   run_clocks.c NVML's GPU clocks over the trial (meta.yaml's clocks:)
  *   run.c        one trial in a child process, its result, signals, its timeout
- * Nothing here is for code outside these four files (runner/trial/run.h is). */
+ * Nothing here is for code outside these files (runner/trial/run.h is). */
 #include "runner/trial/run.h"
 
 #include <stdbool.h>
@@ -13,12 +14,15 @@
 
 #include "renderers/renderer.h"
 #include "results/stream_stats.h"
+#include "results/yamlout.h"
 #include "runner/folder/output.h"
 #include "runner/trial/provenance.h"
 #include "scenes/scene.h"
 
 /* A fence wait longer than this is a hung GPU: the run fails rather than waits forever. */
 #define SYNC_TIMEOUT_S 60.0
+
+typedef struct run_clocks run_clocks;   /* run_clocks.c */
 
 /* Everything one run holds while it executes. */
 typedef struct run_state {
@@ -63,6 +67,7 @@ typedef struct run_state {
                                 * luminance (0: black; NAN: not metered) */
     bool meter_lights_off;     /* ... drawn without the placed lights (lights.sizing) */
     double lights_radius;      /* the placed lights' mean range as used (NAN: none) */
+    run_clocks *clocks;        /* NVML's readings of this trial; NULL: no NVIDIA device */
     bool in_child;             /* this is the trial's own process (run.c's child_main) */
     long child_rss_kb;         /* written by the parent for a child that died or hung: its
                                 * peak resident size (wait4), kB; 0: none */
@@ -92,5 +97,16 @@ void run_teardown(run_state *st);
 bool run_prime_variants(run_state *st);
 /* Trial `trial` of the run: warm-up, the measured frames, its row in tr. */
 void run_one_trial(run_state *st, uint32_t trial, trial_result *tr);
+/* NVML's clocks (run_clocks.c): open (before warm-up), the start reading (right before
+ * the first measured frame), a reading between measured frames when due (at most every
+ * 100 ms; the caller pauses the measured clock), the end reading, meta.yaml's block
+ * (nothing without NVML), free. Each does nothing while st->clocks is NULL. */
+void run_clocks_open(run_state *st);
+void run_clocks_start(run_state *st);
+bool run_clocks_due(const run_state *st);
+void run_clocks_tick(run_state *st);
+void run_clocks_end(run_state *st);
+void run_clocks_meta(const run_state *st, yaml_out *y);
+void run_clocks_free(run_state *st);
 /* The trial's meta.yaml, atomically; false with a message. */
 bool run_write_meta(run_state *st, char *err, size_t errlen);

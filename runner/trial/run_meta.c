@@ -208,6 +208,7 @@ bool run_write_meta(run_state *st, char *err, size_t errlen)
     yo_key(y, "timer_query"); yo_bool(y, gi && gi->timer_query);
     yo_key(y, "pipeline_statistics"); yo_bool(y, gi && gi->pipeline_statistics);
     yo_map_end(y);
+    run_clocks_meta(st, y);
 
     char cpu[256], host[256] = "unknown";
     provenance_cpu_model(cpu, sizeof cpu);

@@ -294,4 +294,5 @@ void run_teardown(run_state *st)
     scene_destroy(st->sc);
     gl_context_destroy(st->ctx);
     trial_stream_free(st->stream);
+    run_clocks_free(st);
 }

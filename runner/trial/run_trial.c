@@ -604,6 +604,7 @@ void run_one_trial(run_state *st, uint32_t trial, trial_result *tr)
     /* how much of the machine the trial got (results/contention.h) */
     double loadavg = contention_loadavg_1m();
     unsigned ncpus = contention_usable_cpus();
+    run_clocks_open(st);   /* NVML, when there is an NVIDIA device: before the warm-up */
 
     /* draw_limit: the seconds of frames the trial may draw, priming included */
     const double limit = p->draw_limit_s > 0 ? p->draw_limit_s - st->prime_s : INFINITY;
@@ -648,6 +649,7 @@ void run_one_trial(run_state *st, uint32_t trial, trial_result *tr)
     contention_sample_now(&c0);
     /* the process CPU clock, read next to each frame's two ends (outside them) */
     double cpu0 = contention_process_cpu_s();
+    run_clocks_start(st);
     mclock_start(&mc);
     for (size_t k = 0;; k++) {
         double t = schedule_time(p, k, start);
@@ -705,6 +707,11 @@ void run_one_trial(run_state *st, uint32_t trial, trial_result *tr)
             capture_due(st, trial, rec.frame, t, shot_done, error_done, tr);
             mclock_resume(&mc);
         }
+        if (run_clocks_due(st)) {   /* NVML between frames, off the measured clock */
+            mclock_pause(&mc);
+            run_clocks_tick(st);
+            mclock_resume(&mc);
+        }
         progress_tick(st->pg, trial, rec.lights, (double)(k + 1) / end);
         if (span_done(&p->duration, k + 1, end))
             break;
@@ -721,6 +728,7 @@ void run_one_trial(run_state *st, uint32_t trial, trial_result *tr)
         harness_s += start - end;
     }
     contention_sample_now(&c1);
+    run_clocks_end(st);
     st->paused_s += mc.paused;
 
     /* A time the trial never reached (a wall clock counting frames, a fixed clock
