@@ -46,8 +46,9 @@ static void trial_path(char *dst, size_t len, const char *run_dir, uint32_t k, c
 }
 
 /* Copies in to out, without its first line when skip_header (our headers hold no
- * quoted newline). */
-static bool copy_rows(FILE *in, FILE *out, bool skip_header)
+ * quoted newline); false on a failure, its errno in *err_no and *writing true when the
+ * write failed (else the read). */
+static bool copy_rows(FILE *in, FILE *out, bool skip_header, int *err_no, bool *writing)
 {
     int c;
     if (skip_header)
@@ -55,9 +56,15 @@ static bool copy_rows(FILE *in, FILE *out, bool skip_header)
             ;
     char buf[1 << 16];
     size_t n;
+    errno = 0;
     while ((n = fread(buf, 1, sizeof buf, in)) > 0)
-        if (fwrite(buf, 1, n, out) != n)
+        if (fwrite(buf, 1, n, out) != n) {
+            *err_no = errno ? errno : EIO;
+            *writing = true;
             return false;
+        }
+    *err_no = errno ? errno : EIO;
+    *writing = false;
     return !ferror(in);
 }
 
@@ -87,11 +94,18 @@ static bool merge_csv(const char *run_dir, const char *name, uint32_t n, char *e
                 return false;
             }
         }
-        bool ok = copy_rows(in, out.fp, open);
+        int why = 0;
+        bool writing = false;
+        bool ok = copy_rows(in, out.fp, open, &why, &writing);
         fclose(in);
         open = true;
-        if (!ok) {
-            snprintf(err, errlen, "%s: cannot copy its rows into the run's %s", path, name);
+        if (!ok) {   /* the file that failed and why: "No space left on device" */
+            if (writing)
+                snprintf(err, errlen, "%s/%s: %s (copying %s's rows)", run_dir, name,
+                         strerror(why), path);
+            else
+                snprintf(err, errlen, "%s: %s (copying its rows into the run's %s)", path,
+                         strerror(why), name);
             afile_abort(&out);
             return false;
         }
