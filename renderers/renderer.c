@@ -17,7 +17,8 @@
     R(clustered)                                                                           \
     R(tiled_deferred)                                                                      \
     R(deferred_lighting)                                                                   \
-    R(visibility)
+    R(visibility)                                                                          \
+    R(zbin)
 
 #define RENDERER_EXTERN(x) extern const renderer_impl renderer_##x##_impl;
 RENDERER_REGISTRY(RENDERER_EXTERN)
@@ -79,6 +80,7 @@ void renderer_draw(renderer *r, const struct scene *s, frame_stats *out)
 {
     memset(out, 0, sizeof *out);
     out->grid_lights_mean = out->grid_lights_max = out->light_evals_per_pixel = NAN;
+    out->light_struct_bytes = NAN;
     out->edge_fraction = NAN;
     out->translucent_lights_mean = out->translucent_lights_max = NAN;
     if (!r->prepared) {   /* a caller's bug: say so, and leave the frame empty */

@@ -19,6 +19,10 @@
 #define BIND_SSBO_COVERAGE 6        /* coverage.comp: the covered pixels counted */
 #define BIND_SSBO_COARSE_LISTS 8    /* tiles.inc (tiles.levels: 2): the big tiles' heads */
 #define BIND_SSBO_COARSE_INDICES 9  /* tiles.inc (tiles.levels: 2): their light indices */
+#define BIND_SSBO_ZBIN_BINS 10      /* zbin.inc: the count, directional lights, the bins */
+#define BIND_SSBO_ZBIN_MASKS 11     /* zbin.inc: a bit mask over the sorted lights a tile */
+#define BIND_SSBO_ZBIN_SORTED 12    /* zbin.comp: the lights it sorts into (then b_lights) */
+#define BIND_SSBO_ZBIN_KEYS 13      /* zbin.comp: its (key, index) pairs, then (z, r) */
 /* lights_reaching.comp, between frames (no other block is bound then): the frame's
  * lights, and a count per pixel */
 #define BIND_SSBO_REACH_LIGHTS 0

@@ -54,6 +54,7 @@ typedef struct frame_stats {
     double grid_lights_mean, grid_lights_max;
     double light_evals_per_pixel;
     uint64_t grid_covered;     /* pixels with geometry over the cells (each pixel's in one) */
+    double light_struct_bytes; /* the light structures' bytes (light_grid_struct_bytes) */
     /* The tiles' translucent lists (tiled and clustered renderers whose cull builds them
      * because the scene has translucent objects; 0 and NAN otherwise): how many, and
      * their mean and largest length. The grid_* counters above stay the opaque lists'. */

@@ -4,7 +4,7 @@
 // tile's (or cluster's) list, and cull_translucent() (TLISTS). Needs bindings.h,
 // frame.inc, lighting.inc, lights.inc, tiles.inc and TILE_SIZE, TILES_X (SLICES, TILES_Y,
 // TLISTS, DEPTH_MASK: tile_mask_cover, PRUNE_SAMPLES: prune_bits, COARSE_SIZE and
-// COARSE_LISTS: tile_cull.comp's two levels).
+// COARSE_LISTS: tile_cull.comp's two levels; ZBIN_BINS: zbin_cull_tile, a mask a tile).
 layout(location = LOC_RENDERER) uniform int u_light_count;
 
 const uint N = uint(TILE_SIZE * TILE_SIZE);
@@ -695,6 +695,51 @@ void cull_translucent(uvec2 tile, uint tile_index, ivec2 size, uint covered, flo
 }
 #endif
 
+#ifdef ZBIN_BINS
+shared uint s_evals;
+// zbin (zbin.inc): the tile keeps a bit mask over the sorted lights, not a list. Its
+// lights are tested as a list's would be (cull_bits: the range, DEPTH_MASK's cells,
+// PRUNE_SAMPLES' boxes) and the bits written as its mask (the words the frame's lights
+// need); b_tiles[tile] = (evaluations summed over its pixels, lights, covered pixels,
+// lights), each pixel with geometry counting what zbin_next gives it at its nearest
+// sample's depth: the directional lights and its mask's bits within its bin.
+void zbin_cull_tile(uint tile_index, uint covered, uint nlights, ivec2 pixel)
+{
+    uint me = gl_LocalInvocationIndex;
+    uint words = z_words;
+    barrier();
+    if (me == 0u) {
+        s_evals = 0u;
+        s_count = 0u;
+    }
+    cull_bits(0u, nlights, words, 0u, false);
+    for (uint w = me; w < words; w += N) {
+        uint b = s_bits[w];
+        b_zmasks[tile_index * words + w] = b;
+        if (b != 0u)
+            atomicAdd(s_count, uint(bitCount(b)));
+    }
+    if (all(lessThan(pixel, ivec2(f_viewport.xy)))) {
+#ifdef MSAA_SAMPLES
+        float d, d_far;
+        pixel_depth_range(pixel, d, d_far);
+#else
+        float d = texelFetch(t_depth, pixel, 0).r;
+#endif
+        if (d < 1.0) {
+            uint bin = b_zbins[zbin_of(view_z(d))];
+            uint lo = bin & 0xffffu, hi = bin >> 16, e = z_directional;
+            for (uint w = lo >> 5; lo <= hi && w <= (hi >> 5); w++)
+                e += uint(bitCount(zbin_clip(s_bits[w], w, lo, hi)));
+            atomicAdd(s_evals, e);
+        }
+    }
+    barrier();
+    if (me == 0u)
+        b_tiles[tile_index] = uvec4(s_evals, s_count, covered, s_count);
+}
+#endif
+
 // Once the work group has covered the tile (tile_cover, then a barrier), each
 // invocation with its pixel: (DEPTH_MASK) the cells its samples occupy
 // (tile_mask_cover, then a barrier); the tile's frustum, and the light lists of its cell
@@ -749,7 +794,9 @@ void cull_tile(ivec2 pixel)
         g_from_coarse = true;
     }
 #endif
-#ifndef SLICES
+#if defined(ZBIN_BINS)
+    zbin_cull_tile(tile_index, covered, nlights, pixel);   // a mask, not a list
+#elif !defined(SLICES)
     cull_cell(tile_index, covered, nlights, from, from_list);
 #else
     cull_clusters(tile_index, covered, nlights, from, from_list, tile_znear, tile_zfar);

@@ -66,7 +66,9 @@ struct Shaded {
 // specular light alone
 Shaded shade_surface(GSurface g, uint tile_index)
 {
-#ifndef NO_GRID
+#if defined(ZBIN_BINS)
+    uint first = 0u, n = 0u;   // zbin: the mask and the bin instead (below)
+#elif !defined(NO_GRID)
 #ifndef SLICES
     uint cell = tile_index;
 #else
@@ -87,8 +89,15 @@ Shaded shade_surface(GSurface g, uint tile_index)
     Shaded o = Shaded(a + g.emissive, vec3(0.0));
 #endif
     if (g.present) {
+#ifdef ZBIN_BINS
+        // zbin (zbin.inc): the tile mask's bits within the bin of the position
+        ZbinIter it = zbin_begin(tile_index, g.position.z, false);
+        uint i;
+        while (zbin_next(it, i)) {
+#else
         for (uint k = 0u; k < n; k++) {
             uint i = tile_light(first, k);
+#endif
             if (!light_reaches(i, g.position))
                 continue;
 #ifdef LIGHT_PREPASS
@@ -150,7 +159,9 @@ void store(ivec2 p, int i, Shaded o)
 // diffuse at BIND_IMAGE_HDR and specular at BIND_IMAGE_LIGHT_SPECULAR (rgba16f, or rgba8
 // with LIGHT_BUFFER_RGBA8, where the store clamps to 1 as the volumes' blending does).
 // DEPTH_MASK (tiles.depth_culling: mask): the tile's list masked by the cells its
-// samples occupy, as tile_cull.comp's.
+// samples occupy, as tile_cull.comp's. ZBIN_BINS (zbin with zbin.shading: deferred): the
+// tile keeps a bit mask over the depth-sorted lights (zbin_cull_tile), and each pixel
+// or sample shades its bits within the bin of its position (zbin.inc).
 // Defines: TILE_SIZE, TILES_X (TILES_Y, SLICES, TLISTS, MSAA_SAMPLES, LIGHT_PREPASS,
 // LIGHT_BUFFER_RGBA8, DEPTH_MASK), the G-buffer layout's, SHADOWS.
 void main()

@@ -10,8 +10,9 @@
 //                 view-z range (near, far; far -inf when open) tile t's lights were
 //                 culled against, for forward_tiled.frag's fallback; with DEPTH_MASK
 //                 a uvec4: the range's bits, then the tile's cell mask (depth_cell)
-// Needs bindings.h. TILES_COHERENT (tiled_deferred.comp, which reads the lists its own
-// work group wrote) makes the lists coherent.
+// Then zbin.inc (ZBIN_BINS: zbin's bins and masks). Needs bindings.h and frame.inc.
+// TILES_COHERENT (tiled_deferred.comp, which reads the lists its own work group wrote)
+// makes the lists coherent.
 #ifdef TILES_COHERENT
 #define TILES_QUALIFIER coherent
 #else
@@ -96,3 +97,5 @@ uint tile_light(uint first, uint k)
     return b_indices[first + k];
 #endif
 }
+
+#include "zbin.inc"   // zbin's bins and masks (ZBIN_BINS)

@@ -81,7 +81,8 @@ static bool forward_tiled_prepare(void *self, const struct scene *s, char *err, 
         goto fail;
     int max_block = light_grid_max_block();
     if (!light_grid_heads_fit(g, g->slices ? "clusters" : "tiles", max_block, err, errlen) ||
-        !light_grid_lights_fit(g, s->nlights_total, max_block, err, errlen))
+        !light_grid_lights_fit(g, s->nlights_total, max_block, err, errlen) ||
+        !light_grid_zbin_fit(g, max_block, err, errlen))
         goto fail;
     light_grid_capacity(g, c->b.opts.max_lights_per_tile, max_block);
 
@@ -90,16 +91,17 @@ static bool forward_tiled_prepare(void *self, const struct scene *s, char *err, 
     /* msaa > 1: the cull reads every sample, and shading gets the tiles' ranges */
     bool ms = c->b.samples > 1;
     snprintf(r->samples_define, sizeof r->samples_define, "MSAA_SAMPLES %d", c->b.samples);
-    const char *grid_defs[7] = {g->tile_define, g->tiles_x_define,
+    const char *grid_defs[8] = {g->tile_define, g->tiles_x_define,
                                 g->slices ? g->tiles_y_define : NULL,
                                 g->slices ? g->slices_define : NULL,
                                 g->slices ? g->slices_y_define : NULL,
-                                ms ? "TILE_DEPTH_RANGES" : NULL, light_grid_mask_define(g)};
+                                ms ? "TILE_DEPTH_RANGES" : NULL, light_grid_mask_define(g),
+                                light_grid_zbin_define(g)};
     /* the cull's defines: grid_defs without the NULLs, then the samples, then TLISTS
      * when it builds translucent lists (a NULL ends the list) */
     const char *cull_defs[12] = {NULL};
     unsigned ncull = 0;
-    for (unsigned i = 0; i < 7; i++)
+    for (unsigned i = 0; i < 8; i++)
         if (grid_defs[i])
             cull_defs[ncull++] = grid_defs[i];
     if (ms)
@@ -135,12 +137,13 @@ static bool forward_tiled_prepare(void *self, const struct scene *s, char *err, 
         goto fail;
     }
     if (!light_grid_coarse_compile(g, c->b.programs, ms ? r->samples_define : NULL, err,
-                                   errlen))
+                                   errlen) ||
+        !light_grid_zbin_compile(g, c->b.programs, err, errlen))
         goto fail;
-    const char *extra[10] = {NULL};
+    const char *extra[12] = {NULL};
     unsigned k = 0;
     if (g->cull) {
-        for (unsigned i = 0; i < 7; i++)
+        for (unsigned i = 0; i < 8; i++)
             if (grid_defs[i])
                 extra[k++] = grid_defs[i];
     } else {
@@ -285,6 +288,8 @@ static void forward_tiled_draw(void *self, const struct scene *s, frame_stats *o
     if (r->g.cull) {
         out->grid_pass = out->npasses + 1;
         forward_pass_begin(c, out, "cull");
+        if (r->g.zbin_program)   /* zbin: the lights sorted and binned first (zbin.c) */
+            light_grid_zbin_dispatch(&r->g, c->b.st, (uint32_t)r->count);
         light_grid_reset(&r->g);
         gl_state_program(c->b.st, r->cull_program);
         gl.Uniform1i(FORWARD_UNIFORM_LIGHT, r->count);
@@ -332,6 +337,12 @@ static void forward_tiled_describe(const void *self, pass_plan *out)
                               "one dispatch: %ux%ux%u clusters (%d px, r = %.4g), lights "
                               "culled per cluster",
                               g->tiles_x, g->tiles_y, g->slices, g->tile, g->slice_ratio);
+    else if ((!c->prepared || g->cull) && g->zbins)
+        forward_describe_pass(out, "cull", true,
+                              "two dispatches: the lights sorted by view depth into %u depth "
+                              "bins (one work group), then a bit mask over them for each of "
+                              "%ux%u tiles of %d px",
+                              g->zbins, g->tiles_x, g->tiles_y, g->tile);
     else if (!c->prepared || g->cull)
         forward_describe_pass(out, "cull", true,
                               "one dispatch: %ux%u tiles of %d px, lights culled per tile "
@@ -342,7 +353,9 @@ static void forward_tiled_describe(const void *self, pass_plan *out)
                               "skipped, the scene has no point or spot light");
     forward_grid_describe_translucent(c, out);
     forward_describe_pass(out, "shade", true,
-                          g->cull ? (g->slices ? "every visible object once, depth EQUAL, "
+                          g->cull ? (g->zbins ? "every visible object once, depth EQUAL, "
+                                                "its tile mask's lights within its bin"
+                                     : g->slices ? "every visible object once, depth EQUAL, "
                                                  "its cluster's lights"
                                                : "every visible object once, depth EQUAL, "
                                                  "its tile's lights")

@@ -90,7 +90,8 @@ bool light_grid_lights_fit(const light_grid *g, uint32_t nlights, int max_block,
 
 void light_grid_capacity(light_grid *g, uint32_t max_lights_per_tile, int max_block)
 {
-    uint64_t heads = g->ncells + g->ntlists;
+    /* zbin's tiles keep bit masks, not lists: only the translucent lists take indices */
+    uint64_t heads = (g->zbins && g->cull ? 0u : g->ncells) + g->ntlists;
     uint64_t want = max_lights_per_tile ? heads * max_lights_per_tile : heads * g->max_lights;
     uint64_t block_entries = max_block > 0 ? (uint64_t)max_block / 4u : 0u;
     if (want > block_entries)
@@ -141,7 +142,7 @@ bool light_grid_alloc(light_grid *g)
     g->tiles = make_buffer(heads * 16u);
     g->indices = make_buffer((size_t)g->capacity * 4u);
     g->stats = make_buffer(2 * sizeof(uint32_t));
-    return light_grid_coarse_alloc(g);
+    return light_grid_coarse_alloc(g) && light_grid_zbin_alloc(g);
 }
 
 void light_grid_release(light_grid *g)
@@ -153,6 +154,7 @@ void light_grid_release(light_grid *g)
             gl.DeleteBuffers(1, &b[i]);
     g->tiles = g->indices = g->stats = 0;
     light_grid_coarse_release(g);
+    light_grid_zbin_release(g);
     free(g->readback);
     free(g->counts);
     g->readback = g->counts = NULL;
@@ -162,7 +164,8 @@ void light_grid_release(light_grid *g)
 translucent_grid light_grid_translucent(const light_grid *g)
 {
     return (translucent_grid){{g->tile_define, g->tiles_x_define, g->tlists_define},
-                              g->lights.buffer, g->tiles, g->indices};
+                              g->zbin_sorted ? g->zbin_sorted : g->lights.buffer, g->tiles,
+                              g->indices};
 }
 
 // >>per frame
@@ -180,7 +183,9 @@ void light_grid_reset(const light_grid *g)
 
 void light_grid_bind_lights(const light_grid *g, gl_state *st)
 {
-    gl_state_storage_buffer(st, BIND_SSBO_LIGHTS, g->lights.buffer);
+    /* zbin: the lights in depth order, as its dispatch sorted them (zbin.c) */
+    gl_state_storage_buffer(st, BIND_SSBO_LIGHTS,
+                            g->zbin_sorted ? g->zbin_sorted : g->lights.buffer);
 }
 
 void light_grid_bind_lists(const light_grid *g, gl_state *st)
@@ -191,6 +196,10 @@ void light_grid_bind_lists(const light_grid *g, gl_state *st)
     if (g->coarse_x) {   /* tiles.levels: 2: what the fine tiles cull from */
         gl_state_storage_buffer(st, BIND_SSBO_COARSE_LISTS, g->coarse_tiles);
         gl_state_storage_buffer(st, BIND_SSBO_COARSE_INDICES, g->coarse_indices);
+    }
+    if (g->zbin_masks) {   /* zbin: the bins and the tiles' masks */
+        gl_state_storage_buffer(st, BIND_SSBO_ZBIN_BINS, g->zbin_bins);
+        gl_state_storage_buffer(st, BIND_SSBO_ZBIN_MASKS, g->zbin_masks);
     }
 }
 
@@ -211,7 +220,8 @@ void light_grid_collect(light_grid *g, frame_stats *out)
         uint32_t len = g->readback[4 * t + 3], px = g->readback[4 * t + 2];
         g->counts[t] = len;
         sum += len;
-        weighted += (double)len * px;
+        /* zbin: x holds the tile's evaluations summed over its pixels (zbin.inc) */
+        weighted += g->zbins ? (double)g->readback[4 * t] : (double)len * px;
         covered += px;
         if (len > max) {
             max = len;
@@ -223,6 +233,7 @@ void light_grid_collect(light_grid *g, frame_stats *out)
     out->grid_lights_max = max;
     out->light_evals_per_pixel = covered > 0 ? weighted / covered : 0.0;
     out->grid_covered = (uint64_t)covered;
+    out->light_struct_bytes = light_grid_struct_bytes(g, needed);
     double tsum = 0;
     uint32_t tmax = 0, tlongest = 0;
     for (uint32_t t = 0; t < ntr; t++) {

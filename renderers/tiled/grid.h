@@ -77,6 +77,12 @@ typedef struct light_grid {
     uint32_t coarse_x, coarse_y, coarse_capacity;   /* at light_grid_size */
     GLuint coarse_tiles, coarse_indices, coarse_stats, coarse_program;
     char coarse_define[24], coarse_x_define[32], coarse_lists_define[24];
+    /* zbin (zbin.c): lights sorted by view depth, depth bins, a bit mask a tile */
+    uint32_t zbins;                  /* zbin.bins; 0: not zbin (lists in the index buffer) */
+    uint32_t zbin_words;             /* mask words a tile: ceil(max_lights / 32) */
+    GLuint zbin_sorted, zbin_keys, zbin_bins, zbin_masks, zbin_program;
+    uint32_t zbin_count;             /* lights sorted this frame */
+    char zbin_define[24];
 } light_grid;
 
 /* The options, at create: tiles.size (0: 16) into g->tile (and tiles.depth_culling into
@@ -136,6 +142,24 @@ bool light_grid_alloc(light_grid *g);
 void light_grid_release(light_grid *g);
 /* The translucent pass's view of the grid (translucent_compile). */
 translucent_grid light_grid_translucent(const light_grid *g);
+
+/* zbin (zbin.c): zbin.bins into g->zbins (16 to 4096), at create; after
+ * light_grid_size: whether the masks and the sort fit (at most 65536 lights: 16-bit
+ * indices) with a message; the define (ZBIN_BINS n, NULL when not zbin or not culled);
+ * the program, the buffers, their release. */
+bool light_grid_zbin_option(light_grid *g, const renderer_options *o, char *err,
+                            size_t errlen);
+bool light_grid_zbin_fit(light_grid *g, int max_block, char *err, size_t errlen);
+const char *light_grid_zbin_define(const light_grid *g);
+bool light_grid_zbin_compile(light_grid *g, gl_program_cache *pc, char *err, size_t errlen);
+bool light_grid_zbin_alloc(light_grid *g);
+void light_grid_zbin_release(light_grid *g);
+/* The sort-and-bin dispatch (zbin.comp, one work group) over the frame's nlights lights
+ * (uploaded, at BIND_SSBO_LIGHTS); then light_grid_bind_lights binds the sorted ones. */
+void light_grid_zbin_dispatch(light_grid *g, gl_state *st, uint32_t nlights);
+/* Bytes of the light structures the last frame used: zbin's sorted lights, bins and
+ * masks; else the lights, the list heads and the indices taken (needed). */
+double light_grid_struct_bytes(const light_grid *g, uint32_t needed);
 
 // >>per frame
 

@@ -82,6 +82,16 @@ void *tiled_deferred_clustered_create(const renderer_options *opts, char *err, s
     return create("clustered", true, opts, err, errlen);
 }
 
+void *tiled_deferred_zbin_create(const renderer_options *opts, char *err, size_t errlen)
+{
+    tiled_deferred *r = create("zbin", false, opts, err, errlen);
+    if (r && !light_grid_zbin_option(&r->t.g, opts, err, errlen)) {
+        deferred_core_destroy(&r->d);
+        return NULL;
+    }
+    return r;
+}
+
 static void release(tiled_deferred *r)
 {
     deferred_core_release(&r->d);

@@ -38,7 +38,12 @@ bool tiled_pass_plan(tiled_pass *t, deferred_renderer *d, const scene *s, char *
                       g->coarse_x, g->coarse_y, g->coarse);
     else if (g->levels == 2)
         deferred_plan(d, PASS_COARSE, false, "skipped, the scene has no point or spot light");
-    if (g->slices)
+    if (g->zbins && g->cull)
+        deferred_plan(d, PASS_TILED, true, "two dispatches: the lights sorted by view depth "
+                      "into %u depth bins (one work group), then per tile of %ux%u (%d px) a "
+                      "bit mask over them, each pixel its bits within its bin, %s", g->zbins,
+                      g->tiles_x, g->tiles_y, g->tile, what);
+    else if (g->slices)
         deferred_plan(d, PASS_TILED, true, "one dispatch: %ux%ux%u clusters (%d px), %s, %s",
                       g->tiles_x, g->tiles_y, g->slices, g->tile, cull, what);
     else
@@ -60,7 +65,8 @@ bool tiled_pass_buffers(tiled_pass *t, deferred_renderer *d, char *err, size_t e
 {
     light_grid *g = &t->g;
     int max_block = light_grid_max_block();
-    if (!light_grid_lights_fit(g, t->nlights, max_block, err, errlen))
+    if (!light_grid_lights_fit(g, t->nlights, max_block, err, errlen) ||
+        !light_grid_zbin_fit(g, max_block, err, errlen))
         return false;
     light_grid_capacity(g, d->b.opts.max_lights_per_tile, max_block);
     light_grid_defines(g);
@@ -125,6 +131,8 @@ bool tiled_pass_compile(tiled_pass *t, deferred_renderer *d, char *err, size_t e
         extra[n++] = light_grid_prune_define(g);
     if (light_grid_coarse_lists_define(g))
         extra[n++] = light_grid_coarse_lists_define(g);
+    if (light_grid_zbin_define(g))
+        extra[n++] = light_grid_zbin_define(g);
     n += (int)shadow_maps_defines(&d->b.shadows, extra + n);   /* any type: one program */
     gl_program_desc desc = {.name = program_name(t, d), .compute = "tiled_deferred.comp"};
     unsigned k = 0;
@@ -145,7 +153,8 @@ bool tiled_pass_compile(tiled_pass *t, deferred_renderer *d, char *err, size_t e
         deferred_set_sample_positions(d, d->fb_gbuffer.fbo, t->program,
                                       DEFERRED_UNIFORM_LIGHT + 1);
     return light_grid_coarse_compile(&t->g, d->b.programs,
-                                     d->b.samples > 1 ? t->msaa_define : NULL, err, errlen);
+                                     d->b.samples > 1 ? t->msaa_define : NULL, err, errlen) &&
+           light_grid_zbin_compile(&t->g, d->b.programs, err, errlen);
 }
 
 void tiled_pass_release(tiled_pass *t)
@@ -187,6 +196,8 @@ void tiled_pass_run(tiled_pass *t, deferred_renderer *d, const scene *s, frame_s
     }
     out->grid_pass = g->cull ? out->npasses + 1 : 0;
     deferred_pass_begin(d, out, PASS_TILED);
+    if (g->zbin_program)   /* zbin: the lights sorted and binned first (zbin.c) */
+        light_grid_zbin_dispatch(g, st, n);
     light_grid_reset(g);
     if (t->edges) {
         const uint32_t zero = 0;

@@ -232,7 +232,8 @@ static void test_sweep_key_nobody_reads(void **state)
     diag_print(&d, f);
     fclose(f);
     assert_string_equal(got, "mem.yaml:7:20: sweep.gbuffer.preset: expected a key one of the "
-                             "renderers reads (gbuffer.preset is read by deferred clustered tiled-deferred), found none "
+                             "renderers reads (gbuffer.preset is read by deferred clustered tiled-deferred zbin), "
+                             "found none "
                              "of forward-spml, forward-mpml\n");
     free(got);
     experiment_free(e);
