@@ -662,6 +662,82 @@ static void test_two_levels(void **state)
                              "tiles.size (16) up to 512");
 }
 
+/* Issue 37, zbin (Drobot 2017) beside forward-plus at the same tile size, on
+ * curtis-scene3 and canyon with 300 radius-3 lights: its tiles keep exactly
+ * forward-plus's lights (the same tests, as bit masks), and its light evaluations a
+ * pixel (each pixel's mask bits within its depth bin) are at most forward-plus's, and
+ * fewer in all; forward and deferred shading count the same; the image is
+ * forward-spml's. Its light-structure bytes are reported and are exactly the sorted
+ * lights + the bins + tiles x ceil(lights / 32) mask words: with 600 lights they grow
+ * by the lights, and with 4096 bins instead of 1024 by 3072 words, not by bins x tiles. */
+static double zbin_bytes(const shot *z, uint32_t bins)
+{
+    double tiles = ((W + 15) / 16) * ((H + 15) / 16), n = z->fs.lights_drawn;
+    return n * sizeof(gpu_light) + 16 + bins * 4.0 + tiles * ceil(n / 32.0) * 4.0;
+}
+
+static void test_zbin_work(void **state)
+{
+    (void)state;
+    static const char *const scenes[] = {"curtis-scene3", "canyon"};
+    for (size_t i = 0; i < 2; i++) {
+        double bytes[2] = {0};
+        for (int pass = 0; pass < 2; pass++) {
+            char err[256];
+            uint32_t nl = pass ? 600 : 300;
+            light_params lp = {.placement = PLACEMENT_RANDOM, .seed = 1337, .rng = RNG_MSVC,
+                               .count = {.start = nl, .max = nl}, .radius = 3.0f,
+                               .color_max = 0.3f};
+            scene *s = scene_build(scenes[i], &lp, W, H, err, sizeof err);
+            if (!s)
+                fail_msg("%s: %s", scenes[i], err);
+            scene_update(s, 5.0);
+            renderer_options o = options();
+            shot ref, fp, z, zd;
+            uint32_t *cf = NULL, *cz = NULL;
+            render("forward-spml", &o, s, &ref);
+            render_counts("forward-plus", &o, s, &fp, &cf);
+            render_counts("zbin", &o, s, &z, &cz);
+            print_message("%s, %u lights: evaluations a pixel: forward-plus %.3f, zbin %.3f; "
+                          "light-structure bytes: forward-plus %.0f, zbin %.0f\n", scenes[i],
+                          nl, fp.fs.light_evals_per_pixel, z.fs.light_evals_per_pixel,
+                          fp.fs.light_struct_bytes, z.fs.light_struct_bytes);
+            assert_int_equal(z.ngrid, fp.ngrid);
+            for (size_t c = 0; c < z.ngrid; c++)
+                if (cz[c] != cf[c])
+                    fail_msg("%s: tile %zu: zbin %u lights, forward-plus %u", scenes[i], c,
+                             cz[c], cf[c]);
+            assert_int_equal(z.fs.grid_covered, fp.fs.grid_covered);
+            assert_true(z.fs.light_evals_per_pixel <= fp.fs.light_evals_per_pixel);
+            assert_true(z.fs.light_evals_per_pixel < fp.fs.light_evals_per_pixel);
+            assert_int_equal(z.fs.translucent_lists, 0);
+            assert_true(z.fs.light_struct_bytes == zbin_bytes(&z, 1024));
+            bytes[pass] = z.fs.light_struct_bytes;
+            expect_agree(scenes[i], &z.img, &ref.img);
+            o.zbin_deferred = true;
+            render("zbin", &o, s, &zd);
+            assert_true(zd.fs.light_evals_per_pixel == z.fs.light_evals_per_pixel);
+            expect_agree(scenes[i], &zd.img, &ref.img);
+            image_free(&zd.img);
+            if (pass) {   /* 4096 bins: 3072 words more, whatever the tiles */
+                o.zbin_deferred = false;
+                o.zbin_bins = 4096;
+                render("zbin", &o, s, &zd);
+                assert_true(zd.fs.light_struct_bytes == z.fs.light_struct_bytes + 3072 * 4);
+                assert_true(zd.fs.light_evals_per_pixel <= z.fs.light_evals_per_pixel);
+                image_free(&zd.img);
+            }
+            free(cf);
+            free(cz);
+            image_free(&ref.img);
+            image_free(&fp.img);
+            image_free(&z.img);
+            scene_destroy(s);
+        }
+        assert_true(bytes[1] > bytes[0]);
+    }
+}
+
 GL_TEST_MAIN(ctx, W, H,
              cmocka_unit_test(test_counts_and_tile_sizes),
              cmocka_unit_test(test_4096_lights),
@@ -672,4 +748,5 @@ GL_TEST_MAIN(ctx, W, H,
              cmocka_unit_test(test_clustered_deferred),
              cmocka_unit_test(test_depth_mask),
              cmocka_unit_test(test_prune_samples),
-             cmocka_unit_test(test_two_levels))
+             cmocka_unit_test(test_two_levels),
+             cmocka_unit_test(test_zbin_work))
