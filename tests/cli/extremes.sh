@@ -2,7 +2,7 @@
 # issue 5's extremes as manifests, end to end in a debug context:
 #   experiments/extremes.yaml: 0, 1, 4096 and 65536 lights x radius 1e-4 and 1e5 at 1x1
 #     on every shading renderer: exactly the four forward-spml runs beyond its uniform
-#     block end failed:renderer, with the limit in the message; the other 60 are ok,
+#     block end failed:renderer, with the limit in the message; the other 68 are ok,
 #     the sweep goes on and the exit status is 1
 #   experiments/extremes-camera.yaml: near 0.01 / far 1e6 and the eye inside none, some
 #     or all light volumes: every run ok, no non-finite value, within the stated error
@@ -18,7 +18,7 @@ rc_cam=$?
 set -e
 [ $rc -eq 1 ] || { tail -20 ext.err >&2; fail "extremes.yaml: exit $rc, expected 1 (some runs failed)"; }
 [ $rc_cam -eq 0 ] || { tail -20 cam.err >&2; fail "extremes-camera.yaml: exit $rc_cam"; }
-grep -q "64 runs, 4 failed" ext.err || fail "extremes.yaml: $(tail -3 ext.err)"
+grep -q "72 runs, 4 failed" ext.err || fail "extremes.yaml: $(tail -3 ext.err)"
 
 "$PYTHON" - <<'PY'
 import csv, re, sys
@@ -28,7 +28,7 @@ def table(path):
     with open(path, newline="") as f:
         return list(csv.DictReader(f))
 rows = table("ext/summary.csv")
-if len(rows) != 64:
+if len(rows) != 72:
     fail(f"extremes: {len(rows)} rows")
 for r in rows:
     n = int(r["lights_count"])

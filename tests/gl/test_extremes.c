@@ -2,8 +2,8 @@
  * one frame of "shapes" (64x48 unless it says) with lights and camera set by hand in
  * deferred (curtis and reference G-buffers, stencil volumes; fullscreen where volumes
  * matter), forward-mpml, forward-spml (uniform block and storage buffer), forward-plus,
- * clustered, tiled-deferred, deferred-lighting (stencil, fullscreen, tiled lists) and
- * visibility, and ends with no GL error, no non-finite value in the accumulation and a
+ * clustered, tiled-deferred, deferred-lighting (stencil, fullscreen, tiled lists),
+ * visibility and zbin (forward and deferred), and ends with no GL error, no non-finite value in the accumulation and a
  * readable output, or with a clear message before anything renders. Cases: 0, 1, 4096 and
  * 65536 lights (forward-spml's uniform block refused at prepare, naming
  * GL_MAX_UNIFORM_BLOCK_SIZE); radius 1e-4 and 1e5; a light on a surface with 1/d^2; the
@@ -77,6 +77,9 @@ static const config CONFIGS[] = {
      false, LIGHT_BUFFER_UNIFORM, true},
     {"visibility", "visibility", GBUFFER_CURTIS, LIGHT_VOLUMES_STENCIL, false,
      LIGHT_BUFFER_UNIFORM, false},
+    {"zbin", "zbin", GBUFFER_CURTIS, LIGHT_VOLUMES_STENCIL, false, LIGHT_BUFFER_UNIFORM, false},
+    {"zbin deferred", "zbin", GBUFFER_CURTIS, LIGHT_VOLUMES_STENCIL, false,
+     LIGHT_BUFFER_UNIFORM, false},   /* zbin.shading: deferred (make) */
 };
 enum { SPML_UNIFORM = 5 };   /* CONFIGS' forward-spml with its uniform block */
 enum { NCONFIGS = sizeof CONFIGS / sizeof CONFIGS[0] };
@@ -180,7 +183,8 @@ static renderer *make(const config *c, int w, int h, char *err, size_t errlen)
                           .pipeline_statistics = i->pipeline_statistics,
                           .max_uniform_block_size = i->max_uniform_block_size,
                           .gbuffer = c->gbuffer, .light_volumes = c->mode,
-                          .light_buffer = c->light_buffer, .lpp_tiled = c->lpp_tiled};
+                          .light_buffer = c->light_buffer, .lpp_tiled = c->lpp_tiled,
+                          .zbin_deferred = strcmp(c->name, "zbin deferred") == 0};
     gl.BindFramebuffer(GL_FRAMEBUFFER, gl_context_framebuffer(ctx));
     return test_renderer_create(c->kind, &o, err, errlen);
 }
