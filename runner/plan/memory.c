@@ -95,7 +95,8 @@ static uint64_t targets_of(const char *kind, const run_params *q, int w, int h, 
  * deferred-lighting's only with deferred_lighting.lights: tiled) at w x h: heads (offset
  * and count) and indices, as tiled/grid.c sizes them, on the GPU and read back;
  * clustered (reads clustered.*) per cluster; with tiles.levels: 2 the big tiles' heads
- * and indices too (tiled/coarse.c: every light in every big tile). */
+ * and indices too (tiled/coarse.c: every light in every big tile); zbin (reads zbin.*)
+ * its sorted lights, bins and tile masks. */
 static uint64_t lists_of(const char *kind, const run_params *q, int w, int h,
                          const scene_facts *sc, uint64_t *untouched)
 {
@@ -126,7 +127,16 @@ static uint64_t lists_of(const char *kind, const run_params *q, int w, int h,
         uint64_t entries = big * (n ? n : 1);
         coarse = big * 16 + (entries < INDEX_CAP ? entries : INDEX_CAP) * 4;
     }
-    return 2 * (heads * 8 + cap * 4) + coarse + n * renderer_light_bytes() * 2;
+    uint64_t zbin = 0;
+    if (param_read_by(param_find("zbin.bins"), kind)) {
+        /* zbin (tiled/zbin.c): its tiles hold masks, not lists (only the translucent
+         * lists take indices), and the sorted lights, their sort keys, the bins and
+         * tiles x ceil(lights / 32) mask words besides */
+        uint64_t bins = q->zbin_bins ? q->zbin_bins : 1024, tcap = cells * (n ? n : 1);
+        cap = tcap < INDEX_CAP ? tcap : INDEX_CAP;
+        zbin = n * (renderer_light_bytes() + 8) + 16 + bins * 4 + cells * ((n + 31) / 32) * 4;
+    }
+    return 2 * (heads * 8 + cap * 4) + coarse + n * renderer_light_bytes() * 2 + zbin;
 }
 
 /* llvmpipe's binning of one frame's draws, which it keeps until the frame ends: a

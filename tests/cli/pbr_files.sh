@@ -19,7 +19,7 @@ cat >m.yaml <<YAML
 shadesweep: 1
 name: pbr-files
 renderers: [forward-spml, forward-mpml, forward-plus, clustered, deferred, tiled-deferred,
-            deferred-lighting, visibility]
+            deferred-lighting, visibility, zbin]
 resolution: 96x72
 duration: {frames: 1}
 clock: fixed
@@ -39,7 +39,7 @@ from shading_model import read_png
 d = sys.argv[1]
 rows = list(csv.DictReader(open(f"{d}/summary.csv")))
 bad = [(r["renderer"], r["status"]) for r in rows if r["status"] != "ok"]
-if bad or len(rows) != 32:
+if bad or len(rows) != 36:
     sys.exit(f"FAIL: {len(rows)} runs, not ok: {bad}")
 img, meta = {}, {}
 for r in rows:
