@@ -552,6 +552,19 @@ static void test_clustered_deferred(void **state)
     scene_destroy(s);
 }
 
+/* Catalog scene `name` at 5 s with n random lights of radius 3 (seed 1337). */
+static scene *radius3_scene(const char *name, uint32_t n)
+{
+    char err[256];
+    light_params lp = {.placement = PLACEMENT_RANDOM, .seed = 1337, .rng = RNG_MSVC,
+                       .count = {.start = n, .max = n}, .radius = 3.0f, .color_max = 0.3f};
+    scene *s = scene_build(name, &lp, W, H, err, sizeof err);
+    if (!s)
+        fail_msg("%s: %s", name, err);
+    scene_update(s, 5.0);
+    return s;
+}
+
 /* A culling option of issue 37 (set() turns it off and on): on curtis-scene3 and
  * canyon with 2,000 radius-3 lights, each kind's list of every tile (cluster) with it
  * on is at most as long as with it off, cell by cell, and the lists are shorter in all
@@ -563,14 +576,7 @@ static void expect_lights(const char *name, void (*set)(renderer_options *, bool
 {
     static const char *const scenes[] = {"curtis-scene3", "canyon"};
     for (size_t i = 0; i < 2; i++) {
-        char err[256];
-        light_params lp = {.placement = PLACEMENT_RANDOM, .seed = 1337, .rng = RNG_MSVC,
-                           .count = {.start = 2000, .max = 2000}, .radius = 3.0f,
-                           .color_max = 0.3f};
-        scene *s = scene_build(scenes[i], &lp, W, H, err, sizeof err);
-        if (!s)
-            fail_msg("%s: %s", scenes[i], err);
-        scene_update(s, 5.0);
+        scene *s = radius3_scene(scenes[i], 2000);
         renderer_options o = options();
         shot ref, a, b;
         render("forward-spml", &o, s, &ref);
@@ -683,15 +689,8 @@ static void test_zbin_work(void **state)
     for (size_t i = 0; i < 2; i++) {
         double bytes[2] = {0};
         for (int pass = 0; pass < 2; pass++) {
-            char err[256];
             uint32_t nl = pass ? 600 : 300;
-            light_params lp = {.placement = PLACEMENT_RANDOM, .seed = 1337, .rng = RNG_MSVC,
-                               .count = {.start = nl, .max = nl}, .radius = 3.0f,
-                               .color_max = 0.3f};
-            scene *s = scene_build(scenes[i], &lp, W, H, err, sizeof err);
-            if (!s)
-                fail_msg("%s: %s", scenes[i], err);
-            scene_update(s, 5.0);
+            scene *s = radius3_scene(scenes[i], nl);
             renderer_options o = options();
             shot ref, fp, z, zd;
             uint32_t *cf = NULL, *cz = NULL;
