@@ -675,7 +675,8 @@ static void test_two_levels(void **state)
  * fewer in all; forward and deferred shading count the same; the image is
  * forward-spml's. Its light-structure bytes are reported and are exactly the sorted
  * lights + the bins + tiles x ceil(lights / 32) mask words: with 600 lights they grow
- * by the lights, and with 4096 bins instead of 1024 by 3072 words, not by bins x tiles. */
+ * by the lights, and with 4096 bins instead of 1024 by 3072 words, not by bins x tiles.
+ * Its cull pass is two dispatches (sort and bins, masks), skipped with no local light. */
 static double zbin_bytes(const shot *z, uint32_t bins)
 {
     double tiles = ((W + 15) / 16) * ((H + 15) / 16), n = z->fs.lights_drawn;
@@ -707,6 +708,7 @@ static void test_zbin_work(void **state)
                     fail_msg("%s: tile %zu: zbin %u lights, forward-plus %u", scenes[i], c,
                              cz[c], cf[c]);
             assert_int_equal(z.fs.grid_covered, fp.fs.grid_covered);
+            assert_int_equal(find_pass(&z.fs, "cull")->dispatches, 2);   /* sort, masks */
             assert_true(z.fs.light_evals_per_pixel <= fp.fs.light_evals_per_pixel);
             assert_true(z.fs.light_evals_per_pixel < fp.fs.light_evals_per_pixel);
             assert_int_equal(z.fs.translucent_lists, 0);
@@ -735,6 +737,21 @@ static void test_zbin_work(void **state)
         }
         assert_true(bytes[1] > bytes[0]);
     }
+    /* pass pruning: one directional light, nothing sorted or culled */
+    scene_light sun = {.type = LIGHT_DIRECTIONAL, .direction = {0.0f, -1.0f, 0.0f},
+                       .color = {0.8f, 0.8f, 0.7f}};
+    scene *s = shapes(&sun, 1);
+    renderer_options o = options();
+    shot t;
+    render("zbin", &o, s, &t);
+    assert_null(find_pass(&t.fs, "cull"));
+    assert_int_equal(t.fs.total.dispatches, 0);
+    const pass_plan_entry *e = plan_pass(&t.plan, "cull");
+    assert_non_null(e);
+    assert_false(e->run);
+    assert_string_equal(e->reason, "skipped, the scene has no point or spot light");
+    image_free(&t.img);
+    scene_destroy(s);
 }
 
 GL_TEST_MAIN(ctx, W, H,
