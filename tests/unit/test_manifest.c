@@ -403,6 +403,8 @@ static void test_kv_canonical(void **state)
         {"fog.density", "0"},
         {"fog.colour", "0.5,0.5,0.5"},
         {"aa", "none"},
+        {"zbin.bins", "1024"},
+        {"zbin.shading", "forward"},
         {"translucency", "blend"},
         {"shading.model", "scene"},
         {"environment.light", "none"},
@@ -491,6 +493,8 @@ static void test_kv_canonical(void **state)
         {"fog.density", "0"},
         {"fog.colour", "0.5,0.5,0.5"},
         {"aa", "none"},
+        {"zbin.bins", "1024"},
+        {"zbin.shading", "forward"},
         {"translucency", "blend"},
         {"shading.model", "scene"},
         {"environment.light", "none"},
@@ -631,7 +635,7 @@ static const bad_case bad_cases[] = {
     {"unknown_top_key.yaml",
      {"1:1: duration: expected {seconds: S} or {frames: N}, found nothing",
       "5:1: durtion: expected one of shadesweep, name, description, scene, renderers, "
-      "resolution, trials, schedule, measure, warmup, duration, clock, step, sync, timeout, draw_limit, gbuffer, deferred, forward, tiles, clustered, deferred_lighting, shadows, hdr, msaa, fog, aa, translucency, shading, environment, camera, error, lights, exposure, tonemap, outputs, allow_empty, debug, sweep, "
+      "resolution, trials, schedule, measure, warmup, duration, clock, step, sync, timeout, draw_limit, gbuffer, deferred, forward, tiles, clustered, deferred_lighting, shadows, hdr, msaa, fog, aa, zbin, translucency, shading, environment, camera, error, lights, exposure, tonemap, outputs, allow_empty, debug, sweep, "
       "found 'durtion'"}},
     {"unknown_nested_key.yaml",
      {"8:3: lights.cnt: expected one of placement, seed, rng, count, radius, overlap, color_max, "
@@ -751,7 +755,7 @@ static const bad_case bad_cases[] = {
       "tiles.max_lights_per_tile, clustered.slices, clustered.shading, "
       "deferred_lighting.light_buffer, deferred_lighting.lights, shadows, hdr, msaa, "
       "fog.density, "
-      "fog.colour, aa, translucency, shading.model, environment.light, environment.intensity, camera.radius, "
+      "fog.colour, aa, zbin.bins, zbin.shading, translucency, shading.model, environment.light, environment.intensity, camera.radius, "
       "camera.height, camera.period, "
       "camera.target, camera.near, camera.far, camera.hold, lights.placement, lights.seed, "
       "lights.rng, lights.count, lights.radius, lights.overlap, lights.color_max, lights.attenuation, lights.sizing, "
