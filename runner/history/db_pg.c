@@ -23,7 +23,9 @@ static void pg_message(const char *m, char *err, size_t errlen)
 {
     snprintf(err, errlen, "postgresql: %s", m && *m ? m : "unknown error");
     for (char *p = err; *p; p++)
-        if (*p == '\n')
+        if (*p == '\t')
+            *p = ' ';
+        else if (*p == '\n')
             *p = p[1] ? ' ' : '\0';
 }
 

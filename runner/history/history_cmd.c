@@ -95,15 +95,12 @@ int cmd_history(int argc, char **argv)
     }
     enum { O_DB = 256, O_RUN, O_RENDERER, O_METRIC, O_MIN, O_P, O_NODRIFT, O_JSON };
     static const struct option opts[] = {
-        {"db", required_argument, NULL, O_DB},
-        {"run", required_argument, NULL, O_RUN},
+        {"db", required_argument, NULL, O_DB},           {"run", required_argument, NULL, O_RUN},
         {"renderer", required_argument, NULL, O_RENDERER},
         {"metric", required_argument, NULL, O_METRIC},
         {"min-change", required_argument, NULL, O_MIN},
-        {"max-pvalue", required_argument, NULL, O_P},
-        {"no-drift", no_argument, NULL, O_NODRIFT},
-        {"json", required_argument, NULL, O_JSON},
-        {"help", no_argument, NULL, 'h'},
+        {"max-pvalue", required_argument, NULL, O_P},    {"no-drift", no_argument, NULL, O_NODRIFT},
+        {"json", required_argument, NULL, O_JSON},       {"help", no_argument, NULL, 'h'},
         {NULL, 0, NULL, 0},
     };
     history_query q = {.cp = changepoint_defaults(), .drift = true};
