@@ -2,11 +2,11 @@
 # `history add|show|check` against SQLite, or (HISTORY_BACKEND=postgresql, the test
 # cli-history_pg) against a PostgreSQL server this test starts itself (initdb and pg_ctl
 # in its scratch folder, a unix socket only; as the `postgres` user when run as root,
-# since initdb refuses root). Hand-made folders with known numbers, no GL: twelve sweeps
-# of six runs, run 3 +20% from sweep 6 on. Added six at once, then two adds at the same
-# time: nothing lost; a folder added again adds nothing; check finds the one regression
-# at its sweep (exit 1) and none on the other runs (exit 0); the JSON's fields; a
-# database of another schema version refused with both versions named.
+# since initdb refuses root). Hand-made folders with known numbers, no GL: twelve
+# sweeps of six runs, run 3 +20% from sweep 6 on. Two adds at the same time into a new
+# database, then two more: nothing lost; a folder added again adds nothing; check finds
+# the one regression at its sweep (exit 1) and none on the other runs (exit 0); the
+# JSON's fields; a database of another schema version refused with both versions named.
 . "$(dirname "$0")/lib.sh"
 backend=${HISTORY_BACKEND:-sqlite}
 cd "$T"
@@ -80,9 +80,13 @@ trials:
 """)
 PY
 
-H add s00 s01 s02 s03 s04 s05 >add.out 2>add.err || fail "add: $(cat add.err)"
-grep -q "^s05: 6 runs and 18 trials added to " add.out || fail "add: $(cat add.out)"
-# two adds at once, three folders each: both complete, nothing lost
+# two adds at once into a new database (both would make its tables), then two more
+# into the tables they made, three folders each: all complete, nothing lost
+(H add s00 s01 s02 >add1.out 2>add1.err; echo $? >add1.rc) &
+(H add s03 s04 s05 >add2.out 2>add2.err; echo $? >add2.rc) &
+wait
+[ "$(cat add1.rc)$(cat add2.rc)" = 00 ] || fail "first adds at once: $(cat add1.err add2.err)"
+grep -q "^s05: 6 runs and 18 trials added to " add2.out || fail "add: $(cat add2.out)"
 (H add s06 s07 s08 >add1.out 2>add1.err; echo $? >add1.rc) &
 (H add s09 s10 s11 >add2.out 2>add2.err; echo $? >add2.rc) &
 wait
