@@ -135,6 +135,16 @@ H check --min-change 25% >c4.out 2>&1 || fail "min-change 25%: $(cat c4.out)"
 H show >show.out 2>&1 || fail "show: $(cat show.out)"   # show exits 0 with a regression
 grep -q "regression" show.out || fail "show: $(cat show.out)"
 expect 2 "bad value 'x' for --min-change" H check --min-change x
+expect 2 "bad value 'foo' for --metric" H show --metric foo
+expect 2 "--run or --renderer, not both" H show --run a --renderer b
+if [ "$backend" = sqlite ]; then   # the default: beside the folders, in their parent
+  mkdir out && cp -r s00 out/
+  "$SHADESWEEP" history add out/s00 >def.out 2>&1 || fail "default db: $(cat def.out)"
+  grep -q "^out/s00: 6 runs and 18 trials added to out/history.sqlite$" def.out &&
+    [ -f out/history.sqlite ] || fail "default db: $(cat def.out)"
+  "$SHADESWEEP" history show >def.out 2>&1 || fail "show, default db: $(cat def.out)"
+  grep -q "^history out/history.sqlite: 1 sweeps, 6 runs, 0 series" def.out || fail "$(cat def.out)"
+fi
 
 # another schema version: refused, naming both
 sql "UPDATE shadesweep_history SET version = 99" >/dev/null
