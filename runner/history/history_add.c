@@ -150,8 +150,9 @@ bool history_add_folder(hdb *db, const char *dir, size_t *runs, size_t *trials, 
         for (size_t r = 0; r < t.nrows; r++)
             if (strcmp(csv_get(&t, r, c_id), id) == 0 && strcmp(csv_get(&t, r, c_st), "ok"))
                 status = csv_get(&t, r, c_st);
-        const char *rp[] = {key, id, csv_get(&t, first[k], c_r), opt(point[k]),
-                            csv_get(&t, first[k], c_m), status};
+        /* a folder written before summary.csv's `metric` was decided by wall time */
+        const char *metric = c_m >= 0 ? csv_get(&t, first[k], c_m) : "wall";
+        const char *rp[] = {key, id, csv_get(&t, first[k], c_r), opt(point[k]), metric, status};
         ok = insert(db, "INSERT INTO runs (sweep, run_id, renderer, point, metric, status) "
                     "VALUES ($1, $2, $3, $4, $5, $6) ON CONFLICT DO NOTHING RETURNING 1",
                     rp, 6, runs, err, errlen);
