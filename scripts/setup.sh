@@ -17,6 +17,8 @@ packages=(
   python3-pandas                                      # tests/cli/tidy_pandas.sh: the files for scripts
   clang libclang-rt-14-dev                            # the manifest fuzzer (libFuzzer)
   valgrind                                            # meson test --setup=valgrind
+  libsqlite3-dev libpq-dev                            # `history`: SQLite (default), PostgreSQL client
+  postgresql                                          # tests/cli/history.sh's server
 )
 
 missing=()

@@ -29,11 +29,9 @@ static bool yaml_null(const ynode *v)
     return false;
 }
 
-bool meta_read_block(const char *run_dir, const char *block, const char *const *keys,
-                     size_t nkeys, char *out, size_t len)
+/* RUN_DIR/meta.yaml as a tree; NULL when it cannot be read or is not YAML */
+static ydoc *meta_load(const char *run_dir)
 {
-    for (size_t k = 0; k < nkeys; k++)
-        out[k * len] = '\0';
     char path[4300];
     snprintf(path, sizeof path, "%s/meta.yaml", run_dir);
     size_t n;
@@ -41,7 +39,35 @@ bool meta_read_block(const char *run_dir, const char *block, const char *const *
     char *text = fs_read_all(path, 64u << 20, &n, &e);
     diag_list d = {0};
     ydoc *doc = NULL;
-    bool ok = text && ydoc_load(path, text, n, &doc, &d);
+    if (text && !ydoc_load(path, text, n, &doc, &d))
+        doc = NULL;
+    diag_free(&d);
+    free(text);
+    return doc;
+}
+
+bool meta_read_first_start(const char *run_dir, char *out, size_t len)
+{
+    out[0] = '\0';
+    ydoc *doc = meta_load(run_dir);
+    const ynode *t = doc ? map_get(doc->root, "trials") : NULL;
+    for (size_t i = 0; t && t->kind == YNODE_SEQUENCE && i < t->n; i++) {
+        const ynode *v = map_get(t->items[i], "started");
+        if (v && v->kind == YNODE_SCALAR && !yaml_null(v) && v->len < len &&
+            (!out[0] || strcmp(v->text, out) < 0))
+            snprintf(out, len, "%s", v->text);
+    }
+    ydoc_free(doc);
+    return out[0] != '\0';
+}
+
+bool meta_read_block(const char *run_dir, const char *block, const char *const *keys,
+                     size_t nkeys, char *out, size_t len)
+{
+    for (size_t k = 0; k < nkeys; k++)
+        out[k * len] = '\0';
+    ydoc *doc = meta_load(run_dir);
+    bool ok = doc != NULL;
     const ynode *b = ok ? map_get(doc->root, block) : NULL;
     for (size_t k = 0; k < nkeys; k++) {
         const ynode *v = map_get(b, keys[k]);
@@ -49,7 +75,5 @@ bool meta_read_block(const char *run_dir, const char *block, const char *const *
             snprintf(out + k * len, len, "%s", v->text);
     }
     ydoc_free(doc);
-    diag_free(&d);
-    free(text);
     return ok;
 }

@@ -11,3 +11,7 @@
  * is not YAML. */
 bool meta_read_block(const char *run_dir, const char *block, const char *const *keys,
                      size_t nkeys, char *out, size_t len);
+
+/* The earliest `started` of the trials in RUN_DIR/meta.yaml (ISO 8601 UTC, which sorts
+ * as text) into out; "" and false when the file cannot be read or no trial has one. */
+bool meta_read_first_start(const char *run_dir, char *out, size_t len);

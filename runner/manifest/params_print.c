@@ -54,7 +54,7 @@ static void print_bash(FILE *out)
           "_shadesweep() {\n"
           "  local cur=${COMP_WORDS[COMP_CWORD]} cmd=${COMP_WORDS[1]}\n"
           "  local prev=${COMP_WORDS[COMP_CWORD-1]}\n"
-          "  local commands=\"run validate list info probe merge params columns report compare\"\n"
+          "  local commands=\"run validate list info probe merge params columns report compare history\"\n"
           "  local keys=\"",
           out);
     for (size_t i = 0; i < NPARAMS; i++)
@@ -97,6 +97,8 @@ static void print_bash(FILE *out)
           "    columns) opts=\"--markdown --help\" ;;\n"
           "    compare) opts=\"--threshold --csv --md --help\" ;;\n"
           "    report) opts=\"--help\" ;;\n"
+          "    history) opts=\"add show check --db --run --renderer --metric --min-change "
+          "--max-pvalue --no-drift --json --help\" ;;\n"
           "  esac\n"
           "  if [[ $cur == -* ]]; then\n"
           "    COMPREPLY=($(compgen -W \"$opts\" -- \"$cur\"))\n"
