@@ -85,7 +85,10 @@ static const char usage_text[] =
     "                             the verdicts as JSON)\n"
     "  compare --exe OTHER [OPTIONS] MANIFEST  the manifest with OTHER (BASE) and this\n"
     "                             build (NEW) in interleaved rounds, compared paired\n"
-    "  report [OPTIONS] DIR...    the report over output folders (Python)\n"
+    "  report [OPTIONS] DIR...    the report over output folders (Python; --cross-device\n"
+    "                             A B: two devices' rankings side by side)\n"
+    "  bound [--profile DEVICE.yaml] DIR  each run's bound from the device profile\n"
+    "                             (DIR/device.yaml): a CSV row per run, the limiter named\n"
     "  ratios < REQUESTS          trial-level ratios, intervals and crossovers for\n"
     "                             scripts (the report's statistics; ratios --help)\n"
     "  params [--markdown|--bash|--json]  every manifest key: type, default, range, the\n"
@@ -701,7 +704,7 @@ int cli_main(int argc, char **argv)
         {"run", cmd_run},         {"validate", cmd_validate}, {"list", cmd_list},
         {"info", cmd_info},       {"merge", cmd_merge},       {"params", cmd_params},
         {"columns", cmd_columns}, {"ratios", cmd_ratios},     {"compare", cmd_compare},
-        {"report", cmd_report},   {"probe", cmd_probe},
+        {"report", cmd_report},   {"probe", cmd_probe},       {"bound", cmd_bound},
     };
     /* Each command parses argv[1..]: its name plays argv[0]. */
     for (size_t i = 0; i < sizeof commands / sizeof commands[0]; i++)
