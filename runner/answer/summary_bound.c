@@ -23,7 +23,10 @@ void summary_bound_md(FILE *md, const char *out_dir, const csv_table *sm)
     static folder_bound fb;
     fputs("\n## Bounds\n\n", md);
     if (!folder_bound_open(&fb, out_dir, NULL)) {
-        md_put(md, fb.why);   /* a path may be in it */
+        if (strcmp(fb.why, folder_bound_no_profile) == 0)
+            fputs(fb.why, md);
+        else
+            md_put(md, fb.why);   /* an unreadable device.yaml: its path is in it */
         fputs(".\n", md);
         folder_bound_close(&fb);
         return;

@@ -9,8 +9,8 @@
 #include "runner/folder/meta_read.h"
 
 const char folder_bound_no_profile[] =
-    "no device profile (device.yaml) in this folder, so no bound: shadesweep probe makes one "
-    "and later runs copy it in";
+    "No bound: this folder has no profile of the hardware it ran on (`shadesweep probe` "
+    "makes one; later runs copy it in)";
 
 bool folder_bound_open(folder_bound *fb, const char *dir, const char *profile)
 {

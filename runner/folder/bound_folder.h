@@ -47,5 +47,6 @@ run_bound *folder_bound_runs(const folder_bound *fb, const csv_table *t, size_t 
 bool folder_bound_fill_summary(const char *dir, const folder_bound *fb, char *err,
                                size_t errlen);
 
-/* The line summary.md and run print where a folder has no profile. */
+/* The line summary.md and `bound` print where a folder has no device.yaml (Markdown; no
+ * word "device": a GPU's summary.md names none, tests/cli/device_labels.sh). */
 extern const char folder_bound_no_profile[];

@@ -28,7 +28,7 @@ YAML
 
 "$SHADESWEEP" run -o none tiny.yaml >run.out 2>run.err || fail "run: $(cat run.err)"
 grep -q '^no device profile of .* cached' run.err || fail "no line on the profile: $(cat run.err)"
-grep -qF 'no device profile (device.yaml) in this folder, so no bound' none/summary.md ||
+grep -qF 'No bound: this folder has no profile of the hardware it ran on (`shadesweep probe`' none/summary.md ||
   fail "summary.md: no line on the missing profile"
 
 "$SHADESWEEP" probe --quick >quick.yaml 2>probe.err || fail "probe: $(cat probe.err)"
@@ -88,5 +88,5 @@ PY
 
 expect 2 "shadesweep bound: expected an output folder" "$SHADESWEEP" bound
 expect 2 "no-such.yaml" "$SHADESWEEP" bound --profile no-such.yaml "$D/renderers-tiled"
-expect 0 "no device profile (device.yaml) in this folder" "$SHADESWEEP" bound none
+expect 0 "shadesweep bound: none: No bound: this folder has no profile" "$SHADESWEEP" bound none
 echo ok
