@@ -61,6 +61,15 @@ static bool row_work(const folder_bound *fb, const char *const *names,
     return fb->have && bound_rates_of(&fb->prof, format, samples, rates);
 }
 
+bool folder_bound_rates(const folder_bound *fb, const char *id, bound_rates *r)
+{
+    const char *const names[] = {"run_id"};
+    const char *const values[] = {id};
+    bound_work w;
+    double measured;
+    return row_work(fb, names, values, 1, &w, &measured, r);
+}
+
 void folder_bound_row(const folder_bound *fb, const char *const *names,
                       const char *const *values, size_t n, bound_result *res,
                       double *measured_us)

@@ -31,6 +31,9 @@ void folder_bound_row(const folder_bound *fb, const char *const *names,
                       const char *const *values, size_t n, bound_result *res,
                       double *measured_us);
 
+/* The rates for run `id` (its plan.csv row's hdr and msaa); false without a profile. */
+bool folder_bound_rates(const folder_bound *fb, const char *id, bound_rates *r);
+
 /* One run: the mean of its ok trials' work and measured time, bounded. */
 typedef struct run_bound {
     char id[13], renderer[32];

@@ -97,7 +97,7 @@ static void print_bash(FILE *out)
           "    columns) opts=\"--markdown --help\" ;;\n"
           "    compare) opts=\"--threshold --csv --md --help\" ;;\n"
           "    report) opts=\"-o --out --cross-device --help\" ;;\n"
-          "    bound) opts=\"--profile --help\" ;;\n"
+          "    bound) opts=\"--profile --passes --help\" ;;\n"
           "  esac\n"
           "  if [[ $cur == -* ]]; then\n"
           "    COMPREPLY=($(compgen -W \"$opts\" -- \"$cur\"))\n"

@@ -31,7 +31,7 @@ _shadesweep() {
     columns) opts="--markdown --help" ;;
     compare) opts="--threshold --csv --md --help" ;;
     report) opts="-o --out --cross-device --help" ;;
-    bound) opts="--profile --help" ;;
+    bound) opts="--profile --passes --help" ;;
   esac
   if [[ $cur == -* ]]; then
     COMPREPLY=($(compgen -W "$opts" -- "$cur"))

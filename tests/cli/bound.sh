@@ -3,12 +3,12 @@
 # summary.csv's bound_us, limiter and bound_pct are empty and summary.md says why in one
 # line; after `probe --quick`, the next sweep's summary.csv has them for every ok trial
 # (bound_pct = 100 x bound_us / frametime_mean_us) and summary.md lists each run's bound
-# and names every run whose bound is above its measured time as a model error. Over the
-# committed llvmpipe folders (their device.yaml: a full probe of this device), `shadesweep
-# bound` flags exactly the runs whose bound is above the measured time, and names bytes or
-# fill, not draws, the limiter of deferred `volume` at 4,096 lights; with the quick
-# profile of this machine, the same holds of the flags. Seconds: one probe --quick, two
-# runs of 2 frames, committed data.
+# and names every run whose bound is above its measured time as a model error; `bound
+# --passes` bounds each pass of passes.csv. Over the committed llvmpipe folders (their
+# device.yaml: a full probe of this device), `shadesweep bound` flags exactly the runs
+# whose bound is above the measured time, and names bytes or fill, not draws, the limiter
+# of deferred `volume` at 4,096 lights; with the quick profile of this machine, the same
+# holds of the flags. Seconds: one probe --quick, two runs of 2 frames, committed data.
 . "$(dirname "$0")/lib.sh"
 need_gl
 cd "$T"
@@ -52,6 +52,20 @@ for r in rows:
     assert named == (b > m), (r, sec)   # above the measured time: named, never hidden
 assert ("Model errors: none" in sec) == all(float(r["bound_us"]) <= float(r["frametime_mean_us"])
                                               for r in rows), sec
+PY
+
+# per pass: a row for each run and pass of passes.csv, model errors flagged the same way
+"$SHADESWEEP" bound --passes with >passes.csv 2>passes.err || fail "bound --passes: $(cat passes.err)"
+"$PYTHON" - <<'PY' || fail "bound --passes"
+import csv, glob
+rows = list(csv.DictReader(open("passes.csv")))
+want = set()
+for f in glob.glob("with/runs/*/passes.csv"):
+    want |= {(r["run_id"], r["pass"]) for r in csv.DictReader(open(f))}
+assert {(r["run_id"], r["pass"]) for r in rows} == want and len(rows) == len(want), rows
+for r in rows:
+    assert r["limiter"] in ("fill", "draws", "dispatches") and r["attributed"] == "0", r
+    assert (r["model_error"] == "yes") == (float(r["bound_us"]) > float(r["measured_us"])), r
 PY
 
 # the committed folders, by their own device.yaml and by this machine's quick profile
