@@ -6,6 +6,7 @@ set -euo pipefail
 
 packages=(
   meson ninja-build pkg-config gcc g++
+  ccache                                              # rebuilds of unchanged files (scripts/build.sh)
   libegl-dev libegl-mesa0 libgl-dev libgl1-mesa-dri   # EGL, GL headers, Mesa llvmpipe
   libosmesa6-dev                                      # the second backend
   libyaml-dev libopenimageio-dev
