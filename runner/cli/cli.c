@@ -90,7 +90,11 @@ static const char usage_text[] =
     "                             database (SQLite or PostgreSQL), the change points of\n"
     "                             each run's series; check exits 1 on a regression\n"
     "                             (history --help)\n"
-    "  report [OPTIONS] DIR...    the report over output folders (Python)\n"
+    "  report [OPTIONS] DIR...    the report over output folders (Python; --cross-device\n"
+    "                             A B: two devices' rankings side by side)\n"
+    "  bound [--profile DEVICE.yaml] [--passes] DIR  each run's bound from the device\n"
+    "                             profile (DIR/device.yaml): a CSV row per run (--passes:\n"
+    "                             per run and pass of passes.csv), the limiter named\n"
     "  ratios < REQUESTS          trial-level ratios, intervals and crossovers for\n"
     "                             scripts (the report's statistics; ratios --help)\n"
     "  params [--markdown|--bash|--json]  every manifest key: type, default, range, the\n"
@@ -708,6 +712,7 @@ int cli_main(int argc, char **argv)
         {"info", cmd_info},       {"merge", cmd_merge},       {"params", cmd_params},
         {"columns", cmd_columns}, {"ratios", cmd_ratios},     {"compare", cmd_compare},
         {"report", cmd_report},   {"probe", cmd_probe},       {"history", cmd_history},
+        {"bound", cmd_bound},
     };
     /* Each command parses argv[1..]: its name plays argv[0]. */
     for (size_t i = 0; i < sizeof commands / sizeof commands[0]; i++)

@@ -4,7 +4,7 @@
 _shadesweep() {
   local cur=${COMP_WORDS[COMP_CWORD]} cmd=${COMP_WORDS[1]}
   local prev=${COMP_WORDS[COMP_CWORD-1]}
-  local commands="run validate list info probe merge params columns report compare history"
+  local commands="run validate list info probe merge params columns report compare history bound"
   local keys=" name description scene renderers resolution trials schedule measure measure.metric measure.precision measure.budget measure.seed warmup duration clock step sync timeout draw_limit gbuffer gbuffer.preset gbuffer.position gbuffer.normal deferred deferred.light_volumes deferred.separate_specular deferred.sky_stencil forward forward.illumination_sets forward.directional_in_base forward.light_buffer tiles tiles.size tiles.depth_culling tiles.prune tiles.levels tiles.coarse_size tiles.max_lights_per_tile clustered clustered.slices clustered.shading deferred_lighting deferred_lighting.light_buffer deferred_lighting.lights shadows hdr msaa fog fog.density fog.colour aa translucency shading shading.model environment environment.light environment.intensity camera camera.radius camera.height camera.period camera.target camera.near camera.far camera.hold error error.reference error.reference.renderer error.reference.gbuffer error.reference.light_volumes error.reference.supersample error.reference.msaa error.at error.max_rmse error.save_images lights lights.placement lights.seed lights.rng lights.count lights.radius lights.overlap lights.color_max lights.attenuation lights.sizing lights.cutoff lights.quadratic lights.quadratic.a lights.quadratic.b lights.quadratic.c exposure exposure.mode exposure.ev100 exposure.key tonemap outputs outputs.frames outputs.seconds outputs.scene_cache outputs.screenshots allow_empty debug debug.busy_us debug.busy_renderer debug.stall_trial sweep"
   local sweepable="scene resolution trials warmup duration clock step sync timeout draw_limit gbuffer.preset gbuffer.position gbuffer.normal deferred.light_volumes deferred.separate_specular deferred.sky_stencil forward.illumination_sets forward.directional_in_base forward.light_buffer tiles.size tiles.depth_culling tiles.prune tiles.levels tiles.coarse_size tiles.max_lights_per_tile clustered.slices clustered.shading deferred_lighting.light_buffer deferred_lighting.lights shadows hdr msaa fog.density fog.colour aa translucency shading.model environment.light environment.intensity camera.radius camera.height camera.period camera.target camera.near camera.far camera.hold lights.placement lights.seed lights.rng lights.count lights.radius lights.overlap lights.color_max lights.attenuation lights.sizing lights.cutoff lights.quadratic.a lights.quadratic.b lights.quadratic.c exposure.mode exposure.ev100 exposure.key tonemap"
   local renderers="null deferred forward-mpml forward-spml forward-plus clustered tiled-deferred deferred-lighting visibility"
@@ -30,8 +30,9 @@ _shadesweep() {
       COMPREPLY=($(compgen -W "$opts $keys" -- "$cur")); return ;;
     columns) opts="--markdown --help" ;;
     compare) opts="--threshold --csv --md --help" ;;
-    report) opts="--help" ;;
+    report) opts="-o --out --cross-device --help" ;;
     history) opts="add show check --db --run --renderer --metric --min-change --max-pvalue --no-drift --json --help" ;;
+    bound) opts="--profile --passes --help" ;;
   esac
   if [[ $cur == -* ]]; then
     COMPREPLY=($(compgen -W "$opts" -- "$cur"))
