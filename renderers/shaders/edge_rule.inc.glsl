@@ -1,21 +1,18 @@
-// The MSAA edge rule (Lauritzen, SIGGRAPH 2010), one place for the two passes that
-// classify pixels: deferred's edge_mark.frag (stencil) and tiled-deferred's
-// tiled_deferred.comp (a per-tile edge list), so that both find the same pixels. A
-// pixel is an edge when a sample differs from sample 0: a surface on one and none on
-// the other, a position off sample 0's tangent plane by more than EDGE_DEPTH_REL of
-// its view depth (the samples of one sloped surface, whose depths differ when the
-// position comes from the depth buffer, are no edge), or normals more than
-// acos(EDGE_NORMAL_COS) apart, or a material value more than EDGE_MATERIAL_ABS apart
-// (a G-buffer's samples hold each surface's material; without it, sample 0's material
-// lit a whole pixel where two materials meet on one plane: 83/255 on interior's
-// generator caps at msaa 4).
+// The MSAA edge rule (Lauritzen, SIGGRAPH 2010), one place for the passes that classify
+// pixels: deferred's edge_mark.frag, tiled-deferred's tiled_deferred.comp and the
+// visibility shading, so that all find the same pixels. A pixel is an edge when a sample
+// differs from sample 0: a surface on one and none on the other, a position off sample
+// 0's tangent plane by more than EDGE_DEPTH_REL of its view depth (one sloped surface's
+// samples are no edge), normals more than acos(EDGE_NORMAL_COS) apart, or a material
+// value more than EDGE_MATERIAL_ABS apart (two materials meeting on one plane, as
+// interior's generator caps on their bodies: 83/255 off forward at msaa 4 without it).
 // EDGE_SAMPLE_XY (position from the depth buffer): each sample's depth is unprojected
 // at that sample's own location in the pixel (the context's GL_SAMPLE_POSITIONs), so
 // the samples of one plane stay on it; the stored layouts hold the pixel centre's
 // values in every sample and are read at the centre.
-// Needs gbuffer.inc (GSurface) first, unless EDGE_RULE_SURFACES_ONLY: then only
-// edge_surfaces_differ and edge_materials_differ, the rule on surfaces given by their
-// values (the visibility renderer's, rebuilt from its ids).
+// Needs gbuffer.inc (GSurface) first, unless EDGE_RULE_SURFACES_ONLY: then only the
+// rule on surfaces given by their values (edge_surfaces_differ, edge_materials_differ:
+// the visibility renderer's, rebuilt from its ids).
 #if !defined(GB_POSITION_XY) && !defined(GB_DEPTH)
 #define EDGE_SAMPLE_XY
 #endif
