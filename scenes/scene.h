@@ -211,6 +211,8 @@ typedef struct scene {
     scene_light *lights;       /* every light the run will ever have, in placement order */
     uint32_t nlights_total;
     light_count count;         /* how many of them are active over time */
+    uint32_t lights_seed;      /* lights.seed (scene_place_lights): also the stream of
+                                  stochastic light culling (renderers/frame/stochastic.h) */
 
     /* camera path: orbit about `orbit_target`, or the scene's scripted key poses */
     camera_path path;

@@ -380,6 +380,7 @@ bool scene_place_lights(scene *s, const scene_light *authored, uint32_t nauthore
 {
     const char *name = s->name;
     s->count = lp->count;
+    s->lights_seed = lp->seed;
     uint32_t most = light_count_max(&lp->count);
     switch (lp->placement) {
     case PLACEMENT_NONE:

@@ -2,8 +2,11 @@
 # Configures (once) and builds one build folder. On a terminal it says so and shows
 # ninja's one-line progress; elsewhere (or CI=true) it prints the log only on failure.
 #   scripts/build.sh DIR [meson setup options...]
+# meson compiles through ccache where it is installed (scripts/setup.sh installs it): a
+# fresh clone of an unchanged tree, anywhere on the machine (CI's), rebuilds from the cache.
 set -euo pipefail
 cd "$(dirname "$0")/.."
+export CCACHE_BASEDIR=$PWD CCACHE_NOHASHDIR=true
 . scripts/say.sh
 dir=$1; shift
 log=$(mktemp)

@@ -43,7 +43,10 @@ if [ ! -f "$build/build.ninja" ]; then
   echo "fuzz: configuring $build (clang, ASan+UBSan, libFuzzer)" >&2
   instr='-fsanitize=fuzzer-no-link -fno-sanitize-recover=undefined'
   setup_log=$(mktemp)
-  if ! CC=clang CXX=clang++ meson setup "$build" \
+  # through ccache where it is installed, as scripts/build.sh's builds
+  cc=clang cxx=clang++
+  if command -v ccache >/dev/null; then cc="ccache clang" cxx="ccache clang++"; fi
+  if ! CC=$cc CXX=$cxx meson setup "$build" \
       -Dbuildtype=debugoptimized -Db_sanitize=address,undefined -Db_lundef=false \
       -Dc_args="$instr" -Dcpp_args="$instr" >"$setup_log" 2>&1; then
     cat "$setup_log" >&2
@@ -54,6 +57,7 @@ if [ ! -f "$build/build.ninja" ]; then
   rm -f "$setup_log"
 fi
 # the image module too: the scene loader decodes embedded textures through it
+export CCACHE_BASEDIR=$root CCACHE_NOHASHDIR=true
 if ! ninja -C "$build" tests/fuzz/fuzz_manifest tests/fuzz/fuzz_scene common/shadesweep-image.so \
     >"$build/fuzz-build.log" 2>&1; then
   cat "$build/fuzz-build.log" >&2

@@ -7,7 +7,11 @@
 #    resolution and msaa (experiments/families-msaa.yaml) and seed 003's experiments at
 #    1280x720, cut to fit 8 minutes (one trial each, experiment 1 at 30 s a run; the cut
 #    manifests in OUTDIR/manifests/ under the experiments' names, for the report);
-# 3. the report over OUTDIR (OUTDIR/report.md) and each folder's ranked table.
+#    First `shadesweep probe` on that device (--smoke: --quick): OUTDIR/device.yaml, and
+#    the cached profile that each run's folder copies as its own device.yaml; the GPU
+#    clocks of every trial (NVML) are in each run's meta.yaml and summary.csv;
+# 3. the report over OUTDIR (OUTDIR/report.md) and each folder's ranked table, and
+#    OUTDIR/clocks.txt: each folder's SM clocks over its trials (or why there are none).
 # --resume keeps the complete runs of an interrupted OUTDIR; when the budget
 # (GPU_BENCH_BUDGET_S, default 480 s) runs out, the run in progress is stopped and the
 # script says how to go on. --smoke (GPU_BENCH_SMOKE=1): every manifest's smoke variant.
@@ -72,6 +76,23 @@ else
   echo "gpu-bench: no usable EGL device; running on Mesa's surfaceless platform"
 fi
 
+# The device profile first (issue 38): the bounds' denominators, kept with the results.
+# A profile already cached for this device and driver is measured again all the same:
+# the budget pays about a minute (--smoke: seconds) for a profile of this very session.
+if [ -s "$out/device.yaml" ] && [ $resume -eq 1 ]; then
+  echo "gpu-bench: device profile kept: $out/device.yaml"
+else
+  probe=()
+  [ "$smoke" -eq 1 ] && probe+=(--quick)
+  if "$exe" probe "${dev[@]}" "${probe[@]}" >"$out/device.yaml.tmp" 2>"$out/probe.log"; then
+    mv "$out/device.yaml.tmp" "$out/device.yaml"
+    echo "gpu-bench: device profile: $out/device.yaml ($((SECONDS - start)) s)"
+  else
+    rm -f "$out/device.yaml.tmp"
+    echo "gpu-bench: the probe failed, the runs go on without a device profile: $(tail -1 "$out/probe.log")" >&2
+  fi
+fi
+
 # 2. the manifests, cut to the budget
 cut() {  # cut NAME SED-SCRIPT: OUTDIR/manifests/NAME.yaml from experiments/NAME.yaml
   sed -e "$2" "$root/experiments/$1.yaml" >"$out/manifests/$1.yaml"
@@ -86,7 +107,8 @@ opts=()
 sets=()
 for kv in ${GPU_BENCH_SET:-}; do sets+=(--set "$kv"); done
 status=0
-for m in renderers-deferred renderers-forward families-msaa s003-exp2 s003-exp1; do
+ms=(renderers-deferred renderers-forward families-msaa s003-exp2 s003-exp1)
+for m in "${ms[@]}"; do
   left=$((budget - (SECONDS - start)))
   if [ $left -le 0 ]; then
     echo "gpu-bench: the ${budget} s budget is spent before $m" >&2
@@ -112,7 +134,24 @@ if [ $status -ne 0 ] && [ $((SECONDS - start)) -ge "$budget" ]; then
   echo "gpu-bench: to finish: ${GPU_BENCH_SET:+GPU_BENCH_SET='$GPU_BENCH_SET' }scripts/gpu-bench.sh --resume${opts:+ ${opts[*]}} $out" >&2
 fi
 
-# 3. the report
+# 3. the report, and the clocks of each folder's trials (summary.csv's sm_clock_mhz)
 "$exe" report "$out" || status=1
+python3 - "$out" "${ms[@]}" >"$out/clocks.txt" <<'PY' || echo "gpu-bench: no clocks.txt" >&2
+import csv, os, statistics, sys
+out = sys.argv[1]
+for m in sys.argv[2:]:
+    path = os.path.join(out, m, "summary.csv")
+    if not os.path.exists(path):
+        continue
+    with open(path, newline="") as f:
+        mhz = [float(r["sm_clock_mhz"]) for r in csv.DictReader(f)
+               if r.get("trial") and r.get("sm_clock_mhz")]
+    if mhz:
+        print(f"{m}: SM clock median {statistics.median(mhz):.0f} MHz, {min(mhz):.0f} .. "
+              f"{max(mhz):.0f} over {len(mhz)} trials (NVML; each run's meta.yaml has the rest)")
+    else:
+        print(f"{m}: no GPU clocks (no NVIDIA device through NVML)")
+PY
+cat "$out/clocks.txt" 2>/dev/null || true
 echo "gpu-bench: $out/report.md; $((SECONDS - start)) s"
 exit $status

@@ -6,6 +6,7 @@ set -euo pipefail
 
 packages=(
   meson ninja-build pkg-config gcc g++
+  ccache                                              # rebuilds of unchanged files (scripts/build.sh)
   libegl-dev libegl-mesa0 libgl-dev libgl1-mesa-dri   # EGL, GL headers, Mesa llvmpipe
   libosmesa6-dev                                      # the second backend
   libyaml-dev libopenimageio-dev
@@ -16,6 +17,8 @@ packages=(
   python3-pandas                                      # tests/cli/tidy_pandas.sh: the files for scripts
   clang libclang-rt-14-dev                            # the manifest fuzzer (libFuzzer)
   valgrind                                            # meson test --setup=valgrind
+  libsqlite3-dev libpq-dev                            # `history`: SQLite (default), PostgreSQL client
+  postgresql                                          # tests/cli/history.sh's server
 )
 
 missing=()

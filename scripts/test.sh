@@ -1,11 +1,11 @@
 #!/usr/bin/env bash
 # Set-up if needed, build, and test in tiers (tests/meson.build's suites; README's
 # "Install" says which command runs which). With no option (CI): the plain build's
-# quick, full and slow tiers two at a time, less the CLI tests of the suite `asan` (the
-# ASan + UBSan and fuzz builds made meanwhile at the lowest priority), then its timing
-# tier alone; the sanitizer build's suite `asan` (unit, GL, fuzz replay, the CLI tests
-# that parse or do I/O); the seeded fuzzers. A CLI test runs once, where the sanitizer
-# build runs it; the unit and GL tests on both (tests/meson.build says why).
+# quick, full and slow tiers two at a time, less the suite `asan` (the ASan + UBSan and
+# fuzz builds made meanwhile at the lowest priority), then its timing tier alone; the
+# sanitizer build's suite `asan` (unit, GL, fuzz replay, the CLI tests that parse or do
+# I/O); the seeded fuzzers. Each test runs once: where the sanitizer build runs it, only
+# there (tests/meson.build says why).
 #   --quick   the quick tier on the plain build only (a developer's few minutes)
 #   --plain   every tier on the plain build only (no sanitizers, no fuzzers)
 # Ends with one line "N passed, N failed" (", N skipped" when any test skipped).
@@ -72,9 +72,9 @@ if build plain build; then
     tier build testlog-quick 2 quick
   else
     if [ $mode = ci ]; then
-      # the suite asan's CLI tests run under the sanitizers below: the same code and
-      # assertions at -O2, memory and undefined behaviour checked too
-      tier build testlog-main 2 quick full slow -asan_cli
+      # the suite asan runs under the sanitizers below: the same code and assertions at
+      # -O2, memory and undefined behaviour checked too
+      tier build testlog-main 2 quick full slow -asan
     else
       tier build testlog-main 2 quick full slow
     fi

@@ -11,7 +11,7 @@ from .sections import SECTIONS
 from .sections.base import Section
 from .sections.generic import section_generic
 from .text import code, md_table
-from . import verdicts
+from . import cross_device, verdicts
 
 
 def setup_text(e):
@@ -63,13 +63,15 @@ def gather_meta(exps):
 
 
 USAGE = ("usage: shadesweep report [-o OUTDIR] DIR...   (each DIR holds shadesweep output "
-         "folders; report.md and plots/ go into OUTDIR, by default the one DIR)")
+         "folders; report.md and plots/ go into OUTDIR, by default the one DIR)\n"
+         "       shadesweep report --cross-device -o OUTDIR A B   (two folders of one manifest "
+         "run on two devices: cross-device.md in OUTDIR)")
 
 
 def parse_args(argv):
-    """(dirs, outdir) from the command line; exits 0 for --help, 2 with one line for
+    """(dirs, outdir, cross) from the command line; exits 0 for --help, 2 with one line for
     anything else wrong."""
-    dirs, outdir, i = [], None, 1
+    dirs, outdir, i, cross = [], None, 1, False
     while i < len(argv):
         a = argv[i]
         if a in ("-h", "--help"):
@@ -81,7 +83,9 @@ def parse_args(argv):
             outdir = argv[i + 1]
             i += 2
             continue
-        if a.startswith("--out="):
+        if a == "--cross-device":
+            cross = True
+        elif a.startswith("--out="):
             outdir = a[len("--out="):]
         elif a.startswith("-") and a != "-":
             die(f"{a}: unknown option ({USAGE})")
@@ -94,7 +98,7 @@ def parse_args(argv):
         if len(dirs) > 1:
             die("several folders: say where the report goes with -o OUTDIR")
         outdir = dirs[0]
-    return dirs, outdir
+    return dirs, outdir, cross
 
 
 def report_time():
@@ -107,7 +111,7 @@ def report_time():
 
 
 def main(argv):
-    dirs, outdir = parse_args(argv)
+    dirs, outdir, cross = parse_args(argv)
     for d in dirs:
         if not os.path.exists(d):
             die(f"{d}: no such folder")
@@ -121,6 +125,8 @@ def main(argv):
         die(f"{outdir}: cannot make the folder ({e.strerror or e}; report.md goes there)")
     if not os.access(outdir, os.W_OK):
         die(f"{outdir}: not writable (report.md goes there)")
+    if cross:   # two devices side by side, instead of report.md
+        return cross_device.write(dirs, outdir, report_time())
     ref = Reference(reference_dir())
     exps, unknown, broken = load(dirs)
     if not exps and not unknown:

@@ -98,13 +98,16 @@ static void *deferred_lighting_create(const renderer_options *opts, char *err, s
         o.tile_size = 16;   /* not read: no grid */
         o.depth_mask = false;
         o.prune_samples = false;
+        o.culling_error = 0;
     }
     if (o.lpp_tiled && !light_grid_tile_option(&g, "deferred-lighting", &o, err, errlen))
         return NULL;
     deferred_lighting *l = (deferred_lighting *)deferred_core_create(
         "deferred-lighting", sizeof(deferred_lighting), o.lpp_tiled, true, &o, err, errlen);
-    if (l)
+    if (l) {
         l->t.g = g;
+        light_grid_culling_option(&l->t.g, &l->r.d.b, &o);
+    }
     return l;
 }
 
@@ -280,7 +283,8 @@ static uint64_t deferred_lighting_own_bytes(const renderer_estimate *e)
 static const renderer_impl volumes_design = DEFERRED_LIGHTING_DESIGN(
     "deferred.light_volumes deferred_lighting hdr msaa fog aa", .variant = NULL);
 static const renderer_impl tiled_design = DEFERRED_LIGHTING_DESIGN(
-    "deferred_lighting tiles hdr msaa fog aa", .light_grid = deferred_lighting_light_grid);
+    "deferred_lighting tiles lights.culling lights.culling_error hdr msaa fog aa",
+    .light_grid = deferred_lighting_light_grid);
 
 static const renderer_impl *deferred_lighting_variant(const renderer_options *opts)
 {
@@ -288,5 +292,6 @@ static const renderer_impl *deferred_lighting_variant(const renderer_options *op
 }
 
 const renderer_impl renderer_deferred_lighting_impl = DEFERRED_LIGHTING_DESIGN(
-    "deferred.light_volumes deferred_lighting tiles hdr msaa fog aa",
+    "deferred.light_volumes deferred_lighting tiles lights.culling lights.culling_error hdr msaa "
+    "fog aa",
     .light_grid = deferred_lighting_light_grid, .variant = deferred_lighting_variant);

@@ -102,8 +102,9 @@ bool renderer_base_size(renderer_base *b, const struct scene *s, char *err, size
  * set adds UV2, one with skins SKINNING (mesh.vert, shadow.vert, visibility_shade.comp:
  * skin.inc), one shaded by the metallic-roughness model SHADING_PBR (lighting.inc), one
  * lit by an environment ENVIRONMENT (environment.inc: every renderer's ambient term and
- * the sky); the line names them too, and the environment among what was left out when
- * the scene has none. */
+ * the sky), a design that culls lights stochastically (b->stochastic) STOCHASTIC; the
+ * line names them too, and the environment among what was left out when the scene has
+ * none. */
 static bool set_lighting(renderer_base *b, const struct scene *s)
 {
     static const char *const type_name[3] = {"point", "spot", "directional"};
@@ -136,7 +137,7 @@ static bool set_lighting(renderer_base *b, const struct scene *s)
     bool skins = s && scene_has_skins(s);
     bool pbr = s && s->shading == SHADING_PBR;
     bool env = s && s->environment != ENVIRONMENT_NONE;
-    const char *all[7] = {defs[0], defs[1], NULL, NULL, NULL, NULL, NULL};
+    const char *all[8] = {defs[0], defs[1], NULL, NULL, NULL, NULL, NULL, NULL};
     size_t n = 2;
     if (coloured)
         all[n++] = "VERTEX_COLOR";
@@ -148,10 +149,13 @@ static bool set_lighting(renderer_base *b, const struct scene *s)
         all[n++] = "SHADING_PBR";
     if (env)
         all[n++] = "ENVIRONMENT";
-    snprintf(b->lighting, sizeof b->lighting, "compiled for %s%s%s%s%s%s; left out: %s%s",
+    if (b->stochastic)
+        all[n++] = "STOCHASTIC";
+    snprintf(b->lighting, sizeof b->lighting, "compiled for %s%s%s%s%s%s%s; left out: %s%s",
              nin ? in : "no light", coloured ? ", vertex colours" : "",
              uv2 ? ", a second uv set" : "", skins ? ", skins" : "",
              pbr ? ", metallic-roughness (pbr)" : "", env ? ", environment: sky" : "",
+             b->stochastic ? ", stochastic culling" : "",
              nout ? out : env ? "nothing" : "", env ? "" : nout ? ", environment" : "environment");
     return gl_program_cache_set_common(b->programs, all, n);
 }

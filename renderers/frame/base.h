@@ -85,6 +85,9 @@ typedef struct edge_aa {
 typedef struct renderer_base {
     const char *name;                /* "deferred": prefixes messages */
     renderer_options opts;
+    bool stochastic;                 /* lights.culling: stochastic, set at create by a design
+                                        that culls so (light_grid_culling_option): every
+                                        program gets STOCHASTIC (lighting.inc) */
     int width, height;               /* the output's size (opts, or the scene's) */
     GLuint output_fbo;               /* the draw framebuffer bound at creation */
     gl_state *st;

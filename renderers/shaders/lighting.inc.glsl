@@ -54,6 +54,8 @@ float attenuation_windowed(float d2, float range)
 //       3 windowed),
 //       z shadow-map layer + 1 (0: none; read only with SHADOWS, shadow.inc)
 //   [4] xyz quadratic a, b, c
+//   and with STOCHASTIC (lights.culling: stochastic) [3].w the light's culling range this
+//   frame and [4].w its q (light_cull_range and stochastic_weight below)
 //
 // With SHADOWS defined, the light arriving at a point is also multiplied by its
 // shadow-map lookup (shadow.inc): I = A + att * spot * shadow * (D + g * S).
@@ -65,14 +67,40 @@ struct Light {
     vec4 quadratic;
 };
 
+// Stochastic light culling (STOCHASTIC, a common define of the designs that cull so:
+// lights.culling: stochastic; Tokuyoshi and Harada, "Stochastic Light Culling", JCGT
+// 5(1), 2016; renderers/frame/stochastic.h fills the fields each frame). A point or spot
+// light j is culled, and dropped here, beyond params.w, where I_j a(d) falls to
+// culling_error x xi_j (never beyond its range); a light kept at distance d, its
+// attenuation there att, is weighted by 1 / P(d), P(d) = min(1, att / q) with
+// q = quadratic.w = culling_error / I_j: kept with probability P(d), so the expected image
+// is the exact one. Within the culling range att >= xi_j q, so the weight is at most
+// 1 / xi_j <= 2^24 (the clamp is against rounding alone): never a division by 0, never
+// Inf. q = 0 (a directional light, a black one): weight 1. Without STOCHASTIC the range
+// is the light's and nothing is weighted: the programs of exact culling are unchanged.
+float light_cull_range(Light l)
+{
+#ifdef STOCHASTIC
+    return l.params.w;
+#else
+    return l.position_range.w;
+#endif
+}
+
+float stochastic_weight(Light l, float att)
+{
+    float q = l.quadratic.w;
+    return q > 0.0 ? clamp(q / max(att, 1e-30), 1.0, 16777216.0) : 1.0;
+}
+
 // Whether light l can reach view-space point P: a point or spot light within its range
 // (the squared-range rejection every light loop makes before shade_light, which would
-// give exactly zero beyond it), or a directional light. Reads only its position, range
-// and (with directional lights in the scene) type.
+// give exactly zero beyond it; its culling range with STOCHASTIC), or a directional
+// light. Reads only its position, range and (with directional lights in the scene) type.
 bool light_in_range(Light l, vec3 P)
 {
     vec3 d = l.position_range.xyz - P;
-    float r = l.position_range.w;
+    float r = light_cull_range(l);
 #if HAS_DIRECTIONAL
     return !(dot(d, d) > r * r) || int(l.color_type.w) == LIGHT_DIRECTIONAL;
 #else
@@ -95,8 +123,8 @@ vec3 light_incoming(Light l, vec3 P, vec3 N, out vec3 L)
 #endif
     vec3 d = l.position_range.xyz - P;
     float d2 = dot(d, d);
-    float range = l.position_range.w;
-    if (d2 > range * range) {
+    float range = l.position_range.w, cut = light_cull_range(l);
+    if (d2 > cut * cut) {
         L = N;
         return vec3(0.0);
     }
@@ -122,6 +150,9 @@ vec3 light_incoming(Light l, vec3 P, vec3 N, out vec3 L)
         att = 1.0 / max(l.quadratic.x * d2 + l.quadratic.y * dist + l.quadratic.z, 1e-6);
     else
         att = attenuation_windowed(d2, range);
+#endif
+#ifdef STOCHASTIC
+    att *= stochastic_weight(l, att);   // 1 / P(d), of the distance's attenuation alone
 #endif
 #if HAS_SPOT
     if (type == LIGHT_SPOT) {

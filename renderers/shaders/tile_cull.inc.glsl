@@ -118,14 +118,14 @@ bool sphere_passes(vec3 c, float r)
 }
 
 // The sphere light i is culled as (false: a directional light, which passes every cell):
-// point lights as their sphere (radius = range), spots as the smaller of that sphere
-// and the cone's bounding sphere, a little larger than the range (conservative against
-// rounding).
+// point lights as their sphere (radius = range: light_cull_range, the frame's cut range
+// with STOCHASTIC), spots as the smaller of that sphere and the cone's bounding sphere,
+// a little larger than the range (conservative against rounding).
 bool light_sphere(uint i, out vec3 c, out float r)
 {
     Light l = b_lights[i];
     c = l.position_range.xyz;
-    float range = l.position_range.w;
+    float range = light_cull_range(l);
     r = range;
 #if HAS_SPOT || HAS_DIRECTIONAL
     int type = int(l.color_type.w);

@@ -14,10 +14,9 @@
 #ifdef SKINNING
 #include "skin.inc"
 #endif
-#ifdef MSAA_SAMPLES
+// the edge rule at msaa > 1; its EdgeMaterial is VisSurface's material at any msaa
 #define EDGE_RULE_SURFACES_ONLY
 #include "edge_rule.inc"
-#endif
 
 layout(local_size_x = TILE_SIZE, local_size_y = TILE_SIZE) in;
 #ifdef MSAA_SAMPLES
@@ -207,23 +206,15 @@ mat3 draw_normal_matrix(uint draw)
     return mat3(c[0].xyz, c[1].xyz, c[2].xyz);
 }
 
-#ifdef MSAA_SAMPLES
-// Surface id (VIS_EMPTY: none) at pixel px's centre, for the edge rule: its view
-// position and normal (before maps).
-void vis_surface(uint id, ivec2 px, out vec3 P, out vec3 n)
-{
-    P = n = vec3(0.0);
-    if (id == VIS_EMPTY)
-        return;
-    VisTriangle t = vis_triangle(id);
-    vec3 l = barycentrics(t.m_inv, pixel_ndc(px));
-    P = l.x * t.vpos[0] + l.y * t.vpos[1] + l.z * t.vpos[2];
-    n = vis_normal(t, draw_normal_matrix(t.draw), l, P);
-}
-#endif
+// Surface id (in_run) at pixel px's centre, as surface.inc's surface_get makes it in a
+// forward pass: its view position, its normal (maps applied) and its material, which
+// the edge rule compares (edge_rule.inc) and shade_surface lights.
+struct VisSurface {
+    vec3 P, n;
+    EdgeMaterial m;
+};
 
-// The light of surface id (in_run) at pixel px's centre.
-vec4 shade_id(uint id, ivec2 px)
+VisSurface vis_surface(uint id, ivec2 px)
 {
     VisTriangle tr = vis_triangle(id);
     Draw d = b_draws[tr.draw];
@@ -311,7 +302,16 @@ vec4 shade_id(uint id, ivec2 px)
     emissive *= e.rgb * e.a;
 #endif
 
-    vec3 c = ambient_light(P, n, diffuse, gloss, shininess, occlusion) + emissive;
+    return VisSurface(P, n, EdgeMaterial(diffuse, emissive, vec3(0.04), gloss, occlusion,
+                                         shininess));
+}
+
+// The light of surface s at pixel px.
+vec4 shade_surface(VisSurface s, ivec2 px)
+{
+    vec3 P = s.P, n = s.n;
+    vec3 c = ambient_light(P, n, s.m.diffuse, s.m.gloss, s.m.shininess, s.m.occlusion) +
+             s.m.emissive;
 #ifdef NO_GRID
     uint first = 0u, count = uint(u_light_count);
     uvec2 tile = uvec2(0u);
@@ -320,8 +320,13 @@ vec4 shade_id(uint id, ivec2 px)
     uvec4 list = b_tiles[tile.y * uint(TILES_X) + tile.x];
     uint first = list.x, count = list.y;
 #endif
-    tile_lights_add(c, first, count, tile, P, n, diffuse, gloss, shininess);
+    tile_lights_add(c, first, count, tile, P, n, s.m.diffuse, s.m.gloss, s.m.shininess);
     return forward_output(c, P.z, 1.0);
+}
+
+vec4 shade_id(uint id, ivec2 px)
+{
+    return shade_surface(vis_surface(id, px), px);
 }
 
 // Each pixel reads its id from the visibility target and, when its draw is in this
@@ -374,26 +379,32 @@ void main()
         ids[k] = texelFetch(t_visibility, px, k).r;
         mixed = mixed || ids[k] != ids[0];
     }
-    // deferred's edge rule (edge_rule.inc) on the surfaces of the pixel's ids, at its
-    // centre: two triangles of one smooth surface are no edge
+    // deferred's edge rule (edge_rule.inc) on the surfaces of the pixel's ids at its
+    // centre: two triangles of one smooth surface and one material are no edge. Two
+    // draws are: a surface's material is read with its draw's maps, which only the
+    // dispatch of its draw binds, and each dispatch must classify the pixel alike
     bool edge = false;
-    if (mixed) {
-        vec3 p0, n0;
-        vis_surface(ids[0], px, p0, n0);
-        for (int k = 1; k < MSAA_SAMPLES && !edge; k++) {
-            if (ids[k] == ids[0])
-                continue;
-            vec3 p, n;
-            vis_surface(ids[k], px, p, n);
-            edge = edge_surfaces_differ(ids[0] != VIS_EMPTY, p0, n0, ids[k] != VIS_EMPTY, p,
-                                        n);
+    bool own = in_run(ids[0]);
+    VisSurface s0;
+    if (own)
+        s0 = vis_surface(ids[0], px);
+    for (int k = 1; k < MSAA_SAMPLES && mixed && !edge; k++) {
+        if (ids[k] == ids[0])
+            continue;
+        if (ids[0] == VIS_EMPTY || ids[k] == VIS_EMPTY ||
+            (ids[k] >> uint(VIS_TRI_BITS)) != (ids[0] >> uint(VIS_TRI_BITS))) {
+            edge = true;
+        } else if (own) {   // one draw: only its dispatch writes the pixel
+            VisSurface s = vis_surface(ids[k], px);
+            edge = edge_surfaces_differ(true, s0.P, s0.n, true, s.P, s.n) ||
+                   edge_materials_differ(s0.m, s.m);
         }
     }
-    if (!edge && in_run(ids[0])) {
+    if (!edge && own) {
         // sample 0's surface for every sample: shaded once
         shaded = 1u;
         covered = uint(MSAA_SAMPLES);
-        vec4 c = shade_id(ids[0], px);
+        vec4 c = shade_surface(s0, px);
         for (int j = 0; j < MSAA_SAMPLES; j++)
             imageStore(i_hdr, px, j, c);
     }
@@ -415,8 +426,9 @@ void main()
             if (ids[j] == ids[k])
                 imageStore(i_hdr, px, j, c);
     }
-    // a pixel's ids are read by every dispatch: its edge counted by the first only
-    if (edge && u_draw_first == 0)
+    // a pixel's ids are read by every dispatch: its edge counted once, by the dispatch
+    // of sample 0's draw (the first when sample 0 has none)
+    if (edge && (ids[0] == VIS_EMPTY ? u_draw_first == 0 : own))
         imageAtomicAdd(i_counts, ivec2(2, 0), 1u);
 #else
     uint id = texelFetch(t_visibility, px, 0).r;

@@ -25,7 +25,7 @@ const renderer_impl renderer_clustered_impl = {
     .description = "clustered (Olsson et al. 2012): lights culled per cluster (screen tile x "
                    "exponential depth slice) by a compute pass; forward: depth pre-pass, each "
                    "pixel shaded with its cluster's lights; deferred: from the G-buffer",
-    .reads = "gbuffer tiles clustered hdr msaa fog aa",
+    .reads = "gbuffer tiles clustered lights.culling lights.culling_error hdr msaa fog aa",
     .create = clustered_create,
     .variant = clustered_variant,
 };

@@ -45,6 +45,7 @@ void *forward_tiled_new(const char *name, bool clustered, const renderer_options
         goto fail;
     if (clustered && !light_grid_slices_option(&r->g, name, opts, err, errlen))
         goto fail;
+    light_grid_culling_option(&r->g, &r->c.b, opts);
     return r;
 fail:
     forward_common_free(&r->c);
@@ -366,7 +367,8 @@ static void forward_tiled_describe(const void *self, pass_plan *out)
 RENDERER_DESTROY(forward_tiled, release_buffers, forward_common_free)
 
 const renderer_impl renderer_forward_plus_impl = RENDERER_IMPL(
-    forward_tiled, "forward-plus", "tiles hdr msaa fog aa",
+    forward_tiled, "forward-plus",
+    "tiles lights.culling lights.culling_error hdr msaa fog aa",
     "tiled forward (Harada et al. 2012): depth pre-pass, lights culled per "
     "screen tile by a compute pass, each pixel shaded with its tile's lights",
     .collect = forward_grid_collect, .read_hdr = forward_read_hdr,

@@ -9,6 +9,7 @@
 #include "renderers/frame/bindings.h"
 #include "renderers/forward/forward_common.h"
 #include "renderers/frame/shading.h"
+#include "renderers/frame/stochastic.h"
 
 bool light_grid_tile_option(light_grid *g, const char *name, const renderer_options *o,
                             char *err, size_t errlen)
@@ -35,6 +36,12 @@ bool light_grid_slices_option(light_grid *g, const char *name, const renderer_op
     }
     g->slices_y = (uint32_t)k;
     return true;
+}
+
+void light_grid_culling_option(light_grid *g, renderer_base *b, const renderer_options *o)
+{
+    g->culling_error = o->culling_error > 0.0f ? o->culling_error : 0.0f;
+    b->stochastic = g->culling_error > 0.0f;
 }
 
 bool light_grid_size(light_grid *g, const scene *s, int width, int height, bool cull,
@@ -172,7 +179,11 @@ translucent_grid light_grid_translucent(const light_grid *g)
 
 uint32_t light_grid_upload_lights(light_grid *g, const scene *s, const frontend *fe)
 {
-    return light_buffer_update(&g->lights, s, fe);
+    uint32_t n = light_buffer_pack(&g->lights, s, fe);
+    if (g->culling_error > 0.0f)
+        stochastic_ranges(g->lights.staging, fe->lights, n, s, g->culling_error);
+    light_buffer_upload(&g->lights);
+    return n;
 }
 
 void light_grid_reset(const light_grid *g)

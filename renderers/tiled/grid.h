@@ -53,6 +53,8 @@ typedef struct light_grid {
     int tile;                        /* pixels per tile side */
     bool depth_mask;                 /* tiles.depth_culling: mask (DEPTH_MASK, tile_cull.inc) */
     bool prune_samples;              /* tiles.prune: samples (PRUNE_SAMPLES, tile_cull.inc) */
+    float culling_error;             /* lights.culling: stochastic's error; 0: exact
+                                        (light_grid_culling_option) */
     uint32_t slices_y;               /* clustered: Olsson's S_y (clustered.slices); else 0 */
     /* >>light_grid_size, at prepare */
     uint32_t slices;                 /* clustered: depth slices to the far plane; else 0 */
@@ -91,6 +93,11 @@ bool light_grid_tile_option(light_grid *g, const char *name, const renderer_opti
                             char *err, size_t errlen);
 bool light_grid_slices_option(light_grid *g, const char *name, const renderer_options *o,
                               char *err, size_t errlen);
+/* lights.culling (renderers/frame/stochastic.h), at create by a design that reads it:
+ * o->culling_error into g, and b's programs made with STOCHASTIC when it is > 0. */
+struct renderer_base;
+void light_grid_culling_option(light_grid *g, struct renderer_base *b,
+                               const renderer_options *o);
 
 /* At prepare, for s at width x height: the tiles, the slices (refused beyond 1024 with a
  * message), the cells, whether the lists are culled (cull) and whether translucent lists
@@ -163,7 +170,8 @@ double light_grid_struct_bytes(const light_grid *g, uint32_t needed);
 
 // >>per frame
 
-/* The frame's visible lights into the light buffer; returns how many. */
+/* The frame's visible lights into the light buffer (with stochastic culling their ranges
+ * cut for the frame, stochastic_ranges); returns how many. */
 uint32_t light_grid_upload_lights(light_grid *g, const scene *s, const frontend *fe);
 /* Before the dispatch: stats = {0, capacity}. */
 void light_grid_reset(const light_grid *g);

@@ -67,8 +67,10 @@ static void *create(const char *name, bool clustered, const renderer_options *op
         return NULL;
     tiled_deferred *r =
         (tiled_deferred *)deferred_core_create(name, sizeof *r, true, false, opts, err, errlen);
-    if (r)
+    if (r) {
         r->t.g = g;
+        light_grid_culling_option(&r->t.g, &r->d.b, opts);
+    }
     return r;
 }
 
@@ -154,7 +156,8 @@ static void tiled_deferred_describe(const void *self, pass_plan *out)
 }
 
 const renderer_impl renderer_tiled_deferred_impl = RENDERER_IMPL(
-    tiled_deferred, "tiled-deferred", "gbuffer tiles hdr msaa fog aa",
+    tiled_deferred, "tiled-deferred",
+    "gbuffer tiles lights.culling lights.culling_error hdr msaa fog aa",
     "G-buffer pass (every preset and override of deferred), then one compute "
     "pass that culls lights per screen tile and shades ambient, directional "
     "and local lights into the HDR target by image store; sky last",

@@ -13,3 +13,7 @@ int cmd_report(int argc, char **argv);
 /* `shadesweep ratios` (runner/answer/ratios.c): results/verdict.c's ratios, intervals and
  * crossovers for other programs (the Python report), requests on stdin, JSON lines out. */
 int cmd_ratios(int argc, char **argv);
+
+/* `shadesweep bound [--profile DEVICE.yaml] DIR` (runner/answer/summary_bound.c): each
+ * run's bound from DIR/device.yaml (or the profile named), as CSV on stdout. */
+int cmd_bound(int argc, char **argv);

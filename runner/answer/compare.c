@@ -33,6 +33,7 @@
 #include "runner/manifest/diag.h"
 #include "runner/manifest/hash.h"
 #include "runner/manifest/manifest.h"
+#include "runner/answer/clock_check.h"
 #include "runner/answer/device_note.h"
 #include "runner/answer/run_model.h"
 #include "runner/manifest/sweep_axis.h"
@@ -68,6 +69,7 @@ typedef struct pair {
     ratio_ci r;                /* NEW / BASE the verdict is on: raw / the common change
                                 * where that was applied (results/drift.h), else raw */
     verdict v;
+    clock_check clk;           /* the GPU clocks of both sides (NVML; clock_check.h) */
 } pair;
 
 static bool parse_threshold(const char *s, double *out)
@@ -171,6 +173,50 @@ static void round_changes_line(FILE *fp, const pair *p, size_t np)
     free(l);
 }
 
+/* Where either side has GPU clocks (NVML): each run's median SM clocks, the rounds
+ * whose clocks differ by more than CLOCK_TOLERANCE, and GPU time raw and at BASE's
+ * clock. Nothing without clocks (llvmpipe, other vendors). */
+static void clocks_md(FILE *fp, const pair *p, size_t np, bool paired)
+{
+    size_t any = 0, flagged = 0;
+    for (size_t i = 0; i < np; i++) {
+        any += p[i].clk.any;
+        flagged += p[i].clk.nflagged > 0;
+    }
+    if (!any)
+        return;
+    fprintf(fp, "\n**GPU clocks** (NVML, each trial's median SM clock): %zu of %zu run%s %s "
+            "clocks more than %g%% apart%s. GPU time at BASE's clock is each trial's GPU time "
+            "x its clock / BASE's median clock: what it would be if the time scaled with the "
+            "SM clock (a pass bound by memory does not; the raw ratio is beside it).\n\n"
+            "| run | renderer | BASE SM (MHz) | NEW SM (MHz) | GPU NEW / BASE | at BASE's "
+            "clock | clocks apart |\n|---|---|---|---|---|---|---|\n", flagged, np,
+            np == 1 ? "" : "s", paired ? "had rounds with" : "ran at", CLOCK_TOLERANCE * 100,
+            paired ? " (a round's two trials ran minutes apart)" : "");
+    for (size_t i = 0; i < np; i++) {
+        const clock_check *c = &p[i].clk;
+        char apart[160] = "-";
+        if (c->nflagged && paired) {
+            int len = snprintf(apart, sizeof apart, "round%s", c->nflagged == 1 ? "" : "s");
+            for (size_t k = 0; k < c->nflagged && k < CLOCK_MAX_FLAGGED && len < 140; k++)
+                len += snprintf(apart + len, sizeof apart - (size_t)len, "%s %u", k ? "," : "",
+                                c->flagged[k]);
+            if (c->nflagged > CLOCK_MAX_FLAGGED)
+                snprintf(apart + len, sizeof apart - (size_t)len, " and %zu more",
+                         c->nflagged - CLOCK_MAX_FLAGGED);
+        } else if (c->nflagged) {
+            snprintf(apart, sizeof apart, "**%+.1f%%**", (c->new_mhz / c->base_mhz - 1) * 100);
+        }
+        char g[32] = "-", gn[32] = "-";
+        if (isfinite(c->gpu.ratio))
+            snprintf(g, sizeof g, "%.4f", c->gpu.ratio);
+        if (isfinite(c->gpu_norm.ratio))
+            snprintf(gn, sizeof gn, "%.4f", c->gpu_norm.ratio);
+        fprintf(fp, "| %s | %s | %.0f | %.0f | %s | %s | %s |\n", p[i].a->id, p[i].a->renderer,
+                c->base_mhz, c->new_mhz, g, gn, apart);
+    }
+}
+
 /* dn[0], dn[1]: the devices of BASE and NEW (device_note.h) */
 static void write_md(FILE *fp, const char *base, const char *new_, double thr, bool paired,
                      const pair *p, size_t np, size_t only_base, size_t only_new,
@@ -227,6 +273,7 @@ static void write_md(FILE *fp, const char *base, const char *new_, double thr, b
             "in NEW.\n", np, np == 1 ? "" : "s", count[VERDICT_SLOWER], count[VERDICT_FASTER],
             count[VERDICT_SAME], count[VERDICT_UNDECIDED], count[VERDICT_NONE], only_base,
             only_new);
+    clocks_md(fp, p, np, paired);
 }
 
 /* The table as JSON (--json): what write_md says, for scripts; docs/summary-json.md. */
@@ -279,6 +326,12 @@ static void write_json(FILE *fp, const char *base, const char *new_, double thr,
         json_member_number(fp, &f, "raw_ratio_hi", p[i].raw.hi);
         json_member_number(fp, &f, "trials", (double)p[i].r.n);
         json_member_string(fp, &f, "verdict", verdict_name(p[i].v));
+        const clock_check *c = &p[i].clk;   /* NVML's clocks; null without */
+        json_member_number(fp, &f, "base_sm_mhz", c->base_mhz);
+        json_member_number(fp, &f, "new_sm_mhz", c->new_mhz);
+        json_member_number(fp, &f, "clocks_apart", c->any ? (double)c->nflagged : NAN);
+        json_member_number(fp, &f, "gpu_ratio", c->gpu.ratio);
+        json_member_number(fp, &f, "gpu_ratio_at_base_clock", c->gpu_norm.ratio);
         fputs("}", fp);
     }
     fputs("]", fp);
@@ -409,6 +462,7 @@ static int compare_folders(const char *base, const char *new_, const compare_opt
             verdict_unpaired_ratio(x->b->value, x->b->nvalues, x->a->value, x->a->nvalues,
                                    &x->r);
         x->raw = x->r;
+        clock_check_pair(x->a, x->b, co->paired, &x->clk);
         if (strcmp(x->b->status, "ok") != 0 && strcmp(x->a->status, "ok") == 0) {
             broke++;
             fprintf(stderr, "shadesweep compare: run %s (%s) failed in NEW (%s), not in BASE\n",

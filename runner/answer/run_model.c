@@ -12,7 +12,7 @@
 
 typedef struct trial_cols {
     int run_id, renderer, experiment, trial, wall, p99, low1, rmse, status, metric, value;
-    int share, steal, reach, evals, coverage, lights;
+    int share, steal, reach, evals, coverage, lights, gpu, sm;
 } trial_cols;
 
 void summary_free_runs(run_result *runs, size_t n)
@@ -22,6 +22,8 @@ void summary_free_runs(run_result *runs, size_t n)
         free(runs[i].wall);
         free(runs[i].share);
         free(runs[i].steal);
+        free(runs[i].gpu);
+        free(runs[i].sm_mhz);
     }
     free(runs);
 }
@@ -41,7 +43,7 @@ bool summary_load_runs(const char *path, run_result **out, size_t *n, char *err,
         csv_col(&t, "metric"), csv_col(&t, "metric_us"), csv_col(&t, "cpu_share_mean"),
         csv_col(&t, "steal_frac"), csv_col(&t, "lights_reaching_mean"),
         csv_col(&t, "light_evals_per_pixel"), csv_col(&t, "coverage"),
-        csv_col(&t, "lights_count"),
+        csv_col(&t, "lights_count"), csv_col(&t, "gpu_mean_us"), csv_col(&t, "sm_clock_mhz"),
     };
     if (c.run_id < 0 || c.trial < 0 || c.wall < 0 || c.status < 0) {
         snprintf(err, errlen, "%s: not a shadesweep summary.csv (no run_id, trial, "
@@ -87,12 +89,15 @@ bool summary_load_runs(const char *path, run_result **out, size_t *n, char *err,
         x->wall = malloc(nv * sizeof *x->wall);
         x->share = malloc(nv * sizeof *x->share);
         x->steal = malloc(nv * sizeof *x->steal);
-        if (!x->value || !x->wall || !x->share || !x->steal) {
+        x->gpu = malloc(nv * sizeof *x->gpu);
+        x->sm_mhz = malloc(nv * sizeof *x->sm_mhz);
+        if (!x->value || !x->wall || !x->share || !x->steal || !x->gpu || !x->sm_mhz) {
             ok = false;
             break;
         }
         for (size_t i = 0; i < nv; i++)
-            x->value[i] = x->wall[i] = x->share[i] = x->steal[i] = NAN;
+            x->value[i] = x->wall[i] = x->share[i] = x->steal[i] = x->gpu[i] = x->sm_mhz[i] =
+                NAN;
         size_t m = 0;
         double p99 = 0, low = 0;
         x->rmse = NAN;
@@ -119,6 +124,8 @@ bool summary_load_runs(const char *path, run_result **out, size_t *n, char *err,
                 x->value[i] = c.value >= 0 ? csv_num(&t, q, c.value) : x->wall[i];
                 x->share[i] = c.share >= 0 ? csv_num(&t, q, c.share) : NAN;
                 x->steal[i] = c.steal >= 0 ? csv_num(&t, q, c.steal) : NAN;
+                x->gpu[i] = c.gpu >= 0 ? csv_num(&t, q, c.gpu) : NAN;
+                x->sm_mhz[i] = c.sm >= 0 ? csv_num(&t, q, c.sm) : NAN;
             }
             m++;
             double p = c.p99 >= 0 ? csv_num(&t, q, c.p99) : NAN;

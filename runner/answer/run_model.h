@@ -25,6 +25,7 @@ typedef struct run_result {
     double *value;             /* value[k - 1]: trial k's metric_us; NAN: failed or absent */
     double *wall;              /* wall[k - 1]: trial k's frametime_mean_us, the same way */
     double *share, *steal;     /* trial k's cpu_share_mean and steal_frac (NAN: none) */
+    double *gpu, *sm_mhz;      /* trial k's gpu_mean_us and sm_clock_mhz (NAN: none) */
     size_t nvalues;            /* the largest trial number */
     double mean, half;         /* the metric over the ok trials, and its 95% t half-width */
     double wall_mean, wall_half;   /* frame time, the same way */

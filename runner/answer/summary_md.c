@@ -12,6 +12,7 @@
 #include "common/fsutil.h"
 #include "runner/answer/crossovers.h"
 #include "runner/answer/device_note.h"
+#include "runner/answer/summary_bound.h"
 #include "runner/manifest/params.h"
 #include "runner/answer/point_verdict.h"
 #include "runner/answer/summary_json.h"
@@ -432,6 +433,7 @@ static bool table_write(const char *out_dir, FILE *terminal, char *err, size_t e
         ok = false;
         goto out;
     }
+    summary_bound_md(f.fp, out_dir, &sm);   /* each run's bound and limiter */
     /* what makes these verdicts doubtful, named per trial */
     fputs("\n## Warnings\n\n", f.fp);
     if (!summary_warnings(runs, nruns, f.fp, "- ", true))

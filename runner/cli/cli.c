@@ -4,6 +4,7 @@
 #include "runner/answer/commands.h"
 #include "runner/answer/summary_md.h"
 #include "runner/cli/probe.h"
+#include "runner/history/history.h"
 
 #include <errno.h>
 #include <getopt.h>
@@ -85,7 +86,15 @@ static const char usage_text[] =
     "                             the verdicts as JSON)\n"
     "  compare --exe OTHER [OPTIONS] MANIFEST  the manifest with OTHER (BASE) and this\n"
     "                             build (NEW) in interleaved rounds, compared paired\n"
-    "  report [OPTIONS] DIR...    the report over output folders (Python)\n"
+    "  history add|show|check [OPTIONS]  a results history: output folders into a\n"
+    "                             database (SQLite or PostgreSQL), the change points of\n"
+    "                             each run's series; check exits 1 on a regression\n"
+    "                             (history --help)\n"
+    "  report [OPTIONS] DIR...    the report over output folders (Python; --cross-device\n"
+    "                             A B: two devices' rankings side by side)\n"
+    "  bound [--profile DEVICE.yaml] [--passes] DIR  each run's bound from the device\n"
+    "                             profile (DIR/device.yaml): a CSV row per run (--passes:\n"
+    "                             per run and pass of passes.csv), the limiter named\n"
     "  ratios < REQUESTS          trial-level ratios, intervals and crossovers for\n"
     "                             scripts (the report's statistics; ratios --help)\n"
     "  params [--markdown|--bash|--json]  every manifest key: type, default, range, the\n"
@@ -687,7 +696,8 @@ int cli_main(int argc, char **argv)
     /* `shadesweep COMMAND ... --help` anywhere before a `--`: that command's part of
      * the usage, on stdout, exit 0. ratios and compare have a usage of their own,
      * which says more (the top-level lines of ratios point back at its --help). */
-    bool own_help = strcmp(cmd, "ratios") == 0 || strcmp(cmd, "compare") == 0;
+    bool own_help = strcmp(cmd, "ratios") == 0 || strcmp(cmd, "compare") == 0 ||
+                    strcmp(cmd, "history") == 0;
     for (int i = 2; i < argc && !own_help && strcmp(argv[i], "--") != 0; i++)
         if (strcmp(argv[i], "--help") == 0 || strcmp(argv[i], "-h") == 0) {
             if (print_command_help(cmd))
@@ -701,7 +711,8 @@ int cli_main(int argc, char **argv)
         {"run", cmd_run},         {"validate", cmd_validate}, {"list", cmd_list},
         {"info", cmd_info},       {"merge", cmd_merge},       {"params", cmd_params},
         {"columns", cmd_columns}, {"ratios", cmd_ratios},     {"compare", cmd_compare},
-        {"report", cmd_report},   {"probe", cmd_probe},
+        {"report", cmd_report},   {"probe", cmd_probe},       {"history", cmd_history},
+        {"bound", cmd_bound},
     };
     /* Each command parses argv[1..]: its name plays argv[0]. */
     for (size_t i = 0; i < sizeof commands / sizeof commands[0]; i++)

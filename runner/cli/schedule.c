@@ -1,6 +1,7 @@
 /* The sweep as rounds of trials (run.h run_plan; docs/architecture.md "Schedule"). */
 #include "runner/trial/run.h"
 #include "runner/cli/probe.h"
+#include "runner/folder/bound_folder.h"
 
 #include <errno.h>
 #include <math.h>
@@ -545,8 +546,15 @@ int run_sweep(const experiment *e, const plan *p, const char *out, bool force, r
     o->out_dir = dir;
     int rc = run_plan(e, p, o);
     o->out_dir = NULL;
-    if (rc != 2)
+    if (rc != 2) {
         probe_copy_to_folder(dir, p);   /* device.yaml from the cache, never a probe */
+        static folder_bound fb;         /* summary.csv's bound columns from it */
+        char berr[4400];
+        folder_bound_open(&fb, dir, NULL);
+        if (!folder_bound_fill_summary(dir, &fb, berr, sizeof berr))
+            fprintf(stderr, "shadesweep run: no bounds in summary.csv: %s\n", berr);
+        folder_bound_close(&fb);
+    }
     bool table = true;
     if (rc != 2 && !(o->round && rc != 0)) {
         /* the answer (runner/answer/summary_md.c): on stdout and as summary.md, written while

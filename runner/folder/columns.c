@@ -8,6 +8,21 @@
 #include "results/metrics.h"
 #include "runner/folder/output.h"
 
+/* summary.csv's bound columns (runner/folder/bound_folder.h), outside metrics.def: they
+ * divide a trial's counted work by the folder's device profile, not a measurement. */
+static const struct {
+    const char *column, *unit, *none, *doc;
+} bound_docs[] = {
+    {"bound_us", "us", "no device.yaml in the folder (no profile cached when it was run)",
+     "the largest time a resource of the device needs for the trial's counted work: bytes / "
+     "bandwidth, samples shaded / fill rate, light evaluations x 64 flops / arithmetic rate, "
+     "draws, state changes and dispatches x their cost (docs/notes/device-profile.md)"},
+    {"limiter", "", "as bound_us", "that resource: bytes, fill, alu, draws or dispatches"},
+    {"bound_pct", "%", "as bound_us",
+     "100 x bound_us / frametime_mean_us; above 100 the model is wrong for the run "
+     "(summary.md names it), never clamped"},
+};
+
 static void list(FILE *out, const char *const *cols, size_t n, bool markdown)
 {
     for (size_t i = 0; i < n; i++)
@@ -71,6 +86,17 @@ void columns_print(FILE *out, bool markdown)
             cell(out, d->doc, false);
             fputs("|\n", out);
         }
+        fputs("\n## The bound\n\n"
+              "Filled in the folder's summary.csv from its device.yaml (`shadesweep probe`);\n"
+              "the runs' own summary.csv leave them empty.\n\n"
+              "| summary.csv | unit | empty when | what it is |\n|---|---|---|---|\n", out);
+        for (size_t i = 0; i < sizeof bound_docs / sizeof *bound_docs; i++) {
+            cell(out, bound_docs[i].column, true);
+            cell(out, bound_docs[i].unit, false);
+            cell(out, bound_docs[i].none, false);
+            cell(out, bound_docs[i].doc, false);
+            fputs("|\n", out);
+        }
         return;
     }
     fputs("frames.csv:  ", out);
@@ -86,4 +112,9 @@ void columns_print(FILE *out, bool markdown)
         if (d->none[0])
             fprintf(out, "    empty: %s\n", d->none);
     }
+    fputs("\nthe bound (summary.csv, from the folder's device.yaml):\n", out);
+    for (size_t i = 0; i < sizeof bound_docs / sizeof *bound_docs; i++)
+        fprintf(out, "\n%s  (%s)\n    %s\n    empty: %s\n", bound_docs[i].column,
+                bound_docs[i].unit[0] ? bound_docs[i].unit : "name", bound_docs[i].doc,
+                bound_docs[i].none);
 }

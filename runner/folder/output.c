@@ -31,6 +31,9 @@ const char *const summary_columns[] = {
     /* the schedule (runner/cli/schedule.c): the trial's place in its round; what decides
      * (measure.metric resolved) and the trial's value of it */
     "order", "metric", "metric_us",
+    /* the bound (runner/folder/bound_folder.h): empty here, filled for the folder's
+     * summary.csv from its device.yaml */
+    "bound_us", "limiter", "bound_pct",
     "status", "message",
 };
 const size_t summary_ncolumns = sizeof summary_columns / sizeof summary_columns[0];
@@ -46,6 +49,7 @@ static const struct {
     {"image_psnr_db", "dB"},     {"image_max_abs", "1"},         {"nonfinite_pixels", "pixels"},
     {"harness_us_mean", "us"},   {"ci1pct_after_s", "s"},        {"image_edge_rmse", "1"},
     {"image_edge_pixels", "pixels"}, {"metric_us", "us"},
+    {"bound_us", "us"},          {"bound_pct", "%"},
 };
 
 const char *summary_column_unit(const char *column)
@@ -464,6 +468,8 @@ bool output_write_run_summary(const char *run_dir, const experiment *e, const ru
             csv_empty(w);
         csv_str(w, r->metric);
         csv_f64(w, r->metric_us, 3);
+        for (int b = 0; b < 3; b++)   /* bound_us, limiter, bound_pct */
+            csv_empty(w);
         csv_str(w, r->status);
         csv_str(w, strcmp(r->status, "ok") == 0 ? "" : message);
         csv_end_row(w);

@@ -718,7 +718,7 @@ static void parse_sweep(vctx *c, const param *pd, const ynode *map)
         if (sp && sp->type == PT_GROUP && sp->shorthand)
             sp = param_find(sp->shorthand);   /* `gbuffer: [fat, curtis]` as in place */
         if (!sp || !(sp->flags & PF_SWEEP)) {
-            char list[1024];
+            char list[2048];   /* every sweepable key: 1,100 bytes with zbin.* */
             sbuf lb = {list, sizeof list, 0};
             list_sweepable(&lb);
             mf_err(c, k, key, "expected a sweepable parameter (one of %s), found %s", list,

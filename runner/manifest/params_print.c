@@ -54,7 +54,7 @@ static void print_bash(FILE *out)
           "_shadesweep() {\n"
           "  local cur=${COMP_WORDS[COMP_CWORD]} cmd=${COMP_WORDS[1]}\n"
           "  local prev=${COMP_WORDS[COMP_CWORD-1]}\n"
-          "  local commands=\"run validate list info probe merge params columns report compare\"\n"
+          "  local commands=\"run validate list info probe merge params columns report compare history bound\"\n"
           "  local keys=\"",
           out);
     for (size_t i = 0; i < NPARAMS; i++)
@@ -96,7 +96,10 @@ static void print_bash(FILE *out)
           "      COMPREPLY=($(compgen -W \"$opts $keys\" -- \"$cur\")); return ;;\n"
           "    columns) opts=\"--markdown --help\" ;;\n"
           "    compare) opts=\"--threshold --csv --md --help\" ;;\n"
-          "    report) opts=\"--help\" ;;\n"
+          "    report) opts=\"-o --out --cross-device --help\" ;;\n"
+          "    history) opts=\"add show check --db --run --renderer --metric --min-change "
+          "--max-pvalue --no-drift --json --help\" ;;\n"
+          "    bound) opts=\"--profile --passes --help\" ;;\n"
           "  esac\n"
           "  if [[ $cur == -* ]]; then\n"
           "    COMPREPLY=($(compgen -W \"$opts\" -- \"$cur\"))\n"

@@ -112,6 +112,15 @@ static double median_of(const run_clocks *c, size_t off, double *tmp)
     return k % 2 ? tmp[k / 2] : (tmp[k / 2 - 1] + tmp[k / 2]) / 2;
 }
 
+double run_clocks_median_sm(const run_state *st)
+{
+    const run_clocks *c = st->clocks;
+    double *tmp = c && c->ns ? malloc(c->ns * sizeof *tmp) : NULL;
+    double v = tmp ? median_of(c, offsetof(nvml_sample, sm_mhz), tmp) : NAN;
+    free(tmp);
+    return v;
+}
+
 static void num(yaml_out *y, const char *key, double v)
 {
     yo_key(y, key);

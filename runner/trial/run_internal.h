@@ -107,6 +107,7 @@ bool run_clocks_due(const run_state *st);
 void run_clocks_tick(run_state *st);
 void run_clocks_end(run_state *st);
 void run_clocks_meta(const run_state *st, yaml_out *y);
+double run_clocks_median_sm(const run_state *st);   /* MHz; NAN: no readings */
 void run_clocks_free(run_state *st);
 /* The trial's meta.yaml, atomically; false with a message. */
 bool run_write_meta(run_state *st, char *err, size_t errlen);

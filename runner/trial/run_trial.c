@@ -579,7 +579,7 @@ static bool check_shown(run_state *st, uint32_t trial, double t, frame_shown *sh
 
 /* A trial's TRIAL_METRICs of results/metrics.def, each from its `from`. */
 static void trial_metrics_of(metric_totals *m, const contention_trial *ctn,
-                             const frame_shown *shown)
+                             const frame_shown *shown, double sm_mhz)
 {
 #define TRIAL_METRIC(trial, sprec, from, ...) m->trial = (from);
 #include "results/metrics.def"
@@ -768,7 +768,7 @@ void run_one_trial(run_state *st, uint32_t trial, trial_result *tr)
     tr->m = tt.m;
     contention_trial ctn;
     contention_between(&c0, &c1, loadavg, &ctn);
-    trial_metrics_of(&tr->m, &ctn, &shown);
+    trial_metrics_of(&tr->m, &ctn, &shown, run_clocks_median_sm(st));
     tr->lights_max = tt.lights_max;
     tr->ci1pct_after_s = tt.ci_converged_after_s;
     tr->harness_us_mean = n ? harness_s * 1e6 / (double)n : NAN;

@@ -1,9 +1,10 @@
 #!/usr/bin/env bash
 # scripts/gpu-bench.sh at smoke size on whatever EGL devices this machine has (here
-# llvmpipe's software device): info for every device, the renderer benchmark, the
-# deferred families over resolution and msaa, and seed 003's experiments cut to the
-# budget, the report; --resume runs nothing again; an existing folder without --resume
-# and a spent budget are refused with a message.
+# llvmpipe's software device): info for every device, the probe's device.yaml (kept on
+# --resume, copied into every folder), the renderer benchmark, the deferred families over
+# resolution and msaa, and seed 003's experiments cut to the budget, the report and
+# clocks.txt; --resume runs nothing again; an existing folder without --resume and a
+# spent budget are refused with a message.
 . "$(dirname "$0")/lib.sh"
 need_gl
 cd "$T"
@@ -38,6 +39,16 @@ check() {  # check NAME RUNS
   [ -s "gb/$1/summary.md" ] || fail "$1: no summary.md"
   grep -q "^$1-smoke: $2 runs," gb.out || fail "$1: no end-of-run table"
 }
+# the probe first: OUTDIR/device.yaml, read back as YAML, and each folder's copy of it
+grep -q "^gpu-bench: device profile: gb/device.yaml (" gb.out || fail "no probe: $(grep -i probe gb.out gb.err)"
+"$PYTHON" - <<'PY' || fail "device.yaml"
+import yaml
+d = yaml.safe_load(open("gb/device.yaml"))
+for m in ("renderers-deferred", "renderers-forward", "families-msaa", "s003-exp2", "s003-exp1"):
+    assert yaml.safe_load(open(f"gb/{m}/device.yaml"))["key"] == d["key"], m
+PY
+[ "$(grep -c ': no GPU clocks (no NVIDIA device through NVML)$' gb/clocks.txt)" -eq 5 ] ||
+  fail "clocks.txt: $(cat gb/clocks.txt)"
 check renderers-deferred 12
 check renderers-forward 6
 check families-msaa 10
@@ -52,6 +63,7 @@ for k in "12 of 12" "6 of 6" "2 of 2" "6 of 6"; do
   grep -q "resuming: $k runs already complete" re.err || fail "resume: $(grep resuming re.err)"
 done
 grep -q "^run " re.err && fail "resume ran a run: $(grep '^run ' re.err | head -1)"
+grep -qx "gpu-bench: device profile kept: gb/device.yaml" re.out || fail "resume probed again: $(cat re.out | head -5)"
 # an existing folder without --resume; a spent budget
 set +e
 "$B" --smoke gb >x.out 2>x.err; rc=$?

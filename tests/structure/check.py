@@ -31,7 +31,8 @@ RUNNER_FOLDERS = {
     "folder": ("manifest",),
     "answer": ("folder", "plan", "manifest"),
     "trial": ("folder", "plan", "manifest"),
-    "cli": ("answer", "trial", "folder", "plan", "manifest"),
+    "history": ("folder", "manifest"),
+    "cli": ("history", "answer", "trial", "folder", "plan", "manifest"),
 }
 
 INCLUDE = re.compile(r'^[ \t]*#[ \t]*include[ \t]*"([^"]+)"', re.M)

@@ -395,6 +395,8 @@ static void test_kv_canonical(void **state)
         {"tiles.max_lights_per_tile", "0"},
         {"clustered.slices", "24"},
         {"clustered.shading", "forward"},
+        {"lights.culling", "exact"},
+        {"lights.culling_error", "0.005"},
         {"deferred_lighting.light_buffer", "rgba16f"},
         {"deferred_lighting.lights", "volumes"},
         {"shadows", "auto"},
@@ -485,6 +487,8 @@ static void test_kv_canonical(void **state)
         {"tiles.max_lights_per_tile", "0"},
         {"clustered.slices", "24"},
         {"clustered.shading", "forward"},
+        {"lights.culling", "exact"},
+        {"lights.culling_error", "0.005"},
         {"deferred_lighting.light_buffer", "rgba16f"},
         {"deferred_lighting.lights", "volumes"},
         {"shadows", "off"},
@@ -638,7 +642,8 @@ static const bad_case bad_cases[] = {
       "resolution, trials, schedule, measure, warmup, duration, clock, step, sync, timeout, draw_limit, gbuffer, deferred, forward, tiles, clustered, deferred_lighting, shadows, hdr, msaa, fog, aa, zbin, translucency, shading, environment, camera, error, lights, exposure, tonemap, outputs, allow_empty, debug, sweep, "
       "found 'durtion'"}},
     {"unknown_nested_key.yaml",
-     {"8:3: lights.cnt: expected one of placement, seed, rng, count, radius, overlap, color_max, "
+     {"8:3: lights.cnt: expected one of culling, culling_error, placement, seed, rng, count, "
+      "radius, overlap, color_max, "
       "attenuation, sizing, cutoff, quadratic, found 'cnt'"}},
     {"duplicate_key.yaml",
      {"7:1: trials: expected a key used once, found a second 'trials' (first at 5:1)"}},
@@ -752,8 +757,8 @@ static const bad_case bad_cases[] = {
        "deferred.sky_stencil, "
        "forward.illumination_sets, forward.directional_in_base, forward.light_buffer, tiles.size, "
       "tiles.depth_culling, tiles.prune, tiles.levels, tiles.coarse_size, "
-      "tiles.max_lights_per_tile, clustered.slices, clustered.shading, "
-      "deferred_lighting.light_buffer, deferred_lighting.lights, shadows, hdr, msaa, "
+      "tiles.max_lights_per_tile, clustered.slices, clustered.shading, lights.culling, "
+      "lights.culling_error, deferred_lighting.light_buffer, deferred_lighting.lights, shadows, hdr, msaa, "
       "fog.density, "
       "fog.colour, aa, zbin.bins, zbin.shading, translucency, shading.model, environment.light, environment.intensity, camera.radius, "
       "camera.height, camera.period, "

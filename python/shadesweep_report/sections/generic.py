@@ -1,11 +1,13 @@
 """Any other experiment (the quick-start, the renderer benchmark, a user's sweep): who
 wins at each sweep point and where they change places (summary.json, as the run printed
 them), and the metric that ranks against lights per configuration when the lights vary
-within or across its runs."""
+within or across its runs, and (culling_error.py) image error against time when the
+runs vary lights.culling_error."""
 import json
 import os
 
 from .. import verdicts
+from .culling_error import error_against_time
 from ..loading import read_csv
 from ..plots import styles
 from ..text import code, fmt, md_table, md_values
@@ -69,12 +71,12 @@ def lights_series(run, metric, value):
     return [(lights, value["mean_us"] / 1000, ci / 1000 if ci is not None else None)]
 
 
-def line_labels(runs):
+def line_labels(runs, axes=("lights.count",)):
     """{run id: its line's label}: the renderer and the values of the keys that vary across
-    runs (but the lights' count, the x axis) and that it reads; a key only other
+    runs (but the axes: the lights' count, the x axis) and that it reads; a key only other
     renderers read would name a difference that is not there."""
     keys = sorted({k for r in runs for k in r.params})
-    vary = [k for k in keys if k not in ("renderer", "lights.count")
+    vary = [k for k in keys if k != "renderer" and k not in axes
             and len({r.param(k) for r in runs}) > 1]
     return {r.id: " ".join([r.renderer] + [f"{k}={r.param(k)}" for k in vary
                                            if verdicts.reads(r.renderer, k)]) for r in runs}
@@ -118,6 +120,9 @@ def section_generic(s):
     metrics = {metric_of(r) for r in runs}   # one, but for folders measured apart
     metric = metrics.pop() if len(metrics) == 1 else "wall"
     values = verdicts.values(runs)
+    error_against_time(s, runs, values,
+                       line_labels(runs, ("lights.culling", "lights.culling_error")),
+                       METRIC_TEXT.get(metric, metric))
     by, ren, labels = {}, {}, line_labels(runs)
     for r in runs:
         label = labels[r.id]
