@@ -36,7 +36,7 @@ const uint NT = 256u;
 bool zbin_extent(Light l, out float depth, out float r)
 {
     depth = -l.position_range.z;
-    r = l.position_range.w;
+    r = light_cull_range(l);   // with STOCHASTIC the frame's cut range (lighting.inc)
 #if HAS_DIRECTIONAL
     if (int(l.color_type.w) == LIGHT_DIRECTIONAL)
         return false;

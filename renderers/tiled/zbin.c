@@ -164,7 +164,8 @@ const renderer_impl renderer_zbin_impl = {
                    "bins and a bit mask over them a screen tile, all on the GPU; forward: "
                    "depth pre-pass, each pixel shades its tile's bits within its bin; "
                    "deferred: from the G-buffer",
-    .reads = "gbuffer tiles.size tiles.depth_culling tiles.prune zbin hdr msaa fog aa",
+    .reads = "gbuffer tiles.size tiles.depth_culling tiles.prune zbin lights.culling "
+             "lights.culling_error hdr msaa fog aa",
     .create = zbin_create,
     .variant = zbin_variant,
     .max_lights = zbin_max_lights,

@@ -1,6 +1,6 @@
 /* Stochastic light culling (issue 37 item 4, lights.culling: stochastic; Tokuyoshi and
- * Harada 2016) on forward-plus, clustered, tiled-deferred and deferred-lighting with
- * tiled lists, 32x32 "shapes" with 96 dim point lights of range 60 (every light reaches
+ * Harada 2016) on forward-plus, clustered, tiled-deferred, deferred-lighting with tiled
+ * lists and zbin (both shadings), 32x32 "shapes" with 96 dim point lights of range 60 (every light reaches
  * every pixel when exact): at an error that cuts most of them the mean of 16 seeds' HDR
  * images lies within 1/255 RMSE of the exact image (unbiased), each seed's differs from
  * it, the same seed twice gives the same image bit for bit, and light evaluations a
@@ -38,10 +38,13 @@ static gl_context *ctx;
 typedef struct design {
     const char *kind;
     bool lpp_tiled;   /* deferred-lighting with deferred_lighting.lights: tiled */
+    bool zbin_deferred;   /* zbin with zbin.shading: deferred */
 } design;
-static const design DESIGNS[] = {{"forward-plus", false}, {"clustered", false},
-                                 {"tiled-deferred", false}, {"deferred-lighting", true}};
-enum { NDESIGNS = 4 };
+static const design DESIGNS[] = {{"forward-plus", false, false}, {"clustered", false, false},
+                                 {"tiled-deferred", false, false},
+                                 {"deferred-lighting", true, false}, {"zbin", false, false},
+                                 {"zbin", false, true}};
+enum { NDESIGNS = 6 };
 
 static renderer_options options(const design *d, float culling_error)
 {
@@ -50,6 +53,7 @@ static renderer_options options(const design *d, float culling_error)
         .width = W, .height = H, .queries = false,
         .max_uniform_block_size = gi->max_uniform_block_size,
         .gbuffer = GBUFFER_REFERENCE, .lpp_tiled = d->lpp_tiled,
+        .zbin_deferred = d->zbin_deferred,
         .culling_error = culling_error,
     };
     return o;
@@ -273,10 +277,10 @@ static void unbiased(const char *name, int ndesigns, float error)
         image b = {.width = W, .height = H, .channels = 4, .type = IMAGE_U8,
                    .pixels = shown_exact};
         double e = rmse(&a, &b);
-        print_message("%s, %s: error %.3g: evaluations a pixel %.2f (exact %.2f), lights a tile "
-                      "%.2f (exact %.2f); a seed's RMSE %.2f/255 (>= %.2f), 16 seeds' "
+        print_message("%s, %s%s: error %.3g: evaluations a pixel %.2f (exact %.2f), lights a "
+                      "tile %.2f (exact %.2f); a seed's RMSE %.2f/255 (>= %.2f), 16 seeds' "
                       "mean's %.3f/255\n",
-                      name, d->kind, (double)error, evals, exact.fs.light_evals_per_pixel, tile,
+                      name, d->kind, d->zbin_deferred ? " deferred" : "", (double)error, evals, exact.fs.light_evals_per_pixel, tile,
                       exact.fs.grid_lights_mean, single * 255, least * 255, e * 255);
         assert_true(exact.fs.light_evals_per_pixel > 0.9 * NLIGHTS);   /* exact: every light */
         assert_true(evals < 0.5 * exact.fs.light_evals_per_pixel);     /* most cut */
