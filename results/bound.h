@@ -2,7 +2,7 @@
 /* The bound of a run (issue 38, item 2; a roofline after Williams, Waterman and
  * Patterson, CACM 2009): the time each resource of the device needs for the run's
  * counted work (bytes / bandwidth, samples / fill rate, light evaluations x FLOPs /
- * arithmetic rate, draws, state changes and dispatches x their cost), from the device
+ * arithmetic rate, draws and dispatches x their cost), from the device
  * profile's figures (results/device_profile.h). The largest is the bound, its resource
  * the limiter; a bound above the measured time is a model error, flagged, never
  * clamped. Arithmetic only, no GL. The model, each formula and its limits:
@@ -28,7 +28,6 @@ typedef struct bound_rates {
     double fill_gsps;       /* fill_FORMAT_Sx (unblended), Gsamples/s */
     double alu_gflops;      /* max(alu_fragment, alu_compute), Gflop/s */
     double draw_us;         /* draw_us */
-    double state_us;        /* state_change_us - draw_us (a program switch alone), >= 0 */
     double dispatch_us;     /* dispatch_us */
     double spread;          /* the largest spread / median of the figures used */
     char fill_figure[48];   /* the fill figure's name */
@@ -39,7 +38,7 @@ typedef struct bound_work {
     double bytes;           /* gbuffer_write_bytes + gbuffer_read_bytes */
     double samples;         /* samples_shaded */
     double evaluations;     /* light evaluations: light_evals_per_pixel x covered pixels */
-    double draws, state_changes, dispatches;
+    double draws, state_changes, dispatches;   /* state changes: reported, not charged */
 } bound_work;
 
 typedef struct bound_result {
