@@ -7,10 +7,12 @@
 #include <string.h>
 
 #include "common/fsutil.h"
+#include "results/device_profile.h"
 #include "results/numfmt.h"
 #include "results/yamlout.h"
 #include "runner/manifest/params.h"
 #include "runner/manifest/yamldoc.h"
+#include "runner/folder/meta_read.h"
 
 /* The columns of results/metrics.def go in three slots (metrics.def: S1, S2, S3). */
 const char *const summary_columns[] = {
@@ -103,6 +105,10 @@ static const char *const passes_columns[] = {
     /* whether gpu_us and cpu_us are the pass's own (0 on a software rasterizer: there
      * only the frame's total is; run_files.pass_times_frame_only) */
     "gpu_us_attributed", "cpu_us_attributed",
+    /* the pass's bound from its counters and the device's cached profile (results/bound.h:
+     * samples shaded, draws, dispatches), its limiter, and bound / gpu_us in % where the
+     * pass's time is its own */
+    "bound_us", "limiter", "bound_pct",
 };
 #define NCOLS(a) (sizeof(a) / sizeof((a)[0]))
 
@@ -190,6 +196,26 @@ fail:
     return false;
 }
 
+/* passes.csv's bound columns of pass ps (empty without rates; bound_pct empty where the
+ * pass's time is not its own) */
+static void pass_bound(csv_writer *w, const run_files *f, const pass_stats *ps)
+{
+    bound_result b = {.bound_us = NAN, .limiter = -1, .pct = NAN};
+    if (f->has_rates) {
+        bound_work work = {.bytes = NAN, .samples = ps->samples_shaded, .evaluations = NAN,
+                           .draws = (double)ps->draw_calls,
+                           .state_changes = (double)ps->state_changes,
+                           .dispatches = (double)ps->dispatches};
+        bound_compute(&f->rates, &work, f->pass_times_frame_only ? NAN : ps->gpu_us, &b);
+    }
+    csv_f64(w, b.bound_us, 3);
+    if (b.limiter >= 0)
+        csv_str(w, bound_resource_names[b.limiter]);
+    else
+        csv_empty(w);
+    csv_f64(w, b.pct, 1);
+}
+
 void run_files_frame(run_files *f, const char *run_id, uint32_t trial, const frame_record *r,
                      const frame_stats *fs)
 {
@@ -230,8 +256,22 @@ void run_files_frame(run_files *f, const char *run_id, uint32_t trial, const fra
         csv_f64(w, strcmp(ps->name, "edges") == 0 ? fs->edge_fraction : NAN, 6);
         csv_u64(w, f->pass_times_frame_only ? 0 : 1);
         csv_u64(w, f->pass_times_frame_only ? 0 : 1);
+        pass_bound(w, f, ps);
         csv_end_row(w);
     }
+}
+
+bool run_files_bound_rates(run_files *f, const char *const gl[6], const char *format,
+                           int samples)
+{
+    static device_profile prof;   /* large; a trial opens its files once */
+    char path[4096], err[4400];
+    memset(&prof, 0, sizeof prof);
+    device_profile_set_gl(&prof, gl);
+    f->has_rates = device_profile_cache_path(&prof, path, sizeof path) && fs_exists(path) &&
+                   meta_read_profile(path, &prof, err, sizeof err) &&
+                   bound_rates_of(&prof, format, samples, &f->rates);
+    return f->has_rates;
 }
 
 void run_files_second(run_files *f, const char *run_id, uint32_t trial, const second_bin *b)

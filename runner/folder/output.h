@@ -12,6 +12,7 @@
 #include <stdbool.h>
 #include <stddef.h>
 #include <stdio.h>
+#include "results/bound.h"
 #include "results/csv.h"
 #include "results/csvread.h"
 #include "common/image_io.h"
@@ -61,7 +62,19 @@ typedef struct run_files {
      * rasterizer, results/gl_device.h) runs a pass's work where it flushes, so only the
      * frame's total time is trusted; the counters per pass are kept as they are */
     bool pass_times_frame_only;
+    /* passes.csv's bound_us, limiter and bound_pct (issue 38): the rates of the cached
+     * profile of the run's device for its target (run_files_bound_rates); without a
+     * profile the columns are empty */
+    bool has_rates;
+    bound_rates rates;
 } run_files;
+
+/* The rates passes.csv's bounds divide by: the profile `probe` cached for the device of
+ * GL strings gl (vendor, renderer, version, GLSL, backend, device:
+ * device_profile_set_gl), for the run's HDR target `format` at `samples`. False, the
+ * columns left empty, when none is cached or it cannot be read. */
+bool run_files_bound_rates(run_files *f, const char *const gl[6], const char *format,
+                           int samples);
 
 bool run_files_open(run_files *f, const char *run_dir, const run_params *p, char *err,
                     size_t errlen);

@@ -203,6 +203,10 @@ bool run_setup(run_state *st)
     }
     st->files.pass_times_frame_only =
         gl_software_rasterizer(gi->renderer, gi->vendor, gi->version) != NULL;
+    run_files_bound_rates(&st->files,
+                          (const char *const[6]){gi->vendor, gi->renderer, gi->version,
+                                                 gi->glsl_version, gi->backend, gi->device},
+                          hdr_names[p->hdr], 1 << p->msaa);
     if (st->sc->ncoverage_lights &&
         !run_files_open_coverage(&st->files, st->dir, st->err, sizeof st->err)) {
         run_set_status(st, "output");

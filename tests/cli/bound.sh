@@ -3,8 +3,10 @@
 # summary.csv's bound_us, limiter and bound_pct are empty and summary.md says why in one
 # line; after `probe --quick`, the next sweep's summary.csv has them for every ok trial
 # (bound_pct = 100 x bound_us / frametime_mean_us) and summary.md lists each run's bound
-# and names every run whose bound is above its measured time as a model error; `bound
-# --passes` bounds each pass of passes.csv. Over the committed llvmpipe folders (their
+# and names every run whose bound is above its measured time as a model error; each row of
+# its passes.csv has the pass's bound_us and limiter (bound_pct empty: llvmpipe's pass
+# times are not the passes'), empty in the first sweep's; `bound --passes` bounds each
+# pass of an existing folder the same way. Over the committed llvmpipe folders (their
 # device.yaml: a full probe of this device), `shadesweep bound` flags exactly the runs
 # whose bound is above the measured time, and names bytes or fill, not draws, the limiter
 # of deferred `volume` at 4,096 lights; with the quick profile of this machine, the same
@@ -35,7 +37,7 @@ grep -qF 'No bound: this folder has no profile of the hardware it ran on (`shade
 "$SHADESWEEP" run -o with tiny.yaml >run2.out 2>run2.err || fail "run: $(cat run2.err)"
 
 "$PYTHON" - <<'PY' || fail "the bound columns"
-import csv, math, re
+import csv, glob, math, re
 names = {"bytes", "fill", "alu", "draws", "dispatches"}
 for r in csv.DictReader(open("none/summary.csv")):
     assert (r["bound_us"], r["limiter"], r["bound_pct"]) == ("", "", ""), r
@@ -52,6 +54,17 @@ for r in rows:
     assert named == (b > m), (r, sec)   # above the measured time: named, never hidden
 assert ("Model errors: none" in sec) == all(float(r["bound_us"]) <= float(r["frametime_mean_us"])
                                               for r in rows), sec
+# passes.csv: the bound of each pass, written by the trial from the cached profile
+for folder, cached in (("none", False), ("with", True)):
+    for f in glob.glob(folder + "/runs/*/passes.csv"):
+        prows = list(csv.DictReader(open(f)))
+        assert list(prows[0])[-3:] == ["bound_us", "limiter", "bound_pct"], f
+        for r in prows:
+            assert r["bound_pct"] == "" and (r["gpu_us_attributed"] == "0"), r
+            if not cached:
+                assert (r["bound_us"], r["limiter"]) == ("", ""), r
+                continue
+            assert float(r["bound_us"]) >= 0 and r["limiter"] in names, r
 PY
 
 # per pass: a row for each run and pass of passes.csv, model errors flagged the same way

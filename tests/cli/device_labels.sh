@@ -51,7 +51,8 @@ for f in files:
     rows = list(csv.DictReader(open(f)))
     head = list(rows[0])
     # appended last: the earlier columns keep their names and places
-    assert head[-2:] == ["gpu_us_attributed", "cpu_us_attributed"], head
+    assert head[-5:] == ["gpu_us_attributed", "cpu_us_attributed", "bound_us", "limiter",
+                         "bound_pct"], head
     assert head[:6] == ["run_id", "trial", "frame", "pass", "gpu_us", "cpu_us"], head
     assert len(rows) >= 4, (f, len(rows))   # 2 frames x at least 2 passes
     for r in rows:

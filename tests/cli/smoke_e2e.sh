@@ -34,7 +34,7 @@ summary_cols = ["experiment","run_id","renderer","scene","width","height","gbuff
   "gbuffer_read_bytes_mean","image_edge_rmse","image_edge_pixels","samples_shaded_mean",
   "edge_fraction_mean","cpu_mean_us","cpu_p50_us","cpu_share_mean","invol_csw","vol_csw",
   "steal_frac","loadavg_1m","coverage","lights_reaching_mean",
-  "lights_reaching_p50","lights_reaching_p99","lights_reaching_max","sm_clock_mhz","order","metric","metric_us","bound_us","limiter","bound_pct","status","message"]
+  "lights_reaching_p50","lights_reaching_p99","lights_reaching_max","sm_clock_mhz","light_struct_bytes_mean","order","metric","metric_us","bound_us","limiter","bound_pct","status","message"]
 frames_cols = ["run_id","trial","frame","t_wall_s","t_scene_s","lights","frametime_us",
   "gpu_us","draw_calls","state_changes","fragments","samples","gbuffer_bytes_per_frame",
   "gbuffer_write_bytes","gbuffer_read_bytes","cpu_us","cpu_share"]
@@ -43,7 +43,7 @@ seconds_cols = ["run_id","trial","second","complete","lights_min","lights_max","
 passes_cols = ["run_id","trial","frame","pass","gpu_us","cpu_us","draw_calls","state_changes",
   "fragments","samples","primitives","dispatches","cell_lights_mean","cell_lights_max",
   "light_evals_per_pixel","scissor_pixels","samples_shaded","edge_fraction",
-  "gpu_us_attributed","cpu_us_attributed"]
+  "gpu_us_attributed","cpu_us_attributed","bound_us","limiter","bound_pct"]
 convergence_cols = ["run_id","trial","elapsed_s","frames","frametime_mean_us","frametime_ci95_us",
   "ci95_rel"]
 
