@@ -76,7 +76,8 @@ bool renderer_prepare(renderer *r, const struct scene *s, char *err, size_t errl
     return r->prepared;
 }
 
-void renderer_draw(renderer *r, const struct scene *s, frame_stats *out)
+static void draw_with(renderer *r, const struct scene *s, frame_stats *out,
+                      void (*draw)(void *, const struct scene *, frame_stats *))
 {
     memset(out, 0, sizeof *out);
     out->grid_lights_mean = out->grid_lights_max = out->light_evals_per_pixel = NAN;
@@ -87,7 +88,17 @@ void renderer_draw(renderer *r, const struct scene *s, frame_stats *out)
         fprintf(stderr, "bug: %s: draw before a successful prepare\n", r->kind);
         return;
     }
-    r->impl->draw(r->self, s, out);
+    draw(r->self, s, out);
+}
+
+void renderer_draw(renderer *r, const struct scene *s, frame_stats *out)
+{
+    draw_with(r, s, out, r->impl->draw);
+}
+
+void renderer_prime(renderer *r, const struct scene *s, frame_stats *out)
+{
+    draw_with(r, s, out, r->impl->prime ? r->impl->prime : r->impl->draw);
 }
 
 bool renderer_has_coverage(const renderer *r)

@@ -64,6 +64,10 @@ typedef struct renderer_impl {
     void *(*create)(const renderer_options *opts, char *err, size_t errlen);
     bool (*prepare)(void *self, const struct scene *s, char *err, size_t errlen);
     void (*draw)(void *self, const struct scene *s, frame_stats *out);
+    /* A frame drawn only to build the driver's shader variants before anything is
+     * measured (renderer_prime): every draw state the frame would use, not its every
+     * draw. Optional (NULL: draw). forward-mpml draws one light of each kind. */
+    void (*prime)(void *self, const struct scene *s, frame_stats *out);
     /* After the frame's sync point: fills GPU times and query counts of that frame.
      * Optional (NULL: the object begins with a renderer_base, renderers/frame/base.h, and its
      * counters are all the renderer collects). */
@@ -150,6 +154,8 @@ bool renderer_prepare(renderer *r, const struct scene *s, char *err, size_t errl
  * difference across a renderer_prepare is that prepare's upload. */
 double renderer_upload_s(void);
 void renderer_draw(renderer *r, const struct scene *s, frame_stats *out);
+/* A priming frame (renderer_impl.prime): not measured, its counters not the frame's. */
+void renderer_prime(renderer *r, const struct scene *s, frame_stats *out);
 void renderer_collect(renderer *r, frame_stats *out);   /* also computes out->total */
 /* Whether renderer_coverage can count (every renderer but null, which draws nothing). */
 bool renderer_has_coverage(const renderer *r);

@@ -201,9 +201,11 @@ static void base_on_program(void *user, unsigned variant, GLuint program)
     r->base_frame[variant] = r->frame;
 }
 
-static void mpml_draw(void *self, const struct scene *s, frame_stats *out)
+/* A frame; priming (mpml_prime): the lights pass draws the first light of each kind
+ * (type, with or without a shadow map) over every visible object, which is every state
+ * the frame's light draws use, not 65,536 lights' 655,360 draws. */
+static void mpml_frame(forward_mpml *r, const struct scene *s, frame_stats *out, bool priming)
 {
-    forward_mpml *r = self;
     forward_common *c = &r->c;
     forward_begin_frame(c, s, out);
     const frontend *fe = &c->b.fe;
@@ -239,6 +241,7 @@ static void mpml_draw(void *self, const struct scene *s, frame_stats *out)
     forward_pass_end(c, out);
 
     uint64_t light_draws = 0;
+    unsigned primed = 0;   /* the kinds of light drawn, when priming */
     if (r->lights_pass) {
         forward_pass_begin(c, out, "lights");
         forward_bind_target(c);
@@ -254,7 +257,18 @@ static void mpml_draw(void *self, const struct scene *s, frame_stats *out)
                 n = fe->illum_start[k + 1] - fe->illum_start[k];
             }
             const scene_light *l = &s->lights[fe->lights[k]];
-            if (n == 0 || (r->fold && l->type == LIGHT_DIRECTIONAL))
+            if (r->fold && l->type == LIGHT_DIRECTIONAL)
+                continue;
+            if (priming) {   /* the kind's first light, over every visible object */
+                unsigned kind = 1u << (2u * (unsigned)l->type +
+                                       (fe->shadow_layer[k] != FRONTEND_NO_SHADOW));
+                if (primed & kind)
+                    continue;
+                primed |= kind;
+                objects = fe->visible;
+                n = fe->nvisible;
+            }
+            if (n == 0)
                 continue;
             r->serial++;
             r->cur_type = (unsigned)l->type;
@@ -269,6 +283,16 @@ static void mpml_draw(void *self, const struct scene *s, frame_stats *out)
     }
     out->lights_drawn = lights_drawn;
     forward_end_frame(c, out, light_draws);
+}
+
+static void mpml_draw(void *self, const struct scene *s, frame_stats *out)
+{
+    mpml_frame(self, s, out, false);
+}
+
+static void mpml_prime(void *self, const struct scene *s, frame_stats *out)
+{
+    mpml_frame(self, s, out, true);
 }
 
 static void mpml_describe(const void *self, pass_plan *out)
@@ -325,4 +349,5 @@ const renderer_impl renderer_forward_mpml_impl = RENDERER_IMPL(
     "multi-pass multi-light forward (seed 000 4.6): a depth, ambient and "
     "emissive pass, then an additive depth-EQUAL pass per visible light "
     "over its illumination set",
-    .read_hdr = forward_read_hdr, .draws_per_light = mpml_draws_per_light);
+    .read_hdr = forward_read_hdr, .draws_per_light = mpml_draws_per_light,
+    .prime = mpml_prime);

@@ -67,6 +67,7 @@ typedef struct run_state {
                                 * luminance (0: black; NAN: not metered) */
     bool meter_lights_off;     /* ... drawn without the placed lights (lights.sizing) */
     double lights_radius;      /* the placed lights' mean range as used (NAN: none) */
+    bool priming;              /* run_prime_variants is drawing: renderer_prime */
     run_clocks *clocks;        /* NVML's readings of this trial; NULL: no NVIDIA device */
     bool in_child;             /* this is the trial's own process (run.c's child_main) */
     long child_rss_kb;         /* written by the parent for a child that died or hung: its

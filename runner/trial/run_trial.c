@@ -112,7 +112,7 @@ static bool draw_frame(run_state *st, double t, frame_stats *fs, bool measured)
 {
     const run_params *p = &st->s->p;
     scene_update(st->sc, t);
-    renderer_draw(st->r, st->sc, fs);
+    (st->priming ? renderer_prime : renderer_draw)(st->r, st->sc, fs);
     bool ok = frame_sync(p->sync, st->err, sizeof st->err);
     bool debug = !p->debug_busy_renderer[0] || strcmp(p->debug_busy_renderer, p->renderer) == 0;
     if (ok && measured && debug && p->debug_busy_us)
@@ -338,7 +338,8 @@ static int cmp_time(const void *pa, const void *pb)
  * of PRIME_SAMPLES spread over the run's schedule and of every screenshot and error
  * time (with clock: fixed, at the frames the run will draw), so that the
  * shader variants the driver builds at first draw (llvmpipe compiles per draw state)
- * are built before anything is measured. None is recorded;
+ * are built before anything is measured (renderer_prime: each draw state, not each
+ * draw, where a renderer says how). None is recorded;
  * meta.yaml states how many there were and how long they took (timing.prime_*). */
 bool run_prime_variants(run_state *st)
 {
@@ -367,8 +368,10 @@ bool run_prime_variants(run_state *st)
     double t0 = progress_now();
     frame_stats fs;
     size_t i = 0;
+    st->priming = true;
     for (; i < n && !(i && p->draw_limit_s > 0 && progress_now() - t0 >= p->draw_limit_s); i++) {
         if (!draw_frame(st, times[i], &fs, false)) {
+            st->priming = false;
             char why[sizeof st->err];
             memcpy(why, st->err, sizeof why);
             snprintf(st->err, sizeof st->err, "priming: %.490s", why);
@@ -377,6 +380,7 @@ bool run_prime_variants(run_state *st)
         }
         renderer_collect(st->r, &fs);
     }
+    st->priming = false;
     st->prime_s = progress_now() - t0;
     st->prime_frames = i;
     if (!run_gl_clean(st, "prime")) {
