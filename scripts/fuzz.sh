@@ -114,6 +114,13 @@ fi
 mkdir -p "$corpus" "$corpus_scene" "$findings"
 
 export ASAN_OPTIONS=${ASAN_OPTIONS:-detect_leaks=1:abort_on_error=0:strict_string_checks=1}
+# The scene target without strict_string_checks: assimp 5.2's OBJ importer (not ours, and
+# not built with ASan) hands strtol a line that is not NUL-terminated (an OBJ of one line
+# "p 1 2 3 4 5 6 7"), which the strict check reports as a read to the string's end, though
+# strtol stops at the line's end inside the buffer. Without it ASan still checks the bytes
+# strtol does read; our own string code keeps the strict check in the manifest target,
+# the replays of both targets' seeds and every test of the sanitizer build.
+scene_asan=${ASAN_OPTIONS//strict_string_checks=1/strict_string_checks=0}
 export UBSAN_OPTIONS=${UBSAN_OPTIONS:-halt_on_error=1:print_stacktrace=1}
 # Libraries linked in but never used by the target (Mesa, LLVM) may leak at exit.
 export LSAN_OPTIONS=${LSAN_OPTIONS:-suppressions=$root/tests/lsan.supp:print_suppressions=0}
@@ -159,15 +166,15 @@ if [ "$(nproc)" -ge 2 ]; then
   fuzz fuzz_manifest "$secs" "$corpus" ${flags[@]+"${flags[@]}"} -dict=tests/fuzz/yaml.dict \
     tests/data experiments &
   manifest_pid=$!
-  fuzz fuzz_scene "$scene_secs" "$corpus_scene" ${scene_flags[@]+"${scene_flags[@]}"} \
-    tests/fuzz/scene_seeds &
+  ASAN_OPTIONS=$scene_asan fuzz fuzz_scene "$scene_secs" "$corpus_scene" \
+    ${scene_flags[@]+"${scene_flags[@]}"} tests/fuzz/scene_seeds &
   scene_pid=$!
   wait "$manifest_pid" || status=1
   wait "$scene_pid" || status=1
 else
   fuzz fuzz_manifest "$secs" "$corpus" ${flags[@]+"${flags[@]}"} -dict=tests/fuzz/yaml.dict \
     tests/data experiments || status=1
-  fuzz fuzz_scene "$scene_secs" "$corpus_scene" ${scene_flags[@]+"${scene_flags[@]}"} \
-    tests/fuzz/scene_seeds || status=1
+  ASAN_OPTIONS=$scene_asan fuzz fuzz_scene "$scene_secs" "$corpus_scene" \
+    ${scene_flags[@]+"${scene_flags[@]}"} tests/fuzz/scene_seeds || status=1
 fi
 exit $status

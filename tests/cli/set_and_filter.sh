@@ -77,7 +77,7 @@ want=$(sed 's/^bad2\.yaml:[0-9]*:[0-9]*: //' r.err)
 refuse "m.yaml: --set sweep.sync=[finish, fast]: $want" \
   "$SHADESWEEP" list --set 'sweep.sync=[finish, fast]' m.yaml
 # an unknown key, no '=', a value that is not YAML, an unknown or absent renderer
-refuse "m.yaml: --set lights.colour=1: lights.colour: expected one of placement, seed," \
+refuse "m.yaml: --set lights.colour=1: lights.colour: expected one of culling, culling_error, placement, seed," \
   "$SHADESWEEP" validate --set lights.colour=1 m.yaml
 refuse "shadesweep: --set: expected KEY=VALUE" "$SHADESWEEP" list --set lights.count m.yaml
 refuse "m.yaml: --set lights.count=[1,: expected valid YAML" "$SHADESWEEP" list --set 'lights.count=[1,' m.yaml
