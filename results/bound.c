@@ -124,7 +124,6 @@ void bound_work_of_row(const bound_row *rows, size_t nrows, bound_work *w,
                      bound_row_number(rows, nrows, "width") *
                      bound_row_number(rows, nrows, "height");
     w->draws = bound_row_number(rows, nrows, "draw_calls_mean");
-    w->state_changes = bound_row_number(rows, nrows, "state_changes_mean");
     w->dispatches = bound_row_number(rows, nrows, "dispatches_mean");
     *measured_us = bound_row_number(rows, nrows, "frametime_mean_us");
     const char *hdr = bound_row_text(rows, nrows, "hdr");

@@ -38,7 +38,7 @@ typedef struct bound_work {
     double bytes;           /* gbuffer_write_bytes + gbuffer_read_bytes */
     double samples;         /* samples_shaded */
     double evaluations;     /* light evaluations: light_evals_per_pixel x covered pixels */
-    double draws, state_changes, dispatches;   /* state changes: reported, not charged */
+    double draws, dispatches;   /* state changes are charged nothing: bound_compute */
 } bound_work;
 
 typedef struct bound_result {

@@ -102,7 +102,7 @@ static void print_header(const char *first)
 }
 
 /* `bound --passes`: a row per run and pass of DIR/runs/<id>/passes.csv, the means over
- * its rows: samples shaded, draws, state changes and dispatches over the pass's gpu_us
+ * its rows: samples shaded, draws and dispatches over the pass's gpu_us
  * (no bytes or evaluations are counted per pass). `attributed` is passes.csv's
  * gpu_us_attributed: on a CPU rasterizer a pass's time is not its own. */
 static void print_passes(const folder_bound *fb, const char *dir, const run_bound *rb)
@@ -113,13 +113,12 @@ static void print_passes(const folder_bound *fb, const char *dir, const run_boun
     csv_table t;
     if (!csv_read(path, &t, err, sizeof err))
         return;   /* a run without passes.csv (failed, or its files not kept) */
-    static const char *const col[] = {"samples_shaded", "draw_calls", "state_changes",
-                                      "dispatches", "gpu_us"};
-    int c[5], cp = csv_col(&t, "pass"), ca = csv_col(&t, "gpu_us_attributed");
-    for (size_t k = 0; k < 5; k++)
+    static const char *const col[] = {"samples_shaded", "draw_calls", "dispatches", "gpu_us"};
+    int c[4], cp = csv_col(&t, "pass"), ca = csv_col(&t, "gpu_us_attributed");
+    for (size_t k = 0; k < 4; k++)
         c[k] = csv_col(&t, col[k]);
     char name[MAXP][64];
-    double sum[MAXP][5] = {{0}}, n[MAXP] = {0};
+    double sum[MAXP][4] = {{0}}, n[MAXP] = {0};
     size_t np = 0;
     for (size_t r = 0; r < t.nrows; r++) {
         size_t p = 0;
@@ -129,7 +128,7 @@ static void print_passes(const folder_bound *fb, const char *dir, const run_boun
             continue;
         if (p == np)
             snprintf(name[np++], sizeof name[0], "%s", csv_get(&t, r, cp));
-        for (size_t k = 0; k < 5; k++)
+        for (size_t k = 0; k < 4; k++)
             sum[p][k] += csv_num(&t, r, c[k]);
         n[p]++;
     }
@@ -137,12 +136,11 @@ static void print_passes(const folder_bound *fb, const char *dir, const run_boun
     if (!folder_bound_rates(fb, rb->id, &rates))
         memset(&rates, 0xff, sizeof rates);
     for (size_t p = 0; p < np; p++) {
-        bound_work w = {NAN, sum[p][0] / n[p], NAN, sum[p][1] / n[p], sum[p][2] / n[p],
-                        sum[p][3] / n[p]};
+        bound_work w = {NAN, sum[p][0] / n[p], NAN, sum[p][1] / n[p], sum[p][2] / n[p]};
         bound_result b;
-        bound_compute(&rates, &w, sum[p][4] / n[p], &b);
+        bound_compute(&rates, &w, sum[p][3] / n[p], &b);
         printf("%s,%s,%s,", rb->id, rb->renderer, name[p]);
-        print_bound(sum[p][4] / n[p], &b);
+        print_bound(sum[p][3] / n[p], &b);
         printf(",%s\n", ca >= 0 && t.nrows ? csv_get(&t, 0, ca) : "");
     }
     csv_table_free(&t);

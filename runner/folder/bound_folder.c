@@ -109,16 +109,16 @@ run_bound *folder_bound_runs(const folder_bound *fb, const csv_table *t, size_t 
         double measured;
         has[k] = row_work(fb, (const char *const *)t->header, (const char *const *)t->rows[r],
                           t->ncols, &w, &measured, &rates[k]) || has[k];
-        const double v[] = {w.bytes, w.samples, w.evaluations, w.draws, w.state_changes,
-                            w.dispatches, measured, 1};
-        for (size_t i = 0; i < 8; i++)
+        const double v[] = {w.bytes, w.samples, w.evaluations, w.draws, w.dispatches,
+                            measured, 1};
+        for (size_t i = 0; i < 7; i++)
             sum[k][i] += v[i];   /* a NAN stays NAN: that work is not counted */
     }
     for (size_t k = 0; k < *n; k++) {
-        double c = sum[k][7];
+        double c = sum[k][6];
         bound_work w = {sum[k][0] / c, sum[k][1] / c, sum[k][2] / c, sum[k][3] / c,
-                        sum[k][4] / c, sum[k][5] / c};
-        out[k].measured_us = c > 0 ? sum[k][6] / c : NAN;
+                        sum[k][4] / c};
+        out[k].measured_us = c > 0 ? sum[k][5] / c : NAN;
         if (!has[k] || c == 0)
             memset(&rates[k], 0xff, sizeof rates[k]);
         bound_compute(&rates[k], &w, out[k].measured_us, &out[k].b);

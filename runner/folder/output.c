@@ -204,7 +204,6 @@ static void pass_bound(csv_writer *w, const run_files *f, const pass_stats *ps)
     if (f->has_rates) {
         bound_work work = {.bytes = NAN, .samples = ps->samples_shaded, .evaluations = NAN,
                            .draws = (double)ps->draw_calls,
-                           .state_changes = (double)ps->state_changes,
                            .dispatches = (double)ps->dispatches};
         bound_compute(&f->rates, &work, f->pass_times_frame_only ? NAN : ps->gpu_us, &b);
     }

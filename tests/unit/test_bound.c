@@ -53,13 +53,13 @@ static void test_compute(void **state)
     near(r.alu_gflops, 16);
     near(r.spread, 0.1);
     bound_work w = {.bytes = 8e6, .samples = 6e5, .evaluations = 1e5, .draws = 100,
-                    .state_changes = 25, .dispatches = 2};
+                    .dispatches = 2};
     bound_result b;
     bound_compute(&r, &w, 4000, &b);
     near(b.us[BOUND_BYTES], 2000);      /* 8e6 B / 4 GB/s */
     near(b.us[BOUND_FILL], 1200);       /* 6e5 / 0.5 Gsamples/s */
     near(b.us[BOUND_ALU], 400);         /* 1e5 x 64 flops / 16 Gflop/s */
-    near(b.us[BOUND_DRAWS], 200);       /* 100 x 2; the 25 state changes charged nothing */
+    near(b.us[BOUND_DRAWS], 200);       /* 100 x 2 (state changes are charged nothing) */
     near(b.us[BOUND_DISPATCHES], 100);  /* 2 x 50 */
     near(b.bound_us, 2000);
     assert_string_equal(bound_resource_names[b.limiter], "bytes");
@@ -81,7 +81,7 @@ static void test_compute(void **state)
 
     /* work not counted (NAN) has no time; the draws decide; no measured time: no pct */
     bound_work d = {.bytes = NAN, .samples = NAN, .evaluations = NAN, .draws = 1000,
-                    .state_changes = NAN, .dispatches = 0};
+                    .dispatches = 0};
     bound_compute(&r, &d, NAN, &b);
     assert_true(isnan(b.us[BOUND_BYTES]) && isnan(b.us[BOUND_FILL]) && isnan(b.us[BOUND_ALU]));
     near(b.us[BOUND_DRAWS], 2000);
@@ -121,7 +121,6 @@ static void test_row(void **state)
     near(w.samples, 5000);   /* samples_shaded empty: samples */
     near(w.evaluations, 2.5 * 0.5 * 640 * 360);
     near(w.draws, 12);
-    near(w.state_changes, 3);
     near(w.dispatches, 0);
     near(measured, 9000.5);
     assert_string_equal(format, "rgba32f");
