@@ -105,8 +105,10 @@ typedef struct experiment {
     run_params base;           /* the manifest's values with defaults, renderer = "" */
     size_t nrenderers;
     char (*renderers)[32];
-    size_t naxes;              /* sweep axes in manifest order */
+    size_t naxes;              /* sweep axes in manifest order (every block's) */
     struct sweep_axis *axes;   /* opaque: manifest.c */
+    size_t nblocks;            /* `sweep:` a list of blocks: their number (0: a mapping, */
+    size_t *block_first;       /* one product); block b is axes [first[b], first[b+1]) */
 } experiment;
 
 typedef struct run_spec {
@@ -173,7 +175,8 @@ void experiment_make_smoke(experiment *e);
 bool experiment_scale_resolution(experiment *e, double scale, char *err, size_t errlen);
 
 /* The cartesian product of the sweep axes (first axis varies slowest) times the
- * renderers (fastest), in that order, each distinct configuration once: a
+ * renderers (fastest), in that order, each distinct configuration once (a sweep of
+ * blocks: each block's product in turn, a run an earlier block made folded into it): a
  * parameter the run's renderer does not read (and its error reference does not
  * inherit) is reset to its default, and a point that is then an earlier run is
  * folded into it (plan.folds). nshards >= 1 assigns run k to shard

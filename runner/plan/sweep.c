@@ -33,13 +33,52 @@ static void run_id(const run_params *p, char id[13])
     hash_hex(h, 12, id);
 }
 
-/* The value index of run k on axis a (renderers vary fastest, then the last axis). */
+#define NO_VALUE ((size_t)-1)
+
+/* The runs of block b: the product of its axes times the renderers. */
+static size_t block_runs(const experiment *e, size_t b)
+{
+    size_t n = e->nrenderers;
+    for (size_t a = sweep_block_first(e, b); a < sweep_block_end(e, b); a++)
+        n *= e->axes[a].nvalues;
+    return n;
+}
+
+/* The block of run k (each block's runs in turn); *local: k's index in it. */
+static size_t block_of(const experiment *e, size_t k, size_t *local)
+{
+    size_t b = 0;
+    for (size_t n; b + 1 < sweep_nblocks(e) && k >= (n = block_runs(e, b)); b++)
+        k -= n;
+    *local = k;
+    return b;
+}
+
+/* The value index of run k on axis a (renderers vary fastest, then the last axis of
+ * its block); NO_VALUE when a is another block's axis (k takes the base value). */
 static size_t axis_value_of(const experiment *e, size_t k, size_t a)
 {
-    size_t q = k / e->nrenderers;
-    for (size_t b = e->naxes; b-- > a + 1;)
-        q /= e->axes[b].nvalues;
+    size_t local, b = block_of(e, k, &local);
+    if (a < sweep_block_first(e, b) || a >= sweep_block_end(e, b))
+        return NO_VALUE;
+    size_t q = local / e->nrenderers;
+    for (size_t x = sweep_block_end(e, b); x-- > a + 1;)
+        q /= e->axes[x].nvalues;
     return q % e->axes[a].nvalues;
+}
+
+/* The parameters of run k as the sweep makes them: the base, its block's values, its
+ * renderer. */
+static void point_params(const experiment *e, size_t k, run_params *p)
+{
+    *p = e->base;
+    for (size_t a = 0; a < e->naxes; a++) {
+        const struct sweep_axis *ax = &e->axes[a];
+        size_t v = axis_value_of(e, k, a);
+        if (v != NO_VALUE)
+            memcpy((char *)p + ax->off, (const char *)&ax->values[v] + ax->off, ax->size);
+    }
+    snprintf(p->renderer, sizeof p->renderer, "%s", e->renderers[k % e->nrenderers]);
 }
 
 typedef struct id_ref {
@@ -62,9 +101,11 @@ static int id_ref_cmp_index(const void *x, const void *y)
     return a->index < b->index ? -1 : a->index > b->index;
 }
 
-/* Two runs with one id are one point of the grid twice (a value repeated in an
- * axis, or two values with one canonical text, like 0.5 and 0.50): reported once
- * per repeated value, at that value, naming the first pair of runs it makes. */
+/* Two runs of one block with one id are one point of the grid twice (a value
+ * repeated in an axis, or two values with one canonical text, like 0.5 and 0.50):
+ * reported once per repeated value, at that value, naming the first pair of runs it
+ * makes. A run of a later block that is an earlier block's is no error: fold() folds
+ * it. */
 static bool check_duplicates(const experiment *e, const plan *p, diag_list *diags)
 {
     if (p->nruns < 2)
@@ -84,9 +125,11 @@ static bool check_duplicates(const experiment *e, const plan *p, diag_list *diag
     for (size_t i = 0; i < p->nruns; i++)
         refs[i] = (id_ref){p->runs[i].id, i};
     qsort(refs, p->nruns, sizeof *refs, id_ref_cmp);
-    /* in each group of one id, the first run (lowest index) is the original */
+    /* in each group of one id and block, the first run (lowest index) is the original */
+    size_t local;
     for (size_t i = 1, g = 0; i < p->nruns; i++) {
-        if (strcmp(refs[i].id, refs[g].id) != 0) {
+        if (strcmp(refs[i].id, refs[g].id) != 0 ||
+            block_of(e, refs[i].index, &local) != block_of(e, refs[g].index, &local)) {
             g = i;
             continue;
         }
@@ -113,8 +156,9 @@ static bool check_duplicates(const experiment *e, const plan *p, diag_list *diag
         } else if (!reported[base + v]) {
             reported[base + v] = true;
             const struct sweep_axis *ax = &e->axes[a];
-            char key[160];
-            snprintf(key, sizeof key, "sweep.%s[%zu]", ax->path, v);
+            char key[200];
+            mf_axis_key(e, a, key, sizeof key);
+            snprintf(key + strlen(key), sizeof key - strlen(key), "[%zu]", v);
             overrides_diag(diags, e, e->path, ax->line[v], ax->col[v], key,
                            "expected a distinct sweep point, found run %zu the same as run "
                            "%zu (id %s)", again, first, dups[i].id);
@@ -146,13 +190,13 @@ static bool check_axes_read(const experiment *e, diag_list *diags)
         }
         if (read)
             continue;
-        char key[160], list[512] = "", readers[256];
+        char key[200], list[512] = "", readers[256];
         param_readers_text(pd, readers, sizeof readers);
         size_t len = 0;
         for (size_t r = 0; r < e->nrenderers; r++)
             len += (size_t)snprintf(list + len, len < sizeof list ? sizeof list - len : 0, "%s%s",
                                     r ? ", " : "", e->renderers[r]);
-        snprintf(key, sizeof key, "sweep.%s", ax->path);
+        mf_axis_key(e, a, key, sizeof key);
         overrides_diag(diags, e, e->path, ax->line ? ax->line[0] : 0,
                        ax->col ? ax->col[0] : 0, key, "expected a key one of the renderers "
                        "reads (%s is read by %s), found none of %s", ax->path, readers,
@@ -253,15 +297,8 @@ static bool fold(plan *p, unsigned nshards, diag_list *diags)
     }
     /* the raw parameters of every point, for the folds' record */
     const experiment *e = p->exp;
-    for (size_t k = 0; k < p->nruns; k++) {
-        raw[k] = e->base;
-        for (size_t a = 0; a < e->naxes; a++) {
-            const struct sweep_axis *ax = &e->axes[a];
-            size_t v = axis_value_of(e, k, a);
-            memcpy((char *)&raw[k] + ax->off, (const char *)&ax->values[v] + ax->off, ax->size);
-        }
-        snprintf(raw[k].renderer, sizeof raw[k].renderer, "%s", e->renderers[k % e->nrenderers]);
-    }
+    for (size_t k = 0; k < p->nruns; k++)
+        point_params(e, k, &raw[k]);
     plan_fold *folds = nfolded ? calloc(nfolded, sizeof *folds) : NULL;
     size_t *new_index = malloc((p->nruns ? p->nruns : 1) * sizeof *new_index);
     bool ok = (!nfolded || folds) && new_index;
@@ -308,16 +345,20 @@ bool plan_expand(const experiment *e, unsigned nshards, plan *out, diag_list *di
         diag_add(diags, e->path, 0, 0, "renderers", "expected at least one renderer, found none");
         return false;
     }
-    size_t total = e->nrenderers;
-    for (size_t a = 0; a < e->naxes; a++) {
-        if (e->axes[a].nvalues == 0 || total > PLAN_MAX_RUNS / e->axes[a].nvalues) {
-            overrides_diag(diags, e, e->path, e->axes[a].line ? e->axes[a].line[0] : 0,
-                           e->axes[a].col ? e->axes[a].col[0] : 0, "sweep",
-                           "expected at most %u runs, found more at axis %s", PLAN_MAX_RUNS,
-                           e->axes[a].path);
-            return false;
+    size_t total = 0;
+    for (size_t b = 0; b < sweep_nblocks(e); b++) {
+        size_t n = e->nrenderers;
+        for (size_t a = sweep_block_first(e, b); a < sweep_block_end(e, b); a++) {
+            if (e->axes[a].nvalues == 0 || n > PLAN_MAX_RUNS / e->axes[a].nvalues) {
+                overrides_diag(diags, e, e->path, e->axes[a].line ? e->axes[a].line[0] : 0,
+                               e->axes[a].col ? e->axes[a].col[0] : 0, "sweep",
+                               "expected at most %u runs, found more at axis %s",
+                               PLAN_MAX_RUNS, e->axes[a].path);
+                return false;
+            }
+            n *= e->axes[a].nvalues;
         }
-        total *= e->axes[a].nvalues;
+        total += n;   /* blocks of at most PLAN_MAX_RUNS each: no overflow */
     }
     if (total > PLAN_MAX_RUNS) {
         diag_add(diags, e->path, 0, 0, "sweep", "expected at most %u runs, found %zu",
@@ -333,13 +374,7 @@ bool plan_expand(const experiment *e, unsigned nshards, plan *out, diag_list *di
     for (size_t k = 0; k < total; k++) {
         run_spec *r = &runs[k];
         r->index = r->point = k;
-        r->p = e->base;
-        for (size_t a = 0; a < e->naxes; a++) {
-            const struct sweep_axis *ax = &e->axes[a];
-            size_t v = axis_value_of(e, k, a);
-            memcpy((char *)&r->p + ax->off, (const char *)&ax->values[v] + ax->off, ax->size);
-        }
-        snprintf(r->p.renderer, sizeof r->p.renderer, "%s", e->renderers[k % e->nrenderers]);
+        point_params(e, k, &r->p);
         run_id(&r->p, r->id);   /* as swept: a repeated value is a duplicate */
     }
     out->npoints = out->nruns = total;
@@ -407,16 +442,21 @@ bool parse_shard(const char *s, unsigned *i, unsigned *n, char *err, size_t errl
     return false;
 }
 
-/* " key=value" for the renderer and each swept parameter of p. */
+/* " key=value" for the renderer and each swept parameter of p (once, where the
+ * blocks sweep it more than once). */
 static void print_point(const experiment *e, const run_params *p, FILE *out)
 {
     param_kv kv[PARAM_KV_MAX];
     size_t n = run_params_kv(p, kv, PARAM_KV_MAX);
     fprintf(out, "renderer=%s", p->renderer);
-    for (size_t a = 0; e && a < e->naxes; a++)
-        for (size_t i = 0; i < n; i++)
+    for (size_t a = 0; e && a < e->naxes; a++) {
+        bool again = false;
+        for (size_t b = 0; b < a && !again; b++)
+            again = strcmp(e->axes[b].path, e->axes[a].path) == 0;
+        for (size_t i = 0; i < n && !again; i++)
             if (strcmp(kv[i].key, e->axes[a].path) == 0)
                 fprintf(out, " %s=%s", kv[i].key, kv[i].value);
+    }
 }
 
 static void json_params(const run_params *rp, FILE *out)
