@@ -23,7 +23,11 @@
  *                       on a manifest that sweeps lights.count makes it fixed (the axis
  *                       is gone), `--set 'sweep.lights.count=[16, 64]'` sweeps a key the
  *                       manifest sets in place, `--set 'sweep={...}'` replaces the
- *                       whole sweep (its keys removed in place). A value replaces
+ *                       whole sweep (its keys removed in place). On a sweep of
+ *                       blocks `sweep.KEY` is refused (`--set 'sweep=[{...}, ...]'`
+ *                       replaces the list, the keys in place kept as the base) and
+ *                       `--set KEY=V` removes KEY from every block (a block left
+ *                       empty is the base point once). A value replaces
  *                       the whole key: `--set gbuffer=fat` drops the manifest's
  *                       gbuffer.normal, `--set gbuffer.preset=fat` keeps it.
  *   --renderer LIST     only the runs of these renderers (comma-separated), as if the

@@ -95,7 +95,8 @@ static void parse_block(vctx *c, const ynode *map, const char *prefix, const yno
     }
 }
 
-/* A sequence of blocks: each a non-empty mapping. */
+/* A sequence of blocks: each a non-empty mapping (or one that a --set emptied,
+ * overrides.c: no axis, the base point once). */
 static void parse_blocks(vctx *c, const param *pd, const ynode *seq)
 {
     experiment *e = c->e;
@@ -126,7 +127,7 @@ static void parse_blocks(vctx *c, const param *pd, const ynode *seq)
                 "values), found %s", mf_found(b, false, f, sizeof f));
             continue;
         }
-        if (b->n == 0) {
+        if (b->n == 0 && b->line >= 0) {   /* one --set emptied: the base point */
             mf_err(c, b, key, "expected a block with at least one parameter, found an empty "
                 "mapping");
             continue;

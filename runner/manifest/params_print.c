@@ -30,7 +30,7 @@ static const char *type_name(const param *pd)
     case PT_RENDERER: return "renderer";
     case PT_VEC3: return "vec3";
     case PT_GROUP: return "group";
-    case PT_SWEEP: return "sweep";
+    case PT_SWEEP: return "sweep: mapping or list of blocks";
     }
     return "?";
 }
