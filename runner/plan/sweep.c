@@ -35,48 +35,61 @@ static void run_id(const run_params *p, char id[13])
 
 #define NO_VALUE ((size_t)-1)
 
-/* The runs of block b: the product of its axes times the renderers. */
-static size_t block_runs(const experiment *e, size_t b)
+/* The plan's grid points: each block's product of its axes times the renderers, the
+ * blocks in turn; start[b] is block b's first point, start[nblocks] all of them. */
+typedef struct grid {
+    const experiment *e;
+    size_t nblocks;
+    size_t *start;
+} grid;
+
+/* The block of point k (binary search: a list of many blocks stays n log n); *local:
+ * k's index in it. */
+static size_t block_of(const grid *g, size_t k, size_t *local)
 {
-    size_t n = e->nrenderers;
-    for (size_t a = sweep_block_first(e, b); a < sweep_block_end(e, b); a++)
-        n *= e->axes[a].nvalues;
-    return n;
+    size_t lo = 0, hi = g->nblocks;   /* start[lo] <= k < start[hi] */
+    while (hi - lo > 1) {
+        size_t mid = lo + (hi - lo) / 2;
+        if (g->start[mid] <= k)
+            lo = mid;
+        else
+            hi = mid;
+    }
+    *local = k - g->start[lo];
+    return lo;
 }
 
-/* The block of run k (each block's runs in turn); *local: k's index in it. */
-static size_t block_of(const experiment *e, size_t k, size_t *local)
+/* The value index of point `local` of block b on its axis a (renderers vary fastest,
+ * then the block's last axis). */
+static size_t block_value_of(const experiment *e, size_t b, size_t local, size_t a)
 {
-    size_t b = 0;
-    for (size_t n; b + 1 < sweep_nblocks(e) && k >= (n = block_runs(e, b)); b++)
-        k -= n;
-    *local = k;
-    return b;
-}
-
-/* The value index of run k on axis a (renderers vary fastest, then the last axis of
- * its block); NO_VALUE when a is another block's axis (k takes the base value). */
-static size_t axis_value_of(const experiment *e, size_t k, size_t a)
-{
-    size_t local, b = block_of(e, k, &local);
-    if (a < sweep_block_first(e, b) || a >= sweep_block_end(e, b))
-        return NO_VALUE;
     size_t q = local / e->nrenderers;
     for (size_t x = sweep_block_end(e, b); x-- > a + 1;)
         q /= e->axes[x].nvalues;
     return q % e->axes[a].nvalues;
 }
 
-/* The parameters of run k as the sweep makes them: the base, its block's values, its
- * renderer. */
-static void point_params(const experiment *e, size_t k, run_params *p)
+/* The value index of point k on axis a; NO_VALUE when a is another block's axis (k
+ * takes the base value). */
+static size_t axis_value_of(const grid *g, size_t k, size_t a)
 {
+    size_t local, b = block_of(g, k, &local);
+    if (a < sweep_block_first(g->e, b) || a >= sweep_block_end(g->e, b))
+        return NO_VALUE;
+    return block_value_of(g->e, b, local, a);
+}
+
+/* The parameters of point k as the sweep makes them: the base, its block's values,
+ * its renderer. */
+static void point_params(const grid *g, size_t k, run_params *p)
+{
+    const experiment *e = g->e;
+    size_t local, b = block_of(g, k, &local);
     *p = e->base;
-    for (size_t a = 0; a < e->naxes; a++) {
+    for (size_t a = sweep_block_first(e, b); a < sweep_block_end(e, b); a++) {
         const struct sweep_axis *ax = &e->axes[a];
-        size_t v = axis_value_of(e, k, a);
-        if (v != NO_VALUE)
-            memcpy((char *)p + ax->off, (const char *)&ax->values[v] + ax->off, ax->size);
+        size_t v = block_value_of(e, b, local, a);
+        memcpy((char *)p + ax->off, (const char *)&ax->values[v] + ax->off, ax->size);
     }
     snprintf(p->renderer, sizeof p->renderer, "%s", e->renderers[k % e->nrenderers]);
 }
@@ -106,8 +119,9 @@ static int id_ref_cmp_index(const void *x, const void *y)
  * reported once per repeated value, at that value, naming the first pair of runs it
  * makes. A run of a later block that is an earlier block's is no error: fold() folds
  * it. */
-static bool check_duplicates(const experiment *e, const plan *p, diag_list *diags)
+static bool check_duplicates(const grid *gr, const plan *p, diag_list *diags)
 {
+    const experiment *e = gr->e;
     if (p->nruns < 2)
         return true;
     size_t nvals = 0, ndup = 0;
@@ -129,7 +143,7 @@ static bool check_duplicates(const experiment *e, const plan *p, diag_list *diag
     size_t local;
     for (size_t i = 1, g = 0; i < p->nruns; i++) {
         if (strcmp(refs[i].id, refs[g].id) != 0 ||
-            block_of(e, refs[i].index, &local) != block_of(e, refs[g].index, &local)) {
+            block_of(gr, refs[i].index, &local) != block_of(gr, refs[g].index, &local)) {
             g = i;
             continue;
         }
@@ -143,7 +157,7 @@ static bool check_duplicates(const experiment *e, const plan *p, diag_list *diag
         /* the axis where the two runs take different values; the later value repeats */
         size_t a = 0, base = 0, v = 0;
         for (; a < e->naxes; base += e->axes[a].nvalues, a++) {
-            size_t va = axis_value_of(e, first, a), vb = axis_value_of(e, again, a);
+            size_t va = axis_value_of(gr, first, a), vb = axis_value_of(gr, again, a);
             if (va != vb) {
                 v = va > vb ? va : vb;
                 break;
@@ -255,7 +269,7 @@ static bool assign_points(plan *p, unsigned nshards)
 /* Resets what each run's renderer does not read to its default, then keeps the
  * first run of each id: the others are folded into it. Ids, indices and shards are
  * assigned to the runs that remain, in plan order. */
-static bool fold(plan *p, unsigned nshards, diag_list *diags)
+static bool fold(plan *p, const grid *gr, unsigned nshards, diag_list *diags)
 {
     run_params d;
     params_defaults(&d);
@@ -296,9 +310,8 @@ static bool fold(plan *p, unsigned nshards, diag_list *diags)
         nfolded += i != g;
     }
     /* the raw parameters of every point, for the folds' record */
-    const experiment *e = p->exp;
     for (size_t k = 0; k < p->nruns; k++)
-        point_params(e, k, &raw[k]);
+        point_params(gr, k, &raw[k]);
     plan_fold *folds = nfolded ? calloc(nfolded, sizeof *folds) : NULL;
     size_t *new_index = malloc((p->nruns ? p->nruns : 1) * sizeof *new_index);
     bool ok = (!nfolded || folds) && new_index;
@@ -345,8 +358,15 @@ bool plan_expand(const experiment *e, unsigned nshards, plan *out, diag_list *di
         diag_add(diags, e->path, 0, 0, "renderers", "expected at least one renderer, found none");
         return false;
     }
+    grid g = {.e = e, .nblocks = sweep_nblocks(e)};
+    g.start = malloc((g.nblocks + 1) * sizeof *g.start);
+    if (!g.start) {
+        diag_add(diags, e->path, 0, 0, "", "expected a plan that fits in memory, found no memory left");
+        return false;
+    }
     size_t total = 0;
-    for (size_t b = 0; b < sweep_nblocks(e); b++) {
+    for (size_t b = 0; b < g.nblocks; b++) {
+        g.start[b] = total;
         size_t n = e->nrenderers;
         for (size_t a = sweep_block_first(e, b); a < sweep_block_end(e, b); a++) {
             if (e->axes[a].nvalues == 0 || n > PLAN_MAX_RUNS / e->axes[a].nvalues) {
@@ -354,37 +374,41 @@ bool plan_expand(const experiment *e, unsigned nshards, plan *out, diag_list *di
                                e->axes[a].col ? e->axes[a].col[0] : 0, "sweep",
                                "expected at most %u runs, found more at axis %s",
                                PLAN_MAX_RUNS, e->axes[a].path);
+                free(g.start);
                 return false;
             }
             n *= e->axes[a].nvalues;
         }
         total += n;   /* blocks of at most PLAN_MAX_RUNS each: no overflow */
     }
+    g.start[g.nblocks] = total;
     if (total > PLAN_MAX_RUNS) {
         diag_add(diags, e->path, 0, 0, "sweep", "expected at most %u runs, found %zu",
                  PLAN_MAX_RUNS, total);
+        free(g.start);
         return false;
     }
 
     run_spec *runs = calloc(total, sizeof *runs);
     if (!runs) {
         diag_add(diags, e->path, 0, 0, "", "expected a plan that fits in memory, found no memory left");
+        free(g.start);
         return false;
     }
     for (size_t k = 0; k < total; k++) {
         run_spec *r = &runs[k];
         r->index = r->point = k;
-        point_params(e, k, &r->p);
+        point_params(&g, k, &r->p);
         run_id(&r->p, r->id);   /* as swept: a repeated value is a duplicate */
     }
     out->npoints = out->nruns = total;
     out->runs = runs;
-    if (!check_duplicates(e, out, diags) || !check_axes_read(e, diags) ||
-        !fold(out, nshards, diags)) {
+    bool ok = check_duplicates(&g, out, diags) && check_axes_read(e, diags) &&
+              fold(out, &g, nshards, diags);
+    free(g.start);
+    if (!ok)
         plan_free(out);
-        return false;
-    }
-    return true;
+    return ok;
 }
 
 void plan_free(plan *p)
@@ -442,21 +466,17 @@ bool parse_shard(const char *s, unsigned *i, unsigned *n, char *err, size_t errl
     return false;
 }
 
-/* " key=value" for the renderer and each swept parameter of p (once, where the
- * blocks sweep it more than once). */
-static void print_point(const experiment *e, const run_params *p, FILE *out)
+/* " key=value" for the renderer and each swept parameter of p; first[a]: axis a is
+ * the first to sweep its key (a key several blocks sweep is printed once). */
+static void print_point(const experiment *e, const bool *first, const run_params *p, FILE *out)
 {
     param_kv kv[PARAM_KV_MAX];
     size_t n = run_params_kv(p, kv, PARAM_KV_MAX);
     fprintf(out, "renderer=%s", p->renderer);
-    for (size_t a = 0; e && a < e->naxes; a++) {
-        bool again = false;
-        for (size_t b = 0; b < a && !again; b++)
-            again = strcmp(e->axes[b].path, e->axes[a].path) == 0;
-        for (size_t i = 0; i < n && !again; i++)
+    for (size_t a = 0; first && a < e->naxes; a++)
+        for (size_t i = 0; i < n && first[a]; i++)
             if (strcmp(kv[i].key, e->axes[a].path) == 0)
                 fprintf(out, " %s=%s", kv[i].key, kv[i].value);
-    }
 }
 
 static void json_params(const run_params *rp, FILE *out)
@@ -506,12 +526,18 @@ void plan_print_json(const plan *p, unsigned shard, FILE *out)
 void plan_print(const plan *p, unsigned shard, FILE *out)
 {
     const experiment *e = p->exp;
+    bool *first = calloc(e->naxes ? e->naxes : 1, sizeof *first);
+    for (size_t a = 0; first && a < e->naxes; a++) {
+        first[a] = true;
+        for (size_t b = 0; b < a && first[a]; b++)
+            first[a] = e->axes[b].off != e->axes[a].off;
+    }
     for (size_t k = 0; k < p->nruns; k++) {
         const run_spec *r = &p->runs[k];
         if (shard != 0 && r->shard != shard)
             continue;
         fprintf(out, "%s  ", r->id);
-        print_point(e, &r->p, out);
+        print_point(e, first, &r->p, out);
         fputc('\n', out);
     }
     /* Folded points after the runs, as comments: what the sweep asked for that is
@@ -526,7 +552,8 @@ void plan_print(const plan *p, unsigned shard, FILE *out)
                     "(they differ only in keys their renderer does not read):\n",
                     p->nfolded, p->npoints);
         fprintf(out, "#   ");
-        print_point(e, &p->folds[f].p, out);
+        print_point(e, first, &p->folds[f].p, out);
         fprintf(out, " -> %s\n", r->id);
     }
+    free(first);
 }
