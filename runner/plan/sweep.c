@@ -47,16 +47,14 @@ typedef struct grid {
  * k's index in it. */
 static size_t block_of(const grid *g, size_t k, size_t *local)
 {
-    size_t lo = 0, hi = g->nblocks;   /* start[lo] <= k < start[hi] */
-    while (hi - lo > 1) {
-        size_t mid = lo + (hi - lo) / 2;
-        if (g->start[mid] <= k)
-            lo = mid;
-        else
-            hi = mid;
+    size_t b = 0;   /* the last block that starts at or before k */
+    for (size_t n = g->nblocks; n > 1;) {
+        size_t half = n / 2;
+        b += g->start[b + half] <= k ? half : 0;
+        n -= half;
     }
-    *local = k - g->start[lo];
-    return lo;
+    *local = k - g->start[b];
+    return b;
 }
 
 /* The value index of point `local` of block b on its axis a (renderers vary fastest,

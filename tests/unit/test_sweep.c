@@ -383,6 +383,29 @@ static void test_plan_print(void **state)
     experiment_free(e);
 }
 
+/* plan_expand fails on e with the one diagnostic "PATH:line" (line: "L:C: KEY: ...");
+ * e is freed. */
+static void expect_plan_error(experiment *e, const char *line)
+{
+    plan p;
+    diag_list d = {0};
+    assert_false(plan_expand(e, 1, &p, &d));
+    assert_int_equal(p.nruns, 0);
+    assert_null(p.runs);
+    char *got = NULL;
+    size_t len = 0;
+    FILE *f = open_memstream(&got, &len);
+    assert_non_null(f);
+    diag_print(&d, f);
+    fclose(f);
+    char want[1024];
+    snprintf(want, sizeof want, "%s:%s\n", e->path, line);
+    assert_string_equal(got, want);
+    free(got);
+    diag_free(&d);
+    experiment_free(e);
+}
+
 static void test_duplicate_points(void **state)
 {
     (void)state;
@@ -398,26 +421,8 @@ static void test_duplicate_points(void **state)
          "as run 0 (id fbe0f6967819)"},
         {NULL, NULL},
     };
-    for (size_t k = 0; cases[k].file; k++) {
-        experiment *e = load(cases[k].file);
-        plan p;
-        diag_list d = {0};
-        assert_false(plan_expand(e, 1, &p, &d));
-        assert_int_equal(p.nruns, 0);
-        assert_null(p.runs);
-        char *got = NULL;
-        size_t len = 0;
-        FILE *f = open_memstream(&got, &len);
-        assert_non_null(f);
-        diag_print(&d, f);
-        fclose(f);
-        char want[1024];
-        snprintf(want, sizeof want, "%s:%s\n", e->path, cases[k].line);
-        assert_string_equal(got, want);
-        free(got);
-        diag_free(&d);
-        experiment_free(e);
-    }
+    for (size_t k = 0; cases[k].file; k++)
+        expect_plan_error(load(cases[k].file), cases[k].line);
 }
 
 static experiment *load_text(const char *yaml)
@@ -699,30 +704,14 @@ static void test_blocks_plan_errors(void **state)
         {"sweep:\n  - {lights.count: [16, 64]}\n  - {lights.count: [64, 16, 64]}\n",
          "9:29: sweep[1].lights.count[2]: expected a distinct sweep point, found run 8 the "
          "same as run 4 (id 3f50149a05f7)"},
-        {"sweep:\n  - {lights.count: [16, 64]}\n  - {zbin.bins: [256]}\n",
-         "9:18: sweep[1].zbin.bins: expected a key one of the renderers reads (zbin.bins is "
-         "read by zbin), found none of deferred, forward-plus"},
+        {"sweep:\n  - {lights.count: [16, 64]}\n  - {forward.illumination_sets: [true]}\n",
+         "9:34: sweep[1].forward.illumination_sets: expected a key one of the renderers reads "
+         "(forward.illumination_sets is read by forward-mpml), found none of deferred, "
+         "forward-plus"},
         {NULL, NULL},
     };
-    for (size_t k = 0; cases[k].sweep; k++) {
-        experiment *e = load_with_sweep(cases[k].sweep);
-        plan p;
-        diag_list d = {0};
-        assert_false(plan_expand(e, 1, &p, &d));
-        assert_null(p.runs);
-        char *got = NULL;
-        size_t len = 0;
-        FILE *f = open_memstream(&got, &len);
-        assert_non_null(f);
-        diag_print(&d, f);
-        fclose(f);
-        char want[1024];
-        snprintf(want, sizeof want, "mem.yaml:%s\n", cases[k].line);
-        assert_string_equal(got, want);
-        free(got);
-        diag_free(&d);
-        experiment_free(e);
-    }
+    for (size_t k = 0; cases[k].sweep; k++)
+        expect_plan_error(load_with_sweep(cases[k].sweep), cases[k].line);
 
     /* two identical blocks: the second folds into the first */
     experiment *e = load_with_sweep("sweep:\n  - {lights.count: [16, 64]}\n"
