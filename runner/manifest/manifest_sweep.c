@@ -127,7 +127,7 @@ static void parse_blocks(vctx *c, const param *pd, const ynode *seq)
                 "values), found %s", mf_found(b, false, f, sizeof f));
             continue;
         }
-        if (b->n == 0 && b->line >= 0) {   /* one --set emptied: the base point */
+        if (b->n == 0 && b->col >= 0) {   /* col -1: a --set emptied it, the base point */
             mf_err(c, b, key, "expected a block with at least one parameter, found an empty "
                 "mapping");
             continue;

@@ -289,7 +289,7 @@ static bool sweep_is_blocks(const graft *g)
 
 /* `--set KEY=V` on a sweep of blocks: KEY (and the keys under it) leaves every block;
  * a block left with no key is the base point once (as --smoke leaves it): an empty
- * mapping at the --set's line, which the parser takes for that. */
+ * mapping at the --set's line and column -1, which the parser takes for that. */
 static void unsweep_blocks(graft *g, const char *path)
 {
     size_t i = find_key(g->root, "sweep", 5);
@@ -309,8 +309,10 @@ static void unsweep_blocks(graft *g, const char *path)
             if (!own_b)
                 return;
             unsweep(own_b, path, true, NULL);
-            if (had && !own_b->n)
+            if (had && !own_b->n) {
                 own_b->line = g->line;
+                own_b->col = -1;   /* not a YAML node's column: emptied, not written {} */
+            }
         }
         n->items[n->n++] = b;
     }

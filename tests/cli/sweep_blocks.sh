@@ -44,6 +44,9 @@ PY
 # --set sweep.KEY cannot say which block: refused, naming the whole-sweep form
 expect 2 "m.yaml: --set sweep.lights.seed=[3]: sweep: expected --set 'sweep=[...]' (the whole list of blocks) on a sweep of blocks, found --set sweep.lights.seed" \
   "$SHADESWEEP" list --set 'sweep.lights.seed=[3]' m.yaml
+# an empty block written in --set is an error, as in the file (a block --set empties is not)
+expect 2 "m.yaml: --set sweep=[{}]: sweep[0]: expected a block with at least one parameter, found an empty mapping" \
+  "$SHADESWEEP" list --set 'sweep=[{}]' m.yaml
 # same FILE ARGS...: `list ARGS m.yaml` is `list FILE`
 same() {
   local file=$1; shift
