@@ -802,6 +802,12 @@ static const bad_case bad_cases[] = {
       "9:24: sweep[3].trials: expected a key used once, found a second 'trials' (first at 9:6)",
       "10:20: sweep[4].lights.count: expected a non-empty sequence of values, found an empty "
       "sequence"}},
+    /* lights per block: placement none meets the count in place in blocks 1 and 2
+     * (reported once) and block 0's own counts; block 3 (placement random) any count */
+    {"blocks_lights.yaml",
+     {"6:17: lights.count: expected 0 lights with lights.placement none, found 16 lights",
+      "8:50: sweep[0].lights.count[1]: expected 0 lights with lights.placement none, found 4 "
+      "lights"}},
     {"blocks_empty.yaml",
      {"6:8: sweep: expected a non-empty sequence of blocks (mappings from parameters to "
       "sequences of values), found an empty sequence"}},
