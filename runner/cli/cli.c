@@ -52,7 +52,7 @@ static const char usage_text[] =
     "                             docs/manifest.md). It replaces KEY wherever the manifest\n"
     "                             has it: a swept KEY becomes that one value, and\n"
     "                             --set 'sweep.KEY=[A, B]' sweeps KEY instead of a value\n"
-    "                             set in place\n"
+    "                             set in place (a sweep of blocks: --set 'sweep=[...]')\n"
     "      --renderer R[,R...]    only the runs of the named renderers: as if the manifest's\n"
     "                             renderers: listed only those of its own (in its order).\n"
     "                             --set and --renderer are part of the manifest hash\n"

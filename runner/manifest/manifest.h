@@ -23,7 +23,11 @@
  *                       on a manifest that sweeps lights.count makes it fixed (the axis
  *                       is gone), `--set 'sweep.lights.count=[16, 64]'` sweeps a key the
  *                       manifest sets in place, `--set 'sweep={...}'` replaces the
- *                       whole sweep (its keys removed in place). A value replaces
+ *                       whole sweep (its keys removed in place). On a sweep of
+ *                       blocks `sweep.KEY` is refused (`--set 'sweep=[{...}, ...]'`
+ *                       replaces the list, the keys in place kept as the base) and
+ *                       `--set KEY=V` removes KEY from every block (a block left
+ *                       empty is the base point once). A value replaces
  *                       the whole key: `--set gbuffer=fat` drops the manifest's
  *                       gbuffer.normal, `--set gbuffer.preset=fat` keeps it.
  *   --renderer LIST     only the runs of these renderers (comma-separated), as if the
@@ -105,8 +109,10 @@ typedef struct experiment {
     run_params base;           /* the manifest's values with defaults, renderer = "" */
     size_t nrenderers;
     char (*renderers)[32];
-    size_t naxes;              /* sweep axes in manifest order */
+    size_t naxes;              /* sweep axes in manifest order (every block's) */
     struct sweep_axis *axes;   /* opaque: manifest.c */
+    size_t nblocks;            /* `sweep:` a list of blocks: their number (0: a mapping, */
+    size_t *block_first;       /* one product); block b is axes [first[b], first[b+1]) */
 } experiment;
 
 typedef struct run_spec {
@@ -173,7 +179,8 @@ void experiment_make_smoke(experiment *e);
 bool experiment_scale_resolution(experiment *e, double scale, char *err, size_t errlen);
 
 /* The cartesian product of the sweep axes (first axis varies slowest) times the
- * renderers (fastest), in that order, each distinct configuration once: a
+ * renderers (fastest), in that order, each distinct configuration once (a sweep of
+ * blocks: each block's product in turn, a run an earlier block made folded into it): a
  * parameter the run's renderer does not read (and its error reference does not
  * inherit) is reset to its default, and a point that is then an earlier run is
  * folded into it (plan.folds). nshards >= 1 assigns run k to shard

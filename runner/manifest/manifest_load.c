@@ -27,6 +27,7 @@ void experiment_free(experiment *e)
         free(e->axes[i].col);
     }
     free(e->axes);
+    free(e->block_first);
     for (size_t i = 0; i < e->nsets; i++)
         free(e->sets[i]);
     free(e->sets);

@@ -36,8 +36,10 @@ typedef struct vctx {
     const ynode *root;
     const ynode *set_key[PARAMS_N];    /* where each parameter is set in place */
     const ynode *set_val[PARAMS_N];
-    const ynode *swept[PARAMS_N];      /* its key in `sweep` */
-    size_t axis_of[PARAMS_N];          /* its axis index + 1, 0 if not swept */
+    const ynode *swept[PARAMS_N];      /* its key in `sweep` (a list of blocks: the first) */
+    size_t axis_of[PARAMS_N];          /* its axis index + 1, 0 if not swept (the first) */
+    size_t swept_in[PARAMS_N];         /* how many blocks sweep it (a mapping: 1 block) */
+    bool blocks;                       /* `sweep:` is a list of blocks */
 } vctx;
 
 /* manifest_values.c */
@@ -69,6 +71,13 @@ bool params_apply_schema_defaults(vctx *c, unsigned schema, run_params *dst);
 unsigned params_schema_of(const struct ynode *root);
 /* A mapping whose keys are the table's parameters under `prefix` ("" at the top). */
 void mf_parse_group(vctx *c, const char *prefix, const ynode *map, run_params *dst);
+
+/* manifest_sweep.c: `sweep:` (params.def), a mapping (one block) or a sequence of
+ * blocks, into c->e's axes and blocks; false (after mf_bad) when it is neither. */
+bool mf_parse_sweep(vctx *c, const param *pd, const ynode *n);
+/* "sweep.PATH" (a mapping) or "sweep[B].PATH" (block B, from 0): axis a's key in
+ * messages. */
+void mf_axis_key(const experiment *e, size_t a, char *buf, size_t len);
 
 /* manifest_check.c: every rule that needs the whole manifest, after parse_group */
 void manifest_check(vctx *c);

@@ -157,7 +157,10 @@ const char *mf_expect(const param *pd, char *buf, size_t len)
             mf_sb_add(&b, "a mapping");
         }
         break;
-    case PT_SWEEP: mf_sb_add(&b, "a mapping from parameters to sequences of values"); break;
+    case PT_SWEEP:
+        mf_sb_add(&b, "a mapping from parameters to sequences of values, or a sequence of "
+                  "such mappings (blocks)");
+        break;
     }
     return buf;
 }

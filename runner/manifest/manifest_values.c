@@ -431,8 +431,6 @@ static bool parse_text(vctx *c, const param *pd, const ynode *n, const char *key
     return true;
 }
 
-static void parse_sweep(vctx *c, const param *pd, const ynode *map);
-
 /* An optional key of a file scene whose value is one of two words: *second says whether
  * it is b (left as it is when the key is absent); false with the message otherwise. */
 static bool either_word(vctx *c, const ynode *v, const char *key, const char *a,
@@ -678,94 +676,7 @@ bool mf_parse_value(vctx *c, const param *pd, const ynode *n, const char *key,
         mf_parse_group(c, pd->path, n, dst);
         return true;
     case PT_SWEEP:
-        if (n->kind != YNODE_MAPPING)
-            return mf_bad(c, pd, n, key);
-        parse_sweep(c, pd, n);
-        return true;
+        return mf_parse_sweep(c, pd, n);
     }
     return false;
 }
-
-static void list_sweepable(sbuf *b)
-{
-    bool first = true;
-    for (size_t i = 0; i < NPARAMS; i++)
-        if (params_table[i].flags & PF_SWEEP) {
-            mf_sb_add(b, "%s%s", first ? "" : ", ", params_table[i].path);
-            first = false;
-        }
-}
-
-static void parse_sweep(vctx *c, const param *pd, const ynode *map)
-{
-    experiment *e = c->e;
-    e->axes = calloc(map->n ? map->n : 1, sizeof *e->axes);
-    if (!e->axes) {
-        mf_err(c, map, pd->path, "expected a sweep that fits in memory, found no memory left");
-        return;
-    }
-    for (size_t p = 0; p < map->n; p++) {
-        const ynode *k = map->pairs[p].key, *v = map->pairs[p].value;
-        char f[128], key[256];
-        if (k->kind != YNODE_SCALAR) {
-            mf_err(c, k, pd->path, "expected a parameter, found %s", mf_found(k, true, f, sizeof f));
-            continue;
-        }
-        sbuf kb = {key, sizeof key, 0};
-        mf_sb_add(&kb, "%s.", pd->path);
-        mf_escape_text(&kb, k->text, k->len);
-        const param *sp = param_find(k->text);
-        if (sp && sp->type == PT_GROUP && sp->shorthand)
-            sp = param_find(sp->shorthand);   /* `gbuffer: [fat, curtis]` as in place */
-        if (!sp || !(sp->flags & PF_SWEEP)) {
-            char list[2048];   /* every sweepable key: 1,100 bytes with zbin.* */
-            sbuf lb = {list, sizeof list, 0};
-            list_sweepable(&lb);
-            mf_err(c, k, key, "expected a sweepable parameter (one of %s), found %s", list,
-                mf_found(k, true, f, sizeof f));
-            continue;
-        }
-        size_t idx = (size_t)(sp - params_table);
-        if (c->swept[idx]) {
-            mf_err(c, k, key, "expected a key used once, found a second '%s' (first at %d:%d)",
-                sp->path, c->swept[idx]->line, c->swept[idx]->col);
-            continue;
-        }
-        c->swept[idx] = k;
-        if (v->kind != YNODE_SEQUENCE || v->n == 0) {
-            mf_err(c, v, key, "expected a non-empty sequence of values, found %s",
-                mf_found(v, false, f, sizeof f));
-            continue;
-        }
-        if (v->n > MAX_AXIS_VALUES) {
-            mf_err(c, v, key, "expected at most %d values, found %zu", MAX_AXIS_VALUES, v->n);
-            continue;
-        }
-        struct sweep_axis *ax = &e->axes[e->naxes];
-        ax->path = sp->path;
-        ax->off = sp->off;
-        ax->size = sp->size;
-        ax->values = calloc(v->n, sizeof *ax->values);
-        ax->line = calloc(v->n, sizeof *ax->line);
-        ax->col = calloc(v->n, sizeof *ax->col);
-        if (!ax->values || !ax->line || !ax->col) {
-            free(ax->values);
-            free(ax->line);
-            free(ax->col);
-            *ax = (struct sweep_axis){0};
-            mf_err(c, v, key, "expected a sweep that fits in memory, found no memory left");
-            continue;
-        }
-        ax->nvalues = v->n;
-        e->naxes++;
-        c->axis_of[idx] = e->naxes;
-        for (size_t j = 0; j < v->n; j++) {
-            char sub[300];
-            snprintf(sub, sizeof sub, "%s[%zu]", key, j);
-            ax->line[j] = v->items[j]->line;
-            ax->col[j] = v->items[j]->col;
-            mf_parse_value(c, sp, v->items[j], sub, &ax->values[j]);
-        }
-    }
-}
-

@@ -46,6 +46,11 @@ void experiment_make_smoke(experiment *e)
                                            "draw_limit"};
     size_t k = 0;
     for (size_t i = 0; i < e->naxes; i++) {
+        /* a block's first axis moves to k: its first is then k (nblocks: blocks that
+         * start at i, empty ones included, all move) */
+        for (size_t b = 0; b <= e->nblocks && e->nblocks; b++)
+            if (e->block_first[b] == i)
+                e->block_first[b] = k;
         bool drop = false;
         for (size_t j = 0; j < sizeof collapse / sizeof collapse[0]; j++)
             drop = drop || strcmp(e->axes[i].path, collapse[j]) == 0;
@@ -57,7 +62,10 @@ void experiment_make_smoke(experiment *e)
             e->axes[k++] = e->axes[i];
         }
     }
-    e->naxes = k;
+    for (size_t b = 0; b <= e->nblocks && e->nblocks; b++)
+        if (e->block_first[b] > k)
+            e->block_first[b] = k;   /* the end, and blocks that start past the last axis */
+    e->naxes = k;   /* a block left with no axis: the base point once */
 
     run_params *b = &e->base;
     if (b->width > 160 || b->height > 120) {

@@ -280,6 +280,45 @@ static bool unsweep(ynode *sw, const char *path, bool under, const ynode *v)
     return first != NONE;
 }
 
+/* Is the manifest's sweep a list of blocks? */
+static bool sweep_is_blocks(const graft *g)
+{
+    size_t i = find_key(g->root, "sweep", 5);
+    return i != NONE && g->root->pairs[i].value->kind == YNODE_SEQUENCE;
+}
+
+/* `--set KEY=V` on a sweep of blocks: KEY (and the keys under it) leaves every block;
+ * a block left with no key is the base point once (as --smoke leaves it): an empty
+ * mapping at the --set's line and column -1, which the parser takes for that. */
+static void unsweep_blocks(graft *g, const char *path)
+{
+    size_t i = find_key(g->root, "sweep", 5);
+    const ynode *seq = g->root->pairs[i].value;
+    ynode *n = ydoc_node(g->doc, YNODE_SEQUENCE, seq->line, seq->col);
+    if (n && seq->n)
+        n->items = malloc(seq->n * sizeof *n->items);
+    if (!n || (seq->n && !n->items)) {
+        g->oom = true;
+        return;
+    }
+    for (size_t j = 0; j < seq->n; j++) {
+        const ynode *b = seq->items[j];
+        if (b->kind == YNODE_MAPPING) {
+            size_t had = b->n;
+            ynode *own_b = own(g, &b);
+            if (!own_b)
+                return;
+            unsweep(own_b, path, true, NULL);
+            if (had && !own_b->n) {
+                own_b->line = g->line;
+                own_b->col = -1;   /* not a YAML node's column: emptied, not written {} */
+            }
+        }
+        n->items[n->n++] = b;
+    }
+    g->root->pairs[i].value = n;
+}
+
 /* Where a diag about a node at *line, *col goes: `file`, or for a node of the k-th
  * --set (line -k) "FILE: --set KEY=VALUE" in buf, with no line or column. */
 static const char *where_of(const experiment *e, const char *file, int *line, int *col,
@@ -366,17 +405,26 @@ bool overrides_apply(vctx *c, ydoc *doc)
         char key[KEY_MAX + 1];
         snprintf(key, sizeof key, "%.*s", (int)strcspn(arg, "="), arg);
         g.line = -(int)(k + 1);
-        if (strncmp(key, "sweep.", 6) == 0) {
+        bool blocks = sweep_is_blocks(&g);
+        if (strncmp(key, "sweep.", 6) == 0 && blocks) {
+            overrides_diag(c->d, c->e, c->file, g.line, 0, "sweep", "expected "
+                           "--set 'sweep=[...]' (the whole list of blocks) on a sweep of "
+                           "blocks, found --set %s", key);
+            c->nerr++;
+        } else if (strncmp(key, "sweep.", 6) == 0) {
             const char *path = canonical(key + 6);
             unset_path(&g, path);
             ynode *sw = sweep_of(&g, true);
             if (sw && !unsweep(sw, path, false, v))
                 add_pair(&g, sw, key + 6, strlen(key + 6), g.line, v);
         } else if (strcmp(key, "sweep") == 0) {
-            set_path(&g, key, v);
+            set_path(&g, key, v);   /* blocks: a key set in place is their base */
             for (size_t i = 0; v->kind == YNODE_MAPPING && i < v->n; i++)
                 if (v->pairs[i].key->kind == YNODE_SCALAR)
                     unset_path(&g, canonical(v->pairs[i].key->text));
+        } else if (blocks) {
+            set_path(&g, key, v);
+            unsweep_blocks(&g, key);
         } else {
             set_path(&g, key, v);
             ynode *sw = sweep_of(&g, false);

@@ -30,7 +30,7 @@ static const char *type_name(const param *pd)
     case PT_RENDERER: return "renderer";
     case PT_VEC3: return "vec3";
     case PT_GROUP: return "group";
-    case PT_SWEEP: return "sweep";
+    case PT_SWEEP: return "sweep: mapping or list of blocks";
     }
     return "?";
 }
@@ -158,7 +158,8 @@ void params_print(FILE *out, params_format f)
               "with it: renders with the run's value (inherit), with the default, or "
               "takes this key as its own value of another. `run`, `list` and `validate` "
               "take `--set KEY=VALUE` to set a key as if written in the manifest (VALUE "
-              "is YAML; `--set 'sweep.KEY=[A, B]'` sweeps it) and `--renderer R[,R...]` to "
+              "is YAML; `--set 'sweep.KEY=[A, B]'` sweeps it; on a sweep of blocks "
+              "`--set 'sweep=[{...}, ...]'` replaces them) and `--renderer R[,R...]` to "
               "keep only those renderers; see `shadesweep run --help`. A manifest of "
               "`shadesweep: 2` has other defaults for a few keys (the *default* column "
               "says `schema 2:`): lights sized by what they light, auto exposure and a "

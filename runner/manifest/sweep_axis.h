@@ -17,3 +17,17 @@ struct sweep_axis {
     int *line, *col;           /* where each value is in the manifest (line -k: in the
                                 * k-th --set, runner/manifest/overrides.c) */
 };
+
+/* The blocks of e's sweep: a mapping is one block of every axis. */
+static inline size_t sweep_nblocks(const experiment *e)
+{
+    return e->nblocks ? e->nblocks : 1;
+}
+static inline size_t sweep_block_first(const experiment *e, size_t b)
+{
+    return e->nblocks ? e->block_first[b] : 0;
+}
+static inline size_t sweep_block_end(const experiment *e, size_t b)
+{
+    return e->nblocks ? e->block_first[b + 1] : e->naxes;
+}

@@ -33,13 +33,63 @@ static void run_id(const run_params *p, char id[13])
     hash_hex(h, 12, id);
 }
 
-/* The value index of run k on axis a (renderers vary fastest, then the last axis). */
-static size_t axis_value_of(const experiment *e, size_t k, size_t a)
+#define NO_VALUE ((size_t)-1)
+
+/* The plan's grid points: each block's product of its axes times the renderers, the
+ * blocks in turn; start[b] is block b's first point, start[nblocks] all of them. */
+typedef struct grid {
+    const experiment *e;
+    size_t nblocks;
+    size_t *start;
+} grid;
+
+/* The block of point k (binary search: a list of many blocks stays n log n); *local:
+ * k's index in it. */
+static size_t block_of(const grid *g, size_t k, size_t *local)
 {
-    size_t q = k / e->nrenderers;
-    for (size_t b = e->naxes; b-- > a + 1;)
-        q /= e->axes[b].nvalues;
+    size_t b = 0;   /* the last block that starts at or before k */
+    for (size_t n = g->nblocks; n > 1;) {
+        size_t half = n / 2;
+        b += g->start[b + half] <= k ? half : 0;
+        n -= half;
+    }
+    *local = k - g->start[b];
+    return b;
+}
+
+/* The value index of point `local` of block b on its axis a (renderers vary fastest,
+ * then the block's last axis). */
+static size_t block_value_of(const experiment *e, size_t b, size_t local, size_t a)
+{
+    size_t q = local / e->nrenderers;
+    for (size_t x = sweep_block_end(e, b); x-- > a + 1;)
+        q /= e->axes[x].nvalues;
     return q % e->axes[a].nvalues;
+}
+
+/* The value index of point k on axis a; NO_VALUE when a is another block's axis (k
+ * takes the base value). */
+static size_t axis_value_of(const grid *g, size_t k, size_t a)
+{
+    size_t local, b = block_of(g, k, &local);
+    if (a < sweep_block_first(g->e, b) || a >= sweep_block_end(g->e, b))
+        return NO_VALUE;
+    return block_value_of(g->e, b, local, a);
+}
+
+/* The parameters of point k as the sweep makes them: the base, its block's values,
+ * its renderer. */
+static void point_params(const grid *g, size_t k, run_params *p)
+{
+    const experiment *e = g->e;
+    size_t local, b = block_of(g, k, &local);
+    *p = e->base;
+    for (size_t a = sweep_block_first(e, b); a < sweep_block_end(e, b); a++) {
+        const struct sweep_axis *ax = &e->axes[a];
+        size_t v = block_value_of(e, b, local, a);
+        memcpy((char *)p + ax->off, (const char *)&ax->values[v] + ax->off, ax->size);
+    }
+    snprintf(p->renderer, sizeof p->renderer, "%s", e->renderers[k % e->nrenderers]);
 }
 
 typedef struct id_ref {
@@ -62,11 +112,14 @@ static int id_ref_cmp_index(const void *x, const void *y)
     return a->index < b->index ? -1 : a->index > b->index;
 }
 
-/* Two runs with one id are one point of the grid twice (a value repeated in an
- * axis, or two values with one canonical text, like 0.5 and 0.50): reported once
- * per repeated value, at that value, naming the first pair of runs it makes. */
-static bool check_duplicates(const experiment *e, const plan *p, diag_list *diags)
+/* Two runs of one block with one id are one point of the grid twice (a value
+ * repeated in an axis, or two values with one canonical text, like 0.5 and 0.50):
+ * reported once per repeated value, at that value, naming the first pair of runs it
+ * makes. A run of a later block that is an earlier block's is no error: fold() folds
+ * it. */
+static bool check_duplicates(const grid *gr, const plan *p, diag_list *diags)
 {
+    const experiment *e = gr->e;
     if (p->nruns < 2)
         return true;
     size_t nvals = 0, ndup = 0;
@@ -84,9 +137,11 @@ static bool check_duplicates(const experiment *e, const plan *p, diag_list *diag
     for (size_t i = 0; i < p->nruns; i++)
         refs[i] = (id_ref){p->runs[i].id, i};
     qsort(refs, p->nruns, sizeof *refs, id_ref_cmp);
-    /* in each group of one id, the first run (lowest index) is the original */
+    /* in each group of one id and block, the first run (lowest index) is the original */
+    size_t local;
     for (size_t i = 1, g = 0; i < p->nruns; i++) {
-        if (strcmp(refs[i].id, refs[g].id) != 0) {
+        if (strcmp(refs[i].id, refs[g].id) != 0 ||
+            block_of(gr, refs[i].index, &local) != block_of(gr, refs[g].index, &local)) {
             g = i;
             continue;
         }
@@ -100,7 +155,7 @@ static bool check_duplicates(const experiment *e, const plan *p, diag_list *diag
         /* the axis where the two runs take different values; the later value repeats */
         size_t a = 0, base = 0, v = 0;
         for (; a < e->naxes; base += e->axes[a].nvalues, a++) {
-            size_t va = axis_value_of(e, first, a), vb = axis_value_of(e, again, a);
+            size_t va = axis_value_of(gr, first, a), vb = axis_value_of(gr, again, a);
             if (va != vb) {
                 v = va > vb ? va : vb;
                 break;
@@ -113,8 +168,9 @@ static bool check_duplicates(const experiment *e, const plan *p, diag_list *diag
         } else if (!reported[base + v]) {
             reported[base + v] = true;
             const struct sweep_axis *ax = &e->axes[a];
-            char key[160];
-            snprintf(key, sizeof key, "sweep.%s[%zu]", ax->path, v);
+            char key[200];
+            mf_axis_key(e, a, key, sizeof key);
+            snprintf(key + strlen(key), sizeof key - strlen(key), "[%zu]", v);
             overrides_diag(diags, e, e->path, ax->line[v], ax->col[v], key,
                            "expected a distinct sweep point, found run %zu the same as run "
                            "%zu (id %s)", again, first, dups[i].id);
@@ -146,13 +202,13 @@ static bool check_axes_read(const experiment *e, diag_list *diags)
         }
         if (read)
             continue;
-        char key[160], list[512] = "", readers[256];
+        char key[200], list[512] = "", readers[256];
         param_readers_text(pd, readers, sizeof readers);
         size_t len = 0;
         for (size_t r = 0; r < e->nrenderers; r++)
             len += (size_t)snprintf(list + len, len < sizeof list ? sizeof list - len : 0, "%s%s",
                                     r ? ", " : "", e->renderers[r]);
-        snprintf(key, sizeof key, "sweep.%s", ax->path);
+        mf_axis_key(e, a, key, sizeof key);
         overrides_diag(diags, e, e->path, ax->line ? ax->line[0] : 0,
                        ax->col ? ax->col[0] : 0, key, "expected a key one of the renderers "
                        "reads (%s is read by %s), found none of %s", ax->path, readers,
@@ -211,7 +267,7 @@ static bool assign_points(plan *p, unsigned nshards)
 /* Resets what each run's renderer does not read to its default, then keeps the
  * first run of each id: the others are folded into it. Ids, indices and shards are
  * assigned to the runs that remain, in plan order. */
-static bool fold(plan *p, unsigned nshards, diag_list *diags)
+static bool fold(plan *p, const grid *gr, unsigned nshards, diag_list *diags)
 {
     run_params d;
     params_defaults(&d);
@@ -252,16 +308,8 @@ static bool fold(plan *p, unsigned nshards, diag_list *diags)
         nfolded += i != g;
     }
     /* the raw parameters of every point, for the folds' record */
-    const experiment *e = p->exp;
-    for (size_t k = 0; k < p->nruns; k++) {
-        raw[k] = e->base;
-        for (size_t a = 0; a < e->naxes; a++) {
-            const struct sweep_axis *ax = &e->axes[a];
-            size_t v = axis_value_of(e, k, a);
-            memcpy((char *)&raw[k] + ax->off, (const char *)&ax->values[v] + ax->off, ax->size);
-        }
-        snprintf(raw[k].renderer, sizeof raw[k].renderer, "%s", e->renderers[k % e->nrenderers]);
-    }
+    for (size_t k = 0; k < p->nruns; k++)
+        point_params(gr, k, &raw[k]);
     plan_fold *folds = nfolded ? calloc(nfolded, sizeof *folds) : NULL;
     size_t *new_index = malloc((p->nruns ? p->nruns : 1) * sizeof *new_index);
     bool ok = (!nfolded || folds) && new_index;
@@ -308,48 +356,57 @@ bool plan_expand(const experiment *e, unsigned nshards, plan *out, diag_list *di
         diag_add(diags, e->path, 0, 0, "renderers", "expected at least one renderer, found none");
         return false;
     }
-    size_t total = e->nrenderers;
-    for (size_t a = 0; a < e->naxes; a++) {
-        if (e->axes[a].nvalues == 0 || total > PLAN_MAX_RUNS / e->axes[a].nvalues) {
-            overrides_diag(diags, e, e->path, e->axes[a].line ? e->axes[a].line[0] : 0,
-                           e->axes[a].col ? e->axes[a].col[0] : 0, "sweep",
-                           "expected at most %u runs, found more at axis %s", PLAN_MAX_RUNS,
-                           e->axes[a].path);
-            return false;
-        }
-        total *= e->axes[a].nvalues;
+    grid g = {.e = e, .nblocks = sweep_nblocks(e)};
+    g.start = malloc((g.nblocks + 1) * sizeof *g.start);
+    if (!g.start) {
+        diag_add(diags, e->path, 0, 0, "", "expected a plan that fits in memory, found no memory left");
+        return false;
     }
+    size_t total = 0;
+    for (size_t b = 0; b < g.nblocks; b++) {
+        g.start[b] = total;
+        size_t n = e->nrenderers;
+        for (size_t a = sweep_block_first(e, b); a < sweep_block_end(e, b); a++) {
+            if (e->axes[a].nvalues == 0 || n > PLAN_MAX_RUNS / e->axes[a].nvalues) {
+                overrides_diag(diags, e, e->path, e->axes[a].line ? e->axes[a].line[0] : 0,
+                               e->axes[a].col ? e->axes[a].col[0] : 0, "sweep",
+                               "expected at most %u runs, found more at axis %s",
+                               PLAN_MAX_RUNS, e->axes[a].path);
+                free(g.start);
+                return false;
+            }
+            n *= e->axes[a].nvalues;
+        }
+        total += n;   /* blocks of at most PLAN_MAX_RUNS each: no overflow */
+    }
+    g.start[g.nblocks] = total;
     if (total > PLAN_MAX_RUNS) {
         diag_add(diags, e->path, 0, 0, "sweep", "expected at most %u runs, found %zu",
                  PLAN_MAX_RUNS, total);
+        free(g.start);
         return false;
     }
 
     run_spec *runs = calloc(total, sizeof *runs);
     if (!runs) {
         diag_add(diags, e->path, 0, 0, "", "expected a plan that fits in memory, found no memory left");
+        free(g.start);
         return false;
     }
     for (size_t k = 0; k < total; k++) {
         run_spec *r = &runs[k];
         r->index = r->point = k;
-        r->p = e->base;
-        for (size_t a = 0; a < e->naxes; a++) {
-            const struct sweep_axis *ax = &e->axes[a];
-            size_t v = axis_value_of(e, k, a);
-            memcpy((char *)&r->p + ax->off, (const char *)&ax->values[v] + ax->off, ax->size);
-        }
-        snprintf(r->p.renderer, sizeof r->p.renderer, "%s", e->renderers[k % e->nrenderers]);
+        point_params(&g, k, &r->p);
         run_id(&r->p, r->id);   /* as swept: a repeated value is a duplicate */
     }
     out->npoints = out->nruns = total;
     out->runs = runs;
-    if (!check_duplicates(e, out, diags) || !check_axes_read(e, diags) ||
-        !fold(out, nshards, diags)) {
+    bool ok = check_duplicates(&g, out, diags) && check_axes_read(e, diags) &&
+              fold(out, &g, nshards, diags);
+    free(g.start);
+    if (!ok)
         plan_free(out);
-        return false;
-    }
-    return true;
+    return ok;
 }
 
 void plan_free(plan *p)
@@ -407,14 +464,15 @@ bool parse_shard(const char *s, unsigned *i, unsigned *n, char *err, size_t errl
     return false;
 }
 
-/* " key=value" for the renderer and each swept parameter of p. */
-static void print_point(const experiment *e, const run_params *p, FILE *out)
+/* " key=value" for the renderer and each swept parameter of p; first[a]: axis a is
+ * the first to sweep its key (a key several blocks sweep is printed once). */
+static void print_point(const experiment *e, const bool *first, const run_params *p, FILE *out)
 {
     param_kv kv[PARAM_KV_MAX];
     size_t n = run_params_kv(p, kv, PARAM_KV_MAX);
     fprintf(out, "renderer=%s", p->renderer);
-    for (size_t a = 0; e && a < e->naxes; a++)
-        for (size_t i = 0; i < n; i++)
+    for (size_t a = 0; first && a < e->naxes; a++)
+        for (size_t i = 0; i < n && first[a]; i++)
             if (strcmp(kv[i].key, e->axes[a].path) == 0)
                 fprintf(out, " %s=%s", kv[i].key, kv[i].value);
 }
@@ -466,12 +524,18 @@ void plan_print_json(const plan *p, unsigned shard, FILE *out)
 void plan_print(const plan *p, unsigned shard, FILE *out)
 {
     const experiment *e = p->exp;
+    bool *first = calloc(e->naxes ? e->naxes : 1, sizeof *first);
+    for (size_t a = 0; first && a < e->naxes; a++) {
+        first[a] = true;
+        for (size_t b = 0; b < a && first[a]; b++)
+            first[a] = e->axes[b].off != e->axes[a].off;
+    }
     for (size_t k = 0; k < p->nruns; k++) {
         const run_spec *r = &p->runs[k];
         if (shard != 0 && r->shard != shard)
             continue;
         fprintf(out, "%s  ", r->id);
-        print_point(e, &r->p, out);
+        print_point(e, first, &r->p, out);
         fputc('\n', out);
     }
     /* Folded points after the runs, as comments: what the sweep asked for that is
@@ -486,7 +550,8 @@ void plan_print(const plan *p, unsigned shard, FILE *out)
                     "(they differ only in keys their renderer does not read):\n",
                     p->nfolded, p->npoints);
         fprintf(out, "#   ");
-        print_point(e, &p->folds[f].p, out);
+        print_point(e, first, &p->folds[f].p, out);
         fprintf(out, " -> %s\n", r->id);
     }
+    free(first);
 }

@@ -790,12 +790,34 @@ static const bad_case bad_cases[] = {
       "14:11: outputs.frames: expected true or false, found 'yes'",
       "15:21: outputs.screenshots[1]: expected a finite number, found '.nan'",
       "17:18: sweep.sync[1]: expected one of finish, fence, found 'flush'"}},
+    /* a sweep of blocks: each item a non-empty mapping of today's sweep; a required key
+     * swept in one block only is missing from the others */
+    {"blocks_errors.yaml",
+     {"1:1: scene: expected one of {SCENES}or {file: PATH, scale, up, camera}, found nothing",
+      "6:5: sweep[0]: expected a block (a mapping from parameters to sequences of values), "
+      "found '5'",
+      "7:5: sweep[1]: expected a block with at least one parameter, found an empty mapping",
+      "8:22: sweep[2].bogus: expected a sweepable parameter (one of {SWEEPABLE}), found 'bogus'",
+      "9:18: sweep[3].trials[1]: expected an integer 1..1000, or auto, found '0.5'",
+      "9:24: sweep[3].trials: expected a key used once, found a second 'trials' (first at 9:6)",
+      "10:20: sweep[4].lights.count: expected a non-empty sequence of values, found an empty "
+      "sequence"}},
+    /* lights per block: placement none meets the count in place in blocks 1 and 2
+     * (reported once) and block 0's own counts; block 3 (placement random) any count */
+    {"blocks_lights.yaml",
+     {"6:17: lights.count: expected 0 lights with lights.placement none, found 16 lights",
+      "8:50: sweep[0].lights.count[1]: expected 0 lights with lights.placement none, found 4 "
+      "lights"}},
+    {"blocks_empty.yaml",
+     {"6:8: sweep: expected a non-empty sequence of blocks (mappings from parameters to "
+      "sequences of values), found an empty sequence"}},
     {NULL, {NULL}},
 };
 
 /* A line of bad_cases with its lists made from the tables they come from: {SCENES}
  * the scene catalog, {RENDERERS} the renderer registry, {TOPKEYS} the manifest's
- * top-level keys (params.def's), each name followed by ", ". */
+ * top-level keys (params.def's), each name followed by ", "; {SWEEPABLE} the
+ * sweepable keys, separated by ", ". */
 static void expand_lists(FILE *w, const char *line)
 {
     for (const char *s = line; *s;) {
@@ -812,6 +834,14 @@ static void expand_lists(FILE *w, const char *line)
                 if (!strchr(params_table[i].path, '.'))
                     fprintf(w, "%s, ", params_table[i].path);
             s += 9;
+        } else if (strncmp(s, "{SWEEPABLE}", 11) == 0) {
+            const char *sep = "";
+            for (size_t i = 0; i < NPARAMS; i++)
+                if (params_table[i].flags & PF_SWEEP) {
+                    fprintf(w, "%s%s", sep, params_table[i].path);
+                    sep = ", ";
+                }
+            s += 11;
         } else {
             fputc(*s++, w);
         }

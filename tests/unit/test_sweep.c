@@ -1,5 +1,5 @@
 /* Plans (runner/plan/sweep.c): expansion order, run ids, shards, --shard parsing,
- * `shadesweep list` output, duplicate points. */
+ * `shadesweep list` output, duplicate points, sweeps of blocks. */
 #include <stdarg.h>
 #include <stddef.h>
 #include <setjmp.h>
@@ -383,6 +383,29 @@ static void test_plan_print(void **state)
     experiment_free(e);
 }
 
+/* plan_expand fails on e with the one diagnostic "PATH:line" (line: "L:C: KEY: ...");
+ * e is freed. */
+static void expect_plan_error(experiment *e, const char *line)
+{
+    plan p;
+    diag_list d = {0};
+    assert_false(plan_expand(e, 1, &p, &d));
+    assert_int_equal(p.nruns, 0);
+    assert_null(p.runs);
+    char *got = NULL;
+    size_t len = 0;
+    FILE *f = open_memstream(&got, &len);
+    assert_non_null(f);
+    diag_print(&d, f);
+    fclose(f);
+    char want[1024];
+    snprintf(want, sizeof want, "%s:%s\n", e->path, line);
+    assert_string_equal(got, want);
+    free(got);
+    diag_free(&d);
+    experiment_free(e);
+}
+
 static void test_duplicate_points(void **state)
 {
     (void)state;
@@ -398,26 +421,8 @@ static void test_duplicate_points(void **state)
          "as run 0 (id fbe0f6967819)"},
         {NULL, NULL},
     };
-    for (size_t k = 0; cases[k].file; k++) {
-        experiment *e = load(cases[k].file);
-        plan p;
-        diag_list d = {0};
-        assert_false(plan_expand(e, 1, &p, &d));
-        assert_int_equal(p.nruns, 0);
-        assert_null(p.runs);
-        char *got = NULL;
-        size_t len = 0;
-        FILE *f = open_memstream(&got, &len);
-        assert_non_null(f);
-        diag_print(&d, f);
-        fclose(f);
-        char want[1024];
-        snprintf(want, sizeof want, "%s:%s\n", e->path, cases[k].line);
-        assert_string_equal(got, want);
-        free(got);
-        diag_free(&d);
-        experiment_free(e);
-    }
+    for (size_t k = 0; cases[k].file; k++)
+        expect_plan_error(load(cases[k].file), cases[k].line);
 }
 
 static experiment *load_text(const char *yaml)
@@ -600,6 +605,185 @@ static void test_make_smoke(void **state)
     diag_free(&d);
 }
 
+/* >>blocks: `sweep:` as a list of blocks */
+
+static const char BLOCKS[] =
+    "shadesweep: 1\n"
+    "name: blocks\n"
+    "scene: shapes\n"
+    "renderers: [deferred, forward-plus]\n"
+    "duration: {frames: 10}\n"
+    "lights: {count: 16}\n"
+    "sweep:\n"
+    "  - {scene: [shapes, canyon], lights.count: [16, 64]}\n"
+    "  - {tiles.size: [16, 32]}\n";
+
+/* The plan of the manifest BLOCKS with its sweep replaced by `sweep` (a mapping). */
+static experiment *load_with_sweep(const char *sweep)
+{
+    char text[1024];
+    snprintf(text, sizeof text, "%.*s%s", (int)(strstr(BLOCKS, "\nsweep:") + 1 - BLOCKS), BLOCKS,
+             sweep);
+    return load_text(text);
+}
+
+/* Each block's product in turn (first key slowest, renderers fastest); a key a block
+ * does not sweep takes the value in place (lights.count 16, which block 0 sweeps too);
+ * a run an earlier block made is folded into it; each run has the id of the same run
+ * in the mapping form. */
+static void test_blocks_order(void **state)
+{
+    (void)state;
+    experiment *e = load_text(BLOCKS);
+    assert_int_equal(e->nblocks, 2);
+    assert_int_equal(e->naxes, 3);
+    assert_int_equal(e->block_first[1], 2);
+    plan p;
+    assert_true(expand(e, 1, &p));
+    assert_int_equal(p.npoints, 12);   /* 2 x 2 x 2 renderers + 2 x 2 renderers */
+    assert_int_equal(p.nruns, 9);
+    assert_int_equal(p.nfolded, 3);
+    char *all = print_plan(&p, 0);
+    assert_string_equal(all,
+        "7b048d9a2785  renderer=deferred scene=shapes lights.count=16 tiles.size=16\n"
+        "c6bf97306b78  renderer=forward-plus scene=shapes lights.count=16 tiles.size=16\n"
+        "3f50149a05f7  renderer=deferred scene=shapes lights.count=64 tiles.size=16\n"
+        "9b770c3052f6  renderer=forward-plus scene=shapes lights.count=64 tiles.size=16\n"
+        "e039ebbe6782  renderer=deferred scene=canyon lights.count=16 tiles.size=16\n"
+        "1783ef1b0a79  renderer=forward-plus scene=canyon lights.count=16 tiles.size=16\n"
+        "0b900ebe8010  renderer=deferred scene=canyon lights.count=64 tiles.size=16\n"
+        "0e82081b0546  renderer=forward-plus scene=canyon lights.count=64 tiles.size=16\n"
+        "bfdb49ba3293  renderer=forward-plus scene=shapes lights.count=16 tiles.size=32\n"
+        "# 3 of 12 grid points folded into a run that measures the same (they differ only "
+        "in keys their renderer does not read):\n"
+        "#   renderer=deferred scene=shapes lights.count=16 tiles.size=16 -> 7b048d9a2785\n"
+        "#   renderer=forward-plus scene=shapes lights.count=16 tiles.size=16 -> c6bf97306b78\n"
+        "#   renderer=deferred scene=shapes lights.count=16 tiles.size=32 -> 7b048d9a2785\n");
+    free(all);
+    assert_int_equal(p.folds[0].point, 8);
+    assert_int_equal(p.folds[0].into, 0);
+    assert_int_equal(p.folds[2].point, 10);
+    assert_int_equal(p.runs[8].point, 11);
+    assert_int_equal(p.runs[8].p.lights.count.max, 16);
+    assert_int_equal(p.runs[8].p.tile_size, 2);   /* 8, 16, 32 */
+
+    /* the same runs as the mapping form makes them: block 0 and block 1 each */
+    experiment *m0 = load_text("shadesweep: 1\nname: blocks\n"
+                               "renderers: [deferred, forward-plus]\n"
+                               "duration: {frames: 10}\nlights: {}\nsweep:\n"
+                               "  scene: [shapes, canyon]\n  lights.count: [16, 64]\n");
+    experiment *m1 = load_with_sweep("sweep:\n  tiles.size: [16, 32]\n");
+    plan p0, p1;
+    assert_true(expand(m0, 1, &p0));
+    assert_true(expand(m1, 1, &p1));
+    assert_int_equal(p0.nruns, 8);
+    for (size_t k = 0; k < 8; k++)
+        assert_string_equal(p.runs[k].id, p0.runs[k].id);
+    assert_int_equal(p1.nruns, 3);
+    assert_string_equal(p.runs[8].id, p1.runs[2].id);
+    /* sweep points: block 1's tiles.size 32 is ranked with block 0's shapes/16 */
+    assert_int_equal(p.ngroups, 4);
+    assert_int_equal(p.runs[8].group, p.runs[0].group);
+    plan_free(&p0);
+    plan_free(&p1);
+    experiment_free(m0);
+    experiment_free(m1);
+    plan_free(&p);
+    experiment_free(e);
+}
+
+/* Errors of the plan: a value repeated in one block's axis, a key none of the
+ * renderers reads, more than 100000 runs over all the blocks; a block that only
+ * repeats an earlier one is no error. */
+static void test_blocks_plan_errors(void **state)
+{
+    (void)state;
+    static const struct {
+        const char *sweep, *line;
+    } cases[] = {
+        {"sweep:\n  - {lights.count: [16, 64]}\n  - {lights.count: [64, 16, 64]}\n",
+         "9:29: sweep[1].lights.count[2]: expected a distinct sweep point, found run 8 the "
+         "same as run 4 (id 3f50149a05f7)"},
+        {"sweep:\n  - {lights.count: [16, 64]}\n  - {forward.illumination_sets: [true]}\n",
+         "9:34: sweep[1].forward.illumination_sets: expected a key one of the renderers reads "
+         "(forward.illumination_sets is read by forward-mpml), found none of deferred, "
+         "forward-plus"},
+        {NULL, NULL},
+    };
+    for (size_t k = 0; cases[k].sweep; k++)
+        expect_plan_error(load_with_sweep(cases[k].sweep), cases[k].line);
+
+    /* two identical blocks: the second folds into the first */
+    experiment *e = load_with_sweep("sweep:\n  - {lights.count: [16, 64]}\n"
+                                    "  - {lights.count: [16, 64]}\n");
+    plan p;
+    assert_true(expand(e, 1, &p));
+    assert_int_equal(p.npoints, 8);
+    assert_int_equal(p.nruns, 4);
+    assert_int_equal(p.nfolded, 4);
+    plan_free(&p);
+    experiment_free(e);
+
+    /* 2 blocks of 60000 runs each: 300 seeds x 100 radii x 2 renderers */
+    size_t cap = 64 * 1024, n = 0;
+    char *sw = malloc(cap);
+    assert_non_null(sw);
+    n += (size_t)snprintf(sw + n, cap - n, "sweep:\n");
+    for (int b = 0; b < 2; b++) {
+        n += (size_t)snprintf(sw + n, cap - n, "  - lights.seed: [%d", 1000 * b);
+        for (int i = 1; i < 300; i++)
+            n += (size_t)snprintf(sw + n, cap - n, ", %d", 1000 * b + i);
+        n += (size_t)snprintf(sw + n, cap - n, "]\n    lights.radius: [1");
+        for (int i = 2; i <= 100; i++)
+            n += (size_t)snprintf(sw + n, cap - n, ", %d", i);
+        n += (size_t)snprintf(sw + n, cap - n, "]\n");
+    }
+    char *text = malloc(cap + 512);
+    assert_non_null(text);
+    snprintf(text, cap + 512, "%.*s%s", (int)(strstr(BLOCKS, "\nsweep:") + 1 - BLOCKS), BLOCKS, sw);
+    e = load_text(text);
+    diag_list d = {0};
+    assert_false(plan_expand(e, 1, &p, &d));
+    assert_int_equal(d.n, 1);
+    assert_string_equal(d.v[0].msg, "expected at most 100000 runs, found 120000");
+    diag_free(&d);
+    experiment_free(e);
+    free(text);
+    free(sw);
+}
+
+/* --smoke drops its axes in every block; a block left with none is the base point
+ * once (here folded into block 0's run at the same values). */
+static void test_blocks_smoke(void **state)
+{
+    (void)state;
+    experiment *e = load_with_sweep("sweep:\n"
+                                    "  - {resolution: [320x240, 640x480], lights.count: [16, 64]}\n"
+                                    "  - {resolution: [320x240]}\n"
+                                    "  - {trials: [1, 2], tiles.size: [8, 32]}\n");
+    assert_int_equal(e->naxes, 5);
+    plan p;
+    assert_true(expand(e, 1, &p));
+    assert_int_equal(p.npoints, 8 + 2 + 8);
+    plan_free(&p);
+    experiment_make_smoke(e);
+    assert_int_equal(e->naxes, 2);
+    assert_int_equal(e->nblocks, 3);
+    assert_int_equal(e->block_first[0], 0);
+    assert_int_equal(e->block_first[1], 1);
+    assert_int_equal(e->block_first[2], 1);
+    assert_int_equal(e->block_first[3], 2);
+    assert_true(expand(e, 1, &p));
+    assert_int_equal(p.npoints, 4 + 2 + 4);
+    assert_int_equal(p.nruns, 6);   /* block 1 is block 0's count 16; deferred reads no tiles */
+    for (size_t k = 0; k < p.nruns; k++) {
+        assert_int_equal(p.runs[k].p.width, 160);
+        assert_int_equal(p.runs[k].p.trials, 1);
+    }
+    plan_free(&p);
+    experiment_free(e);
+}
+
 static void test_zero_shards(void **state)
 {
     (void)state;
@@ -627,6 +811,9 @@ int main(void)
         cmocka_unit_test(test_scale_resolution),
         cmocka_unit_test(test_schema2_defaults),
         cmocka_unit_test(test_make_smoke),
+        cmocka_unit_test(test_blocks_order),
+        cmocka_unit_test(test_blocks_plan_errors),
+        cmocka_unit_test(test_blocks_smoke),
     };
     return cmocka_run_group_tests(tests, NULL, NULL);
 }
