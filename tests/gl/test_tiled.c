@@ -676,11 +676,23 @@ static void test_two_levels(void **state)
  * forward-spml's. Its light-structure bytes are reported and are exactly the sorted
  * lights + the bins + tiles x ceil(lights / 32) mask words: with 600 lights they grow
  * by the lights, and with 4096 bins instead of 1024 by 3072 words, not by bins x tiles.
- * Its cull pass is two dispatches (sort and bins, masks), skipped with no local light. */
+ * Its cull pass is the sort's and bins' dispatches (zbin_dispatches) and the masks',
+ * skipped with no local light. */
 static double zbin_bytes(const shot *z, uint32_t bins)
 {
     double tiles = ((W + 15) / 16) * ((H + 15) / 16), n = z->fs.lights_drawn;
     return n * sizeof(gpu_light) + 16 + bins * 4.0 + tiles * ceil(n / 32.0) * 4.0;
+}
+
+/* zbin.comp's dispatches for n lights (zbin.c): the blocks of 512 pairs sorted, per
+ * larger k of the bitonic sort one per step with j >= 512 and one merge, the bins. */
+static int zbin_dispatches(uint32_t n)
+{
+    int count = 2;
+    for (uint32_t k = 1024; k < 2 * n; k <<= 1)
+        for (uint32_t j = k; j >= 512; j >>= 1)
+            count++;
+    return count;
 }
 
 static void test_zbin_work(void **state)
@@ -708,7 +720,11 @@ static void test_zbin_work(void **state)
                     fail_msg("%s: tile %zu: zbin %u lights, forward-plus %u", scenes[i], c,
                              cz[c], cf[c]);
             assert_int_equal(z.fs.grid_covered, fp.fs.grid_covered);
-            assert_int_equal(find_pass(&z.fs, "cull")->dispatches, 2);   /* sort, masks */
+            /* curtis-scene3's 600 visible lights: a step and a merge past one block */
+            if (i == 0)
+                assert_int_equal(zbin_dispatches(z.fs.lights_drawn), pass ? 4 : 2);
+            assert_int_equal(find_pass(&z.fs, "cull")->dispatches,
+                             zbin_dispatches(z.fs.lights_drawn) + 1);
             assert_true(z.fs.light_evals_per_pixel <= fp.fs.light_evals_per_pixel);
             assert_true(z.fs.light_evals_per_pixel < fp.fs.light_evals_per_pixel);
             assert_int_equal(z.fs.translucent_lists, 0);
@@ -754,6 +770,61 @@ static void test_zbin_work(void **state)
     scene_destroy(s);
 }
 
+/* tiles.levels: 2 for zbin (forward and deferred shading, and forward with tiles.prune:
+ * samples), on curtis-scene3 and canyon with 600 radius-3 lights: cull-coarse sorts the
+ * lights and culls the sorted ones into big tiles (the sort's dispatches and one), the
+ * tiles' masks are then one dispatch; every tile's mask holds exactly levels 1's
+ * lights, the evaluations a pixel are the same, and the image is levels 1's byte for
+ * byte and forward-spml's. */
+static void test_zbin_two_levels(void **state)
+{
+    (void)state;
+    static const char *const scenes[] = {"curtis-scene3", "canyon"};
+    static const char *const fine[] = {"cull", "tiled", "cull"};
+    for (size_t i = 0; i < 2; i++) {
+        scene *s = radius3_scene(scenes[i], 600);
+        renderer_options o = options();
+        shot ref;
+        render("forward-spml", &o, s, &ref);
+        for (int v = 0; v < 3; v++) {   /* forward, deferred, forward pruned by samples */
+            shot a, b;
+            uint32_t *ca = NULL, *cb = NULL;
+            o.zbin_deferred = v == 1;
+            o.prune_samples = v == 2;
+            o.tile_levels = 1;
+            render_counts("zbin", &o, s, &a, &ca);
+            o.tile_levels = 2;
+            render_counts("zbin", &o, s, &b, &cb);
+            print_message("%s, zbin %s: levels 2: evaluations a pixel %.3f (levels 1 %.3f)\n",
+                          scenes[i], fine[v], b.fs.light_evals_per_pixel,
+                          a.fs.light_evals_per_pixel);
+            assert_true(a.ngrid > 0);
+            assert_int_equal(b.ngrid, a.ngrid);
+            for (size_t c = 0; c < a.ngrid; c++)
+                if (cb[c] != ca[c])
+                    fail_msg("%s, %d: tile %zu: %u lights at levels 2, %u at 1", scenes[i], v,
+                             c, cb[c], ca[c]);
+            assert_true(b.fs.light_evals_per_pixel == a.fs.light_evals_per_pixel);
+            assert_int_equal(b.fs.grid_covered, a.fs.grid_covered);
+            assert_null(find_pass(&a.fs, "cull-coarse"));
+            assert_int_equal(find_pass(&b.fs, "cull-coarse")->dispatches,
+                             zbin_dispatches(b.fs.lights_drawn) + 1);
+            assert_int_equal(find_pass(&b.fs, fine[v])->dispatches, 1);
+            assert_int_equal(find_pass(&a.fs, fine[v])->dispatches,
+                             zbin_dispatches(a.fs.lights_drawn) + 1);
+            expect_agree(scenes[i], &b.img, &ref.img);
+            if (memcmp(a.img.pixels, b.img.pixels, (size_t)W * H * 4) != 0)
+                fail_msg("%s, %d: the image differs from levels 1's", scenes[i], v);
+            free(ca);
+            free(cb);
+            image_free(&a.img);
+            image_free(&b.img);
+        }
+        image_free(&ref.img);
+        scene_destroy(s);
+    }
+}
+
 GL_TEST_MAIN(ctx, W, H,
              cmocka_unit_test(test_counts_and_tile_sizes),
              cmocka_unit_test(test_4096_lights),
@@ -765,4 +836,5 @@ GL_TEST_MAIN(ctx, W, H,
              cmocka_unit_test(test_depth_mask),
              cmocka_unit_test(test_prune_samples),
              cmocka_unit_test(test_two_levels),
-             cmocka_unit_test(test_zbin_work))
+             cmocka_unit_test(test_zbin_work),
+             cmocka_unit_test(test_zbin_two_levels))
