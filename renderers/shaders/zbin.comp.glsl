@@ -1,5 +1,5 @@
 // zbin's sort and bins (Drobot 2017; renderers/tiled/zbin.c), in dispatches of many work
-// groups (u_stage; light_grid_zbin_dispatch issues them; a block: 2 x 256 pairs):
+// groups (u_stage; light_grid_zbin_dispatch issues them; a block: 2,048 entries):
 //   ZS_FIRST  a group a block: each light's (key, index), key its depth's bits made an
 //             order-preserving uint, 0 for a directional light (first: every pixel shades
 //             them), padded to a power of two with 0xffffffff (the largest reach and the
@@ -12,8 +12,7 @@
 //   ZS_BINS   per bin (ZBIN_BINS linear bins over [near, far], zbin.inc): the lowest and
 //             highest sorted index whose extent overlaps it (binary searches over the
 //             sorted centres widened by the largest reach, then a scan inwards)
-// The order is total (ties by index): bins, counters and image the same every run.
-// Defines: ZBIN_BINS. Uniforms: u_light_count, u_stage, u_k, u_j.
+// The order is total (ties by index): the same every run. Defines: ZBIN_BINS.
 #include "bindings.h"
 #include "frame.inc"
 #include "lighting.inc"
@@ -31,9 +30,10 @@ layout(std430, binding = BIND_SSBO_ZBIN_SORTED) writeonly buffer Sorted {
 layout(std430, binding = BIND_SSBO_ZBIN_KEYS) coherent buffer Keys {
     uvec2 b_zkeys[];
 };
-const uint NT = 256u, BLOCK = 2u * NT;
+const uint NT = 256u, BLOCK = 2048u;   // zbin.c's ZBIN_BLOCK
 const int ZS_FIRST = 0, ZS_STEP = 1, ZS_MERGE = 2, ZS_BINS = 3;   // zbin.c's
 shared uvec2 s_keys[BLOCK];
+shared uint s_rmax, s_directional;   // the group's, then one atomic each into the head
 
 // The depth (view, positive in front) and reach of light l that the bins use: its centre
 // and its range (a spot's whole sphere; the cull's test is the tighter one), a little
@@ -113,8 +113,8 @@ void local_steps(uint base, uint size, uint k, uint j0)
 {
     uint me = gl_LocalInvocationIndex;
     for (uint j = j0; j > 0u; j >>= 1u) {
-        if (me < size / 2u) {
-            uint a = pair_first(me, j), b = a + j;
+        for (uint t = me; t < size / 2u; t += NT) {
+            uint a = pair_first(t, j), b = a + j;
             uvec2 x = s_keys[a], y = s_keys[b];
             if (out_of_order(x, y, base + a, k)) {
                 s_keys[a] = y;
@@ -146,22 +146,31 @@ void store_block(uint base, uint size, uint n, bool last)
 
 void sort_first(uint n, uint p2)
 {
-    uint size = min(p2, BLOCK), base = gl_WorkGroupID.x * BLOCK;
-    for (uint i = gl_LocalInvocationIndex; i < size; i += NT) {
+    uint me = gl_LocalInvocationIndex, size = min(p2, BLOCK), base = gl_WorkGroupID.x * BLOCK;
+    if (me == 0u) {
+        s_rmax = 0u;
+        s_directional = 0u;
+    }
+    barrier();
+    for (uint i = me; i < size; i += NT) {
         uint g = base + i, key = 0xffffffffu;
         if (g < n) {
             float depth, r;
             key = 0u;
             if (zbin_extent(b_lights[g], depth, r)) {
                 key = max(order_key(depth), 1u);
-                atomicMax(z_rmax, floatBitsToUint(r));   // r >= 0: its bits order as it
+                atomicMax(s_rmax, floatBitsToUint(r));   // r >= 0: its bits order as it
             } else {
-                atomicAdd(z_directional, 1u);
+                atomicAdd(s_directional, 1u);
             }
         }
         s_keys[i] = uvec2(key, g);
     }
     barrier();
+    if (me == 0u) {
+        atomicMax(z_rmax, s_rmax);
+        atomicAdd(z_directional, s_directional);
+    }
     for (uint k = 2u; k <= size; k <<= 1u)
         local_steps(base, size, k, k >> 1u);
     store_block(base, size, n, size == p2);

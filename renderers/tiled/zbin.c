@@ -1,6 +1,7 @@
 /* zbin (Drobot, "Improved Culling for Tiled and Clustered Rendering", SIGGRAPH 2017):
  * the light grid (grid.h) with its lists replaced by z-binning. Each frame, on the GPU:
- * one work group sorts the lights by view depth and fills the depth bins (zbin.comp),
+ * dispatches of many work groups sort the lights by view depth and fill the depth bins
+ * (zbin.comp: a bitonic sort, blocks in shared memory, the larger steps a dispatch each),
  * then the tiles' dispatch (tile_cull.inc's cull_tile with ZBIN_BINS) writes a bit mask
  * over the sorted lights a tile; a pixel shades the set bits between its bin's two
  * indices (zbin.inc). Forward (the default): forward_plus.c's passes; with zbin.shading:
@@ -113,9 +114,10 @@ void light_grid_zbin_release(light_grid *g)
     g->zbin_sorted = g->zbin_keys = g->zbin_bins = g->zbin_masks = 0;
 }
 
-/* zbin.comp's stages (its u_stage) and its block: 2 x its work group's pairs */
+/* zbin.comp's stages (its u_stage) and its block: the entries a group sorts in shared
+ * memory (16 KiB), 4 pairs an invocation a step */
 enum { ZS_FIRST, ZS_STEP, ZS_MERGE, ZS_BINS };
-#define ZBIN_BLOCK (2u * ZBIN_GROUP)
+#define ZBIN_BLOCK 2048u
 
 static void zbin_stage(gl_state *st, int stage, uint32_t k, uint32_t j, uint32_t groups)
 {
@@ -144,8 +146,8 @@ void light_grid_zbin_dispatch(light_grid *g, gl_state *st, uint32_t nlights)
     uint32_t blocks = pow2 > ZBIN_BLOCK ? pow2 / ZBIN_BLOCK : 1;
     zbin_stage(st, ZS_FIRST, 0, 0, blocks);
     for (uint32_t k = 2 * ZBIN_BLOCK; k <= pow2; k <<= 1) {
-        for (uint32_t j = k >> 1; j >= ZBIN_BLOCK; j >>= 1)
-            zbin_stage(st, ZS_STEP, k, j, blocks);   /* pow2 / 2 pairs */
+        for (uint32_t j = k >> 1; j >= ZBIN_BLOCK; j >>= 1)   /* pow2 / 2 pairs */
+            zbin_stage(st, ZS_STEP, k, j, pow2 / 2 / ZBIN_GROUP);
         zbin_stage(st, ZS_MERGE, k, 0, blocks);
     }
     zbin_stage(st, ZS_BINS, 0, 0, (g->zbins + ZBIN_GROUP - 1) / ZBIN_GROUP);
