@@ -436,11 +436,21 @@ void cull_bits(uint base, uint end, uint words, uint src, bool from_list)
     for (uint w = me; w < words; w += N)
         s_bits[w] = 0u;
     barrier();
-    for (uint i = base + me; i < end; i += N)
-        if (light_passes(candidate(i, src, from_list)))
-            atomicOr(s_bits[(i - base) >> 5], 1u << ((i - base) & 31u));
+    for (uint i = base + me; i < end; i += N) {
+        uint c = candidate(i, src, from_list);
+#ifdef ZBIN_BINS
+        uint at = c;   // zbin: a bit per sorted light (base 0), whatever the candidates
+#else
+        uint at = i - base;
+#endif
+        if (light_passes(c))
+            atomicOr(s_bits[at >> 5], 1u << (at & 31u));
+    }
     barrier();
-#ifdef PRUNE_SAMPLES
+#if defined(PRUNE_SAMPLES) && defined(ZBIN_BINS)
+    if (g_pruned)
+        prune_bits(0u, words, 0u, false);   // the bits are the lights'
+#elif defined(PRUNE_SAMPLES)
     if (g_pruned)
         prune_bits(base, words, src, from_list);
 #endif
@@ -703,7 +713,8 @@ shared uint s_evals;
 // need); b_tiles[tile] = (evaluations summed over its pixels, lights, covered pixels,
 // lights), each pixel with geometry counting what zbin_next gives it at its nearest
 // sample's depth: the directional lights and its mask's bits within its bin.
-void zbin_cull_tile(uint tile_index, uint covered, uint nlights, ivec2 pixel)
+void zbin_cull_tile(uint tile_index, uint covered, uint nlights, uint src, bool from_list,
+                    ivec2 pixel)
 {
     uint me = gl_LocalInvocationIndex;
     uint words = z_words;
@@ -712,7 +723,7 @@ void zbin_cull_tile(uint tile_index, uint covered, uint nlights, ivec2 pixel)
         s_evals = 0u;
         s_count = 0u;
     }
-    cull_bits(0u, nlights, words, 0u, false);
+    cull_bits(0u, nlights, words, src, from_list);
     for (uint w = me; w < words; w += N) {
         uint b = s_bits[w];
         b_zmasks[tile_index * words + w] = b;
@@ -795,7 +806,7 @@ void cull_tile(ivec2 pixel)
     }
 #endif
 #if defined(ZBIN_BINS)
-    zbin_cull_tile(tile_index, covered, nlights, pixel);   // a mask, not a list
+    zbin_cull_tile(tile_index, covered, nlights, from, from_list, pixel);   // a mask
 #elif !defined(SLICES)
     cull_cell(tile_index, covered, nlights, from, from_list);
 #else

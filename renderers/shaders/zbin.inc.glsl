@@ -12,7 +12,7 @@ layout(std430, binding = BIND_SSBO_ZBIN_BINS) buffer ZBins {
     uint z_count;
     uint z_directional;
     uint z_words;
-    uint z_pad;
+    uint z_rmax;   // zbin.comp: the largest reach's bits, while sorting
     uint b_zbins[];
 };
 layout(std430, binding = BIND_SSBO_ZBIN_MASKS) TILES_QUALIFIER buffer ZMasks {

@@ -282,6 +282,8 @@ static void forward_tiled_draw(void *self, const struct scene *s, frame_stats *o
         forward_pass_begin(c, out, "cull-coarse");
         gl_state_framebuffer(c->b.st, c->b.output_fbo);
         gl_state_texture(c->b.st, BIND_TEX_DEPTH, c->b.depth.texture);
+        if (r->g.zbin_program)   /* zbin: the big tiles' lists index the sorted lights */
+            light_grid_zbin_dispatch(&r->g, c->b.st, (uint32_t)r->count);
         light_grid_bind_lights(&r->g, c->b.st);
         light_grid_coarse_dispatch(&r->g, c->b.st, (uint32_t)r->count);
         forward_pass_end(c, out);
@@ -289,7 +291,7 @@ static void forward_tiled_draw(void *self, const struct scene *s, frame_stats *o
     if (r->g.cull) {
         out->grid_pass = out->npasses + 1;
         forward_pass_begin(c, out, "cull");
-        if (r->g.zbin_program)   /* zbin: the lights sorted and binned first (zbin.c) */
+        if (r->g.zbin_program && !r->g.coarse_x)   /* zbin: sorted and binned first */
             light_grid_zbin_dispatch(&r->g, c->b.st, (uint32_t)r->count);
         light_grid_reset(&r->g);
         gl_state_program(c->b.st, r->cull_program);
@@ -327,8 +329,10 @@ static void forward_tiled_describe(const void *self, pass_plan *out)
     forward_describe_pass(out, "depth", true, "the visible objects, depth only");
     if (g->levels == 2 && (!c->prepared || g->coarse_x))
         forward_describe_pass(out, "cull-coarse", true,
-                              "one dispatch: %ux%u big tiles of %d px, lights culled per big "
+                              "%sone dispatch: %ux%u big tiles of %d px, lights culled per big "
                               "tile; each tile culls its big tile's list",
+                              g->zbins ? "zbin's sort and bins (dispatches of many groups), "
+                                         "then " : "",
                               g->coarse_x, g->coarse_y, g->coarse);
     else if (g->levels == 2)
         forward_describe_pass(out, "cull-coarse", false,
@@ -340,10 +344,10 @@ static void forward_tiled_describe(const void *self, pass_plan *out)
                               g->tiles_x, g->tiles_y, g->slices, g->tile, g->slice_ratio);
     else if ((!c->prepared || g->cull) && g->zbins)
         forward_describe_pass(out, "cull", true,
-                              "two dispatches: the lights sorted by view depth into %u depth "
-                              "bins (one work group), then a bit mask over them for each of "
-                              "%ux%u tiles of %d px",
-                              g->zbins, g->tiles_x, g->tiles_y, g->tile);
+                              "the lights sorted by view depth into %u depth bins "
+                              "(dispatches of many groups%s), then a bit mask over them for "
+                              "each of %ux%u tiles of %d px",
+                              g->zbins, g->coarse_x ? ", in cull-coarse" : "", g->tiles_x, g->tiles_y, g->tile);
     else if (!c->prepared || g->cull)
         forward_describe_pass(out, "cull", true,
                               "one dispatch: %ux%u tiles of %d px, lights culled per tile "

@@ -161,8 +161,9 @@ const char *light_grid_zbin_define(const light_grid *g);
 bool light_grid_zbin_compile(light_grid *g, gl_program_cache *pc, char *err, size_t errlen);
 bool light_grid_zbin_alloc(light_grid *g);
 void light_grid_zbin_release(light_grid *g);
-/* The sort-and-bin dispatch (zbin.comp, one work group) over the frame's nlights lights
- * (uploaded, at BIND_SSBO_LIGHTS); then light_grid_bind_lights binds the sorted ones. */
+/* The sort-and-bin dispatches (zbin.comp, many work groups each; docs/notes/zbin.md counts
+ * them) over the frame's nlights lights (uploaded, at BIND_SSBO_LIGHTS); then
+ * light_grid_bind_lights binds the sorted ones. */
 void light_grid_zbin_dispatch(light_grid *g, gl_state *st, uint32_t nlights);
 /* Bytes of the light structures the last frame used: zbin's sorted lights, bins and
  * masks; else the lights, the list heads and the indices taken (needed). */

@@ -33,15 +33,17 @@ bool tiled_pass_plan(tiled_pass *t, deferred_renderer *d, const scene *s, char *
     if (!g->cull)
         cull = "no point or spot light: no culling";
     if (g->coarse_x)
-        deferred_plan(d, PASS_COARSE, true, "one dispatch: %ux%u big tiles of %d px, lights "
-                      "culled per big tile; each tile culls its big tile's list",
-                      g->coarse_x, g->coarse_y, g->coarse);
+        deferred_plan(d, PASS_COARSE, true, "%sone dispatch: %ux%u big tiles of %d px, "
+                      "lights culled per big tile; each tile culls its big tile's list",
+                      g->zbins ? "zbin's sort and bins (dispatches of many groups), then "
+                               : "", g->coarse_x, g->coarse_y, g->coarse);
     else if (g->levels == 2)
         deferred_plan(d, PASS_COARSE, false, "skipped, the scene has no point or spot light");
     if (g->zbins && g->cull)
-        deferred_plan(d, PASS_TILED, true, "two dispatches: the lights sorted by view depth "
-                      "into %u depth bins (one work group), then per tile of %ux%u (%d px) a "
+        deferred_plan(d, PASS_TILED, true, "the lights sorted by view depth into %u depth "
+                      "bins (dispatches of many groups%s), then per tile of %ux%u (%d px) a "
                       "bit mask over them, each pixel its bits within its bin, %s", g->zbins,
+                      g->coarse_x ? ", in the coarse pass" : "",
                       g->tiles_x, g->tiles_y, g->tile, what);
     else if (g->slices)
         deferred_plan(d, PASS_TILED, true, "one dispatch: %ux%ux%u clusters (%d px), %s, %s",
@@ -190,13 +192,15 @@ void tiled_pass_run(tiled_pass *t, deferred_renderer *d, const scene *s, frame_s
         deferred_pass_begin(d, out, PASS_COARSE);
         gl_state_framebuffer(st, d->b.output_fbo);
         gl_state_texture(st, DEFERRED_DEPTH_UNIT, d->b.depth.texture);
+        if (g->zbin_program)   /* zbin: the big tiles' lists index the sorted lights */
+            light_grid_zbin_dispatch(g, st, n);
         light_grid_bind_lights(g, st);
         light_grid_coarse_dispatch(g, st, n);
         deferred_pass_end(d, out);
     }
     out->grid_pass = g->cull ? out->npasses + 1 : 0;
     deferred_pass_begin(d, out, PASS_TILED);
-    if (g->zbin_program)   /* zbin: the lights sorted and binned first (zbin.c) */
+    if (g->zbin_program && !g->coarse_x)   /* zbin: sorted and binned first (zbin.c) */
         light_grid_zbin_dispatch(g, st, n);
     light_grid_reset(g);
     if (t->edges) {

@@ -1,6 +1,7 @@
 /* zbin (Drobot, "Improved Culling for Tiled and Clustered Rendering", SIGGRAPH 2017):
  * the light grid (grid.h) with its lists replaced by z-binning. Each frame, on the GPU:
- * one work group sorts the lights by view depth and fills the depth bins (zbin.comp),
+ * dispatches of many work groups sort the lights by view depth and fill the depth bins
+ * (zbin.comp: a bitonic sort, blocks in shared memory, the larger steps a dispatch each),
  * then the tiles' dispatch (tile_cull.inc's cull_tile with ZBIN_BINS) writes a bit mask
  * over the sorted lights a tile; a pixel shades the set bits between its bin's two
  * indices (zbin.inc). Forward (the default): forward_plus.c's passes; with zbin.shading:
@@ -76,6 +77,14 @@ bool light_grid_zbin_compile(light_grid *g, gl_program_cache *pc, char *err, siz
     return true;
 }
 
+static uint32_t zbin_pow2(uint32_t n)
+{
+    uint32_t p2 = 1;
+    while (p2 < n)
+        p2 <<= 1;
+    return p2;
+}
+
 static GLuint zbin_buffer(uint64_t bytes)
 {
     GLuint b = 0;
@@ -88,9 +97,7 @@ bool light_grid_zbin_alloc(light_grid *g)
 {
     if (!g->zbins || !g->cull)
         return true;
-    uint32_t pow2 = 1;
-    while (pow2 < g->max_lights)
-        pow2 <<= 1;
+    uint32_t pow2 = zbin_pow2(g->max_lights);
     g->zbin_sorted = zbin_buffer((uint64_t)g->max_lights * sizeof(gpu_light));
     g->zbin_keys = zbin_buffer((uint64_t)pow2 * 8u);
     g->zbin_bins = zbin_buffer(16u + (uint64_t)g->zbins * 4u);
@@ -107,17 +114,43 @@ void light_grid_zbin_release(light_grid *g)
     g->zbin_sorted = g->zbin_keys = g->zbin_bins = g->zbin_masks = 0;
 }
 
+/* zbin.comp's stages (its u_stage) and its block: the entries a group sorts in shared
+ * memory (16 KiB), 4 pairs an invocation a step */
+enum { ZS_FIRST, ZS_STEP, ZS_MERGE, ZS_BINS };
+#define ZBIN_BLOCK 2048u
+
+static void zbin_stage(gl_state *st, int stage, uint32_t k, uint32_t j, uint32_t groups)
+{
+    gl.Uniform1i(LOC_RENDERER + 1, stage);
+    gl.Uniform1i(LOC_RENDERER + 2, (GLint)k);
+    gl.Uniform1i(LOC_RENDERER + 3, (GLint)j);
+    gl_state_dispatch(st, groups, 1, 1);
+    gl_state_barrier(st, GL_SHADER_STORAGE_BARRIER_BIT);
+}
+
 void light_grid_zbin_dispatch(light_grid *g, gl_state *st, uint32_t nlights)
 {
     g->zbin_count = nlights;
+    /* the head's directional count and largest reach, summed by ZS_FIRST's atomics */
+    const uint32_t head[4] = {0, 0, 0, 0};
+    gl.NamedBufferSubData(g->zbin_bins, 0, sizeof head, head);
     gl_state_program(st, g->zbin_program);
     gl.Uniform1i(LOC_RENDERER, (GLint)nlights);
     gl_state_storage_buffer(st, BIND_SSBO_LIGHTS, g->lights.buffer);
     gl_state_storage_buffer(st, BIND_SSBO_ZBIN_SORTED, g->zbin_sorted);
     gl_state_storage_buffer(st, BIND_SSBO_ZBIN_KEYS, g->zbin_keys);
     gl_state_storage_buffer(st, BIND_SSBO_ZBIN_BINS, g->zbin_bins);
-    gl_state_dispatch(st, 1, 1, 1);
-    gl_state_barrier(st, GL_SHADER_STORAGE_BARRIER_BIT);
+    /* the bitonic sort of pow2 pairs: blocks sorted in shared memory, then per larger
+     * k its steps with j >= the block one dispatch each and the rest a block a group */
+    uint32_t pow2 = zbin_pow2(nlights);
+    uint32_t blocks = pow2 > ZBIN_BLOCK ? pow2 / ZBIN_BLOCK : 1;
+    zbin_stage(st, ZS_FIRST, 0, 0, blocks);
+    for (uint32_t k = 2 * ZBIN_BLOCK; k <= pow2; k <<= 1) {
+        for (uint32_t j = k >> 1; j >= ZBIN_BLOCK; j >>= 1)   /* pow2 / 2 pairs */
+            zbin_stage(st, ZS_STEP, k, j, pow2 / 2 / ZBIN_GROUP);
+        zbin_stage(st, ZS_MERGE, k, 0, blocks);
+    }
+    zbin_stage(st, ZS_BINS, 0, 0, (g->zbins + ZBIN_GROUP - 1) / ZBIN_GROUP);
 }
 
 double light_grid_struct_bytes(const light_grid *g, uint32_t needed)
@@ -164,7 +197,8 @@ const renderer_impl renderer_zbin_impl = {
                    "bins and a bit mask over them a screen tile, all on the GPU; forward: "
                    "depth pre-pass, each pixel shades its tile's bits within its bin; "
                    "deferred: from the G-buffer",
-    .reads = "gbuffer tiles.size tiles.depth_culling tiles.prune zbin lights.culling "
+    .reads = "gbuffer tiles.size tiles.depth_culling tiles.prune tiles.levels "
+             "tiles.coarse_size zbin lights.culling "
              "lights.culling_error hdr msaa fog aa",
     .create = zbin_create,
     .variant = zbin_variant,

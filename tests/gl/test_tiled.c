@@ -41,6 +41,7 @@ typedef struct shot {
     size_t ngrid;              /* renderer_light_grid's cells */
     uint32_t grid_max;         /* their longest list */
     double grid_sum;           /* their lengths summed */
+    gbuffer_traffic traffic;   /* renderer_traffic: the bandwidth model's bytes */
 } shot;
 
 static renderer_options options(void)
@@ -70,6 +71,7 @@ static void render_counts(const char *kind, const renderer_options *o, scene *s,
     gl.Finish();
     renderer_collect(r, &out->fs);
     renderer_describe(r, &out->plan);
+    out->traffic = renderer_traffic(r, &out->fs);
     size_t n = 0;
     const uint32_t *g = renderer_light_grid(r, &n);
     for (size_t i = 0; g && i < n; i++) {
@@ -243,8 +245,20 @@ static void test_counts_and_tile_sizes(void **state)
     scene_destroy(s);
 }
 
+/* zbin.comp's dispatches for n lights (zbin.c): the blocks of 2,048 entries sorted, per
+ * larger k of the bitonic sort one per step with j >= 2,048 and one merge, the bins. */
+static int zbin_dispatches(uint32_t n)
+{
+    int count = 2;
+    for (uint32_t k = 4096; k < 2 * n; k <<= 1)
+        for (uint32_t j = k; j >= 2048; j >>= 1)
+            count++;
+    return count;
+}
+
 /* 4,096 radius-3 lights on curtis-scene3, and one tile reached by all of them: longer
- * than any per-tile budget a work group's shared memory could hold. */
+ * than any per-tile budget a work group's shared memory could hold. zbin too: its sort
+ * past one block (steps and a merge), its masks exactly forward-plus's lists. */
 static void test_4096_lights(void **state)
 {
     (void)state;
@@ -257,10 +271,13 @@ static void test_4096_lights(void **state)
         fail_msg("curtis-scene3: %s", err);
     scene_update(s, 5.0);
     renderer_options o = options();
-    shot ref, t;
+    shot ref, t, z;
+    uint32_t *cf = NULL, *cz = NULL;
+    size_t nf = 0;
     render("forward-spml", &o, s, &ref);
     for (size_t k = 0; k < NKINDS; k++) {
-        render(KINDS[k], &o, s, &t);
+        render_counts(KINDS[k], &o, s, &t, k == 0 ? &cf : NULL);
+        nf = k == 0 ? t.ngrid : nf;
         char what[64];
         snprintf(what, sizeof what, "%s, 4096 lights", KINDS[k]);
         expect_agree(what, &t.img, &ref.img);
@@ -268,6 +285,20 @@ static void test_4096_lights(void **state)
         assert_true(t.fs.lights_drawn > 1000);
         image_free(&t.img);
     }
+    render_counts("zbin", &o, s, &z, &cz);
+    print_message("zbin, 4096 lights: %u sorted, %d sort dispatches\n", z.fs.lights_drawn,
+                  zbin_dispatches(z.fs.lights_drawn));
+    expect_agree("zbin, 4096 lights", &z.img, &ref.img);
+    assert_true(zbin_dispatches(z.fs.lights_drawn) > 2);
+    assert_int_equal(find_pass(&z.fs, "cull")->dispatches,
+                     zbin_dispatches(z.fs.lights_drawn) + 1);
+    assert_int_equal(z.ngrid, nf);
+    for (size_t c = 0; c < nf; c++)
+        if (cz[c] != cf[c])
+            fail_msg("4096 lights: tile %zu: zbin %u lights, forward-plus %u", c, cz[c], cf[c]);
+    free(cf);
+    free(cz);
+    image_free(&z.img);
     image_free(&ref.img);
 
     /* the uniform block cannot hold them: refused with the numbers, storage named */
@@ -676,7 +707,8 @@ static void test_two_levels(void **state)
  * forward-spml's. Its light-structure bytes are reported and are exactly the sorted
  * lights + the bins + tiles x ceil(lights / 32) mask words: with 600 lights they grow
  * by the lights, and with 4096 bins instead of 1024 by 3072 words, not by bins x tiles.
- * Its cull pass is two dispatches (sort and bins, masks), skipped with no local light. */
+ * Its cull pass is the sort's and bins' dispatches (zbin_dispatches) and the masks',
+ * skipped with no local light. */
 static double zbin_bytes(const shot *z, uint32_t bins)
 {
     double tiles = ((W + 15) / 16) * ((H + 15) / 16), n = z->fs.lights_drawn;
@@ -708,7 +740,8 @@ static void test_zbin_work(void **state)
                     fail_msg("%s: tile %zu: zbin %u lights, forward-plus %u", scenes[i], c,
                              cz[c], cf[c]);
             assert_int_equal(z.fs.grid_covered, fp.fs.grid_covered);
-            assert_int_equal(find_pass(&z.fs, "cull")->dispatches, 2);   /* sort, masks */
+            assert_int_equal(find_pass(&z.fs, "cull")->dispatches,
+                             zbin_dispatches(z.fs.lights_drawn) + 1);
             assert_true(z.fs.light_evals_per_pixel <= fp.fs.light_evals_per_pixel);
             assert_true(z.fs.light_evals_per_pixel < fp.fs.light_evals_per_pixel);
             assert_int_equal(z.fs.translucent_lists, 0);
@@ -754,6 +787,96 @@ static void test_zbin_work(void **state)
     scene_destroy(s);
 }
 
+/* tiles.levels: 2 for zbin (forward and deferred shading, and forward with tiles.prune:
+ * samples), on curtis-scene3 and canyon with 600 radius-3 lights: cull-coarse sorts the
+ * lights and culls the sorted ones into big tiles (the sort's dispatches and one), the
+ * tiles' masks are then one dispatch; every tile's mask holds exactly levels 1's
+ * lights, the evaluations a pixel are the same, and the image is levels 1's byte for
+ * byte and forward-spml's. */
+static void test_zbin_two_levels(void **state)
+{
+    (void)state;
+    static const char *const scenes[] = {"curtis-scene3", "canyon"};
+    static const char *const fine[] = {"cull", "tiled", "cull"};
+    for (size_t i = 0; i < 2; i++) {
+        scene *s = radius3_scene(scenes[i], 600);
+        renderer_options o = options();
+        shot ref;
+        render("forward-spml", &o, s, &ref);
+        for (int v = 0; v < 3; v++) {   /* forward, deferred, forward pruned by samples */
+            shot a, b;
+            uint32_t *ca = NULL, *cb = NULL;
+            o.zbin_deferred = v == 1;
+            o.prune_samples = v == 2;
+            o.tile_levels = 1;
+            render_counts("zbin", &o, s, &a, &ca);
+            o.tile_levels = 2;
+            render_counts("zbin", &o, s, &b, &cb);
+            print_message("%s, zbin %s: levels 2: evaluations a pixel %.3f (levels 1 %.3f)\n",
+                          scenes[i], fine[v], b.fs.light_evals_per_pixel,
+                          a.fs.light_evals_per_pixel);
+            assert_true(a.ngrid > 0);
+            assert_int_equal(b.ngrid, a.ngrid);
+            for (size_t c = 0; c < a.ngrid; c++)
+                if (cb[c] != ca[c])
+                    fail_msg("%s, %d: tile %zu: %u lights at levels 2, %u at 1", scenes[i], v,
+                             c, cb[c], ca[c]);
+            assert_true(b.fs.light_evals_per_pixel == a.fs.light_evals_per_pixel);
+            assert_int_equal(b.fs.grid_covered, a.fs.grid_covered);
+            assert_null(find_pass(&a.fs, "cull-coarse"));
+            assert_int_equal(find_pass(&b.fs, "cull-coarse")->dispatches,
+                             zbin_dispatches(b.fs.lights_drawn) + 1);
+            assert_int_equal(find_pass(&b.fs, fine[v])->dispatches, 1);
+            assert_int_equal(find_pass(&a.fs, fine[v])->dispatches,
+                             zbin_dispatches(a.fs.lights_drawn) + 1);
+            expect_agree(scenes[i], &b.img, &ref.img);
+            if (memcmp(a.img.pixels, b.img.pixels, (size_t)W * H * 4) != 0)
+                fail_msg("%s, %d: the image differs from levels 1's", scenes[i], v);
+            free(ca);
+            free(cb);
+            image_free(&a.img);
+            image_free(&b.img);
+        }
+        image_free(&ref.img);
+        scene_destroy(s);
+    }
+}
+
+/* The bandwidth model's bytes (seed 002, issue 37 item 5): zbin with zbin.shading:
+ * deferred reports exactly tiled-deferred's G-buffer writes and reads for the same
+ * layout and scene (its G-buffer pass and one compute pass reading every pixel), at
+ * two layouts; with forward shading, none (NaN: no G-buffer), as forward-plus. */
+static void test_zbin_traffic(void **state)
+{
+    (void)state;
+    scene_light l[4];
+    for (int i = 0; i < 4; i++)
+        l[i] = point((float)i * 8.0f - 12.0f, 3.0f, 0.0f, 9.0f);
+    scene *s = shapes(l, 4);
+    static const gbuffer_preset layouts[] = {GBUFFER_REFERENCE, GBUFFER_COMPACT};
+    for (size_t k = 0; k < 2; k++) {
+        renderer_options o = options();
+        o.gbuffer = layouts[k];
+        shot td, z;
+        render("tiled-deferred", &o, s, &td);
+        o.zbin_deferred = true;
+        render("zbin", &o, s, &z);
+        print_message("gbuffer %zu: write %.0f read %.0f bytes (tiled-deferred %.0f %.0f)\n", k,
+                      z.traffic.write_bytes, z.traffic.read_bytes, td.traffic.write_bytes,
+                      td.traffic.read_bytes);
+        assert_true(td.traffic.write_bytes > 0.0 && td.traffic.read_bytes > 0.0);
+        assert_true(z.traffic.write_bytes == td.traffic.write_bytes);
+        assert_true(z.traffic.read_bytes == td.traffic.read_bytes);
+        image_free(&td.img);
+        image_free(&z.img);
+        o.zbin_deferred = false;
+        render("zbin", &o, s, &z);
+        assert_true(isnan(z.traffic.write_bytes) && isnan(z.traffic.read_bytes));
+        image_free(&z.img);
+    }
+    scene_destroy(s);
+}
+
 GL_TEST_MAIN(ctx, W, H,
              cmocka_unit_test(test_counts_and_tile_sizes),
              cmocka_unit_test(test_4096_lights),
@@ -765,4 +888,6 @@ GL_TEST_MAIN(ctx, W, H,
              cmocka_unit_test(test_depth_mask),
              cmocka_unit_test(test_prune_samples),
              cmocka_unit_test(test_two_levels),
-             cmocka_unit_test(test_zbin_work))
+             cmocka_unit_test(test_zbin_work),
+             cmocka_unit_test(test_zbin_two_levels),
+             cmocka_unit_test(test_zbin_traffic))
