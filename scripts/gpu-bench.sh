@@ -2,7 +2,8 @@
 # A GPU session in one command (issue 15, item 9):
 #   scripts/gpu-bench.sh [--smoke] [--resume] OUTDIR
 # 1. `shadesweep info` for every EGL device (OUTDIR/info-device-N.txt);
-# 2. on the first hardware device (else, saying so, the software one): the renderer
+# 2. on the first hardware device (else, saying so, the software one): the culling
+#    engines since 2016 (experiments/modern-culling.yaml at 1280x720), the renderer
 #    benchmark (experiments/renderers-{deferred,forward}.yaml), the deferred families over
 #    resolution and msaa (experiments/families-msaa.yaml) and seed 003's experiments at
 #    1280x720, cut to fit 8 minutes (one trial each, experiment 1 at 30 s a run; the cut
@@ -16,7 +17,8 @@
 # (GPU_BENCH_BUDGET_S, default 480 s) runs out, the run in progress is stopped and the
 # script says how to go on. --smoke (GPU_BENCH_SMOKE=1): every manifest's smoke variant.
 # GPU_BENCH_SET="KEY=VALUE ..." adds --set to every run. SHADESWEEP names the program
-# (default build/runner/shadesweep, built if needed). Exit status: 0 every run ok, 1 some
+# (default build/runner/shadesweep, built if needed). GPU_BENCH_ONLY="NAME ..." runs only
+# those of the manifests (every one is still cut). Exit status: 0 every run ok, 1 some
 # run failed or the budget ran out, 2 bad usage.
 set -euo pipefail
 root=$(cd "$(dirname "$0")/.." && pwd)
@@ -97,6 +99,7 @@ fi
 cut() {  # cut NAME SED-SCRIPT: OUTDIR/manifests/NAME.yaml from experiments/NAME.yaml
   sed -e "$2" "$root/experiments/$1.yaml" >"$out/manifests/$1.yaml"
 }
+cut modern-culling 's/^trials: 3$/trials: 1/; s/^resolution: 160x90$/resolution: 1280x720/'
 cut renderers-deferred 's/^trials: 3$/trials: 1/'
 cut renderers-forward 's/^trials: 3$/trials: 1/'
 cut families-msaa ''
@@ -107,7 +110,13 @@ opts=()
 sets=()
 for kv in ${GPU_BENCH_SET:-}; do sets+=(--set "$kv"); done
 status=0
-ms=(renderers-deferred renderers-forward families-msaa s003-exp2 s003-exp1)
+ms=(modern-culling renderers-deferred renderers-forward families-msaa s003-exp2 s003-exp1)
+if [ -n "${GPU_BENCH_ONLY:-}" ]; then
+  for m in $GPU_BENCH_ONLY; do
+    [ -f "$out/manifests/$m.yaml" ] || { echo "gpu-bench: GPU_BENCH_ONLY: no manifest $m (${ms[*]})" >&2; exit 2; }
+  done
+  read -r -a ms <<<"$GPU_BENCH_ONLY"
+fi
 for m in "${ms[@]}"; do
   left=$((budget - (SECONDS - start)))
   if [ $left -le 0 ]; then
@@ -131,7 +140,7 @@ for m in "${ms[@]}"; do
   esac
 done
 if [ $status -ne 0 ] && [ $((SECONDS - start)) -ge "$budget" ]; then
-  echo "gpu-bench: to finish: ${GPU_BENCH_SET:+GPU_BENCH_SET='$GPU_BENCH_SET' }scripts/gpu-bench.sh --resume${opts:+ ${opts[*]}} $out" >&2
+  echo "gpu-bench: to finish: ${GPU_BENCH_SET:+GPU_BENCH_SET='$GPU_BENCH_SET' }${GPU_BENCH_ONLY:+GPU_BENCH_ONLY='$GPU_BENCH_ONLY' }scripts/gpu-bench.sh --resume${opts:+ ${opts[*]}} $out" >&2
 fi
 
 # 3. the report, and the clocks of each folder's trials (summary.csv's sm_clock_mhz)

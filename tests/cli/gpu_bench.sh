@@ -12,6 +12,8 @@ export SHADESWEEP
 # draw_limit 0.1 s a run, for the first run and the resume alike (the checks read no frame
 # count; the smoke default of 2 s a run was most of this test's time)
 export GPU_BENCH_SET="draw_limit=0.1"
+# modern-culling's ~200 runs are the GPU's to measure: here only its cut is checked
+export GPU_BENCH_ONLY="renderers-deferred renderers-forward families-msaa s003-exp2 s003-exp1"
 B="$SOURCE_ROOT/scripts/gpu-bench.sh"
 "$B" --smoke gb >gb.out 2>gb.err || fail "gpu-bench: rc $? $(tail -5 gb.err)"
 n=$(sed -n 's/^gpu-bench: \([0-9]*\) EGL device(s)$/\1/p' gb.out)
@@ -30,6 +32,10 @@ fi
 grep -qx "trials: 1" gb/manifests/s003-exp1.yaml || fail "exp1 trials"
 grep -qx "duration: {seconds: 30}" gb/manifests/s003-exp1.yaml || fail "exp1 duration"
 grep -qx "name: s003-exp2" gb/manifests/s003-exp2.yaml || fail "exp2 name"
+grep -qx "resolution: 1280x720" gb/manifests/modern-culling.yaml || fail "modern-culling resolution"
+grep -qx "trials: 1" gb/manifests/modern-culling.yaml || fail "modern-culling trials"
+"$SHADESWEEP" validate gb/manifests/modern-culling.yaml >/dev/null || fail "modern-culling cut invalid"
+[ -d gb/modern-culling ] && fail "GPU_BENCH_ONLY ran modern-culling"
 # every run ok, one smoke trial each
 check() {  # check NAME RUNS
   local rows ok
@@ -75,6 +81,11 @@ GPU_BENCH_BUDGET_S=0 "$B" --smoke --resume gb >y.out 2>y.err; rc=$?
 set -e
 [ $rc -eq 1 ] || fail "spent budget: rc $rc"
 grep -qx "gpu-bench: the 0 s budget is spent before renderers-deferred" y.err || fail "budget: $(cat y.err)"
-grep -qx "gpu-bench: to finish: GPU_BENCH_SET='draw_limit=0.1' scripts/gpu-bench.sh --resume --smoke gb" y.err ||
+set +e
+GPU_BENCH_ONLY="nope" "$B" --smoke --resume gb >z.out 2>z.err; rc=$?
+set -e
+[ $rc -eq 2 ] && grep -q "^gpu-bench: GPU_BENCH_ONLY: no manifest nope (modern-culling renderers-deferred" z.err ||
+  fail "GPU_BENCH_ONLY nope: rc $rc $(cat z.err)"
+grep -qx "gpu-bench: to finish: GPU_BENCH_SET='draw_limit=0.1' GPU_BENCH_ONLY='$GPU_BENCH_ONLY' scripts/gpu-bench.sh --resume --smoke gb" y.err ||
   fail "budget: $(cat y.err)"
 echo "gpu-bench: ok"
