@@ -10,16 +10,22 @@
 #   2. at 4,096 lights, each option against the same renderer at its defaults: the
 #      metric's ratio, evaluations a pixel, bytes, RMSE (per scene);
 #   3. stochastic ranges: error against time over lights.culling_error.
+#   4. at 65,536 lights, each renderer at its defaults against mask + samples;
+#   5. the crossovers: per scene, where one renderer at its defaults overtakes another
+#      along the light count (the metric's log ratio interpolated in log lights).
 #   scripts/bench-culling.sh [OUTDIR] [shadesweep run options, e.g. --smoke]
+#   scripts/bench-culling.sh OUTDIR --tables      (the tables of a finished OUTDIR only)
 # About 30 minutes on a 2-core machine; the crossovers are in OUTDIR/summary.md.
 set -euo pipefail
 root=$(cd "$(dirname "$0")/.." && pwd)
 out=${1:-$root/out/bench-culling}
 shift || true
 . "$root/scripts/bench-common.sh"
-# a failed run (a renderer refusing, a timeout) is a row of the table, not an abort
-"$root/build/runner/shadesweep" run --force "$@" -o "$out" \
-  "$root/experiments/modern-culling.yaml" || true
+if [ "${1:-}" != --tables ]; then
+  # a failed run (a renderer refusing, a timeout) is a row of the table, not an abort
+  "$root/build/runner/shadesweep" run --force "$@" -o "$out" \
+    "$root/experiments/modern-culling.yaml" || true
+fi
 bench_table "$out" <<'PY'
 import math, os, sys
 from shadesweep_report.bench import grouped, load, mean_ci, print_header, print_machine
@@ -40,8 +46,7 @@ def options(p):
         o.append(f"error {p['lights.culling_error']}")
     return ", ".join(o)
 def scene(p):
-    s = p["scene"]
-    return os.path.basename(s.split("file:")[-1].strip(" {}")) if "file" in s else s
+    return "2CylinderEngine.glb" if p["scene"].startswith("file:") else p["scene"]
 def num(s, fmt):
     return format(float(s), fmt) if s not in ("", None) else "-"
 def rmse(rs):
@@ -104,4 +109,44 @@ for k, rs, status in groups:
     err = plans[rs[0]["run_id"]]["lights.culling_error"]
     print(f"| {k[0]} | {k[2]} | {err} | {m:.1f} ± {ci:.1f} | {ratio} | "
           f"{num(rs[0]['light_evals_per_pixel'], '.1f')} | {rmse(rs)} |")
+print()
+print(f"### 4. 65,536 lights: defaults against mask + samples ({metric} ms, 2 trials)")
+print()
+print_header("scene", "renderer", f"defaults {metric} ms", "evals/pixel",
+             f"mask + samples {metric} ms", "evals/pixel", "ratio")
+for k, rs, status in groups:
+    if k[1] != 65536 or k[3] != "depth_culling mask, prune samples" or not rs:
+        continue
+    b = base.get((k[0], k[1], k[2]))
+    if not b:
+        continue
+    m, ci = ms(rs)
+    mb, cib = ms(b)
+    print(f"| {k[0]} | {k[2]} | {mb:.0f} ± {cib:.0f} | {num(b[0]['light_evals_per_pixel'], '.1f')} | "
+          f"{m:.0f} ± {ci:.0f} | {num(rs[0]['light_evals_per_pixel'], '.1f')} | {m / mb:.2f} |")
+print()
+print(f"### 5. Crossovers of the renderers at their defaults ({metric} time)")
+print()
+print_header("scene", "order at 16 / 256 / 4,096 / 65,536 lights (fastest first)",
+             "crossovers (lights, interpolated)")
+for sc in sorted({k[0] for k in base}):
+    counts = sorted({k[1] for k in base if k[0] == sc})
+    rens = sorted({k[2] for k in base if k[0] == sc})
+    t = {(n, r): ms(base[(sc, n, r)])[0] for n in counts for r in rens if (sc, n, r) in base}
+    orders = " / ".join(", ".join(r for r in sorted(rens, key=lambda r: t.get((n, r), 1e30)))
+                        for n in counts)
+    cross = []
+    for i, a in enumerate(rens):
+        for b in rens[i + 1:]:
+            for n0, n1 in zip(counts, counts[1:]):
+                if not all(k in t for k in ((n0, a), (n0, b), (n1, a), (n1, b))):
+                    continue
+                l0 = math.log(t[(n0, a)] / t[(n0, b)])
+                l1 = math.log(t[(n1, a)] / t[(n1, b)])
+                if l0 * l1 < 0:
+                    x = math.log(n0) + (math.log(n1) - math.log(n0)) * l0 / (l0 - l1)
+                    after = a if l1 < 0 else b
+                    before = b if after == a else a
+                    cross.append(f"{after} passes {before} at ~{math.exp(x):,.0f}")
+    print(f"| {sc} | {orders} | {'; '.join(cross) or 'none'} |")
 PY
