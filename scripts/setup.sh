@@ -19,6 +19,7 @@ packages=(
   valgrind                                            # meson test --setup=valgrind
   libsqlite3-dev libpq-dev                            # `history`: SQLite (default), PostgreSQL client
   postgresql                                          # tests/cli/history.sh's server
+  time util-linux                                     # scripts/bench-measure.sh: /usr/bin/time, taskset
 )
 
 missing=()
