@@ -67,6 +67,10 @@ typedef enum run_schedule { RUN_SCHEDULE_INTERLEAVED = 0, RUN_SCHEDULE_SEQUENTIA
 typedef enum run_metric {
     RUN_METRIC_AUTO = 0, RUN_METRIC_WALL, RUN_METRIC_CPU, RUN_METRIC_GPU
 } run_metric;
+/* `measure.rasterizer`: llvmpipe's threads in a trial's process (runner/trial/run.c) */
+typedef enum run_rasterizer {
+    RUN_RASTERIZER_AUTO = 0, RUN_RASTERIZER_THREADED, RUN_RASTERIZER_SINGLE
+} run_rasterizer;
 /* `translucency`, `shading.model` and `environment.light` (the names: runner/manifest/params.c) */
 typedef enum run_translucency {
     RUN_TRANSLUCENCY_BLEND = 0, RUN_TRANSLUCENCY_OPAQUE

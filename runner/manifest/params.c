@@ -58,6 +58,7 @@ static const char *const environment_names[] = {[RUN_ENVIRONMENT_NONE] = "none",
                                                 [RUN_ENVIRONMENT_SCENE] = "scene", NULL};
 static const char *const schedule_names[] = {"interleaved", "sequential", NULL};
 static const char *const metric_names[] = {"auto", "wall", "cpu", "gpu", NULL};
+static const char *const rasterizer_names[] = {"auto", "threaded", "single", NULL};
 /* The renderers' enums' names: renderers/keys.h declares them, renderer.c holds them. */
 
 #define RP(f) .off = offsetof(run_params, f), .size = sizeof(((run_params *)0)->f)

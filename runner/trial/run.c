@@ -156,10 +156,21 @@ typedef struct child_args {
     run_report *report;
 } child_args;
 
+/* measure.rasterizer (params.def): llvmpipe reads LP_NUM_THREADS when this process
+ * creates its context (run_setup), so the trial's own process sets it before. */
+static void apply_rasterizer(const run_params *p)
+{
+    bool cpu = p->metric == RUN_METRIC_AUTO || p->metric == RUN_METRIC_CPU;
+    if (p->rasterizer == RUN_RASTERIZER_SINGLE ||
+        (p->rasterizer == RUN_RASTERIZER_AUTO && cpu && !getenv("LP_NUM_THREADS")))
+        setenv("LP_NUM_THREADS", "0", 1);
+}
+
 static int child_main(void *arg)
 {
     child_args *a = arg;
     a->st->in_child = true;
+    apply_rasterizer(&a->st->s->p);
     run_one(a->st);
     const trial_result *tr = &a->st->result;
     snprintf(a->report->status, sizeof a->report->status, "%s", a->st->status);
