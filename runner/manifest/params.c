@@ -371,3 +371,14 @@ void params_to_renderer_options(const run_params *p, renderer_options *o)
 #define PARAM(path, type, flags, field, decl, def, lim, values, readers, ref, apply, desc) apply;
 #include "runner/manifest/params.def"
 }
+
+bool params_rasterizer_single(const run_params *p)
+{
+    const char *env = getenv("LP_NUM_THREADS");   /* the trial's once run.c has set it */
+    if (p->rasterizer == RUN_RASTERIZER_SINGLE)
+        return true;
+    if (env)
+        return strtol(env, NULL, 10) == 0;
+    return p->rasterizer == RUN_RASTERIZER_AUTO &&
+           (p->metric == RUN_METRIC_AUTO || p->metric == RUN_METRIC_CPU);
+}

@@ -108,6 +108,10 @@ void param_readers_text(const param *pd, char *out, size_t len);
 /* Whether run p reads the parameter: its renderer does, or its error reference
  * does and inherits the run's value. */
 bool param_read_by_run(const param *pd, const run_params *p);
+/* measure.rasterizer resolved against this process's environment: true when a trial of
+ * p runs llvmpipe single-threaded (LP_NUM_THREADS=0, which runner/trial/run.c sets in the
+ * trial's process; the environment's own LP_NUM_THREADS is kept unless p says single). */
+bool params_rasterizer_single(const run_params *p);
 /* The parameters the error reference of run p renders with (renderer included). */
 void params_reference(const run_params *p, run_params *ref);
 /* The renderer options of params.def's `apply` column (the context's fields are

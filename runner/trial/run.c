@@ -19,6 +19,7 @@
 #include "common/image_io.h"
 #include "runner/folder/folder.h"
 #include "runner/trial/isolate.h"
+#include "runner/manifest/params.h"
 #include "runner/plan/memory.h"
 
 /* The row of a trial that never ran (setup failed, the child died, or its run ended
@@ -160,9 +161,7 @@ typedef struct child_args {
  * creates its context (run_setup), so the trial's own process sets it before. */
 static void apply_rasterizer(const run_params *p)
 {
-    bool cpu = p->metric == RUN_METRIC_AUTO || p->metric == RUN_METRIC_CPU;
-    if (p->rasterizer == RUN_RASTERIZER_SINGLE ||
-        (p->rasterizer == RUN_RASTERIZER_AUTO && cpu && !getenv("LP_NUM_THREADS")))
+    if (params_rasterizer_single(p))
         setenv("LP_NUM_THREADS", "0", 1);
 }
 

@@ -208,7 +208,7 @@ bool run_write_meta(run_state *st, char *err, size_t errlen)
     yo_key(y, "debug_context"); yo_bool(y, gi && gi->debug_context);
     yo_key(y, "timer_query"); yo_bool(y, gi && gi->timer_query);
     yo_key(y, "pipeline_statistics"); yo_bool(y, gi && gi->pipeline_statistics);
-    /* llvmpipe's rasterizer threads as this trial ran (measure.rasterizer): null, one a CPU */
+    /* LP_NUM_THREADS as this trial ran (measure.rasterizer); null: llvmpipe's own, one a CPU */
     yo_key(y, "lp_num_threads"); yo_str(y, getenv("LP_NUM_THREADS"));
     yo_map_end(y);
     run_clocks_meta(st, y);
